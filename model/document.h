@@ -1,0 +1,117 @@
+// Document: owns the Scene, applies validated mutations, counts revisions and signals changes.
+#pragma once
+
+#include "model/scene.h"
+
+#include <QFlags>
+#include <QObject>
+#include <QString>
+
+#include <cstdint>
+#include <vector>
+
+namespace kw {
+
+/// What part of a surface changed; the renderer re-uploads only stale aspects.
+enum class Aspect : unsigned {
+    Points = 1 << 0,  ///< control point positions or weights (same counts)
+    Knots = 1 << 1,   ///< degrees, knot vectors, or control-net size
+    Trims = 1 << 2,   ///< trim loops
+    Display = 1 << 3, ///< partitions, material
+    Name = 1 << 4,
+};
+Q_DECLARE_FLAGS(Aspects, Aspect)
+Q_DECLARE_OPERATORS_FOR_FLAGS(Aspects)
+
+/// Per-surface revision of each aspect. Values come from one document-wide counter, so every
+/// change (undo included) yields a value never seen before for that surface.
+struct Revisions {
+    std::uint64_t points = 0;
+    std::uint64_t knots = 0;
+    std::uint64_t trims = 0;
+    std::uint64_t display = 0;
+    bool operator==(const Revisions&) const = default;
+};
+
+/// The one place the scene changes. Every mutator validates its input and returns false
+/// (changing nothing, emitting nothing) when it is invalid or names an unknown id; on success
+/// it bumps the revisions and emits the matching signals. Undo commands (ui/edit) call these;
+/// views and the renderer only read and listen.
+class Document : public QObject {
+    Q_OBJECT
+public:
+    explicit Document(QObject* parent = nullptr);
+
+    const Scene& scene() const { return m_scene; }
+    /// nullptr when no surface has this id.
+    const Surface* surface(SurfaceId id) const;
+    /// Position in scene().surfaces, or -1.
+    int indexOf(SurfaceId id) const;
+    /// Zero revisions for an unknown id.
+    Revisions revisions(SurfaceId id) const;
+    std::uint64_t lightsRevision() const { return m_lightsRevision; }
+    std::uint64_t cameraRevision() const { return m_cameraRevision; }
+
+    /// Fresh ids that no surface or loop of this document uses (never reused in a session).
+    SurfaceId allocateSurfaceId();
+    TrimLoopId allocateTrimLoopId();
+
+    /// Replaces the whole scene (New, Open, Import). Ids are kept; nextId is raised above them.
+    /// Returns false with *error set if the scene is invalid (the document is then unchanged).
+    bool resetScene(Scene scene, QString* error = nullptr);
+
+    /// index in [0, size]; surface.id valid and unused; geometry valid.
+    bool insertSurface(int index, Surface surface);
+    bool removeSurface(SurfaceId id);
+    bool setName(SurfaceId id, const QString& name);
+    /// Moves the listed control points (NurbsSurface::index) to new positions.
+    bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                          const std::vector<glm::dvec3>& positions);
+    bool setWeight(SurfaceId id, int index, double weight);
+    /// Degrees, knots and control net at once (knot edit, knot insertion, degree elevation).
+    bool setGeometry(SurfaceId id, const NurbsSurface& geometry);
+    /// Both in [kMinPartitions, kMaxPartitions].
+    bool setPartitions(SurfaceId id, int nu, int nv);
+    bool setMaterial(SurfaceId id, const Material& material);
+    /// index in [0, loop count]; loop.id valid and unused; every curve valid.
+    bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
+    bool removeTrimLoop(SurfaceId id, TrimLoopId loop);
+    bool setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
+    /// 1..kMaxLights lights.
+    bool setLights(std::vector<Light> lights);
+    bool setCamera(const Camera& camera);
+
+    /// Checks a whole scene: valid unique ids, valid geometry and trims, partitions and light
+    /// count in range. Returns an empty string when valid.
+    static QString validate(const Scene& scene);
+
+Q_SIGNALS:
+    void sceneAboutToBeReset();
+    void sceneReset();
+    void surfaceAboutToBeInserted(int index);
+    void surfaceInserted(kw::SurfaceId id, int index);
+    void surfaceAboutToBeRemoved(kw::SurfaceId id, int index);
+    void surfaceRemoved(kw::SurfaceId id);
+    void surfaceChanged(kw::SurfaceId id, kw::Aspects aspects);
+    void trimLoopAboutToBeInserted(kw::SurfaceId id, int index);
+    void trimLoopInserted(kw::SurfaceId id, int index);
+    void trimLoopAboutToBeRemoved(kw::SurfaceId id, int index);
+    void trimLoopRemoved(kw::SurfaceId id, int index);
+    void lightsChanged();
+    void cameraChanged();
+
+private:
+    Surface* mutableSurface(SurfaceId id);
+    void bump(SurfaceId id, Aspects aspects);
+
+    Scene m_scene;
+    std::vector<Revisions> m_revisions; // parallel to m_scene.surfaces
+    std::uint64_t m_counter = 0;
+    std::uint64_t m_lightsRevision = 0;
+    std::uint64_t m_cameraRevision = 0;
+};
+
+} // namespace kw
+
+Q_DECLARE_METATYPE(kw::SurfaceId)
+Q_DECLARE_METATYPE(kw::Aspects)

@@ -1,0 +1,127 @@
+// Scene: the authored data of a Knotwork document as plain values (no derived data, no Qt objects).
+#pragma once
+
+#include "model/nurbs.h"
+
+#include <QHashFunctions>
+#include <QString>
+#include <glm/glm.hpp>
+
+#include <compare>
+#include <cstdint>
+#include <vector>
+
+namespace kw {
+
+/// Typed handle of a surface, unique within a document and stable across undo/redo.
+struct SurfaceId {
+    std::uint32_t value = 0;
+    bool isValid() const { return value != 0; }
+    auto operator<=>(const SurfaceId&) const = default;
+};
+
+/// Typed handle of a trim loop, unique within a document.
+struct TrimLoopId {
+    std::uint32_t value = 0;
+    bool isValid() const { return value != 0; }
+    auto operator<=>(const TrimLoopId&) const = default;
+};
+
+inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
+inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
+
+/// One control point of one surface: (i, j) as in NurbsSurface::index.
+struct ControlPointRef {
+    SurfaceId surface;
+    int i = 0;
+    int j = 0;
+    auto operator<=>(const ControlPointRef&) const = default;
+};
+
+/// One control point of one trim curve.
+struct TrimPointRef {
+    SurfaceId surface;
+    TrimLoopId loop;
+    int curve = 0;
+    int index = 0;
+    auto operator<=>(const TrimPointRef&) const = default;
+};
+
+/// Phong material (paper eq. 3.8): I = ka*ia + sum(kd (L.N) id + ks (R.V)^shininess is) * color.
+struct Material {
+    glm::dvec3 color{0.80, 0.82, 0.86};
+    double ka = 0.15;
+    double kd = 0.75;
+    double ks = 0.35;
+    double shininess = 40.0;
+    bool operator==(const Material&) const = default;
+};
+
+/// A closed loop of 2D NURBS curves in the surface's (u, v) space, each curve starting where
+/// the previous one ends. Outer boundaries, holes and islands are distinguished by nesting,
+/// not by orientation: the trim mask combines loops by parity.
+struct TrimLoop {
+    TrimLoopId id;
+    std::vector<NurbsCurve2> curves;
+    bool operator==(const TrimLoop&) const = default;
+};
+
+/// Tessellation partitions of the base polygon (paper 3.1): the domain cut into nu x nv cells.
+constexpr int kMinPartitions = 1;
+constexpr int kMaxPartitions = 256;
+
+struct Surface {
+    SurfaceId id;
+    QString name;
+    NurbsSurface geometry;
+    std::vector<TrimLoop> trims;
+    int partitionsU = 10;
+    int partitionsV = 10;
+    Material material;
+    bool operator==(const Surface&) const = default;
+};
+
+/// A light of the Phong model: directional (vector = direction the light travels *from*,
+/// i.e. towards the light, in world space) or point (vector = position).
+struct Light {
+    enum class Kind { Directional, Point };
+    Kind kind = Kind::Directional;
+    glm::dvec3 vector{0.0, 0.0, 1.0};
+    glm::dvec3 ambient{0.2};  ///< i_a
+    glm::dvec3 diffuse{0.8};  ///< i_d
+    glm::dvec3 specular{0.6}; ///< i_s
+    bool operator==(const Light&) const = default;
+};
+
+constexpr int kMaxLights = 8;
+
+/// The two lights a new scene starts with: a key light from the upper left front and a
+/// dimmer fill light from the right.
+std::vector<Light> defaultLights();
+
+/// Perspective camera. `authored` false means none was set by the user or file: views fit one
+/// to the scene (fitCamera) and files omit it.
+struct Camera {
+    glm::dvec3 eye{0.0, -5.0, 3.0};
+    glm::dvec3 target{0.0};
+    glm::dvec3 up{0.0, 0.0, 1.0};
+    double fovYDegrees = 35.0;
+    bool authored = false;
+    bool operator==(const Camera&) const = default;
+};
+
+/// The whole authored document. Ids are unique; nextId is above every id in use.
+struct Scene {
+    std::vector<Surface> surfaces;
+    std::vector<Light> lights = defaultLights();
+    Camera camera;
+    std::uint32_t nextId = 1;
+    bool operator==(const Scene&) const = default;
+};
+
+/// Axis-aligned bounds of all control points; false when the scene is empty.
+bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
+/// A camera that looks at the whole scene from the front-right-above, for views without one.
+Camera fitCamera(const Scene& scene, double aspect);
+
+} // namespace kw
