@@ -42,6 +42,17 @@ SurfaceId Selection::currentSurface() const {
                              : SurfaceId{};
 }
 
+std::vector<SurfaceId> Selection::selectedSurfaces() const {
+    std::vector<SurfaceId> picked;
+    for (const QModelIndex& i : m_items.selectedIndexes())
+        picked.push_back(i.data(SceneModel::SurfaceIdRole).value<SurfaceId>());
+    std::vector<SurfaceId> out;
+    for (const Surface& s : m_doc->scene().surfaces)
+        if (std::find(picked.begin(), picked.end(), s.id) != picked.end())
+            out.push_back(s.id);
+    return out;
+}
+
 bool Selection::validRef(const ControlPointRef& r) const {
     const Surface* s = m_doc->surface(r.surface);
     return s && r.i >= 0 && r.i < s->geometry.countU && r.j >= 0 && r.j < s->geometry.countV;

@@ -253,6 +253,8 @@ void TestSceneModel::selectionFollowsDocument() {
     sel.itemSelection()->setCurrentIndex(f.model.index(0, 0, f.model.index(1, 0)),
                                          QItemSelectionModel::ClearAndSelect);
     QCOMPARE(sel.currentSurface(), SurfaceId{3});
+    sel.itemSelection()->select(f.model.index(0, 0), QItemSelectionModel::Select);
+    QCOMPARE(sel.selectedSurfaces(), std::vector<SurfaceId>({SurfaceId{1}, SurfaceId{3}}));
     QVERIFY(changed.count() > 0);
 
     QVERIFY(f.doc.resetScene(threeSurfaceScene()));
