@@ -258,6 +258,8 @@ void elevate(Lines& ls, int t) {
     ls = std::move(result);
 }
 
+/// Contract (beyond nurbs.h): an invalid surface (surfaceValidationError) or times <= 0 also
+/// returns the input unchanged.
 NurbsSurface insertKnot(const NurbsSurface& s, double u, int times, bool alongU) {
     if (times <= 0 || !surfaceValidationError(s).empty())
         return s;
@@ -267,16 +269,20 @@ NurbsSurface insertKnot(const NurbsSurface& s, double u, int times, bool alongU)
     if (!(u > d.first && u < d.last))
         return s;
     const int mult = multiplicity(knots, u);
-    if (mult + times > p)
+    if (times > p - mult) // written so that a huge `times` cannot overflow
         return s;
     Lines ls = extract(s, alongU);
     insertKnot(ls, u, findSpan(p, knots, u), mult, times);
     return rebuild(s, ls, alongU);
 }
 
+/// Contract (beyond nurbs.h): an invalid surface or t <= 0 also returns the input unchanged.
+/// An unclamped knot vector comes back clamped at the domain ends (same surface, same domain).
 NurbsSurface elevateDegree(const NurbsSurface& s, int t, bool alongU) {
+    if (t <= 0 || !surfaceValidationError(s).empty())
+        return s;
     const int p = alongU ? s.degreeU : s.degreeV;
-    if (t <= 0 || p + t > kMaxDegree || !surfaceValidationError(s).empty())
+    if (t > kMaxDegree - p) // written so that a huge t cannot overflow
         return s;
     Lines ls = extract(s, alongU);
     elevate(ls, t);

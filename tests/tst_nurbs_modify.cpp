@@ -3,6 +3,7 @@
 #include "model/nurbs_shapes.h"
 
 #include <QTest>
+#include <climits>
 
 using namespace kw;
 
@@ -117,6 +118,7 @@ void TestNurbsModify::insertKnotRefusals() {
     QCOMPARE(surfaceInsertKnotV(s, 0.3, 3), s);  // 3 > degree 2
     QCOMPARE(surfaceInsertKnotV(s, 0.3, 0), s);  // nothing to do
     QCOMPARE(surfaceInsertKnotV(s, 0.3, -1), s); // nonsense count
+    QCOMPARE(surfaceInsertKnotV(s, 0.3, INT_MAX), s);
     NurbsSurface bad = s;
     bad.weights[3] = -1.0;
     QCOMPARE(surfaceInsertKnotU(bad, 0.3), bad); // invalid input is returned as is
@@ -206,6 +208,7 @@ void TestNurbsModify::elevateRefusals() {
     QCOMPARE(surfaceElevateDegreeU(s, 2), s); // 16 > kMaxDegree
     QCOMPARE(surfaceElevateDegreeU(s, 0), s);
     QCOMPARE(surfaceElevateDegreeV(s, -1), s);
+    QCOMPARE(surfaceElevateDegreeV(s, INT_MAX), s);
     QCOMPARE(surfaceElevateDegreeU(s, 1).degreeU, kMaxDegree);
     NurbsSurface bad = s;
     bad.knotsV.pop_back();
