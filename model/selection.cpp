@@ -14,8 +14,8 @@ template <typename T> void sortUnique(std::vector<T>& v) {
 
 } // namespace
 
-Selection::Selection(SceneModel* model, QObject* parent)
-    : QObject(parent), m_doc(model->document()), m_items(model) {
+Selection::Selection(SceneModel& model, QObject* parent)
+    : QObject(parent), m_doc(model.document()), m_items(&model) {
     connect(&m_items, &QItemSelectionModel::selectionChanged, this, &Selection::changed);
     connect(&m_items, &QItemSelectionModel::currentChanged, this, &Selection::changed);
     connect(m_doc, &Document::sceneReset, this, [this] {

@@ -19,7 +19,7 @@ class Selection : public QObject {
     Q_OBJECT
 public:
     /// `model` (and its document) must outlive the selection.
-    explicit Selection(SceneModel* model, QObject* parent = nullptr);
+    explicit Selection(SceneModel& model, QObject* parent = nullptr);
 
     QItemSelectionModel* itemSelection() { return &m_items; }
     /// The surface of the current tree row, or invalid.

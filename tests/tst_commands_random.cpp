@@ -116,7 +116,7 @@ public:
 
     Document m_doc;
     QUndoStack m_stack;
-    SceneModel m_model{&m_doc};
+    SceneModel m_model{m_doc};
     QAbstractItemModelTester m_tester{&m_model,
                                       QAbstractItemModelTester::FailureReportingMode::Fatal};
     std::mt19937 m_rng;
