@@ -70,12 +70,14 @@ std::optional<QByteArray> repairIgesNumbering(const QByteArray& file, QString& n
     for (int i = 0; i < s.size(); ++i)
         put(s[i], 'S', i + 1);
     // A Global section that stops after the parameter delimiter leaves the record delimiter
-    // undefined (OCCT then misreads every ';'): complete it with the defaults.
+    // undefined (OCCT then misreads every ';'): complete it with the default delimiters, model
+    // scale 1 and millimetres (OCCT's own unit), so coordinates are read as written instead of
+    // being scaled from the default unit, inches.
     QByteArray global;
     for (const QByteArray& line : g)
         global += line.left(72);
     if (!global.contains(';') && (global.trimmed() == "1H," || global.trimmed().isEmpty())) {
-        g = {QByteArray("1H,,1H;;").leftJustified(80, ' ')};
+        g = {QByteArray("1H,,1H;,,,,,,,,,,,1.0,2,2HMM;").leftJustified(80, ' ')};
         changed = true;
     }
     for (int i = 0; i < g.size(); ++i)
@@ -110,9 +112,10 @@ std::optional<QByteArray> repairIgesNumbering(const QByteArray& file, QString& n
                    QByteArray::number(d.size()).rightJustified(7, ' ') + "P" +
                    QByteArray::number(p.size()).rightJustified(7, ' ');
     out += t.leftJustified(72, ' ') + "T      1\n";
-    note = QStringLiteral("inconsistent IGES numbering (sequence numbers, parameter back-pointers, "
-                          "line counts or an incomplete Global section) rebuilt from the "
-                          "directory's parameter pointers before reading (%1 entities)")
+    note = QStringLiteral("inconsistent IGES numbering (sequence numbers, parameter back-pointers "
+                          "or line counts) rebuilt from the directory's parameter pointers, and "
+                          "an incomplete Global section completed (coordinates as written), "
+                          "before reading (%1 entities)")
                .arg(n);
     return out;
 }

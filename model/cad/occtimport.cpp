@@ -75,7 +75,7 @@ QString loadFailures(const Handle(XSControl_WorkSession) & ws) {
     for (checks.Start(); checks.More() && lines.size() < 3; checks.Next()) {
         const Handle(Interface_Check)& c = checks.Value();
         for (int i = 1; i <= c->NbFails() && lines.size() < 3; ++i)
-            lines << QString::fromUtf8(c->CFail(i)).trimmed();
+            lines << QString::fromUtf8(c->Fail(i)->ToCString()).trimmed();
     }
     return lines.join(QStringLiteral("; "));
 }
@@ -105,8 +105,14 @@ QString entityName(const Handle(Standard_Transient) & entity) {
         if (!step->Name().IsNull())
             return QString::fromUtf8(step->Name()->ToCString()).trimmed();
     } else if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity)) {
-        if (iges->HasName())
-            return QString::fromUtf8(iges->NameValue()->ToCString()).trimmed();
+        if (iges->HasName()) {
+            QString name = QString::fromUtf8(iges->NameValue()->ToCString()).trimmed();
+            // OCCT appends the subscript as "label(n)", also when the file's subscript is 0.
+            if (iges->HasSubScriptNumber() && iges->SubScriptNumber() == 0 &&
+                name.endsWith(QLatin1String("(0)")))
+                name.chop(3);
+            return name;
+        }
         if (iges->HasShortLabel())
             return QString::fromUtf8(iges->ShortLabel()->ToCString()).trimmed();
     }
@@ -159,8 +165,9 @@ std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & rea
 
 struct ReadShape {
     TopoDS_Shape shape;
-    Handle(XSControl_TransferReader) names; // null for BREP
-    QStringList notes;                      // for the report's warnings
+    std::unique_ptr<XSControl_Reader> reader; // kept alive: it owns the transfer records
+    Handle(XSControl_TransferReader) names;   // null for BREP
+    QStringList notes;                        // for the report's warnings
 };
 
 // Reads and transfers the file; false with `error` set on any fault.
@@ -230,6 +237,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         return false;
     out.shape = reader->OneShape();
     out.names = reader->WS()->TransferReader();
+    out.reader = std::move(reader);
     if (out.shape.IsNull()) {
         error = QStringLiteral("the %1 file holds no shape that could be transferred")
                     .arg(cadFormatName(format));
