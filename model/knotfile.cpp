@@ -7,6 +7,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSaveFile>
+#include <cerrno>
 
 namespace kw {
 
@@ -131,8 +132,16 @@ bool writeKnotFile(const QString& path, const Scene& scene, QString* error) {
     };
     if (!file.open(QIODevice::WriteOnly))
         return failed(QStringLiteral("cannot open for writing"));
-    if (file.write(json) != json.size())
-        return failed(QStringLiteral("cannot write"));
+    // Flush explicitly: Qt 6.4's QSaveFile::commit() ignores a failed final flush (e.g. EFBIG,
+    // ENOSPC) and would replace the old file with a truncated one.
+    if (file.write(json) != json.size() || !file.flush()) {
+        const int err = errno;
+        const QString reason = err ? qt_error_string(err) : QStringLiteral("incomplete write");
+        if (error)
+            *error = QStringLiteral("%1: cannot write: %2").arg(path, reason);
+        file.cancelWriting();
+        return false;
+    }
     if (!file.commit())
         return failed(QStringLiteral("cannot save"));
     return true;
