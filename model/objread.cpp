@@ -195,6 +195,7 @@ private:
     bool m_lightsFromFile = false;
     int m_polygons = 0, m_ignored = 0, m_surfaceNumber = 0;
     std::optional<std::uint32_t> m_nextId;
+    int m_announced = -1, m_announcedLine = 0;
 };
 
 Scene ObjParser::parse(const QByteArray& text) {
@@ -259,6 +260,9 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
     };
     if (key == "nextid") {
         m_nextId = static_cast<std::uint32_t>(num(3));
+    } else if (key == "surfaces") {
+        m_announced = static_cast<int>(num(3));
+        m_announcedLine = line;
     } else if (key == "light") {
         if (!m_lightsFromFile)
             m_scene.lights.clear();

@@ -78,6 +78,8 @@ QByteArray writeObj(const Scene& scene) {
     out += "# Lines '# knotwork ...' keep Knotwork's ids, names, partitions, materials, lights\n";
     out += "# and camera; other readers ignore them as comments.\n";
     out += "# knotwork nextid " + QByteArray::number(scene.nextId) + '\n';
+    // The count lets the reader tell a file cut at an element boundary from a complete one.
+    out += "# knotwork surfaces " + QByteArray::number(scene.surfaces.size()) + '\n';
     for (const Light& l : scene.lights)
         out += QByteArray("# knotwork light ") +
                (l.kind == Light::Kind::Point ? "point " : "directional ") + vec(l.vector) + ' ' +
