@@ -49,7 +49,74 @@ constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.
 constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                0.4786286704993665, 0.2369268850561891};
 
+// The Boehm / A5.1 knot insertion on a 2D rational curve, in homogeneous coordinates.
+NurbsCurve2 insertCurveKnot(const NurbsCurve2& c, double t) {
+    const int p = c.degree;
+    const int k = findSpan(p, c.knots, t);
+    std::vector<glm::dvec3> hw(c.points.size());
+    for (size_t i = 0; i < hw.size(); ++i)
+        hw[i] = glm::dvec3(c.points[i] * c.weights[i], c.weights[i]);
+    std::vector<glm::dvec3> q(hw.size() + 1);
+    for (int i = 0; i < static_cast<int>(q.size()); ++i) {
+        if (i <= k - p)
+            q[i] = hw[i];
+        else if (i > k)
+            q[i] = hw[i - 1];
+        else {
+            const double a = (t - c.knots[i]) / (c.knots[i + p] - c.knots[i]);
+            q[i] = a * hw[i] + (1.0 - a) * hw[i - 1];
+        }
+    }
+    NurbsCurve2 out;
+    out.degree = p;
+    out.knots = c.knots;
+    out.knots.insert(out.knots.begin() + k + 1, t);
+    for (const glm::dvec3& h : q) {
+        out.points.push_back(glm::dvec2(h) / h.z);
+        out.weights.push_back(h.z);
+    }
+    return out;
+}
+
 } // namespace
+
+NurbsCurve2 trimCurveSegment(NurbsCurve2 c, double a, double b) {
+    const int p = c.degree;
+    for (double t : {a, b}) {
+        const int have = static_cast<int>(std::count(c.knots.begin(), c.knots.end(), t));
+        for (int m = have; m < p; ++m)
+            c = insertCurveKnot(c, t);
+    }
+    const auto first = std::lower_bound(c.knots.begin(), c.knots.end(), a) - c.knots.begin();
+    const auto last = std::upper_bound(c.knots.begin(), c.knots.end(), b) - c.knots.begin();
+    NurbsCurve2 out;
+    out.degree = p;
+    // Keep multiplicity p at each end, plus one more knot each side to clamp: take the knots
+    // from the first a (p+1 of them, a repeated) to the last b.
+    out.knots.assign(p + 1, a);
+    for (auto i = first; i < last; ++i)
+        if (c.knots[i] > a && c.knots[i] < b)
+            out.knots.push_back(c.knots[i]);
+    out.knots.insert(out.knots.end(), p + 1, b);
+    const int count = static_cast<int>(out.knots.size()) - p - 1;
+    // With a of multiplicity m >= p at knots[first ..], the segment starts at control point
+    // first + m - p - 1 (the one C(a+) equals).
+    const int multA = static_cast<int>(std::count(c.knots.begin(), c.knots.end(), a));
+    const int start = static_cast<int>(first) + multA - p - 1;
+    out.points.assign(c.points.begin() + start, c.points.begin() + start + count);
+    out.weights.assign(c.weights.begin() + start, c.weights.begin() + start + count);
+    return out;
+}
+
+NurbsCurve2 trimCurveReversed(const NurbsCurve2& c) {
+    NurbsCurve2 r = c;
+    std::reverse(r.points.begin(), r.points.end());
+    std::reverse(r.weights.begin(), r.weights.end());
+    const double sum = c.knots.front() + c.knots.back();
+    for (size_t i = 0; i < c.knots.size(); ++i)
+        r.knots[i] = sum - c.knots[c.knots.size() - 1 - i];
+    return r;
+}
 
 std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance) {
     const std::vector<double> t = breakpoints(curve.knots, curve.degree);

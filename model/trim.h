@@ -11,6 +11,14 @@ namespace kw {
 /// A loop flattened to a closed polyline in (u, v); the last point is not repeated.
 using TrimPolygon = std::vector<glm::dvec2>;
 
+/// The piece of a curve between parameters first < last inside its domain, exactly: knots are
+/// inserted (Boehm, The NURBS Book A5.1, on homogeneous points) to multiplicity `degree` at
+/// both ends and the clamped piece is cut out; its parameters stay those of the source.
+/// Precondition: a valid curve and curveDomain(c).first <= first < last <= curveDomain(c).last.
+NurbsCurve2 trimCurveSegment(NurbsCurve2 curve, double first, double last);
+/// The same curve run backwards: C'(t) = C(a + b - t) over the same domain [a, b].
+NurbsCurve2 trimCurveReversed(const NurbsCurve2& curve);
+
 /// Flattens one trim curve: samples the curve at its knots and bisects every piece until the
 /// midpoint of each chord is within `tolerance` (in parameter units) of the curve, or the
 /// depth limit is reached. Returns the points from start to end inclusive. Precondition: a

@@ -61,6 +61,7 @@ private Q_SLOTS:
     void areaOfPlateWithHoleAndIsland();
     void areaOfUntrimmedSphere();
     void areaOfTrimmedSampleConverges();
+    void segmentAndReverseKeepTheCurve();
 };
 
 void TestTrim::flatteningStaysWithinTolerance_data() {
@@ -167,6 +168,31 @@ void TestTrim::areaOfTrimmedSampleConverges() {
     QVERIFY2(std::abs(coarse - fine) / fine < 1e-4,
              qPrintable(QStringLiteral("%1 vs %2").arg(coarse).arg(fine)));
     QVERIFY(fine < trimmedSurfaceArea(s.geometry, {})); // holes remove area
+}
+
+void TestTrim::segmentAndReverseKeepTheCurve() {
+    // A rational cubic with an interior double knot; pieces starting at the domain start, at a
+    // knot, and between knots.
+    NurbsCurve2 c;
+    c.degree = 3;
+    c.knots = {0, 0, 0, 0, 0.3, 0.6, 0.6, 1, 1, 1, 1};
+    c.points = {{0, 0}, {1, 2}, {2, -1}, {3, 3}, {4, 0}, {5, 2}, {6, 1}};
+    c.weights = {1, 0.5, 2, 1, 0.7, 1.5, 1};
+    for (auto [a, b] : {std::pair{0.0, 0.45}, {0.3, 1.0}, {0.12, 0.77}, {0.6, 0.61}}) {
+        const NurbsCurve2 piece = trimCurveSegment(c, a, b);
+        QVERIFY(curveValidationError(piece).empty());
+        QCOMPARE(curveDomain(piece).first, a);
+        QCOMPARE(curveDomain(piece).last, b);
+        for (int k = 0; k <= 20; ++k) {
+            const double t = a + (b - a) * k / 20.0;
+            QVERIFY2(glm::length(curvePoint(piece, t) - curvePoint(c, t)) < 1e-13,
+                     qPrintable(QStringLiteral("[%1, %2] at %3").arg(a).arg(b).arg(t)));
+        }
+    }
+    const NurbsCurve2 r = trimCurveReversed(c);
+    QVERIFY(curveValidationError(r).empty());
+    for (int k = 0; k <= 20; ++k)
+        QVERIFY(glm::length(curvePoint(r, k / 20.0) - curvePoint(c, 1.0 - k / 20.0)) < 1e-13);
 }
 
 QTEST_GUILESS_MAIN(TestTrim)

@@ -149,15 +149,15 @@ std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & rea
         const bool isFace = shape.ShapeType() == TopAbs_FACE;
         FaceOrigin& o = origins[index];
         if (o.fromFaceEntity && !isFace)
-            continue;
+            continue; // the entity that made exactly this face wins over its containers
         const Handle(Standard_Transient) entity = tp->Mapped(i);
         const QString name = entityName(entity);
-        if (isFace || !name.isEmpty()) {
-            if (!name.isEmpty() || isFace)
-                o.name = name.isEmpty() ? o.name : name;
-            if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity); isFace && !iges.IsNull())
+        if (!name.isEmpty())
+            o.name = name;
+        if (isFace) {
+            o.fromFaceEntity = true;
+            if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity); !iges.IsNull())
                 o.igesType = iges->TypeNumber();
-            o.fromFaceEntity = o.fromFaceEntity || isFace;
         }
     }
     return origins;
@@ -255,6 +255,8 @@ bool occtAvailable() {
 std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
                                            const ImportProgress& progress) {
     setUpOcctOnce();
+    // Also in this thread (the editor imports on a worker thread): FPE masks and handlers.
+    OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
     Handle(ProgressBridge) bridgeHandle = new ProgressBridge(progress);
     ProgressBridge& bridge = *bridgeHandle;
     ReadShape read;
