@@ -7,6 +7,7 @@
 #include <QUrl>
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <optional>
 
 namespace kw {
@@ -369,12 +370,14 @@ void ObjParser::finish(int line) {
 }
 
 void ObjParser::finishCurve2() {
-    if (!m_el.supported) {
+    if (!m_el.supported || m_el.degU > kMaxDegree) {
+        // Reported here; a trim that uses it is then an error naming this curve.
         m_curv2.push_back(std::nullopt);
-        m_report.warnings << QStringLiteral("%1:%2: curv2 of type '%3' not supported")
+        m_report.warnings << QStringLiteral("%1:%2: curv2 of type '%3', degree %4, not supported")
                                  .arg(m_file)
                                  .arg(m_el.line)
-                                 .arg(m_el.typeName);
+                                 .arg(m_el.typeName)
+                                 .arg(m_el.degU);
         return;
     }
     NurbsCurve2 c;
@@ -448,9 +451,8 @@ void ObjParser::finishSurface() {
         TrimLoop loop;
         for (const TrimRef& ref : m_el.loops[l]) {
             if (!m_curv2[ref.curve]) {
-                fail(
-                    m_el.line,
-                    QStringLiteral("trim uses curv2 %1 of an unsupported type").arg(ref.curve + 1));
+                fail(m_el.line, QStringLiteral("trim uses curv2 %1, which is not supported")
+                                    .arg(ref.curve + 1));
             }
             const NurbsCurve2& c = *m_curv2[ref.curve];
             const Interval d = curveDomain(c);
@@ -501,6 +503,9 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
         out = parser.parse(text);
     } catch (const ParseError& e) {
         error = QStringLiteral("%1:%2: %3").arg(fileName).arg(e.line).arg(e.reason);
+        return false;
+    } catch (const std::bad_alloc&) {
+        error = QStringLiteral("%1: too large to read (out of memory)").arg(fileName);
         return false;
     }
     // Ids from the file must be unique; surfaces and loops without one get fresh ones.

@@ -244,6 +244,8 @@ private Q_SLOTS:
     void brokenFiles_data();
     void brokenFiles();
     void unknownFormat();
+    void randomDamageNeverCrashes_data();
+    void randomDamageNeverCrashes();
 };
 
 void TestCadImport::teapotIges() {
@@ -438,6 +440,40 @@ void TestCadImport::unknownFormat() {
     QVERIFY(error.contains(QLatin1String("unknown file type")));
     QVERIFY(!importFile(QStringLiteral(KW_TEST_OUTPUT_DIR "/missing.step"), error));
     QVERIFY(error.contains(QLatin1String("no such file")));
+}
+
+void TestCadImport::randomDamageNeverCrashes_data() {
+    QTest::addColumn<QString>("source");
+    QTest::newRow("iges") << "hammer.iges";
+    QTest::newRow("step") << "screw.step";
+}
+
+void TestCadImport::randomDamageNeverCrashes() {
+    // 12 copies with 64 bytes overwritten at random places: each is refused with an error
+    // naming the file, or imports into a valid scene. Nothing crashes.
+    QFETCH(QString, source);
+    QFile in(dataFile(source.toUtf8().constData()));
+    QVERIFY(in.open(QIODevice::ReadOnly));
+    const QByteArray good = in.readAll();
+    QRandomGenerator rng(source.size());
+    const char alphabet[] = "0123456789,;.()#$'=ABCDEFGH \n";
+    for (int n = 0; n < 12; ++n) {
+        QByteArray bad = good;
+        const qsizetype at = rng.bounded(bad.size() - 64);
+        for (int i = 0; i < 64; ++i)
+            bad[at + i] = alphabet[rng.bounded(int(sizeof alphabet) - 1)];
+        const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/damaged_%1_").arg(n) + source;
+        QFile out(path);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(bad);
+        out.close();
+        QString error;
+        const auto r = importFile(path, error);
+        if (r)
+            QVERIFY(Document::validate(r->scene).isEmpty());
+        else
+            QVERIFY2(error.startsWith(path + QLatin1Char(':')), qPrintable(error));
+    }
 }
 
 QTEST_GUILESS_MAIN(TestCadImport)
