@@ -240,6 +240,7 @@ private Q_SLOTS:
     void hammerIges();
     void screwStep();
     void brepRoundTrip();
+    void untransferableEntityIsReported();
     void cancelStopsImport();
     void brokenFiles_data();
     void brokenFiles();
@@ -360,6 +361,33 @@ void TestCadImport::brepRoundTrip() {
         QCOMPARE(fromBrep->scene.surfaces[k].trims.size(),
                  fromStep->scene.surfaces[k].trims.size());
     }
+#endif
+}
+
+void TestCadImport::untransferableEntityIsReported() {
+#ifndef KW_HAVE_OCCT
+    QSKIP("built without OpenCASCADE");
+#else
+    // teapot.igs with the second patch's u knots all 1.0: OCCT cannot make that surface.
+    QFile in(dataFile("teapot.igs"));
+    QVERIFY(in.open(QIODevice::ReadOnly));
+    QList<QByteArray> lines = in.readAll().split('\n');
+    const int firstParameterLineOfPatch2 = 1 + 1 + 64 + 26; // S, G, 64 D lines, 26 P lines
+    QVERIFY(lines[firstParameterLineOfPatch2].startsWith("128,3,3,3,3"));
+    lines[firstParameterLineOfPatch2 + 1].replace(0, 16, "1.0,1.0,1.0,1.0,");
+    const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/teapot_bad_patch.igs");
+    QFile out(path);
+    QVERIFY(out.open(QIODevice::WriteOnly));
+    out.write(lines.join('\n'));
+    out.close();
+    QString error;
+    const auto r = importFile(path, error);
+    QVERIFY2(r, qPrintable(error));
+    QCOMPARE(r->scene.surfaces.size(), size_t(31));
+    QCOMPARE(r->report.facesImported, 31);
+    QCOMPARE(r->report.skipped.size(), 1); // counted and reported, not silently dropped
+    QVERIFY2(r->report.skipped[0].contains(QLatin1String("IGESGeom_BSplineSurface")),
+             qPrintable(r->report.skipped[0]));
 #endif
 }
 

@@ -8,6 +8,7 @@
 #include <IGESControl_Reader.hxx>
 #include <IGESData_IGESEntity.hxx>
 #include <IGESData_IGESModel.hxx>
+#include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
 #include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
@@ -28,6 +29,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TransferBRep.hxx>
+#include <Transfer_Binder.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
@@ -168,6 +170,7 @@ struct ReadShape {
     std::unique_ptr<XSControl_Reader> reader; // kept alive: it owns the transfer records
     Handle(XSControl_TransferReader) names;   // null for BREP
     QStringList notes;                        // for the report's warnings
+    QStringList skipped;                      // root entities that gave no shape
 };
 
 // Reads and transfers the file; false with `error` set on any fault.
@@ -232,15 +235,36 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                     .arg(loadFailures(reader->WS()));
         return false;
     }
+    const int roots = reader->NbRootsForTransfer();
     reader->TransferRoots(bridge.Start());
     if (bridge.cancelled())
         return false;
+    // Root entities that produced no shape are reported, not silently dropped.
+    const Handle(Transfer_TransientProcess) tp = reader->WS()->TransferReader()->TransientProcess();
+    for (int i = 1; i <= roots && !tp.IsNull(); ++i) {
+        const Handle(Standard_Transient) root = reader->RootForTransfer(i);
+        if (root.IsNull() || !TransferBRep::ShapeResult(tp, root).IsNull())
+            continue;
+        QString why = QStringLiteral("OpenCASCADE could not transfer it");
+        const Handle(Transfer_Binder) binder = tp->Find(root);
+        if (!binder.IsNull() && binder->Check()->NbFails() > 0)
+            why += QStringLiteral(": ") +
+                   QString::fromUtf8(binder->Check()->Fail(1)->ToCString()).trimmed();
+        const Handle(TCollection_HAsciiString) label = model->StringLabel(root);
+        out.skipped << QStringLiteral("entity %1 (%2): %3")
+                           .arg(label.IsNull() ? QStringLiteral("?")
+                                               : QString::fromUtf8(label->ToCString()),
+                                QString::fromLatin1(root->DynamicType()->Name()), why);
+    }
     out.shape = reader->OneShape();
     out.names = reader->WS()->TransferReader();
     out.reader = std::move(reader);
     if (out.shape.IsNull()) {
-        error = QStringLiteral("the %1 file holds no shape that could be transferred")
-                    .arg(cadFormatName(format));
+        error = QStringLiteral("the %1 file holds no shape that could be transferred%2")
+                    .arg(cadFormatName(format),
+                         out.skipped.isEmpty()
+                             ? QString()
+                             : QStringLiteral(" (") + out.skipped.front() + QLatin1Char(')'));
         return false;
     }
     return true;
@@ -275,6 +299,7 @@ std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format
         origins = faceOrigins(read.names, faces);
         for (const QString& n : read.notes)
             result.report.warnings << n;
+        result.report.skipped << read.skipped;
     } catch (const Standard_Failure& e) {
         error = QStringLiteral("%1: OpenCASCADE failed reading the file: %2 (%3)")
                     .arg(path, QString::fromUtf8(e.GetMessageString()),
