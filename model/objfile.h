@@ -10,7 +10,8 @@
 namespace kw {
 
 /// Parses free-form OBJ text: v (with optional weight), vp, cstype [rat] bspline|bezier, deg,
-/// surf, parm u|v, curv2, trim, hole, end, o/g names; continuation lines ending in '\'.
+/// surf, parm u|v, curv2, trim, hole, end, o/g names; continuation lines ending in '\'. A surf
+/// range inside the knot domain cuts the surface to that range exactly (same parameters).
 /// Polygons (f, l, p), 3D curves and other statements that carry no surface are counted in
 /// report.warnings; surfaces of unsupported kinds (cardinal, taylor, bmatrix, degree above
 /// kMaxDegree) are listed in report.skipped. Knotwork's own "# knotwork ..." comment lines,

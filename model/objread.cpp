@@ -85,6 +85,40 @@ int controlCount(const std::vector<double>& parm, int degree, bool bezier) {
     return static_cast<int>(parm.size()) - degree - 1;
 }
 
+// The part of a surface over [a, b] in u (alongU) or v, exactly: knots inserted to
+// multiplicity degree at a and b (kernel A5.3), then the clamped piece of the net cut out.
+NurbsSurface surfaceSegment(NurbsSurface s, bool alongU, double a, double b) {
+    const int p = alongU ? s.degreeU : s.degreeV;
+    for (double t : {a, b}) {
+        const std::vector<double>& k = alongU ? s.knotsU : s.knotsV;
+        const int have = static_cast<int>(std::count(k.begin(), k.end(), t));
+        if (have < p)
+            s = alongU ? surfaceInsertKnotU(s, t, p - have) : surfaceInsertKnotV(s, t, p - have);
+    }
+    const std::vector<double>& k = alongU ? s.knotsU : s.knotsV;
+    const auto first = std::lower_bound(k.begin(), k.end(), a) - k.begin();
+    const int start = static_cast<int>(first + std::count(k.begin(), k.end(), a)) - p - 1;
+    std::vector<double> knots(p + 1, a);
+    for (double t : k)
+        if (t > a && t < b)
+            knots.push_back(t);
+    knots.insert(knots.end(), p + 1, b);
+    const int count = static_cast<int>(knots.size()) - p - 1;
+    NurbsSurface out = s;
+    (alongU ? out.knotsU : out.knotsV) = knots;
+    (alongU ? out.countU : out.countV) = count;
+    out.points.clear();
+    out.weights.clear();
+    for (int j = 0; j < out.countV; ++j) {
+        for (int i = 0; i < out.countU; ++i) {
+            const int src = alongU ? s.index(start + i, j) : s.index(i, start + j);
+            out.points.push_back(s.points[src]);
+            out.weights.push_back(s.weights[src]);
+        }
+    }
+    return out;
+}
+
 struct Metadata {
     std::optional<std::uint32_t> id;
     std::optional<QString> name;
@@ -441,12 +475,30 @@ void ObjParser::finishSurface() {
     const std::string why = surfaceValidationError(g);
     if (!why.empty())
         fail(m_el.line, QStringLiteral("invalid surface: %1").arg(QString::fromStdString(why)));
+    // The surf range s0 s1 t0 t1 selects part of the knot domain: cut the surface to it.
     const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
-    const double r[4] = {du.first, du.last, dv.first, dv.last};
-    for (int i = 0; i < 4; ++i)
-        if (std::abs(m_el.range[i] - r[i]) > 1e-9 * (1.0 + std::abs(r[i])))
-            m_report.warnings << what + QStringLiteral(": surf range differs from the knot "
-                                                       "domain; the knot domain is used");
+    const double* r = m_el.range;
+    auto same = [](double x, double y) {
+        return std::abs(x - y) <= 1e-12 * (1.0 + std::abs(y));
+    };
+    if (!(r[0] < r[1]) || !(r[2] < r[3]) || r[0] < du.first - 1e-12 * (1 + std::abs(du.first)) ||
+        r[1] > du.last + 1e-12 * (1 + std::abs(du.last)) ||
+        r[2] < dv.first - 1e-12 * (1 + std::abs(dv.first)) ||
+        r[3] > dv.last + 1e-12 * (1 + std::abs(dv.last)))
+        fail(m_el.line, QStringLiteral("surf range [%1, %2] x [%3, %4] is empty or outside the "
+                                       "knot domain [%5, %6] x [%7, %8]")
+                            .arg(r[0])
+                            .arg(r[1])
+                            .arg(r[2])
+                            .arg(r[3])
+                            .arg(du.first)
+                            .arg(du.last)
+                            .arg(dv.first)
+                            .arg(dv.last));
+    if (!same(r[0], du.first) || !same(r[1], du.last))
+        g = surfaceSegment(g, true, std::max(r[0], du.first), std::min(r[1], du.last));
+    if (!same(r[2], dv.first) || !same(r[3], dv.last))
+        g = surfaceSegment(g, false, std::max(r[2], dv.first), std::min(r[3], dv.last));
     for (size_t l = 0; l < m_el.loops.size(); ++l) {
         TrimLoop loop;
         for (const TrimRef& ref : m_el.loops[l]) {

@@ -181,6 +181,24 @@ void TestObjFile::bezierSurface() {
     // The pieces meet at the shared control point, as Bezier pieces do.
     QCOMPARE(surfacePoint(g, 1.0, 0.0), glm::dvec3(3, 0, 0));
     QCOMPARE(s.surfaces[0].name, QStringLiteral("Surface 1"));
+
+    // The same patch with surf 0.5 1.5 0.25 1: cut exactly to that range, same parameters.
+    QByteArray cut = text;
+    cut.replace("surf 0 2 0 1", "surf 0.5 1.5 0.25 1");
+    Scene part;
+    QVERIFY2(parse(cut, part, report, error), qPrintable(error));
+    const NurbsSurface& h = part.surfaces.at(0).geometry;
+    QCOMPARE(surfaceDomainU(h).first, 0.5);
+    QCOMPARE(surfaceDomainU(h).last, 1.5);
+    QCOMPARE(surfaceDomainV(h).first, 0.25);
+    QCOMPARE(surfaceDomainV(h).last, 1.0);
+    QVERIFY(surfaceValidationError(h).empty());
+    for (double u = 0.5; u <= 1.5; u += 0.125)
+        for (double v = 0.25; v <= 1.0; v += 0.125)
+            QVERIFY(glm::length(surfacePoint(h, u, v) - surfacePoint(g, u, v)) < 1e-13);
+    cut.replace("surf 0.5 1.5 0.25 1", "surf 0 3 0 1");
+    QVERIFY(!parse(cut, part, report, error));
+    QVERIFY2(error.contains(QLatin1String("outside the knot domain")), qPrintable(error));
 }
 
 void TestObjFile::unsupportedAndPolygonsAreReported() {
