@@ -105,7 +105,9 @@ struct FaceCheck {
 };
 
 // Random (u, v) over our surface's domain: the point must lie on OCCT's original surface
-// (projection; for B-spline faces also the same (u, v)) and the normals must agree.
+// (projection; for B-spline faces also the same (u, v)) and the normals must agree. Knotwork
+// keeps OCCT's parameterisation, so its Su x Sv is compared with the surface's own Du x Dv;
+// the face's orientation (TopAbs_REVERSED flips the face normal) is deliberately not applied.
 FaceCheck checkGeometry(const Surface& ours, const TopoDS_Face& face, QRandomGenerator& rng) {
     FaceCheck check;
     const Handle(Geom_Surface) geom = BRep_Tool::Surface(face);
