@@ -58,6 +58,7 @@ private Q_SLOTS:
     void moveTrimPointsMerge();
     void lightCommands();
     void refusedStepIsDropped();
+    void nullDocumentIsRejected();
 };
 
 void TestCommands::moveTextAndUndo() {
@@ -377,6 +378,29 @@ void TestCommands::refusedStepIsDropped() {
     QCOMPARE(f.stack.count(), 0);
     QVERIFY(!RenameSurface::create(&f.doc, SurfaceId{1}, QStringLiteral("Alpha")));
     QVERIFY(!RenameSurface::create(&f.doc, SurfaceId{1}, QStringLiteral(" ")));
+}
+
+void TestCommands::nullDocumentIsRejected() {
+    QString error;
+    QVERIFY(!MoveControlPoints::create(nullptr, SurfaceId{1}, {0}, {{0, 0, 0}}, {{1, 1, 1}},
+                                       MoveKind::Drag, &error));
+    QCOMPARE(error, QStringLiteral("no document"));
+    error.clear();
+    QVERIFY(!InsertKnot::create(nullptr, SurfaceId{1}, Direction::U, 0.5, 1, &error));
+    QCOMPARE(error, QStringLiteral("no document"));
+    QVERIFY(!AddSurface::create(nullptr, makeSurface(0, QStringLiteral("A"), patch())));
+    QVERIFY(!MoveTrimPoints::create(nullptr, {{SurfaceId{1}, TrimLoopId{10}, 0, 0}}, {{0, 0}},
+                                    {{1, 1}}));
+    QVERIFY(!SetLights::addLight(nullptr, Light{}));
+    QVERIFY(!SetLights::removeLight(nullptr, 0));
+    QVERIFY(!SetLights::changeLight(nullptr, 0, Light{}));
+    QVERIFY(!SetLights::create(nullptr, {Light{}}));
+    QVERIFY(!SetCamera::create(nullptr, Camera{}));
+    QVERIFY(!RemoveTrimLoop::create(nullptr, SurfaceId{1}, TrimLoopId{10}));
+    QUndoStack stack;
+    QVERIFY(!pushCommand(&stack, nullptr));
+    QVERIFY(!pushCommand(nullptr, SetCamera::create(nullptr, Camera{})));
+    QCOMPARE(stack.count(), 0);
 }
 
 QTEST_GUILESS_MAIN(TestCommands)

@@ -1,5 +1,6 @@
 // Random command sequences: ≥ 1000 seeded commands of every kind, then undo all / redo all must
-// reproduce every intermediate scene exactly, with the item model signalling each row change.
+// reproduce every intermediate scene exactly, the item model signals each row change, and revisions
+// move for exactly the signalled aspects.
 // Reproduce a failure with KW_TEST_SEED=<seed printed in the log>.
 #include "model/scenemodel.h"
 #include "model_fixtures.h"
@@ -10,6 +11,7 @@
 #include <QTest>
 #include <QUndoStack>
 #include <algorithm>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -107,17 +109,21 @@ public:
         QObject::connect(&m_model, &QAbstractItemModel::rowsRemoved, [this](const QModelIndex& p) {
             ++(p.isValid() ? m_rows.loopsOut : m_rows.surfacesOut);
         });
+        QObject::connect(&m_doc, &Document::surfaceChanged,
+                         [this](SurfaceId id, Aspects a) { m_changed[id.value] |= a; });
         m_snapshots.push_back(m_doc.scene());
     }
 
     Document m_doc;
     QUndoStack m_stack;
-    SceneModel m_model{&m_doc};
+    SceneModel m_model{m_doc};
     QAbstractItemModelTester m_tester{&m_model,
                                       QAbstractItemModelTester::FailureReportingMode::Fatal};
     std::mt19937 m_rng;
     SignalLog m_log;
     RowDelta m_rows;
+    std::map<std::uint32_t, Aspects> m_changed; ///< surfaceChanged aspects since beginStep()
+    std::map<std::uint32_t, Revisions> m_revisionsBefore;
     std::vector<Scene> m_snapshots; ///< scene at each stack index
     int m_pushed[KindCount] = {};
     int m_rejected = 0;
@@ -143,6 +149,11 @@ public:
     void undoOne();
     void redoOne();
     void checkModel() const;
+    /// Resets the signal counters and remembers every surface's revisions.
+    void beginStep();
+    /// Each surface present before and after: exactly the aspects it signalled got new
+    /// revisions, the others kept theirs.
+    void checkRevisions() const;
 };
 
 std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
@@ -322,6 +333,34 @@ void Runner::checkModel() const {
     }
 }
 
+void Runner::beginStep() {
+    m_rows = {};
+    m_changed.clear();
+    m_revisionsBefore.clear();
+    for (const Surface& s : m_doc.scene().surfaces)
+        m_revisionsBefore[s.id.value] = m_doc.revisions(s.id);
+}
+
+void Runner::checkRevisions() const {
+    for (const auto& [id, before] : m_revisionsBefore) {
+        if (m_doc.indexOf(SurfaceId{id}) < 0)
+            continue;
+        const Revisions after = m_doc.revisions(SurfaceId{id});
+        const auto it = m_changed.find(id);
+        const Aspects a = it == m_changed.end() ? Aspects() : it->second;
+        const auto check = [&](Aspect aspect, std::uint64_t b, std::uint64_t n) {
+            return (a & aspect) ? n > b : n == b;
+        };
+        QVERIFY2(check(Aspect::Points, before.points, after.points) &&
+                     check(Aspect::Knots, before.knots, after.knots) &&
+                     check(Aspect::Trims, before.trims, after.trims) &&
+                     check(Aspect::Display, before.display, after.display),
+                 qPrintable(QStringLiteral("surface %1: revisions do not match signalled %2")
+                                .arg(id)
+                                .arg(aspectsText(a))));
+    }
+}
+
 void Runner::step(Kind kind) {
     const Scene before = m_doc.scene();
     const int indexBefore = m_stack.index();
@@ -341,7 +380,7 @@ void Runner::step(Kind kind) {
     const RowDelta expected = expectedRows(cmd.get(), false);
     const bool isMove = dynamic_cast<MoveControlPoints*>(cmd.get()) != nullptr;
     m_log.take();
-    m_rows = {};
+    beginStep();
     const std::uint64_t nextBefore = m_doc.scene().nextId;
     const int actual = kindOf(cmd.get());
     QVERIFY(actual < KindCount);
@@ -364,26 +403,29 @@ void Runner::step(Kind kind) {
     m_snapshots.resize(size_t(index) + 1);
     m_snapshots[size_t(index)] = m_doc.scene();
     checkModel();
+    checkRevisions();
 }
 
 void Runner::undoOne() {
     const QUndoCommand* c = m_stack.command(m_stack.index() - 1);
     const RowDelta expected = expectedRows(c, true);
-    m_rows = {};
+    beginStep();
     m_stack.undo();
     QCOMPARE(m_rows, expected);
     QVERIFY(sameContent(m_doc.scene(), m_snapshots[size_t(m_stack.index())]));
     checkModel();
+    checkRevisions();
 }
 
 void Runner::redoOne() {
     const QUndoCommand* c = m_stack.command(m_stack.index());
     const RowDelta expected = expectedRows(c, false);
-    m_rows = {};
+    beginStep();
     m_stack.redo();
     QCOMPARE(m_rows, expected);
     QVERIFY(sameContent(m_doc.scene(), m_snapshots[size_t(m_stack.index())]));
     checkModel();
+    checkRevisions();
 }
 
 } // namespace
