@@ -170,6 +170,13 @@ void TestConvert::badInputExitsOne_data() {
     QTest::newRow("obj truncated") << broken(obj, "t.obj", true) << ":";
     QTest::newRow("obj corrupt") << broken(obj, "c.obj", false) << ":";
     QTest::newRow("missing") << out(QStringLiteral("missing.step")) << "no such file";
+    const QString unsupported = out(QStringLiteral("cardinal.obj"));
+    QFile f(unsupported);
+    if (f.open(QIODevice::WriteOnly))
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype cardinal\ndeg 3 3\n"
+                "surf 0 1 0 1 1 2 3 4\nend\n");
+    f.close();
+    QTest::newRow("obj nothing importable") << unsupported << "no surface could be imported";
     QTest::newRow("unknown type") << data("SOURCES.md") << "unknown file type";
 }
 

@@ -71,6 +71,11 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
     case CadFormat::Obj:
         if (!readObjFile(path, result.scene, result.report, error))
             return std::nullopt;
+        if (result.scene.surfaces.empty()) {
+            error = QStringLiteral("%1: no surface could be imported (%2)")
+                        .arg(path, result.report.skipped.value(0));
+            return std::nullopt;
+        }
         break;
     case CadFormat::Knot: {
         auto scene = readKnotFile(path, &error);
