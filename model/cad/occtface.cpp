@@ -50,28 +50,54 @@ Handle(Geom_BSplineSurface) asBSpline(const Handle(Geom_Surface) & surface) {
     return bs;
 }
 
+// Shifts a direction's knots by `delta` (a whole number of periods): the same surface points
+// at parameters moved by delta.
+void shiftKnots(Handle(Geom_BSplineSurface) & bs, bool u, double delta) {
+    TColStd_Array1OfReal k(1, u ? bs->NbUKnots() : bs->NbVKnots());
+    if (u)
+        bs->UKnots(k);
+    else
+        bs->VKnots(k);
+    for (double& x : k)
+        x += delta;
+    if (u)
+        bs->SetUKnots(k);
+    else
+        bs->SetVKnots(k);
+}
+
 // Periodic B-splines become non-periodic over the face's own (u, v) range, without changing
-// any parameter value, so the p-curves keep applying unchanged.
+// any parameter value, so the p-curves keep applying unchanged. (Segment may return the range
+// a period away, e.g. [2 pi, 4 pi] for a request of [0, 2 pi]; the knots are moved back.)
 void makeNonPeriodic(Handle(Geom_BSplineSurface) & bs, const TopoDS_Face& face) {
-    if (!bs->IsUPeriodic() && !bs->IsVPeriodic())
+    const bool periodicU = bs->IsUPeriodic(), periodicV = bs->IsVPeriodic();
+    if (!periodicU && !periodicV)
         return;
     double fu1, fu2, fv1, fv2;
     BRepTools::UVBounds(face, fu1, fu2, fv1, fv2);
     double u1, u2, v1, v2;
     bs->Bounds(u1, u2, v1, v2);
-    if (bs->IsUPeriodic()) {
+    const double periodU = periodicU ? bs->UPeriod() : 0.0;
+    const double periodV = periodicV ? bs->VPeriod() : 0.0;
+    if (periodicU) {
         u1 = fu1;
-        u2 = std::min(fu2, fu1 + bs->UPeriod());
+        u2 = std::min(fu2, fu1 + periodU);
     }
-    if (bs->IsVPeriodic()) {
+    if (periodicV) {
         v1 = fv1;
-        v2 = std::min(fv2, fv1 + bs->VPeriod());
+        v2 = std::min(fv2, fv1 + periodV);
     }
     bs->Segment(u1, u2, v1, v2);
     if (bs->IsUPeriodic())
         bs->SetUNotPeriodic();
     if (bs->IsVPeriodic())
         bs->SetVNotPeriodic();
+    double a1, a2, b1, b2;
+    bs->Bounds(a1, a2, b1, b2);
+    if (periodicU && std::abs(a1 - u1) > Precision::PConfusion())
+        shiftKnots(bs, true, std::round((u1 - a1) / periodU) * periodU);
+    if (periodicV && std::abs(b1 - v1) > Precision::PConfusion())
+        shiftKnots(bs, false, std::round((v1 - b1) / periodV) * periodV);
 }
 
 std::vector<double> knotSequence(const Handle(Geom_BSplineSurface) & bs, bool u) {
@@ -265,6 +291,20 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
     }
     if (dropNaturalBoundary && loops.size() == 1 && isNaturalBoundary(loops.front(), out.geometry))
         loops.clear(); // the whole domain: an untrimmed surface
+    // The p-curves must lie in the surface's domain (files overshoot by tolerances, ~1e-5 of
+    // it); a loop well outside means the parameterisations disagree: report it.
+    const TrimRegion region = makeTrimRegion(loops, 1e-4 * uvSize);
+    for (size_t l = 0; l < region.loops.size(); ++l) {
+        const double slack = 1e-3 * uvSize;
+        if (region.lo[l].x < du.first - slack || region.hi[l].x > du.last + slack ||
+            region.lo[l].y < dv.first - slack || region.hi[l].y > dv.last + slack)
+            warnings << QStringLiteral("a trim loop reaches outside the surface's (u, v) domain "
+                                       "[%1, %2] x [%3, %4]")
+                            .arg(du.first)
+                            .arg(du.last)
+                            .arg(dv.first)
+                            .arg(dv.last);
+    }
     for (TrimLoop& l : loops)
         l.id = TrimLoopId{nextId++};
     out.trims = std::move(loops);
