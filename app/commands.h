@@ -31,6 +31,7 @@ const std::vector<Command>& commands();
 
 int runInfo(const QStringList& args);
 int runEval(const QStringList& args);
+int runConvert(const QStringList& args);
 
 // ---- Helpers shared by subcommands (main.cpp).
 

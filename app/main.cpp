@@ -15,6 +15,9 @@ const std::vector<Command>& commands() {
          QStringLiteral("Summarise a .knot project (surfaces, lights, camera)."), runInfo},
         {QStringLiteral("eval"),
          QStringLiteral("Evaluate a surface's point, partials and normal at (u, v)."), runEval},
+        {QStringLiteral("convert"),
+         QStringLiteral("Convert IGES/STEP/BREP/OBJ/.knot to .knot or OBJ (free-form or mesh)."),
+         runConvert},
     };
     return table;
 }

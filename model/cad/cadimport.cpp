@@ -1,0 +1,106 @@
+// CAD import dispatch by format; the OpenCASCADE formats live in occtimport.cpp.
+#include "model/cad/cadimport.h"
+
+#include "model/document.h"
+#include "model/knotfile.h"
+#include "model/objfile.h"
+
+#include <QElapsedTimer>
+#include <QFileInfo>
+
+namespace kw {
+
+CadFormat cadFormatFromPath(const QString& path) {
+    const QString ext = QFileInfo(path).suffix().toLower();
+    if (ext == QLatin1String("igs") || ext == QLatin1String("iges"))
+        return CadFormat::Iges;
+    if (ext == QLatin1String("stp") || ext == QLatin1String("step"))
+        return CadFormat::Step;
+    if (ext == QLatin1String("brep") || ext == QLatin1String("brp"))
+        return CadFormat::Brep;
+    if (ext == QLatin1String("obj"))
+        return CadFormat::Obj;
+    if (ext == QLatin1String("knot"))
+        return CadFormat::Knot;
+    return CadFormat::Unknown;
+}
+
+QString cadFormatName(CadFormat format) {
+    switch (format) {
+    case CadFormat::Iges:
+        return QStringLiteral("IGES");
+    case CadFormat::Step:
+        return QStringLiteral("STEP");
+    case CadFormat::Brep:
+        return QStringLiteral("BREP");
+    case CadFormat::Obj:
+        return QStringLiteral("OBJ");
+    case CadFormat::Knot:
+        return QStringLiteral(".knot");
+    case CadFormat::Unknown:
+        break;
+    }
+    return QStringLiteral("unknown");
+}
+
+QString occtUnavailableMessage() {
+    return QStringLiteral("IGES/STEP/BREP import is unavailable: Knotwork was built without "
+                          "OpenCASCADE");
+}
+
+std::optional<ImportResult> importFile(const QString& path, QString& error,
+                                       const ImportProgress& progress) {
+    const CadFormat format = cadFormatFromPath(path);
+    if (!QFileInfo(path).isFile()) {
+        error = QStringLiteral("%1: no such file").arg(path);
+        return std::nullopt;
+    }
+    QElapsedTimer timer;
+    timer.start();
+    ImportResult result;
+    switch (format) {
+    case CadFormat::Iges:
+    case CadFormat::Step:
+    case CadFormat::Brep: {
+        auto r = importOcctFile(path, format, error, progress);
+        if (!r)
+            return std::nullopt;
+        result = std::move(*r);
+        break;
+    }
+    case CadFormat::Obj:
+        if (!readObjFile(path, result.scene, result.report, error))
+            return std::nullopt;
+        if (result.scene.surfaces.empty()) {
+            error = QStringLiteral("%1: no surface could be imported (%2)")
+                        .arg(path, result.report.skipped.value(0));
+            return std::nullopt;
+        }
+        break;
+    case CadFormat::Knot: {
+        auto scene = readKnotFile(path, &error);
+        if (!scene)
+            return std::nullopt;
+        result.scene = std::move(*scene);
+        result.report.facesImported = static_cast<int>(result.scene.surfaces.size());
+        break;
+    }
+    case CadFormat::Unknown:
+        error = QStringLiteral("%1: unknown file type (expected .igs, .iges, .stp, .step, .brep, "
+                               ".obj or .knot)")
+                    .arg(path);
+        return std::nullopt;
+    }
+    if (format == CadFormat::Obj || format == CadFormat::Knot)
+        for (int k = 0; k < static_cast<int>(result.scene.surfaces.size()); ++k)
+            result.sourceFaces.push_back(k + 1);
+    const QString why = Document::validate(result.scene);
+    if (!why.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, why);
+        return std::nullopt;
+    }
+    result.report.seconds = timer.elapsed() / 1000.0;
+    return result;
+}
+
+} // namespace kw

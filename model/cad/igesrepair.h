@@ -1,0 +1,19 @@
+// IGES files whose sequence numbers or parameter back-pointers disagree with their directory.
+#pragma once
+
+#include <QByteArray>
+#include <QString>
+#include <optional>
+
+namespace kw {
+
+/// Some writers (e.g. the teapot.igs of gpucast) number every directory entry "1, 2" and point
+/// every parameter line back to entry 1; OpenCASCADE then glues all parameters onto the first
+/// entity. When the directory's own parameter pointers are consistent (increasing, starting at
+/// 1, inside the P section), this rebuilds the sequence numbers, back-pointers, parameter line
+/// counts and the Terminate record from them. Returns the repaired file, or nullopt when the
+/// file is already consistent or cannot be repaired this way (it is then read as it is).
+/// `note` describes the repair, for the import report.
+std::optional<QByteArray> repairIgesNumbering(const QByteArray& file, QString& note);
+
+} // namespace kw

@@ -1,0 +1,371 @@
+// IGES, STEP and BREP files through OpenCASCADE: read, check, transfer, convert every face.
+#include "model/cad/cadimport.h"
+#include "model/cad/igesrepair.h"
+#include "model/cad/occt_internal.h"
+
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESData_IGESEntity.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_ProgressIndicator.hxx>
+#include <Message_ProgressScope.hxx>
+#include <OSD.hxx>
+#include <QFile>
+#include <QTemporaryFile>
+#include <STEPControl_Reader.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <StepRepr_RepresentationItem.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TransferBRep.hxx>
+#include <Transfer_Binder.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+#include <mutex>
+
+namespace kw {
+namespace {
+
+// Progress of the whole import in 1000 steps: transfer 0..400, faces 400..1000.
+constexpr int kSteps = 1000;
+constexpr int kTransferSteps = 400;
+
+// Forwards OCCT's transfer progress to the caller's callback and asks it whether to go on.
+class ProgressBridge : public Message_ProgressIndicator {
+public:
+    explicit ProgressBridge(const ImportProgress& progress) : m_progress(progress) {}
+    Standard_Boolean UserBreak() override { return m_cancelled; }
+    void Show(const Message_ProgressScope&, const Standard_Boolean) override {
+        if (m_progress && !m_progress(static_cast<int>(GetPosition() * kTransferSteps), kSteps))
+            m_cancelled = true;
+    }
+    bool cancelled() const { return m_cancelled; }
+
+private:
+    ImportProgress m_progress;
+    bool m_cancelled = false;
+};
+
+void setUpOcctOnce() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        // Signals (SIGSEGV, SIGFPE, ...) inside OCC_CATCH_SIGNALS become Standard_Failure.
+        OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+        // OCCT's own console messages would mix with ours; errors are reported by us.
+        Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+        // Keep B-spline surfaces whole: do not split them at C0 knots into several faces.
+        Interface_Static::SetIVal("read.iges.bspline.continuity", 0);
+    });
+}
+
+// The first few load failures of a file (syntax errors, truncated records), or empty.
+QString loadFailures(const Handle(XSControl_WorkSession) & ws) {
+    QStringList lines;
+    Interface_CheckIterator checks = ws->ModelCheckList(Standard_False);
+    for (checks.Start(); checks.More() && lines.size() < 3; checks.Next()) {
+        const Handle(Interface_Check)& c = checks.Value();
+        for (int i = 1; i <= c->NbFails() && lines.size() < 3; ++i)
+            lines << QString::fromUtf8(c->Fail(i)->ToCString()).trimmed();
+    }
+    return lines.join(QStringLiteral("; "));
+}
+
+// Structural checks OCCT's parsers are lenient about: a STEP file must end with its
+// END-ISO-10303-21 line, an IGES file with its Terminate (T) record.
+QString truncation(const QString& path, CadFormat format) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly))
+        return QStringLiteral("cannot open: %1").arg(f.errorString());
+    const qint64 size = f.size();
+    f.seek(std::max<qint64>(0, size - 4096));
+    const QByteArray tail = f.readAll().trimmed();
+    if (format == CadFormat::Step && !tail.endsWith("END-ISO-10303-21;"))
+        return QStringLiteral("truncated STEP file: it does not end with 'END-ISO-10303-21;'");
+    if (format == CadFormat::Iges) {
+        const QByteArray last = tail.mid(tail.lastIndexOf('\n') + 1);
+        if (last.size() < 73 || last[72] != 'T')
+            return QStringLiteral("truncated IGES file: the last record is not the Terminate "
+                                  "section (column 73 'T')");
+    }
+    return {};
+}
+
+QString entityName(const Handle(Standard_Transient) & entity) {
+    if (auto step = Handle(StepRepr_RepresentationItem)::DownCast(entity)) {
+        if (!step->Name().IsNull())
+            return QString::fromUtf8(step->Name()->ToCString()).trimmed();
+    } else if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity)) {
+        if (iges->HasName()) {
+            QString name = QString::fromUtf8(iges->NameValue()->ToCString()).trimmed();
+            // OCCT appends the subscript as "label(n)", also when the file's subscript is 0.
+            if (iges->HasSubScriptNumber() && iges->SubScriptNumber() == 0 &&
+                name.endsWith(QLatin1String("(0)")))
+                name.chop(3);
+            return name;
+        }
+        if (iges->HasShortLabel())
+            return QString::fromUtf8(iges->ShortLabel()->ToCString()).trimmed();
+    }
+    return {};
+}
+
+// Where a face came from in the file: the name of its entity and, for IGES, the entity type
+// (144/143 are trimmed/bounded surfaces; any other type is an untrimmed surface).
+struct FaceOrigin {
+    QString name;
+    int igesType = 0;
+    bool fromFaceEntity = false;
+};
+
+// Walks the transfer's entity -> shape records and assigns each face of `faces` the entity
+// that produced exactly that face (or, failing that, a named entity holding only that face).
+std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & reader,
+                                    const TopTools_IndexedMapOfShape& faces) {
+    std::vector<FaceOrigin> origins(faces.Extent() + 1);
+    if (reader.IsNull() || reader->TransientProcess().IsNull())
+        return origins;
+    const Handle(Transfer_TransientProcess) tp = reader->TransientProcess();
+    for (int i = 1; i <= tp->NbMapped(); ++i) {
+        const TopoDS_Shape shape = TransferBRep::ShapeResult(tp->MapItem(i));
+        if (shape.IsNull())
+            continue;
+        TopTools_IndexedMapOfShape inside;
+        TopExp::MapShapes(shape, TopAbs_FACE, inside);
+        if (inside.Extent() != 1)
+            continue;
+        const int index = faces.FindIndex(inside(1));
+        if (index == 0)
+            continue;
+        const bool isFace = shape.ShapeType() == TopAbs_FACE;
+        FaceOrigin& o = origins[index];
+        if (o.fromFaceEntity && !isFace)
+            continue; // the entity that made exactly this face wins over its containers
+        const Handle(Standard_Transient) entity = tp->Mapped(i);
+        const QString name = entityName(entity);
+        if (!name.isEmpty())
+            o.name = name;
+        if (isFace) {
+            o.fromFaceEntity = true;
+            if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity); !iges.IsNull())
+                o.igesType = iges->TypeNumber();
+        }
+    }
+    return origins;
+}
+
+struct ReadShape {
+    TopoDS_Shape shape;
+    std::unique_ptr<XSControl_Reader> reader; // kept alive: it owns the transfer records
+    Handle(XSControl_TransferReader) names;   // null for BREP
+    QStringList notes;                        // for the report's warnings
+    QStringList skipped;                      // root entities that gave no shape
+};
+
+// Reads and transfers the file; false with `error` set on any fault.
+bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, ReadShape& out,
+               QString& error) {
+    const QByteArray native = QFile::encodeName(path);
+    if (format == CadFormat::Brep) {
+        BRep_Builder builder;
+        if (!BRepTools::Read(out.shape, native.constData(), builder, bridge.Start()) ||
+            out.shape.IsNull()) {
+            error = QStringLiteral("not a readable BREP file");
+            return false;
+        }
+        return true;
+    }
+    const QString cut = truncation(path, format);
+    if (!cut.isEmpty()) {
+        error = cut;
+        return false;
+    }
+    QByteArray fileToRead = native;
+    QTemporaryFile repaired;
+    if (format == CadFormat::Iges) {
+        QFile f(path);
+        QString note;
+        std::optional<QByteArray> fixed;
+        if (f.open(QIODevice::ReadOnly))
+            fixed = repairIgesNumbering(f.readAll(), note);
+        if (fixed) {
+            if (!repaired.open() || repaired.write(*fixed) != fixed->size() || !repaired.flush()) {
+                error =
+                    QStringLiteral("cannot write a repaired copy: %1").arg(repaired.errorString());
+                return false;
+            }
+            fileToRead = QFile::encodeName(repaired.fileName());
+            out.notes << note;
+        }
+    }
+    std::unique_ptr<XSControl_Reader> reader;
+    if (format == CadFormat::Iges)
+        reader = std::make_unique<IGESControl_Reader>();
+    else
+        reader = std::make_unique<STEPControl_Reader>();
+    if (reader->ReadFile(fileToRead.constData()) != IFSelect_RetDone) {
+        const QString why = loadFailures(reader->WS());
+        error =
+            QStringLiteral("not a readable %1 file%2")
+                .arg(cadFormatName(format), why.isEmpty() ? QString() : QStringLiteral(": ") + why);
+        return false;
+    }
+    // Entities the parser could not make sense of mean a corrupt file: refuse it rather than
+    // import what happens to survive.
+    const Handle(Interface_InterfaceModel) model = reader->WS()->Model();
+    int broken = 0;
+    for (int i = 1; i <= model->NbEntities(); ++i)
+        broken += model->IsErrorEntity(i) ? 1 : 0;
+    if (broken > 0) {
+        error = QStringLiteral("corrupt %1 file: %2 of %3 entities could not be parsed (%4)")
+                    .arg(cadFormatName(format))
+                    .arg(broken)
+                    .arg(model->NbEntities())
+                    .arg(loadFailures(reader->WS()));
+        return false;
+    }
+    const int roots = reader->NbRootsForTransfer();
+    reader->TransferRoots(bridge.Start());
+    if (bridge.cancelled())
+        return false;
+    // Root entities that produced no shape are reported, not silently dropped.
+    const Handle(Transfer_TransientProcess) tp = reader->WS()->TransferReader()->TransientProcess();
+    for (int i = 1; i <= roots && !tp.IsNull(); ++i) {
+        const Handle(Standard_Transient) root = reader->RootForTransfer(i);
+        if (root.IsNull() || !TransferBRep::ShapeResult(tp, root).IsNull())
+            continue;
+        QString why = QStringLiteral("OpenCASCADE could not transfer it");
+        const Handle(Transfer_Binder) binder = tp->Find(root);
+        if (!binder.IsNull() && binder->Check()->NbFails() > 0)
+            why += QStringLiteral(": ") +
+                   QString::fromUtf8(binder->Check()->Fail(1)->ToCString()).trimmed();
+        const Handle(TCollection_HAsciiString) label = model->StringLabel(root);
+        out.skipped << QStringLiteral("entity %1 (%2): %3")
+                           .arg(label.IsNull() ? QStringLiteral("?")
+                                               : QString::fromUtf8(label->ToCString()),
+                                QString::fromLatin1(root->DynamicType()->Name()), why);
+    }
+    out.shape = reader->OneShape();
+    out.names = reader->WS()->TransferReader();
+    out.reader = std::move(reader);
+    if (out.shape.IsNull()) {
+        error = QStringLiteral("the %1 file holds no shape that could be transferred%2")
+                    .arg(cadFormatName(format),
+                         out.skipped.isEmpty()
+                             ? QString()
+                             : QStringLiteral(" (") + out.skipped.front() + QLatin1Char(')'));
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+bool occtAvailable() {
+    return true;
+}
+
+std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
+                                           const ImportProgress& progress) {
+    setUpOcctOnce();
+    // Also in this thread (the editor imports on a worker thread): FPE masks and handlers.
+    OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
+    Handle(ProgressBridge) bridgeHandle = new ProgressBridge(progress);
+    ProgressBridge& bridge = *bridgeHandle;
+    ReadShape read;
+    ImportResult result;
+    TopTools_IndexedMapOfShape faces;
+    std::vector<FaceOrigin> origins;
+    try {
+        OCC_CATCH_SIGNALS
+        QString why;
+        if (!readShape(path, format, bridge, read, why)) {
+            error = bridge.cancelled() ? QStringLiteral("%1: import cancelled").arg(path)
+                                       : QStringLiteral("%1: %2").arg(path, why);
+            return std::nullopt;
+        }
+        TopExp::MapShapes(read.shape, TopAbs_FACE, faces);
+        origins = faceOrigins(read.names, faces);
+        for (const QString& n : read.notes)
+            result.report.warnings << n;
+        result.report.skipped << read.skipped;
+    } catch (const Standard_Failure& e) {
+        error = QStringLiteral("%1: OpenCASCADE failed reading the file: %2 (%3)")
+                    .arg(path, QString::fromUtf8(e.GetMessageString()),
+                         QString::fromLatin1(e.DynamicType()->Name()));
+        return std::nullopt;
+    }
+    if (faces.IsEmpty()) {
+        error = QStringLiteral("%1: the file holds no faces to import").arg(path);
+        return std::nullopt;
+    }
+
+    Scene& scene = result.scene;
+    for (int k = 1; k <= faces.Extent(); ++k) {
+        if (progress &&
+            !progress(kTransferSteps + (kSteps - kTransferSteps) * (k - 1) / faces.Extent(),
+                      kSteps)) {
+            error = QStringLiteral("%1: import cancelled").arg(path);
+            return std::nullopt;
+        }
+        const TopoDS_Face& face = TopoDS::Face(faces(k));
+        Surface surface;
+        QString why;
+        QStringList warnings;
+        QString name;
+        bool ok = false;
+        try {
+            OCC_CATCH_SIGNALS
+            name = origins[k].name;
+            // IGES surfaces that are not trimmed (144) or bounded (143) have no boundary in
+            // the file: OCCT's natural wire is not kept. Other formats state their bounds.
+            const int type = origins[k].igesType;
+            const bool untrimmedInFile =
+                format == CadFormat::Iges && (type == 0 || (type != 144 && type != 143));
+            std::uint32_t ids = scene.nextId + 1; // the surface id comes first
+            ok = occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
+            if (ok) {
+                surface.id = SurfaceId{scene.nextId};
+                scene.nextId = ids;
+            }
+        } catch (const Standard_Failure& e) {
+            why = QStringLiteral("OpenCASCADE failed: %1 (%2)")
+                      .arg(QString::fromUtf8(e.GetMessageString()),
+                           QString::fromLatin1(e.DynamicType()->Name()));
+        }
+        const QString label = name.isEmpty() ? QStringLiteral("Face %1").arg(k) : name;
+        for (const QString& w : warnings)
+            result.report.warnings << QStringLiteral("face %1 (%2): %3").arg(k).arg(label, w);
+        if (!ok) {
+            result.report.skipped << QStringLiteral("face %1 (%2): %3").arg(k).arg(label, why);
+            continue;
+        }
+        surface.name = label;
+        scene.surfaces.push_back(std::move(surface));
+        result.sourceFaces.push_back(k);
+        ++result.report.facesImported;
+    }
+    if (scene.surfaces.empty()) {
+        error = QStringLiteral("%1: none of the %2 face(s) could be imported; first reason: %3")
+                    .arg(path)
+                    .arg(faces.Extent())
+                    .arg(result.report.skipped.value(0));
+        return std::nullopt;
+    }
+    if (progress)
+        progress(kSteps, kSteps);
+    return result;
+}
+
+} // namespace kw

@@ -1,0 +1,288 @@
+// Trim loops: flattening to polylines, even-odd classification and trimmed surface area.
+#include "model/trim.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kw {
+namespace {
+
+constexpr int kMinPiecesPerKnotSpan = 4;
+constexpr int kMaxBisectionDepth = 18;
+
+double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
+    const glm::dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    if (len2 <= 0.0)
+        return glm::length(p - a);
+    const double t = std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0);
+    return glm::length(p - (a + t * ab));
+}
+
+// Appends the points of (t0, t1] to out, bisecting while the curve strays from the chord.
+void flattenPiece(const NurbsCurve2& c, double t0, glm::dvec2 p0, double t1, glm::dvec2 p1,
+                  double tolerance, int depth, std::vector<glm::dvec2>& out) {
+    const double tm = 0.5 * (t0 + t1);
+    const glm::dvec2 pm = curvePoint(c, tm);
+    if (depth < kMaxBisectionDepth && distanceToSegment(pm, p0, p1) > tolerance) {
+        flattenPiece(c, t0, p0, tm, pm, tolerance, depth + 1, out);
+        flattenPiece(c, tm, pm, t1, p1, tolerance, depth + 1, out);
+        return;
+    }
+    out.push_back(p1);
+}
+
+// Distinct knot values inside the domain, both ends included.
+std::vector<double> breakpoints(const std::vector<double>& knots, int degree) {
+    const Interval d = knotDomain(knots, degree);
+    std::vector<double> out{d.first};
+    for (double k : knots)
+        if (k > out.back() && k < d.last)
+            out.push_back(k);
+    out.push_back(d.last);
+    return out;
+}
+
+// Gauss-Legendre nodes and weights on [-1, 1], 5 points (exact for degree 9).
+constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                               0.9061798459386640};
+constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                               0.4786286704993665, 0.2369268850561891};
+
+// The Boehm / A5.1 knot insertion on a 2D rational curve, in homogeneous coordinates.
+NurbsCurve2 insertCurveKnot(const NurbsCurve2& c, double t) {
+    const int p = c.degree;
+    const int k = findSpan(p, c.knots, t);
+    std::vector<glm::dvec3> hw(c.points.size());
+    for (size_t i = 0; i < hw.size(); ++i)
+        hw[i] = glm::dvec3(c.points[i] * c.weights[i], c.weights[i]);
+    std::vector<glm::dvec3> q(hw.size() + 1);
+    for (int i = 0; i < static_cast<int>(q.size()); ++i) {
+        if (i <= k - p)
+            q[i] = hw[i];
+        else if (i > k)
+            q[i] = hw[i - 1];
+        else {
+            const double a = (t - c.knots[i]) / (c.knots[i + p] - c.knots[i]);
+            q[i] = a * hw[i] + (1.0 - a) * hw[i - 1];
+        }
+    }
+    NurbsCurve2 out;
+    out.degree = p;
+    out.knots = c.knots;
+    out.knots.insert(out.knots.begin() + k + 1, t);
+    for (const glm::dvec3& h : q) {
+        out.points.push_back(glm::dvec2(h) / h.z);
+        out.weights.push_back(h.z);
+    }
+    return out;
+}
+
+} // namespace
+
+NurbsCurve2 trimCurveSegment(NurbsCurve2 c, double a, double b) {
+    const int p = c.degree;
+    for (double t : {a, b}) {
+        const int have = static_cast<int>(std::count(c.knots.begin(), c.knots.end(), t));
+        for (int m = have; m < p; ++m)
+            c = insertCurveKnot(c, t);
+    }
+    const auto first = std::lower_bound(c.knots.begin(), c.knots.end(), a) - c.knots.begin();
+    const auto last = std::upper_bound(c.knots.begin(), c.knots.end(), b) - c.knots.begin();
+    NurbsCurve2 out;
+    out.degree = p;
+    // Keep multiplicity p at each end, plus one more knot each side to clamp: take the knots
+    // from the first a (p+1 of them, a repeated) to the last b.
+    out.knots.assign(p + 1, a);
+    for (auto i = first; i < last; ++i)
+        if (c.knots[i] > a && c.knots[i] < b)
+            out.knots.push_back(c.knots[i]);
+    out.knots.insert(out.knots.end(), p + 1, b);
+    const int count = static_cast<int>(out.knots.size()) - p - 1;
+    // With a of multiplicity m >= p at knots[first ..], the segment starts at control point
+    // first + m - p - 1 (the one C(a+) equals).
+    const int multA = static_cast<int>(std::count(c.knots.begin(), c.knots.end(), a));
+    const int start = static_cast<int>(first) + multA - p - 1;
+    out.points.assign(c.points.begin() + start, c.points.begin() + start + count);
+    out.weights.assign(c.weights.begin() + start, c.weights.begin() + start + count);
+    return out;
+}
+
+NurbsCurve2 trimCurveReversed(const NurbsCurve2& c) {
+    NurbsCurve2 r = c;
+    std::reverse(r.points.begin(), r.points.end());
+    std::reverse(r.weights.begin(), r.weights.end());
+    const double sum = c.knots.front() + c.knots.back();
+    for (size_t i = 0; i < c.knots.size(); ++i)
+        r.knots[i] = sum - c.knots[c.knots.size() - 1 - i];
+    return r;
+}
+
+std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance) {
+    const std::vector<double> t = breakpoints(curve.knots, curve.degree);
+    std::vector<glm::dvec2> out{curvePoint(curve, t.front())};
+    for (size_t k = 0; k + 1 < t.size(); ++k) {
+        for (int p = 0; p < kMinPiecesPerKnotSpan; ++p) {
+            const double a = t[k] + (t[k + 1] - t[k]) * p / kMinPiecesPerKnotSpan;
+            const double b = p + 1 == kMinPiecesPerKnotSpan
+                                 ? t[k + 1]
+                                 : t[k] + (t[k + 1] - t[k]) * (p + 1) / kMinPiecesPerKnotSpan;
+            flattenPiece(curve, a, out.back(), b, curvePoint(curve, b), tolerance, 0, out);
+        }
+    }
+    return out;
+}
+
+TrimPolygon tessellateTrimLoop(const TrimLoop& loop, double tolerance) {
+    TrimPolygon poly;
+    for (const NurbsCurve2& c : loop.curves) {
+        for (glm::dvec2 p : tessellateTrimCurve(c, tolerance))
+            if (poly.empty() || p != poly.back())
+                poly.push_back(p);
+    }
+    while (poly.size() > 1 && poly.back() == poly.front())
+        poly.pop_back();
+    return poly;
+}
+
+TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance) {
+    TrimRegion region;
+    for (const TrimLoop& loop : trims) {
+        TrimPolygon poly = tessellateTrimLoop(loop, tolerance);
+        if (poly.size() < 3)
+            continue; // a loop without area changes no point's parity
+        glm::dvec2 lo = poly.front(), hi = poly.front();
+        for (glm::dvec2 p : poly) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        region.loops.push_back(std::move(poly));
+        region.lo.push_back(lo);
+        region.hi.push_back(hi);
+    }
+    return region;
+}
+
+double trimTolerance(const NurbsSurface& surface, double relative) {
+    const Interval u = surfaceDomainU(surface);
+    const Interval v = surfaceDomainV(surface);
+    return relative * std::hypot(u.last - u.first, v.last - v.first);
+}
+
+bool trimRegionContains(const TrimRegion& region, glm::dvec2 uv) {
+    if (region.empty())
+        return true;
+    bool inside = false;
+    for (size_t l = 0; l < region.loops.size(); ++l) {
+        if (uv.x < region.lo[l].x || uv.x > region.hi[l].x || uv.y < region.lo[l].y ||
+            uv.y > region.hi[l].y)
+            continue;
+        const TrimPolygon& poly = region.loops[l];
+        // Crossing number of the ray from uv towards +v (half-open rule on u for vertices).
+        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+            const glm::dvec2 a = poly[j], b = poly[i];
+            if ((a.x <= uv.x) == (b.x <= uv.x))
+                continue;
+            const double v = a.y + (uv.x - a.x) * (b.y - a.y) / (b.x - a.x);
+            if (v > uv.y)
+                inside = !inside;
+        }
+    }
+    return inside;
+}
+
+std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double v0, double v1) {
+    if (region.empty())
+        return {Interval{v0, v1}};
+    std::vector<double> cuts;
+    for (size_t l = 0; l < region.loops.size(); ++l) {
+        if (u < region.lo[l].x || u > region.hi[l].x)
+            continue;
+        const TrimPolygon& poly = region.loops[l];
+        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+            const glm::dvec2 a = poly[j], b = poly[i];
+            if ((a.x <= u) == (b.x <= u))
+                continue;
+            cuts.push_back(a.y + (u - a.x) * (b.y - a.y) / (b.x - a.x));
+        }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<Interval> spans;
+    for (size_t k = 0; k + 1 < cuts.size(); k += 2) {
+        const double a = std::max(cuts[k], v0), b = std::min(cuts[k + 1], v1);
+        if (b > a)
+            spans.push_back({a, b});
+    }
+    return spans;
+}
+
+double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims,
+                          int resolution) {
+    const TrimRegion region = makeTrimRegion(trims, trimTolerance(surface));
+    const int n = std::max(resolution, 4);
+    const std::vector<double> bv = breakpoints(surface.knotsV, surface.degreeV);
+    const double maxPieceV = (bv.back() - bv.front()) / std::max(n / 4, 1);
+
+    // Outer breakpoints: the u knots (the integrand's own kinks) and the u extremes of every
+    // trim polygon (where the set of inside spans changes and the line integral has a square
+    // root singularity).
+    std::vector<double> bu = breakpoints(surface.knotsU, surface.degreeU);
+    const double u0 = bu.front(), u1 = bu.back();
+    for (const TrimPolygon& poly : region.loops) {
+        for (size_t i = 0; i < poly.size(); ++i) {
+            const double prev = poly[(i + poly.size() - 1) % poly.size()].x;
+            const double next = poly[(i + 1) % poly.size()].x;
+            const double x = poly[i].x;
+            if (((x >= prev && x >= next) || (x <= prev && x <= next)) && x > u0 && x < u1)
+                bu.push_back(x);
+        }
+    }
+    std::sort(bu.begin(), bu.end());
+    bu.erase(std::unique(bu.begin(), bu.end()), bu.end());
+    const double maxPieceU = (u1 - u0) / n;
+
+    // Integral of |Su x Sv| along v over [a, b], cut at the v knots and into short pieces.
+    auto integrateV = [&](double u, double a, double b) {
+        double sum = 0.0;
+        auto knot = std::upper_bound(bv.begin(), bv.end(), a);
+        double start = a;
+        while (start < b) {
+            const double end = (knot != bv.end() && *knot < b) ? *knot++ : b;
+            const int pieces = std::max(1, static_cast<int>(std::ceil((end - start) / maxPieceV)));
+            for (int p = 0; p < pieces; ++p) {
+                const double c0 = start + (end - start) * p / pieces;
+                const double c1 = p + 1 == pieces ? end : start + (end - start) * (p + 1) / pieces;
+                const double mid = 0.5 * (c0 + c1), half = 0.5 * (c1 - c0);
+                for (int g = 0; g < 5; ++g) {
+                    const SurfaceDerivatives d =
+                        surfaceDerivatives(surface, u, mid + half * kGaussX[g]);
+                    sum += kGaussW[g] * half * glm::length(glm::cross(d.su, d.sv));
+                }
+            }
+            start = end;
+        }
+        return sum;
+    };
+
+    double area = 0.0;
+    for (size_t k = 0; k + 1 < bu.size(); ++k) {
+        const int pieces =
+            std::max(1, static_cast<int>(std::ceil((bu[k + 1] - bu[k]) / maxPieceU)));
+        for (int p = 0; p < pieces; ++p) {
+            const double c0 = bu[k] + (bu[k + 1] - bu[k]) * p / pieces;
+            const double c1 =
+                p + 1 == pieces ? bu[k + 1] : bu[k] + (bu[k + 1] - bu[k]) * (p + 1) / pieces;
+            const double mid = 0.5 * (c0 + c1), half = 0.5 * (c1 - c0);
+            for (int g = 0; g < 5; ++g) {
+                const double u = mid + half * kGaussX[g];
+                double line = 0.0;
+                for (const Interval& span : trimRegionSpans(region, u, bv.front(), bv.back()))
+                    line += integrateV(u, span.first, span.last);
+                area += kGaussW[g] * half * line;
+            }
+        }
+    }
+    return area;
+}
+
+} // namespace kw

@@ -1,0 +1,64 @@
+// Trim loops in a surface's (u, v) space: tessellation, point classification and trimmed area.
+#pragma once
+
+#include "model/scene.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace kw {
+
+/// A loop flattened to a closed polyline in (u, v); the last point is not repeated.
+using TrimPolygon = std::vector<glm::dvec2>;
+
+/// The piece of a curve between parameters first < last inside its domain, exactly: knots are
+/// inserted (Boehm, The NURBS Book A5.1, on homogeneous points) to multiplicity `degree` at
+/// both ends and the clamped piece is cut out; its parameters stay those of the source.
+/// Precondition: a valid curve and curveDomain(c).first <= first < last <= curveDomain(c).last.
+NurbsCurve2 trimCurveSegment(NurbsCurve2 curve, double first, double last);
+/// The same curve run backwards: C'(t) = C(a + b - t) over the same domain [a, b].
+NurbsCurve2 trimCurveReversed(const NurbsCurve2& curve);
+
+/// Flattens one trim curve: samples the curve at its knots and bisects every piece until the
+/// midpoint of each chord is within `tolerance` (in parameter units) of the curve, or the
+/// depth limit is reached. Returns the points from start to end inclusive. Precondition: a
+/// valid curve (curveValidationError empty) and tolerance > 0.
+std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance);
+
+/// Flattens a whole loop (curves in order) to a closed polygon within `tolerance`. Consecutive
+/// duplicate points are dropped. An empty loop gives an empty polygon.
+TrimPolygon tessellateTrimLoop(const TrimLoop& loop, double tolerance);
+
+/// All loops of a surface, flattened, with their bounding boxes for quick rejection.
+struct TrimRegion {
+    std::vector<TrimPolygon> loops;
+    std::vector<glm::dvec2> lo; ///< per loop
+    std::vector<glm::dvec2> hi; ///< per loop
+    bool empty() const { return loops.empty(); }
+};
+
+/// Flattens every loop of `trims`; tolerance as in tessellateTrimLoop.
+TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance);
+
+/// A tolerance suited to a surface's domain: `relative` times the diagonal of its (u, v) domain.
+double trimTolerance(const NurbsSurface& surface, double relative = 1e-5);
+
+/// Parity rule (even-odd, as the trim mask does): true when `uv` lies inside an odd number of
+/// loops. A region without loops contains every point (an untrimmed surface).
+bool trimRegionContains(const TrimRegion& region, glm::dvec2 uv);
+
+/// The parameter intervals of the vertical line u = const that lie inside the region by the
+/// parity rule, clipped to [v0, v1], sorted and disjoint. Without loops: {[v0, v1]}.
+std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double v0, double v1);
+
+/// Area of the visible part of a surface: the integral of |Su x Sv| over the (u, v) points the
+/// trims keep (even-odd). Outer integral over u by 5-point Gauss-Legendre on pieces no wider
+/// than 1/resolution of the u domain, cut at the u knots and at the u extremes of the trim
+/// polygons; inner integral along v over the exact spans of the flattened trims (trimTolerance),
+/// cut at the v knots into pieces no wider than 4/resolution of the v domain.
+/// Precondition: a valid surface and valid trim curves. Cost ~ 5 resolution x (E + 6 resolution)
+/// for E trim polygon edges.
+double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims,
+                          int resolution = 128);
+
+} // namespace kw
