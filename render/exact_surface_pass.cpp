@@ -1,0 +1,98 @@
+// Exact pass: depth pre-pass of the base polygons, then per-fragment evaluation with GL_EQUAL
+// (or one pass writing gl_FragDepth when RenderOptions::exactDepth).
+#include "render/exact_surface_pass.h"
+
+#include "render/shading_uniforms.h"
+
+#include <QOpenGLShaderProgram>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace kw {
+
+void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
+    m_gl = gl;
+    m_shaders = shaders;
+}
+
+QStringList ExactSurfacePass::variantDefines(int p, int q, const RenderOptions& options) {
+    QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q)};
+    if (options.writeAov)
+        d << QStringLiteral("KW_AOV");
+    if (options.exactDepth)
+        d << QStringLiteral("KW_EXACT_DEPTH");
+    return d;
+}
+
+bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& cache,
+                                    const FrameCamera& camera, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QOpenGLShaderProgram* prog =
+        m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"));
+    if (!prog) {
+        *error = m_shaders->lastError();
+        return false;
+    }
+    prog->bind();
+    gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(camera.viewProjection));
+    gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDepthFunc(GL_LESS);
+    for (const Surface& s : scene.surfaces)
+        if (const SurfaceGpu* g = cache.find(s.id)) {
+            gl->glBindVertexArray(g->triangleVao);
+            gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    return true;
+}
+
+bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
+                            const FrameCamera& camera, const std::vector<Light>& lights,
+                            const RenderOptions& options, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (!options.exactDepth) {
+        if (!depthPrepass(scene, cache, camera, error))
+            return false;
+        gl->glDepthFunc(GL_EQUAL);
+        gl->glDepthMask(GL_FALSE);
+    } else {
+        gl->glDepthFunc(GL_LESS);
+        gl->glDepthMask(GL_TRUE);
+    }
+    QOpenGLShaderProgram* bound = nullptr;
+    bool ok = true;
+    for (const Surface& s : scene.surfaces) {
+        const SurfaceGpu* g = cache.find(s.id);
+        if (!g)
+            continue;
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(g->degreeU, g->degreeV, options));
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
+        }
+        if (prog != bound) {
+            prog->bind();
+            bound = prog;
+            setFrameUniforms(gl, prog, camera, lights);
+            gl->glUniform1i(prog->uniformLocation("uControl"), 0);
+            gl->glUniform1i(prog->uniformLocation("uSpansU"), 1);
+            gl->glUniform1i(prog->uniformLocation("uSpansV"), 2);
+        }
+        setSurfaceUniforms(gl, prog, s);
+        gl->glUniform4fv(prog->uniformLocation("uDomain"), 1, glm::value_ptr(g->domain));
+        gl->glBindTextureUnit(0, g->controlTexture);
+        gl->glBindTextureUnit(1, g->spanTextureU);
+        gl->glBindTextureUnit(2, g->spanTextureV);
+        gl->glBindVertexArray(g->triangleVao);
+        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_TRUE);
+    return ok;
+}
+
+} // namespace kw

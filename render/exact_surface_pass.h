@@ -1,0 +1,34 @@
+// Exact pass (paper 3.4.1): draws each surface's base polygon with the degree-specialised
+// per-fragment NURBS shader, after an optional depth pre-pass so each pixel is shaded once.
+#pragma once
+
+#include "render/render_types.h"
+#include "render/shader_library.h"
+#include "render/surface_gpu_cache.h"
+
+#include <QString>
+
+namespace kw {
+
+class ExactSurfacePass {
+public:
+    /// Needs the context current while drawing; `shaders` outlives the pass.
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
+
+    /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
+    /// on). Returns false with *error set when a shader variant cannot be built.
+    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
+              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
+
+    /// The defines of the exact shader variant for degrees (p, q).
+    static QStringList variantDefines(int p, int q, const RenderOptions& options);
+
+private:
+    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
+                      QString* error);
+
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ShaderLibrary* m_shaders = nullptr;
+};
+
+} // namespace kw
