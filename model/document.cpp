@@ -1,0 +1,342 @@
+// Document: the one place the scene changes; validates, counts revisions and signals.
+#include "model/document.h"
+
+#include "model/validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace kw {
+
+namespace {
+
+constexpr std::uint32_t kMaxId = std::numeric_limits<std::uint32_t>::max();
+
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool loopIdUsed(const Scene& scene, TrimLoopId id) {
+    for (const Surface& s : scene.surfaces)
+        for (const TrimLoop& l : s.trims)
+            if (l.id == id)
+                return true;
+    return false;
+}
+
+int loopIndex(const Surface& s, TrimLoopId id) {
+    for (size_t i = 0; i < s.trims.size(); ++i)
+        if (s.trims[i].id == id)
+            return int(i);
+    return -1;
+}
+
+} // namespace
+
+Document::Document(QObject* parent) : QObject(parent) {
+    qRegisterMetaType<kw::SurfaceId>();
+    qRegisterMetaType<kw::Aspects>();
+}
+
+const Surface* Document::surface(SurfaceId id) const {
+    const int i = indexOf(id);
+    return i < 0 ? nullptr : &m_scene.surfaces[size_t(i)];
+}
+
+int Document::indexOf(SurfaceId id) const {
+    if (!id.isValid())
+        return -1;
+    for (size_t i = 0; i < m_scene.surfaces.size(); ++i)
+        if (m_scene.surfaces[i].id == id)
+            return int(i);
+    return -1;
+}
+
+Revisions Document::revisions(SurfaceId id) const {
+    const int i = indexOf(id);
+    return i < 0 ? Revisions{} : m_revisions[size_t(i)];
+}
+
+// Ids come from nextId and are never handed out twice; an undone AddSurface keeps its id, so
+// undo never lowers nextId. Returns an invalid id only if the 32-bit space is exhausted.
+SurfaceId Document::allocateSurfaceId() {
+    if (m_scene.nextId == kMaxId)
+        return {};
+    return SurfaceId{m_scene.nextId++};
+}
+
+TrimLoopId Document::allocateTrimLoopId() {
+    if (m_scene.nextId == kMaxId)
+        return {};
+    return TrimLoopId{m_scene.nextId++};
+}
+
+bool Document::resetScene(Scene scene, QString* error) {
+    std::uint32_t maxId = 0;
+    for (const Surface& s : scene.surfaces) {
+        maxId = std::max(maxId, s.id.value);
+        for (const TrimLoop& l : s.trims)
+            maxId = std::max(maxId, l.id.value);
+    }
+    QString why;
+    if (maxId == kMaxId)
+        why = QStringLiteral("id %1 leaves no room for new ids").arg(maxId);
+    else
+        scene.nextId = std::max(scene.nextId, maxId + 1);
+    if (why.isEmpty())
+        why = validate(scene);
+    if (!why.isEmpty()) {
+        if (error)
+            *error = why;
+        return false;
+    }
+    Q_EMIT sceneAboutToBeReset();
+    m_scene = std::move(scene);
+    const std::uint64_t rev = ++m_counter;
+    m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
+    m_lightsRevision = rev;
+    m_cameraRevision = rev;
+    Q_EMIT sceneReset();
+    return true;
+}
+
+bool Document::insertSurface(int index, Surface surface) {
+    if (index < 0 || size_t(index) > m_scene.surfaces.size())
+        return false;
+    if (!surfaceError(surface).isEmpty() || indexOf(surface.id) >= 0 || surface.id.value == kMaxId)
+        return false;
+    std::uint32_t maxId = surface.id.value;
+    for (const TrimLoop& l : surface.trims) {
+        if (l.id.value == kMaxId || loopIdUsed(m_scene, l.id))
+            return false;
+        maxId = std::max(maxId, l.id.value);
+    }
+    const SurfaceId id = surface.id;
+    Q_EMIT surfaceAboutToBeInserted(index);
+    m_scene.surfaces.insert(m_scene.surfaces.begin() + index, std::move(surface));
+    const std::uint64_t rev = ++m_counter;
+    m_revisions.insert(m_revisions.begin() + index, Revisions{rev, rev, rev, rev});
+    m_scene.nextId = std::max(m_scene.nextId, maxId + 1);
+    Q_EMIT surfaceInserted(id, index);
+    return true;
+}
+
+bool Document::removeSurface(SurfaceId id) {
+    const int index = indexOf(id);
+    if (index < 0)
+        return false;
+    Q_EMIT surfaceAboutToBeRemoved(id, index);
+    m_scene.surfaces.erase(m_scene.surfaces.begin() + index);
+    m_revisions.erase(m_revisions.begin() + index);
+    Q_EMIT surfaceRemoved(id);
+    return true;
+}
+
+bool Document::setName(SurfaceId id, const QString& name) {
+    Surface* s = mutableSurface(id);
+    if (!s || name.trimmed().isEmpty())
+        return false;
+    if (s->name == name)
+        return true;
+    s->name = name;
+    bump(id, Aspect::Name);
+    return true;
+}
+
+bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                const std::vector<glm::dvec3>& positions) {
+    Surface* s = mutableSurface(id);
+    if (!s || indices.empty() || indices.size() != positions.size())
+        return false;
+    std::set<int> seen;
+    for (size_t k = 0; k < indices.size(); ++k) {
+        const int i = indices[k];
+        if (i < 0 || size_t(i) >= s->geometry.points.size() || !seen.insert(i).second ||
+            !finite(positions[k]))
+            return false;
+    }
+    bool changed = false;
+    for (size_t k = 0; k < indices.size(); ++k) {
+        glm::dvec3& p = s->geometry.points[size_t(indices[k])];
+        changed = changed || p != positions[k];
+        p = positions[k];
+    }
+    if (changed)
+        bump(id, Aspect::Points);
+    return true;
+}
+
+bool Document::setWeight(SurfaceId id, int index, double weight) {
+    Surface* s = mutableSurface(id);
+    if (!s || index < 0 || size_t(index) >= s->geometry.weights.size() || !std::isfinite(weight) ||
+        weight <= 0)
+        return false;
+    double& w = s->geometry.weights[size_t(index)];
+    if (w == weight)
+        return true;
+    w = weight;
+    bump(id, Aspect::Points);
+    return true;
+}
+
+bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
+    Surface* s = mutableSurface(id);
+    if (!s || !surfaceValidationError(geometry).empty())
+        return false;
+    const NurbsSurface& old = s->geometry;
+    Aspects aspects;
+    if (old.degreeU != geometry.degreeU || old.degreeV != geometry.degreeV ||
+        old.countU != geometry.countU || old.countV != geometry.countV ||
+        old.knotsU != geometry.knotsU || old.knotsV != geometry.knotsV)
+        aspects |= Aspect::Knots;
+    if (old.points != geometry.points || old.weights != geometry.weights)
+        aspects |= Aspect::Points;
+    if (!aspects)
+        return true;
+    s->geometry = geometry;
+    bump(id, aspects);
+    return true;
+}
+
+bool Document::setPartitions(SurfaceId id, int nu, int nv) {
+    Surface* s = mutableSurface(id);
+    if (!s || !partitionsError(nu, nv).isEmpty())
+        return false;
+    if (s->partitionsU == nu && s->partitionsV == nv)
+        return true;
+    s->partitionsU = nu;
+    s->partitionsV = nv;
+    bump(id, Aspect::Display);
+    return true;
+}
+
+bool Document::setMaterial(SurfaceId id, const Material& material) {
+    Surface* s = mutableSurface(id);
+    if (!s || !materialError(material).isEmpty())
+        return false;
+    if (s->material == material)
+        return true;
+    s->material = material;
+    bump(id, Aspect::Display);
+    return true;
+}
+
+bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
+    Surface* s = mutableSurface(id);
+    if (!s || index < 0 || size_t(index) > s->trims.size())
+        return false;
+    if (!trimLoopError(loop).isEmpty() || loop.id.value == kMaxId || loopIdUsed(m_scene, loop.id))
+        return false;
+    Q_EMIT trimLoopAboutToBeInserted(id, index);
+    const std::uint32_t loopId = loop.id.value;
+    s->trims.insert(s->trims.begin() + index, std::move(loop));
+    m_scene.nextId = std::max(m_scene.nextId, loopId + 1);
+    m_revisions[size_t(indexOf(id))].trims = ++m_counter;
+    Q_EMIT trimLoopInserted(id, index);
+    Q_EMIT surfaceChanged(id, Aspect::Trims);
+    return true;
+}
+
+bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
+    Surface* s = mutableSurface(id);
+    const int index = s ? loopIndex(*s, loop) : -1;
+    if (index < 0)
+        return false;
+    Q_EMIT trimLoopAboutToBeRemoved(id, index);
+    s->trims.erase(s->trims.begin() + index);
+    m_revisions[size_t(indexOf(id))].trims = ++m_counter;
+    Q_EMIT trimLoopRemoved(id, index);
+    Q_EMIT surfaceChanged(id, Aspect::Trims);
+    return true;
+}
+
+bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
+    Surface* s = mutableSurface(ref.surface);
+    const int li = s ? loopIndex(*s, ref.loop) : -1;
+    if (li < 0 || !std::isfinite(position.x) || !std::isfinite(position.y))
+        return false;
+    std::vector<NurbsCurve2>& curves = s->trims[size_t(li)].curves;
+    if (ref.curve < 0 || size_t(ref.curve) >= curves.size())
+        return false;
+    std::vector<glm::dvec2>& points = curves[size_t(ref.curve)].points;
+    if (ref.index < 0 || size_t(ref.index) >= points.size())
+        return false;
+    if (points[size_t(ref.index)] == position)
+        return true;
+    points[size_t(ref.index)] = position;
+    bump(ref.surface, Aspect::Trims);
+    return true;
+}
+
+bool Document::setLights(std::vector<Light> lights) {
+    if (!lightsError(lights).isEmpty())
+        return false;
+    if (m_scene.lights == lights)
+        return true;
+    m_scene.lights = std::move(lights);
+    m_lightsRevision = ++m_counter;
+    Q_EMIT lightsChanged();
+    return true;
+}
+
+bool Document::setCamera(const Camera& camera) {
+    if (!cameraError(camera).isEmpty())
+        return false;
+    if (m_scene.camera == camera)
+        return true;
+    m_scene.camera = camera;
+    m_cameraRevision = ++m_counter;
+    Q_EMIT cameraChanged();
+    return true;
+}
+
+QString Document::validate(const Scene& scene) {
+    std::set<std::uint32_t> surfaceIds, loopIds;
+    std::uint32_t maxId = 0;
+    for (const Surface& s : scene.surfaces) {
+        const QString e = surfaceError(s);
+        if (!e.isEmpty())
+            return e;
+        if (!surfaceIds.insert(s.id.value).second)
+            return QStringLiteral("surface id %1 used twice").arg(s.id.value);
+        maxId = std::max(maxId, s.id.value);
+        for (const TrimLoop& l : s.trims) {
+            if (!loopIds.insert(l.id.value).second)
+                return QStringLiteral("trim loop id %1 used twice").arg(l.id.value);
+            maxId = std::max(maxId, l.id.value);
+        }
+    }
+    if (scene.nextId <= maxId)
+        return QStringLiteral("nextId %1 is not above the largest id %2")
+            .arg(scene.nextId)
+            .arg(maxId);
+    QString e = lightsError(scene.lights);
+    if (e.isEmpty())
+        e = cameraError(scene.camera);
+    return e;
+}
+
+Surface* Document::mutableSurface(SurfaceId id) {
+    const int i = indexOf(id);
+    return i < 0 ? nullptr : &m_scene.surfaces[size_t(i)];
+}
+
+// Gives every changed aspect one fresh value of the document-wide counter, then signals.
+// Name has no revision: nothing is uploaded for it.
+void Document::bump(SurfaceId id, Aspects aspects) {
+    Revisions& r = m_revisions[size_t(indexOf(id))];
+    const std::uint64_t rev = ++m_counter;
+    if (aspects & Aspect::Points)
+        r.points = rev;
+    if (aspects & Aspect::Knots)
+        r.knots = rev;
+    if (aspects & Aspect::Trims)
+        r.trims = rev;
+    if (aspects & Aspect::Display)
+        r.display = rev;
+    Q_EMIT surfaceChanged(id, aspects);
+}
+
+} // namespace kw

@@ -1,0 +1,174 @@
+// Writing .knot project files: Scene -> versioned JSON, saved atomically (reading:
+// knotfile_read.cpp).
+#include "model/knotfile.h"
+
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSaveFile>
+#include <cerrno>
+
+namespace kw {
+
+namespace {
+
+QJsonArray toJson(const glm::dvec3& v) {
+    return QJsonArray{v.x, v.y, v.z};
+}
+QJsonArray toJson(const glm::dvec2& v) {
+    return QJsonArray{v.x, v.y};
+}
+
+QJsonArray toJson(const std::vector<double>& values) {
+    QJsonArray a;
+    for (double d : values)
+        a.append(d);
+    return a;
+}
+
+template <typename Vec> QJsonArray pointsToJson(const std::vector<Vec>& points) {
+    QJsonArray a;
+    for (const Vec& p : points)
+        a.append(toJson(p));
+    return a;
+}
+
+QJsonObject curveToJson(const NurbsCurve2& c) {
+    QJsonObject o;
+    o.insert(QStringLiteral("degree"), c.degree);
+    o.insert(QStringLiteral("knots"), toJson(c.knots));
+    o.insert(QStringLiteral("points"), pointsToJson(c.points));
+    o.insert(QStringLiteral("weights"), toJson(c.weights));
+    return o;
+}
+
+QJsonObject materialToJson(const Material& m) {
+    QJsonObject o;
+    o.insert(QStringLiteral("color"), toJson(m.color));
+    o.insert(QStringLiteral("ka"), m.ka);
+    o.insert(QStringLiteral("kd"), m.kd);
+    o.insert(QStringLiteral("ks"), m.ks);
+    o.insert(QStringLiteral("shininess"), m.shininess);
+    return o;
+}
+
+QJsonObject surfaceToJson(const Surface& s) {
+    const NurbsSurface& g = s.geometry;
+    QJsonObject o;
+    o.insert(QStringLiteral("id"), qint64(s.id.value));
+    o.insert(QStringLiteral("name"), s.name);
+    o.insert(QStringLiteral("degreeU"), g.degreeU);
+    o.insert(QStringLiteral("degreeV"), g.degreeV);
+    o.insert(QStringLiteral("countU"), g.countU);
+    o.insert(QStringLiteral("countV"), g.countV);
+    o.insert(QStringLiteral("knotsU"), toJson(g.knotsU));
+    o.insert(QStringLiteral("knotsV"), toJson(g.knotsV));
+    o.insert(QStringLiteral("points"), pointsToJson(g.points));
+    o.insert(QStringLiteral("weights"), toJson(g.weights));
+    QJsonArray trims;
+    for (const TrimLoop& loop : s.trims) {
+        QJsonArray curves;
+        for (const NurbsCurve2& c : loop.curves)
+            curves.append(curveToJson(c));
+        trims.append(QJsonObject{{QStringLiteral("id"), qint64(loop.id.value)},
+                                 {QStringLiteral("curves"), curves}});
+    }
+    o.insert(QStringLiteral("trims"), trims);
+    o.insert(QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV});
+    o.insert(QStringLiteral("material"), materialToJson(s.material));
+    return o;
+}
+
+QJsonObject lightToJson(const Light& l) {
+    QJsonObject o;
+    o.insert(QStringLiteral("kind"), l.kind == Light::Kind::Point ? QStringLiteral("point")
+                                                                  : QStringLiteral("directional"));
+    o.insert(QStringLiteral("vector"), toJson(l.vector));
+    o.insert(QStringLiteral("ambient"), toJson(l.ambient));
+    o.insert(QStringLiteral("diffuse"), toJson(l.diffuse));
+    o.insert(QStringLiteral("specular"), toJson(l.specular));
+    return o;
+}
+
+QJsonObject cameraToJson(const Camera& c) {
+    QJsonObject o;
+    o.insert(QStringLiteral("eye"), toJson(c.eye));
+    o.insert(QStringLiteral("target"), toJson(c.target));
+    o.insert(QStringLiteral("up"), toJson(c.up));
+    o.insert(QStringLiteral("fovYDegrees"), c.fovYDegrees);
+    return o;
+}
+
+} // namespace
+
+QByteArray sceneToJson(const Scene& scene) {
+    QJsonObject root;
+    root.insert(QStringLiteral("format"), QStringLiteral("knotwork"));
+    root.insert(QStringLiteral("version"),
+                QStringLiteral("%1.%2").arg(kKnotFormatMajor).arg(kKnotFormatMinor));
+    root.insert(QStringLiteral("nextId"), qint64(scene.nextId));
+    QJsonArray surfaces;
+    for (const Surface& s : scene.surfaces)
+        surfaces.append(surfaceToJson(s));
+    root.insert(QStringLiteral("surfaces"), surfaces);
+    QJsonArray lights;
+    for (const Light& l : scene.lights)
+        lights.append(lightToJson(l));
+    root.insert(QStringLiteral("lights"), lights);
+    if (scene.camera.authored)
+        root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
+    return QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
+bool writeKnotFile(const QString& path, const Scene& scene, QString* error) {
+    const QByteArray json = sceneToJson(scene);
+    QSaveFile file(path);
+    auto failed = [&](const QString& what) {
+        if (error)
+            *error = QStringLiteral("%1: %2: %3").arg(path, what, file.errorString());
+        file.cancelWriting();
+        return false;
+    };
+    if (!file.open(QIODevice::WriteOnly))
+        return failed(QStringLiteral("cannot open for writing"));
+    // Flush explicitly: Qt 6.4's QSaveFile::commit() ignores a failed final flush (e.g. EFBIG,
+    // ENOSPC) and would replace the old file with a truncated one.
+    if (file.write(json) != json.size() || !file.flush()) {
+        const int err = errno;
+        const QString reason = err ? qt_error_string(err) : QStringLiteral("incomplete write");
+        if (error)
+            *error = QStringLiteral("%1: cannot write: %2").arg(path, reason);
+        file.cancelWriting();
+        return false;
+    }
+    if (!file.commit())
+        return failed(QStringLiteral("cannot save"));
+    return true;
+}
+
+std::optional<Scene> readKnotFile(const QString& path, QString* error) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) {
+        if (error)
+            *error = QStringLiteral("%1: cannot open: %2").arg(path, file.errorString());
+        return std::nullopt;
+    }
+    constexpr qint64 kMaxFileBytes = qint64(1) << 30;
+    if (file.size() > kMaxFileBytes) {
+        if (error)
+            *error = QStringLiteral("%1: file is %2 bytes, more than the 1 GiB limit")
+                         .arg(path)
+                         .arg(file.size());
+        return std::nullopt;
+    }
+    const QByteArray data = file.readAll();
+    if (file.error() != QFileDevice::NoError) {
+        if (error)
+            *error = QStringLiteral("%1: cannot read: %2").arg(path, file.errorString());
+        return std::nullopt;
+    }
+    return sceneFromJson(data, path, error);
+}
+
+} // namespace kw

@@ -1,0 +1,45 @@
+// Knotwork project files (.knot): the whole Scene as versioned JSON, see docs/FILE_FORMAT.md.
+#pragma once
+
+#include "model/scene.h"
+
+#include <QByteArray>
+#include <QString>
+#include <optional>
+
+namespace kw {
+
+/// Format written by this build. Readers accept any file with the same major version (unknown
+/// members of a newer minor version are ignored) and reject a newer major version.
+constexpr int kKnotFormatMajor = 1;
+constexpr int kKnotFormatMinor = 0;
+
+/// Limits a file must respect; larger values are rejected as corrupt, not attempted.
+constexpr long long kMaxKnotControlPoints = 4'000'000; ///< countU * countV of one surface
+constexpr int kMaxKnotCurvePoints = 100'000;           ///< control points of one trim curve
+constexpr int kMaxKnotTrimLoops = 10'000;              ///< loops of one surface
+constexpr int kMaxKnotLoopCurves = 10'000;             ///< curves of one loop
+constexpr int kMaxKnotSurfaces = 100'000;
+
+/// The scene as UTF-8 JSON in the current format (indented). Every double is written in its
+/// shortest exact form, so it reads back bit for bit, except that the sign of a zero is lost
+/// (QJsonDocument writes -0.0 as 0). The camera is omitted when !scene.camera.authored.
+QByteArray sceneToJson(const Scene& scene);
+
+/// Parses and validates a scene. On success ids are those of the file and nextId is raised
+/// above every surface and loop id. On any problem returns nullopt and, if error is non-null,
+/// sets it to ONE line "<sourceName>: <JSON path>: <reason>", e.g.
+/// "a.knot: $.surfaces[2].knotsU[5]: knot 0.25 is smaller than the previous knot 0.5".
+/// Never returns a partial scene; never crashes on any input.
+std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName,
+                                   QString* error);
+
+/// Writes the scene atomically (QSaveFile): on failure the previous file at `path` is left
+/// untouched, false is returned and *error (if non-null) names the file and the reason.
+bool writeKnotFile(const QString& path, const Scene& scene, QString* error);
+
+/// Reads a .knot file; errors as for sceneFromJson, with the path as the source name (also
+/// for a file that cannot be opened or is larger than 1 GiB).
+std::optional<Scene> readKnotFile(const QString& path, QString* error);
+
+} // namespace kw

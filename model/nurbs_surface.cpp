@@ -1,0 +1,203 @@
+// Surface evaluation: rational derivatives (A3.6 + A4.4), frames with the degenerate-normal
+// rule shared with the GPU shader, and control-point bounds.
+#include "model/nurbs_internal.h"
+
+#include <algorithm>
+
+namespace kw {
+namespace {
+
+// ---- Degenerate-normal thresholds (mirrored by the GLSL port; see surfaceFrame below).
+
+/// A first derivative is "tiny" when |Su| * widthU <= kTinyDerivativeRel * L, where widthU is
+/// the width of the u domain and L the diagonal of the bounding box of the (degreeU+1) x
+/// (degreeV+1) control points that act on the span containing (u, v). Both sides have the
+/// units of length, so the test does not depend on the model's scale or parameterisation.
+/// Likewise |Suv| * widthU * widthV <= kTinyDerivativeRel * L for the mixed derivative.
+constexpr double kTinyDerivativeRel = 1e-8;
+/// A cross product a x b is "degenerate" when |a x b| <= kParallelRel * |a| * |b|, i.e. the
+/// sine of the angle between a and b is below kParallelRel.
+constexpr double kParallelRel = 1e-10;
+/// Step towards the domain centre, as a fraction of the domain width, for the last fallback.
+constexpr double kInteriorStep = 1e-4;
+
+struct LocalEval {
+    SurfaceDerivatives d;
+    double scale = 0.0; ///< diagonal of the bounds of the span's control points
+};
+
+constexpr double kBinom[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
+
+// The NURBS Book, A3.6 (SurfaceDerivsAlg1) on homogeneous points Pw = (w P, w), to order 2,
+// followed by A4.4 (RatSurfaceDerivs) for the derivatives of the rational quotient.
+// Preconditions: detail::shapeOk(s); u, v inside the domain.
+LocalEval evaluate(const NurbsSurface& s, double u, double v) {
+    const int pu = s.degreeU;
+    const int pv = s.degreeV;
+    const int spanU = findSpan(pu, s.knotsU, u);
+    const int spanV = findSpan(pv, s.knotsV, v);
+    double nu[3 * (kMaxDegree + 1)];
+    double nv[3 * (kMaxDegree + 1)];
+    basisFunctionDerivatives(spanU, u, pu, 2, s.knotsU, nu);
+    basisFunctionDerivatives(spanV, v, pv, 2, s.knotsV, nv);
+
+    glm::dvec4 a[3][3] = {}; // a[k][l]: d^(k+l) / du^k dv^l of the homogeneous surface
+    glm::dvec3 lo(0.0), hi(0.0);
+    for (int l = 0; l <= pv; ++l) {
+        glm::dvec4 temp[3] = {};
+        const int j = spanV - pv + l;
+        for (int r = 0; r <= pu; ++r) {
+            const size_t idx = size_t(s.index(spanU - pu + r, j));
+            const glm::dvec3& p = s.points[idx];
+            const double w = s.weights[idx];
+            const glm::dvec4 pw(p * w, w);
+            for (int k = 0; k < 3; ++k)
+                temp[k] += nu[k * (pu + 1) + r] * pw;
+            lo = (l == 0 && r == 0) ? p : glm::min(lo, p);
+            hi = (l == 0 && r == 0) ? p : glm::max(hi, p);
+        }
+        for (int k = 0; k < 3; ++k)
+            for (int m = 0; m <= 2 - k; ++m)
+                a[k][m] += nv[m * (pv + 1) + l] * temp[k];
+    }
+
+    glm::dvec3 skl[3][3];
+    for (int k = 0; k < 3; ++k) {
+        for (int l = 0; l <= 2 - k; ++l) {
+            glm::dvec3 x = glm::dvec3(a[k][l]);
+            for (int j = 1; j <= l; ++j)
+                x -= kBinom[l][j] * a[0][j].w * skl[k][l - j];
+            for (int i = 1; i <= k; ++i) {
+                x -= kBinom[k][i] * a[i][0].w * skl[k - i][l];
+                glm::dvec3 x2(0.0);
+                for (int j = 1; j <= l; ++j)
+                    x2 += kBinom[l][j] * a[i][j].w * skl[k - i][l - j];
+                x -= kBinom[k][i] * x2;
+            }
+            skl[k][l] = x / a[0][0].w;
+        }
+    }
+    LocalEval out;
+    out.d.s = skl[0][0];
+    out.d.su = skl[1][0];
+    out.d.sv = skl[0][1];
+    out.d.suu = skl[2][0];
+    out.d.suv = skl[1][1];
+    out.d.svv = skl[0][2];
+    out.scale = glm::length(hi - lo);
+    return out;
+}
+
+bool degenerateCross(const glm::dvec3& c, const glm::dvec3& a, const glm::dvec3& b) {
+    const double lc = glm::length(c);
+    return !(lc > kParallelRel * glm::length(a) * glm::length(b)) || !std::isfinite(lc);
+}
+
+} // namespace
+
+Interval surfaceDomainU(const NurbsSurface& s) {
+    return knotDomain(s.knotsU, s.degreeU);
+}
+Interval surfaceDomainV(const NurbsSurface& s) {
+    return knotDomain(s.knotsV, s.degreeV);
+}
+
+SurfaceDerivatives surfaceDerivatives(const NurbsSurface& s, double u, double v) {
+    if (!detail::shapeOk(s))
+        return {};
+    return evaluate(s, detail::clampTo(u, surfaceDomainU(s)), detail::clampTo(v, surfaceDomainV(s)))
+        .d;
+}
+
+glm::dvec3 surfacePoint(const NurbsSurface& s, double u, double v) {
+    return surfaceDerivatives(s, u, v).s;
+}
+
+// The normal rule, exactly as the GLSL port implements it. Notation: (u, v) clamped to the
+// domain [u0, u1] x [v0, v1]; wu = u1 - u0, wv = v1 - v0; L = diagonal of the axis-aligned
+// bounds of the (pu+1)(pv+1) control points of the span containing (u, v); Su, Sv, Suv the
+// rational partial derivatives there.
+//  1. n = Su x Sv. "tinyU" := |Su| wu <= kTinyDerivativeRel L; "tinyV" := |Sv| wv <= same.
+//     If neither is tiny and |n| > kParallelRel |Su| |Sv|, the normal is n / |n|.
+//  2. If exactly one of tinyU, tinyV holds: if tinyU, m = sign * (Suv x Sv) with sign = +1
+//     if v < (v0 + v1) / 2 else -1; if tinyV, m = sign * (Su x Suv) with sign = +1 if
+//     u < (u0 + u1) / 2 else -1. The sign makes m the limit of n approached from the
+//     domain's interior. m is accepted, as m / |m|, when |Suv| wu wv > kTinyDerivativeRel L
+//     and |m| > kParallelRel |Suv| |Sv| (resp. |Su| |Suv|).
+//  3. Otherwise step to (u', v') = (u + kInteriorStep wu sgn(uc - u), v + kInteriorStep wv
+//     sgn(vc - v)) with (uc, vc) the domain centre and sgn(0) = 0, evaluate there (its own L)
+//     and use n' = Su' x Sv' if it passes the test of step 1.
+//  4. Otherwise (0, 0, 1). A non-finite result at any step counts as degenerate.
+SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
+    SurfaceFrame f;
+    if (!detail::shapeOk(s))
+        return f;
+    const Interval du = surfaceDomainU(s);
+    const Interval dv = surfaceDomainV(s);
+    u = detail::clampTo(u, du);
+    v = detail::clampTo(v, dv);
+    const double wu = du.last - du.first;
+    const double wv = dv.last - dv.first;
+    const LocalEval e = evaluate(s, u, v);
+    f.point = e.d.s;
+    f.du = e.d.su;
+    f.dv = e.d.sv;
+
+    const double tinyLen = kTinyDerivativeRel * e.scale;
+    const double lu = glm::length(e.d.su) * wu;
+    const double lv = glm::length(e.d.sv) * wv;
+    const bool tinyU = !(lu > tinyLen);
+    const bool tinyV = !(lv > tinyLen);
+    const glm::dvec3 n = glm::cross(e.d.su, e.d.sv);
+    if (!tinyU && !tinyV && !degenerateCross(n, e.d.su, e.d.sv)) { // step 1
+        f.normal = n / glm::length(n);
+        return f;
+    }
+    if (tinyU != tinyV) { // step 2
+        const bool suvOk = glm::length(e.d.suv) * wu * wv > tinyLen;
+        glm::dvec3 m;
+        glm::dvec3 other;
+        if (tinyU) {
+            const double sign = v < 0.5 * (dv.first + dv.last) ? 1.0 : -1.0;
+            m = sign * glm::cross(e.d.suv, e.d.sv);
+            other = e.d.sv;
+        } else {
+            const double sign = u < 0.5 * (du.first + du.last) ? 1.0 : -1.0;
+            m = sign * glm::cross(e.d.su, e.d.suv);
+            other = e.d.su;
+        }
+        if (suvOk && !degenerateCross(m, e.d.suv, other)) {
+            f.normal = m / glm::length(m);
+            return f;
+        }
+    }
+    // Step 3: the plain normal of a nearby interior point.
+    const auto towards = [](double t, const Interval& d, double w) {
+        const double c = 0.5 * (d.first + d.last);
+        return t < c ? t + kInteriorStep * w : (t > c ? t - kInteriorStep * w : t);
+    };
+    const LocalEval e2 = evaluate(s, towards(u, du, wu), towards(v, dv, wv));
+    const double tiny2 = kTinyDerivativeRel * e2.scale;
+    const glm::dvec3 n2 = glm::cross(e2.d.su, e2.d.sv);
+    if (glm::length(e2.d.su) * wu > tiny2 && glm::length(e2.d.sv) * wv > tiny2 &&
+        !degenerateCross(n2, e2.d.su, e2.d.sv)) {
+        f.normal = n2 / glm::length(n2);
+        return f;
+    }
+    f.normal = glm::dvec3(0.0, 0.0, 1.0); // step 4
+    return f;
+}
+
+void surfaceControlBounds(const NurbsSurface& s, glm::dvec3& lo, glm::dvec3& hi) {
+    if (s.points.empty()) {
+        lo = hi = glm::dvec3(0.0);
+        return;
+    }
+    lo = hi = s.points.front();
+    for (const glm::dvec3& p : s.points) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+}
+
+} // namespace kw

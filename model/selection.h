@@ -1,0 +1,54 @@
+// Selection: what the user has picked — tree rows, control points and trim points — shared by
+// views.
+#pragma once
+
+#include "model/scenemodel.h"
+
+#include <QItemSelectionModel>
+#include <QObject>
+#include <vector>
+
+namespace kw {
+
+/// One selection shared by the scene tree, the viewport and the trim editor. Rows are held by a
+/// QItemSelectionModel over the SceneModel; picked control and trim points as typed refs, kept
+/// sorted and unique. The selection follows the document: points of a removed surface or
+/// loop, or of a surface whose net was re-sized (knot insertion renumbers points), are
+/// dropped; a scene reset clears everything. changed() fires after any of these.
+class Selection : public QObject {
+    Q_OBJECT
+public:
+    /// `model` (and its document) must outlive the selection.
+    explicit Selection(SceneModel* model, QObject* parent = nullptr);
+
+    QItemSelectionModel* itemSelection() { return &m_items; }
+    /// The surface of the current tree row, or invalid.
+    SurfaceId currentSurface() const;
+
+    const std::vector<ControlPointRef>& controlPoints() const { return m_points; }
+    const std::vector<TrimPointRef>& trimPoints() const { return m_trimPoints; }
+    /// Replaces the picked control points. Returns false (and changes nothing) if any ref
+    /// names no control point of the document.
+    bool setControlPoints(std::vector<ControlPointRef> refs);
+    /// Replaces the picked trim points. Returns false (and changes nothing) if any ref names
+    /// no trim point of the document.
+    bool setTrimPoints(std::vector<TrimPointRef> refs);
+    /// Clears rows and points.
+    void clear();
+
+Q_SIGNALS:
+    void changed();
+
+private:
+    bool validRef(const ControlPointRef& r) const;
+    bool validRef(const TrimPointRef& r) const;
+    void dropSurface(SurfaceId id, bool points, bool trims);
+    void dropLoop(SurfaceId id, TrimLoopId loop);
+
+    const Document* m_doc;
+    QItemSelectionModel m_items;
+    std::vector<ControlPointRef> m_points;
+    std::vector<TrimPointRef> m_trimPoints;
+};
+
+} // namespace kw

@@ -1,0 +1,4 @@
+# Kernel tests: properties of the NURBS kernel (label kernel, no display needed).
+kw_add_test(tst_nurbs_validate LABEL kernel SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_nurbs_validate.cpp LIBS knotwork_model)
+kw_add_test(tst_nurbs_basis LABEL kernel SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_nurbs_basis.cpp LIBS knotwork_model)
+kw_add_test(tst_nurbs_eval LABEL kernel SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_nurbs_eval.cpp LIBS knotwork_model)

@@ -1,0 +1,448 @@
+// Edit commands for points, weights, partitions, knots, degrees, material, lights and camera.
+#include "ui/edit/commands.h"
+
+#include "model/validation.h"
+#include "ui/edit/commandsupport.h"
+
+#include <QLoggingCategory>
+#include <QUndoStack>
+#include <cmath>
+#include <set>
+
+Q_LOGGING_CATEGORY(lcEdit, "knotwork.edit")
+
+namespace kw {
+
+using namespace edit_detail;
+
+namespace {
+
+bool finite(const glm::dvec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+bool finite(const glm::dvec2& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+char axis(Direction d) {
+    return d == Direction::U ? 'u' : 'v';
+}
+
+} // namespace
+
+DocumentCommand::DocumentCommand(Document* document, const QString& text)
+    : QUndoCommand(text), m_doc(document) {}
+
+void DocumentCommand::check(bool ok, const char* what) {
+    if (ok)
+        return;
+    qCWarning(lcEdit) << "document refused" << what << "of" << text()
+                      << "- the document changed outside the undo stack; dropping the command";
+    setObsolete(true);
+}
+
+bool pushCommand(QUndoStack* stack, std::unique_ptr<QUndoCommand> command) {
+    if (!stack || !command)
+        return false;
+    stack->push(command.release());
+    return true;
+}
+
+// ---- MoveControlPoints
+
+std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document, SurfaceId surface,
+                                                             std::vector<int> indices,
+                                                             std::vector<glm::dvec3> from,
+                                                             std::vector<glm::dvec3> to,
+                                                             MoveKind kind, QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    if (indices.empty() || indices.size() != from.size() || indices.size() != to.size())
+        return fail(error, QStringLiteral("need one old and one new position per point"));
+    std::set<int> seen;
+    for (size_t k = 0; k < indices.size(); ++k) {
+        const int i = indices[k];
+        if (i < 0 || size_t(i) >= s->geometry.points.size())
+            return fail(error, QStringLiteral("control point index %1 out of range").arg(i));
+        if (!seen.insert(i).second)
+            return fail(error, QStringLiteral("control point %1 listed twice").arg(i));
+        if (!finite(from[k]) || !finite(to[k]))
+            return fail(error, QStringLiteral("control point positions must be finite"));
+    }
+    const QString text = indices.size() == 1
+                             ? QStringLiteral("Move control point")
+                             : QStringLiteral("Move %1 control points").arg(indices.size());
+    std::unique_ptr<MoveControlPoints> c(new MoveControlPoints(document, text));
+    c->m_surface = surface;
+    c->m_indices = std::move(indices);
+    c->m_from = std::move(from);
+    c->m_to = std::move(to);
+    c->m_kind = kind;
+    return c;
+}
+
+void MoveControlPoints::redo() {
+    check(document()->setControlPoints(m_surface, m_indices, m_to), "redo");
+}
+
+void MoveControlPoints::undo() {
+    check(document()->setControlPoints(m_surface, m_indices, m_from), "undo");
+}
+
+bool MoveControlPoints::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const MoveControlPoints*>(other);
+    if (o->m_kind != MoveKind::Nudge || o->m_surface != m_surface || o->m_indices != m_indices)
+        return false;
+    m_to = o->m_to;
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+// ---- SetWeight
+
+std::unique_ptr<SetWeight> SetWeight::create(Document* document, SurfaceId surface, int index,
+                                             double weight, QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    if (index < 0 || size_t(index) >= s->geometry.weights.size())
+        return fail(error, QStringLiteral("control point index %1 out of range").arg(index));
+    if (!std::isfinite(weight) || weight <= 0)
+        return fail(error, QStringLiteral("weight %1 must be finite and > 0").arg(weight));
+    std::unique_ptr<SetWeight> c(
+        new SetWeight(document, QStringLiteral("Set weight to %1").arg(weight)));
+    c->m_surface = surface;
+    c->m_index = index;
+    c->m_from = s->geometry.weights[size_t(index)];
+    c->m_to = weight;
+    return c;
+}
+
+void SetWeight::redo() {
+    check(document()->setWeight(m_surface, m_index, m_to), "redo");
+}
+void SetWeight::undo() {
+    check(document()->setWeight(m_surface, m_index, m_from), "undo");
+}
+
+bool SetWeight::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetWeight*>(other);
+    if (o->m_surface != m_surface || o->m_index != m_index)
+        return false;
+    m_to = o->m_to;
+    setText(o->text());
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+// ---- SetPartitions
+
+std::unique_ptr<SetPartitions> SetPartitions::create(Document* document, SurfaceId surface, int nu,
+                                                     int nv, QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    const QString why = partitionsError(nu, nv);
+    if (!why.isEmpty())
+        return fail(error, why);
+    std::unique_ptr<SetPartitions> c(
+        new SetPartitions(document, QStringLiteral("Set partitions to %1 × %2").arg(nu).arg(nv)));
+    c->m_surface = surface;
+    c->m_fromU = s->partitionsU;
+    c->m_fromV = s->partitionsV;
+    c->m_toU = nu;
+    c->m_toV = nv;
+    return c;
+}
+
+void SetPartitions::redo() {
+    check(document()->setPartitions(m_surface, m_toU, m_toV), "redo");
+}
+void SetPartitions::undo() {
+    check(document()->setPartitions(m_surface, m_fromU, m_fromV), "undo");
+}
+
+bool SetPartitions::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetPartitions*>(other);
+    if (o->m_surface != m_surface)
+        return false;
+    m_toU = o->m_toU;
+    m_toV = o->m_toV;
+    setText(o->text());
+    setObsolete(m_toU == m_fromU && m_toV == m_fromV);
+    return true;
+}
+
+// ---- Geometry: knot vector, knot insertion, degree elevation
+
+GeometryCommand::GeometryCommand(Document* d, const QString& text, SurfaceId surface,
+                                 NurbsSurface from, NurbsSurface to)
+    : DocumentCommand(d, text), m_surface(surface), m_from(std::move(from)), m_to(std::move(to)) {}
+
+void GeometryCommand::redo() {
+    check(document()->setGeometry(m_surface, m_to), "redo");
+}
+void GeometryCommand::undo() {
+    check(document()->setGeometry(m_surface, m_from), "undo");
+}
+
+std::unique_ptr<SetKnotVector> SetKnotVector::create(Document* document, SurfaceId surface,
+                                                     Direction direction, std::vector<double> knots,
+                                                     QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    NurbsSurface g = s->geometry;
+    const bool u = direction == Direction::U;
+    const std::string why =
+        knotVectorError(knots, u ? g.degreeU : g.degreeV, u ? g.countU : g.countV);
+    if (!why.empty())
+        return fail(error, QStringLiteral("knot vector %1: %2")
+                               .arg(axis(direction))
+                               .arg(QString::fromStdString(why)));
+    (u ? g.knotsU : g.knotsV) = std::move(knots);
+    if (g == s->geometry)
+        return fail(error, QStringLiteral("knot vector %1 unchanged").arg(axis(direction)));
+    const QString text = QStringLiteral("Edit knot vector %1").arg(axis(direction));
+    return std::unique_ptr<SetKnotVector>(
+        new SetKnotVector(document, text, surface, s->geometry, std::move(g)));
+}
+
+std::unique_ptr<InsertKnot> InsertKnot::create(Document* document, SurfaceId surface,
+                                               Direction direction, double value, int times,
+                                               QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    if (!std::isfinite(value) || times < 1)
+        return fail(error, QStringLiteral("knot value must be finite, times >= 1"));
+    const bool u = direction == Direction::U;
+    const NurbsSurface& g = s->geometry;
+    const Interval dom = u ? surfaceDomainU(g) : surfaceDomainV(g);
+    NurbsSurface to = u ? surfaceInsertKnotU(g, value, times) : surfaceInsertKnotV(g, value, times);
+    if (to == g)
+        return fail(error, QStringLiteral("cannot insert knot %1 = %2 %3 times: it must lie in "
+                                          "(%4, %5) and its multiplicity stay <= the degree %6")
+                               .arg(axis(direction))
+                               .arg(value)
+                               .arg(times)
+                               .arg(dom.first)
+                               .arg(dom.last)
+                               .arg(u ? g.degreeU : g.degreeV));
+    QString text = QStringLiteral("Insert knot %1 = %2").arg(axis(direction)).arg(value);
+    if (times > 1)
+        text += QStringLiteral(" (×%1)").arg(times);
+    return std::unique_ptr<InsertKnot>(new InsertKnot(document, text, surface, g, std::move(to)));
+}
+
+std::unique_ptr<ElevateDegree> ElevateDegree::create(Document* document, SurfaceId surface,
+                                                     Direction direction, int by, QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    const bool u = direction == Direction::U;
+    const NurbsSurface& g = s->geometry;
+    const int degree = (u ? g.degreeU : g.degreeV);
+    if (by < 1 || degree + by > kMaxDegree)
+        return fail(error, QStringLiteral("cannot raise degree %1 from %2 by %3: the maximum "
+                                          "is %4")
+                               .arg(axis(direction))
+                               .arg(degree)
+                               .arg(by)
+                               .arg(kMaxDegree));
+    NurbsSurface to = u ? surfaceElevateDegreeU(g, by) : surfaceElevateDegreeV(g, by);
+    if (to == g || !surfaceValidationError(to).empty())
+        return fail(error, QStringLiteral("degree elevation in %1 failed").arg(axis(direction)));
+    const QString text =
+        QStringLiteral("Elevate degree %1 to %2").arg(axis(direction)).arg(degree + by);
+    return std::unique_ptr<ElevateDegree>(
+        new ElevateDegree(document, text, surface, g, std::move(to)));
+}
+
+// ---- MoveTrimPoints
+
+std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
+                                                       std::vector<TrimPointRef> refs,
+                                                       std::vector<glm::dvec2> from,
+                                                       std::vector<glm::dvec2> to, MoveKind kind,
+                                                       QString* error) {
+    if (refs.empty() || refs.size() != from.size() || refs.size() != to.size())
+        return fail(error, QStringLiteral("need one old and one new position per trim point"));
+    std::set<TrimPointRef> seen;
+    for (size_t k = 0; k < refs.size(); ++k) {
+        const TrimPointRef& r = refs[k];
+        const Surface* s = document->surface(r.surface);
+        const TrimLoop* loop = findLoop(s, r.loop);
+        if (!loop || r.curve < 0 || size_t(r.curve) >= loop->curves.size() || r.index < 0 ||
+            size_t(r.index) >= loop->curves[size_t(r.curve)].points.size())
+            return fail(error, QStringLiteral("no trim point %1 of curve %2 in loop %3 of "
+                                              "surface %4")
+                                   .arg(r.index)
+                                   .arg(r.curve)
+                                   .arg(r.loop.value)
+                                   .arg(r.surface.value));
+        if (!seen.insert(r).second)
+            return fail(error, QStringLiteral("trim point listed twice"));
+        if (!finite(from[k]) || !finite(to[k]))
+            return fail(error, QStringLiteral("trim point positions must be finite"));
+    }
+    const QString text = refs.size() == 1 ? QStringLiteral("Move trim point")
+                                          : QStringLiteral("Move %1 trim points").arg(refs.size());
+    std::unique_ptr<MoveTrimPoints> c(new MoveTrimPoints(document, text));
+    c->m_refs = std::move(refs);
+    c->m_from = std::move(from);
+    c->m_to = std::move(to);
+    c->m_kind = kind;
+    return c;
+}
+
+void MoveTrimPoints::apply(const std::vector<glm::dvec2>& positions, const char* what) {
+    bool ok = true;
+    for (size_t k = 0; k < m_refs.size(); ++k)
+        ok = document()->setTrimPoint(m_refs[k], positions[k]) && ok;
+    check(ok, what);
+}
+
+void MoveTrimPoints::redo() {
+    apply(m_to, "redo");
+}
+void MoveTrimPoints::undo() {
+    apply(m_from, "undo");
+}
+
+bool MoveTrimPoints::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const MoveTrimPoints*>(other);
+    if (o->m_kind != MoveKind::Nudge || o->m_refs != m_refs)
+        return false;
+    m_to = o->m_to;
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+// ---- SetMaterial
+
+std::unique_ptr<SetMaterial> SetMaterial::create(Document* document, SurfaceId surface,
+                                                 const Material& material, QString* error) {
+    const Surface* s = document->surface(surface);
+    if (!s)
+        return fail(error, noSurface(surface));
+    const QString why = materialError(material);
+    if (!why.isEmpty())
+        return fail(error, why);
+    std::unique_ptr<SetMaterial> c(
+        new SetMaterial(document, QStringLiteral("Change material of “%1”").arg(s->name)));
+    c->m_surface = surface;
+    c->m_from = s->material;
+    c->m_to = material;
+    return c;
+}
+
+void SetMaterial::redo() {
+    check(document()->setMaterial(m_surface, m_to), "redo");
+}
+void SetMaterial::undo() {
+    check(document()->setMaterial(m_surface, m_from), "undo");
+}
+
+bool SetMaterial::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetMaterial*>(other);
+    if (o->m_surface != m_surface)
+        return false;
+    m_to = o->m_to;
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+// ---- SetLights
+
+std::unique_ptr<SetLights> SetLights::make(Document* document, std::vector<Light> lights,
+                                           const QString& text, int changed, QString* error) {
+    const QString why = lightsError(lights);
+    if (!why.isEmpty())
+        return fail(error, why);
+    std::unique_ptr<SetLights> c(new SetLights(document, text));
+    c->m_from = document->scene().lights;
+    c->m_to = std::move(lights);
+    c->m_changed = changed;
+    return c;
+}
+
+std::unique_ptr<SetLights> SetLights::create(Document* document, std::vector<Light> lights,
+                                             QString* error) {
+    return make(document, std::move(lights), QStringLiteral("Set lights"), -1, error);
+}
+
+std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& light,
+                                               QString* error) {
+    std::vector<Light> lights = document->scene().lights;
+    if (lights.size() >= size_t(kMaxLights))
+        return fail(error, QStringLiteral("a scene has at most %1 lights").arg(kMaxLights));
+    lights.push_back(light);
+    return make(document, std::move(lights), QStringLiteral("Add light"), -1, error);
+}
+
+std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index, QString* error) {
+    std::vector<Light> lights = document->scene().lights;
+    if (index < 0 || size_t(index) >= lights.size())
+        return fail(error, QStringLiteral("no light %1").arg(index + 1));
+    if (lights.size() == 1)
+        return fail(error, QStringLiteral("cannot remove the last light"));
+    lights.erase(lights.begin() + index);
+    return make(document, std::move(lights), QStringLiteral("Remove light %1").arg(index + 1), -1,
+                error);
+}
+
+std::unique_ptr<SetLights> SetLights::changeLight(Document* document, int index, const Light& light,
+                                                  QString* error) {
+    std::vector<Light> lights = document->scene().lights;
+    if (index < 0 || size_t(index) >= lights.size())
+        return fail(error, QStringLiteral("no light %1").arg(index + 1));
+    lights[size_t(index)] = light;
+    return make(document, std::move(lights), QStringLiteral("Change light %1").arg(index + 1),
+                index, error);
+}
+
+void SetLights::redo() {
+    check(document()->setLights(m_to), "redo");
+}
+void SetLights::undo() {
+    check(document()->setLights(m_from), "undo");
+}
+
+bool SetLights::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetLights*>(other);
+    if (m_changed < 0 || o->m_changed != m_changed)
+        return false;
+    m_to = o->m_to;
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+// ---- SetCamera
+
+std::unique_ptr<SetCamera> SetCamera::create(Document* document, const Camera& camera,
+                                             QString* error) {
+    const QString why = cameraError(camera);
+    if (!why.isEmpty())
+        return fail(error, why);
+    std::unique_ptr<SetCamera> c(new SetCamera(document, QStringLiteral("Change camera")));
+    c->m_from = document->scene().camera;
+    c->m_to = camera;
+    return c;
+}
+
+void SetCamera::redo() {
+    check(document()->setCamera(m_to), "redo");
+}
+void SetCamera::undo() {
+    check(document()->setCamera(m_from), "undo");
+}
+
+bool SetCamera::mergeWith(const QUndoCommand* other) {
+    m_to = static_cast<const SetCamera*>(other)->m_to;
+    setObsolete(m_to == m_from);
+    return true;
+}
+
+} // namespace kw
