@@ -84,6 +84,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         }
         setSurfaceUniforms(gl, prog, s);
         gl->glUniform4fv(prog->uniformLocation("uDomain"), 1, glm::value_ptr(g->domain));
+        gl->glUniform3fv(prog->uniformLocation("uOrigin"), 1, glm::value_ptr(glm::vec3(g->origin)));
         gl->glBindTextureUnit(0, g->controlTexture);
         gl->glBindTextureUnit(1, g->spanTextureU);
         gl->glBindTextureUnit(2, g->spanTextureV);

@@ -6,11 +6,18 @@
 
 namespace kw {
 
-std::vector<glm::vec4> packControlPoints(const NurbsSurface& s) {
+glm::dvec3 controlOrigin(const NurbsSurface& s) {
+    glm::dvec3 lo, hi;
+    surfaceControlBounds(s, lo, hi);
+    // Rounded to float so that the shader's float uOrigin is exactly this value.
+    return glm::dvec3(glm::vec3(0.5 * (lo + hi)));
+}
+
+std::vector<glm::vec4> packControlPoints(const NurbsSurface& s, const glm::dvec3& origin) {
     std::vector<glm::vec4> out(s.points.size());
     for (size_t k = 0; k < s.points.size(); ++k) {
         const double w = s.weights[k];
-        out[k] = glm::vec4(glm::dvec4(s.points[k] * w, w));
+        out[k] = glm::vec4(glm::dvec4((s.points[k] - origin) * w, w));
     }
     return out;
 }
@@ -76,9 +83,22 @@ std::vector<int> cellSpans(const std::vector<double>& breaks, const std::vector<
     return spans;
 }
 
-void emitCell(BasePolygon& poly, const std::vector<glm::vec3>& grid, int cu, int cv) {
+// Diagonal of the bounds of the control points acting on span (ku, kv), as kw::surfaceFrame.
+float spanScale(const NurbsSurface& s, int ku, int kv) {
+    glm::dvec3 lo = s.points[size_t(s.index(ku - s.degreeU, kv - s.degreeV))], hi = lo;
+    for (int j = kv - s.degreeV; j <= kv; ++j)
+        for (int i = ku - s.degreeU; i <= ku; ++i) {
+            lo = glm::min(lo, s.points[size_t(s.index(i, j))]);
+            hi = glm::max(hi, s.points[size_t(s.index(i, j))]);
+        }
+    return float(glm::length(hi - lo));
+}
+
+void emitCell(BasePolygon& poly, const NurbsSurface& s, const std::vector<glm::vec3>& grid, int cu,
+              int cv) {
     const int nodesU = int(poly.breaksU.size());
     const glm::ivec2 span(poly.spanU[size_t(cu)], poly.spanV[size_t(cv)]);
+    const float scale = spanScale(s, span.x, span.y);
     const int corner[4][2] = {{cu, cv}, {cu + 1, cv}, {cu + 1, cv + 1}, {cu, cv + 1}};
     const size_t base = size_t(cv * poly.cellsU() + cu) * 4;
     for (int k = 0; k < 4; ++k) {
@@ -87,6 +107,7 @@ void emitCell(BasePolygon& poly, const std::vector<glm::vec3>& grid, int cu, int
         vx.position = grid[size_t(gv * nodesU + gu)];
         vx.uv = glm::vec2(float(poly.breaksU[size_t(gu)]), float(poly.breaksV[size_t(gv)]));
         vx.span = span;
+        vx.spanScale = scale;
     }
 }
 
@@ -107,7 +128,7 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
     poly.vertices.resize(size_t(poly.cellCount()) * 4);
     for (int cv = 0; cv < poly.cellsV(); ++cv)
         for (int cu = 0; cu < poly.cellsU(); ++cu)
-            emitCell(poly, grid, cu, cv);
+            emitCell(poly, s, grid, cu, cv);
     return poly;
 }
 
@@ -130,9 +151,12 @@ bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1,
         for (int cu = cu0; cu <= cu1; ++cu) {
             BaseVertex* vx = &poly.vertices[size_t(cv * poly.cellsU() + cu) * 4];
             const int corner[4][2] = {{cu, cv}, {cu + 1, cv}, {cu + 1, cv + 1}, {cu, cv + 1}};
-            for (int k = 0; k < 4; ++k)
+            const float scale = spanScale(s, vx[0].span.x, vx[0].span.y);
+            for (int k = 0; k < 4; ++k) {
                 vx[k].position = glm::vec3(surfacePoint(s, poly.breaksU[size_t(corner[k][0])],
                                                         poly.breaksV[size_t(corner[k][1])]));
+                vx[k].spanScale = scale;
+            }
         }
     firstCell = cv0 * poly.cellsU() + cu0;
     lastCell = cv1 * poly.cellsU() + cu1;

@@ -9,8 +9,12 @@
 
 namespace kw {
 
-/// Control point (i, j) as the texel (i, j) of an RGBA32F texture countU x countV: (w*P, w).
-std::vector<glm::vec4> packControlPoints(const NurbsSurface& s);
+/// Control point (i, j) as the texel (i, j) of an RGBA32F texture countU x countV:
+/// (w (P - origin), w). Points relative to an origin near the surface keep float precision
+/// where the model sits far from (0, 0, 0); the shader adds the origin back.
+std::vector<glm::vec4> packControlPoints(const NurbsSurface& s, const glm::dvec3& origin);
+/// The origin used for packControlPoints: the centre of the control bounds.
+glm::dvec3 controlOrigin(const NurbsSurface& s);
 
 /// Number of floats in one span-table row for degree p: p left knots, p right knots and
 /// p(p+1)/2 reciprocal knot differences. Must match basis.glsl.
@@ -32,13 +36,16 @@ constexpr int spanTableTexels(int p) {
 std::vector<glm::vec4> packSpanTable(const std::vector<double>& knots, int p, int count);
 
 /// One base polygon vertex. Must match the attributes of shaders/surface.vert:
-/// location 0 position (vec3), 1 (u, v) (vec2), 2 knot spans (ivec2, flat).
+/// location 0 position (vec3), 1 (u, v) (vec2), 2 knot spans (ivec2, flat), 3 span scale
+/// (float, flat): the diagonal of the bounds of the (p+1)(q+1) control points of the span, the
+/// length L of the degenerate-normal rule of kw::surfaceFrame.
 struct BaseVertex {
     glm::vec3 position;
     glm::vec2 uv;
     glm::ivec2 span;
+    float spanScale;
 };
-static_assert(sizeof(BaseVertex) == 28);
+static_assert(sizeof(BaseVertex) == 32);
 
 /// The base polygon of one surface: the domain cut uniformly into nu x nv cells and further
 /// at every distinct interior knot, so each cell lies inside one knot span (which its four

@@ -70,7 +70,8 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
     const Interval du = surfaceDomainU(geo), dv = surfaceDomainV(geo);
     g.domain = glm::vec4(float(du.first), float(du.last), float(dv.first), float(dv.last));
 
-    g.control = packControlPoints(geo);
+    g.origin = controlOrigin(geo);
+    g.control = packControlPoints(geo, g.origin);
     g.controlTexture = createTexture(gl, geo.countU, geo.countV, g.control.data());
     g.stats.fullUploads += 1;
     g.stats.texels += std::int64_t(g.control.size());
@@ -88,7 +89,7 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
 }
 
 void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
-    const std::vector<glm::vec4> now = packControlPoints(s.geometry);
+    const std::vector<glm::vec4> now = packControlPoints(s.geometry, g.origin);
     int i0 = g.countU, i1 = -1, j0 = g.countV, j1 = -1;
     for (int j = 0; j < g.countV; ++j)
         for (int i = 0; i < g.countU; ++i) {
@@ -141,11 +142,14 @@ void SurfaceGpuCache::rebuildPolygon(SurfaceGpu& g, const Surface& s, int nu, in
             gl->glEnableVertexArrayAttrib(vao, 0);
             gl->glEnableVertexArrayAttrib(vao, 1);
             gl->glEnableVertexArrayAttrib(vao, 2);
+            gl->glEnableVertexArrayAttrib(vao, 3);
             gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
                                           offsetof(BaseVertex, position));
             gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(BaseVertex, uv));
             gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, offsetof(BaseVertex, span));
-            for (GLuint a = 0; a < 3; ++a)
+            gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
+                                          offsetof(BaseVertex, spanScale));
+            for (GLuint a = 0; a < 4; ++a)
                 gl->glVertexArrayAttribBinding(vao, a, 0);
         }
         gl->glVertexArrayElementBuffer(g.triangleVao, g.triangleBuffer);

@@ -21,6 +21,7 @@ struct SurfaceGpu {
     int partitionsU = 0, partitionsV = 0;
     int degreeU = 1, degreeV = 1, countU = 0, countV = 0;
     glm::vec4 domain{0.0f, 1.0f, 0.0f, 1.0f};
+    glm::dvec3 origin{0.0}; ///< control texels are relative to it (packControlPoints)
     GLuint controlTexture = 0, spanTextureU = 0, spanTextureV = 0;
     GLuint vertexBuffer = 0, triangleBuffer = 0, outlineBuffer = 0;
     GLuint triangleVao = 0, outlineVao = 0;

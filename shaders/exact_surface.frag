@@ -5,6 +5,7 @@
 
 in vec2 vUv;
 flat in ivec2 vSpan;
+flat in float vSpanScale;
 
 uniform float uSurfaceId;
 uniform mat4 uViewProjection;
@@ -19,7 +20,7 @@ layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not fl
 
 void main() {
     // Trimming (later issue) samples the surface's trim mask at vUv here and discards.
-    SurfaceSample s = evaluateSurface(vUv, vSpan);
+    SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);

@@ -6,9 +6,14 @@ uniform sampler2D uControl; // RGBA32F, texel (i, j) = (w P, w) of control point
 uniform sampler2D uSpansU;  // span tables (kw::packSpanTable), row = span - degree
 uniform sampler2D uSpansV;
 uniform vec4 uDomain;       // (u first, u last, v first, v last) of the surface
+uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
 
-// Thresholds of the degenerate-normal rule; the CPU kernel uses the same values.
-#define KW_DEGENERATE_EPS 1e-7
+// Thresholds of the degenerate-normal rule of kw::surfaceFrame. The kernel's kTinyDerivativeRel
+// (1e-8) and kParallelRel (1e-10) are below float resolution: a collapsed edge evaluates to
+// |Su| ~ 1e-7 L of rounding noise here, so the GPU uses float-sized thresholds. Between the two
+// the rules differ only where the limit normal and Su x Sv agree to ~1e-5 rad.
+#define KW_TINY_REL 1e-5
+#define KW_PARALLEL_REL 1e-6
 #define KW_INTERIOR_STEP 1e-4
 
 #define BASIS_FN basisU
@@ -30,7 +35,7 @@ struct SurfaceSample {
     vec3 point;
     vec3 du;
     vec3 dv;
-    vec3 normal; // unit; the limit normal at collapsed edges (see normalAt)
+    vec3 normal; // unit; the limit normal at collapsed edges (see evaluateSurface)
 };
 
 struct SurfacePartials {
@@ -66,46 +71,49 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     return d;
 }
 
-// The normal rule of kw::surfaceFrame (model/nurbs.h). Returns false when even the limit
-// normal vanishes; n is then undefined.
-bool normalAt(vec2 uv, SurfacePartials d, out vec3 n) {
+// Step 1 of the rule: the plain normal Su x Sv, when neither partial is tiny and they are not
+// parallel. tinyU/tinyV report the tiny tests for step 2.
+bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, out bool tinyV) {
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    tinyU = !(length(d.su) * width.x > tinyLen);
+    tinyV = !(length(d.sv) * width.y > tinyLen);
     n = cross(d.su, d.sv);
-    float su2 = dot(d.su, d.su), sv2 = dot(d.sv, d.sv);
-    if (dot(n, n) > KW_DEGENERATE_EPS * KW_DEGENERATE_EPS * su2 * sv2 && su2 > 0.0 && sv2 > 0.0) {
-        n = normalize(n);
-        return true;
-    }
-    // Collapsed edge: near v = v0 with Su = 0, Su(v0 + h) ~ h Suv, so N ~ h (Suv x Sv); the
-    // sign of h is that of the direction towards the domain's interior. Likewise for Sv = 0.
-    if (su2 <= sv2) {
-        float h = (uv.y - uDomain.z) <= (uDomain.w - uv.y) ? 1.0 : -1.0;
-        n = h * cross(d.suv, d.sv);
-    } else {
-        float h = (uv.x - uDomain.x) <= (uDomain.y - uv.x) ? 1.0 : -1.0;
-        n = h * cross(d.su, d.suv);
-    }
-    float ref = max(dot(d.suv, d.suv), 1e-30) * max(su2, sv2);
-    if (dot(n, n) > KW_DEGENERATE_EPS * KW_DEGENERATE_EPS * ref && dot(n, n) > 0.0) {
-        n = normalize(n);
-        return true;
-    }
-    return false;
+    float ln = length(n);
+    if (tinyU || tinyV || !(ln > KW_PARALLEL_REL * length(d.su) * length(d.sv)))
+        return false;
+    n /= ln;
+    return true;
 }
 
-SurfaceSample evaluateSurface(vec2 uv, ivec2 span) {
+// The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs_surface.cpp);
+// thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL).
+SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
     SurfacePartials d = surfacePartials(uv, span);
     SurfaceSample s;
-    s.point = d.s;
+    s.point = d.s + uOrigin;
     s.du = d.su;
     s.dv = d.sv;
-    if (!normalAt(uv, d, s.normal)) {
-        // Both vanish: the normal of a nearby interior point, stepped towards the domain centre.
-        vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
-        vec2 size = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
-        vec2 inner = uv + sign(centre - uv) * KW_INTERIOR_STEP * size;
-        SurfacePartials e = surfacePartials(inner, span);
-        if (!normalAt(inner, e, s.normal))
-            s.normal = vec3(0.0, 0.0, 1.0);
+    float tinyLen = KW_TINY_REL * spanScale;
+    bool tinyU, tinyV;
+    if (plainNormal(d, tinyLen, s.normal, tinyU, tinyV))
+        return s;
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
+    if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
+        vec3 other = tinyU ? d.sv : d.su;
+        vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
+                       : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
+        float lm = length(m);
+        if (length(d.suv) * width.x * width.y > tinyLen &&
+            lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
+            s.normal = m / lm;
+            return s;
+        }
     }
+    // Step 3: the plain normal of a nearby interior point (same span: the step is tiny).
+    vec2 inner = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
+    SurfacePartials e = surfacePartials(inner, span);
+    if (!plainNormal(e, tinyLen, s.normal, tinyU, tinyV))
+        s.normal = vec3(0.0, 0.0, 1.0); // step 4
     return s;
 }

@@ -3,6 +3,7 @@
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec2 aUv;
 layout(location = 2) in ivec2 aSpan;
+layout(location = 3) in float aSpanScale;
 
 uniform mat4 uViewProjection;
 
@@ -11,9 +12,11 @@ invariant gl_Position;
 
 out vec2 vUv;
 flat out ivec2 vSpan;
+flat out float vSpanScale;
 
 void main() {
     vUv = aUv;
     vSpan = aSpan;
+    vSpanScale = aSpanScale;
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
