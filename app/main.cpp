@@ -1,16 +1,135 @@
-// knotwork: entry point; dispatches to the editor or a command-line tool.
+// knotwork: entry point; dispatches to a command-line subcommand (or, later, the editor).
+#include "app/commands.h"
+
 #include <QCommandLineParser>
 #include <QCoreApplication>
-#include <QTextStream>
+#include <QFileInfo>
+#include <cstdio>
+
+namespace kw::cli {
+
+const std::vector<Command>& commands() {
+    // One row per subcommand; each lives in its own cmd_<name>.cpp.
+    static const std::vector<Command> table = {
+        {QStringLiteral("info"),
+         QStringLiteral("Summarise a .knot project (surfaces, lights, camera)."), runInfo},
+        {QStringLiteral("eval"),
+         QStringLiteral("Evaluate a surface's point, partials and normal at (u, v)."), runEval},
+    };
+    return table;
+}
+
+void printError(const QString& line) {
+    std::fprintf(stderr, "%s\n", line.toLocal8Bit().constData());
+    std::fflush(stderr);
+}
+
+void printOut(const QString& text) {
+    std::fputs(text.toUtf8().constData(), stdout);
+    std::fflush(stdout);
+}
+
+int parseOrExit(QCommandLineParser& parser, const QStringList& args) {
+    const QCommandLineOption help = parser.addHelpOption();
+    if (!parser.parse(args)) {
+        printError(QStringLiteral("%1: %2 (see --help)").arg(args.value(0), parser.errorText()));
+        return kExitUsage;
+    }
+    if (parser.isSet(help) || parser.isSet(QStringLiteral("help-all"))) {
+        // Qt names the binary's full path in the usage line; show the subcommand instead.
+        QString text = parser.helpText();
+        const qsizetype eol = text.indexOf(QLatin1Char('\n'));
+        const QString usage = text.left(eol);
+        text = QStringLiteral("Usage: %1%2")
+                   .arg(args.value(0), usage.mid(usage.indexOf(QLatin1Char(' '), 7))) +
+               text.mid(eol);
+        printOut(text);
+        return kExitOk;
+    }
+    return -1;
+}
+
+QString fullPrecision(double value) {
+    // C's printf, not QString::asprintf, which drops the sign of -0.0.
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", value);
+    return QString::fromLatin1(buf);
+}
+
+} // namespace kw::cli
+
+namespace {
+
+using namespace kw::cli;
+
+QString globalHelp() {
+    QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
+                                  "       knotwork FILE.knot\n"
+                                  "\n"
+                                  "Knotwork NURBS surface editor and command-line tools.\n"
+                                  "\n"
+                                  "Subcommands:\n");
+    for (const Command& c : commands())
+        text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
+    text += QStringLiteral(
+        "\n"
+        "knotwork FILE runs 'knotwork info FILE' until the editor is part of this build.\n"
+        "'knotwork <subcommand> --help' describes a subcommand.\n"
+        "\n"
+        "Options:\n"
+        "  -h, --help     Show this help.\n"
+        "  -v, --version  Show the version.\n"
+        "\n"
+        "Exit codes: 0 success, 1 bad input (the message names the file), 2 usage error.\n");
+    return text;
+}
+
+const Command* findCommand(const QString& name) {
+    for (const Command& c : commands())
+        if (c.name == name)
+            return &c;
+    return nullptr;
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
-    QCommandLineParser parser;
-    parser.setApplicationDescription(QStringLiteral("Knotwork NURBS surface editor"));
-    parser.addHelpOption();
-    parser.addVersionOption();
-    parser.process(app);
-    return 0;
+    const QStringList args = QCoreApplication::arguments();
+
+    if (args.size() < 2) {
+        printError(QStringLiteral("knotwork: missing subcommand or FILE (the editor is not part "
+                                  "of this build yet; see knotwork --help)"));
+        return kExitUsage;
+    }
+    const QString first = args[1];
+    if (first == QLatin1String("-h") || first == QLatin1String("--help")) {
+        printOut(globalHelp());
+        return kExitOk;
+    }
+    if (first == QLatin1String("-v") || first == QLatin1String("--version")) {
+        printOut(QStringLiteral("knotwork %1\n").arg(QStringLiteral(KW_VERSION)));
+        return kExitOk;
+    }
+    QStringList rest = args.mid(2);
+    if (const Command* command = findCommand(first)) {
+        rest.prepend(QStringLiteral("knotwork ") + command->name);
+        return command->run(rest);
+    }
+    if (first.startsWith(QLatin1Char('-'))) {
+        printError(
+            QStringLiteral("knotwork: unknown option '%1' (see knotwork --help)").arg(first));
+        return kExitUsage;
+    }
+    // A project file: the editor would open it; until the editor exists, summarise it.
+    if (QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive)) {
+        rest.prepend(first);
+        rest.prepend(QStringLiteral("knotwork info"));
+        return runInfo(rest);
+    }
+    printError(
+        QStringLiteral("knotwork: unknown subcommand '%1' (see knotwork --help)").arg(first));
+    return kExitUsage;
 }

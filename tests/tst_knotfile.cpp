@@ -6,6 +6,7 @@
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QRandomGenerator>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cmath>
@@ -139,6 +140,8 @@ private Q_SLOTS:
     void corpusIsComplete();
     void missingFileNamesIt();
     void failedSaveKeepsOldFile();
+    void documentedExampleLoads();
+    void mutatedFilesNeverCrash();
 };
 
 void TestKnotFile::roundTripEveryField() {
@@ -339,6 +342,60 @@ void TestKnotFile::failedSaveKeepsOldFile() {
     QVERIFY(!writeKnotFile(nowhere, old, &error));
     QVERIFY2(error.startsWith(nowhere + QStringLiteral(": ")), qPrintable(error));
     oldFileIntact();
+}
+
+void TestKnotFile::documentedExampleLoads() {
+    QFile doc(QStringLiteral(KW_SOURCE_DIR "/docs/FILE_FORMAT.md"));
+    QVERIFY(doc.open(QIODevice::ReadOnly));
+    const QByteArray text = doc.readAll();
+    const qsizetype begin = text.indexOf("```json\n");
+    const qsizetype end = text.indexOf("```", begin + 8);
+    QVERIFY(begin >= 0 && end > begin);
+    QString error;
+    const std::optional<Scene> scene = sceneFromJson(text.mid(begin + 8, end - begin - 8),
+                                                     QStringLiteral("FILE_FORMAT.md"), &error);
+    QVERIFY2(scene, qPrintable(error));
+    QCOMPARE(scene->surfaces.size(), size_t(1));
+    QCOMPARE(scene->surfaces[0].trims.size(), size_t(1));
+    QVERIFY(scene->camera.authored);
+    QCOMPARE(scene->nextId, 3u);
+}
+
+// Truncations at every byte and random byte edits of a valid file: each either loads (and is
+// then valid) or gives one line naming the source; nothing crashes.
+void TestKnotFile::mutatedFilesNeverCrash() {
+    QFile f(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray valid = f.readAll();
+    QVERIFY(sceneFromJson(valid, QStringLiteral("m"), nullptr));
+    int rejected = 0, loaded = 0;
+    auto check = [&](const QByteArray& bytes) {
+        QString error;
+        const std::optional<Scene> scene = sceneFromJson(bytes, QStringLiteral("m.knot"), &error);
+        if (scene) {
+            ++loaded;
+            for (const Surface& s : scene->surfaces)
+                QVERIFY(surfaceValidationError(s.geometry).empty());
+        } else {
+            ++rejected;
+            QVERIFY2(error.startsWith(QStringLiteral("m.knot: $")), qPrintable(error));
+            QVERIFY(!error.contains(QLatin1Char('\n')));
+        }
+    };
+    for (qsizetype n = 0; n < valid.size(); n += 7)
+        check(valid.left(n));
+    QRandomGenerator rng(12345);
+    const char replacements[] = "0123456789-+.eE,[]{}\":x ";
+    for (int k = 0; k < 3000; ++k) {
+        QByteArray bytes = valid;
+        for (int edits = 1 + int(rng.bounded(3)); edits > 0; --edits)
+            bytes[rng.bounded(int(bytes.size()))] =
+                replacements[rng.bounded(int(sizeof replacements - 1))];
+        check(bytes);
+    }
+    check(QByteArray(100000, '[') + QByteArray(100000, ']'));
+    QVERIFY(rejected > 1000);
+    qInfo("mutations: %d rejected, %d still valid", rejected, loaded);
 }
 
 QTEST_GUILESS_MAIN(TestKnotFile)

@@ -1,0 +1,184 @@
+// knotwork info FILE [--json]: a summary of a .knot project's surfaces, lights and camera.
+#include "app/commands.h"
+#include "model/knotfile.h"
+
+#include <QCommandLineParser>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <set>
+
+namespace kw::cli {
+
+namespace {
+
+/// Domain of a knot vector and how many distinct knot values lie strictly inside it.
+struct KnotSummary {
+    Interval domain;
+    int knots = 0;
+    int distinctInterior = 0;
+};
+
+KnotSummary summarise(const std::vector<double>& knots, int degree) {
+    KnotSummary k;
+    k.domain = knotDomain(knots, degree);
+    k.knots = int(knots.size());
+    std::set<double> interior;
+    for (double t : knots)
+        if (t > k.domain.first && t < k.domain.last)
+            interior.insert(t);
+    k.distinctInterior = int(interior.size());
+    return k;
+}
+
+bool isRational(const NurbsSurface& g) {
+    for (double w : g.weights)
+        if (w != g.weights.front())
+            return true;
+    return false;
+}
+
+QJsonArray vec(const glm::dvec3& v) {
+    return QJsonArray{v.x, v.y, v.z};
+}
+
+QString text(const glm::dvec3& v) {
+    return QStringLiteral("(%1, %2, %3)").arg(v.x).arg(v.y).arg(v.z);
+}
+
+QJsonObject knotJson(const KnotSummary& k) {
+    return QJsonObject{{QStringLiteral("first"), k.domain.first},
+                       {QStringLiteral("last"), k.domain.last},
+                       {QStringLiteral("count"), k.knots},
+                       {QStringLiteral("distinctInterior"), k.distinctInterior}};
+}
+
+QString knotText(const KnotSummary& k) {
+    return QStringLiteral("[%1, %2], %3 knots, %4 distinct interior")
+        .arg(k.domain.first)
+        .arg(k.domain.last)
+        .arg(k.knots)
+        .arg(k.distinctInterior);
+}
+
+QString lightKind(const Light& l) {
+    return l.kind == Light::Kind::Point ? QStringLiteral("point") : QStringLiteral("directional");
+}
+
+QJsonObject toJson(const QString& file, const Scene& scene) {
+    QJsonArray surfaces;
+    for (const Surface& s : scene.surfaces) {
+        const NurbsSurface& g = s.geometry;
+        QJsonArray loops;
+        for (const TrimLoop& loop : s.trims)
+            loops.append(QJsonObject{{QStringLiteral("id"), qint64(loop.id.value)},
+                                     {QStringLiteral("curves"), int(loop.curves.size())}});
+        surfaces.append(QJsonObject{
+            {QStringLiteral("id"), qint64(s.id.value)},
+            {QStringLiteral("name"), s.name},
+            {QStringLiteral("degreeU"), g.degreeU},
+            {QStringLiteral("degreeV"), g.degreeV},
+            {QStringLiteral("countU"), g.countU},
+            {QStringLiteral("countV"), g.countV},
+            {QStringLiteral("rational"), isRational(g)},
+            {QStringLiteral("knotsU"), knotJson(summarise(g.knotsU, g.degreeU))},
+            {QStringLiteral("knotsV"), knotJson(summarise(g.knotsV, g.degreeV))},
+            {QStringLiteral("trimLoops"), loops},
+            {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
+            {QStringLiteral("color"), vec(s.material.color)},
+        });
+    }
+    QJsonArray lights;
+    for (const Light& l : scene.lights)
+        lights.append(QJsonObject{{QStringLiteral("kind"), lightKind(l)},
+                                  {QStringLiteral("vector"), vec(l.vector)}});
+    QJsonObject root{{QStringLiteral("file"), file},
+                     {QStringLiteral("surfaces"), surfaces},
+                     {QStringLiteral("lights"), lights},
+                     {QStringLiteral("nextId"), qint64(scene.nextId)}};
+    if (scene.camera.authored)
+        root.insert(QStringLiteral("camera"),
+                    QJsonObject{{QStringLiteral("eye"), vec(scene.camera.eye)},
+                                {QStringLiteral("target"), vec(scene.camera.target)},
+                                {QStringLiteral("up"), vec(scene.camera.up)},
+                                {QStringLiteral("fovYDegrees"), scene.camera.fovYDegrees}});
+    else
+        root.insert(QStringLiteral("camera"), QJsonValue::Null);
+    return root;
+}
+
+QString toText(const QString& file, const Scene& scene) {
+    QString out = QStringLiteral("%1: %2 surface(s), %3 light(s)\n")
+                      .arg(file)
+                      .arg(scene.surfaces.size())
+                      .arg(scene.lights.size());
+    for (const Surface& s : scene.surfaces) {
+        const NurbsSurface& g = s.geometry;
+        out += QStringLiteral("surface %1 \"%2\": degree %3 x %4, %5 x %6 control points%7\n")
+                   .arg(s.id.value)
+                   .arg(s.name)
+                   .arg(g.degreeU)
+                   .arg(g.degreeV)
+                   .arg(g.countU)
+                   .arg(g.countV)
+                   .arg(isRational(g) ? QStringLiteral(", rational") : QString());
+        out += QStringLiteral("  knots u: %1\n").arg(knotText(summarise(g.knotsU, g.degreeU)));
+        out += QStringLiteral("  knots v: %1\n").arg(knotText(summarise(g.knotsV, g.degreeV)));
+        QStringList loops;
+        for (const TrimLoop& loop : s.trims)
+            loops << QStringLiteral("loop %1: %2 curve(s)")
+                         .arg(loop.id.value)
+                         .arg(loop.curves.size());
+        out += QStringLiteral("  trims: %1\n")
+                   .arg(loops.isEmpty() ? QStringLiteral("none")
+                                        : QStringLiteral("%1 loop(s) (%2)")
+                                              .arg(loops.size())
+                                              .arg(loops.join(QStringLiteral(", "))));
+        out += QStringLiteral("  partitions: %1 x %2\n").arg(s.partitionsU).arg(s.partitionsV);
+    }
+    for (size_t k = 0; k < scene.lights.size(); ++k)
+        out += QStringLiteral("light %1: %2 %3\n")
+                   .arg(k + 1)
+                   .arg(lightKind(scene.lights[k]), text(scene.lights[k].vector));
+    if (scene.camera.authored)
+        out += QStringLiteral("camera: eye %1, target %2, up %3, fov %4 deg\n")
+                   .arg(text(scene.camera.eye), text(scene.camera.target), text(scene.camera.up))
+                   .arg(scene.camera.fovYDegrees);
+    else
+        out += QStringLiteral("camera: none (views fit one to the scene)\n");
+    return out;
+}
+
+} // namespace
+
+int runInfo(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription(
+        QStringLiteral("Summarise a .knot project: surfaces (id, name, degrees, control-point "
+                       "counts, knot ranges, trim loops, partitions), lights and camera."));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
+    parser.addOption(json);
+    parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
+    if (const int code = parseOrExit(parser, args); code >= 0)
+        return code;
+    const QStringList files = parser.positionalArguments();
+    if (files.size() != 1) {
+        printError(QStringLiteral("%1: expected one FILE, got %2 (see --help)")
+                       .arg(args.value(0))
+                       .arg(files.size()));
+        return kExitUsage;
+    }
+    QString error;
+    const std::optional<Scene> scene = readKnotFile(files[0], &error);
+    if (!scene) {
+        printError(error);
+        return kExitBadInput;
+    }
+    if (parser.isSet(json))
+        printOut(QString::fromUtf8(QJsonDocument(toJson(files[0], *scene)).toJson()));
+    else
+        printOut(toText(files[0], *scene));
+    return kExitOk;
+}
+
+} // namespace kw::cli
