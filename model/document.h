@@ -6,7 +6,6 @@
 #include <QFlags>
 #include <QObject>
 #include <QString>
-
 #include <cstdint>
 #include <vector>
 

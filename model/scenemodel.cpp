@@ -162,7 +162,7 @@ QVariant SceneModel::data(const QModelIndex& index, int role) const {
                 .arg(s.geometry.countV);
         case Kind::TrimLoop:
             return QStringLiteral("Trim loop %1 (%2)")
-                .arg(n.loop + 1)
+                .arg(s.trims[size_t(n.loop)].id.value)
                 .arg(plural(int(s.trims[size_t(n.loop)].curves.size()), "curve", "curves"));
         case Kind::TrimCurve: {
             const NurbsCurve2& c = s.trims[size_t(n.loop)].curves[size_t(n.curve)];

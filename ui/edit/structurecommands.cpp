@@ -168,7 +168,7 @@ std::unique_ptr<RemoveTrimLoop> RemoveTrimLoop::create(Document* document, Surfa
             QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.value));
     const int index = int(l - s->trims.data());
     std::unique_ptr<RemoveTrimLoop> c(new RemoveTrimLoop(
-        document, QStringLiteral("Remove trim loop %1 from “%2”").arg(index + 1).arg(s->name)));
+        document, QStringLiteral("Remove trim loop %1 from “%2”").arg(loop.value).arg(s->name)));
     c->m_surface = surface;
     c->m_loop = *l;
     c->m_index = index;
