@@ -1,9 +1,9 @@
-// knotwork: entry point; dispatches to a command-line subcommand (or, later, the editor).
+// knotwork: entry point; dispatches to a command-line subcommand or the editor.
 #include "app/commands.h"
+#include "app/editor.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>
-#include <QFileInfo>
 #include <cstdio>
 
 namespace kw::cli {
@@ -64,7 +64,7 @@ using namespace kw::cli;
 
 QString globalHelp() {
     QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                                  "       knotwork FILE.knot\n"
+                                  "       knotwork [--size WxH] [--screenshot OUT] [FILE.knot]\n"
                                   "\n"
                                   "Knotwork NURBS surface editor and command-line tools.\n"
                                   "\n"
@@ -73,7 +73,10 @@ QString globalHelp() {
         text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
     text += QStringLiteral(
         "\n"
-        "knotwork FILE runs 'knotwork info FILE' until the editor is part of this build.\n"
+        "knotwork [FILE] opens the editor (it needs a display and OpenGL 4.5 core); a FILE\n"
+        "that cannot be read is reported on stderr with exit code 1 before any window opens.\n"
+        "--screenshot OUT opens FILE with its first surface selected, saves a picture of the\n"
+        "window to OUT and exits; --size WxH sets the window size.\n"
         "'knotwork <subcommand> --help' describes a subcommand.\n"
         "\n"
         "Options:\n"
@@ -94,16 +97,13 @@ const Command* findCommand(const QString& name) {
 } // namespace
 
 int main(int argc, char** argv) {
+    if (kw::app::isEditorInvocation(argc, argv))
+        return kw::app::runEditor(argc, argv);
     QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
     const QStringList args = QCoreApplication::arguments();
 
-    if (args.size() < 2) {
-        printError(QStringLiteral("knotwork: missing subcommand or FILE (the editor is not part "
-                                  "of this build yet; see knotwork --help)"));
-        return kExitUsage;
-    }
     const QString first = args[1];
     if (first == QLatin1String("-h") || first == QLatin1String("--help")) {
         printOut(globalHelp());
@@ -122,12 +122,6 @@ int main(int argc, char** argv) {
         printError(
             QStringLiteral("knotwork: unknown option '%1' (see knotwork --help)").arg(first));
         return kExitUsage;
-    }
-    // A project file: the editor would open it; until the editor exists, summarise it.
-    if (QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive)) {
-        rest.prepend(first);
-        rest.prepend(QStringLiteral("knotwork info"));
-        return runInfo(rest);
     }
     printError(
         QStringLiteral("knotwork: unknown subcommand '%1' (see knotwork --help)").arg(first));
