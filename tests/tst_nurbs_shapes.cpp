@@ -234,6 +234,10 @@ void TestNurbsShapes::collapsedCornerFallsBack() {
     // A surface collapsed to one point everywhere.
     const NurbsSurface dot = makeSphere(glm::dvec3(5.0), 0.0);
     QCOMPARE(surfaceFrame(dot, 0.4, 0.7).normal, glm::dvec3(0, 0, 1));
+    // ... also where rounding leaves non-zero derivative noise (weights sqrt(2)/2, odd centre).
+    const NurbsSurface dot2 = makeSphere(glm::dvec3(0.1, 0.3, 0.7), 0.0);
+    for (double u : {0.1, 0.33, 0.9})
+        QCOMPARE(surfaceFrame(dot2, u, 0.61).normal, glm::dvec3(0, 0, 1));
     // S = (u v, v, 0): the v = 0 edge collapses; Suv x Sv gives the interior's +z (step 2).
     const NurbsSurface tri = makeBilinear({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {1, 1, 0});
     QCOMPARE(surfaceFrame(tri, 0.0, 0.0).normal, glm::dvec3(0, 0, 1));
