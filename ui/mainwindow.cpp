@@ -61,6 +61,7 @@ MainWindow::MainWindow(QWidget* parent)
     buildMenus();
 
     m_fpsLabel = new QLabel;
+    m_fpsLabel->setMinimumWidth(170);
     statusBar()->addPermanentWidget(m_fpsLabel);
     connect(m_viewport, &Viewport::framesPerSecond, this, [this](double fps, double ms) {
         m_fpsLabel->setText(tr("%1 fps, frame %2 ms").arg(fps, 0, 'f', 1).arg(ms, 0, 'f', 1));
@@ -81,7 +82,12 @@ MainWindow::MainWindow(QWidget* parent)
     updateTitle();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+    // Selection's QItemSelectionModel member is constructed with the SceneModel as its QObject
+    // parent, so the model would free it as a child; the selection must go first.
+    delete m_selection;
+    m_selection = nullptr;
+}
 
 void MainWindow::buildDocks() {
     auto dock = [this](const QString& title, const QString& name, QWidget* content,

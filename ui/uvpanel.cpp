@@ -7,6 +7,7 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QUndoStack>
+#include <algorithm>
 #include <cmath>
 
 namespace kw {
@@ -44,9 +45,21 @@ SurfaceId UvPanel::surface() const {
 }
 
 QRectF UvPanel::domainRect() const {
-    const double margin = 14.0;
-    const QRectF r = QRectF(rect()).adjusted(margin, margin, -margin, -margin);
-    return r.isValid() ? r : QRectF(0, 0, 1, 1);
+    // The largest rectangle with the domain's proportions (u range : v range), centred.
+    const double margin = 16.0;
+    const QRectF area = QRectF(rect()).adjusted(margin, margin, -margin, -margin);
+    const Surface* s = shown(m_doc, m_selection);
+    if (!area.isValid() || !s)
+        return area.isValid() ? area : QRectF(0, 0, 1, 1);
+    const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
+    const double ratio = std::clamp((du.last - du.first) / (dv.last - dv.first), 0.05, 20.0);
+    QSizeF size(area.width(), area.width() / ratio);
+    if (size.height() > area.height())
+        size = QSizeF(area.height() * ratio, area.height());
+    QRectF r(QPointF(), size);
+    r.moveCenter(area.center());
+    return QRectF(std::round(r.left()), std::round(r.top()), std::round(r.width()),
+                  std::round(r.height()));
 }
 
 QPointF UvPanel::toWidget(glm::dvec2 uv) const {
@@ -103,7 +116,9 @@ std::optional<TrimPointRef> UvPanel::trimPointAt(QPointF pixel, double radius) c
             for (size_t k = 0; k < loop.curves[c].points.size(); ++k) {
                 const QPointF p = toWidget(loop.curves[c].points[k]);
                 const double d = std::hypot(p.x() - pixel.x(), p.y() - pixel.y());
-                if (d <= bestDistance) {
+                // Strictly nearer replaces: of coinciding points (a loop's shared start and
+                // end) the first in loop order is picked.
+                if (d <= radius && (!best || d < bestDistance)) {
                     bestDistance = d;
                     best = TrimPointRef{s->id, loop.id, int(c), int(k)};
                 }

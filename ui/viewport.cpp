@@ -58,6 +58,7 @@ double Viewport::aspect() const {
 }
 
 void Viewport::setCamera(const Camera& camera) {
+    m_autoFit = false;
     m_camera.setCamera(camera);
     update();
 }
@@ -65,6 +66,7 @@ void Viewport::setCamera(const Camera& camera) {
 void Viewport::resetCamera() {
     const Camera& authored = m_doc->scene().camera;
     m_camera.setCamera(authored.authored ? authored : fitCamera(m_doc->scene(), aspect()));
+    m_autoFit = !authored.authored;
     update();
 }
 
@@ -74,6 +76,7 @@ void Viewport::fitToView() {
 }
 
 void Viewport::setStandardView(StandardView view) {
+    m_autoFit = false;
     m_camera.setStandardView(view, m_doc->scene(), aspect());
     update();
 }
@@ -108,7 +111,11 @@ void Viewport::initializeGL() {
     }
 }
 
-void Viewport::resizeGL(int, int) {}
+void Viewport::resizeGL(int, int) {
+    // A fitted camera was fitted for the old aspect; fit again until the user moves it.
+    if (m_autoFit)
+        m_camera.setCamera(fitCamera(m_doc->scene(), aspect()));
+}
 
 void Viewport::paintGL() {
     const bool timed = m_moveTimed;
@@ -268,10 +275,12 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
     case Gesture::None:
         return;
     case Gesture::Orbit:
+        m_autoFit = false;
         m_camera.orbit(delta.x(), delta.y());
         update();
         break;
     case Gesture::Pan:
+        m_autoFit = false;
         m_camera.pan(delta.x(), delta.y(), size());
         update();
         break;
@@ -412,6 +421,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
 }
 
 void Viewport::wheelEvent(QWheelEvent* event) {
+    m_autoFit = false;
     m_camera.zoom(event->angleDelta().y() / 120.0);
     update();
     event->accept();

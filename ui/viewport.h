@@ -115,6 +115,7 @@ private:
     glm::dvec3 m_anchor{0.0};
     std::vector<DragPoint> m_drag;
     int m_axis = -1;
+    bool m_autoFit = true; ///< refit on resize until the user moves the camera
     QPointer<QRubberBand> m_band;
 
     QElapsedTimer m_moveClock; ///< started by a drag's mouse move, read by the next paintGL
