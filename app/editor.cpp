@@ -90,14 +90,10 @@ int runEditor(int argc, char** argv) {
             "unset). The command-line tools work without one: see knotwork --help."));
         return cli::kExitBadInput;
     }
-    QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat()); // before QApplication
-    QApplication app(argc, argv);
-    QCoreApplication::setOrganizationName(QStringLiteral("Knotwork"));
-    QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
-    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
-
+    QStringList arguments;
+    for (int k = 0; k < argc; ++k)
+        arguments << QString::fromLocal8Bit(argv[k]);
     QCommandLineParser parser;
-    parser.setApplicationDescription(QStringLiteral("Knotwork NURBS surface editor."));
     const QCommandLineOption shot(QStringLiteral("screenshot"),
                                   QStringLiteral("Open FILE, select its first surface, save a "
                                                  "picture of the window to OUT and exit."),
@@ -106,22 +102,44 @@ int runEditor(int argc, char** argv) {
                                   QStringLiteral("Window size, e.g. 1280x800."),
                                   QStringLiteral("WxH"));
     parser.addOptions({shot, size});
-    parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
-    if (!parser.parse(QCoreApplication::arguments()) || parser.positionalArguments().size() > 1) {
+    if (!parser.parse(arguments) || parser.positionalArguments().size() > 1) {
         cli::printError(QStringLiteral("knotwork: %1 (see knotwork --help)")
                             .arg(parser.errorText().isEmpty() ? QStringLiteral("more than one FILE")
                                                               : parser.errorText()));
         return cli::kExitUsage;
     }
+    QSize windowSize;
+    if (parser.isSet(size)) {
+        const QStringList wh = parser.value(size).split(QLatin1Char('x'));
+        bool okW = false, okH = false;
+        windowSize = QSize(wh.value(0).toInt(&okW), wh.value(1).toInt(&okH));
+        if (wh.size() != 2 || !okW || !okH || windowSize.width() < 200 ||
+            windowSize.height() < 150 || windowSize.width() > 8192 || windowSize.height() > 8192) {
+            cli::printError(QStringLiteral("knotwork: --size wants WxH, 200x150 to 8192x8192, "
+                                           "got '%1'")
+                                .arg(parser.value(size)));
+            return cli::kExitUsage;
+        }
+    }
     const QString file = parser.positionalArguments().value(0);
     if (!file.isEmpty()) {
-        // Fail before any window appears, with the loader's one-line message.
+        // Fail before any window (or Qt platform) appears, with the loader's one-line message.
         QString error;
         if (!readKnotFile(file, &error)) {
             cli::printError(error);
             return cli::kExitBadInput;
         }
     }
+    if (parser.isSet(shot) && file.isEmpty()) {
+        cli::printError(QStringLiteral("knotwork: --screenshot needs a FILE"));
+        return cli::kExitUsage;
+    }
+
+    QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat()); // before QApplication
+    QApplication app(argc, argv);
+    QCoreApplication::setOrganizationName(QStringLiteral("Knotwork"));
+    QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
+    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
 
     if (const QString why = probeOpenGL(); !why.isEmpty()) {
         const QString text =
@@ -136,18 +154,8 @@ int runEditor(int argc, char** argv) {
     }
 
     MainWindow window;
-    if (parser.isSet(size)) {
-        const QStringList wh = parser.value(size).split(QLatin1Char('x'));
-        bool okW = false, okH = false;
-        const int w = wh.value(0).toInt(&okW), h = wh.value(1).toInt(&okH);
-        if (wh.size() != 2 || !okW || !okH || w < 200 || h < 150 || w > 8192 || h > 8192) {
-            cli::printError(QStringLiteral("knotwork: --size wants WxH, 200x150 to 8192x8192, "
-                                           "got '%1'")
-                                .arg(parser.value(size)));
-            return cli::kExitUsage;
-        }
-        window.resize(w, h);
-    }
+    if (windowSize.isValid())
+        window.resize(windowSize);
     if (!file.isEmpty() && !window.openFile(file))
         return cli::kExitBadInput;
     if (parser.isSet(shot))

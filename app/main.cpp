@@ -64,7 +64,8 @@ using namespace kw::cli;
 
 QString globalHelp() {
     QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                                  "       knotwork [--size WxH] [--screenshot OUT] [FILE.knot]\n"
+                                  "       knotwork FILE.knot      (the editor; FILE is optional)\n"
+                                  "       knotwork --screenshot OUT [--size WxH] FILE.knot\n"
                                   "\n"
                                   "Knotwork NURBS surface editor and command-line tools.\n"
                                   "\n"
