@@ -14,6 +14,7 @@
 #include <QMessageBox>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QPainter>
 #include <QSurfaceFormat>
 #include <QTimer>
 
@@ -50,13 +51,23 @@ bool headlessPlatform() {
 
 /// Shows the window, waits until the viewport has drawn a few frames, saves a grab.
 int screenshot(MainWindow& window, const QString& out) {
+    // Show a picked control point too, so the property panel's point box is filled.
+    if (const SurfaceId id = window.selection()->currentSurface(); id.isValid())
+        window.selection()->setControlPoints({ControlPointRef{id, 1, 2}});
     window.show();
     QElapsedTimer clock;
     clock.start();
     // Let the window be exposed and the viewport draw (llvmpipe: allow a few seconds).
     while (clock.elapsed() < 1500)
         QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-    const QImage image = window.grab().toImage();
+    // QWidget::grab() may show the viewport's previous composition; paint its current frame
+    // (which includes the picked-point marks drawn with QPainter) over it.
+    QImage image = window.grab().toImage();
+    {
+        QPainter p(&image);
+        const QPoint at = window.viewport()->mapTo(&window, QPoint(0, 0));
+        p.drawImage(QRect(at, window.viewport()->size()), window.viewport()->grabFramebuffer());
+    }
     if (image.isNull() || !image.save(out)) {
         cli::printError(QStringLiteral("%1: cannot write the screenshot").arg(out));
         return 1;

@@ -8,7 +8,10 @@
 #include "ui/uvpanel.h"
 
 #include <QAction>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFile>
+#include <QMimeData>
 #include <QSettings>
 #include <QSlider>
 #include <QUndoStack>
@@ -95,6 +98,21 @@ private Q_SLOTS:
             for (int x = 0; x < frame.width(); x += 4)
                 covered += frame.pixel(x, y) != background;
         QVERIFY2(covered > 200, qPrintable(QString::number(covered)));
+        // Picked control points are marked in the view.
+        auto marked = [](const QImage& img) {
+            int n = 0;
+            for (int y = 0; y < img.height(); ++y)
+                for (int x = 0; x < img.width(); ++x) {
+                    const QRgb c = img.pixel(x, y);
+                    n += qRed(c) > 200 && qGreen(c) < 120 && qBlue(c) < 90;
+                }
+            return n;
+        };
+        QCOMPARE(marked(frame), 0);
+        m_window->action(QStringLiteral("actionSelectAll"))->trigger();
+        QCOMPARE(m_window->selection()->controlPoints().size(), size_t(30));
+        const int n = marked(m_window->viewport()->grabFramebuffer());
+        QVERIFY2(n > 30 * 8, qPrintable(QString::number(n)));
     }
 
     void dragMovesPointInViewPlaneAndUndoRestores() {
@@ -295,6 +313,36 @@ private Q_SLOTS:
         QCOMPARE(reopened.surfaces[0].partitionsU, 7);
         QCOMPARE(m_window->recentFiles().value(0), path);
         QVERIFY(m_script.errors.isEmpty());
+
+        // Export Image writes the viewport's frame.
+        const QString png = QStringLiteral(KW_TEST_OUTPUT_DIR "/editor_export.png");
+        QFile::remove(png);
+        m_script.savePath = png;
+        m_window->action(QStringLiteral("actionExportImage"))->trigger();
+        const QImage exported(png);
+        QCOMPARE(exported.size(), m_window->viewport()->size());
+        QVERIFY(m_script.errors.isEmpty());
+    }
+
+    void droppingKnotFileOpensIt() {
+        openWindow("bicubic");
+        QMimeData mime;
+        mime.setUrls({QUrl::fromLocalFile(samplePath("torus"))});
+        QDragEnterEvent enter(QPoint(50, 50), Qt::CopyAction, &mime, Qt::LeftButton,
+                              Qt::NoModifier);
+        QCoreApplication::sendEvent(m_window.get(), &enter);
+        QVERIFY(enter.isAccepted());
+        QDropEvent drop(QPointF(50, 50), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+        QCoreApplication::sendEvent(m_window.get(), &drop);
+        QCOMPARE(m_window->filePath(), samplePath("torus"));
+        // Other files are refused.
+        QMimeData other;
+        other.setUrls({QUrl::fromLocalFile(QStringLiteral(KW_SOURCE_DIR "/README.md"))});
+        QDragEnterEvent refused(QPoint(50, 50), Qt::CopyAction, &other, Qt::LeftButton,
+                                Qt::NoModifier);
+        refused.setAccepted(false);
+        QCoreApplication::sendEvent(m_window.get(), &refused);
+        QVERIFY(!refused.isAccepted());
     }
 
     void badFileKeepsDocumentAndShowsLoaderMessage() {
@@ -332,9 +380,15 @@ private Q_SLOTS:
                  readKnotFile(samplePath("sphere"), nullptr)->surfaces.front().name);
     }
 
+    void dragResponsiveness_data() {
+        QTest::addColumn<QString>("sample");
+        QTest::newRow("teapot") << QStringLiteral("teapot");
+        QTest::newRow("bicubic") << QStringLiteral("bicubic");
+    }
     void dragResponsiveness() {
-        // Mouse-move -> next draw call during a drag on the teapot, and bytes uploaded per step.
-        openWindow("teapot");
+        // Mouse-move -> next draw call during a drag, and bytes uploaded per step.
+        QFETCH(QString, sample);
+        openWindow(qPrintable(sample));
         Viewport* vp = m_window->viewport();
         const auto [ref, press] = pickablePoint();
         QVERIFY(ref.surface.isValid());
@@ -357,7 +411,7 @@ private Q_SLOTS:
         const auto bytes = median(m.bytes);
         const auto maxBytes = *std::max_element(m.bytes.begin(), m.bytes.end());
         const QString report =
-            QStringLiteral("drag on teapot, %1 steps, viewport %2x%3: move->draw median %4 ms "
+            QStringLiteral("drag on %9, %1 steps, viewport %2x%3: move->draw median %4 ms "
                            "(max %5), paintGL median %6 ms, bytes per step median %7 (max %8)")
                 .arg(steps)
                 .arg(vp->width())
@@ -366,9 +420,10 @@ private Q_SLOTS:
                 .arg(*std::max_element(m.moveToDrawMs.begin(), m.moveToDrawMs.end()), 0, 'f', 3)
                 .arg(paint, 0, 'f', 2)
                 .arg(bytes)
-                .arg(maxBytes);
+                .arg(maxBytes)
+                .arg(sample);
         qInfo().noquote() << report;
-        QFile out(QStringLiteral(KW_TEST_OUTPUT_DIR "/drag_metrics.txt"));
+        QFile out(QStringLiteral(KW_TEST_OUTPUT_DIR "/drag_metrics_%1.txt").arg(sample));
         QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
         out.write(report.toUtf8() + '\n');
         // Each step re-uploads one control texel as a sub-image and a range of base polygon
