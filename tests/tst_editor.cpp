@@ -4,17 +4,22 @@
 #include "model/knotfile.h"
 #include "render/offscreen_renderer.h"
 #include "ui/edit/commands.h"
+#include "ui/lightspanel.h"
 #include "ui/propertypanel.h"
 #include "ui/uvpanel.h"
 
 #include <QAction>
+#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
 #include <QMimeData>
+#include <QPushButton>
 #include <QSettings>
 #include <QSlider>
+#include <QSpinBox>
 #include <QUndoStack>
+#include <QWheelEvent>
 #include <algorithm>
 
 using namespace kw;
@@ -222,6 +227,113 @@ private Q_SLOTS:
         QCOMPARE(m_window->selection()->controlPoints(), picker.inRect(QRectF(a, b)));
         QVERIFY(m_window->selection()->controlPoints().size() > 2);
         QCOMPARE(m_window->undoStack()->count(), 0);
+    }
+
+    void escapeCancelsDrag() {
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        const auto [ref, press] = pickablePoint();
+        const NurbsSurface before = geometry();
+        QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
+        QTest::mouseMove(vp, press + QPoint(25, 25));
+        QVERIFY(!(geometry() == before));
+        QTest::keyClick(vp, Qt::Key_Escape);
+        QVERIFY(!vp->isDragging());
+        QVERIFY(geometry() == before);
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(25, 25));
+        QVERIFY(geometry() == before);
+        QCOMPARE(m_window->undoStack()->count(), 0);
+    }
+
+    void cameraGesturesAndViews() {
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        auto distance = [vp] {
+            const Camera& c = vp->cameraController().camera();
+            return glm::length(c.eye - c.target);
+        };
+        const Camera start = vp->cameraController().camera();
+        const double d0 = distance();
+        // Middle drag orbits about the target (distance kept), the document is untouched.
+        const QPoint c = vp->rect().center();
+        QTest::mousePress(vp, Qt::MiddleButton, Qt::NoModifier, c);
+        QTest::mouseMove(vp, c + QPoint(50, 10));
+        QTest::mouseRelease(vp, Qt::MiddleButton, Qt::NoModifier, c + QPoint(50, 10));
+        QVERIFY(glm::length(vp->cameraController().camera().eye - start.eye) > 1e-3);
+        QVERIFY(std::abs(distance() - d0) < 1e-9 * d0);
+        QCOMPARE(vp->cameraController().camera().target, start.target);
+        // Right drag pans: eye and target move together.
+        QTest::mousePress(vp, Qt::RightButton, Qt::NoModifier, c);
+        QTest::mouseMove(vp, c + QPoint(-30, 20));
+        QTest::mouseRelease(vp, Qt::RightButton, Qt::NoModifier, c + QPoint(-30, 20));
+        QVERIFY(glm::length(vp->cameraController().camera().target - start.target) > 1e-6);
+        QVERIFY(std::abs(distance() - d0) < 1e-9 * d0);
+        // The wheel zooms in.
+        QWheelEvent wheel(QPointF(c), vp->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 120),
+                          Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+        QCoreApplication::sendEvent(vp, &wheel);
+        QVERIFY(std::abs(distance() - d0 * CameraController::kZoomPerStep) < 1e-9 * d0);
+        // Standard views and fit.
+        m_window->action(QStringLiteral("actionViewTop"))->trigger();
+        const Camera top = vp->cameraController().camera();
+        QVERIFY(glm::length(glm::normalize(top.target - top.eye) - glm::dvec3(0, 0, -1)) < 1e-12);
+        m_window->action(QStringLiteral("actionFit"))->trigger();
+        ControlPointPicker picker;
+        picker.update(*m_window->document(), vp->viewProjection());
+        QCOMPARE(picker.inRect(vp->rect()).size(), size_t(30)); // every point in view
+        QCOMPARE(m_window->undoStack()->count(), 0);
+    }
+
+    void knotActionsAndPointFields() {
+        openWindow("bicubic");
+        PropertyPanel* panel = m_window->propertyPanel();
+        const NurbsSurface before = geometry();
+        auto* value = panel->findChild<QDoubleSpinBox*>(QStringLiteral("knotValue"));
+        QVERIFY(value);
+        value->setValue(0.6);
+        QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("insertKnot")),
+                          Qt::LeftButton);
+        QCOMPARE(geometry().countU, before.countU + 1);
+        QVERIFY(std::count(geometry().knotsU.begin(), geometry().knotsU.end(), 0.6) == 1);
+        QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("elevateDegree")),
+                          Qt::LeftButton);
+        QCOMPARE(geometry().degreeU, before.degreeU + 1);
+        QCOMPARE(m_window->undoStack()->count(), 2);
+        QCOMPARE(m_window->undoStack()->undoText(),
+                 QStringLiteral("Elevate degree u to %1").arg(before.degreeU + 1));
+        m_window->undoStack()->undo();
+        m_window->undoStack()->undo();
+        QVERIFY(geometry() == before);
+
+        // The picked point's fields edit it; consecutive edits merge into one step.
+        const auto [ref, at] = pickablePoint();
+        QTest::mouseClick(m_window->viewport(), Qt::LeftButton, Qt::NoModifier, at);
+        auto* x = panel->findChild<QDoubleSpinBox*>(QStringLiteral("pointX"));
+        auto* w = panel->findChild<QDoubleSpinBox*>(QStringLiteral("pointWeight"));
+        const int index = before.index(ref.i, ref.j);
+        QCOMPARE(x->value(), std::round(before.points[size_t(index)].x * 1e4) / 1e4);
+        x->setValue(0.125);
+        x->setValue(0.25);
+        QCOMPARE(geometry().points[size_t(index)].x, 0.25);
+        QCOMPARE(m_window->undoStack()->count(), 1);
+        w->setValue(2.5);
+        QCOMPARE(geometry().weights[size_t(index)], 2.5);
+        QCOMPARE(m_window->undoStack()->count(), 2);
+        m_window->undoStack()->undo();
+        m_window->undoStack()->undo();
+        QVERIFY(geometry() == before);
+    }
+
+    void lightsPanelEditsLights() {
+        openWindow("bicubic");
+        LightsPanel* panel = m_window->lightsPanel();
+        const std::vector<Light> before = m_window->document()->scene().lights;
+        panel->countBox()->setValue(int(before.size()) + 1);
+        QCOMPARE(m_window->document()->scene().lights.size(), before.size() + 1);
+        QCOMPARE(m_window->undoStack()->count(), 1);
+        m_window->undoStack()->undo();
+        QVERIFY(m_window->document()->scene().lights == before);
+        QCOMPARE(panel->countBox()->value(), int(before.size()));
     }
 
     void partitionSliderIsOneUndoStep() {

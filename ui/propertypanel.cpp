@@ -85,6 +85,11 @@ QWidget* PropertyPanel::buildSurfaceBox() {
     insertRow->addWidget(m_insertKnot);
     form->addRow(tr("Knot"), insertRow);
     m_elevate = new QPushButton(tr("Elevate degree"));
+    // Object names let tests and style sheets find the controls.
+    m_direction->setObjectName(QStringLiteral("knotDirection"));
+    m_knotValue->setObjectName(QStringLiteral("knotValue"));
+    m_insertKnot->setObjectName(QStringLiteral("insertKnot"));
+    m_elevate->setObjectName(QStringLiteral("elevateDegree"));
     form->addRow(QString(), m_elevate);
 
     auto direction = [this] {
@@ -114,10 +119,12 @@ QWidget* PropertyPanel::buildPointBox() {
     static const char* const names[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
         m_xyz[k] = spin(-1e6, 1e6, 0.05, 4);
+        m_xyz[k]->setObjectName(QStringLiteral("point") + QString::fromLatin1(names[k]).toUpper());
         form->addRow(QLatin1String(names[k]), m_xyz[k]);
         connect(m_xyz[k], &QDoubleSpinBox::valueChanged, this, &PropertyPanel::editPoint);
     }
     m_weight = spin(1e-4, 1e4, 0.05, 4);
+    m_weight->setObjectName(QStringLiteral("pointWeight"));
     form->addRow(tr("Weight"), m_weight);
     connect(m_weight, &QDoubleSpinBox::valueChanged, this, [this](double w) {
         const ControlPointRef r = shownPoint();

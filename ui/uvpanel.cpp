@@ -252,7 +252,8 @@ void UvPanel::finishDrag(bool cancel) {
         if (!s)
             continue;
         for (const TrimLoop& l : s->trims)
-            if (l.id == d.ref.loop) {
+            if (l.id == d.ref.loop && size_t(d.ref.curve) < l.curves.size() &&
+                size_t(d.ref.index) < l.curves[size_t(d.ref.curve)].points.size()) {
                 refs.push_back(d.ref);
                 from.push_back(d.from);
                 to.push_back(l.curves[size_t(d.ref.curve)].points[size_t(d.ref.index)]);

@@ -300,10 +300,10 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
 
 void Viewport::dragTo(QPointF pixel) {
     m_lastPixel = pixel;
-    applyDrag(false);
+    applyDrag();
 }
 
-void Viewport::applyDrag(bool) {
+void Viewport::applyDrag() {
     const ViewProjection view = viewProjection();
     glm::dvec3 delta(0.0);
     if (m_axis >= 0) {
@@ -317,7 +317,7 @@ void Viewport::applyDrag(bool) {
     std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>> bySurface;
     for (const DragPoint& d : m_drag) {
         const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s)
+        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
             continue;
         auto& entry = bySurface[d.ref.surface];
         entry.first.push_back(s->geometry.index(d.ref.i, d.ref.j));
@@ -334,7 +334,8 @@ void Viewport::finishDrag(bool cancel) {
         bySurface;
     for (const DragPoint& d : m_drag) {
         const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s)
+        // The net may have been re-sized under the drag (an undo by key); skip lost points.
+        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
             continue;
         const int index = s->geometry.index(d.ref.i, d.ref.j);
         auto& [indices, from, to] = bySurface[d.ref.surface];
@@ -402,7 +403,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
         if (event->button() != Qt::LeftButton)
             return;
         m_lastPixel = pixel;
-        applyDrag(true);
+        applyDrag();
         finishDrag(false);
         break;
     case Gesture::RubberBand:
@@ -433,7 +434,7 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
         if (!event->isAutoRepeat()) {
             m_axis = key - Qt::Key_X;
             if (m_gesture == Gesture::DragPoints)
-                applyDrag(false);
+                applyDrag();
             update();
         }
         event->accept();
@@ -453,7 +454,7 @@ void Viewport::keyReleaseEvent(QKeyEvent* event) {
         if (m_axis == key - Qt::Key_X) {
             m_axis = -1;
             if (m_gesture == Gesture::DragPoints)
-                applyDrag(false);
+                applyDrag();
             update();
         }
         event->accept();

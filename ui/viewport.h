@@ -93,7 +93,7 @@ private:
     void releaseGl();
     void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
     void dragTo(QPointF pixel);
-    void applyDrag(bool final);
+    void applyDrag();
     void finishDrag(bool cancel);
     void finishRubberBand(QPointF pixel, bool additive);
     void drawSelection();
