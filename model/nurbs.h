@@ -1,8 +1,8 @@
-// NURBS kernel: plain data and free functions (algorithms from Piegl & Tiller, The NURBS Book, 2nd
-// ed.).
+// NURBS kernel: plain data and free functions (algorithms from Piegl & Tiller, The NURBS Book, 2nd ed.).
 #pragma once
 
 #include <glm/glm.hpp>
+
 #include <string>
 #include <vector>
 

@@ -30,9 +30,8 @@ QString plural(int n, const char* one, const char* many) {
 
 } // namespace
 
-SceneModel::SceneModel(const Document* document, QObject* parent)
-    : QAbstractItemModel(parent), m_doc(document) {
-    Q_ASSERT(document);
+SceneModel::SceneModel(const Document& document, QObject* parent)
+    : QAbstractItemModel(parent), m_doc(&document) {
     connect(m_doc, &Document::sceneAboutToBeReset, this, [this] { beginResetModel(); });
     connect(m_doc, &Document::sceneReset, this, [this] { endResetModel(); });
     connect(m_doc, &Document::surfaceAboutToBeInserted, this,

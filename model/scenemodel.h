@@ -38,8 +38,8 @@ public:
     enum class Kind { Surface, ControlNet, TrimLoop, TrimCurve };
     using RenameHandler = std::function<void(SurfaceId, const QString&)>;
 
-    /// `document` must outlive the model.
-    explicit SceneModel(const Document* document, QObject* parent = nullptr);
+    /// `document` must outlive the model (a reference: there is no model without one).
+    explicit SceneModel(const Document& document, QObject* parent = nullptr);
 
     const Document* document() const { return m_doc; }
     void setRenameHandler(RenameHandler handler) { m_rename = std::move(handler); }

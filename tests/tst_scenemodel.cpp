@@ -16,7 +16,7 @@ namespace {
 
 struct Fixture {
     Document doc;
-    SceneModel model{&doc};
+    SceneModel model{doc};
     QAbstractItemModelTester tester{&model, QAbstractItemModelTester::FailureReportingMode::Fatal};
     Fixture() {
         if (!doc.resetScene(threeSurfaceScene()))
@@ -224,7 +224,7 @@ void TestSceneModel::persistentIndexesFollowIds() {
 
 void TestSceneModel::selectionFollowsDocument() {
     Fixture f;
-    Selection sel(&f.model);
+    Selection sel(f.model);
     QSignalSpy changed(&sel, &Selection::changed);
     QVERIFY(
         sel.setControlPoints({{SurfaceId{2}, 4, 3}, {SurfaceId{1}, 0, 0}, {SurfaceId{2}, 4, 3}}));
@@ -253,6 +253,8 @@ void TestSceneModel::selectionFollowsDocument() {
     sel.itemSelection()->setCurrentIndex(f.model.index(0, 0, f.model.index(1, 0)),
                                          QItemSelectionModel::ClearAndSelect);
     QCOMPARE(sel.currentSurface(), SurfaceId{3});
+    sel.itemSelection()->select(f.model.index(0, 0), QItemSelectionModel::Select);
+    QCOMPARE(sel.selectedSurfaces(), std::vector<SurfaceId>({SurfaceId{1}, SurfaceId{3}}));
     QVERIFY(changed.count() > 0);
 
     QVERIFY(f.doc.resetScene(threeSurfaceScene()));

@@ -51,9 +51,9 @@ std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document,
                                                              std::vector<glm::dvec3> from,
                                                              std::vector<glm::dvec3> to,
                                                              MoveKind kind, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (indices.empty() || indices.size() != from.size() || indices.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per point"));
     std::set<int> seen;
@@ -99,9 +99,9 @@ bool MoveControlPoints::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetWeight> SetWeight::create(Document* document, SurfaceId surface, int index,
                                              double weight, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (index < 0 || size_t(index) >= s->geometry.weights.size())
         return fail(error, QStringLiteral("control point index %1 out of range").arg(index));
     if (!std::isfinite(weight) || weight <= 0)
@@ -136,9 +136,9 @@ bool SetWeight::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetPartitions> SetPartitions::create(Document* document, SurfaceId surface, int nu,
                                                      int nv, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const QString why = partitionsError(nu, nv);
     if (!why.isEmpty())
         return fail(error, why);
@@ -177,6 +177,8 @@ std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
                                                        std::vector<glm::dvec2> from,
                                                        std::vector<glm::dvec2> to, MoveKind kind,
                                                        QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     if (refs.empty() || refs.size() != from.size() || refs.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per trim point"));
     std::set<TrimPointRef> seen;
@@ -234,9 +236,9 @@ bool MoveTrimPoints::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetMaterial> SetMaterial::create(Document* document, SurfaceId surface,
                                                  const Material& material, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const QString why = materialError(material);
     if (!why.isEmpty())
         return fail(error, why);
@@ -268,6 +270,8 @@ bool SetMaterial::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetLights> SetLights::make(Document* document, std::vector<Light> lights,
                                            const QString& text, int changed, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     const QString why = lightsError(lights);
     if (!why.isEmpty())
         return fail(error, why);
@@ -285,6 +289,8 @@ std::unique_ptr<SetLights> SetLights::create(Document* document, std::vector<Lig
 
 std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& light,
                                                QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (lights.size() >= size_t(kMaxLights))
         return fail(error, QStringLiteral("a scene has at most %1 lights").arg(kMaxLights));
@@ -293,6 +299,8 @@ std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& 
 }
 
 std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
         return fail(error, QStringLiteral("no light %1").arg(index + 1));
@@ -305,6 +313,8 @@ std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index,
 
 std::unique_ptr<SetLights> SetLights::changeLight(Document* document, int index, const Light& light,
                                                   QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
         return fail(error, QStringLiteral("no light %1").arg(index + 1));
@@ -333,6 +343,8 @@ bool SetLights::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetCamera> SetCamera::create(Document* document, const Camera& camera,
                                              QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     const QString why = cameraError(camera);
     if (!why.isEmpty())
         return fail(error, why);

@@ -31,9 +31,9 @@ void GeometryCommand::undo() {
 std::unique_ptr<SetKnotVector> SetKnotVector::create(Document* document, SurfaceId surface,
                                                      Direction direction, std::vector<double> knots,
                                                      QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     NurbsSurface g = s->geometry;
     const bool u = direction == Direction::U;
     const std::string why =
@@ -53,9 +53,9 @@ std::unique_ptr<SetKnotVector> SetKnotVector::create(Document* document, Surface
 std::unique_ptr<InsertKnot> InsertKnot::create(Document* document, SurfaceId surface,
                                                Direction direction, double value, int times,
                                                QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (!std::isfinite(value) || times < 1)
         return fail(error, QStringLiteral("knot value must be finite, times >= 1"));
     const bool u = direction == Direction::U;
@@ -79,9 +79,9 @@ std::unique_ptr<InsertKnot> InsertKnot::create(Document* document, SurfaceId sur
 
 std::unique_ptr<ElevateDegree> ElevateDegree::create(Document* document, SurfaceId surface,
                                                      Direction direction, int by, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const bool u = direction == Direction::U;
     const NurbsSurface& g = s->geometry;
     const int degree = (u ? g.degreeU : g.degreeV);
