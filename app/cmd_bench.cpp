@@ -13,6 +13,7 @@
 #include <QJsonObject>
 #include <QThread>
 #include <algorithm>
+#include <sys/resource.h>
 
 namespace kw::cli {
 
@@ -24,10 +25,19 @@ struct BenchRow {
     QSize size;
     double coverage = 0.0; ///< fraction of pixels showing a surface
     double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
+    double cpuMs = 0.0; ///< process CPU time per timed frame (independent of other load)
 };
 
 double fps(double ms) {
     return ms > 0.0 ? 1000.0 / ms : 0.0;
+}
+
+/// CPU time of the whole process (all threads: llvmpipe rasterises on its own threads), ms.
+double processCpuMs() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
+           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
 }
 
 } // namespace
@@ -54,14 +64,15 @@ int runBench(const QStringList& args) {
     const QCommandLineOption lights(QStringLiteral("lights"),
                                     QStringLiteral("Number of lights, 1..8 (default 2)."),
                                     QStringLiteral("N"), QStringLiteral("2"));
-    const QCommandLineOption exactDepth(
-        QStringLiteral("exact-depth"),
-        QStringLiteral("Exact mode: write gl_FragDepth in one pass instead of the depth "
-                       "pre-pass + GL_EQUAL."));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: deferred (default), prepass (depth pre-pass + GL_EQUAL) or "
+                       "exact-depth (one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("deferred"));
     const QCommandLineOption json(QStringLiteral("json"),
                                   QStringLiteral("Also write the results as JSON."),
                                   QStringLiteral("OUT"));
-    parser.addOptions({sizes, partitions, frames, mode, lights, exactDepth, json});
+    parser.addOptions({sizes, partitions, frames, mode, lights, shading, json});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("FILE..."));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -93,7 +104,11 @@ int runBench(const QStringList& args) {
                        .arg(cmd));
         return kExitUsage;
     }
-    options.exactDepth = parser.isSet(exactDepth);
+    if (!parseShading(parser.value(shading), options.shading)) {
+        printError(QStringLiteral("%1: --shading '%2' is not deferred, prepass or exact-depth")
+                       .arg(cmd, parser.value(shading)));
+        return kExitUsage;
+    }
 
     QString error;
     OffscreenRenderer renderer;
@@ -131,7 +146,10 @@ int runBench(const QStringList& args) {
                 return kExitBadInput;
             }
             std::vector<double> ms;
+            double cpuStart = 0.0;
             for (int f = 0; f < frameCount + 3; ++f) {
+                if (f == 3)
+                    cpuStart = processCpuMs();
                 QElapsedTimer t;
                 t.start();
                 if (!renderer.render(doc, cam, options, &error)) {
@@ -142,6 +160,7 @@ int runBench(const QStringList& args) {
                 if (f >= 3)
                     ms.push_back(double(t.nsecsElapsed()) * 1e-6);
             }
+            row.cpuMs = (processCpuMs() - cpuStart) / frameCount;
             std::sort(ms.begin(), ms.end());
             row.minMs = ms.front();
             row.maxMs = ms.back();
@@ -157,20 +176,22 @@ int runBench(const QStringList& args) {
     }
 
     const QString setting =
-        QStringLiteral("%1, %2 x %3 partitions, %4 light(s)%5")
+        QStringLiteral("%1, %2 x %3 partitions, %4 light(s), %5 shading")
             .arg(modeName(options.mode))
             .arg(options.partitionsU)
             .arg(options.partitionsV)
             .arg(options.lightCount)
-            .arg(options.exactDepth ? QStringLiteral(", exact depth") : QString());
+            .arg(options.mode == RenderMode::Exact ? shadingName(options.shading)
+                                                   : QStringLiteral("Gouraud"));
     QString table = QStringLiteral("%1 on %2, %3 CPU threads\n\n")
                         .arg(setting, renderer.renderer().glDescription())
                         .arg(QThread::idealThreadCount());
-    table += QStringLiteral("| file | surfaces | resolution | covered | FPS (median) | FPS min | "
-                            "FPS max | ms (median) |\n|---|---|---|---|---|---|---|---|\n");
+    table += QStringLiteral(
+        "| file | surfaces | resolution | covered | FPS (median) | FPS min | "
+        "FPS max | ms (median) | CPU ms/frame |\n|---|---|---|---|---|---|---|---|---|\n");
     QJsonArray jsonRows;
     for (const BenchRow& r : rows) {
-        table += QStringLiteral("| %1 | %2 | %3x%4 | %5 % | %6 | %7 | %8 | %9 |\n")
+        table += QStringLiteral("| %1 | %2 | %3x%4 | %5 % | %6 | %7 | %8 | %9 | %10 |\n")
                      .arg(r.file)
                      .arg(r.surfaces)
                      .arg(r.size.width())
@@ -179,7 +200,8 @@ int runBench(const QStringList& args) {
                      .arg(fps(r.medianMs), 0, 'f', 1)
                      .arg(fps(r.maxMs), 0, 'f', 1)
                      .arg(fps(r.minMs), 0, 'f', 1)
-                     .arg(r.medianMs, 0, 'f', 2);
+                     .arg(r.medianMs, 0, 'f', 2)
+                     .arg(r.cpuMs, 0, 'f', 1);
         jsonRows.append(QJsonObject{{QStringLiteral("file"), r.file},
                                     {QStringLiteral("surfaces"), r.surfaces},
                                     {QStringLiteral("width"), r.size.width()},
@@ -188,7 +210,8 @@ int runBench(const QStringList& args) {
                                     {QStringLiteral("fpsMedian"), fps(r.medianMs)},
                                     {QStringLiteral("fpsMin"), fps(r.maxMs)},
                                     {QStringLiteral("fpsMax"), fps(r.minMs)},
-                                    {QStringLiteral("msMedian"), r.medianMs}});
+                                    {QStringLiteral("msMedian"), r.medianMs},
+                                    {QStringLiteral("cpuMsPerFrame"), r.cpuMs}});
     }
     printOut(table);
     if (parser.isSet(json)) {

@@ -36,11 +36,15 @@ int runRender(const QStringList& args) {
                                  QStringLiteral("Also write a float EXR with channels id, u, v, "
                                                 "P.x, P.y, P.z, N.x, N.y, N.z, Z."),
                                  QStringLiteral("AOV.exr"));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: deferred (default), prepass or exact-depth."),
+        QStringLiteral("WAY"), QStringLiteral("deferred"));
     const QCommandLineOption wire(QStringLiteral("wireframe"),
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
                                  QStringLiteral("Overlay the control points and net."));
-    parser.addOptions({out, size, mode, partitions, lights, aov, wire, net});
+    parser.addOptions({out, size, mode, partitions, lights, aov, shading, wire, net});
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
@@ -74,6 +78,11 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: --lights '%2' is not in 1..%3")
                        .arg(cmd, parser.value(lights))
                        .arg(kMaxLights));
+        return kExitUsage;
+    }
+    if (!parseShading(parser.value(shading), options.shading)) {
+        printError(QStringLiteral("%1: --shading '%2' is not deferred, prepass or exact-depth")
+                       .arg(cmd, parser.value(shading)));
         return kExitUsage;
     }
     options.wireframe = parser.isSet(wire);

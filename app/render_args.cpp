@@ -49,4 +49,26 @@ QString modeName(RenderMode mode) {
     return mode == RenderMode::Exact ? QStringLiteral("exact") : QStringLiteral("tessellated");
 }
 
+bool parseShading(const QString& text, RenderOptions::Shading& shading) {
+    for (auto s : {RenderOptions::Shading::Deferred, RenderOptions::Shading::DepthPrepass,
+                   RenderOptions::Shading::ExactDepth})
+        if (text == shadingName(s)) {
+            shading = s;
+            return true;
+        }
+    return false;
+}
+
+QString shadingName(RenderOptions::Shading shading) {
+    switch (shading) {
+    case RenderOptions::Shading::Deferred:
+        return QStringLiteral("deferred");
+    case RenderOptions::Shading::DepthPrepass:
+        return QStringLiteral("prepass");
+    case RenderOptions::Shading::ExactDepth:
+        return QStringLiteral("exact-depth");
+    }
+    return {};
+}
+
 } // namespace kw::cli

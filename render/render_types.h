@@ -24,10 +24,21 @@ struct RenderOptions {
     int partitionsV = 0;
     bool wireframe = false;  ///< outline of the base polygon cells
     bool controlNet = false; ///< control points and net lines
-    /// Exact mode only. false (default): a depth pre-pass of the base polygon, then the exact
-    /// shader with depth test GL_EQUAL, so each pixel is shaded once (early-z). true: a single
-    /// pass writing the exact surface depth through gl_FragDepth, which disables early-z.
-    bool exactDepth = false;
+    /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures the three).
+    enum class Shading {
+        /// Default. The base polygons write (u, v, span, polygon depth) to a G-buffer; then one
+        /// screen-space pass per surface, scissored to its projected bounds, evaluates and
+        /// shades every covered pixel exactly once, in full SIMD blocks however small the
+        /// triangles. Depth is the base polygon's.
+        Deferred,
+        /// Depth pre-pass of the base polygons, then the exact shader with GL_EQUAL and depth
+        /// writes off (early-z rejects hidden fragments). Depth is the base polygon's.
+        DepthPrepass,
+        /// One pass writing the exact surface depth through gl_FragDepth (exact intersections
+        /// between surfaces, no early-z: hidden fragments are shaded too).
+        ExactDepth,
+    };
+    Shading shading = Shading::Deferred;
     /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
     bool writeAov = false;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
@@ -57,11 +68,12 @@ struct FrameCamera {
     glm::vec3 forward{0.0f, 0.0f, -1.0f}; ///< unit view direction
     float nearPlane = 0.1f;
     float farPlane = 100.0f;
+    glm::ivec2 viewport{1, 1}; ///< pixels
 };
 
-/// Perspective matrices for `camera` at `aspect` (width / height > 0). Near and far planes
-/// enclose the scene's control bounds (the surfaces lie inside them) with a margin; near is
-/// kept >= far * 1e-5 so depth precision stays usable.
+/// Perspective matrices for `camera` at `aspect` (width / height > 0; viewport left {1, 1}). Near
+/// and far planes enclose the scene's control bounds (the surfaces lie inside them) with a margin;
+/// near is kept >= far * 1e-5 so depth precision stays usable.
 FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect);
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,

@@ -3,6 +3,7 @@
 
 #include <QOpenGLContext>
 #include <QOpenGLVersionFunctionsFactory>
+#include <tuple>
 
 namespace kw {
 
@@ -39,10 +40,15 @@ bool Renderer::initialize() {
     m_wireframe.initialize(gl, &m_shaders);
     m_controlNet.initialize(gl, &m_shaders);
     // Build the common programs now so a broken shader is reported at start-up.
-    for (auto [vs, fs] :
-         {std::pair{"surface.vert", "depth_only.frag"}, std::pair{"lines.vert", "lines.frag"},
-          std::pair{"tessellated.vert", "tessellated.frag"}})
-        if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs))) {
+    const RenderOptions defaults;
+    const std::tuple<const char*, const char*, QStringList> common[] = {
+        {"surface.vert", "gbuffer.frag", {}},
+        {"lines.vert", "lines.frag", {}},
+        {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
+        {"fullscreen.vert", "exact_resolve.frag",
+         ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
+    for (const auto& [vs, fs, defines] : common)
+        if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
             m_error = m_shaders.lastError();
             release();
             return false;
@@ -62,7 +68,8 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     }
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     const Scene& scene = doc.scene();
-    const FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
+    FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
+    fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
@@ -84,7 +91,7 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
 
     m_cache.sync(doc, options.partitionsU, options.partitionsV);
     bool ok = options.mode == RenderMode::Exact
-                  ? m_exact.draw(scene, m_cache, fc, lights, options, &m_error)
+                  ? m_exact.draw(scene, m_cache, fc, lights, options, targetFbo, &m_error)
                   : m_tessellated.draw(doc, fc, lights, options, &m_error);
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
@@ -111,6 +118,7 @@ void Renderer::release() {
     if (!m_gl)
         return;
     m_cache.release();
+    m_exact.release();
     m_tessellated.release();
     m_controlNet.release();
     m_shaders.clear();
