@@ -66,9 +66,9 @@ int runBench(const QStringList& args) {
                                     QStringLiteral("N"), QStringLiteral("2"));
     const QCommandLineOption shading(
         QStringLiteral("shading"),
-        QStringLiteral("Exact mode: deferred (default), prepass (depth pre-pass + GL_EQUAL) or "
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or "
                        "exact-depth (one pass writing gl_FragDepth)."),
-        QStringLiteral("WAY"), QStringLiteral("deferred"));
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
     const QCommandLineOption json(QStringLiteral("json"),
                                   QStringLiteral("Also write the results as JSON."),
                                   QStringLiteral("OUT"));
@@ -105,7 +105,7 @@ int runBench(const QStringList& args) {
         return kExitUsage;
     }
     if (!parseShading(parser.value(shading), options.shading)) {
-        printError(QStringLiteral("%1: --shading '%2' is not deferred, prepass or exact-depth")
+        printError(QStringLiteral("%1: --shading '%2' is not prepass or exact-depth")
                        .arg(cmd, parser.value(shading)));
         return kExitUsage;
     }

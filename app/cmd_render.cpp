@@ -38,8 +38,9 @@ int runRender(const QStringList& args) {
                                  QStringLiteral("AOV.exr"));
     const QCommandLineOption shading(
         QStringLiteral("shading"),
-        QStringLiteral("Exact mode: deferred (default), prepass or exact-depth."),
-        QStringLiteral("WAY"), QStringLiteral("deferred"));
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
+                       "(one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
     const QCommandLineOption wire(QStringLiteral("wireframe"),
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
@@ -81,7 +82,7 @@ int runRender(const QStringList& args) {
         return kExitUsage;
     }
     if (!parseShading(parser.value(shading), options.shading)) {
-        printError(QStringLiteral("%1: --shading '%2' is not deferred, prepass or exact-depth")
+        printError(QStringLiteral("%1: --shading '%2' is not prepass or exact-depth")
                        .arg(cmd, parser.value(shading)));
         return kExitUsage;
     }

@@ -50,8 +50,7 @@ QString modeName(RenderMode mode) {
 }
 
 bool parseShading(const QString& text, RenderOptions::Shading& shading) {
-    for (auto s : {RenderOptions::Shading::Deferred, RenderOptions::Shading::DepthPrepass,
-                   RenderOptions::Shading::ExactDepth})
+    for (auto s : {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth})
         if (text == shadingName(s)) {
             shading = s;
             return true;
@@ -61,8 +60,6 @@ bool parseShading(const QString& text, RenderOptions::Shading& shading) {
 
 QString shadingName(RenderOptions::Shading shading) {
     switch (shading) {
-    case RenderOptions::Shading::Deferred:
-        return QStringLiteral("deferred");
     case RenderOptions::Shading::DepthPrepass:
         return QStringLiteral("prepass");
     case RenderOptions::Shading::ExactDepth:

@@ -17,7 +17,7 @@ bool parseMode(const QString& text, RenderMode& mode);
 /// An integer in [lo, hi]; false otherwise.
 bool parseIntIn(const QString& text, int lo, int hi, int& value);
 QString modeName(RenderMode mode);
-/// "deferred", "prepass" or "exact-depth"; false otherwise.
+/// "prepass" or "exact-depth"; false otherwise.
 bool parseShading(const QString& text, RenderOptions::Shading& shading);
 QString shadingName(RenderOptions::Shading shading);
 

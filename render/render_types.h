@@ -24,21 +24,19 @@ struct RenderOptions {
     int partitionsV = 0;
     bool wireframe = false;  ///< outline of the base polygon cells
     bool controlNet = false; ///< control points and net lines
-    /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures the three).
+    /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures both, and a
+    /// deferred variant that was slower on llvmpipe and removed).
     enum class Shading {
-        /// Default. The base polygons write (u, v, span, polygon depth) to a G-buffer; then one
-        /// screen-space pass per surface, scissored to its projected bounds, evaluates and
-        /// shades every covered pixel exactly once, in full SIMD blocks however small the
-        /// triangles. Depth is the base polygon's.
-        Deferred,
-        /// Depth pre-pass of the base polygons, then the exact shader with GL_EQUAL and depth
-        /// writes off (early-z rejects hidden fragments). Depth is the base polygon's.
+        /// Default. Depth pre-pass of the base polygons with a trivial shader, then the exact
+        /// shader with GL_EQUAL and depth writes off: early-z rejects every hidden fragment,
+        /// so each pixel is evaluated once. Depth is the base polygon's (a chord of the
+        /// surface), so silhouettes and surface intersections follow the polygon.
         DepthPrepass,
-        /// One pass writing the exact surface depth through gl_FragDepth (exact intersections
-        /// between surfaces, no early-z: hidden fragments are shaded too).
+        /// One pass writing the exact surface depth through gl_FragDepth: exact intersections
+        /// between surfaces, but no early-z, so hidden fragments are evaluated too.
         ExactDepth,
     };
-    Shading shading = Shading::Deferred;
+    Shading shading = Shading::DepthPrepass;
     /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
     bool writeAov = false;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};

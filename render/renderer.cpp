@@ -42,10 +42,10 @@ bool Renderer::initialize() {
     // Build the common programs now so a broken shader is reported at start-up.
     const RenderOptions defaults;
     const std::tuple<const char*, const char*, QStringList> common[] = {
-        {"surface.vert", "gbuffer.frag", {}},
+        {"surface.vert", "depth_only.frag", {}},
         {"lines.vert", "lines.frag", {}},
         {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
-        {"fullscreen.vert", "exact_resolve.frag",
+        {"surface.vert", "exact_surface.frag",
          ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
     for (const auto& [vs, fs, defines] : common)
         if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
@@ -91,7 +91,7 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
 
     m_cache.sync(doc, options.partitionsU, options.partitionsV);
     bool ok = options.mode == RenderMode::Exact
-                  ? m_exact.draw(scene, m_cache, fc, lights, options, targetFbo, &m_error)
+                  ? m_exact.draw(scene, m_cache, fc, lights, options, &m_error)
                   : m_tessellated.draw(doc, fc, lights, options, &m_error);
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
@@ -118,7 +118,6 @@ void Renderer::release() {
     if (!m_gl)
         return;
     m_cache.release();
-    m_exact.release();
     m_tessellated.release();
     m_controlNet.release();
     m_shaders.clear();

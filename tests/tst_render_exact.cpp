@@ -94,12 +94,12 @@ private Q_SLOTS:
 
     void shadingVariantsAgree_data() {
         QTest::addColumn<int>("shading");
-        QTest::newRow("depth pre-pass") << int(RenderOptions::Shading::DepthPrepass);
         QTest::newRow("exact depth") << int(RenderOptions::Shading::ExactDepth);
     }
     void shadingVariantsAgree() {
-        // The forward variants match the kernel too, and cover the same pixels as deferred
-        // (exact depth moves the silhouette between surfaces by a few pixels at most).
+        // The exact-depth variant matches the kernel too, and shows the same surface as the
+        // default pre-pass almost everywhere (exact depth may move the seam between two
+        // surfaces by a few pixels).
         QFETCH(int, shading);
         QString error;
         const std::optional<Scene> s = kwtest::loadSample(QStringLiteral("teapot"), &error);
@@ -109,7 +109,7 @@ private Q_SLOTS:
         const Camera cam = fitCamera(doc.scene(), 1.0);
         RenderOptions opt;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
-        const AovBuffer deferred = m_renderer->aov();
+        const AovBuffer prepass = m_renderer->aov();
         opt.shading = RenderOptions::Shading(shading);
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer forward = m_renderer->aov();
@@ -120,8 +120,9 @@ private Q_SLOTS:
         int differentId = 0;
         for (int y = 0; y < 512; ++y)
             for (int x = 0; x < 512; ++x)
-                differentId += deferred.pixel(x, y)[0] != forward.pixel(x, y)[0];
-        qInfo("%d of %d covered pixels show another surface than deferred", differentId, r.covered);
+                differentId += prepass.pixel(x, y)[0] != forward.pixel(x, y)[0];
+        qInfo("%d of %d covered pixels show another surface than with the pre-pass", differentId,
+              r.covered);
         QVERIFY(differentId <= r.covered / 100);
     }
 
