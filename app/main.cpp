@@ -1,10 +1,14 @@
 // knotwork: entry point; dispatches to a command-line subcommand or the editor.
 #include "app/commands.h"
 #include "app/editor.h"
+#include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>
+#include <QGuiApplication>
+#include <QSurfaceFormat>
 #include <cstdio>
+#include <memory>
 
 namespace kw::cli {
 
@@ -15,6 +19,10 @@ const std::vector<Command>& commands() {
          QStringLiteral("Summarise a .knot project (surfaces, lights, camera)."), runInfo},
         {QStringLiteral("eval"),
          QStringLiteral("Evaluate a surface's point, partials and normal at (u, v)."), runEval},
+        {QStringLiteral("render"),
+         QStringLiteral("Render a project off-screen to an image (and AOVs)."), runRender, true},
+        {QStringLiteral("bench"), QStringLiteral("Measure off-screen frame rates per image size."),
+         runBench, true},
     };
     return table;
 }
@@ -100,7 +108,26 @@ const Command* findCommand(const QString& name) {
 int main(int argc, char** argv) {
     if (kw::app::isEditorInvocation(argc, argv))
         return kw::app::runEditor(argc, argv);
-    QCoreApplication app(argc, argv);
+    // GL subcommands need a QGuiApplication, and the default format must be set before it.
+    const Command* early = argc > 1 ? findCommand(QString::fromLocal8Bit(argv[1])) : nullptr;
+    std::unique_ptr<QCoreApplication> app;
+    if (early && early->gui) {
+        // Without a display Qt's xcb platform aborts the process; say what to do instead.
+        const QByteArray platform = qgetenv("QT_QPA_PLATFORM");
+        if ((platform.isEmpty() || platform.startsWith("xcb")) &&
+            qEnvironmentVariableIsEmpty("DISPLAY")) {
+            printError(
+                QStringLiteral("knotwork %1: no OpenGL 4.5 context can be made: no X display "
+                               "(DISPLAY is not set). Run under xvfb-run -a -s \"-screen 0 "
+                               "1280x1024x24\" with QT_QPA_PLATFORM=xcb.")
+                    .arg(early->name));
+            return kExitBadInput;
+        }
+        QSurfaceFormat::setDefaultFormat(kw::OffscreenRenderer::requiredFormat());
+        app = std::make_unique<QGuiApplication>(argc, argv);
+    } else {
+        app = std::make_unique<QCoreApplication>(argc, argv);
+    }
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
     const QStringList args = QCoreApplication::arguments();

@@ -1,5 +1,5 @@
 // Exact pass: depth pre-pass of the base polygons, then per-fragment evaluation with GL_EQUAL
-// (or one pass writing gl_FragDepth when RenderOptions::exactDepth).
+// (or one pass writing gl_FragDepth when options.shading is ExactDepth).
 #include "render/exact_surface_pass.h"
 
 #include "render/shading_uniforms.h"
@@ -14,11 +14,13 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_shaders = shaders;
 }
 
-QStringList ExactSurfacePass::variantDefines(int p, int q, const RenderOptions& options) {
-    QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q)};
+QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
+                                             const RenderOptions& options) {
+    QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
+                  QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
     if (options.writeAov)
         d << QStringLiteral("KW_AOV");
-    if (options.exactDepth)
+    if (options.shading == RenderOptions::Shading::ExactDepth)
         d << QStringLiteral("KW_EXACT_DEPTH");
     return d;
 }
@@ -51,7 +53,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
                             const FrameCamera& camera, const std::vector<Light>& lights,
                             const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    if (!options.exactDepth) {
+    if (options.shading == RenderOptions::Shading::DepthPrepass) {
         if (!depthPrepass(scene, cache, camera, error))
             return false;
         gl->glDepthFunc(GL_EQUAL);
@@ -68,7 +70,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
             continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(g->degreeU, g->degreeV, options));
+                               variantDefines(g->degreeU, g->degreeV, int(lights.size()), options));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;

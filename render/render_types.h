@@ -24,10 +24,19 @@ struct RenderOptions {
     int partitionsV = 0;
     bool wireframe = false;  ///< outline of the base polygon cells
     bool controlNet = false; ///< control points and net lines
-    /// Exact mode only. false (default): a depth pre-pass of the base polygon, then the exact
-    /// shader with depth test GL_EQUAL, so each pixel is shaded once (early-z). true: a single
-    /// pass writing the exact surface depth through gl_FragDepth, which disables early-z.
-    bool exactDepth = false;
+    /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures both, and a
+    /// deferred variant that was slower on llvmpipe and removed).
+    enum class Shading {
+        /// Default. Depth pre-pass of the base polygons with a trivial shader, then the exact
+        /// shader with GL_EQUAL and depth writes off: early-z rejects every hidden fragment,
+        /// so each pixel is evaluated once. Depth is the base polygon's (a chord of the
+        /// surface), so silhouettes and surface intersections follow the polygon.
+        DepthPrepass,
+        /// One pass writing the exact surface depth through gl_FragDepth: exact intersections
+        /// between surfaces, but no early-z, so hidden fragments are evaluated too.
+        ExactDepth,
+    };
+    Shading shading = Shading::DepthPrepass;
     /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
     bool writeAov = false;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
@@ -57,11 +66,12 @@ struct FrameCamera {
     glm::vec3 forward{0.0f, 0.0f, -1.0f}; ///< unit view direction
     float nearPlane = 0.1f;
     float farPlane = 100.0f;
+    glm::ivec2 viewport{1, 1}; ///< pixels
 };
 
-/// Perspective matrices for `camera` at `aspect` (width / height > 0). Near and far planes
-/// enclose the scene's control bounds (the surfaces lie inside them) with a margin; near is
-/// kept >= far * 1e-5 so depth precision stays usable.
+/// Perspective matrices for `camera` at `aspect` (width / height > 0; viewport left {1, 1}). Near
+/// and far planes enclose the scene's control bounds (the surfaces lie inside them) with a margin;
+/// near is kept >= far * 1e-5 so depth precision stays usable.
 FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect);
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,

@@ -3,6 +3,7 @@
 
 #include <QOpenGLContext>
 #include <QOpenGLVersionFunctionsFactory>
+#include <tuple>
 
 namespace kw {
 
@@ -39,10 +40,15 @@ bool Renderer::initialize() {
     m_wireframe.initialize(gl, &m_shaders);
     m_controlNet.initialize(gl, &m_shaders);
     // Build the common programs now so a broken shader is reported at start-up.
-    for (auto [vs, fs] :
-         {std::pair{"surface.vert", "depth_only.frag"}, std::pair{"lines.vert", "lines.frag"},
-          std::pair{"tessellated.vert", "tessellated.frag"}})
-        if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs))) {
+    const RenderOptions defaults;
+    const std::tuple<const char*, const char*, QStringList> common[] = {
+        {"surface.vert", "depth_only.frag", {}},
+        {"lines.vert", "lines.frag", {}},
+        {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
+        {"surface.vert", "exact_surface.frag",
+         ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
+    for (const auto& [vs, fs, defines] : common)
+        if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
             m_error = m_shaders.lastError();
             release();
             return false;
@@ -62,7 +68,8 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     }
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     const Scene& scene = doc.scene();
-    const FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
+    FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
+    fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);

@@ -14,9 +14,11 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
         *error = QStringLiteral("shader includes nested too deeply at %1").arg(file);
         return false;
     }
-    QFile f(QStringLiteral(":/shaders/") + file);
+    // KW_SHADER_DIR (development): read shaders from a folder instead of the resources.
+    static const QString dir = qEnvironmentVariable("KW_SHADER_DIR", QStringLiteral(":/shaders"));
+    QFile f(dir + QLatin1Char('/') + file);
     if (!f.open(QIODevice::ReadOnly | QIODevice::Text)) {
-        *error = QStringLiteral("shader file :/shaders/%1 not found").arg(file);
+        *error = QStringLiteral("shader file %1/%2 not found").arg(dir, file);
         return false;
     }
     static const QRegularExpression include(QStringLiteral("^\\s*#include\\s+\"([^\"]+)\"\\s*$"));

@@ -19,9 +19,10 @@ public:
     ShaderLibrary& operator=(const ShaderLibrary&) = delete;
 
     /// The program linked from the resource files `vertex` and `fragment` (names under
-    /// :/shaders) with `defines` ("NAME" or "NAME VALUE") inserted after the #version line.
-    /// Needs a current OpenGL 4.5 core context. Returns nullptr and sets lastError() when a
-    /// file is missing or compiling/linking fails; failures are cached too (no retry storms).
+    /// :/shaders, or under $KW_SHADER_DIR when set, for shader development) with `defines` ("NAME"
+    /// or "NAME VALUE") inserted after the #version line. Needs a current OpenGL 4.5 core context.
+    /// Returns nullptr and sets lastError() when a file is missing or compiling/linking fails;
+    /// failures are cached too (no retry storms).
     QOpenGLShaderProgram* program(const QString& vertex, const QString& fragment,
                                   const QStringList& defines = {});
     QString lastError() const { return m_lastError; }

@@ -29,10 +29,12 @@ void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* progr
         dif[k] = glm::vec3(l.diffuse);
         spe[k] = glm::vec3(l.specular);
     }
-    gl->glUniform1i(program->uniformLocation("uLightCount"), n);
+    glm::vec3 ambient(0.0f);
+    for (int k = 0; k < n; ++k)
+        ambient += amb[k];
+    gl->glUniform3fv(program->uniformLocation("uAmbient"), 1, glm::value_ptr(ambient));
     if (n > 0) {
         gl->glUniform4fv(program->uniformLocation("uLightVector"), n, glm::value_ptr(vec[0]));
-        gl->glUniform3fv(program->uniformLocation("uLightAmbient"), n, glm::value_ptr(amb[0]));
         gl->glUniform3fv(program->uniformLocation("uLightDiffuse"), n, glm::value_ptr(dif[0]));
         gl->glUniform3fv(program->uniformLocation("uLightSpecular"), n, glm::value_ptr(spe[0]));
     }

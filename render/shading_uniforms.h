@@ -11,8 +11,8 @@ class QOpenGLShaderProgram;
 
 namespace kw {
 
-/// Sets uViewProjection, uEye, uForward and the light arrays of phong.glsl on `program`,
-/// which must be bound. At most kMaxLights lights are used.
+/// Sets uViewProjection, uEye, uForward and the light uniforms of phong.glsl on `program`,
+/// which must be bound and built with LIGHT_COUNT == lights.size() (at most kMaxLights).
 void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
                       const FrameCamera& camera, const std::vector<Light>& lights);
 /// Sets uColor, uMaterial and uSurfaceId (exact in a float up to 2^24) on the bound program.

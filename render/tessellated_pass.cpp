@@ -59,7 +59,7 @@ bool TessellatedPass::draw(const Document& doc, const FrameCamera& camera,
             ++it;
         }
     }
-    QStringList defines;
+    QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
     QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("tessellated.vert"),

@@ -15,12 +15,6 @@ void BASIS_FN(int row, float u, out float N[BASIS_P + 1], out float dN[BASIS_P +
         t[4 * x + 2] = c.z;
         t[4 * x + 3] = c.w;
     }
-    float left[BASIS_P + 1];
-    float right[BASIS_P + 1];
-    for (int j = 1; j <= BASIS_P; ++j) {
-        left[j] = u - t[j - 1];
-        right[j] = t[BASIS_P + j - 1] - u;
-    }
     // Degree p-1 values, kept for the derivative (A2.3: ders[1] from ndu[.][p-1]).
     float lower[BASIS_P + 1];
     N[0] = 1.0;
@@ -30,9 +24,11 @@ void BASIS_FN(int row, float u, out float N[BASIS_P + 1], out float dN[BASIS_P +
         for (int r = 0; r < j; ++r) {
             if (j == BASIS_P)
                 lower[r] = N[r];
+            // right[r+1] = U[k+r+1] - u and left[j-r] = u - U[k+1-j+r], straight from the row
+            // (no left/right arrays: Mesa 22.3 llvmpipe miscompiled them in one shader).
             float temp = N[r] * t[inv + r];
-            N[r] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
+            N[r] = saved + (t[BASIS_P + r] - u) * temp;
+            saved = (u - t[j - r - 1]) * temp;
         }
         N[j] = saved;
         if (j < BASIS_P)

@@ -88,32 +88,40 @@ bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, o
 // The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs_surface.cpp);
 // thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL).
 SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
-    SurfacePartials d = surfacePartials(uv, span);
-    SurfaceSample s;
-    s.point = d.s + uOrigin;
-    s.du = d.su;
-    s.dv = d.sv;
-    float tinyLen = KW_TINY_REL * spanScale;
-    bool tinyU, tinyV;
-    if (plainNormal(d, tinyLen, s.normal, tinyU, tinyV))
-        return s;
     vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
     vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
-    if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
-        vec3 other = tinyU ? d.sv : d.su;
-        vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
-                       : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
-        float lm = length(m);
-        if (length(d.suv) * width.x * width.y > tinyLen &&
-            lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
-            s.normal = m / lm;
-            return s;
+    float tinyLen = KW_TINY_REL * spanScale;
+    SurfaceSample s;
+    // One evaluation site for steps 1-2 at uv and step 3 at a nearby interior point: the second
+    // round runs only for fragments (SIMD lanes) that need it, and the code is not duplicated.
+    vec2 at = uv;
+    for (int round = 0; round < 2; ++round) {
+        SurfacePartials d = surfacePartials(at, span);
+        if (round == 0) {
+            s.point = d.s + uOrigin;
+            s.du = d.su;
+            s.dv = d.sv;
         }
+        bool tinyU, tinyV;
+        if (plainNormal(d, tinyLen, s.normal, tinyU, tinyV))
+            break;
+        if (round == 1) {
+            s.normal = vec3(0.0, 0.0, 1.0); // step 4
+            break;
+        }
+        if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
+            vec3 other = tinyU ? d.sv : d.su;
+            vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
+                           : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
+            float lm = length(m);
+            if (length(d.suv) * width.x * width.y > tinyLen &&
+                lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
+                s.normal = m / lm;
+                break;
+            }
+        }
+        // Step 3: the plain normal of a nearby interior point (same span: the step is tiny).
+        at = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
     }
-    // Step 3: the plain normal of a nearby interior point (same span: the step is tiny).
-    vec2 inner = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
-    SurfacePartials e = surfacePartials(inner, span);
-    if (!plainNormal(e, tinyLen, s.normal, tinyU, tinyV))
-        s.normal = vec3(0.0, 0.0, 1.0); // step 4
     return s;
 }

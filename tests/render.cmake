@@ -3,3 +3,7 @@
 kw_add_test(tst_render_layout LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_layout.cpp LIBS knotwork_render)
 kw_add_test(tst_render_exact LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_exact.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
+kw_add_test(tst_render_baseline LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_baseline.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render PkgConfig::OIIO)
+kw_add_test(tst_render_uploads LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_uploads.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)

@@ -43,8 +43,8 @@ MainWindow::Dialogs MainWindow::Dialogs::standard() {
 }
 
 MainWindow::MainWindow(QWidget* parent)
-    : QMainWindow(parent), m_doc(new Document(this)), m_model(new SceneModel(m_doc, this)),
-      m_selection(new Selection(m_model, this)), m_stack(new QUndoStack(this)),
+    : QMainWindow(parent), m_doc(new Document(this)), m_model(new SceneModel(*m_doc, this)),
+      m_selection(new Selection(*m_model, this)), m_stack(new QUndoStack(this)),
       m_dialogs(Dialogs::standard()) {
     setObjectName(QStringLiteral("KnotworkMainWindow"));
     setAcceptDrops(true);
