@@ -9,10 +9,12 @@
 #include "ui/uvpanel.h"
 
 #include <QAction>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
+#include <QMenu>
 #include <QMimeData>
 #include <QPushButton>
 #include <QSettings>
@@ -490,6 +492,27 @@ private Q_SLOTS:
         QCOMPARE(m_script.opens, 1);
         QCOMPARE(m_window->document()->scene().surfaces.front().name,
                  readKnotFile(samplePath("sphere"), nullptr)->surfaces.front().name);
+    }
+
+    void layoutAndRecentFilesPersist() {
+        openWindow("sphere");
+        QDockWidget* uvDock = m_window->findChild<QDockWidget*>(QStringLiteral("dockUv"));
+        QVERIFY(uvDock && uvDock->isVisible());
+        uvDock->hide();
+        QVERIFY(m_window->close()); // unmodified: no question; saves the layout
+        m_window = std::make_unique<MainWindow>();
+        scriptDialogs(*m_window, m_script);
+        m_window->show();
+        QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+        QVERIFY(!m_window->findChild<QDockWidget*>(QStringLiteral("dockUv"))->isVisible());
+        // File > Open Recent lists the file first and opens it.
+        QMenu* recent = m_window->findChild<QMenu*>(QStringLiteral("menuRecent"));
+        QVERIFY(recent && !recent->actions().isEmpty());
+        QAction* first = recent->actions().first();
+        QCOMPARE(first->data().toString(), samplePath("sphere"));
+        first->trigger();
+        QCOMPARE(m_window->filePath(), samplePath("sphere"));
+        m_window->findChild<QDockWidget*>(QStringLiteral("dockUv"))->show();
     }
 
     void dragResponsiveness_data() {
