@@ -547,7 +547,8 @@ private Q_SLOTS:
         const auto maxBytes = *std::max_element(m.bytes.begin(), m.bytes.end());
         const QString report =
             QStringLiteral("drag on %9, %1 steps, viewport %2x%3: move->draw median %4 ms "
-                           "(max %5), paintGL median %6 ms, bytes per step median %7 (max %8)")
+                           "(max %5; mouse-move handler %10 ms), paintGL median %6 ms, "
+                           "bytes per step median %7 (max %8)")
                 .arg(steps)
                 .arg(vp->width())
                 .arg(vp->height())
@@ -556,7 +557,8 @@ private Q_SLOTS:
                 .arg(paint, 0, 'f', 2)
                 .arg(bytes)
                 .arg(maxBytes)
-                .arg(sample);
+                .arg(sample)
+                .arg(median(m.handlerMs), 0, 'f', 3);
         qInfo().noquote() << report;
         QFile out(QStringLiteral(KW_TEST_OUTPUT_DIR "/drag_metrics_%1.txt").arg(sample));
         QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));

@@ -58,8 +58,13 @@ PropertyPanel::PropertyPanel(Document* document, Selection* selection, QUndoStac
     layout->addStretch(1);
 
     connect(m_selection, &Selection::changed, this, &PropertyPanel::refresh);
-    connect(m_doc, &Document::surfaceChanged, this, [this](SurfaceId id) {
-        if (id == m_selection->currentSurface())
+    connect(m_doc, &Document::surfaceChanged, this, [this](SurfaceId id, Aspects aspects) {
+        if (id != m_selection->currentSurface())
+            return;
+        // A drag changes points many times a second: refresh only the point fields then.
+        if (aspects == Aspects(Aspect::Points))
+            refreshPoint();
+        else
             refresh();
     });
     connect(m_doc, &Document::sceneReset, this, &PropertyPanel::refresh);
@@ -272,23 +277,7 @@ void PropertyPanel::refresh() {
             m_knotValue->setValue(0.5 * (dom.first + dom.last));
     }
 
-    const ControlPointRef r = shownPoint();
-    m_pointBox->setEnabled(r.surface.isValid());
-    if (r.surface.isValid()) {
-        const int index = g.index(r.i, r.j);
-        const size_t picked = m_selection->controlPoints().size();
-        m_pointLabel->setText(picked > 1
-                                  ? tr("(%1, %2), first of %3 picked").arg(r.i).arg(r.j).arg(picked)
-                                  : tr("(%1, %2)").arg(r.i).arg(r.j));
-        for (int k = 0; k < 3; ++k) {
-            const QSignalBlocker b(m_xyz[k]);
-            m_xyz[k]->setValue(g.points[size_t(index)][k]);
-        }
-        const QSignalBlocker b(m_weight);
-        m_weight->setValue(g.weights[size_t(index)]);
-    } else {
-        m_pointLabel->setText(tr("Click a control point in the view."));
-    }
+    refreshPoint();
 
     for (auto [slider, spinBox, value] : {std::tuple{m_sliderU, m_spinU, s->partitionsU},
                                           std::tuple{m_sliderV, m_spinV, s->partitionsV}}) {
@@ -303,6 +292,28 @@ void PropertyPanel::refresh() {
                               std::pair{m_shininess, m.shininess}}) {
         const QSignalBlocker b(box);
         box->setValue(value);
+    }
+}
+
+void PropertyPanel::refreshPoint() {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    const ControlPointRef r = shownPoint();
+    m_pointBox->setEnabled(r.surface.isValid());
+    if (s && r.surface.isValid()) {
+        const NurbsSurface& g = s->geometry;
+        const int index = g.index(r.i, r.j);
+        const size_t picked = m_selection->controlPoints().size();
+        m_pointLabel->setText(picked > 1
+                                  ? tr("(%1, %2), first of %3 picked").arg(r.i).arg(r.j).arg(picked)
+                                  : tr("(%1, %2)").arg(r.i).arg(r.j));
+        for (int k = 0; k < 3; ++k) {
+            const QSignalBlocker b(m_xyz[k]);
+            m_xyz[k]->setValue(g.points[size_t(index)][k]);
+        }
+        const QSignalBlocker b(m_weight);
+        m_weight->setValue(g.weights[size_t(index)]);
+    } else {
+        m_pointLabel->setText(tr("Click a control point in the view."));
     }
 }
 

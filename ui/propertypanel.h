@@ -38,6 +38,8 @@ private:
     QWidget* buildPointBox();
     QWidget* buildDisplayBox();
     void refresh();
+    /// Only the picked point's position and weight (cheap; called on every drag step).
+    void refreshPoint();
     /// The picked control point shown in the point box (the first picked point of the current
     /// surface), or a ref with an invalid surface.
     ControlPointRef shownPoint() const;

@@ -151,6 +151,7 @@ void Viewport::paintGL() {
     const double frameMs = double(frameClock.nsecsElapsed()) * 1e-6;
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);
+        m_metrics.handlerMs.push_back(m_handlerMs);
         m_metrics.paintMs.push_back(frameMs);
         m_metrics.bytes.push_back(bytes);
     }
@@ -292,6 +293,7 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
         m_moveClock.start();
         m_moveTimed = true;
         dragTo(pixel);
+        m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
         break;
     }
     m_lastPixel = pixel;

@@ -58,6 +58,7 @@ public:
     /// (from the renderer's UploadStats).
     struct DragMetrics {
         std::vector<double> moveToDrawMs;
+        std::vector<double> handlerMs; ///< of moveToDrawMs: the mouse-move handler itself
         std::vector<double> paintMs;
         std::vector<std::int64_t> bytes;
     };
@@ -120,6 +121,7 @@ private:
 
     QElapsedTimer m_moveClock; ///< started by a drag's mouse move, read by the next paintGL
     bool m_moveTimed = false;
+    double m_handlerMs = 0.0; ///< duration of the last timed mouse-move handler
     DragMetrics m_metrics;
     QElapsedTimer m_fpsClock;
     int m_frames = 0;
