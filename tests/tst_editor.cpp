@@ -171,6 +171,9 @@ private Q_SLOTS:
         QUndoStack* stack = m_window->undoStack();
         QCOMPARE(stack->count(), 1);
         QCOMPARE(stack->undoText(), QStringLiteral("Move control point"));
+        QVERIFY(m_window->action(QStringLiteral("actionUndo"))
+                    ->text()
+                    .contains(QStringLiteral("Move control point")));
         QVERIFY(m_window->isWindowModified());
         stack->undo();
         QVERIFY(geometry() == before);
@@ -378,10 +381,12 @@ private Q_SLOTS:
         QCOMPARE(uv->trimPointAt(press), std::optional<TrimPointRef>(first));
         const QPoint release = press + QPoint(-30, 20);
         QTest::mousePress(uv, Qt::LeftButton, Qt::NoModifier, press);
+        const std::int64_t frames = m_window->viewport()->framesDrawn();
         QTest::mouseMove(uv, press + QPoint(-10, 5));
-        // Live: the document and the mask change while dragging.
+        // Live: the document and the mask change while dragging, and the 3D view redraws.
         QVERIFY(m_window->document()->scene().surfaces[0].trims != trimsBefore);
         QVERIFY(differingPixels(maskBefore, uv->mask()) > 0);
+        QTRY_VERIFY(m_window->viewport()->framesDrawn() > frames);
         QTest::mouseMove(uv, release);
         QTest::mouseRelease(uv, Qt::LeftButton, Qt::NoModifier, release);
 

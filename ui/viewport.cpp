@@ -156,6 +156,7 @@ void Viewport::paintGL() {
         m_metrics.bytes.push_back(bytes);
     }
 
+    ++m_framesDrawn;
     if (!m_fpsClock.isValid())
         m_fpsClock.start();
     ++m_frames;

@@ -65,6 +65,8 @@ public:
     const DragMetrics& dragMetrics() const { return m_metrics; }
     void resetDragMetrics() { m_metrics = {}; }
     const Renderer& renderer() const { return m_renderer; }
+    /// Frames painted since construction.
+    std::int64_t framesDrawn() const { return m_framesDrawn; }
 
 Q_SIGNALS:
     /// Once a second while frames are drawn: frames in the last second and the last frame's
@@ -125,6 +127,7 @@ private:
     DragMetrics m_metrics;
     QElapsedTimer m_fpsClock;
     int m_frames = 0;
+    std::int64_t m_framesDrawn = 0;
 };
 
 } // namespace kw
