@@ -53,9 +53,15 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
                             const FrameCamera& camera, const std::vector<Light>& lights,
                             const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
+    // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
+    // triangle, and GL_EQUAL needs bit-identical depths.
+    gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     if (options.shading == RenderOptions::Shading::DepthPrepass) {
-        if (!depthPrepass(scene, cache, camera, error))
+        if (!depthPrepass(scene, cache, camera, error)) {
+            gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
             return false;
+        }
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -93,6 +99,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
     }
+    gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
     return ok;

@@ -43,7 +43,6 @@ public:
 
     const SurfaceGpuCache& cache() const { return m_cache; }
     SurfaceGpuCache& cache() { return m_cache; }
-    const TessellatedPass& tessellatedPass() const { return m_tessellated; }
     QString lastError() const { return m_error; }
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const { return m_glDescription; }
