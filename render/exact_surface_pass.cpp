@@ -18,6 +18,10 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
+    // Per-cell gather when the cell's control texels and span rows fit the 32 varying
+    // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
+    if ((p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
+        d << QStringLiteral("KW_CELL_GATHER");
     if (options.writeAov)
         d << QStringLiteral("KW_AOV");
     if (options.shading == RenderOptions::Shading::ExactDepth)
