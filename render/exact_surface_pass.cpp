@@ -18,6 +18,10 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
+    // Per-cell gather when the cell's control texels and span rows fit the 32 varying
+    // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
+    if ((p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
+        d << QStringLiteral("KW_CELL_GATHER");
     if (options.writeAov)
         d << QStringLiteral("KW_AOV");
     if (options.shading == RenderOptions::Shading::ExactDepth)
@@ -53,9 +57,15 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
                             const FrameCamera& camera, const std::vector<Light>& lights,
                             const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
+    // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
+    // triangle, and GL_EQUAL needs bit-identical depths.
+    gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     if (options.shading == RenderOptions::Shading::DepthPrepass) {
-        if (!depthPrepass(scene, cache, camera, error))
+        if (!depthPrepass(scene, cache, camera, error)) {
+            gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
             return false;
+        }
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -93,6 +103,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
     }
+    gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
     return ok;

@@ -94,21 +94,15 @@ float spanScale(const NurbsSurface& s, int ku, int kv) {
     return float(glm::length(hi - lo));
 }
 
-void emitCell(BasePolygon& poly, const NurbsSurface& s, const std::vector<glm::vec3>& grid, int cu,
-              int cv) {
-    const int nodesU = int(poly.breaksU.size());
-    const glm::ivec2 span(poly.spanU[size_t(cu)], poly.spanV[size_t(cv)]);
-    const float scale = spanScale(s, span.x, span.y);
-    const int corner[4][2] = {{cu, cv}, {cu + 1, cv}, {cu + 1, cv + 1}, {cu, cv + 1}};
-    const size_t base = size_t(cv * poly.cellsU() + cu) * 4;
-    for (int k = 0; k < 4; ++k) {
-        const int gu = corner[k][0], gv = corner[k][1];
-        BaseVertex& vx = poly.vertices[base + size_t(k)];
-        vx.position = grid[size_t(gv * nodesU + gu)];
-        vx.uv = glm::vec2(float(poly.breaksU[size_t(gu)]), float(poly.breaksV[size_t(gv)]));
-        vx.span = span;
-        vx.spanScale = scale;
-    }
+// Vertex (gu, gv): exact point, (u, v), and the span of the cell it is the lower-left corner of.
+void setVertex(BasePolygon& poly, const NurbsSurface& s, int gu, int gv) {
+    BaseVertex& vx = poly.vertices[size_t(gv * poly.nodesU() + gu)];
+    const double u = poly.breaksU[size_t(gu)], v = poly.breaksV[size_t(gv)];
+    const int cu = std::min(gu, poly.cellsU() - 1), cv = std::min(gv, poly.cellsV() - 1);
+    vx.position = glm::vec3(surfacePoint(s, u, v));
+    vx.uv = glm::vec2(float(u), float(v));
+    vx.span = glm::ivec2(poly.spanU[size_t(cu)], poly.spanV[size_t(cv)]);
+    vx.spanScale = spanScale(s, vx.span.x, vx.span.y);
 }
 
 } // namespace
@@ -119,21 +113,16 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
     poly.breaksV = cellBreaks(s.knotsV, s.degreeV, std::max(nv, 1));
     poly.spanU = cellSpans(poly.breaksU, s.knotsU, s.degreeU);
     poly.spanV = cellSpans(poly.breaksV, s.knotsV, s.degreeV);
-    const int nodesU = int(poly.breaksU.size()), nodesV = int(poly.breaksV.size());
-    std::vector<glm::vec3> grid(size_t(nodesU) * size_t(nodesV));
+    const int nodesV = int(poly.breaksV.size());
+    poly.vertices.resize(size_t(poly.nodesU()) * size_t(nodesV));
     for (int gv = 0; gv < nodesV; ++gv)
-        for (int gu = 0; gu < nodesU; ++gu)
-            grid[size_t(gv * nodesU + gu)] =
-                glm::vec3(surfacePoint(s, poly.breaksU[size_t(gu)], poly.breaksV[size_t(gv)]));
-    poly.vertices.resize(size_t(poly.cellCount()) * 4);
-    for (int cv = 0; cv < poly.cellsV(); ++cv)
-        for (int cu = 0; cu < poly.cellsU(); ++cu)
-            emitCell(poly, s, grid, cu, cv);
+        for (int gu = 0; gu < poly.nodesU(); ++gu)
+            setVertex(poly, s, gu, gv);
     return poly;
 }
 
 bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
-                       int& firstCell, int& lastCell) {
+                       int& first, int& last) {
     // N_{i,p} is non-zero on [U_i, U_{i+p+1}) (The NURBS Book P2.1).
     const double ua = s.knotsU[size_t(i0)], ub = s.knotsU[size_t(i1 + s.degreeU + 1)];
     const double va = s.knotsV[size_t(j0)], vb = s.knotsV[size_t(j1 + s.degreeV + 1)];
@@ -145,41 +134,39 @@ bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1,
     int gu0, gu1, gv0, gv1;
     if (!nodeRange(poly.breaksU, ua, ub, gu0, gu1) || !nodeRange(poly.breaksV, va, vb, gv0, gv1))
         return false;
-    const int cu0 = std::max(gu0 - 1, 0), cu1 = std::min(gu1, poly.cellsU() - 1);
-    const int cv0 = std::max(gv0 - 1, 0), cv1 = std::min(gv1, poly.cellsV() - 1);
-    for (int cv = cv0; cv <= cv1; ++cv)
-        for (int cu = cu0; cu <= cu1; ++cu) {
-            BaseVertex* vx = &poly.vertices[size_t(cv * poly.cellsU() + cu) * 4];
-            const int corner[4][2] = {{cu, cv}, {cu + 1, cv}, {cu + 1, cv + 1}, {cu, cv + 1}};
-            const float scale = spanScale(s, vx[0].span.x, vx[0].span.y);
-            for (int k = 0; k < 4; ++k) {
-                vx[k].position = glm::vec3(surfacePoint(s, poly.breaksU[size_t(corner[k][0])],
-                                                        poly.breaksV[size_t(corner[k][1])]));
-                vx[k].spanScale = scale;
-            }
-        }
-    firstCell = cv0 * poly.cellsU() + cu0;
-    lastCell = cv1 * poly.cellsU() + cu1;
+    // The nodes inside the support move; the span scale changes for the cells there, whose
+    // lower-left corners reach one node further down and left.
+    gu0 = std::max(gu0 - 1, 0);
+    gv0 = std::max(gv0 - 1, 0);
+    for (int gv = gv0; gv <= gv1; ++gv)
+        for (int gu = gu0; gu <= gu1; ++gu)
+            setVertex(poly, s, gu, gv);
+    first = gv0 * poly.nodesU() + gu0;
+    last = gv1 * poly.nodesU() + gu1;
     return true;
 }
 
-std::vector<unsigned> basePolygonTriangles(int cellCount) {
+std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly) {
     std::vector<unsigned> idx;
-    idx.reserve(size_t(cellCount) * 6);
-    for (unsigned c = 0; c < unsigned(cellCount); ++c) {
-        const unsigned b = 4 * c;
-        idx.insert(idx.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
-    }
+    idx.reserve(size_t(poly.cellCount()) * 6);
+    const unsigned row = unsigned(poly.nodesU());
+    for (unsigned cv = 0; cv < unsigned(poly.cellsV()); ++cv)
+        for (unsigned cu = 0; cu < unsigned(poly.cellsU()); ++cu) {
+            const unsigned ll = cv * row + cu, lr = ll + 1, ul = ll + row, ur = ul + 1;
+            idx.insert(idx.end(), {ll, lr, ur, ll, ur, ul});
+        }
     return idx;
 }
 
-std::vector<unsigned> basePolygonOutlines(int cellCount) {
+std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly) {
     std::vector<unsigned> idx;
-    idx.reserve(size_t(cellCount) * 8);
-    for (unsigned c = 0; c < unsigned(cellCount); ++c) {
-        const unsigned b = 4 * c;
-        idx.insert(idx.end(), {b, b + 1, b + 1, b + 2, b + 2, b + 3, b + 3, b});
-    }
+    idx.reserve(size_t(poly.cellCount()) * 8);
+    const unsigned row = unsigned(poly.nodesU());
+    for (unsigned cv = 0; cv < unsigned(poly.cellsV()); ++cv)
+        for (unsigned cu = 0; cu < unsigned(poly.cellsU()); ++cu) {
+            const unsigned ll = cv * row + cu, lr = ll + 1, ul = ll + row, ur = ul + 1;
+            idx.insert(idx.end(), {ll, lr, lr, ur, ur, ul, ul, ll});
+        }
     return idx;
 }
 

@@ -48,9 +48,12 @@ struct BaseVertex {
 static_assert(sizeof(BaseVertex) == 32);
 
 /// The base polygon of one surface: the domain cut uniformly into nu x nv cells and further
-/// at every distinct interior knot, so each cell lies inside one knot span (which its four
-/// vertices carry). Cells are stored row by row (v outer), four vertices each in the order
-/// (u0,v0) (u1,v0) (u1,v1) (u0,v1); vertex positions are the exact surface points.
+/// at every distinct interior knot, so each cell lies inside one knot span. Vertices form the
+/// shared grid of cell corners, row by row (v outer): vertex (gu, gv) is at
+/// (breaksU[gu], breaksV[gv]) with the exact surface point, and carries the span and span
+/// scale of the cell whose lower-left corner it is (cell (gu, gv); the last row and column
+/// repeat their neighbour's). Both triangles of a cell start at that corner, so with the
+/// first-vertex provoking convention the flat attributes are the cell's own.
 struct BasePolygon {
     std::vector<double> breaksU; ///< cell boundaries along u, increasing, ends = domain
     std::vector<double> breaksV;
@@ -61,6 +64,7 @@ struct BasePolygon {
     int cellsU() const { return int(spanU.size()); }
     int cellsV() const { return int(spanV.size()); }
     int cellCount() const { return cellsU() * cellsV(); }
+    int nodesU() const { return int(breaksU.size()); }
 };
 
 /// Breakpoints: n uniform cells of the domain merged with the distinct interior knots.
@@ -71,15 +75,17 @@ std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int
 BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv);
 
 /// Re-evaluates the vertices whose (u, v) lie in the support of control points
-/// [i0, i1] x [j0, j1] (the only ones a move of those points can change) and returns the
-/// range of cells [firstCell, lastCell] that changed, or false when none did.
+/// [i0, i1] x [j0, j1] (the only ones a move of those points can change), and the span scales
+/// of the cells there, and returns the range of vertex indices [first, last] that changed,
+/// or false when none did.
 bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
-                       int& firstCell, int& lastCell);
+                       int& first, int& last);
 
-/// Indices of two triangles per cell (GL_TRIANGLES).
-std::vector<unsigned> basePolygonTriangles(int cellCount);
+/// Indices of two triangles per cell (GL_TRIANGLES), each starting at the cell's lower-left
+/// corner: draw with glProvokingVertex(GL_FIRST_VERTEX_CONVENTION).
+std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly);
 /// Indices of the four outline edges per cell (GL_LINES).
-std::vector<unsigned> basePolygonOutlines(int cellCount);
+std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly);
 
 /// Uniform tessellation for the baseline mode: (nu+1) x (nv+1) grid vertices with the
 /// kernel's exact point and unit normal (kw::surfaceFrame).

@@ -89,6 +89,10 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
+    if (m_document != &doc) {
+        dropSurfaceCaches();
+        m_document = &doc;
+    }
     m_cache.sync(doc, options.partitionsU, options.partitionsV);
     bool ok = options.mode == RenderMode::Exact
                   ? m_exact.draw(scene, m_cache, fc, lights, options, &m_error)
@@ -114,12 +118,17 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     return ok;
 }
 
-void Renderer::release() {
-    if (!m_gl)
-        return;
+void Renderer::dropSurfaceCaches() {
     m_cache.release();
     m_tessellated.release();
     m_controlNet.release();
+}
+
+void Renderer::release() {
+    if (!m_gl)
+        return;
+    dropSurfaceCaches();
+    m_document = nullptr;
     m_shaders.clear();
     m_gl = nullptr;
 }

@@ -11,6 +11,7 @@
 #include "render/tessellated_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
+#include <QPointer>
 #include <QSize>
 #include <QString>
 
@@ -32,6 +33,8 @@ public:
     /// defaultFramebufferObject()) at `size` pixels, uploading only stale surface data first.
     /// With options.writeAov the target must have colour attachments 0..3 as described in
     /// OffscreenRenderer. Returns false with lastError() set on failure (no partial frame).
+    /// Surface ids and revisions are per document: drawing another Document than last time
+    /// drops every cached upload first.
     bool render(const Document& doc, const Camera& camera, QSize size, const RenderOptions& options,
                 GLuint targetFbo);
 
@@ -40,14 +43,16 @@ public:
 
     const SurfaceGpuCache& cache() const { return m_cache; }
     SurfaceGpuCache& cache() { return m_cache; }
-    const TessellatedPass& tessellatedPass() const { return m_tessellated; }
     QString lastError() const { return m_error; }
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const { return m_glDescription; }
     QOpenGLFunctions_4_5_Core* gl() const { return m_gl; }
 
 private:
+    void dropSurfaceCaches();
+
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    QPointer<const Document> m_document; ///< whose data the caches hold
     ShaderLibrary m_shaders;
     SurfaceGpuCache m_cache;
     ExactSurfacePass m_exact;

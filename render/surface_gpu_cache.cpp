@@ -114,10 +114,10 @@ void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
 
     int first = 0, last = -1;
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
-        const GLintptr offset = GLintptr(first) * 4 * GLintptr(sizeof(BaseVertex));
-        const GLsizeiptr size = GLsizeiptr(last - first + 1) * 4 * GLsizeiptr(sizeof(BaseVertex));
+        const GLintptr offset = GLintptr(first) * GLintptr(sizeof(BaseVertex));
+        const GLsizeiptr size = GLsizeiptr(last - first + 1) * GLsizeiptr(sizeof(BaseVertex));
         gl->glNamedBufferSubData(g.vertexBuffer, offset, size,
-                                 g.polygon.vertices.data() + size_t(first) * 4);
+                                 g.polygon.vertices.data() + size_t(first));
         g.stats.vertexUpdates += 1;
         g.stats.vertexBytes += std::int64_t(size);
         g.stats.bytes += std::int64_t(size);
@@ -129,8 +129,8 @@ void SurfaceGpuCache::rebuildPolygon(SurfaceGpu& g, const Surface& s, int nu, in
     g.partitionsU = nu;
     g.partitionsV = nv;
     g.polygon = buildBasePolygon(s.geometry, nu, nv);
-    const std::vector<unsigned> tri = basePolygonTriangles(g.polygon.cellCount());
-    const std::vector<unsigned> lines = basePolygonOutlines(g.polygon.cellCount());
+    const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
+    const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
     if (!g.vertexBuffer) {
         gl->glCreateBuffers(1, &g.vertexBuffer);
         gl->glCreateBuffers(1, &g.triangleBuffer);

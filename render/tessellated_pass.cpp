@@ -44,7 +44,6 @@ void TessellatedPass::update(Mesh& m, const Surface& s, const Revisions& rev, in
     m.revisions = rev;
     m.nu = nu;
     m.nv = nv;
-    ++m_tessellations;
 }
 
 bool TessellatedPass::draw(const Document& doc, const FrameCamera& camera,

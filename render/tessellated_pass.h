@@ -20,7 +20,6 @@ public:
     /// framebuffer. Returns false with *error set when the shader cannot be built.
     bool draw(const Document& doc, const FrameCamera& camera, const std::vector<Light>& lights,
               const RenderOptions& options, QString* error);
-    int tessellations() const { return m_tessellations; } ///< meshes built so far
     void release();
 
 private:
@@ -36,7 +35,6 @@ private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
     std::map<SurfaceId, Mesh> m_meshes;
-    int m_tessellations = 0;
 };
 
 } // namespace kw

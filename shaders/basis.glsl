@@ -1,7 +1,7 @@
 // Non-zero B-spline basis functions and first derivatives for one knot span (The NURBS Book
 // A2.2 and A2.3, order 1), reading a span table row (kw::packSpanTable) instead of the knot
 // vector: no search, no division. Included once per direction with BASIS_FN (function name),
-// BASIS_P (degree) and BASIS_TABLE (sampler) defined.
+// BASIS_P (degree) and BASIS_TEXEL(x, row) (texel x of span-table row `row`) defined.
 //   row layout: U[k+1-j] (j=1..p) | U[k+j] (j=1..p) | 1/(U[k+r+1]-U[k+1-j+r]) (j=1..p, r<j)
 
 void BASIS_FN(int row, float u, out float N[BASIS_P + 1], out float dN[BASIS_P + 1]) {
@@ -9,7 +9,7 @@ void BASIS_FN(int row, float u, out float N[BASIS_P + 1], out float dN[BASIS_P +
     const int kTexels = (kFloats + 3) / 4;
     float t[kTexels * 4];
     for (int x = 0; x < kTexels; ++x) {
-        vec4 c = texelFetch(BASIS_TABLE, ivec2(x, row), 0);
+        vec4 c = BASIS_TEXEL(x, row);
         t[4 * x] = c.x;
         t[4 * x + 1] = c.y;
         t[4 * x + 2] = c.z;

@@ -16,20 +16,38 @@ uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
 #define KW_PARALLEL_REL 1e-6
 #define KW_INTERIOR_STEP 1e-4
 
+// Where the control texels and span-table rows come from: the per-cell flat inputs
+// (cell_data.glsl) or the textures.
+#ifdef KW_CELL_GATHER
+#define KW_CELL_IO flat in
+#include "cell_data.glsl"
+#define CONTROL_TEXEL(first, i, j) vCellControl[(j) * (DEGREE_U + 1) + (i)]
+#else
+#define CONTROL_TEXEL(first, i, j) texelFetch(uControl, (first) + ivec2(i, j), 0)
+#endif
+
 #define BASIS_FN basisU
 #define BASIS_P DEGREE_U
-#define BASIS_TABLE uSpansU
+#ifdef KW_CELL_GATHER
+#define BASIS_TEXEL(x, row) vCellSpanU[x]
+#else
+#define BASIS_TEXEL(x, row) texelFetch(uSpansU, ivec2(x, row), 0)
+#endif
 #include "basis.glsl"
 #undef BASIS_FN
 #undef BASIS_P
-#undef BASIS_TABLE
+#undef BASIS_TEXEL
 #define BASIS_FN basisV
 #define BASIS_P DEGREE_V
-#define BASIS_TABLE uSpansV
+#ifdef KW_CELL_GATHER
+#define BASIS_TEXEL(x, row) vCellSpanV[x]
+#else
+#define BASIS_TEXEL(x, row) texelFetch(uSpansV, ivec2(x, row), 0)
+#endif
 #include "basis.glsl"
 #undef BASIS_FN
 #undef BASIS_P
-#undef BASIS_TABLE
+#undef BASIS_TEXEL
 
 struct SurfaceSample {
     vec3 point;
@@ -52,7 +70,7 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     for (int j = 0; j <= DEGREE_V; ++j) {
         vec4 row = vec4(0.0), rowU = vec4(0.0);
         for (int i = 0; i <= DEGREE_U; ++i) {
-            vec4 c = texelFetch(uControl, first + ivec2(i, j), 0);
+            vec4 c = CONTROL_TEXEL(first, i, j);
             row += Nu[i] * c;
             rowU += dNu[i] * c;
         }

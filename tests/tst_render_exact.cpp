@@ -61,6 +61,19 @@ private Q_SLOTS:
             addScene("code: degree 15 x 2", s);
         }
         {
+            // The largest variants that take the per-cell gather path (28 vec4 of cell data).
+            Scene s;
+            s.surfaces.push_back(
+                kwtest::makeSurface(8, kwtest::wavyPatch(4, 3, kwtest::clampedUniform(4, 7),
+                                                         kwtest::clampedUniform(3, 6))));
+            addScene("code: degree 4 x 3", s);
+            Scene t;
+            t.surfaces.push_back(
+                kwtest::makeSurface(9, kwtest::wavyPatch(7, 1, kwtest::clampedUniform(7, 9),
+                                                         kwtest::clampedUniform(1, 4))));
+            addScene("code: degree 7 x 1", t);
+        }
+        {
             // Interior multiplicities: u has a triple knot (a C0 crease for degree 3) and a
             // double one; v a double knot.
             Scene s;

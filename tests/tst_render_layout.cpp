@@ -96,11 +96,25 @@ private Q_SLOTS:
             QVERIFY(s.knotsU[size_t(k)] <= poly.breaksU[size_t(c)]);
             QVERIFY(poly.breaksU[size_t(c + 1)] <= s.knotsU[size_t(k + 1)]);
         }
-        QCOMPARE(int(poly.vertices.size()), poly.cellCount() * 4);
+        QCOMPARE(int(poly.vertices.size()), (poly.cellsU() + 1) * (poly.cellsV() + 1));
         for (const BaseVertex& v : poly.vertices) {
             const glm::dvec3 p = surfacePoint(s, v.uv.x, v.uv.y);
             QVERIFY(glm::length(glm::dvec3(v.position) - p) < 1e-5);
             QVERIFY(v.spanScale > 0.0f);
+        }
+        // The first (provoking) vertex of every triangle carries a span containing the
+        // whole triangle.
+        const std::vector<unsigned> tri = basePolygonTriangles(poly);
+        QCOMPARE(int(tri.size()), poly.cellCount() * 6);
+        for (size_t t = 0; t < tri.size(); t += 3) {
+            const glm::ivec2 span = poly.vertices[tri[t]].span;
+            for (size_t k = 0; k < 3; ++k) {
+                const glm::vec2 uv = poly.vertices[tri[t + k]].uv;
+                QVERIFY(float(s.knotsU[size_t(span.x)]) <= uv.x &&
+                        uv.x <= float(s.knotsU[size_t(span.x + 1)]));
+                QVERIFY(float(s.knotsV[size_t(span.y)]) <= uv.y &&
+                        uv.y <= float(s.knotsV[size_t(span.y + 1)]));
+            }
         }
     }
 
@@ -111,11 +125,13 @@ private Q_SLOTS:
         s.points[size_t(s.index(4, 3))] += glm::dvec3(0.1, -0.2, 0.7);
         int first = -1, last = -1;
         QVERIFY(updateBasePolygon(poly, s, 4, 4, 3, 3, first, last));
-        QVERIFY(first >= 0 && last < poly.cellCount() && first <= last);
-        QVERIFY(last - first + 1 < poly.cellCount()); // local support: not everything
+        QVERIFY(first >= 0 && last < int(poly.vertices.size()) && first <= last);
+        QVERIFY(last - first + 1 < int(poly.vertices.size())); // local support: not all
         const BasePolygon fresh = buildBasePolygon(s, 20, 20);
-        for (size_t k = 0; k < poly.vertices.size(); ++k)
+        for (size_t k = 0; k < poly.vertices.size(); ++k) {
             QVERIFY(glm::length(poly.vertices[k].position - fresh.vertices[k].position) < 1e-6f);
+            QCOMPARE(poly.vertices[k].spanScale, fresh.vertices[k].spanScale);
+        }
     }
 
     void controlPointsAreHomogeneousAroundOrigin() {

@@ -145,6 +145,34 @@ private Q_SLOTS:
         QVERIFY(m_renderer->renderer().cache().find(m_bicubic) != nullptr);
     }
 
+    void anotherDocumentIsNotMistakenForThisOne() {
+        // Same surface id, same net size, same revision numbers, other points: the renderer
+        // must not reuse the first document's uploads (in both modes).
+        QString error;
+        Scene a, b;
+        NurbsSurface ga = makePlane(glm::dvec3(0.0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0));
+        NurbsSurface gb =
+            makePlane(glm::dvec3(0.0, 0.0, 2.0), glm::dvec3(2, 0, 0), glm::dvec3(0, 1, 1));
+        a.surfaces.push_back(kwtest::makeSurface(1, ga));
+        b.surfaces.push_back(kwtest::makeSurface(1, gb));
+        a.nextId = b.nextId = 2;
+        for (RenderMode mode : {RenderMode::Exact, RenderMode::Tessellated}) {
+            Document da, db;
+            QVERIFY(da.resetScene(a, &error));
+            QVERIFY(db.resetScene(b, &error));
+            QCOMPARE(da.revisions(SurfaceId{1}), db.revisions(SurfaceId{1}));
+            RenderOptions opt;
+            opt.mode = mode;
+            const Camera cam = fitCamera(b, 1.0);
+            QVERIFY2(m_renderer->render(da, cam, opt, &error), qPrintable(error));
+            QVERIFY2(m_renderer->render(db, cam, opt, &error), qPrintable(error));
+            const kwtest::AovComparison r = kwtest::compareAovWithKernel(b, m_renderer->aov());
+            QVERIFY(r.compared > 500);
+            QVERIFY2(r.maxPosition <= 1e-4 * r.modelSize,
+                     qPrintable(QString::number(r.maxPosition)));
+        }
+    }
+
     void cleanupTestCase() { m_renderer.reset(); }
 };
 
