@@ -8,6 +8,9 @@
 #include <limits>
 #include <set>
 
+// Beyond the header's contract: a valid call that would change nothing (same name, same
+// positions, same lights...) returns true and emits nothing, so a no-op never costs an upload.
+
 namespace kw {
 
 namespace {

@@ -4,6 +4,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QLocale>
 #include <QRegularExpression>
 #include <cmath>
 #include <map>
@@ -22,8 +23,9 @@ struct FileError {
     throw FileError{path, reason};
 }
 
+// Shortest text that reads back as the same double: "0.2", not "0.20000000000000001".
 QString num(double d) {
-    return QString::number(d, 'g', 17);
+    return QString::number(d, 'g', QLocale::FloatingPointShortest);
 }
 QString member(const QString& path, const char* key) {
     return path + QLatin1Char('.') + QLatin1String(key);
@@ -172,10 +174,11 @@ std::vector<double> readKnots(const QJsonValue& v, const QString& path, int degr
                                        .arg(num(knots[size_t(k)]), num(knots[size_t(k - 1)])));
         multiplicity = (k > 0 && knots[size_t(k)] == knots[size_t(k - 1)]) ? multiplicity + 1 : 1;
         if (multiplicity > degree + 1)
-            fail(element(path, k), QStringLiteral("knot %1 repeats %2 times, more than %3 + 1")
+            fail(element(path, k), QStringLiteral("knot %1 repeats %2 times, more than %3 + 1 = %4")
                                        .arg(num(knots[size_t(k)]))
                                        .arg(multiplicity)
-                                       .arg(degreeName));
+                                       .arg(degreeName)
+                                       .arg(degree + 1));
     }
     const std::string why = knotVectorError(knots, degree, count);
     if (!why.empty())

@@ -16,8 +16,8 @@ inline bool shapeOk(const NurbsSurface& s) {
     if (s.countU < s.degreeU + 1 || s.countV < s.degreeV + 1)
         return false;
     const size_t n = size_t(s.countU) * size_t(s.countV);
-    return s.knotsU.size() == size_t(s.countU + s.degreeU + 1) &&
-           s.knotsV.size() == size_t(s.countV + s.degreeV + 1) && s.points.size() == n &&
+    return s.knotsU.size() == size_t(s.countU) + size_t(s.degreeU) + 1 &&
+           s.knotsV.size() == size_t(s.countV) + size_t(s.degreeV) + 1 && s.points.size() == n &&
            s.weights.size() == n;
 }
 

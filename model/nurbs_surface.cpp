@@ -117,7 +117,8 @@ glm::dvec3 surfacePoint(const NurbsSurface& s, double u, double v) {
 // domain [u0, u1] x [v0, v1]; wu = u1 - u0, wv = v1 - v0; L = diagonal of the axis-aligned
 // bounds of the (pu+1)(pv+1) control points of the span containing (u, v); Su, Sv, Suv the
 // rational partial derivatives there.
-//  1. n = Su x Sv. "tinyU" := |Su| wu <= kTinyDerivativeRel L; "tinyV" := |Sv| wv <= same.
+//  1. n = Su x Sv. "tinyU" := |Su| wu <= kTinyDerivativeRel L; "tinyV" := |Sv| wv <= same;
+//     both are true when L = 0 (the span's control points coincide).
 //     If neither is tiny and |n| > kParallelRel |Su| |Sv|, the normal is n / |n|.
 //  2. If exactly one of tinyU, tinyV holds: if tinyU, m = sign * (Suv x Sv) with sign = +1
 //     if v < (v0 + v1) / 2 else -1; if tinyV, m = sign * (Su x Suv) with sign = +1 if
@@ -126,7 +127,7 @@ glm::dvec3 surfacePoint(const NurbsSurface& s, double u, double v) {
 //     and |m| > kParallelRel |Suv| |Sv| (resp. |Su| |Suv|).
 //  3. Otherwise step to (u', v') = (u + kInteriorStep wu sgn(uc - u), v + kInteriorStep wv
 //     sgn(vc - v)) with (uc, vc) the domain centre and sgn(0) = 0, evaluate there (its own L)
-//     and use n' = Su' x Sv' if it passes the test of step 1.
+//     and use n' = Su' x Sv' if it passes the test of step 1 (with L' > 0).
 //  4. Otherwise (0, 0, 1). A non-finite result at any step counts as degenerate.
 SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
     SurfaceFrame f;
@@ -146,8 +147,9 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
     const double tinyLen = kTinyDerivativeRel * e.scale;
     const double lu = glm::length(e.d.su) * wu;
     const double lv = glm::length(e.d.sv) * wv;
-    const bool tinyU = !(lu > tinyLen);
-    const bool tinyV = !(lv > tinyLen);
+    const bool collapsed = !(e.scale > 0.0);
+    const bool tinyU = collapsed || !(lu > tinyLen);
+    const bool tinyV = collapsed || !(lv > tinyLen);
     const glm::dvec3 n = glm::cross(e.d.su, e.d.sv);
     if (!tinyU && !tinyV && !degenerateCross(n, e.d.su, e.d.sv)) { // step 1
         f.normal = n / glm::length(n);
@@ -179,7 +181,7 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
     const LocalEval e2 = evaluate(s, towards(u, du, wu), towards(v, dv, wv));
     const double tiny2 = kTinyDerivativeRel * e2.scale;
     const glm::dvec3 n2 = glm::cross(e2.d.su, e2.d.sv);
-    if (glm::length(e2.d.su) * wu > tiny2 && glm::length(e2.d.sv) * wv > tiny2 &&
+    if (e2.scale > 0.0 && glm::length(e2.d.su) * wu > tiny2 && glm::length(e2.d.sv) * wv > tiny2 &&
         !degenerateCross(n2, e2.d.su, e2.d.sv)) {
         f.normal = n2 / glm::length(n2);
         return f;

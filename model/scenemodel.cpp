@@ -30,9 +30,8 @@ QString plural(int n, const char* one, const char* many) {
 
 } // namespace
 
-SceneModel::SceneModel(const Document* document, QObject* parent)
-    : QAbstractItemModel(parent), m_doc(document) {
-    Q_ASSERT(document);
+SceneModel::SceneModel(const Document& document, QObject* parent)
+    : QAbstractItemModel(parent), m_doc(&document) {
     connect(m_doc, &Document::sceneAboutToBeReset, this, [this] { beginResetModel(); });
     connect(m_doc, &Document::sceneReset, this, [this] { endResetModel(); });
     connect(m_doc, &Document::surfaceAboutToBeInserted, this,
@@ -162,7 +161,7 @@ QVariant SceneModel::data(const QModelIndex& index, int role) const {
                 .arg(s.geometry.countV);
         case Kind::TrimLoop:
             return QStringLiteral("Trim loop %1 (%2)")
-                .arg(n.loop + 1)
+                .arg(s.trims[size_t(n.loop)].id.value)
                 .arg(plural(int(s.trims[size_t(n.loop)].curves.size()), "curve", "curves"));
         case Kind::TrimCurve: {
             const NurbsCurve2& c = s.trims[size_t(n.loop)].curves[size_t(n.curve)];

@@ -11,8 +11,10 @@ namespace kw {
 /// Read-only tree over a Document, kept in step with the document's signals:
 ///   surface "name"                       (editable: column 0, EditRole)
 ///     "Control net (m × n)"
-///     "Trim loop k (c curves)"
-///       "Curve k, degree d, n points"
+///     "Trim loop k (c curves)"             k is the loop's id
+///       "Curve k, degree d, n points"        k counts from 1 within the loop
+/// Loops are labelled by id, not position, so a label never changes when a sibling loop is
+/// inserted or removed (views and QAbstractItemModelTester rely on unchanged neighbours).
 /// Rows are addressed through typed ids (internalId = surface id << 32 | loop id), so
 /// persistent indexes survive insertions and removals elsewhere.
 ///
@@ -36,8 +38,8 @@ public:
     enum class Kind { Surface, ControlNet, TrimLoop, TrimCurve };
     using RenameHandler = std::function<void(SurfaceId, const QString&)>;
 
-    /// `document` must outlive the model.
-    explicit SceneModel(const Document* document, QObject* parent = nullptr);
+    /// `document` must outlive the model (a reference: there is no model without one).
+    explicit SceneModel(const Document& document, QObject* parent = nullptr);
 
     const Document* document() const { return m_doc; }
     void setRenameHandler(RenameHandler handler) { m_rename = std::move(handler); }

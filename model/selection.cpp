@@ -14,8 +14,8 @@ template <typename T> void sortUnique(std::vector<T>& v) {
 
 } // namespace
 
-Selection::Selection(SceneModel* model, QObject* parent)
-    : QObject(parent), m_doc(model->document()), m_items(model) {
+Selection::Selection(SceneModel& model, QObject* parent)
+    : QObject(parent), m_doc(model.document()), m_items(&model) {
     connect(&m_items, &QItemSelectionModel::selectionChanged, this, &Selection::changed);
     connect(&m_items, &QItemSelectionModel::currentChanged, this, &Selection::changed);
     connect(m_doc, &Document::sceneReset, this, [this] {
@@ -40,6 +40,17 @@ SurfaceId Selection::currentSurface() const {
     const QModelIndex current = m_items.currentIndex();
     return current.isValid() ? current.data(SceneModel::SurfaceIdRole).value<SurfaceId>()
                              : SurfaceId{};
+}
+
+std::vector<SurfaceId> Selection::selectedSurfaces() const {
+    std::vector<SurfaceId> picked;
+    for (const QModelIndex& i : m_items.selectedIndexes())
+        picked.push_back(i.data(SceneModel::SurfaceIdRole).value<SurfaceId>());
+    std::vector<SurfaceId> out;
+    for (const Surface& s : m_doc->scene().surfaces)
+        if (std::find(picked.begin(), picked.end(), s.id) != picked.end())
+            out.push_back(s.id);
+    return out;
 }
 
 bool Selection::validRef(const ControlPointRef& r) const {

@@ -19,11 +19,14 @@ class Selection : public QObject {
     Q_OBJECT
 public:
     /// `model` (and its document) must outlive the selection.
-    explicit Selection(SceneModel* model, QObject* parent = nullptr);
+    explicit Selection(SceneModel& model, QObject* parent = nullptr);
 
     QItemSelectionModel* itemSelection() { return &m_items; }
     /// The surface of the current tree row, or invalid.
     SurfaceId currentSurface() const;
+    /// Surfaces with a selected row (the surface's own row or any row below it), in document
+    /// order, each once.
+    std::vector<SurfaceId> selectedSurfaces() const;
 
     const std::vector<ControlPointRef>& controlPoints() const { return m_points; }
     const std::vector<TrimPointRef>& trimPoints() const { return m_trimPoints; }

@@ -8,23 +8,29 @@ using namespace kw;
 
 namespace {
 
-/// Reference: the Cox-de Boor recursion (Eq. 2.5) written naively, with 0/0 = 0 and half-open
-/// spans, except that at the end of the domain only the last non-empty span `lastSpan` of the
-/// domain counts (the limit from the left).
-double coxDeBoor(const std::vector<double>& U, int i, int p, double u, double last, int lastSpan) {
-    if (p == 0) {
-        if (u == last)
-            return i == lastSpan ? 1.0 : 0.0;
-        return (U[size_t(i)] <= u && u < U[size_t(i + 1)]) ? 1.0 : 0.0;
+/// Reference: all N_{i,p}(u) from the Cox-de Boor recursion (Eq. 2.5) tabulated degree by
+/// degree over every i, with 0/0 = 0 and half-open spans, except that at the end of the domain
+/// only the last non-empty span `lastSpan` counts (the limit from the left).
+std::vector<double> coxDeBoor(const std::vector<double>& U, int p, double u, double last,
+                              int lastSpan) {
+    const int m = int(U.size()) - 1;
+    std::vector<double> n(size_t(m), 0.0);
+    for (int i = 0; i < m; ++i)
+        n[size_t(i)] = u == last ? (i == lastSpan ? 1.0 : 0.0)
+                                 : ((U[size_t(i)] <= u && u < U[size_t(i + 1)]) ? 1.0 : 0.0);
+    for (int q = 1; q <= p; ++q) {
+        for (int i = 0; i + q < m; ++i) {
+            double r = 0.0;
+            const double d1 = U[size_t(i + q)] - U[size_t(i)];
+            const double d2 = U[size_t(i + q + 1)] - U[size_t(i + 1)];
+            if (d1 > 0.0)
+                r += (u - U[size_t(i)]) / d1 * n[size_t(i)];
+            if (d2 > 0.0)
+                r += (U[size_t(i + q + 1)] - u) / d2 * n[size_t(i + 1)];
+            n[size_t(i)] = r;
+        }
     }
-    double r = 0.0;
-    const double d1 = U[size_t(i + p)] - U[size_t(i)];
-    const double d2 = U[size_t(i + p + 1)] - U[size_t(i + 1)];
-    if (d1 > 0.0)
-        r += (u - U[size_t(i)]) / d1 * coxDeBoor(U, i, p - 1, u, last, lastSpan);
-    if (d2 > 0.0)
-        r += (U[size_t(i + p + 1)] - u) / d2 * coxDeBoor(U, i + 1, p - 1, u, last, lastSpan);
-    return r;
+    return n; // n[i] = N_{i,p}(u) for i + p < m
 }
 
 } // namespace
@@ -95,11 +101,16 @@ void TestNurbsBasis::partitionOfUnity() {
             QVERIFY(U[size_t(span)] <= u && (u < U[size_t(span + 1)] || u == d.last));
             double n[kMaxDegree + 1];
             basisFunctions(span, u, degree, U, n);
+            const std::vector<double> all = coxDeBoor(U, degree, u, d.last, lastSpan);
+            // Only N[span-degree .. span] can be non-zero at u (checks findSpan too).
+            for (int i = 0; i < count; ++i)
+                if (i < span - degree || i > span)
+                    QCOMPARE(all[size_t(i)], 0.0);
             double sum = 0.0;
             for (int j = 0; j <= degree; ++j) {
                 QVERIFY2(n[j] >= -1e-15, qPrintable(QString("N = %1").arg(n[j])));
                 sum += n[j];
-                const double ref = coxDeBoor(U, span - degree + j, degree, u, d.last, lastSpan);
+                const double ref = all[size_t(span - degree + j)];
                 QVERIFY2(
                     std::abs(n[j] - ref) < 1e-12,
                     qPrintable(QString("N[%1] = %2, Cox-de Boor %3").arg(j).arg(n[j]).arg(ref)));

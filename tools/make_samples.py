@@ -3,6 +3,8 @@
 
 Re-runnable and deterministic: `python3 tools/make_samples.py` rewrites every sample from the
 constructions below and from tests/data/teapot.igs (IGES 5.x, entity 128). Standard library only.
+`--check` writes nothing and exits 1 if a committed sample differs from what the script makes
+(the test samples_up_to_date runs it).
 """
 
 import json
@@ -13,6 +15,9 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SAMPLES = os.path.join(ROOT, "resources", "samples")
 TEAPOT_IGES = os.path.join(ROOT, "tests", "data", "teapot.igs")
+
+CHECK_ONLY = "--check" in sys.argv[1:]  # compare with the files instead of writing them
+STALE = []
 
 S2 = math.sqrt(0.5)  # weight of the middle point of a 90-degree rational quadratic arc
 
@@ -98,6 +103,15 @@ def write_knot(name, surfaces, lights=None):
             % (max(ids) + 1, ",\n".join(surface_json(s) for s in surfaces), light_text))
     json.loads(text)  # the output must be valid JSON
     path = os.path.join(SAMPLES, name)
+    if CHECK_ONLY:
+        try:
+            with open(path, encoding="utf-8") as f:
+                same = f.read() == text
+        except OSError:
+            same = False
+        if not same:
+            STALE.append(os.path.relpath(path, ROOT))
+        return
     with open(path, "w", encoding="utf-8", newline="\n") as f:
         f.write(text)
     print("wrote %s (%d surfaces)" % (os.path.relpath(path, ROOT), len(surfaces)))
@@ -346,7 +360,8 @@ def teapot():
         raise ValueError("unexpected teapot patch groups %r" % counts)
     if len(surfaces) != 32:
         raise ValueError("expected 32 teapot patches, found %d" % len(surfaces))
-    print("teapot groups:", counts)
+    if not CHECK_ONLY:
+        print("teapot groups:", counts)
     write_knot("teapot.knot", surfaces)
 
 
@@ -357,6 +372,10 @@ def main():
     torus()
     trimmed_plate()
     teapot()
+    if CHECK_ONLY:
+        for path in STALE:
+            print("%s differs from what tools/make_samples.py generates; rerun it" % path)
+        return 1 if STALE else 0
     return 0
 
 

@@ -1,4 +1,4 @@
-// Edit commands for points, weights, partitions, knots, degrees, material, lights and camera.
+// Edit commands for points, weights, partitions, trim points, material, lights and camera.
 #include "ui/edit/commands.h"
 
 #include "model/validation.h"
@@ -22,10 +22,6 @@ bool finite(const glm::dvec3& p) {
 }
 bool finite(const glm::dvec2& p) {
     return std::isfinite(p.x) && std::isfinite(p.y);
-}
-
-char axis(Direction d) {
-    return d == Direction::U ? 'u' : 'v';
 }
 
 } // namespace
@@ -55,9 +51,9 @@ std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document,
                                                              std::vector<glm::dvec3> from,
                                                              std::vector<glm::dvec3> to,
                                                              MoveKind kind, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (indices.empty() || indices.size() != from.size() || indices.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per point"));
     std::set<int> seen;
@@ -103,9 +99,9 @@ bool MoveControlPoints::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetWeight> SetWeight::create(Document* document, SurfaceId surface, int index,
                                              double weight, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (index < 0 || size_t(index) >= s->geometry.weights.size())
         return fail(error, QStringLiteral("control point index %1 out of range").arg(index));
     if (!std::isfinite(weight) || weight <= 0)
@@ -140,9 +136,9 @@ bool SetWeight::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetPartitions> SetPartitions::create(Document* document, SurfaceId surface, int nu,
                                                      int nv, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const QString why = partitionsError(nu, nv);
     if (!why.isEmpty())
         return fail(error, why);
@@ -174,92 +170,6 @@ bool SetPartitions::mergeWith(const QUndoCommand* other) {
     return true;
 }
 
-// ---- Geometry: knot vector, knot insertion, degree elevation
-
-GeometryCommand::GeometryCommand(Document* d, const QString& text, SurfaceId surface,
-                                 NurbsSurface from, NurbsSurface to)
-    : DocumentCommand(d, text), m_surface(surface), m_from(std::move(from)), m_to(std::move(to)) {}
-
-void GeometryCommand::redo() {
-    check(document()->setGeometry(m_surface, m_to), "redo");
-}
-void GeometryCommand::undo() {
-    check(document()->setGeometry(m_surface, m_from), "undo");
-}
-
-std::unique_ptr<SetKnotVector> SetKnotVector::create(Document* document, SurfaceId surface,
-                                                     Direction direction, std::vector<double> knots,
-                                                     QString* error) {
-    const Surface* s = document->surface(surface);
-    if (!s)
-        return fail(error, noSurface(surface));
-    NurbsSurface g = s->geometry;
-    const bool u = direction == Direction::U;
-    const std::string why =
-        knotVectorError(knots, u ? g.degreeU : g.degreeV, u ? g.countU : g.countV);
-    if (!why.empty())
-        return fail(error, QStringLiteral("knot vector %1: %2")
-                               .arg(axis(direction))
-                               .arg(QString::fromStdString(why)));
-    (u ? g.knotsU : g.knotsV) = std::move(knots);
-    if (g == s->geometry)
-        return fail(error, QStringLiteral("knot vector %1 unchanged").arg(axis(direction)));
-    const QString text = QStringLiteral("Edit knot vector %1").arg(axis(direction));
-    return std::unique_ptr<SetKnotVector>(
-        new SetKnotVector(document, text, surface, s->geometry, std::move(g)));
-}
-
-std::unique_ptr<InsertKnot> InsertKnot::create(Document* document, SurfaceId surface,
-                                               Direction direction, double value, int times,
-                                               QString* error) {
-    const Surface* s = document->surface(surface);
-    if (!s)
-        return fail(error, noSurface(surface));
-    if (!std::isfinite(value) || times < 1)
-        return fail(error, QStringLiteral("knot value must be finite, times >= 1"));
-    const bool u = direction == Direction::U;
-    const NurbsSurface& g = s->geometry;
-    const Interval dom = u ? surfaceDomainU(g) : surfaceDomainV(g);
-    NurbsSurface to = u ? surfaceInsertKnotU(g, value, times) : surfaceInsertKnotV(g, value, times);
-    if (to == g)
-        return fail(error, QStringLiteral("cannot insert knot %1 = %2 %3 times: it must lie in "
-                                          "(%4, %5) and its multiplicity stay <= the degree %6")
-                               .arg(axis(direction))
-                               .arg(value)
-                               .arg(times)
-                               .arg(dom.first)
-                               .arg(dom.last)
-                               .arg(u ? g.degreeU : g.degreeV));
-    QString text = QStringLiteral("Insert knot %1 = %2").arg(axis(direction)).arg(value);
-    if (times > 1)
-        text += QStringLiteral(" (×%1)").arg(times);
-    return std::unique_ptr<InsertKnot>(new InsertKnot(document, text, surface, g, std::move(to)));
-}
-
-std::unique_ptr<ElevateDegree> ElevateDegree::create(Document* document, SurfaceId surface,
-                                                     Direction direction, int by, QString* error) {
-    const Surface* s = document->surface(surface);
-    if (!s)
-        return fail(error, noSurface(surface));
-    const bool u = direction == Direction::U;
-    const NurbsSurface& g = s->geometry;
-    const int degree = (u ? g.degreeU : g.degreeV);
-    if (by < 1 || degree + by > kMaxDegree)
-        return fail(error, QStringLiteral("cannot raise degree %1 from %2 by %3: the maximum "
-                                          "is %4")
-                               .arg(axis(direction))
-                               .arg(degree)
-                               .arg(by)
-                               .arg(kMaxDegree));
-    NurbsSurface to = u ? surfaceElevateDegreeU(g, by) : surfaceElevateDegreeV(g, by);
-    if (to == g || !surfaceValidationError(to).empty())
-        return fail(error, QStringLiteral("degree elevation in %1 failed").arg(axis(direction)));
-    const QString text =
-        QStringLiteral("Elevate degree %1 to %2").arg(axis(direction)).arg(degree + by);
-    return std::unique_ptr<ElevateDegree>(
-        new ElevateDegree(document, text, surface, g, std::move(to)));
-}
-
 // ---- MoveTrimPoints
 
 std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
@@ -267,6 +177,8 @@ std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
                                                        std::vector<glm::dvec2> from,
                                                        std::vector<glm::dvec2> to, MoveKind kind,
                                                        QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     if (refs.empty() || refs.size() != from.size() || refs.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per trim point"));
     std::set<TrimPointRef> seen;
@@ -324,9 +236,9 @@ bool MoveTrimPoints::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetMaterial> SetMaterial::create(Document* document, SurfaceId surface,
                                                  const Material& material, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const QString why = materialError(material);
     if (!why.isEmpty())
         return fail(error, why);
@@ -358,6 +270,8 @@ bool SetMaterial::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetLights> SetLights::make(Document* document, std::vector<Light> lights,
                                            const QString& text, int changed, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     const QString why = lightsError(lights);
     if (!why.isEmpty())
         return fail(error, why);
@@ -375,6 +289,8 @@ std::unique_ptr<SetLights> SetLights::create(Document* document, std::vector<Lig
 
 std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& light,
                                                QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (lights.size() >= size_t(kMaxLights))
         return fail(error, QStringLiteral("a scene has at most %1 lights").arg(kMaxLights));
@@ -383,6 +299,8 @@ std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& 
 }
 
 std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
         return fail(error, QStringLiteral("no light %1").arg(index + 1));
@@ -395,6 +313,8 @@ std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index,
 
 std::unique_ptr<SetLights> SetLights::changeLight(Document* document, int index, const Light& light,
                                                   QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
         return fail(error, QStringLiteral("no light %1").arg(index + 1));
@@ -423,6 +343,8 @@ bool SetLights::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetCamera> SetCamera::create(Document* document, const Camera& camera,
                                              QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     const QString why = cameraError(camera);
     if (!why.isEmpty())
         return fail(error, why);

@@ -1,12 +1,16 @@
 // Small helpers shared by the edit command sources (not part of the public API).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document.h"
 
 #include <QString>
 #include <cstddef>
 
 namespace kw::edit_detail {
+
+inline QString noDocument() {
+    return QStringLiteral("no document");
+}
 
 /// Sets *error (if given) and yields the nullptr a rejecting factory returns.
 inline std::nullptr_t fail(QString* error, const QString& why) {
@@ -23,8 +27,13 @@ inline const TrimLoop* findLoop(const Surface* s, TrimLoopId id) {
     return nullptr;
 }
 
-inline QString noSurface(SurfaceId id) {
-    return QStringLiteral("no surface with id %1").arg(id.value);
+/// The surface with this id, or nullptr (also for a null document).
+inline const Surface* surfaceIn(const Document* d, SurfaceId id) {
+    return d ? d->surface(id) : nullptr;
+}
+
+inline QString noSurface(const Document* d, SurfaceId id) {
+    return d ? QStringLiteral("no surface with id %1").arg(id.value) : noDocument();
 }
 
 } // namespace kw::edit_detail

@@ -28,6 +28,8 @@ QString curves(size_t n) {
 
 std::unique_ptr<AddSurface> AddSurface::create(Document* document, Surface surface, int index,
                                                QString* error) {
+    if (!document)
+        return fail(error, noDocument());
     const auto& surfaces = document->scene().surfaces;
     if (index == -1)
         index = int(surfaces.size());
@@ -73,9 +75,9 @@ void AddSurface::undo() {
 
 std::unique_ptr<RemoveSurface> RemoveSurface::create(Document* document, SurfaceId surface,
                                                      QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     std::unique_ptr<RemoveSurface> c(
         new RemoveSurface(document, QStringLiteral("Remove surface “%1”").arg(s->name)));
     c->m_surface = *s;
@@ -94,9 +96,9 @@ void RemoveSurface::undo() {
 
 std::unique_ptr<RenameSurface> RenameSurface::create(Document* document, SurfaceId surface,
                                                      const QString& name, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (name.trimmed().isEmpty())
         return fail(error, QStringLiteral("a surface name needs a visible character"));
     if (name == s->name)
@@ -120,9 +122,9 @@ void RenameSurface::undo() {
 
 std::unique_ptr<AddTrimLoop> AddTrimLoop::create(Document* document, SurfaceId surface,
                                                  TrimLoop loop, int index, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     if (index == -1)
         index = int(s->trims.size());
     if (index < 0 || size_t(index) > s->trims.size())
@@ -158,9 +160,9 @@ void AddTrimLoop::undo() {
 
 std::unique_ptr<RemoveTrimLoop> RemoveTrimLoop::create(Document* document, SurfaceId surface,
                                                        TrimLoopId loop, QString* error) {
-    const Surface* s = document->surface(surface);
+    const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(surface));
+        return fail(error, noSurface(document, surface));
     const TrimLoop* l = findLoop(s, loop);
     if (!l)
         return fail(
@@ -168,7 +170,7 @@ std::unique_ptr<RemoveTrimLoop> RemoveTrimLoop::create(Document* document, Surfa
             QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.value));
     const int index = int(l - s->trims.data());
     std::unique_ptr<RemoveTrimLoop> c(new RemoveTrimLoop(
-        document, QStringLiteral("Remove trim loop %1 from “%2”").arg(index + 1).arg(s->name)));
+        document, QStringLiteral("Remove trim loop %1 from “%2”").arg(loop.value).arg(s->name)));
     c->m_surface = surface;
     c->m_loop = *l;
     c->m_index = index;
