@@ -24,6 +24,9 @@ struct Command {
     QString name;
     QString summary;
     std::function<int(const QStringList& args)> run;
+    /// Runs in a QGuiApplication (OpenGL) with OffscreenRenderer::requiredFormat() as the
+    /// default surface format, instead of a QCoreApplication.
+    bool gui = false;
 };
 
 /// Every subcommand, in the order --help lists them. Add yours in main.cpp's table.
@@ -32,6 +35,8 @@ const std::vector<Command>& commands();
 int runInfo(const QStringList& args);
 int runEval(const QStringList& args);
 int runConvert(const QStringList& args);
+int runRender(const QStringList& args);
+int runBench(const QStringList& args);
 
 // ---- Helpers shared by subcommands (main.cpp).
 

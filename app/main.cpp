@@ -1,10 +1,14 @@
-// knotwork: entry point; dispatches to a command-line subcommand (or, later, the editor).
+// knotwork: entry point; dispatches to a command-line subcommand or the editor.
 #include "app/commands.h"
+#include "app/editor.h"
+#include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>
-#include <QFileInfo>
+#include <QGuiApplication>
+#include <QSurfaceFormat>
 #include <cstdio>
+#include <memory>
 
 namespace kw::cli {
 
@@ -18,6 +22,10 @@ const std::vector<Command>& commands() {
         {QStringLiteral("convert"),
          QStringLiteral("Convert IGES/STEP/BREP/OBJ/.knot to .knot or OBJ (free-form or mesh)."),
          runConvert},
+        {QStringLiteral("render"),
+         QStringLiteral("Render a project off-screen to an image (and AOVs)."), runRender, true},
+        {QStringLiteral("bench"), QStringLiteral("Measure off-screen frame rates per image size."),
+         runBench, true},
     };
     return table;
 }
@@ -67,7 +75,8 @@ using namespace kw::cli;
 
 QString globalHelp() {
     QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                                  "       knotwork FILE.knot\n"
+                                  "       knotwork FILE.knot      (the editor; FILE is optional)\n"
+                                  "       knotwork --screenshot OUT [--size WxH] FILE.knot\n"
                                   "\n"
                                   "Knotwork NURBS surface editor and command-line tools.\n"
                                   "\n"
@@ -76,7 +85,10 @@ QString globalHelp() {
         text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
     text += QStringLiteral(
         "\n"
-        "knotwork FILE runs 'knotwork info FILE' until the editor is part of this build.\n"
+        "knotwork [FILE] opens the editor (it needs a display and OpenGL 4.5 core); a FILE\n"
+        "that cannot be read is reported on stderr with exit code 1 before any window opens.\n"
+        "--screenshot OUT opens FILE with its first surface selected, saves a picture of the\n"
+        "window to OUT and exits; --size WxH sets the window size.\n"
         "'knotwork <subcommand> --help' describes a subcommand.\n"
         "\n"
         "Options:\n"
@@ -97,16 +109,32 @@ const Command* findCommand(const QString& name) {
 } // namespace
 
 int main(int argc, char** argv) {
-    QCoreApplication app(argc, argv);
+    if (kw::app::isEditorInvocation(argc, argv))
+        return kw::app::runEditor(argc, argv);
+    // GL subcommands need a QGuiApplication, and the default format must be set before it.
+    const Command* early = argc > 1 ? findCommand(QString::fromLocal8Bit(argv[1])) : nullptr;
+    std::unique_ptr<QCoreApplication> app;
+    if (early && early->gui) {
+        // Without a display Qt's xcb platform aborts the process; say what to do instead.
+        const QByteArray platform = qgetenv("QT_QPA_PLATFORM");
+        if ((platform.isEmpty() || platform.startsWith("xcb")) &&
+            qEnvironmentVariableIsEmpty("DISPLAY")) {
+            printError(
+                QStringLiteral("knotwork %1: no OpenGL 4.5 context can be made: no X display "
+                               "(DISPLAY is not set). Run under xvfb-run -a -s \"-screen 0 "
+                               "1280x1024x24\" with QT_QPA_PLATFORM=xcb.")
+                    .arg(early->name));
+            return kExitBadInput;
+        }
+        QSurfaceFormat::setDefaultFormat(kw::OffscreenRenderer::requiredFormat());
+        app = std::make_unique<QGuiApplication>(argc, argv);
+    } else {
+        app = std::make_unique<QCoreApplication>(argc, argv);
+    }
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
     const QStringList args = QCoreApplication::arguments();
 
-    if (args.size() < 2) {
-        printError(QStringLiteral("knotwork: missing subcommand or FILE (the editor is not part "
-                                  "of this build yet; see knotwork --help)"));
-        return kExitUsage;
-    }
     const QString first = args[1];
     if (first == QLatin1String("-h") || first == QLatin1String("--help")) {
         printOut(globalHelp());
@@ -125,12 +153,6 @@ int main(int argc, char** argv) {
         printError(
             QStringLiteral("knotwork: unknown option '%1' (see knotwork --help)").arg(first));
         return kExitUsage;
-    }
-    // A project file: the editor would open it; until the editor exists, summarise it.
-    if (QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive)) {
-        rest.prepend(first);
-        rest.prepend(QStringLiteral("knotwork info"));
-        return runInfo(rest);
     }
     printError(
         QStringLiteral("knotwork: unknown subcommand '%1' (see knotwork --help)").arg(first));

@@ -1,0 +1,143 @@
+// knotwork render FILE -o OUT [...]: headless render of a .knot project to an image (and AOVs).
+#include "app/commands.h"
+#include "app/render_args.h"
+#include "model/knotfile.h"
+#include "render/image_writer.h"
+#include "render/offscreen_renderer.h"
+
+#include <QCommandLineParser>
+
+namespace kw::cli {
+
+int runRender(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription(QStringLiteral(
+        "Render a .knot project off-screen with the exact per-pixel NURBS renderer (or the "
+        "tessellated baseline) and write the image with OpenImageIO. Uses the project's camera, "
+        "or fits one to the scene. Needs OpenGL 4.5 core: on a machine without a display run "
+        "under xvfb-run -a -s \"-screen 0 1280x1024x24\" with QT_QPA_PLATFORM=xcb."));
+    const QCommandLineOption out({QStringLiteral("o"), QStringLiteral("output")},
+                                 QStringLiteral("Image to write: .png, .jpg, .tif or .exr."),
+                                 QStringLiteral("OUT"));
+    const QCommandLineOption size(QStringLiteral("size"),
+                                  QStringLiteral("Image size WxH (default 1024x768)."),
+                                  QStringLiteral("WxH"), QStringLiteral("1024x768"));
+    const QCommandLineOption mode(QStringLiteral("mode"),
+                                  QStringLiteral("exact (default) or tessellated."),
+                                  QStringLiteral("MODE"), QStringLiteral("exact"));
+    const QCommandLineOption partitions(
+        QStringLiteral("partitions"),
+        QStringLiteral("Partitions N or NxM for every surface (default: each surface's own)."),
+        QStringLiteral("N|NxM"));
+    const QCommandLineOption lights(QStringLiteral("lights"),
+                                    QStringLiteral("Number of lights, 1..8 (default 2)."),
+                                    QStringLiteral("N"), QStringLiteral("2"));
+    const QCommandLineOption aov(QStringLiteral("aov"),
+                                 QStringLiteral("Also write a float EXR with channels id, u, v, "
+                                                "P.x, P.y, P.z, N.x, N.y, N.z, Z."),
+                                 QStringLiteral("AOV.exr"));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
+                       "(one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
+    const QCommandLineOption wire(QStringLiteral("wireframe"),
+                                  QStringLiteral("Overlay the base polygon cells."));
+    const QCommandLineOption net(QStringLiteral("control-net"),
+                                 QStringLiteral("Overlay the control points and net."));
+    parser.addOptions({out, size, mode, partitions, lights, aov, shading, wire, net});
+    parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
+    if (const int code = parseOrExit(parser, args); code >= 0)
+        return code;
+    const QString cmd = args.value(0);
+    const QStringList files = parser.positionalArguments();
+    if (files.size() != 1 || !parser.isSet(out)) {
+        printError(QStringLiteral("%1: expected one FILE and -o OUT (see --help)").arg(cmd));
+        return kExitUsage;
+    }
+    RenderOptions options;
+    QSize imageSize;
+    if (!parseImageSize(parser.value(size), imageSize)) {
+        printError(QStringLiteral("%1: --size '%2' is not WxH with 1..16384")
+                       .arg(cmd, parser.value(size)));
+        return kExitUsage;
+    }
+    if (!parseMode(parser.value(mode), options.mode)) {
+        printError(QStringLiteral("%1: --mode '%2' is not exact or tessellated")
+                       .arg(cmd, parser.value(mode)));
+        return kExitUsage;
+    }
+    if (parser.isSet(partitions) &&
+        !parsePartitions(parser.value(partitions), options.partitionsU, options.partitionsV)) {
+        printError(QStringLiteral("%1: --partitions '%2' is not N or NxM with %3..%4")
+                       .arg(cmd, parser.value(partitions))
+                       .arg(kMinPartitions)
+                       .arg(kMaxPartitions));
+        return kExitUsage;
+    }
+    if (!parseIntIn(parser.value(lights), 1, kMaxLights, options.lightCount)) {
+        printError(QStringLiteral("%1: --lights '%2' is not in 1..%3")
+                       .arg(cmd, parser.value(lights))
+                       .arg(kMaxLights));
+        return kExitUsage;
+    }
+    if (!parseShading(parser.value(shading), options.shading)) {
+        printError(QStringLiteral("%1: --shading '%2' is not prepass or exact-depth")
+                       .arg(cmd, parser.value(shading)));
+        return kExitUsage;
+    }
+    options.wireframe = parser.isSet(wire);
+    options.controlNet = parser.isSet(net);
+    const QString outPath = parser.value(out);
+    const QString aovPath = parser.value(aov);
+    if (!isSupportedImagePath(outPath)) {
+        printError(QStringLiteral("%1: unsupported image type (use .png, .jpg, .tif or .exr)")
+                       .arg(outPath));
+        return kExitUsage;
+    }
+    if (parser.isSet(aov) && !aovPath.endsWith(QLatin1String(".exr"), Qt::CaseInsensitive)) {
+        printError(QStringLiteral("%1: the AOV image must be an .exr file").arg(aovPath));
+        return kExitUsage;
+    }
+
+    QString error;
+    const std::optional<Scene> scene = readKnotFile(files[0], &error);
+    if (!scene) {
+        printError(error);
+        return kExitBadInput;
+    }
+    Document doc;
+    if (!doc.resetScene(*scene, &error)) {
+        printError(QStringLiteral("%1: %2").arg(files[0], error));
+        return kExitBadInput;
+    }
+    OffscreenRenderer renderer;
+    if (!renderer.create(&error) || !renderer.setSize(imageSize, parser.isSet(aov), &error)) {
+        printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
+    const Camera camera =
+        scene->camera.authored
+            ? scene->camera
+            : fitCamera(*scene, double(imageSize.width()) / double(imageSize.height()));
+    if (!renderer.render(doc, camera, options, &error)) {
+        printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
+        return kExitBadInput;
+    }
+    if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
+        (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {
+        printError(error);
+        return kExitBadInput;
+    }
+    printOut(
+        QStringLiteral("%1: %2x%3 %4 render of %5 surface(s) -> %6%7\n")
+            .arg(files[0])
+            .arg(imageSize.width())
+            .arg(imageSize.height())
+            .arg(modeName(options.mode))
+            .arg(scene->surfaces.size())
+            .arg(outPath, parser.isSet(aov) ? QStringLiteral(", AOVs -> ") + aovPath : QString()));
+    return kExitOk;
+}
+
+} // namespace kw::cli

@@ -1,0 +1,112 @@
+// Exact pass: depth pre-pass of the base polygons, then per-fragment evaluation with GL_EQUAL
+// (or one pass writing gl_FragDepth when options.shading is ExactDepth).
+#include "render/exact_surface_pass.h"
+
+#include "render/shading_uniforms.h"
+
+#include <QOpenGLShaderProgram>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace kw {
+
+void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
+    m_gl = gl;
+    m_shaders = shaders;
+}
+
+QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
+                                             const RenderOptions& options) {
+    QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
+                  QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
+    // Per-cell gather when the cell's control texels and span rows fit the 32 varying
+    // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
+    if ((p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
+        d << QStringLiteral("KW_CELL_GATHER");
+    if (options.writeAov)
+        d << QStringLiteral("KW_AOV");
+    if (options.shading == RenderOptions::Shading::ExactDepth)
+        d << QStringLiteral("KW_EXACT_DEPTH");
+    return d;
+}
+
+bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& cache,
+                                    const FrameCamera& camera, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QOpenGLShaderProgram* prog =
+        m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"));
+    if (!prog) {
+        *error = m_shaders->lastError();
+        return false;
+    }
+    prog->bind();
+    gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(camera.viewProjection));
+    gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDepthFunc(GL_LESS);
+    for (const Surface& s : scene.surfaces)
+        if (const SurfaceGpu* g = cache.find(s.id)) {
+            gl->glBindVertexArray(g->triangleVao);
+            gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    return true;
+}
+
+bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
+                            const FrameCamera& camera, const std::vector<Light>& lights,
+                            const RenderOptions& options, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
+    // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
+    // triangle, and GL_EQUAL needs bit-identical depths.
+    gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
+    if (options.shading == RenderOptions::Shading::DepthPrepass) {
+        if (!depthPrepass(scene, cache, camera, error)) {
+            gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
+            return false;
+        }
+        gl->glDepthFunc(GL_EQUAL);
+        gl->glDepthMask(GL_FALSE);
+    } else {
+        gl->glDepthFunc(GL_LESS);
+        gl->glDepthMask(GL_TRUE);
+    }
+    QOpenGLShaderProgram* bound = nullptr;
+    bool ok = true;
+    for (const Surface& s : scene.surfaces) {
+        const SurfaceGpu* g = cache.find(s.id);
+        if (!g)
+            continue;
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(g->degreeU, g->degreeV, int(lights.size()), options));
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
+        }
+        if (prog != bound) {
+            prog->bind();
+            bound = prog;
+            setFrameUniforms(gl, prog, camera, lights);
+            gl->glUniform1i(prog->uniformLocation("uControl"), 0);
+            gl->glUniform1i(prog->uniformLocation("uSpansU"), 1);
+            gl->glUniform1i(prog->uniformLocation("uSpansV"), 2);
+        }
+        setSurfaceUniforms(gl, prog, s);
+        gl->glUniform4fv(prog->uniformLocation("uDomain"), 1, glm::value_ptr(g->domain));
+        gl->glUniform3fv(prog->uniformLocation("uOrigin"), 1, glm::value_ptr(glm::vec3(g->origin)));
+        gl->glBindTextureUnit(0, g->controlTexture);
+        gl->glBindTextureUnit(1, g->spanTextureU);
+        gl->glBindTextureUnit(2, g->spanTextureV);
+        gl->glBindVertexArray(g->triangleVao);
+        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_TRUE);
+    return ok;
+}
+
+} // namespace kw

@@ -1,0 +1,35 @@
+// Exact pass (paper 3.4.1): each surface's base polygon drawn with the degree-specialised
+// per-fragment NURBS shader; a depth pre-pass (default) makes each pixel evaluated once.
+#pragma once
+
+#include "render/render_types.h"
+#include "render/shader_library.h"
+#include "render/surface_gpu_cache.h"
+
+#include <QString>
+
+namespace kw {
+
+class ExactSurfacePass {
+public:
+    /// Needs the context current while drawing; `shaders` outlives the pass.
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
+
+    /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
+    /// on), as options.shading says. Returns false with *error set when a shader variant
+    /// cannot be built.
+    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
+              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
+
+    /// The defines of the exact shader variant for degrees (p, q) and these options.
+    static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options);
+
+private:
+    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
+                      QString* error);
+
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ShaderLibrary* m_shaders = nullptr;
+};
+
+} // namespace kw

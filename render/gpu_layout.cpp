@@ -1,0 +1,195 @@
+// CPU-side GPU layouts: homogeneous control points, span tables, base polygon, tessellation.
+#include "render/gpu_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kw {
+
+glm::dvec3 controlOrigin(const NurbsSurface& s) {
+    glm::dvec3 lo, hi;
+    surfaceControlBounds(s, lo, hi);
+    // Rounded to float so that the shader's float uOrigin is exactly this value.
+    return glm::dvec3(glm::vec3(0.5 * (lo + hi)));
+}
+
+std::vector<glm::vec4> packControlPoints(const NurbsSurface& s, const glm::dvec3& origin) {
+    std::vector<glm::vec4> out(s.points.size());
+    for (size_t k = 0; k < s.points.size(); ++k) {
+        const double w = s.weights[k];
+        out[k] = glm::vec4(glm::dvec4((s.points[k] - origin) * w, w));
+    }
+    return out;
+}
+
+std::vector<glm::vec4> packSpanTable(const std::vector<double>& U, int p, int count) {
+    const int rows = count - p;
+    const int texels = spanTableTexels(p);
+    std::vector<float> row(size_t(texels) * 4);
+    std::vector<glm::vec4> out(size_t(rows) * texels, glm::vec4(0.0f));
+    for (int r = 0; r < rows; ++r) {
+        const int k = r + p;
+        std::fill(row.begin(), row.end(), 0.0f);
+        int f = 0;
+        for (int j = 1; j <= p; ++j)
+            row[f++] = float(U[k + 1 - j]);
+        for (int j = 1; j <= p; ++j)
+            row[f++] = float(U[k + j]);
+        for (int j = 1; j <= p; ++j)
+            for (int q = 0; q < j; ++q) {
+                const double d = U[k + q + 1] - U[k + 1 - j + q];
+                row[f++] = d > 0.0 ? float(1.0 / d) : 0.0f; // 0 only in rows of empty spans
+            }
+        for (int t = 0; t < texels; ++t)
+            out[size_t(r) * texels + t] =
+                glm::vec4(row[4 * t], row[4 * t + 1], row[4 * t + 2], row[4 * t + 3]);
+    }
+    return out;
+}
+
+std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n) {
+    const Interval dom = knotDomain(knots, degree);
+    const double len = dom.last - dom.first;
+    std::vector<double> b;
+    for (int c = 0; c <= n; ++c)
+        b.push_back(c == n ? dom.last : dom.first + len * double(c) / double(n));
+    for (double k : knots)
+        if (k > dom.first && k < dom.last)
+            b.push_back(k);
+    std::sort(b.begin(), b.end());
+    // Keep knots exactly: drop a uniform break that nearly coincides with a kept value.
+    std::vector<double> out;
+    const double eps = 1e-9 * len;
+    for (double x : b) {
+        const bool isKnot = std::find(knots.begin(), knots.end(), x) != knots.end();
+        if (!out.empty() && x - out.back() <= eps) {
+            if (isKnot && out.size() > 1)
+                out.back() = x;
+            continue;
+        }
+        out.push_back(x);
+    }
+    out.back() = dom.last;
+    return out;
+}
+
+namespace {
+
+std::vector<int> cellSpans(const std::vector<double>& breaks, const std::vector<double>& knots,
+                           int degree) {
+    std::vector<int> spans;
+    for (size_t c = 0; c + 1 < breaks.size(); ++c)
+        spans.push_back(findSpan(degree, knots, 0.5 * (breaks[c] + breaks[c + 1])));
+    return spans;
+}
+
+// Diagonal of the bounds of the control points acting on span (ku, kv), as kw::surfaceFrame.
+float spanScale(const NurbsSurface& s, int ku, int kv) {
+    glm::dvec3 lo = s.points[size_t(s.index(ku - s.degreeU, kv - s.degreeV))], hi = lo;
+    for (int j = kv - s.degreeV; j <= kv; ++j)
+        for (int i = ku - s.degreeU; i <= ku; ++i) {
+            lo = glm::min(lo, s.points[size_t(s.index(i, j))]);
+            hi = glm::max(hi, s.points[size_t(s.index(i, j))]);
+        }
+    return float(glm::length(hi - lo));
+}
+
+// Vertex (gu, gv): exact point, (u, v), and the span of the cell it is the lower-left corner of.
+void setVertex(BasePolygon& poly, const NurbsSurface& s, int gu, int gv) {
+    BaseVertex& vx = poly.vertices[size_t(gv * poly.nodesU() + gu)];
+    const double u = poly.breaksU[size_t(gu)], v = poly.breaksV[size_t(gv)];
+    const int cu = std::min(gu, poly.cellsU() - 1), cv = std::min(gv, poly.cellsV() - 1);
+    vx.position = glm::vec3(surfacePoint(s, u, v));
+    vx.uv = glm::vec2(float(u), float(v));
+    vx.span = glm::ivec2(poly.spanU[size_t(cu)], poly.spanV[size_t(cv)]);
+    vx.spanScale = spanScale(s, vx.span.x, vx.span.y);
+}
+
+} // namespace
+
+BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
+    BasePolygon poly;
+    poly.breaksU = cellBreaks(s.knotsU, s.degreeU, std::max(nu, 1));
+    poly.breaksV = cellBreaks(s.knotsV, s.degreeV, std::max(nv, 1));
+    poly.spanU = cellSpans(poly.breaksU, s.knotsU, s.degreeU);
+    poly.spanV = cellSpans(poly.breaksV, s.knotsV, s.degreeV);
+    const int nodesV = int(poly.breaksV.size());
+    poly.vertices.resize(size_t(poly.nodesU()) * size_t(nodesV));
+    for (int gv = 0; gv < nodesV; ++gv)
+        for (int gu = 0; gu < poly.nodesU(); ++gu)
+            setVertex(poly, s, gu, gv);
+    return poly;
+}
+
+bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
+                       int& first, int& last) {
+    // N_{i,p} is non-zero on [U_i, U_{i+p+1}) (The NURBS Book P2.1).
+    const double ua = s.knotsU[size_t(i0)], ub = s.knotsU[size_t(i1 + s.degreeU + 1)];
+    const double va = s.knotsV[size_t(j0)], vb = s.knotsV[size_t(j1 + s.degreeV + 1)];
+    auto nodeRange = [](const std::vector<double>& b, double a, double e, int& g0, int& g1) {
+        g0 = int(std::lower_bound(b.begin(), b.end(), a) - b.begin());
+        g1 = int(std::upper_bound(b.begin(), b.end(), e) - b.begin()) - 1;
+        return g0 <= g1;
+    };
+    int gu0, gu1, gv0, gv1;
+    if (!nodeRange(poly.breaksU, ua, ub, gu0, gu1) || !nodeRange(poly.breaksV, va, vb, gv0, gv1))
+        return false;
+    // The nodes inside the support move; the span scale changes for the cells there, whose
+    // lower-left corners reach one node further down and left.
+    gu0 = std::max(gu0 - 1, 0);
+    gv0 = std::max(gv0 - 1, 0);
+    for (int gv = gv0; gv <= gv1; ++gv)
+        for (int gu = gu0; gu <= gu1; ++gu)
+            setVertex(poly, s, gu, gv);
+    first = gv0 * poly.nodesU() + gu0;
+    last = gv1 * poly.nodesU() + gu1;
+    return true;
+}
+
+std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly) {
+    std::vector<unsigned> idx;
+    idx.reserve(size_t(poly.cellCount()) * 6);
+    const unsigned row = unsigned(poly.nodesU());
+    for (unsigned cv = 0; cv < unsigned(poly.cellsV()); ++cv)
+        for (unsigned cu = 0; cu < unsigned(poly.cellsU()); ++cu) {
+            const unsigned ll = cv * row + cu, lr = ll + 1, ul = ll + row, ur = ul + 1;
+            idx.insert(idx.end(), {ll, lr, ur, ll, ur, ul});
+        }
+    return idx;
+}
+
+std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly) {
+    std::vector<unsigned> idx;
+    idx.reserve(size_t(poly.cellCount()) * 8);
+    const unsigned row = unsigned(poly.nodesU());
+    for (unsigned cv = 0; cv < unsigned(poly.cellsV()); ++cv)
+        for (unsigned cu = 0; cu < unsigned(poly.cellsU()); ++cu) {
+            const unsigned ll = cv * row + cu, lr = ll + 1, ul = ll + row, ur = ul + 1;
+            idx.insert(idx.end(), {ll, lr, lr, ur, ur, ul, ul, ll});
+        }
+    return idx;
+}
+
+TessellatedMesh tessellate(const NurbsSurface& s, int nu, int nv) {
+    TessellatedMesh m;
+    nu = std::max(nu, 1);
+    nv = std::max(nv, 1);
+    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
+    for (int b = 0; b <= nv; ++b)
+        for (int a = 0; a <= nu; ++a) {
+            const double u = a == nu ? du.last : du.first + (du.last - du.first) * a / nu;
+            const double v = b == nv ? dv.last : dv.first + (dv.last - dv.first) * b / nv;
+            const SurfaceFrame f = surfaceFrame(s, u, v);
+            m.positions.emplace_back(f.point);
+            m.normals.emplace_back(f.normal);
+            m.uvs.emplace_back(float(u), float(v));
+        }
+    for (unsigned b = 0; b < unsigned(nv); ++b)
+        for (unsigned a = 0; a < unsigned(nu); ++a) {
+            const unsigned i = b * unsigned(nu + 1) + a, r = unsigned(nu + 1);
+            m.indices.insert(m.indices.end(), {i, i + 1, i + r + 1, i, i + r + 1, i + r});
+        }
+    return m;
+}
+
+} // namespace kw

@@ -1,0 +1,100 @@
+// CPU-side layouts of the GPU data of one surface: homogeneous control points, knot span
+// tables and the base polygon (paper 3.1, 3.4). No GL here, so the layouts are testable alone.
+#pragma once
+
+#include "model/nurbs.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace kw {
+
+/// Control point (i, j) as the texel (i, j) of an RGBA32F texture countU x countV:
+/// (w (P - origin), w). Points relative to an origin near the surface keep float precision
+/// where the model sits far from (0, 0, 0); the shader adds the origin back.
+std::vector<glm::vec4> packControlPoints(const NurbsSurface& s, const glm::dvec3& origin);
+/// The origin used for packControlPoints: the centre of the control bounds.
+glm::dvec3 controlOrigin(const NurbsSurface& s);
+
+/// Number of floats in one span-table row for degree p: p left knots, p right knots and
+/// p(p+1)/2 reciprocal knot differences. Must match basis.glsl.
+constexpr int spanTableFloats(int p) {
+    return 2 * p + p * (p + 1) / 2;
+}
+/// Texels (RGBA32F) per span-table row.
+constexpr int spanTableTexels(int p) {
+    return (spanTableFloats(p) + 3) / 4;
+}
+
+/// Knot span table of a knot vector of degree p with `count` control points, in the order The
+/// NURBS Book A2.2 consumes it, so the shader needs no division and no search: row r is span
+/// k = r + p (rows for empty spans are filled but never used) and holds
+///   U[k+1-j] for j = 1..p, then U[k+j] for j = 1..p, then for j = 1..p, r = 0..j-1 the
+///   reciprocal 1 / (U[k+r+1] - U[k+1-j+r]) (always > 0 for a non-empty span).
+/// Rows are padded to whole RGBA texels: width spanTableTexels(p), height count - p.
+/// Precondition: a valid knot vector (knotVectorError is empty).
+std::vector<glm::vec4> packSpanTable(const std::vector<double>& knots, int p, int count);
+
+/// One base polygon vertex. Must match the attributes of shaders/surface.vert:
+/// location 0 position (vec3), 1 (u, v) (vec2), 2 knot spans (ivec2, flat), 3 span scale
+/// (float, flat): the diagonal of the bounds of the (p+1)(q+1) control points of the span, the
+/// length L of the degenerate-normal rule of kw::surfaceFrame.
+struct BaseVertex {
+    glm::vec3 position;
+    glm::vec2 uv;
+    glm::ivec2 span;
+    float spanScale;
+};
+static_assert(sizeof(BaseVertex) == 32);
+
+/// The base polygon of one surface: the domain cut uniformly into nu x nv cells and further
+/// at every distinct interior knot, so each cell lies inside one knot span. Vertices form the
+/// shared grid of cell corners, row by row (v outer): vertex (gu, gv) is at
+/// (breaksU[gu], breaksV[gv]) with the exact surface point, and carries the span and span
+/// scale of the cell whose lower-left corner it is (cell (gu, gv); the last row and column
+/// repeat their neighbour's). Both triangles of a cell start at that corner, so with the
+/// first-vertex provoking convention the flat attributes are the cell's own.
+struct BasePolygon {
+    std::vector<double> breaksU; ///< cell boundaries along u, increasing, ends = domain
+    std::vector<double> breaksV;
+    std::vector<int> spanU; ///< knot span of cell column c (breaksU[c], breaksU[c+1])
+    std::vector<int> spanV;
+    std::vector<BaseVertex> vertices;
+
+    int cellsU() const { return int(spanU.size()); }
+    int cellsV() const { return int(spanV.size()); }
+    int cellCount() const { return cellsU() * cellsV(); }
+    int nodesU() const { return int(breaksU.size()); }
+};
+
+/// Breakpoints: n uniform cells of the domain merged with the distinct interior knots.
+/// Uniform breaks closer than 1e-9 of the domain length to a knot are dropped.
+std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n);
+
+/// Builds the base polygon. Preconditions: valid surface, nu and nv >= 1.
+BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv);
+
+/// Re-evaluates the vertices whose (u, v) lie in the support of control points
+/// [i0, i1] x [j0, j1] (the only ones a move of those points can change), and the span scales
+/// of the cells there, and returns the range of vertex indices [first, last] that changed,
+/// or false when none did.
+bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
+                       int& first, int& last);
+
+/// Indices of two triangles per cell (GL_TRIANGLES), each starting at the cell's lower-left
+/// corner: draw with glProvokingVertex(GL_FIRST_VERTEX_CONVENTION).
+std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly);
+/// Indices of the four outline edges per cell (GL_LINES).
+std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly);
+
+/// Uniform tessellation for the baseline mode: (nu+1) x (nv+1) grid vertices with the
+/// kernel's exact point and unit normal (kw::surfaceFrame).
+struct TessellatedMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<unsigned> indices; ///< GL_TRIANGLES
+};
+TessellatedMesh tessellate(const NurbsSurface& s, int nu, int nv);
+
+} // namespace kw

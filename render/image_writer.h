@@ -1,0 +1,24 @@
+// Writes rendered images with OpenImageIO: colour as PNG/JPG/TIF (8-bit) or EXR (float), and
+// the AOV buffer as a multi-channel float EXR.
+#pragma once
+
+#include "render/offscreen_renderer.h"
+
+#include <QImage>
+#include <QString>
+
+namespace kw {
+
+/// True when `path` ends in .png, .jpg, .jpeg, .tif, .tiff or .exr (case-insensitive).
+bool isSupportedImagePath(const QString& path);
+
+/// Writes `image` (any QImage format; converted to RGB) to `path`; the format follows the
+/// extension (see isSupportedImagePath): 8-bit RGB for PNG/JPG/TIF, 32-bit float RGB for EXR.
+/// Returns false with *error naming the path on an unknown extension or a write failure.
+bool writeColorImage(const QImage& image, const QString& path, QString* error);
+
+/// Writes the AOV buffer as a float EXR with channels AovBuffer::kChannelNames. `path` must
+/// end in .exr. Returns false with *error on failure.
+bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error);
+
+} // namespace kw

@@ -1,0 +1,77 @@
+// Camera matrices and light lists for a frame; upload statistics arithmetic.
+#include "render/render_types.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kw {
+
+UploadStats& UploadStats::operator+=(const UploadStats& o) {
+    fullUploads += o.fullUploads;
+    subImageUploads += o.subImageUploads;
+    texels += o.texels;
+    bytes += o.bytes;
+    spanTableUploads += o.spanTableUploads;
+    basePolygonBuilds += o.basePolygonBuilds;
+    vertexUpdates += o.vertexUpdates;
+    vertexBytes += o.vertexBytes;
+    return *this;
+}
+
+FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect) {
+    FrameCamera fc;
+    const glm::dvec3 eye = camera.eye;
+    glm::dvec3 forward = camera.target - camera.eye;
+    if (glm::length(forward) < 1e-300)
+        forward = glm::dvec3(0.0, 1.0, 0.0);
+    forward = glm::normalize(forward);
+    glm::dvec3 up = camera.up;
+    if (glm::length(glm::cross(forward, up)) < 1e-9 * glm::length(up) || glm::length(up) == 0.0)
+        up = std::abs(forward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+
+    double nearPlane = 0.01, farPlane = 100.0;
+    glm::dvec3 lo, hi;
+    if (sceneBounds(scene, lo, hi)) {
+        const glm::dvec3 centre = 0.5 * (lo + hi);
+        const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+        const double d = glm::dot(centre - eye, forward);
+        farPlane = std::max(d + radius * 1.1, radius * 1e-3);
+        nearPlane = std::max(d - radius * 1.1, farPlane * 1e-5);
+    }
+    const double fovY = glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0));
+    const glm::dmat4 view = glm::lookAt(eye, eye + forward, up);
+    const glm::dmat4 proj = glm::perspective(fovY, std::max(aspect, 1e-6), nearPlane, farPlane);
+    fc.view = glm::mat4(view);
+    fc.projection = glm::mat4(proj);
+    fc.viewProjection = glm::mat4(proj * view);
+    fc.eye = glm::vec3(eye);
+    fc.forward = glm::vec3(forward);
+    fc.nearPlane = float(nearPlane);
+    fc.farPlane = float(farPlane);
+    return fc;
+}
+
+std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count) {
+    const std::vector<Light> base = scene.lights.empty() ? defaultLights() : scene.lights;
+    count = std::clamp(count, 1, kMaxLights);
+    std::vector<Light> out;
+    glm::dvec3 axis =
+        glm::length(camera.up) > 0.0 ? glm::normalize(camera.up) : glm::dvec3(0, 0, 1);
+    for (int i = 0; i < count; ++i) {
+        const int round = i / int(base.size());
+        Light l = base[size_t(i) % base.size()];
+        if (round > 0) {
+            // Rotate by a golden-angle multiple so added lights spread around the scene.
+            const double angle = round * 2.39996322972865332;
+            const glm::dmat4 r = glm::rotate(glm::dmat4(1.0), angle, axis);
+            l.vector =
+                glm::dvec3(r * glm::dvec4(l.vector, l.kind == Light::Kind::Point ? 1.0 : 0.0));
+            l.ambient = glm::dvec3(0.0); // ambient is counted once per original light
+        }
+        out.push_back(l);
+    }
+    return out;
+}
+
+} // namespace kw

@@ -1,0 +1,81 @@
+// Render options, upload statistics and per-frame camera matrices shared by the render passes.
+#pragma once
+
+#include "model/scene.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace kw {
+
+enum class RenderMode {
+    Exact,       ///< per-fragment exact NURBS evaluation on the base polygon (paper 3.4)
+    Tessellated, ///< CPU tessellation at the partitions, per-vertex normals, Gouraud shading
+};
+
+/// What a frame draws. Defaults are the editor's: exact surfaces, two lights, no overlays.
+struct RenderOptions {
+    RenderMode mode = RenderMode::Exact;
+    /// Lights used for shading, 1..kMaxLights. The document's lights come first; when more are
+    /// asked for than it has, further lights are derived from them (see Renderer::lightsFor).
+    int lightCount = 2;
+    /// Partition override for every surface; 0 keeps each surface's own setting.
+    int partitionsU = 0;
+    int partitionsV = 0;
+    bool wireframe = false;  ///< outline of the base polygon cells
+    bool controlNet = false; ///< control points and net lines
+    /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures both, and a
+    /// deferred variant that was slower on llvmpipe and removed).
+    enum class Shading {
+        /// Default. Depth pre-pass of the base polygons with a trivial shader, then the exact
+        /// shader with GL_EQUAL and depth writes off: early-z rejects every hidden fragment,
+        /// so each pixel is evaluated once. Depth is the base polygon's (a chord of the
+        /// surface), so silhouettes and surface intersections follow the polygon.
+        DepthPrepass,
+        /// One pass writing the exact surface depth through gl_FragDepth: exact intersections
+        /// between surfaces, but no early-z, so hidden fragments are evaluated too.
+        ExactDepth,
+    };
+    Shading shading = Shading::DepthPrepass;
+    /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
+    bool writeAov = false;
+    glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
+};
+
+/// Counts of data sent to the GPU, kept by SurfaceGpuCache per surface and in total.
+struct UploadStats {
+    std::int64_t fullUploads = 0;       ///< control-point textures (re)created and filled
+    std::int64_t subImageUploads = 0;   ///< glTexSubImage2D calls on control-point textures
+    std::int64_t texels = 0;            ///< control-point texels sent (full and sub-image)
+    std::int64_t bytes = 0;             ///< all bytes sent: texels, span tables, vertices
+    std::int64_t spanTableUploads = 0;  ///< knot span tables (u and v count one each)
+    std::int64_t basePolygonBuilds = 0; ///< base polygon rebuilt (cells, vertices, indices)
+    std::int64_t vertexUpdates = 0;     ///< partial base polygon vertex updates after a move
+    std::int64_t vertexBytes = 0;       ///< bytes of those partial updates
+
+    UploadStats& operator+=(const UploadStats& o);
+    bool operator==(const UploadStats&) const = default;
+};
+
+/// Camera matrices for one frame (OpenGL clip conventions).
+struct FrameCamera {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::mat4 viewProjection{1.0f};
+    glm::vec3 eye{0.0f};
+    glm::vec3 forward{0.0f, 0.0f, -1.0f}; ///< unit view direction
+    float nearPlane = 0.1f;
+    float farPlane = 100.0f;
+    glm::ivec2 viewport{1, 1}; ///< pixels
+};
+
+/// Perspective matrices for `camera` at `aspect` (width / height > 0; viewport left {1, 1}). Near
+/// and far planes enclose the scene's control bounds (the surfaces lie inside them) with a margin;
+/// near is kept >= far * 1e-5 so depth precision stays usable.
+FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect);
+
+/// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,
+/// then copies of them rotated about the camera's up axis, so `--lights 8` works on any file.
+std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count);
+
+} // namespace kw

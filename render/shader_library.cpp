@@ -1,0 +1,95 @@
+// Shader loading with #include expansion and variant defines; programs cached per variant.
+#include "render/shader_library.h"
+
+#include <QFile>
+#include <QOpenGLShaderProgram>
+#include <QRegularExpression>
+
+namespace kw {
+
+namespace {
+
+bool expand(const QString& file, int depth, QString& out, QString* error) {
+    if (depth > 8) {
+        *error = QStringLiteral("shader includes nested too deeply at %1").arg(file);
+        return false;
+    }
+    // KW_SHADER_DIR (development): read shaders from a folder instead of the resources.
+    static const QString dir = qEnvironmentVariable("KW_SHADER_DIR", QStringLiteral(":/shaders"));
+    QFile f(dir + QLatin1Char('/') + file);
+    if (!f.open(QIODevice::ReadOnly | QIODevice::Text)) {
+        *error = QStringLiteral("shader file %1/%2 not found").arg(dir, file);
+        return false;
+    }
+    static const QRegularExpression include(QStringLiteral("^\\s*#include\\s+\"([^\"]+)\"\\s*$"));
+    const QStringList lines = QString::fromUtf8(f.readAll()).split(QLatin1Char('\n'));
+    for (const QString& line : lines) {
+        const QRegularExpressionMatch m = include.match(line);
+        if (m.hasMatch()) {
+            if (!expand(m.captured(1), depth + 1, out, error))
+                return false;
+        } else {
+            out += line;
+            out += QLatin1Char('\n');
+        }
+    }
+    return true;
+}
+
+} // namespace
+
+ShaderLibrary::ShaderLibrary() = default;
+ShaderLibrary::~ShaderLibrary() = default;
+
+QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
+    QString out;
+    QString err;
+    if (!expand(file, 0, out, &err)) {
+        if (error)
+            *error = err;
+        return {};
+    }
+    return out;
+}
+
+QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QString& fragment,
+                                             const QStringList& defines) {
+    const QString key =
+        vertex + QLatin1Char('|') + fragment + QLatin1Char('|') + defines.join(QLatin1Char(','));
+    auto it = m_programs.find(key);
+    if (it != m_programs.end()) {
+        if (!it.value())
+            m_lastError = QStringLiteral("shader variant %1 failed to build earlier").arg(key);
+        return it.value().get();
+    }
+    QString header = QStringLiteral("#version 450 core\n");
+    for (const QString& d : defines)
+        header += QStringLiteral("#define ") + d + QLatin1Char('\n');
+
+    auto prog = std::make_shared<QOpenGLShaderProgram>();
+    QString error;
+    const QString vs = expandedSource(vertex, &error);
+    const QString fs = vs.isEmpty() ? QString() : expandedSource(fragment, &error);
+    bool ok = !vs.isEmpty() && !fs.isEmpty();
+    if (ok && !prog->addShaderFromSourceCode(QOpenGLShader::Vertex, header + vs))
+        ok = false, error = QStringLiteral("%1: %2").arg(vertex, prog->log());
+    if (ok && !prog->addShaderFromSourceCode(QOpenGLShader::Fragment, header + fs))
+        ok = false, error = QStringLiteral("%1: %2").arg(fragment, prog->log());
+    if (ok && !prog->link())
+        ok = false,
+        error = QStringLiteral("linking %1 + %2: %3").arg(vertex, fragment, prog->log());
+    if (!ok) {
+        m_lastError =
+            QStringLiteral("shader variant [%1]: %2").arg(defines.join(QLatin1Char(' ')), error);
+        m_programs.insert(key, nullptr);
+        return nullptr;
+    }
+    m_programs.insert(key, prog);
+    return prog.get();
+}
+
+void ShaderLibrary::clear() {
+    m_programs.clear();
+}
+
+} // namespace kw

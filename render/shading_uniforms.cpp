@@ -1,0 +1,52 @@
+// Camera, light and material uniforms of phong.glsl.
+#include "render/shading_uniforms.h"
+
+#include <QOpenGLShaderProgram>
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace kw {
+
+void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
+                      const FrameCamera& camera, const std::vector<Light>& lights) {
+    gl->glUniformMatrix4fv(program->uniformLocation("uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(camera.viewProjection));
+    gl->glUniform3fv(program->uniformLocation("uEye"), 1, glm::value_ptr(camera.eye));
+    gl->glUniform3fv(program->uniformLocation("uForward"), 1, glm::value_ptr(camera.forward));
+    const int n = std::min<int>(int(lights.size()), kMaxLights);
+    glm::vec4 vec[kMaxLights];
+    glm::vec3 amb[kMaxLights], dif[kMaxLights], spe[kMaxLights];
+    for (int k = 0; k < n; ++k) {
+        const Light& l = lights[size_t(k)];
+        if (l.kind == Light::Kind::Directional) {
+            const glm::dvec3 d =
+                glm::length(l.vector) > 0.0 ? glm::normalize(l.vector) : glm::dvec3(0.0, 0.0, 1.0);
+            vec[k] = glm::vec4(glm::vec3(d), 0.0f);
+        } else {
+            vec[k] = glm::vec4(glm::vec3(l.vector), 1.0f);
+        }
+        amb[k] = glm::vec3(l.ambient);
+        dif[k] = glm::vec3(l.diffuse);
+        spe[k] = glm::vec3(l.specular);
+    }
+    glm::vec3 ambient(0.0f);
+    for (int k = 0; k < n; ++k)
+        ambient += amb[k];
+    gl->glUniform3fv(program->uniformLocation("uAmbient"), 1, glm::value_ptr(ambient));
+    if (n > 0) {
+        gl->glUniform4fv(program->uniformLocation("uLightVector"), n, glm::value_ptr(vec[0]));
+        gl->glUniform3fv(program->uniformLocation("uLightDiffuse"), n, glm::value_ptr(dif[0]));
+        gl->glUniform3fv(program->uniformLocation("uLightSpecular"), n, glm::value_ptr(spe[0]));
+    }
+}
+
+void setSurfaceUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
+                        const Surface& surface) {
+    const Material& m = surface.material;
+    gl->glUniform3fv(program->uniformLocation("uColor"), 1, glm::value_ptr(glm::vec3(m.color)));
+    gl->glUniform4f(program->uniformLocation("uMaterial"), float(m.ka), float(m.kd), float(m.ks),
+                    float(std::max(m.shininess, 1e-3)));
+    gl->glUniform1f(program->uniformLocation("uSurfaceId"), float(surface.id.value));
+}
+
+} // namespace kw

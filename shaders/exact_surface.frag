@@ -1,0 +1,34 @@
+// Exact pass (paper 3.4.1): evaluates the NURBS surface at the fragment's (u, v) and shades it.
+// Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth).
+#include "nurbs_surface.glsl"
+#include "phong.glsl"
+
+in vec2 vUv;
+flat in ivec2 vSpan;
+flat in float vSpanScale;
+
+uniform float uSurfaceId;
+uniform mat4 uViewProjection;
+uniform vec3 uForward;
+
+layout(location = 0) out vec4 fragColor;
+#ifdef KW_AOV
+layout(location = 1) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
+layout(location = 2) out vec4 aovPosition;  // exact point, w = 1
+layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not flipped), w = 0
+#endif
+
+void main() {
+    // Trimming (later issue) samples the surface's trim mask at vUv here and discards.
+    SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
+#ifdef KW_EXACT_DEPTH
+    vec4 clip = uViewProjection * vec4(s.point, 1.0);
+    gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+#endif
+    fragColor = vec4(phong(s.point, s.normal), 1.0);
+#ifdef KW_AOV
+    aovIdUvDepth = vec4(uSurfaceId, vUv, dot(s.point - uEye, uForward));
+    aovPosition = vec4(s.point, 1.0);
+    aovNormal = vec4(s.normal, 0.0);
+#endif
+}

@@ -1,0 +1,13 @@
+// Overlays (base polygon wireframe, control net): positions pulled slightly towards the camera
+// in clip space so lines on the surface win the depth test.
+layout(location = 0) in vec3 aPosition;
+
+uniform mat4 uViewProjection;
+uniform float uDepthBias; // fraction of clip w
+uniform float uPointSize;
+
+void main() {
+    gl_Position = uViewProjection * vec4(aPosition, 1.0);
+    gl_Position.z -= uDepthBias * gl_Position.w;
+    gl_PointSize = uPointSize;
+}

@@ -1,0 +1,145 @@
+// Exact rational surface point, first partials and unit normal at (u, v) inside the knot span
+// `span` (paper eqs. 3.1, 3.5-3.7; The NURBS Book A3.6 on homogeneous points, A4.4 quotient).
+// Needs DEGREE_U and DEGREE_V; sums only the (p+1) x (q+1) non-zero terms.
+
+uniform sampler2D uControl; // RGBA32F, texel (i, j) = (w P, w) of control point (i, j)
+uniform sampler2D uSpansU;  // span tables (kw::packSpanTable), row = span - degree
+uniform sampler2D uSpansV;
+uniform vec4 uDomain;       // (u first, u last, v first, v last) of the surface
+uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
+
+// Thresholds of the degenerate-normal rule of kw::surfaceFrame. The kernel's kTinyDerivativeRel
+// (1e-8) and kParallelRel (1e-10) are below float resolution: a collapsed edge evaluates to
+// |Su| ~ 1e-7 L of rounding noise here, so the GPU uses float-sized thresholds. Between the two
+// the rules differ only where the limit normal and Su x Sv agree to ~1e-5 rad.
+#define KW_TINY_REL 1e-5
+#define KW_PARALLEL_REL 1e-6
+#define KW_INTERIOR_STEP 1e-4
+
+// Where the control texels and span-table rows come from: the per-cell flat inputs
+// (cell_data.glsl) or the textures.
+#ifdef KW_CELL_GATHER
+#define KW_CELL_IO flat in
+#include "cell_data.glsl"
+#define CONTROL_TEXEL(first, i, j) vCellControl[(j) * (DEGREE_U + 1) + (i)]
+#else
+#define CONTROL_TEXEL(first, i, j) texelFetch(uControl, (first) + ivec2(i, j), 0)
+#endif
+
+#define BASIS_FN basisU
+#define BASIS_P DEGREE_U
+#ifdef KW_CELL_GATHER
+#define BASIS_TEXEL(x, row) vCellSpanU[x]
+#else
+#define BASIS_TEXEL(x, row) texelFetch(uSpansU, ivec2(x, row), 0)
+#endif
+#include "basis.glsl"
+#undef BASIS_FN
+#undef BASIS_P
+#undef BASIS_TEXEL
+#define BASIS_FN basisV
+#define BASIS_P DEGREE_V
+#ifdef KW_CELL_GATHER
+#define BASIS_TEXEL(x, row) vCellSpanV[x]
+#else
+#define BASIS_TEXEL(x, row) texelFetch(uSpansV, ivec2(x, row), 0)
+#endif
+#include "basis.glsl"
+#undef BASIS_FN
+#undef BASIS_P
+#undef BASIS_TEXEL
+
+struct SurfaceSample {
+    vec3 point;
+    vec3 du;
+    vec3 dv;
+    vec3 normal; // unit; the limit normal at collapsed edges (see evaluateSurface)
+};
+
+struct SurfacePartials {
+    vec3 s, su, sv, suv;
+};
+
+SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
+    float Nu[DEGREE_U + 1], dNu[DEGREE_U + 1];
+    float Nv[DEGREE_V + 1], dNv[DEGREE_V + 1];
+    basisU(span.x - DEGREE_U, uv.x, Nu, dNu);
+    basisV(span.y - DEGREE_V, uv.y, Nv, dNv);
+    vec4 A = vec4(0.0), Au = vec4(0.0), Av = vec4(0.0), Auv = vec4(0.0);
+    ivec2 first = span - ivec2(DEGREE_U, DEGREE_V);
+    for (int j = 0; j <= DEGREE_V; ++j) {
+        vec4 row = vec4(0.0), rowU = vec4(0.0);
+        for (int i = 0; i <= DEGREE_U; ++i) {
+            vec4 c = CONTROL_TEXEL(first, i, j);
+            row += Nu[i] * c;
+            rowU += dNu[i] * c;
+        }
+        A += Nv[j] * row;
+        Av += dNv[j] * row;
+        Au += Nv[j] * rowU;
+        Auv += dNv[j] * rowU;
+    }
+    // A4.4 to first order: S = A/w, Su = (Au - wu S)/w, Suv = (Auv - wu Sv - wv Su - wuv S)/w.
+    float invW = 1.0 / A.w;
+    SurfacePartials d;
+    d.s = A.xyz * invW;
+    d.su = (Au.xyz - Au.w * d.s) * invW;
+    d.sv = (Av.xyz - Av.w * d.s) * invW;
+    d.suv = (Auv.xyz - Au.w * d.sv - Av.w * d.su - Auv.w * d.s) * invW;
+    return d;
+}
+
+// Step 1 of the rule: the plain normal Su x Sv, when neither partial is tiny and they are not
+// parallel. tinyU/tinyV report the tiny tests for step 2.
+bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, out bool tinyV) {
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    tinyU = !(length(d.su) * width.x > tinyLen);
+    tinyV = !(length(d.sv) * width.y > tinyLen);
+    n = cross(d.su, d.sv);
+    float ln = length(n);
+    if (tinyU || tinyV || !(ln > KW_PARALLEL_REL * length(d.su) * length(d.sv)))
+        return false;
+    n /= ln;
+    return true;
+}
+
+// The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs_surface.cpp);
+// thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL).
+SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
+    float tinyLen = KW_TINY_REL * spanScale;
+    SurfaceSample s;
+    // One evaluation site for steps 1-2 at uv and step 3 at a nearby interior point: the second
+    // round runs only for fragments (SIMD lanes) that need it, and the code is not duplicated.
+    vec2 at = uv;
+    for (int round = 0; round < 2; ++round) {
+        SurfacePartials d = surfacePartials(at, span);
+        if (round == 0) {
+            s.point = d.s + uOrigin;
+            s.du = d.su;
+            s.dv = d.sv;
+        }
+        bool tinyU, tinyV;
+        if (plainNormal(d, tinyLen, s.normal, tinyU, tinyV))
+            break;
+        if (round == 1) {
+            s.normal = vec3(0.0, 0.0, 1.0); // step 4
+            break;
+        }
+        if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
+            vec3 other = tinyU ? d.sv : d.su;
+            vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
+                           : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
+            float lm = length(m);
+            if (length(d.suv) * width.x * width.y > tinyLen &&
+                lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
+                s.normal = m / lm;
+                break;
+            }
+        }
+        // Step 3: the plain normal of a nearby interior point (same span: the step is tiny).
+        at = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
+    }
+    return s;
+}

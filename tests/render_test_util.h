@@ -1,0 +1,141 @@
+// Helpers shared by the GL render tests: an off-screen renderer per test run, sample loading,
+// scenes built in code, and the AOV-vs-kernel comparison.
+#pragma once
+
+#include "model/document.h"
+#include "model/knotfile.h"
+#include "model/nurbs_shapes.h"
+#include "render/offscreen_renderer.h"
+
+#include <QDir>
+#include <QString>
+#include <QTest>
+#include <cmath>
+#include <optional>
+
+Q_DECLARE_METATYPE(kw::Scene)
+
+namespace kwtest {
+
+inline QDir outputDir() {
+    QDir d(QStringLiteral(KW_TEST_OUTPUT_DIR));
+    d.mkpath(QStringLiteral("."));
+    return d;
+}
+
+inline std::optional<kw::Scene> loadSample(const QString& name, QString* error) {
+    return kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + name + QStringLiteral(".knot"),
+                            error);
+}
+
+inline kw::Surface makeSurface(std::uint32_t id, const kw::NurbsSurface& g, int parts = 10) {
+    kw::Surface s;
+    s.id = kw::SurfaceId{id};
+    s.name = QStringLiteral("surface %1").arg(id);
+    s.geometry = g;
+    s.partitionsU = parts;
+    s.partitionsV = parts;
+    return s;
+}
+
+/// A wavy rational patch of degrees (p, q) with the given knot vectors (count from the knots).
+inline kw::NurbsSurface wavyPatch(int p, int q, std::vector<double> ku, std::vector<double> kv) {
+    kw::NurbsSurface s;
+    s.degreeU = p;
+    s.degreeV = q;
+    s.countU = int(ku.size()) - p - 1;
+    s.countV = int(kv.size()) - q - 1;
+    s.knotsU = std::move(ku);
+    s.knotsV = std::move(kv);
+    for (int j = 0; j < s.countV; ++j)
+        for (int i = 0; i < s.countU; ++i) {
+            const double x = 4.0 * i / (s.countU - 1) - 2.0, y = 3.0 * j / (s.countV - 1) - 1.5;
+            s.points.emplace_back(x, y, 0.5 * std::sin(1.7 * x + 0.4) * std::cos(1.3 * y));
+            s.weights.push_back(1.0 +
+                                0.4 * std::sin(0.9 * i + 1.7 * j) * std::sin(0.9 * i + 1.7 * j));
+        }
+    return s;
+}
+
+inline std::vector<double> clampedUniform(int p, int count) {
+    std::vector<double> k;
+    for (int i = 0; i <= p; ++i)
+        k.push_back(0.0);
+    const int interior = count - p - 1;
+    for (int i = 1; i <= interior; ++i)
+        k.push_back(double(i) / (interior + 1));
+    for (int i = 0; i <= p; ++i)
+        k.push_back(1.0);
+    return k;
+}
+
+/// Comparison of an AOV render with the kernel at every compared pixel's (u, v).
+struct AovComparison {
+    int covered = 0;        ///< pixels with a surface id
+    int compared = 0;       ///< pixels checked against the kernel
+    int unknownIds = 0;     ///< pixels whose id names no surface
+    double maxPosition = 0; ///< largest |P_gpu - P_cpu|, model units
+    double maxAngleDeg = 0; ///< largest angle between the normals, degrees
+    double modelSize = 0;   ///< diagonal of the scene's control bounds
+    int worstX = -1, worstY = -1;
+};
+
+/// Compares every `stride`-th covered pixel. Pixels within `creaseBand` (parameter units) of a
+/// C0 crease (interior knot of multiplicity >= degree), where the normal has two values, are
+/// counted as covered but not compared.
+inline AovComparison compareAovWithKernel(const kw::Scene& scene, const kw::AovBuffer& aov,
+                                          int stride = 1, double creaseBand = 1e-5) {
+    AovComparison r;
+    glm::dvec3 lo, hi;
+    kw::sceneBounds(scene, lo, hi);
+    r.modelSize = glm::length(hi - lo);
+    int seen = 0;
+    for (int y = 0; y < aov.height; ++y)
+        for (int x = 0; x < aov.width; ++x) {
+            const float* px = aov.pixel(x, y);
+            if (px[0] < 0.0f)
+                continue;
+            ++r.covered;
+            if (seen++ % stride != 0)
+                continue;
+            const kw::Surface* surf = nullptr;
+            for (const kw::Surface& s : scene.surfaces)
+                if (double(s.id.value) == double(px[0]))
+                    surf = &s;
+            if (!surf) {
+                ++r.unknownIds;
+                continue;
+            }
+            const kw::NurbsSurface& g = surf->geometry;
+            const double u = px[1], v = px[2];
+            bool onCrease = false;
+            auto crease = [&](const std::vector<double>& k, int p, double t) {
+                for (size_t a = 0; a < k.size(); ++a) {
+                    const size_t m = size_t(std::count(k.begin(), k.end(), k[a]));
+                    if (m >= size_t(p) && k[a] > k.front() && k[a] < k.back() &&
+                        std::abs(t - k[a]) < creaseBand)
+                        return true;
+                }
+                return false;
+            };
+            onCrease = crease(g.knotsU, g.degreeU, u) || crease(g.knotsV, g.degreeV, v);
+            if (onCrease)
+                continue;
+            const kw::SurfaceFrame f = kw::surfaceFrame(g, u, v);
+            const glm::dvec3 p(px[3], px[4], px[5]), n(px[6], px[7], px[8]);
+            const double dp = glm::length(p - f.point);
+            const double c = glm::clamp(glm::dot(glm::normalize(n), f.normal), -1.0, 1.0);
+            const double angle = glm::degrees(std::acos(c));
+            ++r.compared;
+            if (dp > r.maxPosition)
+                r.maxPosition = dp;
+            if (angle > r.maxAngleDeg || std::isnan(angle)) {
+                r.maxAngleDeg = std::isnan(angle) ? 180.0 : angle;
+                r.worstX = x;
+                r.worstY = y;
+            }
+        }
+    return r;
+}
+
+} // namespace kwtest

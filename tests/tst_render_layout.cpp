@@ -1,0 +1,151 @@
+// Render data layouts without GL: span tables reproduce the kernel's basis functions, base
+// polygon cells lie in one knot span each, partial vertex updates equal a rebuild.
+#include "render/gpu_layout.h"
+#include "render_test_util.h"
+
+using namespace kw;
+
+namespace {
+
+// The algorithm of shaders/basis.glsl, in double, reading a packSpanTable row.
+void basisFromTable(const std::vector<glm::vec4>& table, int p, int row, double u, double* N,
+                    double* dN) {
+    const int texels = spanTableTexels(p);
+    std::vector<double> t;
+    for (int x = 0; x < texels; ++x)
+        for (int c = 0; c < 4; ++c)
+            t.push_back(table[size_t(row * texels + x)][c]);
+    std::vector<double> left(size_t(p) + 1), right(size_t(p) + 1), lower(size_t(p) + 1);
+    for (int j = 1; j <= p; ++j) {
+        left[size_t(j)] = u - t[size_t(j - 1)];
+        right[size_t(j)] = t[size_t(p + j - 1)] - u;
+    }
+    N[0] = 1.0;
+    int inv = 2 * p;
+    for (int j = 1; j <= p; ++j) {
+        double saved = 0.0;
+        for (int r = 0; r < j; ++r) {
+            if (j == p)
+                lower[size_t(r)] = N[r];
+            const double temp = N[r] * t[size_t(inv + r)];
+            N[r] = saved + right[size_t(r + 1)] * temp;
+            saved = left[size_t(j - r)] * temp;
+        }
+        N[j] = saved;
+        if (j < p)
+            inv += j;
+    }
+    dN[0] = -p * lower[0] * t[size_t(inv)];
+    for (int r = 1; r < p; ++r)
+        dN[r] = p * (lower[size_t(r - 1)] * t[size_t(inv + r - 1)] -
+                     lower[size_t(r)] * t[size_t(inv + r)]);
+    dN[p] = p * lower[size_t(p - 1)] * t[size_t(inv + p - 1)];
+}
+
+} // namespace
+
+class TestRenderLayout : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void spanTableReproducesBasis_data() {
+        QTest::addColumn<int>("degree");
+        QTest::addColumn<std::vector<double>>("knots");
+        for (int p = 1; p <= kMaxDegree; ++p)
+            QTest::addRow("uniform p=%d", p) << p << kwtest::clampedUniform(p, p + 4);
+        QTest::newRow("multiplicities p=3")
+            << 3 << std::vector<double>{0, 0, 0, 0, 0.2, 0.2, 0.5, 0.5, 0.5, 0.9, 1, 1, 1, 1};
+        QTest::newRow("non-uniform p=2 scaled domain")
+            << 2 << std::vector<double>{-3, -3, -3, -1, 0.5, 0.5, 4, 4, 4};
+    }
+    void spanTableReproducesBasis() {
+        QFETCH(int, degree);
+        QFETCH(std::vector<double>, knots);
+        const int count = int(knots.size()) - degree - 1;
+        QVERIFY(knotVectorError(knots, degree, count).empty());
+        const std::vector<glm::vec4> table = packSpanTable(knots, degree, count);
+        QCOMPARE(int(table.size()), (count - degree) * spanTableTexels(degree));
+        const Interval dom = knotDomain(knots, degree);
+        double N[kMaxDegree + 1], dN[kMaxDegree + 1], ref[2 * (kMaxDegree + 1)];
+        for (int s = 0; s <= 200; ++s) {
+            const double u = dom.first + (dom.last - dom.first) * s / 200.0;
+            const int span = findSpan(degree, knots, u);
+            basisFromTable(table, degree, span - degree, u, N, dN);
+            basisFunctionDerivatives(span, u, degree, 1, knots, ref);
+            const double scale = dom.last - dom.first;
+            for (int k = 0; k <= degree; ++k) {
+                // float knots and reciprocals: relative accuracy ~1e-6
+                QVERIFY2(std::abs(N[k] - ref[k]) < 1e-5, qPrintable(QString::number(u)));
+                QVERIFY(std::abs(dN[k] - ref[degree + 1 + k]) * scale <
+                        1e-4 * (degree + 1) * degree);
+            }
+        }
+    }
+
+    void cellsLieInOneSpan() {
+        const NurbsSurface s = kwtest::wavyPatch(
+            3, 2, {0, 0, 0, 0, 0.3, 0.3, 0.3, 0.61, 1, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1});
+        const BasePolygon poly = buildBasePolygon(s, 7, 3);
+        // 7 uniform cells + the distinct interior knots 0.3 and 0.61 (0.3 and 0.61 are not on
+        // the uniform grid); v: 3 cells + 0.5.
+        QCOMPARE(poly.cellsU(), 9);
+        QCOMPARE(poly.cellsV(), 4);
+        for (double k : {0.3, 0.61})
+            QVERIFY(std::find(poly.breaksU.begin(), poly.breaksU.end(), k) != poly.breaksU.end());
+        for (int c = 0; c < poly.cellsU(); ++c) {
+            const int k = poly.spanU[size_t(c)];
+            QVERIFY(s.knotsU[size_t(k)] <= poly.breaksU[size_t(c)]);
+            QVERIFY(poly.breaksU[size_t(c + 1)] <= s.knotsU[size_t(k + 1)]);
+        }
+        QCOMPARE(int(poly.vertices.size()), (poly.cellsU() + 1) * (poly.cellsV() + 1));
+        for (const BaseVertex& v : poly.vertices) {
+            const glm::dvec3 p = surfacePoint(s, v.uv.x, v.uv.y);
+            QVERIFY(glm::length(glm::dvec3(v.position) - p) < 1e-5);
+            QVERIFY(v.spanScale > 0.0f);
+        }
+        // The first (provoking) vertex of every triangle carries a span containing the
+        // whole triangle.
+        const std::vector<unsigned> tri = basePolygonTriangles(poly);
+        QCOMPARE(int(tri.size()), poly.cellCount() * 6);
+        for (size_t t = 0; t < tri.size(); t += 3) {
+            const glm::ivec2 span = poly.vertices[tri[t]].span;
+            for (size_t k = 0; k < 3; ++k) {
+                const glm::vec2 uv = poly.vertices[tri[t + k]].uv;
+                QVERIFY(float(s.knotsU[size_t(span.x)]) <= uv.x &&
+                        uv.x <= float(s.knotsU[size_t(span.x + 1)]));
+                QVERIFY(float(s.knotsV[size_t(span.y)]) <= uv.y &&
+                        uv.y <= float(s.knotsV[size_t(span.y + 1)]));
+            }
+        }
+    }
+
+    void partialUpdateEqualsRebuild() {
+        NurbsSurface s =
+            kwtest::wavyPatch(3, 3, kwtest::clampedUniform(3, 9), kwtest::clampedUniform(3, 8));
+        BasePolygon poly = buildBasePolygon(s, 20, 20);
+        s.points[size_t(s.index(4, 3))] += glm::dvec3(0.1, -0.2, 0.7);
+        int first = -1, last = -1;
+        QVERIFY(updateBasePolygon(poly, s, 4, 4, 3, 3, first, last));
+        QVERIFY(first >= 0 && last < int(poly.vertices.size()) && first <= last);
+        QVERIFY(last - first + 1 < int(poly.vertices.size())); // local support: not all
+        const BasePolygon fresh = buildBasePolygon(s, 20, 20);
+        for (size_t k = 0; k < poly.vertices.size(); ++k) {
+            QVERIFY(glm::length(poly.vertices[k].position - fresh.vertices[k].position) < 1e-6f);
+            QCOMPARE(poly.vertices[k].spanScale, fresh.vertices[k].spanScale);
+        }
+    }
+
+    void controlPointsAreHomogeneousAroundOrigin() {
+        NurbsSurface s =
+            kwtest::wavyPatch(2, 2, kwtest::clampedUniform(2, 4), kwtest::clampedUniform(2, 3));
+        const glm::dvec3 o = controlOrigin(s);
+        const std::vector<glm::vec4> t = packControlPoints(s, o);
+        for (size_t k = 0; k < t.size(); ++k) {
+            QCOMPARE(double(t[k].w), double(float(s.weights[k])));
+            const glm::dvec3 back = glm::dvec3(t[k]) / double(t[k].w) + o;
+            QVERIFY(glm::length(back - s.points[k]) < 1e-6);
+        }
+    }
+};
+
+QTEST_MAIN(TestRenderLayout)
+#include "tst_render_layout.moc"

@@ -1,0 +1,180 @@
+// GL test: the renderer uploads only what the document's revisions say is stale.
+#include "render_test_util.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+using namespace kw;
+
+class TestRenderUploads : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenRenderer> m_renderer;
+    Document m_doc;
+    SurfaceId m_bicubic, m_sphere;
+
+    bool renderOnce(QString* error) {
+        return m_renderer->render(m_doc, fitCamera(m_doc.scene(), 1.0), RenderOptions{}, error);
+    }
+
+    // The control-point texture as stored on the GPU.
+    std::vector<glm::vec4> gpuTexels(SurfaceId id) {
+        const SurfaceGpu* g = m_renderer->renderer().cache().find(id);
+        std::vector<glm::vec4> out(size_t(g->countU * g->countV));
+        m_renderer->makeCurrent();
+        m_renderer->renderer().gl()->glGetTextureImage(g->controlTexture, 0, GL_RGBA, GL_FLOAT,
+                                                       GLsizei(out.size() * sizeof(glm::vec4)),
+                                                       out.data());
+        return out;
+    }
+
+private Q_SLOTS:
+    void initTestCase() {
+        m_renderer = std::make_unique<OffscreenRenderer>();
+        QString error;
+        QVERIFY2(m_renderer->create(&error), qPrintable(error));
+        QVERIFY2(m_renderer->setSize(QSize(128, 128), true, &error), qPrintable(error));
+        std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("bicubic"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        m_bicubic = scene->surfaces.at(0).id;
+        m_sphere = SurfaceId{scene->nextId};
+        scene->surfaces.push_back(
+            kwtest::makeSurface(m_sphere.value, makeSphere(glm::dvec3(0.0, 0.0, 1.5), 0.8)));
+        scene->nextId = m_sphere.value + 1;
+        QVERIFY2(m_doc.resetScene(*scene, &error), qPrintable(error));
+    }
+
+    void firstRenderUploadsEverything() {
+        QString error;
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        for (SurfaceId id : {m_bicubic, m_sphere}) {
+            const UploadStats s = m_renderer->renderer().cache().stats(id);
+            const Surface* surf = m_doc.surface(id);
+            QCOMPARE(s.fullUploads, 1);
+            QCOMPARE(s.texels, std::int64_t(surf->geometry.countU) * surf->geometry.countV);
+            QCOMPARE(s.spanTableUploads, 2);
+            QCOMPARE(s.basePolygonBuilds, 1);
+        }
+        // Nothing changed: a second frame uploads nothing.
+        m_renderer->renderer().cache().resetStats();
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        QCOMPARE(m_renderer->renderer().cache().totalStats(), UploadStats{});
+    }
+
+    void movedPointIsOneTexel() {
+        QString error;
+        m_renderer->renderer().cache().resetStats();
+        const Surface* s = m_doc.surface(m_bicubic);
+        // Point (1, 0) acts on u in [0, 0.35] and v in [0, 0.3] only (local support).
+        const int index = s->geometry.index(1, 0);
+        const glm::dvec3 moved = s->geometry.points[size_t(index)] + glm::dvec3(0.1, -0.05, 0.6);
+        QVERIFY(m_doc.setControlPoints(m_bicubic, {index}, {moved}));
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+
+        const UploadStats b = m_renderer->renderer().cache().stats(m_bicubic);
+        QCOMPARE(b.fullUploads, 0);
+        QCOMPARE(b.subImageUploads, 1);
+        QCOMPARE(b.texels, 1);
+        QCOMPARE(b.spanTableUploads, 0);
+        QCOMPARE(b.basePolygonBuilds, 0);
+        QCOMPARE(b.vertexUpdates, 1);
+        const SurfaceGpu* g = m_renderer->renderer().cache().find(m_bicubic);
+        QVERIFY(b.vertexBytes > 0);
+        QVERIFY(size_t(b.vertexBytes) < g->polygon.vertices.size() * sizeof(BaseVertex));
+        QCOMPARE(m_renderer->renderer().cache().stats(m_sphere), UploadStats{});
+
+        // The GPU texel holds the new point, and the frame matches the kernel.
+        const std::vector<glm::vec4> texels = gpuTexels(m_bicubic);
+        const std::vector<glm::vec4> expected =
+            packControlPoints(m_doc.surface(m_bicubic)->geometry, g->origin);
+        QCOMPARE(texels.size(), expected.size());
+        for (size_t k = 0; k < texels.size(); ++k)
+            QVERIFY2(texels[k] == expected[k], qPrintable(QStringLiteral("texel %1").arg(k)));
+        const kwtest::AovComparison r =
+            kwtest::compareAovWithKernel(m_doc.scene(), m_renderer->aov());
+        QVERIFY(r.compared > 500);
+        QVERIFY(r.maxPosition <= 1e-5 * r.modelSize);
+        QVERIFY(r.maxAngleDeg <= 0.05);
+    }
+
+    void weightChangeIsOneTexel() {
+        QString error;
+        m_renderer->renderer().cache().resetStats();
+        QVERIFY(m_doc.setWeight(m_sphere, 7, 2.5));
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        const UploadStats s = m_renderer->renderer().cache().stats(m_sphere);
+        QCOMPARE(s.subImageUploads, 1);
+        QCOMPARE(s.texels, 1);
+        QCOMPARE(s.fullUploads, 0);
+        QCOMPARE(m_renderer->renderer().cache().stats(m_bicubic), UploadStats{});
+    }
+
+    void partitionsRebuildOnlyThatPolygon() {
+        QString error;
+        m_renderer->renderer().cache().resetStats();
+        QVERIFY(m_doc.setPartitions(m_sphere, 17, 5));
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        const UploadStats s = m_renderer->renderer().cache().stats(m_sphere);
+        QCOMPARE(s.basePolygonBuilds, 1);
+        QCOMPARE(s.texels, 0);
+        QCOMPARE(s.fullUploads, 0);
+        QCOMPARE(s.spanTableUploads, 0);
+        QCOMPARE(m_renderer->renderer().cache().find(m_sphere)->polygon.cellsU(),
+                 17 + 3); // + 3 interior knots
+        QCOMPARE(m_renderer->renderer().cache().stats(m_bicubic), UploadStats{});
+    }
+
+    void knotChangeIsFullUploadOfThatSurface() {
+        QString error;
+        m_renderer->renderer().cache().resetStats();
+        // Same counts, a moved interior knot: only the Knots revision tells the cache.
+        NurbsSurface refined = m_doc.surface(m_bicubic)->geometry;
+        QCOMPARE(refined.knotsV[4], 0.3);
+        refined.knotsV[4] = 0.45;
+        QVERIFY(m_doc.setGeometry(m_bicubic, refined));
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        const UploadStats s = m_renderer->renderer().cache().stats(m_bicubic);
+        QCOMPARE(s.fullUploads, 1);
+        QCOMPARE(s.texels, std::int64_t(refined.countU) * refined.countV);
+        QCOMPARE(m_renderer->renderer().cache().stats(m_sphere), UploadStats{});
+    }
+
+    void removedSurfaceIsDropped() {
+        QString error;
+        QVERIFY(m_doc.removeSurface(m_sphere));
+        QVERIFY2(renderOnce(&error), qPrintable(error));
+        QVERIFY(m_renderer->renderer().cache().find(m_sphere) == nullptr);
+        QVERIFY(m_renderer->renderer().cache().find(m_bicubic) != nullptr);
+    }
+
+    void anotherDocumentIsNotMistakenForThisOne() {
+        // Same surface id, same net size, same revision numbers, other points: the renderer
+        // must not reuse the first document's uploads (in both modes).
+        QString error;
+        Scene a, b;
+        NurbsSurface ga = makePlane(glm::dvec3(0.0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0));
+        NurbsSurface gb =
+            makePlane(glm::dvec3(0.0, 0.0, 2.0), glm::dvec3(2, 0, 0), glm::dvec3(0, 1, 1));
+        a.surfaces.push_back(kwtest::makeSurface(1, ga));
+        b.surfaces.push_back(kwtest::makeSurface(1, gb));
+        a.nextId = b.nextId = 2;
+        for (RenderMode mode : {RenderMode::Exact, RenderMode::Tessellated}) {
+            Document da, db;
+            QVERIFY(da.resetScene(a, &error));
+            QVERIFY(db.resetScene(b, &error));
+            QCOMPARE(da.revisions(SurfaceId{1}), db.revisions(SurfaceId{1}));
+            RenderOptions opt;
+            opt.mode = mode;
+            const Camera cam = fitCamera(b, 1.0);
+            QVERIFY2(m_renderer->render(da, cam, opt, &error), qPrintable(error));
+            QVERIFY2(m_renderer->render(db, cam, opt, &error), qPrintable(error));
+            const kwtest::AovComparison r = kwtest::compareAovWithKernel(b, m_renderer->aov());
+            QVERIFY(r.compared > 500);
+            QVERIFY2(r.maxPosition <= 1e-4 * r.modelSize,
+                     qPrintable(QString::number(r.maxPosition)));
+        }
+    }
+
+    void cleanupTestCase() { m_renderer.reset(); }
+};
+
+QTEST_MAIN(TestRenderUploads)
+#include "tst_render_uploads.moc"

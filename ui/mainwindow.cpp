@@ -1,0 +1,282 @@
+// MainWindow: construction of the window, docks, menus, actions and status bar.
+#include "ui/mainwindow.h"
+
+#include "ui/edit/commands.h"
+#include "ui/lightspanel.h"
+#include "ui/propertypanel.h"
+#include "ui/uvpanel.h"
+#include "ui/viewport.h"
+
+#include <QActionGroup>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMenuBar>
+#include <QScrollArea>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTreeView>
+#include <QUndoStack>
+
+namespace kw {
+
+MainWindow::Dialogs MainWindow::Dialogs::standard() {
+    Dialogs d;
+    d.openFile = [](QWidget* parent, const QString& title, const QString& filter) {
+        return QFileDialog::getOpenFileName(parent, title, QString(), filter);
+    };
+    d.saveFile = [](QWidget* parent, const QString& title, const QString& filter,
+                    const QString& suggested) {
+        return QFileDialog::getSaveFileName(parent, title, suggested, filter);
+    };
+    d.error = [](QWidget* parent, const QString& title, const QString& text) {
+        QMessageBox::critical(parent, title, text);
+    };
+    d.askSave = [](QWidget* parent, const QString& text) {
+        return QMessageBox::warning(parent, QObject::tr("Unsaved changes"), text,
+                                    QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
+                                    QMessageBox::Save);
+    };
+    return d;
+}
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), m_doc(new Document(this)), m_model(new SceneModel(*m_doc, this)),
+      m_selection(new Selection(*m_model, this)), m_stack(new QUndoStack(this)),
+      m_dialogs(Dialogs::standard()) {
+    setObjectName(QStringLiteral("KnotworkMainWindow"));
+    setAcceptDrops(true);
+    setDockNestingEnabled(true);
+    m_model->setRenameHandler([this](SurfaceId id, const QString& name) {
+        QString error;
+        if (!pushCommand(m_stack, RenameSurface::create(m_doc, id, name, &error)))
+            statusBar()->showMessage(error, 5000);
+    });
+
+    m_viewport = new Viewport(m_doc, m_model, m_selection, m_stack, this);
+    setCentralWidget(m_viewport);
+    buildDocks();
+    buildMenus();
+
+    m_fpsLabel = new QLabel;
+    m_fpsLabel->setMinimumWidth(170);
+    statusBar()->addPermanentWidget(m_fpsLabel);
+    connect(m_viewport, &Viewport::framesPerSecond, this, [this](double fps, double ms) {
+        m_fpsLabel->setText(tr("%1 fps, frame %2 ms").arg(fps, 0, 'f', 1).arg(ms, 0, 'f', 1));
+    });
+    connect(m_viewport, &Viewport::renderError, this,
+            [this](const QString& message) { statusBar()->showMessage(message); });
+    connect(m_properties, &PropertyPanel::editRejected, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 5000); });
+    connect(m_lights, &LightsPanel::editRejected, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 5000); });
+    connect(m_stack, &QUndoStack::cleanChanged, this, &MainWindow::updateTitle);
+
+    QSettings settings;
+    resize(1100, 720);
+    restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+    restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+    rebuildRecentMenu();
+    updateTitle();
+}
+
+MainWindow::~MainWindow() {
+    // Selection's QItemSelectionModel member is constructed with the SceneModel as its QObject
+    // parent, so the model would free it as a child; the selection must go first.
+    delete m_selection;
+    m_selection = nullptr;
+}
+
+void MainWindow::buildDocks() {
+    auto dock = [this](const QString& title, const QString& name, QWidget* content,
+                       Qt::DockWidgetArea area) {
+        auto* d = new QDockWidget(title, this);
+        d->setObjectName(name); // saveState() keys docks by object name
+        d->setWidget(content);
+        addDockWidget(area, d);
+        return d;
+    };
+    m_tree = new QTreeView;
+    m_tree->setModel(m_model);
+    m_tree->setSelectionModel(m_selection->itemSelection());
+    m_tree->setEditTriggers(QAbstractItemView::EditKeyPressed | QAbstractItemView::DoubleClicked);
+    m_tree->header()->setStretchLastSection(true);
+    dock(tr("Scene"), QStringLiteral("dockScene"), m_tree, Qt::LeftDockWidgetArea);
+
+    m_uv = new UvPanel(m_doc, m_selection, m_stack);
+    dock(tr("UV domain and trims"), QStringLiteral("dockUv"), m_uv, Qt::LeftDockWidgetArea);
+
+    m_properties = new PropertyPanel(m_doc, m_selection, m_stack);
+    auto* scroll = new QScrollArea;
+    scroll->setWidgetResizable(true);
+    scroll->setWidget(m_properties);
+    QDockWidget* props =
+        dock(tr("Properties"), QStringLiteral("dockProperties"), scroll, Qt::RightDockWidgetArea);
+    m_lights = new LightsPanel(m_doc, m_stack);
+    QDockWidget* lights =
+        dock(tr("Lights"), QStringLiteral("dockLights"), m_lights, Qt::RightDockWidgetArea);
+    tabifyDockWidget(props, lights);
+    props->raise();
+}
+
+QAction* MainWindow::addAction(QMenu* menu, const QString& name, const QString& text,
+                               const QKeySequence& key, std::function<void()> slot) {
+    auto* a = menu->addAction(text);
+    a->setObjectName(name);
+    if (!key.isEmpty())
+        a->setShortcut(key);
+    connect(a, &QAction::triggered, this, std::move(slot));
+    return a;
+}
+
+QAction* MainWindow::action(const QString& objectName) const {
+    return findChild<QAction*>(objectName);
+}
+
+void MainWindow::buildMenus() {
+    buildFileMenu();
+    buildEditMenu();
+    buildViewMenu();
+}
+
+void MainWindow::buildFileMenu() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    addAction(file, QStringLiteral("actionNew"), tr("&New"), QKeySequence::New,
+              [this] { newDocument(); });
+    addAction(file, QStringLiteral("actionOpen"), tr("&Open…"), QKeySequence::Open,
+              [this] { openDialog(); });
+    m_recentMenu = file->addMenu(tr("Open &Recent"));
+    m_recentMenu->setObjectName(QStringLiteral("menuRecent"));
+    file->addSeparator();
+    addAction(file, QStringLiteral("actionSave"), tr("&Save"), QKeySequence::Save,
+              [this] { save(); });
+    addAction(file, QStringLiteral("actionSaveAs"), tr("Save &As…"), QKeySequence::SaveAs,
+              [this] { saveAs(); });
+    addAction(file, QStringLiteral("actionExportImage"), tr("&Export Image…"),
+              QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportImage(); });
+    file->addSeparator();
+    QAction* quit = addAction(file, QStringLiteral("actionQuit"), tr("&Quit"), QKeySequence::Quit,
+                              [this] { close(); });
+    quit->setMenuRole(QAction::QuitRole);
+}
+
+void MainWindow::buildEditMenu() {
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    // The stack's actions show the command's text ("Undo Move control point").
+    QAction* undo = m_stack->createUndoAction(this, tr("&Undo"));
+    undo->setObjectName(QStringLiteral("actionUndo"));
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = m_stack->createRedoAction(this, tr("&Redo"));
+    redo->setObjectName(QStringLiteral("actionRedo"));
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addAction(undo);
+    edit->addAction(redo);
+    edit->addSeparator();
+    addAction(edit, QStringLiteral("actionSelectAll"), tr("Select &All"), QKeySequence::SelectAll,
+              [this] { selectAll(); });
+    addAction(edit, QStringLiteral("actionDelete"), tr("&Delete Surface"), QKeySequence::Delete,
+              [this] { deleteSelection(); });
+}
+
+void MainWindow::buildViewMenu() {
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    addAction(view, QStringLiteral("actionFit"), tr("&Fit to View"), QKeySequence(Qt::Key_F),
+              [this] { m_viewport->fitToView(); });
+    QMenu* standard = view->addMenu(tr("Standard &Views"));
+    const struct {
+        const char* name;
+        const char* text;
+        Qt::Key key;
+        StandardView view;
+    } views[] = {{"actionViewFront", "&Front", Qt::Key_1, StandardView::Front},
+                 {"actionViewBack", "&Back", Qt::Key_2, StandardView::Back},
+                 {"actionViewRight", "&Right", Qt::Key_3, StandardView::Right},
+                 {"actionViewLeft", "&Left", Qt::Key_4, StandardView::Left},
+                 {"actionViewTop", "&Top", Qt::Key_7, StandardView::Top},
+                 {"actionViewBottom", "B&ottom", Qt::Key_8, StandardView::Bottom},
+                 {"actionViewIso", "&Oblique", Qt::Key_0, StandardView::Iso}};
+    for (const auto& v : views) {
+        const StandardView which = v.view;
+        addAction(standard, QLatin1String(v.name), tr(v.text), QKeySequence(v.key),
+                  [this, which] { m_viewport->setStandardView(which); });
+    }
+    view->addSeparator();
+    auto* modes = new QActionGroup(this);
+    QAction* exact = addAction(view, QStringLiteral("actionShadeExact"), tr("&Exact Surface"),
+                               QKeySequence(Qt::Key_E),
+                               [this] { m_viewport->setRenderMode(RenderMode::Exact); });
+    QAction* tess = addAction(view, QStringLiteral("actionShadeTessellated"),
+                              tr("&Tessellated Baseline"), QKeySequence(Qt::Key_T),
+                              [this] { m_viewport->setRenderMode(RenderMode::Tessellated); });
+    for (QAction* a : {exact, tess}) {
+        a->setCheckable(true);
+        modes->addAction(a);
+    }
+    exact->setChecked(true);
+    view->addSeparator();
+    QAction* wire = addAction(view, QStringLiteral("actionWireframe"),
+                              tr("Base Polygon &Wireframe"), QKeySequence(Qt::Key_W), [] {});
+    wire->setCheckable(true);
+    connect(wire, &QAction::toggled, m_viewport, &Viewport::setWireframe);
+    QAction* net = addAction(view, QStringLiteral("actionControlNet"), tr("&Control Net"),
+                             QKeySequence(Qt::Key_N), [] {});
+    net->setCheckable(true);
+    net->setChecked(m_viewport->renderOptions().controlNet);
+    connect(net, &QAction::toggled, m_viewport, &Viewport::setControlNet);
+    view->addSeparator();
+    QMenu* panels = view->addMenu(tr("&Panels"));
+    for (QDockWidget* d : findChildren<QDockWidget*>())
+        panels->addAction(d->toggleViewAction());
+}
+
+void MainWindow::selectAll() {
+    // All control points of the current surface, or of every surface when none is current.
+    const SurfaceId current = m_selection->currentSurface();
+    std::vector<ControlPointRef> refs;
+    for (const Surface& s : m_doc->scene().surfaces) {
+        if (current.isValid() && s.id != current)
+            continue;
+        for (int j = 0; j < s.geometry.countV; ++j)
+            for (int i = 0; i < s.geometry.countU; ++i)
+                refs.push_back({s.id, i, j});
+    }
+    m_selection->setControlPoints(refs);
+}
+
+void MainWindow::deleteSelection() {
+    const SurfaceId current = m_selection->currentSurface();
+    if (!current.isValid()) {
+        statusBar()->showMessage(tr("Select a surface to delete."), 5000);
+        return;
+    }
+    QString error;
+    if (!pushCommand(m_stack, RemoveSurface::create(m_doc, current, &error)))
+        statusBar()->showMessage(error, 5000);
+}
+
+void MainWindow::selectSurface(SurfaceId id) {
+    const QModelIndex row = m_model->surfaceIndex(id);
+    m_selection->itemSelection()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect |
+                                                           QItemSelectionModel::Rows);
+}
+
+void MainWindow::showError(const QString& title, const QString& text) {
+    statusBar()->showMessage(text, 10000);
+    if (m_dialogs.error)
+        m_dialogs.error(this, title, text);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maybeSave()) {
+        event->ignore();
+        return;
+    }
+    QSettings settings;
+    settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("window/state"), saveState());
+    event->accept();
+}
+
+} // namespace kw

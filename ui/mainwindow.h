@@ -1,0 +1,110 @@
+// MainWindow: the editor window — viewport, scene tree, property, lights and UV panels, File /
+// Edit / View menus, undo stack, file state, recent files and window layout.
+#pragma once
+
+#include "model/selection.h"
+#include "ui/cameracontroller.h"
+
+#include <QMainWindow>
+#include <QMessageBox>
+#include <functional>
+
+class QLabel;
+class QMenu;
+class QTreeView;
+class QUndoStack;
+
+namespace kw {
+
+class LightsPanel;
+class PropertyPanel;
+class UvPanel;
+class Viewport;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    /// The dialogs the window asks through; tests replace them to run without user input.
+    struct Dialogs {
+        /// Returns a path, or an empty string when the user cancels.
+        std::function<QString(QWidget*, const QString& title, const QString& filter)> openFile;
+        std::function<QString(QWidget*, const QString& title, const QString& filter,
+                              const QString& suggested)>
+            saveFile;
+        std::function<void(QWidget*, const QString& title, const QString& text)> error;
+        /// Unsaved changes: Save, Discard or Cancel.
+        std::function<QMessageBox::StandardButton(QWidget*, const QString& text)> askSave;
+        static Dialogs standard();
+    };
+
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    void setDialogs(Dialogs dialogs) { m_dialogs = std::move(dialogs); }
+
+    /// Opens a .knot file, replacing the document. On failure shows the loader's message,
+    /// keeps the current document and returns false. Does not ask about unsaved changes.
+    bool openFile(const QString& path);
+    /// Writes the document to `path` (atomic); on failure shows the message and returns false.
+    bool saveFile(const QString& path);
+    /// Makes `id` the current surface (tree row and panels).
+    void selectSurface(SurfaceId id);
+
+    Document* document() const { return m_doc; }
+    Selection* selection() const { return m_selection; }
+    QUndoStack* undoStack() const { return m_stack; }
+    Viewport* viewport() const { return m_viewport; }
+    PropertyPanel* propertyPanel() const { return m_properties; }
+    LightsPanel* lightsPanel() const { return m_lights; }
+    UvPanel* uvPanel() const { return m_uv; }
+    QTreeView* sceneTree() const { return m_tree; }
+    QString filePath() const { return m_path; }
+    QStringList recentFiles() const;
+
+    /// Actions by object name ("actionOpen", "actionSave", ...), for tests and tools.
+    QAction* action(const QString& objectName) const;
+
+protected:
+    void closeEvent(QCloseEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
+
+private:
+    void buildDocks();
+    void buildMenus();
+    void buildFileMenu();
+    void buildEditMenu();
+    void buildViewMenu();
+    QAction* addAction(QMenu* menu, const QString& name, const QString& text,
+                       const QKeySequence& key, std::function<void()> slot);
+    void newDocument();
+    void openDialog();
+    bool save();
+    bool saveAs();
+    void exportImage();
+    void selectAll();
+    void deleteSelection();
+    /// True when it is fine to discard the document (saved, discarded or unmodified).
+    bool maybeSave();
+    void setFilePath(const QString& path);
+    void addRecent(const QString& path);
+    void rebuildRecentMenu();
+    void updateTitle();
+    void showError(const QString& title, const QString& text);
+
+    Document* m_doc;
+    SceneModel* m_model;
+    Selection* m_selection;
+    QUndoStack* m_stack;
+    Viewport* m_viewport = nullptr;
+    QTreeView* m_tree = nullptr;
+    PropertyPanel* m_properties = nullptr;
+    LightsPanel* m_lights = nullptr;
+    UvPanel* m_uv = nullptr;
+    QMenu* m_recentMenu = nullptr;
+    QLabel* m_fpsLabel = nullptr;
+    QString m_path;
+    Dialogs m_dialogs;
+};
+
+} // namespace kw

@@ -1,0 +1,194 @@
+// MainWindow: file handling — New, Open, Save, Save As, recent files, export, drops, title.
+#include "model/knotfile.h"
+#include "ui/mainwindow.h"
+#include "ui/viewport.h"
+
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMimeData>
+#include <QSettings>
+#include <QStatusBar>
+#include <QUndoStack>
+
+namespace kw {
+
+namespace {
+
+constexpr int kMaxRecent = 8;
+const QString kKnotFilter = QStringLiteral("Knotwork projects (*.knot);;All files (*)");
+
+QString knotPathOf(const QMimeData* mime) {
+    if (!mime || !mime->hasUrls())
+        return {};
+    for (const QUrl& url : mime->urls())
+        if (url.isLocalFile() &&
+            url.toLocalFile().endsWith(QLatin1String(".knot"), Qt::CaseInsensitive))
+            return url.toLocalFile();
+    return {};
+}
+
+} // namespace
+
+bool MainWindow::openFile(const QString& path) {
+    QString error;
+    std::optional<Scene> scene = readKnotFile(path, &error);
+    if (!scene || !m_doc->resetScene(std::move(*scene), &error)) {
+        showError(tr("Cannot open file"), error);
+        return false;
+    }
+    m_stack->clear();
+    m_stack->setClean();
+    setFilePath(path);
+    addRecent(path);
+    if (!m_doc->scene().surfaces.empty())
+        selectSurface(m_doc->scene().surfaces.front().id);
+    statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+    return true;
+}
+
+bool MainWindow::saveFile(const QString& path) {
+    QString error;
+    if (!writeKnotFile(path, m_doc->scene(), &error)) {
+        showError(tr("Cannot save file"), error);
+        return false;
+    }
+    m_stack->setClean();
+    setFilePath(path);
+    addRecent(path);
+    statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
+    return true;
+}
+
+void MainWindow::newDocument() {
+    if (!maybeSave())
+        return;
+    m_doc->resetScene(Scene{});
+    m_stack->clear();
+    m_stack->setClean();
+    setFilePath(QString());
+}
+
+void MainWindow::openDialog() {
+    if (!maybeSave())
+        return;
+    const QString path = m_dialogs.openFile(this, tr("Open project"), kKnotFilter);
+    if (!path.isEmpty())
+        openFile(path);
+}
+
+bool MainWindow::save() {
+    return m_path.isEmpty() ? saveAs() : saveFile(m_path);
+}
+
+bool MainWindow::saveAs() {
+    const QString suggested = m_path.isEmpty() ? tr("untitled.knot") : m_path;
+    QString path = m_dialogs.saveFile(this, tr("Save project as"), kKnotFilter, suggested);
+    if (path.isEmpty())
+        return false;
+    if (QFileInfo(path).suffix().isEmpty())
+        path += QStringLiteral(".knot");
+    return saveFile(path);
+}
+
+void MainWindow::exportImage() {
+    const QString suggested =
+        m_path.isEmpty() ? tr("untitled.png") : QFileInfo(m_path).completeBaseName() + ".png";
+    const QString path = m_dialogs.saveFile(this, tr("Export image"),
+                                            tr("Images (*.png *.jpg *.bmp *.tif)"), suggested);
+    if (path.isEmpty())
+        return;
+    if (!m_viewport->glError().isEmpty()) {
+        showError(tr("Cannot export image"), m_viewport->glError());
+        return;
+    }
+    const QImage frame = m_viewport->grabFramebuffer();
+    if (frame.isNull() || !frame.save(path)) {
+        showError(
+            tr("Cannot export image"),
+            tr("%1: could not write the image (unknown format or unwritable folder)").arg(path));
+        return;
+    }
+    statusBar()->showMessage(tr("Exported %1").arg(QFileInfo(path).fileName()), 5000);
+}
+
+bool MainWindow::maybeSave() {
+    if (m_stack->isClean())
+        return true;
+    const QString name = m_path.isEmpty() ? tr("Untitled") : QFileInfo(m_path).fileName();
+    switch (m_dialogs.askSave(this, tr("%1 has unsaved changes. Save them?").arg(name))) {
+    case QMessageBox::Save:
+        return save();
+    case QMessageBox::Discard:
+        return true;
+    default:
+        return false;
+    }
+}
+
+void MainWindow::setFilePath(const QString& path) {
+    m_path = path;
+    updateTitle();
+}
+
+void MainWindow::updateTitle() {
+    const QString name = m_path.isEmpty() ? tr("Untitled") : QFileInfo(m_path).fileName();
+    setWindowFilePath(m_path);
+    setWindowTitle(tr("%1[*] — Knotwork").arg(name));
+    setWindowModified(!m_stack->isClean());
+}
+
+QStringList MainWindow::recentFiles() const {
+    return QSettings().value(QStringLiteral("recentFiles")).toStringList();
+}
+
+void MainWindow::addRecent(const QString& path) {
+    const QString absolute = QFileInfo(path).absoluteFilePath();
+    QStringList list = recentFiles();
+    list.removeAll(absolute);
+    list.prepend(absolute);
+    while (list.size() > kMaxRecent)
+        list.removeLast();
+    QSettings().setValue(QStringLiteral("recentFiles"), list);
+    rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+    m_recentMenu->clear();
+    const QStringList list = recentFiles();
+    for (const QString& path : list) {
+        QAction* a = m_recentMenu->addAction(QFileInfo(path).fileName());
+        a->setToolTip(path);
+        a->setData(path);
+        connect(a, &QAction::triggered, this, [this, path] {
+            if (maybeSave())
+                openFile(path);
+        });
+    }
+    if (list.isEmpty())
+        m_recentMenu->addAction(tr("(none)"))->setEnabled(false);
+    else {
+        m_recentMenu->addSeparator();
+        m_recentMenu->addAction(tr("Clear Menu"), this, [this] {
+            QSettings().remove(QStringLiteral("recentFiles"));
+            rebuildRecentMenu();
+        });
+    }
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    if (!knotPathOf(event->mimeData()).isEmpty())
+        event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+    const QString path = knotPathOf(event->mimeData());
+    if (path.isEmpty())
+        return;
+    event->acceptProposedAction();
+    if (maybeSave())
+        openFile(path);
+}
+
+} // namespace kw

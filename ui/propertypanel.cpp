@@ -1,0 +1,320 @@
+// PropertyPanel: widgets for the current surface and picked control point, each edit one command.
+#include "ui/propertypanel.h"
+
+#include "ui/edit/commands.h"
+
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPlainTextEdit>
+#include <QPushButton>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QSpinBox>
+#include <QUndoStack>
+#include <QVBoxLayout>
+
+namespace kw {
+
+namespace {
+
+QDoubleSpinBox* spin(double lo, double hi, double step, int decimals) {
+    auto* s = new QDoubleSpinBox;
+    s->setRange(lo, hi);
+    s->setSingleStep(step);
+    s->setDecimals(decimals);
+    s->setKeyboardTracking(false); // one edit per committed value, not per keystroke
+    return s;
+}
+
+QString knotText(const std::vector<double>& knots) {
+    QStringList parts;
+    for (double k : knots)
+        parts << QString::number(k, 'g', 6);
+    return parts.join(QStringLiteral(", "));
+}
+
+QColor toColor(const glm::dvec3& c) {
+    return QColor::fromRgbF(float(std::clamp(c.r, 0.0, 1.0)), float(std::clamp(c.g, 0.0, 1.0)),
+                            float(std::clamp(c.b, 0.0, 1.0)));
+}
+
+} // namespace
+
+PropertyPanel::PropertyPanel(Document* document, Selection* selection, QUndoStack* stack,
+                             QWidget* parent)
+    : QWidget(parent), m_doc(document), m_selection(selection), m_stack(stack) {
+    auto* layout = new QVBoxLayout(this);
+    m_title = new QLabel;
+    m_title->setWordWrap(true);
+    layout->addWidget(m_title);
+    layout->addWidget(m_surfaceBox = buildSurfaceBox());
+    layout->addWidget(m_pointBox = buildPointBox());
+    layout->addWidget(m_displayBox = buildDisplayBox());
+    layout->addStretch(1);
+
+    connect(m_selection, &Selection::changed, this, &PropertyPanel::refresh);
+    connect(m_doc, &Document::surfaceChanged, this, [this](SurfaceId id, Aspects aspects) {
+        if (id != m_selection->currentSurface())
+            return;
+        // A drag changes points many times a second: refresh only the point fields then.
+        if (aspects == Aspects(Aspect::Points))
+            refreshPoint();
+        else
+            refresh();
+    });
+    connect(m_doc, &Document::sceneReset, this, &PropertyPanel::refresh);
+    refresh();
+}
+
+QWidget* PropertyPanel::buildSurfaceBox() {
+    auto* box = new QGroupBox(tr("Surface"));
+    auto* form = new QFormLayout(box);
+    m_degrees = new QLabel;
+    form->addRow(tr("Degrees"), m_degrees);
+    m_knots = new QPlainTextEdit;
+    m_knots->setReadOnly(true);
+    m_knots->setMaximumHeight(64);
+    form->addRow(tr("Knots"), m_knots);
+    m_direction = new QComboBox;
+    m_direction->addItems({tr("u"), tr("v")});
+    form->addRow(tr("Direction"), m_direction);
+    auto* insertRow = new QHBoxLayout;
+    m_knotValue = spin(-1e9, 1e9, 0.05, 4);
+    m_insertKnot = new QPushButton(tr("Insert knot"));
+    insertRow->addWidget(m_knotValue);
+    insertRow->addWidget(m_insertKnot);
+    form->addRow(tr("Knot"), insertRow);
+    m_elevate = new QPushButton(tr("Elevate degree"));
+    // Object names let tests and style sheets find the controls.
+    m_direction->setObjectName(QStringLiteral("knotDirection"));
+    m_knotValue->setObjectName(QStringLiteral("knotValue"));
+    m_insertKnot->setObjectName(QStringLiteral("insertKnot"));
+    m_elevate->setObjectName(QStringLiteral("elevateDegree"));
+    form->addRow(QString(), m_elevate);
+
+    auto direction = [this] {
+        return m_direction->currentIndex() == 0 ? Direction::U : Direction::V;
+    };
+    connect(m_direction, &QComboBox::currentIndexChanged, this, &PropertyPanel::refresh);
+    connect(m_insertKnot, &QPushButton::clicked, this, [this, direction] {
+        QString error;
+        auto c = InsertKnot::create(m_doc, m_selection->currentSurface(), direction(),
+                                    m_knotValue->value(), 1, &error);
+        push(std::move(c), error);
+    });
+    connect(m_elevate, &QPushButton::clicked, this, [this, direction] {
+        QString error;
+        auto c =
+            ElevateDegree::create(m_doc, m_selection->currentSurface(), direction(), 1, &error);
+        push(std::move(c), error);
+    });
+    return box;
+}
+
+QWidget* PropertyPanel::buildPointBox() {
+    auto* box = new QGroupBox(tr("Control point"));
+    auto* form = new QFormLayout(box);
+    m_pointLabel = new QLabel;
+    form->addRow(m_pointLabel);
+    static const char* const names[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+        m_xyz[k] = spin(-1e6, 1e6, 0.05, 4);
+        m_xyz[k]->setObjectName(QStringLiteral("point") + QString::fromLatin1(names[k]).toUpper());
+        form->addRow(QLatin1String(names[k]), m_xyz[k]);
+        connect(m_xyz[k], &QDoubleSpinBox::valueChanged, this, &PropertyPanel::editPoint);
+    }
+    m_weight = spin(1e-4, 1e4, 0.05, 4);
+    m_weight->setObjectName(QStringLiteral("pointWeight"));
+    form->addRow(tr("Weight"), m_weight);
+    connect(m_weight, &QDoubleSpinBox::valueChanged, this, [this](double w) {
+        const ControlPointRef r = shownPoint();
+        const Surface* s = m_doc->surface(r.surface);
+        if (!s)
+            return;
+        QString error;
+        push(SetWeight::create(m_doc, r.surface, s->geometry.index(r.i, r.j), w, &error), error);
+    });
+    return box;
+}
+
+QWidget* PropertyPanel::buildDisplayBox() {
+    auto* box = new QGroupBox(tr("Display"));
+    auto* form = new QFormLayout(box);
+    auto partitionRow = [&](QSlider*& slider, QSpinBox*& spinBox, const QString& label) {
+        auto* row = new QHBoxLayout;
+        slider = new QSlider(Qt::Horizontal);
+        slider->setRange(kMinPartitions, 64);
+        spinBox = new QSpinBox;
+        spinBox->setRange(kMinPartitions, kMaxPartitions);
+        spinBox->setKeyboardTracking(false);
+        row->addWidget(slider, 1);
+        row->addWidget(spinBox);
+        form->addRow(label, row);
+    };
+    partitionRow(m_sliderU, m_spinU, tr("Partitions u"));
+    partitionRow(m_sliderV, m_spinV, tr("Partitions v"));
+    connect(m_sliderU, &QSlider::valueChanged, this,
+            [this](int v) { setPartitions(v, m_spinV->value()); });
+    connect(m_sliderV, &QSlider::valueChanged, this,
+            [this](int v) { setPartitions(m_spinU->value(), v); });
+    connect(m_spinU, &QSpinBox::valueChanged, this,
+            [this](int v) { setPartitions(v, m_spinV->value()); });
+    connect(m_spinV, &QSpinBox::valueChanged, this,
+            [this](int v) { setPartitions(m_spinU->value(), v); });
+
+    m_color = new QPushButton;
+    form->addRow(tr("Colour"), m_color);
+    connect(m_color, &QPushButton::clicked, this, &PropertyPanel::pickColor);
+    m_ka = spin(0.0, 1.0, 0.05, 3);
+    m_kd = spin(0.0, 1.0, 0.05, 3);
+    m_ks = spin(0.0, 1.0, 0.05, 3);
+    m_shininess = spin(1.0, 1000.0, 1.0, 1);
+    form->addRow(tr("Ambient ka"), m_ka);
+    form->addRow(tr("Diffuse kd"), m_kd);
+    form->addRow(tr("Specular ks"), m_ks);
+    form->addRow(tr("Shininess"), m_shininess);
+    for (QDoubleSpinBox* s : {m_ka, m_kd, m_ks, m_shininess})
+        connect(s, &QDoubleSpinBox::valueChanged, this, &PropertyPanel::editMaterial);
+    return box;
+}
+
+void PropertyPanel::push(std::unique_ptr<QUndoCommand> command, const QString& error) {
+    if (!pushCommand(m_stack, std::move(command))) {
+        Q_EMIT editRejected(error);
+        refresh(); // show the document's values again
+    }
+}
+
+void PropertyPanel::setPartitions(int nu, int nv) {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    if (!s || (s->partitionsU == nu && s->partitionsV == nv))
+        return;
+    QString error;
+    push(SetPartitions::create(m_doc, s->id, nu, nv, &error), error);
+}
+
+void PropertyPanel::editPoint() {
+    const ControlPointRef r = shownPoint();
+    const Surface* s = m_doc->surface(r.surface);
+    if (!s)
+        return;
+    const int index = s->geometry.index(r.i, r.j);
+    const glm::dvec3 from = s->geometry.points[size_t(index)];
+    const glm::dvec3 to(m_xyz[0]->value(), m_xyz[1]->value(), m_xyz[2]->value());
+    if (from == to)
+        return;
+    QString error;
+    push(
+        MoveControlPoints::create(m_doc, r.surface, {index}, {from}, {to}, MoveKind::Nudge, &error),
+        error);
+}
+
+void PropertyPanel::editMaterial() {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    if (!s)
+        return;
+    Material m = s->material;
+    m.ka = m_ka->value();
+    m.kd = m_kd->value();
+    m.ks = m_ks->value();
+    m.shininess = m_shininess->value();
+    if (m == s->material)
+        return;
+    QString error;
+    push(SetMaterial::create(m_doc, s->id, m, &error), error);
+}
+
+void PropertyPanel::pickColor() {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    if (!s)
+        return;
+    const SurfaceId id = s->id;
+    const QColor c = QColorDialog::getColor(toColor(s->material.color), this, tr("Surface colour"));
+    s = m_doc->surface(id);
+    if (!c.isValid() || !s)
+        return;
+    Material m = s->material;
+    m.color = glm::dvec3(c.redF(), c.greenF(), c.blueF());
+    QString error;
+    push(SetMaterial::create(m_doc, id, m, &error), error);
+}
+
+ControlPointRef PropertyPanel::shownPoint() const {
+    const SurfaceId current = m_selection->currentSurface();
+    for (const ControlPointRef& r : m_selection->controlPoints())
+        if (r.surface == current)
+            return r;
+    return {};
+}
+
+void PropertyPanel::refresh() {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    m_surfaceBox->setEnabled(s);
+    m_displayBox->setEnabled(s);
+    if (!s) {
+        m_title->setText(tr("No surface selected. Pick one in the scene tree or the view."));
+        m_pointBox->setEnabled(false);
+        return;
+    }
+    const NurbsSurface& g = s->geometry;
+    m_title->setText(tr("<b>%1</b> (id %2)").arg(s->name.toHtmlEscaped()).arg(s->id.value));
+    m_degrees->setText(tr("u %1, v %2; %3 × %4 control points")
+                           .arg(g.degreeU)
+                           .arg(g.degreeV)
+                           .arg(g.countU)
+                           .arg(g.countV));
+    m_knots->setPlainText(tr("u: %1\nv: %2").arg(knotText(g.knotsU), knotText(g.knotsV)));
+    const Interval dom = m_direction->currentIndex() == 0 ? surfaceDomainU(g) : surfaceDomainV(g);
+    {
+        const QSignalBlocker b(m_knotValue);
+        m_knotValue->setRange(dom.first, dom.last);
+        if (m_knotValue->value() <= dom.first || m_knotValue->value() >= dom.last)
+            m_knotValue->setValue(0.5 * (dom.first + dom.last));
+    }
+
+    refreshPoint();
+
+    for (auto [slider, spinBox, value] : {std::tuple{m_sliderU, m_spinU, s->partitionsU},
+                                          std::tuple{m_sliderV, m_spinV, s->partitionsV}}) {
+        const QSignalBlocker b1(slider), b2(spinBox);
+        slider->setValue(value);
+        spinBox->setValue(value);
+    }
+    const Material& m = s->material;
+    m_color->setStyleSheet(QStringLiteral("background-color: %1").arg(toColor(m.color).name()));
+    m_color->setText(toColor(m.color).name());
+    for (auto [box, value] : {std::pair{m_ka, m.ka}, std::pair{m_kd, m.kd}, std::pair{m_ks, m.ks},
+                              std::pair{m_shininess, m.shininess}}) {
+        const QSignalBlocker b(box);
+        box->setValue(value);
+    }
+}
+
+void PropertyPanel::refreshPoint() {
+    const Surface* s = m_doc->surface(m_selection->currentSurface());
+    const ControlPointRef r = shownPoint();
+    m_pointBox->setEnabled(r.surface.isValid());
+    if (s && r.surface.isValid()) {
+        const NurbsSurface& g = s->geometry;
+        const int index = g.index(r.i, r.j);
+        const size_t picked = m_selection->controlPoints().size();
+        m_pointLabel->setText(picked > 1
+                                  ? tr("(%1, %2), first of %3 picked").arg(r.i).arg(r.j).arg(picked)
+                                  : tr("(%1, %2)").arg(r.i).arg(r.j));
+        for (int k = 0; k < 3; ++k) {
+            const QSignalBlocker b(m_xyz[k]);
+            m_xyz[k]->setValue(g.points[size_t(index)][k]);
+        }
+        const QSignalBlocker b(m_weight);
+        m_weight->setValue(g.weights[size_t(index)]);
+    } else {
+        m_pointLabel->setText(tr("Click a control point in the view."));
+    }
+}
+
+} // namespace kw

@@ -1,0 +1,278 @@
+// UvPanel: domain, trim loops, mask and trim control point dragging.
+#include "ui/uvpanel.h"
+
+#include "ui/edit/commands.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QUndoStack>
+#include <algorithm>
+#include <cmath>
+
+namespace kw {
+
+namespace {
+
+const Surface* shown(const Document* doc, const Selection* sel) {
+    return doc->surface(sel->currentSurface());
+}
+
+} // namespace
+
+UvPanel::UvPanel(Document* document, Selection* selection, QUndoStack* stack, QWidget* parent)
+    : QWidget(parent), m_doc(document), m_selection(selection), m_stack(stack) {
+    setMinimumSize(160, 160);
+    setFocusPolicy(Qt::ClickFocus);
+    auto repaint = [this] {
+        update();
+    };
+    connect(m_doc, &Document::surfaceChanged, this, repaint);
+    connect(m_doc, &Document::trimLoopInserted, this, repaint);
+    connect(m_doc, &Document::trimLoopRemoved, this, repaint);
+    connect(m_doc, &Document::surfaceRemoved, this, repaint);
+    connect(m_doc, &Document::sceneReset, this, [this] {
+        m_drag.clear();
+        m_dragging = false;
+        update();
+    });
+    connect(m_selection, &Selection::changed, this, repaint);
+}
+
+SurfaceId UvPanel::surface() const {
+    const Surface* s = shown(m_doc, m_selection);
+    return s ? s->id : SurfaceId{};
+}
+
+QRectF UvPanel::domainRect() const {
+    // The largest rectangle with the domain's proportions (u range : v range), centred.
+    const double margin = 16.0;
+    const QRectF area = QRectF(rect()).adjusted(margin, margin, -margin, -margin);
+    const Surface* s = shown(m_doc, m_selection);
+    if (!area.isValid() || !s)
+        return area.isValid() ? area : QRectF(0, 0, 1, 1);
+    const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
+    const double ratio = std::clamp((du.last - du.first) / (dv.last - dv.first), 0.05, 20.0);
+    QSizeF size(area.width(), area.width() / ratio);
+    if (size.height() > area.height())
+        size = QSizeF(area.height() * ratio, area.height());
+    QRectF r(QPointF(), size);
+    r.moveCenter(area.center());
+    return QRectF(std::round(r.left()), std::round(r.top()), std::round(r.width()),
+                  std::round(r.height()));
+}
+
+QPointF UvPanel::toWidget(glm::dvec2 uv) const {
+    const Surface* s = shown(m_doc, m_selection);
+    if (!s)
+        return {};
+    const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
+    const QRectF r = domainRect();
+    return {r.left() + (uv.x - du.first) / (du.last - du.first) * r.width(),
+            r.bottom() - (uv.y - dv.first) / (dv.last - dv.first) * r.height()};
+}
+
+glm::dvec2 UvPanel::toUv(QPointF pixel) const {
+    const Surface* s = shown(m_doc, m_selection);
+    if (!s)
+        return glm::dvec2(0.0);
+    const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
+    const QRectF r = domainRect();
+    return {du.first + (pixel.x() - r.left()) / r.width() * (du.last - du.first),
+            dv.first + (r.bottom() - pixel.y()) / r.height() * (dv.last - dv.first)};
+}
+
+void UvPanel::refreshMask() {
+    const Surface* s = shown(m_doc, m_selection);
+    if (!s) {
+        m_mask = QImage();
+        m_maskSurface = {};
+        return;
+    }
+    const Revisions rev = m_doc->revisions(s->id);
+    const QSize size = domainRect().size().toSize();
+    if (m_maskSurface == s->id && m_maskRevision == rev.trims && m_maskGeometry == rev.knots &&
+        m_mask.size() == size)
+        return;
+    m_mask = trimMaskImage(*s, size);
+    m_maskSurface = s->id;
+    m_maskRevision = rev.trims;
+    m_maskGeometry = rev.knots;
+}
+
+QImage UvPanel::mask() {
+    refreshMask();
+    return m_mask;
+}
+
+std::optional<TrimPointRef> UvPanel::trimPointAt(QPointF pixel, double radius) const {
+    const Surface* s = shown(m_doc, m_selection);
+    if (!s)
+        return std::nullopt;
+    std::optional<TrimPointRef> best;
+    double bestDistance = radius;
+    for (const TrimLoop& loop : s->trims)
+        for (size_t c = 0; c < loop.curves.size(); ++c)
+            for (size_t k = 0; k < loop.curves[c].points.size(); ++k) {
+                const QPointF p = toWidget(loop.curves[c].points[k]);
+                const double d = std::hypot(p.x() - pixel.x(), p.y() - pixel.y());
+                // Strictly nearer replaces: of coinciding points (a loop's shared start and
+                // end) the first in loop order is picked.
+                if (d <= radius && (!best || d < bestDistance)) {
+                    bestDistance = d;
+                    best = TrimPointRef{s->id, loop.id, int(c), int(k)};
+                }
+            }
+    return best;
+}
+
+void UvPanel::paintEvent(QPaintEvent*) {
+    QPainter p(this);
+    p.fillRect(rect(), palette().window());
+    const Surface* s = shown(m_doc, m_selection);
+    if (!s) {
+        p.drawText(rect(), Qt::AlignCenter | Qt::TextWordWrap,
+                   tr("Select a surface to see its parameter domain and trims."));
+        return;
+    }
+    refreshMask();
+    const QRectF r = domainRect();
+    // Mask: kept in light blue, removed in dark grey.
+    QImage colored = m_mask.convertToFormat(QImage::Format_Indexed8);
+    QList<QRgb> table(256);
+    for (int i = 0; i < 256; ++i)
+        table[i] = i > 127 ? qRgb(176, 200, 230) : qRgb(58, 60, 66);
+    colored.setColorTable(table);
+    p.drawImage(r.topLeft(), colored);
+    p.setPen(QPen(palette().text().color(), 1.0));
+    p.drawRect(r);
+    const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
+    p.drawText(QRectF(r.left(), r.bottom(), r.width(), 14), Qt::AlignLeft,
+               QStringLiteral("u %1").arg(du.first));
+    p.drawText(QRectF(r.left(), r.bottom(), r.width(), 14), Qt::AlignRight,
+               QStringLiteral("%1").arg(du.last));
+    p.drawText(QRectF(r.left() + 2, r.top() - 14, r.width(), 14), Qt::AlignLeft,
+               QStringLiteral("v %1").arg(dv.last));
+
+    p.setRenderHint(QPainter::Antialiasing);
+    // Trim loops, then control polygons and points.
+    p.setPen(QPen(QColor(230, 130, 30), 2.0));
+    for (const auto& line : trimPolylines(*s)) {
+        QPolygonF poly;
+        for (const glm::dvec2& uv : line)
+            poly << toWidget(uv);
+        p.drawPolygon(poly);
+    }
+    const auto& picked = m_selection->trimPoints();
+    for (const TrimLoop& loop : s->trims)
+        for (size_t c = 0; c < loop.curves.size(); ++c) {
+            const NurbsCurve2& curve = loop.curves[c];
+            QPolygonF poly;
+            for (const glm::dvec2& uv : curve.points)
+                poly << toWidget(uv);
+            p.setPen(QPen(QColor(90, 90, 90), 1.0, Qt::DashLine));
+            p.drawPolyline(poly);
+            for (size_t k = 0; k < curve.points.size(); ++k) {
+                const TrimPointRef ref{s->id, loop.id, int(c), int(k)};
+                const bool sel = std::find(picked.begin(), picked.end(), ref) != picked.end();
+                p.setPen(QPen(sel ? QColor(255, 60, 30) : QColor(20, 20, 20), 1.0));
+                p.setBrush(sel ? QColor(255, 120, 60) : QColor(250, 250, 250));
+                p.drawRect(QRectF(poly[int(k)] - QPointF(3, 3), QSizeF(6, 6)));
+            }
+            p.setBrush(Qt::NoBrush);
+        }
+}
+
+void UvPanel::mousePressEvent(QMouseEvent* event) {
+    if (event->button() != Qt::LeftButton || m_dragging)
+        return;
+    const std::optional<TrimPointRef> hit = trimPointAt(event->position());
+    if (!hit) {
+        m_selection->setTrimPoints({});
+        return;
+    }
+    const Surface* s = m_doc->surface(hit->surface);
+    const TrimLoop* loop = nullptr;
+    for (const TrimLoop& l : s->trims)
+        if (l.id == hit->loop)
+            loop = &l;
+    const glm::dvec2 at = loop->curves[size_t(hit->curve)].points[size_t(hit->index)];
+    m_drag = {{*hit, at}};
+    // Curve ends that coincide with a picked curve end move with it, keeping the loop closed.
+    const int last = int(loop->curves[size_t(hit->curve)].points.size()) - 1;
+    if (hit->index == 0 || hit->index == last)
+        for (size_t c = 0; c < loop->curves.size(); ++c) {
+            const auto& pts = loop->curves[c].points;
+            for (int k : {0, int(pts.size()) - 1}) {
+                const TrimPointRef ref{hit->surface, hit->loop, int(c), k};
+                if (ref != *hit && pts[size_t(k)] == at &&
+                    std::none_of(m_drag.begin(), m_drag.end(),
+                                 [&](const Dragged& d) { return d.ref == ref; }))
+                    m_drag.push_back({ref, at});
+            }
+        }
+    std::vector<TrimPointRef> refs;
+    for (const Dragged& d : m_drag)
+        refs.push_back(d.ref);
+    std::sort(refs.begin(), refs.end());
+    m_selection->setTrimPoints(refs);
+    m_pressPixel = event->position();
+    m_dragging = true;
+}
+
+void UvPanel::mouseMoveEvent(QMouseEvent* event) {
+    if (!m_dragging)
+        return;
+    const glm::dvec2 delta = toUv(event->position()) - toUv(m_pressPixel);
+    for (const Dragged& d : m_drag)
+        m_doc->setTrimPoint(d.ref, d.from + delta);
+}
+
+void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
+    if (!m_dragging || event->button() != Qt::LeftButton)
+        return;
+    mouseMoveEvent(event);
+    finishDrag(false);
+}
+
+void UvPanel::keyPressEvent(QKeyEvent* event) {
+    if (event->key() == Qt::Key_Escape && m_dragging) {
+        finishDrag(true);
+        return;
+    }
+    QWidget::keyPressEvent(event);
+}
+
+void UvPanel::finishDrag(bool cancel) {
+    m_dragging = false;
+    std::vector<TrimPointRef> refs;
+    std::vector<glm::dvec2> from, to;
+    for (const Dragged& d : m_drag) {
+        const Surface* s = m_doc->surface(d.ref.surface);
+        if (!s)
+            continue;
+        for (const TrimLoop& l : s->trims)
+            if (l.id == d.ref.loop && size_t(d.ref.curve) < l.curves.size() &&
+                size_t(d.ref.index) < l.curves[size_t(d.ref.curve)].points.size()) {
+                refs.push_back(d.ref);
+                from.push_back(d.from);
+                to.push_back(l.curves[size_t(d.ref.curve)].points[size_t(d.ref.index)]);
+            }
+    }
+    m_drag.clear();
+    if (refs.empty())
+        return;
+    if (cancel) {
+        for (size_t k = 0; k < refs.size(); ++k)
+            m_doc->setTrimPoint(refs[k], from[k]);
+        return;
+    }
+    if (from == to)
+        return;
+    QString error;
+    if (!pushCommand(m_stack,
+                     MoveTrimPoints::create(m_doc, refs, from, to, MoveKind::Drag, &error)))
+        qWarning("knotwork: trim drag not recorded: %s", qPrintable(error));
+}
+
+} // namespace kw

@@ -1,0 +1,474 @@
+// Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
+#include "ui/viewport.h"
+
+#include "ui/edit/commands.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QPainter>
+#include <QRubberBand>
+#include <QUndoStack>
+#include <QWheelEvent>
+#include <algorithm>
+#include <map>
+
+namespace kw {
+
+Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, QUndoStack* stack,
+                   QWidget* parent)
+    : QOpenGLWidget(parent), m_doc(document), m_model(model), m_selection(selection),
+      m_stack(stack) {
+    setFocusPolicy(Qt::StrongFocus);
+    setMouseTracking(false);
+    setMinimumSize(160, 120);
+    m_options.controlNet = true;
+    // A document change only schedules a repaint; nothing renders inside a signal.
+    auto repaint = [this] {
+        update();
+    };
+    connect(m_doc, &Document::surfaceChanged, this, repaint);
+    connect(m_doc, &Document::surfaceInserted, this, repaint);
+    connect(m_doc, &Document::surfaceRemoved, this, repaint);
+    connect(m_doc, &Document::lightsChanged, this, repaint);
+    connect(m_doc, &Document::sceneReset, this, [this] {
+        if (m_gesture == Gesture::DragPoints)
+            m_drag.clear();
+        m_gesture = Gesture::None;
+        resetCamera();
+    });
+    connect(m_selection, &Selection::changed, this, repaint);
+    resetCamera();
+}
+
+Viewport::~Viewport() {
+    releaseGl();
+}
+
+void Viewport::releaseGl() {
+    if (!m_renderer.isInitialized())
+        return;
+    makeCurrent();
+    m_renderer.release();
+    doneCurrent();
+}
+
+double Viewport::aspect() const {
+    return height() > 0 ? double(width()) / double(height()) : 1.0;
+}
+
+void Viewport::setCamera(const Camera& camera) {
+    m_autoFit = false;
+    m_camera.setCamera(camera);
+    update();
+}
+
+void Viewport::resetCamera() {
+    const Camera& authored = m_doc->scene().camera;
+    m_camera.setCamera(authored.authored ? authored : fitCamera(m_doc->scene(), aspect()));
+    m_autoFit = !authored.authored;
+    update();
+}
+
+void Viewport::fitToView() {
+    m_camera.fit(m_doc->scene(), aspect());
+    update();
+}
+
+void Viewport::setStandardView(StandardView view) {
+    m_autoFit = false;
+    m_camera.setStandardView(view, m_doc->scene(), aspect());
+    update();
+}
+
+ViewProjection Viewport::viewProjection() const {
+    return ViewProjection(m_camera.camera(), m_doc->scene(), size());
+}
+
+void Viewport::setRenderMode(RenderMode mode) {
+    m_options.mode = mode;
+    update();
+}
+
+void Viewport::setWireframe(bool on) {
+    m_options.wireframe = on;
+    update();
+}
+
+void Viewport::setControlNet(bool on) {
+    m_options.controlNet = on;
+    update();
+}
+
+// ---- GL
+
+void Viewport::initializeGL() {
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl,
+            Qt::DirectConnection);
+    if (!m_renderer.initialize()) {
+        m_glError = m_renderer.lastError();
+        Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));
+    }
+}
+
+void Viewport::resizeGL(int, int) {
+    // A fitted camera was fitted for the old aspect; fit again until the user moves it.
+    if (m_autoFit)
+        m_camera.setCamera(fitCamera(m_doc->scene(), aspect()));
+}
+
+void Viewport::paintGL() {
+    const bool timed = m_moveTimed;
+    const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
+    m_moveTimed = false;
+    QElapsedTimer frameClock;
+    frameClock.start();
+
+    if (!m_renderer.isInitialized()) {
+        QPainter p(this);
+        p.fillRect(rect(), QColor(46, 48, 54));
+        p.setPen(Qt::white);
+        p.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
+                   QStringLiteral("The 3D view is unavailable:\n%1").arg(m_glError));
+        return;
+    }
+    const UploadStats before = m_renderer.cache().totalStats();
+    RenderOptions options = m_options;
+    options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
+    const qreal dpr = devicePixelRatioF();
+    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
+    if (!m_renderer.render(*m_doc, m_camera.camera(), pixels, options,
+                           defaultFramebufferObject())) {
+        if (m_renderer.lastError() != m_lastRenderError) {
+            m_lastRenderError = m_renderer.lastError();
+            Q_EMIT renderError(QStringLiteral("Frame failed: %1").arg(m_lastRenderError));
+        }
+    } else {
+        m_lastRenderError.clear();
+    }
+    const std::int64_t bytes = m_renderer.cache().totalStats().bytes - before.bytes;
+    drawSelection();
+    const double frameMs = double(frameClock.nsecsElapsed()) * 1e-6;
+    if (timed) {
+        m_metrics.moveToDrawMs.push_back(moveToDraw);
+        m_metrics.handlerMs.push_back(m_handlerMs);
+        m_metrics.paintMs.push_back(frameMs);
+        m_metrics.bytes.push_back(bytes);
+    }
+
+    ++m_framesDrawn;
+    if (!m_fpsClock.isValid())
+        m_fpsClock.start();
+    ++m_frames;
+    if (m_fpsClock.elapsed() >= 1000) {
+        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), frameMs);
+        m_frames = 0;
+        m_fpsClock.restart();
+    }
+}
+
+void Viewport::drawSelection() {
+    const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
+    const bool band = m_gesture == Gesture::RubberBand;
+    if (refs.empty() && m_axis < 0 && !band)
+        return;
+    // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
+    QPainter p(this);
+    p.setRenderHint(QPainter::Antialiasing);
+    const ViewProjection view = viewProjection();
+    p.setPen(QPen(QColor(255, 80, 40), 2.0));
+    p.setBrush(Qt::NoBrush);
+    for (const ControlPointRef& r : refs) {
+        const Surface* s = m_doc->surface(r.surface);
+        if (!s)
+            continue;
+        if (const auto px = view.project(s->geometry.points[size_t(s->geometry.index(r.i, r.j))]))
+            p.drawRect(QRectF(*px - QPointF(5, 5), QSizeF(10, 10)));
+    }
+    if (m_axis >= 0 && m_gesture == Gesture::DragPoints) {
+        static const char* const names[3] = {"X", "Y", "Z"};
+        static const QColor colors[3] = {QColor(230, 70, 70), QColor(90, 200, 90),
+                                         QColor(90, 130, 240)};
+        glm::dvec3 dir(0.0);
+        dir[m_axis] = 1.0;
+        const auto a = view.project(m_anchor - dir * 1e3), b = view.project(m_anchor + dir * 1e3);
+        p.setPen(QPen(colors[m_axis], 1.0, Qt::DashLine));
+        if (a && b)
+            p.drawLine(*a, *b);
+        p.drawText(QPointF(10, height() - 10),
+                   QStringLiteral("Constrained to %1").arg(QLatin1String(names[m_axis])));
+    }
+}
+
+// ---- Mouse and keys
+
+void Viewport::mousePressEvent(QMouseEvent* event) {
+    setFocus(Qt::MouseFocusReason);
+    if (m_gesture != Gesture::None)
+        return;
+    const QPointF pixel = event->position();
+    m_pressPixel = m_lastPixel = pixel;
+    const Qt::KeyboardModifiers mods = event->modifiers();
+    if (event->button() == Qt::MiddleButton && (mods & Qt::ShiftModifier)) {
+        m_gesture = Gesture::Pan;
+    } else if (event->button() == Qt::MiddleButton ||
+               (event->button() == Qt::LeftButton && (mods & Qt::AltModifier))) {
+        m_gesture = Gesture::Orbit;
+    } else if (event->button() == Qt::RightButton) {
+        m_gesture = Gesture::Pan;
+    } else if (event->button() == Qt::LeftButton) {
+        std::optional<ControlPointRef> hit;
+        if (m_options.controlNet) {
+            m_picker.update(*m_doc, viewProjection());
+            hit = m_picker.nearest(pixel);
+        }
+        if (hit) {
+            pressOnPoint(*hit, mods & Qt::ShiftModifier, pixel);
+        } else {
+            m_gesture = Gesture::RubberBand;
+            if (!m_band)
+                m_band = new QRubberBand(QRubberBand::Rectangle, this);
+            m_band->setGeometry(QRect(pixel.toPoint(), QSize()));
+            m_band->show();
+        }
+    }
+    event->accept();
+}
+
+void Viewport::pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel) {
+    std::vector<ControlPointRef> sel = m_selection->controlPoints();
+    const bool selected = std::binary_search(sel.begin(), sel.end(), ref);
+    if (additive && selected) {
+        // Shift-click on a picked point removes it; no drag.
+        sel.erase(std::lower_bound(sel.begin(), sel.end(), ref));
+        m_selection->setControlPoints(sel);
+        return;
+    }
+    if (additive)
+        sel.push_back(ref);
+    else if (!selected)
+        sel = {ref};
+    std::sort(sel.begin(), sel.end());
+    m_selection->setControlPoints(sel);
+    // Show the picked point's surface in the tree and panels.
+    if (m_selection->currentSurface() != ref.surface) {
+        const QModelIndex row = m_model->surfaceIndex(ref.surface);
+        m_selection->itemSelection()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect |
+                                                               QItemSelectionModel::Rows);
+        // Changing the current row must not drop the picked points.
+        m_selection->setControlPoints(sel);
+    }
+    m_drag.clear();
+    for (const ControlPointRef& r : m_selection->controlPoints()) {
+        const Surface* s = m_doc->surface(r.surface);
+        const glm::dvec3 p = s->geometry.points[size_t(s->geometry.index(r.i, r.j))];
+        m_drag.push_back({r, p});
+        if (r == ref)
+            m_anchor = p;
+    }
+    m_pressPixel = pixel;
+    m_gesture = m_drag.empty() ? Gesture::None : Gesture::DragPoints;
+}
+
+void Viewport::mouseMoveEvent(QMouseEvent* event) {
+    const QPointF pixel = event->position();
+    const QPointF delta = pixel - m_lastPixel;
+    switch (m_gesture) {
+    case Gesture::None:
+        return;
+    case Gesture::Orbit:
+        m_autoFit = false;
+        m_camera.orbit(delta.x(), delta.y());
+        update();
+        break;
+    case Gesture::Pan:
+        m_autoFit = false;
+        m_camera.pan(delta.x(), delta.y(), size());
+        update();
+        break;
+    case Gesture::RubberBand:
+        if (m_band)
+            m_band->setGeometry(QRectF(m_pressPixel, pixel).normalized().toRect());
+        break;
+    case Gesture::DragPoints:
+        m_moveClock.start();
+        m_moveTimed = true;
+        dragTo(pixel);
+        m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
+        break;
+    }
+    m_lastPixel = pixel;
+    event->accept();
+}
+
+void Viewport::dragTo(QPointF pixel) {
+    m_lastPixel = pixel;
+    applyDrag();
+}
+
+void Viewport::applyDrag() {
+    const ViewProjection view = viewProjection();
+    glm::dvec3 delta(0.0);
+    if (m_axis >= 0) {
+        glm::dvec3 axis(0.0);
+        axis[m_axis] = 1.0;
+        delta =
+            view.onAxis(m_lastPixel, m_anchor, axis) - view.onAxis(m_pressPixel, m_anchor, axis);
+    } else {
+        delta = view.onViewPlane(m_lastPixel, m_anchor) - view.onViewPlane(m_pressPixel, m_anchor);
+    }
+    std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>> bySurface;
+    for (const DragPoint& d : m_drag) {
+        const Surface* s = m_doc->surface(d.ref.surface);
+        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
+            continue;
+        auto& entry = bySurface[d.ref.surface];
+        entry.first.push_back(s->geometry.index(d.ref.i, d.ref.j));
+        entry.second.push_back(d.from + delta);
+    }
+    for (const auto& [id, change] : bySurface)
+        m_doc->setControlPoints(id, change.first, change.second);
+}
+
+void Viewport::finishDrag(bool cancel) {
+    m_gesture = Gesture::None;
+    std::map<SurfaceId,
+             std::tuple<std::vector<int>, std::vector<glm::dvec3>, std::vector<glm::dvec3>>>
+        bySurface;
+    for (const DragPoint& d : m_drag) {
+        const Surface* s = m_doc->surface(d.ref.surface);
+        // The net may have been re-sized under the drag (an undo by key); skip lost points.
+        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
+            continue;
+        const int index = s->geometry.index(d.ref.i, d.ref.j);
+        auto& [indices, from, to] = bySurface[d.ref.surface];
+        indices.push_back(index);
+        from.push_back(d.from);
+        to.push_back(s->geometry.points[size_t(index)]);
+    }
+    m_drag.clear();
+    std::vector<std::unique_ptr<QUndoCommand>> commands;
+    for (auto& [id, change] : bySurface) {
+        auto& [indices, from, to] = change;
+        if (cancel) {
+            m_doc->setControlPoints(id, indices, from);
+            continue;
+        }
+        if (from == to)
+            continue;
+        QString error;
+        if (auto c =
+                MoveControlPoints::create(m_doc, id, indices, from, to, MoveKind::Drag, &error))
+            commands.push_back(std::move(c));
+        else
+            qWarning("knotwork: drag not recorded: %s", qPrintable(error));
+    }
+    if (commands.size() == 1) {
+        pushCommand(m_stack, std::move(commands.front()));
+    } else if (commands.size() > 1) {
+        int points = 0;
+        for (auto& [id, change] : bySurface)
+            points += int(std::get<0>(change).size());
+        m_stack->beginMacro(QStringLiteral("Move %1 control points").arg(points));
+        for (auto& c : commands)
+            pushCommand(m_stack, std::move(c));
+        m_stack->endMacro();
+    }
+    update();
+}
+
+void Viewport::finishRubberBand(QPointF pixel, bool additive) {
+    m_gesture = Gesture::None;
+    if (m_band)
+        m_band->hide();
+    const QRectF rect = QRectF(m_pressPixel, pixel).normalized();
+    std::vector<ControlPointRef> picked;
+    if (rect.width() >= 3 || rect.height() >= 3) {
+        if (m_options.controlNet) {
+            m_picker.update(*m_doc, viewProjection());
+            picked = m_picker.inRect(rect);
+        }
+    }
+    if (additive) {
+        std::vector<ControlPointRef> sel = m_selection->controlPoints();
+        sel.insert(sel.end(), picked.begin(), picked.end());
+        std::sort(sel.begin(), sel.end());
+        sel.erase(std::unique(sel.begin(), sel.end()), sel.end());
+        picked = std::move(sel);
+    }
+    m_selection->setControlPoints(picked);
+}
+
+void Viewport::mouseReleaseEvent(QMouseEvent* event) {
+    const QPointF pixel = event->position();
+    switch (m_gesture) {
+    case Gesture::DragPoints:
+        if (event->button() != Qt::LeftButton)
+            return;
+        m_lastPixel = pixel;
+        applyDrag();
+        finishDrag(false);
+        break;
+    case Gesture::RubberBand:
+        if (event->button() != Qt::LeftButton)
+            return;
+        finishRubberBand(pixel, event->modifiers() & Qt::ShiftModifier);
+        break;
+    case Gesture::Orbit:
+    case Gesture::Pan:
+        m_gesture = Gesture::None;
+        break;
+    case Gesture::None:
+        break;
+    }
+    event->accept();
+}
+
+void Viewport::wheelEvent(QWheelEvent* event) {
+    m_autoFit = false;
+    m_camera.zoom(event->angleDelta().y() / 120.0);
+    update();
+    event->accept();
+}
+
+void Viewport::keyPressEvent(QKeyEvent* event) {
+    const int key = event->key();
+    if (key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) {
+        if (!event->isAutoRepeat()) {
+            m_axis = key - Qt::Key_X;
+            if (m_gesture == Gesture::DragPoints)
+                applyDrag();
+            update();
+        }
+        event->accept();
+        return;
+    }
+    if (key == Qt::Key_Escape && m_gesture == Gesture::DragPoints) {
+        finishDrag(true);
+        event->accept();
+        return;
+    }
+    QOpenGLWidget::keyPressEvent(event);
+}
+
+void Viewport::keyReleaseEvent(QKeyEvent* event) {
+    const int key = event->key();
+    if ((key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) && !event->isAutoRepeat()) {
+        if (m_axis == key - Qt::Key_X) {
+            m_axis = -1;
+            if (m_gesture == Gesture::DragPoints)
+                applyDrag();
+            update();
+        }
+        event->accept();
+        return;
+    }
+    QOpenGLWidget::keyReleaseEvent(event);
+}
+
+void Viewport::focusOutEvent(QFocusEvent* event) {
+    m_axis = -1;
+    QOpenGLWidget::focusOutEvent(event);
+}
+
+} // namespace kw

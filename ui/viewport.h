@@ -1,0 +1,133 @@
+// Viewport: the 3D view (QOpenGLWidget) drawing the document with the render module; orbit, pan,
+// zoom, standard views, and control-point picking and dragging as undoable edits.
+#pragma once
+
+#include "model/selection.h"
+#include "render/renderer.h"
+#include "ui/cameracontroller.h"
+#include "ui/controlpointpicker.h"
+
+#include <QElapsedTimer>
+#include <QOpenGLWidget>
+#include <QPointer>
+#include <vector>
+
+class QRubberBand;
+class QUndoStack;
+
+namespace kw {
+
+/// Mouse: left click picks the nearest control point within a few pixels (Shift adds or
+/// removes), left drag on a point moves the selected points in the view plane (hold X, Y or Z
+/// to move along that world axis; Esc cancels), left drag elsewhere draws a rubber band; middle
+/// drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel zooms.
+/// During a drag the document is changed directly so the surface follows; the release pushes
+/// one MoveControlPoints command (a macro when points of several surfaces move), whose first
+/// redo() finds the document already there and changes nothing.
+class Viewport : public QOpenGLWidget {
+    Q_OBJECT
+public:
+    /// All pointers must outlive the viewport; `model` is the one `selection` was built on.
+    Viewport(Document* document, SceneModel* model, Selection* selection, QUndoStack* stack,
+             QWidget* parent = nullptr);
+    ~Viewport() override;
+
+    const CameraController& cameraController() const { return m_camera; }
+    void setCamera(const Camera& camera);
+    /// The camera of the document if it has one, else a fitted one.
+    void resetCamera();
+    void fitToView();
+    void setStandardView(StandardView view);
+    /// The mapping the picker uses for the current camera and size.
+    ViewProjection viewProjection() const;
+
+    const RenderOptions& renderOptions() const { return m_options; }
+    void setRenderMode(RenderMode mode);
+    void setWireframe(bool on);
+    void setControlNet(bool on);
+
+    /// Empty when the renderer is ready; else why it is not (shown in the view).
+    QString glError() const { return m_glError; }
+    bool isDragging() const { return m_gesture == Gesture::DragPoints; }
+    /// World axis a drag is constrained to (0 x, 1 y, 2 z) or -1.
+    int axisConstraint() const { return m_axis; }
+
+    /// Responsiveness during drags: for each drag step that reached a frame, the wall time
+    /// from the mouse-move event to the start of the next paintGL (the draw call), the CPU
+    /// time of that paintGL (render call, until it returns), and the bytes it uploaded
+    /// (from the renderer's UploadStats).
+    struct DragMetrics {
+        std::vector<double> moveToDrawMs;
+        std::vector<double> handlerMs; ///< of moveToDrawMs: the mouse-move handler itself
+        std::vector<double> paintMs;
+        std::vector<std::int64_t> bytes;
+    };
+    const DragMetrics& dragMetrics() const { return m_metrics; }
+    void resetDragMetrics() { m_metrics = {}; }
+    const Renderer& renderer() const { return m_renderer; }
+    /// Frames painted since construction.
+    std::int64_t framesDrawn() const { return m_framesDrawn; }
+
+Q_SIGNALS:
+    /// Once a second while frames are drawn: frames in the last second and the last frame's
+    /// paintGL time in milliseconds.
+    void framesPerSecond(double fps, double frameMs);
+    /// The renderer could not be set up or a frame failed (message for the status bar).
+    void renderError(const QString& message);
+
+protected:
+    void initializeGL() override;
+    void resizeGL(int w, int h) override;
+    void paintGL() override;
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+    void keyReleaseEvent(QKeyEvent* event) override;
+    void focusOutEvent(QFocusEvent* event) override;
+
+private:
+    enum class Gesture { None, DragPoints, RubberBand, Orbit, Pan };
+    struct DragPoint {
+        ControlPointRef ref;
+        glm::dvec3 from;
+    };
+    void releaseGl();
+    void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
+    void dragTo(QPointF pixel);
+    void applyDrag();
+    void finishDrag(bool cancel);
+    void finishRubberBand(QPointF pixel, bool additive);
+    void drawSelection();
+    double aspect() const;
+
+    Document* m_doc;
+    SceneModel* m_model;
+    Selection* m_selection;
+    QUndoStack* m_stack;
+    Renderer m_renderer;
+    CameraController m_camera;
+    ControlPointPicker m_picker;
+    RenderOptions m_options;
+    QString m_glError;
+    QString m_lastRenderError;
+
+    Gesture m_gesture = Gesture::None;
+    QPointF m_pressPixel, m_lastPixel;
+    glm::dvec3 m_anchor{0.0};
+    std::vector<DragPoint> m_drag;
+    int m_axis = -1;
+    bool m_autoFit = true; ///< refit on resize until the user moves the camera
+    QPointer<QRubberBand> m_band;
+
+    QElapsedTimer m_moveClock; ///< started by a drag's mouse move, read by the next paintGL
+    bool m_moveTimed = false;
+    double m_handlerMs = 0.0; ///< duration of the last timed mouse-move handler
+    DragMetrics m_metrics;
+    QElapsedTimer m_fpsClock;
+    int m_frames = 0;
+    std::int64_t m_framesDrawn = 0;
+};
+
+} // namespace kw
