@@ -180,9 +180,15 @@ void TestCli::infoJsonMatchesScene() {
 void TestCli::fileAloneOpensEditor() {
     // `knotwork [FILE]` is the editor. This test runs on the offscreen platform, which has no
     // desktop OpenGL: the editor must say so and exit 1, not crash.
+    // DISPLAY is removed too: with an X server reachable (ctest under xvfb-run) the offscreen
+    // plugin would reach GLX through it and the editor would open.
     const QString path = QStringLiteral(KW_SAMPLES_DIR "/torus.knot");
+    QProcessEnvironment offscreen = QProcessEnvironment::systemEnvironment();
+    offscreen.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+    offscreen.remove(QStringLiteral("DISPLAY"));
+    offscreen.remove(QStringLiteral("WAYLAND_DISPLAY"));
     for (const QStringList& args : {QStringList{path}, QStringList{}}) {
-        const Run r = knotwork(args);
+        const Run r = knotwork(args, offscreen);
         QCOMPARE(r.code, 1);
         QVERIFY(r.out.isEmpty());
         QVERIFY2(r.err.contains(QStringLiteral("needs OpenGL 4.5")), qPrintable(r.err));
