@@ -55,8 +55,10 @@ run() {
   if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
     exec "$build/bin/knotwork" "$sample"
   fi
-  echo "dev.sh: no display; describing $sample (headless render arrives with the renderer)" >&2
-  "$build/bin/knotwork" info "$sample"
+  echo "dev.sh: no display; rendering $sample headless under Xvfb" >&2
+  QT_QPA_PLATFORM=xcb "${xvfb[@]}" "$build/bin/knotwork" render "$sample" \
+    -o "$build/teapot.png" --size 1024x768 --aov "$build/teapot_aov.exr"
+  echo "dev.sh: wrote $build/teapot.png and $build/teapot_aov.exr" >&2
 }
 
 test_all() {
