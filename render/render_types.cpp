@@ -19,36 +19,43 @@ UploadStats& UploadStats::operator+=(const UploadStats& o) {
     return *this;
 }
 
-FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect) {
-    FrameCamera fc;
-    const glm::dvec3 eye = camera.eye;
+CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double aspect) {
+    CameraMatrices m;
+    m.eye = camera.eye;
     glm::dvec3 forward = camera.target - camera.eye;
     if (glm::length(forward) < 1e-300)
         forward = glm::dvec3(0.0, 1.0, 0.0);
-    forward = glm::normalize(forward);
+    m.forward = glm::normalize(forward);
     glm::dvec3 up = camera.up;
-    if (glm::length(glm::cross(forward, up)) < 1e-9 * glm::length(up) || glm::length(up) == 0.0)
-        up = std::abs(forward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    if (glm::length(glm::cross(m.forward, up)) < 1e-9 * glm::length(up) || glm::length(up) == 0.0)
+        up = std::abs(m.forward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
 
-    double nearPlane = 0.01, farPlane = 100.0;
+    m.nearPlane = 0.01;
+    m.farPlane = 100.0;
     glm::dvec3 lo, hi;
     if (sceneBounds(scene, lo, hi)) {
         const glm::dvec3 centre = 0.5 * (lo + hi);
         const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
-        const double d = glm::dot(centre - eye, forward);
-        farPlane = std::max(d + radius * 1.1, radius * 1e-3);
-        nearPlane = std::max(d - radius * 1.1, farPlane * 1e-5);
+        const double d = glm::dot(centre - m.eye, m.forward);
+        m.farPlane = std::max(d + radius * 1.1, radius * 1e-3);
+        m.nearPlane = std::max(d - radius * 1.1, m.farPlane * 1e-5);
     }
     const double fovY = glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0));
-    const glm::dmat4 view = glm::lookAt(eye, eye + forward, up);
-    const glm::dmat4 proj = glm::perspective(fovY, std::max(aspect, 1e-6), nearPlane, farPlane);
-    fc.view = glm::mat4(view);
-    fc.projection = glm::mat4(proj);
-    fc.viewProjection = glm::mat4(proj * view);
-    fc.eye = glm::vec3(eye);
-    fc.forward = glm::vec3(forward);
-    fc.nearPlane = float(nearPlane);
-    fc.farPlane = float(farPlane);
+    m.view = glm::lookAt(m.eye, m.eye + m.forward, up);
+    m.projection = glm::perspective(fovY, std::max(aspect, 1e-6), m.nearPlane, m.farPlane);
+    return m;
+}
+
+FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect) {
+    const CameraMatrices m = cameraMatrices(camera, scene, aspect);
+    FrameCamera fc;
+    fc.view = glm::mat4(m.view);
+    fc.projection = glm::mat4(m.projection);
+    fc.viewProjection = glm::mat4(m.projection * m.view);
+    fc.eye = glm::vec3(m.eye);
+    fc.forward = glm::vec3(m.forward);
+    fc.nearPlane = float(m.nearPlane);
+    fc.farPlane = float(m.farPlane);
     return fc;
 }
 

@@ -69,9 +69,23 @@ struct FrameCamera {
     glm::ivec2 viewport{1, 1}; ///< pixels
 };
 
-/// Perspective matrices for `camera` at `aspect` (width / height > 0; viewport left {1, 1}). Near
-/// and far planes enclose the scene's control bounds (the surfaces lie inside them) with a margin;
-/// near is kept >= far * 1e-5 so depth precision stays usable.
+/// The same camera in double precision, for picking and dragging on the CPU (pixels round-trip
+/// exactly); frameCamera is this, rounded to float.
+struct CameraMatrices {
+    glm::dmat4 view{1.0};
+    glm::dmat4 projection{1.0};
+    glm::dvec3 eye{0.0};
+    glm::dvec3 forward{0.0, 0.0, -1.0}; ///< unit view direction
+    double nearPlane = 0.1;
+    double farPlane = 100.0;
+};
+
+/// Perspective matrices for `camera` at `aspect` (width / height > 0). A degenerate view
+/// direction falls back to +y, an up vector parallel to it to z (or y when looking along z).
+/// Near and far planes enclose the scene's control bounds (the surfaces lie inside them) with a
+/// margin; near is kept >= far * 1e-5 so depth precision stays usable.
+CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double aspect);
+/// cameraMatrices in float for the GPU (viewport left {1, 1}).
 FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect);
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,

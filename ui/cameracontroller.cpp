@@ -26,23 +26,12 @@ glm::dvec3 safeUp(const Camera& c) {
 
 ViewProjection::ViewProjection(const Camera& camera, const Scene& scene, QSize size)
     : m_size(size.isEmpty() ? QSize(1, 1) : size) {
-    // Same eye, direction, up rule and planes as the renderer's frameCamera, in double
-    // precision so that picking and dragging round-trip pixels exactly.
+    // The renderer's camera in double precision, so picking and dragging round-trip pixels.
     const double aspect = double(m_size.width()) / double(m_size.height());
-    const FrameCamera fc = frameCamera(camera, scene, aspect);
-    m_eye = camera.eye;
-    glm::dvec3 forward = camera.target - camera.eye;
-    if (glm::length(forward) < 1e-300)
-        forward = glm::dvec3(0.0, 1.0, 0.0);
-    m_forward = glm::normalize(forward);
-    glm::dvec3 up = camera.up;
-    if (glm::length(glm::cross(m_forward, up)) < 1e-9 * glm::length(up) || glm::length(up) == 0.0)
-        up = std::abs(m_forward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
-    const double fovY = glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0));
-    const glm::dmat4 view = glm::lookAt(m_eye, m_eye + m_forward, up);
-    const glm::dmat4 proj =
-        glm::perspective(fovY, aspect, double(fc.nearPlane), double(fc.farPlane));
-    m_viewProjection = proj * view;
+    const CameraMatrices m = cameraMatrices(camera, scene, aspect);
+    m_eye = m.eye;
+    m_forward = m.forward;
+    m_viewProjection = m.projection * m.view;
     m_inverse = glm::inverse(m_viewProjection);
 }
 
