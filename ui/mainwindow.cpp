@@ -82,12 +82,7 @@ MainWindow::MainWindow(QWidget* parent)
     updateTitle();
 }
 
-MainWindow::~MainWindow() {
-    // Selection's QItemSelectionModel member is constructed with the SceneModel as its QObject
-    // parent, so the model would free it as a child; the selection must go first.
-    delete m_selection;
-    m_selection = nullptr;
-}
+MainWindow::~MainWindow() = default;
 
 void MainWindow::buildDocks() {
     auto dock = [this](const QString& title, const QString& name, QWidget* content,
