@@ -1,5 +1,6 @@
 // Editor GUI tests of File ▸ Import… under Xvfb: IGES and OBJ replace the document, a truncated
-// file and Cancel keep it, the progress dialog fills up, the imported scene is saved as .knot.
+// file, Cancel and closing the window keep it, the progress dialog fills up, the imported scene
+// is saved as .knot.
 #include "model/cad/cadimport.h"
 #include "model/knotfile.h"
 #include "model/objfile.h"
@@ -44,6 +45,7 @@ struct Script {
     QString suggestedSave;
     QMessageBox::StandardButton askAnswer = QMessageBox::Discard;
     bool cancelImport = false;
+    QWidget* closeDuringImport = nullptr; ///< closed from the first progress update
     int imports = 0;
     int asks = 0;
     int saves = 0;
@@ -104,6 +106,8 @@ private:
         };
         d.importProgress = [&s](QProgressDialog* p) {
             s.progress.append({p->value(), p->maximum()});
+            if (s.closeDuringImport && s.progress.size() == 1)
+                s.closeDuringImport->close();
             if (s.cancelImport && !p->wasCanceled()) {
                 // Press the dialog's own Cancel button, as a user would.
                 p->show();
@@ -303,6 +307,20 @@ private Q_SLOTS:
         m_script.cancelImport = false;
         triggerImport(dataPath("hammer.iges"));
         QCOMPARE(m_window->document()->scene().surfaces.size(), size_t(45));
+    }
+
+    void closingDuringImportCancelsIt() {
+        if (!occtAvailable())
+            QSKIP("built without OpenCASCADE: no cancellable IGES import");
+        openWindow();
+        const Scene before = m_window->document()->scene();
+        m_script.closeDuringImport = m_window.get();
+        triggerImport(dataPath("hammer.iges"));
+        QVERIFY(m_window->isVisible()); // the close was refused while importing
+        verifyBicubicKept(before);
+        QCOMPARE(m_window->statusBar()->currentMessage(),
+                 dataPath("hammer.iges") + QStringLiteral(": import cancelled"));
+        QVERIFY(m_window->close()); // and works once the import is over
     }
 
     void importsObj() {
