@@ -15,9 +15,9 @@ template <typename T> void sortUnique(std::vector<T>& v) {
 } // namespace
 
 Selection::Selection(SceneModel& model, QObject* parent)
-    : QObject(parent), m_doc(model.document()), m_items(&model) {
-    connect(&m_items, &QItemSelectionModel::selectionChanged, this, &Selection::changed);
-    connect(&m_items, &QItemSelectionModel::currentChanged, this, &Selection::changed);
+    : QObject(parent), m_doc(model.document()), m_items(new QItemSelectionModel(&model, this)) {
+    connect(m_items, &QItemSelectionModel::selectionChanged, this, &Selection::changed);
+    connect(m_items, &QItemSelectionModel::currentChanged, this, &Selection::changed);
     connect(m_doc, &Document::sceneReset, this, [this] {
         m_points.clear();
         m_trimPoints.clear();
@@ -37,14 +37,14 @@ Selection::Selection(SceneModel& model, QObject* parent)
 }
 
 SurfaceId Selection::currentSurface() const {
-    const QModelIndex current = m_items.currentIndex();
+    const QModelIndex current = m_items->currentIndex();
     return current.isValid() ? current.data(SceneModel::SurfaceIdRole).value<SurfaceId>()
                              : SurfaceId{};
 }
 
 std::vector<SurfaceId> Selection::selectedSurfaces() const {
     std::vector<SurfaceId> picked;
-    for (const QModelIndex& i : m_items.selectedIndexes())
+    for (const QModelIndex& i : m_items->selectedIndexes())
         picked.push_back(i.data(SceneModel::SurfaceIdRole).value<SurfaceId>());
     std::vector<SurfaceId> out;
     for (const Surface& s : m_doc->scene().surfaces)
@@ -99,7 +99,8 @@ void Selection::clear() {
     const bool hadPoints = !m_points.empty() || !m_trimPoints.empty();
     m_points.clear();
     m_trimPoints.clear();
-    m_items.clear(); // emits changed() through selectionChanged/currentChanged if non-empty
+    if (m_items->model()) // none once the SceneModel is gone (and nothing to clear then)
+        m_items->clear(); // emits changed() through selectionChanged/currentChanged if non-empty
     if (hadPoints)
         Q_EMIT changed();
 }

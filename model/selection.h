@@ -21,7 +21,9 @@ public:
     /// `model` (and its document) must outlive the selection.
     explicit Selection(SceneModel& model, QObject* parent = nullptr);
 
-    QItemSelectionModel* itemSelection() { return &m_items; }
+    /// The row selection; owned by this Selection (its QObject child) and deleted with it.
+    /// If the SceneModel goes first, the item selection is left with no model (Qt clears it).
+    QItemSelectionModel* itemSelection() { return m_items; }
     /// The surface of the current tree row, or invalid.
     SurfaceId currentSurface() const;
     /// Surfaces with a selected row (the surface's own row or any row below it), in document
@@ -49,7 +51,9 @@ private:
     void dropLoop(SurfaceId id, TrimLoopId loop);
 
     const Document* m_doc;
-    QItemSelectionModel m_items;
+    // Held by pointer as this object's child: a QObject member must not have a parent that could
+    // delete it, and QItemSelectionModel(model) alone would make the model its parent.
+    QItemSelectionModel* m_items;
     std::vector<ControlPointRef> m_points;
     std::vector<TrimPointRef> m_trimPoints;
 };

@@ -14,6 +14,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QMenuBar>
+#include <QProgressDialog>
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
@@ -38,6 +39,10 @@ MainWindow::Dialogs MainWindow::Dialogs::standard() {
         return QMessageBox::warning(parent, QObject::tr("Unsaved changes"), text,
                                     QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
                                     QMessageBox::Save);
+    };
+    d.importFile = d.openFile;
+    d.information = [](QWidget* parent, const QString& title, const QString& text) {
+        QMessageBox::information(parent, title, text);
     };
     return d;
 }
@@ -82,12 +87,7 @@ MainWindow::MainWindow(QWidget* parent)
     updateTitle();
 }
 
-MainWindow::~MainWindow() {
-    // Selection's QItemSelectionModel member is constructed with the SceneModel as its QObject
-    // parent, so the model would free it as a child; the selection must go first.
-    delete m_selection;
-    m_selection = nullptr;
-}
+MainWindow::~MainWindow() = default;
 
 void MainWindow::buildDocks() {
     auto dock = [this](const QString& title, const QString& name, QWidget* content,
@@ -149,6 +149,8 @@ void MainWindow::buildFileMenu() {
               [this] { openDialog(); });
     m_recentMenu = file->addMenu(tr("Open &Recent"));
     m_recentMenu->setObjectName(QStringLiteral("menuRecent"));
+    addAction(file, QStringLiteral("actionImport"), tr("&Import…"), QKeySequence(),
+              [this] { importDialog(); });
     file->addSeparator();
     addAction(file, QStringLiteral("actionSave"), tr("&Save"), QKeySequence::Save,
               [this] { save(); });
@@ -269,6 +271,11 @@ void MainWindow::showError(const QString& title, const QString& text) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+    if (m_importProgress) { // cancel the import first; its dialog's own loop is running
+        m_importProgress->cancel();
+        event->ignore();
+        return;
+    }
     if (!maybeSave()) {
         event->ignore();
         return;

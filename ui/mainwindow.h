@@ -11,6 +11,7 @@
 
 class QLabel;
 class QMenu;
+class QProgressDialog;
 class QTreeView;
 class QUndoStack;
 
@@ -20,6 +21,10 @@ class LightsPanel;
 class PropertyPanel;
 class UvPanel;
 class Viewport;
+
+/// The file dialog filter of File ▸ Import…; without OpenCASCADE (`occt` false) the IGES,
+/// STEP and BREP entries say they are unavailable.
+QString importFileFilter(bool occt);
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -34,6 +39,14 @@ public:
         std::function<void(QWidget*, const QString& title, const QString& text)> error;
         /// Unsaved changes: Save, Discard or Cancel.
         std::function<QMessageBox::StandardButton(QWidget*, const QString& text)> askSave;
+        /// File ▸ Import…: returns a path, or an empty string when the user cancels.
+        std::function<QString(QWidget*, const QString& title, const QString& filter)> importFile;
+        /// The import report (warnings, skipped entities) after a successful import.
+        std::function<void(QWidget*, const QString& title, const QString& text)> information;
+        /// Called on the UI thread when the import's progress dialog is set up and after each
+        /// update of its value (about every 30 ms); tests read it or press its Cancel button.
+        /// May be empty.
+        std::function<void(QProgressDialog*)> importProgress;
         static Dialogs standard();
     };
 
@@ -45,6 +58,14 @@ public:
     /// Opens a .knot file, replacing the document. On failure shows the loader's message,
     /// keeps the current document and returns false. Does not ask about unsaved changes.
     bool openFile(const QString& path);
+    /// Imports IGES, STEP, BREP or OBJ (model/cad importFile) on a worker thread behind a
+    /// progress dialog whose Cancel stops the import. On success the imported scene replaces
+    /// the document, which is then unsaved and has no .knot path (Save asks where), the report's
+    /// warnings and skipped entities are shown, and it returns true. On failure shows the
+    /// importer's message, on cancel says so in the status bar; both keep the current document
+    /// and return false. Does not ask about unsaved changes; false while another import runs.
+    bool importFile(const QString& path);
+    bool isImporting() const { return m_importProgress != nullptr; }
     /// Writes the document to `path` (atomic); on failure shows the message and returns false.
     bool saveFile(const QString& path);
     /// Makes `id` the current surface (tree row and panels).
@@ -59,6 +80,8 @@ public:
     UvPanel* uvPanel() const { return m_uv; }
     QTreeView* sceneTree() const { return m_tree; }
     QString filePath() const { return m_path; }
+    /// The file the unsaved document was imported from, or empty (cleared by Save, Open, New).
+    QString importedFrom() const { return m_importedPath; }
     QStringList recentFiles() const;
 
     /// Actions by object name ("actionOpen", "actionSave", ...), for tests and tools.
@@ -79,6 +102,7 @@ private:
                        const QKeySequence& key, std::function<void()> slot);
     void newDocument();
     void openDialog();
+    void importDialog();
     bool save();
     bool saveAs();
     void exportImage();
@@ -90,6 +114,8 @@ private:
     void addRecent(const QString& path);
     void rebuildRecentMenu();
     void updateTitle();
+    /// The document's file name for titles and questions ("Untitled" when it has none).
+    QString displayName() const;
     void showError(const QString& title, const QString& text);
 
     Document* m_doc;
@@ -104,6 +130,8 @@ private:
     QMenu* m_recentMenu = nullptr;
     QLabel* m_fpsLabel = nullptr;
     QString m_path;
+    QString m_importedPath;
+    QProgressDialog* m_importProgress = nullptr; ///< while an import runs
     Dialogs m_dialogs;
 };
 

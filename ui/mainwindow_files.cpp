@@ -1,8 +1,10 @@
-// MainWindow: file handling — New, Open, Save, Save As, recent files, export, drops, title.
+// MainWindow: file handling — New, Open, Save, Save As (also of imported scenes), recent files,
+// export, drops, title.
 #include "model/knotfile.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
+#include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
@@ -27,6 +29,12 @@ QString knotPathOf(const QMimeData* mime) {
             url.toLocalFile().endsWith(QLatin1String(".knot"), Qt::CaseInsensitive))
             return url.toLocalFile();
     return {};
+}
+
+/// "dir/name.knot" for an imported "dir/name.igs".
+QString knotPathNextTo(const QString& imported) {
+    const QFileInfo info(imported);
+    return info.dir().filePath(info.completeBaseName() + QStringLiteral(".knot"));
 }
 
 } // namespace
@@ -83,7 +91,9 @@ bool MainWindow::save() {
 }
 
 bool MainWindow::saveAs() {
-    const QString suggested = m_path.isEmpty() ? tr("untitled.knot") : m_path;
+    const QString suggested = !m_path.isEmpty()           ? m_path
+                              : !m_importedPath.isEmpty() ? knotPathNextTo(m_importedPath)
+                                                          : tr("untitled.knot");
     QString path = m_dialogs.saveFile(this, tr("Save project as"), kKnotFilter, suggested);
     if (path.isEmpty())
         return false;
@@ -93,8 +103,9 @@ bool MainWindow::saveAs() {
 }
 
 void MainWindow::exportImage() {
+    const QString named = m_path.isEmpty() ? m_importedPath : m_path;
     const QString suggested =
-        m_path.isEmpty() ? tr("untitled.png") : QFileInfo(m_path).completeBaseName() + ".png";
+        named.isEmpty() ? tr("untitled.png") : QFileInfo(named).completeBaseName() + ".png";
     const QString path = m_dialogs.saveFile(this, tr("Export image"),
                                             tr("Images (*.png *.jpg *.bmp *.tif)"), suggested);
     if (path.isEmpty())
@@ -116,8 +127,7 @@ void MainWindow::exportImage() {
 bool MainWindow::maybeSave() {
     if (m_stack->isClean())
         return true;
-    const QString name = m_path.isEmpty() ? tr("Untitled") : QFileInfo(m_path).fileName();
-    switch (m_dialogs.askSave(this, tr("%1 has unsaved changes. Save them?").arg(name))) {
+    switch (m_dialogs.askSave(this, tr("%1 has unsaved changes. Save them?").arg(displayName()))) {
     case QMessageBox::Save:
         return save();
     case QMessageBox::Discard:
@@ -129,13 +139,18 @@ bool MainWindow::maybeSave() {
 
 void MainWindow::setFilePath(const QString& path) {
     m_path = path;
+    m_importedPath.clear();
     updateTitle();
 }
 
+QString MainWindow::displayName() const {
+    const QString named = m_path.isEmpty() ? m_importedPath : m_path;
+    return named.isEmpty() ? tr("Untitled") : QFileInfo(named).fileName();
+}
+
 void MainWindow::updateTitle() {
-    const QString name = m_path.isEmpty() ? tr("Untitled") : QFileInfo(m_path).fileName();
     setWindowFilePath(m_path);
-    setWindowTitle(tr("%1[*] — Knotwork").arg(name));
+    setWindowTitle(tr("%1[*] — Knotwork").arg(displayName()));
     setWindowModified(!m_stack->isClean());
 }
 

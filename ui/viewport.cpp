@@ -42,6 +42,10 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
 }
 
 Viewport::~Viewport() {
+    // QOpenGLWidget's destructor, which runs after this one, destroys the context: its
+    // aboutToBeDestroyed must not call releaseGl() on this already destroyed Viewport.
+    if (QOpenGLContext* gl = context())
+        disconnect(gl, &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl);
     releaseGl();
 }
 
