@@ -43,12 +43,13 @@ bool writeFile(const QString& path, const QByteArray& bytes) {
 int runBench(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
-        "The paper's Tables 1 and 2, off-screen, speed and quality in one run.\n"
-        "Table 1: exact mode at each --sizes (square), --table1-partitions, --lights, for the "
-        "samples and every FILE. Table 2: at 780x400 and each --partitions, exact mode against "
+        "The paper's Tables 1 and 2, off-screen, speed and quality in one run, for every FILE "
+        "or, with none, the bundled samples (Table 2: teapot.knot).\n"
+        "Table 1: exact mode at each --sizes (square), --table1-partitions, --lights. "
+        "Table 2: at --table2-size and each --partitions, exact mode against "
         "the tessellated baseline at the same partitions, a prebuilt fine mesh and libGLU's "
-        "NURBS tessellator re-run every frame, both searched to equal max normal error; for the "
-        "teapot sample and every FILE. FPS = median of --frames frames after 3 warm-up frames, "
+        "NURBS tessellator re-run every frame, both searched to equal max normal error. FPS = "
+        "median of --frames frames after 3 warm-up frames, "
         "each ended by glFinish. Quality: normal-angle error against the CPU kernel, silhouette "
         "error against exact mode at 256 partitions (docs/PERFORMANCE.md defines both). Progress "
         "on stderr, markdown on stdout. Needs OpenGL 4.5 core (see knotwork render --help)."));
@@ -64,22 +65,38 @@ int runBench(const QStringList& args) {
                                           QStringLiteral("N"), QStringLiteral("30"));
     const QCommandLineOption frames(
         QStringLiteral("frames"),
-        QStringLiteral("Timed frames per measurement (default 20; fewer than 20 is a smoke "
-                       "run, not a measurement)."),
-        QStringLiteral("N"), QStringLiteral("20"));
+        QStringLiteral("Timed frames per measurement, >= 20 (default 20)."), QStringLiteral("N"),
+        QStringLiteral("20"));
     const QCommandLineOption lights(QStringLiteral("lights"),
                                     QStringLiteral("Number of lights, 1..8 (default 2)."),
                                     QStringLiteral("N"), QStringLiteral("2"));
     const QCommandLineOption tables(QStringLiteral("tables"),
                                     QStringLiteral("Which tables: 1, 2 or 1,2 (default)."),
                                     QStringLiteral("LIST"), QStringLiteral("1,2"));
-    const QCommandLineOption noSamples(
-        QStringLiteral("no-samples"),
-        QStringLiteral("Measure only the FILES, not the bundled samples."));
+    const QCommandLineOption smoke(
+        QStringLiteral("smoke"),
+        QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
+                       "checks the pipeline and the report, measures nothing."));
+    const QCommandLineOption t2Size(QStringLiteral("table2-size"),
+                                    QStringLiteral("Table 2 image size (default 780x400)."),
+                                    QStringLiteral("WxH"), QStringLiteral("780x400"));
     const QCommandLineOption samples(QStringLiteral("samples"),
                                      QStringLiteral("Folder of the samples (default: the "
                                                     "source tree's resources/samples)."),
                                      QStringLiteral("DIR"), QStringLiteral(KW_BENCH_SAMPLES_DIR));
+    const QCommandLineOption mode(QStringLiteral("mode"),
+                                  QStringLiteral("Table 1 mode: exact (default) or tessellated."),
+                                  QStringLiteral("MODE"), QStringLiteral("exact"));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
+                       "(one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
+    const QCommandLineOption floor(
+        QStringLiteral("normal-floor"),
+        QStringLiteral("Table 2 equal quality: max normal error <= max(exact mode's, DEG) "
+                       "(default 0.2247 = 1/255 rad, one 8-bit diffuse level; 0 = strict)."),
+        QStringLiteral("DEG"), QStringLiteral("0.2247"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write JSON to OUT."),
                                   QStringLiteral("OUT"));
     const QCommandLineOption markdown(QStringLiteral("markdown"),
@@ -89,8 +106,8 @@ int runBench(const QStringList& args) {
         QStringLiteral("plots"),
         QStringLiteral("Write PNG plots into DIR (default: the --markdown file's folder)."),
         QStringLiteral("DIR"));
-    parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, noSamples, samples,
-                       json, markdown, plots});
+    parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, smoke, t2Size,
+                       samples, mode, shading, floor, json, markdown, plots});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -100,40 +117,37 @@ int runBench(const QStringList& args) {
     bench::BenchConfig config;
     std::vector<int> tableList;
     if (!parseList(parser.value(sizes), 1, 16384, config.sizes) ||
-        !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions,
-                   config.partitions) ||
+        !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions, config.partitions) ||
         !parseIntIn(parser.value(t1Partitions), kMinPartitions, kMaxPartitions,
                     config.table1Partitions) ||
-        !parseIntIn(parser.value(frames), 1, 100000, config.frames) ||
+        !parseIntIn(parser.value(frames), 20, 100000, config.frames) ||
+        !parseImageSize(parser.value(t2Size), config.table2Size) ||
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
-        !parseList(parser.value(tables), 1, 2, tableList)) {
-        printError(QStringLiteral("%1: bad --sizes (1..16384), --partitions or "
-                                  "--table1-partitions (%2..%3), --frames (>= 1), --lights "
-                                  "(1..%4) or --tables (1, 2) (see --help)")
+        !parseList(parser.value(tables), 1, 2, tableList) ||
+        !parseMode(parser.value(mode), config.table1Mode) ||
+        !parseShading(parser.value(shading), config.shading)) {
+        printError(QStringLiteral(
+                       "%1: bad --sizes (1..16384), --partitions or "
+                       "--table1-partitions (%2..%3), --frames (>= 20), --table2-size, --lights "
+                       "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
+                       "--shading (prepass, exact-depth) (see --help)")
                        .arg(cmd)
                        .arg(kMinPartitions)
                        .arg(kMaxPartitions)
                        .arg(kMaxLights));
         return kExitUsage;
     }
+    bool floorOk = false;
+    config.normalFloorDegrees = parser.value(floor).toDouble(&floorOk);
+    if (!floorOk || !(config.normalFloorDegrees >= 0.0) || config.normalFloorDegrees > 180.0) {
+        printError(QStringLiteral("%1: --normal-floor '%2' is not a number of degrees in 0..180")
+                       .arg(cmd, parser.value(floor)));
+        return kExitUsage;
+    }
     const bool table1 = std::count(tableList.begin(), tableList.end(), 1) > 0;
     const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
+    // FILES, or else the samples (Table 2: the multi-patch teapot, the paper's Table 2 case).
     QStringList files1, files2;
-    if (!parser.isSet(noSamples)) {
-        const QDir dir(parser.value(samples));
-        const QStringList knots =
-            dir.entryList({QStringLiteral("*.knot")}, QDir::Files, QDir::Name);
-        if (knots.isEmpty()) {
-            printError(QStringLiteral("%1: no .knot samples in %2 (use --samples DIR or "
-                                      "--no-samples)")
-                           .arg(cmd, dir.path()));
-            return kExitBadInput;
-        }
-        for (const QString& k : knots)
-            files1 << dir.filePath(k);
-        if (knots.contains(QStringLiteral("teapot.knot")))
-            files2 << dir.filePath(QStringLiteral("teapot.knot"));
-    }
     for (const QString& f : parser.positionalArguments()) {
         if (!QFileInfo(f).isFile()) {
             printError(QStringLiteral("%1: no such file: %2").arg(cmd, f));
@@ -142,24 +156,37 @@ int runBench(const QStringList& args) {
         files1 << f;
         files2 << f;
     }
+    if (files1.isEmpty()) {
+        const QDir dir(parser.value(samples));
+        const QStringList knots =
+            dir.entryList({QStringLiteral("*.knot")}, QDir::Files, QDir::Name);
+        if (knots.isEmpty()) {
+            printError(QStringLiteral("%1: no FILES given and no .knot samples in %2 (use "
+                                      "--samples DIR)")
+                           .arg(cmd, dir.path()));
+            return kExitBadInput;
+        }
+        for (const QString& k : knots)
+            files1 << dir.filePath(k);
+        files2 << dir.filePath(knots.contains(QStringLiteral("teapot.knot"))
+                                   ? QStringLiteral("teapot.knot")
+                                   : knots.front());
+    }
     if (table1)
         config.table1Files = files1;
     if (table2)
         config.table2Files = files2;
-    if (config.table1Files.isEmpty() && config.table2Files.isEmpty()) {
-        printError(QStringLiteral("%1: nothing to measure: give FILES or leave out --no-samples")
-                       .arg(cmd));
-        return kExitUsage;
+    if (parser.isSet(smoke)) {
+        config.frames = 2;
+        config.warmup = 1;
+        printError(
+            QStringLiteral("%1: --smoke: 2 frames per measurement, not a measurement").arg(cmd));
     }
-    if (config.frames < 20)
-        printError(QStringLiteral("%1: %2 frames per measurement: a smoke run, not a measurement "
-                                  "(use --frames 20 or more)")
-                       .arg(cmd)
-                       .arg(config.frames));
 
     QString error;
     bench::BenchReport report;
-    if (!bench::runBench(config, report, [](const QString& line) { printError(line); }, &error)) {
+    if (!bench::runBench(
+            config, report, [](const QString& line) { printError(line); }, &error)) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
@@ -173,8 +200,8 @@ int runBench(const QStringList& args) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
-    const QDir mdDir = parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir()
-                                              : QDir::current();
+    const QDir mdDir =
+        parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir() : QDir::current();
     for (const QString& w : written)
         relative << mdDir.relativeFilePath(QFileInfo(w).absoluteFilePath());
     const QString md = bench::reportMarkdown(report, command, relative);
@@ -182,8 +209,7 @@ int runBench(const QStringList& args) {
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
     if (parser.isSet(json) &&
-        !writeFile(parser.value(json),
-                   QJsonDocument(bench::reportJson(report, command)).toJson()))
+        !writeFile(parser.value(json), QJsonDocument(bench::reportJson(report, command)).toJson()))
         return kExitBadInput;
     return kExitOk;
 }

@@ -19,8 +19,8 @@ struct Series {
     Qt::PenStyle style = Qt::SolidLine;
 };
 
-const QColor kColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
-                          QColor(255, 127, 14), QColor(148, 103, 189), QColor(140, 86, 75),
+const QColor kColors[] = {QColor(31, 119, 180),  QColor(214, 39, 40),   QColor(44, 160, 44),
+                          QColor(255, 127, 14),  QColor(148, 103, 189), QColor(140, 86, 75),
                           QColor(227, 119, 194), QColor(127, 127, 127)};
 
 /// A line plot with categorical x positions (labelled with `x`) and a linear or log10 y axis.
@@ -31,7 +31,9 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
     QPainter p(&img);
     p.setRenderHint(QPainter::Antialiasing);
     const QRectF plot(90, 50, 600, 420);
-    auto tr = [&](double v) { return logY ? std::log10(std::max(v, 1e-12)) : v; };
+    auto tr = [&](double v) {
+        return logY ? std::log10(std::max(v, 1e-12)) : v;
+    };
     double lo = 1e300, hi = -1e300;
     for (const Series& s : series)
         for (double v : s.y)
@@ -54,7 +56,9 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
         return x.size() < 2 ? plot.center().x()
                             : plot.left() + plot.width() * double(i) / double(x.size() - 1);
     };
-    auto py = [&](double v) { return plot.bottom() - plot.height() * (tr(v) - lo) / (hi - lo); };
+    auto py = [&](double v) {
+        return plot.bottom() - plot.height() * (tr(v) - lo) / (hi - lo);
+    };
 
     QFont font = p.font();
     font.setPixelSize(14);
@@ -111,6 +115,17 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
         p.drawText(QRectF(plot.right() + 50, ly - 10, img.width() - plot.right() - 52, 20),
                    Qt::AlignLeft | Qt::AlignVCenter, se.name);
     }
+    return img;
+}
+
+/// Two plots one above the other.
+QImage stacked(const QImage& top, const QImage& bottom) {
+    QImage img(std::max(top.width(), bottom.width()), top.height() + bottom.height(),
+               QImage::Format_RGB32);
+    img.fill(Qt::white);
+    QPainter p(&img);
+    p.drawImage(0, 0, top);
+    p.drawImage(0, top.height(), bottom);
     return img;
 }
 
@@ -182,21 +197,19 @@ bool writePlots(const BenchReport& report, const QString& dir, QStringList& writ
                                                     &Table2Row::fine, &Table2Row::glu};
         const QString names[] = {QStringLiteral("exact"), QStringLiteral("baseline"),
                                  QStringLiteral("fine mesh"), QStringLiteral("GLU per frame")};
-        std::vector<Series> fps, errors;
+        std::vector<Series> fps, normals, silhouettes;
         for (int m = 0; m < 4; ++m) {
-            Series f{names[m], kColors[m], {}}, en{names[m] + QStringLiteral(" normal max (°)"),
-                                                  kColors[m], {}},
-                es{names[m] + QStringLiteral(" silhouette max (px)"), kColors[m], {},
-                   Qt::DashLine};
+            Series f{names[m], kColors[m], {}}, en{names[m], kColors[m], {}},
+                es{names[m], kColors[m], {}};
             for (const Table2Row* r : rows) {
                 const MethodResult& mr = r->*methods[m];
                 f.y.push_back(mr.timing.fps());
                 en.y.push_back(mr.quality.normal.maxDegrees);
-                es.y.push_back(mr.quality.silhouette.maxPixels);
+                es.y.push_back(mr.quality.silhouette.perSilhouettePixel);
             }
             fps.push_back(f);
-            errors.push_back(en);
-            errors.push_back(es);
+            normals.push_back(en);
+            silhouettes.push_back(es);
         }
         const QString size = QStringLiteral("%1x%2")
                                  .arg(report.config.table2Size.width())
@@ -205,10 +218,17 @@ bool writePlots(const BenchReport& report, const QString& dir, QStringList& writ
                            QStringLiteral("partitions (n x n)"), QStringLiteral("FPS (median)"),
                            parts, fps, true),
                   dir, QStringLiteral("table2-%1-fps.png").arg(stem(model)), written, error) ||
-            !save(linePlot(QStringLiteral("Table 2 quality: %1 at %2").arg(model, size),
-                           QStringLiteral("partitions (n x n)"),
-                           QStringLiteral("max error: normal (°), silhouette (px)"), parts,
-                           errors, true),
+            !save(stacked(linePlot(QStringLiteral("Table 2 quality: %1 at %2, max normal error")
+                                       .arg(model, size),
+                                   QStringLiteral("partitions (n x n)"),
+                                   QStringLiteral("max normal error (degrees)"), parts, normals,
+                                   true),
+                          linePlot(QStringLiteral("silhouette error against exact mode at %1x%1 "
+                                                  "partitions")
+                                       .arg(report.config.referencePartitions),
+                                   QStringLiteral("partitions (n x n)"),
+                                   QStringLiteral("mismatched px per silhouette px"), parts,
+                                   silhouettes, false)),
                   dir, QStringLiteral("table2-%1-error.png").arg(stem(model)), written, error))
             return false;
     }

@@ -50,8 +50,8 @@ NormalError normalError(const Scene& scene, const AovBuffer& aov) {
 bool silhouetteError(const AovBuffer& frame, const AovBuffer& reference, SilhouetteError& out,
                      QString* error) {
     out = SilhouetteError{};
-    if (frame.width != reference.width || frame.height != reference.height ||
-        frame.width <= 0 || frame.height <= 0) {
+    if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
+        frame.height <= 0) {
         *error = QStringLiteral("silhouette error needs two AOV frames of one non-empty size, got "
                                 "%1x%2 and %3x%4")
                      .arg(frame.width)
@@ -94,9 +94,9 @@ bool silhouetteError(const AovBuffer& frame, const AovBuffer& reference, Silhoue
             out.maxPixels = std::max(out.maxPixels, best);
         }
     out.meanPixels = out.mismatched ? sum / double(out.mismatched) : 0.0;
-    out.perSilhouettePixel =
-        out.silhouettePixels ? double(out.mismatched) / double(out.silhouettePixels)
-                             : (out.mismatched ? double(out.mismatched) : 0.0);
+    out.perSilhouettePixel = out.silhouettePixels
+                                 ? double(out.mismatched) / double(out.silhouettePixels)
+                                 : (out.mismatched ? double(out.mismatched) : 0.0);
     return true;
 }
 

@@ -8,8 +8,10 @@ namespace kw::bench {
 namespace {
 
 QJsonObject timingJson(const Timing& t) {
-    return QJsonObject{{QStringLiteral("fps"), t.fps()},       {QStringLiteral("fpsMin"), t.fpsMin()},
-                       {QStringLiteral("fpsMax"), t.fpsMax()}, {QStringLiteral("msMedian"), t.medianMs},
+    return QJsonObject{{QStringLiteral("fps"), t.fps()},
+                       {QStringLiteral("fpsMin"), t.fpsMin()},
+                       {QStringLiteral("fpsMax"), t.fpsMax()},
+                       {QStringLiteral("msMedian"), t.medianMs},
                        {QStringLiteral("cpuMsPerFrame"), t.cpuMs}};
 }
 
@@ -17,10 +19,9 @@ QJsonObject qualityJson(const Quality& q) {
     const NormalError& n = q.normal;
     const SilhouetteError& s = q.silhouette;
     return QJsonObject{
-        {QStringLiteral("normalError"),
-         QJsonObject{{QStringLiteral("meanDegrees"), n.meanDegrees},
-                     {QStringLiteral("maxDegrees"), n.maxDegrees},
-                     {QStringLiteral("pixels"), double(n.pixels)}}},
+        {QStringLiteral("normalError"), QJsonObject{{QStringLiteral("meanDegrees"), n.meanDegrees},
+                                                    {QStringLiteral("maxDegrees"), n.maxDegrees},
+                                                    {QStringLiteral("pixels"), double(n.pixels)}}},
         {QStringLiteral("silhouetteError"),
          QJsonObject{{QStringLiteral("mismatched"), double(s.mismatched)},
                      {QStringLiteral("silhouettePixels"), double(s.silhouettePixels)},
@@ -60,6 +61,11 @@ QString deg(double v) {
     return QString::number(v, 'g', 3);
 }
 
+/// "NxN", as 'knotwork render --size' spells sizes.
+QString sq(int n) {
+    return QStringLiteral("%1x%1").arg(n);
+}
+
 QString mark(const MethodResult& r) {
     return r.matched ? QString() : QStringLiteral(" †");
 }
@@ -88,6 +94,7 @@ QJsonObject reportJson(const BenchReport& report, const QString& command) {
             {QStringLiteral("model"), r.model},
             {QStringLiteral("surfaces"), r.surfaces},
             {QStringLiteral("partitions"), r.partitions},
+            {QStringLiteral("targetMaxNormalDegrees"), r.targetMaxDegrees},
             {QStringLiteral("width"), c.table2Size.width()},
             {QStringLiteral("height"), c.table2Size.height()},
             {QStringLiteral("exact"), methodJson(r.exact)},
@@ -100,23 +107,30 @@ QJsonObject reportJson(const BenchReport& report, const QString& command) {
                          {QStringLiteral("exactOverGlu"), ratio(r.exact, r.glu)}}}});
     return QJsonObject{
         {QStringLiteral("command"), command},
-        {QStringLiteral("machine"),
-         QJsonObject{{QStringLiteral("cpu"), report.cpu},
-                     {QStringLiteral("threads"), report.threads},
-                     {QStringLiteral("gl"), report.gl}}},
+        {QStringLiteral("machine"), QJsonObject{{QStringLiteral("cpu"), report.cpu},
+                                                {QStringLiteral("threads"), report.threads},
+                                                {QStringLiteral("gl"), report.gl}}},
         {QStringLiteral("settings"),
-         QJsonObject{{QStringLiteral("frames"), c.frames},
-                     {QStringLiteral("warmup"), c.warmup},
-                     {QStringLiteral("lights"), c.lights},
-                     {QStringLiteral("sizes"), intArray(c.sizes)},
-                     {QStringLiteral("table1Partitions"), c.table1Partitions},
-                     {QStringLiteral("partitions"), intArray(c.partitions)},
-                     {QStringLiteral("table2Width"), c.table2Size.width()},
-                     {QStringLiteral("table2Height"), c.table2Size.height()},
-                     {QStringLiteral("referencePartitions"), c.referencePartitions},
-                     {QStringLiteral("fineMaxVertices"), double(c.fineMaxVertices)},
-                     {QStringLiteral("gluMinTolerance"), c.gluMinTolerance},
-                     {QStringLiteral("gluMaxVertices"), double(c.gluMaxVertices)}}},
+         QJsonObject{
+             {QStringLiteral("frames"), c.frames},
+             {QStringLiteral("warmup"), c.warmup},
+             {QStringLiteral("lights"), c.lights},
+             {QStringLiteral("sizes"), intArray(c.sizes)},
+             {QStringLiteral("table1Partitions"), c.table1Partitions},
+             {QStringLiteral("partitions"), intArray(c.partitions)},
+             {QStringLiteral("table2Width"), c.table2Size.width()},
+             {QStringLiteral("table2Height"), c.table2Size.height()},
+             {QStringLiteral("referencePartitions"), c.referencePartitions},
+             {QStringLiteral("fineMaxVertices"), double(c.fineMaxVertices)},
+             {QStringLiteral("gluMinTolerance"), c.gluMinTolerance},
+             {QStringLiteral("normalFloorDegrees"), c.normalFloorDegrees},
+             {QStringLiteral("table1Mode"), c.table1Mode == RenderMode::Exact
+                                                ? QStringLiteral("exact")
+                                                : QStringLiteral("tessellated")},
+             {QStringLiteral("exactShading"), c.shading == RenderOptions::Shading::DepthPrepass
+                                                  ? QStringLiteral("prepass")
+                                                  : QStringLiteral("exact-depth")},
+             {QStringLiteral("gluMaxVertices"), double(c.gluMaxVertices)}}},
         {QStringLiteral("table1"), t1},
         {QStringLiteral("table2"), t2}};
 }
@@ -135,19 +149,20 @@ QString reportMarkdown(const BenchReport& report, const QString& command,
               .arg(c.lights);
     md += QStringLiteral("Command: `%1`\n\n").arg(command);
     if (!report.table1.empty()) {
-        md += QStringLiteral("### Table 1: exact mode, %1 × %1 partitions\n\n"
+        md += QStringLiteral("### Table 1: %2 mode, %1 × %1 partitions\n\n"
                              "| model | patches | resolution | covered | FPS | FPS min | FPS max | "
                              "CPU ms/frame | normal error mean / max (°) | silhouette error mean "
                              "/ max (px) |\n|---|---|---|---|---|---|---|---|---|---|\n")
-                  .arg(c.table1Partitions);
+                  .arg(c.table1Partitions)
+                  .arg(c.table1Mode == RenderMode::Exact ? QStringLiteral("exact")
+                                                         : QStringLiteral("tessellated"));
         for (const Table1Row& r : report.table1)
-            md += QStringLiteral("| %1 | %2 | %3² | %4 % | %5 | %6 | %7 | %8 | %9 / %10 | %11 / "
+            md += QStringLiteral("| %1 | %2 | %3 | %4 % | %5 | %6 | %7 | %8 | %9 / %10 | %11 / "
                                  "%12 |\n")
                       .arg(r.model)
                       .arg(r.surfaces)
-                      .arg(r.side)
-                      .arg(num(100.0 * r.coverage), num(r.timing.fps()), num(r.timing.fpsMin()),
-                           num(r.timing.fpsMax()), num(r.timing.cpuMs),
+                      .arg(sq(r.side), num(100.0 * r.coverage), num(r.timing.fps()),
+                           num(r.timing.fpsMin()), num(r.timing.fpsMax()), num(r.timing.cpuMs),
                            deg(r.quality.normal.meanDegrees), deg(r.quality.normal.maxDegrees))
                       .arg(num(r.quality.silhouette.meanPixels, 2),
                            num(r.quality.silhouette.maxPixels, 2));
@@ -162,19 +177,17 @@ QString reportMarkdown(const BenchReport& report, const QString& command,
                   .arg(c.table2Size.width())
                   .arg(c.table2Size.height());
         for (const Table2Row& r : report.table2)
-            md += QStringLiteral("| %1 | %2² | %3 | %4 | %5 | %6²%7 | %8 | %9 | %10%11 | %12 | "
+            md += QStringLiteral("| %1 | %2 | %3 | %4 | %5 | %6%7 | %8 | %9 | %10%11 | %12 | "
                                  "%13 |\n")
-                      .arg(r.model)
-                      .arg(r.partitions)
-                      .arg(num(r.exact.timing.fps()), num(r.baseline.timing.fps()),
-                           num(ratio(r.exact, r.baseline), 2))
-                      .arg(int(r.fine.parameter))
-                      .arg(mark(r.fine), num(r.fine.timing.fps()), num(ratio(r.exact, r.fine), 2),
-                           QString::number(r.glu.parameter), mark(r.glu),
-                           num(r.glu.timing.fps()), num(ratio(r.exact, r.glu), 2));
-        md += QStringLiteral("\n† equal quality not reached: the search stopped at its limit "
-                             "(fine mesh: %1 vertices; GLU: %2 px or %3 vertices) and this is the "
-                             "finest setting tried.\n\n")
+                      .arg(r.model, sq(r.partitions), num(r.exact.timing.fps()),
+                           num(r.baseline.timing.fps()), num(ratio(r.exact, r.baseline), 2),
+                           sq(int(r.fine.parameter)), mark(r.fine), num(r.fine.timing.fps()),
+                           num(ratio(r.exact, r.fine), 2), QString::number(r.glu.parameter),
+                           mark(r.glu), num(r.glu.timing.fps()), num(ratio(r.exact, r.glu), 2));
+        md += QStringLiteral("\nEqual quality: max normal error ≤ max(exact mode's, %1°). † not "
+                             "reached: the search stopped at its limit (fine mesh: %2 vertices; "
+                             "GLU: %3 px or %4 vertices) and this is the finest setting tried.\n\n")
+                  .arg(c.normalFloorDegrees)
                   .arg(c.fineMaxVertices)
                   .arg(c.gluMinTolerance)
                   .arg(c.gluMaxVertices);
@@ -191,20 +204,17 @@ QString reportMarkdown(const BenchReport& report, const QString& command,
                 {QStringLiteral("GLU"), &r.glu}};
             for (const auto& [name, m] : methods) {
                 const QString setting =
-                    m == &r.glu ? QStringLiteral("%1 px").arg(m->parameter)
-                                : QStringLiteral("%1²").arg(int(m->parameter));
-                md += QStringLiteral("| %1 | %2² | %3 | %4%5 | %6 | %7 | %8 | %9 | %10 | %11 / "
-                                     "%12 |\n")
-                          .arg(r.model)
-                          .arg(r.partitions)
-                          .arg(name, setting, mark(*m))
-                          .arg(m->triangles)
-                          .arg(deg(m->quality.normal.meanDegrees),
-                               deg(m->quality.normal.maxDegrees))
-                          .arg(m->quality.silhouette.mismatched)
-                          .arg(num(m->quality.silhouette.perSilhouettePixel, 3),
-                               num(m->quality.silhouette.meanPixels, 2),
-                               num(m->quality.silhouette.maxPixels, 2));
+                    m == &r.glu ? QStringLiteral("%1 px").arg(m->parameter) : sq(int(m->parameter));
+                md +=
+                    QStringLiteral("| %1 | %2 | %3 | %4%5 | %6 | %7 | %8 | %9 | %10 | %11 / "
+                                   "%12 |\n")
+                        .arg(r.model, sq(r.partitions), name, setting, mark(*m))
+                        .arg(m->triangles)
+                        .arg(deg(m->quality.normal.meanDegrees), deg(m->quality.normal.maxDegrees))
+                        .arg(m->quality.silhouette.mismatched)
+                        .arg(num(m->quality.silhouette.perSilhouettePixel, 3),
+                             num(m->quality.silhouette.meanPixels, 2),
+                             num(m->quality.silhouette.maxPixels, 2));
             }
         }
         md += QLatin1Char('\n');

@@ -89,14 +89,15 @@ public:
     }
     FrameCamera frameCamera(const Model& m) const {
         const QSize size = renderer.size();
-        FrameCamera fc = kw::frameCamera(m.camera, m.doc.scene(),
-                                         double(size.width()) / double(size.height()));
+        FrameCamera fc =
+            kw::frameCamera(m.camera, m.doc.scene(), double(size.width()) / double(size.height()));
         fc.viewport = glm::ivec2(size.width(), size.height());
         return fc;
     }
     /// Exact or baseline frame of the model at `partitions`.
     bool drawRenderer(const Model& m, RenderMode mode, int partitions, int lights, QString* error) {
         RenderOptions o;
+        o.shading = shading;
         o.mode = mode;
         o.partitionsU = o.partitionsV = partitions;
         o.lightCount = lights;
@@ -130,6 +131,7 @@ public:
     OffscreenRenderer renderer;
     MeshPass glu, fine;
     Document empty;
+    RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
 
 private:
     bool m_withAov = false;
@@ -214,8 +216,8 @@ bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
             MethodResult r;
             AovBuffer aov;
             const Frame exact = [&](QString* e) {
-                return s.drawRenderer(m, RenderMode::Exact, config.table1Partitions,
-                                      config.lights, e);
+                return s.drawRenderer(m, config.table1Mode, config.table1Partitions, config.lights,
+                                      e);
             };
             if (!measureQuality(s, m, reference, exact, r.quality, &aov, error) ||
                 !s.setSize(QSize(side, side), false, error) ||
@@ -227,8 +229,13 @@ bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
             row.coverage = double(covered) / double(std::max(1, aov.width * aov.height));
             row.timing = r.timing;
             row.quality = r.quality;
-            progress(describe(m, QStringLiteral("%1x%1 exact %2x%2").arg(side).arg(
-                                     config.table1Partitions),
+            progress(describe(m,
+                              QStringLiteral("%1x%1 %3 %2x%2")
+                                  .arg(side)
+                                  .arg(config.table1Partitions)
+                                  .arg(config.table1Mode == RenderMode::Exact
+                                           ? QStringLiteral("exact")
+                                           : QStringLiteral("tessellated")),
                               r));
             report.table1.push_back(row);
         }
@@ -243,9 +250,8 @@ struct SearchPoint {
     long long triangles = 0;
 };
 
-bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
-                    BenchReport& report, const std::function<void(const QString&)>& progress,
-                    QString* error) {
+bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, BenchReport& report,
+                    const std::function<void(const QString&)>& progress, QString* error) {
     const QSize size = config.table2Size;
     Model m;
     if (!loadModel(file, double(size.width()) / double(size.height()), m, error))
@@ -270,7 +276,9 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
         s.fine.upload(mesh);
         fineUploaded = n;
     };
-    const Frame fineFrame = [&](QString* e) { return s.drawMesh(s.fine, m, config.lights, e); };
+    const Frame fineFrame = [&](QString* e) {
+        return s.drawMesh(s.fine, m, config.lights, e);
+    };
     auto fineQuality = [&](int n, SearchPoint& sp) {
         if (auto it = fineSeen.find(n); it != fineSeen.end()) {
             sp = it->second;
@@ -315,13 +323,15 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
                 !measure(s, config, m, reference, frame, *result, error))
                 return false;
             progress(describe(m,
-                              QStringLiteral("%1 %2x%2").arg(
-                                  mode == RenderMode::Exact ? QStringLiteral("exact")
-                                                            : QStringLiteral("baseline"),
-                                  QString::number(p)),
+                              QStringLiteral("%1 %2x%2")
+                                  .arg(mode == RenderMode::Exact ? QStringLiteral("exact")
+                                                                 : QStringLiteral("baseline"),
+                                       QString::number(p)),
                               *result));
         }
-        const double target = row.exact.quality.normal.maxDegrees;
+        const double target =
+            std::max(row.exact.quality.normal.maxDegrees, config.normalFloorDegrees);
+        row.targetMaxDegrees = target;
 
         // (b) Fine mesh: density doubled from the row's partitions until its max normal error
         // is no worse than exact mode's, or the vertex budget is spent.
@@ -331,8 +341,8 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
             if (!fineQuality(n, sp))
                 return false;
             row.fine.matched = sp.quality.normal.maxDegrees <= target;
-            if (row.fine.matched || (long long)(2 * n + 1) * (2 * n + 1) * surfaces >
-                                        config.fineMaxVertices)
+            if (row.fine.matched ||
+                (long long)(2 * n + 1) * (2 * n + 1) * surfaces > config.fineMaxVertices)
                 break;
             n *= 2;
         }
@@ -343,8 +353,10 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
         if (!s.setSize(size, false, error) ||
             !timeFrames(s, config, fineFrame, row.fine.timing, error))
             return false;
-        progress(describe(m, QStringLiteral("fine mesh %1x%1%2").arg(n).arg(
-                                 row.fine.matched ? QString() : QStringLiteral(" (not matched)")),
+        progress(describe(m,
+                          QStringLiteral("fine mesh %1x%1%2")
+                              .arg(n)
+                              .arg(row.fine.matched ? QString() : QStringLiteral(" (not matched)")),
                           row.fine));
 
         // (c) GLU: sampling tolerance halved from GLU's default 50 px.
@@ -367,8 +379,10 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file,
         if (!s.setSize(size, false, error) ||
             !timeFrames(s, config, gluFrame, row.glu.timing, error))
             return false;
-        progress(describe(m, QStringLiteral("GLU tolerance %1 px%2").arg(t).arg(
-                                 row.glu.matched ? QString() : QStringLiteral(" (not matched)")),
+        progress(describe(m,
+                          QStringLiteral("GLU tolerance %1 px%2")
+                              .arg(t)
+                              .arg(row.glu.matched ? QString() : QStringLiteral(" (not matched)")),
                           row.glu));
         report.table2.push_back(row);
     }
@@ -384,6 +398,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     Session s;
+    s.shading = config.shading;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

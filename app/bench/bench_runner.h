@@ -12,10 +12,11 @@
 namespace kw::bench {
 
 struct BenchConfig {
-    QStringList table1Files;   ///< .knot files of Table 1 (exact mode at each size)
-    QStringList table2Files;   ///< .knot files of Table 2 (exact vs baselines at each partition)
-    std::vector<int> sizes;    ///< Table 1 square sizes, each in 1..16384
-    std::vector<int> partitions; ///< Table 2 partition counts, each in kMinPartitions..kMaxPartitions
+    QStringList table1Files; ///< .knot files of Table 1 (exact mode at each size)
+    QStringList table2Files; ///< .knot files of Table 2 (exact vs baselines at each partition)
+    std::vector<int> sizes;  ///< Table 1 square sizes, each in 1..16384
+    std::vector<int>
+        partitions;            ///< Table 2 partition counts, each in kMinPartitions..kMaxPartitions
     int frames = 20;           ///< timed frames per measurement, >= 1 (the CLI asks for >= 20)
     int warmup = 3;            ///< untimed frames first
     int lights = 2;            ///< 1..kMaxLights
@@ -26,6 +27,14 @@ struct BenchConfig {
     /// Fine mesh search: densities doubled from the row's partitions up to this many vertices
     /// in the whole scene (beyond, GPU memory and upload time dominate).
     long long fineMaxVertices = 4'000'000;
+    /// Equal quality means max normal error <= max(exact mode's, this floor), in degrees.
+    /// Exact mode's own max error is float rounding (~1e-3 degrees), which no mesh reaches;
+    /// the default, 1/255 rad = 0.2247 degrees, is where a diffuse shade of a unit light changes
+    /// by at most one 8-bit level. 0 asks for the strict match.
+    double normalFloorDegrees = 0.2247;
+    /// Table 1 mode (exact as in the paper; tessellated for comparison) and exact shading way.
+    RenderMode table1Mode = RenderMode::Exact;
+    RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     /// GLU search: sampling tolerance halved from 50 px (GLU's default) down to this.
     double gluMinTolerance = 0.25;
     /// GLU search also stops when one tessellation produces more vertices than this.
@@ -62,20 +71,21 @@ struct MethodResult {
     /// Method parameter: partitions (exact, baseline), fine mesh density n (n x n per surface),
     /// GLU sampling tolerance in pixels.
     double parameter = 0.0;
-    bool matched = true;        ///< fine / GLU: max normal error <= exact mode's was reached
-    long long triangles = 0;    ///< triangles drawn per frame (exact: base polygon triangles)
+    bool matched = true;     ///< fine / GLU: max normal error <= exact mode's was reached
+    long long triangles = 0; ///< triangles drawn per frame (exact: base polygon triangles)
 };
 
 struct Table2Row {
     QString model;
     int surfaces = 0;
     int partitions = 0;
+    double targetMaxDegrees = 0.0; ///< max normal error the fine mesh and GLU had to reach
     MethodResult exact, baseline, fine, glu;
 };
 
 struct BenchReport {
-    QString gl;           ///< GL_RENDERER, GL_VERSION
-    QString cpu;          ///< /proc/cpuinfo model name
+    QString gl;  ///< GL_RENDERER, GL_VERSION
+    QString cpu; ///< /proc/cpuinfo model name
     int threads = 0;
     BenchConfig config;
     std::vector<Table1Row> table1;

@@ -124,8 +124,7 @@ bool gluTessellate(const Scene& scene, const FrameCamera& camera, double toleran
                             viewport);
     gluNurbsCallback(n, GLU_NURBS_BEGIN_DATA, reinterpret_cast<_GLUfuncptr>(&onBegin));
     gluNurbsCallback(n, GLU_NURBS_NORMAL_DATA, reinterpret_cast<_GLUfuncptr>(&onNormal));
-    gluNurbsCallback(n, GLU_NURBS_TEXTURE_COORD_DATA,
-                     reinterpret_cast<_GLUfuncptr>(&onTexCoord));
+    gluNurbsCallback(n, GLU_NURBS_TEXTURE_COORD_DATA, reinterpret_cast<_GLUfuncptr>(&onTexCoord));
     gluNurbsCallback(n, GLU_NURBS_VERTEX_DATA, reinterpret_cast<_GLUfuncptr>(&onVertex));
     gluNurbsCallback(n, GLU_NURBS_END_DATA, reinterpret_cast<_GLUfuncptr>(&onEnd));
     gluNurbsCallback(n, GLU_NURBS_ERROR, reinterpret_cast<_GLUfuncptr>(&onError));
@@ -157,9 +156,9 @@ bool gluTessellate(const Scene& scene, const FrameCamera& camera, double toleran
         GLfloat uvNet[8] = {linU[0], linV[0], linU[2], linV[0], linU[0], linV[2], linU[2], linV[2]};
         t_gluError = 0;
         gluBeginSurface(n);
-        gluNurbsSurface(n, GLint(knotsU.size()), knotsU.data(), GLint(knotsV.size()),
-                        knotsV.data(), 4, 4 * g.countU, control.data(), g.degreeU + 1,
-                        g.degreeV + 1, GL_MAP2_VERTEX_4);
+        gluNurbsSurface(n, GLint(knotsU.size()), knotsU.data(), GLint(knotsV.size()), knotsV.data(),
+                        4, 4 * g.countU, control.data(), g.degreeU + 1, g.degreeV + 1,
+                        GL_MAP2_VERTEX_4);
         gluNurbsSurface(n, 4, linU, 4, linV, 2, 4, uvNet, 2, 2, GL_MAP2_TEXTURE_COORD_2);
         gluEndSurface(n);
         if (t_gluError != 0) {

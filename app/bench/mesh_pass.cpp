@@ -15,8 +15,7 @@ void MeshPass::initialize(QOpenGLFunctions_4_5_Core* gl) {
     gl->glCreateBuffers(4, m_buffers);
     const int sizes[] = {3, 3, 2};
     for (GLuint a = 0; a < 3; ++a) {
-        gl->glVertexArrayVertexBuffer(m_vao, a, m_buffers[a], 0,
-                                      GLsizei(sizes[a] * sizeof(float)));
+        gl->glVertexArrayVertexBuffer(m_vao, a, m_buffers[a], 0, GLsizei(sizes[a] * sizeof(float)));
         gl->glEnableVertexArrayAttrib(m_vao, a);
         gl->glVertexArrayAttribFormat(m_vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
         gl->glVertexArrayAttribBinding(m_vao, a, a);
@@ -50,8 +49,8 @@ void MeshPass::upload(const SceneMesh& mesh) {
     send(m_buffers[3], m_indices);
 }
 
-bool MeshPass::draw(const Scene& scene, const FrameCamera& camera,
-                    const std::vector<Light>& lights, bool writeAov, QString* error) {
+bool MeshPass::draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
+                    bool writeAov, QString* error) {
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (writeAov)
         defines << QStringLiteral("KW_AOV");
@@ -75,8 +74,7 @@ bool MeshPass::draw(const Scene& scene, const FrameCamera& camera,
             continue;
         setSurfaceUniforms(gl, prog, *it);
         gl->glDrawElementsBaseVertex(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
-                                     reinterpret_cast<const void*>(r.firstIndexByte),
-                                     r.baseVertex);
+                                     reinterpret_cast<const void*>(r.firstIndexByte), r.baseVertex);
     }
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
