@@ -48,10 +48,19 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
         hi = std::ceil(hi);
     } else {
         lo = std::min(lo, 0.0);
-        hi = hi * 1.1;
     }
     if (hi - lo < 1e-12)
         hi = lo + 1.0;
+    // Linear axis: a 1-2-5 step giving about five ticks, the top rounded up to a step.
+    double step = 1.0;
+    if (!logY) {
+        const double raw = (hi - lo) / 5.0, mag = std::pow(10.0, std::floor(std::log10(raw)));
+        step = raw <= mag         ? mag
+               : raw <= 2.0 * mag ? 2.0 * mag
+               : raw <= 5.0 * mag ? 5.0 * mag
+                                  : 10.0 * mag;
+        hi = lo + std::ceil((hi - lo) / step - 1e-9) * step;
+    }
     auto px = [&](size_t i) {
         return x.size() < 2 ? plot.center().x()
                             : plot.left() + plot.width() * double(i) / double(x.size() - 1);
@@ -72,7 +81,7 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
     p.drawText(QRectF(-plot.height() / 2, -12, plot.height(), 24), Qt::AlignCenter, yLabel);
     p.restore();
     // Grid and tick labels.
-    const int ticks = logY ? int(hi - lo) : 5;
+    const int ticks = logY ? int(hi - lo) : int(std::lround((hi - lo) / step));
     for (int k = 0; k <= ticks; ++k) {
         const double t = lo + (hi - lo) * k / ticks;
         const double y = plot.bottom() - plot.height() * k / ticks;
