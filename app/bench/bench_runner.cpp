@@ -334,8 +334,10 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         row.targetMaxDegrees = target;
 
         // (b) Fine mesh: density doubled from the row's partitions until its max normal error
-        // is no worse than exact mode's, or the vertex budget is spent.
-        int n = p;
+        // is no worse than the target, or the vertex budget is spent; then bisected between the
+        // last density that failed and the first that passed, so the mesh is the smallest of
+        // equal quality found (the fairest opponent), whatever the row's starting point.
+        int n = p, failed = 0;
         SearchPoint sp;
         for (;;) {
             if (!fineQuality(n, sp))
@@ -344,7 +346,20 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
             if (row.fine.matched ||
                 (long long)(2 * n + 1) * (2 * n + 1) * surfaces > config.fineMaxVertices)
                 break;
+            failed = n;
             n *= 2;
+        }
+        while (row.fine.matched && failed > 0 && n - failed > std::max(1, n / 16)) {
+            const int mid = (failed + n) / 2;
+            SearchPoint midPoint;
+            if (!fineQuality(mid, midPoint))
+                return false;
+            if (midPoint.quality.normal.maxDegrees <= target) {
+                n = mid;
+                sp = midPoint;
+            } else {
+                failed = mid;
+            }
         }
         row.fine.parameter = n;
         row.fine.triangles = sp.triangles;

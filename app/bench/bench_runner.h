@@ -24,8 +24,8 @@ struct BenchConfig {
     QSize table2Size{780, 400};
     /// Reference for silhouette error: exact mode at this many partitions (the finest allowed).
     int referencePartitions = 256;
-    /// Fine mesh search: densities doubled from the row's partitions up to this many vertices
-    /// in the whole scene (beyond, GPU memory and upload time dominate).
+    /// Fine mesh search: densities doubled from the row's partitions (then bisected) up to this
+    /// many vertices in the whole scene (beyond, GPU memory and upload time dominate).
     long long fineMaxVertices = 4'000'000;
     /// Equal quality means max normal error <= max(exact mode's, this floor), in degrees.
     /// Exact mode's own max error is float rounding (~1e-3 degrees), which no mesh reaches;
