@@ -29,6 +29,26 @@ bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
     return !out.empty();
 }
 
+/// `text` is modeName(m) for a mode m (render_args keeps the names).
+bool parseModeName(const QString& text, RenderMode& mode) {
+    for (RenderMode m : {RenderMode::Exact, RenderMode::Tessellated})
+        if (text == modeName(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
+/// `text` is shadingName(s) for a shading way s.
+bool parseShadingName(const QString& text, RenderOptions::Shading& shading) {
+    for (auto s : {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth})
+        if (text == shadingName(s)) {
+            shading = s;
+            return true;
+        }
+    return false;
+}
+
 bool writeFile(const QString& path, const QByteArray& bytes) {
     QFile f(path);
     if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate) || f.write(bytes) != bytes.size()) {
@@ -124,8 +144,8 @@ int runBench(const QStringList& args) {
         !parseImageSize(parser.value(t2Size), config.table2Size) ||
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
         !parseList(parser.value(tables), 1, 2, tableList) ||
-        !parseMode(parser.value(mode), config.table1Mode) ||
-        !parseShading(parser.value(shading), config.shading)) {
+        !parseModeName(parser.value(mode), config.table1Mode) ||
+        !parseShadingName(parser.value(shading), config.shading)) {
         printError(QStringLiteral(
                        "%1: bad --sizes (1..16384), --partitions or "
                        "--table1-partitions (%2..%3), --frames (>= 20), --table2-size, --lights "
