@@ -18,6 +18,8 @@ namespace kw::cli {
 
 namespace {
 
+constexpr int kMaxSide = 4096;
+
 bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
     out.clear();
     for (const QString& s : text.split(QLatin1Char(','))) {
@@ -73,9 +75,10 @@ int runBench(const QStringList& args) {
         "each ended by glFinish. Quality: normal-angle error against the CPU kernel, silhouette "
         "error against exact mode at 256 partitions (docs/PERFORMANCE.md defines both). Progress "
         "on stderr, markdown on stdout. Needs OpenGL 4.5 core (see knotwork render --help)."));
-    const QCommandLineOption sizes(QStringLiteral("sizes"),
-                                   QStringLiteral("Table 1 sizes (default 256,512,768,1024)."),
-                                   QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
+    const QCommandLineOption sizes(
+        QStringLiteral("sizes"),
+        QStringLiteral("Table 1 sizes, each 1..4096 (default 256,512,768,1024)."),
+        QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
     const QCommandLineOption partitions(
         QStringLiteral("partitions"),
         QStringLiteral("Table 2 partition counts (default 5,10,20,30,40,60)."),
@@ -136,25 +139,29 @@ int runBench(const QStringList& args) {
 
     bench::BenchConfig config;
     std::vector<int> tableList;
-    if (!parseList(parser.value(sizes), 1, 16384, config.sizes) ||
+    // Sizes stop at 4096: each quality frame reads back 10 float channels per pixel.
+    if (!parseList(parser.value(sizes), 1, kMaxSide, config.sizes) ||
         !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions, config.partitions) ||
         !parseIntIn(parser.value(t1Partitions), kMinPartitions, kMaxPartitions,
                     config.table1Partitions) ||
         !parseIntIn(parser.value(frames), 20, 100000, config.frames) ||
         !parseImageSize(parser.value(t2Size), config.table2Size) ||
+        config.table2Size.width() > kMaxSide || config.table2Size.height() > kMaxSide ||
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
         !parseList(parser.value(tables), 1, 2, tableList) ||
         !parseModeName(parser.value(mode), config.table1Mode) ||
         !parseShadingName(parser.value(shading), config.shading)) {
-        printError(QStringLiteral(
-                       "%1: bad --sizes (1..16384), --partitions or "
-                       "--table1-partitions (%2..%3), --frames (>= 20), --table2-size, --lights "
-                       "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
-                       "--shading (prepass, exact-depth) (see --help)")
-                       .arg(cmd)
-                       .arg(kMinPartitions)
-                       .arg(kMaxPartitions)
-                       .arg(kMaxLights));
+        printError(
+            QStringLiteral(
+                "%1: bad --sizes (1..4096), --partitions or "
+                "--table1-partitions (%2..%3), --frames (>= 20), --table2-size (WxH, each in "
+                "1..4096), --lights "
+                "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
+                "--shading (prepass, exact-depth) (see --help)")
+                .arg(cmd)
+                .arg(kMinPartitions)
+                .arg(kMaxPartitions)
+                .arg(kMaxLights));
         return kExitUsage;
     }
     bool floorOk = false;

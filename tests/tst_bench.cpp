@@ -186,6 +186,7 @@ private Q_SLOTS:
               QStringList{QStringLiteral("--partitions"), QStringLiteral("5,x")},
               QStringList{QStringLiteral("--frames"), QStringLiteral("2")},
               QStringList{QStringLiteral("--table2-size"), QStringLiteral("780")},
+              QStringList{QStringLiteral("--sizes"), QStringLiteral("64,5000")},
               QStringList{QStringLiteral("--tables"), QStringLiteral("3")},
               QStringList{QStringLiteral("--normal-floor"), QStringLiteral("-1")}}) {
             const Run r = knotwork(QStringList{QStringLiteral("bench"), sample("bicubic")} + bad);

@@ -24,7 +24,7 @@ NormalError normalError(const Scene& scene, const AovBuffer& aov);
 /// reference silhouette is the set of covered reference pixels with an uncovered 4-neighbour
 /// (or on the image border). Each mismatching pixel (covered in one frame only) is scored by the
 /// Euclidean distance, in pixels, from its centre to the nearest reference silhouette pixel
-/// centre; a mismatch right beside the silhouette therefore scores 1.
+/// centre: 0 on the reference silhouette, 1 right beside it.
 struct SilhouetteError {
     long long mismatched = 0;       ///< pixels covered in exactly one of the two frames
     long long silhouettePixels = 0; ///< length of the reference silhouette in pixels

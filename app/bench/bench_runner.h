@@ -16,10 +16,10 @@ struct BenchConfig {
     QStringList table2Files; ///< .knot files of Table 2 (exact vs baselines at each partition)
     std::vector<int> sizes;  ///< Table 1 square sizes, each in 1..16384
     std::vector<int>
-        partitions;            ///< Table 2 partition counts, each in kMinPartitions..kMaxPartitions
-    int frames = 20;           ///< timed frames per measurement, >= 1 (the CLI asks for >= 20)
-    int warmup = 3;            ///< untimed frames first
-    int lights = 2;            ///< 1..kMaxLights
+        partitions;  ///< Table 2 partition counts, each in kMinPartitions..kMaxPartitions
+    int frames = 20; ///< timed frames per measurement, >= 1 (the CLI: >= 20, or 2 with --smoke)
+    int warmup = 3;  ///< untimed frames first
+    int lights = 2;  ///< 1..kMaxLights
     int table1Partitions = 30; ///< exact mode partitions in Table 1
     QSize table2Size{780, 400};
     /// Reference for silhouette error: exact mode at this many partitions (the finest allowed).
