@@ -1,42 +1,63 @@
-// knotwork bench [FILES...]: off-screen frame rates per file and image size (paper Table 1).
+// knotwork bench [FILES...]: the paper's Tables 1 and 2 off-screen, speed and quality side by side
+// (issue 6). Measurement in app/bench/bench_runner, outputs in app/bench/bench_report.
+#include "app/bench/bench_report.h"
 #include "app/commands.h"
 #include "app/render_args.h"
-#include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
-#include <QElapsedTimer>
+#include <QDir>
 #include <QFile>
 #include <QFileInfo>
-#include <QJsonArray>
 #include <QJsonDocument>
-#include <QJsonObject>
-#include <QThread>
-#include <algorithm>
-#include <sys/resource.h>
+
+#ifndef KW_BENCH_SAMPLES_DIR
+#define KW_BENCH_SAMPLES_DIR "resources/samples"
+#endif
 
 namespace kw::cli {
 
 namespace {
 
-struct BenchRow {
-    QString file;
-    int surfaces = 0;
-    QSize size;
-    double coverage = 0.0; ///< fraction of pixels showing a surface
-    double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
-    double cpuMs = 0.0; ///< process CPU time per timed frame (independent of other load)
-};
+constexpr int kMaxSide = 4096;
 
-double fps(double ms) {
-    return ms > 0.0 ? 1000.0 / ms : 0.0;
+bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
+    out.clear();
+    for (const QString& s : text.split(QLatin1Char(','))) {
+        int v = 0;
+        if (!parseIntIn(s, lo, hi, v))
+            return false;
+        out.push_back(v);
+    }
+    return !out.empty();
 }
 
-/// CPU time of the whole process (all threads: llvmpipe rasterises on its own threads), ms.
-double processCpuMs() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
-           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
+/// `text` is modeName(m) for a mode m (render_args keeps the names).
+bool parseModeName(const QString& text, RenderMode& mode) {
+    for (RenderMode m : {RenderMode::Exact, RenderMode::Tessellated})
+        if (text == modeName(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
+/// `text` is shadingName(s) for a shading way s.
+bool parseShadingName(const QString& text, RenderOptions::Shading& shading) {
+    for (auto s : {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth})
+        if (text == shadingName(s)) {
+            shading = s;
+            return true;
+        }
+    return false;
+}
+
+bool writeFile(const QString& path, const QByteArray& bytes) {
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate) || f.write(bytes) != bytes.size()) {
+        printError(QStringLiteral("could not write %1: %2").arg(path, f.errorString()));
+        return false;
+    }
+    return true;
 }
 
 } // namespace
@@ -44,167 +65,179 @@ double processCpuMs() {
 int runBench(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
-        "Measure frames per second of the off-screen renderer: for each FILE and size, the "
-        "median, fastest and slowest of N frames after 3 warm-up frames, each frame ended by "
-        "glFinish. Progress on stderr; a markdown table on stdout. Needs OpenGL 4.5 core (see "
-        "knotwork render --help)."));
-    const QCommandLineOption sizes(QStringLiteral("sizes"),
-                                   QStringLiteral("Square sizes (default 256,512,768,1024)."),
-                                   QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
-    const QCommandLineOption frames(QStringLiteral("frames"),
-                                    QStringLiteral("Timed frames per size, >= 20 (default 30)."),
-                                    QStringLiteral("N"), QStringLiteral("30"));
-    const QCommandLineOption json(QStringLiteral("json"),
-                                  QStringLiteral("Also write the results as JSON."),
+        "The paper's Tables 1 and 2, off-screen, speed and quality in one run, for every FILE "
+        "or, with none, the bundled samples (Table 2: teapot.knot).\n"
+        "Table 1: exact mode at each --sizes (square), --table1-partitions, --lights. "
+        "Table 2: at --table2-size and each --partitions, exact mode against "
+        "the tessellated baseline at the same partitions, a prebuilt fine mesh and libGLU's "
+        "NURBS tessellator re-run every frame, both searched to equal max normal error. FPS = "
+        "median of --frames frames after 3 warm-up frames, "
+        "each ended by glFinish. Quality: normal-angle error against the CPU kernel, silhouette "
+        "error against exact mode at 256 partitions (docs/PERFORMANCE.md defines both). Progress "
+        "on stderr, markdown on stdout. Needs OpenGL 4.5 core (see knotwork render --help)."));
+    const QCommandLineOption sizes(
+        QStringLiteral("sizes"),
+        QStringLiteral("Table 1 sizes, each 1..4096 (default 256,512,768,1024)."),
+        QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
+    const QCommandLineOption partitions(
+        QStringLiteral("partitions"),
+        QStringLiteral("Table 2 partition counts (default 5,10,20,30,40,60)."),
+        QStringLiteral("LIST"), QStringLiteral("5,10,20,30,40,60"));
+    const QCommandLineOption t1Partitions(QStringLiteral("table1-partitions"),
+                                          QStringLiteral("Table 1 partitions (default 30)."),
+                                          QStringLiteral("N"), QStringLiteral("30"));
+    const QCommandLineOption frames(
+        QStringLiteral("frames"),
+        QStringLiteral("Timed frames per measurement, >= 20 (default 20)."), QStringLiteral("N"),
+        QStringLiteral("20"));
+    const QCommandLineOption lights(QStringLiteral("lights"),
+                                    QStringLiteral("Number of lights, 1..8 (default 2)."),
+                                    QStringLiteral("N"), QStringLiteral("2"));
+    const QCommandLineOption tables(QStringLiteral("tables"),
+                                    QStringLiteral("Which tables: 1, 2 or 1,2 (default)."),
+                                    QStringLiteral("LIST"), QStringLiteral("1,2"));
+    const QCommandLineOption smoke(
+        QStringLiteral("smoke"),
+        QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
+                       "checks the pipeline and the report, measures nothing."));
+    const QCommandLineOption t2Size(QStringLiteral("table2-size"),
+                                    QStringLiteral("Table 2 image size (default 780x400)."),
+                                    QStringLiteral("WxH"), QStringLiteral("780x400"));
+    const QCommandLineOption samples(QStringLiteral("samples"),
+                                     QStringLiteral("Folder of the samples (default: the "
+                                                    "source tree's resources/samples)."),
+                                     QStringLiteral("DIR"), QStringLiteral(KW_BENCH_SAMPLES_DIR));
+    const QCommandLineOption mode(QStringLiteral("mode"),
+                                  QStringLiteral("Table 1 mode: exact (default) or tessellated."),
+                                  QStringLiteral("MODE"), QStringLiteral("exact"));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
+                       "(one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
+    const QCommandLineOption floor(
+        QStringLiteral("normal-floor"),
+        QStringLiteral("Table 2 equal quality: max normal error <= max(exact mode's, DEG) "
+                       "(default 0.2247 = 1/255 rad, one 8-bit diffuse level; 0 = strict)."),
+        QStringLiteral("DEG"), QStringLiteral("0.2247"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write JSON to OUT."),
                                   QStringLiteral("OUT"));
-    parser.addOptions({sizes, frames, json});
-    const RenderCliOptions shared = addRenderOptions(parser, QStringLiteral("30"));
+    const QCommandLineOption markdown(QStringLiteral("markdown"),
+                                      QStringLiteral("Write the markdown tables to OUT."),
+                                      QStringLiteral("OUT"));
+    const QCommandLineOption plots(
+        QStringLiteral("plots"),
+        QStringLiteral("Write PNG plots into DIR (default: the --markdown file's folder)."),
+        QStringLiteral("DIR"));
+    parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, smoke, t2Size,
+                       samples, mode, shading, floor, json, markdown, plots});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
-                                 QStringLiteral("FILE..."));
+                                 QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
     const QString cmd = args.value(0);
-    const QStringList files = parser.positionalArguments();
-    if (files.isEmpty()) {
-        printError(QStringLiteral("%1: expected at least one FILE (see --help)").arg(cmd));
+
+    bench::BenchConfig config;
+    std::vector<int> tableList;
+    // Sizes stop at 4096: each quality frame reads back 10 float channels per pixel.
+    if (!parseList(parser.value(sizes), 1, kMaxSide, config.sizes) ||
+        !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions, config.partitions) ||
+        !parseIntIn(parser.value(t1Partitions), kMinPartitions, kMaxPartitions,
+                    config.table1Partitions) ||
+        !parseIntIn(parser.value(frames), 20, 100000, config.frames) ||
+        !parseImageSize(parser.value(t2Size), config.table2Size) ||
+        config.table2Size.width() > kMaxSide || config.table2Size.height() > kMaxSide ||
+        !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
+        !parseList(parser.value(tables), 1, 2, tableList) ||
+        !parseModeName(parser.value(mode), config.table1Mode) ||
+        !parseShadingName(parser.value(shading), config.shading)) {
+        printError(
+            QStringLiteral(
+                "%1: bad --sizes (1..4096), --partitions or "
+                "--table1-partitions (%2..%3), --frames (>= 20), --table2-size (WxH, each in "
+                "1..4096), --lights "
+                "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
+                "--shading (prepass, exact-depth) (see --help)")
+                .arg(cmd)
+                .arg(kMinPartitions)
+                .arg(kMaxPartitions)
+                .arg(kMaxLights));
         return kExitUsage;
     }
-    RenderOptions options;
-    int frameCount = 0;
-    std::vector<int> sideList;
-    for (const QString& s : parser.value(sizes).split(QLatin1Char(','))) {
-        int side = 0;
-        if (!parseIntIn(s, 1, 16384, side)) {
-            printError(QStringLiteral("%1: --sizes '%2' is not a list of sizes in 1..16384")
-                           .arg(cmd, parser.value(sizes)));
-            return kExitUsage;
+    bool floorOk = false;
+    config.normalFloorDegrees = parser.value(floor).toDouble(&floorOk);
+    if (!floorOk || !(config.normalFloorDegrees >= 0.0) || config.normalFloorDegrees > 180.0) {
+        printError(QStringLiteral("%1: --normal-floor '%2' is not a number of degrees in 0..180")
+                       .arg(cmd, parser.value(floor)));
+        return kExitUsage;
+    }
+    const bool table1 = std::count(tableList.begin(), tableList.end(), 1) > 0;
+    const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
+    // FILES, or else the samples (Table 2: the multi-patch teapot, the paper's Table 2 case).
+    QStringList files1, files2;
+    for (const QString& f : parser.positionalArguments()) {
+        if (!QFileInfo(f).isFile()) {
+            printError(QStringLiteral("%1: no such file: %2").arg(cmd, f));
+            return kExitBadInput;
         }
-        sideList.push_back(side);
+        files1 << f;
+        files2 << f;
     }
-    if (!parseIntIn(parser.value(frames), 20, 100000, frameCount)) {
-        printError(QStringLiteral("%1: --frames '%2' is not in 20..100000")
-                       .arg(cmd, parser.value(frames)));
-        return kExitUsage;
+    if (files1.isEmpty()) {
+        const QDir dir(parser.value(samples));
+        const QStringList knots =
+            dir.entryList({QStringLiteral("*.knot")}, QDir::Files, QDir::Name);
+        if (knots.isEmpty()) {
+            printError(QStringLiteral("%1: no FILES given and no .knot samples in %2 (use "
+                                      "--samples DIR)")
+                           .arg(cmd, dir.path()));
+            return kExitBadInput;
+        }
+        for (const QString& k : knots)
+            files1 << dir.filePath(k);
+        files2 << dir.filePath(knots.contains(QStringLiteral("teapot.knot"))
+                                   ? QStringLiteral("teapot.knot")
+                                   : knots.front());
     }
-    if (!readRenderOptions(parser, shared, cmd, options))
-        return kExitUsage;
+    if (table1)
+        config.table1Files = files1;
+    if (table2)
+        config.table2Files = files2;
+    if (parser.isSet(smoke)) {
+        config.frames = 2;
+        config.warmup = 1;
+        printError(
+            QStringLiteral("%1: --smoke: 2 frames per measurement, not a measurement").arg(cmd));
+    }
 
     QString error;
-    OffscreenRenderer renderer;
-    if (!renderer.create(&error)) {
+    bench::BenchReport report;
+    if (!bench::runBench(
+            config, report, [](const QString& line) { printError(line); }, &error)) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
-    std::vector<BenchRow> rows;
-    for (const QString& file : files) {
-        Document doc;
-        if (!loadDocument(file, doc))
-            return kExitBadInput;
-        const Scene& scene = doc.scene();
-        for (int side : sideList) {
-            BenchRow row;
-            row.file = QFileInfo(file).fileName();
-            row.surfaces = int(scene.surfaces.size());
-            row.size = QSize(side, side);
-            const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
-            // Coverage from one AOV frame, then the timed frames without AOV targets.
-            if (!renderer.setSize(row.size, true, &error) ||
-                !renderer.render(doc, cam, options, &error)) {
-                printError(QStringLiteral("%1: %2").arg(file, error));
-                return kExitBadInput;
-            }
-            const AovBuffer aov = renderer.aov();
-            long covered = 0;
-            for (int k = 0; k < aov.width * aov.height; ++k)
-                covered += aov.data[size_t(k) * AovBuffer::kChannels] >= 0.0f ? 1 : 0;
-            row.coverage = double(covered) / double(std::max(1, aov.width * aov.height));
-            if (!renderer.setSize(row.size, false, &error)) {
-                printError(QStringLiteral("%1: %2").arg(cmd, error));
-                return kExitBadInput;
-            }
-            std::vector<double> ms;
-            double cpuStart = 0.0;
-            for (int f = 0; f < frameCount + 3; ++f) {
-                if (f == 3)
-                    cpuStart = processCpuMs();
-                QElapsedTimer t;
-                t.start();
-                if (!renderer.render(doc, cam, options, &error)) {
-                    printError(QStringLiteral("%1: %2").arg(file, error));
-                    return kExitBadInput;
-                }
-                renderer.finish();
-                if (f >= 3)
-                    ms.push_back(double(t.nsecsElapsed()) * 1e-6);
-            }
-            row.cpuMs = (processCpuMs() - cpuStart) / frameCount;
-            std::sort(ms.begin(), ms.end());
-            row.minMs = ms.front();
-            row.maxMs = ms.back();
-            row.medianMs = ms.size() % 2 ? ms[ms.size() / 2]
-                                         : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
-            printError(QStringLiteral("%1 %2x%2: %3 FPS (median of %4 frames)")
-                           .arg(row.file)
-                           .arg(side)
-                           .arg(fps(row.medianMs), 0, 'f', 1)
-                           .arg(frameCount));
-            rows.push_back(row);
-        }
+    QStringList argv = args.mid(1);
+    const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
+    QString plotDir = parser.value(plots);
+    if (plotDir.isEmpty() && parser.isSet(markdown))
+        plotDir = QFileInfo(parser.value(markdown)).absolutePath();
+    QStringList written, relative;
+    if (!plotDir.isEmpty() && !bench::writePlots(report, plotDir, written, &error)) {
+        printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
     }
-
-    const QString setting =
-        QStringLiteral("%1, %2 x %3 partitions, %4 light(s), %5 shading")
-            .arg(modeName(options.mode))
-            .arg(options.partitionsU)
-            .arg(options.partitionsV)
-            .arg(options.lightCount)
-            .arg(options.mode == RenderMode::Exact ? shadingName(options.shading)
-                                                   : QStringLiteral("Gouraud"));
-    QString table = QStringLiteral("%1 on %2, %3 CPU threads\n\n")
-                        .arg(setting, renderer.renderer().glDescription())
-                        .arg(QThread::idealThreadCount());
-    table += QStringLiteral(
-        "| file | surfaces | resolution | covered | FPS (median) | FPS min | "
-        "FPS max | ms (median) | CPU ms/frame |\n|---|---|---|---|---|---|---|---|---|\n");
-    QJsonArray jsonRows;
-    for (const BenchRow& r : rows) {
-        table += QStringLiteral("| %1 | %2 | %3x%4 | %5 % | %6 | %7 | %8 | %9 | %10 |\n")
-                     .arg(r.file)
-                     .arg(r.surfaces)
-                     .arg(r.size.width())
-                     .arg(r.size.height())
-                     .arg(100.0 * r.coverage, 0, 'f', 1)
-                     .arg(fps(r.medianMs), 0, 'f', 1)
-                     .arg(fps(r.maxMs), 0, 'f', 1)
-                     .arg(fps(r.minMs), 0, 'f', 1)
-                     .arg(r.medianMs, 0, 'f', 2)
-                     .arg(r.cpuMs, 0, 'f', 1);
-        jsonRows.append(QJsonObject{{QStringLiteral("file"), r.file},
-                                    {QStringLiteral("surfaces"), r.surfaces},
-                                    {QStringLiteral("width"), r.size.width()},
-                                    {QStringLiteral("height"), r.size.height()},
-                                    {QStringLiteral("coverage"), r.coverage},
-                                    {QStringLiteral("fpsMedian"), fps(r.medianMs)},
-                                    {QStringLiteral("fpsMin"), fps(r.maxMs)},
-                                    {QStringLiteral("fpsMax"), fps(r.minMs)},
-                                    {QStringLiteral("msMedian"), r.medianMs},
-                                    {QStringLiteral("cpuMsPerFrame"), r.cpuMs}});
-    }
-    printOut(table);
-    if (parser.isSet(json)) {
-        const QJsonObject root{{QStringLiteral("setting"), setting},
-                               {QStringLiteral("gl"), renderer.renderer().glDescription()},
-                               {QStringLiteral("threads"), QThread::idealThreadCount()},
-                               {QStringLiteral("frames"), frameCount},
-                               {QStringLiteral("rows"), jsonRows}};
-        QFile f(parser.value(json));
-        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate) ||
-            f.write(QJsonDocument(root).toJson()) < 0) {
-            printError(
-                QStringLiteral("%1: could not write: %2").arg(f.fileName(), f.errorString()));
-            return kExitBadInput;
-        }
-    }
+    const QDir mdDir =
+        parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir() : QDir::current();
+    for (const QString& w : written)
+        relative << mdDir.relativeFilePath(QFileInfo(w).absoluteFilePath());
+    const QString md = bench::reportMarkdown(report, command, relative);
+    printOut(md);
+    if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
+        return kExitBadInput;
+    if (parser.isSet(json) &&
+        !writeFile(parser.value(json), QJsonDocument(bench::reportJson(report, command)).toJson()))
+        return kExitBadInput;
     return kExitOk;
 }
 

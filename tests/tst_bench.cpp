@@ -1,0 +1,208 @@
+// GL test: 'knotwork bench' smoke run (both tables, 2 frames, 64x64) and its error exits. Checks
+// the report's shape and the quality numbers' meaning, never timings.
+#include <QDir>
+#include <QFile>
+#include <QImage>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTest>
+#include <cmath>
+
+namespace {
+
+struct Run {
+    int code = -1;
+    QString out, err;
+};
+
+Run knotwork(const QStringList& args) {
+    QProcess p;
+    p.start(QStringLiteral(KW_KNOTWORK_BINARY), args);
+    p.waitForFinished(300000);
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
+            QString::fromUtf8(p.readAllStandardOutput()),
+            QString::fromUtf8(p.readAllStandardError())};
+}
+
+QString sample(const char* name) {
+    return QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QString::fromLatin1(name));
+}
+
+QString outDir() {
+    const QString dir = QStringLiteral(KW_TEST_OUTPUT_DIR "/bench");
+    QDir(dir).removeRecursively();
+    QDir().mkpath(dir);
+    return dir;
+}
+
+/// Every key in `keys` is present in `o` and is a finite, non-negative number.
+void checkNumbers(const QJsonObject& o, const QStringList& keys, const QString& where) {
+    for (const QString& k : keys) {
+        QVERIFY2(o.contains(k), qPrintable(where + QStringLiteral(": no key ") + k));
+        QVERIFY2(o.value(k).isDouble(), qPrintable(where + QStringLiteral(": not a number: ") + k));
+        const double v = o.value(k).toDouble();
+        QVERIFY2(std::isfinite(v) && v >= 0.0, qPrintable(where + QStringLiteral(": ") + k));
+    }
+}
+
+void checkQuality(const QJsonObject& o, const QString& where) {
+    checkNumbers(
+        o.value(QStringLiteral("normalError")).toObject(),
+        {QStringLiteral("meanDegrees"), QStringLiteral("maxDegrees"), QStringLiteral("pixels")},
+        where + QStringLiteral(" normalError"));
+    checkNumbers(o.value(QStringLiteral("silhouetteError")).toObject(),
+                 {QStringLiteral("mismatched"), QStringLiteral("silhouettePixels"),
+                  QStringLiteral("meanPixels"), QStringLiteral("maxPixels"),
+                  QStringLiteral("perSilhouettePixel")},
+                 where + QStringLiteral(" silhouetteError"));
+}
+
+const QStringList kTiming = {QStringLiteral("fps"), QStringLiteral("fpsMin"),
+                             QStringLiteral("fpsMax"), QStringLiteral("msMedian"),
+                             QStringLiteral("cpuMsPerFrame")};
+
+} // namespace
+
+class TestBench : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void smokeRunWritesWellFormedReport() {
+        const QString dir = outDir();
+        const QString json = dir + QStringLiteral("/bench.json");
+        const QString md = dir + QStringLiteral("/bench.md");
+        const Run r = knotwork(
+            {QStringLiteral("bench"), sample("bicubic"), QStringLiteral("--smoke"),
+             QStringLiteral("--sizes"), QStringLiteral("64"), QStringLiteral("--table2-size"),
+             QStringLiteral("64x64"), QStringLiteral("--partitions"), QStringLiteral("4,8"),
+             QStringLiteral("--json"), json, QStringLiteral("--markdown"), md});
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        QVERIFY(r.err.contains(QStringLiteral("GLU tolerance"))); // progress on stderr
+
+        QFile f(json);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        QJsonParseError parseError;
+        const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &parseError);
+        QVERIFY2(parseError.error == QJsonParseError::NoError,
+                 qPrintable(parseError.errorString()));
+        const QJsonObject root = doc.object();
+        QVERIFY(root.value(QStringLiteral("command"))
+                    .toString()
+                    .startsWith(QStringLiteral("knotwork bench")));
+        const QJsonObject machine = root.value(QStringLiteral("machine")).toObject();
+        QVERIFY(!machine.value(QStringLiteral("cpu")).toString().isEmpty());
+        QVERIFY(!machine.value(QStringLiteral("gl")).toString().isEmpty());
+        const QJsonObject settings = root.value(QStringLiteral("settings")).toObject();
+        QCOMPARE(settings.value(QStringLiteral("frames")).toInt(), 2);
+        QCOMPARE(settings.value(QStringLiteral("table2Width")).toInt(), 64);
+
+        const QJsonArray t1 = root.value(QStringLiteral("table1")).toArray();
+        QCOMPARE(t1.size(), 1);
+        const QJsonObject row1 = t1.at(0).toObject();
+        QCOMPARE(row1.value(QStringLiteral("model")).toString(), QStringLiteral("bicubic.knot"));
+        QCOMPARE(row1.value(QStringLiteral("width")).toInt(), 64);
+        QCOMPARE(row1.value(QStringLiteral("partitions")).toInt(), 30);
+        checkNumbers(row1, kTiming + QStringList{QStringLiteral("coverage")},
+                     QStringLiteral("table1"));
+        checkQuality(row1, QStringLiteral("table1"));
+        QVERIFY(row1.value(QStringLiteral("coverage")).toDouble() > 0.0);
+
+        const QJsonArray t2 = root.value(QStringLiteral("table2")).toArray();
+        QCOMPARE(t2.size(), 2);
+        for (int k = 0; k < 2; ++k) {
+            const QJsonObject row = t2.at(k).toObject();
+            const int parts = k == 0 ? 4 : 8;
+            QCOMPARE(row.value(QStringLiteral("partitions")).toInt(), parts);
+            checkNumbers(row.value(QStringLiteral("ratios")).toObject(),
+                         {QStringLiteral("exactOverBaseline"), QStringLiteral("exactOverFineMesh"),
+                          QStringLiteral("exactOverGlu")},
+                         QStringLiteral("ratios"));
+            for (const char* m : {"exact", "baseline", "fineMesh", "glu"}) {
+                const QString where = QStringLiteral("table2 %1 %2").arg(parts).arg(m);
+                const QJsonObject method = row.value(QString::fromLatin1(m)).toObject();
+                checkNumbers(
+                    method,
+                    kTiming + QStringList{QStringLiteral("parameter"), QStringLiteral("triangles")},
+                    where);
+                checkQuality(method, where);
+                QVERIFY(method.value(QStringLiteral("matched")).isBool());
+                QVERIFY(method.value(QStringLiteral("triangles")).toDouble() > 0.0);
+                QVERIFY(method.value(QStringLiteral("normalError"))
+                            .toObject()
+                            .value(QStringLiteral("pixels"))
+                            .toDouble() > 0.0);
+            }
+            const auto maxError = [&](const char* m) {
+                return row.value(QString::fromLatin1(m))
+                    .toObject()
+                    .value(QStringLiteral("normalError"))
+                    .toObject()
+                    .value(QStringLiteral("maxDegrees"))
+                    .toDouble();
+            };
+            // Exact mode shows the kernel's normal up to float rounding; the coarse baseline's
+            // interpolated normals are visibly off; the searched fine mesh and GLU either
+            // reached the target or say they did not.
+            QVERIFY2(maxError("exact") < 0.05, qPrintable(QString::number(maxError("exact"))));
+            QVERIFY(maxError("baseline") > maxError("exact"));
+            const double target = row.value(QStringLiteral("targetMaxNormalDegrees")).toDouble();
+            QVERIFY(target >= maxError("exact"));
+            for (const char* m : {"fineMesh", "glu"})
+                QCOMPARE(row.value(QString::fromLatin1(m))
+                             .toObject()
+                             .value(QStringLiteral("matched"))
+                             .toBool(),
+                         maxError(m) <= target);
+            QVERIFY(row.value(QStringLiteral("fineMesh"))
+                        .toObject()
+                        .value(QStringLiteral("parameter"))
+                        .toDouble() >= parts);
+        }
+
+        QFile mdFile(md);
+        QVERIFY(mdFile.open(QIODevice::ReadOnly));
+        const QString text = QString::fromUtf8(mdFile.readAll());
+        QVERIFY(text.contains(QStringLiteral("### Table 1")));
+        QVERIFY(text.contains(QStringLiteral("| bicubic.knot | 1 | 64x64 |")));
+        QVERIFY(text.contains(QStringLiteral("| bicubic.knot | 4x4 |")));
+        QVERIFY(text.contains(QStringLiteral("| bicubic.knot | 8x8 | GLU |")));
+        for (const char* png :
+             {"table1-fps.png", "table2-bicubic-fps.png", "table2-bicubic-error.png"}) {
+            const QString path = dir + QLatin1Char('/') + QString::fromLatin1(png);
+            QVERIFY2(text.contains(QStringLiteral("](%1)").arg(QString::fromLatin1(png))), png);
+            QImage img;
+            QVERIFY2(img.load(path, "PNG"), qPrintable(path));
+            QVERIFY(img.width() > 100 && img.height() > 100);
+        }
+    }
+
+    void badInputIsAnErrorNotACrash() {
+        const Run missing = knotwork({QStringLiteral("bench"), QStringLiteral("/no/such.knot")});
+        QCOMPARE(missing.code, 1);
+        QVERIFY(missing.err.contains(QStringLiteral("no such file")));
+        for (const QStringList& bad :
+             {QStringList{QStringLiteral("--partitions"), QStringLiteral("0,5")},
+              QStringList{QStringLiteral("--partitions"), QStringLiteral("5,x")},
+              QStringList{QStringLiteral("--frames"), QStringLiteral("2")},
+              QStringList{QStringLiteral("--table2-size"), QStringLiteral("780")},
+              QStringList{QStringLiteral("--sizes"), QStringLiteral("64,5000")},
+              QStringList{QStringLiteral("--tables"), QStringLiteral("3")},
+              QStringList{QStringLiteral("--normal-floor"), QStringLiteral("-1")}}) {
+            const Run r = knotwork(QStringList{QStringLiteral("bench"), sample("bicubic")} + bad);
+            QVERIFY2(r.code == 2, qPrintable(bad.join(QLatin1Char(' ')) + r.err));
+        }
+        const QString broken = QStringLiteral(KW_TEST_OUTPUT_DIR "/bench_broken.knot");
+        QDir().mkpath(QStringLiteral(KW_TEST_OUTPUT_DIR));
+        QFile f(broken);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write("this is not a knot file\n");
+        f.close();
+        const Run r = knotwork({QStringLiteral("bench"), broken, QStringLiteral("--smoke")});
+        QCOMPARE(r.code, 1);
+        QVERIFY(!r.err.isEmpty());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestBench)
+#include "tst_bench.moc"
