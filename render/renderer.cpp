@@ -93,7 +93,9 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
         dropSurfaceCaches();
         m_document = &doc;
     }
-    m_cache.sync(doc, options.partitionsU, options.partitionsV);
+    // A surface too large for a texture is left out of the frame and reported.
+    QString cacheError;
+    const bool cached = m_cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
     bool ok = options.mode == RenderMode::Exact
                   ? m_exact.draw(scene, m_cache, fc, lights, options, &m_error)
                   : m_tessellated.draw(doc, fc, lights, options, &m_error);
@@ -115,6 +117,10 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     }
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
+    if (ok && !cached) {
+        m_error = cacheError;
+        return false;
+    }
     return ok;
 }
 

@@ -32,7 +32,9 @@ public:
     /// Draws `doc` as seen by `camera` into `targetFbo` (0 or a QOpenGLWidget's
     /// defaultFramebufferObject()) at `size` pixels, uploading only stale surface data first.
     /// With options.writeAov the target must have colour attachments 0..3 as described in
-    /// OffscreenRenderer. Returns false with lastError() set on failure (no partial frame).
+    /// OffscreenRenderer. Returns false with lastError() set on failure: a shader that does
+    /// not build (nothing drawn), or a surface whose control net exceeds the GPU's texture
+    /// size (exact mode and the wireframe draw the frame without it).
     /// Surface ids and revisions are per document: drawing another Document than last time
     /// drops every cached upload first.
     bool render(const Document& doc, const Camera& camera, QSize size, const RenderOptions& options,

@@ -21,8 +21,11 @@ GLuint createTexture(QOpenGLFunctions_4_5_Core* gl, int w, int h, const glm::vec
 
 } // namespace
 
-void SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV) {
+bool SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV, QString* error) {
     const Scene& scene = doc.scene();
+    GLint maxSize = 0;
+    m_gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    QStringList tooLarge;
     for (auto it = m_surfaces.begin(); it != m_surfaces.end();) {
         if (!doc.surface(it->first)) {
             destroy(*it->second);
@@ -35,8 +38,23 @@ void SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV
         const int nu = partitionsU > 0 ? partitionsU : s.partitionsU;
         const int nv = partitionsV > 0 ? partitionsV : s.partitionsV;
         const Revisions rev = doc.revisions(s.id);
-        std::unique_ptr<SurfaceGpu>& slot = m_surfaces[s.id];
         const NurbsSurface& geo = s.geometry;
+        if (geo.countU > maxSize || geo.countV > maxSize) {
+            // Not drawn: its control net does not fit one texture.
+            if (auto it = m_surfaces.find(s.id); it != m_surfaces.end()) {
+                destroy(*it->second);
+                m_surfaces.erase(it);
+            }
+            tooLarge << QStringLiteral("surface %1 (\"%2\") has %3 x %4 control points, more "
+                                       "than the GPU's texture size limit %5")
+                            .arg(s.id.value)
+                            .arg(s.name)
+                            .arg(geo.countU)
+                            .arg(geo.countV)
+                            .arg(maxSize);
+            continue;
+        }
+        std::unique_ptr<SurfaceGpu>& slot = m_surfaces[s.id];
         if (!slot || slot->revisions.knots != rev.knots || slot->degreeU != geo.degreeU ||
             slot->degreeV != geo.degreeV || slot->countU != geo.countU ||
             slot->countV != geo.countV) {
@@ -55,6 +73,9 @@ void SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV
         }
         slot->revisions = rev;
     }
+    if (!tooLarge.isEmpty() && error)
+        *error = tooLarge.join(QStringLiteral("; "));
+    return tooLarge.isEmpty();
 }
 
 void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv) {

@@ -7,6 +7,7 @@
 #include "render/render_types.h"
 
 #include <QOpenGLFunctions_4_5_Core>
+#include <QString>
 #include <map>
 #include <memory>
 
@@ -41,7 +42,11 @@ public:
     /// new, or Knots revision changed -> full upload; Points changed -> the bounding rectangle
     /// of the changed texels as one sub-image and the affected base polygon vertices only;
     /// partitions changed -> base polygon rebuilt, textures untouched.
-    void sync(const Document& doc, int partitionsU = 0, int partitionsV = 0);
+    /// A surface whose control net exceeds GL_MAX_TEXTURE_SIZE in either direction is not
+    /// uploaded (nor drawn); sync then returns false with *error naming it. The others are
+    /// synced regardless.
+    bool sync(const Document& doc, int partitionsU = 0, int partitionsV = 0,
+              QString* error = nullptr);
 
     const SurfaceGpu* find(SurfaceId id) const;
     /// Statistics of one surface (zero for an unknown id) or of all, since the last reset.

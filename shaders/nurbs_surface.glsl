@@ -93,8 +93,10 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
 // parallel. tinyU/tinyV report the tiny tests for step 2.
 bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, out bool tinyV) {
     vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
-    tinyU = !(length(d.su) * width.x > tinyLen);
-    tinyV = !(length(d.sv) * width.y > tinyLen);
+    // Both are tiny when the span's control points coincide (L = 0, so tinyLen = 0).
+    bool collapsed = !(tinyLen > 0.0);
+    tinyU = collapsed || !(length(d.su) * width.x > tinyLen);
+    tinyV = collapsed || !(length(d.sv) * width.y > tinyLen);
     n = cross(d.su, d.sv);
     float ln = length(n);
     if (tinyU || tinyV || !(ln > KW_PARALLEL_REL * length(d.su) * length(d.sv)))

@@ -173,6 +173,45 @@ private Q_SLOTS:
         }
     }
 
+    void oversizedNetIsReportedNotDrawn() {
+        // A degree-1 strip with one more control point than a texture can hold.
+        GLint maxSize = 0;
+        m_renderer->makeCurrent();
+        m_renderer->renderer().gl()->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+        NurbsSurface g;
+        g.countU = maxSize + 1;
+        g.countV = 2;
+        g.knotsU = kwtest::clampedUniform(1, g.countU);
+        g.knotsV = {0, 0, 1, 1};
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < g.countU; ++i) {
+                g.points.emplace_back(double(i) / g.countU, double(j), 0.0);
+                g.weights.push_back(1.0);
+            }
+        Scene scene;
+        scene.surfaces.push_back(kwtest::makeSurface(3, g, 1));
+        scene.surfaces.push_back(
+            kwtest::makeSurface(4, makeSphere(glm::dvec3(0.5, 0.5, 0.0), 0.3)));
+        scene.nextId = 5;
+        Document doc;
+        QString error;
+        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        QVERIFY(!m_renderer->render(doc, fitCamera(scene, 1.0), RenderOptions{}, &error));
+        QVERIFY2(error.contains(QStringLiteral("surface 3")) &&
+                     error.contains(QString::number(maxSize)),
+                 qPrintable(error));
+        // The other surface is drawn; the oversized one is not.
+        QVERIFY(m_renderer->renderer().cache().find(SurfaceId{3}) == nullptr);
+        QVERIFY(m_renderer->renderer().cache().find(SurfaceId{4}) != nullptr);
+        const AovBuffer aov = m_renderer->aov();
+        int sphere = 0;
+        for (int k = 0; k < aov.width * aov.height; ++k) {
+            QVERIFY(aov.data[size_t(k) * AovBuffer::kChannels] != 3.0f);
+            sphere += aov.data[size_t(k) * AovBuffer::kChannels] == 4.0f;
+        }
+        QVERIFY(sphere > 100);
+    }
+
     void cleanupTestCase() { m_renderer.reset(); }
 };
 
