@@ -45,7 +45,19 @@ int runRender(const QStringList& args) {
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
                                  QStringLiteral("Overlay the control points and net."));
-    parser.addOptions({out, size, mode, partitions, lights, aov, shading, wire, net});
+    const QCommandLineOption noTrims(
+        QStringLiteral("no-trims"),
+        QStringLiteral(
+            "Draw trimmed surfaces over their whole domains (trims are cut by default)."));
+    const QCommandLineOption maskCap(
+        QStringLiteral("trim-mask-cap"),
+        QStringLiteral("Largest trim mask side in texels, %1..16384 (default %2); each mask "
+                       "follows its surface's size on screen up to this.")
+            .arg(kMinTrimMaskSize)
+            .arg(kDefaultTrimMaskCap),
+        QStringLiteral("N"), QString::number(kDefaultTrimMaskCap));
+    parser.addOptions(
+        {out, size, mode, partitions, lights, aov, shading, wire, net, noTrims, maskCap});
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
@@ -86,6 +98,13 @@ int runRender(const QStringList& args) {
                        .arg(cmd, parser.value(shading)));
         return kExitUsage;
     }
+    if (!parseIntIn(parser.value(maskCap), kMinTrimMaskSize, 16384, options.trimMaskCap)) {
+        printError(QStringLiteral("%1: --trim-mask-cap '%2' is not in %3..16384")
+                       .arg(cmd, parser.value(maskCap))
+                       .arg(kMinTrimMaskSize));
+        return kExitUsage;
+    }
+    options.trims = !parser.isSet(noTrims);
     options.wireframe = parser.isSet(wire);
     options.controlNet = parser.isSet(net);
     const QString outPath = parser.value(out);
@@ -124,6 +143,9 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
         return kExitBadInput;
     }
+    // Messy trims were drawn as repaired; say what was repaired.
+    for (const QString& w : renderer.renderer().trimMasks().warnings())
+        printError(QStringLiteral("%1: warning: %2").arg(files[0], w));
     if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
         (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {
         printError(error);

@@ -40,7 +40,8 @@ private Q_SLOTS:
     void matchesBaseline_data() {
         QTest::addColumn<QString>("sample");
         QTest::addColumn<int>("mode");
-        for (const char* s : {"bicubic", "sphere", "torus", "trimmed_plate", "teapot"})
+        for (const char* s :
+             {"bicubic", "sphere", "torus", "trimmed_plate", "star_island", "teapot"})
             QTest::newRow(s) << QString::fromLatin1(s) << int(RenderMode::Exact);
         QTest::newRow("teapot_tessellated")
             << QStringLiteral("teapot") << int(RenderMode::Tessellated);

@@ -1,0 +1,8 @@
+# Trimmed surfaces (issue 4): messy trim input on the CPU (model), the GPU trim mask against the
+# CPU classification (gl), and the CAD importer's faces against OCCT's trims (gl).
+kw_add_test(tst_trim_messy LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_messy.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h LIBS knotwork_model)
+kw_add_test(tst_render_trims LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_trims.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h
+            LIBS knotwork_render)
+set_tests_properties(tst_render_trims PROPERTIES TIMEOUT 900)
