@@ -47,7 +47,7 @@ struct RenderOptions {
     /// checks against the CPU classification, and to see what a trim removes).
     bool trims = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
-    /// Each surface's mask follows its size on screen (two texels per pixel of its control-net
+    /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
     /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,
     /// trimMaskCap]. The array holding all masks has layers of the largest side in use, so the
     /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).

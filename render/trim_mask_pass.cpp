@@ -6,6 +6,7 @@
 #include <QElapsedTimer>
 #include <QOpenGLShaderProgram>
 #include <algorithm>
+#include <limits>
 
 namespace kw {
 
@@ -13,9 +14,14 @@ namespace {
 
 constexpr int kInitialLayers = 4;
 // Mask texels per screen pixel of control-net length. The bilinear lookup puts the edge within
-// about half a texel; two texels per pixel keep that at a quarter pixel, which is what brings
-// misclassified pixels under 0.1% of a surface at 1024^2 (docs/PERFORMANCE.md, ## Trims).
-constexpr double kTexelsPerPixel = 2.0;
+// about half a texel. Misclassified pixels are those within that band of a curve, so their
+// share halves with each doubling; four texels per pixel bring the faces of an imported CAD
+// model (many short edges) under 0.1% at 1024^2 (docs/PERFORMANCE.md, ## Trims). The cap
+// bounds it for large surfaces.
+constexpr double kTexelsPerPixel = 4.0;
+// Loop flattening tolerance in mask texels: chords of convex arcs cut inside the curve, a bias
+// the CPU classification (exact curves) would see on every edge pixel.
+constexpr double kFlatteningTexels = 0.05;
 
 int powerOfTwoSide(double length, int cap) {
     int n = kMinTrimMaskSize;
@@ -60,8 +66,28 @@ glm::ivec2 TrimMaskPass::maskResolution(const Surface& surface, const FrameCamer
             len += glm::length(px[g.index(i, j + 1)] - px[g.index(i, j)]);
         lenV = std::max(lenV, len);
     }
-    return {powerOfTwoSide(kTexelsPerPixel * lenU, cap),
-            powerOfTwoSide(kTexelsPerPixel * lenV, cap)};
+    const glm::dvec4 rect = maskRect(surface);
+    const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
+    const double shareU = (rect.y - rect.x) / (du.last - du.first);
+    const double shareV = (rect.w - rect.z) / (dv.last - dv.first);
+    return {powerOfTwoSide(kTexelsPerPixel * lenU * shareU, cap),
+            powerOfTwoSide(kTexelsPerPixel * lenV * shareV, cap)};
+}
+
+glm::dvec4 TrimMaskPass::maskRect(const Surface& surface) {
+    const Interval du = surfaceDomainU(surface.geometry), dv = surfaceDomainV(surface.geometry);
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const TrimLoop& loop : surface.trims)
+        for (const NurbsCurve2& c : loop.curves)
+            for (const glm::dvec2& p : c.points) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+    const glm::dvec4 rect(std::max(lo.x, du.first), std::min(hi.x, du.last),
+                          std::max(lo.y, dv.first), std::min(hi.y, dv.last));
+    if (!(rect.y > rect.x) || !(rect.w > rect.z))
+        return {du.first, du.last, dv.first, dv.last};
+    return rect;
 }
 
 bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
@@ -195,13 +221,12 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QElapsedTimer timer;
     timer.start();
-    const Interval du = surfaceDomainU(s.geometry), dv = surfaceDomainV(s.geometry);
-    m.domain = glm::dvec4(du.first, du.last, dv.first, dv.last);
+    m.rect = maskRect(s);
     m.width = resolution.x;
     m.height = resolution.y;
-    const glm::dvec2 extent(du.last - du.first, dv.last - dv.first);
-    // A quarter texel: the flattened loops stay well inside the mask's own quantisation.
-    const double tolerance = 0.25 * std::min(extent.x / m.width, extent.y / m.height);
+    const glm::dvec2 extent(m.rect.y - m.rect.x, m.rect.w - m.rect.z);
+    // The flattened loops stay well inside the mask's own quantisation.
+    const double tolerance = kFlatteningTexels * std::min(extent.x / m.width, extent.y / m.height);
     m.warnings.clear();
     const TrimRegion region = makeTrimRegion(s.trims, tolerance, &m.warnings);
     m.active = !region.empty();
@@ -216,11 +241,11 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     std::vector<glm::vec2> vertices;
     std::vector<GLint> firsts;
     std::vector<GLsizei> counts;
-    const glm::dvec2 origin(du.first, dv.first);
+    const glm::dvec2 origin(m.rect.x, m.rect.z);
     for (const TrimPolygon& poly : region.loops) {
         firsts.push_back(GLint(vertices.size()));
         counts.push_back(GLsizei(poly.size()));
-        for (const glm::dvec2& p : poly) // unit square of the domain, in double first
+        for (const glm::dvec2& p : poly) // unit square of the rectangle, in double first
             vertices.push_back(glm::vec2((p - origin) / extent));
         m.stats.triangles += std::int64_t(poly.size()) - 2;
     }
@@ -263,9 +288,8 @@ void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& ma
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     gl->glBindTextureUnit(GLuint(unit), m_texture);
     gl->glUniform1i(program->uniformLocation("uTrimMask"), unit);
-    const glm::vec4 domain(mask.domain);
-    gl->glUniform4f(program->uniformLocation("uTrimDomain"), domain.x, domain.y, domain.z,
-                    domain.w);
+    const glm::vec4 rect(mask.rect);
+    gl->glUniform4f(program->uniformLocation("uTrimRect"), rect.x, rect.y, rect.z, rect.w);
     gl->glUniform2f(program->uniformLocation("uTrimSize"), float(mask.width), float(mask.height));
     gl->glUniform2f(program->uniformLocation("uTrimLayerScale"), 1.0f / float(m_size),
                     1.0f / float(m_size));

@@ -17,13 +17,16 @@ class QOpenGLShaderProgram;
 
 namespace kw {
 
-/// One surface's mask: texels [0, width) x [0, height) of layer `layer` span its (u, v) domain.
+/// One surface's mask: texels [0, width) x [0, height) of layer `layer` span `rect` in (u, v),
+/// the part of the domain inside the bounding box of the trim curves' control points (the
+/// curves lie in it: convex hull property). Outside it no point is inside any loop, so the
+/// shader discards there without a lookup, and the texels go where the trims are.
 struct TrimMask {
     int layer = -1;
     int width = 0, height = 0;
-    glm::dvec4 domain{0.0, 1.0, 0.0, 1.0}; ///< (u first, u last, v first, v last)
-    std::uint64_t trimsRevision = 0;       ///< the trims the mask shows
-    std::uint64_t knotsRevision = 0;       ///< the domain it was drawn for
+    glm::dvec4 rect{0.0, 1.0, 0.0, 1.0}; ///< (u first, u last, v first, v last)
+    std::uint64_t trimsRevision = 0;     ///< the trims the mask shows
+    std::uint64_t knotsRevision = 0;     ///< the domain it was drawn for
     /// False when every loop was dropped (degenerate): the surface is drawn untrimmed, as
     /// trimRegionContains treats a region without loops.
     bool active = false;
@@ -38,9 +41,10 @@ public:
 
     /// Brings the masks of `doc` up to date for this frame and drops those of removed or
     /// untrimmed surfaces. A surface's mask is redrawn only when its trims (or knots, which move
-    /// the domain) revision changed or its mask resolution changed; the resolution is twice the
-    /// surface's control-net length on screen (pixels) along u and along v, rounded up to a
-    /// power of two, within [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
+    /// the domain) revision changed or its mask resolution changed; the resolution is four times
+    /// the surface's control-net length on screen (pixels) along u and along v, times the share of
+    /// the domain the mask rectangle spans, rounded up to a power of two, within
+    /// [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
     /// 0 and the logic op and scissor test disabled. Returns false with *error set when the shaders
     /// do not build or the masks do not fit the GPU's array limits (those surfaces draw untrimmed).
     bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
@@ -70,6 +74,9 @@ public:
 
     /// The mask resolution for `surface` seen by `camera` (see sync), capped at `cap`.
     static glm::ivec2 maskResolution(const Surface& surface, const FrameCamera& camera, int cap);
+    /// The rectangle a surface's mask spans (TrimMask::rect): the trim control points' bounding
+    /// box clipped to the domain, or the whole domain when that leaves no area.
+    static glm::dvec4 maskRect(const Surface& surface);
 
 private:
     bool ensureArray(int size, int layers, QString* error);

@@ -83,8 +83,7 @@ class TestRenderTrims : public QObject {
         const TrimMask* m = m_renderer->renderer().trimMasks().find(id);
         if (!m)
             return 1e300; // no mask: every disagreement is "far"... of nothing
-        return std::max((m->domain.y - m->domain.x) / m->width,
-                        (m->domain.w - m->domain.z) / m->height);
+        return std::max((m->rect.y - m->rect.x) / m->width, (m->rect.w - m->rect.z) / m->height);
     }
 
 private Q_SLOTS:
@@ -200,9 +199,8 @@ private Q_SLOTS:
         long agree = 0, far = 0;
         for (int y = 0; y < m->height; ++y)
             for (int x = 0; x < m->width; ++x) {
-                const glm::dvec2 uv(
-                    m->domain.x + (x + 0.5) / m->width * (m->domain.y - m->domain.x),
-                    m->domain.z + (y + 0.5) / m->height * (m->domain.w - m->domain.z));
+                const glm::dvec2 uv(m->rect.x + (x + 0.5) / m->width * (m->rect.y - m->rect.x),
+                                    m->rect.z + (y + 0.5) / m->height * (m->rect.w - m->rect.z));
                 const bool kept = texels[size_t(y) * m->width + x] > 127;
                 if (kept == trimRegionContains(region, uv))
                     ++agree;
@@ -281,7 +279,7 @@ private Q_SLOTS:
         FrameCamera fc = frameCamera(fitCamera(*scene, 1.0), *scene, 1.0);
         fc.viewport = {kSide, kSide};
         const glm::ivec2 big = TrimMaskPass::maskResolution(s, fc, 1024);
-        fc.viewport = {128, 128};
+        fc.viewport = {64, 64}; // 16 times smaller on screen: at most a quarter of the side
         const glm::ivec2 small = TrimMaskPass::maskResolution(s, fc, 1024);
         QVERIFY(big.x >= 512 && big.y >= 512);
         QVERIFY(small.x <= 256 && small.y <= 256 && small.x >= kMinTrimMaskSize);
