@@ -26,7 +26,27 @@ struct BenchRow {
     double coverage = 0.0; ///< fraction of pixels showing a surface
     double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
     double cpuMs = 0.0; ///< process CPU time per timed frame (independent of other load)
+    /// --trim-drag: median frame time while one trim point moves every frame (-1: not run),
+    /// and the CPU time per mask redraw (flattening + issuing the draws).
+    double dragMs = -1.0, maskCpuMs = 0.0;
+    int maskSide = 0; ///< larger side of the dragged surface's mask
 };
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+/// A trim control point of the first trimmed surface to drag (an interior point of its first
+/// curve when it has one, so the loop stays closed), or an invalid ref without trims.
+TrimPointRef dragTarget(const Scene& scene) {
+    for (const Surface& s : scene.surfaces)
+        if (!s.trims.empty() && !s.trims.front().curves.empty()) {
+            const NurbsCurve2& c = s.trims.front().curves.front();
+            return {s.id, s.trims.front().id, 0, c.points.size() > 2 ? 1 : 0};
+        }
+    return {};
+}
 
 double fps(double ms) {
     return ms > 0.0 ? 1000.0 / ms : 0.0;
@@ -72,7 +92,15 @@ int runBench(const QStringList& args) {
     const QCommandLineOption json(QStringLiteral("json"),
                                   QStringLiteral("Also write the results as JSON."),
                                   QStringLiteral("OUT"));
-    parser.addOptions({sizes, partitions, frames, mode, lights, shading, json});
+    const QCommandLineOption noTrims(
+        QStringLiteral("no-trims"),
+        QStringLiteral("Draw trimmed surfaces whole (to measure what the trim lookup costs)."));
+    const QCommandLineOption trimDrag(
+        QStringLiteral("trim-drag"),
+        QStringLiteral("Also time frames that each move one trim control point of the first "
+                       "trimmed surface (its mask is redrawn every frame): what a trim drag "
+                       "costs per frame."));
+    parser.addOptions({sizes, partitions, frames, mode, lights, shading, json, noTrims, trimDrag});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("FILE..."));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -109,6 +137,8 @@ int runBench(const QStringList& args) {
                        .arg(cmd, parser.value(shading)));
         return kExitUsage;
     }
+
+    options.trims = !parser.isSet(noTrims);
 
     QString error;
     OffscreenRenderer renderer;
@@ -161,11 +191,38 @@ int runBench(const QStringList& args) {
                     ms.push_back(double(t.nsecsElapsed()) * 1e-6);
             }
             row.cpuMs = (processCpuMs() - cpuStart) / frameCount;
-            std::sort(ms.begin(), ms.end());
-            row.minMs = ms.front();
-            row.maxMs = ms.back();
-            row.medianMs = ms.size() % 2 ? ms[ms.size() / 2]
-                                         : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
+            row.minMs = *std::min_element(ms.begin(), ms.end());
+            row.maxMs = *std::max_element(ms.begin(), ms.end());
+            row.medianMs = median(ms);
+            const TrimPointRef target = dragTarget(doc.scene());
+            if (parser.isSet(trimDrag) && options.trims && target.surface.isValid()) {
+                const Surface* s = doc.surface(target.surface);
+                const glm::dvec2 home =
+                    s->trims.front().curves.front().points[size_t(target.index)];
+                const Interval du = surfaceDomainU(s->geometry);
+                TrimMaskPass& masks = renderer.renderer().trimMasks();
+                masks.resetStats();
+                std::vector<double> drag;
+                for (int f = 0; f < frameCount; ++f) {
+                    // Small steps back and forth, as a drag sends them.
+                    const double step = (f % 2 ? -1.0 : 1.0) * 1e-3 * (du.last - du.first);
+                    doc.setTrimPoint(target, home + glm::dvec2(step, 0.5 * step));
+                    QElapsedTimer t;
+                    t.start();
+                    if (!renderer.render(doc, cam, options, &error)) {
+                        printError(QStringLiteral("%1: %2").arg(file, error));
+                        return kExitBadInput;
+                    }
+                    renderer.finish();
+                    drag.push_back(double(t.nsecsElapsed()) * 1e-6);
+                }
+                doc.setTrimPoint(target, home);
+                const TrimMaskStats st = masks.stats(target.surface);
+                row.dragMs = median(drag);
+                row.maskCpuMs = st.redraws ? double(st.cpuNanoseconds) * 1e-6 / st.redraws : 0.0;
+                if (const TrimMask* m = masks.find(target.surface))
+                    row.maskSide = std::max(m->width, m->height);
+            }
             printError(QStringLiteral("%1 %2x%2: %3 FPS (median of %4 frames)")
                            .arg(row.file)
                            .arg(side)
@@ -176,22 +233,26 @@ int runBench(const QStringList& args) {
     }
 
     const QString setting =
-        QStringLiteral("%1, %2 x %3 partitions, %4 light(s), %5 shading")
+        QStringLiteral("%1, %2 x %3 partitions, %4 light(s), %5 shading%6")
             .arg(modeName(options.mode))
             .arg(options.partitionsU)
             .arg(options.partitionsV)
             .arg(options.lightCount)
             .arg(options.mode == RenderMode::Exact ? shadingName(options.shading)
-                                                   : QStringLiteral("Gouraud"));
+                                                   : QStringLiteral("Gouraud"))
+            .arg(options.trims ? QString() : QStringLiteral(", trims off"));
     QString table = QStringLiteral("%1 on %2, %3 CPU threads\n\n")
                         .arg(setting, renderer.renderer().glDescription())
                         .arg(QThread::idealThreadCount());
     table += QStringLiteral(
         "| file | surfaces | resolution | covered | FPS (median) | FPS min | "
-        "FPS max | ms (median) | CPU ms/frame |\n|---|---|---|---|---|---|---|---|---|\n");
+        "FPS max | ms (median) | CPU ms/frame | trim drag ms/frame | mask redraw CPU ms | mask "
+        "side |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     QJsonArray jsonRows;
     for (const BenchRow& r : rows) {
-        table += QStringLiteral("| %1 | %2 | %3x%4 | %5 % | %6 | %7 | %8 | %9 | %10 |\n")
+        const bool dragged = r.dragMs >= 0.0;
+        table += QStringLiteral("| %1 | %2 | %3x%4 | %5 % | %6 | %7 | %8 | %9 | %10 | %11 | %12 | "
+                                "%13 |\n")
                      .arg(r.file)
                      .arg(r.surfaces)
                      .arg(r.size.width())
@@ -201,17 +262,26 @@ int runBench(const QStringList& args) {
                      .arg(fps(r.maxMs), 0, 'f', 1)
                      .arg(fps(r.minMs), 0, 'f', 1)
                      .arg(r.medianMs, 0, 'f', 2)
-                     .arg(r.cpuMs, 0, 'f', 1);
-        jsonRows.append(QJsonObject{{QStringLiteral("file"), r.file},
-                                    {QStringLiteral("surfaces"), r.surfaces},
-                                    {QStringLiteral("width"), r.size.width()},
-                                    {QStringLiteral("height"), r.size.height()},
-                                    {QStringLiteral("coverage"), r.coverage},
-                                    {QStringLiteral("fpsMedian"), fps(r.medianMs)},
-                                    {QStringLiteral("fpsMin"), fps(r.maxMs)},
-                                    {QStringLiteral("fpsMax"), fps(r.minMs)},
-                                    {QStringLiteral("msMedian"), r.medianMs},
-                                    {QStringLiteral("cpuMsPerFrame"), r.cpuMs}});
+                     .arg(r.cpuMs, 0, 'f', 1)
+                     .arg(dragged ? QString::number(r.dragMs, 'f', 2) : QStringLiteral("-"))
+                     .arg(dragged ? QString::number(r.maskCpuMs, 'f', 2) : QStringLiteral("-"))
+                     .arg(dragged ? QString::number(r.maskSide) : QStringLiteral("-"));
+        QJsonObject row{{QStringLiteral("file"), r.file},
+                        {QStringLiteral("surfaces"), r.surfaces},
+                        {QStringLiteral("width"), r.size.width()},
+                        {QStringLiteral("height"), r.size.height()},
+                        {QStringLiteral("coverage"), r.coverage},
+                        {QStringLiteral("fpsMedian"), fps(r.medianMs)},
+                        {QStringLiteral("fpsMin"), fps(r.maxMs)},
+                        {QStringLiteral("fpsMax"), fps(r.minMs)},
+                        {QStringLiteral("msMedian"), r.medianMs},
+                        {QStringLiteral("cpuMsPerFrame"), r.cpuMs}};
+        if (dragged) {
+            row.insert(QStringLiteral("trimDragMsMedian"), r.dragMs);
+            row.insert(QStringLiteral("maskRedrawCpuMs"), r.maskCpuMs);
+            row.insert(QStringLiteral("maskSide"), r.maskSide);
+        }
+        jsonRows.append(row);
     }
     printOut(table);
     if (parser.isSet(json)) {

@@ -106,7 +106,13 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         const SurfaceGpu* g = cache.find(s.id);
         if (!g)
             continue;
-        const TrimMask* mask = masks ? masks->find(s.id) : nullptr;
+        // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
+        // rejects it before shading and early-z stays on: no lookup needed here. A discard
+        // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
+        // exact-depth way, which has no pre-pass, looks the mask up.
+        const TrimMask* mask = masks && options.shading == RenderOptions::Shading::ExactDepth
+                                   ? masks->find(s.id)
+                                   : nullptr;
         QOpenGLShaderProgram* prog = m_shaders->program(
             QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
             variantDefines(g->degreeU, g->degreeV, int(lights.size()), options, mask != nullptr));

@@ -18,9 +18,10 @@ public:
 
     /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
     /// on), as options.shading says. Surfaces with a mask in `masks` (may be null: no trims)
-    /// use the KW_TRIM variants in both passes and lose their trimmed fragments; the others
-    /// use variants without the lookup. Returns false with *error set when a shader variant
-    /// cannot be built.
+    /// lose their trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
+    /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
+    /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
+    /// with *error set when a shader variant cannot be built.
     bool draw(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
               const FrameCamera& camera, const std::vector<Light>& lights,
               const RenderOptions& options, QString* error);

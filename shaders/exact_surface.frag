@@ -1,6 +1,7 @@
 // Exact pass (paper 3.4.1): evaluates the NURBS surface at the fragment's (u, v) and shades it.
 // Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth),
-// KW_TRIM (discard where the surface's trim mask says trimmed).
+// KW_TRIM (discard where the surface's trim mask says trimmed; only used without the depth
+// pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"

@@ -135,16 +135,20 @@ private Q_SLOTS:
     void pixelsAgreeWithCpuClassification_data() {
         QTest::addColumn<QString>("sample");
         QTest::addColumn<int>("mode");
-        QTest::newRow("trimmed_plate exact") << "trimmed_plate" << int(RenderMode::Exact);
+        QTest::addColumn<bool>("exactDepth"); // no pre-pass: the exact shader discards itself
+        QTest::newRow("trimmed_plate exact") << "trimmed_plate" << int(RenderMode::Exact) << false;
+        QTest::newRow("trimmed_plate exact-depth")
+            << "trimmed_plate" << int(RenderMode::Exact) << true;
         QTest::newRow("trimmed_plate tessellated")
-            << "trimmed_plate" << int(RenderMode::Tessellated);
-        QTest::newRow("star_island exact") << "star_island" << int(RenderMode::Exact);
-        QTest::newRow("messy exact") << "" << int(RenderMode::Exact);
+            << "trimmed_plate" << int(RenderMode::Tessellated) << false;
+        QTest::newRow("star_island exact") << "star_island" << int(RenderMode::Exact) << false;
+        QTest::newRow("messy exact") << "" << int(RenderMode::Exact) << false;
     }
 
     void pixelsAgreeWithCpuClassification() {
         QFETCH(QString, sample);
         QFETCH(int, mode);
+        QFETCH(bool, exactDepth);
         QString error;
         const std::optional<Scene> scene =
             sample.isEmpty() ? std::optional<Scene>(messyScene()) : loadSample(sample, &error);
@@ -153,6 +157,8 @@ private Q_SLOTS:
         QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
         RenderOptions opt;
         opt.mode = RenderMode(mode);
+        if (exactDepth)
+            opt.shading = RenderOptions::Shading::ExactDepth;
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, opt, trimmed, whole));
         const TrimAgreement a =
