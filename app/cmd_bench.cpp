@@ -1,7 +1,6 @@
 // knotwork bench [FILES...]: off-screen frame rates per file and image size (paper Table 1).
 #include "app/commands.h"
 #include "app/render_args.h"
-#include "model/knotfile.h"
 #include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
@@ -72,35 +71,19 @@ int runBench(const QStringList& args) {
     const QCommandLineOption sizes(QStringLiteral("sizes"),
                                    QStringLiteral("Square sizes (default 256,512,768,1024)."),
                                    QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
-    const QCommandLineOption partitions(QStringLiteral("partitions"),
-                                        QStringLiteral("Partitions N or NxM (default 30)."),
-                                        QStringLiteral("N|NxM"), QStringLiteral("30"));
     const QCommandLineOption frames(QStringLiteral("frames"),
                                     QStringLiteral("Timed frames per size, >= 20 (default 30)."),
                                     QStringLiteral("N"), QStringLiteral("30"));
-    const QCommandLineOption mode(QStringLiteral("mode"),
-                                  QStringLiteral("exact (default) or tessellated."),
-                                  QStringLiteral("MODE"), QStringLiteral("exact"));
-    const QCommandLineOption lights(QStringLiteral("lights"),
-                                    QStringLiteral("Number of lights, 1..8 (default 2)."),
-                                    QStringLiteral("N"), QStringLiteral("2"));
-    const QCommandLineOption shading(
-        QStringLiteral("shading"),
-        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or "
-                       "exact-depth (one pass writing gl_FragDepth)."),
-        QStringLiteral("WAY"), QStringLiteral("prepass"));
     const QCommandLineOption json(QStringLiteral("json"),
                                   QStringLiteral("Also write the results as JSON."),
                                   QStringLiteral("OUT"));
-    const QCommandLineOption noTrims(
-        QStringLiteral("no-trims"),
-        QStringLiteral("Draw trimmed surfaces whole (to measure what the trim lookup costs)."));
     const QCommandLineOption trimDrag(
         QStringLiteral("trim-drag"),
         QStringLiteral("Also time frames that each move one trim control point of the first "
                        "trimmed surface (its mask is redrawn every frame): what a trim drag "
                        "costs per frame."));
-    parser.addOptions({sizes, partitions, frames, mode, lights, shading, json, noTrims, trimDrag});
+    parser.addOptions({sizes, frames, json, trimDrag});
+    const RenderCliOptions shared = addRenderOptions(parser, QStringLiteral("30"));
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("FILE..."));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -123,22 +106,13 @@ int runBench(const QStringList& args) {
         }
         sideList.push_back(side);
     }
-    if (!parsePartitions(parser.value(partitions), options.partitionsU, options.partitionsV) ||
-        !parseIntIn(parser.value(frames), 20, 100000, frameCount) ||
-        !parseMode(parser.value(mode), options.mode) ||
-        !parseIntIn(parser.value(lights), 1, kMaxLights, options.lightCount)) {
-        printError(QStringLiteral("%1: bad --partitions, --frames (>= 20), --mode or --lights "
-                                  "(see --help)")
-                       .arg(cmd));
+    if (!parseIntIn(parser.value(frames), 20, 100000, frameCount)) {
+        printError(QStringLiteral("%1: --frames '%2' is not in 20..100000")
+                       .arg(cmd, parser.value(frames)));
         return kExitUsage;
     }
-    if (!parseShading(parser.value(shading), options.shading)) {
-        printError(QStringLiteral("%1: --shading '%2' is not prepass or exact-depth")
-                       .arg(cmd, parser.value(shading)));
+    if (!readRenderOptions(parser, shared, cmd, options))
         return kExitUsage;
-    }
-
-    options.trims = !parser.isSet(noTrims);
 
     QString error;
     OffscreenRenderer renderer;
@@ -148,18 +122,16 @@ int runBench(const QStringList& args) {
     }
     std::vector<BenchRow> rows;
     for (const QString& file : files) {
-        const std::optional<Scene> scene = readKnotFile(file, &error);
         Document doc;
-        if (!scene || !doc.resetScene(*scene, &error)) {
-            printError(scene ? QStringLiteral("%1: %2").arg(file, error) : error);
+        if (!loadDocument(file, doc))
             return kExitBadInput;
-        }
+        const Scene& scene = doc.scene();
         for (int side : sideList) {
             BenchRow row;
             row.file = QFileInfo(file).fileName();
-            row.surfaces = int(scene->surfaces.size());
+            row.surfaces = int(scene.surfaces.size());
             row.size = QSize(side, side);
-            const Camera cam = scene->camera.authored ? scene->camera : fitCamera(*scene, 1.0);
+            const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
             // Coverage from one AOV frame, then the timed frames without AOV targets.
             if (!renderer.setSize(row.size, true, &error) ||
                 !renderer.render(doc, cam, options, &error)) {
@@ -194,7 +166,7 @@ int runBench(const QStringList& args) {
             row.minMs = *std::min_element(ms.begin(), ms.end());
             row.maxMs = *std::max_element(ms.begin(), ms.end());
             row.medianMs = median(ms);
-            const TrimPointRef target = dragTarget(doc.scene());
+            const TrimPointRef target = dragTarget(scene);
             if (parser.isSet(trimDrag) && options.trims && target.surface.isValid()) {
                 const Surface* s = doc.surface(target.surface);
                 const glm::dvec2 home =

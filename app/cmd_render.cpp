@@ -1,7 +1,6 @@
 // knotwork render FILE -o OUT [...]: headless render of a .knot project to an image (and AOVs).
 #include "app/commands.h"
 #include "app/render_args.h"
-#include "model/knotfile.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 
@@ -22,42 +21,16 @@ int runRender(const QStringList& args) {
     const QCommandLineOption size(QStringLiteral("size"),
                                   QStringLiteral("Image size WxH (default 1024x768)."),
                                   QStringLiteral("WxH"), QStringLiteral("1024x768"));
-    const QCommandLineOption mode(QStringLiteral("mode"),
-                                  QStringLiteral("exact (default) or tessellated."),
-                                  QStringLiteral("MODE"), QStringLiteral("exact"));
-    const QCommandLineOption partitions(
-        QStringLiteral("partitions"),
-        QStringLiteral("Partitions N or NxM for every surface (default: each surface's own)."),
-        QStringLiteral("N|NxM"));
-    const QCommandLineOption lights(QStringLiteral("lights"),
-                                    QStringLiteral("Number of lights, 1..8 (default 2)."),
-                                    QStringLiteral("N"), QStringLiteral("2"));
     const QCommandLineOption aov(QStringLiteral("aov"),
                                  QStringLiteral("Also write a float EXR with channels id, u, v, "
                                                 "P.x, P.y, P.z, N.x, N.y, N.z, Z."),
                                  QStringLiteral("AOV.exr"));
-    const QCommandLineOption shading(
-        QStringLiteral("shading"),
-        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
-                       "(one pass writing gl_FragDepth)."),
-        QStringLiteral("WAY"), QStringLiteral("prepass"));
     const QCommandLineOption wire(QStringLiteral("wireframe"),
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
                                  QStringLiteral("Overlay the control points and net."));
-    const QCommandLineOption noTrims(
-        QStringLiteral("no-trims"),
-        QStringLiteral(
-            "Draw trimmed surfaces over their whole domains (trims are cut by default)."));
-    const QCommandLineOption maskCap(
-        QStringLiteral("trim-mask-cap"),
-        QStringLiteral("Largest trim mask side in texels, %1..16384 (default %2); each mask "
-                       "follows its surface's size on screen up to this.")
-            .arg(kMinTrimMaskSize)
-            .arg(kDefaultTrimMaskCap),
-        QStringLiteral("N"), QString::number(kDefaultTrimMaskCap));
-    parser.addOptions(
-        {out, size, mode, partitions, lights, aov, shading, wire, net, noTrims, maskCap});
+    parser.addOptions({out, size, aov, wire, net});
+    const RenderCliOptions shared = addRenderOptions(parser, QString());
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
@@ -74,37 +47,8 @@ int runRender(const QStringList& args) {
                        .arg(cmd, parser.value(size)));
         return kExitUsage;
     }
-    if (!parseMode(parser.value(mode), options.mode)) {
-        printError(QStringLiteral("%1: --mode '%2' is not exact or tessellated")
-                       .arg(cmd, parser.value(mode)));
+    if (!readRenderOptions(parser, shared, cmd, options))
         return kExitUsage;
-    }
-    if (parser.isSet(partitions) &&
-        !parsePartitions(parser.value(partitions), options.partitionsU, options.partitionsV)) {
-        printError(QStringLiteral("%1: --partitions '%2' is not N or NxM with %3..%4")
-                       .arg(cmd, parser.value(partitions))
-                       .arg(kMinPartitions)
-                       .arg(kMaxPartitions));
-        return kExitUsage;
-    }
-    if (!parseIntIn(parser.value(lights), 1, kMaxLights, options.lightCount)) {
-        printError(QStringLiteral("%1: --lights '%2' is not in 1..%3")
-                       .arg(cmd, parser.value(lights))
-                       .arg(kMaxLights));
-        return kExitUsage;
-    }
-    if (!parseShading(parser.value(shading), options.shading)) {
-        printError(QStringLiteral("%1: --shading '%2' is not prepass or exact-depth")
-                       .arg(cmd, parser.value(shading)));
-        return kExitUsage;
-    }
-    if (!parseIntIn(parser.value(maskCap), kMinTrimMaskSize, 16384, options.trimMaskCap)) {
-        printError(QStringLiteral("%1: --trim-mask-cap '%2' is not in %3..16384")
-                       .arg(cmd, parser.value(maskCap))
-                       .arg(kMinTrimMaskSize));
-        return kExitUsage;
-    }
-    options.trims = !parser.isSet(noTrims);
     options.wireframe = parser.isSet(wire);
     options.controlNet = parser.isSet(net);
     const QString outPath = parser.value(out);
@@ -119,26 +63,20 @@ int runRender(const QStringList& args) {
         return kExitUsage;
     }
 
-    QString error;
-    const std::optional<Scene> scene = readKnotFile(files[0], &error);
-    if (!scene) {
-        printError(error);
-        return kExitBadInput;
-    }
     Document doc;
-    if (!doc.resetScene(*scene, &error)) {
-        printError(QStringLiteral("%1: %2").arg(files[0], error));
+    if (!loadDocument(files[0], doc))
         return kExitBadInput;
-    }
+    const Scene& scene = doc.scene();
+    QString error;
     OffscreenRenderer renderer;
     if (!renderer.create(&error) || !renderer.setSize(imageSize, parser.isSet(aov), &error)) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
     const Camera camera =
-        scene->camera.authored
-            ? scene->camera
-            : fitCamera(*scene, double(imageSize.width()) / double(imageSize.height()));
+        scene.camera.authored
+            ? scene.camera
+            : fitCamera(scene, double(imageSize.width()) / double(imageSize.height()));
     if (!renderer.render(doc, camera, options, &error)) {
         printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
         return kExitBadInput;
@@ -157,7 +95,7 @@ int runRender(const QStringList& args) {
             .arg(imageSize.width())
             .arg(imageSize.height())
             .arg(modeName(options.mode))
-            .arg(scene->surfaces.size())
+            .arg(scene.surfaces.size())
             .arg(outPath, parser.isSet(aov) ? QStringLiteral(", AOVs -> ") + aovPath : QString()));
     return kExitOk;
 }

@@ -40,16 +40,20 @@ private Q_SLOTS:
     void matchesBaseline_data() {
         QTest::addColumn<QString>("sample");
         QTest::addColumn<int>("mode");
+        QTest::addColumn<bool>("overlays");
         for (const char* s :
              {"bicubic", "sphere", "torus", "trimmed_plate", "star_island", "teapot"})
-            QTest::newRow(s) << QString::fromLatin1(s) << int(RenderMode::Exact);
+            QTest::newRow(s) << QString::fromLatin1(s) << int(RenderMode::Exact) << false;
         QTest::newRow("teapot_tessellated")
-            << QStringLiteral("teapot") << int(RenderMode::Tessellated);
+            << QStringLiteral("teapot") << int(RenderMode::Tessellated) << false;
+        QTest::newRow("torus_overlays")
+            << QStringLiteral("torus") << int(RenderMode::Exact) << true;
     }
 
     void matchesBaseline() {
         QFETCH(QString, sample);
         QFETCH(int, mode);
+        QFETCH(bool, overlays);
         const QString name = QString::fromLatin1(QTest::currentDataTag());
         QString error;
         const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
@@ -60,6 +64,10 @@ private Q_SLOTS:
         opt.mode = RenderMode(mode);
         if (opt.mode == RenderMode::Tessellated)
             opt.partitionsU = opt.partitionsV = 8; // coarse, so Gouraud facets show
+        if (overlays) {
+            opt.partitionsU = opt.partitionsV = 6;
+            opt.wireframe = opt.controlNet = true;
+        }
         const Camera cam = scene->camera.authored ? scene->camera : fitCamera(*scene, 1.0);
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const QImage img = m_renderer->colorImage();

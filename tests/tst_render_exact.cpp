@@ -139,6 +139,24 @@ private Q_SLOTS:
         QVERIFY(differentId <= r.covered / 100);
     }
 
+    void overlaysLeaveTheAovAlone() {
+        // Wireframe and control net draw into the colour target only.
+        QString error;
+        const std::optional<Scene> s = kwtest::loadSample(QStringLiteral("torus"), &error);
+        QVERIFY2(s, qPrintable(error));
+        Document doc;
+        QVERIFY(doc.resetScene(*s, &error));
+        const Camera cam = fitCamera(doc.scene(), 1.0);
+        RenderOptions opt;
+        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        const AovBuffer plain = m_renderer->aov();
+        const QImage plainColor = m_renderer->colorImage();
+        opt.wireframe = opt.controlNet = true;
+        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        QVERIFY(m_renderer->aov().data == plain.data);
+        QVERIFY(m_renderer->colorImage() != plainColor);
+    }
+
     void backgroundIsMinusOne() {
         Document doc;
         QString error;
