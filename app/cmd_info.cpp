@@ -1,6 +1,7 @@
 // knotwork info FILE [--json]: a summary of a .knot project's surfaces, lights and camera.
 #include "app/commands.h"
 #include "model/knotfile.h"
+#include "model/trim.h"
 
 #include <QCommandLineParser>
 #include <QJsonArray>
@@ -70,6 +71,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
     for (const Surface& s : scene.surfaces) {
         const NurbsSurface& g = s.geometry;
         QJsonArray loops;
+        const QStringList warnings = trimWarnings(s);
         for (const TrimLoop& loop : s.trims)
             loops.append(QJsonObject{{QStringLiteral("id"), qint64(loop.id.value)},
                                      {QStringLiteral("curves"), int(loop.curves.size())}});
@@ -84,6 +86,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
             {QStringLiteral("knotsU"), knotJson(summarise(g.knotsU, g.degreeU))},
             {QStringLiteral("knotsV"), knotJson(summarise(g.knotsV, g.degreeV))},
             {QStringLiteral("trimLoops"), loops},
+            {QStringLiteral("trimWarnings"), QJsonArray::fromStringList(warnings)},
             {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
             {QStringLiteral("color"), vec(s.material.color)},
         });
@@ -134,6 +137,8 @@ QString toText(const QString& file, const Scene& scene) {
                                         : QStringLiteral("%1 loop(s) (%2)")
                                               .arg(loops.size())
                                               .arg(loops.join(QStringLiteral(", "))));
+        for (const QString& w : trimWarnings(s))
+            out += QStringLiteral("  trim warning: %1\n").arg(w);
         out += QStringLiteral("  partitions: %1 x %2\n").arg(s.partitionsU).arg(s.partitionsV);
     }
     for (size_t k = 0; k < scene.lights.size(); ++k)

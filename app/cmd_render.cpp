@@ -81,6 +81,9 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
         return kExitBadInput;
     }
+    // Messy trims were drawn as repaired; say what was repaired.
+    for (const QString& w : renderer.renderer().trimMasks().warnings())
+        printError(QStringLiteral("%1: warning: %2").arg(files[0], w));
     if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
         (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {
         printError(error);

@@ -66,8 +66,18 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                            QStringLiteral("Exact mode: prepass (default: depth pre-pass + "
                                           "GL_EQUAL) or exact-depth (one pass writing "
                                           "gl_FragDepth)."),
-                           QStringLiteral("WAY"), QStringLiteral("prepass"))};
-    parser.addOptions({o.mode, o.partitions, o.lights, o.shading});
+                           QStringLiteral("WAY"), QStringLiteral("prepass")),
+        QCommandLineOption(QStringLiteral("no-trims"),
+                           QStringLiteral("Draw trimmed surfaces over their whole domains (trims "
+                                          "are cut by default).")),
+        QCommandLineOption(QStringLiteral("trim-mask-cap"),
+                           QStringLiteral("Largest trim mask side in texels, %1..16384 (default "
+                                          "%2); each mask follows its surface's size on screen "
+                                          "up to this.")
+                               .arg(kMinTrimMaskSize)
+                               .arg(kDefaultTrimMaskCap),
+                           QStringLiteral("N"), QString::number(kDefaultTrimMaskCap))};
+    parser.addOptions({o.mode, o.partitions, o.lights, o.shading, o.noTrims, o.trimMaskCap});
     return o;
 }
 
@@ -98,6 +108,9 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
         options.shading = RenderOptions::Shading::ExactDepth;
     else
         return fail(o.shading, QStringLiteral("prepass or exact-depth"));
+    if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
+        return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
+    options.trims = !parser.isSet(o.noTrims);
     return true;
 }
 

@@ -21,9 +21,9 @@ bool parseIntIn(const QString& text, int lo, int hi, int& value);
 QString modeName(RenderMode mode);
 QString shadingName(RenderOptions::Shading shading);
 
-/// --mode, --partitions, --lights and --shading.
+/// --mode, --partitions, --lights, --shading, --no-trims and --trim-mask-cap.
 struct RenderCliOptions {
-    QCommandLineOption mode, partitions, lights, shading;
+    QCommandLineOption mode, partitions, lights, shading, noTrims, trimMaskCap;
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions);

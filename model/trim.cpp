@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kw {
 namespace {
@@ -145,12 +146,58 @@ TrimPolygon tessellateTrimLoop(const TrimLoop& loop, double tolerance) {
     return poly;
 }
 
-TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance) {
+TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
+                          QStringList* warnings) {
+    auto warn = [&](const QString& text) {
+        if (warnings)
+            warnings->append(text);
+    };
     TrimRegion region;
-    for (const TrimLoop& loop : trims) {
-        TrimPolygon poly = tessellateTrimLoop(loop, tolerance);
-        if (poly.size() < 3)
-            continue; // a loop without area changes no point's parity
+    for (size_t l = 0; l < trims.size(); ++l) {
+        const TrimLoop& loop = trims[l];
+        const QString name = QStringLiteral("trim loop %1").arg(loop.id.value);
+        TrimPolygon poly;
+        bool haveCurve = false;
+        glm::dvec2 lastEnd{0.0};
+        for (size_t c = 0; c < loop.curves.size(); ++c) {
+            const NurbsCurve2& curve = loop.curves[c];
+            if (const std::string e = curveValidationError(curve); !e.empty()) {
+                warn(QStringLiteral("%1: curve %2 is invalid (%3); left out")
+                         .arg(name)
+                         .arg(c + 1)
+                         .arg(QString::fromStdString(e)));
+                continue;
+            }
+            const std::vector<glm::dvec2> pts = tessellateTrimCurve(curve, tolerance);
+            if (haveCurve && glm::length(pts.front() - lastEnd) > tolerance)
+                warn(QStringLiteral("%1: gap of %2 before curve %3; bridged by a straight segment")
+                         .arg(name)
+                         .arg(glm::length(pts.front() - lastEnd), 0, 'g', 3)
+                         .arg(c + 1));
+            for (glm::dvec2 p : pts)
+                if (poly.empty() || p != poly.back())
+                    poly.push_back(p);
+            haveCurve = true;
+            lastEnd = pts.back();
+        }
+        if (poly.size() >= 2 && glm::length(lastEnd - poly.front()) > tolerance)
+            warn(QStringLiteral("%1 does not close (gap of %2); closed by a straight segment")
+                     .arg(name)
+                     .arg(glm::length(lastEnd - poly.front()), 0, 'g', 3));
+        while (poly.size() > 1 && poly.back() == poly.front())
+            poly.pop_back();
+        // Unsigned area of the fan from the first point (what the GPU mask rasterises): zero
+        // only when every point lies on one line through it. The signed area would wrongly call
+        // a figure eight degenerate.
+        double fanArea = 0.0;
+        for (size_t i = 1; i + 1 < poly.size(); ++i) {
+            const glm::dvec2 a = poly[i] - poly[0], b = poly[i + 1] - poly[0];
+            fanArea += 0.5 * std::abs(a.x * b.y - a.y * b.x);
+        }
+        if (poly.size() < 3 || fanArea < tolerance * tolerance) {
+            warn(QStringLiteral("%1 is degenerate (encloses no area); ignored").arg(name));
+            continue;
+        }
         glm::dvec2 lo = poly.front(), hi = poly.front();
         for (glm::dvec2 p : poly) {
             lo = glm::min(lo, p);
@@ -161,6 +208,20 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance) 
         region.hi.push_back(hi);
     }
     return region;
+}
+
+QStringList trimWarnings(const Surface& surface) {
+    QStringList warnings;
+    makeTrimRegion(surface.trims, trimTolerance(surface.geometry), &warnings);
+    return warnings;
+}
+
+double trimRegionDistance(const TrimRegion& region, glm::dvec2 uv) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const TrimPolygon& poly : region.loops)
+        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+            best = std::min(best, distanceToSegment(uv, poly[j], poly[i]));
+    return best;
 }
 
 double trimTolerance(const NurbsSurface& surface, double relative) {

@@ -3,6 +3,7 @@
 
 #include "model/scene.h"
 
+#include <QStringList>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -37,8 +38,23 @@ struct TrimRegion {
     bool empty() const { return loops.empty(); }
 };
 
-/// Flattens every loop of `trims`; tolerance as in tessellateTrimLoop.
-TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance);
+/// Flattens every loop of `trims`; tolerance as in tessellateTrimLoop. Messy input is made
+/// usable and, when `warnings` is given, reported there (one line per problem, naming the loop):
+/// - a curve that is not valid (curveValidationError) is left out of its loop;
+/// - a gap wider than `tolerance` between consecutive curves, or between the last curve's end
+///   and the first curve's start, is bridged by a straight segment (the polygon is closed);
+/// - a loop that flattens to fewer than 3 distinct points or encloses no area (|signed area|
+///   below tolerance^2) is dropped: it would change no point's parity anyway.
+/// Orientation is irrelevant: classification is by parity. Tolerance must be > 0.
+TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
+                          QStringList* warnings = nullptr);
+
+/// The warnings makeTrimRegion reports for a surface's trims at trimTolerance(surface).
+QStringList trimWarnings(const Surface& surface);
+
+/// Distance in (u, v) from `uv` to the nearest edge of the region's polygons (closing edges
+/// included); +infinity for a region without loops.
+double trimRegionDistance(const TrimRegion& region, glm::dvec2 uv);
 
 /// A tolerance suited to a surface's domain: `relative` times the diagonal of its (u, v) domain.
 double trimTolerance(const NurbsSurface& surface, double relative = 1e-5);

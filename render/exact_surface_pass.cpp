@@ -9,13 +9,17 @@
 
 namespace kw {
 
+namespace {
+constexpr int kTrimMaskUnit = 3; // after uControl, uSpansU, uSpansV
+}
+
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
 }
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
-                                             const RenderOptions& options) {
+                                             const RenderOptions& options, bool trimmed) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
@@ -26,43 +30,67 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_AOV");
     if (options.shading == RenderOptions::Shading::ExactDepth)
         d << QStringLiteral("KW_EXACT_DEPTH");
+    if (trimmed)
+        d << QStringLiteral("KW_TRIM");
     return d;
 }
 
 bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& cache,
-                                    const FrameCamera& camera, QString* error) {
+                                    const TrimMaskPass* masks, const FrameCamera& camera,
+                                    QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog =
+    // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
+    QOpenGLShaderProgram* plain =
         m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"));
-    if (!prog) {
+    if (!plain) {
         *error = m_shaders->lastError();
         return false;
     }
-    prog->bind();
-    gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
-                           glm::value_ptr(camera.viewProjection));
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(GL_LESS);
-    for (const Surface& s : scene.surfaces)
-        if (const SurfaceGpu* g = cache.find(s.id)) {
-            gl->glBindVertexArray(g->triangleVao);
-            gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+    QOpenGLShaderProgram* bound = nullptr;
+    bool ok = true;
+    for (const Surface& s : scene.surfaces) {
+        const SurfaceGpu* g = cache.find(s.id);
+        if (!g)
+            continue;
+        const TrimMask* mask = masks ? masks->find(s.id) : nullptr;
+        QOpenGLShaderProgram* prog = mask ? m_shaders->program(QStringLiteral("surface.vert"),
+                                                               QStringLiteral("depth_only.frag"),
+                                                               {QStringLiteral("KW_TRIM")})
+                                          : plain;
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
         }
+        if (prog != bound) {
+            prog->bind();
+            bound = prog;
+            gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+                                   glm::value_ptr(camera.viewProjection));
+        }
+        if (mask)
+            masks->setUniforms(prog, *mask, kTrimMaskUnit);
+        gl->glBindVertexArray(g->triangleVao);
+        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+    }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    return true;
+    return ok;
 }
 
 bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
-                            const FrameCamera& camera, const std::vector<Light>& lights,
-                            const RenderOptions& options, QString* error) {
+                            const TrimMaskPass* masks, const FrameCamera& camera,
+                            const std::vector<Light>& lights, const RenderOptions& options,
+                            QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
     // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     if (options.shading == RenderOptions::Shading::DepthPrepass) {
-        if (!depthPrepass(scene, cache, camera, error)) {
+        if (!depthPrepass(scene, cache, masks, camera, error)) {
             gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
             return false;
         }
@@ -78,9 +106,16 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         const SurfaceGpu* g = cache.find(s.id);
         if (!g)
             continue;
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(g->degreeU, g->degreeV, int(lights.size()), options));
+        // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
+        // rejects it before shading and early-z stays on: no lookup needed here. A discard
+        // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
+        // exact-depth way, which has no pre-pass, looks the mask up.
+        const TrimMask* mask = masks && options.shading == RenderOptions::Shading::ExactDepth
+                                   ? masks->find(s.id)
+                                   : nullptr;
+        QOpenGLShaderProgram* prog = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+            variantDefines(g->degreeU, g->degreeV, int(lights.size()), options, mask != nullptr));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -100,6 +135,8 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         gl->glBindTextureUnit(0, g->controlTexture);
         gl->glBindTextureUnit(1, g->spanTextureU);
         gl->glBindTextureUnit(2, g->spanTextureV);
+        if (mask)
+            masks->setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
     }

@@ -5,6 +5,7 @@
 #include "render/render_types.h"
 #include "render/shader_library.h"
 #include "render/surface_gpu_cache.h"
+#include "render/trim_mask_pass.h"
 
 #include <QString>
 
@@ -16,17 +17,22 @@ public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
 
     /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
-    /// on), as options.shading says. Returns false with *error set when a shader variant
-    /// cannot be built.
-    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
-              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
+    /// on), as options.shading says. Surfaces with a mask in `masks` (may be null: no trims)
+    /// lose their trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
+    /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
+    /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
+    /// with *error set when a shader variant cannot be built.
+    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
+              const FrameCamera& camera, const std::vector<Light>& lights,
+              const RenderOptions& options, QString* error);
 
     /// The defines of the exact shader variant for degrees (p, q) and these options.
-    static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options);
+    static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
+                                      bool trimmed = false);
 
 private:
-    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
-                      QString* error);
+    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
+                      const FrameCamera& camera, QString* error);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;

@@ -7,6 +7,16 @@
 
 namespace kw {
 
+TrimMaskStats& TrimMaskStats::operator+=(const TrimMaskStats& o) {
+    redraws += o.redraws;
+    loops += o.loops;
+    triangles += o.triangles;
+    texels += o.texels;
+    arrayAllocations += o.arrayAllocations;
+    cpuNanoseconds += o.cpuNanoseconds;
+    return *this;
+}
+
 UploadStats& UploadStats::operator+=(const UploadStats& o) {
     fullUploads += o.fullUploads;
     subImageUploads += o.subImageUploads;

@@ -13,6 +13,10 @@ enum class RenderMode {
     Tessellated, ///< CPU tessellation at the partitions, per-vertex normals, Gouraud shading
 };
 
+/// Trim mask side limits in texels (RenderOptions::trimMaskCap).
+constexpr int kMinTrimMaskSize = 32;
+constexpr int kDefaultTrimMaskCap = 1024;
+
 /// What a frame draws. Defaults are the editor's: exact surfaces, two lights, no overlays.
 struct RenderOptions {
     RenderMode mode = RenderMode::Exact;
@@ -39,6 +43,15 @@ struct RenderOptions {
     Shading shading = Shading::DepthPrepass;
     /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
     bool writeAov = false;
+    /// Cut trimmed surfaces with their trim masks (paper 3.4.2). False draws whole domains (for
+    /// checks against the CPU classification, and to see what a trim removes).
+    bool trims = true;
+    /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
+    /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
+    /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,
+    /// trimMaskCap]. The array holding all masks has layers of the largest side in use, so the
+    /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).
+    int trimMaskCap = kDefaultTrimMaskCap;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
 };
 
@@ -55,6 +68,19 @@ struct UploadStats {
 
     UploadStats& operator+=(const UploadStats& o);
     bool operator==(const UploadStats&) const = default;
+};
+
+/// Counts of trim mask work, kept by TrimMaskPass per surface and in total.
+struct TrimMaskStats {
+    std::int64_t redraws = 0;          ///< masks (re)drawn: trims or mask resolution changed
+    std::int64_t loops = 0;            ///< loop fans drawn in those redraws
+    std::int64_t triangles = 0;        ///< fan triangles drawn
+    std::int64_t texels = 0;           ///< mask texels cleared and covered (width x height)
+    std::int64_t arrayAllocations = 0; ///< mask array (re)allocated (total only)
+    std::int64_t cpuNanoseconds = 0;   ///< flattening and issuing the draws (not GPU time)
+
+    TrimMaskStats& operator+=(const TrimMaskStats& o);
+    bool operator==(const TrimMaskStats&) const = default;
 };
 
 /// Camera matrices for one frame (OpenGL clip conventions).

@@ -37,12 +37,15 @@ bool Renderer::initialize() {
     m_cache.initialize(gl);
     m_exact.initialize(gl, &m_shaders);
     m_tessellated.initialize(gl, &m_shaders);
+    m_trimMasks.initialize(gl, &m_shaders);
     m_wireframe.initialize(gl, &m_shaders);
     m_controlNet.initialize(gl, &m_shaders);
     // Build the common programs now so a broken shader is reported at start-up.
     const RenderOptions defaults;
     const std::tuple<const char*, const char*, QStringList> common[] = {
         {"surface.vert", "depth_only.frag", {}},
+        {"surface.vert", "depth_only.frag", {QStringLiteral("KW_TRIM")}},
+        {"trim_mask.vert", "trim_mask.frag", {}},
         {"lines.vert", "lines.frag", {}},
         {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
         {"surface.vert", "exact_surface.frag",
@@ -72,6 +75,15 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
 
+    if (m_document != &doc) {
+        dropSurfaceCaches();
+        m_document = &doc;
+    }
+    // Trim masks first: they draw into their own framebuffer.
+    QString maskError;
+    const bool masked = !options.trims || m_trimMasks.sync(doc, fc, options, &maskError);
+    const TrimMaskPass* masks = options.trims ? &m_trimMasks : nullptr;
+
     gl->glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
     gl->glViewport(0, 0, size.width(), size.height());
     gl->glDisable(GL_BLEND);
@@ -89,16 +101,12 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
-    if (m_document != &doc) {
-        dropSurfaceCaches();
-        m_document = &doc;
-    }
     // A surface too large for a texture is left out of the frame and reported.
     QString cacheError;
     const bool cached = m_cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
     bool ok = options.mode == RenderMode::Exact
-                  ? m_exact.draw(scene, m_cache, fc, lights, options, &m_error)
-                  : m_tessellated.draw(doc, fc, lights, options, &m_error);
+                  ? m_exact.draw(scene, m_cache, masks, fc, lights, options, &m_error)
+                  : m_tessellated.draw(doc, masks, fc, lights, options, &m_error);
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
         if (options.writeAov) {
@@ -121,11 +129,16 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
         m_error = cacheError;
         return false;
     }
+    if (ok && !masked) {
+        m_error = maskError;
+        return false;
+    }
     return ok;
 }
 
 void Renderer::dropSurfaceCaches() {
     m_cache.release();
+    m_trimMasks.release();
     m_tessellated.release();
     m_controlNet.release();
 }

@@ -9,6 +9,7 @@
 #include "render/shader_library.h"
 #include "render/surface_gpu_cache.h"
 #include "render/tessellated_pass.h"
+#include "render/trim_mask_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QPointer>
@@ -35,6 +36,9 @@ public:
     /// OffscreenRenderer. Returns false with lastError() set on failure: a shader that does
     /// not build (nothing drawn), or a surface whose control net exceeds the GPU's texture
     /// size (exact mode and the wireframe draw the frame without it).
+    /// Trimmed surfaces are cut by their trim masks unless options.trims is false; a mask
+    /// problem (too many trimmed surfaces for the GPU) draws those surfaces untrimmed and
+    /// returns false with lastError() set after drawing the frame.
     /// Surface ids and revisions are per document: drawing another Document than last time
     /// drops every cached upload first.
     bool render(const Document& doc, const Camera& camera, QSize size, const RenderOptions& options,
@@ -45,6 +49,9 @@ public:
 
     const SurfaceGpuCache& cache() const { return m_cache; }
     SurfaceGpuCache& cache() { return m_cache; }
+    /// The trim masks of the last frame (per-surface layers, redraw statistics, warnings).
+    const TrimMaskPass& trimMasks() const { return m_trimMasks; }
+    TrimMaskPass& trimMasks() { return m_trimMasks; }
     QString lastError() const { return m_error; }
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const { return m_glDescription; }
@@ -57,6 +64,7 @@ private:
     QPointer<const Document> m_document; ///< whose data the caches hold
     ShaderLibrary m_shaders;
     SurfaceGpuCache m_cache;
+    TrimMaskPass m_trimMasks;
     ExactSurfacePass m_exact;
     TessellatedPass m_tessellated;
     WireframePass m_wireframe;

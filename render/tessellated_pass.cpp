@@ -46,9 +46,9 @@ void TessellatedPass::update(Mesh& m, const Surface& s, const Revisions& rev, in
     m.nv = nv;
 }
 
-bool TessellatedPass::draw(const Document& doc, const FrameCamera& camera,
-                           const std::vector<Light>& lights, const RenderOptions& options,
-                           QString* error) {
+bool TessellatedPass::draw(const Document& doc, const TrimMaskPass* masks,
+                           const FrameCamera& camera, const std::vector<Light>& lights,
+                           const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     for (auto it = m_meshes.begin(); it != m_meshes.end();) {
         if (!doc.surface(it->first)) {
@@ -61,16 +61,18 @@ bool TessellatedPass::draw(const Document& doc, const FrameCamera& camera,
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
-    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("tessellated.vert"),
-                                                    QStringLiteral("tessellated.frag"), defines);
-    if (!prog) {
+    QOpenGLShaderProgram* plain = m_shaders->program(QStringLiteral("tessellated.vert"),
+                                                     QStringLiteral("tessellated.frag"), defines);
+    QOpenGLShaderProgram* trimmed =
+        m_shaders->program(QStringLiteral("tessellated.vert"), QStringLiteral("tessellated.frag"),
+                           defines + QStringList{QStringLiteral("KW_TRIM")});
+    if (!plain || !trimmed) {
         *error = m_shaders->lastError();
         return false;
     }
-    prog->bind();
-    setFrameUniforms(gl, prog, camera, lights);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
+    QOpenGLShaderProgram* bound = nullptr;
     for (const Surface& s : doc.scene().surfaces) {
         const int nu = options.partitionsU > 0 ? options.partitionsU : s.partitionsU;
         const int nv = options.partitionsV > 0 ? options.partitionsV : s.partitionsV;
@@ -79,7 +81,16 @@ bool TessellatedPass::draw(const Document& doc, const FrameCamera& camera,
         if (!m.vao || m.revisions.points != rev.points || m.revisions.knots != rev.knots ||
             m.nu != nu || m.nv != nv)
             update(m, s, rev, nu, nv);
+        const TrimMask* mask = masks ? masks->find(s.id) : nullptr;
+        QOpenGLShaderProgram* prog = mask ? trimmed : plain;
+        if (prog != bound) {
+            prog->bind();
+            bound = prog;
+            setFrameUniforms(gl, prog, camera, lights);
+        }
         setSurfaceUniforms(gl, prog, s);
+        if (mask)
+            masks->setUniforms(prog, *mask, 0);
         gl->glBindVertexArray(m.vao);
         gl->glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
     }

@@ -5,6 +5,7 @@
 #include "model/document.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
+#include "render/trim_mask_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QString>
@@ -17,9 +18,10 @@ public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
     /// Re-tessellates surfaces whose points, knots or partitions changed (partitionsU/V > 0
     /// override the surfaces' own), drops removed ones, and draws all into the bound
-    /// framebuffer. Returns false with *error set when the shader cannot be built.
-    bool draw(const Document& doc, const FrameCamera& camera, const std::vector<Light>& lights,
-              const RenderOptions& options, QString* error);
+    /// framebuffer, cutting the surfaces that have a mask in `masks` (may be null: no trims).
+    /// Returns false with *error set when the shader cannot be built.
+    bool draw(const Document& doc, const TrimMaskPass* masks, const FrameCamera& camera,
+              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
     void release();
 
 private:

@@ -1,4 +1,10 @@
-// Depth pre-pass: no colour, the rasteriser writes the base polygon's depth.
-// Trimming (later issue) must discard here too, exactly as in exact_surface.frag, or trimmed
-// holes would keep their depth and hide what lies behind them under GL_EQUAL.
-void main() {}
+// Depth pre-pass: no colour, the rasteriser writes the base polygon's depth. With KW_TRIM it
+// discards exactly as exact_surface.frag does, or trimmed holes would keep their depth and hide
+// what lies behind them under GL_EQUAL.
+#include "trim_sample.glsl"
+
+in vec2 vUv;
+
+void main() {
+    KW_DISCARD_TRIMMED(vUv);
+}

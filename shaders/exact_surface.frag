@@ -1,7 +1,10 @@
 // Exact pass (paper 3.4.1): evaluates the NURBS surface at the fragment's (u, v) and shades it.
-// Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth).
+// Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth),
+// KW_TRIM (discard where the surface's trim mask says trimmed; only used without the depth
+// pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
+#include "trim_sample.glsl"
 
 in vec2 vUv;
 flat in ivec2 vSpan;
@@ -19,7 +22,7 @@ layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not fl
 #endif
 
 void main() {
-    // Trimming (later issue) samples the surface's trim mask at vUv here and discards.
+    KW_DISCARD_TRIMMED(vUv);
     SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);

@@ -1,4 +1,7 @@
-// Baseline pass: Gouraud colour; AOVs are the interpolated tessellation values.
+// Baseline pass: Gouraud colour; AOVs are the interpolated tessellation values. KW_TRIM: discard
+// where the trim mask says trimmed, at the interpolated (u, v).
+#include "trim_sample.glsl"
+
 in vec3 vColor;
 in vec2 vUv;
 in vec3 vPosition;
@@ -15,6 +18,7 @@ layout(location = 3) out vec4 aovNormal;
 #endif
 
 void main() {
+    KW_DISCARD_TRIMMED(vUv);
     fragColor = vec4(vColor, 1.0);
 #ifdef KW_AOV
     aovIdUvDepth = vec4(uSurfaceId, vUv, vDepth);

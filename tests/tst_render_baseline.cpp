@@ -41,7 +41,8 @@ private Q_SLOTS:
         QTest::addColumn<QString>("sample");
         QTest::addColumn<int>("mode");
         QTest::addColumn<bool>("overlays");
-        for (const char* s : {"bicubic", "sphere", "torus", "trimmed_plate", "teapot"})
+        for (const char* s :
+             {"bicubic", "sphere", "torus", "trimmed_plate", "star_island", "teapot"})
             QTest::newRow(s) << QString::fromLatin1(s) << int(RenderMode::Exact) << false;
         QTest::newRow("teapot_tessellated")
             << QStringLiteral("teapot") << int(RenderMode::Tessellated) << false;

@@ -249,6 +249,48 @@ def trimmed_plate():
     write_knot("trimmed_plate.knot", [s])
 
 
+# ---------------------------------------------------------------- star_island.knot
+
+
+def star_points(cx, cy, r_out, r_in, tips, turn_deg=90.0, clockwise=False):
+    pts = []
+    for k in range(2 * tips + 1):
+        a = math.radians(turn_deg + (-1 if clockwise else 1) * 180.0 / tips * (k % (2 * tips)))
+        rad = r_out if k % 2 == 0 else r_in
+        pts.append((round(cx + rad * math.cos(a), 12), round(cy + rad * math.sin(a), 12)))
+    pts[-1] = pts[0]
+    return pts
+
+
+def star_island():
+    # A slightly domed bicubic plate over [0, 1]^2, trimmed by loops of mixed orientation:
+    # the domain boundary itself (clockwise), a concave six-pointed star hole (counter-
+    # clockwise), and a circular hole (clockwise arcs) holding a concave star island.
+    ku = kv = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0]
+    n = len(ku) - 4
+    pts = []
+    for j in range(n):
+        for i in range(n):
+            x, y = -2.0 + 4.0 * i / (n - 1), -1.5 + 3.0 * j / (n - 1)
+            pts.append([x, y, 0.15 - 0.05 * (x * x + y * y)])
+    boundary = [polyline([(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)])]
+    star_hole = [polyline(star_points(0.27, 0.5, 0.2, 0.08, 6))]
+    circle = [trim_curve_reversed(quarter_arc((0.7, 0.5), 0.24, a)) for a in (270, 180, 90, 0)]
+    island = [polyline(star_points(0.7, 0.5, 0.17, 0.07, 5, clockwise=True))]
+    trims = [{"id": 2, "curves": boundary}, {"id": 3, "curves": star_hole},
+             {"id": 4, "curves": circle}, {"id": 5, "curves": island}]
+    s = surface(1, "Star and island", 3, 3, ku, kv, pts, trims=trims, partitions=(10, 10),
+                mat=material([0.85, 0.6, 0.3], ks=0.3, shininess=30.0))
+    write_knot("star_island.knot", [s])
+
+
+def trim_curve_reversed(c):
+    """The same curve run backwards over the same (0..1) knot range."""
+    ks = c["knots"]
+    return {"degree": c["degree"], "knots": [ks[0] + ks[-1] - k for k in reversed(ks)],
+            "points": list(reversed(c["points"])), "weights": list(reversed(c["weights"]))}
+
+
 # ---------------------------------------------------------------- teapot.knot from IGES
 
 
@@ -371,6 +413,7 @@ def main():
     sphere()
     torus()
     trimmed_plate()
+    star_island()
     teapot()
     if CHECK_ONLY:
         for path in STALE:

@@ -1,0 +1,95 @@
+// Trim masks (paper 3.4.2): each trimmed surface's loops drawn in (u, v) into one layer of a
+// GL_TEXTURE_2D_ARRAY by triangle fans with XOR parity; the surface passes sample it and discard.
+#pragma once
+
+#include "model/document.h"
+#include "render/render_types.h"
+#include "render/shader_library.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QString>
+#include <QStringList>
+#include <glm/glm.hpp>
+#include <map>
+#include <vector>
+
+class QOpenGLShaderProgram;
+
+namespace kw {
+
+/// One surface's mask: texels [0, width) x [0, height) of layer `layer` span `rect` in (u, v),
+/// the part of the domain inside the bounding box of the trim curves' control points (the
+/// curves lie in it: convex hull property). Outside it no point is inside any loop, so the
+/// shader discards there without a lookup, and the texels go where the trims are.
+struct TrimMask {
+    int layer = -1;
+    int width = 0, height = 0;
+    glm::dvec4 rect{0.0, 1.0, 0.0, 1.0}; ///< (u first, u last, v first, v last)
+    std::uint64_t trimsRevision = 0;     ///< the trims the mask shows
+    std::uint64_t knotsRevision = 0;     ///< the domain it was drawn for
+    /// False when every loop was dropped (degenerate): the surface is drawn untrimmed, as
+    /// trimRegionContains treats a region without loops.
+    bool active = false;
+    QStringList warnings; ///< from makeTrimRegion when the mask was last drawn
+    TrimMaskStats stats;  ///< since creation or resetStats()
+};
+
+class TrimMaskPass {
+public:
+    /// Needs the context current for every call below; `shaders` outlives the pass.
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
+
+    /// Brings the masks of `doc` up to date for this frame and drops those of removed or
+    /// untrimmed surfaces. A surface's mask is redrawn only when its trims (or knots, which move
+    /// the domain) revision changed or its mask resolution changed; the resolution is four times
+    /// the surface's control-net length on screen (pixels) along u and along v, times the share of
+    /// the domain the mask rectangle spans, rounded up to a power of two, within
+    /// [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
+    /// 0 and the logic op and scissor test disabled. Returns false with *error set when the shaders
+    /// do not build or the masks do not fit the GPU's array limits (those surfaces draw untrimmed).
+    bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
+              QString* error);
+
+    /// The active mask of a surface, or nullptr (no trims, all loops degenerate, or unknown).
+    const TrimMask* find(SurfaceId id) const;
+    /// Binds the mask array to `unit` and sets trim_sample.glsl's uniforms on the bound program.
+    void setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask, int unit) const;
+
+    /// The mask array (0 before the first trimmed surface) and its layer size in texels.
+    GLuint texture() const { return m_texture; }
+    int layerSize() const { return m_size; }
+    int layerCount() const { return m_layers; }
+    /// Statistics of one surface (zero for an unknown id) or of all, since the last reset.
+    TrimMaskStats stats(SurfaceId id) const;
+    TrimMaskStats totalStats() const;
+    void resetStats();
+    /// Warnings of every current mask, each prefixed with its surface id.
+    QStringList warnings() const;
+    /// The mask texels of a surface read back (width x height, row 0 at v first; 0 trimmed,
+    /// 255 kept), for tests. Empty for a surface without an active mask.
+    std::vector<unsigned char> readMask(SurfaceId id) const;
+
+    /// Frees every GL object; the context must be current.
+    void release();
+
+    /// The mask resolution for `surface` seen by `camera` (see sync), capped at `cap`.
+    static glm::ivec2 maskResolution(const Surface& surface, const FrameCamera& camera, int cap);
+    /// The rectangle a surface's mask spans (TrimMask::rect): the trim control points' bounding
+    /// box clipped to the domain, or the whole domain when that leaves no area.
+    static glm::dvec4 maskRect(const Surface& surface);
+
+private:
+    bool ensureArray(int size, int layers, QString* error);
+    void redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution);
+
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ShaderLibrary* m_shaders = nullptr;
+    GLuint m_texture = 0, m_fbo = 0, m_vao = 0, m_buffer = 0;
+    int m_size = 0, m_layers = 0; ///< allocated array size
+    std::map<SurfaceId, TrimMask> m_masks;
+    std::vector<int> m_freeLayers;
+    TrimMaskStats m_removedStats; ///< statistics of masks since dropped, for totalStats()
+    std::int64_t m_arrayAllocations = 0;
+};
+
+} // namespace kw
