@@ -129,8 +129,18 @@ int runBench(const QStringList& args) {
         QStringLiteral("plots"),
         QStringLiteral("Write PNG plots into DIR (default: the --markdown file's folder)."),
         QStringLiteral("DIR"));
+    const QCommandLineOption noTrims(
+        QStringLiteral("no-trims"),
+        QStringLiteral("Draw trimmed surfaces over their whole domains (trims ignored) in every "
+                       "exact and baseline frame."));
+    const QCommandLineOption trimDrag(
+        QStringLiteral("trim-drag"),
+        QStringLiteral("Table 1: after each row's frames, also time frames that each move one "
+                       "trim control point of the file's first trimmed surface (its mask is "
+                       "redrawn every frame) and report their median, the CPU ms per mask "
+                       "redraw and the mask side ('-' for files without trims)."));
     parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, smoke, t2Size,
-                       samples, mode, shading, floor, json, markdown, plots});
+                       samples, mode, shading, floor, json, markdown, plots, noTrims, trimDrag});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -173,6 +183,14 @@ int runBench(const QStringList& args) {
     }
     const bool table1 = std::count(tableList.begin(), tableList.end(), 1) > 0;
     const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
+    config.trims = !parser.isSet(noTrims);
+    config.trimDrag = parser.isSet(trimDrag);
+    if (config.trimDrag && (!config.trims || !table1)) {
+        printError(QStringLiteral("%1: --trim-drag needs Table 1 (--tables 1) and trims (not "
+                                  "--no-trims)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
     // FILES, or else the samples (Table 2: the multi-patch teapot, the paper's Table 2 case).
     QStringList files1, files2;
     for (const QString& f : parser.positionalArguments()) {

@@ -1,5 +1,6 @@
-// GL test: 'knotwork bench' smoke run (both tables, 2 frames, 64x64) and its error exits. Checks
-// the report's shape and the quality numbers' meaning, never timings.
+// GL test: 'knotwork bench' smoke run (both tables, 2 frames, 64x64), --trim-drag and --no-trims
+// on Table 1, and the error exits. Checks the report's shape and the numbers' meaning, never
+// timings.
 #include <QDir>
 #include <QFile>
 #include <QImage>
@@ -9,6 +10,7 @@
 #include <QProcess>
 #include <QTest>
 #include <cmath>
+#include <tuple>
 
 namespace {
 
@@ -58,6 +60,23 @@ void checkQuality(const QJsonObject& o, const QString& where) {
                   QStringLiteral("perSilhouettePixel")},
                  where + QStringLiteral(" silhouetteError"));
 }
+
+QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly))
+        return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
+}
+
+QString readText(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? QString::fromUtf8(f.readAll()) : QString();
+}
+
+const QStringList kDragKeys = {QStringLiteral("trimDragMsMedian"),
+                               QStringLiteral("maskRedrawCpuMs"), QStringLiteral("maskSide")};
+const QString kDragHeader =
+    QStringLiteral("| trim drag ms/frame | mask redraw CPU ms | mask side |");
 
 const QStringList kTiming = {QStringLiteral("fps"), QStringLiteral("fpsMin"),
                              QStringLiteral("fpsMax"), QStringLiteral("msMedian"),
@@ -177,6 +196,79 @@ private Q_SLOTS:
         }
     }
 
+    void trimDragAndNoTrimsOnTable1() {
+        const QString dir = outDir();
+        const QStringList table1 = {QStringLiteral("bench"),    sample("trimmed_plate"),
+                                    sample("bicubic"),          QStringLiteral("--smoke"),
+                                    QStringLiteral("--tables"), QStringLiteral("1"),
+                                    QStringLiteral("--sizes"),  QStringLiteral("64")};
+        // (json, markdown) of a run with `extra` options; QVERIFY fails the caller on error.
+        const auto run = [&](const QStringList& extra, const QString& name) {
+            const QString json = dir + QLatin1Char('/') + name + QStringLiteral(".json");
+            const QString md = dir + QLatin1Char('/') + name + QStringLiteral(".md");
+            const Run r = knotwork(
+                table1 + extra +
+                QStringList{QStringLiteral("--json"), json, QStringLiteral("--markdown"), md});
+            return std::tuple{r, readJson(json), readText(md)};
+        };
+
+        // --trim-drag: the plate's row has finite drag numbers, the bicubic's (no trims) null.
+        const auto [dragRun, drag, dragMd] =
+            run({QStringLiteral("--trim-drag")}, QStringLiteral("drag"));
+        QVERIFY2(dragRun.code == 0, qPrintable(dragRun.err));
+        QVERIFY(dragRun.err.contains(QStringLiteral("trimmed_plate.knot 64x64 trim drag")));
+        QVERIFY(drag.value(QStringLiteral("settings"))
+                    .toObject()
+                    .value(QStringLiteral("trimDrag"))
+                    .toBool());
+        const QJsonArray rows = drag.value(QStringLiteral("table1")).toArray();
+        QCOMPARE(rows.size(), 2);
+        const QJsonObject plate = rows.at(0).toObject(), bicubic = rows.at(1).toObject();
+        QCOMPARE(plate.value(QStringLiteral("model")).toString(),
+                 QStringLiteral("trimmed_plate.knot"));
+        checkNumbers(plate, kDragKeys, QStringLiteral("trimmed_plate drag"));
+        QVERIFY(plate.value(QStringLiteral("trimDragMsMedian")).toDouble() > 0.0);
+        const int side = plate.value(QStringLiteral("maskSide")).toInt();
+        QVERIFY2(side >= 32 && (side & (side - 1)) == 0, qPrintable(QString::number(side)));
+        for (const QString& k : kDragKeys)
+            QVERIFY2(bicubic.contains(k) && bicubic.value(k).isNull(), qPrintable(k));
+        QVERIFY(dragMd.contains(kDragHeader));
+        QVERIFY(dragMd.contains(
+            QStringLiteral("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")));
+        const QString bicubicLine = dragMd.mid(dragMd.indexOf(QStringLiteral("| bicubic.knot |")))
+                                        .section(QLatin1Char('\n'), 0, 0);
+        QVERIFY2(bicubicLine.endsWith(QStringLiteral("| - | - | - |")), qPrintable(bicubicLine));
+        const QString plateLine =
+            dragMd.mid(dragMd.indexOf(QStringLiteral("| trimmed_plate.knot |")))
+                .section(QLatin1Char('\n'), 0, 0);
+        QCOMPARE(plateLine.count(QLatin1Char('|')), 14);
+        QVERIFY2(plateLine.endsWith(QStringLiteral(" | %1 |").arg(side)), qPrintable(plateLine));
+
+        // Without --trim-drag the columns and keys are absent; --no-trims shows the whole plate.
+        const auto [wholeRun, whole, wholeMd] =
+            run({QStringLiteral("--no-trims")}, QStringLiteral("whole"));
+        QVERIFY2(wholeRun.code == 0, qPrintable(wholeRun.err));
+        QVERIFY(!wholeMd.contains(kDragHeader));
+        QVERIFY(wholeMd.contains(QStringLiteral("partitions, trims off")));
+        QVERIFY(!dragMd.contains(QStringLiteral("trims off")));
+        const QJsonObject settings = whole.value(QStringLiteral("settings")).toObject();
+        QCOMPARE(settings.value(QStringLiteral("trims")).toBool(true), false);
+        QCOMPARE(settings.value(QStringLiteral("trimDrag")).toBool(true), false);
+        const QJsonArray wholeRows = whole.value(QStringLiteral("table1")).toArray();
+        QCOMPARE(wholeRows.size(), 2);
+        for (const QJsonValue& row : wholeRows)
+            for (const QString& k : kDragKeys)
+                QVERIFY2(!row.toObject().contains(k), qPrintable(k));
+        const auto coverage = [](const QJsonObject& o) {
+            return o.value(QStringLiteral("coverage")).toDouble();
+        };
+        QVERIFY2(coverage(wholeRows.at(0).toObject()) > coverage(plate),
+                 qPrintable(QStringLiteral("%1 <= %2")
+                                .arg(coverage(wholeRows.at(0).toObject()))
+                                .arg(coverage(plate))));
+        QCOMPARE(coverage(wholeRows.at(1).toObject()), coverage(bicubic));
+    }
+
     void badInputIsAnErrorNotACrash() {
         const Run missing = knotwork({QStringLiteral("bench"), QStringLiteral("/no/such.knot")});
         QCOMPARE(missing.code, 1);
@@ -188,6 +280,9 @@ private Q_SLOTS:
               QStringList{QStringLiteral("--table2-size"), QStringLiteral("780")},
               QStringList{QStringLiteral("--sizes"), QStringLiteral("64,5000")},
               QStringList{QStringLiteral("--tables"), QStringLiteral("3")},
+              QStringList{QStringLiteral("--trim-drag"), QStringLiteral("--no-trims")},
+              QStringList{QStringLiteral("--trim-drag"), QStringLiteral("--tables"),
+                          QStringLiteral("2")},
               QStringList{QStringLiteral("--normal-floor"), QStringLiteral("-1")}}) {
             const Run r = knotwork(QStringList{QStringLiteral("bench"), sample("bicubic")} + bad);
             QVERIFY2(r.code == 2, qPrintable(bad.join(QLatin1Char(' ')) + r.err));

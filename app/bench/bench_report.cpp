@@ -70,6 +70,16 @@ QString mark(const MethodResult& r) {
     return r.matched ? QString() : QStringLiteral(" †");
 }
 
+/// Table 1's trim drag cells: none without --trim-drag, '-' where the file has no trims.
+QString dragCells(const BenchConfig& c, const std::optional<TrimDrag>& d) {
+    if (!c.trimDrag)
+        return {};
+    if (!d)
+        return QStringLiteral(" - | - | - |");
+    return QStringLiteral(" %1 | %2 | %3 |")
+        .arg(num(d->medianMs, 2), num(d->maskCpuMs, 2), QString::number(d->maskSide));
+}
+
 } // namespace
 
 QJsonObject reportJson(const BenchReport& report, const QString& command) {
@@ -86,6 +96,14 @@ QJsonObject reportJson(const BenchReport& report, const QString& command) {
         const QJsonObject q = qualityJson(r.quality);
         for (auto it = q.begin(); it != q.end(); ++it)
             o.insert(it.key(), it.value());
+        if (c.trimDrag) { // null where the file has no trimmed surface
+            const std::optional<TrimDrag>& d = r.drag;
+            o.insert(QStringLiteral("trimDragMsMedian"),
+                     d ? QJsonValue(d->medianMs) : QJsonValue());
+            o.insert(QStringLiteral("maskRedrawCpuMs"),
+                     d ? QJsonValue(d->maskCpuMs) : QJsonValue());
+            o.insert(QStringLiteral("maskSide"), d ? QJsonValue(d->maskSide) : QJsonValue());
+        }
         t1.append(o);
     }
     QJsonArray t2;
@@ -130,6 +148,8 @@ QJsonObject reportJson(const BenchReport& report, const QString& command) {
              {QStringLiteral("exactShading"), c.shading == RenderOptions::Shading::DepthPrepass
                                                   ? QStringLiteral("prepass")
                                                   : QStringLiteral("exact-depth")},
+             {QStringLiteral("trims"), c.trims},
+             {QStringLiteral("trimDrag"), c.trimDrag},
              {QStringLiteral("gluMaxVertices"), double(c.gluMaxVertices)}}},
         {QStringLiteral("table1"), t1},
         {QStringLiteral("table2"), t2}};
@@ -149,23 +169,29 @@ QString reportMarkdown(const BenchReport& report, const QString& command,
               .arg(c.lights);
     md += QStringLiteral("Command: `%1`\n\n").arg(command);
     if (!report.table1.empty()) {
-        md += QStringLiteral("### Table 1: %2 mode, %1 × %1 partitions\n\n"
-                             "| model | patches | resolution | covered | FPS | FPS min | FPS max | "
-                             "CPU ms/frame | normal error mean / max (°) | silhouette error mean "
-                             "/ max (px) |\n|---|---|---|---|---|---|---|---|---|---|\n")
-                  .arg(c.table1Partitions)
-                  .arg(c.table1Mode == RenderMode::Exact ? QStringLiteral("exact")
-                                                         : QStringLiteral("tessellated"));
+        md +=
+            QStringLiteral("### Table 1: %2 mode, %1 × %1 partitions%3\n\n"
+                           "| model | patches | resolution | covered | FPS | FPS min | FPS max | "
+                           "CPU ms/frame | normal error mean / max (°) | silhouette error mean "
+                           "/ max (px) |%4\n|---|---|---|---|---|---|---|---|---|---|%5\n")
+                .arg(c.table1Partitions)
+                .arg(c.table1Mode == RenderMode::Exact ? QStringLiteral("exact")
+                                                       : QStringLiteral("tessellated"),
+                     c.trims ? QString() : QStringLiteral(", trims off"),
+                     c.trimDrag
+                         ? QStringLiteral(" trim drag ms/frame | mask redraw CPU ms | mask side |")
+                         : QString(),
+                     c.trimDrag ? QStringLiteral("---|---|---|") : QString());
         for (const Table1Row& r : report.table1)
             md += QStringLiteral("| %1 | %2 | %3 | %4 % | %5 | %6 | %7 | %8 | %9 / %10 | %11 / "
-                                 "%12 |\n")
+                                 "%12 |%13\n")
                       .arg(r.model)
                       .arg(r.surfaces)
                       .arg(sq(r.side), num(100.0 * r.coverage), num(r.timing.fps()),
                            num(r.timing.fpsMin()), num(r.timing.fpsMax()), num(r.timing.cpuMs),
                            deg(r.quality.normal.meanDegrees), deg(r.quality.normal.maxDegrees))
                       .arg(num(r.quality.silhouette.meanPixels, 2),
-                           num(r.quality.silhouette.maxPixels, 2));
+                           num(r.quality.silhouette.maxPixels, 2), dragCells(c, r.drag));
         md += QLatin1Char('\n');
     }
     if (!report.table2.empty()) {

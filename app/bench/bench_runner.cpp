@@ -101,6 +101,7 @@ public:
         o.mode = mode;
         o.partitionsU = o.partitionsV = partitions;
         o.lightCount = lights;
+        o.trims = trims;
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// Clears the target as the renderer does (colour, AOVs, depth) by drawing an empty
@@ -132,6 +133,7 @@ public:
     MeshPass glu, fine;
     Document empty;
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
+    bool trims = true;
 
 private:
     bool m_withAov = false;
@@ -139,14 +141,17 @@ private:
     long long m_gluTriangles = 0;
 };
 
-/// Warm-up frames, then `config.frames` timed frames each ended by glFinish.
+/// Warm-up frames, then `config.frames` timed frames each ended by glFinish. `before(f)`, when
+/// given, runs ahead of frame f outside the timer.
 bool timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timing& t,
-                QString* error) {
+                QString* error, const std::function<void(int)>& before = {}) {
     std::vector<double> ms;
     double cpuStart = 0.0;
     for (int f = 0; f < config.warmup + config.frames; ++f) {
         if (f == config.warmup)
             cpuStart = processCpuMs();
+        if (before)
+            before(f);
         QElapsedTimer timer;
         timer.start();
         if (!frame(error))
@@ -196,6 +201,43 @@ QString describe(const Model& m, const QString& what, const MethodResult& r) {
         .arg(r.quality.silhouette.maxPixels, 0, 'f', 1);
 }
 
+/// A trim control point of the first trimmed surface to drag (an interior point of its first
+/// curve when it has one, so the loop stays closed), or an invalid ref without trims.
+TrimPointRef dragTarget(const Scene& scene) {
+    for (const Surface& s : scene.surfaces)
+        if (!s.trims.empty() && !s.trims.front().curves.empty()) {
+            const NurbsCurve2& c = s.trims.front().curves.front();
+            return {s.id, s.trims.front().id, 0, c.points.size() > 2 ? 1 : 0};
+        }
+    return {};
+}
+
+/// --trim-drag: times frames that each move `target` a little back and forth (as a drag sends
+/// them) so its mask is redrawn every frame; the point is put back afterwards.
+bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& frame,
+                 const TrimPointRef& target, TrimDrag& drag, QString* error) {
+    const Surface* surface = m.doc.surface(target.surface);
+    const glm::dvec2 home = surface->trims.front().curves.front().points[size_t(target.index)];
+    const Interval du = surfaceDomainU(surface->geometry);
+    TrimMaskPass& masks = s.renderer.renderer().trimMasks();
+    masks.resetStats();
+    const auto move = [&](int f) {
+        const double step = (f % 2 ? -1.0 : 1.0) * 1e-3 * (du.last - du.first);
+        m.doc.setTrimPoint(target, home + glm::dvec2(step, 0.5 * step));
+    };
+    Timing t;
+    const bool ok = timeFrames(s, config, frame, t, error, move);
+    m.doc.setTrimPoint(target, home);
+    if (!ok)
+        return false;
+    const TrimMaskStats st = masks.stats(target.surface);
+    drag.medianMs = t.medianMs;
+    drag.maskCpuMs = st.redraws ? double(st.cpuNanoseconds) * 1e-6 / double(st.redraws) : 0.0;
+    if (const TrimMask* mask = masks.find(target.surface))
+        drag.maskSide = std::max(mask->width, mask->height);
+    return true;
+}
+
 bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
                const std::function<void(const QString&)>& progress, QString* error) {
     for (const QString& file : config.table1Files) {
@@ -237,6 +279,20 @@ bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
                                            ? QStringLiteral("exact")
                                            : QStringLiteral("tessellated")),
                               r));
+            if (const TrimPointRef target = dragTarget(m.doc.scene());
+                config.trimDrag && config.trims && target.surface.isValid()) {
+                TrimDrag drag;
+                if (!measureDrag(s, config, m, exact, target, drag, error))
+                    return false;
+                row.drag = drag;
+                progress(QStringLiteral("%1 %2x%2 trim drag: %3 ms/frame, mask redraw %4 CPU ms, "
+                                        "mask side %5")
+                             .arg(m.name)
+                             .arg(side)
+                             .arg(drag.medianMs, 0, 'f', 2)
+                             .arg(drag.maskCpuMs, 0, 'f', 2)
+                             .arg(drag.maskSide));
+            }
             report.table1.push_back(row);
         }
     }
@@ -414,6 +470,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     report.threads = QThread::idealThreadCount();
     Session s;
     s.shading = config.shading;
+    s.trims = config.trims;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

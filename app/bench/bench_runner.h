@@ -7,6 +7,7 @@
 #include <QSize>
 #include <QString>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace kw::bench {
@@ -35,6 +36,11 @@ struct BenchConfig {
     /// Table 1 mode (exact as in the paper; tessellated for comparison) and exact shading way.
     RenderMode table1Mode = RenderMode::Exact;
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
+    /// False (--no-trims): every renderer frame draws trimmed surfaces over their whole domains.
+    bool trims = true;
+    /// --trim-drag: each Table 1 row also times frames that each move one trim control point of
+    /// the file's first trimmed surface (its mask is redrawn every frame). Needs trims on.
+    bool trimDrag = false;
     /// GLU search: sampling tolerance halved from 50 px (GLU's default) down to this.
     double gluMinTolerance = 0.25;
     /// GLU search also stops when one tessellation produces more vertices than this.
@@ -55,6 +61,13 @@ struct Quality {
     SilhouetteError silhouette;
 };
 
+/// Table 1 with --trim-drag: frames that each move one trim control point (see BenchConfig).
+struct TrimDrag {
+    double medianMs = 0.0;  ///< median frame, mask redrawn every frame
+    double maskCpuMs = 0.0; ///< CPU time per mask redraw (flattening + issuing the draws)
+    int maskSide = 0;       ///< larger side of the dragged surface's mask, texels
+};
+
 struct Table1Row {
     QString model;
     int surfaces = 0;
@@ -62,6 +75,8 @@ struct Table1Row {
     double coverage = 0.0; ///< fraction of pixels showing a surface
     Timing timing;
     Quality quality;
+    /// Set when config.trimDrag and the file has a trimmed surface; empty otherwise.
+    std::optional<TrimDrag> drag;
 };
 
 /// One method of Table 2 at one partition count.
