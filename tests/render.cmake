@@ -8,5 +8,5 @@ kw_add_test(tst_render_baseline LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_r
 kw_add_test(tst_render_uploads LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_uploads.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
 kw_add_test(tst_cmd_render LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_cmd_render.cpp LIBS PkgConfig::OIIO)
-target_compile_definitions(tst_cmd_render PRIVATE KW_KNOTWORK_BINARY="$<TARGET_FILE:knotwork>")
+target_compile_definitions(tst_cmd_render PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_cmd_render knotwork)

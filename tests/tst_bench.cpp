@@ -1,6 +1,8 @@
 // GL test: 'knotwork bench' smoke run (both tables, 2 frames, 64x64), --trim-drag and --no-trims
 // on Table 1, and the error exits. Checks the report's shape and the numbers' meaning, never
 // timings.
+#include "knotwork_process.h"
+
 #include <QDir>
 #include <QFile>
 #include <QImage>
@@ -13,20 +15,6 @@
 #include <tuple>
 
 namespace {
-
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-Run knotwork(const QStringList& args) {
-    QProcess p;
-    p.start(QStringLiteral(KW_KNOTWORK_BINARY), args);
-    p.waitForFinished(300000);
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-            QString::fromUtf8(p.readAllStandardOutput()),
-            QString::fromUtf8(p.readAllStandardError())};
-}
 
 QString sample(const char* name) {
     return QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QString::fromLatin1(name));

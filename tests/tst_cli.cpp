@@ -1,5 +1,6 @@
 // knotwork info / eval, run as a process: outputs agree with the kernel, and bad input or bad
 // usage exits 1 or 2 with a one-line message.
+#include "knotwork_process.h"
 #include "model/knotfile.h"
 
 #include <QDir>
@@ -13,25 +14,6 @@
 using namespace kw;
 
 namespace {
-
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-Run knotwork(const QStringList& args,
-             const QProcessEnvironment& env = QProcessEnvironment::systemEnvironment()) {
-    QProcess p;
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(KW_KNOTWORK_BIN), args);
-    Run r;
-    if (!p.waitForFinished(60000) || p.exitStatus() != QProcess::NormalExit)
-        return r;
-    r.code = p.exitCode();
-    r.out = QString::fromUtf8(p.readAllStandardOutput());
-    r.err = QString::fromUtf8(p.readAllStandardError());
-    return r;
-}
 
 QStringList samples() {
     QStringList paths;

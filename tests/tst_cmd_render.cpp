@@ -1,24 +1,12 @@
 // GL test: 'knotwork render' end to end (image, AOV EXR channels, error exits) and 'bench'.
+#include "knotwork_process.h"
+
 #include <OpenImageIO/imageio.h>
 #include <QDir>
 #include <QProcess>
 #include <QTest>
 
 namespace {
-
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-Run knotwork(const QStringList& args) {
-    QProcess p;
-    p.start(QStringLiteral(KW_KNOTWORK_BINARY), args);
-    p.waitForFinished(120000);
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-            QString::fromUtf8(p.readAllStandardOutput()),
-            QString::fromUtf8(p.readAllStandardError())};
-}
 
 QString sample(const char* name) {
     return QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QString::fromLatin1(name));

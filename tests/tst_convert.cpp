@@ -1,4 +1,5 @@
 // knotwork convert, run as a process: round trips through OBJ, CAD files in, bad input exits 1.
+#include "knotwork_process.h"
 #include "model/knotfile.h"
 
 #include <QDir>
@@ -8,23 +9,6 @@
 using namespace kw;
 
 namespace {
-
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-Run knotwork(const QStringList& args) {
-    QProcess p;
-    p.start(QStringLiteral(KW_KNOTWORK_BIN), args);
-    Run r;
-    if (!p.waitForFinished(120000) || p.exitStatus() != QProcess::NormalExit)
-        return r; // a crash or hang leaves code -1
-    r.code = p.exitCode();
-    r.out = QString::fromUtf8(p.readAllStandardOutput());
-    r.err = QString::fromUtf8(p.readAllStandardError());
-    return r;
-}
 
 QString out(const QString& name) {
     return QStringLiteral(KW_TEST_OUTPUT_DIR "/convert_") + name;

@@ -1,5 +1,6 @@
 // knotwork info on trimmed files, run as a process: loops per surface with their curve counts,
 // and the warnings of messy trims in text and JSON; knotwork render repeats them on stderr.
+#include "knotwork_process.h"
 #include "model/knotfile.h"
 #include "trim_test_util.h"
 
@@ -10,32 +11,6 @@
 #include <QtTest>
 
 using namespace kw;
-
-namespace {
-
-struct Run {
-    int code = -1;
-    QString out, err;
-};
-
-Run knotwork(const QStringList& args, bool gl = false) {
-    QProcess p;
-    if (gl) { // the render half: an X display if there is one (xvfb-run around ctest)
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("xcb"));
-        p.setProcessEnvironment(env);
-    }
-    p.start(QStringLiteral(KW_KNOTWORK_BIN), args);
-    Run r;
-    if (!p.waitForFinished(60000) || p.exitStatus() != QProcess::NormalExit)
-        return r;
-    r.code = p.exitCode();
-    r.out = QString::fromUtf8(p.readAllStandardOutput());
-    r.err = QString::fromUtf8(p.readAllStandardError());
-    return r;
-}
-
-} // namespace
 
 class TestTrimInfo : public QObject {
     Q_OBJECT
@@ -98,10 +73,12 @@ private Q_SLOTS:
         QCOMPARE(surface[QStringLiteral("trimWarnings")].toArray().size(), 1);
 
         // knotwork render draws it (exit 0) and says what it ignored.
-        const Run render = knotwork({QStringLiteral("render"), path, QStringLiteral("-o"),
-                                     dir.filePath(QStringLiteral("messy.png")),
-                                     QStringLiteral("--size"), QStringLiteral("64x64")},
-                                    true);
+        const Run render =
+            knotwork({QStringLiteral("render"), path, QStringLiteral("-o"),
+                      dir.filePath(QStringLiteral("messy.png")), QStringLiteral("--size"),
+                      QStringLiteral("64x64")},
+                     // the render half needs X (xvfb-run around ctest)
+                     environmentWith(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("xcb")));
         if (qEnvironmentVariableIsEmpty("DISPLAY")) {
             QVERIFY(render.err.contains(QStringLiteral("xvfb")));
             qInfo("no DISPLAY: the render half needs xvfb-run around ctest");
