@@ -5,12 +5,54 @@
 #include "render/shading_uniforms.h"
 
 #include <QOpenGLShaderProgram>
+#include <algorithm>
+#include <cstdlib>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 
 namespace kw {
 
 namespace {
 constexpr int kTrimMaskUnit = 3; // after uControl, uSpansU, uSpansV
+
+double gatherMinCellPixels() {
+    if (const char* e = std::getenv("KW_GATHER_MIN_CELL_PX"))
+        return std::atof(e);
+    return ExactSurfacePass::kGatherMinCellPixels;
+}
+} // namespace
+
+double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
+    const int cells = g.polygon.cellCount();
+    if (g.control.empty() || cells <= 0)
+        return 0.0;
+    // Bounding box of the control points (convex hull property: it holds the surface).
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec4& t : g.control) {
+        if (!(t.w > 0.0f))
+            continue;
+        const glm::vec3 p = glm::vec3(t) / t.w;
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    if (lo.x > hi.x)
+        return 0.0;
+    const glm::vec3 o(g.origin);
+    glm::vec2 smin(std::numeric_limits<float>::max()), smax(-std::numeric_limits<float>::max());
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        const glm::vec4 clip = camera.viewProjection * glm::vec4(c + o, 1.0f);
+        if (!(clip.w > 0.0f)) // a corner behind the eye: treat the surface as large
+            return std::numeric_limits<double>::infinity();
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        smin = glm::min(smin, ndc);
+        smax = glm::max(smax, ndc);
+    }
+    smin = glm::clamp(smin, glm::vec2(-1.0f), glm::vec2(1.0f));
+    smax = glm::clamp(smax, glm::vec2(-1.0f), glm::vec2(1.0f));
+    const glm::vec2 extent =
+        glm::max(smax - smin, glm::vec2(0.0f)) * 0.5f * glm::vec2(camera.viewport);
+    return double(extent.x) * double(extent.y) / double(cells);
 }
 
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
@@ -19,12 +61,13 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
 }
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
-                                             const RenderOptions& options, bool trimmed) {
+                                             const RenderOptions& options, bool trimmed,
+                                             bool gatherAllowed) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
-    if ((p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
+    if (gatherAllowed && (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
         d << QStringLiteral("KW_CELL_GATHER");
     if (options.writeAov)
         d << QStringLiteral("KW_AOV");
@@ -102,6 +145,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
     }
     QOpenGLShaderProgram* bound = nullptr;
     bool ok = true;
+    const double minCellPixels = gatherMinCellPixels();
     for (const Surface& s : scene.surfaces) {
         const SurfaceGpu* g = cache.find(s.id);
         if (!g)
@@ -113,9 +157,13 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         const TrimMask* mask = masks && options.shading == RenderOptions::Shading::ExactDepth
                                    ? masks->find(s.id)
                                    : nullptr;
-        QOpenGLShaderProgram* prog = m_shaders->program(
-            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-            variantDefines(g->degreeU, g->degreeV, int(lights.size()), options, mask != nullptr));
+        // The gather pays only where a cell covers many fragments: on small cells its flat
+        // varyings cost llvmpipe's triangle setup more than the fetches it saves.
+        const bool gather = projectedPixelsPerCell(*g, camera) >= minCellPixels;
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(g->degreeU, g->degreeV, int(lights.size()), options,
+                                              mask != nullptr, gather));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;

@@ -26,9 +26,19 @@ public:
               const FrameCamera& camera, const std::vector<Light>& lights,
               const RenderOptions& options, QString* error);
 
-    /// The defines of the exact shader variant for degrees (p, q) and these options.
+    /// The defines of the exact shader variant for degrees (p, q) and these options. The
+    /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
+    /// `gatherAllowed` is true.
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
-                                      bool trimmed = false);
+                                      bool trimmed = false, bool gatherAllowed = true);
+
+    /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
+    /// projected bounding box of its control points (clamped to the viewport) over its cell
+    /// count; infinity when the box reaches behind the eye, 0 for an empty surface.
+    static double projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera);
+
+    /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant.
+    static constexpr double kGatherMinCellPixels = 64.0;
 
 private:
     bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
