@@ -37,7 +37,9 @@ public:
     /// count; infinity when the box reaches behind the eye, 0 for an empty surface.
     static double projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera);
 
-    /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant.
+    /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant
+    /// (docs/PERFORMANCE.md). KW_GATHER_MIN_CELL_PX in the environment overrides it, for
+    /// measuring (0: always gather, 1e30: never).
     static constexpr double kGatherMinCellPixels = 64.0;
 
 private:

@@ -1,7 +1,11 @@
 // Render data layouts without GL: span tables reproduce the kernel's basis functions, base
-// polygon cells lie in one knot span each, partial vertex updates equal a rebuild.
+// polygon cells lie in one knot span each, partial vertex updates equal a rebuild,
+// the pixels-per-cell estimate behind the per-cell gather choice.
+#include "render/exact_surface_pass.h"
 #include "render/gpu_layout.h"
 #include "render_test_util.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 using namespace kw;
 
@@ -144,6 +148,42 @@ private Q_SLOTS:
             const glm::dvec3 back = glm::dvec3(t[k]) / double(t[k].w) + o;
             QVERIFY(glm::length(back - s.points[k]) < 1e-6);
         }
+    }
+
+    // The gather choice's estimate: projected control bounds (clamped to the viewport) per cell.
+    void projectedPixelsPerCellFromControlBounds() {
+        const NurbsSurface s =
+            kwtest::wavyPatch(3, 3, kwtest::clampedUniform(3, 4), kwtest::clampedUniform(3, 5));
+        SurfaceGpu g;
+        g.origin = controlOrigin(s);
+        g.control = packControlPoints(s, g.origin);
+        g.polygon = buildBasePolygon(s, 10, 10);
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const glm::dvec3& p : s.points) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        const glm::dvec3 size = hi - lo, centre = 0.5 * (lo + hi);
+        const double scale = 1.0 / std::max(size.x, size.y); // box spans at most NDC [-0.5, 0.5]
+        FrameCamera cam;
+        cam.viewport = glm::ivec2(400, 300);
+        cam.viewProjection = glm::mat4(glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) *
+                                       glm::translate(glm::dmat4(1.0), -centre));
+        const double expected =
+            (size.x * scale * 200.0) * (size.y * scale * 150.0) / double(g.polygon.cellCount());
+        const double got = ExactSurfacePass::projectedPixelsPerCell(g, cam);
+        QVERIFY2(std::abs(got - expected) < 1e-3 * expected, qPrintable(QString::number(got)));
+        // Eight times the scale: the box is clamped to the viewport (4 NDC units squared).
+        cam.viewProjection = glm::mat4(glm::scale(glm::dmat4(1.0), glm::dvec3(8.0 * scale)) *
+                                       glm::translate(glm::dmat4(1.0), -centre));
+        QVERIFY(ExactSurfacePass::projectedPixelsPerCell(g, cam) <=
+                400.0 * 300.0 / double(g.polygon.cellCount()) * (1.0 + 1e-6));
+        // A corner behind the eye (clip w <= 0): treated as large.
+        cam.viewProjection = glm::mat4(1.0f);
+        cam.viewProjection[3][3] = -1.0f;
+        QVERIFY(std::isinf(ExactSurfacePass::projectedPixelsPerCell(g, cam)));
+        // Nothing uploaded: no estimate.
+        QCOMPARE(ExactSurfacePass::projectedPixelsPerCell(SurfaceGpu{}, cam), 0.0);
     }
 };
 
