@@ -40,7 +40,7 @@ public:
     /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant
     /// (docs/PERFORMANCE.md). KW_GATHER_MIN_CELL_PX in the environment overrides it, for
     /// measuring (0: always gather, 1e30: never).
-    static constexpr double kGatherMinCellPixels = 128.0;
+    static constexpr double kGatherMinCellPixels = 64.0;
 
 private:
     bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
