@@ -85,7 +85,8 @@ glm::dvec2 UvPanel::toUv(QPointF pixel) const {
 void UvPanel::refreshMask() {
     const Surface* s = shown(m_doc, m_selection);
     if (!s) {
-        m_mask = QImage();
+        m_mask = m_maskColors = QImage();
+        m_trimLines.clear();
         m_maskSurface = {};
         return;
     }
@@ -94,7 +95,15 @@ void UvPanel::refreshMask() {
     if (m_maskSurface == s->id && m_maskRevision == rev.trims && m_maskGeometry == rev.knots &&
         m_mask.size() == size)
         return;
+    // Mask, its colouring and the flattened loops change only with the trims or the domain, so
+    // they are made here once, not on every paint (a 3D drag repaints this panel each step).
     m_mask = trimMaskImage(*s, size);
+    m_maskColors = m_mask.convertToFormat(QImage::Format_Indexed8);
+    QList<QRgb> table(256);
+    for (int i = 0; i < 256; ++i) // kept in light blue, removed in dark grey
+        table[i] = i > 127 ? qRgb(176, 200, 230) : qRgb(58, 60, 66);
+    m_maskColors.setColorTable(table);
+    m_trimLines = trimPolylines(*s);
     m_maskSurface = s->id;
     m_maskRevision = rev.trims;
     m_maskGeometry = rev.knots;
@@ -137,13 +146,7 @@ void UvPanel::paintEvent(QPaintEvent*) {
     }
     refreshMask();
     const QRectF r = domainRect();
-    // Mask: kept in light blue, removed in dark grey.
-    QImage colored = m_mask.convertToFormat(QImage::Format_Indexed8);
-    QList<QRgb> table(256);
-    for (int i = 0; i < 256; ++i)
-        table[i] = i > 127 ? qRgb(176, 200, 230) : qRgb(58, 60, 66);
-    colored.setColorTable(table);
-    p.drawImage(r.topLeft(), colored);
+    p.drawImage(r.topLeft(), m_maskColors);
     p.setPen(QPen(palette().text().color(), 1.0));
     p.drawRect(r);
     const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
@@ -157,7 +160,7 @@ void UvPanel::paintEvent(QPaintEvent*) {
     p.setRenderHint(QPainter::Antialiasing);
     // Trim loops, then control polygons and points.
     p.setPen(QPen(QColor(230, 130, 30), 2.0));
-    for (const auto& line : trimPolylines(*s)) {
+    for (const auto& line : m_trimLines) {
         QPolygonF poly;
         for (const glm::dvec2& uv : line)
             poly << toWidget(uv);

@@ -57,7 +57,9 @@ private:
     Document* m_doc;
     Selection* m_selection;
     QUndoStack* m_stack;
-    QImage m_mask;
+    QImage m_mask;       ///< the parity mask (grey 0 / 255), what mask() returns
+    QImage m_maskColors; ///< m_mask in the panel's colours, drawn by paintEvent
+    std::vector<std::vector<glm::dvec2>> m_trimLines; ///< flattened trim loops, drawn by paintEvent
     SurfaceId m_maskSurface;
     std::uint64_t m_maskRevision = 0;
     std::uint64_t m_maskGeometry = 0;
