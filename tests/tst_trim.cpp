@@ -1,5 +1,6 @@
 // Trim loops: flattening tolerance, even-odd classification and trimmed area (model/trim.h).
 #include "model/knotfile.h"
+#include "model/nurbs_shapes.h"
 #include "model/trim.h"
 #include "model_fixtures.h"
 
@@ -10,17 +11,6 @@ using namespace kw;
 using namespace kw::test;
 
 namespace {
-
-// A flat bilinear patch: (u, v) in [0, 1]^2 -> (4u, 2v, 0), so its area is 8 x (u, v) area.
-NurbsSurface flatPatch() {
-    NurbsSurface s;
-    s.degreeU = s.degreeV = 1;
-    s.countU = s.countV = 2;
-    s.knotsU = s.knotsV = {0, 0, 1, 1};
-    s.points = {{0, 0, 0}, {4, 0, 0}, {0, 2, 0}, {4, 2, 0}};
-    s.weights = {1, 1, 1, 1};
-    return s;
-}
 
 // An exact circle of radius r about c: four rational quadratic quarter arcs.
 TrimLoop circleLoop(TrimLoopId id, glm::dvec2 c, double r) {
@@ -134,7 +124,8 @@ void TestTrim::spansMatchClassification() {
 }
 
 void TestTrim::areaOfPlateWithHoleAndIsland() {
-    const NurbsSurface plate = flatPatch();
+    // A flat patch (u, v) in [0, 1]^2 -> (4u, 2v, 0): its area is 8 x the (u, v) area.
+    const NurbsSurface plate = makeBilinear({0, 0, 0}, {4, 0, 0}, {0, 2, 0}, {4, 2, 0});
     QVERIFY(std::abs(trimmedSurfaceArea(plate, {}) - 8.0) < 1e-12);
     const double pi = std::acos(-1.0);
     std::vector<TrimLoop> trims = {rectLoop(TrimLoopId{1}, 0.1, 0.1, 0.9, 0.9),

@@ -1,5 +1,6 @@
 // Messy trim input (issue 4, item 3) on the CPU: gaps and open loops are closed with a warning,
 // degenerate loops dropped with a warning, orientation does not matter, curves up to degree 15.
+#include "model/nurbs_shapes.h"
 #include "model/trim.h"
 #include "trim_test_util.h"
 
@@ -9,16 +10,6 @@ using namespace kw;
 using namespace kwtest;
 
 namespace {
-
-NurbsSurface unitPatch() {
-    NurbsSurface s;
-    s.degreeU = s.degreeV = 1;
-    s.countU = s.countV = 2;
-    s.knotsU = s.knotsV = {0, 0, 1, 1};
-    s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
-    s.weights = {1, 1, 1, 1};
-    return s;
-}
 
 bool anyContains(const QStringList& lines, const QString& a, const QString& b) {
     for (const QString& l : lines)
@@ -97,7 +88,7 @@ private Q_SLOTS:
 
     void wholeDomainTrimKeepsEverything() {
         Surface s;
-        s.geometry = unitPatch();
+        s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
         s.trims.push_back(loopOf(2, {polylineCurve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}})}));
         QVERIFY2(trimWarnings(s).isEmpty(), qPrintable(trimWarnings(s).join('\n')));
         const TrimRegion region = makeTrimRegion(s.trims, trimTolerance(s.geometry));
@@ -108,7 +99,7 @@ private Q_SLOTS:
 
     void onlyDegenerateLoopsLeaveTheSurfaceUntrimmed() {
         Surface s;
-        s.geometry = unitPatch();
+        s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
         s.trims.push_back(loopOf(2, {polylineCurve({{0.2, 0.2}, {0.8, 0.8}, {0.2, 0.2}})}));
         const QStringList w = trimWarnings(s);
         QVERIFY2(w.size() == 1, qPrintable(w.join('\n')));
