@@ -3,6 +3,7 @@
 #include "app/bench/bench_report.h"
 #include "app/commands.h"
 #include "app/render_args.h"
+#include "model/savefile.h"
 
 #include <QCommandLineParser>
 #include <QDir>
@@ -52,9 +53,9 @@ bool parseShadingName(const QString& text, RenderOptions::Shading& shading) {
 }
 
 bool writeFile(const QString& path, const QByteArray& bytes) {
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate) || f.write(bytes) != bytes.size()) {
-        printError(QStringLiteral("could not write %1: %2").arg(path, f.errorString()));
+    QString error;
+    if (!saveBytesAtomically(path, bytes, &error)) { // the old report stays on failure
+        printError(error);
         return false;
     }
     return true;

@@ -25,9 +25,15 @@ int runConvert(const QStringList& args) {
         QStringLiteral("subdivisions"),
         QStringLiteral("With --mesh: quads per partition cell and direction (default 4)."),
         QStringLiteral("N"), QStringLiteral("4"));
+    const QCommandLineOption maxMesh(
+        QStringLiteral("max-mesh-mb"),
+        QStringLiteral("With --mesh: refuse to write more than N MB (default %1).")
+            .arg(kDefaultMaxMeshBytes >> 20),
+        QStringLiteral("N"), QString::number(kDefaultMaxMeshBytes >> 20));
     parser.addOption(report);
     parser.addOption(mesh);
     parser.addOption(subdivisions);
+    parser.addOption(maxMesh);
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
     const QStringList pos = parser.positionalArguments();
@@ -49,6 +55,12 @@ int runConvert(const QStringList& args) {
         printError(QStringLiteral("%1: --subdivisions must be an integer in [1, 64]").arg(command));
         return kExitUsage;
     }
+    const long long maxMeshMb = parser.value(maxMesh).toLongLong(&ok);
+    if (!ok || maxMeshMb < 1 || maxMeshMb > (1LL << 40)) {
+        printError(QStringLiteral("%1: --max-mesh-mb must be a positive integer").arg(command));
+        return kExitUsage;
+    }
+    meshOptions.maxBytes = maxMeshMb << 20;
     if (parser.isSet(mesh) && outFormat != CadFormat::Obj) {
         printError(QStringLiteral("%1: --mesh needs an .obj OUT").arg(command));
         return kExitUsage;
@@ -72,9 +84,9 @@ int runConvert(const QStringList& args) {
     if (outFormat == CadFormat::Knot)
         written = writeKnotFile(out, result->scene, &error);
     else if (parser.isSet(mesh))
-        written = writeFileBytes(out, writeObjMesh(result->scene, meshOptions), error);
+        written = writeObjMeshFile(out, result->scene, meshOptions, error);
     else
-        written = writeFileBytes(out, writeObj(result->scene), error);
+        written = writeObjFile(out, result->scene, error);
     if (!written) {
         printError(error);
         return kExitBadInput;

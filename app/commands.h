@@ -37,6 +37,8 @@ int runEval(const QStringList& args);
 int runConvert(const QStringList& args);
 int runRender(const QStringList& args);
 int runBench(const QStringList& args);
+/// The hidden child-process verb model/cad/cadprocess.h runs (kw::kReadCadVerb).
+int runReadCad(const QStringList& args);
 
 // ---- Helpers shared by subcommands (main.cpp).
 

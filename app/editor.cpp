@@ -3,6 +3,7 @@
 
 #include "app/commands.h"
 #include "model/knotfile.h"
+#include "render/image_save.h"
 #include "render/offscreen_renderer.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
@@ -68,8 +69,9 @@ int screenshot(MainWindow& window, const QString& out) {
         const QPoint at = window.viewport()->mapTo(&window, QPoint(0, 0));
         p.drawImage(QRect(at, window.viewport()->size()), window.viewport()->grabFramebuffer());
     }
-    if (image.isNull() || !image.save(out)) {
-        cli::printError(QStringLiteral("%1: cannot write the screenshot").arg(out));
+    QString error;
+    if (!saveImageAtomically(image, out, &error)) {
+        cli::printError(error);
         return 1;
     }
     return 0;

@@ -1,6 +1,7 @@
 // knotwork: entry point; dispatches to a command-line subcommand or the editor.
 #include "app/commands.h"
 #include "app/editor.h"
+#include "model/cad/cadprocess.h"
 #include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
@@ -145,6 +146,10 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     QStringList rest = args.mid(2);
+    if (first == QLatin1String(kw::kReadCadVerb)) { // hidden: the CAD reader's child process
+        rest.prepend(QStringLiteral("knotwork ") + first);
+        return runReadCad(rest);
+    }
     if (const Command* command = findCommand(first)) {
         rest.prepend(QStringLiteral("knotwork ") + command->name);
         return command->run(rest);

@@ -21,11 +21,16 @@ bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-bool loopIdUsed(const Scene& scene, TrimLoopId id) {
-    for (const Surface& s : scene.surfaces)
+// Surface and loop ids come from one counter (docs/FILE_FORMAT.md), so a new id must differ
+// from every surface and loop id in use.
+bool idUsed(const Scene& scene, std::uint32_t id) {
+    for (const Surface& s : scene.surfaces) {
+        if (s.id.value == id)
+            return true;
         for (const TrimLoop& l : s.trims)
-            if (l.id == id)
+            if (l.id.value == id)
                 return true;
+    }
     return false;
 }
 
@@ -108,11 +113,13 @@ bool Document::resetScene(Scene scene, QString* error) {
 bool Document::insertSurface(int index, Surface surface) {
     if (index < 0 || size_t(index) > m_scene.surfaces.size())
         return false;
-    if (!surfaceError(surface).isEmpty() || indexOf(surface.id) >= 0 || surface.id.value == kMaxId)
+    if (!surfaceError(surface).isEmpty() || idUsed(m_scene, surface.id.value) ||
+        surface.id.value == kMaxId || m_scene.surfaces.size() >= size_t(kMaxSurfaces))
         return false;
     std::uint32_t maxId = surface.id.value;
     for (const TrimLoop& l : surface.trims) {
-        if (l.id.value == kMaxId || loopIdUsed(m_scene, l.id))
+        if (l.id.value == kMaxId || l.id == TrimLoopId{surface.id.value} ||
+            idUsed(m_scene, l.id.value))
             return false;
         maxId = std::max(maxId, l.id.value);
     }
@@ -230,7 +237,8 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Surface* s = mutableSurface(id);
     if (!s || index < 0 || size_t(index) > s->trims.size())
         return false;
-    if (!trimLoopError(loop).isEmpty() || loop.id.value == kMaxId || loopIdUsed(m_scene, loop.id))
+    if (!trimLoopError(loop).isEmpty() || loop.id.value == kMaxId ||
+        idUsed(m_scene, loop.id.value) || s->trims.size() >= size_t(kMaxTrimLoops))
         return false;
     Q_EMIT trimLoopAboutToBeInserted(id, index);
     const std::uint32_t loopId = loop.id.value;
@@ -256,20 +264,44 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
 }
 
 bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
-    Surface* s = mutableSurface(ref.surface);
-    const int li = s ? loopIndex(*s, ref.loop) : -1;
-    if (li < 0 || !std::isfinite(position.x) || !std::isfinite(position.y))
+    return setTrimPoints({ref}, {position});
+}
+
+// All points move first, then each touched loop must still be closed (trimLoopError): a curve
+// end moves together with the coinciding end of its neighbour in one call.
+bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
+                             const std::vector<glm::dvec2>& positions) {
+    if (refs.empty() || refs.size() != positions.size())
         return false;
-    std::vector<NurbsCurve2>& curves = s->trims[size_t(li)].curves;
-    if (ref.curve < 0 || size_t(ref.curve) >= curves.size())
+    const SurfaceId id = refs.front().surface;
+    Surface* s = mutableSurface(id);
+    if (!s)
         return false;
-    std::vector<glm::dvec2>& points = curves[size_t(ref.curve)].points;
-    if (ref.index < 0 || size_t(ref.index) >= points.size())
-        return false;
-    if (points[size_t(ref.index)] == position)
+    std::vector<TrimLoop> trims = s->trims;
+    std::set<int> touched;
+    std::set<TrimPointRef> seen;
+    for (size_t k = 0; k < refs.size(); ++k) {
+        const TrimPointRef& ref = refs[k];
+        const int li = loopIndex(*s, ref.loop);
+        if (ref.surface != id || li < 0 || !std::isfinite(positions[k].x) ||
+            !std::isfinite(positions[k].y) || !seen.insert(ref).second)
+            return false;
+        std::vector<NurbsCurve2>& curves = trims[size_t(li)].curves;
+        if (ref.curve < 0 || size_t(ref.curve) >= curves.size())
+            return false;
+        std::vector<glm::dvec2>& points = curves[size_t(ref.curve)].points;
+        if (ref.index < 0 || size_t(ref.index) >= points.size())
+            return false;
+        points[size_t(ref.index)] = positions[k];
+        touched.insert(li);
+    }
+    if (trims == s->trims)
         return true;
-    points[size_t(ref.index)] = position;
-    bump(ref.surface, Aspect::Trims);
+    for (int li : touched)
+        if (!trimLoopError(trims[size_t(li)]).isEmpty())
+            return false;
+    s->trims = std::move(trims);
+    bump(id, Aspect::Trims);
     return true;
 }
 
@@ -296,29 +328,7 @@ bool Document::setCamera(const Camera& camera) {
 }
 
 QString Document::validate(const Scene& scene) {
-    std::set<std::uint32_t> surfaceIds, loopIds;
-    std::uint32_t maxId = 0;
-    for (const Surface& s : scene.surfaces) {
-        const QString e = surfaceError(s);
-        if (!e.isEmpty())
-            return e;
-        if (!surfaceIds.insert(s.id.value).second)
-            return QStringLiteral("surface id %1 used twice").arg(s.id.value);
-        maxId = std::max(maxId, s.id.value);
-        for (const TrimLoop& l : s.trims) {
-            if (!loopIds.insert(l.id.value).second)
-                return QStringLiteral("trim loop id %1 used twice").arg(l.id.value);
-            maxId = std::max(maxId, l.id.value);
-        }
-    }
-    if (scene.nextId <= maxId)
-        return QStringLiteral("nextId %1 is not above the largest id %2")
-            .arg(scene.nextId)
-            .arg(maxId);
-    QString e = lightsError(scene.lights);
-    if (e.isEmpty())
-        e = cameraError(scene.camera);
-    return e;
+    return sceneError(scene);
 }
 
 Surface* Document::mutableSurface(SurfaceId id) {

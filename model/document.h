@@ -6,7 +6,6 @@
 #include <QFlags>
 #include <QObject>
 #include <QString>
-
 #include <cstdint>
 #include <vector>
 
@@ -76,13 +75,19 @@ public:
     /// index in [0, loop count]; loop.id valid and unused; every curve valid.
     bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
     bool removeTrimLoop(SurfaceId id, TrimLoopId loop);
+    /// Moves one trim control point; refused when its loop would no longer be closed.
     bool setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
-    /// 1..kMaxLights lights.
+    /// Moves several trim control points of one surface at once (a curve end together with
+    /// the coinciding end of its neighbour); refused, changing nothing, when a ref is unknown
+    /// or repeated, a position is not finite or a touched loop would no longer be closed.
+    bool setTrimPoints(const std::vector<TrimPointRef>& refs,
+                       const std::vector<glm::dvec2>& positions);
+    /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
     bool setLights(std::vector<Light> lights);
     bool setCamera(const Camera& camera);
 
-    /// Checks a whole scene: valid unique ids, valid geometry and trims, partitions and light
-    /// count in range. Returns an empty string when valid.
+    /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
+    /// Returns an empty string when valid.
     static QString validate(const Scene& scene);
 
 Q_SIGNALS:

@@ -2,12 +2,12 @@
 // knotfile_read.cpp).
 #include "model/knotfile.h"
 
+#include "model/savefile.h"
+
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QSaveFile>
-#include <cerrno>
 
 namespace kw {
 
@@ -122,29 +122,12 @@ QByteArray sceneToJson(const Scene& scene) {
 }
 
 bool writeKnotFile(const QString& path, const Scene& scene, QString* error) {
-    const QByteArray json = sceneToJson(scene);
-    QSaveFile file(path);
-    auto failed = [&](const QString& what) {
+    if (const QString why = sceneError(scene); !why.isEmpty()) {
         if (error)
-            *error = QStringLiteral("%1: %2: %3").arg(path, what, file.errorString());
-        file.cancelWriting();
-        return false;
-    };
-    if (!file.open(QIODevice::WriteOnly))
-        return failed(QStringLiteral("cannot open for writing"));
-    // Flush explicitly: Qt 6.4's QSaveFile::commit() ignores a failed final flush (e.g. EFBIG,
-    // ENOSPC) and would replace the old file with a truncated one.
-    if (file.write(json) != json.size() || !file.flush()) {
-        const int err = errno;
-        const QString reason = err ? qt_error_string(err) : QStringLiteral("incomplete write");
-        if (error)
-            *error = QStringLiteral("%1: cannot write: %2").arg(path, reason);
-        file.cancelWriting();
+            *error = QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why);
         return false;
     }
-    if (!file.commit())
-        return failed(QStringLiteral("cannot save"));
-    return true;
+    return saveBytesAtomically(path, sceneToJson(scene), error);
 }
 
 std::optional<Scene> readKnotFile(const QString& path, QString* error) {
@@ -154,8 +137,7 @@ std::optional<Scene> readKnotFile(const QString& path, QString* error) {
             *error = QStringLiteral("%1: cannot open: %2").arg(path, file.errorString());
         return std::nullopt;
     }
-    constexpr qint64 kMaxFileBytes = qint64(1) << 30;
-    if (file.size() > kMaxFileBytes) {
+    if (file.size() > kMaxKnotFileBytes) {
         if (error)
             *error = QStringLiteral("%1: file is %2 bytes, more than the 1 GiB limit")
                          .arg(path)

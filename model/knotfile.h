@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/scene.h"
+#include "model/validation.h"
 
 #include <QByteArray>
 #include <QString>
@@ -14,12 +15,15 @@ namespace kw {
 constexpr int kKnotFormatMajor = 1;
 constexpr int kKnotFormatMinor = 0;
 
-/// Limits a file must respect; larger values are rejected as corrupt, not attempted.
-constexpr long long kMaxKnotControlPoints = 4'000'000; ///< countU * countV of one surface
-constexpr int kMaxKnotCurvePoints = 100'000;           ///< control points of one trim curve
-constexpr int kMaxKnotTrimLoops = 10'000;              ///< loops of one surface
-constexpr int kMaxKnotLoopCurves = 10'000;             ///< curves of one loop
-constexpr int kMaxKnotSurfaces = 100'000;
+/// Limits a file must respect (those of a valid scene, model/validation.h); larger values are
+/// rejected as corrupt, not attempted.
+constexpr long long kMaxKnotControlPoints = kMaxControlPoints; ///< countU * countV of one surface
+constexpr int kMaxKnotCurvePoints = kMaxCurvePoints;           ///< control points of one curve
+constexpr int kMaxKnotTrimLoops = kMaxTrimLoops;               ///< loops of one surface
+constexpr int kMaxKnotLoopCurves = kMaxLoopCurves;             ///< curves of one loop
+constexpr int kMaxKnotSurfaces = kMaxSurfaces;
+/// Files larger than this are refused before they are read.
+constexpr long long kMaxKnotFileBytes = 1LL << 30;
 
 /// The scene as UTF-8 JSON in the current format (indented). Every double is written in its
 /// shortest exact form, so it reads back bit for bit, except that the sign of a zero is lost
@@ -34,8 +38,10 @@ QByteArray sceneToJson(const Scene& scene);
 std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName,
                                    QString* error);
 
-/// Writes the scene atomically (QSaveFile): on failure the previous file at `path` is left
-/// untouched, false is returned and *error (if non-null) names the file and the reason.
+/// Writes the scene atomically (QSaveFile, flush checked): on failure the previous file at
+/// `path` is left untouched, false is returned and *error (if non-null) names the file and the
+/// reason. An invalid scene (kw::sceneError) is refused before anything is written, so every
+/// file written reads back.
 bool writeKnotFile(const QString& path, const Scene& scene, QString* error);
 
 /// Reads a .knot file; errors as for sceneFromJson, with the path as the source name (also

@@ -1,5 +1,6 @@
 // Reading .knot project files: JSON -> validated Scene, with one-line errors naming the JSON path.
 #include "model/knotfile.h"
+#include "model/knotfile_prescan.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -222,25 +223,15 @@ NurbsCurve2 readCurve(const QJsonObject& o, const QString& path) {
     return c;
 }
 
-// A loop is a closed chain: each curve starts where the previous one ends (cyclically).
+// A loop is a closed chain: each curve starts where the previous one ends (cyclically), within
+// the tolerance every other check uses (kw::trimLoopOpenAt).
 void checkClosed(const TrimLoop& loop, const QString& curvesPath) {
-    double extent = 1.0;
-    for (const NurbsCurve2& c : loop.curves)
-        for (const glm::dvec2& p : c.points)
-            extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-    const double tolerance = 1e-9 * extent;
-    const size_t n = loop.curves.size();
-    for (size_t k = 0; k < n; ++k) {
-        const NurbsCurve2& prev = loop.curves[(k + n - 1) % n];
-        const NurbsCurve2& cur = loop.curves[k];
-        const glm::dvec2 end = curvePoint(prev, curveDomain(prev).last);
-        const glm::dvec2 start = curvePoint(cur, curveDomain(cur).first);
-        if (glm::length(end - start) > tolerance)
-            fail(element(curvesPath, qsizetype(k)),
-                 QStringLiteral("curve starts at (%1, %2) but the previous curve of the loop ends "
-                                "at (%3, %4); a trim loop must be closed")
-                     .arg(num(start.x), num(start.y), num(end.x), num(end.y)));
-    }
+    glm::dvec2 start, end;
+    if (const int k = trimLoopOpenAt(loop, &start, &end); k >= 0)
+        fail(element(curvesPath, qsizetype(k)),
+             QStringLiteral("curve starts at (%1, %2) but the previous curve of the loop ends "
+                            "at (%3, %4); a trim loop must be closed")
+                 .arg(num(start.x), num(start.y), num(end.x), num(end.y)));
 }
 
 TrimLoop readLoop(const QJsonObject& o, const QString& path, IdRegistry& ids) {
@@ -385,6 +376,8 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
     if (glm::length(glm::cross(view, c.up)) <= 1e-12 * glm::length(view) * glm::length(c.up))
         fail(member(path, "up"), QStringLiteral("up is zero or parallel to the view direction"));
     c.authored = true;
+    if (const QString why = cameraError(c); !why.isEmpty())
+        fail(path, why);
     return c;
 }
 
@@ -447,6 +440,10 @@ Scene readScene(const QJsonObject& root) {
         scene.nextId = std::uint32_t(asInteger(root.value(QLatin1String("nextId")),
                                                QStringLiteral("$.nextId"), 1, 0xFFFFFFFFll));
     scene.nextId = std::max(scene.nextId, ids.maxId() + 1);
+    // The member checks above name the exact place; this is the same rule Document, the
+    // importers and the writers apply, so what reads here also opens, edits and saves.
+    if (const QString why = sceneError(scene); !why.isEmpty())
+        fail(top, why);
     return scene;
 }
 
@@ -470,6 +467,9 @@ QString oneLine(QString s) {
 std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName,
                                    QString* error) {
     try {
+        // Sizes first, on the raw bytes: the JSON tree would take many times the file's size.
+        if (const auto tooLarge = prescanKnotJson(json))
+            fail(tooLarge->path, tooLarge->reason);
         QJsonParseError parseError;
         const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
         if (parseError.error != QJsonParseError::NoError)

@@ -28,16 +28,30 @@ bool readObjFile(const QString& path, Scene& scene, ImportReport& report, QStrin
 /// %.17g so parseObj(writeObj(s)) == s. Precondition: a valid scene (Document::validate).
 QByteArray writeObj(const Scene& scene);
 
+/// Default cap of a --mesh file: 1 GiB (the command line raises it with --max-mesh-mb).
+constexpr long long kDefaultMaxMeshBytes = 1LL << 30;
+
 struct ObjMeshOptions {
     int subdivisions = 4; ///< each partition cell is cut into subdivisions x subdivisions quads
+    long long maxBytes = kDefaultMaxMeshBytes; ///< writeObjMeshFile refuses a larger mesh
 };
 
 /// A triangle mesh for tools without NURBS: each surface is sampled on its partition grid
 /// refined by options.subdivisions, with unit normals (surfaceFrame); a triangle whose
-/// centroid the trims remove (trim.h, even-odd) is dropped. One `o` per surface.
+/// centroid the trims remove (trim.h, even-odd) is dropped. One `o` per surface. In memory,
+/// without the size cap (for small scenes and tests).
 QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options = {});
+/// The same mesh streamed into `path` atomically, surface by surface. Refused with `error`
+/// "<path>: the mesh would be larger than the limit ..." (and the previous file untouched)
+/// as soon as it is clear the file would exceed options.maxBytes: at once when the vertex
+/// count alone cannot fit, else when a surface's lines pass the cap.
+bool writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options,
+                      QString& error);
 
-/// Writes bytes to a file; false with `error` naming the file when it cannot be written.
+/// Writes bytes to a file atomically (kw::saveBytesAtomically: QSaveFile, flush checked);
+/// false with `error` naming the file when it cannot be written; the old file is then kept.
 bool writeFileBytes(const QString& path, const QByteArray& bytes, QString& error);
+/// writeObj into `path` atomically; an invalid scene (kw::sceneError) is refused first.
+bool writeObjFile(const QString& path, const Scene& scene, QString& error);
 
 } // namespace kw

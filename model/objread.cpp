@@ -1,6 +1,7 @@
 // OBJ 3.0 free-form reader: rational/polynomial B-spline and Bezier surfaces with curv2 trims.
 #include "model/objfile.h"
 #include "model/trim.h"
+#include "model/validation.h"
 
 #include <QFile>
 #include <QFileInfo>
@@ -226,10 +227,25 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
             fail(line, QStringLiteral("knotwork %1: missing value").arg(QString::fromUtf8(key)));
         return toNumber(t[i], line);
     };
+    // Ids and counts: integers in range before they are converted (a cast of an out-of-range
+    // double is undefined behaviour).
+    auto integer = [&](int i, double lo, double hi) {
+        const double x = num(i);
+        if (x != std::floor(x) || x < lo || x > hi)
+            fail(line, QStringLiteral("knotwork %1: %2 is not an integer in [%3, %4]")
+                           .arg(QString::fromUtf8(key), QString::fromUtf8(t[i]))
+                           .arg(lo, 0, 'f', 0)
+                           .arg(hi, 0, 'f', 0));
+        return x;
+    };
+    auto check = [&](const QString& why) {
+        if (!why.isEmpty())
+            fail(line, QStringLiteral("knotwork %1: %2").arg(QString::fromUtf8(key), why));
+    };
     if (key == "nextid") {
-        m_nextId = static_cast<std::uint32_t>(num(3));
+        m_nextId = static_cast<std::uint32_t>(integer(3, 1, 4294967295.0));
     } else if (key == "surfaces") {
-        m_announced = static_cast<int>(num(3));
+        m_announced = static_cast<int>(integer(3, 0, kMaxSurfaces));
         m_announcedLine = line;
     } else if (key == "light") {
         if (!m_lightsFromFile)
@@ -241,6 +257,7 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         l.ambient = {num(7), num(8), num(9)};
         l.diffuse = {num(10), num(11), num(12)};
         l.specular = {num(13), num(14), num(15)};
+        check(lightError(l));
         m_scene.lights.push_back(l);
         if (static_cast<int>(m_scene.lights.size()) > kMaxLights)
             fail(line, QStringLiteral("more than %1 lights").arg(kMaxLights));
@@ -251,24 +268,26 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         c.up = {num(9), num(10), num(11)};
         c.fovYDegrees = num(12);
         c.authored = true;
+        check(cameraError(c));
     } else if (key == "surface") {
         m_meta = Metadata{};
         m_metaPending = true;
-        m_meta.id = static_cast<std::uint32_t>(num(3));
-        m_meta.nu = static_cast<int>(num(4));
-        m_meta.nv = static_cast<int>(num(5));
+        m_meta.id = static_cast<std::uint32_t>(integer(3, 1, 4294967294.0));
+        m_meta.nu = static_cast<int>(integer(4, kMinPartitions, kMaxPartitions));
+        m_meta.nv = static_cast<int>(integer(5, kMinPartitions, kMaxPartitions));
         Material m;
         m.color = {num(6), num(7), num(8)};
         m.ka = num(9);
         m.kd = num(10);
         m.ks = num(11);
         m.shininess = num(12);
+        check(materialError(m));
         m_meta.material = m;
     } else if (key == "name") {
         m_meta.name = QUrl::fromPercentEncoding(t.value(3));
     } else if (key == "loops") {
         for (int i = 3; i < t.size(); ++i)
-            m_meta.loopIds.push_back(static_cast<std::uint32_t>(num(i)));
+            m_meta.loopIds.push_back(static_cast<std::uint32_t>(integer(i, 1, 4294967294.0)));
     }
 }
 
@@ -295,9 +314,9 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
     } else if (k == "cstype") {
         need(t, 2, line);
         m_rational = t[1] == "rat";
-        const QByteArray type = t[m_rational ? 2 : 1];
         if (m_rational)
-            need(t, 3, line);
+            need(t, 3, line); // before t[2] is read: "cstype rat" alone names no type
+        const QByteArray type = t[m_rational ? 2 : 1];
         m_typeName = QString::fromUtf8(type);
         m_bezier = type == "bezier";
         m_supported = type == "bspline" || type == "bezier";

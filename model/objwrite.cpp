@@ -1,11 +1,14 @@
 // OBJ writers: exact free-form OBJ 3.0 of a whole scene with trims, and a triangle mesh.
 #include "model/objfile.h"
+#include "model/savefile.h"
 #include "model/trim.h"
+#include "model/validation.h"
 
+#include <QBuffer>
 #include <QFile>
-#include <QSaveFile>
 #include <QUrl>
 #include <algorithm>
+#include <limits>
 
 namespace kw {
 namespace {
@@ -153,9 +156,38 @@ QByteArray writeObj(const Scene& scene) {
     return out;
 }
 
-QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
-    QByteArray out = "# Knotwork triangle mesh (surfaces sampled on their partition grids).\n";
+namespace {
+
+// Vertices of the whole mesh: (nu * sub + 1) x (nv * sub + 1) per surface.
+long long meshVertexCount(const Scene& scene, int sub) {
+    long long n = 0;
+    for (const Surface& s : scene.surfaces)
+        n += (long long)(s.partitionsU * sub + 1) * (s.partitionsV * sub + 1);
+    return n;
+}
+
+// Streams the mesh surface by surface into `out`; false with *error once more than maxBytes
+// would be written (checked before each surface from its vertex count and after it exactly).
+bool streamObjMesh(QIODevice& out, const Scene& scene, const ObjMeshOptions& options,
+                   QString* error) {
     const int sub = std::max(options.subdivisions, 1);
+    auto tooLarge = [&](long long bytes) {
+        if (error)
+            *error = QStringLiteral("the mesh would be larger than the limit of %1 MB (at least "
+                                    "%2 MB at --subdivisions %3); raise --max-mesh-mb or lower "
+                                    "--subdivisions")
+                         .arg(options.maxBytes >> 20)
+                         .arg(bytes >> 20)
+                         .arg(sub);
+        return false;
+    };
+    // A vertex costs at least two short lines ("v 0 0 0\n", "vn 0 0 1\n"): refuse at once what
+    // cannot fit rather than after minutes of writing.
+    constexpr long long kMinBytesPerVertex = 17;
+    if (meshVertexCount(scene, sub) * kMinBytesPerVertex > options.maxBytes)
+        return tooLarge(meshVertexCount(scene, sub) * kMinBytesPerVertex);
+    QByteArray head = "# Knotwork triangle mesh (surfaces sampled on their partition grids).\n";
+    long long written = 0;
     int base = 0;
     for (const Surface& s : scene.surfaces) {
         const NurbsSurface& g = s.geometry;
@@ -166,17 +198,19 @@ QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
             return glm::dvec2(du.first + (du.last - du.first) * i / nu,
                               dv.first + (dv.last - dv.first) * j / nv);
         };
-        out += "o " + s.name.simplified().toUtf8() + '\n';
+        QByteArray chunk = std::move(head);
+        head.clear();
+        chunk += "o " + s.name.simplified().toUtf8() + '\n';
         QByteArray normals;
         for (int j = 0; j <= nv; ++j) {
             for (int i = 0; i <= nu; ++i) {
                 const glm::dvec2 uv = uvAt(i, j);
                 const SurfaceFrame f = surfaceFrame(g, uv.x, uv.y);
-                out += "v " + vec(f.point) + '\n';
+                chunk += "v " + vec(f.point) + '\n';
                 normals += "vn " + vec(f.normal) + '\n';
             }
         }
-        out += normals;
+        chunk += normals;
         auto id = [&](int i, int j) {
             return QByteArray::number(base + j * (nu + 1) + i + 1);
         };
@@ -184,8 +218,8 @@ QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
             const glm::dvec2 c = (uvAt(i0, j0) + uvAt(i1, j1) + uvAt(i2, j2)) / 3.0;
             if (!trimRegionContains(region, c))
                 return;
-            out += "f " + id(i0, j0) + "//" + id(i0, j0) + ' ' + id(i1, j1) + "//" + id(i1, j1) +
-                   ' ' + id(i2, j2) + "//" + id(i2, j2) + '\n';
+            chunk += "f " + id(i0, j0) + "//" + id(i0, j0) + ' ' + id(i1, j1) + "//" + id(i1, j1) +
+                     ' ' + id(i2, j2) + "//" + id(i2, j2) + '\n';
         };
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
@@ -194,17 +228,49 @@ QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
             }
         }
         base += (nu + 1) * (nv + 1);
+        written += chunk.size();
+        if (written > options.maxBytes)
+            return tooLarge(written);
+        if (out.write(chunk) != chunk.size()) {
+            if (error)
+                *error = QStringLiteral("cannot write: %1").arg(out.errorString());
+            return false;
+        }
     }
-    return out;
+    return true;
+}
+
+} // namespace
+
+QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
+    QBuffer buffer;
+    buffer.open(QIODevice::WriteOnly);
+    ObjMeshOptions unlimited = options;
+    unlimited.maxBytes = std::numeric_limits<long long>::max();
+    streamObjMesh(buffer, scene, unlimited, nullptr);
+    return buffer.data();
+}
+
+bool writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options,
+                      QString& error) {
+    QString why;
+    const bool ok = saveFileAtomically(
+        path, [&](QIODevice& d) { return streamObjMesh(d, scene, options, &why); }, &error);
+    if (!ok && !why.isEmpty())
+        error = QStringLiteral("%1: %2").arg(path, why);
+    return ok;
 }
 
 bool writeFileBytes(const QString& path, const QByteArray& bytes, QString& error) {
-    QSaveFile f(path);
-    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size() || !f.commit()) {
-        error = QStringLiteral("%1: cannot write: %2").arg(path, f.errorString());
+    return saveBytesAtomically(path, bytes, &error);
+}
+
+bool writeObjFile(const QString& path, const Scene& scene, QString& error) {
+    if (const QString why = sceneError(scene); !why.isEmpty()) {
+        error = QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why);
         return false;
     }
-    return true;
+    return writeFileBytes(path, writeObj(scene), error);
 }
 
 } // namespace kw

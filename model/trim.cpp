@@ -1,6 +1,8 @@
 // Trim loops: flattening to polylines, even-odd classification and trimmed surface area.
 #include "model/trim.h"
 
+#include "model/validation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -144,6 +146,73 @@ TrimPolygon tessellateTrimLoop(const TrimLoop& loop, double tolerance) {
     while (poly.size() > 1 && poly.back() == poly.front())
         poly.pop_back();
     return poly;
+}
+
+namespace {
+
+bool clampedStart(const NurbsCurve2& c) {
+    return std::all_of(c.knots.begin(), c.knots.begin() + c.degree + 1,
+                       [&](double k) { return k == c.knots.front(); });
+}
+
+NurbsCurve2 straightCurve(glm::dvec2 from, glm::dvec2 to) {
+    NurbsCurve2 c;
+    c.degree = 1;
+    c.knots = {0.0, 0.0, 1.0, 1.0};
+    c.points = {from, to};
+    c.weights = {1.0, 1.0};
+    return c;
+}
+
+} // namespace
+
+QStringList closeTrimLoop(TrimLoop& loop, double snap) {
+    QStringList done;
+    if (loop.curves.empty())
+        return done;
+    const double tolerance = trimLoopClosureTolerance(loop);
+    std::vector<NurbsCurve2> out;
+    out.reserve(loop.curves.size());
+    // Joins `next` after `prev`: snaps or bridges the gap between prev's end and next's start.
+    // `bridge` receives a straight curve when one is needed; `label` names the later curve.
+    auto join = [&](const NurbsCurve2& prev, NurbsCurve2& next, std::vector<NurbsCurve2>& bridge,
+                    size_t label) {
+        const glm::dvec2 end = curvePoint(prev, curveDomain(prev).last);
+        const double gap = glm::length(curvePoint(next, curveDomain(next).first) - end);
+        if (gap <= tolerance)
+            return;
+        if (gap <= snap && clampedStart(next)) {
+            next.points.front() = end;
+            if (glm::length(curvePoint(next, curveDomain(next).first) - end) <= tolerance) {
+                done << QStringLiteral("gap of %1 before curve %2 closed by moving its first point")
+                            .arg(gap, 0, 'g', 3)
+                            .arg(label);
+                return;
+            }
+        }
+        bridge.push_back(straightCurve(end, curvePoint(next, curveDomain(next).first)));
+        done << QStringLiteral("gap of %1 before curve %2 bridged by a straight segment")
+                    .arg(gap, 0, 'g', 3)
+                    .arg(label);
+    };
+    for (size_t k = 0; k < loop.curves.size(); ++k) {
+        NurbsCurve2 cur = loop.curves[k];
+        if (!out.empty()) {
+            std::vector<NurbsCurve2> bridge;
+            join(out.back(), cur, bridge, k + 1);
+            out.insert(out.end(), bridge.begin(), bridge.end());
+        }
+        out.push_back(std::move(cur));
+    }
+    std::vector<NurbsCurve2> bridge;
+    NurbsCurve2 first = out.front();
+    join(out.back(), first, bridge, 1);
+    if (bridge.empty())
+        out.front() = std::move(first);
+    else
+        out.insert(out.end(), bridge.begin(), bridge.end());
+    loop.curves = std::move(out);
+    return done;
 }
 
 TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,

@@ -49,6 +49,15 @@ struct TrimRegion {
 TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
                           QStringList* warnings = nullptr);
 
+/// Makes a loop closed in the sense of kw::trimLoopError (what the .knot reader demands), the
+/// way makeTrimRegion would draw it: a gap between consecutive curves (and between the last
+/// curve's end and the first curve's start) no wider than `snap` moves the later curve's first
+/// control point onto the earlier curve's end (its start, for a curve with a clamped start);
+/// any other gap gets a straight degree-1 curve across it. Returns one line per gap closed
+/// ("gap of G before curve K snapped" / "... bridged by a straight segment"), empty when the
+/// loop was already closed. Precondition: every curve valid (curveValidationError).
+QStringList closeTrimLoop(TrimLoop& loop, double snap);
+
 /// The warnings makeTrimRegion reports for a surface's trims at trimTolerance(surface).
 QStringList trimWarnings(const Surface& surface);
 

@@ -1,6 +1,8 @@
-// Validation of authored data: plain-English reasons for Document and the edit commands.
+// Validation of authored data: plain-English reasons shared by Document, the .knot reader, the
+// importers and the writers (one notion of a valid scene).
 #include "model/validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -14,8 +16,11 @@ bool finite(double x) {
 bool finite(const glm::dvec3& v) {
     return finite(v.x) && finite(v.y) && finite(v.z);
 }
-bool nonNegative(const glm::dvec3& v) {
-    return finite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
+bool in(double x, double lo, double hi) {
+    return finite(x) && x >= lo && x <= hi;
+}
+bool in(const glm::dvec3& v, double lo, double hi) {
+    return in(v.x, lo, hi) && in(v.y, lo, hi) && in(v.z, lo, hi);
 }
 
 } // namespace
@@ -31,13 +36,12 @@ QString partitionsError(int nu, int nv) {
 }
 
 QString materialError(const Material& m) {
-    if (!nonNegative(m.color))
-        return QStringLiteral("material colour must be finite and non-negative");
-    if (!(finite(m.ka) && m.ka >= 0) || !(finite(m.kd) && m.kd >= 0) ||
-        !(finite(m.ks) && m.ks >= 0))
-        return QStringLiteral("material coefficients ka, kd, ks must be finite and non-negative");
-    if (!(finite(m.shininess) && m.shininess >= 0))
-        return QStringLiteral("material shininess must be finite and non-negative");
+    if (!in(m.color, 0.0, 1.0))
+        return QStringLiteral("material colour components must be in [0, 1]");
+    if (!in(m.ka, 0.0, 1.0) || !in(m.kd, 0.0, 1.0) || !in(m.ks, 0.0, 1.0))
+        return QStringLiteral("material coefficients ka, kd, ks must be in [0, 1]");
+    if (!in(m.shininess, 0.0, kMaxShininess))
+        return QStringLiteral("material shininess must be in [0, %1]").arg(kMaxShininess);
     return {};
 }
 
@@ -46,16 +50,17 @@ QString lightError(const Light& l) {
         return QStringLiteral("unknown light kind");
     if (!finite(l.vector))
         return QStringLiteral("light direction or position must be finite");
-    if (l.kind == Light::Kind::Directional && glm::length(l.vector) <= 1e-12)
+    if (l.kind == Light::Kind::Directional && glm::length(l.vector) == 0.0)
         return QStringLiteral("directional light needs a non-zero direction");
-    if (!nonNegative(l.ambient) || !nonNegative(l.diffuse) || !nonNegative(l.specular))
-        return QStringLiteral("light intensities must be finite and non-negative");
+    if (!in(l.ambient, 0.0, kMaxLightIntensity) || !in(l.diffuse, 0.0, kMaxLightIntensity) ||
+        !in(l.specular, 0.0, kMaxLightIntensity))
+        return QStringLiteral("light intensities must be in [0, %1]").arg(kMaxLightIntensity);
     return {};
 }
 
 QString lightsError(const std::vector<Light>& lights) {
-    if (lights.empty() || lights.size() > size_t(kMaxLights))
-        return QStringLiteral("%1 lights; a scene needs 1 to %2")
+    if (lights.size() > size_t(kMaxLights))
+        return QStringLiteral("%1 lights, more than the limit %2")
             .arg(lights.size())
             .arg(kMaxLights);
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -70,13 +75,40 @@ QString cameraError(const Camera& c) {
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return QStringLiteral("camera vectors must be finite");
     const glm::dvec3 view = c.target - c.eye;
-    if (glm::length(view) <= 1e-12)
+    if (glm::length(view) == 0.0)
         return QStringLiteral("camera eye and target coincide");
-    if (glm::length(glm::cross(view, c.up)) <= 1e-12 * glm::length(view))
+    if (glm::length(glm::cross(view, c.up)) <= 1e-12 * glm::length(view) * glm::length(c.up))
         return QStringLiteral("camera up vector is zero or parallel to the view direction");
     if (!(finite(c.fovYDegrees) && c.fovYDegrees > 0 && c.fovYDegrees < 180))
         return QStringLiteral("camera field of view must be in (0, 180) degrees");
     return {};
+}
+
+double trimLoopClosureTolerance(const TrimLoop& loop) {
+    double extent = 1.0;
+    for (const NurbsCurve2& c : loop.curves)
+        for (const glm::dvec2& p : c.points)
+            extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    return 1e-9 * extent;
+}
+
+int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start, glm::dvec2* end) {
+    const double tolerance = trimLoopClosureTolerance(loop);
+    const size_t n = loop.curves.size();
+    for (size_t k = 0; k < n; ++k) {
+        const NurbsCurve2& prev = loop.curves[(k + n - 1) % n];
+        const NurbsCurve2& cur = loop.curves[k];
+        const glm::dvec2 e = curvePoint(prev, curveDomain(prev).last);
+        const glm::dvec2 s = curvePoint(cur, curveDomain(cur).first);
+        if (!(glm::length(e - s) <= tolerance)) {
+            if (start)
+                *start = s;
+            if (end)
+                *end = e;
+            return int(k);
+        }
+    }
+    return -1;
 }
 
 QString trimLoopError(const TrimLoop& loop) {
@@ -84,14 +116,31 @@ QString trimLoopError(const TrimLoop& loop) {
         return QStringLiteral("trim loop has no id");
     if (loop.curves.empty())
         return QStringLiteral("trim loop %1 has no curves").arg(loop.id.value);
+    if (loop.curves.size() > size_t(kMaxLoopCurves))
+        return QStringLiteral("trim loop %1 has %2 curves, more than the limit %3")
+            .arg(loop.id.value)
+            .arg(loop.curves.size())
+            .arg(kMaxLoopCurves);
     for (size_t i = 0; i < loop.curves.size(); ++i) {
-        const std::string e = curveValidationError(loop.curves[i]);
+        std::string e = curveValidationError(loop.curves[i]);
+        if (e.empty() && loop.curves[i].points.size() > size_t(kMaxCurvePoints))
+            e = "more than " + std::to_string(kMaxCurvePoints) + " control points";
         if (!e.empty())
             return QStringLiteral("trim loop %1, curve %2: %3")
                 .arg(loop.id.value)
                 .arg(i + 1)
                 .arg(QString::fromStdString(e));
     }
+    glm::dvec2 start, end;
+    if (const int k = trimLoopOpenAt(loop, &start, &end); k >= 0)
+        return QStringLiteral("trim loop %1 is not closed: curve %2 starts at (%3, %4) but the "
+                              "previous curve ends at (%5, %6)")
+            .arg(loop.id.value)
+            .arg(k + 1)
+            .arg(start.x, 0, 'g', 17)
+            .arg(start.y, 0, 'g', 17)
+            .arg(end.x, 0, 'g', 17)
+            .arg(end.y, 0, 'g', 17);
     return {};
 }
 
@@ -102,9 +151,20 @@ QString surfaceError(const Surface& s) {
     const std::string g = surfaceValidationError(s.geometry);
     if (!g.empty())
         return who + QStringLiteral(": ") + QString::fromStdString(g);
-    QString e = partitionsError(s.partitionsU, s.partitionsV);
+    QString e;
+    if ((long long)s.geometry.countU * s.geometry.countV > kMaxControlPoints)
+        e = QStringLiteral("%1 x %2 control points, more than the limit %3")
+                .arg(s.geometry.countU)
+                .arg(s.geometry.countV)
+                .arg(kMaxControlPoints);
+    if (e.isEmpty())
+        e = partitionsError(s.partitionsU, s.partitionsV);
     if (e.isEmpty())
         e = materialError(s.material);
+    if (e.isEmpty() && s.trims.size() > size_t(kMaxTrimLoops))
+        e = QStringLiteral("%1 trim loops, more than the limit %2")
+                .arg(s.trims.size())
+                .arg(kMaxTrimLoops);
     std::set<std::uint32_t> loops;
     for (size_t i = 0; e.isEmpty() && i < s.trims.size(); ++i) {
         e = trimLoopError(s.trims[i]);
@@ -112,6 +172,37 @@ QString surfaceError(const Surface& s) {
             e = QStringLiteral("trim loop id %1 used twice").arg(s.trims[i].id.value);
     }
     return e.isEmpty() ? QString() : who + QStringLiteral(": ") + e;
+}
+
+QString sceneError(const Scene& scene) {
+    if (scene.surfaces.size() > size_t(kMaxSurfaces))
+        return QStringLiteral("%1 surfaces, more than the limit %2")
+            .arg(scene.surfaces.size())
+            .arg(kMaxSurfaces);
+    std::set<std::uint32_t> ids;
+    std::uint32_t maxId = 0;
+    for (const Surface& s : scene.surfaces) {
+        const QString e = surfaceError(s);
+        if (!e.isEmpty())
+            return e;
+        // Surface and loop ids come from one counter, so all of them differ.
+        if (!ids.insert(s.id.value).second)
+            return QStringLiteral("surface id %1 used twice").arg(s.id.value);
+        maxId = std::max(maxId, s.id.value);
+        for (const TrimLoop& l : s.trims) {
+            if (!ids.insert(l.id.value).second)
+                return QStringLiteral("trim loop id %1 used twice").arg(l.id.value);
+            maxId = std::max(maxId, l.id.value);
+        }
+    }
+    if (scene.nextId <= maxId)
+        return QStringLiteral("nextId %1 is not above the largest id %2")
+            .arg(scene.nextId)
+            .arg(maxId);
+    QString e = lightsError(scene.lights);
+    if (e.isEmpty())
+        e = cameraError(scene.camera);
+    return e;
 }
 
 } // namespace kw

@@ -1,6 +1,8 @@
 // OpenImageIO output of colour images and AOV buffers.
 #include "render/image_writer.h"
 
+#include "model/savefile.h"
+
 #include <OpenImageIO/imageio.h>
 #include <vector>
 
@@ -13,9 +15,11 @@ QString suffixOf(const QString& path) {
     return dot < 0 ? QString() : path.mid(dot + 1).toLower();
 }
 
-bool writePixels(const QString& path, const OIIO::ImageSpec& spec, const void* pixels,
-                 QString* error) {
-    const std::string file = path.toStdString();
+// OpenImageIO writes straight to the name it is given and picks the format from its
+// extension: it writes a temporary name in the same folder, which is then renamed over `path`.
+bool writePixelsTo(const QString& path, const QString& temporary, const OIIO::ImageSpec& spec,
+                   const void* pixels, QString* error) {
+    const std::string file = temporary.toStdString();
     auto out = OIIO::ImageOutput::create(file);
     if (!out) {
         *error = QStringLiteral("%1: no image writer for this format (%2)")
@@ -28,6 +32,16 @@ bool writePixels(const QString& path, const OIIO::ImageSpec& spec, const void* p
         return false;
     }
     return true;
+}
+
+bool writePixels(const QString& path, const OIIO::ImageSpec& spec, const void* pixels,
+                 QString* error) {
+    return saveViaTemporaryName(
+        path,
+        [&](const QString& temporary, QString* why) {
+            return writePixelsTo(path, temporary, spec, pixels, why);
+        },
+        error);
 }
 
 } // namespace

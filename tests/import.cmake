@@ -5,3 +5,4 @@ kw_add_test(tst_selection_lifetime LABEL model
             ${CMAKE_CURRENT_LIST_DIR}/model_fixtures.h LIBS knotwork_model)
 kw_add_test(tst_editor_import LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_import.cpp
             LIBS knotwork_ui)
+kw_use_cad_reader(tst_editor_import)

@@ -16,6 +16,7 @@ kw_add_test(tst_render_cad_coverage LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/t
             ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h
             LIBS ${KW_CAD_COVERAGE_LIBS})
 set_tests_properties(tst_render_cad_coverage PROPERTIES TIMEOUT 900)
+kw_use_cad_reader(tst_render_cad_coverage)
 # knotwork info on trimmed files (a process; needs no display).
 kw_add_test(tst_trim_info LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_info.cpp
             ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h LIBS knotwork_model)

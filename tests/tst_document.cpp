@@ -1,6 +1,7 @@
 // Document tests: each mutator changes exactly what it says, bumps exactly the right revisions
 // and signals in order; invalid input returns false with no change and no signal.
 #include "model/document.h"
+#include "model/validation.h"
 #include "model_fixtures.h"
 #include "signallog.h"
 
@@ -112,7 +113,7 @@ void TestDocument::validateScene_data() {
     QTest::newRow("bad trim curve") << 6 << QStringLiteral("trim loop 12, curve 1");
     QTest::newRow("partitions 0") << 7 << QStringLiteral("partitions 0 x 10");
     QTest::newRow("partitions 257") << 8 << QStringLiteral("partitions 10 x 257");
-    QTest::newRow("no lights") << 9 << QStringLiteral("0 lights");
+    QTest::newRow("no lights (unlit)") << 9 << QString();
     QTest::newRow("nine lights") << 10 << QStringLiteral("9 lights");
     QTest::newRow("NaN light") << 11 << QStringLiteral("light 2");
     QTest::newRow("empty trim loop") << 12 << QStringLiteral("has no curves");
@@ -459,8 +460,18 @@ void TestDocument::setTrimPoint() {
     QVERIFY(!f.doc.setTrimPoint({SurfaceId{1}, TrimLoopId{12}, 0, 0}, {0, 0})); // loop
     QVERIFY(!f.doc.setTrimPoint({SurfaceId{6}, TrimLoopId{11}, 0, 0}, {0, 0})); // surface
     QVERIFY(!f.doc.setTrimPoint(ref, {kNaN, 0}));
+    // A curve end alone would open the loop (the file could not be reopened): refused...
+    const int last = int(f.doc.surface(SurfaceId{1})->trims[1].curves[0].points.size()) - 1;
+    const TrimPointRef end{SurfaceId{1}, TrimLoopId{11}, 0, last};
+    const TrimPointRef start{SurfaceId{1}, TrimLoopId{11}, 1, 0};
+    QVERIFY(!f.doc.setTrimPoint(end, {0.31, 0.29}));
+    QVERIFY(!f.doc.setTrimPoints({end, end}, {{0.31, 0.29}, {0.31, 0.29}})); // listed twice
     QCOMPARE(f.doc.scene(), before);
     QVERIFY(log.entries.isEmpty());
+    // ...together with the coinciding start of the next curve it is one valid step.
+    QVERIFY(f.doc.setTrimPoints({end, start}, {{0.31, 0.29}, {0.31, 0.29}}));
+    QCOMPARE(log.take(), QStringList({"changed 1 Trims"}));
+    QVERIFY(sceneError(f.doc.scene()).isEmpty());
 }
 
 void TestDocument::lightsAndCamera() {
@@ -477,8 +488,10 @@ void TestDocument::lightsAndCamera() {
     QVERIFY(f.doc.lightsRevision() > l0);
     QCOMPARE(log.take(), QStringList({"lights"}));
     const auto l1 = f.doc.lightsRevision();
-    QVERIFY(!f.doc.setLights({}));
     QVERIFY(!f.doc.setLights(std::vector<Light>(size_t(kMaxLights + 1))));
+    std::vector<Light> tooBright = ls;
+    tooBright[1].diffuse.y = 1001; // intensities in [0, 1000], as the .knot reader says
+    QVERIFY(!f.doc.setLights(tooBright));
     std::vector<Light> bad = ls;
     bad[0].vector = glm::dvec3(0);
     QVERIFY(!f.doc.setLights(bad)); // directional light with no direction

@@ -1,6 +1,7 @@
 // MainWindow: file handling — New, Open, Save, Save As (also of imported scenes), recent files,
 // export, drops, title.
 #include "model/knotfile.h"
+#include "render/image_save.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
@@ -115,10 +116,9 @@ void MainWindow::exportImage() {
         return;
     }
     const QImage frame = m_viewport->grabFramebuffer();
-    if (frame.isNull() || !frame.save(path)) {
-        showError(
-            tr("Cannot export image"),
-            tr("%1: could not write the image (unknown format or unwritable folder)").arg(path));
+    QString error;
+    if (!saveImageAtomically(frame, path, &error)) { // the old file stays on failure
+        showError(tr("Cannot export image"), error);
         return;
     }
     statusBar()->showMessage(tr("Exported %1").arg(QFileInfo(path).fileName()), 5000);

@@ -227,8 +227,14 @@ void UvPanel::mouseMoveEvent(QMouseEvent* event) {
     if (!m_dragging)
         return;
     const glm::dvec2 delta = toUv(event->position()) - toUv(m_pressPixel);
-    for (const Dragged& d : m_drag)
-        m_doc->setTrimPoint(d.ref, d.from + delta);
+    std::vector<TrimPointRef> refs;
+    std::vector<glm::dvec2> to;
+    for (const Dragged& d : m_drag) {
+        refs.push_back(d.ref);
+        to.push_back(d.from + delta);
+    }
+    if (!refs.empty())
+        m_doc->setTrimPoints(refs, to); // coinciding ends together: the loop stays closed
 }
 
 void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
@@ -266,8 +272,7 @@ void UvPanel::finishDrag(bool cancel) {
     if (refs.empty())
         return;
     if (cancel) {
-        for (size_t k = 0; k < refs.size(); ++k)
-            m_doc->setTrimPoint(refs[k], from[k]);
+        m_doc->setTrimPoints(refs, from);
         return;
     }
     if (from == to)

@@ -1,5 +1,6 @@
 // PNG line plots of a BenchReport, drawn with QPainter into a QImage (no Python needed).
 #include "app/bench/bench_report.h"
+#include "render/image_save.h"
 
 #include <QDir>
 #include <QImage>
@@ -141,10 +142,8 @@ QImage stacked(const QImage& top, const QImage& bottom) {
 bool save(const QImage& img, const QString& dir, const QString& name, QStringList& written,
           QString* error) {
     const QString path = QDir(dir).filePath(name);
-    if (!img.save(path, "PNG")) {
-        *error = QStringLiteral("could not write the plot %1").arg(path);
+    if (!saveImageAtomically(img, path, error))
         return false;
-    }
     written << path;
     return true;
 }

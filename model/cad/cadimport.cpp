@@ -1,9 +1,11 @@
 // CAD import dispatch by format; the OpenCASCADE formats live in occtimport.cpp.
 #include "model/cad/cadimport.h"
 
-#include "model/document.h"
+#include "model/cad/cadprocess.h"
 #include "model/knotfile.h"
 #include "model/objfile.h"
+#include "model/trim.h"
+#include "model/validation.h"
 
 #include <QElapsedTimer>
 #include <QFileInfo>
@@ -48,6 +50,42 @@ QString occtUnavailableMessage() {
                           "OpenCASCADE");
 }
 
+// Loops bridged on import are saved closed (docs/FILE_FORMAT.md): every gap the file leaves
+// between consecutive trim curves is closed here, as the renderer would bridge it, and reported.
+static void closeImportedLoops(ImportResult& result) {
+    for (Surface& s : result.scene.surfaces)
+        for (TrimLoop& loop : s.trims) {
+            bool valid = true;
+            for (const NurbsCurve2& c : loop.curves)
+                valid = valid && curveValidationError(c).empty();
+            if (!valid)
+                continue; // sceneError names the curve
+            for (const QString& line : closeTrimLoop(loop, trimTolerance(s.geometry)))
+                result.report.warnings << QStringLiteral("surface '%1', trim loop %2: %3")
+                                              .arg(s.name)
+                                              .arg(loop.id.value)
+                                              .arg(line);
+        }
+}
+
+bool finishImport(ImportResult& result, const QString& path, QString& error) {
+    closeImportedLoops(result);
+    const QString why = sceneError(result.scene);
+    if (!why.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, why);
+        return false;
+    }
+    return true;
+}
+
+bool occtAvailable() {
+#ifdef KW_HAVE_OCCT
+    return true;
+#else
+    return false;
+#endif
+}
+
 std::optional<ImportResult> importFile(const QString& path, QString& error,
                                        const ImportProgress& progress) {
     const CadFormat format = cadFormatFromPath(path);
@@ -62,7 +100,7 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
     case CadFormat::Iges:
     case CadFormat::Step:
     case CadFormat::Brep: {
-        auto r = importOcctFile(path, format, error, progress);
+        auto r = importInChildProcess(path, format, error, progress);
         if (!r)
             return std::nullopt;
         result = std::move(*r);
@@ -94,11 +132,8 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
     if (format == CadFormat::Obj || format == CadFormat::Knot)
         for (int k = 0; k < static_cast<int>(result.scene.surfaces.size()); ++k)
             result.sourceFaces.push_back(k + 1);
-    const QString why = Document::validate(result.scene);
-    if (!why.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, why);
+    if (!finishImport(result, path, error))
         return std::nullopt;
-    }
     result.report.seconds = timer.elapsed() / 1000.0;
     return result;
 }

@@ -30,19 +30,24 @@ struct ImportResult {
     std::vector<int> sourceFaces;
 };
 
-/// Reads any supported file into a new, complete, valid Scene (Document::validate is empty).
+/// Reads any supported file into a new, complete, valid Scene (kw::sceneError is empty).
 /// IGES, STEP, BREP: every face becomes a surface (analytic ones converted to exact rational
 /// B-splines) with its wires as trim loops; faces that cannot be converted are listed in
-/// report.skipped. `progress`, if set, is called during long imports; returning false cancels.
+/// report.skipped. These three are read by OpenCASCADE in a child process (cadprocess.h:
+/// crash, time limit, memory limit, Cancel). `progress`, if set, is called during long imports
+/// (for the child, also every 50 ms while it works); returning false cancels.
 /// Returns nullopt with `error` "<path>: <reason>" (or "<path>:<line>: <reason>" for OBJ) when
 /// the file cannot be read, is truncated or corrupt, holds no importable surface, the format is
-/// unknown or unavailable in this build, or the import was cancelled. Never a partial scene.
+/// unknown or unavailable in this build, the reader crashed or ran out of time or memory, or
+/// the import was cancelled. Never a partial scene.
 std::optional<ImportResult> importFile(const QString& path, QString& error,
                                        const ImportProgress& progress = {});
 
-/// The OpenCASCADE part of importFile (format Iges, Step or Brep), same contract.
-std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
-                                           const ImportProgress& progress = {});
+/// The last step of every import: trim loops with gaps are closed (kw::closeTrimLoop: snapped
+/// within 1e-5 of the domain's diagonal, else bridged by a straight segment), each gap reported
+/// in result.report.warnings, so the scene saves closed and reopens; then the scene is checked
+/// with kw::sceneError. False with `error` "<path>: <reason>" when it is not valid.
+bool finishImport(ImportResult& result, const QString& path, QString& error);
 
 /// Message for OCCT formats in a build without OpenCASCADE.
 QString occtUnavailableMessage();

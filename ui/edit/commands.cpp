@@ -7,6 +7,7 @@
 #include <QLoggingCategory>
 #include <QUndoStack>
 #include <cmath>
+#include <map>
 #include <set>
 
 Q_LOGGING_CATEGORY(lcEdit, "knotwork.edit")
@@ -209,10 +210,18 @@ std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
     return c;
 }
 
+// One Document call per surface, so coinciding curve ends move together and every loop stays
+// closed (Document refuses a move that opens one).
 void MoveTrimPoints::apply(const std::vector<glm::dvec2>& positions, const char* what) {
+    std::map<SurfaceId, std::pair<std::vector<TrimPointRef>, std::vector<glm::dvec2>>> bySurface;
+    for (size_t k = 0; k < m_refs.size(); ++k) {
+        auto& [refs, to] = bySurface[m_refs[k].surface];
+        refs.push_back(m_refs[k]);
+        to.push_back(positions[k]);
+    }
     bool ok = true;
-    for (size_t k = 0; k < m_refs.size(); ++k)
-        ok = document()->setTrimPoint(m_refs[k], positions[k]) && ok;
+    for (const auto& [surface, moves] : bySurface)
+        ok = document()->setTrimPoints(moves.first, moves.second) && ok;
     check(ok, what);
 }
 

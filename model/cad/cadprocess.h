@@ -1,0 +1,53 @@
+// IGES, STEP and BREP read by OpenCASCADE in a child process: `knotwork __read-cad IN DIR`
+// writes the scene as DIR/scene.knot and the report as DIR/report.json. OCCT's readers can
+// overflow the stack or run for ever on hostile input, and no signal handler recovers from
+// that; a child that crashes, runs out of time or memory, or is cancelled is simply killed.
+#pragma once
+
+#include "model/cad/cadimport.h"
+
+#include <QString>
+#include <QStringList>
+
+namespace kw {
+
+/// The verb of the knotwork executable that reads a CAD file for a parent (not in --help).
+constexpr const char* kReadCadVerb = "__read-cad";
+
+/// Limits of one child read.
+struct CadChildLimits {
+    double seconds = 0;        ///< wall-clock limit; 0: cadTimeLimitSeconds(file size)
+    long long memoryBytes = 0; ///< RLIMIT_AS of the child; 0: cadMemoryLimitBytes()
+};
+
+/// The time a file of `bytes` may take: 60 s plus 30 s per MB, or the value of the environment
+/// variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
+double cadTimeLimitSeconds(qint64 bytes);
+/// The child's address-space limit: the machine's physical memory (at least 2 GiB), or
+/// KNOTWORK_CAD_MEMORY_MB megabytes when that environment variable is set.
+long long cadMemoryLimitBytes();
+
+/// The knotwork executable that runs the child: the one set with setCadReaderExecutable, else
+/// the environment variable KNOTWORK_CAD_READER (the tests set it), else `knotwork` in the
+/// folder of the running executable.
+QString cadReaderExecutable();
+/// Sets the executable for this process (tests, which are not knotwork themselves).
+void setCadReaderExecutable(const QString& path);
+
+/// Parent side: runs the child on `path` and reads back its scene and report. Errors, as
+/// "<path>: <reason>" except for a crash: "the STEP reader crashed on <path> (signal 11:
+/// Segmentation fault)"; a time-out names the limit; a cancel (progress returned false) kills
+/// the child at once and gives "<path>: import cancelled".
+std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
+                                                 QString& error,
+                                                 const ImportProgress& progress = {},
+                                                 const CadChildLimits& limits = {});
+
+/// Child side: writes a finished import (finishImport) for the parent as DIR/scene.knot and
+/// DIR/report.json, atomically. False with `error` set when it cannot.
+bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error);
+
+/// "progress DONE TOTAL\n", the line the child prints for the parent's progress bar.
+QByteArray progressLine(int done, int total);
+
+} // namespace kw

@@ -1,0 +1,24 @@
+// In-process IGES, STEP and BREP reading through OpenCASCADE (target knotwork_occt_read).
+// Knotwork itself reads these formats in a child process (cadprocess.h) that loads this code
+// as a module; tests that compare with OCCT call it directly.
+#pragma once
+
+#include "model/cad/cadimport.h"
+
+namespace kw {
+
+/// Reads an IGES, STEP or BREP file in this process: same contract as importFile, except that
+/// the scene is not yet finished (finishImport closes trim loops and validates). OCCT faults
+/// that raise exceptions or signals become errors; a stack overflow or an endless loop inside
+/// OCCT cannot be caught here, which is why Knotwork runs it in a child process.
+std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
+                                           const ImportProgress& progress = {});
+
+/// The exported entry point of the module libknotwork_occt.so (QLibrary resolves it by this
+/// name): calls importOcctFile. Returns true and fills *result, or false with *error set.
+using OcctImportFunction = bool (*)(const QString& path, CadFormat format, ImportResult* result,
+                                    QString* error, const ImportProgress* progress);
+constexpr const char* kOcctImportSymbol = "knotwork_occt_import";
+constexpr const char* kOcctModuleName = "knotwork_occt";
+
+} // namespace kw
