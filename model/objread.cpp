@@ -314,8 +314,8 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
     } else if (k == "cstype") {
         need(t, 2, line);
         m_rational = t[1] == "rat";
-        if (m_rational)
-            need(t, 3, line); // before t[2] is read: "cstype rat" alone names no type
+        if (m_rational) // before t[2] is read (found by fuzz_obj: SIGSEGV or double free)
+            need(t, 3, line);
         const QByteArray type = t[m_rational ? 2 : 1];
         m_typeName = QString::fromUtf8(type);
         m_bezier = type == "bezier";
@@ -599,6 +599,26 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
         for (TrimLoop& l : s.trims)
             if (!l.id.isValid())
                 l.id = TrimLoopId{out.nextId++};
+    }
+    // Loops bridged on import are saved closed (docs/FILE_FORMAT.md): each gap between trim
+    // pieces is closed as the renderer would bridge it, with a warning; then the one rule of a
+    // valid scene (model/validation.h), so an accepted file always saves and reopens.
+    for (Surface& s : out.surfaces)
+        for (TrimLoop& l : s.trims) {
+            const bool valid = std::all_of(l.curves.begin(), l.curves.end(), [](const auto& c) {
+                return curveValidationError(c).empty();
+            });
+            if (!valid)
+                continue; // sceneError below names the curve
+            for (const QString& w : closeTrimLoop(l, trimTolerance(s.geometry)))
+                local.warnings << QStringLiteral("%1: surface '%2', trim loop %3: %4")
+                                      .arg(fileName, s.name)
+                                      .arg(l.id.value)
+                                      .arg(w);
+        }
+    if (const QString why = sceneError(out); !why.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(fileName, why);
+        return false;
     }
     if (out.surfaces.empty() && local.skipped.isEmpty()) {
         error =
