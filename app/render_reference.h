@@ -2,7 +2,7 @@
 #pragma once
 
 #include "model/scene.h"
-#include "render/offscreen_renderer.h"
+#include "render/aov_buffer.h"
 
 #include <QSize>
 #include <QString>

@@ -3,6 +3,7 @@
 
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
 

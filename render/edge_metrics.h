@@ -2,7 +2,7 @@
 // silhouette error, crack pixels, visible id / depth disagreement and screen normal error.
 #pragma once
 
-#include "render/offscreen_renderer.h"
+#include "render/aov_buffer.h"
 
 #include <QString>
 
