@@ -152,6 +152,8 @@ int runEditor(int argc, char** argv) {
     if (parser.isSet(shot))
         return screenshot(window, parser.value(shot));
     window.show();
+    // After a crash: offer the autosaved edits once the window is up (the question is its child).
+    QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });
     return QApplication::exec();
 }
 
