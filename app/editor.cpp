@@ -3,8 +3,12 @@
 
 #include "app/commands.h"
 #include "model/knotfile.h"
+#include "model/nurbs_shapes.h"
 #include "render/offscreen_renderer.h"
+#include "ui/edit/commands.h"
 #include "ui/mainwindow.h"
+#include "ui/modelingtools.h"
+#include "ui/uvpanel.h"
 #include "ui/viewport.h"
 
 #include <QApplication>
@@ -49,6 +53,29 @@ bool headlessPlatform() {
     return p == QLatin1String("offscreen") || p == QLatin1String("minimal");
 }
 
+/// --demo: a scene made with the editor's own tools, as a user would: a NURBS patch shaped by
+/// one control-point edit, cut by a circular hole drawn in the UV panel, and a torus moved
+/// beside it. Each step is an undo step of the window.
+void buildDemo(MainWindow& window) {
+    ModelingTools* tools = window.modelingTools();
+    tools->createPrimitive(ModelingTools::Primitive::Torus);
+    tools->transformSelected({{2.2, 1.2, 0.0}, 0, 35.0, 1.6});
+    const SurfaceId patch = tools->createPatch({3, 3, 7, 6, 3.0, 2.4});
+    const NurbsSurface& g = window.document()->surface(patch)->geometry;
+    std::vector<int> indices;
+    std::vector<glm::dvec3> from, to;
+    for (int k = 0; k < int(g.points.size()); ++k) {
+        const glm::dvec3 p = g.points[size_t(k)];
+        indices.push_back(k);
+        from.push_back(p);
+        to.push_back(p + glm::dvec3(0.0, 0.0, 0.45 * std::sin(2.0 * p.x) * std::cos(1.6 * p.y)));
+    }
+    pushCommand(window.undoStack(), MoveControlPoints::create(window.document(), patch, indices,
+                                                              from, to, MoveKind::Drag));
+    window.uvPanel()->addLoop({makeCircle2({0.62, 0.5}, 0.2)}, QObject::tr("circular"));
+    window.viewport()->fitToView();
+}
+
 /// Shows the window, waits until the viewport has drawn a few frames, saves a grab.
 int screenshot(MainWindow& window, const QString& out) {
     // Show a picked control point too, so the property panel's point box is filled.
@@ -82,7 +109,8 @@ bool isEditorInvocation(int argc, char** argv) {
         return true;
     const QString first = QString::fromLocal8Bit(argv[1]);
     if (first == QLatin1String("--screenshot") ||
-        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size"))
+        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size") ||
+        first == QLatin1String("--demo"))
         return true;
     if (first.startsWith(QLatin1Char('-')))
         return false;
@@ -109,10 +137,13 @@ int runEditor(int argc, char** argv) {
                                   QStringLiteral("Open FILE, select its first surface, save a "
                                                  "picture of the window to OUT and exit."),
                                   QStringLiteral("OUT"));
+    const QCommandLineOption demo(QStringLiteral("demo"),
+                                  QStringLiteral("Start with a scene made by the Create and trim "
+                                                 "tools (a shaped patch with a hole, a torus)."));
     const QCommandLineOption size(QStringLiteral("size"),
                                   QStringLiteral("Window size, e.g. 1280x800."),
                                   QStringLiteral("WxH"));
-    parser.addOptions({shot, size});
+    parser.addOptions({shot, size, demo});
     if (!parser.parse(arguments) || parser.positionalArguments().size() > 1) {
         cli::printError(QStringLiteral("knotwork: %1 (see knotwork --help)")
                             .arg(parser.errorText().isEmpty() ? QStringLiteral("more than one FILE")
@@ -141,8 +172,8 @@ int runEditor(int argc, char** argv) {
             return cli::kExitBadInput;
         }
     }
-    if (parser.isSet(shot) && file.isEmpty()) {
-        cli::printError(QStringLiteral("knotwork: --screenshot needs a FILE"));
+    if (parser.isSet(shot) && file.isEmpty() && !parser.isSet(demo)) {
+        cli::printError(QStringLiteral("knotwork: --screenshot needs a FILE or --demo"));
         return cli::kExitUsage;
     }
 
@@ -169,6 +200,8 @@ int runEditor(int argc, char** argv) {
         window.resize(windowSize);
     if (!file.isEmpty() && !window.openFile(file))
         return cli::kExitBadInput;
+    if (parser.isSet(demo))
+        buildDemo(window);
     if (parser.isSet(shot))
         return screenshot(window, parser.value(shot));
     window.show();

@@ -469,4 +469,57 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
     return out;
 }
 
+NurbsCurve2 curve2InsertKnot(const NurbsCurve2& c, double t) {
+    // The curve as the v = 0 row of a lifted surface (x, y, 0): surface knot insertion is A5.3
+    // on every row, which for one row is A5.1.
+    NurbsCurve3 c3;
+    c3.degree = c.degree;
+    c3.knots = c.knots;
+    c3.weights = c.weights;
+    for (const glm::dvec2& p : c.points)
+        c3.points.emplace_back(p, 0.0);
+    const NurbsSurface s = surfaceInsertKnotU(lift(c3), t, 1);
+    if (s.countU == int(c.points.size()))
+        return c;
+    const NurbsCurve3 r = row0(s);
+    NurbsCurve2 out;
+    out.degree = r.degree;
+    out.knots = r.knots;
+    out.weights = r.weights;
+    for (const glm::dvec3& p : r.points)
+        out.points.emplace_back(p.x, p.y);
+    return out;
+}
+
+NurbsCurve2 curve2RemovePoint(const NurbsCurve2& c, int index) {
+    const int n = int(c.points.size());
+    if (index <= 0 || index >= n - 1 || n < 3)
+        return c;
+    NurbsCurve2 out = c;
+    out.points.erase(out.points.begin() + index);
+    out.weights.erase(out.weights.begin() + index);
+    const int p = c.degree;
+    if (n - 1 >= p + 1) {
+        // Drop the interior knot nearest the Greville abscissa of the removed point.
+        double greville = 0.0;
+        for (int k = 1; k <= p; ++k)
+            greville += c.knots[size_t(index + k)];
+        greville /= double(p);
+        int best = -1;
+        for (int k = p + 1; k < n; ++k) // interior knots: indices p + 1 .. n - 1
+            if (best < 0 || std::abs(c.knots[size_t(k)] - greville) <
+                                std::abs(c.knots[size_t(best)] - greville))
+                best = k;
+        out.knots.erase(out.knots.begin() + best);
+    } else {
+        // Too few points for the degree: one degree less, clamped uniform on the same domain.
+        const Interval d = knotDomain(c.knots, p);
+        out.degree = p - 1;
+        out.knots = clampedUniformKnots(out.degree, n - 1);
+        for (double& k : out.knots)
+            k = d.first + k * (d.last - d.first);
+    }
+    return out;
+}
+
 } // namespace kw

@@ -80,4 +80,13 @@ NurbsCurve3 surfaceIsoCurve(const NurbsSurface& s, bool alongU, double parameter
 NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double tolerance,
                                 int* removed = nullptr);
 
+/// A trim curve with one more control point and the same shape: knot t inserted once (A5.1).
+/// Returns the input when t is not inside the open domain or its multiplicity is the degree.
+NurbsCurve2 curve2InsertKnot(const NurbsCurve2& c, double t);
+/// The trim curve without control point `index` (an interior one: 0 < index < count - 1, so
+/// the ends, shared with the neighbouring curves of a loop, stay). One interior knot goes too,
+/// the one nearest the removed point's Greville abscissa, and the degree drops when too few
+/// points remain for it. Returns the input for an invalid index or a curve of two points.
+NurbsCurve2 curve2RemovePoint(const NurbsCurve2& c, int index);
+
 } // namespace kw

@@ -73,7 +73,8 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     const Scene& scene = doc.scene();
     FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
+    const std::vector<Light> lights =
+        lightsFor(scene, camera, options.lightCount, options.headlight);
 
     if (m_document != &doc) {
         dropSurfaceCaches();

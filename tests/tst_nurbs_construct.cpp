@@ -204,6 +204,36 @@ private Q_SLOTS:
         QCOMPARE(bare.countU, 4);
         QVERIFY(maxDeviation(bare, bezier) < 1e-9);
     }
+
+    void trimCurvePointInsertionAndRemoval() {
+        std::mt19937 rng(10);
+        for (int degree = 1; degree <= 3; ++degree) {
+            const NurbsCurve2 c = kwtest::randomCurve(rng, degree, 6, degree == 2);
+            const Interval d = curveDomain(c);
+            const double t = d.first + 0.38 * (d.last - d.first);
+            const NurbsCurve2 more = curve2InsertKnot(c, t);
+            QCOMPARE(more.points.size(), c.points.size() + 1);
+            QVERIFY(curveValidationError(more).empty());
+            for (int i = 0; i <= 20; ++i) { // same shape
+                const double x = d.first + (d.last - d.first) * i / 20.0;
+                QVERIFY(glm::length(curvePoint(more, x) - curvePoint(c, x)) < 1e-12);
+            }
+            // Removing an interior point keeps the ends (the loop stays closed) and validity.
+            const NurbsCurve2 fewer = curve2RemovePoint(more, 2);
+            QCOMPARE(fewer.points.size(), c.points.size());
+            QVERIFY2(curveValidationError(fewer).empty(), curveValidationError(fewer).c_str());
+            QVERIFY(glm::length(curvePoint(fewer, d.first) - curvePoint(c, d.first)) < 1e-12);
+            QVERIFY(glm::length(curvePoint(fewer, d.last) - curvePoint(c, d.last)) < 1e-12);
+            // Ends cannot be removed.
+            QVERIFY(curve2RemovePoint(c, 0) == c);
+            QVERIFY(curve2RemovePoint(c, int(c.points.size()) - 1) == c);
+        }
+        // Down to the last interior point of a cubic: the degree drops.
+        NurbsCurve2 cubic = kwtest::randomCurve(rng, 3, 4, false);
+        cubic = curve2RemovePoint(cubic, 1);
+        QCOMPARE(cubic.degree, 2);
+        QVERIFY(curveValidationError(cubic).empty());
+    }
 };
 
 QTEST_GUILESS_MAIN(TestNurbsConstruct)
