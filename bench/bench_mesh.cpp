@@ -1,0 +1,32 @@
+// Scene-wide CPU meshes for the benchmark: counts and the uniform fine mesh.
+#include "bench/bench_mesh.h"
+
+#include "render/gpu_layout.h"
+
+namespace kw::bench {
+
+long long SceneMesh::triangleCount() const {
+    long long n = 0;
+    for (const SurfaceMesh& s : surfaces)
+        n += (long long)(s.indices.size() / 3);
+    return n;
+}
+
+long long SceneMesh::vertexCount() const {
+    long long n = 0;
+    for (const SurfaceMesh& s : surfaces)
+        n += (long long)s.positions.size();
+    return n;
+}
+
+SceneMesh uniformSceneMesh(const Scene& scene, int nu, int nv) {
+    SceneMesh out;
+    for (const Surface& s : scene.surfaces) {
+        TessellatedMesh t = tessellate(s.geometry, nu, nv);
+        out.surfaces.push_back(SurfaceMesh{s.id, std::move(t.positions), std::move(t.normals),
+                                           std::move(t.uvs), std::move(t.indices)});
+    }
+    return out;
+}
+
+} // namespace kw::bench

@@ -1,0 +1,485 @@
+// The benchmark's measurement loop: timed frames (glFinish each), quality frames with AOVs, and
+// the equal-quality searches for the fine mesh and the GLU tessellator.
+#include "bench/bench_runner.h"
+
+#include "bench/glu_tessellator.h"
+#include "bench/mesh_pass.h"
+#include "model/document.h"
+#include "model/knotfile.h"
+
+#include <QElapsedTimer>
+#include <QFile>
+#include <QFileInfo>
+#include <QThread>
+#include <algorithm>
+#include <map>
+#include <sys/resource.h>
+
+namespace kw::bench {
+
+namespace {
+
+/// CPU time of the whole process (llvmpipe rasterises on its own threads), ms.
+double processCpuMs() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
+           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
+}
+
+QString cpuModel() {
+    QFile f(QStringLiteral("/proc/cpuinfo"));
+    if (!f.open(QIODevice::ReadOnly))
+        return QStringLiteral("unknown CPU");
+    for (const QByteArray& line : f.readAll().split('\n'))
+        if (line.startsWith("model name"))
+            return QString::fromUtf8(line.mid(line.indexOf(':') + 1)).trimmed();
+    return QStringLiteral("unknown CPU");
+}
+
+using Frame = std::function<bool(QString*)>;
+
+/// A loaded model: its document (for the renderer) and camera at one aspect.
+struct Model {
+    QString name;
+    Document doc;
+    Camera camera;
+};
+
+bool loadModel(const QString& file, double aspect, Model& m, QString* error) {
+    std::optional<Scene> scene = readKnotFile(file, error);
+    if (!scene)
+        return false;
+    if (!m.doc.resetScene(*scene, error)) {
+        *error = QStringLiteral("%1: %2").arg(file, *error);
+        return false;
+    }
+    if (m.doc.scene().surfaces.empty()) {
+        *error = QStringLiteral("%1: the scene has no surfaces to measure").arg(file);
+        return false;
+    }
+    m.name = QFileInfo(file).fileName();
+    m.camera = scene->camera.authored ? scene->camera : fitCamera(*scene, aspect);
+    return true;
+}
+
+/// The GL side of a run: the off-screen renderer and the two comparison passes, which must be
+/// released while the context is still alive.
+class Session {
+public:
+    Session() = default;
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+    ~Session() {
+        if (renderer.makeCurrent()) {
+            glu.release();
+            fine.release();
+        }
+    }
+    bool create(QString* error) {
+        if (!renderer.create(error))
+            return false;
+        glu.initialize(renderer.renderer().gl());
+        fine.initialize(renderer.renderer().gl());
+        return empty.resetScene(Scene{}, error);
+    }
+    bool setSize(QSize size, bool withAov, QString* error) {
+        m_withAov = withAov;
+        return renderer.setSize(size, withAov, error);
+    }
+    FrameCamera frameCamera(const Model& m) const {
+        const QSize size = renderer.size();
+        FrameCamera fc =
+            kw::frameCamera(m.camera, m.doc.scene(), double(size.width()) / double(size.height()));
+        fc.viewport = glm::ivec2(size.width(), size.height());
+        return fc;
+    }
+    /// Exact or baseline frame of the model at `partitions`.
+    bool drawRenderer(const Model& m, RenderMode mode, int partitions, int lights, QString* error) {
+        RenderOptions o;
+        o.shading = shading;
+        o.mode = mode;
+        o.partitionsU = o.partitionsV = partitions;
+        o.lightCount = lights;
+        o.trims = trims;
+        return renderer.render(m.doc, m.camera, o, error);
+    }
+    /// Clears the target as the renderer does (colour, AOVs, depth) by drawing an empty
+    /// document, then draws `pass` with the model's camera and lights.
+    bool drawMesh(MeshPass& pass, const Model& m, int lights, QString* error) {
+        if (!renderer.render(empty, m.camera, RenderOptions{}, error))
+            return false;
+        return pass.draw(m.doc.scene(), frameCamera(m), lightsFor(m.doc.scene(), m.camera, lights),
+                         m_withAov, error);
+    }
+    /// One GLU frame: tessellate with the current camera, upload, draw.
+    bool drawGlu(const Model& m, double tolerance, int lights, long long* vertices,
+                 QString* error) {
+        if (!gluTessellate(m.doc.scene(), frameCamera(m), tolerance, m_gluMesh, error))
+            return false;
+        if (vertices)
+            *vertices = m_gluMesh.vertexCount();
+        m_gluTriangles = m_gluMesh.triangleCount();
+        if (!renderer.makeCurrent()) {
+            *error = QStringLiteral("lost the OpenGL context");
+            return false;
+        }
+        glu.upload(m_gluMesh);
+        return drawMesh(glu, m, lights, error);
+    }
+    long long gluTriangles() const { return m_gluTriangles; }
+
+    OffscreenRenderer renderer;
+    MeshPass glu, fine;
+    Document empty;
+    RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
+    bool trims = true;
+
+private:
+    bool m_withAov = false;
+    SceneMesh m_gluMesh;
+    long long m_gluTriangles = 0;
+};
+
+/// Warm-up frames, then `config.frames` timed frames each ended by glFinish. `before(f)`, when
+/// given, runs ahead of frame f outside the timer.
+bool timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timing& t,
+                QString* error, const std::function<void(int)>& before = {}) {
+    std::vector<double> ms;
+    double cpuStart = 0.0;
+    for (int f = 0; f < config.warmup + config.frames; ++f) {
+        if (f == config.warmup)
+            cpuStart = processCpuMs();
+        if (before)
+            before(f);
+        QElapsedTimer timer;
+        timer.start();
+        if (!frame(error))
+            return false;
+        s.renderer.finish();
+        if (f >= config.warmup)
+            ms.push_back(double(timer.nsecsElapsed()) * 1e-6);
+    }
+    t.cpuMs = (processCpuMs() - cpuStart) / config.frames;
+    std::sort(ms.begin(), ms.end());
+    t.minMs = ms.front();
+    t.maxMs = ms.back();
+    const size_t n = ms.size();
+    t.medianMs = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+    return true;
+}
+
+/// Draws one frame with AOVs and measures it against the reference frame.
+bool measureQuality(Session& s, const Model& m, const AovBuffer& reference, const Frame& frame,
+                    Quality& q, AovBuffer* keep, QString* error) {
+    const QSize size = s.renderer.size();
+    if (!s.setSize(size, true, error) || !frame(error))
+        return false;
+    AovBuffer aov = s.renderer.aov();
+    q.normal = normalError(m.doc.scene(), aov);
+    if (reference.width > 0 && !silhouetteError(aov, reference, q.silhouette, error))
+        return false;
+    if (keep)
+        *keep = std::move(aov);
+    return true;
+}
+
+/// Quality and timing of one method: an AOV frame, then the timed frames without AOVs.
+bool measure(Session& s, const BenchConfig& config, const Model& m, const AovBuffer& reference,
+             const Frame& frame, MethodResult& r, QString* error) {
+    const QSize size = s.renderer.size();
+    return measureQuality(s, m, reference, frame, r.quality, nullptr, error) &&
+           s.setSize(size, false, error) && timeFrames(s, config, frame, r.timing, error);
+}
+
+QString describe(const Model& m, const QString& what, const MethodResult& r) {
+    return QStringLiteral("%1 %2: %3 FPS, normal error mean %4 max %5 deg, silhouette max %6 px")
+        .arg(m.name, what)
+        .arg(r.timing.fps(), 0, 'f', 1)
+        .arg(r.quality.normal.meanDegrees, 0, 'g', 3)
+        .arg(r.quality.normal.maxDegrees, 0, 'g', 3)
+        .arg(r.quality.silhouette.maxPixels, 0, 'f', 1);
+}
+
+/// A trim control point of the first trimmed surface to drag (an interior point of its first
+/// curve when it has one, so the loop stays closed), or an invalid ref without trims.
+TrimPointRef dragTarget(const Scene& scene) {
+    for (const Surface& s : scene.surfaces)
+        if (!s.trims.empty() && !s.trims.front().curves.empty()) {
+            const NurbsCurve2& c = s.trims.front().curves.front();
+            return {s.id, s.trims.front().id, 0, c.points.size() > 2 ? 1 : 0};
+        }
+    return {};
+}
+
+/// --trim-drag: times frames that each move `target` a little back and forth (as a drag sends
+/// them) so its mask is redrawn every frame; the point is put back afterwards.
+bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& frame,
+                 const TrimPointRef& target, TrimDrag& drag, QString* error) {
+    const Surface* surface = m.doc.surface(target.surface);
+    const glm::dvec2 home = surface->trims.front().curves.front().points[size_t(target.index)];
+    const Interval du = surfaceDomainU(surface->geometry);
+    TrimMaskPass& masks = s.renderer.renderer().trimMasks();
+    masks.resetStats();
+    const auto move = [&](int f) {
+        const double step = (f % 2 ? -1.0 : 1.0) * 1e-3 * (du.last - du.first);
+        m.doc.setTrimPoint(target, home + glm::dvec2(step, 0.5 * step));
+    };
+    Timing t;
+    const bool ok = timeFrames(s, config, frame, t, error, move);
+    m.doc.setTrimPoint(target, home);
+    if (!ok)
+        return false;
+    const TrimMaskStats st = masks.stats(target.surface);
+    drag.medianMs = t.medianMs;
+    drag.maskCpuMs = st.redraws ? double(st.cpuNanoseconds) * 1e-6 / double(st.redraws) : 0.0;
+    if (const TrimMask* mask = masks.find(target.surface))
+        drag.maskSide = std::max(mask->width, mask->height);
+    return true;
+}
+
+bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
+               const std::function<void(const QString&)>& progress, QString* error) {
+    for (const QString& file : config.table1Files) {
+        Model m;
+        if (!loadModel(file, 1.0, m, error))
+            return false;
+        for (int side : config.sizes) {
+            Table1Row row;
+            row.model = m.name;
+            row.surfaces = int(m.doc.scene().surfaces.size());
+            row.side = side;
+            AovBuffer reference;
+            if (!s.setSize(QSize(side, side), true, error) ||
+                !s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights,
+                                error))
+                return false;
+            reference = s.renderer.aov();
+            MethodResult r;
+            AovBuffer aov;
+            const Frame exact = [&](QString* e) {
+                return s.drawRenderer(m, config.table1Mode, config.table1Partitions, config.lights,
+                                      e);
+            };
+            if (!measureQuality(s, m, reference, exact, r.quality, &aov, error) ||
+                !s.setSize(QSize(side, side), false, error) ||
+                !timeFrames(s, config, exact, r.timing, error))
+                return false;
+            long long covered = 0;
+            for (int k = 0; k < aov.width * aov.height; ++k)
+                covered += aov.data[size_t(k) * AovBuffer::kChannels] >= 0.0f ? 1 : 0;
+            row.coverage = double(covered) / double(std::max(1, aov.width * aov.height));
+            row.timing = r.timing;
+            row.quality = r.quality;
+            progress(describe(m,
+                              QStringLiteral("%1x%1 %3 %2x%2")
+                                  .arg(side)
+                                  .arg(config.table1Partitions)
+                                  .arg(config.table1Mode == RenderMode::Exact
+                                           ? QStringLiteral("exact")
+                                           : QStringLiteral("tessellated")),
+                              r));
+            if (const TrimPointRef target = dragTarget(m.doc.scene());
+                config.trimDrag && config.trims && target.surface.isValid()) {
+                TrimDrag drag;
+                if (!measureDrag(s, config, m, exact, target, drag, error))
+                    return false;
+                row.drag = drag;
+                progress(QStringLiteral("%1 %2x%2 trim drag: %3 ms/frame, mask redraw %4 CPU ms, "
+                                        "mask side %5")
+                             .arg(m.name)
+                             .arg(side)
+                             .arg(drag.medianMs, 0, 'f', 2)
+                             .arg(drag.maskCpuMs, 0, 'f', 2)
+                             .arg(drag.maskSide));
+            }
+            report.table1.push_back(row);
+        }
+    }
+    return true;
+}
+
+/// One density or tolerance tried by an equal-quality search.
+struct SearchPoint {
+    Quality quality;
+    long long vertices = 0;
+    long long triangles = 0;
+};
+
+bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, BenchReport& report,
+                    const std::function<void(const QString&)>& progress, QString* error) {
+    const QSize size = config.table2Size;
+    Model m;
+    if (!loadModel(file, double(size.width()) / double(size.height()), m, error))
+        return false;
+    const Scene& scene = m.doc.scene();
+    const long long surfaces = (long long)scene.surfaces.size();
+    if (!s.setSize(size, true, error) ||
+        !s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights, error))
+        return false;
+    const AovBuffer reference = s.renderer.aov();
+
+    // The fine mesh and the GLU tessellation do not depend on the row's partitions: each
+    // density or tolerance is measured once per model.
+    std::map<int, SearchPoint> fineSeen;
+    std::map<double, SearchPoint> gluSeen;
+    int fineUploaded = -1;
+    auto uploadFine = [&](int n) {
+        if (n == fineUploaded)
+            return;
+        const SceneMesh mesh = uniformSceneMesh(scene, n, n);
+        s.renderer.makeCurrent();
+        s.fine.upload(mesh);
+        fineUploaded = n;
+    };
+    const Frame fineFrame = [&](QString* e) {
+        return s.drawMesh(s.fine, m, config.lights, e);
+    };
+    auto fineQuality = [&](int n, SearchPoint& sp) {
+        if (auto it = fineSeen.find(n); it != fineSeen.end()) {
+            sp = it->second;
+            return true;
+        }
+        uploadFine(n);
+        sp.vertices = (long long)(n + 1) * (n + 1) * surfaces;
+        sp.triangles = 2LL * n * n * surfaces;
+        if (!measureQuality(s, m, reference, fineFrame, sp.quality, nullptr, error))
+            return false;
+        fineSeen[n] = sp;
+        return true;
+    };
+    auto gluQuality = [&](double t, SearchPoint& sp) {
+        if (auto it = gluSeen.find(t); it != gluSeen.end()) {
+            sp = it->second;
+            return true;
+        }
+        const Frame frame = [&](QString* e) {
+            return s.drawGlu(m, t, config.lights, &sp.vertices, e);
+        };
+        if (!measureQuality(s, m, reference, frame, sp.quality, nullptr, error))
+            return false;
+        sp.triangles = s.gluTriangles();
+        gluSeen[t] = sp;
+        return true;
+    };
+
+    for (int p : config.partitions) {
+        Table2Row row;
+        row.model = m.name;
+        row.surfaces = int(surfaces);
+        row.partitions = p;
+        for (auto [mode, result] : {std::pair{RenderMode::Exact, &row.exact},
+                                    std::pair{RenderMode::Tessellated, &row.baseline}}) {
+            const Frame frame = [&, mode = mode](QString* e) {
+                return s.drawRenderer(m, mode, p, config.lights, e);
+            };
+            result->parameter = p;
+            result->triangles = 2LL * p * p * surfaces;
+            if (!s.setSize(size, false, error) ||
+                !measure(s, config, m, reference, frame, *result, error))
+                return false;
+            progress(describe(m,
+                              QStringLiteral("%1 %2x%2")
+                                  .arg(mode == RenderMode::Exact ? QStringLiteral("exact")
+                                                                 : QStringLiteral("baseline"),
+                                       QString::number(p)),
+                              *result));
+        }
+        const double target =
+            std::max(row.exact.quality.normal.maxDegrees, config.normalFloorDegrees);
+        row.targetMaxDegrees = target;
+
+        // (b) Fine mesh: density doubled from the row's partitions until its max normal error
+        // is no worse than the target, or the vertex budget is spent; then bisected between the
+        // last density that failed and the first that passed, so the mesh is the smallest of
+        // equal quality found (the fairest opponent), whatever the row's starting point.
+        int n = p, failed = 0;
+        SearchPoint sp;
+        for (;;) {
+            if (!fineQuality(n, sp))
+                return false;
+            row.fine.matched = sp.quality.normal.maxDegrees <= target;
+            if (row.fine.matched ||
+                (long long)(2 * n + 1) * (2 * n + 1) * surfaces > config.fineMaxVertices)
+                break;
+            failed = n;
+            n *= 2;
+        }
+        while (row.fine.matched && failed > 0 && n - failed > std::max(1, n / 16)) {
+            const int mid = (failed + n) / 2;
+            SearchPoint midPoint;
+            if (!fineQuality(mid, midPoint))
+                return false;
+            if (midPoint.quality.normal.maxDegrees <= target) {
+                n = mid;
+                sp = midPoint;
+            } else {
+                failed = mid;
+            }
+        }
+        row.fine.parameter = n;
+        row.fine.triangles = sp.triangles;
+        row.fine.quality = sp.quality;
+        uploadFine(n);
+        if (!s.setSize(size, false, error) ||
+            !timeFrames(s, config, fineFrame, row.fine.timing, error))
+            return false;
+        progress(describe(m,
+                          QStringLiteral("fine mesh %1x%1%2")
+                              .arg(n)
+                              .arg(row.fine.matched ? QString() : QStringLiteral(" (not matched)")),
+                          row.fine));
+
+        // (c) GLU: sampling tolerance halved from GLU's default 50 px.
+        double t = 50.0;
+        for (;;) {
+            if (!gluQuality(t, sp))
+                return false;
+            row.glu.matched = sp.quality.normal.maxDegrees <= target;
+            if (row.glu.matched || t * 0.5 < config.gluMinTolerance ||
+                sp.vertices * 4 > config.gluMaxVertices)
+                break;
+            t *= 0.5;
+        }
+        row.glu.parameter = t;
+        row.glu.triangles = sp.triangles;
+        row.glu.quality = sp.quality;
+        const Frame gluFrame = [&](QString* e) {
+            return s.drawGlu(m, t, config.lights, nullptr, e);
+        };
+        if (!s.setSize(size, false, error) ||
+            !timeFrames(s, config, gluFrame, row.glu.timing, error))
+            return false;
+        progress(describe(m,
+                          QStringLiteral("GLU tolerance %1 px%2")
+                              .arg(t)
+                              .arg(row.glu.matched ? QString() : QStringLiteral(" (not matched)")),
+                          row.glu));
+        report.table2.push_back(row);
+    }
+    return true;
+}
+
+} // namespace
+
+bool runBench(const BenchConfig& config, BenchReport& report,
+              const std::function<void(const QString&)>& progress, QString* error) {
+    report = BenchReport{};
+    report.config = config;
+    report.cpu = cpuModel();
+    report.threads = QThread::idealThreadCount();
+    Session s;
+    s.shading = config.shading;
+    s.trims = config.trims;
+    if (!s.create(error))
+        return false;
+    report.gl = s.renderer.renderer().glDescription();
+    if (!runTable1(s, config, report, progress, error))
+        return false;
+    for (const QString& file : config.table2Files)
+        if (!runTable2Model(s, config, file, report, progress, error))
+            return false;
+    return true;
+}
+
+} // namespace kw::bench

@@ -1,0 +1,262 @@
+// knotwork bench [FILES...]: the paper's Tables 1 and 2 off-screen, speed and quality side by side
+// (issue 6). Measurement in bench/bench_runner, outputs in bench/bench_report.
+#include "app/commands.h"
+#include "app/render_args.h"
+#include "bench/bench_report.h"
+
+#include <QCommandLineParser>
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonDocument>
+
+#ifndef KW_BENCH_SAMPLES_DIR
+#define KW_BENCH_SAMPLES_DIR "resources/samples"
+#endif
+
+namespace kw::cli {
+
+namespace {
+
+constexpr int kMaxSide = 4096;
+
+bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
+    out.clear();
+    for (const QString& s : text.split(QLatin1Char(','))) {
+        int v = 0;
+        if (!parseIntIn(s, lo, hi, v))
+            return false;
+        out.push_back(v);
+    }
+    return !out.empty();
+}
+
+/// `text` is modeName(m) for a mode m (render_args keeps the names).
+bool parseModeName(const QString& text, RenderMode& mode) {
+    for (RenderMode m : {RenderMode::Exact, RenderMode::Tessellated})
+        if (text == modeName(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
+}
+
+/// `text` is shadingName(s) for a shading way s.
+bool parseShadingName(const QString& text, RenderOptions::Shading& shading) {
+    for (auto s : {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth})
+        if (text == shadingName(s)) {
+            shading = s;
+            return true;
+        }
+    return false;
+}
+
+bool writeFile(const QString& path, const QByteArray& bytes) {
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate) || f.write(bytes) != bytes.size()) {
+        printError(QStringLiteral("could not write %1: %2").arg(path, f.errorString()));
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int runBench(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription(QStringLiteral(
+        "The paper's Tables 1 and 2, off-screen, speed and quality in one run, for every FILE "
+        "or, with none, the bundled samples (Table 2: teapot.knot).\n"
+        "Table 1: exact mode at each --sizes (square), --table1-partitions, --lights. "
+        "Table 2: at --table2-size and each --partitions, exact mode against "
+        "the tessellated baseline at the same partitions, a prebuilt fine mesh and libGLU's "
+        "NURBS tessellator re-run every frame, both searched to equal max normal error. FPS = "
+        "median of --frames frames after 3 warm-up frames, "
+        "each ended by glFinish. Quality: normal-angle error against the CPU kernel, silhouette "
+        "error against exact mode at 256 partitions (docs/PERFORMANCE.md defines both). Progress "
+        "on stderr, markdown on stdout. Needs OpenGL 4.5 core (see knotwork render --help)."));
+    const QCommandLineOption sizes(
+        QStringLiteral("sizes"),
+        QStringLiteral("Table 1 sizes, each 1..4096 (default 256,512,768,1024)."),
+        QStringLiteral("LIST"), QStringLiteral("256,512,768,1024"));
+    const QCommandLineOption partitions(
+        QStringLiteral("partitions"),
+        QStringLiteral("Table 2 partition counts (default 5,10,20,30,40,60)."),
+        QStringLiteral("LIST"), QStringLiteral("5,10,20,30,40,60"));
+    const QCommandLineOption t1Partitions(QStringLiteral("table1-partitions"),
+                                          QStringLiteral("Table 1 partitions (default 30)."),
+                                          QStringLiteral("N"), QStringLiteral("30"));
+    const QCommandLineOption frames(
+        QStringLiteral("frames"),
+        QStringLiteral("Timed frames per measurement, >= 20 (default 20)."), QStringLiteral("N"),
+        QStringLiteral("20"));
+    const QCommandLineOption lights(QStringLiteral("lights"),
+                                    QStringLiteral("Number of lights, 1..8 (default 2)."),
+                                    QStringLiteral("N"), QStringLiteral("2"));
+    const QCommandLineOption tables(QStringLiteral("tables"),
+                                    QStringLiteral("Which tables: 1, 2 or 1,2 (default)."),
+                                    QStringLiteral("LIST"), QStringLiteral("1,2"));
+    const QCommandLineOption smoke(
+        QStringLiteral("smoke"),
+        QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
+                       "checks the pipeline and the report, measures nothing."));
+    const QCommandLineOption t2Size(QStringLiteral("table2-size"),
+                                    QStringLiteral("Table 2 image size (default 780x400)."),
+                                    QStringLiteral("WxH"), QStringLiteral("780x400"));
+    const QCommandLineOption samples(QStringLiteral("samples"),
+                                     QStringLiteral("Folder of the samples (default: the "
+                                                    "source tree's resources/samples)."),
+                                     QStringLiteral("DIR"), QStringLiteral(KW_BENCH_SAMPLES_DIR));
+    const QCommandLineOption mode(QStringLiteral("mode"),
+                                  QStringLiteral("Table 1 mode: exact (default) or tessellated."),
+                                  QStringLiteral("MODE"), QStringLiteral("exact"));
+    const QCommandLineOption shading(
+        QStringLiteral("shading"),
+        QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
+                       "(one pass writing gl_FragDepth)."),
+        QStringLiteral("WAY"), QStringLiteral("prepass"));
+    const QCommandLineOption floor(
+        QStringLiteral("normal-floor"),
+        QStringLiteral("Table 2 equal quality: max normal error <= max(exact mode's, DEG) "
+                       "(default 0.2247 = 1/255 rad, one 8-bit diffuse level; 0 = strict)."),
+        QStringLiteral("DEG"), QStringLiteral("0.2247"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write JSON to OUT."),
+                                  QStringLiteral("OUT"));
+    const QCommandLineOption markdown(QStringLiteral("markdown"),
+                                      QStringLiteral("Write the markdown tables to OUT."),
+                                      QStringLiteral("OUT"));
+    const QCommandLineOption plots(
+        QStringLiteral("plots"),
+        QStringLiteral("Write PNG plots into DIR (default: the --markdown file's folder)."),
+        QStringLiteral("DIR"));
+    const QCommandLineOption noTrims(
+        QStringLiteral("no-trims"),
+        QStringLiteral("Draw trimmed surfaces over their whole domains (trims ignored) in every "
+                       "exact and baseline frame."));
+    const QCommandLineOption trimDrag(
+        QStringLiteral("trim-drag"),
+        QStringLiteral("Table 1: after each row's frames, also time frames that each move one "
+                       "trim control point of the file's first trimmed surface (its mask is "
+                       "redrawn every frame) and report their median, the CPU ms per mask "
+                       "redraw and the mask side ('-' for files without trims)."));
+    parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, smoke, t2Size,
+                       samples, mode, shading, floor, json, markdown, plots, noTrims, trimDrag});
+    parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
+                                 QStringLiteral("[FILE...]"));
+    if (const int code = parseOrExit(parser, args); code >= 0)
+        return code;
+    const QString cmd = args.value(0);
+
+    bench::BenchConfig config;
+    std::vector<int> tableList;
+    // Sizes stop at 4096: each quality frame reads back 10 float channels per pixel.
+    if (!parseList(parser.value(sizes), 1, kMaxSide, config.sizes) ||
+        !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions, config.partitions) ||
+        !parseIntIn(parser.value(t1Partitions), kMinPartitions, kMaxPartitions,
+                    config.table1Partitions) ||
+        !parseIntIn(parser.value(frames), 20, 100000, config.frames) ||
+        !parseImageSize(parser.value(t2Size), config.table2Size) ||
+        config.table2Size.width() > kMaxSide || config.table2Size.height() > kMaxSide ||
+        !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
+        !parseList(parser.value(tables), 1, 2, tableList) ||
+        !parseModeName(parser.value(mode), config.table1Mode) ||
+        !parseShadingName(parser.value(shading), config.shading)) {
+        printError(
+            QStringLiteral(
+                "%1: bad --sizes (1..4096), --partitions or "
+                "--table1-partitions (%2..%3), --frames (>= 20), --table2-size (WxH, each in "
+                "1..4096), --lights "
+                "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
+                "--shading (prepass, exact-depth) (see --help)")
+                .arg(cmd)
+                .arg(kMinPartitions)
+                .arg(kMaxPartitions)
+                .arg(kMaxLights));
+        return kExitUsage;
+    }
+    bool floorOk = false;
+    config.normalFloorDegrees = parser.value(floor).toDouble(&floorOk);
+    if (!floorOk || !(config.normalFloorDegrees >= 0.0) || config.normalFloorDegrees > 180.0) {
+        printError(QStringLiteral("%1: --normal-floor '%2' is not a number of degrees in 0..180")
+                       .arg(cmd, parser.value(floor)));
+        return kExitUsage;
+    }
+    const bool table1 = std::count(tableList.begin(), tableList.end(), 1) > 0;
+    const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
+    config.trims = !parser.isSet(noTrims);
+    config.trimDrag = parser.isSet(trimDrag);
+    if (config.trimDrag && (!config.trims || !table1)) {
+        printError(QStringLiteral("%1: --trim-drag needs Table 1 (--tables 1) and trims (not "
+                                  "--no-trims)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
+    // FILES, or else the samples (Table 2: the multi-patch teapot, the paper's Table 2 case).
+    QStringList files1, files2;
+    for (const QString& f : parser.positionalArguments()) {
+        if (!QFileInfo(f).isFile()) {
+            printError(QStringLiteral("%1: no such file: %2").arg(cmd, f));
+            return kExitBadInput;
+        }
+        files1 << f;
+        files2 << f;
+    }
+    if (files1.isEmpty()) {
+        const QDir dir(parser.value(samples));
+        const QStringList knots =
+            dir.entryList({QStringLiteral("*.knot")}, QDir::Files, QDir::Name);
+        if (knots.isEmpty()) {
+            printError(QStringLiteral("%1: no FILES given and no .knot samples in %2 (use "
+                                      "--samples DIR)")
+                           .arg(cmd, dir.path()));
+            return kExitBadInput;
+        }
+        for (const QString& k : knots)
+            files1 << dir.filePath(k);
+        files2 << dir.filePath(knots.contains(QStringLiteral("teapot.knot"))
+                                   ? QStringLiteral("teapot.knot")
+                                   : knots.front());
+    }
+    if (table1)
+        config.table1Files = files1;
+    if (table2)
+        config.table2Files = files2;
+    if (parser.isSet(smoke)) {
+        config.frames = 2;
+        config.warmup = 1;
+        printError(
+            QStringLiteral("%1: --smoke: 2 frames per measurement, not a measurement").arg(cmd));
+    }
+
+    QString error;
+    bench::BenchReport report;
+    if (!bench::runBench(
+            config, report, [](const QString& line) { printError(line); }, &error)) {
+        printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
+    QStringList argv = args.mid(1);
+    const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
+    QString plotDir = parser.value(plots);
+    if (plotDir.isEmpty() && parser.isSet(markdown))
+        plotDir = QFileInfo(parser.value(markdown)).absolutePath();
+    QStringList written, relative;
+    if (!plotDir.isEmpty() && !bench::writePlots(report, plotDir, written, &error)) {
+        printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
+    const QDir mdDir =
+        parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir() : QDir::current();
+    for (const QString& w : written)
+        relative << mdDir.relativeFilePath(QFileInfo(w).absoluteFilePath());
+    const QString md = bench::reportMarkdown(report, command, relative);
+    printOut(md);
+    if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
+        return kExitBadInput;
+    if (parser.isSet(json) &&
+        !writeFile(parser.value(json), QJsonDocument(bench::reportJson(report, command)).toJson()))
+        return kExitBadInput;
+    return kExitOk;
+}
+
+} // namespace kw::cli

@@ -1,0 +1,95 @@
+// One VAO, three attribute buffers and one index buffer; a draw per surface with its material.
+#include "bench/mesh_pass.h"
+
+#include "render/shading_uniforms.h"
+
+#include <QOpenGLShaderProgram>
+
+namespace kw::bench {
+
+MeshPass::~MeshPass() = default;
+
+void MeshPass::initialize(QOpenGLFunctions_4_5_Core* gl) {
+    m_gl = gl;
+    gl->glCreateVertexArrays(1, &m_vao);
+    gl->glCreateBuffers(4, m_buffers);
+    const int sizes[] = {3, 3, 2};
+    for (GLuint a = 0; a < 3; ++a) {
+        gl->glVertexArrayVertexBuffer(m_vao, a, m_buffers[a], 0, GLsizei(sizes[a] * sizeof(float)));
+        gl->glEnableVertexArrayAttrib(m_vao, a);
+        gl->glVertexArrayAttribFormat(m_vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
+        gl->glVertexArrayAttribBinding(m_vao, a, a);
+    }
+    gl->glVertexArrayElementBuffer(m_vao, m_buffers[3]);
+}
+
+void MeshPass::upload(const SceneMesh& mesh) {
+    m_positions.clear();
+    m_normals.clear();
+    m_uvs.clear();
+    m_indices.clear();
+    m_ranges.clear();
+    for (const SurfaceMesh& s : mesh.surfaces) {
+        m_ranges.push_back(Range{s.id, GLsizei(s.indices.size()),
+                                 m_indices.size() * sizeof(unsigned), GLint(m_positions.size())});
+        m_positions.insert(m_positions.end(), s.positions.begin(), s.positions.end());
+        m_normals.insert(m_normals.end(), s.normals.begin(), s.normals.end());
+        m_uvs.insert(m_uvs.end(), s.uvs.begin(), s.uvs.end());
+        m_indices.insert(m_indices.end(), s.indices.begin(), s.indices.end());
+    }
+    auto send = [&](GLuint buffer, const auto& v) {
+        const auto bytes = GLsizeiptr(v.size() * sizeof(v[0]));
+        m_gl->glNamedBufferData(buffer, bytes, v.empty() ? nullptr : v.data(), GL_STREAM_DRAW);
+        m_bytes = m_bytes + bytes;
+    };
+    m_bytes = 0;
+    send(m_buffers[0], m_positions);
+    send(m_buffers[1], m_normals);
+    send(m_buffers[2], m_uvs);
+    send(m_buffers[3], m_indices);
+}
+
+bool MeshPass::draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
+                    bool writeAov, QString* error) {
+    QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
+    if (writeAov)
+        defines << QStringLiteral("KW_AOV");
+    QOpenGLShaderProgram* prog = m_shaders.program(QStringLiteral("tessellated.vert"),
+                                                   QStringLiteral("tessellated.frag"), defines);
+    if (!prog) {
+        *error = m_shaders.lastError();
+        return false;
+    }
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    prog->bind();
+    setFrameUniforms(gl, prog, camera, lights);
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_TRUE);
+    gl->glBindVertexArray(m_vao);
+    for (const Range& r : m_ranges) {
+        const auto it = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
+                                     [&](const Surface& s) { return s.id == r.id; });
+        if (it == scene.surfaces.end() || r.count == 0)
+            continue;
+        setSurfaceUniforms(gl, prog, *it);
+        gl->glDrawElementsBaseVertex(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+                                     reinterpret_cast<const void*>(r.firstIndexByte), r.baseVertex);
+    }
+    gl->glBindVertexArray(0);
+    gl->glUseProgram(0);
+    return true;
+}
+
+void MeshPass::release() {
+    if (!m_gl)
+        return;
+    m_shaders.clear();
+    m_gl->glDeleteBuffers(4, m_buffers);
+    m_gl->glDeleteVertexArrays(1, &m_vao);
+    m_vao = 0;
+    m_buffers[0] = m_buffers[1] = m_buffers[2] = m_buffers[3] = 0;
+    m_gl = nullptr;
+}
+
+} // namespace kw::bench
