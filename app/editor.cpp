@@ -72,11 +72,16 @@ void buildDemo(MainWindow& window) {
     pushCommand(window.undoStack(), MoveControlPoints::create(window.document(), patch, indices,
                                                               from, to, MoveKind::Drag));
     window.uvPanel()->addLoop({makeCircle2({0.62, 0.5}, 0.2)}, QObject::tr("circular"));
+    // From above the front right, so the hole is seen, framing both surfaces.
+    Camera c = window.viewport()->cameraController().camera();
+    c.eye = c.target + glm::dvec3(1.2, -3.0, 4.0);
+    window.viewport()->setCamera(c);
     window.viewport()->fitToView();
+    QTimer::singleShot(0, window.viewport(), [&window] { window.viewport()->fitToView(); });
 }
 
 /// Shows the window, waits until the viewport has drawn a few frames, saves a grab.
-int screenshot(MainWindow& window, const QString& out) {
+int screenshot(MainWindow& window, const QString& out, bool refit) {
     // Show a picked control point too, so the property panel's point box is filled.
     if (const SurfaceId id = window.selection()->currentSurface(); id.isValid())
         window.selection()->setControlPoints({ControlPointRef{id, 1, 2}});
@@ -84,8 +89,13 @@ int screenshot(MainWindow& window, const QString& out) {
     QElapsedTimer clock;
     clock.start();
     // Let the window be exposed and the viewport draw (llvmpipe: allow a few seconds).
-    while (clock.elapsed() < 1500)
+    while (clock.elapsed() < 1500) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+        if (refit && clock.elapsed() > 300) { // once the viewport has its final size
+            window.viewport()->fitToView();
+            refit = false;
+        }
+    }
     // QWidget::grab() may show the viewport's previous composition; paint its current frame
     // (which includes the picked-point marks drawn with QPainter) over it.
     QImage image = window.grab().toImage();
@@ -186,7 +196,7 @@ int runEditor(int argc, char** argv) {
     if (parser.isSet(demo))
         buildDemo(window);
     if (parser.isSet(shot))
-        return screenshot(window, parser.value(shot));
+        return screenshot(window, parser.value(shot), parser.isSet(demo));
     window.show();
     return QApplication::exec();
 }

@@ -40,13 +40,14 @@ namespace {
 using namespace kw::cli;
 
 QString globalHelp() {
-    QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                                  "       knotwork FILE.knot      (the editor; FILE is optional)\n"
-                                  "       knotwork --screenshot OUT [--size WxH] [--demo] [FILE.knot]\n"
-                                  "\n"
-                                  "Knotwork NURBS surface editor and command-line tools.\n"
-                                  "\n"
-                                  "Subcommands:\n");
+    QString text =
+        QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
+                       "       knotwork FILE.knot      (the editor; FILE is optional)\n"
+                       "       knotwork --screenshot OUT [--size WxH] [--demo] [FILE.knot]\n"
+                       "\n"
+                       "Knotwork NURBS surface editor and command-line tools.\n"
+                       "\n"
+                       "Subcommands:\n");
     for (const Command& c : commands())
         text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
     text += QStringLiteral(

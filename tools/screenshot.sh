@@ -10,5 +10,5 @@ chmod 700 "$XDG_RUNTIME_DIR"
 # Fresh settings so a saved window layout does not change the picture.
 export XDG_CONFIG_HOME="$(mktemp -d)"
 xvfb-run -a -s "-screen 0 1280x1024x24" \
-    "$build/bin/knotwork" --size 1200x760 --screenshot "$out" --demo
+    "$build/bin/knotwork" --size 1440x860 --screenshot "$out" --demo
 echo "wrote $out"
