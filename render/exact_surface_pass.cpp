@@ -118,6 +118,7 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
             masks->setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        ++drawCalls;
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return ok;
@@ -187,6 +188,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
             masks->setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        ++drawCalls;
     }
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);

@@ -2,30 +2,14 @@
 // on a QOffscreenSurface and an FBO with a colour target and float AOV targets.
 #pragma once
 
+#include "render/aov_buffer.h"
 #include "render/renderer.h"
 
 #include <QImage>
-#include <QOffscreenSurface>
-#include <QOpenGLContext>
+#include <QSurfaceFormat>
 #include <memory>
-#include <vector>
 
 namespace kw {
-
-/// Per-pixel arbitrary output variables, row 0 at the top. Channels per pixel (kAovChannels):
-/// surface id (-1 background; the SurfaceId value otherwise), u, v, P.x, P.y, P.z, N.x, N.y,
-/// N.z (unit, Su x Sv side), Z (eye-space depth along the view direction, model units).
-struct AovBuffer {
-    static constexpr int kChannels = 10;
-    static const char* const kChannelNames[kChannels]; ///< id,u,v,P.x,P.y,P.z,N.x,N.y,N.z,Z
-    int width = 0;
-    int height = 0;
-    std::vector<float> data;
-
-    const float* pixel(int x, int y) const {
-        return data.data() + (size_t(y) * size_t(width) + size_t(x)) * kChannels;
-    }
-};
 
 /// FBO attachments: 0 colour RGBA8; 1 RGBA32F (id, u, v, Z); 2 RGBA32F (P, 1); 3 RGBA32F
 /// (N, 0); depth 24-bit. The AOV attachments exist only when requested in setSize.
@@ -46,10 +30,16 @@ public:
     bool create(QString* error);
     /// (Re)allocates the framebuffer; width and height in 1..16384. False with *error on failure.
     bool setSize(QSize size, bool withAov, QString* error);
-    QSize size() const { return m_size; }
+    QSize size() const;
 
-    /// Renders one frame into the FBO (options.writeAov is forced to the FBO's AOV state).
-    bool render(const Document& doc, const Camera& camera, RenderOptions options, QString* error);
+    /// Renders one frame into the FBO (with AOVs when the FBO has them). Returns the report's
+    /// ok, with *error set from it on failure; lastReport() holds the whole report.
+    bool render(const Document& doc, const Camera& camera, const RenderOptions& options,
+                QString* error);
+    const FrameReport& lastReport() const;
+    /// Renderer::pick at `pixel` of a frame of size() with this context current.
+    std::optional<PickHit> pick(const Document& doc, const Camera& camera, QPointF pixel,
+                                const RenderOptions& options = {});
     /// glFinish on the context: the frame is complete when this returns (for timing).
     void finish();
     /// The colour target as RGBA8888, top row first.
@@ -57,20 +47,12 @@ public:
     /// The AOV targets (empty buffer when the FBO has none).
     AovBuffer aov();
 
-    Renderer& renderer() { return m_renderer; }
+    Renderer& renderer();
     bool makeCurrent();
 
 private:
-    void destroyFramebuffer();
-
-    std::unique_ptr<QOpenGLContext> m_context;
-    std::unique_ptr<QOffscreenSurface> m_surface;
-    Renderer m_renderer;
-    QSize m_size;
-    bool m_withAov = false;
-    GLuint m_fbo = 0;
-    GLuint m_color = 0, m_depth = 0;
-    GLuint m_aov[3] = {0, 0, 0};
+    struct Impl;
+    std::unique_ptr<Impl> d;
 };
 
 } // namespace kw

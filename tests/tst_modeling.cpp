@@ -16,7 +16,9 @@
 #include <QFileInfo>
 #include <QProgressDialog>
 #include <QSettings>
+#include <QTreeView>
 #include <QUndoStack>
+#include <algorithm>
 
 using namespace kw;
 using namespace kwtest;
@@ -289,6 +291,53 @@ private Q_SLOTS:
         }
         m_window->undoStack()->undo();
         QVERIFY(scene().surfaces == before.surfaces);
+    }
+
+    void clickSelectsSurfaceIn3D() {
+        openWindow("teapot");
+        Viewport* vp = m_window->viewport();
+        // A pixel of some surface that is not the current one: the renderer's pick says which.
+        const SurfaceId current = m_window->selection()->currentSurface();
+        const std::vector<SurfaceId> nets = vp->netSurfaces();
+        ControlPointPicker picker; // the nets shown: a click near one of their points picks it
+        picker.update(*m_window->document(), vp->viewProjection(), &nets);
+        std::optional<PickHit> hit;
+        QPoint at;
+        for (int y = 40; y < vp->height() - 40 && !hit; y += 17)
+            for (int x = 40; x < vp->width() - 40 && !hit; x += 17)
+                if (auto h = vp->pickSurface(QPointF(x, y));
+                    h && h->surface != current && !picker.nearest(QPointF(x, y), 10.0)) {
+                    hit = h;
+                    at = QPoint(x, y);
+                }
+        QVERIFY(hit.has_value());
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, at);
+        QVERIFY(m_window->selection()->controlPoints().empty());
+        QCOMPARE(m_window->selection()->currentSurface(), hit->surface);
+        QCOMPARE(m_window->selection()->selectedSurfaces(), std::vector<SurfaceId>{hit->surface});
+        // The hit is where the kernel puts that surface's (u, v).
+        const Surface* s = m_window->document()->surface(hit->surface);
+        QVERIFY(glm::length(surfacePoint(s->geometry, hit->uv.x, hit->uv.y) - hit->point) < 1e-9);
+        // Shift + click adds another surface; the tree shows both.
+        std::optional<PickHit> other;
+        QPoint at2;
+        const std::vector<SurfaceId> nets2 = vp->netSurfaces();
+        picker.update(*m_window->document(), vp->viewProjection(), &nets2);
+        for (int y = 40; y < vp->height() - 40 && !other; y += 13)
+            for (int x = 40; x < vp->width() - 40 && !other; x += 13)
+                if (auto h = vp->pickSurface(QPointF(x, y));
+                    h && h->surface != hit->surface && !picker.nearest(QPointF(x, y), 10.0)) {
+                    other = h;
+                    at2 = QPoint(x, y);
+                }
+        QVERIFY(other.has_value());
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::ShiftModifier, at2);
+        std::vector<SurfaceId> both{hit->surface, other->surface};
+        std::sort(both.begin(), both.end(), [&](SurfaceId a, SurfaceId b) {
+            return m_window->document()->indexOf(a) < m_window->document()->indexOf(b);
+        });
+        QCOMPARE(m_window->selection()->selectedSurfaces(), both);
+        QCOMPARE(m_window->sceneTree()->selectionModel()->selectedRows().size(), 2);
     }
 
     void ctrlDragMovesSurfacesAndCtrlShiftDragSetsWeight() {

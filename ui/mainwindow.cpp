@@ -101,20 +101,24 @@ MainWindow::MainWindow(QWidget* parent)
     m_fpsLabel = new QLabel;
     m_fpsLabel->setMinimumWidth(170);
     statusBar()->addPermanentWidget(m_fpsLabel);
-    // While frames come, frames per second and the last frame's time; a second after the last
-    // frame, "idle" with that frame's time, rather than a stale rate.
+    // While frames come, frames per second and the last frame's report; a second after the
+    // last frame, "idle" with that frame's time, rather than a stale rate.
     auto* idle = new QTimer(this);
     idle->setSingleShot(true);
     idle->setInterval(1200);
-    connect(m_viewport, &Viewport::framesPerSecond, this, [this](double fps, double ms) {
-        m_fpsLabel->setText(tr("%1 fps, frame %2 ms").arg(fps, 0, 'f', 1).arg(ms, 0, 'f', 1));
-    });
-    connect(m_viewport, &Viewport::frameDrawn, this, [this, idle](double ms) {
-        m_lastFrameMs = ms;
+    connect(m_viewport, &Viewport::framesPerSecond, this,
+            [this](double fps, const FrameReport& frame) {
+                m_fpsLabel->setText(tr("%1 fps, frame %2 ms CPU, %3 draws")
+                                        .arg(fps, 0, 'f', 1)
+                                        .arg(frame.cpuMs.total, 0, 'f', 1)
+                                        .arg(frame.drawCalls));
+            });
+    connect(m_viewport, &Viewport::frameDrawn, this, [this, idle](const FrameReport& frame) {
+        m_lastFrameMs = frame.cpuMs.total;
         idle->start();
     });
     connect(idle, &QTimer::timeout, this, [this] {
-        m_fpsLabel->setText(tr("idle, last frame %1 ms").arg(m_lastFrameMs, 0, 'f', 1));
+        m_fpsLabel->setText(tr("idle, last frame %1 ms CPU").arg(m_lastFrameMs, 0, 'f', 1));
     });
     connect(m_viewport, &Viewport::renderError, this,
             [this](const QString& message) { statusBar()->showMessage(message); });

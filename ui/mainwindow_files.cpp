@@ -2,6 +2,7 @@
 // export, drops, title.
 #include "model/knotfile.h"
 #include "render/image_writer.h"
+#include "render/offscreen_renderer.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 

@@ -167,8 +167,6 @@ void Viewport::paintGL() {
     const bool timed = m_moveTimed;
     const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
     m_moveTimed = false;
-    QElapsedTimer frameClock;
-    frameClock.start();
 
     if (!m_renderer.isInitialized()) {
         QPainter p(this);
@@ -178,31 +176,28 @@ void Viewport::paintGL() {
                    QStringLiteral("The 3D view is unavailable:\n%1").arg(m_glError));
         return;
     }
-    const UploadStats before = m_renderer.cache().totalStats();
     RenderOptions options = m_options;
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     const qreal dpr = devicePixelRatioF();
     const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
-    if (!m_renderer.render(*m_doc, m_camera.camera(), pixels, options,
-                           defaultFramebufferObject())) {
-        if (m_renderer.lastError() != m_lastRenderError) {
-            m_lastRenderError = m_renderer.lastError();
+    m_lastReport = m_renderer.render(*m_doc, m_camera.camera(),
+                                     {defaultFramebufferObject(), pixels, false}, options);
+    if (!m_lastReport.ok) {
+        if (m_lastReport.error != m_lastRenderError) {
+            m_lastRenderError = m_lastReport.error;
             Q_EMIT renderError(QStringLiteral("Frame failed: %1").arg(m_lastRenderError));
         }
     } else {
         m_lastRenderError.clear();
     }
-    const std::int64_t bytes = m_renderer.cache().totalStats().bytes - before.bytes;
     drawSelection();
-    const double frameMs = double(frameClock.nsecsElapsed()) * 1e-6;
-    Q_EMIT frameDrawn(frameMs);
+    Q_EMIT frameDrawn(m_lastReport);
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);
         m_metrics.handlerMs.push_back(m_handlerMs);
-        m_metrics.paintMs.push_back(frameMs);
-        m_metrics.bytes.push_back(bytes);
+        m_metrics.frames.push_back(m_lastReport);
     }
 
     ++m_framesDrawn;
@@ -210,10 +205,24 @@ void Viewport::paintGL() {
         m_fpsClock.start();
     ++m_frames;
     if (m_fpsClock.elapsed() >= 1000) {
-        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), frameMs);
+        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), m_lastReport);
         m_frames = 0;
         m_fpsClock.restart();
     }
+}
+
+std::optional<PickHit> Viewport::pickSurface(QPointF position) {
+    if (!m_renderer.isInitialized())
+        return std::nullopt;
+    RenderOptions options = m_options;
+    options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
+    const qreal dpr = devicePixelRatioF();
+    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
+    makeCurrent();
+    std::optional<PickHit> hit =
+        m_renderer.pick(*m_doc, m_camera.camera(), pixels, position * dpr, options);
+    doneCurrent();
+    return hit;
 }
 
 void Viewport::drawSelection() {
@@ -458,12 +467,35 @@ void Viewport::finishDrag(bool cancel) {
     update();
 }
 
+void Viewport::selectClickedSurface(SurfaceId id, bool additive) {
+    const QModelIndex row = m_model->surfaceIndex(id);
+    if (!row.isValid())
+        return;
+    QItemSelectionModel* items = m_selection->itemSelection();
+    if (additive) {
+        // Shift toggles the surface in the selection, as Ctrl does in the tree.
+        items->select(row, QItemSelectionModel::Toggle | QItemSelectionModel::Rows);
+        items->setCurrentIndex(row, QItemSelectionModel::NoUpdate);
+        return;
+    }
+    m_selection->setControlPoints({});
+    items->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+}
+
 void Viewport::finishRubberBand(QPointF pixel, bool additive) {
     m_gesture = Gesture::None;
     if (m_band)
         m_band->hide();
     const QRectF rect = QRectF(m_pressPixel, pixel).normalized();
     std::vector<ControlPointRef> picked;
+    if (rect.width() < 3 && rect.height() < 3) {
+        // A click, not a band: select the surface drawn at that pixel (the renderer's own id
+        // buffer, so what is picked is what is seen, trims included).
+        if (const std::optional<PickHit> hit = pickSurface(pixel)) {
+            selectClickedSurface(hit->surface, additive);
+            return;
+        }
+    }
     if (rect.width() >= 3 || rect.height() >= 3) {
         const std::vector<SurfaceId> nets = netSurfaces();
         if (!nets.empty()) {
