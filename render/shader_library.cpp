@@ -52,6 +52,48 @@ QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
     return out;
 }
 
+namespace {
+
+/// A program with its uniform locations (ShaderLibrary::uniforms).
+class Program : public QOpenGLShaderProgram {
+public:
+    void lookUpUniforms() {
+        UniformLocations& u = locations;
+        const std::pair<int*, const char*> names[] = {{&u.viewProjection, "uViewProjection"},
+                                                      {&u.eye, "uEye"},
+                                                      {&u.forward, "uForward"},
+                                                      {&u.ambient, "uAmbient"},
+                                                      {&u.lightVector, "uLightVector"},
+                                                      {&u.lightDiffuse, "uLightDiffuse"},
+                                                      {&u.lightSpecular, "uLightSpecular"},
+                                                      {&u.color, "uColor"},
+                                                      {&u.material, "uMaterial"},
+                                                      {&u.surfaceId, "uSurfaceId"},
+                                                      {&u.domain, "uDomain"},
+                                                      {&u.origin, "uOrigin"},
+                                                      {&u.control, "uControl"},
+                                                      {&u.spansU, "uSpansU"},
+                                                      {&u.spansV, "uSpansV"},
+                                                      {&u.trimMask, "uTrimMask"},
+                                                      {&u.trimRect, "uTrimRect"},
+                                                      {&u.trimSize, "uTrimSize"},
+                                                      {&u.trimLayerScale, "uTrimLayerScale"},
+                                                      {&u.trimLayer, "uTrimLayer"},
+                                                      {&u.depthBias, "uDepthBias"},
+                                                      {&u.pointSize, "uPointSize"},
+                                                      {&u.lineColor, "uLineColor"}};
+        for (const auto& [slot, name] : names)
+            *slot = uniformLocation(name);
+    }
+    UniformLocations locations;
+};
+
+} // namespace
+
+const UniformLocations& ShaderLibrary::uniforms(const QOpenGLShaderProgram* program) {
+    return static_cast<const Program*>(program)->locations;
+}
+
 QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QString& fragment,
                                              const QStringList& defines) {
     const QString key =
@@ -59,14 +101,14 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
     auto it = m_programs.find(key);
     if (it != m_programs.end()) {
         if (!it.value())
-            m_lastError = QStringLiteral("shader variant %1 failed to build earlier").arg(key);
+            m_lastError = m_failures.value(key);
         return it.value().get();
     }
     QString header = QStringLiteral("#version 450 core\n");
     for (const QString& d : defines)
         header += QStringLiteral("#define ") + d + QLatin1Char('\n');
 
-    auto prog = std::make_shared<QOpenGLShaderProgram>();
+    auto prog = std::make_shared<Program>();
     QString error;
     const QString vs = expandedSource(vertex, &error);
     const QString fs = vs.isEmpty() ? QString() : expandedSource(fragment, &error);
@@ -87,14 +129,17 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
         m_lastError =
             QStringLiteral("shader variant [%1]: %2").arg(defines.join(QLatin1Char(' ')), error);
         m_programs.insert(key, nullptr);
+        m_failures.insert(key, m_lastError);
         return nullptr;
     }
+    prog->lookUpUniforms();
     m_programs.insert(key, prog);
     return prog.get();
 }
 
 void ShaderLibrary::clear() {
     m_programs.clear();
+    m_failures.clear();
 }
 
 } // namespace kw
