@@ -92,8 +92,14 @@ struct Editor {
             return false;
         const bool changed = w->document()->scene() != before;
         w->undoStack()->undo();
-        return changed && w->document()->scene() == before && w->saveFile(path) &&
-               readKnotFile(path, nullptr) == before;
+        if (!changed || w->document()->scene() != before || !w->saveFile(path))
+            return false;
+        // Save also writes the view's camera (issue 13); everything else is the document.
+        std::optional<Scene> written = readKnotFile(path, nullptr);
+        if (!written)
+            return false;
+        written->camera = before.camera;
+        return *written == before;
     }
 };
 
