@@ -196,12 +196,15 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         renderer.finish();
         row.firstFrameSeconds = double(first.nsecsElapsed()) * 1e-9;
         row.residentMiB = residentMiB();
-        if (!frames.time(doc, fitted, row.fitted, error) ||
-            !frames.time(doc, closeUp, row.closeUp, error) ||
+        row.gpuBytes = renderer.lastReport().gpuBytes.total();
+        if (!frames.time(doc, fitted, row.fitted, error))
+            return false;
+        row.drawCalls = renderer.lastReport().drawCalls; // a steady fitted frame's
+        if (!frames.time(doc, closeUp, row.closeUp, error) ||
             !frames.drag(doc, fitted, row.dragStepMs, error))
             return false;
         progress(QStringLiteral("scale %1 x %2 = %3 faces: load %4 s, %5 MiB, fitted %6 FPS "
-                                "(%7 CPU ms), close-up %8 FPS, drag step %9 ms")
+                                "(%7 CPU ms, %8 draw calls), close-up %9 FPS, drag step %10 ms")
                      .arg(row.copies)
                      .arg(report.unitFaces)
                      .arg(row.faces)
@@ -209,6 +212,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
                      .arg(row.residentMiB, 0, 'f', 0)
                      .arg(row.fitted.timing.fps(), 0, 'f', 1)
                      .arg(row.fitted.timing.cpuMs, 0, 'f', 1)
+                     .arg(row.drawCalls)
                      .arg(row.closeUp.timing.fps(), 0, 'f', 1)
                      .arg(row.dragStepMs, 0, 'f', 2));
         report.rows.push_back(row);
