@@ -44,6 +44,9 @@ struct ScaleRow {
     /// Median thread CPU ms from moving one control point (Document::setControlPoints, what a
     /// drag step does) to the end of the render call that issues the frame's draws.
     double dragStepMs = 0.0;
+    /// Empty, or why frames were not drawn as asked (e.g. trimmed surfaces beyond the GPU's
+    /// mask layers drawn untrimmed); the numbers are those of the frames as drawn.
+    QString warning;
 };
 
 struct ScaleReport {

@@ -46,7 +46,8 @@ QJsonObject scaleJson(const ScaleReport& report) {
                                 {QStringLiteral("drawCalls"), r.drawCalls},
                                 {QStringLiteral("fitted"), viewJson(r.fitted)},
                                 {QStringLiteral("closeUp"), viewJson(r.closeUp)},
-                                {QStringLiteral("dragStepMs"), r.dragStepMs}});
+                                {QStringLiteral("dragStepMs"), r.dragStepMs},
+                                {QStringLiteral("warning"), r.warning}});
     const ScaleConfig& c = report.config;
     return QJsonObject{{QStringLiteral("model"), report.model},
                        {QStringLiteral("unitFaces"), report.unitFaces},
@@ -83,6 +84,11 @@ QString scaleMarkdown(const ScaleReport& report) {
                        num(r.fitted.renderCallMs, 2))
                   .arg(num(r.closeUp.timing.fps()), num(r.closeUp.timing.cpuMs),
                        num(r.closeUp.renderCallMs, 2), num(r.dragStepMs, 2));
+    for (const ScaleRow& r : report.rows)
+        if (!r.warning.isEmpty())
+            md += QStringLiteral("\n%1 faces: drawn with a warning: %2\n")
+                      .arg(r.faces)
+                      .arg(r.warning);
     if (report.rows.size() >= 2) {
         // The targets, read off the rows (100 faces: the row nearest to it).
         const ScaleRow& small = nearest(report.rows, 100);

@@ -7,7 +7,9 @@
 
 #include <QCoreApplication>
 #include <QFileInfo>
+#include <QImageWriter>
 #include <QLibrary>
+#include <QSaveFile>
 #include <vector>
 
 #ifndef KW_MODULE_DIR
@@ -73,6 +75,22 @@ bool writePixels(const QString& path, KwImageWrite image, QString* error) {
     return true;
 }
 
+/// PNG needs no OpenImageIO: Qt's own encoder (in QtGui), written through QSaveFile so the old
+/// file stays until the new one is complete. The flush is checked before commit(), which in
+/// Qt 6.4 ignores a failed final flush.
+bool writePng(const QImage& rgb, const QString& path, QString* error) {
+    QSaveFile file(path);
+    QImageWriter writer(&file, "png");
+    if (!file.open(QIODevice::WriteOnly) || !writer.write(rgb) || !file.flush() || !file.commit()) {
+        const QString why =
+            file.error() != QFileDevice::NoError ? file.errorString() : writer.errorString();
+        file.cancelWriting();
+        *error = QStringLiteral("%1: could not write image: %2").arg(path, why);
+        return false;
+    }
+    return true;
+}
+
 } // namespace
 
 bool isSupportedImagePath(const QString& path) {
@@ -92,6 +110,8 @@ bool writeColorImage(const QImage& image, const QString& path, QString* error) {
         return false;
     }
     const QImage rgb = image.convertToFormat(QImage::Format_RGB888);
+    if (suffixOf(path) == QLatin1String("png"))
+        return writePng(rgb, path, error);
     const int w = rgb.width(), h = rgb.height();
     std::vector<unsigned char> bytes(size_t(w) * size_t(h) * 3);
     for (int y = 0; y < h; ++y)
