@@ -2,10 +2,9 @@
 // per-fragment NURBS shader; a depth pre-pass (default) makes each pixel evaluated once.
 #pragma once
 
+#include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
-#include "render/surface_gpu_cache.h"
-#include "render/trim_mask_pass.h"
 
 #include <QString>
 
@@ -16,15 +15,14 @@ public:
     /// Needs the context current while drawing; `shaders` outlives the pass.
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
 
-    /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
-    /// on), as options.shading says. Surfaces with a mask in `masks` (may be null: no trims)
-    /// lose their trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
+    /// Draws every record of `scene` that has exact data into the bound framebuffer (depth
+    /// test on), as options.shading says. With `trims`, surfaces with an active mask lose their
+    /// trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
     /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
     /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
     /// with *error set when a shader variant cannot be built.
-    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
-              const FrameCamera& camera, const std::vector<Light>& lights,
-              const RenderOptions& options, QString* error);
+    bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
     /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
@@ -45,8 +43,7 @@ public:
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
 
 private:
-    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
-                      const FrameCamera& camera, QString* error);
+    bool depthPrepass(const GpuScene& scene, bool trims, const FrameCamera& camera, QString* error);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
