@@ -182,7 +182,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     OffscreenRenderer renderer;
     if (!renderer.create(error) || !renderer.setSize(QSize(config.side, config.side), false, error))
         return false;
-    Frames frames{renderer, config, RenderOptions{}};
+    Frames frames{renderer, config, RenderOptions{}, QString()};
     frames.options.trims = config.trims;
     const Camera closeUp = closeUpCamera(*unit, 1.0);
 
