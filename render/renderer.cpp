@@ -90,7 +90,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     options.writeAov = target.aov;
     FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount);
+    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount,
+                                                options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
 
