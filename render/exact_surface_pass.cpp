@@ -13,7 +13,8 @@
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3; // after uControl, uSpansU, uSpansV
+constexpr int kTrimMaskUnit = 3;    // after uControl, uSpansU, uSpansV
+constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
 double gatherMinCellPixels() {
     if (const char* e = std::getenv("KW_GATHER_MIN_CELL_PX"))
@@ -58,6 +59,7 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
+    m_environment.initialize(gl);
 }
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
@@ -75,6 +77,7 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_EXACT_DEPTH");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
+    d << analysisDefines(options.analysis, options.writeCurvatureAov);
     return d;
 }
 
@@ -126,8 +129,11 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
 bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
                             const TrimMaskPass* masks, const FrameCamera& camera,
                             const std::vector<Light>& lights, const RenderOptions& options,
-                            QString* error) {
+                            const ValueRange& range, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (options.analysis.mode == AnalysisMode::Environment &&
+        !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
+        return false;
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
     // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
     // triangle, and GL_EQUAL needs bit-identical depths.
@@ -173,6 +179,8 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
             prog->bind();
             bound = prog;
             setFrameUniforms(gl, prog, camera, lights);
+            setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights,
+                                kEnvironmentUnit);
             gl->glUniform1i(prog->uniformLocation("uControl"), 0);
             gl->glUniform1i(prog->uniformLocation("uSpansU"), 1);
             gl->glUniform1i(prog->uniformLocation("uSpansV"), 2);

@@ -2,6 +2,7 @@
 #include "render/image_writer.h"
 
 #include <OpenImageIO/imageio.h>
+#include <algorithm>
 #include <vector>
 
 namespace kw {
@@ -75,12 +76,28 @@ bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error) {
         *error = QStringLiteral("%1: no AOV data was rendered").arg(path);
         return false;
     }
-    OIIO::ImageSpec spec(aov.width, aov.height, AovBuffer::kChannels, OIIO::TypeDesc::FLOAT);
+    const bool curvature = !aov.curvature.empty();
+    const int channels = AovBuffer::kChannels + (curvature ? AovBuffer::kCurvatureChannels : 0);
+    OIIO::ImageSpec spec(aov.width, aov.height, channels, OIIO::TypeDesc::FLOAT);
     spec.channelnames.clear();
     for (const char* name : AovBuffer::kChannelNames)
         spec.channelnames.emplace_back(name);
+    if (!curvature) {
+        spec.attribute("compression", "zip");
+        return writePixels(path, spec, aov.data.data(), error);
+    }
+    for (const char* name : AovBuffer::kCurvatureNames)
+        spec.channelnames.emplace_back(name);
     spec.attribute("compression", "zip");
-    return writePixels(path, spec, aov.data.data(), error);
+    std::vector<float> all(size_t(aov.width) * size_t(aov.height) * size_t(channels));
+    for (size_t p = 0; p < size_t(aov.width) * size_t(aov.height); ++p) {
+        std::copy_n(aov.data.data() + p * AovBuffer::kChannels, AovBuffer::kChannels,
+                    all.data() + p * size_t(channels));
+        std::copy_n(aov.curvature.data() + p * AovBuffer::kCurvatureChannels,
+                    AovBuffer::kCurvatureChannels,
+                    all.data() + p * size_t(channels) + AovBuffer::kChannels);
+    }
+    return writePixels(path, spec, all.data(), error);
 }
 
 } // namespace kw

@@ -5,6 +5,8 @@ namespace kw {
 
 const char* const AovBuffer::kChannelNames[AovBuffer::kChannels] = {
     "id", "u", "v", "P.x", "P.y", "P.z", "N.x", "N.y", "N.z", "Z"};
+const char* const AovBuffer::kCurvatureNames[AovBuffer::kCurvatureChannels] = {"K", "H", "k1",
+                                                                               "k2"};
 
 OffscreenRenderer::OffscreenRenderer() = default;
 
@@ -66,15 +68,16 @@ void OffscreenRenderer::destroyFramebuffer() {
         return;
     if (m_fbo)
         gl->glDeleteFramebuffers(1, &m_fbo);
-    GLuint tex[5] = {m_color, m_depth, m_aov[0], m_aov[1], m_aov[2]};
+    GLuint tex[6] = {m_color, m_depth, m_aov[0], m_aov[1], m_aov[2], m_aov[3]};
     for (GLuint t : tex)
         if (t)
             gl->glDeleteTextures(1, &t);
     m_fbo = m_color = m_depth = 0;
-    m_aov[0] = m_aov[1] = m_aov[2] = 0;
+    m_aov[0] = m_aov[1] = m_aov[2] = m_aov[3] = 0;
 }
 
-bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
+bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool withCurvature) {
+    withCurvature = withCurvature && withAov;
     if (size.width() < 1 || size.height() < 1 || size.width() > 16384 || size.height() > 16384) {
         *error = QStringLiteral("image size %1x%2 is outside 1..16384")
                      .arg(size.width())
@@ -85,7 +88,7 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
         *error = QStringLiteral("the off-screen renderer has no OpenGL context");
         return false;
     }
-    if (size == m_size && withAov == m_withAov && m_fbo)
+    if (size == m_size && withAov == m_withAov && withCurvature == m_withCurvature && m_fbo)
         return true;
     destroyFramebuffer();
     QOpenGLFunctions_4_5_Core* gl = m_renderer.gl();
@@ -100,14 +103,14 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
     m_depth = texture(GL_DEPTH_COMPONENT24);
     gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT0, m_color, 0);
     gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
-    GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                         GL_COLOR_ATTACHMENT3};
-    if (withAov)
-        for (int k = 0; k < 3; ++k) {
-            m_aov[k] = texture(GL_RGBA32F);
-            gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), m_aov[k], 0);
-        }
-    gl->glNamedFramebufferDrawBuffers(m_fbo, withAov ? 4 : 1, buffers);
+    GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                         GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    const int aovTargets = withAov ? (withCurvature ? 4 : 3) : 0;
+    for (int k = 0; k < aovTargets; ++k) {
+        m_aov[k] = texture(GL_RGBA32F);
+        gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), m_aov[k], 0);
+    }
+    gl->glNamedFramebufferDrawBuffers(m_fbo, 1 + aovTargets, buffers);
     const GLenum status = gl->glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         *error = QStringLiteral("framebuffer incomplete (status 0x%1)").arg(status, 0, 16);
@@ -116,6 +119,7 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
     }
     m_size = size;
     m_withAov = withAov;
+    m_withCurvature = withCurvature;
     return true;
 }
 
@@ -126,6 +130,7 @@ bool OffscreenRenderer::render(const Document& doc, const Camera& camera, Render
         return false;
     }
     options.writeAov = m_withAov;
+    options.writeCurvatureAov = m_withCurvature;
     if (!m_renderer.render(doc, camera, m_size, options, m_fbo)) {
         *error = m_renderer.lastError();
         return false;
@@ -175,6 +180,15 @@ AovBuffer OffscreenRenderer::aov() {
                                                         p[2], n[0], n[1], n[2], a[3]};
             std::copy(values, values + AovBuffer::kChannels, d);
         }
+    if (m_withCurvature) {
+        std::vector<float> plane(size_t(w) * size_t(h) * 4);
+        gl->glGetTextureImage(m_aov[3], 0, GL_RGBA, GL_FLOAT, GLsizei(plane.size() * sizeof(float)),
+                              plane.data());
+        out.curvature.resize(plane.size());
+        for (int y = 0; y < h; ++y) // GL rows run bottom-up
+            std::copy_n(plane.data() + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4,
+                        out.curvature.data() + size_t(y) * size_t(w) * 4);
+    }
     return out;
 }
 

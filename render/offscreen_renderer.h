@@ -21,14 +21,26 @@ struct AovBuffer {
     int width = 0;
     int height = 0;
     std::vector<float> data;
+    /// With the curvature AOV (RenderOptions::writeCurvatureAov): kCurvatureChannels floats
+    /// per pixel K, H, k1, k2 (kw::surfaceCurvature's signs; 0 on background); else empty.
+    static constexpr int kCurvatureChannels = 4;
+    static const char* const kCurvatureNames[kCurvatureChannels]; ///< K,H,k1,k2
+    std::vector<float> curvature;
 
     const float* pixel(int x, int y) const {
         return data.data() + (size_t(y) * size_t(width) + size_t(x)) * kChannels;
     }
+    /// Nullptr without the curvature AOV.
+    const float* curvaturePixel(int x, int y) const {
+        return curvature.empty() ? nullptr
+                                 : curvature.data() +
+                                       (size_t(y) * size_t(width) + size_t(x)) * kCurvatureChannels;
+    }
 };
 
 /// FBO attachments: 0 colour RGBA8; 1 RGBA32F (id, u, v, Z); 2 RGBA32F (P, 1); 3 RGBA32F
-/// (N, 0); depth 24-bit. The AOV attachments exist only when requested in setSize.
+/// (N, 0); 4 RGBA32F (K, H, k1, k2); depth 24-bit. The AOV attachments exist only when
+/// requested in setSize (4 only with the curvature AOV).
 class OffscreenRenderer {
 public:
     OffscreenRenderer();
@@ -45,10 +57,12 @@ public:
     /// for the xcb platform, or the offscreen platform, which offers no desktop GL).
     bool create(QString* error);
     /// (Re)allocates the framebuffer; width and height in 1..16384. False with *error on failure.
-    bool setSize(QSize size, bool withAov, QString* error);
+    /// withCurvature adds the curvature target (only with withAov).
+    bool setSize(QSize size, bool withAov, QString* error, bool withCurvature = false);
     QSize size() const { return m_size; }
 
-    /// Renders one frame into the FBO (options.writeAov is forced to the FBO's AOV state).
+    /// Renders one frame into the FBO (options.writeAov and writeCurvatureAov are forced to the
+    /// FBO's AOV state).
     bool render(const Document& doc, const Camera& camera, RenderOptions options, QString* error);
     /// glFinish on the context: the frame is complete when this returns (for timing).
     void finish();
@@ -68,9 +82,10 @@ private:
     Renderer m_renderer;
     QSize m_size;
     bool m_withAov = false;
+    bool m_withCurvature = false;
     GLuint m_fbo = 0;
     GLuint m_color = 0, m_depth = 0;
-    GLuint m_aov[3] = {0, 0, 0};
+    GLuint m_aov[4] = {0, 0, 0, 0};
 };
 
 } // namespace kw

@@ -3,6 +3,7 @@
 
 #include <QOpenGLContext>
 #include <QOpenGLVersionFunctionsFactory>
+#include <algorithm>
 #include <tuple>
 
 namespace kw {
@@ -101,12 +102,19 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
+    if (options.writeCurvatureAov) {
+        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        gl->glClearBufferfv(GL_COLOR, 4, zero);
+    }
+    resolveAnalysisRange(doc, options.analysis);
+
     // A surface too large for a texture is left out of the frame and reported.
     QString cacheError;
     const bool cached = m_cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
-    bool ok = options.mode == RenderMode::Exact
-                  ? m_exact.draw(scene, m_cache, masks, fc, lights, options, &m_error)
-                  : m_tessellated.draw(doc, masks, fc, lights, options, &m_error);
+    bool ok =
+        options.mode == RenderMode::Exact
+            ? m_exact.draw(scene, m_cache, masks, fc, lights, options, m_analysisRange, &m_error)
+            : m_tessellated.draw(doc, masks, fc, lights, options, &m_error);
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
         if (options.writeAov) {
@@ -118,9 +126,9 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
         if (ok && options.controlNet)
             ok = m_controlNet.draw(doc, fc, &m_error);
         if (options.writeAov) {
-            const GLenum all[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3};
-            gl->glNamedFramebufferDrawBuffers(targetFbo, 4, all);
+            const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+            gl->glNamedFramebufferDrawBuffers(targetFbo, options.writeCurvatureAov ? 5 : 4, all);
         }
     }
     gl->glBindVertexArray(0);
@@ -136,6 +144,29 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
     return ok;
 }
 
+void Renderer::resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis) {
+    if (!isColourMap(analysis.mode))
+        return;
+    if (analysis.range) {
+        m_analysisRange = *analysis.range;
+        return;
+    }
+    // Revisions come from one document-wide counter and never repeat, so the largest geometry
+    // revision and the surface count identify the geometry the range was computed from.
+    std::uint64_t newest = 0;
+    for (const Surface& s : doc.scene().surfaces) {
+        const Revisions r = doc.revisions(s.id);
+        newest = std::max({newest, r.points, r.knots});
+    }
+    const RangeKey key{&doc, analysis.mode, doc.scene().surfaces.size(), newest};
+    if (analysis.holdRange && m_rangeKey.document == &doc && m_rangeKey.mode == analysis.mode)
+        return;
+    if (key == m_rangeKey)
+        return;
+    m_analysisRange = autoRange(doc.scene(), analysis.mode);
+    m_rangeKey = key;
+}
+
 void Renderer::dropSurfaceCaches() {
     m_cache.release();
     m_trimMasks.release();
@@ -147,7 +178,9 @@ void Renderer::release() {
     if (!m_gl)
         return;
     dropSurfaceCaches();
+    m_exact.release();
     m_document = nullptr;
+    m_rangeKey = {};
     m_shaders.clear();
     m_gl = nullptr;
 }

@@ -56,9 +56,26 @@ public:
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const { return m_glDescription; }
     QOpenGLFunctions_4_5_Core* gl() const { return m_gl; }
+    /// The colour range the last frame's colour-map analysis used: the user's, or the automatic
+    /// one (kw::autoRange), recomputed only when the geometry or the mode changed and held while
+    /// AnalysisOptions::holdRange is set. For the legend.
+    ValueRange analysisRange() const { return m_analysisRange; }
+    /// Environment map (re)loads so far (switching modes must not reload it).
+    int environmentLoads() const { return m_exact.environment().loads(); }
 
 private:
     void dropSurfaceCaches();
+    void resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
+
+    struct RangeKey {
+        const Document* document = nullptr;
+        AnalysisMode mode = AnalysisMode::Phong;
+        size_t surfaces = 0;
+        std::uint64_t newestRevision = 0;
+        bool operator==(const RangeKey&) const = default;
+    };
+    RangeKey m_rangeKey;
+    ValueRange m_analysisRange;
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     QPointer<const Document> m_document; ///< whose data the caches hold

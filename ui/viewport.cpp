@@ -1,6 +1,7 @@
 // Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
 #include "ui/viewport.h"
 
+#include "ui/analysiscontrols.h"
 #include "ui/edit/commands.h"
 
 #include <QKeyEvent>
@@ -99,6 +100,21 @@ void Viewport::setWireframe(bool on) {
     update();
 }
 
+void Viewport::setAnalysis(const AnalysisOptions& analysis) {
+    m_options.analysis = analysis;
+    update();
+}
+
+void Viewport::drawLegend() {
+    const AnalysisOptions& a = m_options.analysis;
+    if (m_options.mode != RenderMode::Exact || !isColourMap(a.mode))
+        return;
+    QPainter p(this);
+    const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
+    drawColourLegend(p, area, a.mode, m_renderer.analysisRange(),
+                     a.scale.value_or(defaultScale(a.mode)), !a.range);
+}
+
 void Viewport::setControlNet(bool on) {
     m_options.controlNet = on;
     update();
@@ -138,6 +154,7 @@ void Viewport::paintGL() {
     }
     const UploadStats before = m_renderer.cache().totalStats();
     RenderOptions options = m_options;
+    options.analysis.holdRange = isDragging();
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     const qreal dpr = devicePixelRatioF();
     const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
@@ -152,6 +169,7 @@ void Viewport::paintGL() {
     }
     const std::int64_t bytes = m_renderer.cache().totalStats().bytes - before.bytes;
     drawSelection();
+    drawLegend();
     const double frameMs = double(frameClock.nsecsElapsed()) * 1e-6;
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);

@@ -45,6 +45,9 @@ public:
     void setRenderMode(RenderMode mode);
     void setWireframe(bool on);
     void setControlNet(bool on);
+    /// Analysis colouring (View ▸ Analysis). While a drag runs the automatic colour range is
+    /// held (AnalysisOptions::holdRange), so colours do not swim; it follows on release.
+    void setAnalysis(const AnalysisOptions& analysis);
 
     /// Empty when the renderer is ready; else why it is not (shown in the view).
     QString glError() const { return m_glError; }
@@ -100,6 +103,7 @@ private:
     void finishDrag(bool cancel);
     void finishRubberBand(QPointF pixel, bool additive);
     void drawSelection();
+    void drawLegend();
     double aspect() const;
 
     Document* m_doc;
