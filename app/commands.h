@@ -1,4 +1,7 @@
-// Command-line subcommands of the knotwork executable: one cmd_<name>.cpp per subcommand.
+// Command-line subcommands of the knotwork executables: one cmd_<name>.cpp per subcommand.
+// `knotwork` itself (Qt6::Core + model) runs info, eval and convert; it replaces itself with
+// knotwork-gl (editor, render) or knotwork-bench (bench) for the commands that draw, so those
+// that do not never load Qt's GUI, OpenGL or OpenImageIO libraries.
 #pragma once
 
 #include <QString>
@@ -23,22 +26,23 @@ enum ExitCode : int {
 struct Command {
     QString name;
     QString summary;
+    /// Null when `program` runs the command.
     std::function<int(const QStringList& args)> run;
-    /// Runs in a QGuiApplication (OpenGL) with OffscreenRenderer::requiredFormat() as the
-    /// default surface format, instead of a QCoreApplication.
-    bool gui = false;
+    /// The executable next to `knotwork` that runs this command in a QGuiApplication with
+    /// OpenGL (app/gl_command.h), or null when `run` does, in `knotwork` itself.
+    const char* program = nullptr;
 };
 
 /// Every subcommand, in the order --help lists them. Add yours in main.cpp's table.
 const std::vector<Command>& commands();
 
-int runInfo(const QStringList& args);
-int runEval(const QStringList& args);
-int runConvert(const QStringList& args);
-int runRender(const QStringList& args);
-int runBench(const QStringList& args);
+int runInfo(const QStringList& args);    ///< knotwork
+int runEval(const QStringList& args);    ///< knotwork
+int runConvert(const QStringList& args); ///< knotwork
+int runRender(const QStringList& args);  ///< knotwork-gl
+int runBench(const QStringList& args);   ///< knotwork-bench
 
-// ---- Helpers shared by subcommands (main.cpp).
+// ---- Helpers shared by subcommands (cli_util.cpp, in every executable).
 
 /// Writes one line to stderr (a newline is appended).
 void printError(const QString& line);

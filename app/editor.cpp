@@ -10,7 +10,6 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
-#include <QFileInfo>
 #include <QMessageBox>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
@@ -76,21 +75,6 @@ int screenshot(MainWindow& window, const QString& out) {
 }
 
 } // namespace
-
-bool isEditorInvocation(int argc, char** argv) {
-    if (argc < 2)
-        return true;
-    const QString first = QString::fromLocal8Bit(argv[1]);
-    if (first == QLatin1String("--screenshot") ||
-        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size"))
-        return true;
-    if (first.startsWith(QLatin1Char('-')))
-        return false;
-    for (const cli::Command& c : cli::commands())
-        if (c.name == first)
-            return false;
-    return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
-}
 
 int runEditor(int argc, char** argv) {
     // Without a display Qt's xcb plugin aborts; say so plainly instead.

@@ -1,4 +1,5 @@
-// The editor entry point of the knotwork executable: `knotwork [--screenshot OUT] [FILE]`.
+// The editor entry point of knotwork-gl (started by knotwork): `knotwork [--screenshot OUT]
+// [FILE]`.
 #pragma once
 
 namespace kw::app {
@@ -9,9 +10,5 @@ namespace kw::app {
 /// no OpenGL 4.5 core context, FILE cannot be read, or the screenshot cannot be written;
 /// 2 for a usage error. Must be called before any Q*Application exists.
 int runEditor(int argc, char** argv);
-
-/// True when argv[1] names something the editor handles (a FILE or an editor option) rather
-/// than a subcommand or a global option of the command-line tools.
-bool isEditorInvocation(int argc, char** argv);
 
 } // namespace kw::app

@@ -1,16 +1,18 @@
-// knotwork: entry point; dispatches to a command-line subcommand or the editor.
+// knotwork: entry point. Runs the command-line tools that need no display here (Qt6::Core and
+// the model only, so --version, --help, info and eval start in a few milliseconds) and hands
+// the editor, render and bench to knotwork-gl / knotwork-bench (app/launch.h).
 #include "app/commands.h"
-#include "app/editor.h"
-#include "render/offscreen_renderer.h"
+#include "app/launch.h"
 
-#include <QCommandLineParser>
 #include <QCoreApplication>
-#include <QGuiApplication>
-#include <QSurfaceFormat>
-#include <cstdio>
-#include <memory>
+#include <QFileInfo>
 
 namespace kw::cli {
+
+namespace {
+constexpr const char* kGlProgram = "knotwork-gl";       // editor and render (app/gl_main.cpp)
+constexpr const char* kBenchProgram = "knotwork-bench"; // bench (bench/main.cpp)
+} // namespace
 
 const std::vector<Command>& commands() {
     // One row per subcommand; each lives in its own cmd_<name>.cpp.
@@ -23,48 +25,12 @@ const std::vector<Command>& commands() {
          QStringLiteral("Convert IGES/STEP/BREP/OBJ/.knot to .knot or OBJ (free-form or mesh)."),
          runConvert},
         {QStringLiteral("render"),
-         QStringLiteral("Render a project off-screen to an image (and AOVs)."), runRender, true},
+         QStringLiteral("Render a project off-screen to an image (and AOVs)."), nullptr,
+         kGlProgram},
         {QStringLiteral("bench"), QStringLiteral("Measure off-screen frame rates per image size."),
-         runBench, true},
+         nullptr, kBenchProgram},
     };
     return table;
-}
-
-void printError(const QString& line) {
-    std::fprintf(stderr, "%s\n", line.toLocal8Bit().constData());
-    std::fflush(stderr);
-}
-
-void printOut(const QString& text) {
-    std::fputs(text.toUtf8().constData(), stdout);
-    std::fflush(stdout);
-}
-
-int parseOrExit(QCommandLineParser& parser, const QStringList& args) {
-    const QCommandLineOption help = parser.addHelpOption();
-    if (!parser.parse(args)) {
-        printError(QStringLiteral("%1: %2 (see --help)").arg(args.value(0), parser.errorText()));
-        return kExitUsage;
-    }
-    if (parser.isSet(help) || parser.isSet(QStringLiteral("help-all"))) {
-        // Qt names the binary's full path in the usage line; show the subcommand instead.
-        QString text = parser.helpText();
-        const qsizetype eol = text.indexOf(QLatin1Char('\n'));
-        const QString usage = text.left(eol);
-        text = QStringLiteral("Usage: %1%2")
-                   .arg(args.value(0), usage.mid(usage.indexOf(QLatin1Char(' '), 7))) +
-               text.mid(eol);
-        printOut(text);
-        return kExitOk;
-    }
-    return -1;
-}
-
-QString fullPrecision(double value) {
-    // C's printf, not QString::asprintf, which drops the sign of -0.0.
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", value);
-    return QString::fromLatin1(buf);
 }
 
 } // namespace kw::cli
@@ -106,31 +72,37 @@ const Command* findCommand(const QString& name) {
     return nullptr;
 }
 
+/// True when argv[1] names something the editor handles (a FILE or an editor option) rather
+/// than a subcommand or a global option of the command-line tools.
+bool isEditorInvocation(int argc, char** argv) {
+    if (argc < 2)
+        return true;
+    const QString first = QString::fromLocal8Bit(argv[1]);
+    if (first == QLatin1String("--screenshot") ||
+        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size"))
+        return true;
+    if (first.startsWith(QLatin1Char('-')))
+        return false;
+    if (findCommand(first))
+        return false;
+    return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
+}
+
+/// Replaces this process with `program`; returns the exit code only when that fails.
+int runElsewhere(const char* program, char** argv) {
+    printError(kw::app::execSibling(program, argv));
+    return kExitBadInput;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    if (kw::app::isEditorInvocation(argc, argv))
-        return kw::app::runEditor(argc, argv);
-    // GL subcommands need a QGuiApplication, and the default format must be set before it.
-    const Command* early = argc > 1 ? findCommand(QString::fromLocal8Bit(argv[1])) : nullptr;
-    std::unique_ptr<QCoreApplication> app;
-    if (early && early->gui) {
-        // Without a display Qt's xcb platform aborts the process; say what to do instead.
-        const QByteArray platform = qgetenv("QT_QPA_PLATFORM");
-        if ((platform.isEmpty() || platform.startsWith("xcb")) &&
-            qEnvironmentVariableIsEmpty("DISPLAY")) {
-            printError(
-                QStringLiteral("knotwork %1: no OpenGL 4.5 context can be made: no X display "
-                               "(DISPLAY is not set). Run under xvfb-run -a -s \"-screen 0 "
-                               "1280x1024x24\" with QT_QPA_PLATFORM=xcb.")
-                    .arg(early->name));
-            return kExitBadInput;
-        }
-        QSurfaceFormat::setDefaultFormat(kw::OffscreenRenderer::requiredFormat());
-        app = std::make_unique<QGuiApplication>(argc, argv);
-    } else {
-        app = std::make_unique<QCoreApplication>(argc, argv);
-    }
+    // Decided before any Q*Application exists: the editor makes its own QApplication.
+    if (isEditorInvocation(argc, argv))
+        return runElsewhere(kGlProgram, argv);
+    if (const Command* c = findCommand(QString::fromLocal8Bit(argv[1])); c && c->program)
+        return runElsewhere(c->program, argv);
+    QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
     const QStringList args = QCoreApplication::arguments();

@@ -1,5 +1,5 @@
 // JSON and markdown of a BenchReport.
-#include "app/bench/bench_report.h"
+#include "bench/bench_report.h"
 
 #include <QJsonArray>
 

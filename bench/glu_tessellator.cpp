@@ -1,6 +1,6 @@
 // gluNurbsSurface in GLU_NURBS_TESSELLATOR mode: callbacks assemble strips and fans into a
 // plain triangle list per surface.
-#include "app/bench/glu_tessellator.h"
+#include "bench/glu_tessellator.h"
 
 #include "model/nurbs.h"
 

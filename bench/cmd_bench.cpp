@@ -1,8 +1,8 @@
 // knotwork bench [FILES...]: the paper's Tables 1 and 2 off-screen, speed and quality side by side
-// (issue 6). Measurement in app/bench/bench_runner, outputs in app/bench/bench_report.
-#include "app/bench/bench_report.h"
+// (issue 6). Measurement in bench/bench_runner, outputs in bench/bench_report.
 #include "app/commands.h"
 #include "app/render_args.h"
+#include "bench/bench_report.h"
 
 #include <QCommandLineParser>
 #include <QDir>

@@ -1,7 +1,7 @@
 // The benchmark's outputs: JSON (every number), markdown tables and PNG plots drawn with QPainter.
 #pragma once
 
-#include "app/bench/bench_runner.h"
+#include "bench/bench_runner.h"
 
 #include <QJsonObject>
 #include <QString>

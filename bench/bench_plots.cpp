@@ -1,5 +1,5 @@
 // PNG line plots of a BenchReport, drawn with QPainter into a QImage (no Python needed).
-#include "app/bench/bench_report.h"
+#include "bench/bench_report.h"
 
 #include <QDir>
 #include <QImage>

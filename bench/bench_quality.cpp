@@ -1,5 +1,5 @@
 // Normal-angle error against kw::surfaceFrame and coverage-mask (silhouette) error.
-#include "app/bench/bench_quality.h"
+#include "bench/bench_quality.h"
 
 #include "model/nurbs.h"
 

@@ -1,5 +1,5 @@
 // One VAO, three attribute buffers and one index buffer; a draw per surface with its material.
-#include "app/bench/mesh_pass.h"
+#include "bench/mesh_pass.h"
 
 #include "render/shading_uniforms.h"
 

@@ -1,5 +1,5 @@
 // Scene-wide CPU meshes for the benchmark: counts and the uniform fine mesh.
-#include "app/bench/bench_mesh.h"
+#include "bench/bench_mesh.h"
 
 #include "render/gpu_layout.h"
 

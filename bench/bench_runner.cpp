@@ -1,9 +1,9 @@
 // The benchmark's measurement loop: timed frames (glFinish each), quality frames with AOVs, and
 // the equal-quality searches for the fine mesh and the GLU tessellator.
-#include "app/bench/bench_runner.h"
+#include "bench/bench_runner.h"
 
-#include "app/bench/glu_tessellator.h"
-#include "app/bench/mesh_pass.h"
+#include "bench/glu_tessellator.h"
+#include "bench/mesh_pass.h"
 #include "model/document.h"
 #include "model/knotfile.h"
 

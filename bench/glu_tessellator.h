@@ -2,7 +2,7 @@
 // GLU_NURBS_TESSELLATOR callbacks so the triangles come back to the CPU (no fixed function).
 #pragma once
 
-#include "app/bench/bench_mesh.h"
+#include "bench/bench_mesh.h"
 #include "render/render_types.h"
 
 #include <QString>

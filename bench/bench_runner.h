@@ -2,7 +2,7 @@
 // side in one run (issue 6). Plain result structs; report.h turns them into JSON, markdown, PNG.
 #pragma once
 
-#include "app/bench/bench_quality.h"
+#include "bench/bench_quality.h"
 
 #include <QSize>
 #include <QString>

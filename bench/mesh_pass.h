@@ -3,7 +3,7 @@
 // prebuilt fine mesh (uploaded once).
 #pragma once
 
-#include "app/bench/bench_mesh.h"
+#include "bench/bench_mesh.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
 

@@ -1,0 +1,46 @@
+// Helpers shared by every subcommand of the knotwork executables (see app/commands.h).
+#include "app/commands.h"
+
+#include <QCommandLineParser>
+#include <cstdio>
+
+namespace kw::cli {
+
+void printError(const QString& line) {
+    std::fprintf(stderr, "%s\n", line.toLocal8Bit().constData());
+    std::fflush(stderr);
+}
+
+void printOut(const QString& text) {
+    std::fputs(text.toUtf8().constData(), stdout);
+    std::fflush(stdout);
+}
+
+int parseOrExit(QCommandLineParser& parser, const QStringList& args) {
+    const QCommandLineOption help = parser.addHelpOption();
+    if (!parser.parse(args)) {
+        printError(QStringLiteral("%1: %2 (see --help)").arg(args.value(0), parser.errorText()));
+        return kExitUsage;
+    }
+    if (parser.isSet(help) || parser.isSet(QStringLiteral("help-all"))) {
+        // Qt names the binary's full path in the usage line; show the subcommand instead.
+        QString text = parser.helpText();
+        const qsizetype eol = text.indexOf(QLatin1Char('\n'));
+        const QString usage = text.left(eol);
+        text = QStringLiteral("Usage: %1%2")
+                   .arg(args.value(0), usage.mid(usage.indexOf(QLatin1Char(' '), 7))) +
+               text.mid(eol);
+        printOut(text);
+        return kExitOk;
+    }
+    return -1;
+}
+
+QString fullPrecision(double value) {
+    // C's printf, not QString::asprintf, which drops the sign of -0.0.
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", value);
+    return QString::fromLatin1(buf);
+}
+
+} // namespace kw::cli
