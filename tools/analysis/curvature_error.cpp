@@ -117,16 +117,28 @@ QImage domainImage(const kw::NurbsSurface& g, const Grid* mesh, int side, const 
                 h = kw::surfaceCurvature(g, du.first + s * (du.last - du.first),
                                          dv.first + t * (dv.last - dv.first))
                         .mean;
-            } else { // the mesh value of the nearest vertex (what a vertex-coloured mesh shows
-                     // at its vertices; no interpolation hides the noise)
-                const int i = std::clamp(int(std::lround(s * mesh->n)), 1, mesh->n - 1);
-                const int j = std::clamp(int(std::lround(t * mesh->n)), 1, mesh->n - 1);
-                const size_t k = size_t(mesh->at(i, j));
-                if (!mesh->valid[k]) {
+            } else { // bilinear between the cell's vertex values, as a Gouraud-shaded mesh
+                     // shows them (boundary vertices have no one-ring: their inner neighbours)
+                const double fx = s * mesh->n, fy = t * mesh->n;
+                const int i0 = std::clamp(int(fx), 0, mesh->n - 1);
+                const int j0 = std::clamp(int(fy), 0, mesh->n - 1);
+                const double ax = fx - i0, ay = fy - j0;
+                double sum = 0.0, weight = 0.0;
+                for (int c = 0; c < 4; ++c) {
+                    const int i = std::clamp(i0 + (c & 1), 1, mesh->n - 1);
+                    const int j = std::clamp(j0 + (c >> 1), 1, mesh->n - 1);
+                    const size_t k = size_t(mesh->at(i, j));
+                    const double w = ((c & 1) ? ax : 1.0 - ax) * ((c >> 1) ? ay : 1.0 - ay);
+                    if (mesh->valid[k]) {
+                        sum += w * mesh->meshH[k];
+                        weight += w;
+                    }
+                }
+                if (!(weight > 0.0)) {
                     img.setPixel(x, y, qRgb(128, 128, 128));
                     continue;
                 }
-                h = mesh->meshH[k];
+                h = sum / weight;
             }
             const glm::vec3 c =
                 kw::rampColour(kw::colourScalePosition(h, r, kw::ColourScale::Symmetric));
