@@ -88,14 +88,16 @@ vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
 #if KW_ANALYSIS >= 1 && KW_ANALYSIS <= 4
     return rampColour(scalePosition(analysisValue(curvature))) * headlight(normal, V);
 #elif KW_ANALYSIS == 5
-    // Zebra: light stripes parallel to the stripe axis A (in the view plane); a reflected view
-    // ray R sees the stripe of its angle asin(R.B) out of the plane through A and the viewer
-    // (B = A x back-to-viewer). Bands of equal angle; the level sets only close into rings
-    // around +-B (R perpendicular to the view direction, i.e. grazing), never into the star an
-    // angle about A would make where R passes the axis.
+    // Zebra: infinitely long light tubes parallel to the stripe axis A (in the view plane),
+    // evenly spread around it: a reflected view ray R sees the tube of its angle about A,
+    // measured from the direction back to the viewer. That angle is a ratio of R's components,
+    // so on a cylinder parallel to A it does not depend on the height (straight stripes, also
+    // in perspective). Where R runs along A the bands meet, as real tubes meet at their
+    // vanishing point.
     vec3 R = reflect(-V, N);
-    vec3 B = normalize(cross(uStripeAxis, -uForward));
-    float phi = asin(clamp(dot(R, B), -1.0, 1.0));
+    vec3 C = -uForward;
+    vec3 B = normalize(cross(uStripeAxis, C));
+    float phi = atan(dot(R, B), dot(R, C));
     return vec3(bands(phi / 3.14159265358979 * uStripeCount));
 #elif KW_ANALYSIS == 6
     return vec3(bands(0.5 * (dot(N, uIsophoteLight) + 1.0) * uIsophoteCount));
