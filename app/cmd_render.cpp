@@ -105,7 +105,7 @@ int runRender(const QStringList& args) {
         return kExitBadInput;
     }
     // Messy trims were drawn as repaired; say what was repaired.
-    for (const QString& w : renderer.renderer().trimMasks().warnings())
+    for (const QString& w : renderer.lastReport().warnings)
         printError(QStringLiteral("%1: warning: %2").arg(files[0], w));
     if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
         (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {

@@ -1,5 +1,6 @@
 // PNG line plots of a BenchReport, drawn with QPainter into a QImage (no Python needed).
 #include "bench/bench_report.h"
+#include "bench/line_plot.h"
 
 #include <QDir>
 #include <QImage>
@@ -12,18 +13,12 @@ namespace kw::bench {
 
 namespace {
 
-struct Series {
-    QString name;
-    QColor color;
-    std::vector<double> y; ///< one value per x; NaN leaves a gap
-    Qt::PenStyle style = Qt::SolidLine;
-};
-
 const QColor kColors[] = {QColor(31, 119, 180),  QColor(214, 39, 40),   QColor(44, 160, 44),
                           QColor(255, 127, 14),  QColor(148, 103, 189), QColor(140, 86, 75),
                           QColor(227, 119, 194), QColor(127, 127, 127)};
 
-/// A line plot with categorical x positions (labelled with `x`) and a linear or log10 y axis.
+} // namespace
+
 QImage linePlot(const QString& title, const QString& xLabel, const QString& yLabel,
                 const std::vector<double>& x, const std::vector<Series>& series, bool logY) {
     QImage img(1100, 540, QImage::Format_RGB32);
@@ -126,6 +121,8 @@ QImage linePlot(const QString& title, const QString& xLabel, const QString& yLab
     }
     return img;
 }
+
+namespace {
 
 /// Two plots one above the other.
 QImage stacked(const QImage& top, const QImage& bottom) {

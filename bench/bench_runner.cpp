@@ -79,8 +79,8 @@ public:
     bool create(QString* error) {
         if (!renderer.create(error))
             return false;
-        glu.initialize(renderer.renderer().gl());
-        fine.initialize(renderer.renderer().gl());
+        glu.initialize();
+        fine.initialize();
         return empty.resetScene(Scene{}, error);
     }
     bool setSize(QSize size, bool withAov, QString* error) {
@@ -219,22 +219,23 @@ bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& f
     const Surface* surface = m.doc.surface(target.surface);
     const glm::dvec2 home = surface->trims.front().curves.front().points[size_t(target.index)];
     const Interval du = surfaceDomainU(surface->geometry);
-    TrimMaskPass& masks = s.renderer.renderer().trimMasks();
-    masks.resetStats();
+    TrimMaskStats masks; // of the timed frames, from their FrameReports
     const auto move = [&](int f) {
+        if (f > 0)
+            masks += s.renderer.lastReport().masks;
         const double step = (f % 2 ? -1.0 : 1.0) * 1e-3 * (du.last - du.first);
         m.doc.setTrimPoint(target, home + glm::dvec2(step, 0.5 * step));
     };
     Timing t;
     const bool ok = timeFrames(s, config, frame, t, error, move);
+    masks += s.renderer.lastReport().masks;
     m.doc.setTrimPoint(target, home);
     if (!ok)
         return false;
-    const TrimMaskStats st = masks.stats(target.surface);
     drag.medianMs = t.medianMs;
-    drag.maskCpuMs = st.redraws ? double(st.cpuNanoseconds) * 1e-6 / double(st.redraws) : 0.0;
-    if (const TrimMask* mask = masks.find(target.surface))
-        drag.maskSide = std::max(mask->width, mask->height);
+    drag.maskCpuMs =
+        masks.redraws ? double(masks.cpuNanoseconds) * 1e-6 / double(masks.redraws) : 0.0;
+    drag.maskSide = masks.largestSide;
     return true;
 }
 

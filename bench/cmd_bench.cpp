@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "bench/bench_report.h"
+#include "bench/scale_report.h"
 
 #include <QCommandLineParser>
 #include <QDir>
@@ -12,6 +13,9 @@
 
 #ifndef KW_BENCH_SAMPLES_DIR
 #define KW_BENCH_SAMPLES_DIR "resources/samples"
+#endif
+#ifndef KW_BENCH_SCALE_MODEL
+#define KW_BENCH_SCALE_MODEL "tests/data/hammer.iges"
 #endif
 
 namespace kw::cli {
@@ -60,6 +64,15 @@ bool writeFile(const QString& path, const QByteArray& bytes) {
     return true;
 }
 
+/// The bench JSON, with the scale table under "scale" when it ran.
+QJsonObject benchJson(const bench::BenchReport& report, bool scale,
+                      const bench::ScaleReport& scaleReport, const QString& command) {
+    QJsonObject o = bench::reportJson(report, command);
+    if (scale)
+        o.insert(QStringLiteral("scale"), bench::scaleJson(scaleReport));
+    return o;
+}
+
 } // namespace
 
 int runBench(const QStringList& args) {
@@ -93,9 +106,25 @@ int runBench(const QStringList& args) {
     const QCommandLineOption lights(QStringLiteral("lights"),
                                     QStringLiteral("Number of lights, 1..8 (default 2)."),
                                     QStringLiteral("N"), QStringLiteral("2"));
-    const QCommandLineOption tables(QStringLiteral("tables"),
-                                    QStringLiteral("Which tables: 1, 2 or 1,2 (default)."),
-                                    QStringLiteral("LIST"), QStringLiteral("1,2"));
+    const QCommandLineOption tables(
+        QStringLiteral("tables"),
+        QStringLiteral("Which tables: 1, 2, scale, or a list (default 1,2). scale: --scale-model "
+                       "tiled in a grid up to each --scale-faces (docs/PERFORMANCE.md ## Scale)."),
+        QStringLiteral("LIST"), QStringLiteral("1,2"));
+    const QCommandLineOption scaleModel(
+        QStringLiteral("scale-model"),
+        QStringLiteral("Scale table: the part to tile, .knot or IGES/STEP/BREP (default: the "
+                       "source tree's tests/data/hammer.iges)."),
+        QStringLiteral("FILE"), QStringLiteral(KW_BENCH_SCALE_MODEL));
+    const QCommandLineOption scaleFaces(
+        QStringLiteral("scale-faces"),
+        QStringLiteral("Scale table: face counts to reach, each 1..1000000 (default "
+                       "1,100,300,1000,3000,10000; 1 = one copy)."),
+        QStringLiteral("LIST"), QStringLiteral("1,100,300,1000,3000,10000"));
+    const QCommandLineOption scaleSize(
+        QStringLiteral("scale-size"),
+        QStringLiteral("Scale table: square image side, 1..4096 (default 1024)."),
+        QStringLiteral("N"), QStringLiteral("1024"));
     const QCommandLineOption smoke(
         QStringLiteral("smoke"),
         QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
@@ -139,8 +168,9 @@ int runBench(const QStringList& args) {
                        "trim control point of the file's first trimmed surface (its mask is "
                        "redrawn every frame) and report their median, the CPU ms per mask "
                        "redraw and the mask side ('-' for files without trims)."));
-    parser.addOptions({sizes, partitions, t1Partitions, frames, lights, tables, smoke, t2Size,
-                       samples, mode, shading, floor, json, markdown, plots, noTrims, trimDrag});
+    parser.addOptions({sizes,      partitions, t1Partitions, frames, lights,  tables,  scaleModel,
+                       scaleFaces, scaleSize,  smoke,        t2Size, samples, mode,    shading,
+                       floor,      json,       markdown,     plots,  noTrims, trimDrag});
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -148,7 +178,13 @@ int runBench(const QStringList& args) {
     const QString cmd = args.value(0);
 
     bench::BenchConfig config;
+    bench::ScaleConfig scaleConfig;
     std::vector<int> tableList;
+    // --tables: 1, 2 and "scale" (kept as 3 here).
+    QStringList tableNames = parser.value(tables).split(QLatin1Char(','));
+    const bool scale = tableNames.removeAll(QStringLiteral("scale")) > 0;
+    if (scale && tableNames.isEmpty())
+        tableNames << QStringLiteral("0"); // no Table 1 or 2 (0 is accepted below only so)
     // Sizes stop at 4096: each quality frame reads back 10 float channels per pixel.
     if (!parseList(parser.value(sizes), 1, kMaxSide, config.sizes) ||
         !parseList(parser.value(partitions), kMinPartitions, kMaxPartitions, config.partitions) ||
@@ -158,7 +194,9 @@ int runBench(const QStringList& args) {
         !parseImageSize(parser.value(t2Size), config.table2Size) ||
         config.table2Size.width() > kMaxSide || config.table2Size.height() > kMaxSide ||
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
-        !parseList(parser.value(tables), 1, 2, tableList) ||
+        !parseList(tableNames.join(QLatin1Char(',')), scale ? 0 : 1, 2, tableList) ||
+        !parseList(parser.value(scaleFaces), 1, 1000000, scaleConfig.faces) ||
+        !parseIntIn(parser.value(scaleSize), 1, kMaxSide, scaleConfig.side) ||
         !parseModeName(parser.value(mode), config.table1Mode) ||
         !parseShadingName(parser.value(shading), config.shading)) {
         printError(
@@ -166,7 +204,8 @@ int runBench(const QStringList& args) {
                 "%1: bad --sizes (1..4096), --partitions or "
                 "--table1-partitions (%2..%3), --frames (>= 20), --table2-size (WxH, each in "
                 "1..4096), --lights "
-                "(1..%4), --tables (1, 2), --mode (exact, tessellated) or "
+                "(1..%4), --tables (1, 2, scale), --scale-faces, --scale-size, --mode (exact, "
+                "tessellated) or "
                 "--depth (prepass, exact-depth) (see --help)")
                 .arg(cmd)
                 .arg(kMinPartitions)
@@ -221,18 +260,31 @@ int runBench(const QStringList& args) {
         config.table1Files = files1;
     if (table2)
         config.table2Files = files2;
+    scaleConfig.model = parser.value(scaleModel);
+    scaleConfig.frames = config.frames;
+    scaleConfig.trims = config.trims;
     if (parser.isSet(smoke)) {
         config.frames = 2;
         config.warmup = 1;
+        scaleConfig.frames = 2;
+        scaleConfig.warmup = 1;
+        scaleConfig.dragSteps = 2;
         printError(
             QStringLiteral("%1: --smoke: 2 frames per measurement, not a measurement").arg(cmd));
     }
 
     QString error;
     bench::BenchReport report;
-    if (!bench::runBench(
-            config, report, [](const QString& line) { printError(line); }, &error)) {
+    const auto progress = [](const QString& line) {
+        printError(line);
+    };
+    if (!bench::runBench(config, report, progress, &error)) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
+    bench::ScaleReport scaleReport;
+    if (scale && !bench::runScale(scaleConfig, scaleReport, progress, &error)) {
+        printError(QStringLiteral("%1: scale table: %2").arg(cmd, error));
         return kExitBadInput;
     }
     QStringList argv = args.mid(1);
@@ -241,7 +293,9 @@ int runBench(const QStringList& args) {
     if (plotDir.isEmpty() && parser.isSet(markdown))
         plotDir = QFileInfo(parser.value(markdown)).absolutePath();
     QStringList written, relative;
-    if (!plotDir.isEmpty() && !bench::writePlots(report, plotDir, written, &error)) {
+    if (!plotDir.isEmpty() &&
+        (!bench::writePlots(report, plotDir, written, &error) ||
+         (scale && !bench::writeScalePlot(scaleReport, plotDir, written, &error)))) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
@@ -249,12 +303,15 @@ int runBench(const QStringList& args) {
         parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir() : QDir::current();
     for (const QString& w : written)
         relative << mdDir.relativeFilePath(QFileInfo(w).absoluteFilePath());
-    const QString md = bench::reportMarkdown(report, command, relative);
+    QString md = bench::reportMarkdown(report, command, relative);
+    if (scale)
+        md += bench::scaleMarkdown(scaleReport);
     printOut(md);
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
     if (parser.isSet(json) &&
-        !writeFile(parser.value(json), QJsonDocument(bench::reportJson(report, command)).toJson()))
+        !writeFile(parser.value(json),
+                   QJsonDocument(benchJson(report, scale, scaleReport, command)).toJson()))
         return kExitBadInput;
     return kExitOk;
 }

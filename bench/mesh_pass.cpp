@@ -3,13 +3,19 @@
 
 #include "render/shading_uniforms.h"
 
+#include <QOpenGLContext>
 #include <QOpenGLShaderProgram>
+#include <QOpenGLVersionFunctionsFactory>
 
 namespace kw::bench {
 
 MeshPass::~MeshPass() = default;
 
-void MeshPass::initialize(QOpenGLFunctions_4_5_Core* gl) {
+void MeshPass::initialize() {
+    // The context is the off-screen renderer's; the pass keeps its own GL entry points rather
+    // than reaching into the renderer.
+    QOpenGLFunctions_4_5_Core* gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(
+        QOpenGLContext::currentContext());
     m_gl = gl;
     gl->glCreateVertexArrays(1, &m_vao);
     gl->glCreateBuffers(4, m_buffers);

@@ -19,8 +19,8 @@ public:
     MeshPass& operator=(const MeshPass&) = delete;
     ~MeshPass(); ///< GL objects must have been freed by release() (the context is not ours)
 
-    /// Needs the context current; keeps `gl` for later calls.
-    void initialize(QOpenGLFunctions_4_5_Core* gl);
+    /// Needs the off-screen renderer's context current; keeps its GL functions for later calls.
+    void initialize();
     /// Sends `mesh` to the GPU (replacing the previous one): one vertex buffer per attribute and
     /// one index buffer for all surfaces.
     void upload(const SceneMesh& mesh);

@@ -295,9 +295,9 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
     } else if (k == "cstype") {
         need(t, 2, line);
         m_rational = t[1] == "rat";
-        const QByteArray type = t[m_rational ? 2 : 1];
-        if (m_rational)
+        if (m_rational) // before t[2] is read (found by fuzz_obj: SIGSEGV or double free)
             need(t, 3, line);
+        const QByteArray type = t[m_rational ? 2 : 1];
         m_typeName = QString::fromUtf8(type);
         m_bezier = type == "bezier";
         m_supported = type == "bspline" || type == "bezier";

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace kw {
@@ -10,6 +11,11 @@ namespace {
 
 constexpr int kMinPiecesPerKnotSpan = 4;
 constexpr int kMaxBisectionDepth = 18;
+// Bound on the points of one flattened curve. Without it a curve far outside its domain's scale
+// (points at 1e6 with a tolerance of 1e-9, as a hostile file can have) bisects every piece to
+// the depth limit: 4 * 2^18 points per knot span, seconds per curve (found by fuzz_trim). 2^14
+// points flatten a curve of 1000 knot spans to 16 points per span, plenty for a trim.
+constexpr std::int64_t kMaxCurvePoints = std::int64_t(1) << 14;
 
 double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
     const glm::dvec2 ab = b - a;
@@ -22,12 +28,12 @@ double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
 
 // Appends the points of (t0, t1] to out, bisecting while the curve strays from the chord.
 void flattenPiece(const NurbsCurve2& c, double t0, glm::dvec2 p0, double t1, glm::dvec2 p1,
-                  double tolerance, int depth, std::vector<glm::dvec2>& out) {
+                  double tolerance, int depth, int maxDepth, std::vector<glm::dvec2>& out) {
     const double tm = 0.5 * (t0 + t1);
     const glm::dvec2 pm = curvePoint(c, tm);
-    if (depth < kMaxBisectionDepth && distanceToSegment(pm, p0, p1) > tolerance) {
-        flattenPiece(c, t0, p0, tm, pm, tolerance, depth + 1, out);
-        flattenPiece(c, tm, pm, t1, p1, tolerance, depth + 1, out);
+    if (depth < maxDepth && distanceToSegment(pm, p0, p1) > tolerance) {
+        flattenPiece(c, t0, p0, tm, pm, tolerance, depth + 1, maxDepth, out);
+        flattenPiece(c, tm, pm, t1, p1, tolerance, depth + 1, maxDepth, out);
         return;
     }
     out.push_back(p1);
@@ -113,7 +119,10 @@ NurbsCurve2 trimCurveReversed(const NurbsCurve2& c) {
     NurbsCurve2 r = c;
     std::reverse(r.points.begin(), r.points.end());
     std::reverse(r.weights.begin(), r.weights.end());
-    const double sum = c.knots.front() + c.knots.back();
+    // Reflect about the middle of the domain, not of the knot vector: the two differ for an
+    // unclamped curve, whose domain is [knots[p], knots[n]] (found by fuzz_trim).
+    const Interval d = curveDomain(c);
+    const double sum = d.first + d.last;
     for (size_t i = 0; i < c.knots.size(); ++i)
         r.knots[i] = sum - c.knots[c.knots.size() - 1 - i];
     return r;
@@ -122,13 +131,18 @@ NurbsCurve2 trimCurveReversed(const NurbsCurve2& c) {
 std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance) {
     const std::vector<double> t = breakpoints(curve.knots, curve.degree);
     std::vector<glm::dvec2> out{curvePoint(curve, t.front())};
+    const std::int64_t pieces = std::int64_t(t.size() - 1) * kMinPiecesPerKnotSpan;
+    int maxDepth = kMaxBisectionDepth;
+    while (maxDepth > 0 && (pieces << maxDepth) > kMaxCurvePoints)
+        --maxDepth;
     for (size_t k = 0; k + 1 < t.size(); ++k) {
         for (int p = 0; p < kMinPiecesPerKnotSpan; ++p) {
             const double a = t[k] + (t[k + 1] - t[k]) * p / kMinPiecesPerKnotSpan;
             const double b = p + 1 == kMinPiecesPerKnotSpan
                                  ? t[k + 1]
                                  : t[k] + (t[k + 1] - t[k]) * (p + 1) / kMinPiecesPerKnotSpan;
-            flattenPiece(curve, a, out.back(), b, curvePoint(curve, b), tolerance, 0, out);
+            flattenPiece(curve, a, out.back(), b, curvePoint(curve, b), tolerance, 0, maxDepth,
+                         out);
         }
     }
     return out;
@@ -169,6 +183,16 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
                 continue;
             }
             const std::vector<glm::dvec2> pts = tessellateTrimCurve(curve, tolerance);
+            // Finite points and weights can still overflow in evaluation (1e300 * 1e10); a
+            // polygon with infinities would poison every parity test (found by fuzz_trim).
+            if (std::any_of(pts.begin(), pts.end(), [](glm::dvec2 p) {
+                    return !std::isfinite(p.x) || !std::isfinite(p.y);
+                })) {
+                warn(QStringLiteral("%1: curve %2 evaluates beyond the range of doubles; left out")
+                         .arg(name)
+                         .arg(c + 1));
+                continue;
+            }
             if (haveCurve && glm::length(pts.front() - lastEnd) > tolerance)
                 warn(QStringLiteral("%1: gap of %2 before curve %3; bridged by a straight segment")
                          .arg(name)

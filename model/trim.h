@@ -22,8 +22,10 @@ NurbsCurve2 trimCurveReversed(const NurbsCurve2& curve);
 
 /// Flattens one trim curve: samples the curve at its knots and bisects every piece until the
 /// midpoint of each chord is within `tolerance` (in parameter units) of the curve, or the
-/// depth limit is reached. Returns the points from start to end inclusive. Precondition: a
-/// valid curve (curveValidationError empty) and tolerance > 0.
+/// depth limit is reached. The depth limit (at most 18) shrinks with the number of knot spans
+/// so that a curve gives at most max(2^14, 4 x spans) + 1 points, whatever its scale. Returns the
+/// points from start to end inclusive. Precondition: a valid curve (curveValidationError empty)
+/// and tolerance > 0.
 std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance);
 
 /// Flattens a whole loop (curves in order) to a closed polygon within `tolerance`. Consecutive

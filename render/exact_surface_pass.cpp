@@ -121,6 +121,7 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
             masks->setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        ++drawCalls;
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return ok;
@@ -195,6 +196,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
             masks->setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        ++drawCalls;
     }
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);

@@ -47,6 +47,8 @@ public:
     /// measuring (0: always gather, 1e30: never).
     static constexpr double kGatherMinCellPixels = 64.0;
 
+    int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
+
 private:
     bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
                       const FrameCamera& camera, QString* error);

@@ -2,7 +2,7 @@
 // the AOV buffer as a multi-channel float EXR.
 #pragma once
 
-#include "render/offscreen_renderer.h"
+#include "render/aov_buffer.h"
 
 #include <QImage>
 #include <QString>

@@ -43,6 +43,7 @@ bool WireframePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         if (const SurfaceGpu* g = cache.find(s.id)) {
             m_gl->glBindVertexArray(g->outlineVao);
             m_gl->glDrawElements(GL_LINES, g->outlineIndexCount, GL_UNSIGNED_INT, nullptr);
+            ++drawCalls;
         }
     m_gl->glDepthFunc(GL_LESS);
     m_gl->glDepthMask(GL_TRUE);
@@ -82,6 +83,9 @@ void ControlNetPass::update(Net& n, const NurbsSurface& s, const Revisions& rev)
     n.pointCount = int(pts.size());
     n.lineIndexCount = int(idx.size());
     n.revisions = rev;
+    n.bytes = std::int64_t(pts.size() * sizeof(glm::vec3) + idx.size() * sizeof(unsigned));
+    uploads.netBuilds += 1;
+    uploads.bytes += n.bytes;
 }
 
 bool ControlNetPass::draw(const Document& doc, const FrameCamera& camera, QString* error) {
@@ -112,11 +116,19 @@ bool ControlNetPass::draw(const Document& doc, const FrameCamera& camera, QStrin
         gl->glDrawElements(GL_LINES, n.lineIndexCount, GL_UNSIGNED_INT, nullptr);
         gl->glUniform4fv(prog->uniformLocation("uLineColor"), 1, glm::value_ptr(pointColor));
         gl->glDrawArrays(GL_POINTS, 0, n.pointCount);
+        drawCalls += 2;
     }
     gl->glDisable(GL_PROGRAM_POINT_SIZE);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
     return true;
+}
+
+std::int64_t ControlNetPass::residentBytes() const {
+    std::int64_t total = 0;
+    for (const auto& [id, n] : m_nets)
+        total += n.bytes;
+    return total;
 }
 
 void ControlNetPass::release() {

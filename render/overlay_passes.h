@@ -20,6 +20,7 @@ public:
     bool draw(const Scene& scene, const SurfaceGpuCache& cache, const FrameCamera& camera,
               QString* error);
     glm::vec4 color{0.05f, 0.05f, 0.08f, 1.0f};
+    int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
 
 private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
@@ -33,6 +34,10 @@ public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
     bool draw(const Document& doc, const FrameCamera& camera, QString* error);
     void release();
+    /// Bytes of every net's buffers.
+    std::int64_t residentBytes() const;
+    int drawCalls = 0;   ///< counted by draw; the renderer zeroes it per frame
+    UploadStats uploads; ///< counted by draw; the renderer zeroes it per frame
     glm::vec4 lineColor{0.85f, 0.75f, 0.20f, 1.0f};
     glm::vec4 pointColor{1.0f, 0.90f, 0.10f, 1.0f};
     float pointSize = 6.0f;
@@ -42,6 +47,7 @@ private:
         Revisions revisions;
         GLuint vao = 0, points = 0, lines = 0;
         int pointCount = 0, lineIndexCount = 0;
+        std::int64_t bytes = 0;
     };
     void update(Net& n, const NurbsSurface& s, const Revisions& rev);
 

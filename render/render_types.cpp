@@ -14,6 +14,7 @@ TrimMaskStats& TrimMaskStats::operator+=(const TrimMaskStats& o) {
     texels += o.texels;
     arrayAllocations += o.arrayAllocations;
     cpuNanoseconds += o.cpuNanoseconds;
+    largestSide = std::max(largestSide, o.largestSide);
     return *this;
 }
 
@@ -26,6 +27,8 @@ UploadStats& UploadStats::operator+=(const UploadStats& o) {
     basePolygonBuilds += o.basePolygonBuilds;
     vertexUpdates += o.vertexUpdates;
     vertexBytes += o.vertexBytes;
+    meshBuilds += o.meshBuilds;
+    netBuilds += o.netBuilds;
     return *this;
 }
 

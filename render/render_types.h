@@ -42,7 +42,8 @@ struct RenderOptions {
         ExactDepth,
     };
     Shading shading = Shading::DepthPrepass;
-    /// Write the AOV attachments 1..3 (see OffscreenRenderer); the target FBO must have them.
+    /// Write the AOV attachments 1..3 (see OffscreenRenderer). Renderer::render sets it from
+    /// RenderTarget::aov; the passes read it.
     bool writeAov = false;
     /// Also write K, H, k1, k2 to attachment 4 (exact mode; the target FBO must have it).
     bool writeCurvatureAov = false;
@@ -61,7 +62,7 @@ struct RenderOptions {
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
 };
 
-/// Counts of data sent to the GPU, kept by SurfaceGpuCache per surface and in total.
+/// Counts of data sent to the GPU, kept per surface and in total, and per frame in FrameReport.
 struct UploadStats {
     std::int64_t fullUploads = 0;       ///< control-point textures (re)created and filled
     std::int64_t subImageUploads = 0;   ///< glTexSubImage2D calls on control-point textures
@@ -71,6 +72,8 @@ struct UploadStats {
     std::int64_t basePolygonBuilds = 0; ///< base polygon rebuilt (cells, vertices, indices)
     std::int64_t vertexUpdates = 0;     ///< partial base polygon vertex updates after a move
     std::int64_t vertexBytes = 0;       ///< bytes of those partial updates
+    std::int64_t meshBuilds = 0;        ///< tessellated meshes (re)built (tessellated mode)
+    std::int64_t netBuilds = 0;         ///< control-net overlays (re)built
 
     UploadStats& operator+=(const UploadStats& o);
     bool operator==(const UploadStats&) const = default;
@@ -84,6 +87,7 @@ struct TrimMaskStats {
     std::int64_t texels = 0;           ///< mask texels cleared and covered (width x height)
     std::int64_t arrayAllocations = 0; ///< mask array (re)allocated (total only)
     std::int64_t cpuNanoseconds = 0;   ///< flattening and issuing the draws (not GPU time)
+    int largestSide = 0;               ///< largest mask side (texels) redrawn; max under +=
 
     TrimMaskStats& operator+=(const TrimMaskStats& o);
     bool operator==(const TrimMaskStats&) const = default;

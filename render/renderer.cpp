@@ -1,46 +1,69 @@
-// Renderer facade: state setup, cache sync, passes in order, overlays.
-#include "render/renderer.h"
+// Renderer: context check, per-frame state setup, cache sync, passes in order, overlays, the
+// frame report, and the pick query.
+#include "render/renderer_impl.h"
 
+#include <QElapsedTimer>
 #include <QOpenGLContext>
 #include <QOpenGLVersionFunctionsFactory>
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 namespace kw {
 
-Renderer::Renderer() = default;
+namespace {
+
+double msSince(const QElapsedTimer& t) {
+    return double(t.nsecsElapsed()) * 1e-6;
+}
+
+} // namespace
+
+Renderer::Renderer() : d(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
+
+bool Renderer::isInitialized() const {
+    return d->gl != nullptr;
+}
+
+QString Renderer::lastError() const {
+    return d->error;
+}
+
+QString Renderer::glDescription() const {
+    return d->glDescription;
+}
 
 bool Renderer::initialize() {
     QOpenGLContext* ctx = QOpenGLContext::currentContext();
     if (!ctx) {
-        m_error = QStringLiteral("no current OpenGL context");
+        d->error = QStringLiteral("no current OpenGL context");
         return false;
     }
     const QSurfaceFormat fmt = ctx->format();
     if (fmt.version() < qMakePair(4, 5) || ctx->isOpenGLES()) {
-        m_error = QStringLiteral("OpenGL 4.5 core is required, the context is %1.%2%3")
-                      .arg(fmt.majorVersion())
-                      .arg(fmt.minorVersion())
-                      .arg(ctx->isOpenGLES() ? QStringLiteral(" ES") : QString());
+        d->error = QStringLiteral("OpenGL 4.5 core is required, the context is %1.%2%3")
+                       .arg(fmt.majorVersion())
+                       .arg(fmt.minorVersion())
+                       .arg(ctx->isOpenGLES() ? QStringLiteral(" ES") : QString());
         return false;
     }
     auto* gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(ctx);
     if (!gl || !gl->initializeOpenGLFunctions()) {
-        m_error = QStringLiteral("OpenGL 4.5 core functions are not available");
+        d->error = QStringLiteral("OpenGL 4.5 core functions are not available");
         return false;
     }
-    m_gl = gl;
-    m_glDescription =
+    d->gl = gl;
+    d->glDescription =
         QStringLiteral("%1, OpenGL %2")
             .arg(QString::fromLatin1(reinterpret_cast<const char*>(gl->glGetString(GL_RENDERER))),
                  QString::fromLatin1(reinterpret_cast<const char*>(gl->glGetString(GL_VERSION))));
-    m_cache.initialize(gl);
-    m_exact.initialize(gl, &m_shaders);
-    m_tessellated.initialize(gl, &m_shaders);
-    m_trimMasks.initialize(gl, &m_shaders);
-    m_wireframe.initialize(gl, &m_shaders);
-    m_controlNet.initialize(gl, &m_shaders);
+    d->cache.initialize(gl);
+    d->exact.initialize(gl, &d->shaders);
+    d->tessellated.initialize(gl, &d->shaders);
+    d->trimMasks.initialize(gl, &d->shaders);
+    d->wireframe.initialize(gl, &d->shaders);
+    d->controlNet.initialize(gl, &d->shaders);
     // Build the common programs now so a broken shader is reported at start-up.
     const RenderOptions defaults;
     const std::tuple<const char*, const char*, QStringList> common[] = {
@@ -52,41 +75,72 @@ bool Renderer::initialize() {
         {"surface.vert", "exact_surface.frag",
          ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
     for (const auto& [vs, fs, defines] : common)
-        if (!m_shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
-            m_error = m_shaders.lastError();
+        if (!d->shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
+            d->error = d->shaders.lastError();
             release();
             return false;
         }
     return true;
 }
 
-bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
-                      const RenderOptions& options, GLuint targetFbo) {
-    if (!m_gl) {
-        m_error = QStringLiteral("Renderer::render called before initialize()");
-        return false;
-    }
-    if (size.width() <= 0 || size.height() <= 0) {
-        m_error = QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height());
-        return false;
-    }
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
+FrameReport Renderer::render(const Document& doc, const Camera& camera, const RenderTarget& target,
+                             const RenderOptions& options) {
+    FrameReport r = d->renderFrame(doc, camera, target, options, nullptr);
+    if (!r.ok)
+        d->error = r.error;
+    return r;
+}
+
+FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camera,
+                                        const RenderTarget& target, RenderOptions options,
+                                        const QRect* pickPixel) {
+    QElapsedTimer total;
+    total.start();
+    FrameReport report;
+    const auto fail = [&](const QString& message) {
+        report.ok = false;
+        report.error = message;
+        report.cpuMs.total = msSince(total);
+        return report;
+    };
+    if (!gl)
+        return fail(QStringLiteral("Renderer::render called before initialize()"));
+    const QSize size = target.size;
+    if (size.width() <= 0 || size.height() <= 0)
+        return fail(
+            QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
+    options.writeAov = target.aov;
+    options.writeCurvatureAov = target.aov && target.curvatureAov;
     const Scene& scene = doc.scene();
     FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
 
-    if (m_document != &doc) {
+    if (document != &doc) {
         dropSurfaceCaches();
-        m_document = &doc;
+        document = &doc;
     }
-    // Trim masks first: they draw into their own framebuffer.
-    QString maskError;
-    const bool masked = !options.trims || m_trimMasks.sync(doc, fc, options, &maskError);
-    const TrimMaskPass* masks = options.trims ? &m_trimMasks : nullptr;
+    exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
+    tessellated.uploads = controlNet.uploads = {};
 
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
-    gl->glViewport(0, 0, size.width(), size.height());
+    // Trim masks first: they draw into their own framebuffer.
+    QElapsedTimer phase;
+    phase.start();
+    QString maskError;
+    const bool masked = !options.trims || trimMasks.sync(doc, fc, options, &maskError);
+    const TrimMaskPass* masks = options.trims ? &trimMasks : nullptr;
+    report.cpuMs.masks = msSince(phase);
+
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    if (pickPixel) {
+        // The framebuffer holds one pixel of the frame: shift the viewport so that pixel lands
+        // on (0, 0); the rasterisation is the full frame's, translated by whole pixels.
+        gl->glViewport(-pickPixel->x(), -pickPixel->y(), size.width(), size.height());
+        gl->glEnable(GL_SCISSOR_TEST);
+        gl->glScissor(0, 0, 1, 1);
+    } else {
+        gl->glViewport(0, 0, size.width(), size.height());
+    }
     gl->glDisable(GL_BLEND);
     gl->glDisable(GL_CULL_FACE);
     gl->glEnable(GL_DEPTH_TEST);
@@ -98,91 +152,190 @@ bool Renderer::render(const Document& doc, const Camera& camera, QSize size,
         gl->glClearBufferfv(GL_COLOR, 1, background);
         gl->glClearBufferfv(GL_COLOR, 2, zero);
         gl->glClearBufferfv(GL_COLOR, 3, zero);
+        if (options.writeCurvatureAov)
+            gl->glClearBufferfv(GL_COLOR, 4, zero);
     }
+    report.analysisRange = resolveAnalysisRange(doc, options.analysis);
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
-    if (options.writeCurvatureAov) {
-        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        gl->glClearBufferfv(GL_COLOR, 4, zero);
-    }
-    resolveAnalysisRange(doc, options.analysis);
-
     // A surface too large for a texture is left out of the frame and reported.
+    phase.restart();
     QString cacheError;
-    const bool cached = m_cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
+    const bool cached = cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
+    report.cpuMs.sync = msSince(phase);
+
+    phase.restart();
     bool ok =
         options.mode == RenderMode::Exact
-            ? m_exact.draw(scene, m_cache, masks, fc, lights, options, m_analysisRange, &m_error)
-            : m_tessellated.draw(doc, masks, fc, lights, options, &m_error);
+            ? exact.draw(scene, cache, masks, fc, lights, options, report.analysisRange, &error)
+            : tessellated.draw(doc, masks, fc, lights, options, &error);
+    report.cpuMs.surfaces = msSince(phase);
+    phase.restart();
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
         if (options.writeAov) {
             const GLenum only0 = GL_COLOR_ATTACHMENT0;
-            gl->glNamedFramebufferDrawBuffers(targetFbo, 1, &only0);
+            gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = m_wireframe.draw(scene, m_cache, fc, &m_error);
+            ok = wireframe.draw(scene, cache, fc, &error);
         if (ok && options.controlNet)
-            ok = m_controlNet.draw(doc, fc, &m_error);
+            ok = controlNet.draw(doc, fc, &error);
         if (options.writeAov) {
             const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                    GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-            gl->glNamedFramebufferDrawBuffers(targetFbo, options.writeCurvatureAov ? 5 : 4, all);
+            gl->glNamedFramebufferDrawBuffers(target.framebuffer, options.writeCurvatureAov ? 5 : 4,
+                                              all);
         }
     }
+    report.cpuMs.overlays = msSince(phase);
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
-    if (ok && !cached) {
-        m_error = cacheError;
-        return false;
-    }
-    if (ok && !masked) {
-        m_error = maskError;
-        return false;
-    }
-    return ok;
+    if (pickPixel)
+        gl->glDisable(GL_SCISSOR_TEST);
+
+    report.uploads = cache.frameStats();
+    report.uploads += tessellated.uploads;
+    report.uploads += controlNet.uploads;
+    report.masks = masks ? trimMasks.frameStats() : TrimMaskStats{};
+    report.drawCalls = exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls +
+                       controlNet.drawCalls + (masks ? trimMasks.drawCalls : 0);
+    for (const Surface& s : scene.surfaces)
+        report.surfaces += cache.find(s.id) ? 1 : 0;
+    cache.residentBytes(report.gpuBytes);
+    report.gpuBytes.tessellatedMeshes = tessellated.residentBytes();
+    report.gpuBytes.controlNets = controlNet.residentBytes();
+    report.gpuBytes.trimMasks = trimMasks.residentBytes();
+    if (!cached)
+        report.warnings << cacheError;
+    if (masks)
+        report.warnings << trimMasks.warnings();
+    if (!ok)
+        report.error = error;
+    else if (!cached)
+        report.error = cacheError;
+    else if (!masked)
+        report.error = maskError;
+    report.ok = ok && cached && masked;
+    report.cpuMs.total = msSince(total);
+    return report;
 }
 
-void Renderer::resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis) {
-    if (!isColourMap(analysis.mode))
-        return;
-    if (analysis.range) {
-        m_analysisRange = *analysis.range;
-        return;
+bool Renderer::Impl::ensurePickTarget(QSize size) {
+    if (pickFbo && pickSize == size)
+        return true;
+    releasePickTarget();
+    // One pixel: renderFrame shifts the viewport onto it.
+    auto texture = [&](GLenum format) {
+        GLuint t = 0;
+        gl->glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        gl->glTextureStorage2D(t, 1, format, 1, 1);
+        return t;
+    };
+    gl->glCreateFramebuffers(1, &pickFbo);
+    const GLenum formats[5] = {GL_RGBA8, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, GL_DEPTH_COMPONENT24};
+    for (int k = 0; k < 5; ++k)
+        pickTextures[k] = texture(formats[k]);
+    for (int k = 0; k < 4; ++k)
+        gl->glNamedFramebufferTexture(pickFbo, GL_COLOR_ATTACHMENT0 + GLenum(k), pickTextures[k],
+                                      0);
+    gl->glNamedFramebufferTexture(pickFbo, GL_DEPTH_ATTACHMENT, pickTextures[4], 0);
+    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                               GL_COLOR_ATTACHMENT3};
+    gl->glNamedFramebufferDrawBuffers(pickFbo, 4, buffers);
+    if (gl->glCheckNamedFramebufferStatus(pickFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        error = QStringLiteral("the pick framebuffer is incomplete");
+        releasePickTarget();
+        return false;
     }
-    // Revisions come from one document-wide counter and never repeat, so the largest geometry
-    // revision and the surface count identify the geometry the range was computed from.
+    pickSize = size;
+    return true;
+}
+
+void Renderer::Impl::releasePickTarget() {
+    if (pickFbo)
+        gl->glDeleteFramebuffers(1, &pickFbo);
+    for (GLuint& t : pickTextures)
+        if (t)
+            gl->glDeleteTextures(1, &t), t = 0;
+    pickFbo = 0;
+    pickSize = QSize();
+}
+
+std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera, QSize viewport,
+                                      QPointF pixel, const RenderOptions& options) {
+    if (!d->gl) {
+        d->error = QStringLiteral("Renderer::pick called before initialize()");
+        return std::nullopt;
+    }
+    const double fx = std::floor(pixel.x()), fy = std::floor(pixel.y());
+    if (viewport.isEmpty() ||
+        !(fx >= 0.0 && fy >= 0.0 && fx < viewport.width() && fy < viewport.height()))
+        return std::nullopt;
+    if (!d->ensurePickTarget(viewport))
+        return std::nullopt;
+    RenderOptions o = options;
+    o.wireframe = o.controlNet = false;
+    const int x = int(fx), y = viewport.height() - 1 - int(fy); // GL rows run bottom-up
+    const QRect at(x, y, 1, 1);
+    const FrameReport r = d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
+    d->gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (!r.ok)
+        d->error = r.error;
+    float a[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // id, u, v, Z
+    d->gl->glGetTextureImage(d->pickTextures[1], 0, GL_RGBA, GL_FLOAT, sizeof(a), a);
+    if (!(a[0] >= 0.0f))
+        return std::nullopt;
+    const Surface* s = doc.surface(SurfaceId{std::uint32_t(std::lround(a[0]))});
+    if (!s)
+        return std::nullopt;
+    PickHit hit;
+    hit.surface = s->id;
+    hit.uv = glm::dvec2(a[1], a[2]);
+    hit.point = surfacePoint(s->geometry, hit.uv.x, hit.uv.y);
+    hit.depth = a[3];
+    return hit;
+}
+
+ValueRange Renderer::Impl::resolveAnalysisRange(const Document& doc,
+                                                const AnalysisOptions& analysis) {
+    if (!isColourMap(analysis.mode))
+        return {};
+    if (analysis.range)
+        return *analysis.range;
     std::uint64_t newest = 0;
     for (const Surface& s : doc.scene().surfaces) {
         const Revisions r = doc.revisions(s.id);
         newest = std::max({newest, r.points, r.knots});
     }
     const RangeKey key{&doc, analysis.mode, doc.scene().surfaces.size(), newest};
-    if (analysis.holdRange && m_rangeKey.document == &doc && m_rangeKey.mode == analysis.mode)
-        return;
-    if (key == m_rangeKey)
-        return;
-    m_analysisRange = autoRange(doc.scene(), analysis.mode);
-    m_rangeKey = key;
+    const bool held =
+        analysis.holdRange && rangeKey.document == &doc && rangeKey.mode == analysis.mode;
+    if (!held && !(key == rangeKey)) {
+        autoAnalysisRange = autoRange(doc.scene(), analysis.mode);
+        rangeKey = key;
+    }
+    return autoAnalysisRange;
 }
 
-void Renderer::dropSurfaceCaches() {
-    m_cache.release();
-    m_trimMasks.release();
-    m_tessellated.release();
-    m_controlNet.release();
+void Renderer::Impl::dropSurfaceCaches() {
+    cache.release();
+    trimMasks.release();
+    tessellated.release();
+    controlNet.release();
 }
 
 void Renderer::release() {
-    if (!m_gl)
+    if (!d->gl)
         return;
-    dropSurfaceCaches();
-    m_exact.release();
-    m_document = nullptr;
-    m_rangeKey = {};
-    m_shaders.clear();
-    m_gl = nullptr;
+    d->releasePickTarget();
+    d->dropSurfaceCaches();
+    d->exact.release();
+    d->rangeKey = {};
+    d->document = nullptr;
+    d->shaders.clear();
+    d->gl = nullptr;
 }
 
 } // namespace kw

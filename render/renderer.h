@@ -1,20 +1,17 @@
-// Renderer facade: keeps the GPU cache and the passes, draws a Document into a framebuffer.
-// Shared by the off-screen renderer (CLI, tests, bench) and the editor's QOpenGLWidget.
+// Renderer: the render module's one entry point. Draws a Document into a framebuffer of the
+// current OpenGL 4.5 core context and answers pick queries; its GPU state lives behind a
+// private implementation, so this header needs no GL types (hosts pass framebuffer names).
 #pragma once
 
 #include "model/document.h"
-#include "render/exact_surface_pass.h"
-#include "render/overlay_passes.h"
+#include "render/frame_report.h"
 #include "render/render_types.h"
-#include "render/shader_library.h"
-#include "render/surface_gpu_cache.h"
-#include "render/tessellated_pass.h"
-#include "render/trim_mask_pass.h"
 
-#include <QOpenGLFunctions_4_5_Core>
-#include <QPointer>
+#include <QPointF>
 #include <QSize>
 #include <QString>
+#include <memory>
+#include <optional>
 
 namespace kw {
 
@@ -28,66 +25,42 @@ public:
     /// Needs a current OpenGL 4.5 core context (the one every later call uses). Returns false
     /// with lastError() set when the context is not 4.5 core or the shaders do not build.
     bool initialize();
-    bool isInitialized() const { return m_gl != nullptr; }
+    bool isInitialized() const;
 
-    /// Draws `doc` as seen by `camera` into `targetFbo` (0 or a QOpenGLWidget's
-    /// defaultFramebufferObject()) at `size` pixels, uploading only stale surface data first.
-    /// With options.writeAov the target must have colour attachments 0..3 as described in
-    /// OffscreenRenderer. Returns false with lastError() set on failure: a shader that does
-    /// not build (nothing drawn), or a surface whose control net exceeds the GPU's texture
-    /// size (exact mode and the wireframe draw the frame without it).
-    /// Trimmed surfaces are cut by their trim masks unless options.trims is false; a mask
-    /// problem (too many trimmed surfaces for the GPU) draws those surfaces untrimmed and
-    /// returns false with lastError() set after drawing the frame.
-    /// Surface ids and revisions are per document: drawing another Document than last time
-    /// drops every cached upload first.
-    bool render(const Document& doc, const Camera& camera, QSize size, const RenderOptions& options,
-                GLuint targetFbo);
+    /// Draws `doc` as seen by `camera` into `target`, uploading only stale surface data first.
+    /// options.writeAov is taken from target.aov. The report's ok is false, with error set, when
+    /// a shader does not build (nothing drawn), when a surface's control net exceeds the GPU's
+    /// texture size (the frame is drawn without it), or when trim masks exceed the GPU's limits
+    /// (those surfaces are drawn untrimmed). Trimmed surfaces are cut by their masks unless
+    /// options.trims is false. Surface ids and revisions are per document: drawing another
+    /// Document than last time drops every cached upload first. Leaves the scissor test off.
+    FrameReport render(const Document& doc, const Camera& camera, const RenderTarget& target,
+                       const RenderOptions& options);
+
+    /// The surface visible at `pixel` (x right, y down, in pixels of a `viewport`-sized frame
+    /// drawn with `camera` and `options`), or nullopt for background, a trimmed-away spot or a
+    /// pixel outside the viewport. Draws the exact pass with AOVs into a private framebuffer,
+    /// scissored to that one pixel, and reads it back; the masks and uploads it needs are the
+    /// frame's own, so a pick after a frame uploads nothing. Overlays are ignored. Needs the
+    /// renderer's context current; leaves the framebuffer binding at 0.
+    std::optional<PickHit> pick(const Document& doc, const Camera& camera, QSize viewport,
+                                QPointF pixel, const RenderOptions& options = {});
 
     /// Frees all GL objects; the initialising context must be current.
     void release();
 
-    const SurfaceGpuCache& cache() const { return m_cache; }
-    SurfaceGpuCache& cache() { return m_cache; }
-    /// The trim masks of the last frame (per-surface layers, redraw statistics, warnings).
-    const TrimMaskPass& trimMasks() const { return m_trimMasks; }
-    TrimMaskPass& trimMasks() { return m_trimMasks; }
-    QString lastError() const { return m_error; }
+    QString lastError() const;
     /// GL_RENDERER and GL_VERSION of the context, for reports.
-    QString glDescription() const { return m_glDescription; }
-    QOpenGLFunctions_4_5_Core* gl() const { return m_gl; }
-    /// The colour range the last frame's colour-map analysis used: the user's, or the automatic
-    /// one (kw::autoRange), recomputed only when the geometry or the mode changed and held while
-    /// AnalysisOptions::holdRange is set. For the legend.
-    ValueRange analysisRange() const { return m_analysisRange; }
-    /// Environment map (re)loads so far (switching modes must not reload it).
-    int environmentLoads() const { return m_exact.environment().loads(); }
+    QString glDescription() const;
+
+    /// The private implementation, for render's own tests and tools that inspect GPU state
+    /// (include render/renderer_impl.h to use it). Hosts use the calls above.
+    struct Impl;
+    Impl& internals() { return *d; }
+    const Impl& internals() const { return *d; }
 
 private:
-    void dropSurfaceCaches();
-    void resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
-
-    struct RangeKey {
-        const Document* document = nullptr;
-        AnalysisMode mode = AnalysisMode::Phong;
-        size_t surfaces = 0;
-        std::uint64_t newestRevision = 0;
-        bool operator==(const RangeKey&) const = default;
-    };
-    RangeKey m_rangeKey;
-    ValueRange m_analysisRange;
-
-    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
-    QPointer<const Document> m_document; ///< whose data the caches hold
-    ShaderLibrary m_shaders;
-    SurfaceGpuCache m_cache;
-    TrimMaskPass m_trimMasks;
-    ExactSurfacePass m_exact;
-    TessellatedPass m_tessellated;
-    WireframePass m_wireframe;
-    ControlNetPass m_controlNet;
-    QString m_error;
-    QString m_glDescription;
+    std::unique_ptr<Impl> d;
 };
 
 } // namespace kw

@@ -71,9 +71,14 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
     const QString vs = expandedSource(vertex, &error);
     const QString fs = vs.isEmpty() ? QString() : expandedSource(fragment, &error);
     bool ok = !vs.isEmpty() && !fs.isEmpty();
-    if (ok && !prog->addShaderFromSourceCode(QOpenGLShader::Vertex, header + vs))
+    // Cacheable: link() first looks for a program binary in Qt's disk cache
+    // (QStandardPaths::CacheLocation/qtshadercache-*, keyed by a SHA-1 of the full sources, so
+    // of the defines too; each entry records GL_VENDOR/RENDERER/VERSION and is ignored when
+    // they differ) and compiles only on a miss, then stores the binary (glGetProgramBinary)
+    // where the driver offers a binary format. QT_DISABLE_SHADER_DISK_CACHE=1 turns it off.
+    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, header + vs))
         ok = false, error = QStringLiteral("%1: %2").arg(vertex, prog->log());
-    if (ok && !prog->addShaderFromSourceCode(QOpenGLShader::Fragment, header + fs))
+    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, header + fs))
         ok = false, error = QStringLiteral("%1: %2").arg(fragment, prog->log());
     if (ok && !prog->link())
         ok = false,

@@ -1,5 +1,5 @@
 // Loads GLSL from the bundled /shaders resources, expands #include, injects variant #defines
-// and caches linked programs by (files, defines).
+// and caches linked programs by (files, defines), in memory and as program binaries on disk.
 #pragma once
 
 #include <QMap>

@@ -26,6 +26,7 @@ bool SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV
     GLint maxSize = 0;
     m_gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     QStringList tooLarge;
+    m_frame = {};
     for (auto it = m_surfaces.begin(); it != m_surfaces.end();) {
         if (!doc.surface(it->first)) {
             destroy(*it->second);
@@ -72,6 +73,9 @@ bool SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV
             uploadChangedPoints(*slot, s);
         }
         slot->revisions = rev;
+        slot->stats += m_delta;
+        m_frame += m_delta;
+        m_delta = {};
     }
     if (!tooLarge.isEmpty() && error)
         *error = tooLarge.join(QStringLiteral("; "));
@@ -94,9 +98,9 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
     g.origin = controlOrigin(geo);
     g.control = packControlPoints(geo, g.origin);
     g.controlTexture = createTexture(gl, geo.countU, geo.countV, g.control.data());
-    g.stats.fullUploads += 1;
-    g.stats.texels += std::int64_t(g.control.size());
-    g.stats.bytes += std::int64_t(g.control.size() * sizeof(glm::vec4));
+    m_delta.fullUploads += 1;
+    m_delta.texels += std::int64_t(g.control.size());
+    m_delta.bytes += std::int64_t(g.control.size() * sizeof(glm::vec4));
 
     const std::vector<glm::vec4> su = packSpanTable(geo.knotsU, geo.degreeU, geo.countU);
     const std::vector<glm::vec4> sv = packSpanTable(geo.knotsV, geo.degreeV, geo.countV);
@@ -104,8 +108,8 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
         createTexture(gl, spanTableTexels(geo.degreeU), geo.countU - geo.degreeU, su.data());
     g.spanTextureV =
         createTexture(gl, spanTableTexels(geo.degreeV), geo.countV - geo.degreeV, sv.data());
-    g.stats.spanTableUploads += 2;
-    g.stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
+    m_delta.spanTableUploads += 2;
+    m_delta.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
     rebuildPolygon(g, s, nu, nv);
 }
 
@@ -129,9 +133,9 @@ void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
     gl->glTextureSubImage2D(g.controlTexture, 0, i0, j0, w, h, GL_RGBA, GL_FLOAT,
                             g.control.data() + (j0 * g.countU + i0));
     gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    g.stats.subImageUploads += 1;
-    g.stats.texels += std::int64_t(w) * h;
-    g.stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
+    m_delta.subImageUploads += 1;
+    m_delta.texels += std::int64_t(w) * h;
+    m_delta.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
@@ -139,9 +143,9 @@ void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
         const GLsizeiptr size = GLsizeiptr(last - first + 1) * GLsizeiptr(sizeof(BaseVertex));
         gl->glNamedBufferSubData(g.vertexBuffer, offset, size,
                                  g.polygon.vertices.data() + size_t(first));
-        g.stats.vertexUpdates += 1;
-        g.stats.vertexBytes += std::int64_t(size);
-        g.stats.bytes += std::int64_t(size);
+        m_delta.vertexUpdates += 1;
+        m_delta.vertexBytes += std::int64_t(size);
+        m_delta.bytes += std::int64_t(size);
     }
 }
 
@@ -184,8 +188,8 @@ void SurfaceGpuCache::rebuildPolygon(SurfaceGpu& g, const Surface& s, int nu, in
                           lines.data(), GL_STATIC_DRAW);
     g.triangleIndexCount = int(tri.size());
     g.outlineIndexCount = int(lines.size());
-    g.stats.basePolygonBuilds += 1;
-    g.stats.bytes +=
+    m_delta.basePolygonBuilds += 1;
+    m_delta.bytes +=
         std::int64_t(vbytes) + std::int64_t((tri.size() + lines.size()) * sizeof(unsigned));
 }
 
@@ -204,6 +208,19 @@ UploadStats SurfaceGpuCache::totalStats() const {
     for (const auto& [id, g] : m_surfaces)
         total += g->stats;
     return total;
+}
+
+void SurfaceGpuCache::residentBytes(GpuBytes& out) const {
+    constexpr std::int64_t texel = sizeof(glm::vec4);
+    for (const auto& [id, g] : m_surfaces) {
+        out.controlPoints += std::int64_t(g->countU) * g->countV * texel;
+        out.spanTables += (std::int64_t(spanTableTexels(g->degreeU)) * (g->countU - g->degreeU) +
+                           std::int64_t(spanTableTexels(g->degreeV)) * (g->countV - g->degreeV)) *
+                          texel;
+        out.basePolygons += std::int64_t(g->polygon.vertices.size() * sizeof(BaseVertex)) +
+                            std::int64_t(g->triangleIndexCount + g->outlineIndexCount) *
+                                std::int64_t(sizeof(unsigned));
+    }
 }
 
 void SurfaceGpuCache::resetStats() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document.h"
+#include "render/frame_report.h"
 #include "render/gpu_layout.h"
 #include "render/render_types.h"
 
@@ -53,6 +54,10 @@ public:
     UploadStats stats(SurfaceId id) const;
     UploadStats totalStats() const;
     void resetStats();
+    /// What the last sync uploaded (for FrameReport).
+    const UploadStats& frameStats() const { return m_frame; }
+    /// Adds the bytes of every surface's textures and buffers to `out` by kind.
+    void residentBytes(GpuBytes& out) const;
     /// Frees every GL object; the context must be current.
     void release();
 
@@ -64,6 +69,8 @@ private:
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     std::map<SurfaceId, std::unique_ptr<SurfaceGpu>> m_surfaces;
+    UploadStats m_delta; ///< of the surface being synced
+    UploadStats m_frame; ///< of the last sync
 };
 
 } // namespace kw

@@ -41,6 +41,11 @@ void TessellatedPass::update(Mesh& m, const Surface& s, const Revisions& rev, in
     gl->glNamedBufferData(m.indices, GLsizeiptr(t.indices.size() * sizeof(unsigned)),
                           t.indices.data(), GL_DYNAMIC_DRAW);
     m.indexCount = int(t.indices.size());
+    m.bytes =
+        std::int64_t(t.positions.size() * sizeof(glm::vec3) + t.normals.size() * sizeof(glm::vec3) +
+                     t.uvs.size() * sizeof(glm::vec2) + t.indices.size() * sizeof(unsigned));
+    uploads.meshBuilds += 1;
+    uploads.bytes += m.bytes;
     m.revisions = rev;
     m.nu = nu;
     m.nv = nv;
@@ -93,6 +98,7 @@ bool TessellatedPass::draw(const Document& doc, const TrimMaskPass* masks,
             masks->setUniforms(prog, *mask, 0);
         gl->glBindVertexArray(m.vao);
         gl->glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        ++drawCalls;
     }
     return true;
 }
@@ -104,6 +110,13 @@ void TessellatedPass::destroy(Mesh& m) {
             m_gl->glDeleteBuffers(1, b), *b = 0;
     if (m.vao)
         m_gl->glDeleteVertexArrays(1, &m.vao), m.vao = 0;
+}
+
+std::int64_t TessellatedPass::residentBytes() const {
+    std::int64_t total = 0;
+    for (const auto& [id, m] : m_meshes)
+        total += m.bytes;
+    return total;
 }
 
 void TessellatedPass::release() {

@@ -23,6 +23,10 @@ public:
     bool draw(const Document& doc, const TrimMaskPass* masks, const FrameCamera& camera,
               const std::vector<Light>& lights, const RenderOptions& options, QString* error);
     void release();
+    /// Bytes of every mesh's buffers.
+    std::int64_t residentBytes() const;
+    int drawCalls = 0;   ///< counted by draw; the renderer zeroes it per frame
+    UploadStats uploads; ///< counted by draw; the renderer zeroes it per frame
 
 private:
     struct Mesh {
@@ -30,6 +34,7 @@ private:
         int nu = 0, nv = 0;
         GLuint vao = 0, positions = 0, normals = 0, uvs = 0, indices = 0;
         int indexCount = 0;
+        std::int64_t bytes = 0;
     };
     void update(Mesh& m, const Surface& s, const Revisions& rev, int nu, int nv);
     void destroy(Mesh& m);

@@ -116,6 +116,7 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
     m_size = size;
     m_layers = layers;
     ++m_arrayAllocations;
+    ++m_frame.arrayAllocations;
     if (!m_fbo) {
         gl->glCreateFramebuffers(1, &m_fbo);
         gl->glCreateVertexArrays(1, &m_vao);
@@ -131,6 +132,8 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
 bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
                         const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    m_frame = {};
+    drawCalls = 0;
     GLint maxSize = 0, maxLayers = 0;
     gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     gl->glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
@@ -166,8 +169,16 @@ bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
         m_removedStats += it->second.stats;
         it = m_masks.erase(it);
     }
-    if (wants.empty())
+    if (wants.empty()) {
+        // No trimmed surface left: free the array, so an emptied scene holds no mask memory.
+        if (m_texture) {
+            gl->glDeleteTextures(1, &m_texture);
+            m_texture = 0;
+            m_size = m_layers = 0;
+            m_freeLayers.clear();
+        }
         return ok;
+    }
 
     int size = m_size;
     for (const Want& w : wants)
@@ -221,6 +232,14 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QElapsedTimer timer;
     timer.start();
+    TrimMaskStats d;
+    d.largestSide = std::max(resolution.x, resolution.y);
+    // Counted into the mask's and the frame's statistics on every way out.
+    const auto account = [&] {
+        d.cpuNanoseconds += timer.nsecsElapsed();
+        m.stats += d;
+        m_frame += d;
+    };
     m.rect = maskRect(s);
     m.width = resolution.x;
     m.height = resolution.y;
@@ -230,12 +249,12 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     m.warnings.clear();
     const TrimRegion region = makeTrimRegion(s.trims, tolerance, &m.warnings);
     m.active = !region.empty();
-    ++m.stats.redraws;
+    ++d.redraws;
     QOpenGLShaderProgram* prog =
         m_shaders->program(QStringLiteral("trim_mask.vert"), QStringLiteral("trim_mask.frag"));
     if (!m.active || !prog) {
         m.active = false;
-        m.stats.cpuNanoseconds += timer.nsecsElapsed();
+        account();
         return;
     }
     std::vector<glm::vec2> vertices;
@@ -247,10 +266,10 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
         counts.push_back(GLsizei(poly.size()));
         for (const glm::dvec2& p : poly) // unit square of the rectangle, in double first
             vertices.push_back(glm::vec2((p - origin) / extent));
-        m.stats.triangles += std::int64_t(poly.size()) - 2;
+        d.triangles += std::int64_t(poly.size()) - 2;
     }
-    m.stats.loops += std::int64_t(region.loops.size());
-    m.stats.texels += std::int64_t(m.width) * m.height;
+    d.loops += std::int64_t(region.loops.size());
+    d.texels += std::int64_t(m.width) * m.height;
     gl->glNamedBufferData(m_buffer, GLsizeiptr(vertices.size() * sizeof(glm::vec2)),
                           vertices.data(), GL_STREAM_DRAW);
     gl->glNamedFramebufferTextureLayer(m_fbo, GL_COLOR_ATTACHMENT0, m_texture, 0, m.layer);
@@ -274,7 +293,8 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     gl->glDisable(GL_COLOR_LOGIC_OP);
     gl->glDisable(GL_SCISSOR_TEST);
     gl->glEnable(GL_DEPTH_TEST);
-    m.stats.cpuNanoseconds += timer.nsecsElapsed();
+    ++drawCalls;
+    account();
 }
 
 const TrimMask* TrimMaskPass::find(SurfaceId id) const {
@@ -336,6 +356,10 @@ std::vector<unsigned char> TrimMaskPass::readMask(SurfaceId id) const {
     m_gl->glGetTextureSubImage(m_texture, 0, 0, 0, m->layer, m->width, m->height, 1, GL_RED,
                                GL_UNSIGNED_BYTE, GLsizei(texels.size()), texels.data());
     return texels;
+}
+
+std::int64_t TrimMaskPass::residentBytes() const {
+    return std::int64_t(m_size) * m_size * m_layers; // GL_R8
 }
 
 void TrimMaskPass::release() {

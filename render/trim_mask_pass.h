@@ -63,6 +63,11 @@ public:
     TrimMaskStats stats(SurfaceId id) const;
     TrimMaskStats totalStats() const;
     void resetStats();
+    /// What the last sync did (for FrameReport).
+    const TrimMaskStats& frameStats() const { return m_frame; }
+    /// Bytes of the mask array.
+    std::int64_t residentBytes() const;
+    int drawCalls = 0; ///< mask draws of the last sync
     /// Warnings of every current mask, each prefixed with its surface id.
     QStringList warnings() const;
     /// The mask texels of a surface read back (width x height, row 0 at v first; 0 trimmed,
@@ -90,6 +95,7 @@ private:
     std::vector<int> m_freeLayers;
     TrimMaskStats m_removedStats; ///< statistics of masks since dropped, for totalStats()
     std::int64_t m_arrayAllocations = 0;
+    TrimMaskStats m_frame;
 };
 
 } // namespace kw

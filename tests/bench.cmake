@@ -4,3 +4,12 @@
 kw_add_test(tst_bench LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_bench.cpp LIBS Qt6::Gui)
 target_compile_definitions(tst_bench PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_bench knotwork)
+# The scale table: tileScene alone (label model) and a smoke run on hammer.iges at N = 1 and 10
+# copies (label gl, the same source with KW_BENCH_RUN).
+kw_add_test(tst_scale_scene LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_bench_scale.cpp
+            ${PROJECT_SOURCE_DIR}/bench/scale_scene.cpp LIBS knotwork_model Qt6::Gui)
+kw_add_test(tst_bench_scale LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_bench_scale.cpp
+            ${PROJECT_SOURCE_DIR}/bench/scale_scene.cpp LIBS knotwork_model Qt6::Gui)
+target_compile_definitions(tst_bench_scale PRIVATE KW_BENCH_RUN
+                           KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+add_dependencies(tst_bench_scale knotwork)

@@ -22,3 +22,5 @@ foreach(variant IN ITEMS gather:0 fetch:1e30)
   set_tests_properties(tst_render_exact_${name} PROPERTIES LABELS gl
     ENVIRONMENT "QT_QPA_PLATFORM=xcb;KW_GATHER_MIN_CELL_PX=${threshold}")
 endforeach()
+kw_add_test(tst_render_scene LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_scene.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)

@@ -3,6 +3,7 @@
 // image), isocurves at the requested (u, v) within half a pixel, variants built once, and one
 // baseline image per mode under a stated tolerance (KW_UPDATE_BASELINES=1 writes them).
 #include "render/image_writer.h"
+#include "render/renderer_impl.h"
 #include "render_test_util.h"
 
 #include <OpenImageIO/imagebufalgo.h>
@@ -349,7 +350,7 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
     const Camera cam = fitCamera(*scene, 1.0);
     RenderOptions opt;
-    const int loads0 = m_renderer->renderer().environmentLoads();
+    const int loads0 = m_renderer->renderer().internals().exact.environment().loads();
     QElapsedTimer first, again;
     first.start();
     for (AnalysisMode m : analysisModes()) {
@@ -367,7 +368,8 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     m_renderer->finish();
     const qint64 againMs = again.elapsed();
     // The environment image is read once however often the mode comes back.
-    QCOMPARE(m_renderer->renderer().environmentLoads() - loads0, loads0 == 0 ? 1 : 0);
+    QCOMPARE(m_renderer->renderer().internals().exact.environment().loads() - loads0,
+             loads0 == 0 ? 1 : 0);
     qInfo("first pass over %zu modes %lld ms (compiles), two more passes %lld ms",
           analysisModes().size(), (long long)firstMs, (long long)againMs);
 }

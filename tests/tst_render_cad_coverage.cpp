@@ -2,6 +2,7 @@
 // OpenCASCADE's trims say they are. Every pixel of a trimmed face in the trimmed or untrimmed
 // AOV is checked against the CPU classification (model/trim.h) at that pixel's (id, u, v).
 #include "model/cad/cadimport.h"
+#include "render/renderer_impl.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -52,7 +53,7 @@ private Q_SLOTS:
         opt.trims = true;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer trimmed = m_renderer->aov();
-        const TrimMaskPass& masks = m_renderer->renderer().trimMasks();
+        const TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
         const auto texelOf = [&](SurfaceId id) {
             const TrimMask* m = masks.find(id);
             return m ? std::max((m->rect.y - m->rect.x) / m->width,

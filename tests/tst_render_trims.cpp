@@ -2,6 +2,7 @@
 // pixel against the CPU classification of model/trim.h, nested and concave loops, messy input,
 // one mask redrawn per trim edit, and the trim-edge error against mask resolution.
 #include "model/trim.h"
+#include "render/renderer_impl.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -80,7 +81,7 @@ class TestRenderTrims : public QObject {
     }
 
     double texelOf(SurfaceId id) const {
-        const TrimMask* m = m_renderer->renderer().trimMasks().find(id);
+        const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(id);
         if (!m)
             return 1e300; // no mask: every disagreement is "far"... of nothing
         return std::max((m->rect.y - m->rect.x) / m->width, (m->rect.w - m->rect.z) / m->height);
@@ -170,7 +171,7 @@ private Q_SLOTS:
         QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);
         if (sample.isEmpty()) // messy input is reported, once per problem
-            QCOMPARE(m_renderer->renderer().trimMasks().warnings().size(), 6);
+            QCOMPARE(m_renderer->renderer().internals().trimMasks.warnings().size(), 6);
     }
 
     void starAndIslandRenderCorrectly() {
@@ -196,9 +197,10 @@ private Q_SLOTS:
         QVERIFY(coveredNear(whole, id, at(90.0, 0.15), 0.012) > 10);
         QVERIFY(coveredNear(trimmed, id, at(120.0, 0.15), 0.012) > 10);
         // The mask texels themselves: parity fill against the CPU at every texel centre.
-        const TrimMask* m = m_renderer->renderer().trimMasks().find(id);
+        const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(id);
         QVERIFY(m);
-        const std::vector<unsigned char> texels = m_renderer->renderer().trimMasks().readMask(id);
+        const std::vector<unsigned char> texels =
+            m_renderer->renderer().internals().trimMasks.readMask(id);
         QCOMPARE(texels.size(), size_t(m->width) * size_t(m->height));
         const TrimRegion region = makeTrimRegion(scene->surfaces[0].trims, 1e-6);
         const double texel = texelOf(id);
@@ -243,7 +245,7 @@ private Q_SLOTS:
         const Camera cam = fitCamera(scene, 1.0);
         RenderOptions opt;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
-        TrimMaskPass& masks = m_renderer->renderer().trimMasks();
+        TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
         QVERIFY(masks.find(SurfaceId{1}) && masks.find(SurfaceId{20}));
         QVERIFY(!masks.find(SurfaceId{30})); // untrimmed surfaces get no mask
         const std::vector<unsigned char> before = masks.readMask(SurfaceId{20});
@@ -299,7 +301,7 @@ private Q_SLOTS:
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
-        TrimMaskPass& masks = m_renderer->renderer().trimMasks();
+        TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, RenderOptions{}, trimmed, whole));
         const TrimMaskStats st = masks.totalStats();
@@ -353,7 +355,7 @@ private Q_SLOTS:
             opt.trimMaskCap = cap;
             AovBuffer trimmed, whole;
             QVERIFY(renderPair(doc, opt, trimmed, whole));
-            const TrimMask* m = m_renderer->renderer().trimMasks().find(s.id);
+            const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(s.id);
             QVERIFY(m);
             // A wrongly classified pixel is off by its distance to the curve, in pixels:
             // the (u, v) distance over the pixel's (u, v) size sqrt|det J|.

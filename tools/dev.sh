@@ -2,13 +2,17 @@
 # Knotwork's one entry point for a fresh Debian 12 machine: install, build, then run or test.
 #   tools/dev.sh run    install dependencies, build, open the editor on the teapot sample
 #                       (with no display: render it headless to build/teapot.png)
-#   tools/dev.sh test   install dependencies, build, run every test through CTest
+#   tools/dev.sh test   install dependencies, build, run every test through CTest, then fuzz each
+#                       libFuzzer harness for 60 s (tests/fuzz, a separate clang build)
+#   tools/dev.sh fuzz [SECONDS]   build the libFuzzer harnesses and run each for SECONDS (60)
 #   tools/dev.sh deps | build
 # Idempotent: packages already installed and an up-to-date build cost a few seconds.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${KW_BUILD_DIR:-$root/build}
+fuzz_build_dir=${KW_FUZZ_BUILD_DIR:-$root/build-fuzz}
+fuzz_harnesses=(knot obj trim document)
 sample=$root/resources/samples/teapot.knot
 xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 
@@ -20,6 +24,7 @@ packages=(
   fonts-dejavu-core
   libocct-data-exchange-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libtbb-dev
+  clang libclang-rt-14-dev
 )
 
 as_root() {
@@ -66,10 +71,43 @@ test_all() {
   "${xvfb[@]}" ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900
 }
 
+# The harnesses need clang's libFuzzer and sanitizers: a build of their own (tests/fuzz).
+fuzz_build() {
+  if [ ! -f "$fuzz_build_dir/build.ninja" ]; then
+    CC=clang CXX=clang++ cmake -S "$root/tests/fuzz" -B "$fuzz_build_dir" -G Ninja
+  fi
+  cmake --build "$fuzz_build_dir" -j "$(nproc)"
+}
+
+# Runs every harness for $1 seconds on its seed corpus and every reproducer ever found. New
+# inputs collect in build-fuzz/corpus/NAME; a failure leaves its input in build-fuzz/artifacts.
+# A single input running longer than 25 s counts as a hang.
+fuzz_run() {
+  local seconds=${1:-60} h status=0
+  for h in "${fuzz_harnesses[@]}"; do
+    local work=$fuzz_build_dir/corpus/$h dirs=("$root/tests/fuzz/corpus/$h")
+    [ -d "$root/tests/fuzz/repro/$h" ] && dirs+=("$root/tests/fuzz/repro/$h")
+    mkdir -p "$work" "$fuzz_build_dir/artifacts"
+    echo "dev.sh: fuzzing $h for ${seconds} s" >&2
+    if ! "$fuzz_build_dir/fuzz_$h" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 \
+        -print_final_stats=1 -artifact_prefix="$fuzz_build_dir/artifacts/$h-" \
+        "$work" "${dirs[@]}" 2> "$fuzz_build_dir/fuzz_$h.log"; then
+      status=1
+      tail -n 40 "$fuzz_build_dir/fuzz_$h.log" >&2
+      echo "dev.sh: fuzz_$h failed; the input is in $fuzz_build_dir/artifacts" \
+        "(keep it in tests/fuzz/repro/$h/ once fixed)" >&2
+    else
+      grep -E "^(Done|stat::number_of_executed_units)" "$fuzz_build_dir/fuzz_$h.log" >&2 || true
+    fi
+  done
+  return $status
+}
+
 case "${1:-}" in
   deps) deps ;;
   build) deps; build ;;
   run) deps; build; run ;;
-  test) deps; build; test_all ;;
-  *) echo "usage: tools/dev.sh run|test|deps|build" >&2; exit 2 ;;
+  test) deps; build; test_all; fuzz_build; fuzz_run 60 ;;
+  fuzz) deps; fuzz_build; fuzz_run "${2:-60}" ;;
+  *) echo "usage: tools/dev.sh run|test|fuzz [SECONDS]|deps|build" >&2; exit 2 ;;
 esac

@@ -72,7 +72,7 @@ AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewpor
 
 void AnalysisControls::editRange() {
     AnalysisOptions o = m_viewport->renderOptions().analysis;
-    const ValueRange current = o.range.value_or(m_viewport->renderer().analysisRange());
+    const ValueRange current = o.range.value_or(m_viewport->lastFrameReport().analysisRange);
     QDialog dialog(m_window);
     dialog.setWindowTitle(tr("Colour Range"));
     auto* form = new QFormLayout(&dialog);

@@ -69,9 +69,13 @@ MainWindow::MainWindow(QWidget* parent)
     m_fpsLabel = new QLabel;
     m_fpsLabel->setMinimumWidth(170);
     statusBar()->addPermanentWidget(m_fpsLabel);
-    connect(m_viewport, &Viewport::framesPerSecond, this, [this](double fps, double ms) {
-        m_fpsLabel->setText(tr("%1 fps, frame %2 ms").arg(fps, 0, 'f', 1).arg(ms, 0, 'f', 1));
-    });
+    connect(m_viewport, &Viewport::framesPerSecond, this,
+            [this](double fps, const FrameReport& frame) {
+                m_fpsLabel->setText(tr("%1 fps, frame %2 ms CPU, %3 draws")
+                                        .arg(fps, 0, 'f', 1)
+                                        .arg(frame.cpuMs.total, 0, 'f', 1)
+                                        .arg(frame.drawCalls));
+            });
     connect(m_viewport, &Viewport::renderError, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
     connect(m_properties, &PropertyPanel::editRejected, this,

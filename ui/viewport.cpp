@@ -111,7 +111,7 @@ void Viewport::drawLegend() {
         return;
     QPainter p(this);
     const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
-    drawColourLegend(p, area, a.mode, m_renderer.analysisRange(),
+    drawColourLegend(p, area, a.mode, m_lastReport.analysisRange,
                      a.scale.value_or(defaultScale(a.mode)), !a.range);
 }
 
@@ -141,8 +141,6 @@ void Viewport::paintGL() {
     const bool timed = m_moveTimed;
     const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
     m_moveTimed = false;
-    QElapsedTimer frameClock;
-    frameClock.start();
 
     if (!m_renderer.isInitialized()) {
         QPainter p(this);
@@ -152,30 +150,27 @@ void Viewport::paintGL() {
                    QStringLiteral("The 3D view is unavailable:\n%1").arg(m_glError));
         return;
     }
-    const UploadStats before = m_renderer.cache().totalStats();
     RenderOptions options = m_options;
     options.analysis.holdRange = isDragging();
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     const qreal dpr = devicePixelRatioF();
     const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
-    if (!m_renderer.render(*m_doc, m_camera.camera(), pixels, options,
-                           defaultFramebufferObject())) {
-        if (m_renderer.lastError() != m_lastRenderError) {
-            m_lastRenderError = m_renderer.lastError();
+    m_lastReport = m_renderer.render(*m_doc, m_camera.camera(),
+                                     {defaultFramebufferObject(), pixels, false}, options);
+    if (!m_lastReport.ok) {
+        if (m_lastReport.error != m_lastRenderError) {
+            m_lastRenderError = m_lastReport.error;
             Q_EMIT renderError(QStringLiteral("Frame failed: %1").arg(m_lastRenderError));
         }
     } else {
         m_lastRenderError.clear();
     }
-    const std::int64_t bytes = m_renderer.cache().totalStats().bytes - before.bytes;
     drawSelection();
     drawLegend();
-    const double frameMs = double(frameClock.nsecsElapsed()) * 1e-6;
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);
         m_metrics.handlerMs.push_back(m_handlerMs);
-        m_metrics.paintMs.push_back(frameMs);
-        m_metrics.bytes.push_back(bytes);
+        m_metrics.frames.push_back(m_lastReport);
     }
 
     ++m_framesDrawn;
@@ -183,10 +178,24 @@ void Viewport::paintGL() {
         m_fpsClock.start();
     ++m_frames;
     if (m_fpsClock.elapsed() >= 1000) {
-        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), frameMs);
+        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), m_lastReport);
         m_frames = 0;
         m_fpsClock.restart();
     }
+}
+
+std::optional<PickHit> Viewport::pickSurface(QPointF position) {
+    if (!m_renderer.isInitialized())
+        return std::nullopt;
+    RenderOptions options = m_options;
+    options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
+    const qreal dpr = devicePixelRatioF();
+    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
+    makeCurrent();
+    std::optional<PickHit> hit =
+        m_renderer.pick(*m_doc, m_camera.camera(), pixels, position * dpr, options);
+    doneCurrent();
+    return hit;
 }
 
 void Viewport::drawSelection() {

@@ -56,25 +56,27 @@ public:
     int axisConstraint() const { return m_axis; }
 
     /// Responsiveness during drags: for each drag step that reached a frame, the wall time
-    /// from the mouse-move event to the start of the next paintGL (the draw call), the CPU
-    /// time of that paintGL (render call, until it returns), and the bytes it uploaded
-    /// (from the renderer's UploadStats).
+    /// from the mouse-move event to the start of the next paintGL (the draw call), and that
+    /// frame's FrameReport (its CPU time by phase, uploads and draw calls).
     struct DragMetrics {
         std::vector<double> moveToDrawMs;
         std::vector<double> handlerMs; ///< of moveToDrawMs: the mouse-move handler itself
-        std::vector<double> paintMs;
-        std::vector<std::int64_t> bytes;
+        std::vector<FrameReport> frames;
     };
     const DragMetrics& dragMetrics() const { return m_metrics; }
     void resetDragMetrics() { m_metrics = {}; }
-    const Renderer& renderer() const { return m_renderer; }
+    /// The report of the last frame drawn (empty before the first).
+    const FrameReport& lastFrameReport() const { return m_lastReport; }
+    /// Renderer::pick at a widget position (logical pixels) of the current view; makes the
+    /// view's context current. nullopt when nothing is there or GL is unavailable.
+    std::optional<PickHit> pickSurface(QPointF position);
     /// Frames painted since construction.
     std::int64_t framesDrawn() const { return m_framesDrawn; }
 
 Q_SIGNALS:
     /// Once a second while frames are drawn: frames in the last second and the last frame's
-    /// paintGL time in milliseconds.
-    void framesPerSecond(double fps, double frameMs);
+    /// report (its cpuMs.total is the render call's CPU time).
+    void framesPerSecond(double fps, const kw::FrameReport& lastFrame);
     /// The renderer could not be set up or a frame failed (message for the status bar).
     void renderError(const QString& message);
 
@@ -116,6 +118,7 @@ private:
     RenderOptions m_options;
     QString m_glError;
     QString m_lastRenderError;
+    FrameReport m_lastReport;
 
     Gesture m_gesture = Gesture::None;
     QPointF m_pressPixel, m_lastPixel;
@@ -129,7 +132,7 @@ private:
     bool m_moveTimed = false;
     double m_handlerMs = 0.0; ///< duration of the last timed mouse-move handler
     DragMetrics m_metrics;
-    QElapsedTimer m_fpsClock;
+    QElapsedTimer m_fpsClock; ///< frames per second: frames drawn over wall time
     int m_frames = 0;
     std::int64_t m_framesDrawn = 0;
 };

@@ -1,0 +1,220 @@
+// knotwork bench --tables scale: one part tiled in a grid, from 1 copy to >= 10,000 faces; load,
+// memory, frame cost in a fitted view and a close-up, and the cost of one drag step.
+#include "bench/scale_bench.h"
+
+#include "app/launch.h"
+#include "bench/scale_scene.h"
+#include "model/document.h"
+#include "model/knotfile.h"
+#include "render/offscreen_renderer.h"
+
+#include <QElapsedTimer>
+#include <QFile>
+#include <QFileInfo>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <algorithm>
+#include <ctime>
+#include <sys/resource.h>
+
+namespace kw::bench {
+
+namespace {
+
+double threadCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+double processCpuMs() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
+           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
+}
+
+/// VmRSS of this process in MiB (0 when /proc is unreadable).
+double residentMiB() {
+    QFile f(QStringLiteral("/proc/self/status"));
+    if (!f.open(QIODevice::ReadOnly))
+        return 0.0;
+    for (const QByteArray& line : f.readAll().split('\n'))
+        if (line.startsWith("VmRSS:"))
+            return line.mid(6).trimmed().split(' ').value(0).toDouble() / 1024.0;
+    return 0.0;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// The part as a Scene: a .knot read directly, anything else converted by `knotwork convert`.
+std::optional<Scene> loadUnit(const QString& model, const QString& tmp, QString* error) {
+    if (!QFileInfo(model).isFile()) {
+        *error = QStringLiteral("no such file: %1").arg(model);
+        return std::nullopt;
+    }
+    QString knot = model;
+    if (!model.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive)) {
+        knot = tmp + QStringLiteral("/unit.knot");
+        QProcess p;
+        p.start(app::siblingPath("knotwork"), {QStringLiteral("convert"), model, knot});
+        if (!p.waitForFinished(600000) || p.exitStatus() != QProcess::NormalExit ||
+            p.exitCode() != 0) {
+            *error = QStringLiteral("knotwork convert %1 failed: %2")
+                         .arg(model, QString::fromLocal8Bit(p.readAllStandardError()).trimmed());
+            return std::nullopt;
+        }
+    }
+    return readKnotFile(knot, error);
+}
+
+struct Frames {
+    OffscreenRenderer& renderer;
+    const ScaleConfig& config;
+    RenderOptions options;
+
+    bool draw(const Document& doc, const Camera& camera, double* callMs, QString* error) {
+        const double t0 = threadCpuMs();
+        const bool ok = renderer.render(doc, camera, options, error);
+        if (callMs)
+            *callMs = threadCpuMs() - t0;
+        return ok;
+    }
+
+    /// Warm-up frames, then config.frames timed frames, each ended by glFinish.
+    bool time(const Document& doc, const Camera& camera, ScaleView& view, QString* error) {
+        std::vector<double> wall, call;
+        double cpuStart = 0.0;
+        for (int f = 0; f < config.warmup + config.frames; ++f) {
+            if (f == config.warmup)
+                cpuStart = processCpuMs();
+            QElapsedTimer timer;
+            timer.start();
+            double callMs = 0.0;
+            if (!draw(doc, camera, &callMs, error))
+                return false;
+            renderer.finish();
+            if (f >= config.warmup) {
+                wall.push_back(double(timer.nsecsElapsed()) * 1e-6);
+                call.push_back(callMs);
+            }
+        }
+        view.timing.cpuMs = (processCpuMs() - cpuStart) / std::max(1, config.frames);
+        view.timing.medianMs = median(wall);
+        view.timing.minMs = *std::min_element(wall.begin(), wall.end());
+        view.timing.maxMs = *std::max_element(wall.begin(), wall.end());
+        view.renderCallMs = median(call);
+        return true;
+    }
+
+    /// Moves one control point of the first surface per step, as a drag does, and times the
+    /// edit plus the render call that issues the frame (thread CPU; glFinish outside).
+    bool drag(Document& doc, const Camera& camera, double& stepMs, QString* error) {
+        const Surface& s = doc.scene().surfaces.front();
+        const int index = s.geometry.index(s.geometry.countU / 2, s.geometry.countV / 2);
+        const glm::dvec3 start = s.geometry.points[size_t(index)];
+        glm::dvec3 lo, hi;
+        sceneBounds(doc.scene(), lo, hi);
+        const double step = 1e-4 * glm::length(hi - lo);
+        std::vector<double> ms;
+        for (int k = 0; k <= config.dragSteps; ++k) {
+            const double t0 = threadCpuMs();
+            if (!doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)})) {
+                *error = QStringLiteral("the drag step could not move the control point");
+                return false;
+            }
+            if (!renderer.render(doc, camera, options, error))
+                return false;
+            const double t1 = threadCpuMs();
+            renderer.finish();
+            if (k > 0) // the first step pays for the first partial upload path
+                ms.push_back(t1 - t0);
+        }
+        doc.setControlPoints(s.id, {index}, {start});
+        stepMs = median(ms);
+        return true;
+    }
+};
+
+} // namespace
+
+bool runScale(const ScaleConfig& config, ScaleReport& report,
+              const std::function<void(const QString&)>& progress, QString* error) {
+    QTemporaryDir tmp;
+    if (!tmp.isValid()) {
+        *error = QStringLiteral("cannot create a temporary folder: %1").arg(tmp.errorString());
+        return false;
+    }
+    const std::optional<Scene> unit = loadUnit(config.model, tmp.path(), error);
+    if (!unit)
+        return false;
+    if (unit->surfaces.empty()) {
+        *error = QStringLiteral("%1: the model has no surfaces to tile").arg(config.model);
+        return false;
+    }
+    report.model = QFileInfo(config.model).fileName();
+    report.unitFaces = int(unit->surfaces.size());
+    report.unitTrimmed = int(std::count_if(unit->surfaces.begin(), unit->surfaces.end(),
+                                           [](const Surface& s) { return !s.trims.empty(); }));
+    report.config = config;
+
+    OffscreenRenderer renderer;
+    if (!renderer.create(error) || !renderer.setSize(QSize(config.side, config.side), false, error))
+        return false;
+    Frames frames{renderer, config, RenderOptions{}};
+    frames.options.trims = config.trims;
+    const Camera closeUp = closeUpCamera(*unit, 1.0);
+
+    for (int faces : config.faces) {
+        ScaleRow row;
+        row.copies = copiesForFaces(report.unitFaces, faces);
+        const QString file = tmp.filePath(QStringLiteral("tiled-%1.knot").arg(row.copies));
+        if (!writeKnotFile(file, tileScene(*unit, row.copies), error))
+            return false;
+        Document doc;
+        {
+            QElapsedTimer load;
+            load.start();
+            std::optional<Scene> scene = readKnotFile(file, error);
+            if (!scene || !doc.resetScene(std::move(*scene), error))
+                return false;
+            row.loadSeconds = double(load.nsecsElapsed()) * 1e-9;
+        }
+        QFile::remove(file);
+        row.faces = int(doc.scene().surfaces.size());
+        const Camera fitted = fitCamera(doc.scene(), 1.0);
+        QElapsedTimer first;
+        first.start();
+        if (!frames.draw(doc, fitted, nullptr, error))
+            return false;
+        renderer.finish();
+        row.firstFrameSeconds = double(first.nsecsElapsed()) * 1e-9;
+        row.residentMiB = residentMiB();
+        if (!frames.time(doc, fitted, row.fitted, error) ||
+            !frames.time(doc, closeUp, row.closeUp, error) ||
+            !frames.drag(doc, fitted, row.dragStepMs, error))
+            return false;
+        progress(QStringLiteral("scale %1 x %2 = %3 faces: load %4 s, %5 MiB, fitted %6 FPS "
+                                "(%7 CPU ms), close-up %8 FPS, drag step %9 ms")
+                     .arg(row.copies)
+                     .arg(report.unitFaces)
+                     .arg(row.faces)
+                     .arg(row.loadSeconds, 0, 'f', 2)
+                     .arg(row.residentMiB, 0, 'f', 0)
+                     .arg(row.fitted.timing.fps(), 0, 'f', 1)
+                     .arg(row.fitted.timing.cpuMs, 0, 'f', 1)
+                     .arg(row.closeUp.timing.fps(), 0, 'f', 1)
+                     .arg(row.dragStepMs, 0, 'f', 2));
+        report.rows.push_back(row);
+    }
+    renderer.makeCurrent();
+    return true;
+}
+
+} // namespace kw::bench

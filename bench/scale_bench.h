@@ -1,0 +1,64 @@
+// knotwork bench --tables scale: one real trimmed part tiled from 1 copy up to >= 10,000 faces
+// (issue 15, docs/PERFORMANCE.md ## Scale). Plain result structs; bench_report writes them.
+#pragma once
+
+#include "bench/bench_runner.h"
+#include "model/scene.h"
+
+#include <QString>
+#include <functional>
+#include <vector>
+
+namespace kw::bench {
+
+struct ScaleConfig {
+    /// The part to tile: a .knot file, or IGES/STEP/BREP converted first by `knotwork convert`
+    /// (the executable next to knotwork-bench, so OpenCASCADE is never loaded here).
+    QString model;
+    /// Face counts to reach; row k tiles copiesForFaces(unit faces, faces[k]) copies.
+    std::vector<int> faces;
+    int side = 1024;    ///< square image side
+    int frames = 20;    ///< timed frames per view (medians)
+    int warmup = 3;     ///< untimed frames first
+    int dragSteps = 20; ///< control-point moves timed per row
+    bool trims = true;
+};
+
+/// One view's frames: wall and process CPU (all threads, llvmpipe rasterises on its own), and
+/// the CPU the renderer's call itself took on the calling thread (sync and issuing the draws,
+/// without waiting for the GPU).
+struct ScaleView {
+    Timing timing;
+    double renderCallMs = 0.0; ///< median thread CPU ms of OffscreenRenderer::render
+};
+
+struct ScaleRow {
+    int copies = 0;
+    int faces = 0;
+    double loadSeconds = 0.0;       ///< reading the tiled .knot into a Document
+    double firstFrameSeconds = 0.0; ///< first frame (every upload) to glFinish, fitted view
+    double residentMiB = 0.0;       ///< process VmRSS after the first frame
+    long long gpuBytes = -1;        ///< FrameReport: bytes resident on the GPU (-1: unknown)
+    int drawCalls = -1;             ///< FrameReport: draw calls of a fitted frame (-1: unknown)
+    ScaleView fitted, closeUp;
+    /// Median thread CPU ms from moving one control point (Document::setControlPoints, what a
+    /// drag step does) to the end of the render call that issues the frame's draws.
+    double dragStepMs = 0.0;
+};
+
+struct ScaleReport {
+    QString model;       ///< file name of the tiled part
+    int unitFaces = 0;   ///< surfaces of one copy
+    int unitTrimmed = 0; ///< of which trimmed
+    ScaleConfig config;
+    std::vector<ScaleRow> rows;
+};
+
+/// Runs the table (rows in the order of config.faces) in the current process: needs a
+/// QGuiApplication whose default format is OffscreenRenderer::requiredFormat(). Tiled models
+/// are written to a temporary folder and read back, as a user would open them. Returns false
+/// with *error set on the first failure (unreadable model, conversion failure, GL error).
+bool runScale(const ScaleConfig& config, ScaleReport& report,
+              const std::function<void(const QString&)>& progress, QString* error);
+
+} // namespace kw::bench

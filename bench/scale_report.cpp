@@ -1,0 +1,171 @@
+// JSON, markdown and the plot of the scale table (see bench/scale_report.h).
+#include "bench/scale_report.h"
+
+#include "bench/line_plot.h"
+
+#include <QDir>
+#include <QJsonArray>
+#include <QPainter>
+#include <cmath>
+
+namespace kw::bench {
+
+namespace {
+
+QJsonObject viewJson(const ScaleView& v) {
+    return QJsonObject{{QStringLiteral("fps"), v.timing.fps()},
+                       {QStringLiteral("msMedian"), v.timing.medianMs},
+                       {QStringLiteral("cpuMsPerFrame"), v.timing.cpuMs},
+                       {QStringLiteral("renderCallMs"), v.renderCallMs}};
+}
+
+/// -1 (unknown) as JSON null.
+QJsonValue known(double v) {
+    return v < 0.0 ? QJsonValue() : QJsonValue(v);
+}
+
+QString num(double v, int decimals = 1) {
+    return QString::number(v, 'f', decimals);
+}
+
+QString orDash(double v, int decimals = 0) {
+    return v < 0.0 ? QStringLiteral("–") : num(v, decimals);
+}
+
+/// The row whose face count is nearest to `faces` (rows non-empty).
+const ScaleRow& nearest(const std::vector<ScaleRow>& rows, int faces) {
+    const ScaleRow* best = &rows.front();
+    for (const ScaleRow& r : rows)
+        if (std::abs(r.faces - faces) < std::abs(best->faces - faces))
+            best = &r;
+    return *best;
+}
+
+} // namespace
+
+QJsonObject scaleJson(const ScaleReport& report) {
+    QJsonArray rows;
+    for (const ScaleRow& r : report.rows)
+        rows.append(QJsonObject{{QStringLiteral("copies"), r.copies},
+                                {QStringLiteral("faces"), r.faces},
+                                {QStringLiteral("loadSeconds"), r.loadSeconds},
+                                {QStringLiteral("firstFrameSeconds"), r.firstFrameSeconds},
+                                {QStringLiteral("residentMiB"), r.residentMiB},
+                                {QStringLiteral("gpuBytes"), known(double(r.gpuBytes))},
+                                {QStringLiteral("drawCalls"), known(r.drawCalls)},
+                                {QStringLiteral("fitted"), viewJson(r.fitted)},
+                                {QStringLiteral("closeUp"), viewJson(r.closeUp)},
+                                {QStringLiteral("dragStepMs"), r.dragStepMs}});
+    const ScaleConfig& c = report.config;
+    return QJsonObject{{QStringLiteral("model"), report.model},
+                       {QStringLiteral("unitFaces"), report.unitFaces},
+                       {QStringLiteral("unitTrimmed"), report.unitTrimmed},
+                       {QStringLiteral("width"), c.side},
+                       {QStringLiteral("height"), c.side},
+                       {QStringLiteral("frames"), c.frames},
+                       {QStringLiteral("warmup"), c.warmup},
+                       {QStringLiteral("dragSteps"), c.dragSteps},
+                       {QStringLiteral("trims"), c.trims},
+                       {QStringLiteral("rows"), rows}};
+}
+
+QString scaleMarkdown(const ScaleReport& report) {
+    const ScaleConfig& c = report.config;
+    QString md = QStringLiteral(
+                     "### Scale: %1 (%2 faces, %3 trimmed) tiled N times, %4 × %4\n\n"
+                     "| copies | faces | load (s) | first frame (s) | resident (MiB) | GPU (MiB) | "
+                     "draw calls | fitted FPS | fitted CPU ms/frame | fitted render call (ms) | "
+                     "close-up FPS | close-up CPU ms/frame | close-up render call (ms) | drag "
+                     "step (ms) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+                     .arg(report.model)
+                     .arg(report.unitFaces)
+                     .arg(report.unitTrimmed)
+                     .arg(c.side);
+    for (const ScaleRow& r : report.rows)
+        md += QStringLiteral("| %1 | %2 | %3 | %4 | %5 | %6 | %7 | %8 | %9 | %10 | %11 | %12 | "
+                             "%13 | %14 |\n")
+                  .arg(r.copies)
+                  .arg(r.faces)
+                  .arg(num(r.loadSeconds, 2), num(r.firstFrameSeconds, 2), num(r.residentMiB, 0),
+                       orDash(r.gpuBytes < 0 ? -1.0 : double(r.gpuBytes) / (1 << 20), 1),
+                       orDash(r.drawCalls), num(r.fitted.timing.fps()), num(r.fitted.timing.cpuMs),
+                       num(r.fitted.renderCallMs, 2))
+                  .arg(num(r.closeUp.timing.fps()), num(r.closeUp.timing.cpuMs),
+                       num(r.closeUp.renderCallMs, 2), num(r.dragStepMs, 2));
+    if (report.rows.size() >= 2) {
+        // The targets, read off the rows (100 faces: the row nearest to it).
+        const ScaleRow& small = nearest(report.rows, 100);
+        const ScaleRow& big = report.rows.back();
+        const auto ratio = [](double a, double b) {
+            return b > 0.0 ? a / b : 0.0;
+        };
+        md += QStringLiteral(
+                  "\nTargets, %1 faces against %2: fitted CPU ms/frame %3× (target ≤ 20×), "
+                  "render call %4×; draw calls %5 against %6 (target: equal); drag step %7 ms "
+                  "(target ≤ 2 ms); load %8 s (target < 10 s) with %9 MiB resident (target "
+                  "< 2048).\n")
+                  .arg(big.faces)
+                  .arg(small.faces)
+                  .arg(num(ratio(big.fitted.timing.cpuMs, small.fitted.timing.cpuMs), 2),
+                       num(ratio(big.fitted.renderCallMs, small.fitted.renderCallMs), 2),
+                       orDash(big.drawCalls), orDash(small.drawCalls), num(big.dragStepMs, 2),
+                       num(big.loadSeconds, 2), num(big.residentMiB, 0));
+    }
+    md += QStringLiteral("\nCPU ms/frame: process CPU time (all threads: llvmpipe rasterises on "
+                         "its own) per timed frame; render call: the calling thread's CPU "
+                         "time inside OffscreenRenderer::render (median); drag step: thread "
+                         "CPU from Document::setControlPoints to the end of that call.\n\n");
+    return md;
+}
+
+bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& written,
+                    QString* error) {
+    if (report.rows.empty())
+        return true;
+    std::vector<double> faces;
+    Series fitted{QStringLiteral("fitted CPU ms/frame"), QColor(31, 119, 180), {}},
+        close{QStringLiteral("close-up CPU ms/frame"), QColor(214, 39, 40), {}},
+        call{QStringLiteral("fitted render call ms"), QColor(44, 160, 44), {}},
+        drag{QStringLiteral("drag step ms"), QColor(255, 127, 14), {}},
+        load{QStringLiteral("load s"), QColor(31, 119, 180), {}},
+        first{QStringLiteral("first frame s"), QColor(214, 39, 40), {}},
+        rss{QStringLiteral("resident GiB"), QColor(148, 103, 189), {}};
+    for (const ScaleRow& r : report.rows) {
+        faces.push_back(r.faces);
+        fitted.y.push_back(r.fitted.timing.cpuMs);
+        close.y.push_back(r.closeUp.timing.cpuMs);
+        call.y.push_back(r.fitted.renderCallMs);
+        drag.y.push_back(r.dragStepMs);
+        load.y.push_back(r.loadSeconds);
+        first.y.push_back(r.firstFrameSeconds);
+        rss.y.push_back(r.residentMiB / 1024.0);
+    }
+    const QString title =
+        QStringLiteral("Scale: %1 tiled, %2x%2").arg(report.model).arg(report.config.side);
+    const QImage top = linePlot(title, QStringLiteral("faces"), QStringLiteral("CPU ms"), faces,
+                                {fitted, close, call, drag}, true);
+    const QImage bottom =
+        linePlot(QStringLiteral("load, first frame and memory"), QStringLiteral("faces"),
+                 QStringLiteral("s / GiB"), faces, {load, first, rss}, true);
+    QImage img(std::max(top.width(), bottom.width()), top.height() + bottom.height(),
+               QImage::Format_RGB32);
+    img.fill(Qt::white);
+    {
+        QPainter p(&img);
+        p.drawImage(0, 0, top);
+        p.drawImage(0, top.height(), bottom);
+    }
+    if (!QDir().mkpath(dir)) {
+        *error = QStringLiteral("could not create the folder %1").arg(dir);
+        return false;
+    }
+    const QString path = QDir(dir).filePath(QStringLiteral("scale.png"));
+    if (!img.save(path, "PNG")) {
+        *error = QStringLiteral("could not write the plot %1").arg(path);
+        return false;
+    }
+    written << path;
+    return true;
+}
+
+} // namespace kw::bench

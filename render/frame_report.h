@@ -1,0 +1,87 @@
+// What one frame did and what the renderer holds: the result of Renderer::render, plus the
+// render target and the pick query's answer. Plain data, no GL.
+#pragma once
+
+#include "model/scene.h"
+#include "render/render_types.h"
+
+#include <QSize>
+#include <QString>
+#include <QStringList>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace kw {
+
+/// Where a frame goes: a framebuffer object of the renderer's context (0, or a
+/// QOpenGLWidget's defaultFramebufferObject()) of `size` pixels. With `aov` the framebuffer has
+/// the AOV colour attachments 1..3 of OffscreenRenderer, and the frame writes them; with
+/// `curvatureAov` as well, attachment 4 gets K, H, k1, k2 (exact mode).
+struct RenderTarget {
+    std::uint32_t framebuffer = 0;
+    QSize size;
+    bool aov = false;
+    bool curvatureAov = false;
+};
+
+/// Bytes of GPU memory held by the renderer, by kind (buffer and texture storage as requested
+/// from the driver; the driver's own padding is not known).
+struct GpuBytes {
+    std::int64_t controlPoints = 0;     ///< homogeneous control points
+    std::int64_t spanTables = 0;        ///< knot span tables
+    std::int64_t basePolygons = 0;      ///< base polygon vertices and indices (exact mode)
+    std::int64_t tessellatedMeshes = 0; ///< baseline meshes (tessellated mode)
+    std::int64_t controlNets = 0;       ///< control-net overlay points and lines
+    std::int64_t trimMasks = 0;         ///< the trim mask array
+    std::int64_t perSurface = 0;        ///< per-surface tables (draw parameters and commands)
+
+    std::int64_t total() const {
+        return controlPoints + spanTables + basePolygons + tessellatedMeshes + controlNets +
+               trimMasks + perSurface;
+    }
+    bool operator==(const GpuBytes&) const = default;
+};
+
+/// CPU time of one render call by phase, in milliseconds (wall clock on the calling thread;
+/// GPU work runs asynchronously and is not included).
+struct FrameTimes {
+    double sync = 0.0;     ///< bringing the GPU scene up to date (uploads, meshes)
+    double masks = 0.0;    ///< trim masks: flattening loops and issuing their draws
+    double surfaces = 0.0; ///< issuing the surface passes
+    double overlays = 0.0; ///< wireframe and control net
+    double total = 0.0;    ///< the whole call
+};
+
+/// The result of Renderer::render.
+struct FrameReport {
+    /// False when the frame could not be drawn as asked; `error` says why. A surface left out
+    /// (control net too large for the GPU) or drawn untrimmed (mask limits) sets ok to false
+    /// after the rest of the frame was drawn.
+    bool ok = true;
+    QString error;
+    UploadStats uploads; ///< data sent to the GPU by this frame
+    TrimMaskStats masks; ///< trim mask work of this frame (masks.redraws: mask rebuilds)
+    int drawCalls = 0;   ///< glDraw* calls issued by this frame
+    int surfaces = 0;    ///< surfaces drawn
+    GpuBytes gpuBytes;   ///< resident after this frame
+    /// What the frame drew differently from the document: trim loops repaired or ignored
+    /// (each prefixed with its surface id) and surfaces left out. The current state, not only
+    /// what changed in this frame.
+    QStringList warnings;
+    FrameTimes cpuMs;
+    /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
+    /// kw::autoRange, recomputed only when the geometry or mode changed and held while
+    /// AnalysisOptions::holdRange is set); {0, 1} for other modes. For the legend.
+    ValueRange analysisRange;
+};
+
+/// The answer of Renderer::pick: the surface visible at a pixel, its parameters there and the
+/// kernel's point at them.
+struct PickHit {
+    SurfaceId surface;
+    glm::dvec2 uv{0.0};    ///< (u, v) of the fragment, as the exact pass evaluated it
+    glm::dvec3 point{0.0}; ///< surfacePoint(surface, u, v) in double precision
+    double depth = 0.0;    ///< eye-space depth of the fragment along the view direction
+};
+
+} // namespace kw

@@ -1,0 +1,62 @@
+// Renderer's private implementation: the GPU state and the passes. Internal to render/ (and to
+// render's tests, which inspect uploads and masks through Renderer::internals()).
+#pragma once
+
+#include "render/exact_surface_pass.h"
+#include "render/overlay_passes.h"
+#include "render/renderer.h"
+#include "render/shader_library.h"
+#include "render/surface_gpu_cache.h"
+#include "render/tessellated_pass.h"
+#include "render/trim_mask_pass.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QPointer>
+#include <QRect>
+
+namespace kw {
+
+struct Renderer::Impl {
+    /// One frame into `target`; with `scissor` only that rectangle (GL window coordinates) is
+    /// cleared and drawn.
+    FrameReport renderFrame(const Document& doc, const Camera& camera, const RenderTarget& target,
+                            RenderOptions options, const QRect* scissor);
+    void dropSurfaceCaches();
+    /// The colour range of a colour-map analysis mode for this frame (see FrameReport).
+    ValueRange resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
+    bool ensurePickTarget(QSize size);
+    void releasePickTarget();
+
+    QOpenGLFunctions_4_5_Core* gl = nullptr;
+    QPointer<const Document> document; ///< whose data the caches hold
+    ShaderLibrary shaders;
+    SurfaceGpuCache cache;
+    TrimMaskPass trimMasks;
+    ExactSurfacePass exact;
+    TessellatedPass tessellated;
+    WireframePass wireframe;
+    ControlNetPass controlNet;
+    QString error;
+    QString glDescription;
+
+    /// What the automatic analysis range was computed from (revisions come from one
+    /// document-wide counter and never repeat, so the newest geometry revision and the surface
+    /// count identify the geometry).
+    struct RangeKey {
+        const Document* document = nullptr;
+        AnalysisMode mode = AnalysisMode::Phong;
+        size_t surfaces = 0;
+        std::uint64_t newestRevision = 0;
+        bool operator==(const RangeKey&) const = default;
+    };
+    RangeKey rangeKey;
+    ValueRange autoAnalysisRange;
+
+    /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
+    /// so the surface shaders' outputs keep their locations).
+    GLuint pickFbo = 0;
+    GLuint pickTextures[5] = {0, 0, 0, 0, 0}; ///< colour, AOV 1..3, depth
+    QSize pickSize;
+};
+
+} // namespace kw

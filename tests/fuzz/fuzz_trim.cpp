@@ -1,0 +1,221 @@
+// libFuzzer harness: trim-loop repair and flattening (model/trim.h) on loops built from the
+// input: curves of any degree with valid, unsorted or miscounted knots, any weights, points
+// anywhere (NaN and infinities included), loops that close, have gaps or are empty. Checks:
+// makeTrimRegion only keeps finite closed polygons inside their boxes; spans are sorted,
+// disjoint and agree with point classification; curve splitting and reversal keep the shape;
+// the trimmed area of a unit square lies in [0, 1].
+#include "fuzz_util.h"
+#include "model/trim.h"
+
+#include <algorithm>
+#include <vector>
+
+using namespace kw;
+using kw::fuzz::Input;
+
+namespace {
+
+bool finite2(glm::dvec2 p) {
+    return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+std::vector<double> makeKnots(Input& in, int degree, int count) {
+    const int mode = in.integer(0, 7);
+    int n = count + degree + 1;
+    if (mode == 7)
+        n += in.integer(-2, 2); // a miscounted vector
+    std::vector<double> k;
+    if (mode <= 3) { // clamped, uniform or random interior, sometimes repeated knots
+        const double a = mode == 3 ? in.wild(-4, 4) : 0.0;
+        const double b = mode == 3 ? a + in.wild(0, 8) : 1.0;
+        k.assign(size_t(degree + 1), a);
+        const int interior = count - degree - 1;
+        std::vector<double> mid;
+        for (int i = 1; i <= interior; ++i)
+            mid.push_back(mode == 0 ? a + (b - a) * i / (interior + 1) : in.real(a, b));
+        std::sort(mid.begin(), mid.end());
+        k.insert(k.end(), mid.begin(), mid.end());
+        k.insert(k.end(), size_t(degree + 1), b);
+    } else { // arbitrary values, sorted or not
+        for (int i = 0; i < n && i < 64; ++i)
+            k.push_back(in.wild(-2, 2));
+        if (mode != 6)
+            std::sort(k.begin(), k.end());
+    }
+    return k;
+}
+
+NurbsCurve2 makeCurve(Input& in, glm::dvec2 start) {
+    NurbsCurve2 c;
+    c.degree = in.byte() == 255 ? in.integer(-1, kMaxDegree + 2) : in.integer(1, 4);
+    const int count = std::max(1, c.degree + in.integer(0, 6));
+    c.knots = makeKnots(in, c.degree, std::min(count, 40));
+    // Mostly curves at the scale of their domain, as in files; sometimes far larger.
+    const double scale = in.byte() < 240 ? 1.0 : in.wild(0, 1e6);
+    for (int i = 0; i < count && i < 40; ++i) {
+        c.points.push_back(
+            i == 0 && in.flag() ? start : glm::dvec2(in.wild(-1, 1), in.wild(-1, 1)) * scale);
+        c.weights.push_back(in.flag() ? 1.0 : in.wild(0.05, 5));
+    }
+    if (in.byte() == 0 && !c.weights.empty())
+        c.weights.pop_back(); // a weight missing
+    return c;
+}
+
+/// Loops whose curves mostly chain end to start and close; the input decides where not.
+std::vector<TrimLoop> makeLoops(Input& in) {
+    std::vector<TrimLoop> loops;
+    const int nLoops = in.integer(0, 4);
+    for (int l = 0; l < nLoops; ++l) {
+        TrimLoop loop;
+        loop.id = TrimLoopId{std::uint32_t(l + 1)};
+        const int nCurves = in.integer(0, 4);
+        glm::dvec2 end{in.real(-1, 1), in.real(-1, 1)};
+        const glm::dvec2 first = end;
+        for (int c = 0; c < nCurves; ++c) {
+            NurbsCurve2 curve = makeCurve(in, end);
+            if (c + 1 == nCurves && in.flag() && !curve.points.empty())
+                curve.points.back() = first; // close the loop
+            if (!curve.points.empty())
+                end = curve.points.back();
+            loop.curves.push_back(std::move(curve));
+        }
+        loops.push_back(std::move(loop));
+    }
+    return loops;
+}
+
+void checkRegion(const TrimRegion& r, Input& in) {
+    KW_FUZZ_CHECK(r.lo.size() == r.loops.size() && r.hi.size() == r.loops.size(), "");
+    for (size_t l = 0; l < r.loops.size(); ++l) {
+        KW_FUZZ_CHECK(r.loops[l].size() >= 3,
+                      QStringLiteral("loop %1 kept with %2 points").arg(l).arg(r.loops[l].size()));
+        for (glm::dvec2 p : r.loops[l]) {
+            KW_FUZZ_CHECK(finite2(p), "a kept polygon has a non-finite point");
+            KW_FUZZ_CHECK(p.x >= r.lo[l].x && p.y >= r.lo[l].y && p.x <= r.hi[l].x &&
+                              p.y <= r.hi[l].y,
+                          "a polygon point lies outside its box");
+        }
+    }
+    // Vertical lines: spans sorted, disjoint, clipped, and their midpoints inside, whenever the
+    // midpoint is clear of every edge (on an edge the parity of a point is a matter of rounding).
+    for (int k = 0; k < 4; ++k) {
+        const double u = in.real(-1.5, 1.5);
+        const double v0 = in.real(-2, 0), v1 = v0 + in.real(0, 4);
+        const std::vector<Interval> spans = trimRegionSpans(r, u, v0, v1);
+        double prev = -std::numeric_limits<double>::infinity();
+        for (const Interval& s : spans) {
+            KW_FUZZ_CHECK(s.first >= v0 && s.last <= v1 && s.first >= prev &&
+                              (s.first < s.last || (r.empty() && s.first == s.last)),
+                          QStringLiteral("span [%1, %2] in [%3, %4] after %5")
+                              .arg(s.first)
+                              .arg(s.last)
+                              .arg(v0)
+                              .arg(v1)
+                              .arg(prev));
+            prev = s.last;
+            const glm::dvec2 mid{u, 0.5 * (s.first + s.last)};
+            if (trimRegionDistance(r, mid) > 1e-9)
+                KW_FUZZ_CHECK(trimRegionContains(r, mid), "a span midpoint is classified outside");
+        }
+    }
+}
+
+QString knotText(const NurbsCurve2& c) {
+    QString s = QStringLiteral(" knots");
+    for (double k : c.knots)
+        s += QStringLiteral(" %1").arg(k, 0, 'g', 17);
+    s += QStringLiteral(" points");
+    for (glm::dvec2 p : c.points)
+        s += QStringLiteral(" (%1 %2)").arg(p.x).arg(p.y);
+    return s;
+}
+
+void checkCurve(const NurbsCurve2& c, double tolerance, Input& in) {
+    if (!curveValidationError(c).empty())
+        return; // the functions below require a valid curve
+    const Interval d = curveDomain(c);
+    glm::dvec2 lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+    for (glm::dvec2 p : c.points) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const double size = std::max(glm::length(hi - lo), 1.0);
+    if (!std::isfinite(size))
+        return; // the checks below measure distances
+    const std::vector<glm::dvec2> pts = tessellateTrimCurve(c, tolerance);
+    KW_FUZZ_CHECK(pts.size() >= 2, "a curve flattened to fewer than 2 points");
+    KW_FUZZ_CHECK(glm::length(pts.front() - curvePoint(c, d.first)) <= 1e-9 * size, "start");
+    KW_FUZZ_CHECK(glm::length(pts.back() - curvePoint(c, d.last)) <= 1e-9 * size, "end");
+
+    const double t = in.real(d.first, d.last);
+    const glm::dvec2 at = curvePoint(c, t);
+    const NurbsCurve2 r = trimCurveReversed(c);
+    KW_FUZZ_CHECK(curveValidationError(r).empty(), "the reversed curve is invalid");
+    KW_FUZZ_CHECK(glm::length(curvePoint(r, d.first + d.last - t) - at) <= 1e-7 * size,
+                  QStringLiteral("the reversed curve has another shape at t = %1 in [%2, %3]: "
+                                 "(%4, %5) vs (%6, %7), degree %8")
+                          .arg(t)
+                          .arg(d.first)
+                          .arg(d.last)
+                          .arg(at.x)
+                          .arg(at.y)
+                          .arg(curvePoint(r, d.first + d.last - t).x)
+                          .arg(curvePoint(r, d.first + d.last - t).y)
+                          .arg(c.degree) +
+                      knotText(c) + knotText(r));
+
+    const double a = in.real(d.first, d.last), b = in.real(d.first, d.last);
+    if (a < b && !(a > d.first && a - d.first < 1e-9) && !(b < d.last && d.last - b < 1e-9)) {
+        const NurbsCurve2 s = trimCurveSegment(c, a, b);
+        KW_FUZZ_CHECK(curveValidationError(s).empty(),
+                      QStringLiteral("segment [%1, %2]: %3")
+                          .arg(a)
+                          .arg(b)
+                          .arg(QString::fromStdString(curveValidationError(s))));
+        KW_FUZZ_CHECK(curveDomain(s) == (Interval{a, b}), "the segment has another domain");
+        const double m = 0.5 * (a + b);
+        KW_FUZZ_CHECK(glm::length(curvePoint(s, m) - curvePoint(c, m)) <= 1e-6 * size,
+                      "the segment has another shape");
+    }
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
+    Input in(data, size);
+    // trimTolerance's 1e-5 of the domain diagonal first, then coarser and finer ones.
+    static const double kTolerances[] = {1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.5, 1e-6, 1e-9};
+    const double tolerance = kTolerances[in.integer(0, 7)];
+    const std::vector<TrimLoop> loops = makeLoops(in);
+
+    QStringList warnings;
+    const TrimRegion region = makeTrimRegion(loops, tolerance, &warnings);
+    checkRegion(region, in);
+    for (const TrimLoop& loop : loops)
+        for (const NurbsCurve2& c : loop.curves)
+            checkCurve(c, tolerance, in);
+
+    // Area of the unit square with these trims; trimmedSurfaceArea requires valid curves.
+    // Its cost grows with polygon points times their u extremes, so only for small regions.
+    size_t points = 0;
+    for (const TrimPolygon& p : region.loops)
+        points += p.size();
+    bool allValid = points <= 2000;
+    for (const TrimLoop& loop : loops)
+        for (const NurbsCurve2& c : loop.curves)
+            allValid = allValid && curveValidationError(c).empty();
+    if (allValid) {
+        const NurbsSurface square = [] {
+            NurbsSurface s;
+            s.countU = s.countV = 2;
+            s.knotsU = s.knotsV = {0, 0, 1, 1};
+            s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+            s.weights = {1, 1, 1, 1};
+            return s;
+        }();
+        const double area = trimmedSurfaceArea(square, loops, 8);
+        KW_FUZZ_CHECK(area >= 0.0 && area <= 1.0 + 1e-9, QStringLiteral("area %1").arg(area));
+    }
+    return 0;
+}

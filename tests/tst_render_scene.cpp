@@ -1,0 +1,160 @@
+// GL test: the renderer's public interface. The pick query against the AOV of a full frame and
+// the kernel; the FrameReport's uploads, draw calls and GPU bytes.
+#include "render_test_util.h"
+
+#include <QGuiApplication>
+
+using namespace kw;
+
+class TestRenderScene : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenRenderer> m_renderer;
+
+    FrameReport frame(const Document& doc, const RenderOptions& options = {}) {
+        QString error;
+        m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options, &error);
+        return m_renderer->lastReport();
+    }
+
+private Q_SLOTS:
+    void initTestCase() {
+        m_renderer = std::make_unique<OffscreenRenderer>();
+        QString error;
+        QVERIFY2(m_renderer->create(&error), qPrintable(error));
+        QVERIFY2(m_renderer->setSize(QSize(160, 120), true, &error), qPrintable(error));
+    }
+
+    void pickMatchesAov_data() {
+        QTest::addColumn<QString>("sample");
+        for (const char* name : {"teapot", "trimmed_plate", "torus"})
+            QTest::newRow(name) << QString::fromLatin1(name);
+    }
+    void pickMatchesAov() {
+        // Every 4th pixel of a 160x120 frame picked one at a time: the surface, (u, v) and
+        // point the full frame's AOV holds there, and the kernel's point at that (u, v).
+        QFETCH(QString, sample);
+        QString error;
+        const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        const AovBuffer aov = m_renderer->aov();
+        glm::dvec3 lo, hi;
+        sceneBounds(doc.scene(), lo, hi);
+        const double modelSize = glm::length(hi - lo);
+        int hits = 0, misses = 0, disagree = 0;
+        double maxUv = 0.0, maxPoint = 0.0;
+        for (int y = 1; y < aov.height; y += 4)
+            for (int x = 1; x < aov.width; x += 4) {
+                const float* px = aov.pixel(x, y);
+                const std::optional<PickHit> hit =
+                    m_renderer->pick(doc, camera, QPointF(x + 0.5, y + 0.5));
+                const bool covered = px[0] >= 0.0f;
+                if (bool(hit) != covered || (hit && double(hit->surface.value) != px[0])) {
+                    ++disagree;
+                    continue;
+                }
+                if (!hit) {
+                    ++misses;
+                    continue;
+                }
+                ++hits;
+                maxUv = std::max({maxUv, std::abs(hit->uv.x - px[1]), std::abs(hit->uv.y - px[2])});
+                const Surface* s = doc.surface(hit->surface);
+                QVERIFY(s);
+                // The point is the kernel's at the picked (u, v), and where the frame put it.
+                QCOMPARE(hit->point, surfacePoint(s->geometry, hit->uv.x, hit->uv.y));
+                maxPoint =
+                    std::max(maxPoint, glm::length(hit->point - glm::dvec3(px[3], px[4], px[5])));
+            }
+        qInfo("%s: %d hits, %d background, %d disagreements; max |uv| diff %.3g, max point diff "
+              "%.3g (model size %.3g)",
+              qPrintable(sample), hits, misses, disagree, maxUv, maxPoint, modelSize);
+        QVERIFY(hits > 100);
+        QVERIFY(misses > 10);
+        QCOMPARE(disagree, 0);
+        // The pick's viewport is the frame's shifted by whole pixels: the same fragments, with
+        // interpolation rounding of float window coordinates of another size.
+        QVERIFY(maxUv <= 1e-5);
+        QVERIFY(maxPoint <= 1e-5 * modelSize);
+        // Outside the frame: nothing.
+        QVERIFY(!m_renderer->pick(doc, camera, QPointF(-1.0, 10.0)));
+        QVERIFY(!m_renderer->pick(doc, camera, QPointF(10.0, 120.0)));
+    }
+
+    void pickSeesTrims() {
+        // A trimmed-away spot of trimmed_plate is background for pick, as in the frame; with
+        // trims off the same pixel hits the plate.
+        QString error;
+        const std::optional<Scene> scene =
+            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
+        RenderOptions untrimmed;
+        untrimmed.trims = false;
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        const AovBuffer trimmed = m_renderer->aov();
+        QVERIFY2(m_renderer->render(doc, camera, untrimmed, &error), qPrintable(error));
+        const AovBuffer whole = m_renderer->aov();
+        int checked = 0;
+        for (int y = 0; y < trimmed.height && checked < 5; y += 3)
+            for (int x = 0; x < trimmed.width && checked < 5; x += 3)
+                if (trimmed.pixel(x, y)[0] < 0.0f && whole.pixel(x, y)[0] >= 0.0f) {
+                    const QPointF at(x + 0.5, y + 0.5);
+                    QVERIFY(!m_renderer->pick(doc, camera, at));
+                    const std::optional<PickHit> h = m_renderer->pick(doc, camera, at, untrimmed);
+                    QVERIFY(h);
+                    QCOMPARE(double(h->surface.value), double(whole.pixel(x, y)[0]));
+                    ++checked;
+                }
+        QCOMPARE(checked, 5);
+    }
+
+    void reportCountsUploadsAndBytes() {
+        QString error;
+        const std::optional<Scene> scene =
+            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        RenderOptions options;
+        options.controlNet = true;
+        const FrameReport first = frame(doc, options);
+        QVERIFY2(first.ok, qPrintable(first.error));
+        const auto n = std::int64_t(doc.scene().surfaces.size());
+        QCOMPARE(first.surfaces, int(n));
+        QCOMPARE(first.uploads.fullUploads, n);
+        QCOMPARE(first.uploads.netBuilds, n);
+        QVERIFY(first.masks.redraws >= 1);
+        QVERIFY(first.drawCalls >= int(n));
+        QVERIFY(first.gpuBytes.controlPoints > 0 && first.gpuBytes.spanTables > 0 &&
+                first.gpuBytes.basePolygons > 0 && first.gpuBytes.controlNets > 0 &&
+                first.gpuBytes.trimMasks > 0);
+        QVERIFY(first.cpuMs.total >= first.cpuMs.surfaces);
+        // Nothing changed: the next frame uploads and redraws nothing, holds the same bytes.
+        const FrameReport second = frame(doc, options);
+        QCOMPARE(second.uploads, UploadStats{});
+        QCOMPARE(second.masks.redraws, 0);
+        QCOMPARE(second.gpuBytes, first.gpuBytes);
+        // A moved point: one texel.
+        const Surface& s = doc.scene().surfaces.front();
+        QVERIFY(doc.setControlPoints(s.id, {0}, {s.geometry.points[0] + glm::dvec3(0, 0, 0.1)}));
+        const FrameReport moved = frame(doc, options);
+        QCOMPARE(moved.uploads.subImageUploads, 1);
+        QCOMPARE(moved.uploads.texels, 1);
+        QCOMPARE(moved.uploads.fullUploads, 0);
+        QCOMPARE(moved.gpuBytes, first.gpuBytes);
+        // The tessellated mode's meshes are counted too.
+        options.mode = RenderMode::Tessellated;
+        const FrameReport tess = frame(doc, options);
+        QCOMPARE(tess.uploads.meshBuilds, n);
+        QVERIFY(tess.gpuBytes.tessellatedMeshes > 0);
+    }
+};
+
+QTEST_MAIN(TestRenderScene)
+#include "tst_render_scene.moc"
