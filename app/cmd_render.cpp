@@ -1,6 +1,7 @@
 // knotwork render FILE -o OUT [...]: headless render of a .knot project to an image (and AOVs).
 #include "app/commands.h"
 #include "app/render_args.h"
+#include "app/render_reference.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 
@@ -41,7 +42,17 @@ int runRender(const QStringList& args) {
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
                                  QStringLiteral("Overlay the control points and net."));
-    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net});
+    const QCommandLineOption reference(
+        QStringLiteral("reference"),
+        QStringLiteral("Write the CPU reference instead of a GPU frame: each pixel's exact "
+                       "trimmed surface by ray casting through the kernel (slow; no GL)."));
+    const QCommandLineOption edgeReport(
+        QStringLiteral("edge-report"),
+        QStringLiteral("Also compare the frame with the CPU reference and write the edge "
+                       "metrics (silhouette, cracks, id/depth, normal error) as JSON ('-': "
+                       "stdout)."),
+        QStringLiteral("REPORT.json"));
+    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport});
     const RenderCliOptions shared = addRenderOptions(parser, QString());
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -74,6 +85,7 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: the AOV image must be an .exr file").arg(aovPath));
         return kExitUsage;
     }
+
     if (parser.isSet(aovCurvature) && !parser.isSet(aov)) {
         printError(QStringLiteral("%1: --aov-curvature needs --aov AOV.exr").arg(cmd));
         return kExitUsage;
@@ -84,22 +96,35 @@ int runRender(const QStringList& args) {
                        .arg(cmd, parser.value(timeFrames)));
         return kExitUsage;
     }
+    if (parser.isSet(reference) && parser.isSet(edgeReport)) {
+        printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
+        return kExitUsage;
+    }
 
     Document doc;
     if (!loadDocument(files[0], doc))
         return kExitBadInput;
     const Scene& scene = doc.scene();
     QString error;
-    OffscreenRenderer renderer;
-    if (!renderer.create(&error) ||
-        !renderer.setSize(imageSize, parser.isSet(aov), &error, parser.isSet(aovCurvature))) {
-        printError(QStringLiteral("%1: %2").arg(cmd, error));
-        return kExitBadInput;
-    }
     const Camera camera =
         scene.camera.authored
             ? scene.camera
             : fitCamera(scene, double(imageSize.width()) / double(imageSize.height()));
+    if (parser.isSet(reference)) {
+        if (!writeReferenceRender(scene, camera, imageSize, options.lightCount, outPath, aovPath,
+                                  &error)) {
+            printError(error);
+            return kExitBadInput;
+        }
+        return kExitOk;
+    }
+    const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
+    OffscreenRenderer renderer;
+    if (!renderer.create(&error) ||
+        !renderer.setSize(imageSize, withAov, &error, parser.isSet(aovCurvature))) {
+        printError(QStringLiteral("%1: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
     if (!renderer.render(doc, camera, options, &error)) {
         printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
         return kExitBadInput;
@@ -109,6 +134,11 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: warning: %2").arg(files[0], w));
     if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
         (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {
+        printError(error);
+        return kExitBadInput;
+    }
+    if (parser.isSet(edgeReport) &&
+        !writeEdgeReport(scene, camera, renderer.aov(), parser.value(edgeReport), &error)) {
         printError(error);
         return kExitBadInput;
     }

@@ -1,0 +1,71 @@
+// knotwork render --reference / --edge-report.
+#include "app/render_reference.h"
+
+#include "app/commands.h"
+#include "render/edge_metrics.h"
+#include "render/image_writer.h"
+#include "render/reference_render.h"
+
+#include <QSaveFile>
+#include <cerrno>
+
+namespace kw::cli {
+
+bool writeReferenceRender(const Scene& scene, const Camera& camera, QSize size, int lightCount,
+                          const QString& outPath, const QString& aovPath, QString* error) {
+    ReferenceOptions options;
+    options.lightCount = lightCount;
+    ReferenceStats stats;
+    const AovBuffer aov =
+        renderReference(scene, camera, size.width(), size.height(), options, &stats);
+    if (!writeColorImage(shadeReference(scene, camera, aov, options), outPath, error) ||
+        (!aovPath.isEmpty() && !writeAovImage(aov, aovPath, error)))
+        return false;
+    printOut(QStringLiteral("reference: %1 triangles, %2 covered pixels, %3 Newton failures, "
+                            "%4 spans over the cell limit, %5 ms\n")
+                 .arg(stats.triangles)
+                 .arg(stats.pixels)
+                 .arg(stats.newtonFailures)
+                 .arg(stats.unmetSpans)
+                 .arg(stats.milliseconds, 0, 'f', 0));
+    return true;
+}
+
+bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& gpu,
+                     const QString& jsonPath, QString* error) {
+    const AovBuffer reference = renderReference(scene, camera, gpu.width, gpu.height);
+    glm::dvec3 lo(0.0), hi(0.0);
+    sceneBounds(scene, lo, hi);
+    EdgeMetrics m;
+    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error))
+        return false;
+    const QByteArray json = edgeMetricsJson(m).toUtf8();
+    if (jsonPath == QLatin1String("-")) {
+        printOut(QString::fromUtf8(json));
+    } else {
+        QSaveFile file(jsonPath);
+        errno = 0;
+        // Flush explicitly: Qt 6.4's QSaveFile::commit() ignores a failed final flush.
+        if (!file.open(QIODevice::WriteOnly) || file.write(json) != json.size() || !file.flush() ||
+            !file.commit()) {
+            *error = QStringLiteral("%1: cannot write the edge report: %2")
+                         .arg(jsonPath, file.errorString());
+            file.cancelWriting();
+            return false;
+        }
+    }
+    printOut(QStringLiteral("edges: silhouette mean %1 px max %2 px, %3 crack pixels, %4 id and "
+                            "%5 depth disagreements outside the edge band, normal error mean "
+                            "%6 p99 %7 max %8 deg\n")
+                 .arg(m.silhouetteMeanPixels, 0, 'f', 2)
+                 .arg(m.silhouetteMaxPixels, 0, 'f', 2)
+                 .arg(m.crackPixels)
+                 .arg(m.idDisagreements)
+                 .arg(m.depthDisagreements)
+                 .arg(m.normalMeanDegrees, 0, 'g', 3)
+                 .arg(m.normalP99Degrees, 0, 'g', 3)
+                 .arg(m.normalMaxDegrees, 0, 'g', 3));
+    return true;
+}
+
+} // namespace kw::cli

@@ -1,0 +1,58 @@
+// Quality at the edges of a frame measured against a CPU reference frame (reference_render.h):
+// silhouette error, crack pixels, visible id / depth disagreement and screen normal error.
+#pragma once
+
+#include "render/aov_buffer.h"
+
+#include <QString>
+
+namespace kw {
+
+struct EdgeMetrics {
+    long long pixels = 0;  ///< width x height
+    long long covered = 0; ///< frame pixels showing a surface
+    long long referenceCovered = 0;
+
+    /// Silhouette error: each pixel covered in exactly one of the two frames, scored by the
+    /// Euclidean distance (pixels) from its centre to the nearest reference silhouette pixel
+    /// (a covered reference pixel with an uncovered 4-neighbour, or on the border).
+    long long silhouetteMismatched = 0;
+    double silhouetteMeanPixels = 0.0;
+    double silhouetteMaxPixels = 0.0;
+
+    /// Crack pixels: background pixels of the frame in a horizontal or vertical run of at most
+    /// 2 background pixels with covered pixels at both ends (the definition, which
+    /// needs no reference); crackPixelsCoveredInReference counts those the reference covers
+    /// (a true gap of the geometry is not a crack).
+    long long crackPixels = 0;
+    long long crackPixelsCoveredInReference = 0;
+
+    /// The edge band: pixels within one pixel (8-neighbourhood) of a pixel whose reference id
+    /// differs (background included). Outside it:
+    long long edgeBandPixels = 0;
+    long long idDisagreements = 0;    ///< visible surface id differs from the reference
+    long long depthDisagreements = 0; ///< same id, |Z - Z_ref| > depthTolerance
+    double depthTolerance = 0.0;
+
+    /// Screen normal error outside the band where both frames show the same surface: the angle
+    /// between the normal shown and the reference's exact normal at the point truly under the
+    /// pixel (degrees).
+    long long normalPixels = 0;
+    double normalMeanDegrees = 0.0;
+    double normalP99Degrees = 0.0;
+    double normalMaxDegrees = 0.0;
+};
+
+/// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,
+/// camera and size). depthTolerance in model units (>= 0). Returns false with *error naming the
+/// sizes when the two buffers differ in size or are empty.
+bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
+                          EdgeMetrics& out, QString* error);
+
+/// Crack pixels of one frame alone (EdgeMetrics::crackPixels).
+long long crackPixels(const AovBuffer& frame);
+
+/// The metrics as one JSON object (keys as the member names).
+QString edgeMetricsJson(const EdgeMetrics& m);
+
+} // namespace kw
