@@ -3,7 +3,7 @@
 
 #include "app/commands.h"
 #include "model/knotfile.h"
-#include "render/offscreen_renderer.h"
+#include "render/gl_context.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
@@ -24,19 +24,15 @@ namespace {
 /// Empty when this machine can make an OpenGL 4.5 core context, else why not.
 QString probeOpenGL() {
     QOffscreenSurface surface;
-    surface.setFormat(OffscreenRenderer::requiredFormat());
+    surface.setFormat(requiredSurfaceFormat());
     surface.create();
     QOpenGLContext context;
-    context.setFormat(OffscreenRenderer::requiredFormat());
+    context.setFormat(requiredSurfaceFormat());
     if (!context.create())
         return QStringLiteral("no OpenGL context could be created on the '%1' platform")
             .arg(QGuiApplication::platformName());
-    const QSurfaceFormat f = context.format();
-    if (context.isOpenGLES() || f.version() < qMakePair(4, 5))
-        return QStringLiteral("the best OpenGL context available is %1%2.%3")
-            .arg(context.isOpenGLES() ? QStringLiteral("ES ") : QString())
-            .arg(f.majorVersion())
-            .arg(f.minorVersion());
+    if (const QString got = openGlShortfall(context.format(), context.isOpenGLES()); !got.isEmpty())
+        return QStringLiteral("the best OpenGL context available is %1").arg(got);
     if (!context.makeCurrent(&surface))
         return QStringLiteral("the OpenGL context cannot be made current");
     context.doneCurrent();
@@ -130,7 +126,7 @@ int runEditor(int argc, char** argv) {
         return cli::kExitUsage;
     }
 
-    QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat()); // before QApplication
+    QSurfaceFormat::setDefaultFormat(requiredSurfaceFormat()); // before QApplication
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("Knotwork"));
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
@@ -156,6 +152,8 @@ int runEditor(int argc, char** argv) {
     if (parser.isSet(shot))
         return screenshot(window, parser.value(shot));
     window.show();
+    // After a crash: offer the autosaved edits once the window is up (the question is its child).
+    QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });
     return QApplication::exec();
 }
 

@@ -16,6 +16,10 @@ namespace {
 constexpr int kTrimMaskUnit = 3;    // after uControl, uSpansU, uSpansV
 constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
+const TrimMask* maskOf(const SurfaceRecord& r) {
+    return r.mask.active && r.mask.layer >= 0 ? &r.mask : nullptr;
+}
+
 double gatherMinCellPixels() {
     if (const char* e = std::getenv("KW_GATHER_MIN_CELL_PX"))
         return std::atof(e);
@@ -81,8 +85,7 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
     return d;
 }
 
-bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& cache,
-                                    const TrimMaskPass* masks, const FrameCamera& camera,
+bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const FrameCamera& camera,
                                     QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
@@ -97,11 +100,12 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
     gl->glDepthFunc(GL_LESS);
     QOpenGLShaderProgram* bound = nullptr;
     bool ok = true;
-    for (const Surface& s : scene.surfaces) {
-        const SurfaceGpu* g = cache.find(s.id);
+    const TrimMaskPass& masks = scene.trimMasks();
+    for (const SurfaceRecord* r : scene.records()) {
+        const SurfaceGpu* g = r->exact.get();
         if (!g)
             continue;
-        const TrimMask* mask = masks ? masks->find(s.id) : nullptr;
+        const TrimMask* mask = trims ? maskOf(*r) : nullptr;
         QOpenGLShaderProgram* prog = mask ? m_shaders->program(QStringLiteral("surface.vert"),
                                                                QStringLiteral("depth_only.frag"),
                                                                {QStringLiteral("KW_TRIM")})
@@ -118,7 +122,7 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
                                    glm::value_ptr(camera.viewProjection));
         }
         if (mask)
-            masks->setUniforms(prog, *mask, kTrimMaskUnit);
+            masks.setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
         ++drawCalls;
@@ -127,8 +131,7 @@ bool ExactSurfacePass::depthPrepass(const Scene& scene, const SurfaceGpuCache& c
     return ok;
 }
 
-bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
-                            const TrimMaskPass* masks, const FrameCamera& camera,
+bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
                             const std::vector<Light>& lights, const RenderOptions& options,
                             const ValueRange& range, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
@@ -140,7 +143,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     if (options.shading == RenderOptions::Shading::DepthPrepass) {
-        if (!depthPrepass(scene, cache, masks, camera, error)) {
+        if (!depthPrepass(scene, trims, camera, error)) {
             gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
             return false;
         }
@@ -153,17 +156,18 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
     QOpenGLShaderProgram* bound = nullptr;
     bool ok = true;
     const double minCellPixels = gatherMinCellPixels();
-    for (const Surface& s : scene.surfaces) {
-        const SurfaceGpu* g = cache.find(s.id);
+    const TrimMaskPass& masks = scene.trimMasks();
+    for (const SurfaceRecord* r : scene.records()) {
+        const SurfaceGpu* g = r->exact.get();
         if (!g)
             continue;
+        const Surface& s = *r->surface;
         // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
         // rejects it before shading and early-z stays on: no lookup needed here. A discard
         // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
         // exact-depth way, which has no pre-pass, looks the mask up.
-        const TrimMask* mask = masks && options.shading == RenderOptions::Shading::ExactDepth
-                                   ? masks->find(s.id)
-                                   : nullptr;
+        const TrimMask* mask =
+            trims && options.shading == RenderOptions::Shading::ExactDepth ? maskOf(*r) : nullptr;
         // The gather pays only where a cell covers many fragments: on small cells its flat
         // varyings cost llvmpipe's triangle setup more than the fetches it saves.
         const bool gather = projectedPixelsPerCell(*g, camera) >= minCellPixels;
@@ -193,7 +197,7 @@ bool ExactSurfacePass::draw(const Scene& scene, const SurfaceGpuCache& cache,
         gl->glBindTextureUnit(1, g->spanTextureU);
         gl->glBindTextureUnit(2, g->spanTextureV);
         if (mask)
-            masks->setUniforms(prog, *mask, kTrimMaskUnit);
+            masks.setUniforms(prog, *mask, kTrimMaskUnit);
         gl->glBindVertexArray(g->triangleVao);
         gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
         ++drawCalls;

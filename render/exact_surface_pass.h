@@ -3,10 +3,9 @@
 #pragma once
 
 #include "render/analysis_gl.h"
+#include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
-#include "render/surface_gpu_cache.h"
-#include "render/trim_mask_pass.h"
 
 #include <QString>
 
@@ -17,16 +16,16 @@ public:
     /// Needs the context current while drawing; `shaders` outlives the pass.
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
 
-    /// Draws every surface of `scene` found in `cache` into the bound framebuffer (depth test
-    /// on), as options.shading says. Surfaces with a mask in `masks` (may be null: no trims)
-    /// lose their trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
+    /// Draws every record of `scene` that has exact data into the bound framebuffer (depth
+    /// test on), as options.shading says. With `trims`, surfaces with an active mask lose their
+    /// trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
     /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
     /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
     /// with *error set when a shader variant cannot be built.
     /// `range` is the resolved colour range of a colour-map analysis mode (else unused).
-    bool draw(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
-              const FrameCamera& camera, const std::vector<Light>& lights,
-              const RenderOptions& options, const ValueRange& range, QString* error);
+    bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+              const std::vector<Light>& lights, const RenderOptions& options,
+              const ValueRange& range, QString* error);
     /// Frees the environment map texture; the context must be current.
     void release() { m_environment.release(); }
     const EnvironmentMap& environment() const { return m_environment; }
@@ -50,8 +49,7 @@ public:
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
 
 private:
-    bool depthPrepass(const Scene& scene, const SurfaceGpuCache& cache, const TrimMaskPass* masks,
-                      const FrameCamera& camera, QString* error);
+    bool depthPrepass(const GpuScene& scene, bool trims, const FrameCamera& camera, QString* error);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;

@@ -1,6 +1,8 @@
 // Off-screen context and framebuffer with colour and AOV targets; read-back of both.
 #include "render/offscreen_renderer.h"
 
+#include "render/gl_context.h"
+
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions_4_5_Core>
@@ -37,12 +39,7 @@ OffscreenRenderer::~OffscreenRenderer() {
 }
 
 QSurfaceFormat OffscreenRenderer::requiredFormat() {
-    QSurfaceFormat f;
-    f.setRenderableType(QSurfaceFormat::OpenGL);
-    f.setVersion(4, 5);
-    f.setProfile(QSurfaceFormat::CoreProfile);
-    f.setDepthBufferSize(24);
-    return f;
+    return requiredSurfaceFormat();
 }
 
 Renderer& OffscreenRenderer::renderer() {
@@ -73,16 +70,10 @@ bool OffscreenRenderer::create(QString* error) {
         *error = QStringLiteral("could not make the OpenGL context current");
         return false;
     }
-    const QSurfaceFormat got = d->context->format();
-    if (got.version() < qMakePair(4, 5) || got.profile() != QSurfaceFormat::CoreProfile) {
-        *error = QStringLiteral("OpenGL 4.5 core is required, got %1.%2 (run under xvfb-run with "
-                                "QT_QPA_PLATFORM=xcb on Mesa)")
-                     .arg(got.majorVersion())
-                     .arg(got.minorVersion());
-        return false;
-    }
+    // Renderer::initialize checks the version (render/gl_context.h).
     if (!d->renderer.initialize()) {
-        *error = d->renderer.lastError();
+        *error = d->renderer.lastError() +
+                 QStringLiteral(" (run under xvfb-run with QT_QPA_PLATFORM=xcb on Mesa)");
         return false;
     }
     d->gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(d->context.get());

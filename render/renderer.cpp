@@ -1,5 +1,6 @@
 // Renderer: context check, per-frame state setup, cache sync, passes in order, overlays, the
 // frame report, and the pick query.
+#include "render/gl_context.h"
 #include "render/renderer_impl.h"
 
 #include <QElapsedTimer>
@@ -40,12 +41,8 @@ bool Renderer::initialize() {
         d->error = QStringLiteral("no current OpenGL context");
         return false;
     }
-    const QSurfaceFormat fmt = ctx->format();
-    if (fmt.version() < qMakePair(4, 5) || ctx->isOpenGLES()) {
-        d->error = QStringLiteral("OpenGL 4.5 core is required, the context is %1.%2%3")
-                       .arg(fmt.majorVersion())
-                       .arg(fmt.minorVersion())
-                       .arg(ctx->isOpenGLES() ? QStringLiteral(" ES") : QString());
+    if (const QString got = openGlShortfall(ctx->format(), ctx->isOpenGLES()); !got.isEmpty()) {
+        d->error = QStringLiteral("OpenGL 4.5 core is required, got %1").arg(got);
         return false;
     }
     auto* gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(ctx);
@@ -54,14 +51,10 @@ bool Renderer::initialize() {
         return false;
     }
     d->gl = gl;
-    d->glDescription =
-        QStringLiteral("%1, OpenGL %2")
-            .arg(QString::fromLatin1(reinterpret_cast<const char*>(gl->glGetString(GL_RENDERER))),
-                 QString::fromLatin1(reinterpret_cast<const char*>(gl->glGetString(GL_VERSION))));
-    d->cache.initialize(gl);
+    d->glDescription = currentContextReport();
+    d->scene.initialize(gl, &d->shaders);
     d->exact.initialize(gl, &d->shaders);
     d->tessellated.initialize(gl, &d->shaders);
-    d->trimMasks.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
     // Build the common programs now so a broken shader is reported at start-up.
@@ -111,25 +104,15 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
-    const Scene& scene = doc.scene();
-    FrameCamera fc = frameCamera(camera, scene, double(size.width()) / size.height());
+    FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    const std::vector<Light> lights = lightsFor(scene, camera, options.lightCount);
+    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount);
 
-    if (document != &doc) {
-        dropSurfaceCaches();
-        document = &doc;
-    }
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
-    tessellated.uploads = controlNet.uploads = {};
 
-    // Trim masks first: they draw into their own framebuffer.
-    QElapsedTimer phase;
-    phase.start();
-    QString maskError;
-    const bool masked = !options.trims || trimMasks.sync(doc, fc, options, &maskError);
-    const TrimMaskPass* masks = options.trims ? &trimMasks : nullptr;
-    report.cpuMs.masks = msSince(phase);
+    // The GPU scene first: trim masks draw into their own framebuffer.
+    QString syncError;
+    const bool synced = scene.sync(doc, fc, options, report, &syncError);
 
     gl->glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
     if (pickPixel) {
@@ -159,17 +142,12 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
-    // A surface too large for a texture is left out of the frame and reported.
-    phase.restart();
-    QString cacheError;
-    const bool cached = cache.sync(doc, options.partitionsU, options.partitionsV, &cacheError);
-    report.cpuMs.sync = msSince(phase);
-
-    phase.restart();
+    QElapsedTimer phase;
+    phase.start();
     bool ok =
         options.mode == RenderMode::Exact
-            ? exact.draw(scene, cache, masks, fc, lights, options, report.analysisRange, &error)
-            : tessellated.draw(doc, masks, fc, lights, options, &error);
+            ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, &error)
+            : tessellated.draw(scene, options.trims, fc, lights, options, &error);
     report.cpuMs.surfaces = msSince(phase);
     phase.restart();
     if (ok && (options.wireframe || options.controlNet)) {
@@ -179,9 +157,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = wireframe.draw(scene, cache, fc, &error);
+            ok = wireframe.draw(scene, fc, &error);
         if (ok && options.controlNet)
-            ok = controlNet.draw(doc, fc, &error);
+            ok = controlNet.draw(scene, fc, &error);
         if (options.writeAov) {
             const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                    GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
@@ -195,29 +173,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     if (pickPixel)
         gl->glDisable(GL_SCISSOR_TEST);
 
-    report.uploads = cache.frameStats();
-    report.uploads += tessellated.uploads;
-    report.uploads += controlNet.uploads;
-    report.masks = masks ? trimMasks.frameStats() : TrimMaskStats{};
-    report.drawCalls = exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls +
-                       controlNet.drawCalls + (masks ? trimMasks.drawCalls : 0);
-    for (const Surface& s : scene.surfaces)
-        report.surfaces += cache.find(s.id) ? 1 : 0;
-    cache.residentBytes(report.gpuBytes);
-    report.gpuBytes.tessellatedMeshes = tessellated.residentBytes();
-    report.gpuBytes.controlNets = controlNet.residentBytes();
-    report.gpuBytes.trimMasks = trimMasks.residentBytes();
-    if (!cached)
-        report.warnings << cacheError;
-    if (masks)
-        report.warnings << trimMasks.warnings();
+    report.drawCalls +=
+        exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
+    for (const SurfaceRecord* r : scene.records())
+        report.surfaces += r->exact ? 1 : 0;
+    scene.residentBytes(report.gpuBytes);
     if (!ok)
         report.error = error;
-    else if (!cached)
-        report.error = cacheError;
-    else if (!masked)
-        report.error = maskError;
-    report.ok = ok && cached && masked;
+    else if (!synced)
+        report.error = syncError;
+    report.ok = ok && synced;
     report.cpuMs.total = msSince(total);
     return report;
 }
@@ -319,21 +284,13 @@ ValueRange Renderer::Impl::resolveAnalysisRange(const Document& doc,
     return autoAnalysisRange;
 }
 
-void Renderer::Impl::dropSurfaceCaches() {
-    cache.release();
-    trimMasks.release();
-    tessellated.release();
-    controlNet.release();
-}
-
 void Renderer::release() {
     if (!d->gl)
         return;
     d->releasePickTarget();
-    d->dropSurfaceCaches();
+    d->scene.release();
     d->exact.release();
     d->rangeKey = {};
-    d->document = nullptr;
     d->shaders.clear();
     d->gl = nullptr;
 }

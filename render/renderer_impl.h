@@ -1,17 +1,15 @@
-// Renderer's private implementation: the GPU state and the passes. Internal to render/ (and to
-// render's tests, which inspect uploads and masks through Renderer::internals()).
+// Renderer's private implementation: the GPU scene and the stateless passes. Internal to render/
+// (and to render's tests, which inspect uploads and masks through Renderer::internals()).
 #pragma once
 
 #include "render/exact_surface_pass.h"
+#include "render/gpu_scene.h"
 #include "render/overlay_passes.h"
 #include "render/renderer.h"
 #include "render/shader_library.h"
-#include "render/surface_gpu_cache.h"
 #include "render/tessellated_pass.h"
-#include "render/trim_mask_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
-#include <QPointer>
 #include <QRect>
 
 namespace kw {
@@ -21,17 +19,14 @@ struct Renderer::Impl {
     /// cleared and drawn.
     FrameReport renderFrame(const Document& doc, const Camera& camera, const RenderTarget& target,
                             RenderOptions options, const QRect* scissor);
-    void dropSurfaceCaches();
     /// The colour range of a colour-map analysis mode for this frame (see FrameReport).
     ValueRange resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
     bool ensurePickTarget(QSize size);
     void releasePickTarget();
 
     QOpenGLFunctions_4_5_Core* gl = nullptr;
-    QPointer<const Document> document; ///< whose data the caches hold
     ShaderLibrary shaders;
-    SurfaceGpuCache cache;
-    TrimMaskPass trimMasks;
+    GpuScene scene; ///< every per-surface GPU object
     ExactSurfacePass exact;
     TessellatedPass tessellated;
     WireframePass wireframe;

@@ -2,6 +2,7 @@
 #include "render/trim_mask_pass.h"
 
 #include "model/trim.h"
+#include "render/gpu_scene.h"
 
 #include <QElapsedTimer>
 #include <QOpenGLShaderProgram>
@@ -129,8 +130,8 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
     return true;
 }
 
-bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
-                        const RenderOptions& options, QString* error) {
+bool TrimMaskPass::sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
+                        const FrameCamera& camera, const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_frame = {};
     drawCalls = 0;
@@ -141,33 +142,25 @@ bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
     bool ok = true;
 
     struct Want {
-        const Surface* surface;
+        SurfaceRecord* record;
         glm::ivec2 resolution;
     };
     std::vector<Want> wants;
-    for (const Surface& s : doc.scene().surfaces)
-        if (!s.trims.empty())
-            wants.push_back({&s, maskResolution(s, camera, cap)});
+    for (SurfaceRecord* r : records) {
+        if (!r->surface->trims.empty() && r->exact)
+            wants.push_back({r, maskResolution(*r->surface, camera, cap)});
+        else
+            freeLayer(r->mask); // no longer trimmed (or not drawn)
+    }
     if (wants.size() > size_t(maxLayers)) {
         *error = QStringLiteral("%1 trimmed surfaces exceed the GPU's %2 mask layers; the rest "
                                 "are drawn untrimmed")
                      .arg(wants.size())
                      .arg(maxLayers);
+        for (size_t k = size_t(maxLayers); k < wants.size(); ++k)
+            freeLayer(wants[k].record->mask);
         wants.resize(size_t(maxLayers));
         ok = false;
-    }
-    // Drop the masks of surfaces that are gone or no longer trimmed.
-    for (auto it = m_masks.begin(); it != m_masks.end();) {
-        const bool wanted = std::any_of(wants.begin(), wants.end(),
-                                        [&](const Want& w) { return w.surface->id == it->first; });
-        if (wanted) {
-            ++it;
-            continue;
-        }
-        if (it->second.layer >= 0)
-            m_freeLayers.push_back(it->second.layer);
-        m_removedStats += it->second.stats;
-        it = m_masks.erase(it);
     }
     if (wants.empty()) {
         // No trimmed surface left: free the array, so an emptied scene holds no mask memory.
@@ -190,22 +183,19 @@ bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
         while (layers < int(wants.size()))
             layers *= 2;
         layers = std::min(layers, int(maxLayers));
-        if (!ensureArray(size, layers, error)) {
-            m_masks.clear();
-            m_freeLayers.clear();
+        for (const Want& w : wants)
+            w.record->mask.layer = -1;
+        if (!ensureArray(size, layers, error))
             return false;
-        }
         m_freeLayers.clear();
         for (int l = layers - 1; l >= 0; --l)
             m_freeLayers.push_back(l);
-        for (auto& [id, m] : m_masks)
-            m.layer = -1;
     }
 
     for (const Want& w : wants) {
-        const Surface& s = *w.surface;
+        const Surface& s = *w.record->surface;
         const Revisions rev = doc.revisions(s.id);
-        TrimMask& m = m_masks[s.id];
+        TrimMask& m = w.record->mask;
         const bool fresh = m.layer < 0;
         if (fresh) {
             m.layer = m_freeLayers.back();
@@ -226,6 +216,16 @@ bool TrimMaskPass::sync(const Document& doc, const FrameCamera& camera,
         return false;
     }
     return ok;
+}
+
+void TrimMaskPass::freeLayer(TrimMask& m) {
+    if (m.layer < 0 && !m.active && m.warnings.isEmpty())
+        return; // nothing held (the common case: an untrimmed surface)
+    if (m.layer >= 0 && m.layer < m_layers)
+        m_freeLayers.push_back(m.layer);
+    const TrimMaskStats stats = m.stats;
+    m = TrimMask{};
+    m.stats = stats;
 }
 
 void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) {
@@ -297,12 +297,6 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     account();
 }
 
-const TrimMask* TrimMaskPass::find(SurfaceId id) const {
-    const auto it = m_masks.find(id);
-    return it != m_masks.end() && it->second.active && it->second.layer >= 0 ? &it->second
-                                                                             : nullptr;
-}
-
 void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask,
                                int unit) const {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
@@ -316,37 +310,9 @@ void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& ma
     gl->glUniform1f(program->uniformLocation("uTrimLayer"), float(mask.layer));
 }
 
-TrimMaskStats TrimMaskPass::stats(SurfaceId id) const {
-    const auto it = m_masks.find(id);
-    return it != m_masks.end() ? it->second.stats : TrimMaskStats{};
-}
-
-TrimMaskStats TrimMaskPass::totalStats() const {
-    TrimMaskStats total = m_removedStats;
-    for (const auto& [id, m] : m_masks)
-        total += m.stats;
-    total.arrayAllocations = m_arrayAllocations;
-    return total;
-}
-
-void TrimMaskPass::resetStats() {
-    m_removedStats = {};
-    m_arrayAllocations = 0;
-    for (auto& [id, m] : m_masks)
-        m.stats = {};
-}
-
-QStringList TrimMaskPass::warnings() const {
-    QStringList out;
-    for (const auto& [id, m] : m_masks)
-        for (const QString& w : m.warnings)
-            out << QStringLiteral("surface %1: %2").arg(id.value).arg(w);
-    return out;
-}
-
-std::vector<unsigned char> TrimMaskPass::readMask(SurfaceId id) const {
-    const TrimMask* m = find(id);
-    if (!m)
+std::vector<unsigned char> TrimMaskPass::readMask(const TrimMask& mask) const {
+    const TrimMask* m = &mask;
+    if (!m->active || m->layer < 0)
         return {};
     std::vector<unsigned char> texels(size_t(m->width) * size_t(m->height));
     // llvmpipe (Mesa 22) returned a layer's previous contents to glGetTextureSubImage right
@@ -375,7 +341,6 @@ void TrimMaskPass::release() {
     }
     m_texture = m_fbo = m_vao = m_buffer = 0;
     m_size = m_layers = 0;
-    m_masks.clear();
     m_freeLayers.clear();
 }
 

@@ -17,6 +17,8 @@ class QOpenGLShaderProgram;
 
 namespace kw {
 
+struct SurfaceRecord;
+
 /// One surface's mask: texels [0, width) x [0, height) of layer `layer` span `rect` in (u, v),
 /// the part of the domain inside the bounding box of the trim curves' control points (the
 /// curves lie in it: convex hull property). Outside it no point is inside any loop, so the
@@ -39,19 +41,20 @@ public:
     /// Needs the context current for every call below; `shaders` outlives the pass.
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
 
-    /// Brings the masks of `doc` up to date for this frame and drops those of removed or
-    /// untrimmed surfaces. A surface's mask is redrawn only when its trims (or knots, which move
-    /// the domain) revision changed or its mask resolution changed; the resolution is four times
-    /// the surface's control-net length on screen (pixels) along u and along v, times the share of
-    /// the domain the mask rectangle spans, rounded up to a power of two, within
-    /// [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
-    /// 0 and the logic op and scissor test disabled. Returns false with *error set when the shaders
-    /// do not build or the masks do not fit the GPU's array limits (those surfaces draw untrimmed).
-    bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
-              QString* error);
+    /// Brings the masks of the records' surfaces up to date for this frame and frees the
+    /// layers of records no longer trimmed. A surface's mask is redrawn only when its trims (or
+    /// knots, which move the domain) revision changed or its mask resolution changed; the
+    /// resolution is four times the surface's control-net length on screen (pixels) along u and
+    /// along v, times the share of the domain the mask rectangle spans, rounded up to a power
+    /// of two, within [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
+    /// 0 and the logic op and scissor test disabled. Returns false with *error set when the
+    /// shaders do not build or the masks do not fit the GPU's array limits (those surfaces draw
+    /// untrimmed).
+    bool sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
+              const FrameCamera& camera, const RenderOptions& options, QString* error);
+    /// Gives the mask's layer back (a removed or untrimmed surface); keeps its statistics.
+    void freeLayer(TrimMask& mask);
 
-    /// The active mask of a surface, or nullptr (no trims, all loops degenerate, or unknown).
-    const TrimMask* find(SurfaceId id) const;
     /// Binds the mask array to `unit` and sets trim_sample.glsl's uniforms on the bound program.
     void setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask, int unit) const;
 
@@ -59,20 +62,17 @@ public:
     GLuint texture() const { return m_texture; }
     int layerSize() const { return m_size; }
     int layerCount() const { return m_layers; }
-    /// Statistics of one surface (zero for an unknown id) or of all, since the last reset.
-    TrimMaskStats stats(SurfaceId id) const;
-    TrimMaskStats totalStats() const;
-    void resetStats();
+    /// Mask arrays allocated since the last resetArrayAllocations().
+    std::int64_t arrayAllocations() const { return m_arrayAllocations; }
+    void resetArrayAllocations() { m_arrayAllocations = 0; }
     /// What the last sync did (for FrameReport).
     const TrimMaskStats& frameStats() const { return m_frame; }
     /// Bytes of the mask array.
     std::int64_t residentBytes() const;
     int drawCalls = 0; ///< mask draws of the last sync
-    /// Warnings of every current mask, each prefixed with its surface id.
-    QStringList warnings() const;
-    /// The mask texels of a surface read back (width x height, row 0 at v first; 0 trimmed,
-    /// 255 kept), for tests. Empty for a surface without an active mask.
-    std::vector<unsigned char> readMask(SurfaceId id) const;
+    /// The mask texels read back (width x height, row 0 at v first; 0 trimmed, 255 kept), for
+    /// tests. Empty for an inactive mask.
+    std::vector<unsigned char> readMask(const TrimMask& mask) const;
 
     /// Frees every GL object; the context must be current.
     void release();
@@ -91,9 +91,7 @@ private:
     ShaderLibrary* m_shaders = nullptr;
     GLuint m_texture = 0, m_fbo = 0, m_vao = 0, m_buffer = 0;
     int m_size = 0, m_layers = 0; ///< allocated array size
-    std::map<SurfaceId, TrimMask> m_masks;
     std::vector<int> m_freeLayers;
-    TrimMaskStats m_removedStats; ///< statistics of masks since dropped, for totalStats()
     std::int64_t m_arrayAllocations = 0;
     TrimMaskStats m_frame;
 };

@@ -53,9 +53,9 @@ private Q_SLOTS:
         opt.trims = true;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer trimmed = m_renderer->aov();
-        const TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
+        const GpuScene& masks = m_renderer->renderer().internals().scene;
         const auto texelOf = [&](SurfaceId id) {
-            const TrimMask* m = masks.find(id);
+            const TrimMask* m = masks.mask(id);
             return m ? std::max((m->rect.y - m->rect.x) / m->width,
                                 (m->rect.w - m->rect.z) / m->height)
                      : 0.0; // no mask: any disagreement is far
@@ -65,7 +65,7 @@ private Q_SLOTS:
               "%.2f mask texels from a trim curve; %lld masks drawn",
               qPrintable(file), scene.surfaces.size(), trimmedFaces, a.checked,
               100.0 * a.fraction(), a.worstTexels,
-              static_cast<long long>(masks.totalStats().redraws));
+              static_cast<long long>(masks.totalMaskStats().redraws));
         QVERIFY(a.checked > 10000);
         QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);

@@ -1,5 +1,6 @@
 // GL test: the renderer's public interface. The pick query against the AOV of a full frame and
-// the kernel; the FrameReport's uploads, draw calls and GPU bytes.
+// the kernel; the FrameReport's uploads, draw calls and GPU bytes, which go back to the empty
+// document's when every surface is removed.
 #include "render_test_util.h"
 
 #include <QGuiApplication>
@@ -153,6 +154,42 @@ private Q_SLOTS:
         const FrameReport tess = frame(doc, options);
         QCOMPARE(tess.uploads.meshBuilds, n);
         QVERIFY(tess.gpuBytes.tessellatedMeshes > 0);
+    }
+
+    void removingEverySurfaceFreesItsGpuData() {
+        QString error;
+        RenderOptions options;
+        options.controlNet = true;
+        Document empty;
+        const FrameReport none = frame(empty, options);
+        QVERIFY2(none.ok, qPrintable(none.error));
+        QCOMPARE(none.gpuBytes, GpuBytes{});
+        Document doc;
+        const std::optional<Scene> scene =
+            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        options.mode = RenderMode::Tessellated;
+        QVERIFY(frame(doc, options).gpuBytes.tessellatedMeshes > 0);
+        options.mode = RenderMode::Exact;
+        const FrameReport full = frame(doc, options);
+        QVERIFY(full.gpuBytes.total() > full.gpuBytes.tessellatedMeshes);
+        std::vector<SurfaceId> ids;
+        for (const Surface& s : doc.scene().surfaces)
+            ids.push_back(s.id);
+        for (SurfaceId id : ids)
+            QVERIFY(doc.removeSurface(id));
+        const FrameReport after = frame(doc, options);
+        QVERIFY2(after.ok, qPrintable(after.error));
+        QCOMPARE(after.surfaces, 0);
+        QCOMPARE(after.gpuBytes.controlPoints, none.gpuBytes.controlPoints);
+        QCOMPARE(after.gpuBytes.spanTables, none.gpuBytes.spanTables);
+        QCOMPARE(after.gpuBytes.basePolygons, none.gpuBytes.basePolygons);
+        QCOMPARE(after.gpuBytes.tessellatedMeshes, none.gpuBytes.tessellatedMeshes);
+        QCOMPARE(after.gpuBytes.controlNets, none.gpuBytes.controlNets);
+        QCOMPARE(after.gpuBytes.trimMasks, none.gpuBytes.trimMasks);
+        QCOMPARE(after.gpuBytes, none.gpuBytes);
+        QCOMPARE(after.drawCalls, none.drawCalls);
     }
 };
 

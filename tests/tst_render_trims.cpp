@@ -81,7 +81,7 @@ class TestRenderTrims : public QObject {
     }
 
     double texelOf(SurfaceId id) const {
-        const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(id);
+        const TrimMask* m = m_renderer->renderer().internals().scene.mask(id);
         if (!m)
             return 1e300; // no mask: every disagreement is "far"... of nothing
         return std::max((m->rect.y - m->rect.x) / m->width, (m->rect.w - m->rect.z) / m->height);
@@ -171,7 +171,7 @@ private Q_SLOTS:
         QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);
         if (sample.isEmpty()) // messy input is reported, once per problem
-            QCOMPARE(m_renderer->renderer().internals().trimMasks.warnings().size(), 6);
+            QCOMPARE(m_renderer->renderer().internals().scene.maskWarnings().size(), 6);
     }
 
     void starAndIslandRenderCorrectly() {
@@ -197,10 +197,10 @@ private Q_SLOTS:
         QVERIFY(coveredNear(whole, id, at(90.0, 0.15), 0.012) > 10);
         QVERIFY(coveredNear(trimmed, id, at(120.0, 0.15), 0.012) > 10);
         // The mask texels themselves: parity fill against the CPU at every texel centre.
-        const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(id);
+        const TrimMask* m = m_renderer->renderer().internals().scene.mask(id);
         QVERIFY(m);
         const std::vector<unsigned char> texels =
-            m_renderer->renderer().internals().trimMasks.readMask(id);
+            m_renderer->renderer().internals().scene.readMask(id);
         QCOMPARE(texels.size(), size_t(m->width) * size_t(m->height));
         const TrimRegion region = makeTrimRegion(scene->surfaces[0].trims, 1e-6);
         const double texel = texelOf(id);
@@ -245,25 +245,25 @@ private Q_SLOTS:
         const Camera cam = fitCamera(scene, 1.0);
         RenderOptions opt;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
-        TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
-        QVERIFY(masks.find(SurfaceId{1}) && masks.find(SurfaceId{20}));
-        QVERIFY(!masks.find(SurfaceId{30})); // untrimmed surfaces get no mask
+        GpuScene& masks = m_renderer->renderer().internals().scene;
+        QVERIFY(masks.mask(SurfaceId{1}) && masks.mask(SurfaceId{20}));
+        QVERIFY(!masks.mask(SurfaceId{30})); // untrimmed surfaces get no mask
         const std::vector<unsigned char> before = masks.readMask(SurfaceId{20});
 
         // A frame without changes redraws nothing.
         masks.resetStats();
         QVERIFY(m_renderer->render(doc, cam, opt, &error));
-        QCOMPARE(masks.totalStats().redraws, 0);
+        QCOMPARE(masks.totalMaskStats().redraws, 0);
 
         // Moving one trim control point of surface 20 redraws exactly its mask.
         const TrimPointRef ref{SurfaceId{20}, TrimLoopId{23}, 0, 1};
         const glm::dvec2 old = doc.surface(SurfaceId{20})->trims[1].curves[0].points[1];
         QVERIFY(doc.setTrimPoint(ref, old + glm::dvec2(0.05, 0.08)));
         QVERIFY(m_renderer->render(doc, cam, opt, &error));
-        QCOMPARE(masks.totalStats().redraws, 1);
-        QCOMPARE(masks.stats(SurfaceId{20}).redraws, 1);
-        QCOMPARE(masks.stats(SurfaceId{1}).redraws, 0);
-        QCOMPARE(masks.totalStats().arrayAllocations, 0);
+        QCOMPARE(masks.totalMaskStats().redraws, 1);
+        QCOMPARE(masks.maskStats(SurfaceId{20}).redraws, 1);
+        QCOMPARE(masks.maskStats(SurfaceId{1}).redraws, 0);
+        QCOMPARE(masks.totalMaskStats().arrayAllocations, 0);
         QVERIFY(masks.readMask(SurfaceId{20}) != before);
         // Moving a surface control point is not a trim change (the mask size holds).
         masks.resetStats();
@@ -271,12 +271,12 @@ private Q_SLOTS:
         QVERIFY(doc.setControlPoints(SurfaceId{1}, {4},
                                      {s1->geometry.points[4] + glm::dvec3(0, 0, 0.01)}));
         QVERIFY(m_renderer->render(doc, cam, opt, &error));
-        QCOMPARE(masks.totalStats().redraws, 0);
+        QCOMPARE(masks.totalMaskStats().redraws, 0);
         // Removing the trimmed surface frees its mask.
         QVERIFY(doc.removeSurface(SurfaceId{20}));
         QVERIFY(m_renderer->render(doc, cam, opt, &error));
-        QVERIFY(!masks.find(SurfaceId{20}));
-        QVERIFY(masks.find(SurfaceId{1}));
+        QVERIFY(!masks.mask(SurfaceId{20}));
+        QVERIFY(masks.mask(SurfaceId{1}));
     }
 
     void manySurfacesShareOneArray() {
@@ -301,15 +301,15 @@ private Q_SLOTS:
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
-        TrimMaskPass& masks = m_renderer->renderer().internals().trimMasks;
+        GpuScene& masks = m_renderer->renderer().internals().scene;
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, RenderOptions{}, trimmed, whole));
-        const TrimMaskStats st = masks.totalStats();
+        const TrimMaskStats st = masks.totalMaskStats();
         QCOMPARE(st.redraws, 256);
         QCOMPARE(st.arrayAllocations, 1);
-        QVERIFY(masks.layerCount() >= 256);
-        qInfo("256 trimmed surfaces: mask array %d x %d x %d", masks.layerSize(), masks.layerSize(),
-              masks.layerCount());
+        QVERIFY(masks.trimMasks().layerCount() >= 256);
+        qInfo("256 trimmed surfaces: mask array %d x %d x %d", masks.trimMasks().layerSize(),
+              masks.trimMasks().layerSize(), masks.trimMasks().layerCount());
         const TrimAgreement a =
             compareTrimmedRender(scene, trimmed, whole, [&](SurfaceId id) { return texelOf(id); });
         qInfo("%ld pixels checked, %.4f%% agree, worst disagreement %.2f texels", a.checked,
@@ -355,7 +355,7 @@ private Q_SLOTS:
             opt.trimMaskCap = cap;
             AovBuffer trimmed, whole;
             QVERIFY(renderPair(doc, opt, trimmed, whole));
-            const TrimMask* m = m_renderer->renderer().internals().trimMasks.find(s.id);
+            const TrimMask* m = m_renderer->renderer().internals().scene.mask(s.id);
             QVERIFY(m);
             // A wrongly classified pixel is off by its distance to the curve, in pixels:
             // the (u, v) distance over the pixel's (u, v) size sqrt|det J|.

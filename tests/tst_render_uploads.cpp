@@ -18,7 +18,7 @@ class TestRenderUploads : public QObject {
 
     // The control-point texture as stored on the GPU.
     std::vector<glm::vec4> gpuTexels(SurfaceId id) {
-        const SurfaceGpu* g = m_renderer->renderer().internals().cache.find(id);
+        const SurfaceGpu* g = m_renderer->renderer().internals().scene.surfaceGpu(id);
         std::vector<glm::vec4> out(size_t(g->countU * g->countV));
         m_renderer->makeCurrent();
         m_renderer->renderer().internals().gl->glGetTextureImage(
@@ -47,7 +47,7 @@ private Q_SLOTS:
         QString error;
         QVERIFY2(renderOnce(&error), qPrintable(error));
         for (SurfaceId id : {m_bicubic, m_sphere}) {
-            const UploadStats s = m_renderer->renderer().internals().cache.stats(id);
+            const UploadStats s = m_renderer->renderer().internals().scene.stats(id);
             const Surface* surf = m_doc.surface(id);
             QCOMPARE(s.fullUploads, 1);
             QCOMPARE(s.texels, std::int64_t(surf->geometry.countU) * surf->geometry.countV);
@@ -55,14 +55,14 @@ private Q_SLOTS:
             QCOMPARE(s.basePolygonBuilds, 1);
         }
         // Nothing changed: a second frame uploads nothing.
-        m_renderer->renderer().internals().cache.resetStats();
+        m_renderer->renderer().internals().scene.resetStats();
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        QCOMPARE(m_renderer->renderer().internals().cache.totalStats(), UploadStats{});
+        QCOMPARE(m_renderer->renderer().internals().scene.totalStats(), UploadStats{});
     }
 
     void movedPointIsOneTexel() {
         QString error;
-        m_renderer->renderer().internals().cache.resetStats();
+        m_renderer->renderer().internals().scene.resetStats();
         const Surface* s = m_doc.surface(m_bicubic);
         // Point (1, 0) acts on u in [0, 0.35] and v in [0, 0.3] only (local support).
         const int index = s->geometry.index(1, 0);
@@ -70,17 +70,17 @@ private Q_SLOTS:
         QVERIFY(m_doc.setControlPoints(m_bicubic, {index}, {moved}));
         QVERIFY2(renderOnce(&error), qPrintable(error));
 
-        const UploadStats b = m_renderer->renderer().internals().cache.stats(m_bicubic);
+        const UploadStats b = m_renderer->renderer().internals().scene.stats(m_bicubic);
         QCOMPARE(b.fullUploads, 0);
         QCOMPARE(b.subImageUploads, 1);
         QCOMPARE(b.texels, 1);
         QCOMPARE(b.spanTableUploads, 0);
         QCOMPARE(b.basePolygonBuilds, 0);
         QCOMPARE(b.vertexUpdates, 1);
-        const SurfaceGpu* g = m_renderer->renderer().internals().cache.find(m_bicubic);
+        const SurfaceGpu* g = m_renderer->renderer().internals().scene.surfaceGpu(m_bicubic);
         QVERIFY(b.vertexBytes > 0);
         QVERIFY(size_t(b.vertexBytes) < g->polygon.vertices.size() * sizeof(BaseVertex));
-        QCOMPARE(m_renderer->renderer().internals().cache.stats(m_sphere), UploadStats{});
+        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_sphere), UploadStats{});
 
         // The GPU texel holds the new point, and the frame matches the kernel.
         const std::vector<glm::vec4> texels = gpuTexels(m_bicubic);
@@ -98,52 +98,52 @@ private Q_SLOTS:
 
     void weightChangeIsOneTexel() {
         QString error;
-        m_renderer->renderer().internals().cache.resetStats();
+        m_renderer->renderer().internals().scene.resetStats();
         QVERIFY(m_doc.setWeight(m_sphere, 7, 2.5));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().cache.stats(m_sphere);
+        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_sphere);
         QCOMPARE(s.subImageUploads, 1);
         QCOMPARE(s.texels, 1);
         QCOMPARE(s.fullUploads, 0);
-        QCOMPARE(m_renderer->renderer().internals().cache.stats(m_bicubic), UploadStats{});
+        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_bicubic), UploadStats{});
     }
 
     void partitionsRebuildOnlyThatPolygon() {
         QString error;
-        m_renderer->renderer().internals().cache.resetStats();
+        m_renderer->renderer().internals().scene.resetStats();
         QVERIFY(m_doc.setPartitions(m_sphere, 17, 5));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().cache.stats(m_sphere);
+        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_sphere);
         QCOMPARE(s.basePolygonBuilds, 1);
         QCOMPARE(s.texels, 0);
         QCOMPARE(s.fullUploads, 0);
         QCOMPARE(s.spanTableUploads, 0);
-        QCOMPARE(m_renderer->renderer().internals().cache.find(m_sphere)->polygon.cellsU(),
+        QCOMPARE(m_renderer->renderer().internals().scene.surfaceGpu(m_sphere)->polygon.cellsU(),
                  17 + 3); // + 3 interior knots
-        QCOMPARE(m_renderer->renderer().internals().cache.stats(m_bicubic), UploadStats{});
+        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_bicubic), UploadStats{});
     }
 
     void knotChangeIsFullUploadOfThatSurface() {
         QString error;
-        m_renderer->renderer().internals().cache.resetStats();
+        m_renderer->renderer().internals().scene.resetStats();
         // Same counts, a moved interior knot: only the Knots revision tells the cache.
         NurbsSurface refined = m_doc.surface(m_bicubic)->geometry;
         QCOMPARE(refined.knotsV[4], 0.3);
         refined.knotsV[4] = 0.45;
         QVERIFY(m_doc.setGeometry(m_bicubic, refined));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().cache.stats(m_bicubic);
+        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_bicubic);
         QCOMPARE(s.fullUploads, 1);
         QCOMPARE(s.texels, std::int64_t(refined.countU) * refined.countV);
-        QCOMPARE(m_renderer->renderer().internals().cache.stats(m_sphere), UploadStats{});
+        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_sphere), UploadStats{});
     }
 
     void removedSurfaceIsDropped() {
         QString error;
         QVERIFY(m_doc.removeSurface(m_sphere));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        QVERIFY(m_renderer->renderer().internals().cache.find(m_sphere) == nullptr);
-        QVERIFY(m_renderer->renderer().internals().cache.find(m_bicubic) != nullptr);
+        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(m_sphere) == nullptr);
+        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(m_bicubic) != nullptr);
     }
 
     void anotherDocumentIsNotMistakenForThisOne() {
@@ -202,8 +202,8 @@ private Q_SLOTS:
                      error.contains(QString::number(maxSize)),
                  qPrintable(error));
         // The other surface is drawn; the oversized one is not.
-        QVERIFY(m_renderer->renderer().internals().cache.find(SurfaceId{3}) == nullptr);
-        QVERIFY(m_renderer->renderer().internals().cache.find(SurfaceId{4}) != nullptr);
+        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(SurfaceId{3}) == nullptr);
+        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(SurfaceId{4}) != nullptr);
         const AovBuffer aov = m_renderer->aov();
         int sphere = 0;
         for (int k = 0; k < aov.width * aov.height; ++k) {

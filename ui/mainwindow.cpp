@@ -2,6 +2,7 @@
 #include "ui/mainwindow.h"
 
 #include "ui/analysiscontrols.h"
+#include "ui/autosave.h"
 #include "ui/edit/commands.h"
 #include "ui/lightspanel.h"
 #include "ui/propertypanel.h"
@@ -16,6 +17,7 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QProgressDialog>
+#include <QPushButton>
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
@@ -44,6 +46,14 @@ MainWindow::Dialogs MainWindow::Dialogs::standard() {
     d.importFile = d.openFile;
     d.information = [](QWidget* parent, const QString& title, const QString& text) {
         QMessageBox::information(parent, title, text);
+    };
+    d.askRecover = [](QWidget* parent, const QString& text) {
+        QMessageBox box(QMessageBox::Question, QObject::tr("Recover unsaved changes"), text,
+                        QMessageBox::Yes | QMessageBox::Discard | QMessageBox::Cancel, parent);
+        box.button(QMessageBox::Yes)->setText(QObject::tr("Restore"));
+        box.button(QMessageBox::Cancel)->setText(QObject::tr("Later"));
+        box.setDefaultButton(QMessageBox::Yes);
+        return QMessageBox::StandardButton(box.exec());
     };
     return d;
 }
@@ -83,6 +93,15 @@ MainWindow::MainWindow(QWidget* parent)
     connect(m_lights, &LightsPanel::editRejected, this,
             [this](const QString& m) { statusBar()->showMessage(m, 5000); });
     connect(m_stack, &QUndoStack::cleanChanged, this, &MainWindow::updateTitle);
+    m_autosave = new Autosave(
+        m_doc, m_stack,
+        [this] {
+            return Autosave::Origin{m_path, m_importedPath};
+        },
+        this);
+    connect(m_autosave, &Autosave::failed, this, [this](const QString& message) {
+        statusBar()->showMessage(tr("Autosave failed: %1").arg(message));
+    });
 
     QSettings settings;
     resize(1100, 720);

@@ -17,6 +17,7 @@ class QUndoStack;
 
 namespace kw {
 
+class Autosave;
 class LightsPanel;
 class PropertyPanel;
 class UvPanel;
@@ -47,6 +48,9 @@ public:
         /// update of its value (about every 30 ms); tests read it or press its Cancel button.
         /// May be empty.
         std::function<void(QProgressDialog*)> importProgress;
+        /// After a crash: offer the autosaved edits. Yes restores them, Discard deletes the
+        /// recovery file, anything else keeps it for the next start. May be empty (keep).
+        std::function<QMessageBox::StandardButton(QWidget*, const QString& text)> askRecover;
         static Dialogs standard();
     };
 
@@ -68,6 +72,13 @@ public:
     bool isImporting() const { return m_importProgress != nullptr; }
     /// Writes the document to `path` (atomic); on failure shows the message and returns false.
     bool saveFile(const QString& path);
+    /// Offers the recovery files of editors that crashed (Autosave::orphans, newest first)
+    /// through Dialogs::askRecover. Restoring replaces the document with the autosaved scene,
+    /// remembers its original path (Save writes there) and marks it modified; the restored
+    /// edits are autosaved again at once under this session before the old file is deleted.
+    /// Returns true when a recovery was restored. Does not ask about unsaved changes.
+    bool offerRecovery();
+    Autosave* autosave() const { return m_autosave; }
     /// Makes `id` the current surface (tree row and panels).
     void selectSurface(SurfaceId id);
 
@@ -122,6 +133,7 @@ private:
     SceneModel* m_model;
     Selection* m_selection;
     QUndoStack* m_stack;
+    Autosave* m_autosave = nullptr;
     Viewport* m_viewport = nullptr;
     QTreeView* m_tree = nullptr;
     PropertyPanel* m_properties = nullptr;

@@ -1,6 +1,7 @@
 // MainWindow: file handling — New, Open, Save, Save As (also of imported scenes), recent files,
 // export, drops, title.
 #include "model/knotfile.h"
+#include "ui/autosave.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
@@ -8,6 +9,7 @@
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFileInfo>
+#include <QLocale>
 #include <QMenu>
 #include <QMimeData>
 #include <QSettings>
@@ -58,6 +60,10 @@ bool MainWindow::openFile(const QString& path) {
 
 bool MainWindow::saveFile(const QString& path) {
     QString error;
+    // The previous version becomes FILE.bak. A failed copy does not stop the save; it is said.
+    QString backupError;
+    if (QSettings().value(kKeepBackupKey, true).toBool() && !keepBackup(path, &backupError))
+        statusBar()->showMessage(tr("No backup kept: %1").arg(backupError), 10000);
     if (!writeKnotFile(path, m_doc->scene(), &error)) {
         showError(tr("Cannot save file"), error);
         return false;
@@ -65,8 +71,50 @@ bool MainWindow::saveFile(const QString& path) {
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);
-    statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
+    if (backupError.isEmpty())
+        statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
+}
+
+bool MainWindow::offerRecovery() {
+    for (const Recovery& r : Autosave::orphans()) {
+        const QString name = !r.originalPath.isEmpty()   ? QFileInfo(r.originalPath).fileName()
+                             : !r.importedFrom.isEmpty() ? QFileInfo(r.importedFrom).fileName()
+                                                         : tr("an untitled document");
+        const QString text =
+            tr("Knotwork did not close normally. Unsaved changes to %1 were "
+               "autosaved at %2. Restore them?")
+                .arg(name, QLocale().toString(r.savedAt.toLocalTime(), QLocale::ShortFormat));
+        const QMessageBox::StandardButton answer =
+            m_dialogs.askRecover ? m_dialogs.askRecover(this, text) : QMessageBox::Cancel;
+        if (answer == QMessageBox::Discard) {
+            Autosave::discard(r);
+            continue;
+        }
+        if (answer != QMessageBox::Yes)
+            continue;
+        QString error;
+        std::optional<Scene> scene = Autosave::load(r, &error);
+        if (!scene || !m_doc->resetScene(std::move(*scene), &error)) {
+            showError(tr("Cannot restore the unsaved changes"), error);
+            continue; // kept: the file may be opened by hand
+        }
+        m_stack->clear();
+        setFilePath(r.originalPath);
+        m_importedPath = r.importedFrom;
+        m_stack->resetClean(); // modified: the edits are not in any saved file
+        updateTitle();
+        if (!m_doc->scene().surfaces.empty())
+            selectSurface(m_doc->scene().surfaces.front().id);
+        // Ours first, then the old one goes: a crash in between still leaves a copy.
+        statusBar()->showMessage(tr("Restored the unsaved changes to %1").arg(name), 10000);
+        if (m_autosave->writeNow(&error))
+            Autosave::discard(r);
+        else
+            statusBar()->showMessage(tr("Autosave failed: %1").arg(error));
+        return true;
+    }
+    return false;
 }
 
 void MainWindow::newDocument() {

@@ -1,6 +1,6 @@
-// Uploads of per-surface GPU data, only what the revisions say is stale (DSA calls, so no
-// texture or buffer binding of the caller is disturbed).
-#include "render/surface_gpu_cache.h"
+// Uploads of one surface's exact-mode GPU data (DSA calls, so no texture or buffer binding of
+// the caller is disturbed).
+#include "render/surface_upload.h"
 
 #include <algorithm>
 
@@ -21,69 +21,8 @@ GLuint createTexture(QOpenGLFunctions_4_5_Core* gl, int w, int h, const glm::vec
 
 } // namespace
 
-bool SurfaceGpuCache::sync(const Document& doc, int partitionsU, int partitionsV, QString* error) {
-    const Scene& scene = doc.scene();
-    GLint maxSize = 0;
-    m_gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    QStringList tooLarge;
-    m_frame = {};
-    for (auto it = m_surfaces.begin(); it != m_surfaces.end();) {
-        if (!doc.surface(it->first)) {
-            destroy(*it->second);
-            it = m_surfaces.erase(it);
-        } else {
-            ++it;
-        }
-    }
-    for (const Surface& s : scene.surfaces) {
-        const int nu = partitionsU > 0 ? partitionsU : s.partitionsU;
-        const int nv = partitionsV > 0 ? partitionsV : s.partitionsV;
-        const Revisions rev = doc.revisions(s.id);
-        const NurbsSurface& geo = s.geometry;
-        if (geo.countU > maxSize || geo.countV > maxSize) {
-            // Not drawn: its control net does not fit one texture.
-            if (auto it = m_surfaces.find(s.id); it != m_surfaces.end()) {
-                destroy(*it->second);
-                m_surfaces.erase(it);
-            }
-            tooLarge << QStringLiteral("surface %1 (\"%2\") has %3 x %4 control points, more "
-                                       "than the GPU's texture size limit %5")
-                            .arg(s.id.value)
-                            .arg(s.name)
-                            .arg(geo.countU)
-                            .arg(geo.countV)
-                            .arg(maxSize);
-            continue;
-        }
-        std::unique_ptr<SurfaceGpu>& slot = m_surfaces[s.id];
-        if (!slot || slot->revisions.knots != rev.knots || slot->degreeU != geo.degreeU ||
-            slot->degreeV != geo.degreeV || slot->countU != geo.countU ||
-            slot->countV != geo.countV) {
-            if (!slot) {
-                slot = std::make_unique<SurfaceGpu>();
-                slot->id = s.id;
-            }
-            uploadAll(*slot, s, nu, nv);
-        } else if (slot->partitionsU != nu || slot->partitionsV != nv) {
-            // The polygon is rebuilt from the current points anyway; pick up a point change.
-            if (slot->revisions.points != rev.points)
-                uploadChangedPoints(*slot, s);
-            rebuildPolygon(*slot, s, nu, nv);
-        } else if (slot->revisions.points != rev.points) {
-            uploadChangedPoints(*slot, s);
-        }
-        slot->revisions = rev;
-        slot->stats += m_delta;
-        m_frame += m_delta;
-        m_delta = {};
-    }
-    if (!tooLarge.isEmpty() && error)
-        *error = tooLarge.join(QStringLiteral("; "));
-    return tooLarge.isEmpty();
-}
-
-void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv) {
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
+void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+                   UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     for (GLuint* t : {&g.controlTexture, &g.spanTextureU, &g.spanTextureV})
         if (*t)
@@ -98,9 +37,9 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
     g.origin = controlOrigin(geo);
     g.control = packControlPoints(geo, g.origin);
     g.controlTexture = createTexture(gl, geo.countU, geo.countV, g.control.data());
-    m_delta.fullUploads += 1;
-    m_delta.texels += std::int64_t(g.control.size());
-    m_delta.bytes += std::int64_t(g.control.size() * sizeof(glm::vec4));
+    stats.fullUploads += 1;
+    stats.texels += std::int64_t(g.control.size());
+    stats.bytes += std::int64_t(g.control.size() * sizeof(glm::vec4));
 
     const std::vector<glm::vec4> su = packSpanTable(geo.knotsU, geo.degreeU, geo.countU);
     const std::vector<glm::vec4> sv = packSpanTable(geo.knotsV, geo.degreeV, geo.countV);
@@ -108,12 +47,13 @@ void SurfaceGpuCache::uploadAll(SurfaceGpu& g, const Surface& s, int nu, int nv)
         createTexture(gl, spanTableTexels(geo.degreeU), geo.countU - geo.degreeU, su.data());
     g.spanTextureV =
         createTexture(gl, spanTableTexels(geo.degreeV), geo.countV - geo.degreeV, sv.data());
-    m_delta.spanTableUploads += 2;
-    m_delta.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    rebuildPolygon(g, s, nu, nv);
+    stats.spanTableUploads += 2;
+    stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
+    rebuildPolygon(gl, g, s, nu, nv, stats);
 }
 
-void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
+void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s,
+                         UploadStats& stats) {
     const std::vector<glm::vec4> now = packControlPoints(s.geometry, g.origin);
     int i0 = g.countU, i1 = -1, j0 = g.countV, j1 = -1;
     for (int j = 0; j < g.countV; ++j)
@@ -128,14 +68,13 @@ void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
         return; // revision moved (e.g. undo then redo) but the texels are identical
     g.control = now;
     const int w = i1 - i0 + 1, h = j1 - j0 + 1;
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
     gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, g.countU);
     gl->glTextureSubImage2D(g.controlTexture, 0, i0, j0, w, h, GL_RGBA, GL_FLOAT,
                             g.control.data() + (j0 * g.countU + i0));
     gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    m_delta.subImageUploads += 1;
-    m_delta.texels += std::int64_t(w) * h;
-    m_delta.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
+    stats.subImageUploads += 1;
+    stats.texels += std::int64_t(w) * h;
+    stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
@@ -143,14 +82,14 @@ void SurfaceGpuCache::uploadChangedPoints(SurfaceGpu& g, const Surface& s) {
         const GLsizeiptr size = GLsizeiptr(last - first + 1) * GLsizeiptr(sizeof(BaseVertex));
         gl->glNamedBufferSubData(g.vertexBuffer, offset, size,
                                  g.polygon.vertices.data() + size_t(first));
-        m_delta.vertexUpdates += 1;
-        m_delta.vertexBytes += std::int64_t(size);
-        m_delta.bytes += std::int64_t(size);
+        stats.vertexUpdates += 1;
+        stats.vertexBytes += std::int64_t(size);
+        stats.bytes += std::int64_t(size);
     }
 }
 
-void SurfaceGpuCache::rebuildPolygon(SurfaceGpu& g, const Surface& s, int nu, int nv) {
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
+void rebuildPolygon(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+                    UploadStats& stats) {
     g.partitionsU = nu;
     g.partitionsV = nv;
     g.polygon = buildBasePolygon(s.geometry, nu, nv);
@@ -188,31 +127,15 @@ void SurfaceGpuCache::rebuildPolygon(SurfaceGpu& g, const Surface& s, int nu, in
                           lines.data(), GL_STATIC_DRAW);
     g.triangleIndexCount = int(tri.size());
     g.outlineIndexCount = int(lines.size());
-    m_delta.basePolygonBuilds += 1;
-    m_delta.bytes +=
+    stats.basePolygonBuilds += 1;
+    stats.bytes +=
         std::int64_t(vbytes) + std::int64_t((tri.size() + lines.size()) * sizeof(unsigned));
 }
 
-const SurfaceGpu* SurfaceGpuCache::find(SurfaceId id) const {
-    auto it = m_surfaces.find(id);
-    return it == m_surfaces.end() ? nullptr : it->second.get();
-}
-
-UploadStats SurfaceGpuCache::stats(SurfaceId id) const {
-    const SurfaceGpu* g = find(id);
-    return g ? g->stats : UploadStats{};
-}
-
-UploadStats SurfaceGpuCache::totalStats() const {
-    UploadStats total;
-    for (const auto& [id, g] : m_surfaces)
-        total += g->stats;
-    return total;
-}
-
-void SurfaceGpuCache::residentBytes(GpuBytes& out) const {
+void addResidentBytes(const SurfaceGpu& gpu, GpuBytes& out) {
     constexpr std::int64_t texel = sizeof(glm::vec4);
-    for (const auto& [id, g] : m_surfaces) {
+    const SurfaceGpu* g = &gpu;
+    {
         out.controlPoints += std::int64_t(g->countU) * g->countV * texel;
         out.spanTables += (std::int64_t(spanTableTexels(g->degreeU)) * (g->countU - g->degreeU) +
                            std::int64_t(spanTableTexels(g->degreeV)) * (g->countV - g->degreeV)) *
@@ -223,13 +146,7 @@ void SurfaceGpuCache::residentBytes(GpuBytes& out) const {
     }
 }
 
-void SurfaceGpuCache::resetStats() {
-    for (auto& [id, g] : m_surfaces)
-        g->stats = {};
-}
-
-void SurfaceGpuCache::destroy(SurfaceGpu& g) {
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
+void destroySurfaceGpu(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g) {
     for (GLuint* t : {&g.controlTexture, &g.spanTextureU, &g.spanTextureV})
         if (*t)
             gl->glDeleteTextures(1, t), *t = 0;
@@ -239,13 +156,6 @@ void SurfaceGpuCache::destroy(SurfaceGpu& g) {
     for (GLuint* a : {&g.triangleVao, &g.outlineVao})
         if (*a)
             gl->glDeleteVertexArrays(1, a), *a = 0;
-}
-
-void SurfaceGpuCache::release() {
-    if (m_gl)
-        for (auto& [id, g] : m_surfaces)
-            destroy(*g);
-    m_surfaces.clear();
 }
 
 } // namespace kw

@@ -1,0 +1,40 @@
+// OpenGL requirement check and context description.
+#include "render/gl_context.h"
+
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+
+namespace kw {
+
+QSurfaceFormat requiredSurfaceFormat() {
+    QSurfaceFormat f;
+    f.setRenderableType(QSurfaceFormat::OpenGL);
+    f.setVersion(4, 5);
+    f.setProfile(QSurfaceFormat::CoreProfile);
+    f.setDepthBufferSize(24);
+    return f;
+}
+
+QString openGlShortfall(const QSurfaceFormat& format, bool isOpenGLES) {
+    const bool core = format.profile() == QSurfaceFormat::CoreProfile;
+    if (!isOpenGLES && format.version() >= qMakePair(4, 5) && core)
+        return {};
+    return QStringLiteral("OpenGL %1%2.%3%4")
+        .arg(isOpenGLES ? QStringLiteral("ES ") : QString())
+        .arg(format.majorVersion())
+        .arg(format.minorVersion())
+        .arg(isOpenGLES || core ? QString() : QStringLiteral(" compatibility profile"));
+}
+
+QString currentContextReport() {
+    QOpenGLContext* ctx = QOpenGLContext::currentContext();
+    if (!ctx)
+        return {};
+    QOpenGLFunctions* f = ctx->functions();
+    const auto text = [f](GLenum name) {
+        return QString::fromLatin1(reinterpret_cast<const char*>(f->glGetString(name)));
+    };
+    return QStringLiteral("%1, OpenGL %2").arg(text(GL_RENDERER), text(GL_VERSION));
+}
+
+} // namespace kw

@@ -1,0 +1,23 @@
+// The one place Knotwork states its OpenGL requirement (4.5 core), checks a context against it
+// and describes a context for reports. No GL headers: QSurfaceFormat is plain Qt Gui.
+#pragma once
+
+#include <QString>
+#include <QSurfaceFormat>
+
+namespace kw {
+
+/// The surface format every Knotwork GL context asks for: OpenGL 4.5 core, depth 24. Set it as
+/// the default (QSurfaceFormat::setDefaultFormat) before creating the application.
+QSurfaceFormat requiredSurfaceFormat();
+
+/// Empty when a created context with `format` (QOpenGLContext::format()) and `isOpenGLES`
+/// meets the requirement; otherwise what it is instead, e.g. "OpenGL ES 3.2" or "OpenGL 3.1
+/// compatibility profile", for messages of the form "OpenGL 4.5 core is required, got ...".
+QString openGlShortfall(const QSurfaceFormat& format, bool isOpenGLES);
+
+/// GL_RENDERER and GL_VERSION of the current context ("llvmpipe (LLVM 15.0.6, 256 bits),
+/// OpenGL 4.5 (Core Profile) Mesa 22.3.6"); empty when no context is current.
+QString currentContextReport();
+
+} // namespace kw

@@ -1,0 +1,118 @@
+// The GPU mirror of a document: one record per SurfaceId holding everything the passes draw
+// from (control points, span tables, base polygon, tessellated mesh, control net, trim mask),
+// each part tagged with the revisions it was built from. One sync per frame compares revisions
+// once and drops removed surfaces once; the passes only draw what the records hold.
+#pragma once
+
+#include "model/document.h"
+#include "render/frame_report.h"
+#include "render/render_types.h"
+#include "render/surface_upload.h"
+#include "render/trim_mask_pass.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QPointer>
+#include <QString>
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace kw {
+
+/// Baseline mesh of one surface (tessellated mode): positions, normals and (u, v) per grid
+/// vertex and triangle indices, from kw::tessellate at the partitions.
+struct MeshGpu {
+    Revisions revisions; ///< points and knots it was built from
+    int nu = 0, nv = 0;
+    GLuint vao = 0, positions = 0, normals = 0, uvs = 0, indices = 0;
+    int indexCount = 0;
+    std::int64_t bytes = 0;
+};
+
+/// Control-net overlay of one surface: the points and the net lines along i and j.
+struct NetGpu {
+    Revisions revisions; ///< points and knots (counts) it was built from
+    GLuint vao = 0, points = 0, lines = 0;
+    int pointCount = 0, lineIndexCount = 0;
+    std::int64_t bytes = 0;
+};
+
+/// Everything on the GPU for one surface.
+struct SurfaceRecord {
+    SurfaceId id;
+    const Surface* surface = nullptr; ///< the document's, valid from sync to the frame's end
+    /// Control points, span tables, base polygon; absent (not drawn) when the control net
+    /// exceeds the GPU's texture size.
+    std::unique_ptr<SurfaceGpu> exact;
+    MeshGpu mesh;  ///< built when a frame draws tessellated
+    NetGpu net;    ///< built when a frame shows the control net
+    TrimMask mask; ///< layer >= 0 while the surface is trimmed and a frame used trims
+};
+
+class GpuScene {
+public:
+    GpuScene() = default;
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    /// `gl` must stay valid and its context current for every call below.
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
+
+    /// Brings the records up to date for one frame of `doc` with `options` seen by `camera`:
+    /// drops the records of removed surfaces (and everything when `doc` is not the document
+    /// of the last sync), then per surface compares its revisions once and rebuilds the
+    /// stale parts the frame needs: the exact data always (SurfaceGpu rules: a moved point is
+    /// a sub-image upload), the tessellated mesh in tessellated mode, the control net when
+    /// shown, the trim mask when trims are on. Adds to `report` its uploads, mask work and
+    /// warnings. Returns false with *error set when a surface is too large for a texture or
+    /// the masks exceed the GPU's limits (the rest is synced regardless).
+    bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
+              FrameReport& report, QString* error);
+
+    /// The records of the last sync in the document's surface order.
+    const std::vector<SurfaceRecord*>& records() const { return m_order; }
+    const SurfaceRecord* find(SurfaceId id) const;
+    /// The exact-mode data of a surface, or nullptr (unknown, or too large to draw).
+    const SurfaceGpu* surfaceGpu(SurfaceId id) const;
+    /// The active trim mask of a surface, or nullptr.
+    const TrimMask* mask(SurfaceId id) const;
+    const TrimMaskPass& trimMasks() const { return m_masks; }
+    TrimMaskPass& trimMasks() { return m_masks; }
+
+    /// Upload statistics of one surface (zero for an unknown id) or of all, since the last
+    /// reset; trim mask statistics likewise.
+    UploadStats stats(SurfaceId id) const;
+    UploadStats totalStats() const;
+    TrimMaskStats maskStats(SurfaceId id) const;
+    TrimMaskStats totalMaskStats() const;
+    void resetStats();
+    /// Warnings of every current trim mask, each prefixed with its surface id.
+    QStringList maskWarnings() const;
+    /// Mask texels of a surface (see TrimMaskPass::readMask); empty without an active mask.
+    std::vector<unsigned char> readMask(SurfaceId id) const;
+
+    /// Adds the bytes of every record and of the mask array to `out` by kind.
+    void residentBytes(GpuBytes& out) const;
+    /// Frees every GL object; the context must be current.
+    void release();
+
+private:
+    struct Entry {
+        SurfaceRecord record;
+        UploadStats stats;
+        TrimMaskStats maskStats;
+    };
+    void drop(Entry& e);
+    void syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up);
+    void syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up);
+
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    TrimMaskPass m_masks;
+    QPointer<const Document> m_document;
+    std::map<SurfaceId, Entry> m_entries;
+    std::vector<SurfaceRecord*> m_order;
+    UploadStats m_removedStats;
+    TrimMaskStats m_removedMaskStats;
+};
+
+} // namespace kw

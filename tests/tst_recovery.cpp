@@ -1,0 +1,273 @@
+// Autosave and crash recovery in the editor (issue 14 item 5), under Xvfb: an editor process
+// with unsaved edits is killed with SIGKILL, and the next start offers the autosaved edits and
+// restores them exactly; recovery files follow the clean state; Save keeps one .bak.
+// The killed editor is this test binary run as `tst_recovery --editor-child FILE EXPECTED`:
+// the real MainWindow and autosave timer, with edits pushed as undo commands.
+#include "editor_test_util.h"
+#include "model/knotfile.h"
+#include "render/offscreen_renderer.h"
+#include "ui/autosave.h"
+#include "ui/edit/commands.h"
+
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QProcess>
+#include <QSettings>
+#include <QUndoStack>
+#include <cstdio>
+
+using namespace kw;
+using namespace kwtest;
+
+namespace {
+
+const QString kWorkDir = QStringLiteral(KW_TEST_OUTPUT_DIR "/recovery");
+
+QByteArray fileBytes(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+/// Four edits of four kinds on the first surface, as the panels and the viewport make them.
+bool editFirstSurface(MainWindow& w) {
+    Document* d = w.document();
+    QUndoStack* stack = w.undoStack();
+    const Surface& s = d->scene().surfaces.front();
+    const glm::dvec3 p = s.geometry.points[5];
+    return pushCommand(stack, MoveControlPoints::create(d, s.id, {5}, {p},
+                                                        {p + glm::dvec3(0.25, -0.5, 1.0 / 3.0)})) &&
+           pushCommand(stack, SetWeight::create(d, s.id, 2, 1.75)) &&
+           pushCommand(stack, RenameSurface::create(d, s.id, QStringLiteral("Recovered"))) &&
+           pushCommand(stack, SetPartitions::create(d, s.id, 17, 9));
+}
+
+/// The editor that gets killed: opens FILE, edits, writes the expected scene to EXPECTED, waits
+/// until its recovery file holds exactly that scene, prints READY and runs until killed.
+int runChild(int argc, char** argv) {
+    QApplication app(argc, argv);
+    QCoreApplication::setOrganizationName(QStringLiteral("KnotworkTest"));
+    if (argc < 4)
+        return 2;
+    MainWindow w;
+    w.show();
+    if (!w.openFile(QString::fromLocal8Bit(argv[2])) || !editFirstSurface(w))
+        return 3;
+    QString error;
+    if (!writeKnotFile(QString::fromLocal8Bit(argv[3]), w.document()->scene(), &error))
+        return 4;
+    QElapsedTimer clock;
+    clock.start();
+    while (clock.elapsed() < 60000) {
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+        const std::optional<Scene> saved = readKnotFile(w.autosave()->scenePath(), nullptr);
+        if (saved && *saved == w.document()->scene()) {
+            std::printf("READY\n");
+            std::fflush(stdout);
+            return app.exec();
+        }
+    }
+    return 5;
+}
+
+} // namespace
+
+class TestRecovery : public QObject {
+    Q_OBJECT
+
+    QString m_plate; ///< a copy of the trimmed_plate sample in kWorkDir
+    QByteArray m_plateBytes;
+
+    /// A window with scripted dialogs; askRecover answers `answer` and records the question.
+    std::unique_ptr<MainWindow> window(DialogScript& script, QMessageBox::StandardButton answer,
+                                       QStringList* asked) {
+        auto w = std::make_unique<MainWindow>();
+        MainWindow::Dialogs d; // as scriptDialogs, plus the recovery question
+        d.openFile = [&script](QWidget*, const QString&, const QString&) {
+            return script.openPath;
+        };
+        d.saveFile = [&script](QWidget*, const QString&, const QString&, const QString&) {
+            return script.savePath;
+        };
+        d.error = [&script](QWidget*, const QString&, const QString& text) {
+            script.errors << text;
+        };
+        d.askSave = [&script](QWidget*, const QString&) {
+            ++script.asks;
+            return script.askAnswer;
+        };
+        d.askRecover = [answer, asked](QWidget*, const QString& text) {
+            asked->append(text);
+            return answer;
+        };
+        w->setDialogs(std::move(d));
+        return w;
+    }
+
+private Q_SLOTS:
+    void init() {
+        QSettings().clear();
+        QSettings().setValue(kAutosaveIntervalKey, 1);
+        QDir(Autosave::directory()).removeRecursively();
+        QDir(kWorkDir).removeRecursively();
+        QVERIFY(QDir().mkpath(kWorkDir));
+        m_plate = kWorkDir + QStringLiteral("/plate.knot");
+        QVERIFY(QFile::copy(samplePath("trimmed_plate"), m_plate));
+        m_plateBytes = fileBytes(m_plate);
+    }
+
+    void killedEditorIsRecoveredExactly() {
+        const QString expectedPath = kWorkDir + QStringLiteral("/expected.knot");
+        QProcess child;
+        child.start(QCoreApplication::applicationFilePath(),
+                    {QStringLiteral("--editor-child"), m_plate, expectedPath});
+        QVERIFY(child.waitForStarted());
+        QByteArray out;
+        QElapsedTimer clock;
+        clock.start();
+        while (!out.contains("READY") && child.state() == QProcess::Running &&
+               clock.elapsed() < 120000) {
+            child.waitForReadyRead(500);
+            out += child.readAllStandardOutput();
+        }
+        QVERIFY2(out.contains("READY"),
+                 qPrintable(QStringLiteral("child: exit %1, stderr %2")
+                                .arg(child.exitCode())
+                                .arg(QString::fromLocal8Bit(child.readAllStandardError()))));
+        child.kill(); // SIGKILL: no destructor, no clean-up
+        QVERIFY(child.waitForFinished(10000));
+        QCOMPARE(child.exitStatus(), QProcess::CrashExit);
+
+        const std::vector<Recovery> orphans = Autosave::orphans();
+        QCOMPARE(orphans.size(), size_t(1));
+        QCOMPARE(orphans[0].originalPath, m_plate);
+
+        DialogScript script;
+        QStringList asked;
+        auto w = window(script, QMessageBox::Yes, &asked);
+        w->show();
+        QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+        QVERIFY(w->offerRecovery());
+        QCOMPARE(asked.size(), 1);
+        QVERIFY2(asked[0].contains(QLatin1String("plate.knot")), qPrintable(asked[0]));
+        const std::optional<Scene> expected = readKnotFile(expectedPath, nullptr);
+        QVERIFY(expected);
+        QVERIFY(*expected != *readKnotFile(m_plate, nullptr)); // the edits did change something
+        QVERIFY(w->document()->scene() == *expected);          // every edit, exactly
+        QCOMPARE(w->filePath(), m_plate);
+        QVERIFY(!w->undoStack()->isClean());
+        QVERIFY(w->isWindowModified());
+        QCOMPARE(fileBytes(m_plate), m_plateBytes); // the user's file was never touched
+        QVERIFY(script.errors.isEmpty());
+        // The restored edits are autosaved under this session at once; the old file is gone.
+        QVERIFY(Autosave::orphans().empty());
+        QVERIFY(readKnotFile(w->autosave()->scenePath(), nullptr) == *expected);
+
+        // Save: the file gets the edits, the previous version is kept, recovery files go.
+        QVERIFY(w->saveFile(m_plate));
+        QVERIFY(readKnotFile(m_plate, nullptr) == *expected);
+        QCOMPARE(fileBytes(m_plate + QStringLiteral(".bak")), m_plateBytes);
+        QVERIFY(!QFile::exists(w->autosave()->scenePath()));
+        QVERIFY(!w->offerRecovery()); // nothing left to offer
+        QCOMPARE(asked.size(), 1);
+    }
+
+    void discardDeletesAndLaterKeeps() {
+        // A recovery file with no lock: its editor is gone.
+        const QString base = Autosave::directory() + QStringLiteral("/session-999999");
+        QVERIFY(QDir().mkpath(Autosave::directory()));
+        QVERIFY(writeKnotFile(base + QStringLiteral(".knot"), *readKnotFile(m_plate, nullptr),
+                              nullptr));
+        DialogScript script;
+        QStringList asked;
+        {
+            auto later = window(script, QMessageBox::Cancel, &asked);
+            QVERIFY(!later->offerRecovery());
+            QCOMPARE(asked.size(), 1);
+            QVERIFY(asked[0].contains(QLatin1String("an untitled document")));
+            QVERIFY(later->document()->scene().surfaces.empty());
+        }
+        QVERIFY(QFile::exists(base + QStringLiteral(".knot")));
+        auto discard = window(script, QMessageBox::Discard, &asked);
+        QVERIFY(!discard->offerRecovery());
+        QCOMPARE(asked.size(), 2);
+        QVERIFY(!QFile::exists(base + QStringLiteral(".knot")));
+        QVERIFY(discard->document()->scene().surfaces.empty());
+    }
+
+    void recoveryFileFollowsTheCleanState() {
+        DialogScript script;
+        script.askAnswer = QMessageBox::Discard;
+        QStringList asked;
+        auto w = window(script, QMessageBox::Cancel, &asked);
+        QVERIFY(w->openFile(m_plate));
+        const QString recovery = w->autosave()->scenePath();
+        QVERIFY(!QFile::exists(recovery));
+        QVERIFY(editFirstSurface(*w));
+        QTRY_VERIFY_WITH_TIMEOUT(QFile::exists(recovery), 10000);
+        QTRY_VERIFY_WITH_TIMEOUT(readKnotFile(recovery, nullptr) == w->document()->scene(), 10000);
+        w->undoStack()->setIndex(0); // undone to the saved state: nothing to recover
+        QVERIFY(!QFile::exists(recovery));
+        w->undoStack()->redo();
+        QTRY_VERIFY_WITH_TIMEOUT(QFile::exists(recovery), 10000);
+        // A normal close (unsaved changes discarded) leaves nothing behind.
+        QVERIFY(w->close());
+        QCOMPARE(script.asks, 1);
+        w.reset();
+        QVERIFY(!QFile::exists(recovery));
+        QVERIFY(Autosave::orphans().empty());
+    }
+
+    void intervalZeroTurnsAutosaveOff() {
+        QSettings().setValue(kAutosaveIntervalKey, 0);
+        DialogScript script;
+        QStringList asked;
+        auto w = window(script, QMessageBox::Cancel, &asked);
+        QVERIFY(w->openFile(m_plate));
+        QVERIFY(editFirstSurface(*w));
+        QTest::qWait(2500);
+        QVERIFY(!QFile::exists(w->autosave()->scenePath()));
+        w->undoStack()->setClean();
+    }
+
+    void saveKeepsOneBackupWhenAsked() {
+        DialogScript script;
+        QStringList asked;
+        auto w = window(script, QMessageBox::Cancel, &asked);
+        const QString bak = m_plate + QStringLiteral(".bak");
+        QVERIFY(w->openFile(m_plate));
+        QVERIFY(editFirstSurface(*w));
+        QVERIFY(w->saveFile(m_plate));
+        QCOMPARE(fileBytes(bak), m_plateBytes);
+        const QByteArray firstSave = fileBytes(m_plate);
+        QVERIFY(firstSave != m_plateBytes);
+        w->undoStack()->undo();
+        QVERIFY(w->saveFile(m_plate));
+        QCOMPARE(fileBytes(bak), firstSave); // one generation: the previous save
+        QSettings().setValue(kKeepBackupKey, false);
+        w->undoStack()->undo();
+        QVERIFY(w->saveFile(m_plate));
+        QCOMPARE(fileBytes(bak), firstSave); // not replaced when turned off
+        // A new file has no previous version.
+        const QString fresh = kWorkDir + QStringLiteral("/fresh.knot");
+        QSettings().setValue(kKeepBackupKey, true);
+        QVERIFY(w->saveFile(fresh));
+        QVERIFY(!QFile::exists(fresh + QStringLiteral(".bak")));
+    }
+};
+
+int main(int argc, char** argv) {
+    // Before QApplication: GL 4.5 core for every context, settings (and so the recovery folder)
+    // in the build tree. The child inherits the environment.
+    QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat());
+    qputenv("XDG_CONFIG_HOME", QByteArrayLiteral(KW_TEST_OUTPUT_DIR "/recovery-config"));
+    if (argc >= 2 && qstrcmp(argv[1], "--editor-child") == 0)
+        return runChild(argc, argv);
+    QApplication app(argc, argv);
+    QCoreApplication::setOrganizationName(QStringLiteral("KnotworkTest"));
+    TestRecovery test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "tst_recovery.moc"
