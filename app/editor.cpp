@@ -3,8 +3,12 @@
 
 #include "app/commands.h"
 #include "model/knotfile.h"
+#include "model/nurbs_shapes.h"
 #include "render/gl_context.h"
+#include "ui/edit/commands.h"
 #include "ui/mainwindow.h"
+#include "ui/modelingtools.h"
+#include "ui/uvpanel.h"
 #include "ui/viewport.h"
 
 #include <QApplication>
@@ -44,8 +48,36 @@ bool headlessPlatform() {
     return p == QLatin1String("offscreen") || p == QLatin1String("minimal");
 }
 
+/// --demo: a scene made with the editor's own tools, as a user would: a NURBS patch shaped by
+/// one control-point edit, cut by a circular hole drawn in the UV panel, and a torus moved
+/// beside it. Each step is an undo step of the window.
+void buildDemo(MainWindow& window) {
+    ModelingTools* tools = window.modelingTools();
+    tools->createPrimitive(ModelingTools::Primitive::Torus);
+    tools->transformSelected({{2.2, 1.2, 0.0}, 0, 35.0, 1.6});
+    const SurfaceId patch = tools->createPatch({3, 3, 7, 6, 3.0, 2.4});
+    const NurbsSurface& g = window.document()->surface(patch)->geometry;
+    std::vector<int> indices;
+    std::vector<glm::dvec3> from, to;
+    for (int k = 0; k < int(g.points.size()); ++k) {
+        const glm::dvec3 p = g.points[size_t(k)];
+        indices.push_back(k);
+        from.push_back(p);
+        to.push_back(p + glm::dvec3(0.0, 0.0, 0.45 * std::sin(2.0 * p.x) * std::cos(1.6 * p.y)));
+    }
+    pushCommand(window.undoStack(), MoveControlPoints::create(window.document(), patch, indices,
+                                                              from, to, MoveKind::Drag));
+    window.uvPanel()->addLoop({makeCircle2({0.62, 0.5}, 0.2)}, QObject::tr("circular"));
+    // From above the front right, so the hole is seen, framing both surfaces.
+    Camera c = window.viewport()->cameraController().camera();
+    c.eye = c.target + glm::dvec3(1.2, -3.0, 4.0);
+    window.viewport()->setCamera(c);
+    window.viewport()->fitToView();
+    QTimer::singleShot(0, window.viewport(), [&window] { window.viewport()->fitToView(); });
+}
+
 /// Shows the window, waits until the viewport has drawn a few frames, saves a grab.
-int screenshot(MainWindow& window, const QString& out) {
+int screenshot(MainWindow& window, const QString& out, bool refit) {
     // Show a picked control point too, so the property panel's point box is filled.
     if (const SurfaceId id = window.selection()->currentSurface(); id.isValid())
         window.selection()->setControlPoints({ControlPointRef{id, 1, 2}});
@@ -53,8 +85,13 @@ int screenshot(MainWindow& window, const QString& out) {
     QElapsedTimer clock;
     clock.start();
     // Let the window be exposed and the viewport draw (llvmpipe: allow a few seconds).
-    while (clock.elapsed() < 1500)
+    while (clock.elapsed() < 1500) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+        if (refit && clock.elapsed() > 300) { // once the viewport has its final size
+            window.viewport()->fitToView();
+            refit = false;
+        }
+    }
     // QWidget::grab() may show the viewport's previous composition; paint its current frame
     // (which includes the picked-point marks drawn with QPainter) over it.
     QImage image = window.grab().toImage();
@@ -89,10 +126,13 @@ int runEditor(int argc, char** argv) {
                                   QStringLiteral("Open FILE, select its first surface, save a "
                                                  "picture of the window to OUT and exit."),
                                   QStringLiteral("OUT"));
+    const QCommandLineOption demo(QStringLiteral("demo"),
+                                  QStringLiteral("Start with a scene made by the Create and trim "
+                                                 "tools (a shaped patch with a hole, a torus)."));
     const QCommandLineOption size(QStringLiteral("size"),
                                   QStringLiteral("Window size, e.g. 1280x800."),
                                   QStringLiteral("WxH"));
-    parser.addOptions({shot, size});
+    parser.addOptions({shot, size, demo});
     if (!parser.parse(arguments) || parser.positionalArguments().size() > 1) {
         cli::printError(QStringLiteral("knotwork: %1 (see knotwork --help)")
                             .arg(parser.errorText().isEmpty() ? QStringLiteral("more than one FILE")
@@ -121,8 +161,8 @@ int runEditor(int argc, char** argv) {
             return cli::kExitBadInput;
         }
     }
-    if (parser.isSet(shot) && file.isEmpty()) {
-        cli::printError(QStringLiteral("knotwork: --screenshot needs a FILE"));
+    if (parser.isSet(shot) && file.isEmpty() && !parser.isSet(demo)) {
+        cli::printError(QStringLiteral("knotwork: --screenshot needs a FILE or --demo"));
         return cli::kExitUsage;
     }
 
@@ -149,8 +189,10 @@ int runEditor(int argc, char** argv) {
         window.resize(windowSize);
     if (!file.isEmpty() && !window.openFile(file))
         return cli::kExitBadInput;
+    if (parser.isSet(demo))
+        buildDemo(window);
     if (parser.isSet(shot))
-        return screenshot(window, parser.value(shot));
+        return screenshot(window, parser.value(shot), parser.isSet(demo));
     window.show();
     // After a crash: offer the autosaved edits once the window is up (the question is its child).
     QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });

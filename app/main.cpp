@@ -40,13 +40,14 @@ namespace {
 using namespace kw::cli;
 
 QString globalHelp() {
-    QString text = QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                                  "       knotwork FILE.knot      (the editor; FILE is optional)\n"
-                                  "       knotwork --screenshot OUT [--size WxH] FILE.knot\n"
-                                  "\n"
-                                  "Knotwork NURBS surface editor and command-line tools.\n"
-                                  "\n"
-                                  "Subcommands:\n");
+    QString text =
+        QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
+                       "       knotwork FILE.knot      (the editor; FILE is optional)\n"
+                       "       knotwork --screenshot OUT [--size WxH] [--demo] [FILE.knot]\n"
+                       "\n"
+                       "Knotwork NURBS surface editor and command-line tools.\n"
+                       "\n"
+                       "Subcommands:\n");
     for (const Command& c : commands())
         text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
     text += QStringLiteral(
@@ -54,7 +55,8 @@ QString globalHelp() {
         "knotwork [FILE] opens the editor (it needs a display and OpenGL 4.5 core); a FILE\n"
         "that cannot be read is reported on stderr with exit code 1 before any window opens.\n"
         "--screenshot OUT opens FILE with its first surface selected, saves a picture of the\n"
-        "window to OUT and exits; --size WxH sets the window size.\n"
+        "window to OUT and exits; --size WxH sets the window size. --demo starts with a scene\n"
+        "made by the editor's Create and trim tools.\n"
         "'knotwork <subcommand> --help' describes a subcommand.\n"
         "\n"
         "Options:\n"
@@ -79,7 +81,8 @@ bool isEditorInvocation(int argc, char** argv) {
         return true;
     const QString first = QString::fromLocal8Bit(argv[1]);
     if (first == QLatin1String("--screenshot") ||
-        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size"))
+        first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size") ||
+        first == QLatin1String("--demo"))
         return true;
     if (first.startsWith(QLatin1Char('-')))
         return false;

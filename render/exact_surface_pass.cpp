@@ -118,7 +118,7 @@ bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const Fra
         if (prog != bound) {
             prog->bind();
             bound = prog;
-            gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+            gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                                    glm::value_ptr(camera.viewProjection));
         }
         if (mask)
@@ -186,13 +186,14 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             setFrameUniforms(gl, prog, camera, lights);
             setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights,
                                 kEnvironmentUnit);
-            gl->glUniform1i(prog->uniformLocation("uControl"), 0);
-            gl->glUniform1i(prog->uniformLocation("uSpansU"), 1);
-            gl->glUniform1i(prog->uniformLocation("uSpansV"), 2);
+            gl->glUniform1i(ShaderLibrary::uniforms(prog).control, 0);
+            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansU, 1);
+            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansV, 2);
         }
         setSurfaceUniforms(gl, prog, s);
-        gl->glUniform4fv(prog->uniformLocation("uDomain"), 1, glm::value_ptr(g->domain));
-        gl->glUniform3fv(prog->uniformLocation("uOrigin"), 1, glm::value_ptr(glm::vec3(g->origin)));
+        gl->glUniform4fv(ShaderLibrary::uniforms(prog).domain, 1, glm::value_ptr(g->domain));
+        gl->glUniform3fv(ShaderLibrary::uniforms(prog).origin, 1,
+                         glm::value_ptr(glm::vec3(g->origin)));
         gl->glBindTextureUnit(0, g->controlTexture);
         gl->glBindTextureUnit(1, g->spanTextureU);
         gl->glBindTextureUnit(2, g->spanTextureV);

@@ -17,7 +17,7 @@ QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
         return nullptr;
     }
     prog->bind();
-    gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+    gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(camera.viewProjection));
     gl->glDepthFunc(GL_LEQUAL);
     gl->glDepthMask(GL_FALSE);
@@ -35,9 +35,9 @@ bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QStri
     QOpenGLShaderProgram* prog = lineProgram(m_gl, m_shaders, camera, error);
     if (!prog)
         return false;
-    m_gl->glUniform1f(prog->uniformLocation("uDepthBias"), 2e-4f);
-    m_gl->glUniform1f(prog->uniformLocation("uPointSize"), 1.0f);
-    m_gl->glUniform4fv(prog->uniformLocation("uLineColor"), 1, glm::value_ptr(color));
+    m_gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 2e-4f);
+    m_gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, 1.0f);
+    m_gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(color));
     for (const SurfaceRecord* r : scene.records())
         if (const SurfaceGpu* g = r->exact.get()) {
             m_gl->glBindVertexArray(g->outlineVao);
@@ -60,16 +60,16 @@ bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera, QStr
     if (!prog)
         return false;
     gl->glEnable(GL_PROGRAM_POINT_SIZE);
-    gl->glUniform1f(prog->uniformLocation("uDepthBias"), 1e-3f);
-    gl->glUniform1f(prog->uniformLocation("uPointSize"), pointSize);
+    gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 1e-3f);
+    gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, pointSize);
     for (const SurfaceRecord* r : scene.records()) {
         const NetGpu& n = r->net;
         if (!n.vao)
             continue;
         gl->glBindVertexArray(n.vao);
-        gl->glUniform4fv(prog->uniformLocation("uLineColor"), 1, glm::value_ptr(lineColor));
+        gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(lineColor));
         gl->glDrawElements(GL_LINES, n.lineIndexCount, GL_UNSIGNED_INT, nullptr);
-        gl->glUniform4fv(prog->uniformLocation("uLineColor"), 1, glm::value_ptr(pointColor));
+        gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(pointColor));
         gl->glDrawArrays(GL_POINTS, 0, n.pointCount);
         drawCalls += 2;
     }

@@ -72,7 +72,7 @@ FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect)
     return fc;
 }
 
-std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count) {
+std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count, bool headlight) {
     const std::vector<Light> base = scene.lights.empty() ? defaultLights() : scene.lights;
     count = std::clamp(count, 1, kMaxLights);
     std::vector<Light> out;
@@ -90,6 +90,20 @@ std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count
             l.ambient = glm::dvec3(0.0); // ambient is counted once per original light
         }
         out.push_back(l);
+    }
+    if (headlight) {
+        // The camera frame: right, forward (eye to target) and up. In the front view they are
+        // x, y and z, so there the lights are exactly as authored.
+        const glm::dvec3 f = glm::normalize(camera.target - camera.eye);
+        const glm::dvec3 r = glm::normalize(glm::cross(f, axis));
+        const glm::dvec3 u = glm::cross(r, f);
+        if (std::isfinite(r.x) && std::isfinite(u.x))
+            for (Light& l : out) {
+                const glm::dvec3 v =
+                    l.kind == Light::Kind::Point ? l.vector - camera.target : l.vector;
+                const glm::dvec3 turned = v.x * r + v.y * f + v.z * u;
+                l.vector = l.kind == Light::Kind::Point ? camera.target + turned : turned;
+            }
     }
     return out;
 }

@@ -60,6 +60,8 @@ struct RenderOptions {
     /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).
     int trimMaskCap = kDefaultTrimMaskCap;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
+    /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
+    bool headlight = false;
 };
 
 /// Counts of data sent to the GPU, kept per surface and in total, and per frame in FrameReport.
@@ -126,6 +128,10 @@ FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect)
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,
 /// then copies of them rotated about the camera's up axis, so `--lights 8` works on any file.
-std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count);
+/// With `headlight`, every light is turned with the camera: the lights as authored light the
+/// scene from the front view (looking along +y, z up), and keep that relation to the eye in
+/// every other view.
+std::vector<Light> lightsFor(const Scene& scene, const Camera& camera, int count,
+                             bool headlight = false);
 
 } // namespace kw

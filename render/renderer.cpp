@@ -106,7 +106,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     options.writeCurvatureAov = target.aov && target.curvatureAov;
     FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount);
+    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount,
+                                                options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
 

@@ -52,6 +52,48 @@ QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
     return out;
 }
 
+namespace {
+
+/// A program with its uniform locations (ShaderLibrary::uniforms).
+class Program : public QOpenGLShaderProgram {
+public:
+    void lookUpUniforms() {
+        UniformLocations& u = locations;
+        const std::pair<int*, const char*> names[] = {{&u.viewProjection, "uViewProjection"},
+                                                      {&u.eye, "uEye"},
+                                                      {&u.forward, "uForward"},
+                                                      {&u.ambient, "uAmbient"},
+                                                      {&u.lightVector, "uLightVector"},
+                                                      {&u.lightDiffuse, "uLightDiffuse"},
+                                                      {&u.lightSpecular, "uLightSpecular"},
+                                                      {&u.color, "uColor"},
+                                                      {&u.material, "uMaterial"},
+                                                      {&u.surfaceId, "uSurfaceId"},
+                                                      {&u.domain, "uDomain"},
+                                                      {&u.origin, "uOrigin"},
+                                                      {&u.control, "uControl"},
+                                                      {&u.spansU, "uSpansU"},
+                                                      {&u.spansV, "uSpansV"},
+                                                      {&u.trimMask, "uTrimMask"},
+                                                      {&u.trimRect, "uTrimRect"},
+                                                      {&u.trimSize, "uTrimSize"},
+                                                      {&u.trimLayerScale, "uTrimLayerScale"},
+                                                      {&u.trimLayer, "uTrimLayer"},
+                                                      {&u.depthBias, "uDepthBias"},
+                                                      {&u.pointSize, "uPointSize"},
+                                                      {&u.lineColor, "uLineColor"}};
+        for (const auto& [slot, name] : names)
+            *slot = uniformLocation(name);
+    }
+    UniformLocations locations;
+};
+
+} // namespace
+
+const UniformLocations& ShaderLibrary::uniforms(const QOpenGLShaderProgram* program) {
+    return static_cast<const Program*>(program)->locations;
+}
+
 QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QString& fragment,
                                              const QStringList& defines) {
     const QString key =
@@ -66,7 +108,7 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
     for (const QString& d : defines)
         header += QStringLiteral("#define ") + d + QLatin1Char('\n');
 
-    auto prog = std::make_shared<QOpenGLShaderProgram>();
+    auto prog = std::make_shared<Program>();
     QString error;
     const QString vs = expandedSource(vertex, &error);
     const QString fs = vs.isEmpty() ? QString() : expandedSource(fragment, &error);
@@ -89,6 +131,7 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
         m_programs.insert(key, nullptr);
         return nullptr;
     }
+    prog->lookUpUniforms();
     m_programs.insert(key, prog);
     return prog.get();
 }

@@ -11,6 +11,17 @@ class QOpenGLShaderProgram;
 
 namespace kw {
 
+/// Uniform locations of one program, looked up once when it is linked (-1 where the program
+/// does not use the uniform), so no draw asks the driver by name. Names are the shaders'.
+struct UniformLocations {
+    int viewProjection = -1, eye = -1, forward = -1;                           // camera
+    int ambient = -1, lightVector = -1, lightDiffuse = -1, lightSpecular = -1; // phong.glsl
+    int color = -1, material = -1, surfaceId = -1;                             // per surface
+    int domain = -1, origin = -1, control = -1, spansU = -1, spansV = -1;      // nurbs_surface.glsl
+    int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
+    int depthBias = -1, pointSize = -1, lineColor = -1; // lines.vert/.frag
+};
+
 class ShaderLibrary {
 public:
     ShaderLibrary();
@@ -28,6 +39,8 @@ public:
     QString lastError() const { return m_lastError; }
     /// Deletes every program; needs the context that created them to be current.
     void clear();
+    /// The locations of a program returned by any ShaderLibrary's program().
+    static const UniformLocations& uniforms(const QOpenGLShaderProgram* program);
 
     /// The source of `file` with #include "x" lines replaced by the files (recursively, at
     /// most 8 deep), or an empty string with *error set.

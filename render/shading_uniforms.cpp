@@ -1,6 +1,8 @@
 // Camera, light and material uniforms of phong.glsl.
 #include "render/shading_uniforms.h"
 
+#include "render/shader_library.h"
+
 #include <QOpenGLShaderProgram>
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
@@ -9,10 +11,10 @@ namespace kw {
 
 void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
                       const FrameCamera& camera, const std::vector<Light>& lights) {
-    gl->glUniformMatrix4fv(program->uniformLocation("uViewProjection"), 1, GL_FALSE,
+    gl->glUniformMatrix4fv(ShaderLibrary::uniforms(program).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(camera.viewProjection));
-    gl->glUniform3fv(program->uniformLocation("uEye"), 1, glm::value_ptr(camera.eye));
-    gl->glUniform3fv(program->uniformLocation("uForward"), 1, glm::value_ptr(camera.forward));
+    gl->glUniform3fv(ShaderLibrary::uniforms(program).eye, 1, glm::value_ptr(camera.eye));
+    gl->glUniform3fv(ShaderLibrary::uniforms(program).forward, 1, glm::value_ptr(camera.forward));
     const int n = std::min<int>(int(lights.size()), kMaxLights);
     glm::vec4 vec[kMaxLights];
     glm::vec3 amb[kMaxLights], dif[kMaxLights], spe[kMaxLights];
@@ -32,21 +34,21 @@ void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* progr
     glm::vec3 ambient(0.0f);
     for (int k = 0; k < n; ++k)
         ambient += amb[k];
-    gl->glUniform3fv(program->uniformLocation("uAmbient"), 1, glm::value_ptr(ambient));
+    gl->glUniform3fv(ShaderLibrary::uniforms(program).ambient, 1, glm::value_ptr(ambient));
     if (n > 0) {
-        gl->glUniform4fv(program->uniformLocation("uLightVector"), n, glm::value_ptr(vec[0]));
-        gl->glUniform3fv(program->uniformLocation("uLightDiffuse"), n, glm::value_ptr(dif[0]));
-        gl->glUniform3fv(program->uniformLocation("uLightSpecular"), n, glm::value_ptr(spe[0]));
+        gl->glUniform4fv(ShaderLibrary::uniforms(program).lightVector, n, glm::value_ptr(vec[0]));
+        gl->glUniform3fv(ShaderLibrary::uniforms(program).lightDiffuse, n, glm::value_ptr(dif[0]));
+        gl->glUniform3fv(ShaderLibrary::uniforms(program).lightSpecular, n, glm::value_ptr(spe[0]));
     }
 }
 
 void setSurfaceUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
                         const Surface& surface) {
     const Material& m = surface.material;
-    gl->glUniform3fv(program->uniformLocation("uColor"), 1, glm::value_ptr(glm::vec3(m.color)));
-    gl->glUniform4f(program->uniformLocation("uMaterial"), float(m.ka), float(m.kd), float(m.ks),
-                    float(std::max(m.shininess, 1e-3)));
-    gl->glUniform1f(program->uniformLocation("uSurfaceId"), float(surface.id.value));
+    gl->glUniform3fv(ShaderLibrary::uniforms(program).color, 1, glm::value_ptr(glm::vec3(m.color)));
+    gl->glUniform4f(ShaderLibrary::uniforms(program).material, float(m.ka), float(m.kd),
+                    float(m.ks), float(std::max(m.shininess, 1e-3)));
+    gl->glUniform1f(ShaderLibrary::uniforms(program).surfaceId, float(surface.id.value));
 }
 
 } // namespace kw

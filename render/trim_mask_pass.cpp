@@ -301,13 +301,14 @@ void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& ma
                                int unit) const {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     gl->glBindTextureUnit(GLuint(unit), m_texture);
-    gl->glUniform1i(program->uniformLocation("uTrimMask"), unit);
+    gl->glUniform1i(ShaderLibrary::uniforms(program).trimMask, unit);
     const glm::vec4 rect(mask.rect);
-    gl->glUniform4f(program->uniformLocation("uTrimRect"), rect.x, rect.y, rect.z, rect.w);
-    gl->glUniform2f(program->uniformLocation("uTrimSize"), float(mask.width), float(mask.height));
-    gl->glUniform2f(program->uniformLocation("uTrimLayerScale"), 1.0f / float(m_size),
+    gl->glUniform4f(ShaderLibrary::uniforms(program).trimRect, rect.x, rect.y, rect.z, rect.w);
+    gl->glUniform2f(ShaderLibrary::uniforms(program).trimSize, float(mask.width),
+                    float(mask.height));
+    gl->glUniform2f(ShaderLibrary::uniforms(program).trimLayerScale, 1.0f / float(m_size),
                     1.0f / float(m_size));
-    gl->glUniform1f(program->uniformLocation("uTrimLayer"), float(mask.layer));
+    gl->glUniform1f(ShaderLibrary::uniforms(program).trimLayer, float(mask.layer));
 }
 
 std::vector<unsigned char> TrimMaskPass::readMask(const TrimMask& mask) const {

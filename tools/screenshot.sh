@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Takes docs/screenshot.png: the real editor window under Xvfb with the trimmed_plate sample
-# loaded and its surface selected. Usage: tools/screenshot.sh [BUILD_DIR] [OUT]
+# Takes docs/screenshot.png: the real editor window under Xvfb with the --demo scene, made by
+# the Create and trim tools (a shaped NURBS patch with a circular hole, a torus), selected. Usage: tools/screenshot.sh [BUILD_DIR] [OUT]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
@@ -10,6 +10,5 @@ chmod 700 "$XDG_RUNTIME_DIR"
 # Fresh settings so a saved window layout does not change the picture.
 export XDG_CONFIG_HOME="$(mktemp -d)"
 xvfb-run -a -s "-screen 0 1280x1024x24" \
-    "$build/bin/knotwork" --size 1200x760 --screenshot "$out" \
-    "$here/resources/samples/trimmed_plate.knot"
+    "$build/bin/knotwork" --size 1440x860 --screenshot "$out" --demo
 echo "wrote $out"

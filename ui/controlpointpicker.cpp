@@ -6,9 +6,12 @@
 
 namespace kw {
 
-void ControlPointPicker::update(const Document& doc, const ViewProjection& view) {
+void ControlPointPicker::update(const Document& doc, const ViewProjection& view,
+                                const std::vector<SurfaceId>* only) {
     m_points.clear();
     for (const Surface& s : doc.scene().surfaces) {
+        if (only && std::find(only->begin(), only->end(), s.id) == only->end())
+            continue;
         const NurbsSurface& g = s.geometry;
         for (int j = 0; j < g.countV; ++j)
             for (int i = 0; i < g.countU; ++i) {

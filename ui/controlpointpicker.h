@@ -17,8 +17,10 @@ public:
     static constexpr double kDefaultRadius = 6.0; ///< pixels
 
     /// Projects every control point of every surface of `doc` (points behind the eye are
-    /// skipped). Call again after the camera, the widget size or the points change.
-    void update(const Document& doc, const ViewProjection& view);
+    /// skipped), or of the surfaces listed in `only` when given. Call again after the camera,
+    /// the widget size or the points change.
+    void update(const Document& doc, const ViewProjection& view,
+                const std::vector<SurfaceId>* only = nullptr);
 
     /// The control point whose projection is nearest to `pixel` and at most `radius` pixels
     /// away; among equally near ones, the one closest to the eye. nullopt when none.

@@ -3,16 +3,21 @@
 
 #include "ui/analysiscontrols.h"
 #include "ui/autosave.h"
+#include "ui/desktopactions.h"
 #include "ui/edit/commands.h"
 #include "ui/lightspanel.h"
+#include "ui/modelingtools.h"
 #include "ui/propertypanel.h"
 #include "ui/uvpanel.h"
 #include "ui/viewport.h"
 
 #include <QActionGroup>
+#include <QCheckBox>
 #include <QCloseEvent>
+#include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QFileDialog>
+#include <QFormLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QMenuBar>
@@ -20,7 +25,10 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSettings>
+#include <QSpinBox>
 #include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
 #include <QTreeView>
 #include <QUndoStack>
 
@@ -44,6 +52,31 @@ MainWindow::Dialogs MainWindow::Dialogs::standard() {
                                     QMessageBox::Save);
     };
     d.importFile = d.openFile;
+    d.exportOptions = [](QWidget* parent,
+                         const ExportOptions& init) -> std::optional<ExportOptions> {
+        QDialog dialog(parent);
+        dialog.setWindowTitle(QObject::tr("Export image"));
+        auto* form = new QFormLayout(&dialog);
+        auto* w = new QSpinBox;
+        auto* h = new QSpinBox;
+        for (QSpinBox* b : {w, h})
+            b->setRange(16, 16384);
+        w->setValue(init.size.width());
+        h->setValue(init.size.height());
+        auto* aov = new QCheckBox(QObject::tr("Also write the AOVs (id, u, v, P, N, Z) as "
+                                              "NAME_aov.exr"));
+        aov->setChecked(init.aov);
+        form->addRow(QObject::tr("Width"), w);
+        form->addRow(QObject::tr("Height"), h);
+        form->addRow(aov);
+        auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+        QObject::connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+        QObject::connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+        form->addRow(buttons);
+        if (dialog.exec() != QDialog::Accepted)
+            return std::nullopt;
+        return ExportOptions{QSize(w->value(), h->value()), aov->isChecked()};
+    };
     d.information = [](QWidget* parent, const QString& title, const QString& text) {
         QMessageBox::information(parent, title, text);
     };
@@ -79,6 +112,11 @@ MainWindow::MainWindow(QWidget* parent)
     m_fpsLabel = new QLabel;
     m_fpsLabel->setMinimumWidth(170);
     statusBar()->addPermanentWidget(m_fpsLabel);
+    // While frames come, frames per second and the last frame's report; a second after the
+    // last frame, "idle" with that frame's time, rather than a stale rate.
+    auto* idle = new QTimer(this);
+    idle->setSingleShot(true);
+    idle->setInterval(1200);
     connect(m_viewport, &Viewport::framesPerSecond, this,
             [this](double fps, const FrameReport& frame) {
                 m_fpsLabel->setText(tr("%1 fps, frame %2 ms CPU, %3 draws")
@@ -86,6 +124,13 @@ MainWindow::MainWindow(QWidget* parent)
                                         .arg(frame.cpuMs.total, 0, 'f', 1)
                                         .arg(frame.drawCalls));
             });
+    connect(m_viewport, &Viewport::frameDrawn, this, [this, idle](const FrameReport& frame) {
+        m_lastFrameMs = frame.cpuMs.total;
+        idle->start();
+    });
+    connect(idle, &QTimer::timeout, this, [this] {
+        m_fpsLabel->setText(tr("idle, last frame %1 ms CPU").arg(m_lastFrameMs, 0, 'f', 1));
+    });
     connect(m_viewport, &Viewport::renderError, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
     connect(m_properties, &PropertyPanel::editRejected, this,
@@ -126,11 +171,15 @@ void MainWindow::buildDocks() {
     m_tree->setModel(m_model);
     m_tree->setSelectionModel(m_selection->itemSelection());
     m_tree->setEditTriggers(QAbstractItemView::EditKeyPressed | QAbstractItemView::DoubleClicked);
+    m_tree->setSelectionMode(QAbstractItemView::ExtendedSelection); // Ctrl / Shift add
     m_tree->header()->setStretchLastSection(true);
     dock(tr("Scene"), QStringLiteral("dockScene"), m_tree, Qt::LeftDockWidgetArea);
 
     m_uv = new UvPanel(m_doc, m_selection, m_stack);
-    dock(tr("UV domain and trims"), QStringLiteral("dockUv"), m_uv, Qt::LeftDockWidgetArea);
+    dock(tr("UV domain and trims"), QStringLiteral("dockUv"),
+         makeUvEditor(m_uv, m_selection, m_doc), Qt::LeftDockWidgetArea);
+    connect(m_uv, &UvPanel::message, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 8000); });
 
     m_properties = new PropertyPanel(m_doc, m_selection, m_stack);
     auto* scroll = new QScrollArea;
@@ -163,6 +212,18 @@ void MainWindow::buildMenus() {
     buildFileMenu();
     buildEditMenu();
     buildViewMenu();
+    m_tools = new ModelingTools(this, m_doc, m_model, m_selection, m_stack, m_viewport);
+    connect(m_tools, &ModelingTools::message, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 5000); });
+    QToolBar* toolbar = addToolBar(tr("Create"));
+    toolbar->setObjectName(QStringLiteral("toolbarCreate")); // saveState() keys by name
+    toolbar->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    m_tools->buildMenus(menuBar(), toolbar);
+    m_desktop = new DesktopActions(this, m_viewport);
+    m_desktop->addEditEntries(findChild<QMenu*>(QStringLiteral("menuEdit")));
+    m_desktop->addViewEntries(findChild<QMenu*>(QStringLiteral("menuView")));
+    m_desktop->addHelpMenu(menuBar());
+    m_desktop->applyPreferences();
 }
 
 void MainWindow::buildFileMenu() {
@@ -178,8 +239,9 @@ void MainWindow::buildFileMenu() {
     file->addSeparator();
     addAction(file, QStringLiteral("actionSave"), tr("&Save"), QKeySequence::Save,
               [this] { save(); });
-    addAction(file, QStringLiteral("actionSaveAs"), tr("Save &As…"), QKeySequence::SaveAs,
-              [this] { saveAs(); });
+    // Explicit: QKeySequence::SaveAs is empty on some X11 desktops.
+    addAction(file, QStringLiteral("actionSaveAs"), tr("Save &As…"),
+              QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), [this] { saveAs(); });
     addAction(file, QStringLiteral("actionExportImage"), tr("&Export Image…"),
               QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportImage(); });
     file->addSeparator();
@@ -190,24 +252,28 @@ void MainWindow::buildFileMenu() {
 
 void MainWindow::buildEditMenu() {
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    edit->setObjectName(QStringLiteral("menuEdit"));
     // The stack's actions show the command's text ("Undo Move control point").
     QAction* undo = m_stack->createUndoAction(this, tr("&Undo"));
     undo->setObjectName(QStringLiteral("actionUndo"));
     undo->setShortcut(QKeySequence::Undo);
     QAction* redo = m_stack->createRedoAction(this, tr("&Redo"));
     redo->setObjectName(QStringLiteral("actionRedo"));
-    redo->setShortcut(QKeySequence::Redo);
+    // Both redo keys on every platform: QKeySequence::Redo is only Ctrl+Shift+Z on X11.
+    redo->setShortcuts(
+        {QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), QKeySequence(Qt::CTRL | Qt::Key_Y)});
     edit->addAction(undo);
     edit->addAction(redo);
     edit->addSeparator();
     addAction(edit, QStringLiteral("actionSelectAll"), tr("Select &All"), QKeySequence::SelectAll,
               [this] { selectAll(); });
-    addAction(edit, QStringLiteral("actionDelete"), tr("&Delete Surface"), QKeySequence::Delete,
+    addAction(edit, QStringLiteral("actionDelete"), tr("&Delete"), QKeySequence::Delete,
               [this] { deleteSelection(); });
 }
 
 void MainWindow::buildViewMenu() {
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->setObjectName(QStringLiteral("menuView"));
     addAction(view, QStringLiteral("actionFit"), tr("&Fit to View"), QKeySequence(Qt::Key_F),
               [this] { m_viewport->fitToView(); });
     QMenu* standard = view->addMenu(tr("Standard &Views"));
@@ -273,14 +339,10 @@ void MainWindow::selectAll() {
 }
 
 void MainWindow::deleteSelection() {
-    const SurfaceId current = m_selection->currentSurface();
-    if (!current.isValid()) {
-        statusBar()->showMessage(tr("Select a surface to delete."), 5000);
+    // Del in the UV panel with a picked trim loop removes the loop, not the surface.
+    if (m_uv->hasFocus() && m_uv->deleteSelectedLoops())
         return;
-    }
-    QString error;
-    if (!pushCommand(m_stack, RemoveSurface::create(m_doc, current, &error)))
-        statusBar()->showMessage(error, 5000);
+    m_tools->deleteSelected();
 }
 
 void MainWindow::selectSurface(SurfaceId id) {

@@ -8,6 +8,7 @@
 #include <QMainWindow>
 #include <QMessageBox>
 #include <functional>
+#include <optional>
 
 class QLabel;
 class QMenu;
@@ -18,7 +19,9 @@ class QUndoStack;
 namespace kw {
 
 class Autosave;
+class DesktopActions;
 class LightsPanel;
+class ModelingTools;
 class PropertyPanel;
 class UvPanel;
 class Viewport;
@@ -26,6 +29,9 @@ class Viewport;
 /// The file dialog filter of File ▸ Import…; without OpenCASCADE (`occt` false) the IGES,
 /// STEP and BREP entries say they are unavailable.
 QString importFileFilter(bool occt);
+/// Labels for File ▸ Open Recent: each file's name, followed by as many of its parent folders
+/// as it takes to tell it from the other paths ("model.knot — a/b").
+QStringList recentLabels(const QStringList& paths);
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -51,6 +57,13 @@ public:
         /// After a crash: offer the autosaved edits. Yes restores them, Discard deletes the
         /// recovery file, anything else keeps it for the next start. May be empty (keep).
         std::function<QMessageBox::StandardButton(QWidget*, const QString& text)> askRecover;
+        /// File ▸ Export Image…, after the path: the image size (starting at the view's) and
+        /// whether to write the AOV EXR next to it. Empty: the view's size, no AOVs.
+        struct ExportOptions {
+            QSize size;
+            bool aov = false;
+        };
+        std::function<std::optional<ExportOptions>(QWidget*, const ExportOptions&)> exportOptions;
         static Dialogs standard();
     };
 
@@ -89,6 +102,8 @@ public:
     PropertyPanel* propertyPanel() const { return m_properties; }
     LightsPanel* lightsPanel() const { return m_lights; }
     UvPanel* uvPanel() const { return m_uv; }
+    ModelingTools* modelingTools() const { return m_tools; }
+    DesktopActions* desktopActions() const { return m_desktop; }
     QTreeView* sceneTree() const { return m_tree; }
     QString filePath() const { return m_path; }
     /// The file the unsaved document was imported from, or empty (cleared by Save, Open, New).
@@ -139,8 +154,11 @@ private:
     PropertyPanel* m_properties = nullptr;
     LightsPanel* m_lights = nullptr;
     UvPanel* m_uv = nullptr;
+    ModelingTools* m_tools = nullptr;
+    DesktopActions* m_desktop = nullptr;
     QMenu* m_recentMenu = nullptr;
     QLabel* m_fpsLabel = nullptr;
+    double m_lastFrameMs = 0.0;
     QString m_path;
     QString m_importedPath;
     QProgressDialog* m_importProgress = nullptr; ///< while an import runs

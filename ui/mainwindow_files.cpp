@@ -2,6 +2,8 @@
 // export, drops, title.
 #include "model/knotfile.h"
 #include "ui/autosave.h"
+#include "render/image_writer.h"
+#include "render/offscreen_renderer.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
@@ -59,15 +61,22 @@ bool MainWindow::openFile(const QString& path) {
 }
 
 bool MainWindow::saveFile(const QString& path) {
+    // The view's camera goes into the file; it is not an edit (no undo step, not "modified"),
+    // as in other editors, so it is copied into the document only here.
+    Camera camera = m_viewport->cameraController().camera();
+    camera.authored = true;
+    Scene scene = m_doc->scene();
+    scene.camera = camera;
     QString error;
     // The previous version becomes FILE.bak. A failed copy does not stop the save; it is said.
     QString backupError;
     if (QSettings().value(kKeepBackupKey, true).toBool() && !keepBackup(path, &backupError))
         statusBar()->showMessage(tr("No backup kept: %1").arg(backupError), 10000);
-    if (!writeKnotFile(path, m_doc->scene(), &error)) {
+    if (!writeKnotFile(path, scene, &error)) {
         showError(tr("Cannot save file"), error);
         return false;
     }
+    m_doc->setCamera(camera);
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);
@@ -154,22 +163,46 @@ void MainWindow::exportImage() {
     const QString named = m_path.isEmpty() ? m_importedPath : m_path;
     const QString suggested =
         named.isEmpty() ? tr("untitled.png") : QFileInfo(named).completeBaseName() + ".png";
-    const QString path = m_dialogs.saveFile(this, tr("Export image"),
-                                            tr("Images (*.png *.jpg *.bmp *.tif)"), suggested);
+    const QString path =
+        m_dialogs.saveFile(this, tr("Export image"),
+                           tr("Images (*.png *.jpg *.tif *.exr);;EXR, float (*.exr)"), suggested);
     if (path.isEmpty())
         return;
-    if (!m_viewport->glError().isEmpty()) {
-        showError(tr("Cannot export image"), m_viewport->glError());
+    if (!isSupportedImagePath(path)) {
+        showError(tr("Cannot export image"),
+                  tr("%1: unsupported image type (use .png, .jpg, .tif or .exr)").arg(path));
         return;
     }
-    const QImage frame = m_viewport->grabFramebuffer();
-    if (frame.isNull() || !frame.save(path)) {
-        showError(
-            tr("Cannot export image"),
-            tr("%1: could not write the image (unknown format or unwritable folder)").arg(path));
+    Dialogs::ExportOptions options{m_viewport->size(), false};
+    if (m_dialogs.exportOptions) {
+        const auto chosen = m_dialogs.exportOptions(this, options);
+        if (!chosen)
+            return;
+        options = *chosen;
+    }
+    // Rendered again off screen at the chosen size with the view's camera and options, and
+    // written through OpenImageIO, as `knotwork render` does.
+    const QString aovPath = QFileInfo(path).dir().filePath(QFileInfo(path).completeBaseName() +
+                                                           QStringLiteral("_aov.exr"));
+    QString error;
+    OffscreenRenderer renderer;
+    RenderOptions render = m_viewport->renderOptions();
+    render.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
+    render.controlNet = false; // the picture of the surfaces, not of the editing aids
+    const bool ok =
+        renderer.create(&error) && renderer.setSize(options.size, options.aov, &error) &&
+        renderer.render(*m_doc, m_viewport->cameraController().camera(), render, &error) &&
+        writeColorImage(renderer.colorImage(), path, &error) &&
+        (!options.aov || writeAovImage(renderer.aov(), aovPath, &error));
+    if (!ok) {
+        showError(tr("Cannot export image"), error);
         return;
     }
-    statusBar()->showMessage(tr("Exported %1").arg(QFileInfo(path).fileName()), 5000);
+    statusBar()->showMessage(
+        options.aov ? tr("Exported %1 and %2")
+                          .arg(QFileInfo(path).fileName(), QFileInfo(aovPath).fileName())
+                    : tr("Exported %1").arg(QFileInfo(path).fileName()),
+        5000);
 }
 
 bool MainWindow::maybeSave() {
@@ -217,11 +250,45 @@ void MainWindow::addRecent(const QString& path) {
     rebuildRecentMenu();
 }
 
+QStringList recentLabels(const QStringList& paths) {
+    // The file name, with as many parent folders as it takes to tell it from the others
+    // ("a/model.knot", "b/model.knot").
+    QStringList labels;
+    for (const QString& path : paths) {
+        const QStringList parts =
+            QDir::fromNativeSeparators(path).split(QLatin1Char('/'), Qt::SkipEmptyParts);
+        int depth = 1;
+        auto tail = [](const QStringList& p, int n) {
+            return p.mid(std::max(0, int(p.size()) - n)).join(QLatin1Char('/'));
+        };
+        for (; depth < parts.size(); ++depth) {
+            bool unique = true;
+            for (const QString& other : paths) {
+                if (other == path)
+                    continue;
+                const QStringList o =
+                    QDir::fromNativeSeparators(other).split(QLatin1Char('/'), Qt::SkipEmptyParts);
+                if (tail(o, depth) == tail(parts, depth))
+                    unique = false;
+            }
+            if (unique)
+                break;
+        }
+        const QString name = parts.value(parts.size() - 1);
+        labels << (depth <= 1 ? name
+                              : QStringLiteral("%1 — %2").arg(
+                                    name, tail(parts, depth).section(QLatin1Char('/'), 0, -2)));
+    }
+    return labels;
+}
+
 void MainWindow::rebuildRecentMenu() {
     m_recentMenu->clear();
     const QStringList list = recentFiles();
-    for (const QString& path : list) {
-        QAction* a = m_recentMenu->addAction(QFileInfo(path).fileName());
+    const QStringList labels = recentLabels(list);
+    for (int k = 0; k < list.size(); ++k) {
+        const QString path = list[k];
+        QAction* a = m_recentMenu->addAction(labels[k]);
         a->setToolTip(path);
         a->setData(path);
         connect(a, &QAction::triggered, this, [this, path] {

@@ -1,6 +1,7 @@
 // MainWindow: File ▸ Import… — IGES, STEP, BREP and OBJ read on a worker thread behind a
 // progress dialog whose Cancel stops the importer through its progress callback.
 #include "model/cad/cadimport.h"
+#include "model/naming.h"
 #include "ui/mainwindow.h"
 
 #include <QEventLoop>
@@ -70,7 +71,11 @@ bool MainWindow::importFile(const QString& path) {
         });
     }));
 
-    QProgressDialog progress(tr("Importing %1…").arg(name), tr("Cancel"), 0, 0, this);
+    // Owned so it can be destroyed before any message: its minimum-duration timer could
+    // otherwise show it, window-modal, over the error box of a fast failed import.
+    auto progressOwner =
+        std::make_unique<QProgressDialog>(tr("Importing %1…").arg(name), tr("Cancel"), 0, 0, this);
+    QProgressDialog& progress = *progressOwner;
     progress.setWindowTitle(tr("Import"));
     progress.setWindowModality(Qt::WindowModal);
     progress.setMinimumDuration(300);
@@ -115,6 +120,7 @@ bool MainWindow::importFile(const QString& path) {
     }
     m_importProgress = nullptr;
     progress.hide();
+    progressOwner.reset();
 
     if (job->cancel) {
         // The importer's own message when it stopped; otherwise it had finished first.
@@ -125,6 +131,8 @@ bool MainWindow::importFile(const QString& path) {
         return false;
     }
     QString error = job->error;
+    if (job->result) // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree
+        makeSurfaceNamesDistinct(job->result->scene, QFileInfo(path).completeBaseName());
     if (!job->result || !m_doc->resetScene(std::move(job->result->scene), &error)) {
         showError(tr("Cannot import file"), error);
         return false;

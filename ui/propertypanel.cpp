@@ -38,6 +38,21 @@ QString knotText(const std::vector<double>& knots) {
     return parts.join(QStringLiteral(", "));
 }
 
+/// Shows `value`, undoing blank().
+template <class Box, class T> void showValue(Box* box, T value) {
+    const QSignalBlocker b(box);
+    box->setSpecialValueText(QString());
+    box->setValue(value);
+}
+
+/// Clears a disabled field: no stale number from the last selection. The special value text
+/// shows at the minimum, so a blank text there reads as empty.
+template <class Box> void blank(Box* box) {
+    const QSignalBlocker b(box);
+    box->setSpecialValueText(QStringLiteral(" "));
+    box->setValue(box->minimum());
+}
+
 QColor toColor(const glm::dvec3& c) {
     return QColor::fromRgbF(float(std::clamp(c.r, 0.0, 1.0)), float(std::clamp(c.g, 0.0, 1.0)),
                             float(std::clamp(c.b, 0.0, 1.0)));
@@ -259,6 +274,21 @@ void PropertyPanel::refresh() {
     if (!s) {
         m_title->setText(tr("No surface selected. Pick one in the scene tree or the view."));
         m_pointBox->setEnabled(false);
+        // Disabled fields are cleared, not left showing the last surface's values.
+        m_degrees->clear();
+        m_knots->clear();
+        blank(m_knotValue);
+        refreshPoint();
+        for (QSpinBox* box : {m_spinU, m_spinV})
+            blank(box);
+        for (QSlider* slider : {m_sliderU, m_sliderV}) {
+            const QSignalBlocker b(slider);
+            slider->setValue(slider->minimum());
+        }
+        m_color->setStyleSheet(QString());
+        m_color->setText(QString());
+        for (QDoubleSpinBox* box : {m_ka, m_kd, m_ks, m_shininess})
+            blank(box);
         return;
     }
     const NurbsSurface& g = s->geometry;
@@ -272,6 +302,7 @@ void PropertyPanel::refresh() {
     const Interval dom = m_direction->currentIndex() == 0 ? surfaceDomainU(g) : surfaceDomainV(g);
     {
         const QSignalBlocker b(m_knotValue);
+        m_knotValue->setSpecialValueText(QString());
         m_knotValue->setRange(dom.first, dom.last);
         if (m_knotValue->value() <= dom.first || m_knotValue->value() >= dom.last)
             m_knotValue->setValue(0.5 * (dom.first + dom.last));
@@ -281,18 +312,16 @@ void PropertyPanel::refresh() {
 
     for (auto [slider, spinBox, value] : {std::tuple{m_sliderU, m_spinU, s->partitionsU},
                                           std::tuple{m_sliderV, m_spinV, s->partitionsV}}) {
-        const QSignalBlocker b1(slider), b2(spinBox);
+        const QSignalBlocker b1(slider);
         slider->setValue(value);
-        spinBox->setValue(value);
+        showValue(spinBox, value);
     }
     const Material& m = s->material;
     m_color->setStyleSheet(QStringLiteral("background-color: %1").arg(toColor(m.color).name()));
     m_color->setText(toColor(m.color).name());
     for (auto [box, value] : {std::pair{m_ka, m.ka}, std::pair{m_kd, m.kd}, std::pair{m_ks, m.ks},
-                              std::pair{m_shininess, m.shininess}}) {
-        const QSignalBlocker b(box);
-        box->setValue(value);
-    }
+                              std::pair{m_shininess, m.shininess}})
+        showValue(box, value);
 }
 
 void PropertyPanel::refreshPoint() {
@@ -306,14 +335,13 @@ void PropertyPanel::refreshPoint() {
         m_pointLabel->setText(picked > 1
                                   ? tr("(%1, %2), first of %3 picked").arg(r.i).arg(r.j).arg(picked)
                                   : tr("(%1, %2)").arg(r.i).arg(r.j));
-        for (int k = 0; k < 3; ++k) {
-            const QSignalBlocker b(m_xyz[k]);
-            m_xyz[k]->setValue(g.points[size_t(index)][k]);
-        }
-        const QSignalBlocker b(m_weight);
-        m_weight->setValue(g.weights[size_t(index)]);
+        for (int k = 0; k < 3; ++k)
+            showValue(m_xyz[k], g.points[size_t(index)][k]);
+        showValue(m_weight, g.weights[size_t(index)]);
     } else {
         m_pointLabel->setText(tr("Click a control point in the view."));
+        for (QDoubleSpinBox* box : {m_xyz[0], m_xyz[1], m_xyz[2], m_weight})
+            blank(box);
     }
 }
 

@@ -18,6 +18,35 @@ const Surface* shown(const Document* doc, const Selection* sel) {
     return doc->surface(sel->currentSurface());
 }
 
+/// Segments (a, b) and (c, d) cross (proper intersection or touching).
+bool segmentsCross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
+    auto cross = [](glm::dvec2 o, glm::dvec2 p, glm::dvec2 q) {
+        return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
+    };
+    const double d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
+    return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
+           d4 != 0;
+}
+
+/// "Loops 1 and 2 cross" for the first crossing pair of flattened loops (bounding boxes first),
+/// else empty. Parity still gives a mask, but rarely the one intended.
+QString crossingLoops(const std::vector<std::vector<glm::dvec2>>& loops) {
+    for (size_t a = 0; a < loops.size(); ++a)
+        for (size_t b = a + 1; b < loops.size(); ++b) {
+            const auto& la = loops[a];
+            const auto& lb = loops[b];
+            for (size_t i = 0; i < la.size(); ++i)
+                for (size_t j = 0; j < lb.size(); ++j)
+                    if (segmentsCross(la[i], la[(i + 1) % la.size()], lb[j],
+                                      lb[(j + 1) % lb.size()]))
+                        return QObject::tr("Warning: trim loops %1 and %2 cross; the parity "
+                                           "mask may not be what you meant.")
+                            .arg(a + 1)
+                            .arg(b + 1);
+        }
+    return {};
+}
+
 } // namespace
 
 UvPanel::UvPanel(Document* document, Selection* selection, QUndoStack* stack, QWidget* parent)
@@ -37,6 +66,8 @@ UvPanel::UvPanel(Document* document, Selection* selection, QUndoStack* stack, QW
         update();
     });
     connect(m_selection, &Selection::changed, this, repaint);
+    setMouseTracking(true); // the rubber segment of the polygon and spline tools
+    buildActions();
 }
 
 SurfaceId UvPanel::surface() const {
@@ -56,8 +87,11 @@ QRectF UvPanel::domainRect() const {
     QSizeF size(area.width(), area.width() / ratio);
     if (size.height() > area.height())
         size = QSizeF(area.height() * ratio, area.height());
+    // Zoomed about the domain fraction m_centre, which sits at the area's centre.
+    size *= m_zoom;
     QRectF r(QPointF(), size);
-    r.moveCenter(area.center());
+    r.moveTopLeft(area.center() -
+                  QPointF(m_centre.x * size.width(), (1.0 - m_centre.y) * size.height()));
     return QRectF(std::round(r.left()), std::round(r.top()), std::round(r.width()),
                   std::round(r.height()));
 }
@@ -87,11 +121,13 @@ void UvPanel::refreshMask() {
     if (!s) {
         m_mask = m_maskColors = QImage();
         m_trimLines.clear();
+        m_crossing.clear();
         m_maskSurface = {};
         return;
     }
     const Revisions rev = m_doc->revisions(s->id);
-    const QSize size = domainRect().size().toSize();
+    // Zoomed in, the mask is drawn scaled rather than computed at more than 1024 pixels a side.
+    const QSize size = domainRect().size().toSize().boundedTo(QSize(1024, 1024));
     if (m_maskSurface == s->id && m_maskRevision == rev.trims && m_maskGeometry == rev.knots &&
         m_mask.size() == size)
         return;
@@ -104,6 +140,7 @@ void UvPanel::refreshMask() {
         table[i] = i > 127 ? qRgb(176, 200, 230) : qRgb(58, 60, 66);
     m_maskColors.setColorTable(table);
     m_trimLines = trimPolylines(*s);
+    m_crossing = crossingLoops(m_trimLines);
     m_maskSurface = s->id;
     m_maskRevision = rev.trims;
     m_maskGeometry = rev.knots;
@@ -146,7 +183,7 @@ void UvPanel::paintEvent(QPaintEvent*) {
     }
     refreshMask();
     const QRectF r = domainRect();
-    p.drawImage(r.topLeft(), m_maskColors);
+    p.drawImage(r, m_maskColors);
     p.setPen(QPen(palette().text().color(), 1.0));
     p.drawRect(r);
     const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
@@ -184,36 +221,32 @@ void UvPanel::paintEvent(QPaintEvent*) {
             }
             p.setBrush(Qt::NoBrush);
         }
+    paintDrawing(p);
+    if (!m_crossing.isEmpty()) {
+        p.setPen(QColor(220, 40, 40));
+        p.drawText(rect().adjusted(4, 2, -4, -2), Qt::AlignTop | Qt::AlignLeft | Qt::TextWordWrap,
+                   m_crossing);
+    }
 }
 
 void UvPanel::mousePressEvent(QMouseEvent* event) {
+    if (event->button() == Qt::MiddleButton || event->button() == Qt::RightButton) {
+        m_panning = true;
+        m_panLast = event->position();
+        return;
+    }
     if (event->button() != Qt::LeftButton || m_dragging)
+        return;
+    if (toolPress(event))
         return;
     const std::optional<TrimPointRef> hit = trimPointAt(event->position());
     if (!hit) {
         m_selection->setTrimPoints({});
         return;
     }
-    const Surface* s = m_doc->surface(hit->surface);
-    const TrimLoop* loop = nullptr;
-    for (const TrimLoop& l : s->trims)
-        if (l.id == hit->loop)
-            loop = &l;
-    const glm::dvec2 at = loop->curves[size_t(hit->curve)].points[size_t(hit->index)];
-    m_drag = {{*hit, at}};
-    // Curve ends that coincide with a picked curve end move with it, keeping the loop closed.
-    const int last = int(loop->curves[size_t(hit->curve)].points.size()) - 1;
-    if (hit->index == 0 || hit->index == last)
-        for (size_t c = 0; c < loop->curves.size(); ++c) {
-            const auto& pts = loop->curves[c].points;
-            for (int k : {0, int(pts.size()) - 1}) {
-                const TrimPointRef ref{hit->surface, hit->loop, int(c), k};
-                if (ref != *hit && pts[size_t(k)] == at &&
-                    std::none_of(m_drag.begin(), m_drag.end(),
-                                 [&](const Dragged& d) { return d.ref == ref; }))
-                    m_drag.push_back({ref, at});
-            }
-        }
+    m_drag.clear();
+    for (const TrimPointRef& ref : withCoincidentEnds(*hit))
+        m_drag.push_back({ref, trimPointPosition(*m_doc, ref)});
     std::vector<TrimPointRef> refs;
     for (const Dragged& d : m_drag)
         refs.push_back(d.ref);
@@ -224,6 +257,21 @@ void UvPanel::mousePressEvent(QMouseEvent* event) {
 }
 
 void UvPanel::mouseMoveEvent(QMouseEvent* event) {
+    m_hover = event->position();
+    if (m_panning) {
+        const QRectF r = domainRect();
+        const QPointF d = event->position() - m_panLast;
+        m_panLast = event->position();
+        setView(m_zoom, m_centre - glm::dvec2(d.x() / r.width(), -d.y() / r.height()));
+        return;
+    }
+    if (m_shaping) {
+        m_shapeEnd = event->position();
+        update();
+        return;
+    }
+    if (!m_clicked.empty())
+        update();
     if (!m_dragging)
         return;
     const glm::dvec2 delta = toUv(event->position()) - toUv(m_pressPixel);
@@ -232,6 +280,14 @@ void UvPanel::mouseMoveEvent(QMouseEvent* event) {
 }
 
 void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
+    if (m_panning && event->button() != Qt::LeftButton) {
+        m_panning = false;
+        return;
+    }
+    if (m_shaping && event->button() == Qt::LeftButton) {
+        finishShape(event->position());
+        return;
+    }
     if (!m_dragging || event->button() != Qt::LeftButton)
         return;
     mouseMoveEvent(event);
@@ -241,6 +297,21 @@ void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
 void UvPanel::keyPressEvent(QKeyEvent* event) {
     if (event->key() == Qt::Key_Escape && m_dragging) {
         finishDrag(true);
+        return;
+    }
+    if (event->key() == Qt::Key_Escape && (m_shaping || !m_clicked.empty())) {
+        m_shaping = false;
+        m_clicked.clear();
+        update();
+        return;
+    }
+    if ((event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) && !m_clicked.empty()) {
+        finishClicked();
+        return;
+    }
+    if (event->key() == Qt::Key_Backspace && !m_clicked.empty()) {
+        m_clicked.pop_back();
+        update();
         return;
     }
     QWidget::keyPressEvent(event);

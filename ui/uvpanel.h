@@ -10,19 +10,46 @@
 #include <optional>
 #include <vector>
 
+class QAction;
 class QUndoStack;
 
 namespace kw {
+
+/// Position of an existing trim point (precondition: the ref names one).
+inline glm::dvec2 trimPointPosition(const Document& doc, const TrimPointRef& ref) {
+    for (const TrimLoop& l : doc.surface(ref.surface)->trims)
+        if (l.id == ref.loop)
+            return l.curves[size_t(ref.curve)].points[size_t(ref.index)];
+    return glm::dvec2(0.0);
+}
+
+class UvPanel;
+/// The UV dock's content: a toolbar with the panel's tools, fields for the picked trim
+/// point's exact (u, v) (named "uvPointU" / "uvPointV"; disabled and empty when none is
+/// picked), and the panel.
+QWidget* makeUvEditor(UvPanel* panel, Selection* selection, Document* document);
+
+/// What a left press in the UV panel does: pick and drag trim points, or draw a new loop.
+enum class UvTool { Select, Rectangle, Circle, Polygon, Spline };
 
 /// Shows the current surface's domain (u to the right, v up) filled with the trim mask (light:
 /// kept, dark: removed), the trim loops and the trim curves' control polygons. Left click picks
 /// the nearest trim control point within a few pixels; dragging moves it (and any curve end
 /// that coincides with it, so loops stay closed), live in the document; the release pushes one
 /// MoveTrimPoints command. Esc cancels a drag.
+///
+/// Drawing tools add a trim loop (one undo step): Rectangle and Circle (exact rational) by a
+/// press-drag-release (corner to corner, centre to radius); Polygon and Spline by clicks, ended
+/// by a double click or Enter (Backspace drops the last point, Esc cancels). With "draw holes"
+/// on, the first loop drawn on an untrimmed surface comes with the domain's boundary as outer
+/// loop, so the new loop cuts a hole; off, the loop is an outer boundary. The wheel zooms
+/// about the cursor and a middle or right drag pans. Loops that cross each other are reported
+/// (crossingWarning) but kept.
 class UvPanel : public QWidget {
     Q_OBJECT
 public:
     static constexpr double kPickRadius = 6.0;
+    static constexpr double kMaxZoom = 64.0;
 
     UvPanel(Document* document, Selection* selection, QUndoStack* stack, QWidget* parent = nullptr);
 
@@ -38,12 +65,42 @@ public:
 
     QSize sizeHint() const override { return {280, 280}; }
 
+    UvTool tool() const { return m_tool; }
+    void setTool(UvTool tool);
+    bool drawHoles() const { return m_drawHoles; }
+    void setDrawHoles(bool on) { m_drawHoles = on; }
+    /// Adds a loop drawn with a tool (see the class comment): one undo step. False (and
+    /// message()) when refused.
+    bool addLoop(const std::vector<NurbsCurve2>& curves, const QString& what);
+    /// Removes the loops of the picked trim points (one undo step); false when none is picked.
+    bool deleteSelectedLoops();
+    /// Inserts a control point after the picked one (knot insertion, the curve keeps its
+    /// shape), or deletes the picked interior control point. One undo step each.
+    bool insertTrimPoint();
+    bool deleteTrimPoint();
+    /// Moves the first picked trim point (and the curve ends that coincide with it) to `uv`.
+    bool setTrimPointPosition(glm::dvec2 uv);
+    /// Zoom factor (1: the whole domain fits) and the domain fraction at the panel's centre.
+    double zoom() const { return m_zoom; }
+    void setView(double zoom, glm::dvec2 centre);
+    /// Empty, or which loops cross (computed with the mask, after every trim change).
+    QString crossingWarning();
+    /// The tool actions (checkable, exclusive), the holes toggle and the point edits, for the
+    /// panel's toolbar.
+    QList<QAction*> toolActions() const { return m_actions; }
+
+Q_SIGNALS:
+    /// A refusal or a warning for the status bar.
+    void message(const QString& text);
+
 protected:
     void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+    void mouseDoubleClickEvent(QMouseEvent* event) override;
 
 private:
     struct Dragged {
@@ -53,6 +110,13 @@ private:
     QRectF domainRect() const;
     void refreshMask();
     void finishDrag(bool cancel);
+    void buildActions();
+    bool toolPress(QMouseEvent* event);
+    void finishShape(QPointF pixel);
+    void finishClicked();
+    void paintDrawing(class QPainter& p) const;
+    /// The picked trim point's loop, curve and the coinciding curve ends (to move together).
+    std::vector<TrimPointRef> withCoincidentEnds(const TrimPointRef& ref) const;
 
     Document* m_doc;
     Selection* m_selection;
@@ -66,6 +130,19 @@ private:
     std::vector<Dragged> m_drag;
     QPointF m_pressPixel;
     bool m_dragging = false;
+
+    UvTool m_tool = UvTool::Select;
+    bool m_drawHoles = true;
+    bool m_shaping = false;            ///< a rectangle or circle is being dragged out
+    QPointF m_shapeEnd;                ///< its current corner / radius point
+    std::vector<glm::dvec2> m_clicked; ///< polygon / spline points so far
+    QPointF m_hover;                   ///< the cursor, for the rubber segment
+    double m_zoom = 1.0;
+    glm::dvec2 m_centre{0.5, 0.5};
+    bool m_panning = false;
+    QPointF m_panLast;
+    QString m_crossing;
+    QList<QAction*> m_actions;
 };
 
 } // namespace kw

@@ -12,6 +12,7 @@
 #include <QUndoStack>
 #include <QWheelEvent>
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace kw {
@@ -120,6 +121,47 @@ void Viewport::setControlNet(bool on) {
     update();
 }
 
+void Viewport::setControlNetForAll(bool on) {
+    m_netForAll = on;
+    update();
+}
+
+void Viewport::setGroundGrid(bool on) {
+    m_grid = on;
+    update();
+}
+
+void Viewport::setAxisIndicator(bool on) {
+    m_axes = on;
+    update();
+}
+
+void Viewport::setBackground(const QColor& c) {
+    m_options.background = glm::vec4(float(c.redF()), float(c.greenF()), float(c.blueF()), 1.0f);
+    update();
+}
+
+void Viewport::setHeadlight(bool on) {
+    m_options.headlight = on;
+    update();
+}
+
+void Viewport::setTrimMaskCap(int texels) {
+    m_options.trimMaskCap = std::clamp(texels, kMinTrimMaskSize, 16384);
+    update();
+}
+
+std::vector<SurfaceId> Viewport::netSurfaces() const {
+    if (!m_options.controlNet)
+        return {};
+    if (!m_netForAll)
+        return m_selection->selectedSurfaces();
+    std::vector<SurfaceId> all;
+    for (const Surface& s : m_doc->scene().surfaces)
+        all.push_back(s.id);
+    return all;
+}
+
 // ---- GL
 
 void Viewport::initializeGL() {
@@ -152,6 +194,8 @@ void Viewport::paintGL() {
     }
     RenderOptions options = m_options;
     options.analysis.holdRange = isDragging();
+    // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
+    options.controlNet = m_options.controlNet && m_netForAll;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     const qreal dpr = devicePixelRatioF();
     const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
@@ -167,6 +211,7 @@ void Viewport::paintGL() {
     }
     drawSelection();
     drawLegend();
+    Q_EMIT frameDrawn(m_lastReport);
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);
         m_metrics.handlerMs.push_back(m_handlerMs);
@@ -200,13 +245,11 @@ std::optional<PickHit> Viewport::pickSurface(QPointF position) {
 
 void Viewport::drawSelection() {
     const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
-    const bool band = m_gesture == Gesture::RubberBand;
-    if (refs.empty() && m_axis < 0 && !band)
-        return;
     // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
     QPainter p(this);
     p.setRenderHint(QPainter::Antialiasing);
     const ViewProjection view = viewProjection();
+    drawOverlays(p, view);
     p.setPen(QPen(QColor(255, 80, 40), 2.0));
     p.setBrush(Qt::NoBrush);
     for (const ControlPointRef& r : refs) {
@@ -215,6 +258,15 @@ void Viewport::drawSelection() {
             continue;
         if (const auto px = view.project(s->geometry.points[size_t(s->geometry.index(r.i, r.j))]))
             p.drawRect(QRectF(*px - QPointF(5, 5), QSizeF(10, 10)));
+    }
+    if (m_gesture == Gesture::DragWeight) {
+        if (const Surface* s = m_doc->surface(m_weightRef.surface))
+            p.drawText(
+                QPointF(10, height() - 10),
+                QStringLiteral("Weight %1")
+                    .arg(s->geometry
+                             .weights[size_t(s->geometry.index(m_weightRef.i, m_weightRef.j))],
+                         0, 'g', 5));
     }
     if (m_axis >= 0 && m_gesture == Gesture::DragPoints) {
         static const char* const names[3] = {"X", "Y", "Z"};
@@ -249,11 +301,22 @@ void Viewport::mousePressEvent(QMouseEvent* event) {
         m_gesture = Gesture::Pan;
     } else if (event->button() == Qt::LeftButton) {
         std::optional<ControlPointRef> hit;
-        if (m_options.controlNet) {
-            m_picker.update(*m_doc, viewProjection());
+        const std::vector<SurfaceId> nets = netSurfaces();
+        if (!nets.empty()) {
+            m_picker.update(*m_doc, viewProjection(), &nets);
             hit = m_picker.nearest(pixel);
         }
-        if (hit) {
+        const bool ctrl = mods & Qt::ControlModifier;
+        if (hit && ctrl && (mods & Qt::ShiftModifier)) {
+            // Ctrl + Shift drag on a point: its weight, up to raise.
+            const Surface* s = m_doc->surface(hit->surface);
+            m_weightRef = *hit;
+            m_weightFrom = s->geometry.weights[size_t(s->geometry.index(hit->i, hit->j))];
+            m_selection->setControlPoints({*hit});
+            m_gesture = Gesture::DragWeight;
+        } else if (ctrl) {
+            pressOnSurfaces(pixel);
+        } else if (hit) {
             pressOnPoint(*hit, mods & Qt::ShiftModifier, pixel);
         } else {
             m_gesture = Gesture::RubberBand;
@@ -321,6 +384,15 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
         if (m_band)
             m_band->setGeometry(QRectF(m_pressPixel, pixel).normalized().toRect());
         break;
+    case Gesture::DragWeight: {
+        // Doubling per 100 pixels up; the document follows live, the release records one step.
+        const double w = m_weightFrom * std::pow(2.0, (m_pressPixel.y() - pixel.y()) / 100.0);
+        if (const Surface* s = m_doc->surface(m_weightRef.surface))
+            m_doc->setWeight(m_weightRef.surface, s->geometry.index(m_weightRef.i, m_weightRef.j),
+                             std::clamp(w, 1e-6, 1e6));
+        update();
+        break;
+    }
     case Gesture::DragPoints:
         m_moveClock.start();
         m_moveTimed = true;
@@ -394,18 +466,38 @@ void Viewport::finishDrag(bool cancel) {
         else
             qWarning("knotwork: drag not recorded: %s", qPrintable(error));
     }
+    const bool surfaces = m_movingSurfaces;
+    m_movingSurfaces = false;
     if (commands.size() == 1) {
+        if (surfaces)
+            commands.front()->setText(QStringLiteral("Move surface"));
         pushCommand(m_stack, std::move(commands.front()));
     } else if (commands.size() > 1) {
         int points = 0;
         for (auto& [id, change] : bySurface)
             points += int(std::get<0>(change).size());
-        m_stack->beginMacro(QStringLiteral("Move %1 control points").arg(points));
+        m_stack->beginMacro(surfaces ? QStringLiteral("Move %1 surfaces").arg(commands.size())
+                                     : QStringLiteral("Move %1 control points").arg(points));
         for (auto& c : commands)
             pushCommand(m_stack, std::move(c));
         m_stack->endMacro();
     }
     update();
+}
+
+void Viewport::selectClickedSurface(SurfaceId id, bool additive) {
+    const QModelIndex row = m_model->surfaceIndex(id);
+    if (!row.isValid())
+        return;
+    QItemSelectionModel* items = m_selection->itemSelection();
+    if (additive) {
+        // Shift toggles the surface in the selection, as Ctrl does in the tree.
+        items->select(row, QItemSelectionModel::Toggle | QItemSelectionModel::Rows);
+        items->setCurrentIndex(row, QItemSelectionModel::NoUpdate);
+        return;
+    }
+    m_selection->setControlPoints({});
+    items->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
 }
 
 void Viewport::finishRubberBand(QPointF pixel, bool additive) {
@@ -414,9 +506,18 @@ void Viewport::finishRubberBand(QPointF pixel, bool additive) {
         m_band->hide();
     const QRectF rect = QRectF(m_pressPixel, pixel).normalized();
     std::vector<ControlPointRef> picked;
+    if (rect.width() < 3 && rect.height() < 3) {
+        // A click, not a band: select the surface drawn at that pixel (the renderer's own id
+        // buffer, so what is picked is what is seen, trims included).
+        if (const std::optional<PickHit> hit = pickSurface(pixel)) {
+            selectClickedSurface(hit->surface, additive);
+            return;
+        }
+    }
     if (rect.width() >= 3 || rect.height() >= 3) {
-        if (m_options.controlNet) {
-            m_picker.update(*m_doc, viewProjection());
+        const std::vector<SurfaceId> nets = netSurfaces();
+        if (!nets.empty()) {
+            m_picker.update(*m_doc, viewProjection(), &nets);
             picked = m_picker.inRect(rect);
         }
     }
@@ -433,6 +534,11 @@ void Viewport::finishRubberBand(QPointF pixel, bool additive) {
 void Viewport::mouseReleaseEvent(QMouseEvent* event) {
     const QPointF pixel = event->position();
     switch (m_gesture) {
+    case Gesture::DragWeight:
+        if (event->button() != Qt::LeftButton)
+            return;
+        finishWeightDrag(false);
+        break;
     case Gesture::DragPoints:
         if (event->button() != Qt::LeftButton)
             return;
@@ -457,7 +563,20 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
 
 void Viewport::wheelEvent(QWheelEvent* event) {
     m_autoFit = false;
-    m_camera.zoom(event->angleDelta().y() / 120.0);
+    // Toward the cursor: the point under it on the target's view plane stays under it, so
+    // eye and target both move toward that point by the zoom's fraction.
+    const ViewProjection view = viewProjection();
+    const Camera before = m_camera.camera();
+    const glm::dvec3 under = view.onViewPlane(event->position(), before.target);
+    const double steps = event->angleDelta().y() / 120.0;
+    m_camera.zoom(steps);
+    Camera after = m_camera.camera();
+    const double kept = glm::length(after.eye - after.target) /
+                        glm::length(before.eye - before.target); // distance factor
+    const glm::dvec3 shift = (1.0 - kept) * (under - before.target);
+    after.eye += shift;
+    after.target += shift;
+    m_camera.setCamera(after);
     update();
     event->accept();
 }
@@ -476,6 +595,11 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
     }
     if (key == Qt::Key_Escape && m_gesture == Gesture::DragPoints) {
         finishDrag(true);
+        event->accept();
+        return;
+    }
+    if (key == Qt::Key_Escape && m_gesture == Gesture::DragWeight) {
+        finishWeightDrag(true);
         event->accept();
         return;
     }

@@ -44,10 +44,24 @@ public:
     const RenderOptions& renderOptions() const { return m_options; }
     void setRenderMode(RenderMode mode);
     void setWireframe(bool on);
+    /// Control nets on or off; while on, only the selected surfaces' nets are drawn and
+    /// pickable unless setControlNetForAll(true).
     void setControlNet(bool on);
     /// Analysis colouring (View ▸ Analysis). While a drag runs the automatic colour range is
     /// held (AnalysisOptions::holdRange), so colours do not swim; it follows on release.
     void setAnalysis(const AnalysisOptions& analysis);
+    bool controlNetForAll() const { return m_netForAll; }
+    void setControlNetForAll(bool on);
+    bool groundGrid() const { return m_grid; }
+    void setGroundGrid(bool on);
+    bool axisIndicator() const { return m_axes; }
+    void setAxisIndicator(bool on);
+    void setBackground(const QColor& color);
+    void setHeadlight(bool on);
+    /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
+    void setTrimMaskCap(int texels);
+    /// The surfaces whose nets are drawn and pickable now.
+    std::vector<SurfaceId> netSurfaces() const;
 
     /// Empty when the renderer is ready; else why it is not (shown in the view).
     QString glError() const { return m_glError; }
@@ -77,6 +91,9 @@ Q_SIGNALS:
     /// Once a second while frames are drawn: frames in the last second and the last frame's
     /// report (its cpuMs.total is the render call's CPU time).
     void framesPerSecond(double fps, const kw::FrameReport& lastFrame);
+    /// After every frame, with its report: the status bar shows the last frame's time even
+    /// when idle, when framesPerSecond is quiet.
+    void frameDrawn(const kw::FrameReport& frame);
     /// The renderer could not be set up or a frame failed (message for the status bar).
     void renderError(const QString& message);
 
@@ -93,7 +110,7 @@ protected:
     void focusOutEvent(QFocusEvent* event) override;
 
 private:
-    enum class Gesture { None, DragPoints, RubberBand, Orbit, Pan };
+    enum class Gesture { None, DragPoints, DragWeight, RubberBand, Orbit, Pan };
     struct DragPoint {
         ControlPointRef ref;
         glm::dvec3 from;
@@ -104,8 +121,15 @@ private:
     void applyDrag();
     void finishDrag(bool cancel);
     void finishRubberBand(QPointF pixel, bool additive);
+    /// Click selection: the surface alone, or toggled in the selection with Shift.
+    void selectClickedSurface(SurfaceId id, bool additive);
     void drawSelection();
     void drawLegend();
+    /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
+    void drawOverlays(class QPainter& p, const ViewProjection& view);
+    /// Ctrl + drag: every control point of the selected surfaces follows the drag.
+    bool pressOnSurfaces(QPointF pixel);
+    void finishWeightDrag(bool cancel);
     double aspect() const;
 
     Document* m_doc;
@@ -125,6 +149,12 @@ private:
     glm::dvec3 m_anchor{0.0};
     std::vector<DragPoint> m_drag;
     int m_axis = -1;
+    bool m_movingSurfaces = false; ///< the DragPoints gesture moves whole surfaces
+    ControlPointRef m_weightRef;   ///< DragWeight: the point and its weight at press time
+    double m_weightFrom = 1.0;
+    bool m_netForAll = false;
+    bool m_grid = false;
+    bool m_axes = true;
     bool m_autoFit = true; ///< refit on resize until the user moves the camera
     QPointer<QRubberBand> m_band;
 

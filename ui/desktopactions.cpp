@@ -1,0 +1,160 @@
+// DesktopActions: preferences, help pages and view toggles.
+#include "ui/desktopactions.h"
+
+#include "ui/viewport.h"
+
+#include <QAction>
+#include <QCoreApplication>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QMainWindow>
+#include <QMenu>
+#include <QMenuBar>
+#include <QSettings>
+#include <QTextBrowser>
+#include <QVBoxLayout>
+#include <algorithm>
+
+namespace kw {
+
+DesktopActions::Prompts DesktopActions::Prompts::standard() {
+    Prompts p;
+    p.preferences = [](QWidget* parent, const Preferences& init) -> std::optional<Preferences> {
+        PreferencesDialog d(init, parent);
+        if (d.exec() != QDialog::Accepted)
+            return std::nullopt;
+        return d.value();
+    };
+    p.show = [](QWidget* parent, const QString& title, const QString& html) {
+        QDialog d(parent);
+        d.setWindowTitle(title);
+        d.resize(560, 520);
+        auto* layout = new QVBoxLayout(&d);
+        auto* text = new QTextBrowser;
+        text->setOpenExternalLinks(true);
+        text->setHtml(html);
+        layout->addWidget(text);
+        auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close);
+        QObject::connect(buttons, &QDialogButtonBox::rejected, &d, &QDialog::reject);
+        layout->addWidget(buttons);
+        d.exec();
+    };
+    return p;
+}
+
+DesktopActions::DesktopActions(QMainWindow* window, Viewport* viewport)
+    : QObject(window), m_window(window), m_viewport(viewport), m_prompts(Prompts::standard()) {}
+
+void DesktopActions::applyPreferences() {
+    const Preferences p = Preferences::load();
+    m_viewport->setBackground(p.background);
+    m_viewport->setHeadlight(p.headlight);
+    m_viewport->setTrimMaskCap(p.trimMaskCap);
+}
+
+void DesktopActions::editPreferences() {
+    if (auto p = m_prompts.preferences(m_window, Preferences::load())) {
+        p->save();
+        applyPreferences();
+    }
+}
+
+void DesktopActions::addEditEntries(QMenu* edit) {
+    edit->addSeparator();
+    QAction* prefs = edit->addAction(tr("&Preferences…"), this, [this] { editPreferences(); });
+    prefs->setObjectName(QStringLiteral("actionPreferences"));
+    prefs->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Comma));
+    prefs->setMenuRole(QAction::PreferencesRole);
+}
+
+void DesktopActions::addViewEntries(QMenu* view) {
+    QSettings settings;
+    auto toggle = [&](const char* name, const QString& text, const char* key, bool initial,
+                      void (Viewport::*set)(bool)) {
+        QAction* a = view->addAction(text);
+        a->setObjectName(QLatin1String(name));
+        a->setCheckable(true);
+        const QString k = QLatin1String(key);
+        a->setChecked(settings.value(k, initial).toBool());
+        (m_viewport->*set)(a->isChecked());
+        connect(a, &QAction::toggled, this, [this, k, set](bool on) {
+            (m_viewport->*set)(on);
+            QSettings().setValue(k, on);
+        });
+        return a;
+    };
+    view->addSeparator();
+    toggle("actionNetForAll", tr("Control Nets of &All Surfaces"), "view/controlNetForAll", false,
+           &Viewport::setControlNetForAll);
+    toggle("actionGroundGrid", tr("&Ground Grid"), "view/groundGrid", false,
+           &Viewport::setGroundGrid);
+    toggle("actionAxisIndicator", tr("A&xis Indicator"), "view/axisIndicator", true,
+           &Viewport::setAxisIndicator);
+    QAction* head = view->addAction(tr("&Headlight (lights follow the camera)"));
+    head->setObjectName(QStringLiteral("actionHeadlight"));
+    head->setCheckable(true);
+    head->setChecked(Preferences::load().headlight);
+    connect(head, &QAction::toggled, this, [this](bool on) {
+        Preferences p = Preferences::load();
+        p.headlight = on;
+        p.save();
+        applyPreferences();
+    });
+}
+
+QString DesktopActions::shortcutsHtml() const {
+    QList<QAction*> actions = m_window->findChildren<QAction*>();
+    std::sort(actions.begin(), actions.end(), [](QAction* a, QAction* b) {
+        return a->text().remove(QLatin1Char('&')) < b->text().remove(QLatin1Char('&'));
+    });
+    QString rows;
+    for (QAction* a : actions) {
+        QStringList keys;
+        for (const QKeySequence& k : a->shortcuts())
+            keys << k.toString(QKeySequence::NativeText);
+        if (keys.isEmpty())
+            continue;
+        rows += QStringLiteral("<tr><td><b>%1</b></td><td>%2</td></tr>")
+                    .arg(keys.join(QStringLiteral(", ")).toHtmlEscaped(),
+                         a->text().remove(QLatin1Char('&')).toHtmlEscaped());
+    }
+    const QString mouse =
+        tr("<tr><td><b>Left click</b></td><td>pick a control point of a selected surface (Shift "
+           "adds)</td></tr>"
+           "<tr><td><b>Left drag on a point</b></td><td>move the picked points (hold X, Y or Z to "
+           "lock an axis; Esc cancels)</td></tr>"
+           "<tr><td><b>Ctrl + left drag</b></td><td>move the selected surfaces (X, Y, Z lock an "
+           "axis)</td></tr>"
+           "<tr><td><b>Ctrl + Shift + drag on a point</b></td><td>change its weight (up "
+           "raises)</td></tr>"
+           "<tr><td><b>Middle drag, Alt + left drag</b></td><td>orbit</td></tr>"
+           "<tr><td><b>Right drag, Shift + middle drag</b></td><td>pan</td></tr>"
+           "<tr><td><b>Wheel</b></td><td>zoom toward the cursor</td></tr>");
+    return tr("<h3>Keys</h3><table cellspacing=4>%1</table><h3>Mouse in the 3D view</h3>"
+              "<table cellspacing=4>%2</table>")
+        .arg(rows, mouse);
+}
+
+void DesktopActions::addHelpMenu(QMenuBar* bar) {
+    QMenu* help = bar->addMenu(tr("&Help"));
+    QAction* keys = help->addAction(tr("&Keyboard Shortcuts"), this, [this] {
+        m_prompts.show(m_window, tr("Keyboard shortcuts"), shortcutsHtml());
+    });
+    keys->setObjectName(QStringLiteral("actionShortcuts"));
+    keys->setShortcut(QKeySequence(Qt::Key_F1));
+    QAction* about = help->addAction(tr("&About Knotwork"), this, [this] {
+        m_prompts.show(
+            m_window, tr("About Knotwork"),
+            tr("<h3>Knotwork %1</h3><p>A NURBS surface editor that draws the true surface: each "
+               "pixel is evaluated exactly on the GPU, after Yau, Lin and Yeh (2009), <i>A New "
+               "Approach to Accelerate NURBS Surface Rendering on GPU</i>.</p><p>Qt %2.</p>")
+                .arg(QCoreApplication::applicationVersion().isEmpty()
+                         ? tr("(development build)")
+                         : QCoreApplication::applicationVersion(),
+                     QString::fromLatin1(qVersion())));
+    });
+    about->setObjectName(QStringLiteral("actionAbout"));
+    about->setMenuRole(QAction::AboutRole);
+}
+
+} // namespace kw

@@ -1,0 +1,50 @@
+// DesktopActions: Preferences, Help (keyboard shortcuts, about) and the View toggles of the
+// modeling editor (nets of all surfaces, ground grid, axis indicator, headlight).
+#pragma once
+
+#include "ui/preferences.h"
+
+#include <QObject>
+#include <functional>
+#include <optional>
+
+class QMainWindow;
+class QMenu;
+class QMenuBar;
+
+namespace kw {
+
+class Viewport;
+
+class DesktopActions : public QObject {
+    Q_OBJECT
+public:
+    /// Dialogs, replaceable by tests. `preferences` returns the edited values or nullopt;
+    /// `show` presents a page of rich text (shortcuts, about).
+    struct Prompts {
+        std::function<std::optional<Preferences>(QWidget*, const Preferences&)> preferences;
+        std::function<void(QWidget*, const QString& title, const QString& html)> show;
+        static Prompts standard();
+    };
+
+    DesktopActions(QMainWindow* window, Viewport* viewport);
+    void setPrompts(Prompts p) { m_prompts = std::move(p); }
+
+    void addEditEntries(QMenu* edit);
+    void addViewEntries(QMenu* view);
+    void addHelpMenu(QMenuBar* bar);
+
+    /// Reads the preferences and applies the view ones to the viewport.
+    void applyPreferences();
+    /// Opens the Preferences dialog; on OK saves and applies.
+    void editPreferences();
+    /// Every action of the window with a shortcut, and the mouse gestures, as an HTML table.
+    QString shortcutsHtml() const;
+
+private:
+    QMainWindow* m_window;
+    Viewport* m_viewport;
+    Prompts m_prompts;
+};
+
+} // namespace kw

@@ -1,0 +1,141 @@
+// Modeling commands: affine placement of surfaces, knot removal and trim loop replacement.
+#include "ui/edit/modelcommands.h"
+
+#include "model/nurbs_construct.h"
+#include "model/validation.h"
+#include "ui/edit/commandsupport.h"
+
+#include <cmath>
+#include <numeric>
+#include <set>
+
+namespace kw {
+
+using namespace edit_detail;
+
+// ---- TransformSurfaces
+
+std::unique_ptr<TransformSurfaces> TransformSurfaces::create(Document* document,
+                                                             std::vector<SurfaceId> surfaces,
+                                                             const glm::dmat4& transform,
+                                                             const QString& text, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
+    if (surfaces.empty())
+        return fail(error, QStringLiteral("select a surface to transform"));
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(transform[c][r]))
+                return fail(error, QStringLiteral("the transformation is not finite"));
+    if (transform[0][3] != 0.0 || transform[1][3] != 0.0 || transform[2][3] != 0.0 ||
+        transform[3][3] != 1.0)
+        return fail(error, QStringLiteral("the transformation is not affine"));
+    std::set<SurfaceId> seen;
+    std::unique_ptr<TransformSurfaces> c(new TransformSurfaces(document, text));
+    bool moves = false;
+    for (SurfaceId id : surfaces) {
+        const Surface* s = document->surface(id);
+        if (!s)
+            return fail(error, noSurface(document, id));
+        if (!seen.insert(id).second)
+            return fail(error, QStringLiteral("surface %1 listed twice").arg(id.value));
+        std::vector<glm::dvec3> to;
+        to.reserve(s->geometry.points.size());
+        for (const glm::dvec3& p : s->geometry.points) {
+            const glm::dvec3 q = glm::dvec3(transform * glm::dvec4(p, 1.0));
+            if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+                return fail(error, QStringLiteral("a transformed point is not finite"));
+            to.push_back(q);
+        }
+        moves = moves || to != s->geometry.points;
+        c->m_surfaces.push_back(id);
+        c->m_from.push_back(s->geometry.points);
+        c->m_to.push_back(std::move(to));
+    }
+    if (!moves)
+        return fail(error, QStringLiteral("the transformation moves nothing"));
+    return c;
+}
+
+void TransformSurfaces::apply(bool forward, const char* what) {
+    for (size_t k = 0; k < m_surfaces.size(); ++k) {
+        const auto& points = forward ? m_to[k] : m_from[k];
+        std::vector<int> indices(points.size());
+        std::iota(indices.begin(), indices.end(), 0);
+        check(document()->setControlPoints(m_surfaces[k], indices, points), what);
+    }
+}
+
+void TransformSurfaces::redo() {
+    apply(true, "redo");
+}
+void TransformSurfaces::undo() {
+    apply(false, "undo");
+}
+
+// ---- RemoveKnots
+
+std::unique_ptr<RemoveKnots> RemoveKnots::create(Document* document, SurfaceId surface,
+                                                 Direction direction, double tolerance,
+                                                 QString* error) {
+    const Surface* s = surfaceIn(document, surface);
+    if (!s)
+        return fail(error, noSurface(document, surface));
+    if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+        return fail(error, QStringLiteral("the tolerance must be a finite number >= 0"));
+    int removed = 0;
+    NurbsSurface g =
+        surfaceRemoveKnots(s->geometry, direction == Direction::U, tolerance, &removed);
+    const char axis = direction == Direction::U ? 'u' : 'v';
+    if (removed == 0)
+        return fail(error, QStringLiteral("no knot in %1 can be removed within %2")
+                               .arg(QLatin1Char(axis))
+                               .arg(tolerance));
+    const QString text = QStringLiteral("Remove %1 knot%2 in %3")
+                             .arg(removed)
+                             .arg(removed == 1 ? QString() : QStringLiteral("s"))
+                             .arg(QLatin1Char(axis));
+    std::unique_ptr<RemoveKnots> c(
+        new RemoveKnots(document, text, surface, s->geometry, std::move(g)));
+    c->m_removed = removed;
+    return c;
+}
+
+// ---- ReplaceTrimLoop
+
+std::unique_ptr<ReplaceTrimLoop> ReplaceTrimLoop::create(Document* document, SurfaceId surface,
+                                                         TrimLoop loop, const QString& text,
+                                                         QString* error) {
+    const Surface* s = surfaceIn(document, surface);
+    if (!s)
+        return fail(error, noSurface(document, surface));
+    const TrimLoop* old = findLoop(s, loop.id);
+    if (!old)
+        return fail(
+            error,
+            QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.id.value));
+    const QString why = trimLoopError(loop);
+    if (!why.isEmpty())
+        return fail(error, why);
+    if (loop == *old)
+        return fail(error, QStringLiteral("the trim loop is unchanged"));
+    std::unique_ptr<ReplaceTrimLoop> c(new ReplaceTrimLoop(document, text));
+    c->m_surface = surface;
+    c->m_from = *old;
+    c->m_to = std::move(loop);
+    c->m_index = int(old - s->trims.data());
+    return c;
+}
+
+void ReplaceTrimLoop::redo() {
+    check(document()->removeTrimLoop(m_surface, m_from.id) &&
+              document()->insertTrimLoop(m_surface, m_index, m_to),
+          "redo");
+}
+void ReplaceTrimLoop::undo() {
+    check(document()->removeTrimLoop(m_surface, m_to.id) &&
+              document()->insertTrimLoop(m_surface, m_index, m_from),
+          "undo");
+}
+
+} // namespace kw

@@ -1,0 +1,62 @@
+// Modeling commands (issue 13): place surfaces by an affine map, remove knots within a
+// tolerance, and replace a trim loop's curves (trim point insertion and deletion).
+#pragma once
+
+#include "ui/edit/commands.h"
+
+#include <glm/glm.hpp>
+
+namespace kw {
+
+class TransformSurfaces : public DocumentCommand {
+public:
+    /// Applies the affine map `transform` (last row 0 0 0 1, finite) to every control point of
+    /// the listed surfaces (unique, existing). NURBS are affinely invariant, so the surfaces are
+    /// transformed exactly; weights, knots and trims are unchanged. `text` names the step
+    /// ("Move 2 surfaces"). Rejected when nothing would move.
+    static std::unique_ptr<TransformSurfaces> create(Document* document,
+                                                     std::vector<SurfaceId> surfaces,
+                                                     const glm::dmat4& transform,
+                                                     const QString& text, QString* error = nullptr);
+    void redo() override;
+    void undo() override;
+
+private:
+    TransformSurfaces(Document* d, const QString& text) : DocumentCommand(d, text) {}
+    void apply(bool forward, const char* what);
+    std::vector<SurfaceId> m_surfaces;
+    std::vector<std::vector<glm::dvec3>> m_from, m_to;
+};
+
+class RemoveKnots : public GeometryCommand {
+public:
+    /// Removes every interior knot of the direction that can go while the surface moves by at
+    /// most `tolerance` (kw::surfaceRemoveKnots, The NURBS Book A5.8). Rejected when none can.
+    static std::unique_ptr<RemoveKnots> create(Document* document, SurfaceId surface,
+                                               Direction direction, double tolerance,
+                                               QString* error = nullptr);
+    int removed() const { return m_removed; }
+
+private:
+    using GeometryCommand::GeometryCommand;
+    int m_removed = 0;
+};
+
+class ReplaceTrimLoop : public DocumentCommand {
+public:
+    /// Replaces the curves of an existing loop (same id, same place among the surface's loops);
+    /// the new loop must pass trimLoopError. `text` names the step ("Insert trim point").
+    static std::unique_ptr<ReplaceTrimLoop> create(Document* document, SurfaceId surface,
+                                                   TrimLoop loop, const QString& text,
+                                                   QString* error = nullptr);
+    void redo() override;
+    void undo() override;
+
+private:
+    ReplaceTrimLoop(Document* d, const QString& text) : DocumentCommand(d, text) {}
+    SurfaceId m_surface;
+    TrimLoop m_from, m_to;
+    int m_index = 0;
+};
+
+} // namespace kw

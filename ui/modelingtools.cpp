@@ -1,0 +1,369 @@
+// ModelingTools: Create / Modify actions and the commands they push.
+#include "ui/modelingtools.h"
+
+#include "model/nurbs_construct.h"
+#include "model/nurbs_shapes.h"
+#include "ui/edit/modelcommands.h"
+#include "ui/viewport.h"
+
+#include <QAction>
+#include <QMenu>
+#include <QMenuBar>
+#include <QToolBar>
+#include <QUndoStack>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kw {
+
+ModelingTools::ModelingTools(QWidget* window, Document* document, SceneModel* model,
+                             Selection* selection, QUndoStack* stack, Viewport* viewport)
+    : QObject(window), m_window(window), m_doc(document), m_model(model), m_selection(selection),
+      m_stack(stack), m_viewport(viewport), m_prompts(Prompts::standard()) {}
+
+double ModelingTools::viewScale() const {
+    const Camera& c = m_viewport->cameraController().camera();
+    const double d = glm::length(c.eye - c.target);
+    return std::isfinite(d) && d > 0.0 ? 0.35 * d : 1.0;
+}
+
+QString ModelingTools::uniqueName(const QString& base) const {
+    int n = 1;
+    for (const Surface& s : m_doc->scene().surfaces)
+        if (s.name.startsWith(base))
+            ++n;
+    return QStringLiteral("%1 %2").arg(base).arg(n);
+}
+
+void ModelingTools::selectSurfaces(const std::vector<SurfaceId>& ids) {
+    QItemSelectionModel* items = m_selection->itemSelection();
+    QItemSelection rows;
+    for (SurfaceId id : ids) {
+        const QModelIndex row = m_model->surfaceIndex(id);
+        if (row.isValid())
+            rows.select(row, row);
+    }
+    items->select(rows, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+    if (!ids.empty())
+        items->setCurrentIndex(m_model->surfaceIndex(ids.front()), QItemSelectionModel::NoUpdate);
+}
+
+SurfaceId ModelingTools::add(Surface surface, const QString& text) {
+    QString error;
+    auto c = AddSurface::create(m_doc, std::move(surface), -1, &error);
+    if (!c) {
+        Q_EMIT message(tr("Cannot create: %1").arg(error));
+        return {};
+    }
+    c->setText(text);
+    const SurfaceId id = c->surfaceId();
+    pushCommand(m_stack, std::move(c));
+    selectSurfaces({id});
+    Q_EMIT message(text);
+    return id;
+}
+
+SurfaceId ModelingTools::createPrimitive(Primitive kind) {
+    const glm::dvec3 at = m_viewport->cameraController().camera().target;
+    const double r = 0.5 * viewScale();
+    Surface s;
+    switch (kind) {
+    case Primitive::Plane:
+        s.geometry = makePlane(at - glm::dvec3(r, r, 0.0), {2 * r, 0, 0}, {0, 2 * r, 0});
+        s.name = uniqueName(tr("Plane"));
+        break;
+    case Primitive::Sphere:
+        s.geometry = makeSphere(at, r);
+        s.name = uniqueName(tr("Sphere"));
+        break;
+    case Primitive::Cylinder:
+        s.geometry = makeCylinder(at - glm::dvec3(0, 0, r), 0.5 * r, 2 * r);
+        s.name = uniqueName(tr("Cylinder"));
+        break;
+    case Primitive::Cone:
+        s.geometry = makeCone(at - glm::dvec3(0, 0, r), 0.7 * r, 2 * r);
+        s.name = uniqueName(tr("Cone"));
+        break;
+    case Primitive::Torus:
+        s.geometry = makeTorus(at, 0.7 * r, 0.25 * r);
+        s.name = uniqueName(tr("Torus"));
+        break;
+    }
+    const QString text = tr("Create %1").arg(s.name.section(QLatin1Char(' '), 0, 0).toLower());
+    return add(std::move(s), text);
+}
+
+SurfaceId ModelingTools::createPatch(const PatchParams& p) {
+    if (p.degreeU < 1 || p.degreeV < 1 || p.degreeU > kMaxDegree || p.degreeV > kMaxDegree ||
+        p.countU <= p.degreeU || p.countV <= p.degreeV) {
+        Q_EMIT message(tr("Cannot create: a patch needs 1 <= degree < control points (degree "
+                          "at most %1)")
+                           .arg(kMaxDegree));
+        return {};
+    }
+    const double size = viewScale();
+    Surface s;
+    s.geometry =
+        makePatch(m_viewport->cameraController().camera().target, p.degreeU, p.degreeV, p.countU,
+                  p.countV, p.sizeU > 0 ? p.sizeU : size, p.sizeV > 0 ? p.sizeV : size);
+    s.name = uniqueName(tr("Patch"));
+    return add(std::move(s), tr("Create patch"));
+}
+
+NurbsCurve3 ModelingTools::surfaceCurve(const NurbsSurface& s, const CurveSpec& spec) {
+    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
+    const double f = std::clamp(spec.fraction, 0.0, 1.0);
+    switch (spec.edge) {
+    case CurveEdge::VStart:
+        return surfaceIsoCurve(s, true, dv.first);
+    case CurveEdge::VEnd:
+        return surfaceIsoCurve(s, true, dv.last);
+    case CurveEdge::UStart:
+        return surfaceIsoCurve(s, false, du.first);
+    case CurveEdge::UEnd:
+        return surfaceIsoCurve(s, false, du.last);
+    case CurveEdge::IsoU: // the curve u = const, running in v
+        return surfaceIsoCurve(s, false, du.first + f * (du.last - du.first));
+    case CurveEdge::IsoV:
+        return surfaceIsoCurve(s, true, dv.first + f * (dv.last - dv.first));
+    }
+    return {};
+}
+
+SurfaceId ModelingTools::createFromCurves(CurveOperationKind kind, const CurveOperation& op) {
+    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
+    std::vector<NurbsCurve3> curves;
+    for (SurfaceId id : ids)
+        if (const Surface* s = m_doc->surface(id))
+            curves.push_back(surfaceCurve(s->geometry, op.curve));
+    const size_t needed = kind == CurveOperationKind::Loft ? 2 : 1;
+    if (curves.size() < needed) {
+        Q_EMIT message(kind == CurveOperationKind::Loft
+                           ? tr("Select two or more surfaces whose curves to loft through.")
+                           : tr("Select a surface whose curve to use."));
+        return {};
+    }
+    Surface s;
+    QString text;
+    switch (kind) {
+    case CurveOperationKind::Revolve:
+        if (!(glm::length(op.vector) > 0.0)) {
+            Q_EMIT message(tr("Cannot revolve: the axis direction is zero."));
+            return {};
+        }
+        s.geometry = makeRevolution3(curves.front(), op.point, op.vector);
+        s.name = uniqueName(tr("Revolution"));
+        text = tr("Create revolution");
+        break;
+    case CurveOperationKind::Extrude:
+        if (!(glm::length(op.vector) > 0.0)) {
+            Q_EMIT message(tr("Cannot extrude: the direction is zero."));
+            return {};
+        }
+        s.geometry = makeExtrusion(curves.front(), op.vector);
+        s.name = uniqueName(tr("Extrusion"));
+        text = tr("Create extrusion");
+        break;
+    case CurveOperationKind::Loft: {
+        std::string error;
+        s.geometry = makeLoft(curves, 3, &error);
+        if (s.geometry.countU == 0) {
+            Q_EMIT message(tr("Cannot loft: %1").arg(QString::fromStdString(error)));
+            return {};
+        }
+        s.name = uniqueName(tr("Loft"));
+        text = tr("Create loft through %1 curves").arg(curves.size());
+        break;
+    }
+    }
+    return add(std::move(s), text);
+}
+
+bool ModelingTools::transformSelected(const TransformParams& p) {
+    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
+    if (ids.empty()) {
+        Q_EMIT message(tr("Select the surfaces to transform."));
+        return false;
+    }
+    // Rotation and scale act about the centre of the selection's control-point bounds.
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (SurfaceId id : ids) {
+        glm::dvec3 a, b;
+        surfaceControlBounds(m_doc->surface(id)->geometry, a, b);
+        lo = glm::min(lo, a);
+        hi = glm::max(hi, b);
+    }
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    glm::dvec3 axis(0.0);
+    axis[std::clamp(p.rotationAxis, 0, 2)] = 1.0;
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), p.offset + centre);
+    m = glm::rotate(m, glm::radians(p.degrees), axis);
+    m = glm::scale(m, glm::dvec3(p.scale));
+    m = glm::translate(m, -centre);
+    if (p.degrees == 0.0 && p.scale == 1.0) // exactly the offset, no rounding through the centre
+        m = glm::translate(glm::dmat4(1.0), p.offset);
+    QStringList what;
+    if (p.offset != glm::dvec3(0.0))
+        what << tr("Move");
+    if (p.degrees != 0.0)
+        what << tr("Rotate");
+    if (p.scale != 1.0)
+        what << tr("Scale");
+    const QString noun = ids.size() == 1 ? tr("surface") : tr("%1 surfaces").arg(ids.size());
+    const QString text = QStringLiteral("%1 %2").arg(what.join(QStringLiteral(", ")), noun);
+    QString error;
+    if (!pushCommand(m_stack, TransformSurfaces::create(m_doc, ids, m, text, &error))) {
+        Q_EMIT message(tr("Cannot transform: %1").arg(error));
+        return false;
+    }
+    return true;
+}
+
+bool ModelingTools::duplicateSelected() {
+    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
+    if (ids.empty()) {
+        Q_EMIT message(tr("Select the surfaces to duplicate."));
+        return false;
+    }
+    // The copies are offset by a tenth of the view scale so they can be told apart.
+    const glm::dvec3 offset(0.1 * viewScale(), 0.1 * viewScale(), 0.0);
+    std::vector<SurfaceId> copies;
+    m_stack->beginMacro(ids.size() == 1 ? tr("Duplicate surface")
+                                        : tr("Duplicate %1 surfaces").arg(ids.size()));
+    for (SurfaceId id : ids) {
+        Surface copy = *m_doc->surface(id);
+        copy.id = {};
+        for (TrimLoop& l : copy.trims)
+            l.id = {};
+        for (glm::dvec3& p : copy.geometry.points)
+            p += offset;
+        copy.name = uniqueName(copy.name.section(QLatin1Char(' '), 0, 0));
+        if (auto c = AddSurface::create(m_doc, std::move(copy))) {
+            copies.push_back(c->surfaceId());
+            pushCommand(m_stack, std::move(c));
+        }
+    }
+    m_stack->endMacro();
+    selectSurfaces(copies);
+    return !copies.empty();
+}
+
+bool ModelingTools::deleteSelected() {
+    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
+    if (ids.empty()) {
+        Q_EMIT message(tr("Select a surface to delete."));
+        return false;
+    }
+    if (ids.size() == 1) {
+        QString error;
+        if (!pushCommand(m_stack, RemoveSurface::create(m_doc, ids.front(), &error))) {
+            Q_EMIT message(error);
+            return false;
+        }
+        return true;
+    }
+    m_stack->beginMacro(tr("Delete %1 surfaces").arg(ids.size()));
+    for (SurfaceId id : ids)
+        pushCommand(m_stack, RemoveSurface::create(m_doc, id));
+    m_stack->endMacro();
+    return true;
+}
+
+bool ModelingTools::removeKnots(Direction direction, double tolerance) {
+    const SurfaceId id = m_selection->currentSurface();
+    QString error;
+    auto c = RemoveKnots::create(m_doc, id, direction, tolerance, &error);
+    if (!c) {
+        Q_EMIT message(tr("Knot removal: %1").arg(error));
+        return false;
+    }
+    Q_EMIT message(c->text());
+    pushCommand(m_stack, std::move(c));
+    return true;
+}
+
+void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
+    auto make = [this](QMenu* menu, const char* name, const QString& text, const QKeySequence& key,
+                       std::function<void()> slot) {
+        QAction* a = menu->addAction(text);
+        a->setObjectName(QLatin1String(name));
+        if (!key.isEmpty())
+            a->setShortcut(key);
+        connect(a, &QAction::triggered, this, std::move(slot));
+        return a;
+    };
+    QMenu* create = bar->addMenu(tr("&Create"));
+    QAction* patch = make(create, "actionCreatePatch", tr("NURBS &Patch…"), QKeySequence(), [this] {
+        if (auto p = m_prompts.patch(m_window, PatchParams{}))
+            createPatch(*p);
+    });
+    create->addSeparator();
+    const struct {
+        const char* name;
+        QString text;
+        Primitive kind;
+    } shapes[] = {{"actionCreatePlane", tr("P&lane"), Primitive::Plane},
+                  {"actionCreateSphere", tr("&Sphere"), Primitive::Sphere},
+                  {"actionCreateCylinder", tr("C&ylinder"), Primitive::Cylinder},
+                  {"actionCreateCone", tr("C&one"), Primitive::Cone},
+                  {"actionCreateTorus", tr("&Torus"), Primitive::Torus}};
+    std::vector<QAction*> shapeActions;
+    for (const auto& s : shapes) {
+        const Primitive kind = s.kind;
+        shapeActions.push_back(
+            make(create, s.name, s.text, QKeySequence(), [this, kind] { createPrimitive(kind); }));
+    }
+    create->addSeparator();
+    const struct {
+        const char* name;
+        QString text;
+        CurveOperationKind kind;
+    } ops[] = {{"actionRevolve", tr("&Revolve Curve…"), CurveOperationKind::Revolve},
+               {"actionExtrude", tr("&Extrude Curve…"), CurveOperationKind::Extrude},
+               {"actionLoft", tr("&Loft Through Curves…"), CurveOperationKind::Loft}};
+    std::vector<QAction*> opActions;
+    for (const auto& o : ops) {
+        const CurveOperationKind kind = o.kind;
+        opActions.push_back(make(create, o.name, o.text, QKeySequence(), [this, kind] {
+            CurveOperation initial;
+            const Camera& c = m_viewport->cameraController().camera();
+            initial.point = c.target;
+            initial.vector = kind == CurveOperationKind::Extrude
+                                 ? glm::dvec3(0.0, 0.0, 0.5 * viewScale())
+                                 : glm::dvec3(0.0, 0.0, 1.0);
+            if (auto op = m_prompts.curveOperation(m_window, kind, initial))
+                createFromCurves(kind, *op);
+        }));
+    }
+    opActions.front()->setStatusTip(tr("Revolve a boundary or iso-curve of the selected surface "
+                                       "about an axis"));
+
+    QMenu* modify = bar->addMenu(tr("&Modify"));
+    make(modify, "actionTransform", tr("&Move, Rotate, Scale…"), QKeySequence(Qt::CTRL | Qt::Key_T),
+         [this] {
+             if (auto p = m_prompts.transform(m_window))
+                 transformSelected(*p);
+         });
+    make(modify, "actionDuplicate", tr("D&uplicate"), QKeySequence(Qt::CTRL | Qt::Key_D),
+         [this] { duplicateSelected(); });
+    modify->addSeparator();
+    make(modify, "actionRemoveKnots", tr("Remove &Knots…"), QKeySequence(), [this] {
+        const Surface* s = m_doc->surface(m_selection->currentSurface());
+        if (!s) {
+            Q_EMIT message(tr("Select a surface."));
+            return;
+        }
+        glm::dvec3 lo, hi;
+        surfaceControlBounds(s->geometry, lo, hi);
+        if (auto r = m_prompts.knotRemoval(m_window, 1e-4 * glm::length(hi - lo)))
+            removeKnots(r->first == 0 ? Direction::U : Direction::V, r->second);
+    });
+
+    toolbar->addAction(patch);
+    for (QAction* a : shapeActions)
+        toolbar->addAction(a);
+    toolbar->addSeparator();
+    for (QAction* a : opActions)
+        toolbar->addAction(a);
+}
+
+} // namespace kw

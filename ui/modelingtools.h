@@ -1,0 +1,118 @@
+// ModelingTools: the editor's Create and Modify menus and toolbar — primitives, patches,
+// revolve / extrude / loft from surface curves, move / rotate / scale, duplicate, delete and
+// knot removal — each one undo step on the window's stack.
+#pragma once
+
+#include "model/nurbs_construct.h"
+#include "model/selection.h"
+#include "ui/edit/commands.h"
+
+#include <QObject>
+#include <functional>
+#include <optional>
+
+class QMenu;
+class QMenuBar;
+class QToolBar;
+class QUndoStack;
+class QWidget;
+
+namespace kw {
+
+class Viewport;
+
+class ModelingTools : public QObject {
+    Q_OBJECT
+public:
+    enum class Primitive { Plane, Sphere, Cylinder, Cone, Torus };
+
+    /// File ▸ New patch: clamped uniform knots, control points evenly over size (0: a size
+    /// that fills about a third of the view).
+    struct PatchParams {
+        int degreeU = 3, degreeV = 3;
+        int countU = 4, countV = 4;
+        double sizeU = 0.0, sizeV = 0.0;
+    };
+
+    /// Which curve of a surface revolve, extrude and loft use: a boundary or an iso-curve at
+    /// `fraction` (0..1) of the domain in the other direction.
+    enum class CurveEdge { VStart, VEnd, UStart, UEnd, IsoU, IsoV };
+    struct CurveSpec {
+        CurveEdge edge = CurveEdge::VStart;
+        double fraction = 0.5;
+    };
+    /// The parameters of a revolve / extrude / loft; `vector` is the axis direction (revolve)
+    /// or the extrusion vector; `point` a point on the axis.
+    struct CurveOperation {
+        CurveSpec curve;
+        glm::dvec3 point{0.0};
+        glm::dvec3 vector{0.0, 0.0, 1.0};
+    };
+    enum class CurveOperationKind { Revolve, Extrude, Loft };
+
+    /// Move, rotate (degrees about an axis through the selection's centre) and scale (about
+    /// the centre), applied in the order scale, rotate, move.
+    struct TransformParams {
+        glm::dvec3 offset{0.0};
+        int rotationAxis = 2; ///< 0 x, 1 y, 2 z
+        double degrees = 0.0;
+        double scale = 1.0;
+    };
+
+    /// The dialogs the tools ask through; tests replace them. Empty optional: cancelled.
+    struct Prompts {
+        std::function<std::optional<PatchParams>(QWidget*, const PatchParams&)> patch;
+        std::function<std::optional<CurveOperation>(QWidget*, CurveOperationKind,
+                                                    const CurveOperation&)>
+            curveOperation;
+        std::function<std::optional<TransformParams>(QWidget*)> transform;
+        /// Direction (0 u, 1 v) and tolerance for knot removal.
+        std::function<std::optional<std::pair<int, double>>(QWidget*, double suggested)>
+            knotRemoval;
+        static Prompts standard();
+    };
+
+    /// All pointers must outlive the tools; `window` parents the dialogs.
+    ModelingTools(QWidget* window, Document* document, SceneModel* model, Selection* selection,
+                  QUndoStack* stack, Viewport* viewport);
+
+    void setPrompts(Prompts prompts) { m_prompts = std::move(prompts); }
+    /// Adds the Create and Modify menus to `bar` and their main entries to `toolbar`.
+    void buildMenus(QMenuBar* bar, QToolBar* toolbar);
+
+    // Each creates one undo step and selects the new surface; an invalid id (and message())
+    // when refused.
+    SurfaceId createPrimitive(Primitive kind);
+    SurfaceId createPatch(const PatchParams& params);
+    SurfaceId createFromCurves(CurveOperationKind kind, const CurveOperation& op);
+    /// Applies to the selected surfaces (one undo step); false with message() when refused.
+    bool transformSelected(const TransformParams& params);
+    bool duplicateSelected();
+    bool deleteSelected();
+    bool removeKnots(Direction direction, double tolerance);
+
+    /// The curve `spec` of a surface (kernel iso-curve, exact).
+    static NurbsCurve3 surfaceCurve(const NurbsSurface& s, const CurveSpec& spec);
+    /// A length that fills about a third of the view at the camera's target.
+    double viewScale() const;
+    /// Makes `ids` the selected surfaces (the first one current).
+    void selectSurfaces(const std::vector<SurfaceId>& ids);
+
+Q_SIGNALS:
+    /// A status-bar message (a refusal or what was done).
+    void message(const QString& text);
+
+private:
+    SurfaceId add(Surface surface, const QString& text);
+    QString uniqueName(const QString& base) const;
+
+    QWidget* m_window;
+    Document* m_doc;
+    SceneModel* m_model;
+    Selection* m_selection;
+    QUndoStack* m_stack;
+    Viewport* m_viewport;
+    Prompts m_prompts;
+};
+
+} // namespace kw

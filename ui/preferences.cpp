@@ -1,0 +1,122 @@
+// Preferences: QSettings keys with defaults, and a form dialog for them.
+#include "ui/preferences.h"
+
+#include <QCheckBox>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QPushButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <algorithm>
+
+namespace kw {
+
+QStringList Preferences::availablePartitionModes() {
+    return {QStringLiteral("uniform")};
+}
+
+Preferences Preferences::load() {
+    QSettings s;
+    Preferences d, p;
+    p.autosaveSeconds =
+        std::max(0, s.value(QStringLiteral("autosave/intervalSeconds"), d.autosaveSeconds).toInt());
+    p.keepBackup = s.value(QStringLiteral("save/keepBackup"), d.keepBackup).toBool();
+    p.partitionMode = s.value(QStringLiteral("view/partitionMode"), d.partitionMode).toString();
+    p.pixelTolerance = s.value(QStringLiteral("view/pixelTolerance"), d.pixelTolerance).toDouble();
+    if (!(p.pixelTolerance > 0.0))
+        p.pixelTolerance = d.pixelTolerance;
+    p.trimMaskCap =
+        std::clamp(s.value(QStringLiteral("view/trimMaskCap"), d.trimMaskCap).toInt(), 64, 16384);
+    p.headlight = s.value(QStringLiteral("view/headlight"), d.headlight).toBool();
+    const QColor c(s.value(QStringLiteral("view/background"), d.background.name()).toString());
+    p.background = c.isValid() ? c : d.background;
+    return p;
+}
+
+void Preferences::save() const {
+    QSettings s;
+    s.setValue(QStringLiteral("autosave/intervalSeconds"), autosaveSeconds);
+    s.setValue(QStringLiteral("save/keepBackup"), keepBackup);
+    s.setValue(QStringLiteral("view/partitionMode"), partitionMode);
+    s.setValue(QStringLiteral("view/pixelTolerance"), pixelTolerance);
+    s.setValue(QStringLiteral("view/trimMaskCap"), trimMaskCap);
+    s.setValue(QStringLiteral("view/headlight"), headlight);
+    s.setValue(QStringLiteral("view/background"), background.name());
+}
+
+PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
+    : QDialog(parent), m_color(p.background) {
+    setWindowTitle(tr("Preferences"));
+    auto* form = new QFormLayout(this);
+    m_autosave = new QSpinBox;
+    m_autosave->setObjectName(QStringLiteral("prefAutosave"));
+    m_autosave->setRange(0, 3600);
+    m_autosave->setSuffix(tr(" s"));
+    m_autosave->setSpecialValueText(tr("off"));
+    m_autosave->setValue(p.autosaveSeconds);
+    m_backup = new QCheckBox(tr("Keep a .bak of the previous version on save"));
+    m_backup->setObjectName(QStringLiteral("prefKeepBackup"));
+    m_backup->setChecked(p.keepBackup);
+    m_partitionMode = new QComboBox;
+    m_partitionMode->setObjectName(QStringLiteral("prefPartitionMode"));
+    m_partitionMode->addItems({QStringLiteral("uniform"), QStringLiteral("adaptive")});
+    m_partitionMode->setCurrentText(p.partitionMode);
+    m_partitionMode->setToolTip(tr("Adaptive partitions (pixel tolerance) are stored and used "
+                                   "once this build has them; until then uniform is drawn."));
+    m_tolerance = new QDoubleSpinBox;
+    m_tolerance->setObjectName(QStringLiteral("prefPixelTolerance"));
+    m_tolerance->setRange(0.05, 16.0);
+    m_tolerance->setDecimals(2);
+    m_tolerance->setSuffix(tr(" px"));
+    m_tolerance->setValue(p.pixelTolerance);
+    m_trimCap = new QSpinBox;
+    m_trimCap->setObjectName(QStringLiteral("prefTrimMaskCap"));
+    m_trimCap->setRange(64, 16384);
+    m_trimCap->setSuffix(tr(" texels"));
+    m_trimCap->setValue(p.trimMaskCap);
+    m_headlight = new QCheckBox(tr("Lights follow the camera (headlight)"));
+    m_headlight->setObjectName(QStringLiteral("prefHeadlight"));
+    m_headlight->setChecked(p.headlight);
+    m_background = new QPushButton;
+    m_background->setObjectName(QStringLiteral("prefBackground"));
+    auto showColor = [this] {
+        m_background->setText(m_color.name());
+        m_background->setStyleSheet(QStringLiteral("background:%1").arg(m_color.name()));
+    };
+    showColor();
+    connect(m_background, &QPushButton::clicked, this, [this, showColor] {
+        const QColor c = QColorDialog::getColor(m_color, this, tr("Background"));
+        if (c.isValid()) {
+            m_color = c;
+            showColor();
+        }
+    });
+    form->addRow(tr("Autosave every"), m_autosave);
+    form->addRow(QString(), m_backup);
+    form->addRow(tr("Partition mode"), m_partitionMode);
+    form->addRow(tr("Pixel tolerance"), m_tolerance);
+    form->addRow(tr("Trim mask budget"), m_trimCap);
+    form->addRow(tr("Light rig"), m_headlight);
+    form->addRow(tr("Background"), m_background);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    form->addRow(buttons);
+}
+
+Preferences PreferencesDialog::value() const {
+    Preferences p;
+    p.autosaveSeconds = m_autosave->value();
+    p.keepBackup = m_backup->isChecked();
+    p.partitionMode = m_partitionMode->currentText();
+    p.pixelTolerance = m_tolerance->value();
+    p.trimMaskCap = m_trimCap->value();
+    p.headlight = m_headlight->isChecked();
+    p.background = m_color;
+    return p;
+}
+
+} // namespace kw

@@ -1,0 +1,52 @@
+// Preferences: the editor's defaults kept with QSettings, and the dialog that edits them.
+#pragma once
+
+#include <QColor>
+#include <QDialog>
+#include <QString>
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QSpinBox;
+class QPushButton;
+
+namespace kw {
+
+/// Every key, default and meaning in one place. Autosave and backup are read by the document
+/// recovery code (issue 14); the view keys by the viewport (applyTo).
+struct Preferences {
+    int autosaveSeconds = 60; ///< "autosave/intervalSeconds", 0 = off
+    bool keepBackup = true;   ///< "save/keepBackup": keep NAME.knot.bak on save
+    QString partitionMode = QStringLiteral("uniform"); ///< "view/partitionMode": uniform | adaptive
+    double pixelTolerance = 0.5;   ///< "view/pixelTolerance" (adaptive partitions)
+    int trimMaskCap = 1024;        ///< "view/trimMaskCap": trim budget, texels per mask side
+    bool headlight = true;         ///< "view/headlight": lights follow the camera
+    QColor background{46, 48, 54}; ///< "view/background"
+
+    static Preferences load();
+    void save() const;
+    bool operator==(const Preferences&) const = default;
+    /// The partition modes this build implements (adaptive arrives with issue 10); a stored
+    /// mode that does not exist selects uniform.
+    static QStringList availablePartitionModes();
+};
+
+class PreferencesDialog : public QDialog {
+    Q_OBJECT
+public:
+    explicit PreferencesDialog(const Preferences& initial, QWidget* parent = nullptr);
+    Preferences value() const;
+
+private:
+    QSpinBox* m_autosave;
+    QCheckBox* m_backup;
+    QComboBox* m_partitionMode;
+    QDoubleSpinBox* m_tolerance;
+    QSpinBox* m_trimCap;
+    QCheckBox* m_headlight;
+    QPushButton* m_background;
+    QColor m_color;
+};
+
+} // namespace kw

@@ -1,0 +1,185 @@
+// Viewport overlays drawn with QPainter over the rendered frame (selection highlight, control
+// nets of the selected surfaces, ground grid, axis indicator) and the whole-surface and weight
+// drags.
+#include "model/trim.h"
+#include "ui/edit/commands.h"
+#include "ui/viewport.h"
+
+#include <QMouseEvent>
+#include <QPainter>
+#include <QUndoStack>
+#include <algorithm>
+#include <cmath>
+
+namespace kw {
+
+namespace {
+
+/// The outline of a surface in 3D: its trim loops mapped through S(u, v) when it has any,
+/// else the four domain edges, each as a polyline.
+std::vector<std::vector<glm::dvec3>> outline(const Surface& s) {
+    std::vector<std::vector<glm::dvec3>> lines;
+    const NurbsSurface& g = s.geometry;
+    if (!s.trims.empty()) {
+        const TrimRegion region = makeTrimRegion(s.trims, trimTolerance(g, 1e-3));
+        for (const TrimPolygon& poly : region.loops) {
+            std::vector<glm::dvec3> line;
+            for (const glm::dvec2& uv : poly)
+                line.push_back(surfacePoint(g, uv.x, uv.y));
+            if (!line.empty())
+                line.push_back(line.front());
+            lines.push_back(std::move(line));
+        }
+        return lines;
+    }
+    const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
+    const int n = 48;
+    for (int edge = 0; edge < 4; ++edge) {
+        std::vector<glm::dvec3> line;
+        for (int k = 0; k <= n; ++k) {
+            const double t = double(k) / n;
+            const double u =
+                edge < 2 ? du.first + t * (du.last - du.first) : (edge == 2 ? du.first : du.last);
+            const double v =
+                edge >= 2 ? dv.first + t * (dv.last - dv.first) : (edge == 0 ? dv.first : dv.last);
+            line.push_back(surfacePoint(g, u, v));
+        }
+        lines.push_back(std::move(line));
+    }
+    return lines;
+}
+
+void drawPolyline3(QPainter& p, const ViewProjection& view, const std::vector<glm::dvec3>& line) {
+    QPolygonF poly;
+    for (const glm::dvec3& x : line) {
+        const auto px = view.project(x);
+        if (!px) { // behind the eye: break the line there
+            if (poly.size() > 1)
+                p.drawPolyline(poly);
+            poly.clear();
+            continue;
+        }
+        poly << *px;
+    }
+    if (poly.size() > 1)
+        p.drawPolyline(poly);
+}
+
+} // namespace
+
+void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
+    if (m_grid) {
+        // Ground grid in the z = 0 plane around the target, spacing a power of ten.
+        const Camera& c = m_camera.camera();
+        const double d = glm::length(c.eye - c.target);
+        const double step = std::pow(10.0, std::floor(std::log10(std::max(d, 1e-9) / 4.0)));
+        const glm::dvec3 o(std::round(c.target.x / step) * step,
+                           std::round(c.target.y / step) * step, 0.0);
+        const int n = 20;
+        for (int k = -n; k <= n; ++k) {
+            p.setPen(QPen(k == 0 ? QColor(150, 150, 160, 170) : QColor(120, 120, 130, 90), 1.0));
+            drawPolyline3(
+                p, view,
+                {o + glm::dvec3(k * step, -n * step, 0), o + glm::dvec3(k * step, n * step, 0)});
+            drawPolyline3(
+                p, view,
+                {o + glm::dvec3(-n * step, k * step, 0), o + glm::dvec3(n * step, k * step, 0)});
+        }
+    }
+    // Selected surfaces: outlined.
+    const std::vector<SurfaceId> selected = m_selection->selectedSurfaces();
+    p.setPen(QPen(QColor(255, 170, 40), 2.0));
+    for (SurfaceId id : selected)
+        if (const Surface* s = m_doc->surface(id))
+            for (const auto& line : outline(*s))
+                drawPolyline3(p, view, line);
+    // Control nets of the selected surfaces (the renderer draws them all when asked to).
+    if (m_options.controlNet && !m_netForAll) {
+        for (SurfaceId id : selected) {
+            const Surface* s = m_doc->surface(id);
+            if (!s)
+                continue;
+            const NurbsSurface& g = s->geometry;
+            p.setPen(QPen(QColor(230, 230, 240, 200), 1.0));
+            for (int j = 0; j < g.countV; ++j) {
+                std::vector<glm::dvec3> row;
+                for (int i = 0; i < g.countU; ++i)
+                    row.push_back(g.points[size_t(g.index(i, j))]);
+                drawPolyline3(p, view, row);
+            }
+            for (int i = 0; i < g.countU; ++i) {
+                std::vector<glm::dvec3> col;
+                for (int j = 0; j < g.countV; ++j)
+                    col.push_back(g.points[size_t(g.index(i, j))]);
+                drawPolyline3(p, view, col);
+            }
+            p.setPen(Qt::NoPen);
+            p.setBrush(QColor(250, 250, 255));
+            for (const glm::dvec3& x : g.points)
+                if (const auto px = view.project(x))
+                    p.drawEllipse(*px, 2.5, 2.5);
+            p.setBrush(Qt::NoBrush);
+        }
+    }
+    if (m_axes) {
+        // Axis indicator: the world axes as the camera sees them, bottom left. Its red is
+        // pinker than the picked-point marks so the two are told apart (tests count those).
+        const Camera& c = m_camera.camera();
+        const glm::dvec3 f = glm::normalize(c.target - c.eye);
+        const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
+        const glm::dvec3 u = glm::cross(r, f);
+        const QPointF o(34, height() - 34);
+        static const QColor colors[3] = {QColor(235, 95, 115), QColor(90, 200, 90),
+                                         QColor(90, 130, 240)};
+        static const char* const names[3] = {"x", "y", "z"};
+        for (int k = 0; k < 3; ++k) {
+            glm::dvec3 a(0.0);
+            a[k] = 1.0;
+            const QPointF tip = o + 24.0 * QPointF(glm::dot(a, r), -glm::dot(a, u));
+            p.setPen(QPen(colors[k], 2.0));
+            p.drawLine(o, tip);
+            p.drawText(tip + QPointF(3, 4), QLatin1String(names[k]));
+        }
+    }
+}
+
+bool Viewport::pressOnSurfaces(QPointF pixel) {
+    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
+    m_drag.clear();
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (SurfaceId id : ids) {
+        const Surface* s = m_doc->surface(id);
+        if (!s)
+            continue;
+        for (int j = 0; j < s->geometry.countV; ++j)
+            for (int i = 0; i < s->geometry.countU; ++i) {
+                const glm::dvec3 x = s->geometry.points[size_t(s->geometry.index(i, j))];
+                m_drag.push_back({ControlPointRef{id, i, j}, x});
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
+            }
+    }
+    if (m_drag.empty())
+        return false;
+    m_anchor = 0.5 * (lo + hi);
+    m_pressPixel = m_lastPixel = pixel;
+    m_movingSurfaces = true;
+    m_gesture = Gesture::DragPoints;
+    return true;
+}
+
+void Viewport::finishWeightDrag(bool cancel) {
+    m_gesture = Gesture::None;
+    const Surface* s = m_doc->surface(m_weightRef.surface);
+    if (!s || m_weightRef.i >= s->geometry.countU || m_weightRef.j >= s->geometry.countV)
+        return;
+    const int index = s->geometry.index(m_weightRef.i, m_weightRef.j);
+    const double to = s->geometry.weights[size_t(index)];
+    // Back to the press-time weight, then one SetWeight step to the final one.
+    m_doc->setWeight(m_weightRef.surface, index, m_weightFrom);
+    if (!cancel && to != m_weightFrom)
+        pushCommand(m_stack, SetWeight::create(m_doc, m_weightRef.surface, index, to));
+    update();
+}
+
+} // namespace kw
