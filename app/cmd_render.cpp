@@ -16,7 +16,8 @@ int runRender(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
         "Render a .knot project off-screen with the exact per-pixel NURBS renderer (or the "
-        "tessellated baseline) and write the image with OpenImageIO. Uses the project's camera, "
+        "tessellated baseline) and write the image (PNG with Qt; JPG, TIF, EXR with OpenImageIO). "
+        "Uses the project's camera, "
         "or fits one to the scene. Needs OpenGL 4.5 core: on a machine without a display run "
         "under xvfb-run -a -s \"-screen 0 1280x1024x24\" with QT_QPA_PLATFORM=xcb."));
     const QCommandLineOption out({QStringLiteral("o"), QStringLiteral("output")},

@@ -193,8 +193,8 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                            QStringLiteral("Draft: threshold angle in degrees, 0..90 (default 3)."),
                            QStringLiteral("DEG"), QStringLiteral("3")),
         QCommandLineOption(QStringLiteral("env-map"),
-                           QStringLiteral("Environment: equirectangular image (any OpenImageIO "
-                                          "format; default the bundled studio)."),
+                           QStringLiteral("Environment: equirectangular image (PNG, JPEG, BMP "
+                                          "or TIFF; default the bundled studio)."),
                            QStringLiteral("IMAGE"))};
     parser.addOptions({o.mode, o.partitions, o.lights, o.depth, o.noTrims, o.trimMaskCap, o.shading,
                        o.isocurves, o.isoLines, o.range, o.scale, o.stripes, o.stripeAngle,

@@ -56,7 +56,7 @@ struct AnalysisOptions {
     double draftAngleDegrees = 3.0;          ///< draft: threshold
     glm::ivec2 isoCount{8, 8};               ///< isocurves: lines per direction, i / (n + 1)
     double isoWidthPixels = 1.5;             ///< isocurves: line width
-    /// Environment: an image file read with OpenImageIO (equirectangular, z up); empty for the
+    /// Environment: an image file read with Qt's readers (equirectangular, z up); empty for the
     /// bundled default (resources/environment/studio.png, made by tools/make_environment.py).
     QString environmentMap;
     /// Keep the last automatic range instead of recomputing it (the editor sets it during

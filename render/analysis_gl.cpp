@@ -2,7 +2,6 @@
 // analysis uniforms.
 #include "render/analysis_gl.h"
 
-#include <OpenImageIO/imageio.h>
 #include <QImage>
 #include <QOpenGLShaderProgram>
 #include <cmath>
@@ -11,58 +10,25 @@
 namespace kw {
 
 bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
+    // Qt's image readers (PNG, JPEG, BMP, TIFF, ... and the bundled resource). OpenImageIO,
+    // which would add EXR and HDR, now lives in a write-only module loaded on demand
+    // (render/oiio); reading through it is not done yet.
     out = {};
-    if (path.startsWith(QLatin1String(":/"))) {
-        const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
-        if (img.isNull()) {
-            *error = QStringLiteral("%1: cannot read the environment image").arg(path);
-            return false;
-        }
-        out.width = img.width();
-        out.height = img.height();
-        out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
-        for (int y = 0; y < out.height; ++y) {
-            const uchar* line = img.constScanLine(y);
-            for (int k = 0; k < out.width * 3; ++k)
-                out.rgb[size_t(y) * size_t(out.width) * 3 + size_t(k)] = float(line[k]) / 255.0f;
-        }
-        return true;
-    }
-    const std::string file = path.toStdString();
-    auto in = OIIO::ImageInput::open(file);
-    if (!in) {
-        *error = QStringLiteral("%1: cannot read the environment image: %2")
-                     .arg(path, QString::fromStdString(OIIO::geterror()).trimmed());
+    const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
+    if (img.isNull()) {
+        *error = QStringLiteral("%1: cannot read the environment image (missing, or not a format "
+                                "Qt reads: PNG, JPEG, BMP, TIFF)")
+                     .arg(path);
         return false;
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    const int channels = spec.nchannels;
-    if (spec.width < 1 || spec.height < 1 || channels < 1 || spec.width > 16384 ||
-        spec.height > 16384) {
-        *error =
-            QStringLiteral("%1: the environment image is %2x%3 with %4 channels (need 1..16384 "
-                           "pixels a side)")
-                .arg(path)
-                .arg(spec.width)
-                .arg(spec.height)
-                .arg(channels);
-        return false;
-    }
-    std::vector<float> pixels(size_t(spec.width) * size_t(spec.height) * size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        *error = QStringLiteral("%1: cannot read the environment image: %2")
-                     .arg(path, QString::fromStdString(in->geterror()).trimmed());
-        return false;
-    }
-    in->close();
-    out.width = spec.width;
-    out.height = spec.height;
+    out.width = img.width();
+    out.height = img.height();
     out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
-    for (size_t p = 0; p < size_t(out.width) * size_t(out.height); ++p)
-        for (int c = 0; c < 3; ++c) {
-            const float x = pixels[p * size_t(channels) + size_t(std::min(c, channels - 1))];
-            out.rgb[p * 3 + size_t(c)] = std::isfinite(x) ? x : 0.0f;
-        }
+    for (int y = 0; y < out.height; ++y) {
+        const uchar* line = img.constScanLine(y);
+        for (int k = 0; k < out.width * 3; ++k)
+            out.rgb[size_t(y) * size_t(out.width) * 3 + size_t(k)] = float(line[k]) / 255.0f;
+    }
     return true;
 }
 

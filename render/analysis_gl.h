@@ -22,8 +22,8 @@ struct EnvironmentImage {
 /// The bundled default environment (Qt resource, made by tools/make_environment.py).
 inline const char* const kDefaultEnvironment = ":/environment/studio.png";
 
-/// Reads `path`: a Qt resource path (":/...") through QImage, any other file through
-/// OpenImageIO (PNG, JPEG, EXR, HDR, TIFF, ...; grey images are expanded, alpha is dropped).
+/// Reads `path` (a file or a Qt resource path ":/...") with Qt's image readers (PNG, JPEG, BMP,
+/// TIFF; grey images are expanded, alpha is dropped; EXR/HDR are not read yet).
 /// Returns false with *error naming the file on failure (missing, unreadable, empty).
 bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error);
 

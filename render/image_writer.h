@@ -1,5 +1,6 @@
-// Writes rendered images with OpenImageIO: colour as PNG/JPG/TIF (8-bit) or EXR (float), and
-// the AOV buffer as a multi-channel float EXR.
+// Writes rendered images: colour as PNG (Qt's encoder, atomically) or JPG/TIF (8-bit) or EXR
+// (float) and the AOV buffer as a multi-channel float EXR through OpenImageIO, which is loaded
+// (libknotwork_oiio.so) only when one of those is written.
 #pragma once
 
 #include "render/aov_buffer.h"

@@ -8,7 +8,6 @@
 #include <QOpenGLVersionFunctionsFactory>
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 namespace kw {
 
@@ -57,22 +56,9 @@ bool Renderer::initialize() {
     d->tessellated.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
-    // Build the common programs now so a broken shader is reported at start-up.
-    const RenderOptions defaults;
-    const std::tuple<const char*, const char*, QStringList> common[] = {
-        {"surface.vert", "depth_only.frag", {}},
-        {"surface.vert", "depth_only.frag", {QStringLiteral("KW_TRIM")}},
-        {"trim_mask.vert", "trim_mask.frag", {}},
-        {"lines.vert", "lines.frag", {}},
-        {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
-        {"surface.vert", "exact_surface.frag",
-         ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
-    for (const auto& [vs, fs, defines] : common)
-        if (!d->shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
-            d->error = d->shaders.lastError();
-            release();
-            return false;
-        }
+    // No programs are built here: each pass asks the ShaderLibrary for the variant a frame
+    // needs when it first draws it (a one-surface render builds 2 programs, not 6), and a
+    // shader that does not build fails that frame with the compiler's message.
     return true;
 }
 

@@ -101,7 +101,7 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
     auto it = m_programs.find(key);
     if (it != m_programs.end()) {
         if (!it.value())
-            m_lastError = QStringLiteral("shader variant %1 failed to build earlier").arg(key);
+            m_lastError = m_failures.value(key);
         return it.value().get();
     }
     QString header = QStringLiteral("#version 450 core\n");
@@ -129,6 +129,7 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
         m_lastError =
             QStringLiteral("shader variant [%1]: %2").arg(defines.join(QLatin1Char(' ')), error);
         m_programs.insert(key, nullptr);
+        m_failures.insert(key, m_lastError);
         return nullptr;
     }
     prog->lookUpUniforms();
@@ -138,6 +139,7 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
 
 void ShaderLibrary::clear() {
     m_programs.clear();
+    m_failures.clear();
 }
 
 } // namespace kw

@@ -49,6 +49,9 @@ public:
 private:
     QMap<QString, std::shared_ptr<QOpenGLShaderProgram>> m_programs;
     QString m_lastError;
+    /// The build error of each variant that failed, repeated on every later request so the
+    /// message stays the compiler's (and the same each frame) rather than "failed earlier".
+    QMap<QString, QString> m_failures;
 };
 
 } // namespace kw
