@@ -10,6 +10,7 @@
 #include <QImageWriter>
 #include <QLibrary>
 #include <QSaveFile>
+#include <algorithm>
 #include <vector>
 
 #ifndef KW_MODULE_DIR
@@ -137,10 +138,29 @@ bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error) {
         *error = QStringLiteral("%1: no AOV data was rendered").arg(path);
         return false;
     }
-    return writePixels(path,
-                       KwImageWrite{nullptr, aov.width, aov.height, AovBuffer::kChannels, 1,
-                                    aov.data.data(), AovBuffer::kChannelNames, 0, "zip"},
-                       error);
+    if (aov.curvature.empty())
+        return writePixels(path,
+                           KwImageWrite{nullptr, aov.width, aov.height, AovBuffer::kChannels, 1,
+                                        aov.data.data(), AovBuffer::kChannelNames, 0, "zip"},
+                           error);
+    // With the curvature AOV: the 10 channels, then K, H, k1, k2, interleaved per pixel.
+    constexpr int channels = AovBuffer::kChannels + AovBuffer::kCurvatureChannels;
+    const char* names[channels];
+    std::copy_n(AovBuffer::kChannelNames, AovBuffer::kChannels, names);
+    std::copy_n(AovBuffer::kCurvatureNames, AovBuffer::kCurvatureChannels,
+                names + AovBuffer::kChannels);
+    std::vector<float> all(size_t(aov.width) * size_t(aov.height) * size_t(channels));
+    for (size_t p = 0; p < size_t(aov.width) * size_t(aov.height); ++p) {
+        std::copy_n(aov.data.data() + p * AovBuffer::kChannels, AovBuffer::kChannels,
+                    all.data() + p * size_t(channels));
+        std::copy_n(aov.curvature.data() + p * AovBuffer::kCurvatureChannels,
+                    AovBuffer::kCurvatureChannels,
+                    all.data() + p * size_t(channels) + AovBuffer::kChannels);
+    }
+    return writePixels(
+        path,
+        KwImageWrite{nullptr, aov.width, aov.height, channels, 1, all.data(), names, 0, "zip"},
+        error);
 }
 
 } // namespace kw

@@ -18,7 +18,8 @@ bool isSupportedImagePath(const QString& path);
 /// Returns false with *error naming the path on an unknown extension or a write failure.
 bool writeColorImage(const QImage& image, const QString& path, QString* error);
 
-/// Writes the AOV buffer as a float EXR with channels AovBuffer::kChannelNames. `path` must
+/// Writes the AOV buffer as a float EXR with channels AovBuffer::kChannelNames (and
+/// kCurvatureNames when the buffer has curvature). `path` must
 /// end in .exr. Returns false with *error on failure.
 bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error);
 
