@@ -201,14 +201,20 @@ QString describe(const Model& m, const QString& what, const MethodResult& r) {
         .arg(r.quality.silhouette.maxPixels, 0, 'f', 1);
 }
 
-/// A trim control point of the first trimmed surface to drag (an interior point of its first
-/// curve when it has one, so the loop stays closed), or an invalid ref without trims.
+/// A trim control point of the first trimmed surface to drag: an interior point of a curve of
+/// its first loop when one has any, so the loop stays closed; an invalid ref without trims.
+/// Otherwise the first curve's start, which measureDrag moves together with the coinciding
+/// end of the previous curve (Document refuses a move that opens a loop).
 TrimPointRef dragTarget(const Scene& scene) {
-    for (const Surface& s : scene.surfaces)
-        if (!s.trims.empty() && !s.trims.front().curves.empty()) {
-            const NurbsCurve2& c = s.trims.front().curves.front();
-            return {s.id, s.trims.front().id, 0, c.points.size() > 2 ? 1 : 0};
-        }
+    for (const Surface& s : scene.surfaces) {
+        if (s.trims.empty() || s.trims.front().curves.empty())
+            continue;
+        const std::vector<NurbsCurve2>& curves = s.trims.front().curves;
+        for (size_t c = 0; c < curves.size(); ++c)
+            if (curves[c].points.size() > 2)
+                return {s.id, s.trims.front().id, int(c), 1};
+        return {s.id, s.trims.front().id, 0, 0};
+    }
     return {};
 }
 
@@ -217,21 +223,39 @@ TrimPointRef dragTarget(const Scene& scene) {
 bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& frame,
                  const TrimPointRef& target, TrimDrag& drag, QString* error) {
     const Surface* surface = m.doc.surface(target.surface);
-    const glm::dvec2 home = surface->trims.front().curves.front().points[size_t(target.index)];
+    const std::vector<NurbsCurve2>& curves = surface->trims.front().curves;
+    const glm::dvec2 home = curves[size_t(target.curve)].points[size_t(target.index)];
+    // A curve end moves with the coinciding end of the previous curve (cyclically).
+    std::vector<TrimPointRef> refs{target};
+    if (target.index == 0) {
+        const size_t prev = (size_t(target.curve) + curves.size() - 1) % curves.size();
+        const TrimPointRef end{target.surface, target.loop, int(prev),
+                               int(curves[prev].points.size()) - 1};
+        if (end != target)
+            refs.push_back(end);
+    }
+    bool refused = false;
+    const auto moveTo = [&](glm::dvec2 p) {
+        refused = !m.doc.setTrimPoints(refs, std::vector<glm::dvec2>(refs.size(), p)) || refused;
+    };
     const Interval du = surfaceDomainU(surface->geometry);
     TrimMaskStats masks; // of the timed frames, from their FrameReports
     const auto move = [&](int f) {
         if (f > 0)
             masks += s.renderer.lastReport().masks;
         const double step = (f % 2 ? -1.0 : 1.0) * 1e-3 * (du.last - du.first);
-        m.doc.setTrimPoint(target, home + glm::dvec2(step, 0.5 * step));
+        moveTo(home + glm::dvec2(step, 0.5 * step));
     };
     Timing t;
     const bool ok = timeFrames(s, config, frame, t, error, move);
     masks += s.renderer.lastReport().masks;
-    m.doc.setTrimPoint(target, home);
+    moveTo(home);
     if (!ok)
         return false;
+    if (refused) {
+        *error = QStringLiteral("%1: the trim drag's point move was refused").arg(m.name);
+        return false;
+    }
     drag.medianMs = t.medianMs;
     drag.maskCpuMs =
         masks.redraws ? double(masks.cpuNanoseconds) * 1e-6 / double(masks.redraws) : 0.0;

@@ -47,7 +47,13 @@ int coveredNear(const AovBuffer& aov, SurfaceId id, glm::dvec2 uv, double radius
 Scene messyScene() {
     Scene scene;
     Surface s = makeSurface(1, wavyPatch(3, 3, clampedUniform(3, 6), clampedUniform(3, 6)), 12);
+    // A document holds closed loops only (issue 14, one validation): the open ones are closed
+    // as an importer does, by straight segments across the gaps, which is also how
+    // makeTrimRegion draws an open loop. Reversed curves, zig-zags across the bridges, a
+    // clockwise hole and loops that enclose no area remain.
     s.trims = messyLoops(10);
+    for (TrimLoop& loop : s.trims)
+        closeTrimLoop(loop, 0.0);
     scene.surfaces.push_back(s);
     scene.nextId = 20;
     return scene;
@@ -170,8 +176,8 @@ private Q_SLOTS:
         QVERIFY(a.checked > 100000);
         QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);
-        if (sample.isEmpty()) // messy input is reported, once per problem
-            QCOMPARE(m_renderer->renderer().internals().scene.maskWarnings().size(), 6);
+        if (sample.isEmpty()) // messy input is reported, once per problem: 2 loops with no area
+            QCOMPARE(m_renderer->renderer().internals().scene.maskWarnings().size(), 2);
     }
 
     void starAndIslandRenderCorrectly() {
