@@ -65,34 +65,50 @@ TrimLoop makeLoop(Input& in, TrimLoopId id) {
     const int corners = in.integer(0, 5);
     std::vector<glm::dvec2> p;
     for (int i = 0; i < corners; ++i)
-        p.emplace_back(in.wild(0, 1), in.wild(0, 1));
+        p.push_back({in.wild(0, 1), in.wild(0, 1)}); // braces: read left to right
     for (int i = 0; i < corners; ++i)
         loop.curves.push_back(segment(p[size_t(i)], p[size_t((i + 1) % corners)]));
     if (in.byte() == 0 && !loop.curves.empty())
         loop.curves.back().degree = in.integer(-1, 20); // a broken curve
-    if (in.byte() == 0)
-        loop.curves.push_back(makeCircle2({in.real(0, 1), in.real(0, 1)}, in.wild(0, 0.5)));
+    if (in.byte() == 0) {
+        const glm::dvec2 centre{in.real(0, 1), in.real(0, 1)};
+        loop.curves.push_back(makeCircle2(centre, in.wild(0, 0.5)));
+    }
     return loop;
 }
 
 NurbsSurface makeGeometry(Input& in) {
     NurbsSurface g;
+    // One value per statement: the evaluation order of call arguments is unspecified.
     switch (in.integer(0, 4)) {
-    case 0:
-        g = makeSphere(vec3(in, -5, 5), in.wild(0.1, 3));
+    case 0: {
+        const glm::dvec3 c = vec3(in, -5, 5);
+        g = makeSphere(c, in.wild(0.1, 3));
         break;
-    case 1:
-        g = makeTorus(vec3(in, -5, 5), in.wild(1, 3), in.wild(0.1, 1));
+    }
+    case 1: {
+        const glm::dvec3 c = vec3(in, -5, 5);
+        const double major = in.wild(1, 3);
+        g = makeTorus(c, major, in.wild(0.1, 1));
         break;
-    case 2:
-        g = makeCylinder(vec3(in, -5, 5), in.wild(0.1, 3), in.wild(0.1, 3));
+    }
+    case 2: {
+        const glm::dvec3 c = vec3(in, -5, 5);
+        const double radius = in.wild(0.1, 3);
+        g = makeCylinder(c, radius, in.wild(0.1, 3));
         break;
-    case 3:
-        g = makeBilinear(vec3(in, -5, 5), vec3(in, -5, 5), vec3(in, -5, 5), vec3(in, -5, 5));
+    }
+    case 3: {
+        const glm::dvec3 p[4] = {vec3(in, -5, 5), vec3(in, -5, 5), vec3(in, -5, 5),
+                                 vec3(in, -5, 5)};
+        g = makeBilinear(p[0], p[1], p[2], p[3]);
         break;
-    default:
-        g = makePlane(vec3(in, -5, 5), vec3(in, -5, 5), vec3(in, -5, 5));
+    }
+    default: {
+        const glm::dvec3 p[3] = {vec3(in, -5, 5), vec3(in, -5, 5), vec3(in, -5, 5)};
+        g = makePlane(p[0], p[1], p[2]);
         break;
+    }
     }
     if (in.byte() < 8) { // corrupt one field
         switch (in.integer(0, 5)) {
@@ -193,19 +209,24 @@ public:
         }
         case 4: {
             const SurfaceId id = pickSurface();
-            return doc.setWeight(id, in.integer(-1, 50), in.wild(-1, 4));
+            const int index = in.integer(-1, 50);
+            return doc.setWeight(id, index, in.wild(-1, 4));
         }
         case 5: {
             const SurfaceId id = pickSurface();
             const Surface* s = doc.surface(id);
             NurbsSurface g = s ? s->geometry : makeGeometry(in);
             switch (in.integer(0, 4)) {
-            case 0:
-                g = surfaceInsertKnotU(g, in.wild(-0.5, 1.5), in.integer(0, 2));
+            case 0: {
+                const double u = in.wild(-0.5, 1.5);
+                g = surfaceInsertKnotU(g, u, in.integer(0, 2));
                 break;
-            case 1:
-                g = surfaceInsertKnotV(g, in.wild(-0.5, 1.5), in.integer(0, 2));
+            }
+            case 1: {
+                const double v = in.wild(-0.5, 1.5);
+                g = surfaceInsertKnotV(g, v, in.integer(0, 2));
                 break;
+            }
             case 2:
                 g = surfaceElevateDegreeU(g, in.integer(0, 2));
                 break;
@@ -218,8 +239,11 @@ public:
             }
             return doc.setGeometry(id, g);
         }
-        case 6:
-            return doc.setPartitions(pickSurface(), in.integer(-1, 300), in.integer(-1, 300));
+        case 6: {
+            const SurfaceId id = pickSurface();
+            const int nu = in.integer(-1, 300);
+            return doc.setPartitions(id, nu, in.integer(-1, 300));
+        }
         case 7: {
             Material m;
             m.color = vec3(in, 0, 1);

@@ -54,7 +54,7 @@ NurbsCurve2 makeCurve(Input& in, glm::dvec2 start) {
     const double scale = in.byte() < 240 ? 1.0 : in.wild(0, 1e6);
     for (int i = 0; i < count && i < 40; ++i) {
         c.points.push_back(
-            i == 0 && in.flag() ? start : glm::dvec2(in.wild(-1, 1), in.wild(-1, 1)) * scale);
+            i == 0 && in.flag() ? start : glm::dvec2{in.wild(-1, 1), in.wild(-1, 1)} * scale);
         c.weights.push_back(in.flag() ? 1.0 : in.wild(0.05, 5));
     }
     if (in.byte() == 0 && !c.weights.empty())

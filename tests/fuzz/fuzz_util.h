@@ -31,8 +31,20 @@ public:
 
     bool empty() const { return m_pos >= m_size; }
     std::uint8_t byte() { return m_pos < m_size ? m_data[m_pos++] : 0; }
-    std::uint16_t u16() { return std::uint16_t(byte() | (byte() << 8)); }
-    std::uint32_t u32() { return std::uint32_t(u16()) | (std::uint32_t(u16()) << 16); }
+    // Each value is read in separate statements: the order in which the operands of | (or the
+    // arguments of a call) are evaluated is unspecified, and gcc (the ctest replay) and clang
+    // (libFuzzer) differ, so `byte() | byte() << 8` would replay another input than was found.
+    // Harnesses therefore never read two values in one call's arguments either.
+    std::uint16_t u16() {
+        const std::uint16_t lo = byte();
+        const std::uint16_t hi = byte();
+        return std::uint16_t(lo | (hi << 8));
+    }
+    std::uint32_t u32() {
+        const std::uint32_t lo = u16();
+        const std::uint32_t hi = u16();
+        return lo | (hi << 16);
+    }
     bool flag() { return byte() & 1; }
 
     /// An integer in [lo, hi] (inclusive; lo <= hi).
@@ -66,7 +78,9 @@ public:
         case 6:
             return -0.0;
         default: {
-            const std::uint64_t bits = std::uint64_t(u32()) | (std::uint64_t(u32()) << 32);
+            const std::uint64_t lo = u32();
+            const std::uint64_t hi = u32();
+            const std::uint64_t bits = lo | (hi << 32);
             double d;
             std::memcpy(&d, &bits, sizeof d);
             return d;
