@@ -22,10 +22,32 @@ constexpr std::int64_t kMaxFlattenedPoints = std::int64_t(1) << 14;
 double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
     const glm::dvec2 ab = b - a;
     const double len2 = glm::dot(ab, ab);
+    if (!std::isfinite(len2) && std::isfinite(ab.x) && std::isfinite(ab.y)) {
+        // Finite points so far apart that the squared length overflows: the same at a
+        // power-of-two scale (exact), then scaled back.
+        constexpr int k = 600;
+        const auto down = [](glm::dvec2 v) {
+            return glm::dvec2(std::ldexp(v.x, -k), std::ldexp(v.y, -k));
+        };
+        return std::ldexp(distanceToSegment(down(p), down(a), down(b)), k);
+    }
     if (len2 <= 0.0)
         return glm::length(p - a);
     const double t = std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0);
     return glm::length(p - (a + t * ab));
+}
+
+// Where the edge a-b meets the vertical line x = u, for a.x and b.x on either side of it (the
+// parity tests below). The textbook a.y + (u - a.x) (b.y - a.y) / (b.x - a.x) overflows for
+// finite but huge coordinates (fuzz_trim: an edge from (1, 1) to (-2.5e305, 94709) gave a cut
+// at -inf, so trimRegionSpans and trimRegionContains disagreed). The fraction along the edge
+// first (in [0, 1]; at half scale if b.x - a.x overflows), then std::lerp, which stays between
+// a.y and b.y: a cut never leaves the edge's box, so contains' box test cannot change a parity.
+double crossingV(glm::dvec2 a, glm::dvec2 b, double u) {
+    const double width = b.x - a.x;
+    const double t =
+        std::isfinite(width) ? (u - a.x) / width : (0.5 * u - 0.5 * a.x) / (0.5 * b.x - 0.5 * a.x);
+    return std::lerp(a.y, b.y, std::clamp(t, 0.0, 1.0));
 }
 
 // Appends the points of (t0, t1] to out, bisecting while the curve strays from the chord.
@@ -337,8 +359,7 @@ bool trimRegionContains(const TrimRegion& region, glm::dvec2 uv) {
             const glm::dvec2 a = poly[j], b = poly[i];
             if ((a.x <= uv.x) == (b.x <= uv.x))
                 continue;
-            const double v = a.y + (uv.x - a.x) * (b.y - a.y) / (b.x - a.x);
-            if (v > uv.y)
+            if (crossingV(a, b, uv.x) > uv.y)
                 inside = !inside;
         }
     }
@@ -357,7 +378,7 @@ std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double
             const glm::dvec2 a = poly[j], b = poly[i];
             if ((a.x <= u) == (b.x <= u))
                 continue;
-            cuts.push_back(a.y + (u - a.x) * (b.y - a.y) / (b.x - a.x));
+            cuts.push_back(crossingV(a, b, u));
         }
     }
     std::sort(cuts.begin(), cuts.end());

@@ -48,6 +48,7 @@ private Q_SLOTS:
     void flatteningStaysWithinTolerance();
     void classificationIsEvenOdd();
     void spansMatchClassification();
+    void hugeCoordinatesDoNotOverflow();
     void areaOfPlateWithHoleAndIsland();
     void areaOfUntrimmedSphere();
     void areaOfTrimmedSampleConverges();
@@ -121,6 +122,28 @@ void TestTrim::spansMatchClassification() {
             QCOMPARE(inSpan, trimRegionContains(r, {u, v}));
         }
     }
+}
+
+// Finite but huge polygon points (a file can hold them): the crossing of an edge with a
+// vertical line used to overflow to -inf, so spans and classification disagreed (fuzz_trim,
+// tests/fuzz/repro/trim/crossing-overflow).
+void TestTrim::hugeCoordinatesDoNotOverflow() {
+    TrimRegion r;
+    r.loops = {{{1, 1}, {-1e306, 378835.7}, {-2.5e305, 94709.7}}};
+    r.lo = {{-1e306, 1}};
+    r.hi = {{1, 378835.7}};
+    for (const double u : {-0.33566, -1e300, -2e305, 0.5}) {
+        const std::vector<Interval> spans = trimRegionSpans(r, u, -1e6, 1e6);
+        for (const Interval& s : spans) {
+            QVERIFY(std::isfinite(s.first) && std::isfinite(s.last));
+            QVERIFY(trimRegionContains(r, {u, 0.5 * (s.first + s.last)}));
+        }
+        // Below the polygon's box: outside, and no span reaches there.
+        QVERIFY(!trimRegionContains(r, {u, -0.14}));
+        for (const Interval& s : spans)
+            QVERIFY(s.first > -0.14);
+    }
+    QVERIFY(std::isfinite(trimRegionDistance(r, {0.0, 0.0})));
 }
 
 void TestTrim::areaOfPlateWithHoleAndIsland() {
