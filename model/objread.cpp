@@ -247,6 +247,11 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
     } else if (key == "surfaces") {
         m_announced = static_cast<int>(integer(3, 0, kMaxSurfaces));
         m_announcedLine = line;
+    } else if (key == "lights") { // the count; 0: an unlit scene, not the default lights
+        integer(3, 0, kMaxLights);
+        if (!m_lightsFromFile)
+            m_scene.lights.clear();
+        m_lightsFromFile = true;
     } else if (key == "light") {
         if (!m_lightsFromFile)
             m_scene.lights.clear();

@@ -83,6 +83,9 @@ QByteArray writeObj(const Scene& scene) {
     out += "# knotwork nextid " + QByteArray::number(scene.nextId) + '\n';
     // The count lets the reader tell a file cut at an element boundary from a complete one.
     out += "# knotwork surfaces " + QByteArray::number(scene.surfaces.size()) + '\n';
+    // The count first: "lights 0" keeps an unlit scene unlit (no light lines would mean the
+    // default lights to the reader).
+    out += "# knotwork lights " + QByteArray::number(qsizetype(scene.lights.size())) + '\n';
     for (const Light& l : scene.lights)
         out += QByteArray("# knotwork light ") +
                (l.kind == Light::Kind::Point ? "point " : "directional ") + vec(l.vector) + ' ' +
