@@ -198,6 +198,13 @@ Scene ObjParser::parse(const QByteArray& text) {
     if (m_el.kind != Element::Kind::None)
         fail(m_el.line,
              QStringLiteral("element is not closed by 'end' before the end of the file"));
+    // A file Knotwork wrote says how many surfaces follow: fewer means it was cut short at an
+    // element boundary, which would otherwise read as a complete, smaller scene.
+    if (m_announced >= 0 && m_surfaceNumber != m_announced)
+        fail(m_announcedLine, QStringLiteral("'# knotwork surfaces %1' but the file holds %2 "
+                                             "surface(s): is it cut short?")
+                                  .arg(m_announced)
+                                  .arg(m_surfaceNumber));
     if (m_polygons > 0)
         m_report.warnings << QStringLiteral("%1: %2 polygon statement(s) (f, l, p) ignored: "
                                             "Knotwork imports free-form surfaces only")
