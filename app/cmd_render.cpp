@@ -6,6 +6,9 @@
 #include "render/offscreen_renderer.h"
 
 #include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <algorithm>
+#include <vector>
 
 namespace kw::cli {
 
@@ -13,7 +16,8 @@ int runRender(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
         "Render a .knot project off-screen with the exact per-pixel NURBS renderer (or the "
-        "tessellated baseline) and write the image with OpenImageIO. Uses the project's camera, "
+        "tessellated baseline) and write the image (PNG with Qt; JPG, TIF, EXR with OpenImageIO). "
+        "Uses the project's camera, "
         "or fits one to the scene. Needs OpenGL 4.5 core: on a machine without a display run "
         "under xvfb-run -a -s \"-screen 0 1280x1024x24\" with QT_QPA_PLATFORM=xcb."));
     const QCommandLineOption out({QStringLiteral("o"), QStringLiteral("output")},
@@ -26,6 +30,15 @@ int runRender(const QStringList& args) {
                                  QStringLiteral("Also write a float EXR with channels id, u, v, "
                                                 "P.x, P.y, P.z, N.x, N.y, N.z, Z."),
                                  QStringLiteral("AOV.exr"));
+    const QCommandLineOption aovCurvature(
+        QStringLiteral("aov-curvature"),
+        QStringLiteral(
+            "Add channels K, H, k1, k2 (exact curvature, see README) to the --aov EXR."));
+    const QCommandLineOption timeFrames(
+        QStringLiteral("time-frames"),
+        QStringLiteral("After the image, render N more frames (1..10000) and print the median "
+                       "frame time in ms (glFinish per frame), for docs/PERFORMANCE.md."),
+        QStringLiteral("N"));
     const QCommandLineOption wire(QStringLiteral("wireframe"),
                                   QStringLiteral("Overlay the base polygon cells."));
     const QCommandLineOption net(QStringLiteral("control-net"),
@@ -40,7 +53,7 @@ int runRender(const QStringList& args) {
                        "metrics (silhouette, cracks, id/depth, normal error) as JSON ('-': "
                        "stdout)."),
         QStringLiteral("REPORT.json"));
-    parser.addOptions({out, size, aov, wire, net, reference, edgeReport});
+    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport});
     const RenderCliOptions shared = addRenderOptions(parser, QString());
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -74,6 +87,16 @@ int runRender(const QStringList& args) {
         return kExitUsage;
     }
 
+    if (parser.isSet(aovCurvature) && !parser.isSet(aov)) {
+        printError(QStringLiteral("%1: --aov-curvature needs --aov AOV.exr").arg(cmd));
+        return kExitUsage;
+    }
+    int timedFrames = 0;
+    if (parser.isSet(timeFrames) && !parseIntIn(parser.value(timeFrames), 1, 10000, timedFrames)) {
+        printError(QStringLiteral("%1: --time-frames '%2' is not in 1..10000")
+                       .arg(cmd, parser.value(timeFrames)));
+        return kExitUsage;
+    }
     if (parser.isSet(reference) && parser.isSet(edgeReport)) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
@@ -98,7 +121,8 @@ int runRender(const QStringList& args) {
     }
     const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
     OffscreenRenderer renderer;
-    if (!renderer.create(&error) || !renderer.setSize(imageSize, withAov, &error)) {
+    if (!renderer.create(&error) ||
+        !renderer.setSize(imageSize, withAov, &error, parser.isSet(aovCurvature))) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
@@ -118,6 +142,27 @@ int runRender(const QStringList& args) {
         !writeEdgeReport(scene, camera, renderer.aov(), parser.value(edgeReport), &error)) {
         printError(error);
         return kExitBadInput;
+    }
+    if (timedFrames > 0) {
+        // Steady-state frames: nothing changes between them, so no uploads; the median is
+        // robust to a shared machine's hiccups.
+        std::vector<double> ms;
+        for (int k = 0; k < timedFrames; ++k) {
+            QElapsedTimer t;
+            t.start();
+            if (!renderer.render(doc, camera, options, &error)) {
+                printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
+                return kExitBadInput;
+            }
+            renderer.finish();
+            ms.push_back(double(t.nsecsElapsed()) * 1e-6);
+        }
+        std::sort(ms.begin(), ms.end());
+        printOut(QStringLiteral("%1: median frame %2 ms over %3 frames (--shading %4)\n")
+                     .arg(files[0])
+                     .arg(ms[ms.size() / 2], 0, 'f', 2)
+                     .arg(timedFrames)
+                     .arg(analysisModeName(options.analysis.mode)));
     }
     printOut(
         QStringLiteral("%1: %2x%3 %4 render of %5 surface(s) -> %6%7\n")

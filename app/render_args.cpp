@@ -6,6 +6,7 @@
 
 #include <QCommandLineParser>
 #include <QStringList>
+#include <cmath>
 
 namespace kw::cli {
 
@@ -46,6 +47,81 @@ QString shadingName(RenderOptions::Shading shading) {
                                                          : QStringLiteral("prepass");
 }
 
+namespace {
+
+/// "A,B,..." as exactly `count` finite numbers.
+bool parseNumbers(const QString& text, int count, double* out) {
+    const QStringList parts = text.split(QLatin1Char(','));
+    if (parts.size() != count)
+        return false;
+    for (int k = 0; k < count; ++k) {
+        bool ok = false;
+        out[k] = parts[k].trimmed().toDouble(&ok);
+        if (!ok || !std::isfinite(out[k]))
+            return false;
+    }
+    return true;
+}
+
+bool parseNumberIn(const QString& text, double lo, double hi, double& value) {
+    double x = 0.0;
+    if (!parseNumbers(text, 1, &x) || x < lo || x > hi)
+        return false;
+    value = x;
+    return true;
+}
+
+template <typename Fail>
+bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOptions& o,
+                         const Fail& fail, AnalysisOptions& a) {
+    const QString mode = parser.value(o.shading);
+    if (mode == QLatin1String("isocurves")) {
+        a.mode = AnalysisMode::Phong;
+        a.isocurves = true;
+    } else if (const std::optional<AnalysisMode> m = parseAnalysisMode(mode)) {
+        a.mode = *m;
+    } else {
+        return fail(o.shading, QStringLiteral("phong, gaussian, mean, max-curvature, min-radius, "
+                                              "zebra, isophotes, environment, draft or "
+                                              "isocurves"));
+    }
+    a.isocurves = a.isocurves || parser.isSet(o.isocurves);
+    int nu = 0, nv = 0;
+    const QStringList iso = parser.value(o.isoLines).toLower().split(QLatin1Char('x'));
+    if (iso.size() > 2 || !parseIntIn(iso[0], 0, 1000, nu) ||
+        !parseIntIn(iso.value(iso.size() - 1), 0, 1000, nv))
+        return fail(o.isoLines, QStringLiteral("N or NxM with 0..1000"));
+    a.isoCount = glm::ivec2(nu, nv);
+    if (parser.isSet(o.range)) {
+        double r[2];
+        if (!parseNumbers(parser.value(o.range), 2, r) || !(r[1] > r[0]))
+            return fail(o.range, QStringLiteral("LOW,HIGH with LOW < HIGH"));
+        a.range = ValueRange{r[0], r[1]};
+    }
+    if (parser.isSet(o.scale)) {
+        a.scale = parseColourScale(parser.value(o.scale));
+        if (!a.scale)
+            return fail(o.scale, QStringLiteral("linear, symmetric or log"));
+    }
+    if (!parseNumberIn(parser.value(o.stripes), 0.5, 1000.0, a.stripeCount))
+        return fail(o.stripes, QStringLiteral("a number in 0.5..1000"));
+    if (!parseNumberIn(parser.value(o.stripeAngle), -360.0, 360.0, a.stripeAngleDegrees))
+        return fail(o.stripeAngle, QStringLiteral("an angle in -360..360"));
+    if (!parseNumberIn(parser.value(o.isophoteBands), 1.0, 1000.0, a.isophoteCount))
+        return fail(o.isophoteBands, QStringLiteral("a number in 1..1000"));
+    double pull[3];
+    if (!parseNumbers(parser.value(o.pull), 3, pull) ||
+        !(glm::length(glm::dvec3(pull[0], pull[1], pull[2])) > 0.0))
+        return fail(o.pull, QStringLiteral("a non-zero vector X,Y,Z"));
+    a.pullDirection = glm::dvec3(pull[0], pull[1], pull[2]);
+    if (!parseNumberIn(parser.value(o.draftAngle), 0.0, 90.0, a.draftAngleDegrees))
+        return fail(o.draftAngle, QStringLiteral("an angle in 0..90"));
+    a.environmentMap = parser.value(o.envMap);
+    return true;
+}
+
+} // namespace
+
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions) {
     RenderCliOptions o{
         QCommandLineOption(QStringLiteral("mode"),
@@ -62,9 +138,9 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("lights"),
                            QStringLiteral("Number of lights, 1..%1 (default 2).").arg(kMaxLights),
                            QStringLiteral("N"), QStringLiteral("2")),
-        QCommandLineOption(QStringLiteral("shading"),
-                           QStringLiteral("Exact mode: prepass (default: depth pre-pass + "
-                                          "GL_EQUAL) or exact-depth (one pass writing "
+        QCommandLineOption(QStringLiteral("depth"),
+                           QStringLiteral("Exact mode visibility: prepass (default: depth pre-pass "
+                                          "+ GL_EQUAL) or exact-depth (one pass writing "
                                           "gl_FragDepth)."),
                            QStringLiteral("WAY"), QStringLiteral("prepass")),
         QCommandLineOption(QStringLiteral("no-trims"),
@@ -76,8 +152,53 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "up to this.")
                                .arg(kMinTrimMaskSize)
                                .arg(kDefaultTrimMaskCap),
-                           QStringLiteral("N"), QString::number(kDefaultTrimMaskCap))};
-    parser.addOptions({o.mode, o.partitions, o.lights, o.shading, o.noTrims, o.trimMaskCap});
+                           QStringLiteral("N"), QString::number(kDefaultTrimMaskCap)),
+        QCommandLineOption(QStringLiteral("shading"),
+                           QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
+                                          "max-curvature, min-radius, zebra, isophotes, "
+                                          "environment, draft, or isocurves (phong with "
+                                          "--isocurves)."),
+                           QStringLiteral("MODE"), QStringLiteral("phong")),
+        QCommandLineOption(QStringLiteral("isocurves"),
+                           QStringLiteral("Overlay knot lines and iso-parameter lines on any "
+                                          "--shading mode.")),
+        QCommandLineOption(QStringLiteral("iso-lines"),
+                           QStringLiteral("Iso-parameter lines per direction, N or NxM, 0..1000 "
+                                          "(default 8): at i/(N+1) of each domain."),
+                           QStringLiteral("N|NxM"), QStringLiteral("8")),
+        QCommandLineOption(QStringLiteral("range"),
+                           QStringLiteral("Colour maps: value range LOW,HIGH (default: the 2nd "
+                                          "to 98th percentile of kernel samples)."),
+                           QStringLiteral("LOW,HIGH")),
+        QCommandLineOption(QStringLiteral("scale"),
+                           QStringLiteral("Colour maps: linear, symmetric (0 in the middle) or "
+                                          "log (signed); default symmetric for gaussian and "
+                                          "mean, linear otherwise."),
+                           QStringLiteral("SCALE")),
+        QCommandLineOption(QStringLiteral("stripes"),
+                           QStringLiteral("Zebra: stripe pairs per 180 degrees of reflection "
+                                          "(default 8)."),
+                           QStringLiteral("N"), QStringLiteral("8")),
+        QCommandLineOption(QStringLiteral("stripe-angle"),
+                           QStringLiteral("Zebra: stripe direction in the view plane in degrees "
+                                          "(0 horizontal, default 90 vertical)."),
+                           QStringLiteral("DEG"), QStringLiteral("90")),
+        QCommandLineOption(QStringLiteral("isophote-bands"),
+                           QStringLiteral("Isophotes: bands across N.L (default 10)."),
+                           QStringLiteral("N"), QStringLiteral("10")),
+        QCommandLineOption(QStringLiteral("pull"),
+                           QStringLiteral("Draft: pull direction X,Y,Z (default 0,0,1)."),
+                           QStringLiteral("X,Y,Z"), QStringLiteral("0,0,1")),
+        QCommandLineOption(QStringLiteral("draft-angle"),
+                           QStringLiteral("Draft: threshold angle in degrees, 0..90 (default 3)."),
+                           QStringLiteral("DEG"), QStringLiteral("3")),
+        QCommandLineOption(QStringLiteral("env-map"),
+                           QStringLiteral("Environment: equirectangular image (PNG, JPEG, BMP "
+                                          "or TIFF; default the bundled studio)."),
+                           QStringLiteral("IMAGE"))};
+    parser.addOptions({o.mode, o.partitions, o.lights, o.depth, o.noTrims, o.trimMaskCap, o.shading,
+                       o.isocurves, o.isoLines, o.range, o.scale, o.stripes, o.stripeAngle,
+                       o.isophoteBands, o.pull, o.draftAngle, o.envMap});
     return o;
 }
 
@@ -101,13 +222,15 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
                     QStringLiteral("N or NxM with %1..%2").arg(kMinPartitions).arg(kMaxPartitions));
     if (!parseIntIn(parser.value(o.lights), 1, kMaxLights, options.lightCount))
         return fail(o.lights, QStringLiteral("in 1..%1").arg(kMaxLights));
-    const QString shading = parser.value(o.shading);
-    if (shading == shadingName(RenderOptions::Shading::DepthPrepass))
+    const QString depth = parser.value(o.depth);
+    if (depth == shadingName(RenderOptions::Shading::DepthPrepass))
         options.shading = RenderOptions::Shading::DepthPrepass;
-    else if (shading == shadingName(RenderOptions::Shading::ExactDepth))
+    else if (depth == shadingName(RenderOptions::Shading::ExactDepth))
         options.shading = RenderOptions::Shading::ExactDepth;
     else
-        return fail(o.shading, QStringLiteral("prepass or exact-depth"));
+        return fail(o.depth, QStringLiteral("prepass or exact-depth"));
+    if (!readAnalysisOptions(parser, o, fail, options.analysis))
+        return false;
     if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
         return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
     options.trims = !parser.isSet(o.noTrims);

@@ -19,11 +19,17 @@ bool parsePartitions(const QString& text, int& nu, int& nv);
 /// An integer in [lo, hi]; false otherwise.
 bool parseIntIn(const QString& text, int lo, int hi, int& value);
 QString modeName(RenderMode mode);
+/// "prepass" or "exact-depth": the --depth names of RenderOptions::Shading (how exact mode
+/// resolves visibility; the analysis colouring is --shading).
 QString shadingName(RenderOptions::Shading shading);
 
-/// --mode, --partitions, --lights, --shading, --no-trims and --trim-mask-cap.
+/// --mode, --partitions, --lights, --depth, --no-trims, --trim-mask-cap and the analysis
+/// options (--shading MODE, --isocurves, --iso-lines, --range, --scale, --stripes,
+/// --stripe-angle, --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
-    QCommandLineOption mode, partitions, lights, shading, noTrims, trimMaskCap;
+    QCommandLineOption mode, partitions, lights, depth, noTrims, trimMaskCap;
+    QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
+        isophoteBands, pull, draftAngle, envMap;
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions);

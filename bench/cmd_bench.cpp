@@ -140,7 +140,7 @@ int runBench(const QStringList& args) {
                                   QStringLiteral("Table 1 mode: exact (default) or tessellated."),
                                   QStringLiteral("MODE"), QStringLiteral("exact"));
     const QCommandLineOption shading(
-        QStringLiteral("shading"),
+        QStringLiteral("depth"),
         QStringLiteral("Exact mode: prepass (default: depth pre-pass + GL_EQUAL) or exact-depth "
                        "(one pass writing gl_FragDepth)."),
         QStringLiteral("WAY"), QStringLiteral("prepass"));
@@ -206,7 +206,7 @@ int runBench(const QStringList& args) {
                 "1..4096), --lights "
                 "(1..%4), --tables (1, 2, scale), --scale-faces, --scale-size, --mode (exact, "
                 "tessellated) or "
-                "--shading (prepass, exact-depth) (see --help)")
+                "--depth (prepass, exact-depth) (see --help)")
                 .arg(cmd)
                 .arg(kMinPartitions)
                 .arg(kMaxPartitions)

@@ -78,10 +78,25 @@ struct Frames {
     OffscreenRenderer& renderer;
     const ScaleConfig& config;
     RenderOptions options;
+    /// The first "drawn, but not as asked" message of the row (e.g. more trimmed surfaces than
+    /// the GPU has mask layers: the rest are drawn untrimmed); the row is still measured.
+    QString warning;
+
+    /// One render call. A frame that was drawn with a warning (FrameReport: ok false, draws
+    /// issued) counts as drawn and keeps its message in `warning`.
+    bool render(const Document& doc, const Camera& camera, QString* error) {
+        if (renderer.render(doc, camera, options, error))
+            return true;
+        if (renderer.lastReport().drawCalls == 0)
+            return false;
+        if (warning.isEmpty())
+            warning = *error;
+        return true;
+    }
 
     bool draw(const Document& doc, const Camera& camera, double* callMs, QString* error) {
         const double t0 = threadCpuMs();
-        const bool ok = renderer.render(doc, camera, options, error);
+        const bool ok = render(doc, camera, error);
         if (callMs)
             *callMs = threadCpuMs() - t0;
         return ok;
@@ -129,7 +144,7 @@ struct Frames {
                 *error = QStringLiteral("the drag step could not move the control point");
                 return false;
             }
-            if (!renderer.render(doc, camera, options, error))
+            if (!render(doc, camera, error))
                 return false;
             const double t1 = threadCpuMs();
             renderer.finish();
@@ -167,7 +182,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     OffscreenRenderer renderer;
     if (!renderer.create(error) || !renderer.setSize(QSize(config.side, config.side), false, error))
         return false;
-    Frames frames{renderer, config, RenderOptions{}};
+    Frames frames{renderer, config, RenderOptions{}, QString()};
     frames.options.trims = config.trims;
     const Camera closeUp = closeUpCamera(*unit, 1.0);
 
@@ -178,6 +193,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         if (!writeKnotFile(file, tileScene(*unit, row.copies), error))
             return false;
         Document doc;
+        frames.warning.clear();
         {
             QElapsedTimer load;
             load.start();
@@ -196,12 +212,15 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         renderer.finish();
         row.firstFrameSeconds = double(first.nsecsElapsed()) * 1e-9;
         row.residentMiB = residentMiB();
-        if (!frames.time(doc, fitted, row.fitted, error) ||
-            !frames.time(doc, closeUp, row.closeUp, error) ||
+        row.gpuBytes = renderer.lastReport().gpuBytes.total();
+        if (!frames.time(doc, fitted, row.fitted, error))
+            return false;
+        row.drawCalls = renderer.lastReport().drawCalls; // a steady fitted frame's
+        if (!frames.time(doc, closeUp, row.closeUp, error) ||
             !frames.drag(doc, fitted, row.dragStepMs, error))
             return false;
         progress(QStringLiteral("scale %1 x %2 = %3 faces: load %4 s, %5 MiB, fitted %6 FPS "
-                                "(%7 CPU ms), close-up %8 FPS, drag step %9 ms")
+                                "(%7 CPU ms, %8 draw calls), close-up %9 FPS, drag step %10 ms")
                      .arg(row.copies)
                      .arg(report.unitFaces)
                      .arg(row.faces)
@@ -209,8 +228,12 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
                      .arg(row.residentMiB, 0, 'f', 0)
                      .arg(row.fitted.timing.fps(), 0, 'f', 1)
                      .arg(row.fitted.timing.cpuMs, 0, 'f', 1)
+                     .arg(row.drawCalls)
                      .arg(row.closeUp.timing.fps(), 0, 'f', 1)
                      .arg(row.dragStepMs, 0, 'f', 2));
+        row.warning = frames.warning;
+        if (!row.warning.isEmpty())
+            progress(QStringLiteral("scale %1 faces: warning: %2").arg(row.faces).arg(row.warning));
         report.rows.push_back(row);
     }
     renderer.makeCurrent();

@@ -38,12 +38,15 @@ struct ScaleRow {
     double loadSeconds = 0.0;       ///< reading the tiled .knot into a Document
     double firstFrameSeconds = 0.0; ///< first frame (every upload) to glFinish, fitted view
     double residentMiB = 0.0;       ///< process VmRSS after the first frame
-    long long gpuBytes = -1;        ///< FrameReport: bytes resident on the GPU (-1: unknown)
-    int drawCalls = -1;             ///< FrameReport: draw calls of a fitted frame (-1: unknown)
+    long long gpuBytes = 0;         ///< FrameReport::gpuBytes.total() after the first frame
+    int drawCalls = 0;              ///< FrameReport::drawCalls of a fitted frame
     ScaleView fitted, closeUp;
     /// Median thread CPU ms from moving one control point (Document::setControlPoints, what a
     /// drag step does) to the end of the render call that issues the frame's draws.
     double dragStepMs = 0.0;
+    /// Empty, or why frames were not drawn as asked (e.g. trimmed surfaces beyond the GPU's
+    /// mask layers drawn untrimmed); the numbers are those of the frames as drawn.
+    QString warning;
 };
 
 struct ScaleReport {

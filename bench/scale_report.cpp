@@ -19,17 +19,8 @@ QJsonObject viewJson(const ScaleView& v) {
                        {QStringLiteral("renderCallMs"), v.renderCallMs}};
 }
 
-/// -1 (unknown) as JSON null.
-QJsonValue known(double v) {
-    return v < 0.0 ? QJsonValue() : QJsonValue(v);
-}
-
 QString num(double v, int decimals = 1) {
     return QString::number(v, 'f', decimals);
-}
-
-QString orDash(double v, int decimals = 0) {
-    return v < 0.0 ? QStringLiteral("–") : num(v, decimals);
 }
 
 /// The row whose face count is nearest to `faces` (rows non-empty).
@@ -51,11 +42,12 @@ QJsonObject scaleJson(const ScaleReport& report) {
                                 {QStringLiteral("loadSeconds"), r.loadSeconds},
                                 {QStringLiteral("firstFrameSeconds"), r.firstFrameSeconds},
                                 {QStringLiteral("residentMiB"), r.residentMiB},
-                                {QStringLiteral("gpuBytes"), known(double(r.gpuBytes))},
-                                {QStringLiteral("drawCalls"), known(r.drawCalls)},
+                                {QStringLiteral("gpuBytes"), double(r.gpuBytes)},
+                                {QStringLiteral("drawCalls"), r.drawCalls},
                                 {QStringLiteral("fitted"), viewJson(r.fitted)},
                                 {QStringLiteral("closeUp"), viewJson(r.closeUp)},
-                                {QStringLiteral("dragStepMs"), r.dragStepMs}});
+                                {QStringLiteral("dragStepMs"), r.dragStepMs},
+                                {QStringLiteral("warning"), r.warning}});
     const ScaleConfig& c = report.config;
     return QJsonObject{{QStringLiteral("model"), report.model},
                        {QStringLiteral("unitFaces"), report.unitFaces},
@@ -87,11 +79,16 @@ QString scaleMarkdown(const ScaleReport& report) {
                   .arg(r.copies)
                   .arg(r.faces)
                   .arg(num(r.loadSeconds, 2), num(r.firstFrameSeconds, 2), num(r.residentMiB, 0),
-                       orDash(r.gpuBytes < 0 ? -1.0 : double(r.gpuBytes) / (1 << 20), 1),
-                       orDash(r.drawCalls), num(r.fitted.timing.fps()), num(r.fitted.timing.cpuMs),
+                       num(double(r.gpuBytes) / (1 << 20), 1), QString::number(r.drawCalls),
+                       num(r.fitted.timing.fps()), num(r.fitted.timing.cpuMs),
                        num(r.fitted.renderCallMs, 2))
                   .arg(num(r.closeUp.timing.fps()), num(r.closeUp.timing.cpuMs),
                        num(r.closeUp.renderCallMs, 2), num(r.dragStepMs, 2));
+    for (const ScaleRow& r : report.rows)
+        if (!r.warning.isEmpty())
+            md += QStringLiteral("\n%1 faces: drawn with a warning: %2\n")
+                      .arg(r.faces)
+                      .arg(r.warning);
     if (report.rows.size() >= 2) {
         // The targets, read off the rows (100 faces: the row nearest to it).
         const ScaleRow& small = nearest(report.rows, 100);
@@ -108,8 +105,8 @@ QString scaleMarkdown(const ScaleReport& report) {
                   .arg(small.faces)
                   .arg(num(ratio(big.fitted.timing.cpuMs, small.fitted.timing.cpuMs), 2),
                        num(ratio(big.fitted.renderCallMs, small.fitted.renderCallMs), 2),
-                       orDash(big.drawCalls), orDash(small.drawCalls), num(big.dragStepMs, 2),
-                       num(big.loadSeconds, 2), num(big.residentMiB, 0));
+                       QString::number(big.drawCalls), QString::number(small.drawCalls),
+                       num(big.dragStepMs, 2), num(big.loadSeconds, 2), num(big.residentMiB, 0));
     }
     md += QStringLiteral("\nCPU ms/frame: process CPU time (all threads: llvmpipe rasterises on "
                          "its own) per timed frame; render call: the calling thread's CPU "

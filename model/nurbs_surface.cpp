@@ -7,31 +7,17 @@
 namespace kw {
 namespace {
 
-// ---- Degenerate-normal thresholds (mirrored by the GLSL port; see surfaceFrame below).
-
-/// A first derivative is "tiny" when |Su| * widthU <= kTinyDerivativeRel * L, where widthU is
-/// the width of the u domain and L the diagonal of the bounding box of the (degreeU+1) x
-/// (degreeV+1) control points that act on the span containing (u, v). Both sides have the
-/// units of length, so the test does not depend on the model's scale or parameterisation.
-/// Likewise |Suv| * widthU * widthV <= kTinyDerivativeRel * L for the mixed derivative.
-constexpr double kTinyDerivativeRel = 1e-8;
-/// A cross product a x b is "degenerate" when |a x b| <= kParallelRel * |a| * |b|, i.e. the
-/// sine of the angle between a and b is below kParallelRel.
-constexpr double kParallelRel = 1e-10;
-/// Step towards the domain centre, as a fraction of the domain width, for the last fallback.
-constexpr double kInteriorStep = 1e-4;
-
-struct LocalEval {
-    SurfaceDerivatives d;
-    double scale = 0.0; ///< diagonal of the bounds of the span's control points
-};
+using detail::kInteriorStep;
+using detail::kParallelRel;
+using detail::kTinyDerivativeRel;
+using detail::LocalEval;
 
 constexpr double kBinom[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
 
 // The NURBS Book, A3.6 (SurfaceDerivsAlg1) on homogeneous points Pw = (w P, w), to order 2,
 // followed by A4.4 (RatSurfaceDerivs) for the derivatives of the rational quotient.
 // Preconditions: detail::shapeOk(s); u, v inside the domain.
-LocalEval evaluate(const NurbsSurface& s, double u, double v) {
+LocalEval evaluateSpan(const NurbsSurface& s, double u, double v) {
     const int pu = s.degreeU;
     const int pv = s.degreeV;
     const int spanU = findSpan(pu, s.knotsU, u);
@@ -95,6 +81,19 @@ bool degenerateCross(const glm::dvec3& c, const glm::dvec3& a, const glm::dvec3&
 
 } // namespace
 
+namespace detail {
+LocalEval evaluateLocal(const NurbsSurface& s, double u, double v) {
+    return evaluateSpan(s, u, v);
+}
+
+bool regularPoint(const LocalEval& e, double wu, double wv) {
+    const double tinyLen = kTinyDerivativeRel * e.scale;
+    return e.scale > 0.0 && glm::length(e.d.su) * wu > tinyLen &&
+           glm::length(e.d.sv) * wv > tinyLen &&
+           !degenerateCross(glm::cross(e.d.su, e.d.sv), e.d.su, e.d.sv);
+}
+} // namespace detail
+
 Interval surfaceDomainU(const NurbsSurface& s) {
     return knotDomain(s.knotsU, s.degreeU);
 }
@@ -105,7 +104,8 @@ Interval surfaceDomainV(const NurbsSurface& s) {
 SurfaceDerivatives surfaceDerivatives(const NurbsSurface& s, double u, double v) {
     if (!detail::shapeOk(s))
         return {};
-    return evaluate(s, detail::clampTo(u, surfaceDomainU(s)), detail::clampTo(v, surfaceDomainV(s)))
+    return evaluateSpan(s, detail::clampTo(u, surfaceDomainU(s)),
+                        detail::clampTo(v, surfaceDomainV(s)))
         .d;
 }
 
@@ -139,7 +139,7 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
     v = detail::clampTo(v, dv);
     const double wu = du.last - du.first;
     const double wv = dv.last - dv.first;
-    const LocalEval e = evaluate(s, u, v);
+    const LocalEval e = evaluateSpan(s, u, v);
     f.point = e.d.s;
     f.du = e.d.su;
     f.dv = e.d.sv;
@@ -174,15 +174,10 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
         }
     }
     // Step 3: the plain normal of a nearby interior point.
-    const auto towards = [](double t, const Interval& d, double w) {
-        const double c = 0.5 * (d.first + d.last);
-        return t < c ? t + kInteriorStep * w : (t > c ? t - kInteriorStep * w : t);
-    };
-    const LocalEval e2 = evaluate(s, towards(u, du, wu), towards(v, dv, wv));
-    const double tiny2 = kTinyDerivativeRel * e2.scale;
-    const glm::dvec3 n2 = glm::cross(e2.d.su, e2.d.sv);
-    if (e2.scale > 0.0 && glm::length(e2.d.su) * wu > tiny2 && glm::length(e2.d.sv) * wv > tiny2 &&
-        !degenerateCross(n2, e2.d.su, e2.d.sv)) {
+    const LocalEval e2 =
+        evaluateSpan(s, detail::towardsInterior(u, du), detail::towardsInterior(v, dv));
+    if (detail::regularPoint(e2, wu, wv)) {
+        const glm::dvec3 n2 = glm::cross(e2.d.su, e2.d.sv);
         f.normal = n2 / glm::length(n2);
         return f;
     }

@@ -15,9 +15,20 @@ struct AovBuffer {
     int width = 0;
     int height = 0;
     std::vector<float> data;
+    /// With the curvature AOV (RenderTarget::curvatureAov): kCurvatureChannels floats per pixel
+    /// K, H, k1, k2 (kw::surfaceCurvature's signs; 0 on background); else empty.
+    static constexpr int kCurvatureChannels = 4;
+    static const char* const kCurvatureNames[kCurvatureChannels]; ///< K,H,k1,k2
+    std::vector<float> curvature;
 
     const float* pixel(int x, int y) const {
         return data.data() + (size_t(y) * size_t(width) + size_t(x)) * kChannels;
+    }
+    /// Nullptr without the curvature AOV.
+    const float* curvaturePixel(int x, int y) const {
+        return curvature.empty() ? nullptr
+                                 : curvature.data() +
+                                       (size_t(y) * size_t(width) + size_t(x)) * kCurvatureChannels;
     }
 };
 

@@ -13,7 +13,8 @@
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3; // after uControl, uSpansU, uSpansV
+constexpr int kTrimMaskUnit = 3;    // after uControl, uSpansU, uSpansV
+constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
     return r.mask.active && r.mask.layer >= 0 ? &r.mask : nullptr;
@@ -62,6 +63,7 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
+    m_environment.initialize(gl);
 }
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
@@ -79,6 +81,7 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_EXACT_DEPTH");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
+    d << analysisDefines(options.analysis, options.writeCurvatureAov);
     return d;
 }
 
@@ -130,8 +133,11 @@ bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const Fra
 
 bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
                             const std::vector<Light>& lights, const RenderOptions& options,
-                            QString* error) {
+                            const ValueRange& range, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (options.analysis.mode == AnalysisMode::Environment &&
+        !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
+        return false;
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
     // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
     // triangle, and GL_EQUAL needs bit-identical depths.
@@ -178,6 +184,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             prog->bind();
             bound = prog;
             setFrameUniforms(gl, prog, camera, lights);
+            setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights,
+                                kEnvironmentUnit);
             gl->glUniform1i(ShaderLibrary::uniforms(prog).control, 0);
             gl->glUniform1i(ShaderLibrary::uniforms(prog).spansU, 1);
             gl->glUniform1i(ShaderLibrary::uniforms(prog).spansV, 2);

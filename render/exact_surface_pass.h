@@ -2,6 +2,7 @@
 // per-fragment NURBS shader; a depth pre-pass (default) makes each pixel evaluated once.
 #pragma once
 
+#include "render/analysis_gl.h"
 #include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
@@ -21,8 +22,13 @@ public:
     /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
     /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
     /// with *error set when a shader variant cannot be built.
+    /// `range` is the resolved colour range of a colour-map analysis mode (else unused).
     bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
-              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
+              const std::vector<Light>& lights, const RenderOptions& options,
+              const ValueRange& range, QString* error);
+    /// Frees the environment map texture; the context must be current.
+    void release() { m_environment.release(); }
+    const EnvironmentMap& environment() const { return m_environment; }
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
     /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
@@ -47,6 +53,7 @@ private:
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
+    EnvironmentMap m_environment;
 };
 
 } // namespace kw

@@ -15,11 +15,13 @@ namespace kw {
 
 /// Where a frame goes: a framebuffer object of the renderer's context (0, or a
 /// QOpenGLWidget's defaultFramebufferObject()) of `size` pixels. With `aov` the framebuffer has
-/// the AOV colour attachments 1..3 of OffscreenRenderer, and the frame writes them.
+/// the AOV colour attachments 1..3 of OffscreenRenderer, and the frame writes them; with
+/// `curvatureAov` as well, attachment 4 gets K, H, k1, k2 (exact mode).
 struct RenderTarget {
     std::uint32_t framebuffer = 0;
     QSize size;
     bool aov = false;
+    bool curvatureAov = false;
 };
 
 /// Bytes of GPU memory held by the renderer, by kind (buffer and texture storage as requested
@@ -67,6 +69,10 @@ struct FrameReport {
     /// what changed in this frame.
     QStringList warnings;
     FrameTimes cpuMs;
+    /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
+    /// kw::autoRange, recomputed only when the geometry or mode changed and held while
+    /// AnalysisOptions::holdRange is set); {0, 1} for other modes. For the legend.
+    ValueRange analysisRange;
 };
 
 /// The answer of Renderer::pick: the surface visible at a pixel, its parameters there and the

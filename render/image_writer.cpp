@@ -1,8 +1,21 @@
-// OpenImageIO output of colour images and AOV buffers.
+// Output of colour images and AOV buffers through OpenImageIO, which lives in the module
+// libknotwork_oiio.so (render/oiio/) and is loaded on the first write: OpenImageIO maps 260
+// shared libraries, which a render that fails early or the editor should not pay for.
 #include "render/image_writer.h"
 
-#include <OpenImageIO/imageio.h>
+#include "render/oiio/image_module.h"
+
+#include <QCoreApplication>
+#include <QFileInfo>
+#include <QImageWriter>
+#include <QLibrary>
+#include <QSaveFile>
+#include <algorithm>
 #include <vector>
+
+#ifndef KW_MODULE_DIR
+#define KW_MODULE_DIR ""
+#endif
 
 namespace kw {
 
@@ -13,18 +26,67 @@ QString suffixOf(const QString& path) {
     return dot < 0 ? QString() : path.mid(dot + 1).toLower();
 }
 
-bool writePixels(const QString& path, const OIIO::ImageSpec& spec, const void* pixels,
-                 QString* error) {
-    const std::string file = path.toStdString();
-    auto out = OIIO::ImageOutput::create(file);
-    if (!out) {
-        *error = QStringLiteral("%1: no image writer for this format (%2)")
-                     .arg(path, QString::fromStdString(OIIO::geterror()));
+/// The module's entry point, loaded once: from the executable's folder (build/bin), else from
+/// the build tree's bin folder (test executables live elsewhere). Null with *why set when
+/// neither has a loadable module.
+KwImageWriteFn imageWriter(QString* why) {
+    static KwImageWriteFn fn = nullptr;
+    static QString failure;
+    static bool tried = false;
+    if (!tried) {
+        tried = true;
+        QStringList dirs;
+        if (QCoreApplication::instance())
+            dirs << QCoreApplication::applicationDirPath();
+        dirs << QStringLiteral(KW_MODULE_DIR);
+        for (const QString& dir : dirs) {
+            const QString file = dir + QStringLiteral("/libknotwork_oiio.so");
+            if (dir.isEmpty() || !QFileInfo::exists(file))
+                continue;
+            QLibrary lib(file);
+            fn = reinterpret_cast<KwImageWriteFn>(lib.resolve(KW_IMAGE_WRITE_SYMBOL));
+            if (fn)
+                break; // the library stays loaded: QLibrary does not unload on destruction
+            failure = lib.errorString();
+        }
+        if (!fn && failure.isEmpty())
+            failure = QStringLiteral("libknotwork_oiio.so is not in %1")
+                          .arg(dirs.join(QStringLiteral(" or ")));
+    }
+    if (!fn)
+        *why = failure;
+    return fn;
+}
+
+bool writePixels(const QString& path, KwImageWrite image, QString* error) {
+    QString why;
+    const KwImageWriteFn write = imageWriter(&why);
+    if (!write) {
+        *error = QStringLiteral("%1: cannot write images: the OpenImageIO module did not load (%2)")
+                     .arg(path, why);
         return false;
     }
-    if (!out->open(file, spec) || !out->write_image(spec.format, pixels) || !out->close()) {
-        *error = QStringLiteral("%1: could not write image: %2")
-                     .arg(path, QString::fromStdString(out->geterror()));
+    const QByteArray file = path.toLocal8Bit();
+    image.path = file.constData();
+    char message[1024] = {0};
+    if (!write(&image, message, sizeof message)) {
+        *error = QStringLiteral("%1: %2").arg(path, QString::fromLocal8Bit(message));
+        return false;
+    }
+    return true;
+}
+
+/// PNG needs no OpenImageIO: Qt's own encoder (in QtGui), written through QSaveFile so the old
+/// file stays until the new one is complete. The flush is checked before commit(), which in
+/// Qt 6.4 ignores a failed final flush.
+bool writePng(const QImage& rgb, const QString& path, QString* error) {
+    QSaveFile file(path);
+    QImageWriter writer(&file, "png");
+    if (!file.open(QIODevice::WriteOnly) || !writer.write(rgb) || !file.flush() || !file.commit()) {
+        const QString why =
+            file.error() != QFileDevice::NoError ? file.errorString() : writer.errorString();
+        file.cancelWriting();
+        *error = QStringLiteral("%1: could not write image: %2").arg(path, why);
         return false;
     }
     return true;
@@ -49,6 +111,8 @@ bool writeColorImage(const QImage& image, const QString& path, QString* error) {
         return false;
     }
     const QImage rgb = image.convertToFormat(QImage::Format_RGB888);
+    if (suffixOf(path) == QLatin1String("png"))
+        return writePng(rgb, path, error);
     const int w = rgb.width(), h = rgb.height();
     std::vector<unsigned char> bytes(size_t(w) * size_t(h) * 3);
     for (int y = 0; y < h; ++y)
@@ -57,13 +121,12 @@ bool writeColorImage(const QImage& image, const QString& path, QString* error) {
         std::vector<float> f(bytes.size());
         for (size_t k = 0; k < bytes.size(); ++k)
             f[k] = float(bytes[k]) / 255.0f;
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
-        return writePixels(path, spec, f.data(), error);
+        return writePixels(path, KwImageWrite{nullptr, w, h, 3, 1, f.data(), nullptr, 0, nullptr},
+                           error);
     }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    if (suffixOf(path).startsWith(QLatin1String("jp")))
-        spec.attribute("CompressionQuality", 95);
-    return writePixels(path, spec, bytes.data(), error);
+    const int quality = suffixOf(path).startsWith(QLatin1String("jp")) ? 95 : 0;
+    return writePixels(
+        path, KwImageWrite{nullptr, w, h, 3, 0, bytes.data(), nullptr, quality, nullptr}, error);
 }
 
 bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error) {
@@ -75,12 +138,29 @@ bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error) {
         *error = QStringLiteral("%1: no AOV data was rendered").arg(path);
         return false;
     }
-    OIIO::ImageSpec spec(aov.width, aov.height, AovBuffer::kChannels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames.clear();
-    for (const char* name : AovBuffer::kChannelNames)
-        spec.channelnames.emplace_back(name);
-    spec.attribute("compression", "zip");
-    return writePixels(path, spec, aov.data.data(), error);
+    if (aov.curvature.empty())
+        return writePixels(path,
+                           KwImageWrite{nullptr, aov.width, aov.height, AovBuffer::kChannels, 1,
+                                        aov.data.data(), AovBuffer::kChannelNames, 0, "zip"},
+                           error);
+    // With the curvature AOV: the 10 channels, then K, H, k1, k2, interleaved per pixel.
+    constexpr int channels = AovBuffer::kChannels + AovBuffer::kCurvatureChannels;
+    const char* names[channels];
+    std::copy_n(AovBuffer::kChannelNames, AovBuffer::kChannels, names);
+    std::copy_n(AovBuffer::kCurvatureNames, AovBuffer::kCurvatureChannels,
+                names + AovBuffer::kChannels);
+    std::vector<float> all(size_t(aov.width) * size_t(aov.height) * size_t(channels));
+    for (size_t p = 0; p < size_t(aov.width) * size_t(aov.height); ++p) {
+        std::copy_n(aov.data.data() + p * AovBuffer::kChannels, AovBuffer::kChannels,
+                    all.data() + p * size_t(channels));
+        std::copy_n(aov.curvature.data() + p * AovBuffer::kCurvatureChannels,
+                    AovBuffer::kCurvatureChannels,
+                    all.data() + p * size_t(channels) + AovBuffer::kChannels);
+    }
+    return writePixels(
+        path,
+        KwImageWrite{nullptr, aov.width, aov.height, channels, 1, all.data(), names, 0, "zip"},
+        error);
 }
 
 } // namespace kw

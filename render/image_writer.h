@@ -1,5 +1,6 @@
-// Writes rendered images with OpenImageIO: colour as PNG/JPG/TIF (8-bit) or EXR (float), and
-// the AOV buffer as a multi-channel float EXR.
+// Writes rendered images: colour as PNG (Qt's encoder, atomically) or JPG/TIF (8-bit) or EXR
+// (float) and the AOV buffer as a multi-channel float EXR through OpenImageIO, which is loaded
+// (libknotwork_oiio.so) only when one of those is written.
 #pragma once
 
 #include "render/aov_buffer.h"
@@ -17,7 +18,8 @@ bool isSupportedImagePath(const QString& path);
 /// Returns false with *error naming the path on an unknown extension or a write failure.
 bool writeColorImage(const QImage& image, const QString& path, QString* error);
 
-/// Writes the AOV buffer as a float EXR with channels AovBuffer::kChannelNames. `path` must
+/// Writes the AOV buffer as a float EXR with channels AovBuffer::kChannelNames (and
+/// kCurvatureNames when the buffer has curvature). `path` must
 /// end in .exr. Returns false with *error on failure.
 bool writeAovImage(const AovBuffer& aov, const QString& path, QString* error);
 

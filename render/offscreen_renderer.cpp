@@ -22,9 +22,10 @@ struct OffscreenRenderer::Impl {
     FrameReport report;
     QSize size;
     bool withAov = false;
+    bool withCurvature = false;
     GLuint fbo = 0;
     GLuint color = 0, depth = 0;
-    GLuint aov[3] = {0, 0, 0};
+    GLuint aov[4] = {0, 0, 0, 0};
 };
 
 OffscreenRenderer::OffscreenRenderer() : d(std::make_unique<Impl>()) {}
@@ -84,15 +85,16 @@ void OffscreenRenderer::Impl::destroyFramebuffer() {
         return;
     if (fbo)
         gl->glDeleteFramebuffers(1, &fbo);
-    GLuint tex[5] = {color, depth, aov[0], aov[1], aov[2]};
+    GLuint tex[6] = {color, depth, aov[0], aov[1], aov[2], aov[3]};
     for (GLuint t : tex)
         if (t)
             gl->glDeleteTextures(1, &t);
     fbo = color = depth = 0;
-    aov[0] = aov[1] = aov[2] = 0;
+    aov[0] = aov[1] = aov[2] = aov[3] = 0;
 }
 
-bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
+bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool withCurvature) {
+    withCurvature = withCurvature && withAov;
     if (size.width() < 1 || size.height() < 1 || size.width() > 16384 || size.height() > 16384) {
         *error = QStringLiteral("image size %1x%2 is outside 1..16384")
                      .arg(size.width())
@@ -103,7 +105,7 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
         *error = QStringLiteral("the off-screen renderer has no OpenGL context");
         return false;
     }
-    if (size == d->size && withAov == d->withAov && d->fbo)
+    if (size == d->size && withAov == d->withAov && withCurvature == d->withCurvature && d->fbo)
         return true;
     d->destroyFramebuffer();
     QOpenGLFunctions_4_5_Core* gl = d->gl;
@@ -118,14 +120,14 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
     d->depth = texture(GL_DEPTH_COMPONENT24);
     gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT0, d->color, 0);
     gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_ATTACHMENT, d->depth, 0);
-    GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                         GL_COLOR_ATTACHMENT3};
-    if (withAov)
-        for (int k = 0; k < 3; ++k) {
-            d->aov[k] = texture(GL_RGBA32F);
-            gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), d->aov[k], 0);
-        }
-    gl->glNamedFramebufferDrawBuffers(d->fbo, withAov ? 4 : 1, buffers);
+    GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                         GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    const int aovTargets = withAov ? (withCurvature ? 4 : 3) : 0;
+    for (int k = 0; k < aovTargets; ++k) {
+        d->aov[k] = texture(GL_RGBA32F);
+        gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), d->aov[k], 0);
+    }
+    gl->glNamedFramebufferDrawBuffers(d->fbo, 1 + aovTargets, buffers);
     const GLenum status = gl->glCheckNamedFramebufferStatus(d->fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         *error = QStringLiteral("framebuffer incomplete (status 0x%1)").arg(status, 0, 16);
@@ -134,6 +136,7 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error) {
     }
     d->size = size;
     d->withAov = withAov;
+    d->withCurvature = withCurvature;
     return true;
 }
 
@@ -147,7 +150,8 @@ bool OffscreenRenderer::render(const Document& doc, const Camera& camera,
         *error = QStringLiteral("OffscreenRenderer::render needs create() and setSize() first");
         return false;
     }
-    d->report = d->renderer.render(doc, camera, {d->fbo, d->size, d->withAov}, options);
+    d->report =
+        d->renderer.render(doc, camera, {d->fbo, d->size, d->withAov, d->withCurvature}, options);
     if (!d->report.ok)
         *error = d->report.error;
     return d->report.ok;
@@ -203,6 +207,15 @@ AovBuffer OffscreenRenderer::aov() {
                                                         p[2], n[0], n[1], n[2], a[3]};
             std::copy(values, values + AovBuffer::kChannels, dst);
         }
+    if (d->withCurvature) {
+        std::vector<float> plane(size_t(w) * size_t(h) * 4);
+        gl->glGetTextureImage(d->aov[3], 0, GL_RGBA, GL_FLOAT,
+                              GLsizei(plane.size() * sizeof(float)), plane.data());
+        out.curvature.resize(plane.size());
+        for (int y = 0; y < h; ++y) // GL rows run bottom-up
+            std::copy_n(plane.data() + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4,
+                        out.curvature.data() + size_t(y) * size_t(w) * 4);
+    }
     return out;
 }
 

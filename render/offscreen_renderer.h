@@ -12,7 +12,8 @@
 namespace kw {
 
 /// FBO attachments: 0 colour RGBA8; 1 RGBA32F (id, u, v, Z); 2 RGBA32F (P, 1); 3 RGBA32F
-/// (N, 0); depth 24-bit. The AOV attachments exist only when requested in setSize.
+/// (N, 0); 4 RGBA32F (K, H, k1, k2); depth 24-bit. The AOV attachments exist only when
+/// requested in setSize (4 only with the curvature AOV).
 class OffscreenRenderer {
 public:
     OffscreenRenderer();
@@ -29,7 +30,8 @@ public:
     /// for the xcb platform, or the offscreen platform, which offers no desktop GL).
     bool create(QString* error);
     /// (Re)allocates the framebuffer; width and height in 1..16384. False with *error on failure.
-    bool setSize(QSize size, bool withAov, QString* error);
+    /// withCurvature adds the curvature target (attachment 4: K, H, k1, k2; only with withAov).
+    bool setSize(QSize size, bool withAov, QString* error, bool withCurvature = false);
     QSize size() const;
 
     /// Renders one frame into the FBO (with AOVs when the FBO has them). Returns the report's

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/scene.h"
+#include "render/analysis.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -44,6 +45,11 @@ struct RenderOptions {
     /// Write the AOV attachments 1..3 (see OffscreenRenderer). Renderer::render sets it from
     /// RenderTarget::aov; the passes read it.
     bool writeAov = false;
+    /// Also write K, H, k1, k2 to attachment 4 (exact mode; the target FBO must have it).
+    bool writeCurvatureAov = false;
+    /// Analysis colouring of exact mode (curvature maps, zebra, ...); Phong by default. The
+    /// tessellated baseline ignores it.
+    AnalysisOptions analysis;
     /// Cut trimmed surfaces with their trim masks (paper 3.4.2). False draws whole domains (for
     /// checks against the CPU classification, and to see what a trim removes).
     bool trims = true;

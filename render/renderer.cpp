@@ -6,8 +6,8 @@
 #include <QElapsedTimer>
 #include <QOpenGLContext>
 #include <QOpenGLVersionFunctionsFactory>
+#include <algorithm>
 #include <cmath>
-#include <tuple>
 
 namespace kw {
 
@@ -56,22 +56,9 @@ bool Renderer::initialize() {
     d->tessellated.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
-    // Build the common programs now so a broken shader is reported at start-up.
-    const RenderOptions defaults;
-    const std::tuple<const char*, const char*, QStringList> common[] = {
-        {"surface.vert", "depth_only.frag", {}},
-        {"surface.vert", "depth_only.frag", {QStringLiteral("KW_TRIM")}},
-        {"trim_mask.vert", "trim_mask.frag", {}},
-        {"lines.vert", "lines.frag", {}},
-        {"tessellated.vert", "tessellated.frag", {QStringLiteral("LIGHT_COUNT 2")}},
-        {"surface.vert", "exact_surface.frag",
-         ExactSurfacePass::variantDefines(3, 3, defaults.lightCount, defaults)}};
-    for (const auto& [vs, fs, defines] : common)
-        if (!d->shaders.program(QString::fromLatin1(vs), QString::fromLatin1(fs), defines)) {
-            d->error = d->shaders.lastError();
-            release();
-            return false;
-        }
+    // No programs are built here: each pass asks the ShaderLibrary for the variant a frame
+    // needs when it first draws it (a one-surface render builds 2 programs, not 6), and a
+    // shader that does not build fails that frame with the compiler's message.
     return true;
 }
 
@@ -102,6 +89,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         return fail(
             QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
     options.writeAov = target.aov;
+    options.writeCurvatureAov = target.aov && target.curvatureAov;
     FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount,
@@ -134,15 +122,19 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         gl->glClearBufferfv(GL_COLOR, 1, background);
         gl->glClearBufferfv(GL_COLOR, 2, zero);
         gl->glClearBufferfv(GL_COLOR, 3, zero);
+        if (options.writeCurvatureAov)
+            gl->glClearBufferfv(GL_COLOR, 4, zero);
     }
+    report.analysisRange = resolveAnalysisRange(doc, options.analysis);
     const GLfloat farDepth = 1.0f;
     gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
     QElapsedTimer phase;
     phase.start();
-    bool ok = options.mode == RenderMode::Exact
-                  ? exact.draw(scene, options.trims, fc, lights, options, &error)
-                  : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+    bool ok =
+        options.mode == RenderMode::Exact
+            ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, &error)
+            : tessellated.draw(scene, options.trims, fc, lights, options, &error);
     report.cpuMs.surfaces = msSince(phase);
     phase.restart();
     if (ok && (options.wireframe || options.controlNet)) {
@@ -156,9 +148,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         if (ok && options.controlNet)
             ok = controlNet.draw(scene, fc, &error);
         if (options.writeAov) {
-            const GLenum all[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3};
-            gl->glNamedFramebufferDrawBuffers(target.framebuffer, 4, all);
+            const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+            gl->glNamedFramebufferDrawBuffers(target.framebuffer, options.writeCurvatureAov ? 5 : 4,
+                                              all);
         }
     }
     report.cpuMs.overlays = msSince(phase);
@@ -257,11 +250,34 @@ std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera,
     return hit;
 }
 
+ValueRange Renderer::Impl::resolveAnalysisRange(const Document& doc,
+                                                const AnalysisOptions& analysis) {
+    if (!isColourMap(analysis.mode))
+        return {};
+    if (analysis.range)
+        return *analysis.range;
+    std::uint64_t newest = 0;
+    for (const Surface& s : doc.scene().surfaces) {
+        const Revisions r = doc.revisions(s.id);
+        newest = std::max({newest, r.points, r.knots});
+    }
+    const RangeKey key{&doc, analysis.mode, doc.scene().surfaces.size(), newest};
+    const bool held =
+        analysis.holdRange && rangeKey.document == &doc && rangeKey.mode == analysis.mode;
+    if (!held && !(key == rangeKey)) {
+        autoAnalysisRange = autoRange(doc.scene(), analysis.mode);
+        rangeKey = key;
+    }
+    return autoAnalysisRange;
+}
+
 void Renderer::release() {
     if (!d->gl)
         return;
     d->releasePickTarget();
     d->scene.release();
+    d->exact.release();
+    d->rangeKey = {};
     d->shaders.clear();
     d->gl = nullptr;
 }

@@ -19,6 +19,8 @@ struct Renderer::Impl {
     /// cleared and drawn.
     FrameReport renderFrame(const Document& doc, const Camera& camera, const RenderTarget& target,
                             RenderOptions options, const QRect* scissor);
+    /// The colour range of a colour-map analysis mode for this frame (see FrameReport).
+    ValueRange resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
     bool ensurePickTarget(QSize size);
     void releasePickTarget();
 
@@ -31,6 +33,19 @@ struct Renderer::Impl {
     ControlNetPass controlNet;
     QString error;
     QString glDescription;
+
+    /// What the automatic analysis range was computed from (revisions come from one
+    /// document-wide counter and never repeat, so the newest geometry revision and the surface
+    /// count identify the geometry).
+    struct RangeKey {
+        const Document* document = nullptr;
+        AnalysisMode mode = AnalysisMode::Phong;
+        size_t surfaces = 0;
+        std::uint64_t newestRevision = 0;
+        bool operator==(const RangeKey&) const = default;
+    };
+    RangeKey rangeKey;
+    ValueRange autoAnalysisRange;
 
     /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
     /// so the surface shaders' outputs keep their locations).

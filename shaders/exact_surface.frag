@@ -1,10 +1,16 @@
 // Exact pass (paper 3.4.1): evaluates the NURBS surface at the fragment's (u, v) and shades it.
 // Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth),
 // KW_TRIM (discard where the surface's trim mask says trimmed; only used without the depth
-// pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here).
+// pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here),
+// KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
+// iso-parameter lines over the colour), KW_SECOND_ORDER (second derivatives and curvature,
+// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
+#ifndef KW_ANALYSIS
+#define KW_ANALYSIS 0
+#endif
 
 in vec2 vUv;
 flat in ivec2 vSpan;
@@ -14,11 +20,18 @@ uniform float uSurfaceId;
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
 
+#if KW_ANALYSIS > 0 || defined(KW_ISOCURVES)
+#include "analysis.glsl"
+#endif
+
 layout(location = 0) out vec4 fragColor;
 #ifdef KW_AOV
 layout(location = 1) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
 layout(location = 2) out vec4 aovPosition;  // exact point, w = 1
 layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not flipped), w = 0
+#endif
+#ifdef KW_AOV_CURVATURE
+layout(location = 4) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvature)
 #endif
 
 void main() {
@@ -28,10 +41,26 @@ void main() {
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
 #endif
-    fragColor = vec4(phong(s.point, s.normal), 1.0);
+#ifdef KW_SECOND_ORDER
+    vec4 curvature = s.curvature;
+#else
+    vec4 curvature = vec4(0.0);
+#endif
+#if KW_ANALYSIS > 0
+    vec3 colour = analysisColour(s.point, s.normal, curvature);
+#else
+    vec3 colour = phong(s.point, s.normal);
+#endif
+#ifdef KW_ISOCURVES
+    colour = overlayIsocurves(colour, vUv, spanKnotsU(vSpan), spanKnotsV(vSpan));
+#endif
+    fragColor = vec4(colour, 1.0);
 #ifdef KW_AOV
     aovIdUvDepth = vec4(uSurfaceId, vUv, dot(s.point - uEye, uForward));
     aovPosition = vec4(s.point, 1.0);
     aovNormal = vec4(s.normal, 0.0);
+#endif
+#ifdef KW_AOV_CURVATURE
+    aovCurvature = curvature;
 #endif
 }

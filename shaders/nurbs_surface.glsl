@@ -1,6 +1,7 @@
 // Exact rational surface point, first partials and unit normal at (u, v) inside the knot span
 // `span` (paper eqs. 3.1, 3.5-3.7; The NURBS Book A3.6 on homogeneous points, A4.4 quotient).
-// Needs DEGREE_U and DEGREE_V; sums only the (p+1) x (q+1) non-zero terms.
+// Needs DEGREE_U and DEGREE_V; sums only the (p+1) x (q+1) non-zero terms. With
+// KW_SECOND_ORDER also Suu, Suv, Svv and the curvature of kw::surfaceCurvature (K, H, k1, k2).
 
 uniform sampler2D uControl; // RGBA32F, texel (i, j) = (w P, w) of control point (i, j)
 uniform sampler2D uSpansU;  // span tables (kw::packSpanTable), row = span - degree
@@ -26,58 +27,92 @@ uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
 #define CONTROL_TEXEL(first, i, j) texelFetch(uControl, (first) + ivec2(i, j), 0)
 #endif
 
+#ifdef KW_CELL_GATHER
+#define SPAN_TEXEL_U(x, row) vCellSpanU[x]
+#define SPAN_TEXEL_V(x, row) vCellSpanV[x]
+#else
+#define SPAN_TEXEL_U(x, row) texelFetch(uSpansU, ivec2(x, row), 0)
+#define SPAN_TEXEL_V(x, row) texelFetch(uSpansV, ivec2(x, row), 0)
+#endif
+
 #define BASIS_FN basisU
 #define BASIS_P DEGREE_U
-#ifdef KW_CELL_GATHER
-#define BASIS_TEXEL(x, row) vCellSpanU[x]
-#else
-#define BASIS_TEXEL(x, row) texelFetch(uSpansU, ivec2(x, row), 0)
-#endif
+#define BASIS_TEXEL(x, row) SPAN_TEXEL_U(x, row)
 #include "basis.glsl"
 #undef BASIS_FN
 #undef BASIS_P
 #undef BASIS_TEXEL
 #define BASIS_FN basisV
 #define BASIS_P DEGREE_V
-#ifdef KW_CELL_GATHER
-#define BASIS_TEXEL(x, row) vCellSpanV[x]
-#else
-#define BASIS_TEXEL(x, row) texelFetch(uSpansV, ivec2(x, row), 0)
-#endif
+#define BASIS_TEXEL(x, row) SPAN_TEXEL_V(x, row)
 #include "basis.glsl"
 #undef BASIS_FN
 #undef BASIS_P
 #undef BASIS_TEXEL
+
+// The knots (U[k], U[k+1]) bounding knot span k = span.x (resp. V and span.y), read from the
+// span-table rows: float 0 is U[k+1-1], float p is U[k+1] (kw::packSpanTable).
+vec2 spanKnotsU(ivec2 span) {
+    int row = span.x - DEGREE_U;
+    return vec2(SPAN_TEXEL_U(0, row).x, SPAN_TEXEL_U(DEGREE_U / 4, row)[DEGREE_U % 4]);
+}
+vec2 spanKnotsV(ivec2 span) {
+    int row = span.y - DEGREE_V;
+    return vec2(SPAN_TEXEL_V(0, row).x, SPAN_TEXEL_V(DEGREE_V / 4, row)[DEGREE_V % 4]);
+}
 
 struct SurfaceSample {
     vec3 point;
     vec3 du;
     vec3 dv;
     vec3 normal; // unit; the limit normal at collapsed edges (see evaluateSurface)
+#ifdef KW_SECOND_ORDER
+    vec4 curvature; // K, H, k1, k2 with kw::surfaceCurvature's signs and collapsed-edge rule
+#endif
 };
 
 struct SurfacePartials {
     vec3 s, su, sv, suv;
+#ifdef KW_SECOND_ORDER
+    vec3 suu, svv;
+#endif
 };
 
 SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     float Nu[DEGREE_U + 1], dNu[DEGREE_U + 1];
     float Nv[DEGREE_V + 1], dNv[DEGREE_V + 1];
+#ifdef KW_SECOND_ORDER
+    float d2Nu[DEGREE_U + 1], d2Nv[DEGREE_V + 1];
+    basisU(span.x - DEGREE_U, uv.x, Nu, dNu, d2Nu);
+    basisV(span.y - DEGREE_V, uv.y, Nv, dNv, d2Nv);
+    vec4 Auu = vec4(0.0), Avv = vec4(0.0);
+#else
     basisU(span.x - DEGREE_U, uv.x, Nu, dNu);
     basisV(span.y - DEGREE_V, uv.y, Nv, dNv);
+#endif
     vec4 A = vec4(0.0), Au = vec4(0.0), Av = vec4(0.0), Auv = vec4(0.0);
     ivec2 first = span - ivec2(DEGREE_U, DEGREE_V);
     for (int j = 0; j <= DEGREE_V; ++j) {
         vec4 row = vec4(0.0), rowU = vec4(0.0);
+#ifdef KW_SECOND_ORDER
+        vec4 rowUU = vec4(0.0);
+#endif
         for (int i = 0; i <= DEGREE_U; ++i) {
             vec4 c = CONTROL_TEXEL(first, i, j);
             row += Nu[i] * c;
             rowU += dNu[i] * c;
+#ifdef KW_SECOND_ORDER
+            rowUU += d2Nu[i] * c;
+#endif
         }
         A += Nv[j] * row;
         Av += dNv[j] * row;
         Au += Nv[j] * rowU;
         Auv += dNv[j] * rowU;
+#ifdef KW_SECOND_ORDER
+        Auu += Nv[j] * rowUU;
+        Avv += d2Nv[j] * row;
+#endif
     }
     // A4.4 to first order: S = A/w, Su = (Au - wu S)/w, Suv = (Auv - wu Sv - wv Su - wuv S)/w.
     float invW = 1.0 / A.w;
@@ -86,8 +121,30 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     d.su = (Au.xyz - Au.w * d.s) * invW;
     d.sv = (Av.xyz - Av.w * d.s) * invW;
     d.suv = (Auv.xyz - Au.w * d.sv - Av.w * d.su - Auv.w * d.s) * invW;
+#ifdef KW_SECOND_ORDER
+    // A4.4 to second order: Suu = (Auu - 2 wu Su - wuu S)/w, likewise Svv.
+    d.suu = (Auu.xyz - 2.0 * Au.w * d.su - Auu.w * d.s) * invW;
+    d.svv = (Avv.xyz - 2.0 * Av.w * d.sv - Avv.w * d.s) * invW;
+#endif
     return d;
 }
+
+#ifdef KW_SECOND_ORDER
+// K, H, k1 >= k2 from the fundamental forms (kw::surfaceCurvature): positive where the surface
+// bends away from the unit normal n, which must be Su x Sv or its opposite.
+vec4 curvatureFrom(SurfacePartials d, vec3 n) {
+    float E = dot(d.su, d.su), F = dot(d.su, d.sv), G = dot(d.sv, d.sv);
+    float L = dot(d.suu, n), M = dot(d.suv, n), N = dot(d.svv, n);
+    vec3 c = cross(d.su, d.sv);
+    float det = dot(c, c); // EG - F^2 without cancellation
+    float K = (L * N - M * M) / det;
+    float H = -(E * N - 2.0 * F * M + G * L) / (2.0 * det);
+    float disc = sqrt(max(H * H - K, 0.0));
+    vec4 r = vec4(K, H, H + disc, H - disc);
+    // Never NaN or infinite (float overflow on extreme inputs): the zero answer, as the kernel.
+    return any(isnan(r)) || any(isinf(r)) ? vec4(0.0) : r;
+}
+#endif
 
 // Step 1 of the rule: the plain normal Su x Sv, when neither partial is tiny and they are not
 // parallel. tinyU/tinyV report the tiny tests for step 2.
@@ -112,6 +169,10 @@ SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
     vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
     float tinyLen = KW_TINY_REL * spanScale;
     SurfaceSample s;
+#ifdef KW_SECOND_ORDER
+    s.curvature = vec4(0.0); // step 4: no regular point nearby
+#endif
+    bool limitNormal = false; // step 2 gave the normal; the curvature still needs step 3
     // One evaluation site for steps 1-2 at uv and step 3 at a nearby interior point: the second
     // round runs only for fragments (SIMD lanes) that need it, and the code is not duplicated.
     vec2 at = uv;
@@ -123,10 +184,18 @@ SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
             s.dv = d.sv;
         }
         bool tinyU, tinyV;
-        if (plainNormal(d, tinyLen, s.normal, tinyU, tinyV))
+        vec3 n;
+        if (plainNormal(d, tinyLen, n, tinyU, tinyV)) {
+            if (!limitNormal)
+                s.normal = n;
+#ifdef KW_SECOND_ORDER
+            s.curvature = curvatureFrom(d, dot(n, s.normal) < 0.0 ? -n : n);
+#endif
             break;
+        }
         if (round == 1) {
-            s.normal = vec3(0.0, 0.0, 1.0); // step 4
+            if (!limitNormal)
+                s.normal = vec3(0.0, 0.0, 1.0); // step 4
             break;
         }
         if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
@@ -137,10 +206,14 @@ SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
             if (length(d.suv) * width.x * width.y > tinyLen &&
                 lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
                 s.normal = m / lm;
+                limitNormal = true;
+#ifndef KW_SECOND_ORDER
                 break;
+#endif
             }
         }
-        // Step 3: the plain normal of a nearby interior point (same span: the step is tiny).
+        // Step 3: the plain normal (and the curvature) of a nearby interior point (same span:
+        // the step is tiny).
         at = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
     }
     return s;

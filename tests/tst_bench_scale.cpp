@@ -119,6 +119,9 @@ void TestBenchScale::smokeRunWritesWellFormedReport() {
             QVERIFY2(finiteNonNegative(row.value(QLatin1String(key))), key);
         QVERIFY(row.value(QStringLiteral("loadSeconds")).toDouble() > 0.0);
         QVERIFY(row.value(QStringLiteral("residentMiB")).toDouble() > 1.0);
+        // From FrameReport: a frame of trimmed faces holds GPU data and issues draws.
+        QVERIFY(row.value(QStringLiteral("gpuBytes")).toDouble() > 0.0);
+        QVERIFY(row.value(QStringLiteral("drawCalls")).toInt() > 0);
         for (const char* view : {"fitted", "closeUp"}) {
             const QJsonObject v = row.value(QLatin1String(view)).toObject();
             for (const char* key : {"fps", "msMedian", "cpuMsPerFrame", "renderCallMs"})

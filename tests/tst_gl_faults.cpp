@@ -92,8 +92,14 @@ struct Editor {
             return false;
         const bool changed = w->document()->scene() != before;
         w->undoStack()->undo();
-        return changed && w->document()->scene() == before && w->saveFile(path) &&
-               readKnotFile(path, nullptr) == before;
+        if (!changed || w->document()->scene() != before || !w->saveFile(path))
+            return false;
+        // Save also writes the view's camera (issue 13); everything else is the document.
+        std::optional<Scene> written = readKnotFile(path, nullptr);
+        if (!written)
+            return false;
+        written->camera = before.camera;
+        return *written == before;
     }
 };
 
@@ -147,35 +153,32 @@ private Q_SLOTS:
     }
 };
 
-/// KW_GL_FAULT=init: the exact surface shader, which the renderer builds at start-up, fails.
+/// KW_GL_FAULT=init: the exact surface shader, which every default frame needs, fails. (The
+/// renderer builds programs on first use, so this is a failed frame, not a failed start-up.)
 class TestShaderInitFault : public QObject {
     Q_OBJECT
 private Q_SLOTS:
-    void unavailableViewKeepsTheDocument() {
+    void exactShaderFailureKeepsTheDocument() {
         Editor e;
         QSignalSpy errors(e.w->viewport(), &Viewport::renderError);
         QVERIFY(e.open());
-        QTRY_VERIFY_WITH_TIMEOUT(!e.w->viewport()->glError().isEmpty(), 20000);
-        const QString why = e.w->viewport()->glError();
-        QVERIFY2(why.contains(QLatin1String("exact_surface.frag")) &&
-                     why.contains(QLatin1String(kForced)),
-                 qPrintable(why));
-        QVERIFY(errors.count() >= 1);
-        QVERIFY2(errors.at(0).at(0).toString().startsWith(QLatin1String("Renderer unavailable:")),
+        QVERIFY(e.frames(3));
+        const FrameReport& bad = e.w->viewport()->lastFrameReport();
+        QVERIFY(!bad.ok);
+        QVERIFY2(bad.error.contains(QLatin1String("exact_surface.frag")) &&
+                     bad.error.contains(QLatin1String(kForced)),
+                 qPrintable(bad.error));
+        QCOMPARE(errors.count(), 1); // said once, not every frame
+        QVERIFY2(errors.at(0).at(0).toString().startsWith(QLatin1String("Frame failed:")),
                  qPrintable(errors.at(0).at(0).toString()));
-        // The view says so in place of the surfaces, and nothing else breaks.
-        QVERIFY(covered(e.w->viewport()->grab().toImage()) > 0);
+        QCOMPARE(e.w->statusBar()->currentMessage(), errors.at(0).at(0).toString());
         QCOMPARE(e.w->document()->scene().surfaces.size(), size_t(1));
         QVERIFY(!e.w->viewport()->pickSurface(QPointF(450, 300)));
         QVERIFY(e.stillEditable());
-        // Export Image says why it cannot, rather than writing a blank picture.
-        e.script.savePath = kWorkDir + QStringLiteral("/export.png");
-        QFile::remove(e.script.savePath);
-        e.w->action(QStringLiteral("actionExportImage"))->trigger();
-        QCOMPARE(e.script.errors.size(), 1);
-        QVERIFY2(e.script.errors[0].contains(QLatin1String(kForced)),
-                 qPrintable(e.script.errors[0]));
-        QVERIFY(!QFile::exists(e.script.savePath));
+        e.w->viewport()->setRenderMode(RenderMode::Tessellated); // the baseline still draws
+        QVERIFY(e.frames(2));
+        QVERIFY2(e.w->viewport()->lastFrameReport().ok,
+                 qPrintable(e.w->viewport()->lastFrameReport().error));
         e.w->undoStack()->setClean();
     }
 };

@@ -1,6 +1,7 @@
 // MainWindow: construction of the window, docks, menus, actions and status bar.
 #include "ui/mainwindow.h"
 
+#include "ui/analysiscontrols.h"
 #include "ui/autosave.h"
 #include "ui/desktopactions.h"
 #include "ui/edit/commands.h"
@@ -316,6 +317,7 @@ void MainWindow::buildViewMenu() {
     net->setCheckable(true);
     net->setChecked(m_viewport->renderOptions().controlNet);
     connect(net, &QAction::toggled, m_viewport, &Viewport::setControlNet);
+    new AnalysisControls(this, view, m_viewport); // View ▸ Analysis and its toolbar
     view->addSeparator();
     QMenu* panels = view->addMenu(tr("&Panels"));
     for (QDockWidget* d : findChildren<QDockWidget*>())

@@ -1,6 +1,7 @@
 // Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
 #include "ui/viewport.h"
 
+#include "ui/analysiscontrols.h"
 #include "ui/edit/commands.h"
 
 #include <QKeyEvent>
@@ -100,6 +101,21 @@ void Viewport::setWireframe(bool on) {
     update();
 }
 
+void Viewport::setAnalysis(const AnalysisOptions& analysis) {
+    m_options.analysis = analysis;
+    update();
+}
+
+void Viewport::drawLegend() {
+    const AnalysisOptions& a = m_options.analysis;
+    if (m_options.mode != RenderMode::Exact || !isColourMap(a.mode))
+        return;
+    QPainter p(this);
+    const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
+    drawColourLegend(p, area, a.mode, m_lastReport.analysisRange,
+                     a.scale.value_or(defaultScale(a.mode)), !a.range);
+}
+
 void Viewport::setControlNet(bool on) {
     m_options.controlNet = on;
     update();
@@ -177,6 +193,7 @@ void Viewport::paintGL() {
         return;
     }
     RenderOptions options = m_options;
+    options.analysis.holdRange = isDragging();
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
@@ -193,6 +210,7 @@ void Viewport::paintGL() {
         m_lastRenderError.clear();
     }
     drawSelection();
+    drawLegend();
     Q_EMIT frameDrawn(m_lastReport);
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);

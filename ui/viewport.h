@@ -47,6 +47,9 @@ public:
     /// Control nets on or off; while on, only the selected surfaces' nets are drawn and
     /// pickable unless setControlNetForAll(true).
     void setControlNet(bool on);
+    /// Analysis colouring (View ▸ Analysis). While a drag runs the automatic colour range is
+    /// held (AnalysisOptions::holdRange), so colours do not swim; it follows on release.
+    void setAnalysis(const AnalysisOptions& analysis);
     bool controlNetForAll() const { return m_netForAll; }
     void setControlNetForAll(bool on);
     bool groundGrid() const { return m_grid; }
@@ -121,6 +124,7 @@ private:
     /// Click selection: the surface alone, or toggled in the selection with Shift.
     void selectClickedSurface(SurfaceId id, bool additive);
     void drawSelection();
+    void drawLegend();
     /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
     void drawOverlays(class QPainter& p, const ViewProjection& view);
     /// Ctrl + drag: every control point of the selected surfaces follows the drag.

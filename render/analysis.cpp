@@ -1,0 +1,212 @@
+// Analysis mode names, the colour scale (shared by the shader and the legend), shader defines
+// and the automatic colour range from kernel curvature samples.
+#include "render/analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kw {
+
+namespace {
+struct ModeInfo {
+    AnalysisMode mode;
+    const char* name;
+    const char* title;
+};
+constexpr ModeInfo kModes[] = {
+    {AnalysisMode::Phong, "phong", "Shaded (Phong)"},
+    {AnalysisMode::Gaussian, "gaussian", "Gaussian curvature"},
+    {AnalysisMode::Mean, "mean", "Mean curvature"},
+    {AnalysisMode::MaxCurvature, "max-curvature", "Maximum curvature |k|"},
+    {AnalysisMode::MinRadius, "min-radius", "Minimum radius"},
+    {AnalysisMode::Zebra, "zebra", "Zebra stripes"},
+    {AnalysisMode::Isophotes, "isophotes", "Isophotes"},
+    {AnalysisMode::Environment, "environment", "Environment map"},
+    {AnalysisMode::Draft, "draft", "Draft angle"},
+};
+
+/// Signed-log scale: linear within kLogLinearFraction * m of zero.
+constexpr double kLogLinearFraction = 1e-3;
+
+double maxAbs(const ValueRange& r) {
+    return std::max({std::abs(r.low), std::abs(r.high), 1e-30});
+}
+} // namespace
+
+QString analysisModeName(AnalysisMode mode) {
+    for (const ModeInfo& m : kModes)
+        if (m.mode == mode)
+            return QString::fromLatin1(m.name);
+    return QStringLiteral("phong");
+}
+
+QString analysisModeTitle(AnalysisMode mode) {
+    for (const ModeInfo& m : kModes)
+        if (m.mode == mode)
+            return QString::fromLatin1(m.title);
+    return {};
+}
+
+std::vector<AnalysisMode> analysisModes() {
+    std::vector<AnalysisMode> out;
+    for (const ModeInfo& m : kModes)
+        out.push_back(m.mode);
+    return out;
+}
+
+std::optional<AnalysisMode> parseAnalysisMode(const QString& name) {
+    for (const ModeInfo& m : kModes)
+        if (name == QLatin1String(m.name))
+            return m.mode;
+    return std::nullopt;
+}
+
+bool isColourMap(AnalysisMode mode) {
+    return mode == AnalysisMode::Gaussian || mode == AnalysisMode::Mean ||
+           mode == AnalysisMode::MaxCurvature || mode == AnalysisMode::MinRadius;
+}
+
+bool needsCurvature(AnalysisMode mode) {
+    return isColourMap(mode);
+}
+
+ColourScale defaultScale(AnalysisMode mode) {
+    return mode == AnalysisMode::Gaussian || mode == AnalysisMode::Mean ? ColourScale::Symmetric
+                                                                        : ColourScale::Linear;
+}
+
+QString colourScaleName(ColourScale scale) {
+    switch (scale) {
+    case ColourScale::Symmetric:
+        return QStringLiteral("symmetric");
+    case ColourScale::Log:
+        return QStringLiteral("log");
+    case ColourScale::Linear:
+        break;
+    }
+    return QStringLiteral("linear");
+}
+
+std::optional<ColourScale> parseColourScale(const QString& name) {
+    for (ColourScale s : {ColourScale::Linear, ColourScale::Symmetric, ColourScale::Log})
+        if (name == colourScaleName(s))
+            return s;
+    return std::nullopt;
+}
+
+const std::vector<glm::vec3>& colourRamp() {
+    static const std::vector<glm::vec3> ramp = {{0.10f, 0.20f, 0.85f},
+                                                {0.10f, 0.65f, 0.95f},
+                                                {0.15f, 0.80f, 0.35f},
+                                                {0.95f, 0.90f, 0.20f},
+                                                {0.90f, 0.20f, 0.12f}};
+    return ramp;
+}
+
+double colourScalePosition(double x, const ValueRange& range, ColourScale scale) {
+    double t = 0.0;
+    if (scale == ColourScale::Symmetric) {
+        t = 0.5 + 0.5 * x / maxAbs(range);
+    } else if (scale == ColourScale::Log) {
+        const double m = maxAbs(range), c = kLogLinearFraction * m;
+        t = 0.5 + 0.5 * (x < 0 ? -1.0 : (x > 0 ? 1.0 : 0.0)) * std::log1p(std::abs(x) / c) /
+                      std::log1p(m / c);
+    } else {
+        t = (x - range.low) / std::max(range.high - range.low, 1e-30);
+    }
+    return std::clamp(std::isnan(t) ? 0.0 : t, 0.0, 1.0);
+}
+
+double colourScaleValue(double t, const ValueRange& range, ColourScale scale) {
+    t = std::clamp(t, 0.0, 1.0);
+    if (scale == ColourScale::Symmetric)
+        return (2.0 * t - 1.0) * maxAbs(range);
+    if (scale == ColourScale::Log) {
+        const double m = maxAbs(range), c = kLogLinearFraction * m;
+        const double s = 2.0 * t - 1.0;
+        const double mag = c * std::expm1(std::abs(s) * std::log1p(m / c));
+        return s < 0 ? -mag : mag;
+    }
+    return range.low + t * (range.high - range.low);
+}
+
+glm::vec3 rampColour(double t) {
+    const std::vector<glm::vec3>& r = colourRamp();
+    const double x = std::clamp(t, 0.0, 1.0) * double(r.size() - 1);
+    const int i = std::min(int(x), int(r.size()) - 2);
+    return glm::mix(r[size_t(i)], r[size_t(i + 1)], float(x - i));
+}
+
+QStringList analysisDefines(const AnalysisOptions& options, bool curvatureAov) {
+    QStringList d;
+    if (options.mode != AnalysisMode::Phong)
+        d << QStringLiteral("KW_ANALYSIS %1").arg(int(options.mode));
+    if (options.isocurves)
+        d << QStringLiteral("KW_ISOCURVES");
+    if (needsCurvature(options.mode) || curvatureAov)
+        d << QStringLiteral("KW_SECOND_ORDER");
+    if (curvatureAov)
+        d << QStringLiteral("KW_AOV_CURVATURE");
+    if (isColourMap(options.mode)) {
+        const std::vector<glm::vec3>& r = colourRamp();
+        QStringList stops;
+        for (const glm::vec3& c : r)
+            stops << QStringLiteral("vec3(%1, %2, %3)").arg(c.x).arg(c.y).arg(c.z);
+        d << QStringLiteral("KW_RAMP_STOPS %1").arg(r.size())
+          << QStringLiteral("KW_RAMP vec3[](%1)").arg(stops.join(QStringLiteral(", ")));
+    }
+    return d;
+}
+
+double analysisValue(AnalysisMode mode, const SurfaceCurvature& c) {
+    const double kmax = std::max(std::abs(c.k1), std::abs(c.k2));
+    switch (mode) {
+    case AnalysisMode::Gaussian:
+        return c.gaussian;
+    case AnalysisMode::Mean:
+        return c.mean;
+    case AnalysisMode::MaxCurvature:
+        return kmax;
+    case AnalysisMode::MinRadius:
+        return kmax > 0.0 ? 1.0 / kmax : std::numeric_limits<double>::infinity();
+    default:
+        return 0.0;
+    }
+}
+
+ValueRange autoRange(const Scene& scene, AnalysisMode mode, int samples, double lowPercentile,
+                     double highPercentile) {
+    if (!isColourMap(mode) || samples < 1)
+        return {};
+    std::vector<double> values;
+    values.reserve(scene.surfaces.size() * size_t(samples) * size_t(samples));
+    for (const Surface& s : scene.surfaces) {
+        const Interval du = surfaceDomainU(s.geometry), dv = surfaceDomainV(s.geometry);
+        for (int j = 0; j < samples; ++j)
+            for (int i = 0; i < samples; ++i) {
+                // Cell centres: no sample sits on a collapsed edge.
+                const double u = du.first + (du.last - du.first) * (i + 0.5) / samples;
+                const double v = dv.first + (dv.last - dv.first) * (j + 0.5) / samples;
+                const double x = analysisValue(mode, surfaceCurvature(s.geometry, u, v));
+                if (std::isfinite(x))
+                    values.push_back(x);
+            }
+    }
+    if (values.empty())
+        return {};
+    std::sort(values.begin(), values.end());
+    const auto at = [&](double p) {
+        const double k = std::clamp(p, 0.0, 1.0) * double(values.size() - 1);
+        return values[size_t(std::lround(k))];
+    };
+    ValueRange r{at(lowPercentile), at(highPercentile)};
+    // A (nearly) constant quantity, e.g. max |k| = 1/r on a torus: rounding noise must not span
+    // the whole scale, so the range is at least +-5% of its magnitude around its middle.
+    const double mid = 0.5 * (r.low + r.high);
+    const double half = std::max(0.05 * std::abs(mid), 1e-12);
+    if (r.high - r.low < 2.0 * half)
+        r = {mid - half, mid + half};
+    return r;
+}
+
+} // namespace kw

@@ -1,0 +1,114 @@
+// Surface analysis options (curvature colour maps, zebra, isophotes, environment, draft,
+// isocurves), their shader defines, the colour scale shared by the shader and the legend, and
+// the automatic colour range from the CPU kernel. No GL here (the uniforms are set in
+// render/analysis_uniforms.cpp).
+#pragma once
+
+#include "model/nurbs_curvature.h"
+#include "model/scene.h"
+
+#include <QString>
+#include <QStringList>
+#include <glm/glm.hpp>
+#include <optional>
+#include <vector>
+
+namespace kw {
+
+/// What the exact pass shows. The numeric values are the shader's KW_ANALYSIS (analysis.glsl).
+enum class AnalysisMode {
+    Phong = 0,        ///< plain shading (paper eq. 3.8)
+    Gaussian = 1,     ///< K, colour map
+    Mean = 2,         ///< H, colour map
+    MaxCurvature = 3, ///< max(|k1|, |k2|), colour map
+    MinRadius = 4,    ///< 1 / max(|k1|, |k2|), colour map (a plane: the scale's top)
+    Zebra = 5,        ///< reflected parallel stripes
+    Isophotes = 6,    ///< bands of N.L
+    Environment = 7,  ///< reflection of an equirectangular environment image
+    Draft = 8,        ///< draft angle against a pull direction, three colours
+};
+
+/// How a colour-map value maps to the colour scale.
+enum class ColourScale {
+    Linear = 0,    ///< low .. high
+    Symmetric = 1, ///< -m .. m with m = max(|low|, |high|): zero in the middle
+    Log = 2,       ///< signed log: linear within 1e-3 m of zero, logarithmic beyond
+};
+
+struct ValueRange {
+    double low = 0.0;
+    double high = 1.0;
+    bool operator==(const ValueRange&) const = default;
+};
+
+/// Options of the analysis modes. Defaults are what `knotwork render --shading MODE` uses.
+struct AnalysisOptions {
+    AnalysisMode mode = AnalysisMode::Phong;
+    bool isocurves = false; ///< knot and iso-parameter lines over any mode
+    /// Colour maps: a user range, or none for the automatic one (percentiles, see autoRange).
+    std::optional<ValueRange> range;
+    /// Colour maps: the scale, or none for the mode's default (defaultScale).
+    std::optional<ColourScale> scale;
+    double stripeCount = 8.0;       ///< zebra: stripe pairs per 180 degrees of reflection
+    double stripeAngleDegrees = 90; ///< zebra: stripe direction in the view plane (90: vertical)
+    double isophoteCount = 10.0;    ///< isophotes: bands across N.L in [-1, 1]
+    glm::dvec3 pullDirection{0.0, 0.0, 1.0}; ///< draft: world direction (normalised when used)
+    double draftAngleDegrees = 3.0;          ///< draft: threshold
+    glm::ivec2 isoCount{8, 8};               ///< isocurves: lines per direction, i / (n + 1)
+    double isoWidthPixels = 1.5;             ///< isocurves: line width
+    /// Environment: an image file read with Qt's readers (equirectangular, z up); empty for the
+    /// bundled default (resources/environment/studio.png, made by tools/make_environment.py).
+    QString environmentMap;
+    /// Keep the last automatic range instead of recomputing it (the editor sets it during
+    /// drags so the colours do not swim; the range follows again on release).
+    bool holdRange = false;
+
+    bool operator==(const AnalysisOptions&) const = default;
+};
+
+/// "phong", "gaussian", "mean", "max-curvature", "min-radius", "zebra", "isophotes",
+/// "environment", "draft".
+QString analysisModeName(AnalysisMode mode);
+/// Every mode, in menu order.
+std::vector<AnalysisMode> analysisModes();
+/// The mode named `name` (analysisModeName), or nullopt.
+std::optional<AnalysisMode> parseAnalysisMode(const QString& name);
+/// Menu text, e.g. "Gaussian curvature".
+QString analysisModeTitle(AnalysisMode mode);
+
+bool isColourMap(AnalysisMode mode);
+/// Colour maps and the curvature AOV need second derivatives (KW_SECOND_ORDER).
+bool needsCurvature(AnalysisMode mode);
+/// Symmetric for the signed quantities (K, H), Linear otherwise.
+ColourScale defaultScale(AnalysisMode mode);
+QString colourScaleName(ColourScale scale); ///< "linear", "symmetric", "log"
+std::optional<ColourScale> parseColourScale(const QString& name);
+
+/// The colour scale's stops, low to high (a blue-cyan-green-yellow-red rainbow, as CAD
+/// curvature maps use); the shader gets them as KW_RAMP through analysisDefines.
+const std::vector<glm::vec3>& colourRamp();
+/// Position t in [0, 1] of value x on the scale (analysis.glsl's scalePosition).
+double colourScalePosition(double x, const ValueRange& range, ColourScale scale);
+/// The value at position t (the inverse of colourScalePosition, for legend labels).
+double colourScaleValue(double t, const ValueRange& range, ColourScale scale);
+/// The ramp's colour at t in [0, 1] (analysis.glsl's rampColour).
+glm::vec3 rampColour(double t);
+
+/// Shader defines for the exact pass: KW_ANALYSIS, KW_ISOCURVES, KW_SECOND_ORDER, KW_RAMP,
+/// KW_AOV_CURVATURE (the K, H, k1, k2 target at location 4).
+QStringList analysisDefines(const AnalysisOptions& options, bool curvatureAov);
+
+/// The value a colour map shows at a kernel curvature sample.
+double analysisValue(AnalysisMode mode, const SurfaceCurvature& c);
+
+/// Automatic colour range of a colour-map mode: the lowPercentile and highPercentile (0..1)
+/// of the mode's value over a samples x samples grid per surface, in double precision with
+/// kw::surfaceCurvature (trimmed-away samples count too: the mask is a GPU-side raster).
+/// Percentiles, not extremes, so a few points of huge curvature (a near-singular corner) do not
+/// wash the map out. Empty scene or non-colour-map mode: {0, 1}. A range narrower than 10% of
+/// its middle's magnitude is widened to +-5% of it (at least +-1e-12), so a constant quantity
+/// shows one colour instead of its rounding noise.
+ValueRange autoRange(const Scene& scene, AnalysisMode mode, int samples = 16,
+                     double lowPercentile = 0.02, double highPercentile = 0.98);
+
+} // namespace kw

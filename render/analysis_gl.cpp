@@ -1,0 +1,134 @@
+// Environment map loading (OpenImageIO for files, QImage for the bundled resource) and the
+// analysis uniforms.
+#include "render/analysis_gl.h"
+
+#include <QImage>
+#include <QOpenGLShaderProgram>
+#include <cmath>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace kw {
+
+bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
+    // Qt's image readers (PNG, JPEG, BMP, TIFF, ... and the bundled resource). OpenImageIO,
+    // which would add EXR and HDR, now lives in a write-only module loaded on demand
+    // (render/oiio); reading through it is not done yet.
+    out = {};
+    const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
+    if (img.isNull()) {
+        *error = QStringLiteral("%1: cannot read the environment image (missing, or not a format "
+                                "Qt reads: PNG, JPEG, BMP, TIFF)")
+                     .arg(path);
+        return false;
+    }
+    out.width = img.width();
+    out.height = img.height();
+    out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
+    for (int y = 0; y < out.height; ++y) {
+        const uchar* line = img.constScanLine(y);
+        for (int k = 0; k < out.width * 3; ++k)
+            out.rgb[size_t(y) * size_t(out.width) * 3 + size_t(k)] = float(line[k]) / 255.0f;
+    }
+    return true;
+}
+
+bool EnvironmentMap::bind(const QString& requested, int unit, QString* error) {
+    const QString path = requested.isEmpty() ? QString::fromLatin1(kDefaultEnvironment) : requested;
+    if (!m_texture || path != m_path) {
+        if (path == m_failedPath) { // do not retry a bad file every frame
+            *error = m_failedError;
+            return false;
+        }
+        EnvironmentImage img;
+        if (!loadEnvironmentImage(path, img, error)) {
+            m_failedPath = path;
+            m_failedError = *error;
+            return false;
+        }
+        release();
+        m_gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_texture);
+        m_gl->glTextureStorage2D(m_texture, 1, GL_RGB32F, img.width, img.height);
+        // Row 0 of the image is the top (latitude +90); GL's t = 0 is the first row uploaded,
+        // and analysis.glsl maps latitude +90 to t = 0.
+        m_gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        m_gl->glTextureSubImage2D(m_texture, 0, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT,
+                                  img.rgb.data());
+        // No mipmaps: the longitude seam would pick the coarsest level along a line.
+        m_gl->glTextureParameteri(m_texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        m_gl->glTextureParameteri(m_texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        m_gl->glTextureParameteri(m_texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        m_gl->glTextureParameteri(m_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        m_path = path;
+        m_failedPath.clear();
+        ++m_loads;
+    }
+    m_gl->glBindTextureUnit(GLuint(unit), m_texture);
+    return true;
+}
+
+void EnvironmentMap::release() {
+    if (m_gl && m_texture)
+        m_gl->glDeleteTextures(1, &m_texture);
+    m_texture = 0;
+    m_path.clear();
+}
+
+void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
+                         const AnalysisOptions& o, const ValueRange& range,
+                         const FrameCamera& camera, const std::vector<Light>& lights,
+                         int environmentUnit) {
+    const auto loc = [&](const char* name) {
+        return program->uniformLocation(name);
+    };
+    const float toRad = float(M_PI / 180.0);
+    switch (o.mode) {
+    case AnalysisMode::Gaussian:
+    case AnalysisMode::Mean:
+    case AnalysisMode::MaxCurvature:
+    case AnalysisMode::MinRadius:
+        gl->glUniform2f(loc("uAnalysisRange"), float(range.low), float(range.high));
+        gl->glUniform1i(loc("uAnalysisScale"), int(o.scale.value_or(defaultScale(o.mode))));
+        break;
+    case AnalysisMode::Zebra: {
+        // The stripe axis in the view plane: angle 0 along the camera's right, 90 along its up.
+        const glm::mat3 rot = glm::transpose(glm::mat3(camera.view)); // view -> world rotation
+        const glm::vec3 right = rot[0], up = rot[1];
+        const float a = float(o.stripeAngleDegrees) * toRad;
+        const glm::vec3 axis = glm::normalize(std::cos(a) * right + std::sin(a) * up);
+        gl->glUniform1f(loc("uStripeCount"), float(o.stripeCount));
+        gl->glUniform3fv(loc("uStripeAxis"), 1, glm::value_ptr(axis));
+        break;
+    }
+    case AnalysisMode::Isophotes: {
+        // The first light's direction (a point light: from the scene centre's side, the eye).
+        glm::vec3 L = -camera.forward;
+        if (!lights.empty() && lights.front().kind == Light::Kind::Directional &&
+            glm::length(lights.front().vector) > 0.0)
+            L = glm::vec3(glm::normalize(lights.front().vector));
+        gl->glUniform1f(loc("uIsophoteCount"), float(o.isophoteCount));
+        gl->glUniform3fv(loc("uIsophoteLight"), 1, glm::value_ptr(L));
+        break;
+    }
+    case AnalysisMode::Environment:
+        gl->glUniform1i(loc("uEnvironment"), environmentUnit);
+        break;
+    case AnalysisMode::Draft: {
+        const glm::dvec3 d = glm::length(o.pullDirection) > 0.0 ? glm::normalize(o.pullDirection)
+                                                                : glm::dvec3(0.0, 0.0, 1.0);
+        gl->glUniform3fv(loc("uPullDirection"), 1, glm::value_ptr(glm::vec3(d)));
+        gl->glUniform1f(loc("uDraftAngle"), float(o.draftAngleDegrees) * toRad);
+        break;
+    }
+    case AnalysisMode::Phong:
+        break;
+    }
+    if (o.isocurves) {
+        gl->glUniform2f(loc("uIsoCount"), float(std::max(o.isoCount.x, 0)),
+                        float(std::max(o.isoCount.y, 0)));
+        gl->glUniform1f(loc("uIsoWidth"), float(o.isoWidthPixels));
+        gl->glUniform3f(loc("uIsoColour"), 0.08f, 0.08f, 0.08f);
+        gl->glUniform3f(loc("uKnotColour"), 0.85f, 0.1f, 0.55f);
+    }
+}
+
+} // namespace kw

@@ -1,0 +1,61 @@
+// GL side of the analysis modes: the environment map texture and the uniforms of analysis.glsl.
+#pragma once
+
+#include "render/analysis.h"
+#include "render/render_types.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QString>
+#include <vector>
+
+class QOpenGLShaderProgram;
+
+namespace kw {
+
+/// An equirectangular environment image as float RGB, row 0 at the top.
+struct EnvironmentImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;
+};
+
+/// The bundled default environment (Qt resource, made by tools/make_environment.py).
+inline const char* const kDefaultEnvironment = ":/environment/studio.png";
+
+/// Reads `path` (a file or a Qt resource path ":/...") with Qt's image readers (PNG, JPEG, BMP,
+/// TIFF; grey images are expanded, alpha is dropped; EXR/HDR are not read yet).
+/// Returns false with *error naming the file on failure (missing, unreadable, empty).
+bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error);
+
+/// The environment map texture, (re)loaded when the requested path changes.
+class EnvironmentMap {
+public:
+    void initialize(QOpenGLFunctions_4_5_Core* gl) { m_gl = gl; }
+    /// Binds the texture of `path` (empty: the bundled default) to `unit`. A file that cannot
+    /// be read returns false with *error set (the previous texture, if any, stays bound).
+    bool bind(const QString& path, int unit, QString* error);
+    /// Frees the texture; the initialising context must be current.
+    void release();
+    /// Texture (re)loads so far, for tests: switching back and forth between modes must not
+    /// reload an unchanged image.
+    int loads() const { return m_loads; }
+
+private:
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    GLuint m_texture = 0;
+    QString m_path; ///< what m_texture holds
+    QString m_failedPath;
+    QString m_failedError;
+    int m_loads = 0;
+};
+
+/// Sets the uniforms of analysis.glsl for `options` on the bound `program` (built with
+/// analysisDefines(options, ...)): the resolved colour range, stripe, isophote, draft and
+/// isocurve parameters (directions derived from `camera` where they are view-relative), and
+/// the environment sampler on `environmentUnit`.
+void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
+                         const AnalysisOptions& options, const ValueRange& range,
+                         const FrameCamera& camera, const std::vector<Light>& lights,
+                         int environmentUnit);
+
+} // namespace kw

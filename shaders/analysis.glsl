@@ -1,0 +1,151 @@
+// Surface analysis colouring from the exact per-fragment point, normal, curvature and (u, v)
+// (docs/RENDERING.md, ## Analysis). KW_ANALYSIS selects the mode (kw::AnalysisMode values,
+// injected by kw::analysisDefines): 1 Gaussian K, 2 mean H, 3 max |k|, 4 min radius 1/max |k|,
+// 5 zebra, 6 isophotes, 7 environment map, 8 draft angle. KW_ISOCURVES overlays knot lines and
+// iso-parameter lines on any mode. KW_RAMP (an array of KW_RAMP_STOPS colours) is the colour
+// scale of kw::colourRamp(), defined once in C++ (render/analysis.h) so the legend matches.
+// Uniforms are set by kw::setAnalysisUniforms.
+
+#if KW_ANALYSIS >= 1 && KW_ANALYSIS <= 4
+uniform vec2 uAnalysisRange; // the scale's low and high value (model units: 1/length, 1/length^2 or length)
+uniform int uAnalysisScale;  // kw::ColourScale: 0 linear, 1 symmetric about 0, 2 log
+
+// The colour scale position in [0, 1] of value x (kw::colourScalePosition in C++).
+float scalePosition(float x) {
+    float lo = uAnalysisRange.x, hi = uAnalysisRange.y;
+    if (uAnalysisScale == 1) { // symmetric: 0 in the middle, +-max(|lo|, |hi|) at the ends
+        float m = max(max(abs(lo), abs(hi)), 1e-30);
+        return clamp(0.5 + 0.5 * x / m, 0.0, 1.0);
+    }
+    if (uAnalysisScale == 2) { // signed log: linear within m * 1e-3 of 0, logarithmic beyond
+        float m = max(max(abs(lo), abs(hi)), 1e-30);
+        float c = 1e-3 * m;
+        return clamp(0.5 + 0.5 * sign(x) * log(1.0 + abs(x) / c) / log(1.0 + m / c), 0.0, 1.0);
+    }
+    return clamp((x - lo) / max(hi - lo, 1e-30), 0.0, 1.0);
+}
+
+vec3 rampColour(float t) {
+    const vec3 ramp[KW_RAMP_STOPS] = KW_RAMP;
+    float x = clamp(t, 0.0, 1.0) * float(KW_RAMP_STOPS - 1);
+    int i = min(int(x), KW_RAMP_STOPS - 2);
+    return mix(ramp[i], ramp[i + 1], x - float(i));
+}
+
+// The analysed quantity from (K, H, k1, k2).
+float analysisValue(vec4 c) {
+#if KW_ANALYSIS == 1
+    return c.x;
+#elif KW_ANALYSIS == 2
+    return c.y;
+#else
+    float kmax = max(abs(c.z), abs(c.w));
+#if KW_ANALYSIS == 3
+    return kmax;
+#else
+    return kmax > 0.0 ? 1.0 / kmax : 3.0e38; // a plane: infinite radius, the scale's top
+#endif
+#endif
+}
+#endif
+
+#if KW_ANALYSIS == 5
+uniform float uStripeCount; // black and white stripe pairs per 180 degrees of reflection
+uniform vec3 uStripeAxis;   // unit world direction the stripes run along (in the view plane)
+#endif
+#if KW_ANALYSIS == 6
+uniform float uIsophoteCount; // bands across N.L in [-1, 1]
+uniform vec3 uIsophoteLight;  // unit world direction towards the light
+#endif
+#if KW_ANALYSIS == 7
+uniform sampler2D uEnvironment; // equirectangular: longitude along x from -pi, latitude along y
+#endif
+#if KW_ANALYSIS == 8
+uniform vec3 uPullDirection; // unit world vector
+uniform float uDraftAngle;   // threshold in radians
+#endif
+
+// Black and white bands of the periodic coordinate `phase` (a band per 0.5), anti-aliased over
+// one pixel using the phase's screen derivative; unresolvable bands fade to grey.
+float bands(float phase) {
+    float w = fwidth(phase);
+    float f = fract(phase);
+    float edge = min(abs(f - 0.5), min(f, 1.0 - f)); // distance to the nearest band edge
+    float cover = clamp(edge / max(w, 1e-12) + 0.5, 0.0, 1.0);
+    float inside = f < 0.5 ? 1.0 : 0.0;
+    float value = mix(0.5, inside, cover);
+    return w > 0.5 ? 0.5 : value;
+}
+
+// Diffuse headlight factor so colour maps keep the shape readable.
+float headlight(vec3 normal, vec3 V) {
+    return 0.35 + 0.65 * abs(dot(normal, V));
+}
+
+vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
+    vec3 V = normalize(uEye - point);
+    vec3 N = dot(normal, V) < 0.0 ? -normal : normal; // two-sided, as phong()
+#if KW_ANALYSIS >= 1 && KW_ANALYSIS <= 4
+    return rampColour(scalePosition(analysisValue(curvature))) * headlight(normal, V);
+#elif KW_ANALYSIS == 5
+    // Zebra: infinitely long light tubes parallel to the stripe axis A (in the view plane),
+    // evenly spread around it: a reflected view ray R sees the tube of its angle about A,
+    // measured from the direction back to the viewer. That angle is a ratio of R's components,
+    // so on a cylinder parallel to A it does not depend on the height (straight stripes, also
+    // in perspective). Where R runs along A the bands meet, as real tubes meet at their
+    // vanishing point.
+    vec3 R = reflect(-V, N);
+    vec3 C = -uForward;
+    vec3 B = normalize(cross(uStripeAxis, C));
+    float phi = atan(dot(R, B), dot(R, C));
+    return vec3(bands(phi / 3.14159265358979 * uStripeCount));
+#elif KW_ANALYSIS == 6
+    return vec3(bands(0.5 * (dot(N, uIsophoteLight) + 1.0) * uIsophoteCount));
+#elif KW_ANALYSIS == 7
+    vec3 R = reflect(-V, N);
+    vec2 uvEnv = vec2(atan(R.y, R.x) / 6.28318530717959 + 0.5,
+                      0.5 - asin(clamp(R.z, -1.0, 1.0)) / 3.14159265358979);
+    return texture(uEnvironment, uvEnv).rgb;
+#elif KW_ANALYSIS == 8
+    // Draft angle of the oriented normal (Su x Sv side) against the pull direction: green at
+    // or beyond +threshold, red at or beyond -threshold, yellow in between (insufficient).
+    float a = asin(clamp(dot(normal, uPullDirection), -1.0, 1.0));
+    vec3 c = a >= uDraftAngle ? vec3(0.15, 0.75, 0.25)
+                              : (a <= -uDraftAngle ? vec3(0.85, 0.2, 0.15) : vec3(0.95, 0.85, 0.2));
+    return c * headlight(normal, V);
+#else
+    return vec3(0.0);
+#endif
+}
+
+#ifdef KW_ISOCURVES
+uniform vec2 uIsoCount;    // iso-parameter lines per direction (lines at i / (n + 1) of the domain)
+uniform float uIsoWidth;   // line width in pixels
+uniform vec3 uIsoColour;   // iso-parameter lines
+uniform vec3 uKnotColour;  // knot lines (span boundaries, including the domain's edges)
+
+// Coverage of a line of `width` pixels at the integers of the coordinate f whose screen
+// gradient has length g (per pixel), anti-aliased by a one-pixel box filter: constant screen
+// width whatever the parameterisation.
+float lineCover(float f, float g, float width) {
+    float d = abs(f - round(f)) / max(g, 1e-20); // pixels to the nearest line
+    return clamp(0.5 * width + 0.5 - d, 0.0, 1.0);
+}
+
+vec3 overlayIsocurves(vec3 colour, vec2 uv, vec2 knotsU, vec2 knotsV) {
+    // Gradients of u and v themselves: they are continuous across cells and spans (a gradient
+    // of a per-span coordinate would jump where the 2x2 quad straddles a knot).
+    vec2 gu = vec2(length(vec2(dFdx(uv.x), dFdy(uv.x))), length(vec2(dFdx(uv.y), dFdy(uv.y))));
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    vec2 scale = (uIsoCount + 1.0) / width;
+    vec2 f = (uv - uDomain.xz) * scale;
+    float iso = max(uIsoCount.x > 0.0 ? lineCover(f.x, gu.x * scale.x, uIsoWidth) : 0.0,
+                    uIsoCount.y > 0.0 ? lineCover(f.y, gu.y * scale.y, uIsoWidth) : 0.0);
+    // Knot lines: the span's own bounds, as a coordinate with the span's ends at 0 and 1.
+    vec2 spanW = vec2(knotsU.y - knotsU.x, knotsV.y - knotsV.x);
+    float ku = lineCover((uv.x - knotsU.x) / spanW.x, gu.x / spanW.x, uIsoWidth);
+    float kv = lineCover((uv.y - knotsV.x) / spanW.y, gu.y / spanW.y, uIsoWidth);
+    colour = mix(colour, uIsoColour, iso);
+    return mix(colour, uKnotColour, max(ku, kv));
+}
+#endif

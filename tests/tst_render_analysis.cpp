@@ -1,0 +1,457 @@
+// GL test of the analysis modes: the curvature AOV against kw::surfaceCurvature per pixel,
+// zebra stripes on a cylinder (straight, evenly spaced in reflection angle, measured from the
+// image), isocurves at the requested (u, v) within half a pixel, variants built once, and one
+// baseline image per mode under a stated tolerance (KW_UPDATE_BASELINES=1 writes them).
+#include "render/image_writer.h"
+#include "render/renderer_impl.h"
+#include "render_test_util.h"
+
+#include <OpenImageIO/imagebufalgo.h>
+
+using namespace kw;
+
+Q_DECLARE_METATYPE(kw::AnalysisMode)
+
+namespace {
+
+constexpr int kSide = 512;
+
+/// Curvature tolerance of the issue: |gpu - cpu| <= 1e-3 |cpu| + 1e-3 / size for H, k1, k2
+/// (units 1/length) and 1e-3 |cpu| + 1e-3 / size^2 for K (1/length^2), size = model diagonal.
+constexpr double kRelTol = 1e-3;
+constexpr double kAbsTol = 1e-3;
+/// Pixels where a first partial times its domain width is below this fraction of the surface's
+/// size lie near a collapsed edge (see curvatureAovMatchesKernel).
+constexpr double kCollapseBand = 2e-2;
+
+double luminance(QRgb c) {
+    return (0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c)) / 255.0;
+}
+
+} // namespace
+
+class TestRenderAnalysis : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenRenderer> m_renderer;
+
+    bool render(const Scene& scene, const RenderOptions& opt, QString* error) {
+        Document doc;
+        if (!doc.resetScene(scene, error))
+            return false;
+        const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
+        return m_renderer->render(doc, cam, opt, error);
+    }
+
+private Q_SLOTS:
+    void initTestCase() {
+        m_renderer = std::make_unique<OffscreenRenderer>();
+        QString error;
+        QVERIFY2(m_renderer->create(&error), qPrintable(error));
+        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error, true), qPrintable(error));
+    }
+
+    void curvatureAovMatchesKernel_data();
+    void curvatureAovMatchesKernel();
+    void zebraOnCylinder();
+    void isocurvesAtRequestedParameters();
+    void modesCompileOnceAndEnvironmentLoadsOnce();
+    void badEnvironmentMapIsReported();
+    void matchesBaseline_data();
+    void matchesBaseline();
+
+    void cleanupTestCase() { m_renderer.reset(); }
+};
+
+void TestRenderAnalysis::curvatureAovMatchesKernel_data() {
+    QTest::addColumn<Scene>("scene");
+    for (const char* name : {"bicubic", "sphere", "torus", "trimmed_plate", "teapot"}) {
+        QString error;
+        const std::optional<Scene> s = kwtest::loadSample(QString::fromLatin1(name), &error);
+        QVERIFY2(s, qPrintable(error));
+        QTest::newRow(name) << *s;
+    }
+    {
+        Scene s;
+        s.surfaces.push_back(kwtest::makeSurface(1, makeSphere(glm::dvec3(0.0), 1.0), 12));
+        s.camera.eye = glm::dvec3(0.25, -0.35, 3.2);
+        s.camera.target = glm::dvec3(0.0, 0.0, 0.4);
+        s.camera.authored = true;
+        QTest::newRow("code: sphere pole") << s;
+    }
+    {
+        Scene s;
+        s.surfaces.push_back(
+            kwtest::makeSurface(3, kwtest::wavyPatch(5, 4, kwtest::clampedUniform(5, 9),
+                                                     kwtest::clampedUniform(4, 7))));
+        QTest::newRow("code: degree 5 x 4") << s;
+    }
+    {
+        Scene s;
+        s.surfaces.push_back(kwtest::makeSurface(
+            4,
+            kwtest::wavyPatch(15, 2, kwtest::clampedUniform(15, 16), kwtest::clampedUniform(2, 5)),
+            8));
+        QTest::newRow("code: degree 15 x 2") << s;
+    }
+    {
+        Scene s; // the per-cell gather variant (large cells on screen)
+        s.surfaces.push_back(
+            kwtest::makeSurface(8, kwtest::wavyPatch(4, 3, kwtest::clampedUniform(4, 7),
+                                                     kwtest::clampedUniform(3, 6))));
+        QTest::newRow("code: degree 4 x 3") << s;
+    }
+}
+
+void TestRenderAnalysis::curvatureAovMatchesKernel() {
+    QFETCH(Scene, scene);
+    RenderOptions opt;
+    opt.analysis.mode = AnalysisMode::Mean;
+    QString error;
+    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    const AovBuffer aov = m_renderer->aov();
+    QVERIFY(!aov.curvature.empty());
+    glm::dvec3 lo, hi;
+    sceneBounds(scene, lo, hi);
+    const double size = glm::length(hi - lo);
+    int covered = 0, compared = 0, nearCollapse = 0;
+    double worst = 0.0, worstNear = 0.0;
+    QString worstWhy;
+    for (int y = 0; y < aov.height; ++y)
+        for (int x = 0; x < aov.width; ++x) {
+            const float* px = aov.pixel(x, y);
+            if (px[0] < 0.0f)
+                continue;
+            ++covered;
+            const Surface* surf = nullptr;
+            for (const Surface& s : scene.surfaces)
+                if (double(s.id.value) == double(px[0]))
+                    surf = &s;
+            QVERIFY(surf);
+            const SurfaceCurvature c = surfaceCurvature(surf->geometry, px[1], px[2]);
+            const float* g = aov.curvaturePixel(x, y);
+            // Near a collapsed edge (a pole) the normal part of Suu is O(h^2) at parameter
+            // distance h while float rounds O(1) terms: the GPU's relative error grows like
+            // 1e-7 / h^2 (docs/RENDERING.md ## Analysis). Such pixels are checked for finite
+            // values and counted, not held to the tolerance: where |Su| wu or |Sv| wv is below
+            // kCollapseBand of the surface's control-net diagonal.
+            const Interval du = surfaceDomainU(surf->geometry), dv = surfaceDomainV(surf->geometry);
+            glm::dvec3 slo, shi;
+            surfaceControlBounds(surf->geometry, slo, shi);
+            const double lu = std::sqrt(c.E) * (du.last - du.first);
+            const double lv = std::sqrt(c.G) * (dv.last - dv.first);
+            const bool near =
+                !c.regular || std::min(lu, lv) < kCollapseBand * glm::length(shi - slo);
+            const double cpu[4] = {c.gaussian, c.mean, c.k1, c.k2};
+            const double abs[4] = {kAbsTol / (size * size), kAbsTol / size, kAbsTol / size,
+                                   kAbsTol / size};
+            if (near)
+                ++nearCollapse;
+            else
+                ++compared;
+            for (int k = 0; k < 4; ++k) {
+                QVERIFY2(std::isfinite(g[k]), "non-finite curvature in the AOV");
+                const double err = std::abs(double(g[k]) - cpu[k]);
+                const double tol = kRelTol * std::abs(cpu[k]) + abs[k];
+                if (near) {
+                    worstNear = std::max(worstNear, err / tol);
+                    continue;
+                }
+                if (err / tol > worst) {
+                    worst = err / tol;
+                    worstWhy = QStringLiteral("%1 at pixel (%2, %3), (u, v) = (%4, %5): GPU %6, "
+                                              "kernel %7")
+                                   .arg(AovBuffer::kCurvatureNames[k])
+                                   .arg(x)
+                                   .arg(y)
+                                   .arg(px[1])
+                                   .arg(px[2])
+                                   .arg(g[k])
+                                   .arg(cpu[k]);
+                }
+            }
+        }
+    qInfo("%d covered pixels, %d compared; worst error / tolerance %.3f (%s); %d near a collapsed "
+          "edge, worst there %.3f",
+          covered, compared, worst, qPrintable(worstWhy), nearCollapse, worstNear);
+    QVERIFY2(compared >= 1000, qPrintable(QStringLiteral("only %1 pixels compared").arg(compared)));
+    QVERIFY2(worst <= 1.0, qPrintable(worstWhy));
+}
+
+// A cylinder seen side-on with vertical stripes: the reflection of stripes parallel to the axis
+// depends only on the normal's angle about the axis, so every edge must be a vertical line,
+// and edges must fall every pi / (2 * count) of reflection angle (half a stripe pair).
+void TestRenderAnalysis::zebraOnCylinder() {
+    Scene scene;
+    scene.surfaces.push_back(
+        kwtest::makeSurface(1, makeCylinder(glm::dvec3(0.0, 0.0, -1.5), 1.0, 3.0), 16));
+    scene.camera.eye = glm::dvec3(0.0, -6.0, 0.0);
+    scene.camera.target = glm::dvec3(0.0);
+    scene.camera.up = glm::dvec3(0.0, 0.0, 1.0);
+    scene.camera.fovYDegrees = 30.0;
+    scene.camera.authored = true;
+    RenderOptions opt;
+    opt.analysis.mode = AnalysisMode::Zebra;
+    opt.analysis.stripeCount = 6.0;
+    opt.analysis.stripeAngleDegrees = 90.0;
+    QString error;
+    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    const QImage img = m_renderer->colorImage();
+    const AovBuffer aov = m_renderer->aov();
+    QVERIFY2(writeColorImage(img, kwtest::outputDir().filePath("zebra_cylinder.png"), &error),
+             qPrintable(error));
+
+    // Edges per row: sub-pixel crossings of luminance 0.5 between covered pixels, away from
+    // the silhouettes (a grazing reflection's stripes are narrower than a pixel there).
+    std::vector<std::vector<double>> rows;
+    for (int y = kSide / 2 - 60; y <= kSide / 2 + 60; y += 4) {
+        std::vector<double> edges;
+        int first = -1, last = -1;
+        for (int x = 0; x < kSide; ++x)
+            if (aov.pixel(x, y)[0] >= 0.0f) {
+                if (first < 0)
+                    first = x;
+                last = x;
+            }
+        QVERIFY(first >= 0);
+        const int margin = (last - first) / 6; // the outer 1/6 each side: grazing angles
+        for (int x = first + margin; x < last - margin; ++x) {
+            const double a = luminance(img.pixel(x, y)), b = luminance(img.pixel(x + 1, y));
+            if ((a - 0.5) * (b - 0.5) < 0.0)
+                edges.push_back(x + (0.5 - a) / (b - a));
+        }
+        rows.push_back(edges);
+    }
+    QVERIFY(!rows.empty());
+    const size_t n = rows.front().size();
+    QVERIFY2(n >= 6, qPrintable(QStringLiteral("only %1 stripe edges found").arg(n)));
+    // Straight: the same edges in every row, each within 0.25 px of the first row's.
+    for (const std::vector<double>& r : rows) {
+        QCOMPARE(r.size(), n);
+        for (size_t k = 0; k < n; ++k)
+            QVERIFY2(std::abs(r[k] - rows.front()[k]) < 0.25,
+                     qPrintable(QStringLiteral("edge %1 at x %2 vs %3: not straight")
+                                    .arg(k)
+                                    .arg(r[k])
+                                    .arg(rows.front()[k])));
+    }
+    // Evenly spaced in reflection angle: measure the reflected view ray's angle about the axis
+    // at each edge from the AOV (exact P and N, the known eye): consecutive edges differ by
+    // pi / (2 count) within the angle one pixel spans there.
+    const int y = kSide / 2;
+    std::vector<double> angles, perPixel;
+    for (double ex : rows[rows.size() / 2]) {
+        auto reflAngle = [&](int x) {
+            const float* px = aov.pixel(x, y);
+            const glm::dvec3 p(px[3], px[4], px[5]), nrm(px[6], px[7], px[8]);
+            const glm::dvec3 v = glm::normalize(scene.camera.eye - p);
+            const glm::dvec3 r = 2.0 * glm::dot(nrm, v) * nrm - v;
+            return std::atan2(r.x, -r.y); // about z, from the direction back to the eye (-y)
+        };
+        const int x0 = int(std::floor(ex));
+        const double a0 = reflAngle(x0), a1 = reflAngle(x0 + 1);
+        angles.push_back(a0 + (a1 - a0) * (ex - x0));
+        perPixel.push_back(std::abs(a1 - a0));
+    }
+    const double expected = M_PI / (2.0 * opt.analysis.stripeCount);
+    for (size_t k = 1; k < angles.size(); ++k) {
+        const double step = angles[k] - angles[k - 1];
+        QVERIFY2(std::abs(std::abs(step) - expected) <= perPixel[k] + perPixel[k - 1],
+                 qPrintable(QStringLiteral("edges %1 and %2: reflection angles %3 and %4 differ "
+                                           "by %5 rad, expected %6")
+                                .arg(k - 1)
+                                .arg(k)
+                                .arg(angles[k - 1])
+                                .arg(angles[k])
+                                .arg(step)
+                                .arg(expected)));
+    }
+    qInfo("%zu straight edges per row over %zu rows, reflection-angle spacing %.5f rad (expected "
+          "%.5f)",
+          n, rows.size(), (angles.back() - angles.front()) / double(angles.size() - 1), expected);
+}
+
+// Iso-parameter lines on a tilted plane in perspective: every dark line's centre (luminance-
+// weighted, per row) lies where the AOV's u is one of the requested values i / (n + 1), within
+// half a pixel.
+void TestRenderAnalysis::isocurvesAtRequestedParameters() {
+    Scene scene;
+    scene.surfaces.push_back(
+        kwtest::makeSurface(1,
+                            makePlane(glm::dvec3(-2.0, -1.5, 0.0), glm::dvec3(4.0, 0.0, 1.0),
+                                      glm::dvec3(0.0, 3.0, 0.0)),
+                            4));
+    scene.camera.eye = glm::dvec3(0.6, -0.8, 5.0);
+    scene.camera.target = glm::dvec3(0.0, 0.0, 0.5);
+    scene.camera.up = glm::dvec3(0.0, 1.0, 0.0);
+    scene.camera.authored = true;
+    RenderOptions opt;
+    opt.analysis.isocurves = true;
+    opt.analysis.isoCount = glm::ivec2(4, 0); // u lines only: at u = 0.2, 0.4, 0.6, 0.8
+    opt.analysis.isoWidthPixels = 1.5;
+    opt.lightCount = 1;
+    QString error;
+    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    const QImage img = m_renderer->colorImage();
+    const AovBuffer aov = m_renderer->aov();
+    QVERIFY2(writeColorImage(img, kwtest::outputDir().filePath("isocurves_plane.png"), &error),
+             qPrintable(error));
+    int found = 0;
+    double worst = 0.0;
+    for (int y = 100; y < kSide - 100; y += 7) {
+        for (int line = 1; line <= 4; ++line) {
+            const double target = line / 5.0;
+            // The pixel column where u crosses the target, from the AOV.
+            int xc = -1;
+            for (int x = 1; x < kSide; ++x) {
+                const float* a = aov.pixel(x - 1, y);
+                const float* b = aov.pixel(x, y);
+                if (a[0] >= 0.0f && b[0] >= 0.0f && (a[1] - target) * (b[1] - target) <= 0.0)
+                    xc = x;
+            }
+            if (xc < 4 || xc > kSide - 5)
+                continue;
+            // Background brightness beside the line, then the darkness-weighted centre.
+            const double bg =
+                0.5 * (luminance(img.pixel(xc - 4, y)) + luminance(img.pixel(xc + 4, y)));
+            double sw = 0.0, sx = 0.0;
+            for (int x = xc - 3; x <= xc + 3; ++x) {
+                const double d = std::max(0.0, bg - luminance(img.pixel(x, y)));
+                sw += d;
+                sx += d * x;
+            }
+            QVERIFY2(
+                sw > 0.3 * bg,
+                qPrintable(QStringLiteral("no line near u = %1 in row %2").arg(target).arg(y)));
+            const double cx = sx / sw;
+            // u at the centre, interpolated from the AOV; du/dx from the neighbours.
+            const int x0 = int(std::floor(cx));
+            const double u0 = aov.pixel(x0, y)[1], u1 = aov.pixel(x0 + 1, y)[1];
+            const double u = u0 + (u1 - u0) * (cx - x0);
+            const double pixels = std::abs(u - target) / std::abs(u1 - u0);
+            worst = std::max(worst, pixels);
+            QVERIFY2(pixels <= 0.5, qPrintable(QStringLiteral("line u = %1 in row %2 centred at "
+                                                              "u = %3: %4 px off")
+                                                   .arg(target)
+                                                   .arg(y)
+                                                   .arg(u)
+                                                   .arg(pixels)));
+            ++found;
+        }
+    }
+    qInfo("%d line crossings, worst %.3f px from the requested u", found, worst);
+    QVERIFY(found >= 100);
+}
+
+void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
+    QString error;
+    const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("torus"), &error);
+    QVERIFY2(scene, qPrintable(error));
+    Document doc;
+    QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+    const Camera cam = fitCamera(*scene, 1.0);
+    RenderOptions opt;
+    const int loads0 = m_renderer->renderer().internals().exact.environment().loads();
+    QElapsedTimer first, again;
+    first.start();
+    for (AnalysisMode m : analysisModes()) {
+        opt.analysis.mode = m;
+        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+    }
+    m_renderer->finish();
+    const qint64 firstMs = first.elapsed();
+    again.start();
+    for (int round = 0; round < 2; ++round)
+        for (AnalysisMode m : analysisModes()) {
+            opt.analysis.mode = m;
+            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        }
+    m_renderer->finish();
+    const qint64 againMs = again.elapsed();
+    // The environment image is read once however often the mode comes back.
+    QCOMPARE(m_renderer->renderer().internals().exact.environment().loads() - loads0,
+             loads0 == 0 ? 1 : 0);
+    qInfo("first pass over %zu modes %lld ms (compiles), two more passes %lld ms",
+          analysisModes().size(), (long long)firstMs, (long long)againMs);
+}
+
+void TestRenderAnalysis::badEnvironmentMapIsReported() {
+    QString error;
+    const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("sphere"), &error);
+    QVERIFY2(scene, qPrintable(error));
+    RenderOptions opt;
+    opt.analysis.mode = AnalysisMode::Environment;
+    opt.analysis.environmentMap = QStringLiteral(KW_TEST_OUTPUT_DIR "/no_such_environment.exr");
+    QVERIFY(!render(*scene, opt, &error));
+    QVERIFY2(error.contains(QStringLiteral("no_such_environment.exr")), qPrintable(error));
+}
+
+// Baselines: a pixel fails when a channel differs by more than 0.05 (13 of 255); the image
+// fails when more than 0.5% of its pixels fail or the mean error exceeds 0.006. Stripes and
+// lines have more edge pixels than shading, hence a looser bound than tst_render_baseline.
+void TestRenderAnalysis::matchesBaseline_data() {
+    QTest::addColumn<QString>("sample");
+    QTest::addColumn<AnalysisMode>("mode");
+    QTest::addColumn<bool>("isocurves");
+    QTest::newRow("analysis_teapot_gaussian") << "teapot" << AnalysisMode::Gaussian << false;
+    QTest::newRow("analysis_teapot_mean") << "teapot" << AnalysisMode::Mean << false;
+    QTest::newRow("analysis_torus_max_curvature") << "torus" << AnalysisMode::MaxCurvature << false;
+    QTest::newRow("analysis_bicubic_min_radius") << "bicubic" << AnalysisMode::MinRadius << false;
+    QTest::newRow("analysis_teapot_zebra") << "teapot" << AnalysisMode::Zebra << false;
+    QTest::newRow("analysis_torus_isophotes") << "torus" << AnalysisMode::Isophotes << false;
+    QTest::newRow("analysis_teapot_environment") << "teapot" << AnalysisMode::Environment << false;
+    QTest::newRow("analysis_teapot_draft") << "teapot" << AnalysisMode::Draft << false;
+    QTest::newRow("analysis_bicubic_isocurves") << "bicubic" << AnalysisMode::Phong << true;
+    QTest::newRow("analysis_torus_mean_isocurves") << "torus" << AnalysisMode::Mean << true;
+}
+
+void TestRenderAnalysis::matchesBaseline() {
+    QFETCH(QString, sample);
+    QFETCH(AnalysisMode, mode);
+    QFETCH(bool, isocurves);
+    const QString name = QString::fromLatin1(QTest::currentDataTag());
+    QString error;
+    const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
+    QVERIFY2(scene, qPrintable(error));
+    RenderOptions opt;
+    opt.analysis.mode = mode;
+    opt.analysis.isocurves = isocurves;
+    QVERIFY2(m_renderer->setSize(QSize(256, 256), false, &error), qPrintable(error));
+    const bool rendered = render(*scene, opt, &error);
+    const QImage img = m_renderer->colorImage();
+    QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error, true), qPrintable(error));
+    QVERIFY2(rendered, qPrintable(error));
+    const QString expected =
+        QStringLiteral(KW_SOURCE_DIR "/tests/baselines/") + name + QStringLiteral(".png");
+    if (qEnvironmentVariableIntValue("KW_UPDATE_BASELINES") == 1) {
+        QVERIFY2(writeColorImage(img, expected, &error), qPrintable(error));
+        qInfo("wrote %s", qPrintable(expected));
+        return;
+    }
+    QVERIFY2(QFileInfo::exists(expected),
+             qPrintable(QStringLiteral("missing baseline %1 (generate with KW_UPDATE_BASELINES=1)")
+                            .arg(expected)));
+    const QString actualPath = kwtest::outputDir().filePath(name + QStringLiteral(".actual.png"));
+    const QString diffPath = kwtest::outputDir().filePath(name + QStringLiteral(".diff.png"));
+    QVERIFY2(writeColorImage(img, actualPath, &error), qPrintable(error));
+    OIIO::ImageBuf actual(actualPath.toStdString()), base(expected.toStdString());
+    QVERIFY2(actual.read() && base.read(), "could not read the images back");
+    QCOMPARE(actual.spec().width, base.spec().width);
+    const OIIO::ImageBufAlgo::CompareResults r =
+        OIIO::ImageBufAlgo::compare(actual, base, 0.05f, 0.025f);
+    const double failed = double(r.nfail) / double(256 * 256);
+    qInfo("%s: mean error %.5f, max %.4f, %.3f%% pixels over 0.05", qPrintable(name), r.meanerror,
+          r.maxerror, 100.0 * failed);
+    const bool ok = failed <= 0.005 && r.meanerror <= 0.006;
+    if (ok) {
+        QFile::remove(actualPath);
+    } else {
+        OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(actual, base);
+        diff = OIIO::ImageBufAlgo::mul(diff, 8.0f);
+        diff.write(diffPath.toStdString());
+    }
+    QVERIFY2(ok, qPrintable(QStringLiteral("%1 differs from %2; see %3 and %4")
+                                .arg(name, expected, actualPath, diffPath)));
+}
+
+QTEST_MAIN(TestRenderAnalysis)
+#include "tst_render_analysis.moc"

@@ -1,0 +1,156 @@
+// View ▸ Analysis menu, Analysis toolbar, colour range dialog and the colour legend painter.
+#include "ui/analysiscontrols.h"
+
+#include "ui/viewport.h"
+
+#include <QActionGroup>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QMainWindow>
+#include <QMenu>
+#include <QPainter>
+#include <QToolBar>
+
+namespace kw {
+
+namespace {
+QString camelName(AnalysisMode mode) {
+    QString out;
+    bool upper = true;
+    for (QChar c : analysisModeName(mode)) {
+        if (c == QLatin1Char('-')) {
+            upper = true;
+            continue;
+        }
+        out += upper ? c.toUpper() : c;
+        upper = false;
+    }
+    return out;
+}
+} // namespace
+
+AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewport* viewport)
+    : QObject(window), m_window(window), m_viewport(viewport) {
+    QMenu* menu = viewMenu->addMenu(tr("&Analysis"));
+    QToolBar* bar = window->addToolBar(tr("Analysis"));
+    bar->setObjectName(QStringLiteral("analysisToolBar"));
+    auto* group = new QActionGroup(this);
+    for (AnalysisMode mode : analysisModes()) {
+        QAction* a = menu->addAction(analysisModeTitle(mode));
+        a->setObjectName(QStringLiteral("actionAnalysis") + camelName(mode));
+        a->setCheckable(true);
+        a->setChecked(mode == viewport->renderOptions().analysis.mode);
+        group->addAction(a);
+        bar->addAction(a);
+        connect(a, &QAction::triggered, this, [this, mode] {
+            AnalysisOptions o = m_viewport->renderOptions().analysis;
+            o.mode = mode;
+            m_viewport->setAnalysis(o);
+        });
+    }
+    menu->addSeparator();
+    bar->addSeparator();
+    QAction* iso = menu->addAction(tr("&Isocurves"));
+    iso->setObjectName(QStringLiteral("actionIsocurves"));
+    iso->setCheckable(true);
+    iso->setShortcut(QKeySequence(Qt::Key_I));
+    bar->addAction(iso);
+    connect(iso, &QAction::toggled, this, [this](bool on) {
+        AnalysisOptions o = m_viewport->renderOptions().analysis;
+        o.isocurves = on;
+        m_viewport->setAnalysis(o);
+    });
+    QAction* range = menu->addAction(tr("Colour &Range…"));
+    range->setObjectName(QStringLiteral("actionAnalysisRange"));
+    bar->addAction(range);
+    connect(range, &QAction::triggered, this, &AnalysisControls::editRange);
+}
+
+void AnalysisControls::editRange() {
+    AnalysisOptions o = m_viewport->renderOptions().analysis;
+    const ValueRange current = o.range.value_or(m_viewport->lastFrameReport().analysisRange);
+    QDialog dialog(m_window);
+    dialog.setWindowTitle(tr("Colour Range"));
+    auto* form = new QFormLayout(&dialog);
+    auto* automatic = new QCheckBox(tr("Automatic (2nd to 98th percentile)"));
+    automatic->setChecked(!o.range);
+    auto spin = [](double value) {
+        auto* s = new QDoubleSpinBox;
+        s->setDecimals(6);
+        s->setRange(-1e12, 1e12);
+        s->setValue(value);
+        return s;
+    };
+    QDoubleSpinBox* low = spin(current.low);
+    QDoubleSpinBox* high = spin(current.high);
+    auto* scale = new QComboBox;
+    scale->addItem(tr("Mode default"));
+    for (ColourScale s : {ColourScale::Linear, ColourScale::Symmetric, ColourScale::Log})
+        scale->addItem(colourScaleName(s), int(s));
+    if (o.scale)
+        scale->setCurrentIndex(int(*o.scale) + 1);
+    form->addRow(automatic);
+    form->addRow(tr("Low"), low);
+    form->addRow(tr("High"), high);
+    form->addRow(tr("Scale"), scale);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    form->addRow(buttons);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    const auto sync = [=] {
+        low->setEnabled(!automatic->isChecked());
+        high->setEnabled(!automatic->isChecked());
+    };
+    connect(automatic, &QCheckBox::toggled, &dialog, sync);
+    sync();
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    if (automatic->isChecked() || !(high->value() > low->value()))
+        o.range.reset();
+    else
+        o.range = ValueRange{low->value(), high->value()};
+    if (scale->currentIndex() == 0)
+        o.scale.reset();
+    else
+        o.scale = ColourScale(scale->currentData().toInt());
+    m_viewport->setAnalysis(o);
+}
+
+void drawColourLegend(QPainter& p, const QRect& area, AnalysisMode mode, const ValueRange& range,
+                      ColourScale scale, bool automatic) {
+    const int barWidth = 18;
+    const int titleHeight = 34;
+    const QRect bar(area.left(), area.top() + titleHeight, barWidth, area.height() - titleHeight);
+    p.save();
+    p.setRenderHint(QPainter::Antialiasing, false);
+    p.fillRect(area.adjusted(-6, -4, 6, 4), QColor(30, 32, 36, 190));
+    // The bar, top = high end (t = 1), one row per pixel through the shader's ramp.
+    for (int y = 0; y < bar.height(); ++y) {
+        const double t = 1.0 - (y + 0.5) / bar.height();
+        const glm::vec3 c = rampColour(t);
+        p.setPen(QColor::fromRgbF(c.x, c.y, c.z));
+        p.drawLine(bar.left(), bar.top() + y, bar.right(), bar.top() + y);
+    }
+    p.setPen(Qt::white);
+    p.drawText(QRect(area.left(), area.top(), area.width() + 6, 16), Qt::AlignLeft,
+               analysisModeTitle(mode));
+    p.drawText(QRect(area.left(), area.top() + 16, area.width() + 6, 16), Qt::AlignLeft,
+               QStringLiteral("%1, %2").arg(colourScaleName(scale),
+                                            automatic ? QStringLiteral("auto")
+                                                      : QStringLiteral("user range")));
+    for (int k = 0; k <= 4; ++k) {
+        const double t = k / 4.0;
+        const int y = bar.bottom() - int(t * (bar.height() - 1));
+        p.drawLine(bar.right() + 1, y, bar.right() + 5, y);
+        const double value = colourScaleValue(t, range, scale);
+        p.drawText(QRect(bar.right() + 8, y - 8, area.width() - barWidth - 8, 16),
+                   Qt::AlignLeft | Qt::AlignVCenter, QString::number(value, 'g', 4));
+    }
+    p.restore();
+}
+
+} // namespace kw
