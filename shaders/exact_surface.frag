@@ -4,7 +4,8 @@
 // pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here),
 // KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
 // iso-parameter lines over the colour), KW_SECOND_ORDER (second derivatives and curvature,
-// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4).
+// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
+// principal direction of k1 at location 5).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -32,11 +33,16 @@ layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not fl
 #endif
 #ifdef KW_AOV_CURVATURE
 layout(location = 4) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvature)
+layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (world), w = 0
 #endif
 
 void main() {
     KW_DISCARD_TRIMMED(vUv);
-    SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
+    // The interpolated (u, v) can leave the domain by ~1e-5 at grazing pixels on the boundary
+    // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,
+    // as kw::surfacePoint does, instead of extrapolating the boundary span's polynomial.
+    vec2 uv = clamp(vUv, uDomain.xz, uDomain.yw);
+    SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
@@ -52,15 +58,16 @@ void main() {
     vec3 colour = phong(s.point, s.normal);
 #endif
 #ifdef KW_ISOCURVES
-    colour = overlayIsocurves(colour, vUv, spanKnotsU(vSpan), spanKnotsV(vSpan));
+    colour = overlayIsocurves(colour, uv, spanKnotsU(vSpan), spanKnotsV(vSpan));
 #endif
     fragColor = vec4(colour, 1.0);
 #ifdef KW_AOV
-    aovIdUvDepth = vec4(uSurfaceId, vUv, dot(s.point - uEye, uForward));
+    aovIdUvDepth = vec4(uSurfaceId, uv, dot(s.point - uEye, uForward));
     aovPosition = vec4(s.point, 1.0);
     aovNormal = vec4(s.normal, 0.0);
 #endif
 #ifdef KW_AOV_CURVATURE
     aovCurvature = curvature;
+    aovDirection = vec4(s.dir1, 0.0);
 #endif
 }
