@@ -6,3 +6,5 @@ endif()
 kw_add_test(tst_trim_exact LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_exact.cpp
             ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h LIBS ${KW_TRIM_EXACT_LIBS})
 set_tests_properties(tst_trim_exact PROPERTIES TIMEOUT 600)
+# It imports hammer.iges, which is read by the knotwork binary in a child process.
+kw_use_cad_reader(tst_trim_exact)
