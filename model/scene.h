@@ -5,10 +5,9 @@
 
 #include <QHashFunctions>
 #include <QString>
-#include <glm/glm.hpp>
-
 #include <compare>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace kw {
@@ -27,8 +26,12 @@ struct TrimLoopId {
     auto operator<=>(const TrimLoopId&) const = default;
 };
 
-inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
-inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
+inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept {
+    return ::qHash(id.value, seed);
+}
+inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept {
+    return ::qHash(id.value, seed);
+}
 
 /// One control point of one surface: (i, j) as in NurbsSurface::index.
 struct ControlPointRef {
@@ -78,6 +81,9 @@ struct Surface {
     int partitionsU = 10;
     int partitionsV = 10;
     Material material;
+    /// Hidden by the user (View > Hide): not drawn and not pickable, still part of the
+    /// document (saved, exported, counted). An edit like any other: undoable, marks modified.
+    bool hidden = false;
     bool operator==(const Surface&) const = default;
 };
 

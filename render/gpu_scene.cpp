@@ -40,6 +40,11 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     m_order.reserve(scene.surfaces.size());
     UploadStats frame;
     for (const Surface& s : scene.surfaces) {
+        // The draw list: a hidden surface is left out of the frame (every pass and the pick
+        // query draw records() only) but keeps its record, so showing it again uploads only
+        // what changed meanwhile.
+        if (s.hidden)
+            continue;
         Entry& e = m_entries[s.id];
         SurfaceRecord& r = e.record;
         r.id = s.id;
