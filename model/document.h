@@ -6,6 +6,7 @@
 #include <QFlags>
 #include <QObject>
 #include <QString>
+
 #include <cstdint>
 #include <vector>
 

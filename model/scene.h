@@ -5,9 +5,10 @@
 
 #include <QHashFunctions>
 #include <QString>
+#include <glm/glm.hpp>
+
 #include <compare>
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <vector>
 
 namespace kw {
@@ -26,12 +27,8 @@ struct TrimLoopId {
     auto operator<=>(const TrimLoopId&) const = default;
 };
 
-inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept {
-    return ::qHash(id.value, seed);
-}
-inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept {
-    return ::qHash(id.value, seed);
-}
+inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
+inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
 
 /// One control point of one surface: (i, j) as in NurbsSurface::index.
 struct ControlPointRef {
