@@ -4,6 +4,7 @@
 #include "app/commands.h"
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
+#include "render/analysis.h"
 #include "render/gl_context.h"
 #include "ui/edit/commands.h"
 #include "ui/mainwindow.h"
@@ -11,6 +12,7 @@
 #include "ui/uvpanel.h"
 #include "ui/viewport.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -132,7 +134,10 @@ int runEditor(int argc, char** argv) {
     const QCommandLineOption size(QStringLiteral("size"),
                                   QStringLiteral("Window size, e.g. 1280x800."),
                                   QStringLiteral("WxH"));
-    parser.addOptions({shot, size, demo});
+    const QCommandLineOption shading(QStringLiteral("shading"),
+                                     QStringLiteral("Start with this View > Analysis mode."),
+                                     QStringLiteral("MODE"));
+    parser.addOptions({shot, size, demo, shading});
     if (!parser.parse(arguments) || parser.positionalArguments().size() > 1) {
         cli::printError(QStringLiteral("knotwork: %1 (see knotwork --help)")
                             .arg(parser.errorText().isEmpty() ? QStringLiteral("more than one FILE")
@@ -149,6 +154,15 @@ int runEditor(int argc, char** argv) {
             cli::printError(QStringLiteral("knotwork: --size wants WxH, 200x150 to 8192x8192, "
                                            "got '%1'")
                                 .arg(parser.value(size)));
+            return cli::kExitUsage;
+        }
+    }
+    std::optional<AnalysisMode> mode;
+    if (parser.isSet(shading)) {
+        mode = parseAnalysisMode(parser.value(shading));
+        if (!mode) {
+            cli::printError(QStringLiteral("knotwork: --shading: unknown mode '%1'")
+                                .arg(parser.value(shading)));
             return cli::kExitUsage;
         }
     }
@@ -191,6 +205,14 @@ int runEditor(int argc, char** argv) {
         return cli::kExitBadInput;
     if (parser.isSet(demo))
         buildDemo(window);
+    if (mode) {
+        // Through View › Analysis, so the menu shows the mode (its actions are named after it).
+        QString camel;
+        for (const QString& part : analysisModeName(*mode).split(QLatin1Char('-')))
+            camel += part.left(1).toUpper() + part.mid(1);
+        if (QAction* a = window.action(QStringLiteral("actionAnalysis") + camel))
+            a->trigger();
+    }
     if (parser.isSet(shot))
         return screenshot(window, parser.value(shot), parser.isSet(demo));
     window.show();
