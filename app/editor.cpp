@@ -112,14 +112,6 @@ int screenshot(MainWindow& window, const QString& out, bool refit) {
 } // namespace
 
 int runEditor(int argc, char** argv) {
-    // Without a display Qt's xcb plugin aborts; say so plainly instead.
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") && qEnvironmentVariableIsEmpty("DISPLAY") &&
-        qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY")) {
-        cli::printError(QStringLiteral(
-            "knotwork: cannot start the editor: no display (DISPLAY and WAYLAND_DISPLAY are "
-            "unset). The command-line tools work without one: see knotwork --help."));
-        return cli::kExitBadInput;
-    }
     QStringList arguments;
     for (int k = 0; k < argc; ++k)
         arguments << QString::fromLocal8Bit(argv[k]);
@@ -165,6 +157,15 @@ int runEditor(int argc, char** argv) {
                                 .arg(parser.value(shading)));
             return cli::kExitUsage;
         }
+    }
+    // Without a display Qt's xcb plugin aborts; say so plainly instead (usage errors above
+    // need no display).
+    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") && qEnvironmentVariableIsEmpty("DISPLAY") &&
+        qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY")) {
+        cli::printError(QStringLiteral(
+            "knotwork: cannot start the editor: no display (DISPLAY and WAYLAND_DISPLAY are "
+            "unset). The command-line tools work without one: see knotwork --help."));
+        return cli::kExitBadInput;
     }
     const QString file = parser.positionalArguments().value(0);
     if (!file.isEmpty()) {
