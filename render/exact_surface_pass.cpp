@@ -13,7 +13,7 @@
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3;    // after uControl, uSpansU, uSpansV
+constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray)
 constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
@@ -25,6 +25,15 @@ double gatherMinCellPixels() {
         return std::atof(e);
     return ExactSurfacePass::kGatherMinCellPixels;
 }
+/// One surface's base polygon triangles, its table row selected by the base instance.
+void drawSurface(QOpenGLFunctions_4_5_Core* gl, const SurfaceRecord& r) {
+    const SurfaceGpu& g = *r.exact;
+    gl->glDrawElementsInstancedBaseVertexBaseInstance(
+        GL_TRIANGLES, g.triangleIndexCount, GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(g.triangleOffset * std::int64_t(sizeof(unsigned))), 1,
+        GLint(g.vertexOffset), GLuint(r.slot));
+}
+
 } // namespace
 
 double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
@@ -101,6 +110,7 @@ bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const Fra
     QOpenGLShaderProgram* bound = nullptr;
     bool ok = true;
     const TrimMaskPass& masks = scene.trimMasks();
+    scene.bindSurfaceData();
     for (const SurfaceRecord* r : scene.records()) {
         const SurfaceGpu* g = r->exact.get();
         if (!g)
@@ -120,11 +130,10 @@ bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const Fra
             bound = prog;
             gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                                    glm::value_ptr(camera.viewProjection));
+            if (mask)
+                masks.bindArray(prog, kTrimMaskUnit);
         }
-        if (mask)
-            masks.setUniforms(prog, *mask, kTrimMaskUnit);
-        gl->glBindVertexArray(g->triangleVao);
-        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        drawSurface(gl, *r);
         ++drawCalls;
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -157,11 +166,11 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     bool ok = true;
     const double minCellPixels = gatherMinCellPixels();
     const TrimMaskPass& masks = scene.trimMasks();
+    scene.bindSurfaceData();
     for (const SurfaceRecord* r : scene.records()) {
         const SurfaceGpu* g = r->exact.get();
         if (!g)
             continue;
-        const Surface& s = *r->surface;
         // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
         // rejects it before shading and early-z stays on: no lookup needed here. A discard
         // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
@@ -186,21 +195,10 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             setFrameUniforms(gl, prog, camera, lights);
             setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights,
                                 kEnvironmentUnit);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).control, 0);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansU, 1);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansV, 2);
+            if (mask)
+                masks.bindArray(prog, kTrimMaskUnit);
         }
-        setSurfaceUniforms(gl, prog, s);
-        gl->glUniform4fv(ShaderLibrary::uniforms(prog).domain, 1, glm::value_ptr(g->domain));
-        gl->glUniform3fv(ShaderLibrary::uniforms(prog).origin, 1,
-                         glm::value_ptr(glm::vec3(g->origin)));
-        gl->glBindTextureUnit(0, g->controlTexture);
-        gl->glBindTextureUnit(1, g->spanTextureU);
-        gl->glBindTextureUnit(2, g->spanTextureV);
-        if (mask)
-            masks.setUniforms(prog, *mask, kTrimMaskUnit);
-        gl->glBindVertexArray(g->triangleVao);
-        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        drawSurface(gl, *r);
         ++drawCalls;
     }
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);

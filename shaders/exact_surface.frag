@@ -15,8 +15,8 @@
 in vec2 vUv;
 flat in ivec2 vSpan;
 flat in float vSpanScale;
+flat in int vSurface; // row of the surface table (surface_data.glsl)
 
-uniform float uSurfaceId;
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
 
@@ -35,6 +35,7 @@ layout(location = 4) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvatur
 #endif
 
 void main() {
+    kwSurface = vSurface;
     KW_DISCARD_TRIMMED(vUv);
     SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
 #ifdef KW_EXACT_DEPTH
