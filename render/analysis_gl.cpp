@@ -2,6 +2,8 @@
 // analysis uniforms.
 #include "render/analysis_gl.h"
 
+#include "render/image_reader.h"
+
 #include <QImage>
 #include <QOpenGLShaderProgram>
 #include <cmath>
@@ -9,16 +11,13 @@
 
 namespace kw {
 
-bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
-    // Qt's image readers (PNG, JPEG, BMP, TIFF, ... and the bundled resource). OpenImageIO,
-    // which would add EXR and HDR, now lives in a write-only module loaded on demand
-    // (render/oiio); reading through it is not done yet.
-    out = {};
+namespace {
+
+/// The bundled resource (":/..."), which OpenImageIO cannot open, through Qt's PNG reader.
+bool loadQtImage(const QString& path, EnvironmentImage& out, QString* error) {
     const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
     if (img.isNull()) {
-        *error = QStringLiteral("%1: cannot read the environment image (missing, or not a format "
-                                "Qt reads: PNG, JPEG, BMP, TIFF)")
-                     .arg(path);
+        *error = QStringLiteral("%1: cannot read the environment image").arg(path);
         return false;
     }
     out.width = img.width();
@@ -28,6 +27,35 @@ bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* e
         const uchar* line = img.constScanLine(y);
         for (int k = 0; k < out.width * 3; ++k)
             out.rgb[size_t(y) * size_t(out.width) * 3 + size_t(k)] = float(line[k]) / 255.0f;
+    }
+    return true;
+}
+
+} // namespace
+
+bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
+    out = {};
+    if (path.startsWith(QLatin1String(":/")))
+        return loadQtImage(path, out, error);
+    FloatImage img;
+    QString why;
+    if (!readImageFile(path, img, &why)) {
+        *error = QStringLiteral("cannot read the environment image %1").arg(why);
+        return false;
+    }
+    // RGB from 1 (grey), 2 (grey, alpha), 3 or 4 (RGBA) channels. HDR values above 1 are kept
+    // (the reflection is as bright as the file says; the framebuffer clamps); NaN, infinite
+    // and negative values, which a reflection cannot show, become 0.
+    out.width = img.width;
+    out.height = img.height;
+    out.rgb.resize(size_t(img.width) * size_t(img.height) * 3);
+    const size_t pixels = size_t(img.width) * size_t(img.height);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* in = img.pixels.data() + p * size_t(img.channels);
+        for (int c = 0; c < 3; ++c) {
+            const float x = in[img.channels >= 3 ? c : 0];
+            out.rgb[p * 3 + size_t(c)] = std::isfinite(x) && x > 0.0f ? x : 0.0f;
+        }
     }
     return true;
 }

@@ -22,9 +22,11 @@ struct EnvironmentImage {
 /// The bundled default environment (Qt resource, made by tools/make_environment.py).
 inline const char* const kDefaultEnvironment = ":/environment/studio.png";
 
-/// Reads `path` (a file or a Qt resource path ":/...") with Qt's image readers (PNG, JPEG, BMP,
-/// TIFF; grey images are expanded, alpha is dropped; EXR/HDR are not read yet).
-/// Returns false with *error naming the file on failure (missing, unreadable, empty).
+/// Reads `path`: a file through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF, ...: render/image_reader.h;
+/// float values above 1 are kept), or a Qt resource path ":/..." (the bundled default) through
+/// Qt's PNG reader. Grey images are expanded, alpha is dropped, non-finite or negative values
+/// become 0. Returns false with *error naming the file on failure (missing, unknown format,
+/// corrupt, too large, module not loadable).
 bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error);
 
 /// The environment map texture, (re)loaded when the requested path changes.

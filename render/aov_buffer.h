@@ -16,9 +16,11 @@ struct AovBuffer {
     int height = 0;
     std::vector<float> data;
     /// With the curvature AOV (RenderTarget::curvatureAov): kCurvatureChannels floats per pixel
-    /// K, H, k1, k2 (kw::surfaceCurvature's signs; 0 on background); else empty.
-    static constexpr int kCurvatureChannels = 4;
-    static const char* const kCurvatureNames[kCurvatureChannels]; ///< K,H,k1,k2
+    /// K, H, k1, k2 (kw::surfaceCurvature's signs), then d1.x, d1.y, d1.z: the unit world
+    /// principal direction of k1 (any tangent direction at umbilics; sign arbitrary; the
+    /// direction of k2 is N x d1); all 0 on background. Else empty.
+    static constexpr int kCurvatureChannels = 7;
+    static const char* const kCurvatureNames[kCurvatureChannels]; ///< K,H,k1,k2,d1.x,d1.y,d1.z
     std::vector<float> curvature;
 
     const float* pixel(int x, int y) const {

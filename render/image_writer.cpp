@@ -4,18 +4,12 @@
 #include "render/image_writer.h"
 
 #include "render/oiio/image_module.h"
+#include "render/oiio_loader.h"
 
-#include <QCoreApplication>
-#include <QFileInfo>
 #include <QImageWriter>
-#include <QLibrary>
 #include <QSaveFile>
 #include <algorithm>
 #include <vector>
-
-#ifndef KW_MODULE_DIR
-#define KW_MODULE_DIR ""
-#endif
 
 namespace kw {
 
@@ -26,36 +20,9 @@ QString suffixOf(const QString& path) {
     return dot < 0 ? QString() : path.mid(dot + 1).toLower();
 }
 
-/// The module's entry point, loaded once: from the executable's folder (build/bin), else from
-/// the build tree's bin folder (test executables live elsewhere). Null with *why set when
-/// neither has a loadable module.
+/// The module's write entry point (render/oiio_loader.h).
 KwImageWriteFn imageWriter(QString* why) {
-    static KwImageWriteFn fn = nullptr;
-    static QString failure;
-    static bool tried = false;
-    if (!tried) {
-        tried = true;
-        QStringList dirs;
-        if (QCoreApplication::instance())
-            dirs << QCoreApplication::applicationDirPath();
-        dirs << QStringLiteral(KW_MODULE_DIR);
-        for (const QString& dir : dirs) {
-            const QString file = dir + QStringLiteral("/libknotwork_oiio.so");
-            if (dir.isEmpty() || !QFileInfo::exists(file))
-                continue;
-            QLibrary lib(file);
-            fn = reinterpret_cast<KwImageWriteFn>(lib.resolve(KW_IMAGE_WRITE_SYMBOL));
-            if (fn)
-                break; // the library stays loaded: QLibrary does not unload on destruction
-            failure = lib.errorString();
-        }
-        if (!fn && failure.isEmpty())
-            failure = QStringLiteral("libknotwork_oiio.so is not in %1")
-                          .arg(dirs.join(QStringLiteral(" or ")));
-    }
-    if (!fn)
-        *why = failure;
-    return fn;
+    return reinterpret_cast<KwImageWriteFn>(oiioModuleSymbol(KW_IMAGE_WRITE_SYMBOL, why));
 }
 
 bool writePixels(const QString& path, KwImageWrite image, QString* error) {

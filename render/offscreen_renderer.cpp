@@ -25,7 +25,7 @@ struct OffscreenRenderer::Impl {
     bool withCurvature = false;
     GLuint fbo = 0;
     GLuint color = 0, depth = 0;
-    GLuint aov[4] = {0, 0, 0, 0};
+    GLuint aov[5] = {0, 0, 0, 0, 0};
 };
 
 OffscreenRenderer::OffscreenRenderer() : d(std::make_unique<Impl>()) {}
@@ -85,12 +85,12 @@ void OffscreenRenderer::Impl::destroyFramebuffer() {
         return;
     if (fbo)
         gl->glDeleteFramebuffers(1, &fbo);
-    GLuint tex[6] = {color, depth, aov[0], aov[1], aov[2], aov[3]};
+    GLuint tex[7] = {color, depth, aov[0], aov[1], aov[2], aov[3], aov[4]};
     for (GLuint t : tex)
         if (t)
             gl->glDeleteTextures(1, &t);
     fbo = color = depth = 0;
-    aov[0] = aov[1] = aov[2] = aov[3] = 0;
+    aov[0] = aov[1] = aov[2] = aov[3] = aov[4] = 0;
 }
 
 bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool withCurvature) {
@@ -120,9 +120,9 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool w
     d->depth = texture(GL_DEPTH_COMPONENT24);
     gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT0, d->color, 0);
     gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_ATTACHMENT, d->depth, 0);
-    GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                         GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-    const int aovTargets = withAov ? (withCurvature ? 4 : 3) : 0;
+    GLenum buffers[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                         GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+    const int aovTargets = withAov ? (withCurvature ? 5 : 3) : 0;
     for (int k = 0; k < aovTargets; ++k) {
         d->aov[k] = texture(GL_RGBA32F);
         gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), d->aov[k], 0);
@@ -208,13 +208,21 @@ AovBuffer OffscreenRenderer::aov() {
             std::copy(values, values + AovBuffer::kChannels, dst);
         }
     if (d->withCurvature) {
-        std::vector<float> plane(size_t(w) * size_t(h) * 4);
-        gl->glGetTextureImage(d->aov[3], 0, GL_RGBA, GL_FLOAT,
-                              GLsizei(plane.size() * sizeof(float)), plane.data());
-        out.curvature.resize(plane.size());
+        // K, H, k1, k2 (attachment 4) then d1.x, d1.y, d1.z (attachment 5), per pixel.
+        constexpr int n = AovBuffer::kCurvatureChannels;
+        std::vector<float> curv(size_t(w) * size_t(h) * 4), dir(curv.size());
+        gl->glGetTextureImage(d->aov[3], 0, GL_RGBA, GL_FLOAT, GLsizei(curv.size() * sizeof(float)),
+                              curv.data());
+        gl->glGetTextureImage(d->aov[4], 0, GL_RGBA, GL_FLOAT, GLsizei(dir.size() * sizeof(float)),
+                              dir.data());
+        out.curvature.resize(size_t(w) * size_t(h) * n);
         for (int y = 0; y < h; ++y) // GL rows run bottom-up
-            std::copy_n(plane.data() + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4,
-                        out.curvature.data() + size_t(y) * size_t(w) * 4);
+            for (int x = 0; x < w; ++x) {
+                const size_t src = (size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4;
+                float* dst = out.curvature.data() + (size_t(y) * size_t(w) + size_t(x)) * n;
+                std::copy_n(&curv[src], 4, dst);
+                std::copy_n(&dir[src], 3, dst + 4);
+            }
     }
     return out;
 }

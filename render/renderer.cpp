@@ -122,8 +122,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         gl->glClearBufferfv(GL_COLOR, 1, background);
         gl->glClearBufferfv(GL_COLOR, 2, zero);
         gl->glClearBufferfv(GL_COLOR, 3, zero);
-        if (options.writeCurvatureAov)
+        if (options.writeCurvatureAov) {
             gl->glClearBufferfv(GL_COLOR, 4, zero);
+            gl->glClearBufferfv(GL_COLOR, 5, zero);
+        }
     }
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
     const GLfloat farDepth = 1.0f;
@@ -148,9 +150,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         if (ok && options.controlNet)
             ok = controlNet.draw(scene, fc, &error);
         if (options.writeAov) {
-            const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-            gl->glNamedFramebufferDrawBuffers(target.framebuffer, options.writeCurvatureAov ? 5 : 4,
+            const GLenum all[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                   GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+                                   GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+            gl->glNamedFramebufferDrawBuffers(target.framebuffer, options.writeCurvatureAov ? 6 : 4,
                                               all);
         }
     }

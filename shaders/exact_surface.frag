@@ -4,7 +4,8 @@
 // pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here),
 // KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
 // iso-parameter lines over the colour), KW_SECOND_ORDER (second derivatives and curvature,
-// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4).
+// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
+// principal direction of k1 at location 5).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -32,6 +33,7 @@ layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not fl
 #endif
 #ifdef KW_AOV_CURVATURE
 layout(location = 4) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvature)
+layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (world), w = 0
 #endif
 
 void main() {
@@ -63,5 +65,6 @@ void main() {
 #endif
 #ifdef KW_AOV_CURVATURE
     aovCurvature = curvature;
+    aovDirection = vec4(s.dir1, 0.0);
 #endif
 }

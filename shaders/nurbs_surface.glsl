@@ -67,6 +67,7 @@ struct SurfaceSample {
     vec3 normal; // unit; the limit normal at collapsed edges (see evaluateSurface)
 #ifdef KW_SECOND_ORDER
     vec4 curvature; // K, H, k1, k2 with kw::surfaceCurvature's signs and collapsed-edge rule
+    vec3 dir1;      // unit principal direction of k1 (world), tangent to `normal`; dir2 = n x dir1
 #endif
 };
 
@@ -129,20 +130,47 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
 }
 
 #ifdef KW_SECOND_ORDER
-// K, H, k1 >= k2 from the fundamental forms (kw::surfaceCurvature): positive where the surface
-// bends away from the unit normal n, which must be Su x Sv or its opposite.
-vec4 curvatureFrom(SurfacePartials d, vec3 n) {
-    float E = dot(d.su, d.su), F = dot(d.su, d.sv), G = dot(d.sv, d.sv);
-    float L = dot(d.suu, n), M = dot(d.suv, n), N = dot(d.svv, n);
-    vec3 c = cross(d.su, d.sv);
-    float det = dot(c, c); // EG - F^2 without cancellation
-    float K = (L * N - M * M) / det;
-    float H = -(E * N - 2.0 * F * M + G * L) / (2.0 * det);
-    float disc = sqrt(max(H * H - K, 0.0));
-    vec4 r = vec4(K, H, H + disc, H - disc);
-    // Never NaN or infinite (float overflow on extreme inputs): the zero answer, as the kernel.
-    return any(isnan(r)) || any(isinf(r)) ? vec4(0.0) : r;
+// Any unit vector perpendicular to the unit vector n (kw::surfaceCurvature's anyPerpendicular:
+// branch on the components so the cross product is never degenerate).
+vec3 anyPerpendicular(vec3 n) {
+    vec3 a = abs(n.x) < 0.6 ? vec3(1.0, 0.0, 0.0)
+                            : (abs(n.y) < 0.6 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0));
+    return normalize(cross(n, a));
 }
+
+// K, H, k1 >= k2 and k1's unit direction from the fundamental forms, as kw::surfaceCurvature
+// (model/nurbs_curvature.cpp, Do Carmo 3.3): positive where the surface bends away from the unit
+// normal n, which must be Su x Sv or its opposite. The shape operator is the symmetric 2x2
+// matrix [[a, b], [b, c]] in the orthonormal tangent basis e1 = Su/|Su|, e2 = n x e1: with
+// Sv = alpha e1 + beta e2, (u, v) = J (x, y), J = [[1/|Su|, -alpha/(|Su| beta)], [0, 1/beta]],
+// and the operator is -J^T II J. Its eigenvalues (a + c)/2 +- hypot((a - c)/2, b) have no
+// cancellation at umbilics, and k1's eigenvector is at angle atan2(b, (a - c)/2)/2 from e1.
+vec4 curvatureFrom(SurfacePartials d, vec3 n, out vec3 dir1) {
+    float L = dot(d.suu, n), M = dot(d.suv, n), N = dot(d.svv, n);
+    float lsu = length(d.su);
+    vec3 e1 = d.su / lsu;
+    vec3 e2 = cross(n, e1);
+    float alpha = dot(d.sv, e1);
+    float beta = dot(d.sv, e2); // +-|Su x Sv| / |Su|, not 0 at a regular point
+    float j11 = 1.0 / lsu, j12 = -alpha / (lsu * beta), j22 = 1.0 / beta;
+    float a = -(L * j11 * j11);
+    float b = -(L * j11 * j12 + M * j11 * j22);
+    float c = -(L * j12 * j12 + 2.0 * M * j12 * j22 + N * j22 * j22);
+    float half_ = 0.5 * (a - c);
+    float r = length(vec2(half_, b));
+    float H = 0.5 * (a + c);
+    vec4 k = vec4(a * c - b * b, H, H + r, H - r);
+    // atan(0, 0) is undefined in GLSL; the kernel's atan2 gives 0 there (any direction at an
+    // umbilic), so e1.
+    float theta = (half_ == 0.0 && b == 0.0) ? 0.0 : 0.5 * atan(b, half_);
+    dir1 = cos(theta) * e1 + sin(theta) * e2;
+    // Never NaN or infinite (float overflow on extreme inputs): the zero answer, as the kernel.
+    bool bad = any(isnan(k)) || any(isinf(k)) || any(isnan(dir1)) || any(isinf(dir1));
+    if (bad)
+        dir1 = anyPerpendicular(n);
+    return bad ? vec4(0.0) : k;
+}
+
 #endif
 
 // Step 1 of the rule: the plain normal Su x Sv, when neither partial is tiny and they are not
@@ -170,6 +198,7 @@ SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
     SurfaceSample s;
 #ifdef KW_SECOND_ORDER
     s.curvature = vec4(0.0); // step 4: no regular point nearby
+    s.dir1 = vec3(1.0, 0.0, 0.0);
 #endif
     bool limitNormal = false; // step 2 gave the normal; the curvature still needs step 3
     // One evaluation site for steps 1-2 at uv and step 3 at a nearby interior point: the second
@@ -188,13 +217,19 @@ SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
             if (!limitNormal)
                 s.normal = n;
 #ifdef KW_SECOND_ORDER
-            s.curvature = curvatureFrom(d, dot(n, s.normal) < 0.0 ? -n : n);
+            s.curvature = curvatureFrom(d, dot(n, s.normal) < 0.0 ? -n : n, s.dir1);
+            // At a collapsed edge: tangent to the reported (limit) normal, as the kernel.
+            if (round == 1)
+                s.dir1 = normalize(s.dir1 - dot(s.dir1, s.normal) * s.normal);
 #endif
             break;
         }
         if (round == 1) {
             if (!limitNormal)
                 s.normal = vec3(0.0, 0.0, 1.0); // step 4
+#ifdef KW_SECOND_ORDER
+            s.dir1 = anyPerpendicular(s.normal);
+#endif
             break;
         }
         if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior

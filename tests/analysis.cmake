@@ -2,3 +2,5 @@
 kw_add_test(tst_render_analysis LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_analysis.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render PkgConfig::OIIO)
 kw_add_test(tst_analysis_options LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_analysis_options.cpp LIBS knotwork_render)
+kw_add_test(tst_render_environment LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_environment.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
