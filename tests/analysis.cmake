@@ -4,3 +4,6 @@ kw_add_test(tst_render_analysis LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_r
 kw_add_test(tst_analysis_options LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_analysis_options.cpp LIBS knotwork_render)
 kw_add_test(tst_render_environment LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_environment.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
+# The legend and the Colour Range dialog through the real editor window (label gui).
+kw_add_test(tst_editor_analysis LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_analysis.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)

@@ -23,6 +23,9 @@ constexpr double kAbsTol = 1e-3;
 /// Pixels where a first partial times its domain width is below this fraction of the surface's
 /// size lie near a collapsed edge (see curvatureAovMatchesKernel).
 constexpr double kCollapseBand = 2e-2;
+/// There the GPU's float error grows like 1/s^2 (s: that fraction): measured up to 4e-7 kmax/s^2
+/// (kmax^2 for K) on the sphere poles (docs/RENDERING.md ## Analysis); held to 1e-6 kmax/s^2.
+constexpr double kFloatNear = 1e-6;
 
 double luminance(QRgb c) {
     return (0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c)) / 255.0;
@@ -116,7 +119,7 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
     sceneBounds(scene, lo, hi);
     const double size = glm::length(hi - lo);
     int covered = 0, compared = 0, nearCollapse = 0, dirCompared = 0, dirUmbilic = 0;
-    double worst = 0.0, worstNear = 0.0, worstDir = 0.0, worstAngle = 0.0;
+    double worst = 0.0, worstNear = 0.0, worstNearIssue = 0.0, worstDir = 0.0, worstAngle = 0.0;
     QString worstWhy, worstDirWhy;
     for (int y = 0; y < aov.height; ++y)
         for (int x = 0; x < aov.width; ++x) {
@@ -132,17 +135,22 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
             const SurfaceCurvature c = surfaceCurvature(surf->geometry, px[1], px[2]);
             const float* g = aov.curvaturePixel(x, y);
             // Near a collapsed edge (a pole) the normal part of Suu is O(h^2) at parameter
-            // distance h while float rounds O(1) terms: the GPU's relative error grows like
-            // 1e-7 / h^2 (docs/RENDERING.md ## Analysis). Such pixels are checked for finite
-            // values and counted, not held to the tolerance: where |Su| wu or |Sv| wv is below
-            // kCollapseBand of the surface's control-net diagonal.
+            // distance h while float rounds O(1) terms (the control texels themselves are float
+            // w (P - origin)): the GPU's relative error grows like 1e-7 / s^2, s = |Su| wu (or
+            // |Sv| wv) over the control-net diagonal (docs/RENDERING.md ## Analysis). Where s is
+            // below kCollapseBand such pixels are held to that float model instead of the
+            // issue's tolerance: tolerance + kFloatNear kmax / s^2 (kmax^2 for K).
             const Interval du = surfaceDomainU(surf->geometry), dv = surfaceDomainV(surf->geometry);
             glm::dvec3 slo, shi;
             surfaceControlBounds(surf->geometry, slo, shi);
             const double lu = std::sqrt(c.E) * (du.last - du.first);
             const double lv = std::sqrt(c.G) * (dv.last - dv.first);
-            const bool near =
-                !c.regular || std::min(lu, lv) < kCollapseBand * glm::length(shi - slo);
+            const double band = std::min(lu, lv) / glm::length(shi - slo);
+            const bool near = !c.regular || band < kCollapseBand;
+            const double kmax = std::max(std::abs(c.k1), std::abs(c.k2));
+            const double floatNear[4] = {
+                kFloatNear * kmax * kmax / (band * band), kFloatNear * kmax / (band * band),
+                kFloatNear * kmax / (band * band), kFloatNear * kmax / (band * band)};
             const double cpu[4] = {c.gaussian, c.mean, c.k1, c.k2};
             const double abs[4] = {kAbsTol / (size * size), kAbsTol / size, kAbsTol / size,
                                    kAbsTol / size};
@@ -196,7 +204,8 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
                 const double err = std::abs(double(g[k]) - cpu[k]);
                 const double tol = kRelTol * std::abs(cpu[k]) + abs[k];
                 if (near) {
-                    worstNear = std::max(worstNear, err / tol);
+                    worstNear = std::max(worstNear, err / (tol + floatNear[k]));
+                    worstNearIssue = std::max(worstNearIssue, err / tol);
                     continue;
                 }
                 if (err / tol > worst) {
@@ -214,13 +223,14 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
             }
         }
     qInfo("%d covered pixels, %d compared; worst error / tolerance %.3f (%s); %d near a collapsed "
-          "edge, worst there %.3f",
-          covered, compared, worst, qPrintable(worstWhy), nearCollapse, worstNear);
+          "edge, worst there %.3f of the float model's bound (%.3f of the issue's tolerance)",
+          covered, compared, worst, qPrintable(worstWhy), nearCollapse, worstNear, worstNearIssue);
     qInfo("principal direction: %d pixels compared, worst angle / bound %.3f (worst angle %.2e "
           "rad; %s); %d umbilic",
           dirCompared, worstDir, worstAngle, qPrintable(worstDirWhy), dirUmbilic);
     QVERIFY2(compared >= 1000, qPrintable(QStringLiteral("only %1 pixels compared").arg(compared)));
     QVERIFY2(worst <= 1.0, qPrintable(worstWhy));
+    QVERIFY2(worstNear <= 1.0, "near a collapsed edge the GPU exceeds the float model's bound");
     if (umbilic)
         QCOMPARE(dirCompared, 0);
     else

@@ -88,6 +88,12 @@ void AnalysisControls::editRange() {
     QDoubleSpinBox* low = spin(current.low);
     QDoubleSpinBox* high = spin(current.high);
     auto* scale = new QComboBox;
+    // Names for GUI tests (tst_editor_analysis drives this dialog through the real window).
+    dialog.setObjectName(QStringLiteral("colourRangeDialog"));
+    automatic->setObjectName(QStringLiteral("rangeAutomatic"));
+    low->setObjectName(QStringLiteral("rangeLow"));
+    high->setObjectName(QStringLiteral("rangeHigh"));
+    scale->setObjectName(QStringLiteral("rangeScale"));
     scale->addItem(tr("Mode default"));
     for (ColourScale s : {ColourScale::Linear, ColourScale::Symmetric, ColourScale::Log})
         scale->addItem(colourScaleName(s), int(s));
