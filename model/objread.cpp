@@ -126,6 +126,7 @@ struct Metadata {
     int nu = 0, nv = 0;
     std::optional<Material> material;
     std::vector<std::uint32_t> loopIds;
+    bool hidden = false;
 };
 
 class ObjParser {
@@ -297,6 +298,8 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         m_meta.material = m;
     } else if (key == "name") {
         m_meta.name = QUrl::fromPercentEncoding(t.value(3));
+    } else if (key == "hidden") {
+        m_meta.hidden = true;
     } else if (key == "loops") {
         for (int i = 3; i < t.size(); ++i)
             m_meta.loopIds.push_back(static_cast<std::uint32_t>(integer(i, 1, 4294967294.0)));
@@ -570,6 +573,7 @@ void ObjParser::finishSurface() {
     }
     if (meta.name)
         s.name = *meta.name;
+    s.hidden = meta.hidden;
     m_object.clear();
     m_scene.surfaces.push_back(std::move(s));
     ++m_report.facesImported;

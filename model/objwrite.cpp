@@ -121,6 +121,8 @@ QByteArray writeObj(const Scene& scene) {
                vec(m.color) + ' ' + num(m.ka) + ' ' + num(m.kd) + ' ' + num(m.ks) + ' ' +
                num(m.shininess) + '\n';
         out += "# knotwork name " + QUrl::toPercentEncoding(s.name) + '\n';
+        if (s.hidden) // hidden in the editor: a saved flag like the name (docs/FILE_FORMAT.md)
+            out += "# knotwork hidden\n";
         if (!s.trims.empty()) {
             out += "# knotwork loops";
             for (const TrimLoop& l : s.trims)
