@@ -1,6 +1,8 @@
 // Scene helpers: default lights, bounds and a camera that frames the scene.
 #include "model/scene.h"
 
+#include "model/visible_bounds.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,14 +42,31 @@ bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi) {
 Camera fitCamera(const Scene& scene, double aspect) {
     Camera cam;
     glm::dvec3 lo(-1.0), hi(1.0);
-    sceneBounds(scene, lo, hi);
+    // Frame what is drawn (the trimmed exact geometry), not the control nets, which can be
+    // several times larger (issue 10: imported faces on large B-spline domains).
+    if (!sceneVisibleBounds(scene, lo, hi))
+        sceneBounds(scene, lo, hi);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1e-9);
-    // Distance at which a sphere of this radius fits the narrower field of view.
-    const double halfFovY = glm::radians(cam.fovYDegrees) * 0.5;
-    const double halfFovX = std::atan(std::tan(halfFovY) * std::max(aspect, 1e-3));
-    const double distance = radius / std::sin(std::min(halfFovX, halfFovY)) * 1.05;
+    const double tanY = std::tan(glm::radians(cam.fovYDegrees) * 0.5);
+    const double tanX = tanY * std::max(aspect, 1e-3);
     const glm::dvec3 dir = glm::normalize(glm::dvec3(0.55, -1.0, 0.65));
+    // The nearest distance from the centre at which all eight corners of the bounds lie in
+    // the frustum (a corner at view offsets (x, y) and depth offset z needs d + z >= |x| / tanX
+    // and |y| / tanY), with a 5% margin; never inside the bounding sphere. Tighter than fitting
+    // the bounding sphere, which left flat and elongated parts small in the frame.
+    const glm::dvec3 forward = -dir;
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0.0, 0.0, 1.0)));
+    const glm::dvec3 up = glm::cross(right, forward);
+    double distance = radius * 1.05;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 c((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        const glm::dvec3 o = c - centre;
+        const double need =
+            std::max(std::abs(glm::dot(o, right)) / tanX, std::abs(glm::dot(o, up)) / tanY) -
+            glm::dot(o, forward);
+        distance = std::max(distance, need * 1.05);
+    }
     cam.target = centre;
     cam.eye = centre + dir * distance;
     cam.up = glm::dvec3(0.0, 0.0, 1.0);

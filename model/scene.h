@@ -122,6 +122,8 @@ struct Scene {
 /// Axis-aligned bounds of all control points; false when the scene is empty.
 bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
 /// A camera that looks at the whole scene from the front-right-above, for views without one.
+/// It frames the exact trimmed geometry (sceneVisibleBounds, model/visible_bounds.h), or the
+/// control points when that gives no bounds.
 Camera fitCamera(const Scene& scene, double aspect);
 
 } // namespace kw

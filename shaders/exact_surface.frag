@@ -39,7 +39,11 @@ layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (w
 
 void main() {
     KW_DISCARD_TRIMMED(vUv);
-    SurfaceSample s = evaluateSurface(vUv, vSpan, vSpanScale);
+    // The interpolated (u, v) can leave the domain by ~1e-5 at grazing pixels on the boundary
+    // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,
+    // as kw::surfacePoint does, instead of extrapolating the boundary span's polynomial.
+    vec2 uv = clamp(vUv, uDomain.xz, uDomain.yw);
+    SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
@@ -55,14 +59,14 @@ void main() {
     vec3 colour = phong(s.point, s.normal);
 #endif
 #ifdef KW_ISOCURVES
-    colour = overlayIsocurves(colour, vUv, spanKnotsU(vSpan), spanKnotsV(vSpan));
+    colour = overlayIsocurves(colour, uv, spanKnotsU(vSpan), spanKnotsV(vSpan));
 #endif
 #ifdef KW_DIRECTIONS
     colour = overlayDirections(colour, s.normal, vUv, vSpan);
 #endif
     fragColor = vec4(colour, 1.0);
 #ifdef KW_AOV
-    aovIdUvDepth = vec4(uSurfaceId, vUv, dot(s.point - uEye, uForward));
+    aovIdUvDepth = vec4(uSurfaceId, uv, dot(s.point - uEye, uForward));
     aovPosition = vec4(s.point, 1.0);
     aovNormal = vec4(s.normal, 0.0);
 #endif

@@ -6,3 +6,5 @@ kw_add_test(tst_reference_render LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/t
 kw_add_test(tst_render_edges LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_edges.cpp LIBS Qt6::Core)
 target_compile_definitions(tst_render_edges PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_render_edges knotwork)
+# Partitions and Fit where the face is: trim parameter boxes, trimmed-geometry bounds, fitCamera.
+kw_add_test(tst_visible_bounds LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_visible_bounds.cpp LIBS knotwork_model)

@@ -118,7 +118,8 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
     glm::dvec3 lo, hi;
     sceneBounds(scene, lo, hi);
     const double size = glm::length(hi - lo);
-    int covered = 0, compared = 0, nearCollapse = 0, dirCompared = 0, dirUmbilic = 0;
+    int covered = 0, compared = 0, nearCollapse = 0, dirCompared = 0, dirUmbilic = 0,
+        onKnotBreak = 0;
     double worst = 0.0, worstNear = 0.0, worstNearIssue = 0.0, worstDir = 0.0, worstAngle = 0.0;
     QString worstWhy, worstDirWhy;
     for (int y = 0; y < aov.height; ++y)
@@ -154,6 +155,23 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
             const double cpu[4] = {c.gaussian, c.mean, c.k1, c.k2};
             const double abs[4] = {kAbsTol / (size * size), kAbsTol / size, kAbsTol / size,
                                    kAbsTol / size};
+            // At an interior knot of multiplicity >= p - 1 the second derivatives jump, so the
+            // curvature has two one-sided values: the GPU takes its cell's span, the kernel the
+            // span findSpan gives (u, v), and a fragment within float rounding of the knot may
+            // see the other one. Such pixels are skipped and counted.
+            const auto onBreak = [](const std::vector<double>& knots, int p, double t) {
+                const double band = 1e-5 * (knots.back() - knots.front());
+                for (double k : knots)
+                    if (k > knots.front() && k < knots.back() && std::abs(t - k) < band &&
+                        std::count(knots.begin(), knots.end(), k) >= std::max(p - 1, 1))
+                        return true;
+                return false;
+            };
+            if (onBreak(surf->geometry.knotsU, surf->geometry.degreeU, px[1]) ||
+                onBreak(surf->geometry.knotsV, surf->geometry.degreeV, px[2])) {
+                ++onKnotBreak;
+                continue;
+            }
             if (near)
                 ++nearCollapse;
             else
@@ -223,8 +241,11 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
             }
         }
     qInfo("%d covered pixels, %d compared; worst error / tolerance %.3f (%s); %d near a collapsed "
-          "edge, worst there %.3f of the float model's bound (%.3f of the issue's tolerance)",
-          covered, compared, worst, qPrintable(worstWhy), nearCollapse, worstNear, worstNearIssue);
+          "edge, worst there %.3f of the float model's bound (%.3f of the issue's tolerance); %d "
+          "within 1e-5 of a curvature-breaking knot",
+          covered, compared, worst, qPrintable(worstWhy), nearCollapse, worstNear, worstNearIssue,
+          onKnotBreak);
+    QVERIFY2(onKnotBreak * 100 <= covered, "more than 1% of the pixels skipped at knots");
     qInfo("principal direction: %d pixels compared, worst angle / bound %.3f (worst angle %.2e "
           "rad; %s); %d umbilic",
           dirCompared, worstDir, worstAngle, qPrintable(worstDirWhy), dirUmbilic);

@@ -67,7 +67,11 @@ private Q_SLOTS:
               100.0 * a.fraction(), a.worstTexels,
               static_cast<long long>(masks.totalMaskStats().redraws));
         QVERIFY(a.checked > 10000);
-        QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
+        // Every disagreement must lie within a mask texel of a trim curve (`far` below): that is
+        // the mask's resolution (issue 11). How many pixels fall there depends on the view's
+        // scale against the mask cap: with fitCamera framing the trimmed geometry, hammer.iges
+        // fills more of the frame and 0.10% of its pixels lie within half a texel of a curve.
+        QVERIFY2(a.fraction() >= 0.998, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);
     }
 };
