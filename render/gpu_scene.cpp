@@ -51,15 +51,6 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         release();
         m_document = &doc;
     }
-    // The one place removed surfaces are dropped, with every part they hold.
-    for (auto it = m_entries.begin(); it != m_entries.end();) {
-        if (!doc.surface(it->first)) {
-            drop(it->second);
-            it = m_entries.erase(it);
-        } else {
-            ++it;
-        }
-    }
     const Scene& scene = doc.scene();
     const std::int64_t limit = bufferLimit();
     for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
@@ -73,14 +64,19 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     m_order.clear();
     m_order.reserve(scene.surfaces.size());
     UploadStats frame;
-    for (const Surface& s : scene.surfaces) {
+    ++m_syncs;
+    for (int index = 0; index < int(scene.surfaces.size()); ++index) {
+        const Surface& s = scene.surfaces[size_t(index)];
         Entry& e = m_entries[s.id];
+        e.seen = m_syncs;
         SurfaceRecord& r = e.record;
         r.id = s.id;
         r.surface = &s;
         const int nu = options.partitionsU > 0 ? options.partitionsU : s.partitionsU;
         const int nv = options.partitionsV > 0 ? options.partitionsV : s.partitionsV;
-        const Revisions rev = doc.revisions(s.id);
+        // By index: a search by id per surface made each frame quadratic in the surfaces.
+        const Revisions rev = doc.revisionsAt(index);
+        r.revisions = rev;
         const NurbsSurface& geo = s.geometry;
         UploadStats up;
         std::unique_ptr<SurfaceGpu>& g = r.exact;
@@ -131,6 +127,16 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         e.stats += up;
         frame += up;
         m_order.push_back(&r);
+    }
+    // The one place removed surfaces are dropped, with every part they hold: those the loop
+    // above did not see.
+    for (auto it = m_entries.begin(); it != m_entries.end();) {
+        if (it->second.seen != m_syncs) {
+            drop(it->second);
+            it = m_entries.erase(it);
+        } else {
+            ++it;
+        }
     }
     report.uploads += frame;
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
