@@ -22,7 +22,7 @@ GLuint createTexture(QOpenGLFunctions_4_5_Core* gl, int w, int h, const glm::vec
 } // namespace
 
 void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   UploadStats& stats) {
+                   const ParameterBox& box, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     for (GLuint* t : {&g.controlTexture, &g.spanTextureU, &g.spanTextureV})
         if (*t)
@@ -49,7 +49,7 @@ void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& 
         createTexture(gl, spanTableTexels(geo.degreeV), geo.countV - geo.degreeV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    rebuildPolygon(gl, g, s, nu, nv, stats);
+    rebuildPolygon(gl, g, s, nu, nv, box, stats);
 }
 
 void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s,
@@ -89,10 +89,11 @@ void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Sur
 }
 
 void rebuildPolygon(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    UploadStats& stats) {
+                    const ParameterBox& box, UploadStats& stats) {
     g.partitionsU = nu;
     g.partitionsV = nv;
-    g.polygon = buildBasePolygon(s.geometry, nu, nv);
+    g.polygonBox = box;
+    g.polygon = buildBasePolygon(s.geometry, box, nu, nv);
     const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
     const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
     if (!g.vertexBuffer) {

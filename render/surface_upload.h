@@ -28,19 +28,25 @@ struct SurfaceGpu {
     int triangleIndexCount = 0, outlineIndexCount = 0;
     std::vector<glm::vec4> control; ///< the texels now on the GPU
     BasePolygon polygon;            ///< the vertices now on the GPU
+    ParameterBox polygonBox;        ///< the (u, v) box the polygon spans
+    bool polygonTrimmed = false;    ///< polygonBox is trimParameterBox, not the domain
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: textures
-/// (re)created and filled, base polygon rebuilt at nu x nv partitions. Counts into `stats`.
+/// (re)created and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
+/// `stats`.
 void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   UploadStats& stats);
+                   const ParameterBox& box, UploadStats& stats);
 /// After a Points revision change: the bounding rectangle of the texels that differ as one
 /// sub-image, and only the base polygon vertices in the support of those points.
 void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s,
                          UploadStats& stats);
-/// The base polygon at nu x nv partitions from the current points; textures untouched.
+/// The base polygon at nu x nv partitions over `box` (a rectangle of the domain: GpuScene
+/// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's cells
+/// go where its trims keep the surface, issue 10 item 1) from the current points; textures
+/// untouched.
 void rebuildPolygon(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    UploadStats& stats);
+                    const ParameterBox& box, UploadStats& stats);
 /// Frees the surface's GL objects.
 void destroySurfaceGpu(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g);
 /// Bytes of the surface's textures and buffers, added to `out` by kind.
