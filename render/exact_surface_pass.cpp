@@ -9,11 +9,12 @@
 #include <cstdlib>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <map>
 
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3;    // after uControl, uSpansU, uSpansV
+constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray)
 constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
@@ -63,6 +64,7 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
+    multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
@@ -85,47 +87,79 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
     return d;
 }
 
-bool ExactSurfacePass::depthPrepass(const GpuScene& scene, bool trims, const FrameCamera& camera,
-                                    QString* error) {
+void ExactSurfacePass::uploadCommands(const std::vector<Batch*>& batches) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
-    QOpenGLShaderProgram* plain =
-        m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"));
-    if (!plain) {
-        *error = m_shaders->lastError();
-        return false;
+    std::vector<DrawCommand> all;
+    for (Batch* b : batches) {
+        b->first = std::int64_t(all.size());
+        all.insert(all.end(), b->commands.begin(), b->commands.end());
     }
+    const std::int64_t bytes = std::int64_t(all.size() * sizeof(DrawCommand));
+    if (bytes == 0) {
+        releaseCommands(); // no surface: no buffer (the empty scene's bytes)
+        return;
+    }
+    if (bytes > m_commandBytes) {
+        releaseCommands();
+        m_commandBytes = std::max<std::int64_t>(bytes, 2 * m_commandBytes);
+        gl->glCreateBuffers(1, &m_commands);
+        gl->glNamedBufferData(m_commands, GLsizeiptr(m_commandBytes), nullptr, GL_DYNAMIC_DRAW);
+    }
+    gl->glNamedBufferSubData(m_commands, 0, GLsizeiptr(bytes), all.data());
+    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
+}
+
+void ExactSurfacePass::releaseCommands() {
+    if (m_commands && m_gl)
+        m_gl->glDeleteBuffers(1, &m_commands);
+    m_commands = 0;
+    m_commandBytes = 0;
+}
+
+void ExactSurfacePass::drawBatch(const Batch& batch) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (multiDraw) {
+        gl->glMultiDrawElementsIndirect(
+            GL_TRIANGLES, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(batch.first * std::int64_t(sizeof(DrawCommand))),
+            GLsizei(batch.commands.size()), 0);
+        ++drawCalls;
+        return;
+    }
+    for (const DrawCommand& c : batch.commands) {
+        gl->glDrawElementsInstancedBaseVertexBaseInstance(
+            GL_TRIANGLES, GLsizei(c.count), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(std::uintptr_t(c.firstIndex) * sizeof(unsigned)), 1,
+            c.baseVertex, c.baseInstance);
+        ++drawCalls;
+    }
+}
+
+bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
+                                    const FrameCamera& camera, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(GL_LESS);
-    QOpenGLShaderProgram* bound = nullptr;
     bool ok = true;
-    const TrimMaskPass& masks = scene.trimMasks();
-    for (const SurfaceRecord* r : scene.records()) {
-        const SurfaceGpu* g = r->exact.get();
-        if (!g)
+    // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
+    for (Batch* b : {&plain, &trimmed}) {
+        if (b->commands.empty())
             continue;
-        const TrimMask* mask = trims ? maskOf(*r) : nullptr;
-        QOpenGLShaderProgram* prog = mask ? m_shaders->program(QStringLiteral("surface.vert"),
-                                                               QStringLiteral("depth_only.frag"),
-                                                               {QStringLiteral("KW_TRIM")})
-                                          : plain;
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"),
+                               b->trimmed ? QStringList{QStringLiteral("KW_TRIM")} : QStringList{});
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
             break;
         }
-        if (prog != bound) {
-            prog->bind();
-            bound = prog;
-            gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
-                                   glm::value_ptr(camera.viewProjection));
-        }
-        if (mask)
-            masks.setUniforms(prog, *mask, kTrimMaskUnit);
-        gl->glBindVertexArray(g->triangleVao);
-        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
-        ++drawCalls;
+        prog->bind();
+        gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
+                               glm::value_ptr(camera.viewProjection));
+        if (b->trimmed)
+            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(*b);
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return ok;
@@ -138,71 +172,78 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (options.analysis.mode == AnalysisMode::Environment &&
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
         return false;
+    const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
+    // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
+    // bits each), trimmed, gather.
+    Batch plain, trimmed;
+    trimmed.trimmed = true;
+    std::map<int, Batch> variants;
+    const double minCellPixels = gatherMinCellPixels();
+    for (const SurfaceRecord* r : scene.records()) {
+        const SurfaceGpu* g = r->exact.get();
+        if (!g || r->slot < 0)
+            continue;
+        const DrawCommand c{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
+                            GLint(g->vertexOffset), GLuint(r->slot)};
+        const TrimMask* mask = trims ? maskOf(*r) : nullptr;
+        if (prepass)
+            (mask ? trimmed : plain).commands.push_back(c);
+        // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
+        // rejects it before shading and early-z stays on: no lookup needed here. A discard
+        // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
+        // exact-depth way, which has no pre-pass, looks the mask up.
+        const bool lookUp = mask && !prepass;
+        // The gather pays only where a cell covers many fragments: on small cells its flat
+        // varyings cost llvmpipe's triangle setup more than the fetches it saves.
+        const bool gather = projectedPixelsPerCell(*g, camera) >= minCellPixels;
+        Batch& b = variants[g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9];
+        if (b.commands.empty()) {
+            b.degreeU = g->degreeU;
+            b.degreeV = g->degreeV;
+            b.trimmed = lookUp;
+            b.gather = gather;
+        }
+        b.commands.push_back(c);
+    }
+    std::vector<Batch*> batches{&plain, &trimmed};
+    for (auto& [key, b] : variants)
+        batches.push_back(&b);
+    uploadCommands(batches);
+    if (variants.empty())
+        return true; // nothing to draw
+
+    scene.bindSurfaceData();
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
     // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
-    if (options.shading == RenderOptions::Shading::DepthPrepass) {
-        if (!depthPrepass(scene, trims, camera, error)) {
-            gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
-            return false;
-        }
+    bool ok = true;
+    if (prepass) {
+        ok = depthPrepass(plain, trimmed, scene, camera, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
         gl->glDepthFunc(GL_LESS);
         gl->glDepthMask(GL_TRUE);
     }
-    QOpenGLShaderProgram* bound = nullptr;
-    bool ok = true;
-    const double minCellPixels = gatherMinCellPixels();
-    const TrimMaskPass& masks = scene.trimMasks();
-    for (const SurfaceRecord* r : scene.records()) {
-        const SurfaceGpu* g = r->exact.get();
-        if (!g)
-            continue;
-        const Surface& s = *r->surface;
-        // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
-        // rejects it before shading and early-z stays on: no lookup needed here. A discard
-        // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
-        // exact-depth way, which has no pre-pass, looks the mask up.
-        const TrimMask* mask =
-            trims && options.shading == RenderOptions::Shading::ExactDepth ? maskOf(*r) : nullptr;
-        // The gather pays only where a cell covers many fragments: on small cells its flat
-        // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-        const bool gather = projectedPixelsPerCell(*g, camera) >= minCellPixels;
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(g->degreeU, g->degreeV, int(lights.size()), options,
-                                              mask != nullptr, gather));
+    for (auto it = variants.begin(); ok && it != variants.end(); ++it) {
+        const Batch& b = it->second;
+        QOpenGLShaderProgram* prog = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, b.gather));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
             break;
         }
-        if (prog != bound) {
-            prog->bind();
-            bound = prog;
-            setFrameUniforms(gl, prog, camera, lights);
-            setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights,
-                                kEnvironmentUnit);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).control, 0);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansU, 1);
-            gl->glUniform1i(ShaderLibrary::uniforms(prog).spansV, 2);
-        }
-        setSurfaceUniforms(gl, prog, s);
-        gl->glUniform4fv(ShaderLibrary::uniforms(prog).domain, 1, glm::value_ptr(g->domain));
-        gl->glUniform3fv(ShaderLibrary::uniforms(prog).origin, 1,
-                         glm::value_ptr(glm::vec3(g->origin)));
-        gl->glBindTextureUnit(0, g->controlTexture);
-        gl->glBindTextureUnit(1, g->spanTextureU);
-        gl->glBindTextureUnit(2, g->spanTextureV);
-        if (mask)
-            masks.setUniforms(prog, *mask, kTrimMaskUnit);
-        gl->glBindVertexArray(g->triangleVao);
-        gl->glDrawElements(GL_TRIANGLES, g->triangleIndexCount, GL_UNSIGNED_INT, nullptr);
-        ++drawCalls;
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        if (b.trimmed)
+            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(b);
     }
+    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);

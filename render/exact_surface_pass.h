@@ -1,5 +1,7 @@
 // Exact pass (paper 3.4.1): each surface's base polygon drawn with the degree-specialised
 // per-fragment NURBS shader; a depth pre-pass (default) makes each pixel evaluated once.
+// Surfaces are grouped by shader variant and each group is one glMultiDrawElementsIndirect
+// (issue 15 item 3), so draw calls grow with the variants in view, not with the surfaces.
 #pragma once
 
 #include "render/analysis_gl.h"
@@ -26,8 +28,13 @@ public:
     bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
               const std::vector<Light>& lights, const RenderOptions& options,
               const ValueRange& range, QString* error);
-    /// Frees the environment map texture; the context must be current.
-    void release() { m_environment.release(); }
+    /// Frees the environment map texture and the command buffer; the context must be current.
+    void release() {
+        m_environment.release();
+        releaseCommands();
+    }
+    /// Bytes of the indirect command buffer (FrameReport::gpuBytes.perSurface).
+    std::int64_t residentBytes() const { return m_commandBytes; }
     const EnvironmentMap& environment() const { return m_environment; }
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
@@ -47,13 +54,36 @@ public:
     static constexpr double kGatherMinCellPixels = 64.0;
 
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
+    /// One multi-draw per variant group (default). False: the same commands issued one draw
+    /// per surface, for comparing images and costs (tests; KW_MULTI_DRAW=0 at initialize).
+    bool multiDraw = true;
 
 private:
-    bool depthPrepass(const GpuScene& scene, bool trims, const FrameCamera& camera, QString* error);
+    /// glMultiDrawElementsIndirect's command layout.
+    struct DrawCommand {
+        GLuint count, instanceCount, firstIndex;
+        GLint baseVertex;
+        GLuint baseInstance; ///< the surface's table row (SurfaceGpu::slot)
+    };
+    /// The surfaces of one shader variant: their commands, at `first` in the frame's buffer.
+    struct Batch {
+        int degreeU = 1, degreeV = 1;
+        bool trimmed = false, gather = false;
+        std::vector<DrawCommand> commands;
+        std::int64_t first = 0;
+    };
+    /// Writes every batch's commands into the command buffer (one upload per frame) and binds it.
+    void uploadCommands(const std::vector<Batch*>& batches);
+    void drawBatch(const Batch& batch);
+    void releaseCommands();
+    bool depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
+                      const FrameCamera& camera, QString* error);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
     EnvironmentMap m_environment;
+    GLuint m_commands = 0;
+    std::int64_t m_commandBytes = 0;
 };
 
 } // namespace kw

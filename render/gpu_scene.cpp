@@ -6,12 +6,40 @@
 #include "render/gpu_layout.h"
 
 #include <QElapsedTimer>
+#include <algorithm>
 
 namespace kw {
 
 void GpuScene::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_masks.initialize(gl, shaders);
+    GLint64 texels = 0;
+    gl->glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+    m_glBufferLimit = std::int64_t(texels) * std::int64_t(sizeof(glm::vec4));
+    const std::int64_t max = bufferLimit();
+    m_pools.control.initialize(gl, sizeof(glm::vec4), max);
+    m_pools.spans.initialize(gl, sizeof(glm::vec4), max);
+    m_pools.vertices.initialize(gl, sizeof(BaseVertex), max);
+    m_pools.triangles.initialize(gl, sizeof(unsigned), max);
+    m_pools.outlines.initialize(gl, sizeof(unsigned), max);
+}
+
+std::int64_t GpuScene::bufferLimit() const {
+    bool ok = false;
+    const qint64 env = qEnvironmentVariable("KW_GPU_BUFFER_LIMIT").toLongLong(&ok);
+    return ok && env > 0 ? std::min<std::int64_t>(env, m_glBufferLimit) : m_glBufferLimit;
+}
+
+void GpuScene::dropExact(SurfaceRecord& r) {
+    if (r.exact)
+        destroySurfaceGpu(m_pools, *r.exact);
+    r.exact.reset();
+    if (r.slot >= 0) {
+        m_table.rows[size_t(r.slot)] = SurfaceTableEntry{};
+        m_table.freeSlots.push_back(r.slot);
+        --m_table.used;
+        r.slot = -1;
+    }
 }
 
 bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
@@ -34,8 +62,14 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         }
     }
     const Scene& scene = doc.scene();
-    GLint maxSize = 0;
-    gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const std::int64_t limit = bufferLimit();
+    for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
+                       &m_pools.outlines})
+        p->initialize(gl,
+                      p == &m_pools.control || p == &m_pools.spans ? sizeof(glm::vec4)
+                      : p == &m_pools.vertices                     ? sizeof(BaseVertex)
+                                                                   : sizeof(unsigned),
+                      limit);
     QStringList tooLarge;
     m_order.clear();
     m_order.reserve(scene.surfaces.size());
@@ -50,51 +84,60 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         const Revisions rev = doc.revisions(s.id);
         const NurbsSurface& geo = s.geometry;
         UploadStats up;
-        if (geo.countU > maxSize || geo.countV > maxSize) {
-            // Not drawn: its control net does not fit one texture.
-            if (r.exact) {
-                destroySurfaceGpu(gl, *r.exact);
-                r.exact.reset();
+        std::unique_ptr<SurfaceGpu>& g = r.exact;
+        bool fits = true;
+        // The polygon spans the trims' (u, v) box (a small face on a large domain gets its
+        // partitions) or, with polygonOverTrims off, the domain. The box is recomputed only
+        // when the trims or that option changed.
+        const auto boxFor = [&] {
+            return options.polygonOverTrims
+                       ? trimParameterBox(s)
+                       : ParameterBox{surfaceDomainU(geo), surfaceDomainV(geo)};
+        };
+        if (!g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
+            g->degreeV != geo.degreeV || g->countU != geo.countU || g->countV != geo.countV) {
+            if (!g) {
+                g = std::make_unique<SurfaceGpu>();
+                g->id = s.id;
             }
-            tooLarge << QStringLiteral("surface %1 (\"%2\") has %3 x %4 control points, more "
-                                       "than the GPU's texture size limit %5")
+            fits = uploadSurface(m_pools, *g, s, nu, nv, boxFor(), up);
+        } else {
+            const bool boxStale = g->polygonTrimmed != options.polygonOverTrims ||
+                                  (options.polygonOverTrims && g->revisions.trims != rev.trims);
+            const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
+            if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
+                // The polygon is rebuilt from the current points; pick up a point change.
+                if (g->revisions.points != rev.points)
+                    uploadChangedPoints(m_pools, *g, s, up);
+                fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, up);
+            } else if (g->revisions.points != rev.points) {
+                uploadChangedPoints(m_pools, *g, s, up);
+            }
+        }
+        g->polygonTrimmed = options.polygonOverTrims;
+        if (fits) {
+            g->revisions = rev;
+            if (r.slot < 0) {
+                if (!m_table.freeSlots.empty()) {
+                    r.slot = m_table.freeSlots.back();
+                    m_table.freeSlots.pop_back();
+                } else {
+                    r.slot = int(m_table.rows.size());
+                    m_table.rows.emplace_back();
+                }
+                ++m_table.used;
+            }
+        } else {
+            // Not drawn: its data does not fit the shared buffers. Retried (as a full upload)
+            // on the next frame, since other surfaces may have been removed meanwhile.
+            dropExact(r);
+            tooLarge << QStringLiteral("surface %1 (\"%2\") with %3 x %4 control points does not "
+                                       "fit the GPU's buffer limit of %5 bytes")
                             .arg(s.id.value)
                             .arg(s.name)
                             .arg(geo.countU)
                             .arg(geo.countV)
-                            .arg(maxSize);
-        } else {
-            std::unique_ptr<SurfaceGpu>& g = r.exact;
-            // The polygon spans the trims' (u, v) box (a small face on a large domain gets its
-            // partitions) or, with polygonOverTrims off, the domain. The box is recomputed only
-            // when the trims or that option changed.
-            const auto boxFor = [&] {
-                return options.polygonOverTrims
-                           ? trimParameterBox(s)
-                           : ParameterBox{surfaceDomainU(geo), surfaceDomainV(geo)};
-            };
-            if (!g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
-                g->degreeV != geo.degreeV || g->countU != geo.countU || g->countV != geo.countV) {
-                if (!g) {
-                    g = std::make_unique<SurfaceGpu>();
-                    g->id = s.id;
-                }
-                uploadSurface(gl, *g, s, nu, nv, boxFor(), up);
-            } else {
-                const bool boxStale = g->polygonTrimmed != options.polygonOverTrims ||
-                                      (options.polygonOverTrims && g->revisions.trims != rev.trims);
-                const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
-                if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
-                    // The polygon is rebuilt from the current points; pick up a point change.
-                    if (g->revisions.points != rev.points)
-                        uploadChangedPoints(gl, *g, s, up);
-                    rebuildPolygon(gl, *g, s, nu, nv, box, up);
-                } else if (g->revisions.points != rev.points) {
-                    uploadChangedPoints(gl, *g, s, up);
-                }
-            }
-            g->polygonTrimmed = options.polygonOverTrims;
-            g->revisions = rev;
+                            .arg(limit);
         }
         if (options.mode == RenderMode::Tessellated)
             syncMesh(r, rev, nu, nv, up);
@@ -125,7 +168,117 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         report.warnings << maskWarnings();
         report.cpuMs.masks += double(timer.nsecsElapsed()) * 1e-6;
     }
+    timer.restart();
+    syncTable();
+    report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
     return ok;
+}
+
+void GpuScene::bindSurfaceData() const {
+    for (int k = 0; k < 4; ++k)
+        m_gl->glBindTextureUnit(GLuint(5 + k), m_views[k]);
+    m_gl->glBindVertexArray(m_triangleVao);
+}
+
+void GpuScene::syncTable() {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    Table& t = m_table;
+    if (t.used == 0) {
+        // No surface left: no table, no pool memory (the empty scene's bytes).
+        for (GLuint* b : {&t.buffer, &t.instances})
+            if (*b)
+                gl->glDeleteBuffers(1, b), *b = 0;
+        t.capacity = 0;
+        t.rows.clear();
+        t.freeSlots.clear();
+    } else {
+        int lo = int(t.rows.size()), hi = -1;
+        for (const SurfaceRecord* r : m_order) {
+            if (!r->exact || r->slot < 0)
+                continue;
+            const SurfaceGpu& g = *r->exact;
+            const Material& m = r->surface->material;
+            SurfaceTableEntry e;
+            e.domain = g.domain;
+            e.origin = glm::vec4(glm::vec3(g.origin), 0.0f);
+            e.colour = glm::vec4(glm::vec3(m.color), 1.0f);
+            e.material = glm::vec4(float(m.ka), float(m.kd), float(m.ks),
+                                   float(std::max(m.shininess, 1e-3)));
+            if (r->mask.active && r->mask.layer >= 0) {
+                e.trimRect = glm::vec4(r->mask.rect);
+                e.trimSize = glm::vec4(float(r->mask.width), float(r->mask.height),
+                                       float(r->mask.layer), 0.0f);
+            }
+            e.data = glm::ivec4(int(g.controlOffset), g.countU, int(g.spanOffset),
+                                int(g.spanOffset + g.spanTexelsU));
+            e.ids = glm::ivec4(int(r->id.value), 0, 0, 0);
+            SurfaceTableEntry& row = t.rows[size_t(r->slot)];
+            if (!(row == e)) {
+                row = e;
+                lo = std::min(lo, r->slot), hi = std::max(hi, r->slot);
+            }
+        }
+        if (int(t.rows.size()) > t.capacity) {
+            // Grown: new buffers, every row written.
+            t.capacity = std::max(64, t.capacity);
+            while (t.capacity < int(t.rows.size()))
+                t.capacity *= 2;
+            for (GLuint* b : {&t.buffer, &t.instances})
+                if (*b)
+                    gl->glDeleteBuffers(1, b), *b = 0;
+            gl->glCreateBuffers(1, &t.buffer);
+            gl->glCreateBuffers(1, &t.instances);
+            gl->glNamedBufferData(t.buffer, GLsizeiptr(t.capacity) * sizeof(SurfaceTableEntry),
+                                  nullptr, GL_DYNAMIC_DRAW);
+            std::vector<int> ids(size_t(t.capacity));
+            for (int k = 0; k < t.capacity; ++k)
+                ids[size_t(k)] = k;
+            gl->glNamedBufferData(t.instances, GLsizeiptr(ids.size() * sizeof(int)), ids.data(),
+                                  GL_STATIC_DRAW);
+            lo = 0, hi = int(t.rows.size()) - 1;
+        }
+        if (hi >= lo)
+            gl->glNamedBufferSubData(t.buffer, GLintptr(lo) * sizeof(SurfaceTableEntry),
+                                     GLsizeiptr(hi - lo + 1) * sizeof(SurfaceTableEntry),
+                                     t.rows.data() + lo);
+    }
+    if (!m_triangleVao) {
+        gl->glCreateVertexArrays(1, &m_triangleVao);
+        gl->glCreateVertexArrays(1, &m_outlineVao);
+        for (GLuint vao : {m_triangleVao, m_outlineVao}) {
+            for (GLuint a = 0; a < 4; ++a) {
+                gl->glEnableVertexArrayAttrib(vao, a);
+                gl->glVertexArrayAttribBinding(vao, a, 0);
+            }
+            gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
+                                          offsetof(BaseVertex, position));
+            gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(BaseVertex, uv));
+            gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, offsetof(BaseVertex, span));
+            gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
+                                          offsetof(BaseVertex, spanScale));
+        }
+        // The surface index: one int per instance; a draw's base instance picks its row.
+        gl->glEnableVertexArrayAttrib(m_triangleVao, 4);
+        gl->glVertexArrayAttribIFormat(m_triangleVao, 4, 1, GL_INT, 0);
+        gl->glVertexArrayAttribBinding(m_triangleVao, 4, 1);
+        gl->glVertexArrayBindingDivisor(m_triangleVao, 1, 1);
+    }
+    const GLuint buffers[4] = {t.buffer, t.buffer, m_pools.control.buffer(),
+                               m_pools.spans.buffer()};
+    const GLenum formats[4] = {GL_RGBA32F, GL_RGBA32I, GL_RGBA32F, GL_RGBA32F};
+    for (int k = 0; k < 4; ++k) {
+        if (!m_views[k])
+            gl->glCreateTextures(GL_TEXTURE_BUFFER, 1, &m_views[k]);
+        // Every frame: a freed buffer's name can come back for a new one, so comparing
+        // names could keep a view on the old storage.
+        gl->glTextureBuffer(m_views[k], formats[k], buffers[k]);
+    }
+    // Cheap, and the pools' buffers are renamed when they grow.
+    for (GLuint vao : {m_triangleVao, m_outlineVao})
+        gl->glVertexArrayVertexBuffer(vao, 0, m_pools.vertices.buffer(), 0, sizeof(BaseVertex));
+    gl->glVertexArrayVertexBuffer(m_triangleVao, 1, t.instances, 0, sizeof(int));
+    gl->glVertexArrayElementBuffer(m_triangleVao, m_pools.triangles.buffer());
+    gl->glVertexArrayElementBuffer(m_outlineVao, m_pools.outlines.buffer());
 }
 
 void GpuScene::syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up) {
@@ -210,9 +363,7 @@ void GpuScene::syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up) 
 void GpuScene::drop(Entry& e) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     SurfaceRecord& r = e.record;
-    if (r.exact)
-        destroySurfaceGpu(gl, *r.exact);
-    r.exact.reset();
+    dropExact(r);
     MeshGpu& m = r.mesh;
     for (GLuint* b : {&m.positions, &m.normals, &m.uvs, &m.indices})
         if (*b)
@@ -294,9 +445,14 @@ std::vector<unsigned char> GpuScene::readMask(SurfaceId id) const {
 }
 
 void GpuScene::residentBytes(GpuBytes& out) const {
+    // The pools' whole buffers (what the GPU holds), not only the live ranges.
+    out.controlPoints += m_pools.control.residentBytes();
+    out.spanTables += m_pools.spans.residentBytes();
+    out.basePolygons += m_pools.vertices.residentBytes() + m_pools.triangles.residentBytes() +
+                        m_pools.outlines.residentBytes();
+    out.perSurface +=
+        std::int64_t(m_table.capacity) * std::int64_t(sizeof(SurfaceTableEntry) + sizeof(int));
     for (const auto& [id, e] : m_entries) {
-        if (e.record.exact)
-            addResidentBytes(*e.record.exact, out);
         out.tessellatedMeshes += e.record.mesh.bytes;
         out.controlNets += e.record.net.bytes;
     }
@@ -309,8 +465,22 @@ void GpuScene::release() {
             drop(e);
     m_entries.clear();
     m_order.clear();
-    if (m_gl)
+    if (m_gl) {
         m_masks.release();
+        for (GLuint* b : {&m_table.buffer, &m_table.instances})
+            if (*b)
+                m_gl->glDeleteBuffers(1, b), *b = 0;
+        m_table = Table{};
+        for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
+                           &m_pools.outlines})
+            p->release();
+        for (GLuint* a : {&m_triangleVao, &m_outlineVao})
+            if (*a)
+                m_gl->glDeleteVertexArrays(1, a), *a = 0;
+        for (int k = 0; k < 4; ++k)
+            if (m_views[k])
+                m_gl->glDeleteTextures(1, &m_views[k]), m_views[k] = 0;
+    }
     m_document = nullptr;
 }
 

@@ -37,13 +37,30 @@ struct NetGpu {
     std::int64_t bytes = 0;
 };
 
+/// One surface's row of the scene's surface table (8 RGBA texels, shaders/surface_data.glsl): what
+/// the exact pass reads per surface instead of per-draw uniforms, addressed by the draw's surface
+/// index (SurfaceGpu::slot, fed through the draw's base instance).
+struct SurfaceTableEntry {
+    glm::vec4 domain{0.0f};   ///< u first, u last, v first, v last
+    glm::vec4 origin{0.0f};   ///< xyz: the control texels' origin
+    glm::vec4 colour{0.0f};   ///< rgb material colour
+    glm::vec4 material{0.0f}; ///< ka, kd, ks, shininess
+    glm::vec4 trimRect{0.0f}; ///< the trim mask's (u, v) rectangle (TrimMask::rect)
+    glm::vec4 trimSize{0.0f}; ///< mask width, height (texels), array layer, unused
+    glm::ivec4 data{0};       ///< control offset, countU, u span-table offset, v's (texels)
+    glm::ivec4 ids{0};        ///< surface id, unused x3
+    bool operator==(const SurfaceTableEntry&) const = default;
+};
+static_assert(sizeof(SurfaceTableEntry) == 128, "must match surface_data.glsl's 8 texels per row");
+
 /// Everything on the GPU for one surface.
 struct SurfaceRecord {
     SurfaceId id;
     const Surface* surface = nullptr; ///< the document's, valid from sync to the frame's end
-    /// Control points, span tables, base polygon; absent (not drawn) when the control net
-    /// exceeds the GPU's texture size.
+    /// Control points, span tables, base polygon (ranges of the scene's pools); absent (not
+    /// drawn) when they exceed the GPU's buffer limit.
     std::unique_ptr<SurfaceGpu> exact;
+    int slot = -1; ///< row of the surface table while `exact` is present
     MeshGpu mesh;  ///< built when a frame draws tessellated
     NetGpu net;    ///< built when a frame shows the control net
     TrimMask mask; ///< layer >= 0 while the surface is trimmed and a frame used trims
@@ -91,6 +108,19 @@ public:
     /// Mask texels of a surface (see TrimMaskPass::readMask); empty without an active mask.
     std::vector<unsigned char> readMask(SurfaceId id) const;
 
+    /// The shared buffers the exact pass draws from (valid after sync; renamed when they grow).
+    const ScenePools& pools() const { return m_pools; }
+    /// Binds the surface table and the control and span pools as texture buffers to the units
+    /// of shaders/surface_data.glsl (5-8) and the triangle VAO.
+    void bindSurfaceData() const;
+    /// Vertex arrays over the pools: base polygon triangles (attributes 0-3 of BaseVertex and
+    /// the surface index at location 4, one per instance) and cell outlines.
+    GLuint triangleVao() const { return m_triangleVao; }
+    GLuint outlineVao() const { return m_outlineVao; }
+    /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
+    /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
+    std::int64_t bufferLimit() const;
+
     /// Adds the bytes of every record and of the mask array to `out` by kind.
     void residentBytes(GpuBytes& out) const;
     /// Frees every GL object; the context must be current.
@@ -103,10 +133,28 @@ private:
         TrimMaskStats maskStats;
     };
     void drop(Entry& e);
+    void dropExact(SurfaceRecord& r);
+    /// Writes the table rows that changed since the last frame and re-points the VAOs at the
+    /// pools' current buffers.
+    void syncTable();
     void syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up);
     void syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ScenePools m_pools;
+    std::int64_t m_glBufferLimit = 0;
+    /// The surface table: rows by slot, as on the GPU; `instances` holds 0, 1, 2, ... for the
+    /// per-instance surface index attribute (a draw's base instance selects its row).
+    struct Table {
+        std::vector<SurfaceTableEntry> rows;
+        std::vector<int> freeSlots;
+        int used = 0;
+        GLuint buffer = 0, instances = 0;
+        int capacity = 0;
+    } m_table;
+    GLuint m_triangleVao = 0, m_outlineVao = 0;
+    /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
+    GLuint m_views[4] = {0, 0, 0, 0};
     TrimMaskPass m_masks;
     QPointer<const Document> m_document;
     std::map<SurfaceId, Entry> m_entries;

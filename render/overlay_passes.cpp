@@ -38,10 +38,13 @@ bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QStri
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 2e-4f);
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, 1.0f);
     m_gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(color));
+    m_gl->glBindVertexArray(scene.outlineVao());
     for (const SurfaceRecord* r : scene.records())
         if (const SurfaceGpu* g = r->exact.get()) {
-            m_gl->glBindVertexArray(g->outlineVao);
-            m_gl->glDrawElements(GL_LINES, g->outlineIndexCount, GL_UNSIGNED_INT, nullptr);
+            m_gl->glDrawElementsBaseVertex(
+                GL_LINES, g->outlineIndexCount, GL_UNSIGNED_INT,
+                reinterpret_cast<const void*>(g->outlineOffset * std::int64_t(sizeof(unsigned))),
+                GLint(g->vertexOffset));
             ++drawCalls;
         }
     m_gl->glDepthFunc(GL_LESS);

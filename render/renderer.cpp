@@ -92,8 +92,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     options.writeCurvatureAov = target.aov && target.curvatureAov;
     FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    const std::vector<Light> lights = lightsFor(doc.scene(), camera, options.lightCount,
-                                                options.headlight);
+    const std::vector<Light> lights =
+        lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
 
@@ -168,6 +168,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     for (const SurfaceRecord* r : scene.records())
         report.surfaces += r->exact ? 1 : 0;
     scene.residentBytes(report.gpuBytes);
+    report.gpuBytes.perSurface += exact.residentBytes();
     if (!ok)
         report.error = error;
     else if (!synced)

@@ -1,5 +1,4 @@
-// Uploads of one surface's exact-mode GPU data (DSA calls, so no texture or buffer binding of
-// the caller is disturbed).
+// Uploads of one surface's exact-mode data into its ranges of the shared scene buffers.
 #include "render/surface_upload.h"
 
 #include <algorithm>
@@ -8,25 +7,28 @@ namespace kw {
 
 namespace {
 
-GLuint createTexture(QOpenGLFunctions_4_5_Core* gl, int w, int h, const glm::vec4* data) {
-    GLuint tex = 0;
-    gl->glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    gl->glTextureStorage2D(tex, 1, GL_RGBA32F, std::max(w, 1), std::max(h, 1));
-    gl->glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    if (w > 0 && h > 0)
-        gl->glTextureSubImage2D(tex, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data);
-    return tex;
+void freePolygon(ScenePools& pools, SurfaceGpu& g) {
+    pools.vertices.free(g.vertexOffset, g.vertexCount);
+    pools.triangles.free(g.triangleOffset, g.triangleIndexCount);
+    pools.outlines.free(g.outlineOffset, g.outlineIndexCount);
+    g.vertexOffset = g.triangleOffset = g.outlineOffset = -1;
+    g.vertexCount = 0;
+    g.triangleIndexCount = g.outlineIndexCount = 0;
+}
+
+void freeControl(ScenePools& pools, SurfaceGpu& g) {
+    pools.control.free(g.controlOffset, std::int64_t(g.countU) * g.countV);
+    pools.spans.free(g.spanOffset, g.spanTexelsU + g.spanTexelsV);
+    g.controlOffset = g.spanOffset = -1;
+    g.spanTexelsU = g.spanTexelsV = 0;
 }
 
 } // namespace
 
-void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                    const ParameterBox& box, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
-    for (GLuint* t : {&g.controlTexture, &g.spanTextureU, &g.spanTextureV})
-        if (*t)
-            gl->glDeleteTextures(1, t), *t = 0;
+    freeControl(pools, g);
     g.degreeU = geo.degreeU;
     g.degreeV = geo.degreeV;
     g.countU = geo.countU;
@@ -36,24 +38,38 @@ void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& 
 
     g.origin = controlOrigin(geo);
     g.control = packControlPoints(geo, g.origin);
-    g.controlTexture = createTexture(gl, geo.countU, geo.countV, g.control.data());
-    stats.fullUploads += 1;
-    stats.texels += std::int64_t(g.control.size());
-    stats.bytes += std::int64_t(g.control.size() * sizeof(glm::vec4));
-
     const std::vector<glm::vec4> su = packSpanTable(geo.knotsU, geo.degreeU, geo.countU);
     const std::vector<glm::vec4> sv = packSpanTable(geo.knotsV, geo.degreeV, geo.countV);
-    g.spanTextureU =
-        createTexture(gl, spanTableTexels(geo.degreeU), geo.countU - geo.degreeU, su.data());
-    g.spanTextureV =
-        createTexture(gl, spanTableTexels(geo.degreeV), geo.countV - geo.degreeV, sv.data());
+    const std::int64_t texels = std::int64_t(g.control.size());
+    g.controlOffset = pools.control.allocate(texels);
+    g.spanOffset =
+        g.controlOffset < 0 ? -1 : pools.spans.allocate(std::int64_t(su.size() + sv.size()));
+    if (g.controlOffset < 0 || g.spanOffset < 0) {
+        if (g.controlOffset >= 0)
+            pools.control.free(g.controlOffset, texels);
+        g.controlOffset = g.spanOffset = -1;
+        freePolygon(pools, g);
+        return false;
+    }
+    g.spanTexelsU = std::int64_t(su.size());
+    g.spanTexelsV = std::int64_t(sv.size());
+    pools.control.write(g.controlOffset, texels, g.control.data());
+    stats.fullUploads += 1;
+    stats.texels += texels;
+    stats.bytes += texels * std::int64_t(sizeof(glm::vec4));
+
+    pools.spans.write(g.spanOffset, g.spanTexelsU, su.data());
+    pools.spans.write(g.spanOffset + g.spanTexelsU, g.spanTexelsV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    rebuildPolygon(gl, g, s, nu, nv, box, stats);
+    if (!rebuildPolygon(pools, g, s, nu, nv, box, stats)) {
+        freeControl(pools, g);
+        return false;
+    }
+    return true;
 }
 
-void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s,
-                         UploadStats& stats) {
+void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats) {
     const std::vector<glm::vec4> now = packControlPoints(s.geometry, g.origin);
     int i0 = g.countU, i1 = -1, j0 = g.countV, j1 = -1;
     for (int j = 0; j < g.countV; ++j)
@@ -68,95 +84,62 @@ void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Sur
         return; // revision moved (e.g. undo then redo) but the texels are identical
     g.control = now;
     const int w = i1 - i0 + 1, h = j1 - j0 + 1;
-    gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, g.countU);
-    gl->glTextureSubImage2D(g.controlTexture, 0, i0, j0, w, h, GL_RGBA, GL_FLOAT,
-                            g.control.data() + (j0 * g.countU + i0));
-    gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    // Rows are contiguous in the pool: one write per row of the rectangle (one in a drag).
+    for (int j = j0; j <= j1; ++j) {
+        const std::int64_t k = std::int64_t(j) * g.countU + i0;
+        pools.control.write(g.controlOffset + k, w, g.control.data() + k);
+    }
     stats.subImageUploads += 1;
     stats.texels += std::int64_t(w) * h;
     stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
-        const GLintptr offset = GLintptr(first) * GLintptr(sizeof(BaseVertex));
-        const GLsizeiptr size = GLsizeiptr(last - first + 1) * GLsizeiptr(sizeof(BaseVertex));
-        gl->glNamedBufferSubData(g.vertexBuffer, offset, size,
-                                 g.polygon.vertices.data() + size_t(first));
+        const std::int64_t count = last - first + 1;
+        pools.vertices.write(g.vertexOffset + first, count,
+                             g.polygon.vertices.data() + size_t(first));
+        const std::int64_t size = count * std::int64_t(sizeof(BaseVertex));
         stats.vertexUpdates += 1;
-        stats.vertexBytes += std::int64_t(size);
-        stats.bytes += std::int64_t(size);
+        stats.vertexBytes += size;
+        stats.bytes += size;
     }
 }
 
-void rebuildPolygon(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                     const ParameterBox& box, UploadStats& stats) {
+    freePolygon(pools, g);
     g.partitionsU = nu;
     g.partitionsV = nv;
     g.polygonBox = box;
     g.polygon = buildBasePolygon(s.geometry, box, nu, nv);
     const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
     const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
-    if (!g.vertexBuffer) {
-        gl->glCreateBuffers(1, &g.vertexBuffer);
-        gl->glCreateBuffers(1, &g.triangleBuffer);
-        gl->glCreateBuffers(1, &g.outlineBuffer);
-        gl->glCreateVertexArrays(1, &g.triangleVao);
-        gl->glCreateVertexArrays(1, &g.outlineVao);
-        for (GLuint vao : {g.triangleVao, g.outlineVao}) {
-            gl->glVertexArrayVertexBuffer(vao, 0, g.vertexBuffer, 0, sizeof(BaseVertex));
-            gl->glEnableVertexArrayAttrib(vao, 0);
-            gl->glEnableVertexArrayAttrib(vao, 1);
-            gl->glEnableVertexArrayAttrib(vao, 2);
-            gl->glEnableVertexArrayAttrib(vao, 3);
-            gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
-                                          offsetof(BaseVertex, position));
-            gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(BaseVertex, uv));
-            gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, offsetof(BaseVertex, span));
-            gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
-                                          offsetof(BaseVertex, spanScale));
-            for (GLuint a = 0; a < 4; ++a)
-                gl->glVertexArrayAttribBinding(vao, a, 0);
-        }
-        gl->glVertexArrayElementBuffer(g.triangleVao, g.triangleBuffer);
-        gl->glVertexArrayElementBuffer(g.outlineVao, g.outlineBuffer);
+    const std::int64_t vertices = std::int64_t(g.polygon.vertices.size());
+    const std::int64_t v = pools.vertices.allocate(vertices);
+    const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(std::int64_t(tri.size()));
+    const std::int64_t o = t < 0 ? -1 : pools.outlines.allocate(std::int64_t(lines.size()));
+    if (o < 0) {
+        if (v >= 0)
+            pools.vertices.free(v, vertices);
+        if (t >= 0)
+            pools.triangles.free(t, std::int64_t(tri.size()));
+        return false;
     }
-    const GLsizeiptr vbytes = GLsizeiptr(g.polygon.vertices.size() * sizeof(BaseVertex));
-    gl->glNamedBufferData(g.vertexBuffer, vbytes, g.polygon.vertices.data(), GL_DYNAMIC_DRAW);
-    gl->glNamedBufferData(g.triangleBuffer, GLsizeiptr(tri.size() * sizeof(unsigned)), tri.data(),
-                          GL_STATIC_DRAW);
-    gl->glNamedBufferData(g.outlineBuffer, GLsizeiptr(lines.size() * sizeof(unsigned)),
-                          lines.data(), GL_STATIC_DRAW);
-    g.triangleIndexCount = int(tri.size());
-    g.outlineIndexCount = int(lines.size());
+    g.vertexOffset = v, g.vertexCount = vertices;
+    g.triangleOffset = t, g.triangleIndexCount = int(tri.size());
+    g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
+    pools.vertices.write(v, vertices, g.polygon.vertices.data());
+    pools.triangles.write(t, std::int64_t(tri.size()), tri.data());
+    pools.outlines.write(o, std::int64_t(lines.size()), lines.data());
     stats.basePolygonBuilds += 1;
-    stats.bytes +=
-        std::int64_t(vbytes) + std::int64_t((tri.size() + lines.size()) * sizeof(unsigned));
+    stats.bytes += vertices * std::int64_t(sizeof(BaseVertex)) +
+                   std::int64_t((tri.size() + lines.size()) * sizeof(unsigned));
+    return true;
 }
 
-void addResidentBytes(const SurfaceGpu& gpu, GpuBytes& out) {
-    constexpr std::int64_t texel = sizeof(glm::vec4);
-    const SurfaceGpu* g = &gpu;
-    {
-        out.controlPoints += std::int64_t(g->countU) * g->countV * texel;
-        out.spanTables += (std::int64_t(spanTableTexels(g->degreeU)) * (g->countU - g->degreeU) +
-                           std::int64_t(spanTableTexels(g->degreeV)) * (g->countV - g->degreeV)) *
-                          texel;
-        out.basePolygons += std::int64_t(g->polygon.vertices.size() * sizeof(BaseVertex)) +
-                            std::int64_t(g->triangleIndexCount + g->outlineIndexCount) *
-                                std::int64_t(sizeof(unsigned));
-    }
-}
-
-void destroySurfaceGpu(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g) {
-    for (GLuint* t : {&g.controlTexture, &g.spanTextureU, &g.spanTextureV})
-        if (*t)
-            gl->glDeleteTextures(1, t), *t = 0;
-    for (GLuint* b : {&g.vertexBuffer, &g.triangleBuffer, &g.outlineBuffer})
-        if (*b)
-            gl->glDeleteBuffers(1, b), *b = 0;
-    for (GLuint* a : {&g.triangleVao, &g.outlineVao})
-        if (*a)
-            gl->glDeleteVertexArrays(1, a), *a = 0;
+void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g) {
+    freeControl(pools, g);
+    freePolygon(pools, g);
 }
 
 } // namespace kw

@@ -1,10 +1,12 @@
-// One surface's exact-mode GPU data (control-point and span-table textures, base polygon
-// buffers) and the uploads that bring it up to date; GpuScene decides which one is due.
+// One surface's exact-mode GPU data (control points, span tables, base polygon) as ranges of the
+// scene's shared buffers (ScenePools), and the uploads that bring it up to date; GpuScene
+// decides which one is due.
 #pragma once
 
 #include "model/document.h"
 #include "render/frame_report.h"
 #include "render/gpu_layout.h"
+#include "render/gpu_pool.h"
 #include "render/render_types.h"
 
 #include <QOpenGLFunctions_4_5_Core>
@@ -12,19 +14,29 @@
 
 namespace kw {
 
-/// GPU objects of one surface. Textures: control points RGBA32F countU x countV (texel (i, j) =
-/// (w P, w)), span tables RGBA32F spanTableTexels(p) x (count - p). Two VAOs share the vertex
-/// buffer of BaseVertex: one with triangle indices, one with cell outlines.
+/// The shared buffers of every surface's exact data (shaders/surface_data.glsl reads them):
+/// control texels (w (P - origin), w) row by row (v outer), span-table rows
+/// (kw::packSpanTable; a surface's u table then its v table), base polygon vertices
+/// (kw::BaseVertex) and its triangle and outline indices, relative to the surface's first
+/// vertex (drawn with a base vertex).
+struct ScenePools {
+    GpuPool control, spans, vertices, triangles, outlines;
+};
+
+/// Where one surface's data lies in the pools, and the CPU copies the partial updates compare
+/// against. Offsets are in elements of each pool; -1 while not allocated.
 struct SurfaceGpu {
     SurfaceId id;
     Revisions revisions; ///< what is on the GPU
     int partitionsU = 0, partitionsV = 0;
     int degreeU = 1, degreeV = 1, countU = 0, countV = 0;
     glm::vec4 domain{0.0f, 1.0f, 0.0f, 1.0f};
-    glm::dvec3 origin{0.0}; ///< control texels are relative to it (packControlPoints)
-    GLuint controlTexture = 0, spanTextureU = 0, spanTextureV = 0;
-    GLuint vertexBuffer = 0, triangleBuffer = 0, outlineBuffer = 0;
-    GLuint triangleVao = 0, outlineVao = 0;
+    glm::dvec3 origin{0.0};          ///< control texels are relative to it (packControlPoints)
+    std::int64_t controlOffset = -1; ///< countU x countV texels
+    std::int64_t spanOffset = -1;    ///< spanTexelsU texels of the u table, then the v table's
+    std::int64_t spanTexelsU = 0, spanTexelsV = 0;
+    std::int64_t vertexOffset = -1, vertexCount = 0;
+    std::int64_t triangleOffset = -1, outlineOffset = -1;
     int triangleIndexCount = 0, outlineIndexCount = 0;
     std::vector<glm::vec4> control; ///< the texels now on the GPU
     BasePolygon polygon;            ///< the vertices now on the GPU
@@ -32,24 +44,23 @@ struct SurfaceGpu {
     bool polygonTrimmed = false;    ///< polygonBox is trimParameterBox, not the domain
 };
 
-/// Full upload of a new surface, or after its knots, degrees or counts changed: textures
-/// (re)created and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
-/// `stats`.
-void uploadSurface(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+/// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
+/// (re)allocated and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
+/// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
+bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                    const ParameterBox& box, UploadStats& stats);
-/// After a Points revision change: the bounding rectangle of the texels that differ as one
-/// sub-image, and only the base polygon vertices in the support of those points.
-void uploadChangedPoints(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s,
-                         UploadStats& stats);
+/// After a Points revision change: the texels of the bounding rectangle of those that differ
+/// (one sub-range write per row of it, counted as one sub-image upload), and only the base
+/// polygon vertices in the support of those points.
+void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
 /// The base polygon at nu x nv partitions over `box` (a rectangle of the domain: GpuScene
-/// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's cells
-/// go where its trims keep the surface, issue 10 item 1) from the current points; textures
-/// untouched.
-void rebuildPolygon(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g, const Surface& s, int nu, int nv,
+/// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
+/// cells go where its trims keep the surface, issue 10 item 1) from the current points;
+/// control data untouched. Returns false (the polygon's ranges freed) when a pool would
+/// exceed its limit.
+bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                     const ParameterBox& box, UploadStats& stats);
-/// Frees the surface's GL objects.
-void destroySurfaceGpu(QOpenGLFunctions_4_5_Core* gl, SurfaceGpu& g);
-/// Bytes of the surface's textures and buffers, added to `out` by kind.
-void addResidentBytes(const SurfaceGpu& g, GpuBytes& out);
+/// Returns the surface's ranges to the pools.
+void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g);
 
 } // namespace kw

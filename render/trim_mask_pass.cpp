@@ -311,6 +311,14 @@ void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& ma
     gl->glUniform1f(ShaderLibrary::uniforms(program).trimLayer, float(mask.layer));
 }
 
+void TrimMaskPass::bindArray(QOpenGLShaderProgram* program, int unit) const {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    gl->glBindTextureUnit(GLuint(unit), m_texture);
+    gl->glUniform1i(ShaderLibrary::uniforms(program).trimMask, unit);
+    gl->glUniform2f(ShaderLibrary::uniforms(program).trimLayerScale, 1.0f / float(m_size),
+                    1.0f / float(m_size));
+}
+
 std::vector<unsigned char> TrimMaskPass::readMask(const TrimMask& mask) const {
     const TrimMask* m = &mask;
     if (!m->active || m->layer < 0)

@@ -55,6 +55,11 @@ public:
     /// Gives the mask's layer back (a removed or untrimmed surface); keeps its statistics.
     void freeLayer(TrimMask& mask);
 
+    /// Binds the mask array to `unit` and sets uTrimMask and uTrimLayerScale on the bound
+    /// program, whose shaders read each surface's rectangle, size and layer from its row of the
+    /// surface table (shaders/surface_data.glsl).
+    void bindArray(QOpenGLShaderProgram* program, int unit) const;
+
     /// Binds the mask array to `unit` and sets trim_sample.glsl's uniforms on the bound program.
     void setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask, int unit) const;
 

@@ -16,8 +16,8 @@
 in vec2 vUv;
 flat in ivec2 vSpan;
 flat in float vSpanScale;
+flat in int vSurface; // row of the surface table (surface_data.glsl)
 
-uniform float uSurfaceId;
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
 
@@ -37,6 +37,7 @@ layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (w
 #endif
 
 void main() {
+    kwSurface = vSurface;
     KW_DISCARD_TRIMMED(vUv);
     // The interpolated (u, v) can leave the domain by ~1e-5 at grazing pixels on the boundary
     // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,

@@ -3,11 +3,10 @@
 // Needs DEGREE_U and DEGREE_V; sums only the (p+1) x (q+1) non-zero terms. With
 // KW_SECOND_ORDER also Suu, Suv, Svv and the curvature of kw::surfaceCurvature (K, H, k1, k2).
 
-uniform sampler2D uControl; // RGBA32F, texel (i, j) = (w P, w) of control point (i, j)
-uniform sampler2D uSpansU;  // span tables (kw::packSpanTable), row = span - degree
-uniform sampler2D uSpansV;
-uniform vec4 uDomain;       // (u first, u last, v first, v last) of the surface
-uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
+// The surface's control texels ((w (P - uOrigin), w) of point (i, j)), span tables
+// (kw::packSpanTable, row = span - degree) and domain uDomain come from its row of the
+// scene's surface table (surface_data.glsl).
+#include "surface_data.glsl"
 
 // Thresholds of the degenerate-normal rule of kw::surfaceFrame. The kernel's kTinyDerivativeRel
 // (1e-8) and kParallelRel (1e-10) are below float resolution: a collapsed edge evaluates to
@@ -24,15 +23,15 @@ uniform vec3 uOrigin;       // control texels hold w (P - uOrigin)
 #include "cell_data.glsl"
 #define CONTROL_TEXEL(first, i, j) vCellControl[(j) * (DEGREE_U + 1) + (i)]
 #else
-#define CONTROL_TEXEL(first, i, j) texelFetch(uControl, (first) + ivec2(i, j), 0)
+#define CONTROL_TEXEL(first, i, j) KW_CONTROL((first) + ivec2(i, j))
 #endif
 
 #ifdef KW_CELL_GATHER
 #define SPAN_TEXEL_U(x, row) vCellSpanU[x]
 #define SPAN_TEXEL_V(x, row) vCellSpanV[x]
 #else
-#define SPAN_TEXEL_U(x, row) texelFetch(uSpansU, ivec2(x, row), 0)
-#define SPAN_TEXEL_V(x, row) texelFetch(uSpansV, ivec2(x, row), 0)
+#define SPAN_TEXEL_U(x, row) KW_SPAN_U(x, row)
+#define SPAN_TEXEL_V(x, row) KW_SPAN_V(x, row)
 #endif
 
 #define BASIS_FN basisU

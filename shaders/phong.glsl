@@ -8,8 +8,10 @@ uniform vec4 uLightVector[kMaxLights];   // xyz: unit direction towards the ligh
 uniform vec3 uLightDiffuse[kMaxLights];
 uniform vec3 uLightSpecular[kMaxLights];
 uniform vec3 uAmbient;  // sum of the lights' ambient intensities
+#ifndef KW_SURFACE_DATA // else the surface's row of the surface table (surface_data.glsl)
 uniform vec3 uColor;
 uniform vec4 uMaterial; // ka, kd, ks, shininess
+#endif
 uniform vec3 uEye;
 
 vec3 phong(vec3 point, vec3 normal) {

@@ -1,14 +1,17 @@
 // Trim mask lookup (paper 3.4.2) for the surface passes. With KW_TRIM the fragment's (u, v) is
 // looked up in the surface's layer of the mask array and the fragment is discarded where the
 // mask says trimmed; without it KW_DISCARD_TRIMMED is empty, so untrimmed surfaces pay nothing.
-// Uniforms match kw::TrimMaskPass::setUniforms.
+// Uniforms match kw::TrimMaskPass::setUniforms; the exact pass's shaders (surface_data.glsl
+// included first) read the per-surface values from the surface's table row instead.
 #ifdef KW_TRIM
 uniform sampler2DArray uTrimMask; // R8, 1 = kept; the surface's mask in texels [0, size) of its layer
+uniform vec2 uTrimLayerScale;     // 1 / (array width, array height)
+#ifndef KW_SURFACE_DATA
 uniform vec4 uTrimRect;           // (u first, u last, v first, v last) the mask spans; outside
                                   // it no point is inside a loop
 uniform vec2 uTrimSize;           // mask width and height in texels
-uniform vec2 uTrimLayerScale;     // 1 / (array width, array height)
 uniform float uTrimLayer;
+#endif
 
 bool trimmedAway(vec2 uv) {
     vec2 unit = (uv - uTrimRect.xz) / (uTrimRect.yw - uTrimRect.xz);

@@ -24,3 +24,5 @@ foreach(variant IN ITEMS gather:0 fetch:1e30)
 endforeach()
 kw_add_test(tst_render_scene LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_scene.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
+kw_add_test(tst_render_batch LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_batch.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)

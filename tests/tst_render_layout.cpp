@@ -3,8 +3,10 @@
 // the pixels-per-cell estimate behind the per-cell gather choice.
 #include "render/exact_surface_pass.h"
 #include "render/gpu_layout.h"
+#include "render/gpu_pool.h"
 #include "render_test_util.h"
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace kw;
@@ -184,6 +186,58 @@ private Q_SLOTS:
         QVERIFY(std::isinf(ExactSurfacePass::projectedPixelsPerCell(g, cam)));
         // Nothing uploaded: no estimate.
         QCOMPARE(ExactSurfacePass::projectedPixelsPerCell(SurfaceGpu{}, cam), 0.0);
+    }
+
+    // The shared scene buffers' ranges: first fit, neighbours merged, the end lowered when the
+    // top range goes, no overlap between live ranges.
+    void rangeAllocatorReusesFreedRanges() {
+        RangeAllocator a;
+        const std::int64_t r0 = a.allocate(10), r1 = a.allocate(5), r2 = a.allocate(7);
+        QCOMPARE(r0, 0);
+        QCOMPARE(r1, 10);
+        QCOMPARE(r2, 15);
+        QCOMPARE(a.end(), 22);
+        a.free(r1, 5);
+        QCOMPARE(a.allocate(6), 22); // does not fit the hole of 5
+        QCOMPARE(a.allocate(3), 10); // first fit
+        QCOMPARE(a.allocate(2), 13); // the rest of the hole
+        QCOMPARE(a.used(), 28);
+        a.free(r0, 10);
+        a.free(10, 3); // merges with [0, 10)
+        QCOMPARE(a.allocate(13), 0);
+        a.free(0, 13);
+        a.free(13, 2); // [0, 15) free again
+        a.free(22, 6); // the top range: end falls to 22, then the hole below it stays
+        QCOMPARE(a.end(), 22);
+        a.free(r2, 7); // everything free: end falls through the merged hole to 0
+        QCOMPARE(a.end(), 0);
+        QCOMPARE(a.used(), 0);
+        // Random churn: live ranges never overlap and stay below end().
+        std::vector<std::pair<std::int64_t, std::int64_t>> live;
+        std::uint32_t seed = 12345;
+        auto next = [&seed]() {
+            return seed = seed * 1664525u + 1013904223u;
+        };
+        for (int step = 0; step < 2000; ++step) {
+            if (!live.empty() && next() % 3 == 0) {
+                const size_t k = next() % live.size();
+                a.free(live[k].first, live[k].second);
+                live.erase(live.begin() + std::ptrdiff_t(k));
+            } else {
+                const std::int64_t n = 1 + next() % 40;
+                live.emplace_back(a.allocate(n), n);
+            }
+            std::vector<std::pair<std::int64_t, std::int64_t>> sorted = live;
+            std::sort(sorted.begin(), sorted.end());
+            std::int64_t used = 0;
+            for (size_t k = 0; k < sorted.size(); ++k) {
+                used += sorted[k].second;
+                QVERIFY(sorted[k].first + sorted[k].second <= a.end());
+                if (k > 0)
+                    QVERIFY(sorted[k - 1].first + sorted[k - 1].second <= sorted[k].first);
+            }
+            QCOMPARE(a.used(), used);
+        }
     }
 };
 

@@ -1,0 +1,45 @@
+// The scene's shared per-surface data (issue 15 item 3; kw::GpuScene, kw::ScenePools): one
+// table row per surface and pools of control texels and span-table rows, addressed by the
+// draw's surface index (surface.vert's aSurface, fed by the draw's base instance), so surfaces
+// of one shader variant are drawn by one multi-draw with no per-surface uniforms.
+// Defines the per-surface values under the names the per-draw uniforms had (uDomain, uOrigin,
+// uColor, uMaterial, uSurfaceId, uTrimRect, uTrimSize, uTrimLayer) for the shared includes.
+#ifndef KW_SURFACE_DATA
+#define KW_SURFACE_DATA
+
+// Texture buffers, not SSBOs: llvmpipe (Mesa 22.3) returns 0 from an SSBO load in a helper
+// invocation, which broke the screen derivatives (fwidth) of the zebra and isophote bands along
+// every triangle edge; texel fetches run in helper invocations too. Units match
+// kw::GpuScene::bindSurfaceData.
+// The table: 8 RGBA32F texels per surface (kw::SurfaceTableEntry), read as floats for texels
+// 0-5 (domain; origin; colour; ka, kd, ks, shininess; trim rectangle; trim size and layer) and
+// through an RGBA32I view for texels 6-7 (control offset, countU, u and v span-table offsets;
+// surface id).
+layout(binding = 5) uniform samplerBuffer kwSurfaceTable;
+layout(binding = 6) uniform isamplerBuffer kwSurfaceInts;
+layout(binding = 7) uniform samplerBuffer kwControl; // RGBA32F (w (P - origin), w)
+layout(binding = 8) uniform samplerBuffer kwSpans;   // RGBA32F span-table rows
+
+// The row of the surface being drawn; each stage's main() sets it first.
+int kwSurface = 0;
+
+#define KW_ROW(k) texelFetch(kwSurfaceTable, kwSurface * 8 + (k))
+#define KW_DATA texelFetch(kwSurfaceInts, kwSurface * 8 + 6)
+#define uDomain KW_ROW(0)
+#define uOrigin (KW_ROW(1).xyz)
+#define uColor (KW_ROW(2).rgb)
+#define uMaterial KW_ROW(3)
+#define uSurfaceId float(texelFetch(kwSurfaceInts, kwSurface * 8 + 7).x)
+#define uTrimRect KW_ROW(4)
+#define uTrimSize (KW_ROW(5).xy)
+#define uTrimLayer (KW_ROW(5).z)
+
+#ifndef KW_SPAN_TEXELS
+#define KW_SPAN_TEXELS(P) ((2 * (P) + (P) * ((P) + 1) / 2 + 3) / 4)
+#endif
+// Control texel (i, j) and texel x of span-table row `row` of the current surface.
+#define KW_CONTROL(ij) texelFetch(kwControl, KW_DATA.x + (ij).y * KW_DATA.y + (ij).x)
+#define KW_SPAN_U(x, row) texelFetch(kwSpans, KW_DATA.z + (row) * KW_SPAN_TEXELS(DEGREE_U) + (x))
+#define KW_SPAN_V(x, row) texelFetch(kwSpans, KW_DATA.w + (row) * KW_SPAN_TEXELS(DEGREE_V) + (x))
+
+#endif // KW_SURFACE_DATA
