@@ -4,6 +4,7 @@
 #include "app/commands.h"
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
+#include "render/analysis.h"
 #include "render/gl_context.h"
 #include "ui/edit/commands.h"
 #include "ui/mainwindow.h"
@@ -11,6 +12,7 @@
 #include "ui/uvpanel.h"
 #include "ui/viewport.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -110,14 +112,6 @@ int screenshot(MainWindow& window, const QString& out, bool refit) {
 } // namespace
 
 int runEditor(int argc, char** argv) {
-    // Without a display Qt's xcb plugin aborts; say so plainly instead.
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") && qEnvironmentVariableIsEmpty("DISPLAY") &&
-        qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY")) {
-        cli::printError(QStringLiteral(
-            "knotwork: cannot start the editor: no display (DISPLAY and WAYLAND_DISPLAY are "
-            "unset). The command-line tools work without one: see knotwork --help."));
-        return cli::kExitBadInput;
-    }
     QStringList arguments;
     for (int k = 0; k < argc; ++k)
         arguments << QString::fromLocal8Bit(argv[k]);
@@ -132,7 +126,10 @@ int runEditor(int argc, char** argv) {
     const QCommandLineOption size(QStringLiteral("size"),
                                   QStringLiteral("Window size, e.g. 1280x800."),
                                   QStringLiteral("WxH"));
-    parser.addOptions({shot, size, demo});
+    const QCommandLineOption shading(QStringLiteral("shading"),
+                                     QStringLiteral("Start with this View > Analysis mode."),
+                                     QStringLiteral("MODE"));
+    parser.addOptions({shot, size, demo, shading});
     if (!parser.parse(arguments) || parser.positionalArguments().size() > 1) {
         cli::printError(QStringLiteral("knotwork: %1 (see knotwork --help)")
                             .arg(parser.errorText().isEmpty() ? QStringLiteral("more than one FILE")
@@ -151,6 +148,24 @@ int runEditor(int argc, char** argv) {
                                 .arg(parser.value(size)));
             return cli::kExitUsage;
         }
+    }
+    std::optional<AnalysisMode> mode;
+    if (parser.isSet(shading)) {
+        mode = parseAnalysisMode(parser.value(shading));
+        if (!mode) {
+            cli::printError(QStringLiteral("knotwork: --shading: unknown mode '%1'")
+                                .arg(parser.value(shading)));
+            return cli::kExitUsage;
+        }
+    }
+    // Without a display Qt's xcb plugin aborts; say so plainly instead (usage errors above
+    // need no display).
+    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") && qEnvironmentVariableIsEmpty("DISPLAY") &&
+        qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY")) {
+        cli::printError(QStringLiteral(
+            "knotwork: cannot start the editor: no display (DISPLAY and WAYLAND_DISPLAY are "
+            "unset). The command-line tools work without one: see knotwork --help."));
+        return cli::kExitBadInput;
     }
     const QString file = parser.positionalArguments().value(0);
     if (!file.isEmpty()) {
@@ -191,6 +206,14 @@ int runEditor(int argc, char** argv) {
         return cli::kExitBadInput;
     if (parser.isSet(demo))
         buildDemo(window);
+    if (mode) {
+        // Through View › Analysis, so the menu shows the mode (its actions are named after it).
+        QString camel;
+        for (const QString& part : analysisModeName(*mode).split(QLatin1Char('-')))
+            camel += part.left(1).toUpper() + part.mid(1);
+        if (QAction* a = window.action(QStringLiteral("actionAnalysis") + camel))
+            a->trigger();
+    }
     if (parser.isSet(shot))
         return screenshot(window, parser.value(shot), parser.isSet(demo));
     window.show();

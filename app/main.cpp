@@ -43,7 +43,8 @@ QString globalHelp() {
     QString text =
         QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
                        "       knotwork FILE.knot      (the editor; FILE is optional)\n"
-                       "       knotwork --screenshot OUT [--size WxH] [--demo] [FILE.knot]\n"
+                       "       knotwork --screenshot OUT [--size WxH] [--demo] [--shading MODE] "
+                       "[FILE.knot]\n"
                        "\n"
                        "Knotwork NURBS surface editor and command-line tools.\n"
                        "\n"
@@ -56,7 +57,8 @@ QString globalHelp() {
         "that cannot be read is reported on stderr with exit code 1 before any window opens.\n"
         "--screenshot OUT opens FILE with its first surface selected, saves a picture of the\n"
         "window to OUT and exits; --size WxH sets the window size. --demo starts with a scene\n"
-        "made by the editor's Create and trim tools.\n"
+        "made by the editor's Create and trim tools; --shading MODE starts with that View ›\n"
+        "Analysis mode (the modes of 'knotwork render --shading').\n"
         "'knotwork <subcommand> --help' describes a subcommand.\n"
         "\n"
         "Options:\n"
@@ -82,7 +84,8 @@ bool isEditorInvocation(int argc, char** argv) {
     const QString first = QString::fromLocal8Bit(argv[1]);
     if (first == QLatin1String("--screenshot") ||
         first.startsWith(QLatin1String("--screenshot=")) || first == QLatin1String("--size") ||
-        first == QLatin1String("--demo"))
+        first == QLatin1String("--demo") || first == QLatin1String("--shading") ||
+        first.startsWith(QLatin1String("--shading=")))
         return true;
     if (first.startsWith(QLatin1Char('-')))
         return false;

@@ -226,6 +226,17 @@ bool Document::setMaterial(SurfaceId id, const Material& material) {
     return true;
 }
 
+bool Document::setHidden(SurfaceId id, bool hidden) {
+    Surface* s = mutableSurface(id);
+    if (!s)
+        return false;
+    if (s->hidden == hidden)
+        return true;
+    s->hidden = hidden;
+    bump(id, Aspect::Display);
+    return true;
+}
+
 bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Surface* s = mutableSurface(id);
     if (!s || index < 0 || size_t(index) > s->trims.size())

@@ -17,7 +17,7 @@ enum class Aspect : unsigned {
     Points = 1 << 0,  ///< control point positions or weights (same counts)
     Knots = 1 << 1,   ///< degrees, knot vectors, or control-net size
     Trims = 1 << 2,   ///< trim loops
-    Display = 1 << 3, ///< partitions, material
+    Display = 1 << 3, ///< partitions, material, hidden
     Name = 1 << 4,
 };
 Q_DECLARE_FLAGS(Aspects, Aspect)
@@ -73,6 +73,8 @@ public:
     /// Both in [kMinPartitions, kMaxPartitions].
     bool setPartitions(SurfaceId id, int nu, int nv);
     bool setMaterial(SurfaceId id, const Material& material);
+    /// Hides or shows a surface (Aspect::Display).
+    bool setHidden(SurfaceId id, bool hidden);
     /// index in [0, loop count]; loop.id valid and unused; every curve valid.
     bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
     bool removeTrimLoop(SurfaceId id, TrimLoopId loop);

@@ -77,6 +77,8 @@ QJsonObject surfaceToJson(const Surface& s) {
     o.insert(QStringLiteral("trims"), trims);
     o.insert(QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV});
     o.insert(QStringLiteral("material"), materialToJson(s.material));
+    if (s.hidden) // optional, written only when set: files of visible scenes stay as they were
+        o.insert(QStringLiteral("hidden"), true);
     return o;
 }
 

@@ -345,6 +345,13 @@ Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) 
         const QString p = member(path, "material");
         s.material = readMaterial(asObject(o.value(QLatin1String("material")), p), p);
     }
+    if (o.contains(QLatin1String("hidden"))) {
+        const QJsonValue v = o.value(QLatin1String("hidden"));
+        if (!v.isBool())
+            fail(member(path, "hidden"),
+                 QStringLiteral("expected true or false, found ") + describe(v));
+        s.hidden = v.toBool();
+    }
     return s;
 }
 

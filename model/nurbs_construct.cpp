@@ -360,6 +360,79 @@ NurbsSurface makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV, std::st
     return s;
 }
 
+NurbsCurve3 interpolateCurve3(const std::vector<glm::dvec3>& q, int maxDegree, std::string* error,
+                              std::vector<double>* parameters) {
+    const auto fail = [&](const char* why) {
+        if (error)
+            *error = why;
+        return NurbsCurve3{};
+    };
+    const int n = int(q.size());
+    if (n < 2)
+        return fail("at least two points are needed");
+    for (const glm::dvec3& x : q)
+        if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+            return fail("a point is not finite");
+    // Chord-length parameters (Eq. 9.5).
+    std::vector<double> t(size_t(n), 0.0);
+    for (int k = 1; k < n; ++k) {
+        const double d = glm::length(q[size_t(k)] - q[size_t(k - 1)]);
+        if (!(d > 0.0))
+            return fail("two consecutive points coincide");
+        t[size_t(k)] = t[size_t(k - 1)] + d;
+    }
+    const double total = t.back();
+    for (double& x : t)
+        x /= total;
+    t.front() = 0.0;
+    t.back() = 1.0;
+    // Knots by averaging (Eq. 9.8).
+    const int p = std::clamp(maxDegree, 1, std::min(n - 1, kMaxDegree));
+    std::vector<double> knots(size_t(p + 1), 0.0);
+    for (int j = 1; j <= n - 1 - p; ++j) {
+        double sum = 0.0;
+        for (int i = j; i < j + p; ++i)
+            sum += t[size_t(i)];
+        knots.push_back(sum / double(p));
+    }
+    knots.insert(knots.end(), size_t(p + 1), 1.0);
+    // A9.1: the n x n system N_i(t_k) P_i = Q_k.
+    std::vector<double> a(size_t(n) * size_t(n), 0.0);
+    double basis[kMaxDegree + 1];
+    for (int k = 0; k < n; ++k) {
+        const int span = findSpan(p, knots, t[size_t(k)]);
+        basisFunctions(span, t[size_t(k)], p, knots, basis);
+        for (int j = 0; j <= p; ++j)
+            a[size_t(k) * size_t(n) + size_t(span - p + j)] = basis[j];
+    }
+    std::vector<glm::dvec4> b(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k)
+        b[size_t(k)] = glm::dvec4(q[size_t(k)], 1.0);
+    if (!solve(a, b, n))
+        return fail("the interpolation is singular");
+    NurbsCurve3 c;
+    c.degree = p;
+    c.knots = std::move(knots);
+    for (const glm::dvec4& x : b)
+        c.points.emplace_back(x);
+    c.weights.assign(size_t(n), 1.0);
+    if (parameters)
+        *parameters = t;
+    return c;
+}
+
+NurbsCurve3 controlPointCurve3(const std::vector<glm::dvec3>& points, int maxDegree) {
+    const int n = int(points.size());
+    if (n < 2)
+        return {};
+    NurbsCurve3 c;
+    c.degree = std::clamp(maxDegree, 1, std::min(n - 1, kMaxDegree));
+    c.knots = clampedUniformKnots(c.degree, n);
+    c.points = points;
+    c.weights.assign(size_t(n), 1.0);
+    return c;
+}
+
 NurbsCurve3 surfaceIsoCurve(const NurbsSurface& s, bool alongU, double parameter) {
     // C(t) = sum_i N_i(t) [ sum_j N_j(t0) Pw_ij ]: the fixed direction's basis functions at t0
     // combine each row of the homogeneous net into one control point of the iso-curve.

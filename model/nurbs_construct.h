@@ -65,6 +65,18 @@ NurbsSurface makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV = 3,
                       std::string* error = nullptr,
                       std::vector<double>* sectionParameters = nullptr);
 
+/// Global curve interpolation (The NURBS Book A9.1): the non-rational curve of degree
+/// min(maxDegree, n - 1) through the n >= 2 points, parameters by chord length (Eq. 9.5) on
+/// [0, 1], knots by averaging (Eq. 9.8), so C(t_k) = Q_k. Returns an empty curve (no points)
+/// and sets *error when there are fewer than two points, a point is not finite or two
+/// consecutive points coincide. *parameters (if given) receives the t_k.
+NurbsCurve3 interpolateCurve3(const std::vector<glm::dvec3>& points, int maxDegree = 3,
+                              std::string* error = nullptr,
+                              std::vector<double>* parameters = nullptr);
+/// The non-rational clamped uniform B-spline of degree min(maxDegree, n - 1) with the n >= 2
+/// points as its control polygon (empty for fewer points).
+NurbsCurve3 controlPointCurve3(const std::vector<glm::dvec3>& points, int maxDegree = 3);
+
 /// The iso-curve S(u, v0) (alongU true: the curve runs in u at fixed v = v0) or S(u0, v)
 /// (alongU false, at u = v0), exact: knot insertion up to full multiplicity at the parameter
 /// makes one row of the net the curve's control polygon (A5.3). The parameter is clamped to

@@ -78,6 +78,9 @@ struct Surface {
     int partitionsU = 10;
     int partitionsV = 10;
     Material material;
+    /// Hidden by the user (View > Hide): not drawn and not pickable, still part of the
+    /// document (saved, exported, counted). An edit like any other: undoable, marks modified.
+    bool hidden = false;
     bool operator==(const Surface&) const = default;
 };
 

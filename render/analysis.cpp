@@ -181,6 +181,8 @@ ValueRange autoRange(const Scene& scene, AnalysisMode mode, int samples, double 
     std::vector<double> values;
     values.reserve(scene.surfaces.size() * size_t(samples) * size_t(samples));
     for (const Surface& s : scene.surfaces) {
+        if (s.hidden) // the range follows what is drawn (Isolate shows one surface's range)
+            continue;
         const Interval du = surfaceDomainU(s.geometry), dv = surfaceDomainV(s.geometry);
         for (int j = 0; j < samples; ++j)
             for (int i = 0; i < samples; ++i) {

@@ -62,7 +62,7 @@ struct FrameReport {
     UploadStats uploads; ///< data sent to the GPU by this frame
     TrimMaskStats masks; ///< trim mask work of this frame (masks.redraws: mask rebuilds)
     int drawCalls = 0;   ///< glDraw* calls issued by this frame
-    int surfaces = 0;    ///< surfaces drawn
+    int surfaces = 0;    ///< surfaces drawn (hidden ones are not)
     GpuBytes gpuBytes;   ///< resident after this frame
     /// What the frame drew differently from the document: trim loops repaired or ignored
     /// (each prefixed with its surface id) and surfaces left out. The current state, not only

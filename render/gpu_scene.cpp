@@ -75,6 +75,15 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     m_order.reserve(scene.surfaces.size());
     UploadStats frame;
     for (const Surface& s : scene.surfaces) {
+        // The draw list: a hidden surface is left out of the frame (every pass and the pick
+        // query draw records() only) but keeps its record, so showing it again uploads only
+        // what changed meanwhile. Its trim mask layer is given back: the mask pass reassigns
+        // layers among the records it sees, so a kept layer could go to another surface.
+        if (s.hidden) {
+            if (const auto it = m_entries.find(s.id); it != m_entries.end())
+                m_masks.freeLayer(it->second.record.mask);
+            continue;
+        }
         Entry& e = m_entries[s.id];
         SurfaceRecord& r = e.record;
         r.id = s.id;

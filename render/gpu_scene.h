@@ -77,7 +77,8 @@ public:
 
     /// Brings the records up to date for one frame of `doc` with `options` seen by `camera`:
     /// drops the records of removed surfaces (and everything when `doc` is not the document
-    /// of the last sync), then per surface compares its revisions once and rebuilds the
+    /// of the last sync), skips hidden surfaces (their records are kept as they are), then per
+    /// visible surface compares its revisions once and rebuilds the
     /// stale parts the frame needs: the exact data always (SurfaceGpu rules: a moved point is
     /// a sub-image upload), the tessellated mesh in tessellated mode, the control net when
     /// shown, the trim mask when trims are on. Adds to `report` its uploads, mask work and
@@ -86,7 +87,8 @@ public:
     bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
               FrameReport& report, QString* error);
 
-    /// The records of the last sync in the document's surface order.
+    /// The records of the last sync in the document's surface order: the frame's draw list.
+    /// Hidden surfaces (Surface::hidden) are not in it, so no pass draws or picks them.
     const std::vector<SurfaceRecord*>& records() const { return m_order; }
     const SurfaceRecord* find(SurfaceId id) const;
     /// The exact-mode data of a surface, or nullptr (unknown, or too large to draw).

@@ -263,7 +263,7 @@ ValueRange Renderer::Impl::resolveAnalysisRange(const Document& doc,
     std::uint64_t newest = 0;
     for (const Surface& s : doc.scene().surfaces) {
         const Revisions r = doc.revisions(s.id);
-        newest = std::max({newest, r.points, r.knots});
+        newest = std::max({newest, r.points, r.knots, r.display}); // display: hidden
     }
     const RangeKey key{&doc, analysis.mode, doc.scene().surfaces.size(), newest};
     const bool held =

@@ -33,16 +33,17 @@ public:
     /// texture size (the frame is drawn without it), or when trim masks exceed the GPU's limits
     /// (those surfaces are drawn untrimmed). Trimmed surfaces are cut by their masks unless
     /// options.trims is false. Surface ids and revisions are per document: drawing another
-    /// Document than last time drops every cached upload first. Leaves the scissor test off.
+    /// Document than last time drops every cached upload first. Hidden surfaces
+    /// (Surface::hidden) are not drawn. Leaves the scissor test off.
     FrameReport render(const Document& doc, const Camera& camera, const RenderTarget& target,
                        const RenderOptions& options);
 
     /// The surface visible at `pixel` (x right, y down, in pixels of a `viewport`-sized frame
     /// drawn with `camera` and `options`), or nullopt for background, a trimmed-away spot or a
-    /// pixel outside the viewport. Draws the exact pass with AOVs into a private framebuffer,
-    /// scissored to that one pixel, and reads it back; the masks and uploads it needs are the
-    /// frame's own, so a pick after a frame uploads nothing. Overlays are ignored. Needs the
-    /// renderer's context current; leaves the framebuffer binding at 0.
+    /// pixel outside the viewport; hidden surfaces are never hit. Draws the exact pass with AOVs
+    /// into a private framebuffer, scissored to that one pixel, and reads it back; the masks and
+    /// uploads it needs are the frame's own, so a pick after a frame uploads nothing. Overlays are
+    /// ignored. Needs the renderer's context current; leaves the framebuffer binding at 0.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QSize viewport,
                                 QPointF pixel, const RenderOptions& options = {});
 

@@ -339,6 +339,8 @@ void TestCli::usageErrorsExitTwo_data() {
         QStringLiteral("eval"),      sphere,
         QStringLiteral("--surface"), QStringLiteral("1"),
         QStringLiteral("--uv"),      QStringLiteral("nan,0")};
+    QTest::newRow("editor unknown shading")
+        << QStringList{QStringLiteral("--shading"), QStringLiteral("nope"), sphere};
     QTest::newRow("eval uv missing value")
         << QStringList{QStringLiteral("eval"), sphere, QStringLiteral("--surface"),
                        QStringLiteral("1"), QStringLiteral("--uv")};

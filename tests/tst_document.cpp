@@ -390,6 +390,20 @@ void TestDocument::setPartitionsAndMaterial() {
     QVERIFY(!f.doc.setMaterial(SurfaceId{1}, bad));
     QVERIFY(log.entries.isEmpty());
     QCOMPARE(f.doc.surface(SurfaceId{1})->material, m);
+
+    // Hidden: a display change; setting the same value again changes and emits nothing.
+    const Revisions r2 = f.doc.revisions(SurfaceId{1});
+    QVERIFY(f.doc.setHidden(SurfaceId{1}, true));
+    QVERIFY(f.doc.surface(SurfaceId{1})->hidden);
+    QCOMPARE(log.take(), QStringList({"changed 1 Display"}));
+    QVERIFY(f.doc.revisions(SurfaceId{1}).display > r2.display);
+    QCOMPARE(f.doc.revisions(SurfaceId{1}).points, r2.points);
+    QVERIFY(f.doc.setHidden(SurfaceId{1}, true));
+    QVERIFY(log.entries.isEmpty());
+    QVERIFY(!f.doc.setHidden(SurfaceId{5}, false));
+    QVERIFY(f.doc.setHidden(SurfaceId{1}, false));
+    QVERIFY(!f.doc.surface(SurfaceId{1})->hidden);
+    QCOMPARE(log.take(), QStringList({"changed 1 Display"}));
 }
 
 void TestDocument::trimLoops() {

@@ -89,6 +89,7 @@ Scene richScene() {
     b.geometry.weights.assign(16, 1.0);
     b.partitionsU = 30;
     b.partitionsV = 3;
+    b.hidden = true;
     scene.surfaces = {a, b};
 
     Light point;
@@ -155,6 +156,7 @@ void TestKnotFile::roundTripEveryField() {
     QCOMPARE(back->surfaces[0].trims.size(), size_t(2));
     QCOMPARE(back->lights.size(), size_t(3));
     QVERIFY(back->camera.authored);
+    QVERIFY(!back->surfaces[0].hidden && back->surfaces[1].hidden);
     QVERIFY(*back == scene);
     // Writing the read scene again gives the same bytes.
     QCOMPARE(sceneToJson(*back), sceneToJson(scene));

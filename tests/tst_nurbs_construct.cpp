@@ -1,5 +1,5 @@
-// Kernel construction tests: patch, cone, revolution, extrusion, loft, iso-curves and knot
-// removal, each stated as a property of the surface it builds.
+// Kernel construction tests: patch, cone, revolution, extrusion, loft, iso-curves, knot
+// removal and curve interpolation (A9.1), each stated as a property of the surface it builds.
 #include "kernel_test_util.h"
 #include "model/nurbs_construct.h"
 
@@ -233,6 +233,51 @@ private Q_SLOTS:
         cubic = curve2RemovePoint(cubic, 1);
         QCOMPARE(cubic.degree, 2);
         QVERIFY(curveValidationError(cubic).empty());
+    }
+
+    void interpolationPassesThroughThePoints() {
+        // A9.1 with chord-length parameters and averaged knots: C(t_k) = Q_k for random points,
+        // 2 to 12 of them, degree 1 to 3 (lowered to n - 1 for few points).
+        std::mt19937 rng(913);
+        std::uniform_real_distribution<double> coord(-3.0, 3.0);
+        for (int n = 2; n <= 12; ++n)
+            for (int degree = 1; degree <= 3; ++degree) {
+                std::vector<glm::dvec3> q;
+                for (int k = 0; k < n; ++k)
+                    q.emplace_back(coord(rng), coord(rng), coord(rng));
+                std::string error;
+                std::vector<double> t;
+                const NurbsCurve3 c = interpolateCurve3(q, degree, &error, &t);
+                QVERIFY2(curve3ValidationError(c).empty(), error.c_str());
+                QCOMPARE(c.degree, std::min(degree, n - 1));
+                QCOMPARE(c.points.size(), size_t(n));
+                QCOMPARE(t.size(), size_t(n));
+                QCOMPARE(t.front(), 0.0);
+                QCOMPARE(t.back(), 1.0);
+                for (int k = 0; k < n; ++k)
+                    QVERIFY2(
+                        glm::length(curve3Point(c, t[size_t(k)]) - q[size_t(k)]) < 1e-12,
+                        qPrintable(
+                            QStringLiteral("n %1 degree %2 point %3").arg(n).arg(degree).arg(k)));
+            }
+        // Collinear evenly spaced points give the straight line through them.
+        const NurbsCurve3 line = interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
+        QVERIFY(glm::length(curve3Point(line, 0.5) - glm::dvec3(1.5, 0, 0)) < 1e-12);
+        // Refused: too few points, a repeated point, a non-finite point.
+        std::string error;
+        QVERIFY(interpolateCurve3({{1, 2, 3}}, 3, &error).points.empty());
+        QVERIFY(!error.empty());
+        QVERIFY(interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}}, 3, &error).points.empty());
+        QVERIFY(QString::fromStdString(error).contains(QStringLiteral("coincide")));
+        QVERIFY(interpolateCurve3({{0, 0, 0}, {std::nan(""), 0, 0}}, 3, &error).points.empty());
+        // The control-point curve: clamped uniform, its ends on the first and last points.
+        const NurbsCurve3 cp =
+            controlPointCurve3({{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {3, 1, 0}, {4, 0, 0}});
+        QVERIFY(curve3ValidationError(cp).empty());
+        QCOMPARE(cp.degree, 3);
+        QCOMPARE(curve3Point(cp, 0.0), glm::dvec3(0, 0, 0));
+        QCOMPARE(curve3Point(cp, 1.0), glm::dvec3(4, 0, 0));
+        QCOMPARE(controlPointCurve3({{0, 0, 0}, {1, 0, 0}}).degree, 1);
     }
 };
 

@@ -1,9 +1,10 @@
 // GL test: the renderer's public interface. The pick query against the AOV of a full frame and
 // the kernel; the FrameReport's uploads, draw calls and GPU bytes, which go back to the empty
-// document's when every surface is removed.
+// document's when every surface is removed; hidden surfaces left out of frames and picks.
 #include "render_test_util.h"
 
 #include <QGuiApplication>
+#include <set>
 
 using namespace kw;
 
@@ -154,6 +155,58 @@ private Q_SLOTS:
         const FrameReport tess = frame(doc, options);
         QCOMPARE(tess.uploads.meshBuilds, n);
         QVERIFY(tess.gpuBytes.tessellatedMeshes > 0);
+    }
+
+    void hiddenSurfacesAreNeitherDrawnNorPicked() {
+        // teapot: every pixel the AOV gives to a hidden surface shows the background (or a
+        // visible surface that was behind it), pick never returns a hidden surface, and showing
+        // them again uploads nothing: their records were kept.
+        QString error;
+        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("teapot"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        const AovBuffer all = m_renderer->aov();
+        const FrameReport shown = m_renderer->lastReport();
+        std::set<std::uint32_t> hidden;
+        for (size_t k = 0; k < doc.scene().surfaces.size(); k += 2)
+            hidden.insert(doc.scene().surfaces[k].id.value);
+        for (std::uint32_t id : hidden)
+            QVERIFY(doc.setHidden(SurfaceId{id}, true));
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        const AovBuffer some = m_renderer->aov();
+        const FrameReport hiddenReport = m_renderer->lastReport();
+        QCOMPARE(hiddenReport.surfaces, shown.surfaces - int(hidden.size()));
+        QCOMPARE(hiddenReport.uploads, UploadStats{});
+        int uncovered = 0, picked = 0;
+        for (int y = 0; y < some.height; ++y)
+            for (int x = 0; x < some.width; ++x) {
+                const float id = some.pixel(x, y)[0];
+                QVERIFY(id < 0.0f || !hidden.count(std::uint32_t(std::lround(id))));
+                const float before = all.pixel(x, y)[0];
+                if (before >= 0.0f && hidden.count(std::uint32_t(std::lround(before))) && id < 0.0f)
+                    ++uncovered;
+                if (x % 5 == 2 && y % 5 == 2 && before >= 0.0f) {
+                    const std::optional<PickHit> h =
+                        m_renderer->pick(doc, camera, QPointF(x + 0.5, y + 0.5));
+                    QVERIFY(!h || !hidden.count(h->surface.value));
+                    QCOMPARE(bool(h), id >= 0.0f);
+                    picked += h ? 1 : 0;
+                }
+            }
+        QVERIFY(uncovered > 100);
+        QVERIFY(picked > 50);
+        for (std::uint32_t id : hidden)
+            QVERIFY(doc.setHidden(SurfaceId{id}, false));
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        QCOMPARE(m_renderer->lastReport().uploads, UploadStats{});
+        QCOMPARE(m_renderer->lastReport().surfaces, shown.surfaces);
+        const AovBuffer again = m_renderer->aov();
+        for (int y = 0; y < again.height; ++y)
+            for (int x = 0; x < again.width; ++x)
+                QCOMPARE(again.pixel(x, y)[0], all.pixel(x, y)[0]);
     }
 
     void removingEverySurfaceFreesItsGpuData() {

@@ -114,6 +114,8 @@ def main():
                                     "up": [0.0, 0.0, 1.0], "fovYDegrees": 200.0}))
     case("integer_expected.knot", "$.surfaces[0].countU", "expected an integer, found 4.5",
          lambda s: surf(s).update(countU=4.5))
+    case("hidden_not_bool.knot", "$.surfaces[0].hidden", "expected true or false, found the string",
+         lambda s: surf(s).update(hidden="yes"))
 
     os.makedirs(OUT, exist_ok=True)
     for old in os.listdir(OUT):

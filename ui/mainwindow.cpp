@@ -10,6 +10,7 @@
 #include "ui/propertypanel.h"
 #include "ui/uvpanel.h"
 #include "ui/viewport.h"
+#include "ui/visibilitytools.h"
 
 #include <QActionGroup>
 #include <QCheckBox>
@@ -224,6 +225,12 @@ void MainWindow::buildMenus() {
     m_desktop->addViewEntries(findChild<QMenu*>(QStringLiteral("menuView")));
     m_desktop->addHelpMenu(menuBar());
     m_desktop->applyPreferences();
+    auto* visibility = new VisibilityTools(this, m_doc, m_model, m_selection, m_stack);
+    QMenu* view = findChild<QMenu*>(QStringLiteral("menuView"));
+    view->addSeparator();
+    visibility->install(view, m_tree);
+    connect(visibility, &VisibilityTools::message, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 5000); });
 }
 
 void MainWindow::buildFileMenu() {

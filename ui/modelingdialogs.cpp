@@ -92,11 +92,18 @@ ModelingTools::Prompts ModelingTools::Prompts::standard() {
                         QObject::tr("Iso-curve u = const"), QObject::tr("Iso-curve v = const")});
         edge->setCurrentIndex(int(init.curve.edge));
         QDoubleSpinBox* fraction = number(init.curve.fraction, 0.0, 1.0, 3);
-        form->addRow(kind == CurveOperationKind::Loft
-                         ? QObject::tr("Curve of each selected surface")
-                         : QObject::tr("Curve of the selected surface"),
-                     edge);
-        form->addRow(QObject::tr("Iso-curve at (0..1 of the domain)"), fraction);
+        if (init.drawnCurves) { // drawn curves need no choice of surface curve
+            for (QWidget* w : {static_cast<QWidget*>(edge), static_cast<QWidget*>(fraction)}) {
+                w->setParent(&d);
+                w->hide();
+            }
+        } else {
+            form->addRow(kind == CurveOperationKind::Loft
+                             ? QObject::tr("Curve of each selected surface")
+                             : QObject::tr("Curve of the selected surface"),
+                         edge);
+            form->addRow(QObject::tr("Iso-curve at (0..1 of the domain)"), fraction);
+        }
         VectorRow point(init.point), vector(init.vector);
         if (kind == CurveOperationKind::Revolve) {
             form->addRow(QObject::tr("Axis point"), point.widget);

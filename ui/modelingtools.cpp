@@ -3,10 +3,12 @@
 
 #include "model/nurbs_construct.h"
 #include "model/nurbs_shapes.h"
+#include "ui/curvetool.h"
 #include "ui/edit/modelcommands.h"
 #include "ui/viewport.h"
 
 #include <QAction>
+#include <QActionGroup>
 #include <QMenu>
 #include <QMenuBar>
 #include <QToolBar>
@@ -18,7 +20,10 @@ namespace kw {
 ModelingTools::ModelingTools(QWidget* window, Document* document, SceneModel* model,
                              Selection* selection, QUndoStack* stack, Viewport* viewport)
     : QObject(window), m_window(window), m_doc(document), m_model(model), m_selection(selection),
-      m_stack(stack), m_viewport(viewport), m_prompts(Prompts::standard()) {}
+      m_stack(stack), m_viewport(viewport), m_prompts(Prompts::standard()),
+      m_curveTool(new CurveTool(viewport, this)) {
+    connect(m_curveTool, &CurveTool::message, this, &ModelingTools::message);
+}
 
 double ModelingTools::viewScale() const {
     const Camera& c = m_viewport->cameraController().camera();
@@ -135,9 +140,37 @@ SurfaceId ModelingTools::createFromCurves(CurveOperationKind kind, const CurveOp
     for (SurfaceId id : ids)
         if (const Surface* s = m_doc->surface(id))
             curves.push_back(surfaceCurve(s->geometry, op.curve));
+    return createFromCurveList(kind, op, curves);
+}
+
+void ModelingTools::drawCurvesFor(CurveOperationKind kind) {
+    static const char* const purposes[3] = {"Curve to revolve", "Curve to extrude",
+                                            "Curves to loft"};
+    disconnect(m_curveTool, &CurveTool::finished, this, nullptr);
+    connect(m_curveTool, &CurveTool::finished, this,
+            [this, kind](const std::vector<NurbsCurve3>& curves) {
+                CurveOperation initial;
+                initial.drawnCurves = true;
+                initial.point = m_viewport->cameraController().camera().target;
+                // Extrude along the view direction by default: the curve lies across it.
+                const Camera& c = m_viewport->cameraController().camera();
+                const glm::dvec3 forward = glm::normalize(c.target - c.eye);
+                initial.vector =
+                    kind == CurveOperationKind::Extrude ? -0.5 * viewScale() * forward : c.up;
+                if (auto op = m_prompts.curveOperation(m_window, kind, initial)) {
+                    op->drawnCurves = true;
+                    createFromCurveList(kind, *op, curves);
+                }
+            });
+    m_curveTool->start(kind == CurveOperationKind::Loft ? 0 : 1, tr(purposes[int(kind)]));
+}
+
+SurfaceId ModelingTools::createFromCurveList(CurveOperationKind kind, const CurveOperation& op,
+                                             const std::vector<NurbsCurve3>& curves) {
     const size_t needed = kind == CurveOperationKind::Loft ? 2 : 1;
     if (curves.size() < needed) {
-        Q_EMIT message(kind == CurveOperationKind::Loft
+        Q_EMIT message(op.drawnCurves ? tr("Draw the curves first.")
+                       : kind == CurveOperationKind::Loft
                            ? tr("Select two or more surfaces whose curves to loft through.")
                            : tr("Select a surface whose curve to use."));
         return {};
@@ -336,6 +369,28 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
     }
     opActions.front()->setStatusTip(tr("Revolve a boundary or iso-curve of the selected surface "
                                        "about an axis"));
+    create->addSeparator();
+    const struct {
+        const char* name;
+        QString text;
+        CurveOperationKind kind;
+    } draws[] = {{"actionDrawRevolve", tr("Draw Curve to Re&volve…"), CurveOperationKind::Revolve},
+                 {"actionDrawExtrude", tr("Draw Curve to Extr&ude…"), CurveOperationKind::Extrude},
+                 {"actionDrawLoft", tr("Draw Curves to Lo&ft…"), CurveOperationKind::Loft}};
+    std::vector<QAction*> drawActions;
+    for (const auto& d : draws) {
+        const CurveOperationKind kind = d.kind;
+        drawActions.push_back(
+            make(create, d.name, d.text, QKeySequence(), [this, kind] { drawCurvesFor(kind); }));
+        drawActions.back()->setStatusTip(tr("Click points in the view plane, Enter to finish"));
+    }
+    QAction* interpolate = make(create, "actionCurveInterpolates",
+                                tr("Drawn Curves &Interpolate the Points"), QKeySequence(), [] {});
+    interpolate->setCheckable(true);
+    interpolate->setChecked(m_curveTool->interpolating());
+    interpolate->setStatusTip(tr("On: the curve passes through the clicked points (A9.1). Off: "
+                                 "the points are its control polygon."));
+    connect(interpolate, &QAction::toggled, m_curveTool, &CurveTool::setInterpolating);
 
     QMenu* modify = bar->addMenu(tr("&Modify"));
     make(modify, "actionTransform", tr("&Move, Rotate, Scale…"), QKeySequence(Qt::CTRL | Qt::Key_T),
@@ -345,6 +400,26 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
          });
     make(modify, "actionDuplicate", tr("D&uplicate"), QKeySequence(Qt::CTRL | Qt::Key_D),
          [this] { duplicateSelected(); });
+    modify->addSeparator();
+    // What Ctrl + drag in the view does to the selected surfaces (X / Y / Z held lock an axis).
+    auto* dragModes = new QActionGroup(this);
+    const struct {
+        const char* name;
+        QString text;
+        Qt::Key key;
+        Viewport::SurfaceDrag mode;
+    } modes[] = {
+        {"actionDragMove", tr("Ctrl+Drag &Moves"), Qt::Key_G, Viewport::SurfaceDrag::Move},
+        {"actionDragRotate", tr("Ctrl+Drag &Rotates"), Qt::Key_R, Viewport::SurfaceDrag::Rotate},
+        {"actionDragScale", tr("Ctrl+Drag &Scales"), Qt::Key_S, Viewport::SurfaceDrag::Scale}};
+    for (const auto& m : modes) {
+        const Viewport::SurfaceDrag mode = m.mode;
+        QAction* a = make(modify, m.name, m.text, QKeySequence(m.key),
+                          [this, mode] { m_viewport->setSurfaceDrag(mode); });
+        a->setCheckable(true);
+        a->setChecked(mode == m_viewport->surfaceDrag());
+        dragModes->addAction(a);
+    }
     modify->addSeparator();
     make(modify, "actionRemoveKnots", tr("Remove &Knots…"), QKeySequence(), [this] {
         const Surface* s = m_doc->surface(m_selection->currentSurface());
@@ -363,6 +438,9 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
         toolbar->addAction(a);
     toolbar->addSeparator();
     for (QAction* a : opActions)
+        toolbar->addAction(a);
+    toolbar->addSeparator();
+    for (QAction* a : drawActions)
         toolbar->addAction(a);
 }
 

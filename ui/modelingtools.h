@@ -1,6 +1,7 @@
 // ModelingTools: the editor's Create and Modify menus and toolbar — primitives, patches,
-// revolve / extrude / loft from surface curves, move / rotate / scale, duplicate, delete and
-// knot removal — each one undo step on the window's stack.
+// revolve / extrude / loft from surface curves or drawn curves (CurveTool), move / rotate /
+// scale (dialog and Ctrl + drag modes), duplicate, delete and knot removal — each one undo
+// step on the window's stack.
 #pragma once
 
 #include "model/nurbs_construct.h"
@@ -19,6 +20,7 @@ class QWidget;
 
 namespace kw {
 
+class CurveTool;
 class Viewport;
 
 class ModelingTools : public QObject {
@@ -47,6 +49,8 @@ public:
         CurveSpec curve;
         glm::dvec3 point{0.0};
         glm::dvec3 vector{0.0, 0.0, 1.0};
+        /// The curves come from the curve tool, not from selected surfaces (`curve` unused).
+        bool drawnCurves = false;
     };
     enum class CurveOperationKind { Revolve, Extrude, Loft };
 
@@ -85,6 +89,13 @@ public:
     SurfaceId createPrimitive(Primitive kind);
     SurfaceId createPatch(const PatchParams& params);
     SurfaceId createFromCurves(CurveOperationKind kind, const CurveOperation& op);
+    /// The same from given curves (the curve tool's).
+    SurfaceId createFromCurveList(CurveOperationKind kind, const CurveOperation& op,
+                                  const std::vector<NurbsCurve3>& curves);
+    /// Create ▸ Draw Curve to Revolve / Extrude / Loft: starts the curve tool; when it
+    /// finishes, the operation's dialog is asked and the surface made (one undo step).
+    void drawCurvesFor(CurveOperationKind kind);
+    CurveTool* curveTool() const { return m_curveTool; }
     /// Applies to the selected surfaces (one undo step); false with message() when refused.
     bool transformSelected(const TransformParams& params);
     bool duplicateSelected();
@@ -113,6 +124,7 @@ private:
     QUndoStack* m_stack;
     Viewport* m_viewport;
     Prompts m_prompts;
+    CurveTool* m_curveTool = nullptr;
 };
 
 } // namespace kw

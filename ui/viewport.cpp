@@ -121,6 +121,11 @@ void Viewport::setControlNet(bool on) {
     update();
 }
 
+void Viewport::setTool(ViewTool* tool) {
+    m_tool = tool;
+    update();
+}
+
 void Viewport::setControlNetForAll(bool on) {
     m_netForAll = on;
     update();
@@ -154,12 +159,18 @@ void Viewport::setTrimMaskCap(int texels) {
 std::vector<SurfaceId> Viewport::netSurfaces() const {
     if (!m_options.controlNet)
         return {};
-    if (!m_netForAll)
-        return m_selection->selectedSurfaces();
-    std::vector<SurfaceId> all;
+    // Hidden surfaces show no net and no point of theirs can be picked.
+    std::vector<SurfaceId> shown;
+    if (!m_netForAll) {
+        for (SurfaceId id : m_selection->selectedSurfaces())
+            if (const Surface* s = m_doc->surface(id); s && !s->hidden)
+                shown.push_back(id);
+        return shown;
+    }
     for (const Surface& s : m_doc->scene().surfaces)
-        all.push_back(s.id);
-    return all;
+        if (!s.hidden)
+            shown.push_back(s.id);
+    return shown;
 }
 
 // ---- GL
@@ -243,46 +254,6 @@ std::optional<PickHit> Viewport::pickSurface(QPointF position) {
     return hit;
 }
 
-void Viewport::drawSelection() {
-    const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
-    // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
-    QPainter p(this);
-    p.setRenderHint(QPainter::Antialiasing);
-    const ViewProjection view = viewProjection();
-    drawOverlays(p, view);
-    p.setPen(QPen(QColor(255, 80, 40), 2.0));
-    p.setBrush(Qt::NoBrush);
-    for (const ControlPointRef& r : refs) {
-        const Surface* s = m_doc->surface(r.surface);
-        if (!s)
-            continue;
-        if (const auto px = view.project(s->geometry.points[size_t(s->geometry.index(r.i, r.j))]))
-            p.drawRect(QRectF(*px - QPointF(5, 5), QSizeF(10, 10)));
-    }
-    if (m_gesture == Gesture::DragWeight) {
-        if (const Surface* s = m_doc->surface(m_weightRef.surface))
-            p.drawText(
-                QPointF(10, height() - 10),
-                QStringLiteral("Weight %1")
-                    .arg(s->geometry
-                             .weights[size_t(s->geometry.index(m_weightRef.i, m_weightRef.j))],
-                         0, 'g', 5));
-    }
-    if (m_axis >= 0 && m_gesture == Gesture::DragPoints) {
-        static const char* const names[3] = {"X", "Y", "Z"};
-        static const QColor colors[3] = {QColor(230, 70, 70), QColor(90, 200, 90),
-                                         QColor(90, 130, 240)};
-        glm::dvec3 dir(0.0);
-        dir[m_axis] = 1.0;
-        const auto a = view.project(m_anchor - dir * 1e3), b = view.project(m_anchor + dir * 1e3);
-        p.setPen(QPen(colors[m_axis], 1.0, Qt::DashLine));
-        if (a && b)
-            p.drawLine(*a, *b);
-        p.drawText(QPointF(10, height() - 10),
-                   QStringLiteral("Constrained to %1").arg(QLatin1String(names[m_axis])));
-    }
-}
-
 // ---- Mouse and keys
 
 void Viewport::mousePressEvent(QMouseEvent* event) {
@@ -299,6 +270,10 @@ void Viewport::mousePressEvent(QMouseEvent* event) {
         m_gesture = Gesture::Orbit;
     } else if (event->button() == Qt::RightButton) {
         m_gesture = Gesture::Pan;
+    } else if (event->button() == Qt::LeftButton && m_tool &&
+               !(mods & (Qt::ControlModifier | Qt::AltModifier)) &&
+               m_tool->mousePress(event, viewProjection())) {
+        update();
     } else if (event->button() == Qt::LeftButton) {
         std::optional<ControlPointRef> hit;
         const std::vector<SurfaceId> nets = netSurfaces();
@@ -394,6 +369,7 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
         break;
     }
     case Gesture::DragPoints:
+        m_snap = event->modifiers() & Qt::ShiftModifier;
         m_moveClock.start();
         m_moveTimed = true;
         dragTo(pixel);
@@ -410,6 +386,10 @@ void Viewport::dragTo(QPointF pixel) {
 }
 
 void Viewport::applyDrag() {
+    if (m_movingSurfaces && m_surfaceDrag != SurfaceDrag::Move) {
+        applyTransformDrag();
+        return;
+    }
     const ViewProjection view = viewProjection();
     glm::dvec3 delta(0.0);
     if (m_axis >= 0) {
@@ -434,6 +414,10 @@ void Viewport::applyDrag() {
 }
 
 void Viewport::finishDrag(bool cancel) {
+    if (m_movingSurfaces && m_surfaceDrag != SurfaceDrag::Move) {
+        finishTransformDrag(cancel);
+        return;
+    }
     m_gesture = Gesture::None;
     std::map<SurfaceId,
              std::tuple<std::vector<int>, std::vector<glm::dvec3>, std::vector<glm::dvec3>>>
@@ -543,6 +527,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
         if (event->button() != Qt::LeftButton)
             return;
         m_lastPixel = pixel;
+        m_snap = event->modifiers() & Qt::ShiftModifier;
         applyDrag();
         finishDrag(false);
         break;
@@ -583,6 +568,11 @@ void Viewport::wheelEvent(QWheelEvent* event) {
 
 void Viewport::keyPressEvent(QKeyEvent* event) {
     const int key = event->key();
+    if (m_tool && m_gesture == Gesture::None && m_tool->keyPress(event)) {
+        update();
+        event->accept();
+        return;
+    }
     if (key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) {
         if (!event->isAutoRepeat()) {
             m_axis = key - Qt::Key_X;

@@ -12,10 +12,25 @@
 #include <QPointer>
 #include <vector>
 
+class QKeyEvent;
+class QMouseEvent;
+class QPainter;
 class QRubberBand;
 class QUndoStack;
 
 namespace kw {
+
+/// A tool that takes the view's plain left clicks and keys first (the curve tool) and draws
+/// over the frame. Viewport::setTool installs one; navigation keeps working under it.
+class ViewTool {
+public:
+    virtual ~ViewTool() = default;
+    /// A left press without Ctrl or Alt; true when the tool used it (no gesture starts).
+    virtual bool mousePress(QMouseEvent* event, const ViewProjection& view) = 0;
+    /// True when the tool used the key.
+    virtual bool keyPress(QKeyEvent* event) = 0;
+    virtual void paint(QPainter& painter, const ViewProjection& view) = 0;
+};
 
 /// Mouse: left click picks the nearest control point within a few pixels (Shift adds or
 /// removes), left drag on a point moves the selected points in the view plane (hold X, Y or Z
@@ -62,6 +77,23 @@ public:
     void setTrimMaskCap(int texels);
     /// The surfaces whose nets are drawn and pickable now.
     std::vector<SurfaceId> netSurfaces() const;
+
+    /// What Ctrl + drag does to the selected surfaces (Modify ▸ Ctrl+Drag Moves / Rotates /
+    /// Scales). Rotation is about the centre of their control-point bounds, about the held
+    /// axis (X, Y, Z) or else the view direction, by the angle the cursor turns about that
+    /// centre (on the plane through it across the axis); scale is about the same centre by the
+    /// ratio of the cursor's distances from it, along the held axis only or uniformly. Shift
+    /// snaps to 15° or to steps of 0.1. The release pushes one TransformSurfaces step, the
+    /// exact affine map applied to the press-time points.
+    enum class SurfaceDrag { Move, Rotate, Scale };
+    void setSurfaceDrag(SurfaceDrag mode) { m_surfaceDrag = mode; }
+    SurfaceDrag surfaceDrag() const { return m_surfaceDrag; }
+    /// The map the running rotate or scale drag applies (identity otherwise), and its angle in
+    /// radians or its factor through `amount`.
+    glm::dmat4 surfaceDragMatrix(double* amount = nullptr) const;
+    /// Installs a tool (nullptr removes it); the tool must outlive its installation.
+    void setTool(ViewTool* tool);
+    ViewTool* tool() const { return m_tool; }
 
     /// Empty when the renderer is ready; else why it is not (shown in the view).
     QString glError() const { return m_glError; }
@@ -130,6 +162,10 @@ private:
     /// Ctrl + drag: every control point of the selected surfaces follows the drag.
     bool pressOnSurfaces(QPointF pixel);
     void finishWeightDrag(bool cancel);
+    /// Rotate and scale drags (viewport_transform.cpp).
+    void applyTransformDrag();
+    void finishTransformDrag(bool cancel);
+    QString surfaceDragText(double amount) const;
     double aspect() const;
 
     Document* m_doc;
@@ -150,6 +186,9 @@ private:
     std::vector<DragPoint> m_drag;
     int m_axis = -1;
     bool m_movingSurfaces = false; ///< the DragPoints gesture moves whole surfaces
+    SurfaceDrag m_surfaceDrag = SurfaceDrag::Move;
+    bool m_snap = false; ///< Shift held during a rotate or scale drag
+    ViewTool* m_tool = nullptr;
     ControlPointRef m_weightRef;   ///< DragWeight: the point and its weight at press time
     double m_weightFrom = 1.0;
     bool m_netForAll = false;

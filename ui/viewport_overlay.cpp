@@ -67,6 +67,55 @@ void drawPolyline3(QPainter& p, const ViewProjection& view, const std::vector<gl
 
 } // namespace
 
+void Viewport::drawSelection() {
+    const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
+    // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
+    QPainter p(this);
+    p.setRenderHint(QPainter::Antialiasing);
+    const ViewProjection view = viewProjection();
+    drawOverlays(p, view);
+    if (m_tool)
+        m_tool->paint(p, view);
+    p.setPen(QPen(QColor(255, 80, 40), 2.0));
+    p.setBrush(Qt::NoBrush);
+    for (const ControlPointRef& r : refs) {
+        const Surface* s = m_doc->surface(r.surface);
+        if (!s)
+            continue;
+        if (const auto px = view.project(s->geometry.points[size_t(s->geometry.index(r.i, r.j))]))
+            p.drawRect(QRectF(*px - QPointF(5, 5), QSizeF(10, 10)));
+    }
+    if (m_gesture == Gesture::DragWeight) {
+        if (const Surface* s = m_doc->surface(m_weightRef.surface))
+            p.drawText(
+                QPointF(10, height() - 10),
+                QStringLiteral("Weight %1")
+                    .arg(s->geometry
+                             .weights[size_t(s->geometry.index(m_weightRef.i, m_weightRef.j))],
+                         0, 'g', 5));
+    }
+    if (m_axis >= 0 && m_gesture == Gesture::DragPoints) {
+        static const char* const names[3] = {"X", "Y", "Z"};
+        static const QColor colors[3] = {QColor(230, 70, 70), QColor(90, 200, 90),
+                                         QColor(90, 130, 240)};
+        glm::dvec3 dir(0.0);
+        dir[m_axis] = 1.0;
+        const auto a = view.project(m_anchor - dir * 1e3), b = view.project(m_anchor + dir * 1e3);
+        p.setPen(QPen(colors[m_axis], 1.0, Qt::DashLine));
+        if (a && b)
+            p.drawLine(*a, *b);
+        p.drawText(QPointF(10, height() - 10),
+                   QStringLiteral("Constrained to %1").arg(QLatin1String(names[m_axis])));
+    }
+    if (m_gesture == Gesture::DragPoints && m_movingSurfaces &&
+        m_surfaceDrag != SurfaceDrag::Move) {
+        double amount = 0.0;
+        surfaceDragMatrix(&amount);
+        p.setPen(Qt::white);
+        p.drawText(QPointF(10, height() - 28), surfaceDragText(amount));
+    }
+}
+
 void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
     if (m_grid) {
         // Ground grid in the z = 0 plane around the target, spacing a power of ten.
@@ -87,7 +136,10 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
         }
     }
     // Selected surfaces: outlined.
-    const std::vector<SurfaceId> selected = m_selection->selectedSurfaces();
+    std::vector<SurfaceId> selected;
+    for (SurfaceId id : m_selection->selectedSurfaces())
+        if (const Surface* s = m_doc->surface(id); s && !s->hidden)
+            selected.push_back(id);
     p.setPen(QPen(QColor(255, 170, 40), 2.0));
     for (SurfaceId id : selected)
         if (const Surface* s = m_doc->surface(id))
@@ -149,7 +201,7 @@ bool Viewport::pressOnSurfaces(QPointF pixel) {
     glm::dvec3 lo(1e300), hi(-1e300);
     for (SurfaceId id : ids) {
         const Surface* s = m_doc->surface(id);
-        if (!s)
+        if (!s || s->hidden) // hidden ones stay where they are
             continue;
         for (int j = 0; j < s->geometry.countV; ++j)
             for (int i = 0; i < s->geometry.countU; ++i) {

@@ -1,4 +1,5 @@
-// Modeling commands: affine placement of surfaces, knot removal and trim loop replacement.
+// Modeling commands: affine placement of surfaces, hiding, knot removal and trim loop
+// replacement.
 #include "ui/edit/modelcommands.h"
 
 #include "model/nurbs_construct.h"
@@ -70,6 +71,43 @@ void TransformSurfaces::redo() {
     apply(true, "redo");
 }
 void TransformSurfaces::undo() {
+    apply(false, "undo");
+}
+
+// ---- SetSurfacesHidden
+
+std::unique_ptr<SetSurfacesHidden>
+SetSurfacesHidden::create(Document* document, const std::vector<std::pair<SurfaceId, bool>>& states,
+                          const QString& text, QString* error) {
+    if (!document)
+        return fail(error, noDocument());
+    std::set<SurfaceId> seen;
+    std::unique_ptr<SetSurfacesHidden> c(new SetSurfacesHidden(document, text));
+    for (const auto& [id, hidden] : states) {
+        const Surface* s = document->surface(id);
+        if (!s)
+            return fail(error, noSurface(document, id));
+        if (!seen.insert(id).second)
+            return fail(error, QStringLiteral("surface %1 listed twice").arg(id.value));
+        if (s->hidden == hidden)
+            continue;
+        c->m_ids.push_back(id);
+        c->m_to.push_back(hidden);
+    }
+    if (c->m_ids.empty())
+        return fail(error, QStringLiteral("nothing to hide or show"));
+    return c;
+}
+
+void SetSurfacesHidden::apply(bool forward, const char* what) {
+    for (size_t k = 0; k < m_ids.size(); ++k)
+        check(document()->setHidden(m_ids[k], forward ? m_to[k] : !m_to[k]), what);
+}
+
+void SetSurfacesHidden::redo() {
+    apply(true, "redo");
+}
+void SetSurfacesHidden::undo() {
     apply(false, "undo");
 }
 

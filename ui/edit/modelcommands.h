@@ -1,5 +1,5 @@
-// Modeling commands (issue 13): place surfaces by an affine map, remove knots within a
-// tolerance, and replace a trim loop's curves (trim point insertion and deletion).
+// Modeling commands (issue 13): place surfaces by an affine map, hide and show surfaces, remove
+// knots within a tolerance, and replace a trim loop's curves (trim point insertion and deletion).
 #pragma once
 
 #include "ui/edit/commands.h"
@@ -26,6 +26,25 @@ private:
     void apply(bool forward, const char* what);
     std::vector<SurfaceId> m_surfaces;
     std::vector<std::vector<glm::dvec3>> m_from, m_to;
+};
+
+class SetSurfacesHidden : public DocumentCommand {
+public:
+    /// Gives each listed surface (unique, existing) its `hidden` value: hide, show, isolate and
+    /// show all are one step each. Surfaces already in that state are left out; rejected when
+    /// none is left. `text` names the step ("Hide 2 surfaces").
+    static std::unique_ptr<SetSurfacesHidden>
+    create(Document* document, const std::vector<std::pair<SurfaceId, bool>>& states,
+           const QString& text, QString* error = nullptr);
+    void redo() override;
+    void undo() override;
+    int changed() const { return int(m_ids.size()); }
+
+private:
+    SetSurfacesHidden(Document* d, const QString& text) : DocumentCommand(d, text) {}
+    void apply(bool forward, const char* what);
+    std::vector<SurfaceId> m_ids;
+    std::vector<bool> m_to; ///< the new state per id (undo restores the other)
 };
 
 class RemoveKnots : public GeometryCommand {

@@ -1,0 +1,168 @@
+// CurveTool: clicked points on a view plane -> interpolating or control-point B-spline curves.
+#include "ui/curvetool.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <cmath>
+
+namespace kw {
+
+CurveTool::CurveTool(Viewport* viewport, QObject* parent) : QObject(parent), m_viewport(viewport) {}
+
+CurveTool::~CurveTool() {
+    if (m_viewport && m_viewport->tool() == this)
+        m_viewport->setTool(nullptr);
+}
+
+void CurveTool::start(int curvesWanted, const QString& purpose) {
+    m_points.clear();
+    m_curves.clear();
+    m_wanted = curvesWanted;
+    m_purpose = purpose;
+    m_active = true;
+    m_viewport->setTool(this);
+    m_viewport->setFocus(Qt::OtherFocusReason);
+    Q_EMIT message(hint());
+}
+
+void CurveTool::stop() {
+    m_active = false;
+    m_points.clear();
+    m_curves.clear();
+    if (m_viewport->tool() == this)
+        m_viewport->setTool(nullptr);
+}
+
+void CurveTool::cancel() {
+    if (!m_active)
+        return;
+    stop();
+    Q_EMIT message(tr("Curve tool cancelled."));
+}
+
+QString CurveTool::hint() const {
+    const QString action = m_wanted == 1 ? tr("Enter finishes the curve")
+                                         : tr("Enter ends each curve, Enter again lofts");
+    return tr("%1: click points in the view plane; %2, Backspace removes the last point, Esc "
+              "cancels.")
+        .arg(m_purpose, action);
+}
+
+NurbsCurve3 CurveTool::curveThrough(const std::vector<glm::dvec3>& points, QString* error) const {
+    if (points.size() < 2) {
+        if (error)
+            *error = tr("a curve needs at least two points");
+        return {};
+    }
+    if (!m_interpolating)
+        return controlPointCurve3(points, 3);
+    std::string why;
+    NurbsCurve3 c = interpolateCurve3(points, 3, &why);
+    if (c.points.empty() && error)
+        *error = QString::fromStdString(why);
+    return c;
+}
+
+bool CurveTool::mousePress(QMouseEvent* event, const ViewProjection& view) {
+    if (!m_active || event->button() != Qt::LeftButton)
+        return false;
+    if (m_points.empty() && m_curves.empty()) {
+        // The plane of this drawing: through the view's target, facing the viewer.
+        m_planePoint = m_viewport->cameraController().camera().target;
+        m_planeNormal = view.forward();
+    }
+    glm::dvec3 origin, direction;
+    view.ray(event->position(), origin, direction);
+    const double den = glm::dot(direction, m_planeNormal);
+    if (std::abs(den) < 1e-6) {
+        Q_EMIT message(tr("The curve's plane is seen edge-on; turn the view back to draw."));
+        return true;
+    }
+    const glm::dvec3 p =
+        origin + direction * (glm::dot(m_planePoint - origin, m_planeNormal) / den);
+    if (!m_points.empty() && glm::length(p - m_points.back()) == 0.0)
+        return true; // a double click: the same point twice would make no curve
+    m_points.push_back(p);
+    Q_EMIT message(tr("%1 point%2. %3")
+                       .arg(m_points.size())
+                       .arg(m_points.size() == 1 ? QString() : QStringLiteral("s"))
+                       .arg(hint()));
+    return true;
+}
+
+bool CurveTool::endCurve() {
+    QString error;
+    NurbsCurve3 c = curveThrough(m_points, &error);
+    if (c.points.empty()) {
+        Q_EMIT message(tr("Cannot end the curve: %1").arg(error));
+        return false;
+    }
+    m_curves.push_back(std::move(c));
+    m_points.clear();
+    return true;
+}
+
+bool CurveTool::keyPress(QKeyEvent* event) {
+    if (!m_active)
+        return false;
+    switch (event->key()) {
+    case Qt::Key_Escape:
+        cancel();
+        return true;
+    case Qt::Key_Backspace:
+        if (!m_points.empty())
+            m_points.pop_back();
+        return true;
+    case Qt::Key_Return:
+    case Qt::Key_Enter: {
+        const bool lofting = m_wanted == 0;
+        const bool hadPoints = !m_points.empty();
+        if (hadPoints && !endCurve())
+            return true;
+        const size_t needed = lofting ? 2 : size_t(m_wanted);
+        // Loft: Enter ends a curve; Enter with no new point lofts.
+        if ((lofting && hadPoints) || m_curves.size() < needed) {
+            Q_EMIT message(
+                m_curves.size() < needed
+                    ? tr("%1 of %2 curves drawn. %3").arg(m_curves.size()).arg(needed).arg(hint())
+                    : tr("%1 curves drawn. %2").arg(m_curves.size()).arg(hint()));
+            return true;
+        }
+        const std::vector<NurbsCurve3> curves = m_curves;
+        stop();
+        Q_EMIT finished(curves);
+        return true;
+    }
+    default:
+        return false;
+    }
+}
+
+void CurveTool::paint(QPainter& p, const ViewProjection& view) {
+    if (!m_active)
+        return;
+    auto drawCurve = [&](const NurbsCurve3& c, const QColor& colour) {
+        if (c.points.empty())
+            return;
+        p.setPen(QPen(colour, 2.0));
+        QPolygonF line;
+        for (int k = 0; k <= 200; ++k)
+            if (const auto px = view.project(curve3Point(c, k / 200.0)))
+                line << *px;
+        p.drawPolyline(line);
+    };
+    for (const NurbsCurve3& c : m_curves)
+        drawCurve(c, QColor(120, 200, 255));
+    if (m_points.size() >= 2)
+        drawCurve(curveThrough(m_points, nullptr), QColor(80, 240, 200));
+    p.setPen(QPen(QColor(80, 240, 200), 1.5));
+    p.setBrush(Qt::NoBrush);
+    for (const glm::dvec3& x : m_points)
+        if (const auto px = view.project(x))
+            p.drawRect(QRectF(*px - QPointF(4, 4), QSizeF(8, 8)));
+    p.setPen(Qt::white);
+    p.drawText(QPointF(10, 20), hint());
+}
+
+} // namespace kw
