@@ -86,6 +86,7 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
                                               "isocurves"));
     }
     a.isocurves = a.isocurves || parser.isSet(o.isocurves);
+    a.principalDirections = parser.isSet(o.directions);
     int nu = 0, nv = 0;
     const QStringList iso = parser.value(o.isoLines).toLower().split(QLatin1Char('x'));
     if (iso.size() > 2 || !parseIntIn(iso[0], 0, 1000, nu) ||
@@ -193,12 +194,15 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                            QStringLiteral("Draft: threshold angle in degrees, 0..90 (default 3)."),
                            QStringLiteral("DEG"), QStringLiteral("3")),
         QCommandLineOption(QStringLiteral("env-map"),
-                           QStringLiteral("Environment: equirectangular image (PNG, JPEG, BMP "
-                                          "or TIFF; default the bundled studio)."),
-                           QStringLiteral("IMAGE"))};
+                           QStringLiteral("Environment: equirectangular image (EXR, HDR, PNG, "
+                                          "JPEG, TIFF...; default the bundled studio)."),
+                           QStringLiteral("IMAGE")),
+        QCommandLineOption(QStringLiteral("principal-directions"),
+                           QStringLiteral("Overlay short marks of the principal curvature "
+                                          "directions (k1 red, k2 blue) on any --shading mode."))};
     parser.addOptions({o.mode, o.partitions, o.lights, o.depth, o.noTrims, o.trimMaskCap, o.shading,
                        o.isocurves, o.isoLines, o.range, o.scale, o.stripes, o.stripeAngle,
-                       o.isophoteBands, o.pull, o.draftAngle, o.envMap});
+                       o.isophoteBands, o.pull, o.draftAngle, o.envMap, o.directions});
     return o;
 }
 
@@ -234,6 +238,7 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
         return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
     options.trims = !parser.isSet(o.noTrims);
+    options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return true;
 }
 

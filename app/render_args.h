@@ -29,7 +29,7 @@ QString shadingName(RenderOptions::Shading shading);
 struct RenderCliOptions {
     QCommandLineOption mode, partitions, lights, depth, noTrims, trimMaskCap;
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
-        isophoteBands, pull, draftAngle, envMap;
+        isophoteBands, pull, draftAngle, envMap, directions;
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions);

@@ -143,7 +143,9 @@ QStringList analysisDefines(const AnalysisOptions& options, bool curvatureAov) {
         d << QStringLiteral("KW_ANALYSIS %1").arg(int(options.mode));
     if (options.isocurves)
         d << QStringLiteral("KW_ISOCURVES");
-    if (needsCurvature(options.mode) || curvatureAov)
+    if (options.principalDirections)
+        d << QStringLiteral("KW_DIRECTIONS");
+    if (needsCurvature(options.mode) || curvatureAov || options.principalDirections)
         d << QStringLiteral("KW_SECOND_ORDER");
     if (curvatureAov)
         d << QStringLiteral("KW_AOV_CURVATURE");

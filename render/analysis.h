@@ -56,8 +56,13 @@ struct AnalysisOptions {
     double draftAngleDegrees = 3.0;          ///< draft: threshold
     glm::ivec2 isoCount{8, 8};               ///< isocurves: lines per direction, i / (n + 1)
     double isoWidthPixels = 1.5;             ///< isocurves: line width
-    /// Environment: an image file read with Qt's readers (equirectangular, z up); empty for the
-    /// bundled default (resources/environment/studio.png, made by tools/make_environment.py).
+    /// Short line marks of the principal directions (k1 dark red, k2 dark blue) on a screen
+    /// grid, over any mode (KW_DIRECTIONS; needs the second derivatives).
+    bool principalDirections = false;
+    double directionSpacingPixels = 24.0; ///< principal directions: grid spacing
+    /// Environment: an image file read through OpenImageIO (equirectangular, z up; EXR, HDR,
+    /// PNG, JPEG, ...); empty for the bundled default (resources/environment/studio.png, made
+    /// by tools/make_environment.py).
     QString environmentMap;
     /// Keep the last automatic range instead of recomputing it (the editor sets it during
     /// drags so the colours do not swim; the range follows again on release).

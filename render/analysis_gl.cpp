@@ -6,6 +6,7 @@
 
 #include <QImage>
 #include <QOpenGLShaderProgram>
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -149,6 +150,13 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
     }
     case AnalysisMode::Phong:
         break;
+    }
+    if (o.principalDirections) {
+        gl->glUniform1f(loc("uDirSpacing"),
+                        float(std::clamp(o.directionSpacingPixels, 6.0, 512.0)));
+        // Half the viewport: NDC differences to pixels.
+        gl->glUniform2f(loc("uDirViewport"), 0.5f * float(camera.viewport.x),
+                        0.5f * float(camera.viewport.y));
     }
     if (o.isocurves) {
         gl->glUniform2f(loc("uIsoCount"), float(std::max(o.isoCount.x, 0)),

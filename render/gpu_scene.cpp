@@ -2,6 +2,7 @@
 // stale parts the frame needs) and the per-record bookkeeping.
 #include "render/gpu_scene.h"
 
+#include "model/visible_bounds.h"
 #include "render/gpu_layout.h"
 
 #include <QElapsedTimer>
@@ -92,21 +93,35 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         UploadStats up;
         std::unique_ptr<SurfaceGpu>& g = r.exact;
         bool fits = true;
+        // The polygon spans the trims' (u, v) box (a small face on a large domain gets its
+        // partitions) or, with polygonOverTrims off, the domain. The box is recomputed only
+        // when the trims or that option changed.
+        const auto boxFor = [&] {
+            return options.polygonOverTrims
+                       ? trimParameterBox(s)
+                       : ParameterBox{surfaceDomainU(geo), surfaceDomainV(geo)};
+        };
         if (!g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
             g->degreeV != geo.degreeV || g->countU != geo.countU || g->countV != geo.countV) {
             if (!g) {
                 g = std::make_unique<SurfaceGpu>();
                 g->id = s.id;
             }
-            fits = uploadSurface(m_pools, *g, s, nu, nv, up);
-        } else if (g->partitionsU != nu || g->partitionsV != nv) {
-            // The polygon is rebuilt from the current points anyway; pick up a point change.
-            if (g->revisions.points != rev.points)
+            fits = uploadSurface(m_pools, *g, s, nu, nv, boxFor(), up);
+        } else {
+            const bool boxStale = g->polygonTrimmed != options.polygonOverTrims ||
+                                  (options.polygonOverTrims && g->revisions.trims != rev.trims);
+            const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
+            if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
+                // The polygon is rebuilt from the current points; pick up a point change.
+                if (g->revisions.points != rev.points)
+                    uploadChangedPoints(m_pools, *g, s, up);
+                fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, up);
+            } else if (g->revisions.points != rev.points) {
                 uploadChangedPoints(m_pools, *g, s, up);
-            fits = rebuildPolygon(m_pools, *g, s, nu, nv, up);
-        } else if (g->revisions.points != rev.points) {
-            uploadChangedPoints(m_pools, *g, s, up);
+            }
         }
+        g->polygonTrimmed = options.polygonOverTrims;
         if (fits) {
             g->revisions = rev;
             if (r.slot < 0) {

@@ -2,7 +2,7 @@
 // (docs/RENDERING.md, ## Analysis). KW_ANALYSIS selects the mode (kw::AnalysisMode values,
 // injected by kw::analysisDefines): 1 Gaussian K, 2 mean H, 3 max |k|, 4 min radius 1/max |k|,
 // 5 zebra, 6 isophotes, 7 environment map, 8 draft angle. KW_ISOCURVES overlays knot lines and
-// iso-parameter lines on any mode. KW_RAMP (an array of KW_RAMP_STOPS colours) is the colour
+// iso-parameter lines on any mode, KW_DIRECTIONS principal-direction marks. KW_RAMP (an array of KW_RAMP_STOPS colours) is the colour
 // scale of kw::colourRamp(), defined once in C++ (render/analysis.h) so the legend matches.
 // Uniforms are set by kw::setAnalysisUniforms.
 
@@ -147,5 +147,58 @@ vec3 overlayIsocurves(vec3 colour, vec2 uv, vec2 knotsU, vec2 knotsV) {
     float kv = lineCover((uv.y - knotsV.x) / spanW.y, gu.y / spanW.y, uIsoWidth);
     colour = mix(colour, uIsoColour, iso);
     return mix(colour, uKnotColour, max(ku, kv));
+}
+#endif
+
+#ifdef KW_DIRECTIONS
+uniform float uDirSpacing; // pixels between the marks' centres
+uniform vec2 uDirViewport; // viewport size in pixels (NDC to pixels)
+
+// Coverage of a mark: a segment of length 0.8 spacing and width 1.5 px through the grid cell's
+// centre along the unit screen direction s, anti-aliased by a one-pixel box filter.
+float markCover(vec2 r, vec2 s) {
+    float along = abs(dot(r, s));
+    float across = abs(dot(r, vec2(-s.y, s.x)));
+    return clamp(1.25 - across, 0.0, 1.0) * clamp(0.4 * uDirSpacing + 0.5 - along, 0.0, 1.0);
+}
+
+// The screen direction (pixels, y up) of the world tangent t at the world point p: the
+// derivative of the perspective division of uViewProjection (an exact_surface.frag uniform).
+vec2 screenDirection(vec3 p, vec3 t) {
+    vec4 c = uViewProjection * vec4(p, 1.0);
+    vec4 ct = uViewProjection * vec4(t, 0.0);
+    return (ct.xy * c.w - c.xy * ct.w) * uDirViewport;
+}
+
+// Principal-direction marks (a cross per grid cell: k1's direction dark red, k2's dark blue).
+// Every fragment of a cell draws the directions of the same point, the cell centre's: its
+// (u, v) extrapolated from the fragment's with the screen derivatives of (u, v), evaluated in
+// the fragment's knot span (the span's polynomial, continued a few pixels past its knots when
+// the centre lies in a neighbouring span), and projected at that point, so each mark is a
+// straight segment along the projection of the centre's direction. No marks at (near)
+// umbilics, where the directions are undefined (k1 - k2 <= 1e-3 max |k|), nor where the
+// centre's point is degenerate.
+vec3 overlayDirections(vec3 colour, vec3 normal, vec2 uv, ivec2 span) {
+    vec2 ux = dFdx(uv), uy = dFdy(uv);
+    vec2 cell = (floor(gl_FragCoord.xy / uDirSpacing) + 0.5) * uDirSpacing;
+    vec2 r = gl_FragCoord.xy - cell;
+    vec2 uvc = clamp(uv - r.x * ux - r.y * uy, uDomain.xz, uDomain.yw);
+    SurfacePartials d = surfacePartials(uvc, span);
+    vec3 n = cross(d.su, d.sv);
+    float ln = length(n);
+    if (!(ln > KW_PARALLEL_REL * length(d.su) * length(d.sv)))
+        return colour;
+    n = dot(n, normal) < 0.0 ? -n / ln : n / ln;
+    vec3 dir1;
+    vec4 k = curvatureFrom(d, n, dir1);
+    float kmax = max(abs(k.z), abs(k.w));
+    if (!(k.z - k.w > 1e-3 * kmax))
+        return colour;
+    vec3 p = d.s + uOrigin;
+    vec2 s1 = screenDirection(p, dir1), s2 = screenDirection(p, cross(n, dir1));
+    float c1 = length(s1) > 0.0 ? markCover(r, normalize(s1)) : 0.0;
+    float c2 = length(s2) > 0.0 ? markCover(r, normalize(s2)) : 0.0;
+    colour = mix(colour, vec3(0.1, 0.2, 0.85), c2);
+    return mix(colour, vec3(0.85, 0.1, 0.1), c1);
 }
 #endif

@@ -3,7 +3,8 @@
 // KW_TRIM (discard where the surface's trim mask says trimmed; only used without the depth
 // pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here),
 // KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
-// iso-parameter lines over the colour), KW_SECOND_ORDER (second derivatives and curvature,
+// iso-parameter lines over the colour), KW_DIRECTIONS (principal-direction marks; needs
+// KW_SECOND_ORDER), KW_SECOND_ORDER (second derivatives and curvature,
 // for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
 // principal direction of k1 at location 5).
 #include "nurbs_surface.glsl"
@@ -21,7 +22,7 @@ flat in int vSurface; // row of the surface table (surface_data.glsl)
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
 
-#if KW_ANALYSIS > 0 || defined(KW_ISOCURVES)
+#if KW_ANALYSIS > 0 || defined(KW_ISOCURVES) || defined(KW_DIRECTIONS)
 #include "analysis.glsl"
 #endif
 
@@ -60,6 +61,9 @@ void main() {
 #endif
 #ifdef KW_ISOCURVES
     colour = overlayIsocurves(colour, uv, spanKnotsU(vSpan), spanKnotsV(vSpan));
+#endif
+#ifdef KW_DIRECTIONS
+    colour = overlayDirections(colour, s.normal, vUv, vSpan);
 #endif
     fragColor = vec4(colour, 1.0);
 #ifdef KW_AOV

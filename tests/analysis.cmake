@@ -7,3 +7,5 @@ kw_add_test(tst_render_environment LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/ts
 # The legend and the Colour Range dialog through the real editor window (label gui).
 kw_add_test(tst_editor_analysis LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_analysis.cpp
             ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)
+kw_add_test(tst_render_directions LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_directions.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)

@@ -64,6 +64,16 @@ AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewpor
         o.isocurves = on;
         m_viewport->setAnalysis(o);
     });
+    QAction* dirs = menu->addAction(tr("Principal &Directions"));
+    dirs->setObjectName(QStringLiteral("actionPrincipalDirections"));
+    dirs->setCheckable(true);
+    dirs->setToolTip(tr("Marks of the principal curvature directions (k1 red, k2 blue)"));
+    bar->addAction(dirs);
+    connect(dirs, &QAction::toggled, this, [this](bool on) {
+        AnalysisOptions o = m_viewport->renderOptions().analysis;
+        o.principalDirections = on;
+        m_viewport->setAnalysis(o);
+    });
     QAction* range = menu->addAction(tr("Colour &Range…"));
     range->setObjectName(QStringLiteral("actionAnalysisRange"));
     bar->addAction(range);
