@@ -238,6 +238,7 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
         return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
     options.trims = !parser.isSet(o.noTrims);
+    options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return true;
 }
 

@@ -102,6 +102,7 @@ public:
         o.partitionsU = o.partitionsV = partitions;
         o.lightCount = lights;
         o.trims = trims;
+        o.polygonOverTrims = trims; // --no-trims draws whole domains
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// Clears the target as the renderer does (colour, AOVs, depth) by drawing an empty

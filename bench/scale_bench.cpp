@@ -184,6 +184,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         return false;
     Frames frames{renderer, config, RenderOptions{}, QString()};
     frames.options.trims = config.trims;
+    frames.options.polygonOverTrims = config.trims;
     const Camera closeUp = closeUpCamera(*unit, 1.0);
 
     for (int faces : config.faces) {

@@ -48,6 +48,9 @@ public:
     int indexOf(SurfaceId id) const;
     /// Zero revisions for an unknown id.
     Revisions revisions(SurfaceId id) const;
+    /// The revisions of scene().surfaces[index] (0 <= index < surface count), without the id
+    /// search: for passes over every surface (the renderer's per-frame sync).
+    Revisions revisionsAt(int index) const { return m_revisions[size_t(index)]; }
     std::uint64_t lightsRevision() const { return m_lightsRevision; }
     std::uint64_t cameraRevision() const { return m_cameraRevision; }
 

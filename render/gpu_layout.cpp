@@ -48,13 +48,16 @@ std::vector<glm::vec4> packSpanTable(const std::vector<double>& U, int p, int co
 }
 
 std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n) {
-    const Interval dom = knotDomain(knots, degree);
-    const double len = dom.last - dom.first;
+    return cellBreaks(knots, n, knotDomain(knots, degree));
+}
+
+std::vector<double> cellBreaks(const std::vector<double>& knots, int n, Interval range) {
+    const double len = range.last - range.first;
     std::vector<double> b;
     for (int c = 0; c <= n; ++c)
-        b.push_back(c == n ? dom.last : dom.first + len * double(c) / double(n));
+        b.push_back(c == n ? range.last : range.first + len * double(c) / double(n));
     for (double k : knots)
-        if (k > dom.first && k < dom.last)
+        if (k > range.first && k < range.last)
             b.push_back(k);
     std::sort(b.begin(), b.end());
     // Keep knots exactly: drop a uniform break that nearly coincides with a kept value.
@@ -69,7 +72,7 @@ std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int
         }
         out.push_back(x);
     }
-    out.back() = dom.last;
+    out.back() = range.last;
     return out;
 }
 
@@ -108,9 +111,13 @@ void setVertex(BasePolygon& poly, const NurbsSurface& s, int gu, int gv) {
 } // namespace
 
 BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
+    return buildBasePolygon(s, ParameterBox{surfaceDomainU(s), surfaceDomainV(s)}, nu, nv);
+}
+
+BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, int nu, int nv) {
     BasePolygon poly;
-    poly.breaksU = cellBreaks(s.knotsU, s.degreeU, std::max(nu, 1));
-    poly.breaksV = cellBreaks(s.knotsV, s.degreeV, std::max(nv, 1));
+    poly.breaksU = cellBreaks(s.knotsU, std::max(nu, 1), box.u);
+    poly.breaksV = cellBreaks(s.knotsV, std::max(nv, 1), box.v);
     poly.spanU = cellSpans(poly.breaksU, s.knotsU, s.degreeU);
     poly.spanV = cellSpans(poly.breaksV, s.knotsV, s.degreeV);
     const int nodesV = int(poly.breaksV.size());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/nurbs.h"
+#include "model/visible_bounds.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -70,9 +71,15 @@ struct BasePolygon {
 /// Breakpoints: n uniform cells of the domain merged with the distinct interior knots.
 /// Uniform breaks closer than 1e-9 of the domain length to a knot are dropped.
 std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n);
+/// The same over `range` (inside the domain): n uniform cells of it merged with the distinct
+/// knots strictly inside it; the ends are range's.
+std::vector<double> cellBreaks(const std::vector<double>& knots, int n, Interval range);
 
 /// Builds the base polygon. Preconditions: valid surface, nu and nv >= 1.
 BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv);
+/// The base polygon over `box` (a rectangle of the domain, e.g. trimParameterBox: a trimmed
+/// face's partitions go where its trims keep the surface, issue 10 item 1).
+BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, int nu, int nv);
 
 /// Re-evaluates the vertices whose (u, v) lie in the support of control points
 /// [i0, i1] x [j0, j1] (the only ones a move of those points can change), and the span scales

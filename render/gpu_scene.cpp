@@ -2,6 +2,7 @@
 // stale parts the frame needs) and the per-record bookkeeping.
 #include "render/gpu_scene.h"
 
+#include "model/visible_bounds.h"
 #include "render/gpu_layout.h"
 
 #include <QElapsedTimer>
@@ -51,15 +52,6 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         release();
         m_document = &doc;
     }
-    // The one place removed surfaces are dropped, with every part they hold.
-    for (auto it = m_entries.begin(); it != m_entries.end();) {
-        if (!doc.surface(it->first)) {
-            drop(it->second);
-            it = m_entries.erase(it);
-        } else {
-            ++it;
-        }
-    }
     const Scene& scene = doc.scene();
     const std::int64_t limit = bufferLimit();
     for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
@@ -73,42 +65,63 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     m_order.clear();
     m_order.reserve(scene.surfaces.size());
     UploadStats frame;
-    for (const Surface& s : scene.surfaces) {
+    ++m_syncs;
+    for (int index = 0; index < int(scene.surfaces.size()); ++index) {
+        const Surface& s = scene.surfaces[size_t(index)];
         // The draw list: a hidden surface is left out of the frame (every pass and the pick
         // query draw records() only) but keeps its record, so showing it again uploads only
         // what changed meanwhile. Its trim mask layer is given back: the mask pass reassigns
         // layers among the records it sees, so a kept layer could go to another surface.
         if (s.hidden) {
-            if (const auto it = m_entries.find(s.id); it != m_entries.end())
+            if (const auto it = m_entries.find(s.id); it != m_entries.end()) {
+                it->second.seen = m_syncs; // kept, not dropped
                 m_masks.freeLayer(it->second.record.mask);
+            }
             continue;
         }
         Entry& e = m_entries[s.id];
+        e.seen = m_syncs;
         SurfaceRecord& r = e.record;
         r.id = s.id;
         r.surface = &s;
         const int nu = options.partitionsU > 0 ? options.partitionsU : s.partitionsU;
         const int nv = options.partitionsV > 0 ? options.partitionsV : s.partitionsV;
-        const Revisions rev = doc.revisions(s.id);
+        // By index: a search by id per surface made each frame quadratic in the surfaces.
+        const Revisions rev = doc.revisionsAt(index);
+        r.revisions = rev;
         const NurbsSurface& geo = s.geometry;
         UploadStats up;
         std::unique_ptr<SurfaceGpu>& g = r.exact;
         bool fits = true;
+        // The polygon spans the trims' (u, v) box (a small face on a large domain gets its
+        // partitions) or, with polygonOverTrims off, the domain. The box is recomputed only
+        // when the trims or that option changed.
+        const auto boxFor = [&] {
+            return options.polygonOverTrims
+                       ? trimParameterBox(s)
+                       : ParameterBox{surfaceDomainU(geo), surfaceDomainV(geo)};
+        };
         if (!g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
             g->degreeV != geo.degreeV || g->countU != geo.countU || g->countV != geo.countV) {
             if (!g) {
                 g = std::make_unique<SurfaceGpu>();
                 g->id = s.id;
             }
-            fits = uploadSurface(m_pools, *g, s, nu, nv, up);
-        } else if (g->partitionsU != nu || g->partitionsV != nv) {
-            // The polygon is rebuilt from the current points anyway; pick up a point change.
-            if (g->revisions.points != rev.points)
+            fits = uploadSurface(m_pools, *g, s, nu, nv, boxFor(), up);
+        } else {
+            const bool boxStale = g->polygonTrimmed != options.polygonOverTrims ||
+                                  (options.polygonOverTrims && g->revisions.trims != rev.trims);
+            const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
+            if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
+                // The polygon is rebuilt from the current points; pick up a point change.
+                if (g->revisions.points != rev.points)
+                    uploadChangedPoints(m_pools, *g, s, up);
+                fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, up);
+            } else if (g->revisions.points != rev.points) {
                 uploadChangedPoints(m_pools, *g, s, up);
-            fits = rebuildPolygon(m_pools, *g, s, nu, nv, up);
-        } else if (g->revisions.points != rev.points) {
-            uploadChangedPoints(m_pools, *g, s, up);
+            }
         }
+        g->polygonTrimmed = options.polygonOverTrims;
         if (fits) {
             g->revisions = rev;
             if (r.slot < 0) {
@@ -140,6 +153,16 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         e.stats += up;
         frame += up;
         m_order.push_back(&r);
+    }
+    // The one place removed surfaces are dropped, with every part they hold: those the loop
+    // above did not see.
+    for (auto it = m_entries.begin(); it != m_entries.end();) {
+        if (it->second.seen != m_syncs) {
+            drop(it->second);
+            it = m_entries.erase(it);
+        } else {
+            ++it;
+        }
     }
     report.uploads += frame;
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;

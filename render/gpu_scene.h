@@ -60,10 +60,11 @@ struct SurfaceRecord {
     /// Control points, span tables, base polygon (ranges of the scene's pools); absent (not
     /// drawn) when they exceed the GPU's buffer limit.
     std::unique_ptr<SurfaceGpu> exact;
-    int slot = -1; ///< row of the surface table while `exact` is present
-    MeshGpu mesh;  ///< built when a frame draws tessellated
-    NetGpu net;    ///< built when a frame shows the control net
-    TrimMask mask; ///< layer >= 0 while the surface is trimmed and a frame used trims
+    Revisions revisions; ///< the document's, as of the last sync
+    int slot = -1;       ///< row of the surface table while `exact` is present
+    MeshGpu mesh;        ///< built when a frame draws tessellated
+    NetGpu net;          ///< built when a frame shows the control net
+    TrimMask mask;       ///< layer >= 0 while the surface is trimmed and a frame used trims
 };
 
 class GpuScene {
@@ -133,6 +134,7 @@ private:
         SurfaceRecord record;
         UploadStats stats;
         TrimMaskStats maskStats;
+        std::uint64_t seen = 0; ///< the last sync whose document held the surface
     };
     void drop(Entry& e);
     void dropExact(SurfaceRecord& r);
@@ -161,6 +163,7 @@ private:
     QPointer<const Document> m_document;
     std::map<SurfaceId, Entry> m_entries;
     std::vector<SurfaceRecord*> m_order;
+    std::uint64_t m_syncs = 0;
     UploadStats m_removedStats;
     TrimMaskStats m_removedMaskStats;
 };

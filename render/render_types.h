@@ -50,9 +50,16 @@ struct RenderOptions {
     /// Analysis colouring of exact mode (curvature maps, zebra, ...); Phong by default. The
     /// tessellated baseline ignores it.
     AnalysisOptions analysis;
-    /// Cut trimmed surfaces with their trim masks (paper 3.4.2). False draws whole domains (for
+    /// Cut trimmed surfaces with their trim masks (paper 3.4.2). False draws them uncut (for
     /// checks against the CPU classification, and to see what a trim removes).
     bool trims = true;
+    /// The base polygon of a trimmed surface spans its trims' (u, v) box (trimParameterBox,
+    /// model/visible_bounds.h), still split at knots, so a small face on a large domain gets
+    /// its partitions where it is (issue 10 item 1). False spans the whole domain, as the
+    /// paper does: `knotwork render --no-trims` clears both this and `trims` to show whole
+    /// surfaces; with only `trims` false the same fragments as the cut frame are drawn, less
+    /// the mask's discards (what the trim tests compare).
+    bool polygonOverTrims = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
     /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
     /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,

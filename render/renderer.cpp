@@ -261,8 +261,8 @@ ValueRange Renderer::Impl::resolveAnalysisRange(const Document& doc,
     if (analysis.range)
         return *analysis.range;
     std::uint64_t newest = 0;
-    for (const Surface& s : doc.scene().surfaces) {
-        const Revisions r = doc.revisions(s.id);
+    for (int i = 0; i < int(doc.scene().surfaces.size()); ++i) {
+        const Revisions r = doc.revisionsAt(i);
         newest = std::max({newest, r.points, r.knots, r.display}); // display: hidden
     }
     const RangeKey key{&doc, analysis.mode, doc.scene().surfaces.size(), newest};

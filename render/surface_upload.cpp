@@ -26,7 +26,7 @@ void freeControl(ScenePools& pools, SurfaceGpu& g) {
 } // namespace
 
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   UploadStats& stats) {
+                   const ParameterBox& box, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     freeControl(pools, g);
     g.degreeU = geo.degreeU;
@@ -62,7 +62,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, i
     pools.spans.write(g.spanOffset + g.spanTexelsU, g.spanTexelsV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    if (!rebuildPolygon(pools, g, s, nu, nv, stats)) {
+    if (!rebuildPolygon(pools, g, s, nu, nv, box, stats)) {
         freeControl(pools, g);
         return false;
     }
@@ -106,11 +106,12 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
 }
 
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    UploadStats& stats) {
+                    const ParameterBox& box, UploadStats& stats) {
     freePolygon(pools, g);
     g.partitionsU = nu;
     g.partitionsV = nv;
-    g.polygon = buildBasePolygon(s.geometry, nu, nv);
+    g.polygonBox = box;
+    g.polygon = buildBasePolygon(s.geometry, box, nu, nv);
     const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
     const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
     const std::int64_t vertices = std::int64_t(g.polygon.vertices.size());

@@ -40,21 +40,26 @@ struct SurfaceGpu {
     int triangleIndexCount = 0, outlineIndexCount = 0;
     std::vector<glm::vec4> control; ///< the texels now on the GPU
     BasePolygon polygon;            ///< the vertices now on the GPU
+    ParameterBox polygonBox;        ///< the (u, v) box the polygon spans
+    bool polygonTrimmed = false;    ///< polygonBox is trimParameterBox, not the domain
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
-/// (re)allocated and filled, base polygon rebuilt at nu x nv partitions. Counts into `stats`.
-/// Returns false (and holds no ranges) when a pool would exceed its GPU limit.
+/// (re)allocated and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
+/// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   UploadStats& stats);
+                   const ParameterBox& box, UploadStats& stats);
 /// After a Points revision change: the texels of the bounding rectangle of those that differ
 /// (one sub-range write per row of it, counted as one sub-image upload), and only the base
 /// polygon vertices in the support of those points.
 void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
-/// The base polygon at nu x nv partitions from the current points; control data untouched.
-/// Returns false (the polygon's ranges freed) when a pool would exceed its limit.
+/// The base polygon at nu x nv partitions over `box` (a rectangle of the domain: GpuScene
+/// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
+/// cells go where its trims keep the surface, issue 10 item 1) from the current points;
+/// control data untouched. Returns false (the polygon's ranges freed) when a pool would
+/// exceed its limit.
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    UploadStats& stats);
+                    const ParameterBox& box, UploadStats& stats);
 /// Returns the surface's ranges to the pools.
 void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g);
 

@@ -130,7 +130,7 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
     return true;
 }
 
-bool TrimMaskPass::sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
+bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord*>& records,
                         const FrameCamera& camera, const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_frame = {};
@@ -194,7 +194,7 @@ bool TrimMaskPass::sync(const Document& doc, const std::vector<SurfaceRecord*>& 
 
     for (const Want& w : wants) {
         const Surface& s = *w.record->surface;
-        const Revisions rev = doc.revisions(s.id);
+        const Revisions& rev = w.record->revisions; // GpuScene::sync's, found by index
         TrimMask& m = w.record->mask;
         const bool fresh = m.layer < 0;
         if (fresh) {

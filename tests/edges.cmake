@@ -8,3 +8,5 @@ target_compile_definitions(tst_render_edges PRIVATE KW_KNOTWORK_BIN="$<TARGET_FI
 add_dependencies(tst_render_edges knotwork)
 # Partitions and Fit where the face is: trim parameter boxes, trimmed-geometry bounds, fitCamera.
 kw_add_test(tst_visible_bounds LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_visible_bounds.cpp LIBS knotwork_model)
+# The base polygon over the trim loops' (u, v) box (gl: measured against the CPU reference).
+kw_add_test(tst_render_trim_box LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_trim_box.cpp LIBS knotwork_render)

@@ -11,6 +11,7 @@
 #include "ui/uvpanel.h"
 
 #include <QAction>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QFileInfo>
@@ -492,6 +493,18 @@ private Q_SLOTS:
         openWindow();
         QVERIFY(Preferences::load() == wanted);
         QCOMPARE(PreferencesDialog(Preferences::load()).value(), wanted);
+        {
+            // A partition mode this build does not draw is kept but not offered as a choice.
+            const PreferencesDialog d(Preferences::load());
+            const auto* mode = d.findChild<QComboBox*>(QStringLiteral("prefPartitionMode"));
+            const auto* tolerance =
+                d.findChild<QDoubleSpinBox*>(QStringLiteral("prefPixelTolerance"));
+            QVERIFY(mode && tolerance);
+            const bool adaptive =
+                Preferences::availablePartitionModes().contains(QStringLiteral("adaptive"));
+            QCOMPARE(tolerance->isEnabled(), adaptive);
+            QCOMPARE(mode->isEnabled(), Preferences::availablePartitionModes().size() > 1);
+        }
         const RenderOptions& o = m_window->viewport()->renderOptions();
         QVERIFY(!o.headlight);
         QCOMPARE(o.trimMaskCap, 256);

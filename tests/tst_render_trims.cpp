@@ -15,20 +15,28 @@ namespace {
 
 constexpr int kSide = 1024;
 
-/// |det d(u, v)/d(pixel)| at (x, y) from central differences of the AOV's (u, v), or 0 where a
-/// neighbour shows another surface or background.
+/// |det d(u, v)/d(pixel)| at (x, y) from differences of the AOV's (u, v): central where both
+/// neighbours along an axis show the same surface, one-sided where only one does (at the edge
+/// of the base polygon, which spans the trims' (u, v) box), 0 where neither does or at the
+/// frame's border.
 double uvPerPixelArea(const AovBuffer& aov, int x, int y) {
     if (x < 1 || y < 1 || x + 1 >= aov.width || y + 1 >= aov.height)
         return 0.0;
-    const float id = aov.pixel(x, y)[0];
-    const float* l = aov.pixel(x - 1, y);
-    const float* r = aov.pixel(x + 1, y);
-    const float* d = aov.pixel(x, y - 1);
-    const float* u = aov.pixel(x, y + 1);
-    if (l[0] != id || r[0] != id || d[0] != id || u[0] != id)
+    const float* c = aov.pixel(x, y);
+    auto diff = [&](const float* lo, const float* hi, glm::dvec2& out) {
+        const bool a = lo[0] == c[0], b = hi[0] == c[0];
+        if (a && b)
+            out = glm::dvec2(0.5 * (hi[1] - lo[1]), 0.5 * (hi[2] - lo[2]));
+        else if (b)
+            out = glm::dvec2(hi[1] - c[1], hi[2] - c[2]);
+        else if (a)
+            out = glm::dvec2(c[1] - lo[1], c[2] - lo[2]);
+        return a || b;
+    };
+    glm::dvec2 dx, dy;
+    if (!diff(aov.pixel(x - 1, y), aov.pixel(x + 1, y), dx) ||
+        !diff(aov.pixel(x, y - 1), aov.pixel(x, y + 1), dy))
         return 0.0;
-    const glm::dvec2 dx(0.5 * (r[1] - l[1]), 0.5 * (r[2] - l[2]));
-    const glm::dvec2 dy(0.5 * (u[1] - d[1]), 0.5 * (u[2] - d[2]));
     return std::abs(dx.x * dy.y - dx.y * dy.x);
 }
 

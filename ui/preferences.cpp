@@ -62,16 +62,25 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     m_backup->setChecked(p.keepBackup);
     m_partitionMode = new QComboBox;
     m_partitionMode->setObjectName(QStringLiteral("prefPartitionMode"));
-    m_partitionMode->addItems({QStringLiteral("uniform"), QStringLiteral("adaptive")});
+    // Only the modes this build draws are offered: a choice that changes nothing would mislead.
+    // A stored mode it lacks (from a newer build) is kept in the settings untouched.
+    const QStringList modes = Preferences::availablePartitionModes();
+    m_partitionMode->addItems(modes);
+    if (!modes.contains(p.partitionMode))
+        m_partitionMode->addItem(p.partitionMode);
     m_partitionMode->setCurrentText(p.partitionMode);
-    m_partitionMode->setToolTip(tr("Adaptive partitions (pixel tolerance) are stored and used "
-                                   "once this build has them; until then uniform is drawn."));
+    const bool adaptive = modes.contains(QStringLiteral("adaptive"));
+    m_partitionMode->setEnabled(modes.size() > 1);
+    m_partitionMode->setToolTip(adaptive ? tr("Partitions of the base polygon")
+                                         : tr("This build draws uniform partitions only (the "
+                                              "sliders' nu x nv)."));
     m_tolerance = new QDoubleSpinBox;
     m_tolerance->setObjectName(QStringLiteral("prefPixelTolerance"));
     m_tolerance->setRange(0.05, 16.0);
     m_tolerance->setDecimals(2);
     m_tolerance->setSuffix(tr(" px"));
     m_tolerance->setValue(p.pixelTolerance);
+    m_tolerance->setEnabled(adaptive); // the tolerance of adaptive partitions only
     m_trimCap = new QSpinBox;
     m_trimCap->setObjectName(QStringLiteral("prefTrimMaskCap"));
     m_trimCap->setRange(64, 16384);
