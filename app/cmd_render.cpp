@@ -12,7 +12,7 @@
 
 namespace kw::cli {
 
-int runRender(const QStringList& args) {
+int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
         "Render a .knot project off-screen with the exact per-pixel NURBS renderer (or the "
@@ -101,6 +101,8 @@ int runRender(const QStringList& args) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
     }
+    if (!startGui())
+        return kExitBadInput;
 
     Document doc;
     if (!loadDocument(files[0], doc))

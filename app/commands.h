@@ -39,8 +39,10 @@ const std::vector<Command>& commands();
 int runInfo(const QStringList& args);    ///< knotwork
 int runEval(const QStringList& args);    ///< knotwork
 int runConvert(const QStringList& args); ///< knotwork
-int runRender(const QStringList& args);  ///< knotwork-gl
-int runBench(const QStringList& args);   ///< knotwork-bench
+/// knotwork-gl and knotwork-bench: they call `startGui` (app/gl_command.h) once their
+/// arguments are valid and return kExitBadInput when it returns false.
+int runRender(const QStringList& args, const std::function<bool()>& startGui);
+int runBench(const QStringList& args, const std::function<bool()>& startGui);
 /// knotwork, hidden: the child process model/cad/cadprocess.h runs (kw::kReadCadVerb).
 int runReadCad(const QStringList& args);
 

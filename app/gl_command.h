@@ -1,17 +1,26 @@
 // The main of a subcommand that draws with OpenGL (render in knotwork-gl, bench in
-// knotwork-bench): display check, default surface format, QGuiApplication.
+// knotwork-bench): arguments first, then the display check, default surface format and
+// QGuiApplication, only once the command knows it will draw.
 #pragma once
 
 #include <QString>
 #include <QStringList>
+#include <functional>
 
 namespace kw::cli {
 
-/// Runs `run` as the process's command: refuses with exit code 1 and a message saying to use
-/// xvfb-run when no X display can be reached (Qt's xcb plugin would abort), sets
-/// OffscreenRenderer::requiredFormat() as the default surface format, creates the
-/// QGuiApplication and calls `run` with the arguments after argv[1], led by "knotwork NAME"
-/// where NAME is argv[1]. Returns run's exit code. Call before any Q*Application exists.
-int runGlCommand(int argc, char** argv, int (*run)(const QStringList& args));
+/// Called by a GL command once its arguments are valid: refuses with a message saying to use
+/// xvfb-run when no X display can be reached (Qt's xcb plugin would abort) and returns false;
+/// otherwise sets OffscreenRenderer::requiredFormat() as the default surface format, creates
+/// the QGuiApplication (kept until the command returns) and returns true. Later calls return
+/// the first call's answer.
+using GuiStarter = std::function<bool()>;
+
+/// Runs `run` as the process's command with the arguments after argv[1], led by
+/// "knotwork NAME" where NAME is argv[1]. Usage errors and --help are answered before any
+/// connection to the display exists, so they never depend on it. Returns run's exit code.
+/// Call before any Q*Application exists.
+int runGlCommand(int argc, char** argv,
+                 int (*run)(const QStringList& args, const GuiStarter& startGui));
 
 } // namespace kw::cli

@@ -76,7 +76,7 @@ QJsonObject benchJson(const bench::BenchReport& report, bool scale,
 
 } // namespace
 
-int runBench(const QStringList& args) {
+int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
         "The paper's Tables 1 and 2, off-screen, speed and quality in one run, for every FILE "
@@ -273,6 +273,8 @@ int runBench(const QStringList& args) {
         printError(
             QStringLiteral("%1: --smoke: 2 frames per measurement, not a measurement").arg(cmd));
     }
+    if (!startGui())
+        return kExitBadInput;
 
     QString error;
     bench::BenchReport report;

@@ -92,6 +92,31 @@ inline Scene threeSurfaceScene() {
     return scene;
 }
 
+/// One degree-1 surface (id 1, "big") on an n x n net of gently varying heights: a file that
+/// takes a while to write (n = 250: about 8 MB as .knot; n = 400: about 22 MB). nextId 2.
+inline Scene bigFlatScene(int n) {
+    Scene scene;
+    Surface s;
+    s.id = SurfaceId{1};
+    s.name = QStringLiteral("big");
+    NurbsSurface& g = s.geometry;
+    g.degreeU = g.degreeV = 1;
+    g.countU = g.countV = n;
+    g.knotsU = {0.0};
+    for (int k = 0; k < n; ++k)
+        g.knotsU.push_back(double(k) / (n - 1));
+    g.knotsU.push_back(1.0);
+    g.knotsV = g.knotsU;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            g.points.push_back({i * 0.01, j * 0.01, 0.001 * ((i * 7 + j * 13) % 17)});
+            g.weights.push_back(1.0);
+        }
+    scene.surfaces.push_back(s);
+    scene.nextId = 2;
+    return scene;
+}
+
 /// Scenes compared as authored content: nextId only ever grows (ids are never reused in a
 /// session, so undo does not lower it) and is left out.
 inline bool sameContent(Scene a, const Scene& b) {

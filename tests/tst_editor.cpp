@@ -28,7 +28,7 @@
 using namespace kw;
 using namespace kwtest;
 
-class TestEditor : public QObject {
+class TestEditor : public EditorTestBase {
     Q_OBJECT
 public:
     static void initMain() {
@@ -38,21 +38,7 @@ public:
     }
 
 private:
-    std::unique_ptr<MainWindow> m_window;
-    DialogScript m_script;
 
-    /// Opens a sample in a fresh window, shows it and waits for the first frame.
-    void openWindow(const char* sample) {
-        m_window = std::make_unique<MainWindow>();
-        scriptDialogs(*m_window, m_script);
-        m_window->resize(960, 640);
-        m_window->show();
-        QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-        QVERIFY(m_window->openFile(samplePath(sample)));
-        QTest::qWait(50);
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
-    }
     const NurbsSurface& geometry(int surfaceIndex = 0) const {
         return m_window->document()->scene().surfaces[size_t(surfaceIndex)].geometry;
     }
@@ -82,14 +68,7 @@ private Q_SLOTS:
         QCoreApplication::setOrganizationName(QStringLiteral("KnotworkTest"));
         QSettings().clear();
     }
-    void cleanup() {
-        if (m_window) {
-            m_window->undoStack()->setClean(); // no unsaved-changes question on close
-            m_window->close();
-        }
-        m_window.reset();
-        m_script = {};
-    }
+    void cleanup() { closeWindow(); }
 
     void opensSampleAndShowsIt() {
         openWindow("bicubic");

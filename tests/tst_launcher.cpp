@@ -93,11 +93,28 @@ void TestLauncher::drawingCommandsRunThroughTheLauncher() {
     for (const char* name : {"QT_QPA_PLATFORM", "DISPLAY", "WAYLAND_DISPLAY"})
         env.remove(QLatin1String(name));
     for (const QString& cmd : {QStringLiteral("render"), QStringLiteral("bench")}) {
-        const Run r = knotwork({cmd, QStringLiteral(KW_SAMPLES_DIR "/torus.knot")}, env);
+        QStringList args{cmd, QStringLiteral(KW_SAMPLES_DIR "/torus.knot")};
+        if (cmd == QLatin1String("render")) // valid arguments: the display is what is missing
+            args << QStringLiteral("-o") << QDir::temp().filePath(QStringLiteral("never.png"));
+        const Run r = knotwork(args, env);
         QCOMPARE(r.code, 1);
         QVERIFY2(r.err.contains(QStringLiteral("knotwork ") + cmd) &&
                      r.err.contains(QStringLiteral("no X display")),
                  qPrintable(r.err));
+    }
+    // Arguments are checked before the display is reached: a usage error and --help answer
+    // the same with or without one (no X connection that load could break).
+    const Run usage =
+        knotwork({QStringLiteral("render"), QStringLiteral(KW_SAMPLES_DIR "/torus.knot"),
+                  QStringLiteral("-o"), QStringLiteral("x.png"), QStringLiteral("--size"),
+                  QStringLiteral("0x10")},
+                 env);
+    QCOMPARE(usage.code, 2);
+    QVERIFY2(usage.err.contains(QStringLiteral("--size")), qPrintable(usage.err));
+    for (const QString& cmd : {QStringLiteral("render"), QStringLiteral("bench")}) {
+        const Run r = knotwork({cmd, QStringLiteral("--help")}, env);
+        QCOMPARE(r.code, 0);
+        QVERIFY2(r.out.startsWith(QStringLiteral("Usage: knotwork ") + cmd), qPrintable(r.out));
     }
 }
 

@@ -24,7 +24,7 @@
 using namespace kw;
 using namespace kwtest;
 
-class TestModeling : public QObject {
+class TestModeling : public EditorTestBase {
     Q_OBJECT
 public:
     static void initMain() {
@@ -33,28 +33,6 @@ public:
     }
 
 private:
-    std::unique_ptr<MainWindow> m_window;
-    DialogScript m_script;
-
-    void openWindow(const char* sample = nullptr) {
-        m_window = std::make_unique<MainWindow>();
-        scriptDialogs(*m_window, m_script);
-        m_window->resize(960, 640);
-        m_window->show();
-        QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-        if (sample)
-            QVERIFY(m_window->openFile(samplePath(sample)));
-        QTest::qWait(50);
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
-    }
-    const Scene& scene() const { return m_window->document()->scene(); }
-    QAction* act(const char* name) const {
-        QAction* a = m_window->action(QLatin1String(name));
-        if (!a)
-            qWarning("no action %s", name);
-        return a;
-    }
     /// Pixel of the 3D frame at a surface point (the grab's size equals the widget's here).
     QRgb pixelAt(const QImage& frame, const glm::dvec3& p) const {
         const auto px = m_window->viewport()->viewProjection().project(p);
@@ -66,14 +44,7 @@ private Q_SLOTS:
         QCoreApplication::setOrganizationName(QStringLiteral("KnotworkModelingTest"));
         QSettings().clear();
     }
-    void cleanup() {
-        if (m_window) {
-            m_window->undoStack()->setClean();
-            m_window->close();
-        }
-        m_window.reset();
-        m_script = {};
-    }
+    void cleanup() { closeWindow(); }
 
     void createEachPrimitiveThenUndoAndRedo() {
         openWindow();
@@ -256,8 +227,7 @@ private Q_SLOTS:
         QTest::mouseClick(uv, Qt::LeftButton, Qt::NoModifier,
                           uv->toWidget(star.curves[0].points[1]).toPoint());
         QVERIFY(!m_window->selection()->trimPoints().empty());
-        m_window->activateWindow();
-        QTRY_VERIFY(m_window->isActiveWindow());
+        activate();
         uv->setFocus();
         QTRY_VERIFY(uv->hasFocus());
         QTest::keyClick(uv, Qt::Key_Delete);
@@ -451,8 +421,7 @@ private Q_SLOTS:
         QVERIFY(pushCommand(m_window->undoStack(),
                             SetPartitions::create(m_window->document(), SurfaceId{1}, 5, 6)));
         m_window->undoStack()->undo();
-        m_window->activateWindow();
-        QTRY_VERIFY(m_window->isActiveWindow());
+        activate();
         QTest::keyClick(m_window.get(), Qt::Key_Y, Qt::ControlModifier);
         QCOMPARE(scene().surfaces.front().partitionsU, 5); // redone
         const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/modeling_saveas.knot");

@@ -20,7 +20,7 @@
 using namespace kw;
 using namespace kwtest;
 
-class TestModelingTools : public QObject {
+class TestModelingTools : public EditorTestBase {
     Q_OBJECT
 public:
     static void initMain() {
@@ -29,33 +29,13 @@ public:
     }
 
 private:
-    std::unique_ptr<MainWindow> m_window;
-    DialogScript m_script;
-
+    /// Wide enough for a 3D view of a useful size next to the docks (at 960 px they leave it
+    /// its 160 px minimum).
     void openWindow(const char* sample = nullptr) {
-        m_window = std::make_unique<MainWindow>();
-        scriptDialogs(*m_window, m_script);
-        // Wide enough for a 3D view of a useful size next to the docks (at 960 px they leave
-        // it its 160 px minimum).
-        m_window->resize(1260, 900);
-        m_window->show();
-        QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-        if (sample)
-            QVERIFY(m_window->openFile(samplePath(sample)));
-        QTest::qWait(50);
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
-    }
-    const Scene& scene() const { return m_window->document()->scene(); }
-    QAction* act(const char* name) const {
-        QAction* a = m_window->action(QLatin1String(name));
-        if (!a)
-            qWarning("no action %s", name);
-        return a;
+        EditorTestBase::openWindow(sample, QSize(1260, 900));
     }
     void key(int k, Qt::KeyboardModifiers mods = Qt::NoModifier) {
-        m_window->activateWindow();
-        QTRY_VERIFY(m_window->isActiveWindow());
+        activate();
         QTest::keyClick(m_window.get(), Qt::Key(k), mods);
     }
     /// The clicked pixel on the curve tool's plane (through the camera target, facing the eye).
@@ -78,14 +58,7 @@ private Q_SLOTS:
         QCoreApplication::setOrganizationName(QStringLiteral("KnotworkModelingToolsTest"));
         QSettings().clear();
     }
-    void cleanup() {
-        if (m_window) {
-            m_window->undoStack()->setClean();
-            m_window->close();
-        }
-        m_window.reset();
-        m_script = {};
-    }
+    void cleanup() { closeWindow(); }
 
     void hideIsolateShowAllWithUndoAndSaved() {
         // Three surfaces side by side: the bicubic patch, a sphere and a torus made beside it.

@@ -5,6 +5,7 @@
 // The killed editor is this test binary run as `tst_recovery --editor-child FILE EXPECTED`:
 // the real MainWindow and autosave timer, with edits pushed as undo commands.
 #include "editor_test_util.h"
+#include "model_fixtures.h"
 #include "model/knotfile.h"
 #include "render/offscreen_renderer.h"
 #include "ui/autosave.h"
@@ -74,30 +75,9 @@ int runChild(int argc, char** argv) {
     return 5;
 }
 
-/// A scene large enough that a save takes a while: one degree-1 surface on a 250 x 250 net
-/// (about 8 MB as .knot).
+/// A scene large enough that a save takes a while (about 8 MB as .knot).
 Scene bigScene() {
-    constexpr int n = 250;
-    Scene scene;
-    Surface s;
-    s.id = SurfaceId{1};
-    s.name = QStringLiteral("big");
-    NurbsSurface& g = s.geometry;
-    g.degreeU = g.degreeV = 1;
-    g.countU = g.countV = n;
-    g.knotsU = {0.0};
-    for (int k = 0; k < n; ++k)
-        g.knotsU.push_back(double(k) / (n - 1));
-    g.knotsU.push_back(1.0);
-    g.knotsV = g.knotsU;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            g.points.push_back({i * 0.01, j * 0.01, 0.001 * ((i * 7 + j * 13) % 17)});
-            g.weights.push_back(1.0);
-        }
-    scene.surfaces.push_back(s);
-    scene.nextId = 2;
-    return scene;
+    return kw::test::bigFlatScene(250);
 }
 
 /// The editor killed during Save: opens FILE, then renames the surface to "Save K" and saves

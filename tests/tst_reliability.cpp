@@ -2,6 +2,7 @@
 // inputs are refused with one line and no crash or hang; every file convert writes reopens;
 // kill -9 while convert writes leaves the old or the new complete file.
 #include "knotwork_process.h"
+#include "model_fixtures.h"
 #include "model/knotfile.h"
 #include "model/objfile.h"
 #include "model/validation.h"
@@ -222,27 +223,7 @@ void TestReliability::meshOutputIsCapped() {
 // kill -9 at random moments while convert reads and writes a large file: the target is always
 // the old file or the new complete one (QSaveFile writes a temporary file and renames it).
 void TestReliability::killDuringConvertKeepsACompleteFile() {
-    // A degree-1 surface on a 400 x 400 net: a file of about 22 MB.
-    constexpr int n = 400;
-    Scene scene;
-    Surface s;
-    s.id = SurfaceId{1};
-    s.name = QStringLiteral("big");
-    NurbsSurface& g = s.geometry;
-    g.degreeU = g.degreeV = 1;
-    g.countU = g.countV = n;
-    g.knotsU = {0.0};
-    for (int k = 0; k < n; ++k)
-        g.knotsU.push_back(double(k) / (n - 1));
-    g.knotsU.push_back(1.0);
-    g.knotsV = g.knotsU;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            g.points.push_back({i * 0.01, j * 0.01, 0.001 * ((i * 7 + j * 13) % 17)});
-            g.weights.push_back(1.0);
-        }
-    scene.surfaces.push_back(s);
-    scene.nextId = 2;
+    const Scene scene = kw::test::bigFlatScene(400); // a file of about 22 MB
     const QString source = out(QStringLiteral("kill_source.knot"));
     QString error;
     QVERIFY2(writeKnotFile(source, scene, &error), qPrintable(error));

@@ -1,27 +1,18 @@
 // GL test: one baseline image per sample, compared with OpenImageIO under a stated tolerance.
 // A missing baseline fails; KW_UPDATE_BASELINES=1 writes the baselines instead of comparing.
 // On a mismatch <name>.actual.png and <name>.diff.png are written to KW_TEST_OUTPUT_DIR.
-#include "render/image_writer.h"
-#include "render_test_util.h"
-
-#include <OpenImageIO/imagebufalgo.h>
+#include "baseline_compare.h"
 
 using namespace kw;
 
 namespace {
 
-// Tolerance: a pixel fails when any channel differs by more than kFailThreshold (0..1 scale,
-// about 13 of 255 levels); the image fails when more than kMaxFailedFraction of its pixels do
-// or the mean error exceeds kMaxMeanError. Rasteriser or compiler differences move silhouette
-// pixels and last bits; a wrong normal, light or camera moves far more.
-constexpr float kFailThreshold = 0.05f;
-constexpr double kMaxFailedFraction = 0.002;
-constexpr double kMaxMeanError = 0.004;
+// Tolerance (kwtest::BaselineTolerance): a pixel fails when any channel differs by more than
+// 0.05 (about 13 of 255 levels); the image fails when more than 0.2% of its pixels do or the
+// mean error exceeds 0.004. Rasteriser or compiler differences move silhouette pixels and last
+// bits; a wrong normal, light or camera moves far more.
+constexpr kwtest::BaselineTolerance kTolerance{0.05f, 0.002, 0.004};
 constexpr int kSide = 256;
-
-QString baselinePath(const QString& name) {
-    return QStringLiteral(KW_SOURCE_DIR "/tests/baselines/") + name + QStringLiteral(".png");
-}
 
 } // namespace
 
@@ -71,41 +62,7 @@ private Q_SLOTS:
         const Camera cam = scene->camera.authored ? scene->camera : fitCamera(*scene, 1.0);
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const QImage img = m_renderer->colorImage();
-        const QString expected = baselinePath(name);
-
-        if (qEnvironmentVariableIntValue("KW_UPDATE_BASELINES") == 1) {
-            QDir().mkpath(QFileInfo(expected).absolutePath());
-            QVERIFY2(writeColorImage(img, expected, &error), qPrintable(error));
-            qInfo("wrote %s", qPrintable(expected));
-            return;
-        }
-        QVERIFY2(
-            QFileInfo::exists(expected),
-            qPrintable(QStringLiteral("missing baseline %1 (generate with KW_UPDATE_BASELINES=1)")
-                           .arg(expected)));
-        const QString actualPath =
-            kwtest::outputDir().filePath(name + QStringLiteral(".actual.png"));
-        const QString diffPath = kwtest::outputDir().filePath(name + QStringLiteral(".diff.png"));
-        QVERIFY2(writeColorImage(img, actualPath, &error), qPrintable(error));
-        OIIO::ImageBuf actual(actualPath.toStdString()), base(expected.toStdString());
-        QVERIFY2(actual.read() && base.read(), "could not read the images back");
-        QCOMPARE(actual.spec().width, base.spec().width);
-        QCOMPARE(actual.spec().height, base.spec().height);
-        const OIIO::ImageBufAlgo::CompareResults r =
-            OIIO::ImageBufAlgo::compare(actual, base, kFailThreshold, kFailThreshold * 0.5f);
-        const double failed = double(r.nfail) / double(kSide * kSide);
-        qInfo("%s: mean error %.5f, max %.4f, %lld pixel(s) over %.2f (%.3f%%)", qPrintable(name),
-              r.meanerror, r.maxerror, (long long)r.nfail, kFailThreshold, 100.0 * failed);
-        const bool ok = failed <= kMaxFailedFraction && r.meanerror <= kMaxMeanError;
-        if (ok) {
-            QFile::remove(actualPath);
-        } else {
-            OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(actual, base);
-            diff = OIIO::ImageBufAlgo::mul(diff, 8.0f);
-            diff.write(diffPath.toStdString());
-        }
-        QVERIFY2(ok, qPrintable(QStringLiteral("%1 differs from %2; see %3 and %4")
-                                    .arg(name, expected, actualPath, diffPath)));
+        kwtest::checkBaseline(img, name, kTolerance);
     }
 
     void cleanupTestCase() { m_renderer.reset(); }

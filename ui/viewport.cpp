@@ -13,6 +13,7 @@
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
 namespace kw {
@@ -385,6 +386,19 @@ void Viewport::dragTo(QPointF pixel) {
     applyDrag();
 }
 
+Viewport::PointsBySurface Viewport::dragPointsBySurface(const glm::dmat4& map) const {
+    PointsBySurface bySurface;
+    for (const DragPoint& d : m_drag) {
+        const Surface* s = m_doc->surface(d.ref.surface);
+        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
+            continue;
+        auto& [indices, points] = bySurface[d.ref.surface];
+        indices.push_back(s->geometry.index(d.ref.i, d.ref.j));
+        points.push_back(glm::dvec3(map * glm::dvec4(d.from, 1.0)));
+    }
+    return bySurface;
+}
+
 void Viewport::applyDrag() {
     if (m_movingSurfaces && m_surfaceDrag != SurfaceDrag::Move) {
         applyTransformDrag();
@@ -400,15 +414,8 @@ void Viewport::applyDrag() {
     } else {
         delta = view.onViewPlane(m_lastPixel, m_anchor) - view.onViewPlane(m_pressPixel, m_anchor);
     }
-    std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>> bySurface;
-    for (const DragPoint& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
-            continue;
-        auto& entry = bySurface[d.ref.surface];
-        entry.first.push_back(s->geometry.index(d.ref.i, d.ref.j));
-        entry.second.push_back(d.from + delta);
-    }
+    // A translation: exactly d.from + delta.
+    const PointsBySurface bySurface = dragPointsBySurface(glm::translate(glm::dmat4(1.0), delta));
     for (const auto& [id, change] : bySurface)
         m_doc->setControlPoints(id, change.first, change.second);
 }
@@ -419,24 +426,15 @@ void Viewport::finishDrag(bool cancel) {
         return;
     }
     m_gesture = Gesture::None;
-    std::map<SurfaceId,
-             std::tuple<std::vector<int>, std::vector<glm::dvec3>, std::vector<glm::dvec3>>>
-        bySurface;
-    for (const DragPoint& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        // The net may have been re-sized under the drag (an undo by key); skip lost points.
-        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
-            continue;
-        const int index = s->geometry.index(d.ref.i, d.ref.j);
-        auto& [indices, from, to] = bySurface[d.ref.surface];
-        indices.push_back(index);
-        from.push_back(d.from);
-        to.push_back(s->geometry.points[size_t(index)]);
-    }
+    const PointsBySurface bySurface = dragPointsBySurface(glm::dmat4(1.0));
     m_drag.clear();
     std::vector<std::unique_ptr<QUndoCommand>> commands;
-    for (auto& [id, change] : bySurface) {
-        auto& [indices, from, to] = change;
+    for (const auto& [id, change] : bySurface) {
+        const auto& [indices, from] = change;
+        const Surface* s = m_doc->surface(id);
+        std::vector<glm::dvec3> to;
+        for (int index : indices)
+            to.push_back(s->geometry.points[size_t(index)]);
         if (cancel) {
             m_doc->setControlPoints(id, indices, from);
             continue;
@@ -458,8 +456,8 @@ void Viewport::finishDrag(bool cancel) {
         pushCommand(m_stack, std::move(commands.front()));
     } else if (commands.size() > 1) {
         int points = 0;
-        for (auto& [id, change] : bySurface)
-            points += int(std::get<0>(change).size());
+        for (const auto& [id, change] : bySurface)
+            points += int(change.first.size());
         m_stack->beginMacro(surfaces ? QStringLiteral("Move %1 surfaces").arg(commands.size())
                                      : QStringLiteral("Move %1 control points").arg(points));
         for (auto& c : commands)

@@ -10,6 +10,7 @@
 #include <QElapsedTimer>
 #include <QOpenGLWidget>
 #include <QPointer>
+#include <map>
 #include <vector>
 
 class QKeyEvent;
@@ -147,6 +148,13 @@ private:
         ControlPointRef ref;
         glm::dvec3 from;
     };
+    /// Net indices and new positions of control points, by surface.
+    using PointsBySurface =
+        std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>>;
+    /// The dragged points still in their nets (an undo by key may re-size a net under a drag:
+    /// lost points are skipped), grouped by surface, each at `map` applied to its press-time
+    /// position (identity: back where the drag began).
+    PointsBySurface dragPointsBySurface(const glm::dmat4& map) const;
     void releaseGl();
     void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
     void dragTo(QPointF pixel);

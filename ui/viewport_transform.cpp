@@ -104,16 +104,7 @@ QString Viewport::surfaceDragText(double amount) const {
 }
 
 void Viewport::applyTransformDrag() {
-    const glm::dmat4 m = surfaceDragMatrix();
-    std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>> bySurface;
-    for (const DragPoint& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
-            continue;
-        auto& entry = bySurface[d.ref.surface];
-        entry.first.push_back(s->geometry.index(d.ref.i, d.ref.j));
-        entry.second.push_back(glm::dvec3(m * glm::dvec4(d.from, 1.0)));
-    }
+    const PointsBySurface bySurface = dragPointsBySurface(surfaceDragMatrix());
     for (const auto& [id, change] : bySurface)
         m_doc->setControlPoints(id, change.first, change.second);
     update();
@@ -125,17 +116,8 @@ void Viewport::finishTransformDrag(bool cancel) {
     const QString text = surfaceDragText(amount);
     m_gesture = Gesture::None;
     m_movingSurfaces = false;
-    // Back to the press-time points (the net may have been re-sized under the drag by an undo
-    // key: lost points are skipped), then one step with the exact map.
-    std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>> bySurface;
-    for (const DragPoint& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
-            continue;
-        auto& entry = bySurface[d.ref.surface];
-        entry.first.push_back(s->geometry.index(d.ref.i, d.ref.j));
-        entry.second.push_back(d.from);
-    }
+    // Back to the press-time points, then one step with the exact map.
+    const PointsBySurface bySurface = dragPointsBySurface(glm::dmat4(1.0));
     m_drag.clear();
     std::vector<SurfaceId> ids;
     for (const auto& [id, change] : bySurface) {
