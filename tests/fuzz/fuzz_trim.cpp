@@ -159,13 +159,17 @@ void checkCurve(const NurbsCurve2& c, double tolerance, Input& in) {
     const double t = in.real(d.first, d.last);
     const glm::dvec2 at = curvePoint(c, t);
     const NurbsCurve2 r = trimCurveReversed(c);
-    KW_FUZZ_CHECK(curveValidationError(r).empty(), "the reversed curve is invalid");
+    KW_FUZZ_CHECK(curveValidationError(r).empty(),
+                  QStringLiteral("the reversed curve is invalid: %1")
+                          .arg(QString::fromStdString(curveValidationError(r))) +
+                      knotText(c) + knotText(r));
     // An interior knot of multiplicity degree + 1 (allowed, docs/FILE_FORMAT.md) is a break:
     // there evaluation takes the right-hand piece, which the reversed curve has on its left.
     const bool atBreak =
         t > d.first && t < d.last &&
         std::count(c.knots.begin(), c.knots.end(), t) > static_cast<std::ptrdiff_t>(c.degree);
-    KW_FUZZ_CHECK(atBreak || glm::length(curvePoint(r, d.first + d.last - t) - at) <= 1e-7 * size,
+    KW_FUZZ_CHECK(curveDomain(r) == (Interval{-d.last, -d.first}), "the reversed domain");
+    KW_FUZZ_CHECK(atBreak || glm::length(curvePoint(r, -t) - at) <= 1e-7 * size,
                   QStringLiteral("the reversed curve has another shape at t = %1 in [%2, %3]: "
                                  "(%4, %5) vs (%6, %7), degree %8")
                           .arg(t)
@@ -173,8 +177,8 @@ void checkCurve(const NurbsCurve2& c, double tolerance, Input& in) {
                           .arg(d.last)
                           .arg(at.x)
                           .arg(at.y)
-                          .arg(curvePoint(r, d.first + d.last - t).x)
-                          .arg(curvePoint(r, d.first + d.last - t).y)
+                          .arg(curvePoint(r, -t).x)
+                          .arg(curvePoint(r, -t).y)
                           .arg(c.degree) +
                       knotText(c) + knotText(r));
 
