@@ -8,6 +8,7 @@
 #include "model/trim.h"
 
 #include <algorithm>
+#include <numeric>
 #include <vector>
 
 using namespace kw;
@@ -127,7 +128,7 @@ QString knotText(const NurbsCurve2& c) {
         s += QStringLiteral(" %1").arg(k, 0, 'g', 17);
     s += QStringLiteral(" points");
     for (glm::dvec2 p : c.points)
-        s += QStringLiteral(" (%1 %2)").arg(p.x).arg(p.y);
+        s += QStringLiteral(" (%1 %2)").arg(p.x, 0, 'g', 17).arg(p.y, 0, 'g', 17);
     return s;
 }
 
@@ -191,9 +192,21 @@ void checkCurve(const NurbsCurve2& c, double tolerance, Input& in) {
                           .arg(b)
                           .arg(QString::fromStdString(curveValidationError(s))));
         KW_FUZZ_CHECK(curveDomain(s) == (Interval{a, b}), "the segment has another domain");
-        const double m = 0.5 * (a + b);
+        // Not 0.5 * (a + b): that overflows to inf for a domain near 1e308 (which a file can
+        // hold), and evaluation clamps inf to each curve's own end.
+        const double m = std::midpoint(a, b);
         KW_FUZZ_CHECK(glm::length(curvePoint(s, m) - curvePoint(c, m)) <= 1e-6 * size,
-                      "the segment has another shape");
+                      QStringLiteral("the segment [%1, %2] has another shape at %3: (%4, %5) vs "
+                                     "(%6, %7), degree %8")
+                              .arg(a, 0, 'g', 17)
+                              .arg(b, 0, 'g', 17)
+                              .arg(m, 0, 'g', 17)
+                              .arg(curvePoint(s, m).x)
+                              .arg(curvePoint(s, m).y)
+                              .arg(curvePoint(c, m).x)
+                              .arg(curvePoint(c, m).y)
+                              .arg(c.degree) +
+                          knotText(c) + knotText(s));
     }
 }
 
