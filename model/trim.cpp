@@ -143,12 +143,13 @@ NurbsCurve2 trimCurveReversed(const NurbsCurve2& c) {
     NurbsCurve2 r = c;
     std::reverse(r.points.begin(), r.points.end());
     std::reverse(r.weights.begin(), r.weights.end());
-    // Reflect about the middle of the domain, not of the knot vector: the two differ for an
-    // unclamped curve, whose domain is [knots[p], knots[n]] (found by fuzz_trim).
-    const Interval d = curveDomain(c);
-    const double sum = d.first + d.last;
+    // Negate the knots: exact in floating point, so every valid curve stays valid with the same
+    // multiplicities and the same shape. Reflecting about the domain middle (a + b - k) rounds:
+    // for a domain like [-1.5, 1e308] it merged distinct knots into one of multiplicity above
+    // degree + 1 (fuzz_trim, tests/fuzz/repro/trim/reversed-invalid). 0.0 - k, not -k, so that
+    // a knot 0 stays +0 in files.
     for (size_t i = 0; i < c.knots.size(); ++i)
-        r.knots[i] = sum - c.knots[c.knots.size() - 1 - i];
+        r.knots[i] = 0.0 - c.knots[c.knots.size() - 1 - i];
     return r;
 }
 

@@ -17,7 +17,8 @@ using TrimPolygon = std::vector<glm::dvec2>;
 /// both ends and the clamped piece is cut out; its parameters stay those of the source.
 /// Precondition: a valid curve and curveDomain(c).first <= first < last <= curveDomain(c).last.
 NurbsCurve2 trimCurveSegment(NurbsCurve2 curve, double first, double last);
-/// The same curve run backwards: C'(t) = C(a + b - t) over the same domain [a, b].
+/// The same curve run backwards: C'(t) = C(-t) over the domain [-b, -a] of a curve C over
+/// [a, b]. Exact (negated knots), so the result is valid whenever the curve is.
 NurbsCurve2 trimCurveReversed(const NurbsCurve2& curve);
 
 /// Flattens one trim curve: samples the curve at its knots and bisects every piece until the

@@ -53,6 +53,7 @@ private Q_SLOTS:
     void areaOfUntrimmedSphere();
     void areaOfTrimmedSampleConverges();
     void segmentAndReverseKeepTheCurve();
+    void reversingAHugeDomainKeepsTheKnotsApart();
 };
 
 void TestTrim::flatteningStaysWithinTolerance_data() {
@@ -205,8 +206,35 @@ void TestTrim::segmentAndReverseKeepTheCurve() {
     }
     const NurbsCurve2 r = trimCurveReversed(c);
     QVERIFY(curveValidationError(r).empty());
+    QCOMPARE(curveDomain(r), (Interval{-1.0, 0.0}));
     for (int k = 0; k <= 20; ++k)
-        QVERIFY(glm::length(curvePoint(r, k / 20.0) - curvePoint(c, 1.0 - k / 20.0)) < 1e-13);
+        QVERIFY(glm::length(curvePoint(r, -k / 20.0) - curvePoint(c, k / 20.0)) < 1e-13);
+}
+
+void TestTrim::reversingAHugeDomainKeepsTheKnotsApart() {
+    // fuzz_trim (tests/fuzz/repro/trim/reversed-invalid): a valid unclamped line over
+    // [-1.49, 1e308]. Reflected about the domain middle, every knot but the first two rounded
+    // to 1e308: multiplicity 5 > degree + 1, an invalid curve. Negated knots are exact.
+    NurbsCurve2 c;
+    c.degree = 1;
+    c.knots = {-1.9511711299305714,
+               -1.4871137560082399,
+               -1.0478370336461433,
+               -0.76835278858625156,
+               0.75761043717097731,
+               1e308,
+               1e308};
+    c.points = {{0.65, 0.82}, {0.38, -0.86}, {-0.05, -0.05}, {-0.05, -0.05}, {-0.05, -0.05}};
+    c.weights = {1, 1, 1, 1, 1};
+    QVERIFY(curveValidationError(c).empty());
+    const NurbsCurve2 r = trimCurveReversed(c);
+    QVERIFY2(curveValidationError(r).empty(), curveValidationError(r).c_str());
+    QCOMPARE(curveDomain(r), (Interval{-1e308, 1.4871137560082399}));
+    for (size_t i = 0; i < c.knots.size(); ++i)
+        QCOMPARE(r.knots[i], -c.knots[c.knots.size() - 1 - i]);
+    for (double t : {-1.4871137560082399, -1.2, -0.9, 0.0, 0.5, 1e300, 1e308})
+        QVERIFY2(glm::length(curvePoint(r, -t) - curvePoint(c, t)) < 1e-14,
+                 qPrintable(QString::number(t)));
 }
 
 QTEST_GUILESS_MAIN(TestTrim)
