@@ -156,6 +156,22 @@ private Q_SLOTS:
             QVERIFY2(menu.contains(act(name)), name);
     }
 
+    void hideDeselectsTrimPointsOfTheHiddenSurface() {
+        // Trim points picked in the UV editor belong to the surface: once it is hidden, a drag
+        // or Delete on them would edit what is not seen, so Hide drops them with the rows.
+        openWindow("trimmed_plate");
+        const Surface& s = scene().surfaces.front();
+        QVERIFY(!s.trims.empty());
+        m_window->selectSurface(s.id);
+        QVERIFY(m_window->selection()->setTrimPoints({TrimPointRef{s.id, s.trims[0].id, 0, 1}}));
+        QVERIFY(m_window->selection()->setControlPoints({ControlPointRef{s.id, 0, 0}}));
+        key(Qt::Key_H);
+        QVERIFY(m_window->document()->surface(s.id)->hidden);
+        QVERIFY(m_window->selection()->selectedSurfaces().empty());
+        QVERIFY(m_window->selection()->controlPoints().empty());
+        QVERIFY(m_window->selection()->trimPoints().empty());
+    }
+
     void rotateAndScaleDragsAreExactAboutThePivot() {
         openWindow("bicubic");
         Viewport* vp = m_window->viewport();
