@@ -109,6 +109,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (!loadDocument(files[0], doc))
         return kExitBadInput;
     const Scene& scene = doc.scene();
+    // The project's display settings, unless the command line says otherwise.
+    if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.partitionMode))
+        options.partitioning = scene.display.partitionMode == QLatin1String("uniform")
+                                   ? RenderOptions::Partitioning::Uniform
+                                   : RenderOptions::Partitioning::Adaptive;
+    if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
+        options.pixelTolerance = scene.display.pixelTolerance;
     QString error;
     const Camera camera =
         scene.camera.authored

@@ -338,6 +338,13 @@ bool Document::setCamera(const Camera& camera) {
     return true;
 }
 
+bool Document::setDisplay(const DisplaySettings& display) {
+    if (!displayError(display).isEmpty())
+        return false;
+    m_scene.display = display;
+    return true;
+}
+
 QString Document::validate(const Scene& scene) {
     return sceneError(scene);
 }

@@ -90,6 +90,9 @@ public:
     /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
     bool setLights(std::vector<Light> lights);
     bool setCamera(const Camera& camera);
+    /// The display settings saved with the project (as the camera: not an edit, no signal
+    /// the views react to); false when invalid (validation.h displayError).
+    bool setDisplay(const DisplaySettings& display);
 
     /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
     /// Returns an empty string when valid.

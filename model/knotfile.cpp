@@ -120,6 +120,10 @@ QByteArray sceneToJson(const Scene& scene) {
     root.insert(QStringLiteral("lights"), lights);
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
+    if (!scene.display.partitionMode.isEmpty())
+        root.insert(QStringLiteral("display"),
+                    QJsonObject{{QStringLiteral("partitionMode"), scene.display.partitionMode},
+                                {QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}});
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
 

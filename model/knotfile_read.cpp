@@ -388,6 +388,25 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
     return c;
 }
 
+DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
+    DisplaySettings d;
+    d.partitionMode = asString(required(o, path, "partitionMode"), member(path, "partitionMode"));
+    if (d.partitionMode != QLatin1String("adaptive") && d.partitionMode != QLatin1String("uniform"))
+        fail(member(path, "partitionMode"),
+             QStringLiteral("expected \"adaptive\" or \"uniform\", found ") +
+                 describe(QJsonValue(d.partitionMode)));
+    if (o.contains(QLatin1String("pixelTolerance"))) {
+        d.pixelTolerance =
+            asNumber(o.value(QLatin1String("pixelTolerance")), member(path, "pixelTolerance"));
+        if (!(d.pixelTolerance >= kMinPixelTolerance && d.pixelTolerance <= kMaxPixelTolerance))
+            fail(member(path, "pixelTolerance"), QStringLiteral("%1 is outside %2..%3")
+                                                     .arg(num(d.pixelTolerance))
+                                                     .arg(kMinPixelTolerance)
+                                                     .arg(kMaxPixelTolerance));
+    }
+    return d;
+}
+
 void checkVersion(const QJsonObject& root) {
     const QString path = QStringLiteral("$.version");
     const QString version = asString(required(root, QStringLiteral("$"), "version"), path);
@@ -443,6 +462,10 @@ Scene readScene(const QJsonObject& root) {
         scene.camera =
             readCamera(asObject(root.value(QLatin1String("camera")), QStringLiteral("$.camera")),
                        QStringLiteral("$.camera"));
+    if (root.contains(QLatin1String("display")))
+        scene.display =
+            readDisplay(asObject(root.value(QLatin1String("display")), QStringLiteral("$.display")),
+                        QStringLiteral("$.display"));
     if (root.contains(QLatin1String("nextId")))
         scene.nextId = std::uint32_t(asInteger(root.value(QLatin1String("nextId")),
                                                QStringLiteral("$.nextId"), 1, 0xFFFFFFFFll));

@@ -282,6 +282,10 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         c.fovYDegrees = num(12);
         c.authored = true;
         check(cameraError(c));
+    } else if (key == "display") {
+        m_scene.display.partitionMode = QString::fromLatin1(t.value(3));
+        m_scene.display.pixelTolerance = num(4);
+        check(displayError(m_scene.display));
     } else if (key == "surface") {
         m_meta = Metadata{};
         m_metaPending = true;

@@ -5,10 +5,9 @@
 
 #include <QHashFunctions>
 #include <QString>
-#include <glm/glm.hpp>
-
 #include <compare>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace kw {
@@ -27,8 +26,12 @@ struct TrimLoopId {
     auto operator<=>(const TrimLoopId&) const = default;
 };
 
-inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
-inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept { return ::qHash(id.value, seed); }
+inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept {
+    return ::qHash(id.value, seed);
+}
+inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept {
+    return ::qHash(id.value, seed);
+}
 
 /// One control point of one surface: (i, j) as in NurbsSurface::index.
 struct ControlPointRef {
@@ -102,6 +105,19 @@ constexpr int kMaxLights = 8;
 /// dimmer fill light from the right.
 std::vector<Light> defaultLights();
 
+/// Adaptive partitions' screen tolerance limits in pixels (DisplaySettings,
+/// RenderOptions::pixelTolerance).
+constexpr double kMinPixelTolerance = 0.05;
+constexpr double kMaxPixelTolerance = 16.0;
+
+/// How the project asks to be drawn, saved with it like the camera (not an edit). An empty
+/// mode leaves it to the viewer (the editor's preference, render's --partition-mode).
+struct DisplaySettings {
+    QString partitionMode;       ///< "", "adaptive" or "uniform"
+    double pixelTolerance = 0.5; ///< adaptive mode's, kMinPixelTolerance..kMaxPixelTolerance
+    bool operator==(const DisplaySettings&) const = default;
+};
+
 /// Perspective camera. `authored` false means none was set by the user or file: views fit one
 /// to the scene (fitCamera) and files omit it.
 struct Camera {
@@ -118,6 +134,7 @@ struct Scene {
     std::vector<Surface> surfaces;
     std::vector<Light> lights = defaultLights();
     Camera camera;
+    DisplaySettings display;
     std::uint32_t nextId = 1;
     bool operator==(const Scene&) const = default;
 };

@@ -174,6 +174,19 @@ QString surfaceError(const Surface& s) {
     return e.isEmpty() ? QString() : who + QStringLiteral(": ") + e;
 }
 
+QString displayError(const DisplaySettings& d) {
+    if (!d.partitionMode.isEmpty() && d.partitionMode != QLatin1String("adaptive") &&
+        d.partitionMode != QLatin1String("uniform"))
+        return QStringLiteral("partition mode \"%1\" is neither \"adaptive\" nor \"uniform\"")
+            .arg(d.partitionMode);
+    if (!(d.pixelTolerance >= kMinPixelTolerance && d.pixelTolerance <= kMaxPixelTolerance))
+        return QStringLiteral("pixel tolerance %1 is outside %2..%3")
+            .arg(d.pixelTolerance)
+            .arg(kMinPixelTolerance)
+            .arg(kMaxPixelTolerance);
+    return QString();
+}
+
 QString sceneError(const Scene& scene) {
     if (scene.surfaces.size() > size_t(kMaxSurfaces))
         return QStringLiteral("%1 surfaces, more than the limit %2")
@@ -202,6 +215,8 @@ QString sceneError(const Scene& scene) {
     QString e = lightsError(scene.lights);
     if (e.isEmpty())
         e = cameraError(scene.camera);
+    if (e.isEmpty())
+        e = displayError(scene.display);
     return e;
 }
 

@@ -35,6 +35,9 @@ QString lightsError(const std::vector<Light>& lights);
 /// Finite eye, target and up; eye != target; up not zero and not parallel to the view
 /// direction; fovYDegrees in (0, 180).
 QString cameraError(const Camera& camera);
+/// A mode other than "", "adaptive" or "uniform", or a tolerance outside
+/// [kMinPixelTolerance, kMaxPixelTolerance].
+QString displayError(const DisplaySettings& display);
 
 /// The largest distance at which consecutive curves of a loop still meet: 1e-9 times the
 /// largest control point coordinate magnitude of the loop, at least 1e-9.

@@ -14,10 +14,6 @@ enum class RenderMode {
     Tessellated, ///< CPU tessellation at the partitions, per-vertex normals, Gouraud shading
 };
 
-/// Adaptive partitions' screen tolerance limits in pixels (RenderOptions::pixelTolerance).
-constexpr double kMinPixelTolerance = 0.05;
-constexpr double kMaxPixelTolerance = 16.0;
-
 /// Trim mask side limits in texels (RenderOptions::trimMaskCap).
 constexpr int kMinTrimMaskSize = 32;
 constexpr int kDefaultTrimMaskCap = 1024;

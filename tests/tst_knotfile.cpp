@@ -1,6 +1,7 @@
 // .knot file tests: every field round-trips, each broken file gets its precise one-line error,
 // and a failed save leaves the previous file intact.
 #include "model/knotfile.h"
+#include "model/validation.h"
 
 #include <QDir>
 #include <QFile>
@@ -101,6 +102,7 @@ Scene richScene() {
     scene.lights = defaultLights();
     scene.lights.push_back(point);
     scene.camera = Camera{{1.0, -7.25, 2.0}, {0.1, 0.2, 0.3}, {0.0, 0.0, 1.0}, 47.5, true};
+    scene.display = DisplaySettings{QStringLiteral("uniform"), 1.25};
     scene.nextId = 12;
     return scene;
 }
@@ -133,6 +135,7 @@ private Q_SLOTS:
     void roundTripEveryField();
     void doublesRoundTripBitForBit();
     void cameraOmittedWhenNotAuthored();
+    void displayOptionalAndChecked();
     void idsKeptAndNextIdRaised();
     void newerMinorVersionAccepted();
     void readFileRoundTrip();
@@ -199,6 +202,54 @@ void TestKnotFile::cameraOmittedWhenNotAuthored() {
     QVERIFY(back);
     QVERIFY(!back->camera.authored);
     QVERIFY(*back == scene);
+}
+
+// Format 1.1's optional display settings: left out when unset (a 1.0 file reads with none),
+// checked member by member when present.
+void TestKnotFile::displayOptionalAndChecked() {
+    Scene scene = richScene();
+    QCOMPARE(
+        QJsonDocument::fromJson(sceneToJson(scene)).object()[QStringLiteral("version")].toString(),
+        QStringLiteral("1.1"));
+    scene.display = DisplaySettings{};
+    QJsonObject root = QJsonDocument::fromJson(sceneToJson(scene)).object();
+    QVERIFY(!root.contains(QStringLiteral("display")));
+    root.insert(QStringLiteral("version"), QStringLiteral("1.0"));
+    std::optional<Scene> back =
+        sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
+    QVERIFY(back);
+    QVERIFY(back->display.partitionMode.isEmpty());
+    QVERIFY(*back == scene);
+    // Present: the tolerance defaults to 0.5; bad values name their place.
+    root.insert(QStringLiteral("display"),
+                QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("adaptive")}});
+    back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
+    QVERIFY(back);
+    QCOMPARE(back->display, (DisplaySettings{QStringLiteral("adaptive"), 0.5}));
+    const struct {
+        QJsonObject display;
+        const char* path;
+    } bad[] = {
+        {QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("fine")}},
+         "mem: $.display.partitionMode: "},
+        {QJsonObject{{QStringLiteral("pixelTolerance"), 1.0}},
+         "mem: $.display.partitionMode: missing"},
+        {QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("adaptive")},
+                     {QStringLiteral("pixelTolerance"), 0.0}},
+         "mem: $.display.pixelTolerance: "},
+        {QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("uniform")},
+                     {QStringLiteral("pixelTolerance"), 17.0}},
+         "mem: $.display.pixelTolerance: "},
+    };
+    for (const auto& b : bad) {
+        root.insert(QStringLiteral("display"), b.display);
+        QString error;
+        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), &error));
+        QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
+    }
+    // The one validation refuses it too (Document, writers).
+    scene.display = DisplaySettings{QStringLiteral("adaptive"), 100.0};
+    QVERIFY(!sceneError(scene).isEmpty());
 }
 
 void TestKnotFile::idsKeptAndNextIdRaised() {

@@ -376,6 +376,37 @@ private Q_SLOTS:
         QVERIFY2(worst < 1e-9, qPrintable(QString::number(worst)));
         QCOMPARE(scene().surfaces.back().id, m_window->selection()->currentSurface());
     }
+
+    // View > Adaptive Partitions switches the view, is saved with the project (format 1.1
+    // "display") and restored on Open; a project without it follows the preference.
+    void partitionModeIsSavedWithTheProject() {
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        QAction* adaptive = act("actionAdaptivePartitions");
+        QVERIFY(adaptive && adaptive->isCheckable());
+        adaptive->setChecked(true);
+        QCOMPARE(vp->partitioning(), RenderOptions::Partitioning::Adaptive);
+        QTest::qWait(50);
+        QVERIFY(vp->lastFrameReport().partitions.worstBoundPixels <= 0.5);
+        adaptive->setChecked(false);
+        QCOMPARE(vp->partitioning(), RenderOptions::Partitioning::Uniform);
+        QVERIFY(m_window->undoStack()->isClean()); // a view setting, not an edit
+        const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/display_uniform.knot");
+        QVERIFY(m_window->saveFile(path));
+        QString error;
+        const std::optional<Scene> saved = readKnotFile(path, &error);
+        QVERIFY2(saved, qPrintable(error));
+        QCOMPARE(saved->display.partitionMode, QStringLiteral("uniform"));
+        // The preference says adaptive; the project says uniform and wins on Open.
+        adaptive->setChecked(true);
+        QVERIFY(m_window->openFile(path));
+        QCOMPARE(vp->partitioning(), RenderOptions::Partitioning::Uniform);
+        QVERIFY(!adaptive->isChecked());
+        // A project without display settings follows the preference (adaptive).
+        QVERIFY(m_window->openFile(samplePath("bicubic")));
+        QCOMPARE(vp->partitioning(), RenderOptions::Partitioning::Adaptive);
+        QVERIFY(adaptive->isChecked());
+    }
 };
 
 QTEST_MAIN(TestModelingTools)

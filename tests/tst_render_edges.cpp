@@ -140,6 +140,36 @@ private Q_SLOTS:
         QVERIFY(cells < u.captured(1).toLongLong());
     }
 
+    // A project's saved display settings choose the partitioning unless the command line does.
+    void projectDisplaySettingsApply() {
+        QFile in(sample("bicubic"));
+        QVERIFY(in.open(QIODevice::ReadOnly));
+        QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
+        root.insert(QStringLiteral("display"),
+                    QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("uniform")}});
+        const QString path = output(QStringLiteral("bicubic_uniform.knot"));
+        QFile out(path);
+        QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        out.write(QJsonDocument(root).toJson());
+        out.close();
+        const QStringList base{QStringLiteral("render"), path,
+                               QStringLiteral("-o"),     output(QStringLiteral("display.png")),
+                               QStringLiteral("--size"), QStringLiteral("64x48")};
+        Run r = knotwork(base);
+        QVERIFY2(r.code == 0 && r.out.contains(QStringLiteral("uniform partitions: ")),
+                 qPrintable(r.out + r.err));
+        r = knotwork(base +
+                     QStringList{QStringLiteral("--partition-mode"), QStringLiteral("adaptive")});
+        QVERIFY2(r.code == 0 && r.out.contains(QStringLiteral("adaptive partitions: ")),
+                 qPrintable(r.out + r.err));
+        // Without saved settings, adaptive is render's default.
+        r = knotwork({QStringLiteral("render"), sample("bicubic"), QStringLiteral("-o"),
+                      output(QStringLiteral("display.png")), QStringLiteral("--size"),
+                      QStringLiteral("64x48")});
+        QVERIFY2(r.code == 0 && r.out.contains(QStringLiteral("adaptive partitions: ")),
+                 qPrintable(r.out + r.err));
+    }
+
     void referenceAndReportExcludeEachOther() {
         const Run r = knotwork({QStringLiteral("render"), sample("sphere"), QStringLiteral("-o"),
                                 output(QStringLiteral("x.png")), QStringLiteral("--reference"),

@@ -61,6 +61,29 @@ void DesktopActions::applyPreferences() {
     }
 }
 
+void DesktopActions::applyDisplay(const DisplaySettings& display) {
+    applyPreferences();
+    if (display.partitionMode.isEmpty())
+        return;
+    m_viewport->setPartitioning(display.partitionMode == QLatin1String("uniform")
+                                    ? RenderOptions::Partitioning::Uniform
+                                    : RenderOptions::Partitioning::Adaptive,
+                                display.pixelTolerance);
+    if (m_adaptive) {
+        const QSignalBlocker quiet(m_adaptive);
+        m_adaptive->setChecked(display.partitionMode != QLatin1String("uniform"));
+    }
+}
+
+DisplaySettings DesktopActions::currentDisplay() const {
+    DisplaySettings d;
+    d.partitionMode = m_viewport->partitioning() == RenderOptions::Partitioning::Uniform
+                          ? QStringLiteral("uniform")
+                          : QStringLiteral("adaptive");
+    d.pixelTolerance = m_viewport->pixelTolerance();
+    return d;
+}
+
 void DesktopActions::editPreferences() {
     if (auto p = m_prompts.preferences(m_window, Preferences::load())) {
         p->save();

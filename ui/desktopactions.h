@@ -2,6 +2,7 @@
 // modeling editor (nets of all surfaces, ground grid, axis indicator, headlight).
 #pragma once
 
+#include "model/scene.h"
 #include "ui/preferences.h"
 
 #include <QObject>
@@ -38,6 +39,11 @@ public:
 
     /// Reads the preferences and applies the view ones to the viewport.
     void applyPreferences();
+    /// The opened project's display settings (Scene::display) when it has them, else the
+    /// preferences; the View menu follows.
+    void applyDisplay(const DisplaySettings& display);
+    /// What the view shows now, for the project file.
+    DisplaySettings currentDisplay() const;
     /// Opens the Preferences dialog; on OK saves and applies.
     void editPreferences();
     /// Every action of the window with a shortcut, and the mouse gestures, as an HTML table.

@@ -4,6 +4,7 @@
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 #include "ui/autosave.h"
+#include "ui/desktopactions.h"
 #include "ui/mainwindow.h"
 #include "ui/viewport.h"
 
@@ -54,6 +55,8 @@ bool MainWindow::openFile(const QString& path) {
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);
+    // A project saved with a partition mode is shown so; one without, as the preferences say.
+    m_desktop->applyDisplay(m_doc->scene().display);
     if (!m_doc->scene().surfaces.empty())
         selectSurface(m_doc->scene().surfaces.front().id);
     statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
@@ -67,6 +70,8 @@ bool MainWindow::saveFile(const QString& path) {
     camera.authored = true;
     Scene scene = m_doc->scene();
     scene.camera = camera;
+    // So is the partition mode the view draws (as the camera, not an edit).
+    scene.display = m_desktop->currentDisplay();
     QString error;
     // The previous version becomes FILE.bak. A failed copy does not stop the save; it is said.
     QString backupError;
@@ -77,6 +82,7 @@ bool MainWindow::saveFile(const QString& path) {
         return false;
     }
     m_doc->setCamera(camera);
+    m_doc->setDisplay(scene.display);
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);

@@ -80,6 +80,7 @@ public:
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
     RenderOptions::Partitioning partitioning() const { return m_options.partitioning; }
+    double pixelTolerance() const { return m_options.pixelTolerance; }
     /// The surfaces whose nets are drawn and pickable now.
     std::vector<SurfaceId> netSurfaces() const;
 
