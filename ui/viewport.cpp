@@ -157,6 +157,12 @@ void Viewport::setTrimMaskCap(int texels) {
     update();
 }
 
+void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
+    m_options.partitioning = mode;
+    m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
+    update();
+}
+
 std::vector<SurfaceId> Viewport::netSurfaces() const {
     if (!m_options.controlNet)
         return {};

@@ -76,6 +76,10 @@ public:
     void setHeadlight(bool on);
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
+    /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
+    /// sliders then being the minimum, or the paper's uniform sliders' grid.
+    void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
+    RenderOptions::Partitioning partitioning() const { return m_options.partitioning; }
     /// The surfaces whose nets are drawn and pickable now.
     std::vector<SurfaceId> netSurfaces() const;
 
@@ -197,7 +201,7 @@ private:
     SurfaceDrag m_surfaceDrag = SurfaceDrag::Move;
     bool m_snap = false; ///< Shift held during a rotate or scale drag
     ViewTool* m_tool = nullptr;
-    ControlPointRef m_weightRef;   ///< DragWeight: the point and its weight at press time
+    ControlPointRef m_weightRef; ///< DragWeight: the point and its weight at press time
     double m_weightFrom = 1.0;
     bool m_netForAll = false;
     bool m_grid = false;
