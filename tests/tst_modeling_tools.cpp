@@ -264,6 +264,31 @@ private Q_SLOTS:
         QCOMPARE(vp->surfaceDrag(), Viewport::SurfaceDrag::Move);
     }
 
+    void curveToolPreviewFollowsThePointsAndTheMode() {
+        // The preview is solved once per change, not per repaint; each change must rebuild it.
+        openWindow();
+        Viewport* vp = m_window->viewport();
+        CurveTool* tool = m_window->modelingTools()->curveTool();
+        act("actionViewTop")->trigger();
+        act("actionDrawExtrude")->trigger();
+        const QPoint c(vp->width() / 2, vp->height() / 2);
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + QPoint(-100, 30));
+        QVERIFY(tool->preview().points.empty()); // one point: no curve
+        for (const QPoint d : {QPoint(0, -40), QPoint(90, 20), QPoint(150, -30)})
+            QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + d);
+        vp->grabFramebuffer(); // paints with the preview
+        const NurbsCurve3 four = tool->preview();
+        QCOMPARE(four, tool->curveThrough(tool->points(), nullptr));
+        QVERIFY(!four.points.empty());
+        QTest::keyClick(vp, Qt::Key_Backspace);
+        QCOMPARE(tool->preview(), tool->curveThrough(tool->points(), nullptr));
+        QVERIFY(!(tool->preview() == four));
+        tool->setInterpolating(false);
+        QCOMPARE(tool->preview(), controlPointCurve3(tool->points(), 3));
+        QTest::keyClick(vp, Qt::Key_Escape);
+        QVERIFY(tool->preview().points.empty());
+    }
+
     void curveToolInterpolatesTheClickedPoints() {
         openWindow();
         Viewport* vp = m_window->viewport();
