@@ -172,6 +172,33 @@ private Q_SLOTS:
         QVERIFY(m_window->selection()->trimPoints().empty());
     }
 
+    void hiddenSelectedSurfaceShowsNoNetAndStaysPut() {
+        // A hidden surface can be selected again in the tree; it still shows no net (selected
+        // or all nets) and a Ctrl + drag leaves it where it is.
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        const SurfaceId id = scene().surfaces.front().id;
+        vp->setControlNet(true);
+        m_window->selectSurface(id);
+        QCOMPARE(vp->netSurfaces(), std::vector<SurfaceId>{id});
+        key(Qt::Key_H);
+        QVERIFY(m_window->document()->surface(id)->hidden);
+        m_window->selectSurface(id);
+        QCOMPARE(m_window->selection()->selectedSurfaces(), std::vector<SurfaceId>{id});
+        QVERIFY(vp->netSurfaces().empty());
+        vp->setControlNetForAll(true);
+        QVERIFY(vp->netSurfaces().empty());
+        vp->setControlNetForAll(false);
+        const int steps = m_window->undoStack()->count();
+        const QPoint press(vp->width() / 2, vp->height() / 2);
+        QTest::mousePress(vp, Qt::LeftButton, Qt::ControlModifier, press);
+        QTest::mouseMove(vp, press + QPoint(40, 10));
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::ControlModifier, press + QPoint(40, 10));
+        QCOMPARE(m_window->undoStack()->count(), steps);
+        m_window->undoStack()->undo(); // the hide
+        QCOMPARE(vp->netSurfaces(), std::vector<SurfaceId>{id});
+    }
+
     void rotateAndScaleDragsAreExactAboutThePivot() {
         openWindow("bicubic");
         Viewport* vp = m_window->viewport();
