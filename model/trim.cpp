@@ -203,6 +203,24 @@ NurbsCurve2 straightCurve(glm::dvec2 from, glm::dvec2 to) {
 
 } // namespace
 
+QStringList closeSceneTrimLoops(Scene& scene) {
+    QStringList lines;
+    for (Surface& s : scene.surfaces)
+        for (TrimLoop& loop : s.trims) {
+            const bool valid =
+                std::all_of(loop.curves.begin(), loop.curves.end(),
+                            [](const NurbsCurve2& c) { return curveValidationError(c).empty(); });
+            if (!valid)
+                continue;
+            for (const QString& line : closeTrimLoop(loop, trimTolerance(s.geometry)))
+                lines << QStringLiteral("surface '%1', trim loop %2: %3")
+                             .arg(s.name)
+                             .arg(loop.id.value)
+                             .arg(line);
+        }
+    return lines;
+}
+
 std::vector<TrimPointRef> trimPointWithCoincidentEnds(const Surface& surface,
                                                       const TrimPointRef& hit) {
     std::vector<TrimPointRef> refs{hit};

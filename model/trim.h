@@ -61,6 +61,12 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
 /// loop was already closed. Precondition: every curve valid (curveValidationError).
 QStringList closeTrimLoop(TrimLoop& loop, double snap);
 
+/// closeTrimLoop for every loop of `scene` at trimTolerance of its surface, as an import ends
+/// (CAD and OBJ readers): returns one line per gap closed, "surface 'NAME', trim loop ID:
+/// <closeTrimLoop's line>". A loop with an invalid curve (curveValidationError) is left as it
+/// is, for kw::sceneError to name.
+QStringList closeSceneTrimLoops(Scene& scene);
+
 /// The trim points that must move with `hit` so that its loop stays closed (Document refuses a
 /// move that opens a loop): `hit` first, then, when it is the first or last point of its curve,
 /// every curve end of the same loop within trimLoopClosureTolerance of it (the neighbouring

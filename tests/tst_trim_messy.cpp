@@ -111,6 +111,34 @@ private Q_SLOTS:
         QVERIFY(trimRegionContains(region, {0.5, 0.1}));
     }
 
+    void importsCloseEveryValidLoopOfTheScene() {
+        Scene scene;
+        Surface s;
+        s.id = SurfaceId{1};
+        s.name = QStringLiteral("plate");
+        s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
+        // Open by 0.3: bridged by a straight segment. Loop 3: closed already. Loop 4: a curve
+        // with too few knots, left for sceneError to name.
+        s.trims.push_back(loopOf(2, {polylineCurve({{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}}),
+                                     polylineCurve({{0.9, 0.9}, {0.1, 0.9}, {0.1, 0.4}})}));
+        s.trims.push_back(
+            loopOf(3, {polylineCurve({{0.4, 0.4}, {0.6, 0.4}, {0.4, 0.6}, {0.4, 0.4}})}));
+        NurbsCurve2 bad = polylineCurve({{0.2, 0.2}, {0.3, 0.2}});
+        bad.knots.pop_back();
+        s.trims.push_back(loopOf(4, {bad}));
+        scene.surfaces.push_back(s);
+        const QStringList lines = closeSceneTrimLoops(scene);
+        QVERIFY2(lines.size() == 1, qPrintable(lines.join('\n')));
+        QVERIFY2(lines[0].startsWith("surface 'plate', trim loop 2: ") &&
+                     lines[0].contains("bridged"),
+                 qPrintable(lines[0]));
+        const std::vector<TrimLoop>& trims = scene.surfaces[0].trims;
+        QVERIFY(trimLoopError(trims[0]).isEmpty());
+        QCOMPARE(trims[0].curves.size(), size_t(3));
+        QCOMPARE(trims[1], s.trims[1]);
+        QCOMPARE(trims[2], s.trims[2]);
+    }
+
     void curveEndsMoveWithTheirCoincidentEnds() {
         // A triangle of three 2-point lines (as imported CAD loops are) and a closed polyline.
         Scene scene;

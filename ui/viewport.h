@@ -174,6 +174,9 @@ private:
     void drawOverlays(class QPainter& p, const ViewProjection& view);
     /// Ctrl + drag: every control point of the selected surfaces follows the drag.
     bool pressOnSurfaces(QPointF pixel);
+    /// The surfaces that are not hidden, in document order: the selected ones only, or all.
+    /// Hidden surfaces show no outline or net, and neither their points nor they can be dragged.
+    std::vector<SurfaceId> shownSurfaces(bool selectedOnly) const;
     void finishWeightDrag(bool cancel);
     /// Rotate and scale drags (viewport_transform.cpp).
     void applyTransformDrag();
