@@ -95,11 +95,13 @@ struct Editor {
         w->undoStack()->undo();
         if (!changed || w->document()->scene() != before || !w->saveFile(path))
             return false;
-        // Save also writes the view's camera (issue 13); everything else is the document.
+        // Save also writes the view's camera (issue 13) and partition mode (issue 10);
+        // everything else is the document.
         std::optional<Scene> written = readKnotFile(path, nullptr);
         if (!written)
             return false;
         written->camera = before.camera;
+        written->display = before.display;
         return *written == before;
     }
 };

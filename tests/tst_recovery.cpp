@@ -203,10 +203,13 @@ private Q_SLOTS:
 
         // Save: the file gets the edits, the previous version is kept, recovery files go.
         QVERIFY(w->saveFile(m_plate));
-        // Save also writes the view's camera (issue 13); everything else is the edits.
+        // Save also writes the view's camera (issue 13) and partition mode (issue 10);
+        // everything else is the edits.
         std::optional<Scene> written = readKnotFile(m_plate, nullptr);
         QVERIFY(written && written->camera.authored);
+        QVERIFY(!written->display.partitionMode.isEmpty());
         written->camera = expected->camera;
+        written->display = expected->display;
         QVERIFY(*written == *expected);
         QCOMPARE(fileBytes(m_plate + QStringLiteral(".bak")), m_plateBytes);
         QVERIFY(!QFile::exists(w->autosave()->scenePath()));
