@@ -54,7 +54,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "stdout)."),
         QStringLiteral("REPORT.json"));
     parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport});
-    const RenderCliOptions shared = addRenderOptions(parser, QString());
+    const RenderCliOptions shared = addRenderOptions(
+        parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
@@ -166,6 +167,18 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      .arg(timedFrames)
                      .arg(analysisModeName(options.analysis.mode)));
     }
+    const FrameReport::Partitions& parts = renderer.lastReport().partitions;
+    if (options.mode == RenderMode::Exact)
+        printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
+                     ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
+                                      "(tolerance %4 px)\n")
+                           .arg(files[0])
+                           .arg(parts.cells)
+                           .arg(parts.worstBoundPixels, 0, 'f', 3)
+                           .arg(options.pixelTolerance)
+                     : QStringLiteral("%1: uniform partitions: %2 cells\n")
+                           .arg(files[0])
+                           .arg(parts.cells));
     printOut(
         QStringLiteral("%1: %2x%3 %4 render of %5 surface(s) -> %6%7\n")
             .arg(files[0])

@@ -123,7 +123,13 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
 
 } // namespace
 
-RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions) {
+QString partitioningName(RenderOptions::Partitioning p) {
+    return p == RenderOptions::Partitioning::Adaptive ? QStringLiteral("adaptive")
+                                                      : QStringLiteral("uniform");
+}
+
+RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions,
+                                  const QString& defaultPartitioning) {
     RenderCliOptions o{
         QCommandLineOption(QStringLiteral("mode"),
                            QStringLiteral("exact (default) or tessellated."),
@@ -136,6 +142,21 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                                 "%1).")
                                      .arg(defaultPartitions),
                            QStringLiteral("N|NxM"), defaultPartitions),
+        QCommandLineOption(
+            QStringLiteral("partition-mode"),
+            QStringLiteral("adaptive: per surface and view, the fewest partitions (at least the "
+                           "surface's own or --partitions) that keep the base polygon within "
+                           "--pixel-tolerance of the exact surface on screen, by a guaranteed "
+                           "bound; uniform: the surface's own or --partitions, as the paper "
+                           "(default %1).")
+                .arg(defaultPartitioning),
+            QStringLiteral("MODE"), defaultPartitioning),
+        QCommandLineOption(QStringLiteral("pixel-tolerance"),
+                           QStringLiteral("Adaptive partitions: screen distance in pixels, %1..%2 "
+                                          "(default 0.5).")
+                               .arg(kMinPixelTolerance)
+                               .arg(kMaxPixelTolerance),
+                           QStringLiteral("PX"), QStringLiteral("0.5")),
         QCommandLineOption(QStringLiteral("lights"),
                            QStringLiteral("Number of lights, 1..%1 (default 2).").arg(kMaxLights),
                            QStringLiteral("N"), QStringLiteral("2")),
@@ -200,9 +221,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("principal-directions"),
                            QStringLiteral("Overlay short marks of the principal curvature "
                                           "directions (k1 red, k2 blue) on any --shading mode."))};
-    parser.addOptions({o.mode, o.partitions, o.lights, o.depth, o.noTrims, o.trimMaskCap, o.shading,
-                       o.isocurves, o.isoLines, o.range, o.scale, o.stripes, o.stripeAngle,
-                       o.isophoteBands, o.pull, o.draftAngle, o.envMap, o.directions});
+    parser.addOptions({o.mode,    o.partitions, o.partitionMode, o.pixelTolerance,
+                       o.lights,  o.depth,      o.noTrims,       o.trimMaskCap,
+                       o.shading, o.isocurves,  o.isoLines,      o.range,
+                       o.scale,   o.stripes,    o.stripeAngle,   o.isophoteBands,
+                       o.pull,    o.draftAngle, o.envMap,        o.directions});
     return o;
 }
 
@@ -224,6 +247,20 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
         !parsePartitions(parser.value(o.partitions), options.partitionsU, options.partitionsV))
         return fail(o.partitions,
                     QStringLiteral("N or NxM with %1..%2").arg(kMinPartitions).arg(kMaxPartitions));
+    const QString partitioning = parser.value(o.partitionMode);
+    if (partitioning == partitioningName(RenderOptions::Partitioning::Adaptive))
+        options.partitioning = RenderOptions::Partitioning::Adaptive;
+    else if (partitioning == partitioningName(RenderOptions::Partitioning::Uniform))
+        options.partitioning = RenderOptions::Partitioning::Uniform;
+    else
+        return fail(o.partitionMode, QStringLiteral("adaptive or uniform"));
+    bool toleranceOk = false;
+    options.pixelTolerance = parser.value(o.pixelTolerance).toDouble(&toleranceOk);
+    if (!toleranceOk || !(options.pixelTolerance >= kMinPixelTolerance) ||
+        !(options.pixelTolerance <= kMaxPixelTolerance))
+        return fail(
+            o.pixelTolerance,
+            QStringLiteral("a number in %1..%2").arg(kMinPixelTolerance).arg(kMaxPixelTolerance));
     if (!parseIntIn(parser.value(o.lights), 1, kMaxLights, options.lightCount))
         return fail(o.lights, QStringLiteral("in 1..%1").arg(kMaxLights));
     const QString depth = parser.value(o.depth);

@@ -23,16 +23,21 @@ QString modeName(RenderMode mode);
 /// resolves visibility; the analysis colouring is --shading).
 QString shadingName(RenderOptions::Shading shading);
 
-/// --mode, --partitions, --lights, --depth, --no-trims, --trim-mask-cap and the analysis
-/// options (--shading MODE, --isocurves, --iso-lines, --range, --scale, --stripes,
+/// --mode, --partitions, --partition-mode, --pixel-tolerance, --lights, --depth, --no-trims,
+/// --trim-mask-cap and the analysis options (--shading MODE, --isocurves, --iso-lines, --range,
+/// --scale, --stripes,
 /// --stripe-angle, --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
-    QCommandLineOption mode, partitions, lights, depth, noTrims, trimMaskCap;
+    QCommandLineOption mode, partitions, partitionMode, pixelTolerance, lights, depth, noTrims,
+        trimMaskCap;
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
         isophoteBands, pull, draftAngle, envMap, directions;
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
-RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions);
+/// `defaultPartitioning`: "adaptive" (render) or "uniform" (bench: the paper's tables).
+RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions,
+                                  const QString& defaultPartitioning);
+QString partitioningName(RenderOptions::Partitioning p);
 /// Reads them into `options`. On a malformed value prints "<cmd>: --option 'value' is ..."
 /// on stderr and returns false (the caller exits with kExitUsage).
 bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions& o,

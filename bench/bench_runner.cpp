@@ -6,6 +6,7 @@
 #include "bench/mesh_pass.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/trim.h"
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -205,7 +206,7 @@ QString describe(const Model& m, const QString& what, const MethodResult& r) {
 /// A trim control point of the first trimmed surface to drag: an interior point of a curve of
 /// its first loop when one has any, so the loop stays closed; an invalid ref without trims.
 /// Otherwise the first curve's start, which measureDrag moves together with the coinciding
-/// end of the previous curve (Document refuses a move that opens a loop).
+/// curve ends (trimPointWithCoincidentEnds; Document refuses a move that opens a loop).
 TrimPointRef dragTarget(const Scene& scene) {
     for (const Surface& s : scene.surfaces) {
         if (s.trims.empty() || s.trims.front().curves.empty())
@@ -226,15 +227,8 @@ bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& f
     const Surface* surface = m.doc.surface(target.surface);
     const std::vector<NurbsCurve2>& curves = surface->trims.front().curves;
     const glm::dvec2 home = curves[size_t(target.curve)].points[size_t(target.index)];
-    // A curve end moves with the coinciding end of the previous curve (cyclically).
-    std::vector<TrimPointRef> refs{target};
-    if (target.index == 0) {
-        const size_t prev = (size_t(target.curve) + curves.size() - 1) % curves.size();
-        const TrimPointRef end{target.surface, target.loop, int(prev),
-                               int(curves[prev].points.size()) - 1};
-        if (end != target)
-            refs.push_back(end);
-    }
+    // A curve end moves with the coinciding curve ends, as the UV editor moves it.
+    const std::vector<TrimPointRef> refs = trimPointWithCoincidentEnds(*surface, target);
     bool refused = false;
     const auto moveTo = [&](glm::dvec2 p) {
         refused = !m.doc.setTrimPoints(refs, std::vector<glm::dvec2>(refs.size(), p)) || refused;

@@ -1,6 +1,7 @@
 // Reading .knot project files: JSON -> validated Scene, with one-line errors naming the JSON path.
 #include "model/knotfile.h"
 #include "model/knotfile_prescan.h"
+#include "model/validation.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -257,7 +258,8 @@ Material readMaterial(const QJsonObject& o, const QString& path) {
     m.ka = asNumberIn(required(o, path, "ka"), member(path, "ka"), 0.0, 1.0);
     m.kd = asNumberIn(required(o, path, "kd"), member(path, "kd"), 0.0, 1.0);
     m.ks = asNumberIn(required(o, path, "ks"), member(path, "ks"), 0.0, 1.0);
-    m.shininess = asNumberIn(required(o, path, "shininess"), member(path, "shininess"), 0.0, 1e4);
+    m.shininess =
+        asNumberIn(required(o, path, "shininess"), member(path, "shininess"), 0.0, kMaxShininess);
     return m;
 }
 
@@ -360,11 +362,12 @@ Light readLight(const QJsonObject& o, const QString& path) {
     l.vector = asVec3(required(o, path, "vector"), member(path, "vector"));
     if (l.kind == Light::Kind::Directional && glm::length(l.vector) == 0.0)
         fail(member(path, "vector"), QStringLiteral("a directional light needs a non-zero vector"));
-    constexpr double kMaxIntensity = 1e3;
-    l.ambient = asVec3(required(o, path, "ambient"), member(path, "ambient"), 0.0, kMaxIntensity);
-    l.diffuse = asVec3(required(o, path, "diffuse"), member(path, "diffuse"), 0.0, kMaxIntensity);
+    l.ambient =
+        asVec3(required(o, path, "ambient"), member(path, "ambient"), 0.0, kMaxLightIntensity);
+    l.diffuse =
+        asVec3(required(o, path, "diffuse"), member(path, "diffuse"), 0.0, kMaxLightIntensity);
     l.specular =
-        asVec3(required(o, path, "specular"), member(path, "specular"), 0.0, kMaxIntensity);
+        asVec3(required(o, path, "specular"), member(path, "specular"), 0.0, kMaxLightIntensity);
     return l;
 }
 

@@ -71,12 +71,13 @@ SurfaceCurvature surfaceCurvature(const NurbsSurface& s, double u, double v) {
     const Interval dv = surfaceDomainV(s);
     u = detail::clampTo(u, du);
     v = detail::clampTo(v, dv);
-    const SurfaceFrame frame = surfaceFrame(s, u, v);
+    // One evaluation serves the frame (point, reported normal) and the curvature.
+    detail::LocalEval e = detail::evaluateLocal(s, u, v);
+    const SurfaceFrame frame = detail::frameAt(s, u, v, e);
     c.point = frame.point;
     c.normal = frame.normal;
     const double wu = du.last - du.first;
     const double wv = dv.last - dv.first;
-    detail::LocalEval e = detail::evaluateLocal(s, u, v);
     c.regular = detail::regularPoint(e, wu, wv);
     if (!c.regular) {
         // The curvature at surfaceFrame's step-3 point: on a geometrically smooth surface this

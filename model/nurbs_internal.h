@@ -43,6 +43,10 @@ struct LocalEval {
 /// A3.6 + A4.4 at (u, v). Preconditions: shapeOk(s); u, v inside the domain.
 LocalEval evaluateLocal(const NurbsSurface& s, double u, double v);
 
+/// surfaceFrame from an evaluation already made: e = evaluateLocal(s, u, v) with u, v clamped
+/// to the domain (so a caller that needs the derivatives too evaluates once).
+SurfaceFrame frameAt(const NurbsSurface& s, double u, double v, const LocalEval& e);
+
 /// Step 1 of the normal rule: true when neither first partial is tiny (relative to e.scale and
 /// the domain widths wu, wv) and Su x Sv is not degenerate, i.e. the plain normal is usable.
 bool regularPoint(const LocalEval& e, double wu, double wv);

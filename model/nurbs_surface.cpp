@@ -130,16 +130,20 @@ glm::dvec3 surfacePoint(const NurbsSurface& s, double u, double v) {
 //     and use n' = Su' x Sv' if it passes the test of step 1 (with L' > 0).
 //  4. Otherwise (0, 0, 1). A non-finite result at any step counts as degenerate.
 SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
-    SurfaceFrame f;
     if (!detail::shapeOk(s))
-        return f;
+        return {};
+    u = detail::clampTo(u, surfaceDomainU(s));
+    v = detail::clampTo(v, surfaceDomainV(s));
+    return detail::frameAt(s, u, v, evaluateSpan(s, u, v));
+}
+
+namespace detail {
+SurfaceFrame frameAt(const NurbsSurface& s, double u, double v, const LocalEval& e) {
+    SurfaceFrame f;
     const Interval du = surfaceDomainU(s);
     const Interval dv = surfaceDomainV(s);
-    u = detail::clampTo(u, du);
-    v = detail::clampTo(v, dv);
     const double wu = du.last - du.first;
     const double wv = dv.last - dv.first;
-    const LocalEval e = evaluateSpan(s, u, v);
     f.point = e.d.s;
     f.du = e.d.su;
     f.dv = e.d.sv;
@@ -184,6 +188,7 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v) {
     f.normal = glm::dvec3(0.0, 0.0, 1.0); // step 4
     return f;
 }
+} // namespace detail
 
 void surfaceControlBounds(const NurbsSurface& s, glm::dvec3& lo, glm::dvec3& hi) {
     if (s.points.empty()) {

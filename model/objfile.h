@@ -16,7 +16,7 @@ namespace kw {
 /// report.warnings; surfaces of unsupported kinds (cardinal, taylor, bmatrix, degree above
 /// kMaxDegree) are listed in report.skipped. Knotwork's own "# knotwork ..." comment lines,
 /// written by writeObj, restore ids, names, partitions, materials, lights and camera exactly.
-/// Gaps between the pieces of a trim loop are closed (kw::closeTrimLoop) and reported in
+/// Gaps between the pieces of a trim loop are closed (kw::closeSceneTrimLoops) and reported in
 /// report.warnings, and the scene must pass kw::sceneError, so an accepted file saves and
 /// reopens. Returns true and sets `scene` on success; on malformed input returns false with
 /// `error` = "<fileName>:<line>: <reason>" and leaves `scene` untouched.

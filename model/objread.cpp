@@ -619,19 +619,8 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
     // Loops bridged on import are saved closed (docs/FILE_FORMAT.md): each gap between trim
     // pieces is closed as the renderer would bridge it, with a warning; then the one rule of a
     // valid scene (model/validation.h), so an accepted file always saves and reopens.
-    for (Surface& s : out.surfaces)
-        for (TrimLoop& l : s.trims) {
-            const bool valid = std::all_of(l.curves.begin(), l.curves.end(), [](const auto& c) {
-                return curveValidationError(c).empty();
-            });
-            if (!valid)
-                continue; // sceneError below names the curve
-            for (const QString& w : closeTrimLoop(l, trimTolerance(s.geometry)))
-                local.warnings << QStringLiteral("%1: surface '%2', trim loop %3: %4")
-                                      .arg(fileName, s.name)
-                                      .arg(l.id.value)
-                                      .arg(w);
-        }
+    for (const QString& line : closeSceneTrimLoops(out))
+        local.warnings << QStringLiteral("%1: %2").arg(fileName, line);
     if (const QString why = sceneError(out); !why.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(fileName, why);
         return false;

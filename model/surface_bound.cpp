@@ -199,6 +199,21 @@ double screenDistanceBound(const ScreenScale& scale, double distance, double min
            std::sqrt(1.0 + scale.tanHalfDiagonal * scale.tanHalfDiagonal) / z;
 }
 
+bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
+                       const glm::dvec3& hi) {
+    int outside[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec4 c =
+            viewProjection *
+            glm::dvec4((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z, 1.0);
+        outside[0] += c.x < -c.w;
+        outside[1] += c.x > c.w;
+        outside[2] += c.y < -c.w;
+        outside[3] += c.y > c.w;
+    }
+    return outside[0] == 8 || outside[1] == 8 || outside[2] == 8 || outside[3] == 8;
+}
+
 double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi) {
     double best = 0.0;
     for (int k = 0; k < 8; ++k) {
@@ -262,7 +277,8 @@ double boxMaxDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dv
 /// uniform breaks) and inside one span, so a cell touching sub-rectangle (a, b) lies inside
 /// the sub-rectangles within reach (ceil(du / sub width)) of it: their largest derivative
 /// bounds and smallest depth hold over the whole cell. Sub-rectangles whose control bounds lie
-/// wholly behind the near plane are never drawn and score 0.
+/// wholly behind the near plane are never drawn and score 0, and so do those never on screen
+/// (ScreenScale::cullOutsideView).
 SpanScore scoreSpan(const SpanBound& b, const Interval& domU, const Interval& domV,
                     const ScreenScale& scale, int nu, int nv) {
     SpanScore worst;
@@ -289,7 +305,14 @@ SpanScore scoreSpan(const SpanBound& b, const Interval& domU, const Interval& do
                     minDepth = first ? d : std::min(minDepth, d);
                     first = false;
                 }
-            const double px = screenDistanceBound(scale, cellDeviationBound(m, du, dv), minDepth);
+            const double deviation = cellDeviationBound(m, du, dv);
+            // Never on screen: every polygon point over this sub-rectangle lies within
+            // `deviation` of the surface there, so inside its bounds grown by that much.
+            if (scale.cullOutsideView &&
+                boxOutsideFrustum(scale.viewProjection, self.lo - glm::dvec3(deviation),
+                                  self.hi + glm::dvec3(deviation)))
+                continue;
+            const double px = screenDistanceBound(scale, deviation, minDepth);
             if (px > worst.pixels) {
                 worst.pixels = px;
                 worst.uPart = m.uu * du * du + m.uv * du * dv;

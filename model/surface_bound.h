@@ -54,6 +54,12 @@ struct ScreenScale {
     double focalPixels = 1.0;           ///< (viewport height / 2) / tan(fovY / 2)
     double tanHalfDiagonal = 1.0;       ///< tan of the half-angle of the frustum's diagonal
     double nearDepth = 1e-3;            ///< depths below this are treated as this (clipped)
+    /// When set, parts of a surface that are never on screen do not count (choosePartitions):
+    /// a sub-rectangle whose control bounds, grown by the deviation bound of the cells over
+    /// it, lie wholly outside one side plane of `viewProjection`'s frustum. Every polygon
+    /// point over it then lies outside too, so the bound still holds for all that is drawn.
+    bool cullOutsideView = false;
+    glm::dmat4 viewProjection{1.0}; ///< OpenGL clip transform (only with cullOutsideView)
 };
 
 /// The scale of `camera` (as kw::cameraMatrices reads it: target - eye is the view direction,
@@ -67,6 +73,11 @@ ScreenScale screenScale(const Camera& camera, int width, int height, double near
 /// with f the focal length in pixels and t = tanHalfDiagonal (|b_xy| / b_z <= t for b inside
 /// the frustum; Cauchy-Schwarz on (a - b)). minDepth is clamped to nearDepth.
 double screenDistanceBound(const ScreenScale& scale, double distance, double minDepth);
+
+/// True when the box [lo, hi] lies wholly outside one of the left, right, bottom or top planes
+/// of the clip transform's frustum (all eight corners beyond it).
+bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
+                       const glm::dvec3& hi);
 
 /// Smallest eye depth of the axis-aligned box [lo, hi] (the minimum over its corners).
 double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi);

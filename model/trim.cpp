@@ -203,6 +203,52 @@ NurbsCurve2 straightCurve(glm::dvec2 from, glm::dvec2 to) {
 
 } // namespace
 
+QStringList closeSceneTrimLoops(Scene& scene) {
+    QStringList lines;
+    for (Surface& s : scene.surfaces)
+        for (TrimLoop& loop : s.trims) {
+            const bool valid =
+                std::all_of(loop.curves.begin(), loop.curves.end(),
+                            [](const NurbsCurve2& c) { return curveValidationError(c).empty(); });
+            if (!valid)
+                continue;
+            for (const QString& line : closeTrimLoop(loop, trimTolerance(s.geometry)))
+                lines << QStringLiteral("surface '%1', trim loop %2: %3")
+                             .arg(s.name)
+                             .arg(loop.id.value)
+                             .arg(line);
+        }
+    return lines;
+}
+
+std::vector<TrimPointRef> trimPointWithCoincidentEnds(const Surface& surface,
+                                                      const TrimPointRef& hit) {
+    std::vector<TrimPointRef> refs{hit};
+    const auto loop = std::find_if(surface.trims.begin(), surface.trims.end(),
+                                   [&](const TrimLoop& l) { return l.id == hit.loop; });
+    if (hit.surface != surface.id || loop == surface.trims.end() || hit.curve < 0 ||
+        size_t(hit.curve) >= loop->curves.size())
+        return refs;
+    const std::vector<glm::dvec2>& own = loop->curves[size_t(hit.curve)].points;
+    const int last = int(own.size()) - 1;
+    if (hit.index < 0 || hit.index > last || (hit.index != 0 && hit.index != last))
+        return refs;
+    const glm::dvec2 at = own[size_t(hit.index)];
+    // Within the tolerance the loop is closed by, not exactly: files and imports close loops
+    // to the last bit or two (0.04 against 0.04000000000000001 in the trimmed_plate sample).
+    const double tolerance = trimLoopClosureTolerance(*loop);
+    for (size_t c = 0; c < loop->curves.size(); ++c) {
+        const std::vector<glm::dvec2>& pts = loop->curves[c].points;
+        for (int k : {0, int(pts.size()) - 1}) {
+            const TrimPointRef ref{hit.surface, hit.loop, int(c), k};
+            if (glm::length(pts[size_t(k)] - at) <= tolerance &&
+                std::find(refs.begin(), refs.end(), ref) == refs.end())
+                refs.push_back(ref);
+        }
+    }
+    return refs;
+}
+
 QStringList closeTrimLoop(TrimLoop& loop, double snap) {
     QStringList done;
     if (loop.curves.empty())

@@ -61,6 +61,21 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
 /// loop was already closed. Precondition: every curve valid (curveValidationError).
 QStringList closeTrimLoop(TrimLoop& loop, double snap);
 
+/// closeTrimLoop for every loop of `scene` at trimTolerance of its surface, as an import ends
+/// (CAD and OBJ readers): returns one line per gap closed, "surface 'NAME', trim loop ID:
+/// <closeTrimLoop's line>". A loop with an invalid curve (curveValidationError) is left as it
+/// is, for kw::sceneError to name.
+QStringList closeSceneTrimLoops(Scene& scene);
+
+/// The trim points that must move with `hit` so that its loop stays closed (Document refuses a
+/// move that opens a loop): `hit` first, then, when it is the first or last point of its curve,
+/// every curve end of the same loop within trimLoopClosureTolerance of it (the neighbouring
+/// curve's end; a single closed curve's other end). An interior point, or a ref naming no point of
+/// `surface`, gives {hit} alone. The UV editor's drag, its exact-position fields and the
+/// benchmarks' trim drags all move this set.
+std::vector<TrimPointRef> trimPointWithCoincidentEnds(const Surface& surface,
+                                                      const TrimPointRef& hit);
+
 /// The warnings makeTrimRegion reports for a surface's trims at trimTolerance(surface).
 QStringList trimWarnings(const Surface& surface);
 

@@ -69,6 +69,16 @@ struct FrameReport {
     /// what changed in this frame.
     QStringList warnings;
     FrameTimes cpuMs;
+    /// Adaptive partitions (RenderOptions::Partitioning::Adaptive): the surfaces whose choice
+    /// was evaluated again this frame (view or surface changed), the largest guaranteed screen
+    /// bound in pixels over the drawn surfaces, the cells of their base polygons, and the
+    /// surfaces that could not reach the tolerance within kMaxPartitions (also a warning).
+    struct Partitions {
+        int choicesEvaluated = 0;
+        double worstBoundPixels = 0.0;
+        std::int64_t cells = 0; ///< base polygon cells drawn, in either mode
+        int unmet = 0;
+    } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while
     /// AnalysisOptions::holdRange is set); {0, 1} for other modes. For the legend.

@@ -62,6 +62,19 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                                                                    : sizeof(unsigned),
                       limit);
     QStringList tooLarge;
+    const bool adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive &&
+                          options.mode == RenderMode::Exact;
+    ScreenScale scale;
+    if (adaptive) {
+        const ViewKey key{camera.viewProjection, camera.viewport, options.pixelTolerance};
+        if (!(key == m_viewKey)) {
+            m_viewKey = key;
+            ++m_viewStamp;
+        }
+        scale = frameScreenScale(camera);
+    }
+    FrameReport::Partitions& parts = report.partitions;
+    QStringList unmet;
     m_order.clear();
     m_order.reserve(scene.surfaces.size());
     UploadStats frame;
@@ -84,8 +97,10 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         SurfaceRecord& r = e.record;
         r.id = s.id;
         r.surface = &s;
-        const int nu = options.partitionsU > 0 ? options.partitionsU : s.partitionsU;
-        const int nv = options.partitionsV > 0 ? options.partitionsV : s.partitionsV;
+        // The sliders' partitions (or the override): the paper's uniform grid, the minimum in
+        // adaptive mode, and always the tessellated baseline's.
+        const int sliderU = options.partitionsU > 0 ? options.partitionsU : s.partitionsU;
+        const int sliderV = options.partitionsV > 0 ? options.partitionsV : s.partitionsV;
         // By index: a search by id per surface made each frame quadratic in the surfaces.
         const Revisions rev = doc.revisionsAt(index);
         r.revisions = rev;
@@ -101,17 +116,32 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                        ? trimParameterBox(s)
                        : ParameterBox{surfaceDomainU(geo), surfaceDomainV(geo)};
         };
-        if (!g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
-            g->degreeV != geo.degreeV || g->countU != geo.countU || g->countV != geo.countV) {
+        const bool fresh = !g || g->revisions.knots != rev.knots || g->degreeU != geo.degreeU ||
+                           g->degreeV != geo.degreeV || g->countU != geo.countU ||
+                           g->countV != geo.countV;
+        const bool boxStale = fresh || g->polygonTrimmed != options.polygonOverTrims ||
+                              (options.polygonOverTrims && g->revisions.trims != rev.trims);
+        const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
+        int nu = sliderU, nv = sliderV;
+        if (adaptive) {
+            bool evaluated = false;
+            const PartitionChoice c =
+                e.adaptive.choose(s, rev, box, scale, m_viewStamp, options.pixelTolerance, sliderU,
+                                  sliderV, &evaluated);
+            nu = c.nu;
+            nv = c.nv;
+            parts.choicesEvaluated += evaluated;
+            parts.worstBoundPixels = std::max(parts.worstBoundPixels, c.boundPixels);
+            if (!c.met)
+                unmet << QString::number(s.id.value);
+        }
+        if (fresh) {
             if (!g) {
                 g = std::make_unique<SurfaceGpu>();
                 g->id = s.id;
             }
-            fits = uploadSurface(m_pools, *g, s, nu, nv, boxFor(), up);
+            fits = uploadSurface(m_pools, *g, s, nu, nv, box, up);
         } else {
-            const bool boxStale = g->polygonTrimmed != options.polygonOverTrims ||
-                                  (options.polygonOverTrims && g->revisions.trims != rev.trims);
-            const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
             if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
                 // The polygon is rebuilt from the current points; pick up a point change.
                 if (g->revisions.points != rev.points)
@@ -146,8 +176,10 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                             .arg(geo.countV)
                             .arg(limit);
         }
+        if (g)
+            parts.cells += std::int64_t(g->triangleIndexCount / 6);
         if (options.mode == RenderMode::Tessellated)
-            syncMesh(r, rev, nu, nv, up);
+            syncMesh(r, rev, sliderU, sliderV, up);
         if (options.controlNet)
             syncNet(r, rev, up);
         e.stats += up;
@@ -166,6 +198,19 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     }
     report.uploads += frame;
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
+    parts.unmet += int(unmet.size());
+    if (unmet.size() > 8) {
+        const qsizetype all = unmet.size();
+        unmet.resize(8);
+        unmet << QStringLiteral("... (%1 in all)").arg(all);
+    }
+    if (!unmet.isEmpty())
+        report.warnings << QStringLiteral("surfaces %1: the base polygon could not be brought "
+                                          "within %2 px of the surface at %3 x %3 partitions "
+                                          "(too close to the eye); drawn at %3 x %3")
+                               .arg(unmet.join(QStringLiteral(", ")))
+                               .arg(options.pixelTolerance)
+                               .arg(kMaxPartitions);
 
     bool ok = tooLarge.isEmpty();
     if (!ok) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "model/document.h"
+#include "render/adaptive_partitions.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
 #include "render/surface_upload.h"
@@ -79,7 +80,8 @@ public:
     /// Brings the records up to date for one frame of `doc` with `options` seen by `camera`:
     /// drops the records of removed surfaces (and everything when `doc` is not the document
     /// of the last sync), skips hidden surfaces (their records are kept as they are), then per
-    /// visible surface compares its revisions once and rebuilds the
+    /// visible surface compares its revisions once (and in adaptive partitioning, chooses its
+    /// partitions for the view when the view or the surface changed) and rebuilds the
     /// stale parts the frame needs: the exact data always (SurfaceGpu rules: a moved point is
     /// a sub-image upload), the tessellated mesh in tessellated mode, the control net when
     /// shown, the trim mask when trims are on. Adds to `report` its uploads, mask work and
@@ -135,6 +137,7 @@ private:
         UploadStats stats;
         TrimMaskStats maskStats;
         std::uint64_t seen = 0; ///< the last sync whose document held the surface
+        AdaptivePartitions adaptive;
     };
     void drop(Entry& e);
     void dropExact(SurfaceRecord& r);
@@ -164,6 +167,14 @@ private:
     std::map<SurfaceId, Entry> m_entries;
     std::vector<SurfaceRecord*> m_order;
     std::uint64_t m_syncs = 0;
+    /// Adaptive partitions: the view they were chosen for, and its stamp (bumped on change).
+    struct ViewKey {
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        double tolerance = 0.0;
+        bool operator==(const ViewKey&) const = default;
+    } m_viewKey;
+    std::uint64_t m_viewStamp = 0;
     UploadStats m_removedStats;
     TrimMaskStats m_removedMaskStats;
 };

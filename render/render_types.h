@@ -14,6 +14,10 @@ enum class RenderMode {
     Tessellated, ///< CPU tessellation at the partitions, per-vertex normals, Gouraud shading
 };
 
+/// Adaptive partitions' screen tolerance limits in pixels (RenderOptions::pixelTolerance).
+constexpr double kMinPixelTolerance = 0.05;
+constexpr double kMaxPixelTolerance = 16.0;
+
 /// Trim mask side limits in texels (RenderOptions::trimMaskCap).
 constexpr int kMinTrimMaskSize = 32;
 constexpr int kDefaultTrimMaskCap = 1024;
@@ -24,11 +28,25 @@ struct RenderOptions {
     /// Lights used for shading, 1..kMaxLights. The document's lights come first; when more are
     /// asked for than it has, further lights are derived from them (see Renderer::lightsFor).
     int lightCount = 2;
-    /// Partition override for every surface; 0 keeps each surface's own setting.
+    /// Partition override for every surface; 0 keeps each surface's own setting. In adaptive
+    /// mode these (or the surface's own) are the minimum.
     int partitionsU = 0;
     int partitionsV = 0;
-    bool wireframe = false;  ///< outline of the base polygon cells
-    bool controlNet = false; ///< control points and net lines
+    /// How each surface's base polygon is partitioned (issue 10 item 2).
+    enum class Partitioning {
+        /// The paper's: nu x nv from the surface's sliders (or the override above).
+        Uniform,
+        /// Per surface and view, the fewest uniform partitions at or above the sliders' for
+        /// which the base polygon provably lies within `pixelTolerance` pixels of the exact
+        /// surface on screen (model/surface_bound.h: Filip-Magedson-Markot bounds on the
+        /// homogeneous Bezier nets, projected with the nearest depth). Recomputed only when
+        /// the view or the surface changes; the polygon is rebuilt only when the choice does.
+        Adaptive,
+    };
+    Partitioning partitioning = Partitioning::Uniform;
+    double pixelTolerance = 0.5; ///< adaptive mode's screen bound, kMin..kMaxPixelTolerance
+    bool wireframe = false;      ///< outline of the base polygon cells
+    bool controlNet = false;     ///< control points and net lines
     /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures both, and a
     /// deferred variant that was slower on llvmpipe and removed).
     enum class Shading {

@@ -10,3 +10,6 @@ add_dependencies(tst_render_edges knotwork)
 kw_add_test(tst_visible_bounds LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_visible_bounds.cpp LIBS knotwork_model)
 # The base polygon over the trim loops' (u, v) box (gl: measured against the CPU reference).
 kw_add_test(tst_render_trim_box LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_trim_box.cpp LIBS knotwork_render)
+# View-adaptive partitions: the renderer's choice against the CPU's, the bound sampled, and
+# re-tessellation only where the required density changed.
+kw_add_test(tst_render_adaptive LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_adaptive.cpp LIBS knotwork_render)

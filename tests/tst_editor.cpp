@@ -38,7 +38,6 @@ public:
     }
 
 private:
-
     const NurbsSurface& geometry(int surfaceIndex = 0) const {
         return m_window->document()->scene().surfaces[size_t(surfaceIndex)].geometry;
     }
@@ -502,14 +501,23 @@ private Q_SLOTS:
 
     void dragResponsiveness_data() {
         QTest::addColumn<QString>("sample");
-        QTest::newRow("teapot") << QStringLiteral("teapot");
-        QTest::newRow("bicubic") << QStringLiteral("bicubic");
+        QTest::addColumn<bool>("adaptive");
+        QTest::newRow("teapot") << QStringLiteral("teapot") << false;
+        QTest::newRow("bicubic") << QStringLiteral("bicubic") << false;
+        QTest::newRow("bicubic adaptive") << QStringLiteral("bicubic") << true;
     }
     void dragResponsiveness() {
         // Mouse-move -> next draw call during a drag, and bytes uploaded per step.
         QFETCH(QString, sample);
+        QFETCH(bool, adaptive);
         openWindow(qPrintable(sample));
         Viewport* vp = m_window->viewport();
+        // The paper's uniform grid: the partial uploads below are measured against it. The
+        // editor's default, adaptive, is dragged too (the last row).
+        vp->setPartitioning(adaptive ? RenderOptions::Partitioning::Adaptive
+                                     : RenderOptions::Partitioning::Uniform,
+                            0.5);
+        QTest::qWait(30);
         const auto [ref, press] = pickablePoint();
         QVERIFY(ref.surface.isValid());
         QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
@@ -554,9 +562,23 @@ private Q_SLOTS:
                 .arg(sample)
                 .arg(median(m.handlerMs), 0, 'f', 3);
         qInfo().noquote() << report;
-        QFile out(QStringLiteral(KW_TEST_OUTPUT_DIR "/drag_metrics_%1.txt").arg(sample));
+        QFile out(QStringLiteral(KW_TEST_OUTPUT_DIR "/drag_metrics_%1%2.txt")
+                      .arg(sample, adaptive ? QStringLiteral("_adaptive") : QString()));
         QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
         out.write(report.toUtf8() + '\n');
+        if (adaptive) {
+            // Each step uploads one control texel and evaluates one surface's partitions again
+            // (the view is still); the polygon is updated in place, or rebuilt when the
+            // required density changed.
+            for (const FrameReport& f : m.frames) {
+                QCOMPARE(f.uploads.fullUploads, 0);
+                QCOMPARE(f.uploads.texels, 1);
+                QCOMPARE(f.partitions.choicesEvaluated, 1);
+                QVERIFY(f.uploads.basePolygonBuilds <= 1);
+                QVERIFY(f.partitions.worstBoundPixels <= 0.5);
+            }
+            return;
+        }
         // Each step re-uploads one control texel as a sub-image and a range of base polygon
         // vertices, never the whole surface.
         const Surface* surface = m_window->document()->surface(ref.surface);

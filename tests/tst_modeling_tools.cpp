@@ -156,6 +156,49 @@ private Q_SLOTS:
             QVERIFY2(menu.contains(act(name)), name);
     }
 
+    void hideDeselectsTrimPointsOfTheHiddenSurface() {
+        // Trim points picked in the UV editor belong to the surface: once it is hidden, a drag
+        // or Delete on them would edit what is not seen, so Hide drops them with the rows.
+        openWindow("trimmed_plate");
+        const Surface& s = scene().surfaces.front();
+        QVERIFY(!s.trims.empty());
+        m_window->selectSurface(s.id);
+        QVERIFY(m_window->selection()->setTrimPoints({TrimPointRef{s.id, s.trims[0].id, 0, 1}}));
+        QVERIFY(m_window->selection()->setControlPoints({ControlPointRef{s.id, 0, 0}}));
+        key(Qt::Key_H);
+        QVERIFY(m_window->document()->surface(s.id)->hidden);
+        QVERIFY(m_window->selection()->selectedSurfaces().empty());
+        QVERIFY(m_window->selection()->controlPoints().empty());
+        QVERIFY(m_window->selection()->trimPoints().empty());
+    }
+
+    void hiddenSelectedSurfaceShowsNoNetAndStaysPut() {
+        // A hidden surface can be selected again in the tree; it still shows no net (selected
+        // or all nets) and a Ctrl + drag leaves it where it is.
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        const SurfaceId id = scene().surfaces.front().id;
+        vp->setControlNet(true);
+        m_window->selectSurface(id);
+        QCOMPARE(vp->netSurfaces(), std::vector<SurfaceId>{id});
+        key(Qt::Key_H);
+        QVERIFY(m_window->document()->surface(id)->hidden);
+        m_window->selectSurface(id);
+        QCOMPARE(m_window->selection()->selectedSurfaces(), std::vector<SurfaceId>{id});
+        QVERIFY(vp->netSurfaces().empty());
+        vp->setControlNetForAll(true);
+        QVERIFY(vp->netSurfaces().empty());
+        vp->setControlNetForAll(false);
+        const int steps = m_window->undoStack()->count();
+        const QPoint press(vp->width() / 2, vp->height() / 2);
+        QTest::mousePress(vp, Qt::LeftButton, Qt::ControlModifier, press);
+        QTest::mouseMove(vp, press + QPoint(40, 10));
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::ControlModifier, press + QPoint(40, 10));
+        QCOMPARE(m_window->undoStack()->count(), steps);
+        m_window->undoStack()->undo(); // the hide
+        QCOMPARE(vp->netSurfaces(), std::vector<SurfaceId>{id});
+    }
+
     void rotateAndScaleDragsAreExactAboutThePivot() {
         openWindow("bicubic");
         Viewport* vp = m_window->viewport();
@@ -246,6 +289,31 @@ private Q_SLOTS:
         // G: back to moving.
         key(Qt::Key_G);
         QCOMPARE(vp->surfaceDrag(), Viewport::SurfaceDrag::Move);
+    }
+
+    void curveToolPreviewFollowsThePointsAndTheMode() {
+        // The preview is solved once per change, not per repaint; each change must rebuild it.
+        openWindow();
+        Viewport* vp = m_window->viewport();
+        CurveTool* tool = m_window->modelingTools()->curveTool();
+        act("actionViewTop")->trigger();
+        act("actionDrawExtrude")->trigger();
+        const QPoint c(vp->width() / 2, vp->height() / 2);
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + QPoint(-100, 30));
+        QVERIFY(tool->preview().points.empty()); // one point: no curve
+        for (const QPoint d : {QPoint(0, -40), QPoint(90, 20), QPoint(150, -30)})
+            QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + d);
+        vp->grabFramebuffer(); // paints with the preview
+        const NurbsCurve3 four = tool->preview();
+        QCOMPARE(four, tool->curveThrough(tool->points(), nullptr));
+        QVERIFY(!four.points.empty());
+        QTest::keyClick(vp, Qt::Key_Backspace);
+        QCOMPARE(tool->preview(), tool->curveThrough(tool->points(), nullptr));
+        QVERIFY(!(tool->preview() == four));
+        tool->setInterpolating(false);
+        QCOMPARE(tool->preview(), controlPointCurve3(tool->points(), 3));
+        QTest::keyClick(vp, Qt::Key_Escape);
+        QVERIFY(tool->preview().points.empty());
     }
 
     void curveToolInterpolatesTheClickedPoints() {

@@ -255,6 +255,11 @@ void TestNurbsCurvature::collapsedEdgesAreFinite() {
                 QVERIFY(std::abs(glm::dot(c.dir1, c.normal)) < 1e-9);
                 if (x == &flat)
                     QCOMPARE(c.gaussian, 0.0);
+                // Point and normal are exactly surfaceFrame's (every step of its rule occurs
+                // here: regular, collapsed row, all points equal).
+                const SurfaceFrame f = surfaceFrame(*x, u, v);
+                QCOMPARE(c.point, f.point);
+                QCOMPARE(c.normal, f.normal);
             }
         }
     }

@@ -5,8 +5,8 @@
 // The killed editor is this test binary run as `tst_recovery --editor-child FILE EXPECTED`:
 // the real MainWindow and autosave timer, with edits pushed as undo commands.
 #include "editor_test_util.h"
-#include "model_fixtures.h"
 #include "model/knotfile.h"
+#include "model_fixtures.h"
 #include "render/offscreen_renderer.h"
 #include "ui/autosave.h"
 #include "ui/edit/commands.h"
@@ -337,9 +337,19 @@ private Q_SLOTS:
                                     .arg(QString::fromLocal8Bit(child.readAllStandardError()))));
             const qint64 oneSave = std::max<qint64>(seen - start, 2);
             QTest::qWait(int(rng.bounded(int(oneSave))));
-            if (const qint64 pid = child.processId(); pid > 0)
-                ::kill(pid_t(pid), SIGKILL);
-            QVERIFY(child.waitForFinished(10000));
+            // The child saves until killed: if it ended by itself, say how (its exit code and
+            // stderr), not only that waiting failed.
+            QVERIFY2(child.state() == QProcess::Running,
+                     qPrintable(QStringLiteral("trial %1: the child ended by itself: exit %2, "
+                                               "stderr %3")
+                                    .arg(trial)
+                                    .arg(child.exitCode())
+                                    .arg(QString::fromLocal8Bit(child.readAllStandardError()))));
+            ::kill(pid_t(child.processId()), SIGKILL);
+            // Generous: tearing down a process with a GL context takes long on a loaded machine.
+            QVERIFY2(child.waitForFinished(60000) || child.state() == QProcess::NotRunning,
+                     qPrintable(QStringLiteral("trial %1: no exit 60 s after SIGKILL").arg(trial)));
+            QCOMPARE(child.exitStatus(), QProcess::CrashExit);
             out += child.readAllStandardOutput();
             const QList<QByteArray> lines = out.trimmed().split('\n');
             const bool duringSave = lines.last().startsWith("SAVING");

@@ -1,7 +1,9 @@
 // Messy trim input (issue 4, item 3) on the CPU: gaps and open loops are closed with a warning,
 // degenerate loops dropped with a warning, orientation does not matter, curves up to degree 15.
+#include "model/document.h"
 #include "model/nurbs_shapes.h"
 #include "model/trim.h"
+#include "model/validation.h"
 #include "trim_test_util.h"
 
 #include <QtTest>
@@ -107,6 +109,83 @@ private Q_SLOTS:
         const TrimRegion region = makeTrimRegion(s.trims, trimTolerance(s.geometry));
         QVERIFY(region.empty());
         QVERIFY(trimRegionContains(region, {0.5, 0.1}));
+    }
+
+    void importsCloseEveryValidLoopOfTheScene() {
+        Scene scene;
+        Surface s;
+        s.id = SurfaceId{1};
+        s.name = QStringLiteral("plate");
+        s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
+        // Open by 0.3: bridged by a straight segment. Loop 3: closed already. Loop 4: a curve
+        // with too few knots, left for sceneError to name.
+        s.trims.push_back(loopOf(2, {polylineCurve({{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}}),
+                                     polylineCurve({{0.9, 0.9}, {0.1, 0.9}, {0.1, 0.4}})}));
+        s.trims.push_back(
+            loopOf(3, {polylineCurve({{0.4, 0.4}, {0.6, 0.4}, {0.4, 0.6}, {0.4, 0.4}})}));
+        NurbsCurve2 bad = polylineCurve({{0.2, 0.2}, {0.3, 0.2}});
+        bad.knots.pop_back();
+        s.trims.push_back(loopOf(4, {bad}));
+        scene.surfaces.push_back(s);
+        const QStringList lines = closeSceneTrimLoops(scene);
+        QVERIFY2(lines.size() == 1, qPrintable(lines.join('\n')));
+        QVERIFY2(lines[0].startsWith("surface 'plate', trim loop 2: ") &&
+                     lines[0].contains("bridged"),
+                 qPrintable(lines[0]));
+        const std::vector<TrimLoop>& trims = scene.surfaces[0].trims;
+        QVERIFY(trimLoopError(trims[0]).isEmpty());
+        QCOMPARE(trims[0].curves.size(), size_t(3));
+        QCOMPARE(trims[1], s.trims[1]);
+        QCOMPARE(trims[2], s.trims[2]);
+    }
+
+    void curveEndsMoveWithTheirCoincidentEnds() {
+        // A triangle of three 2-point lines (as imported CAD loops are) and a closed polyline.
+        Scene scene;
+        Surface s;
+        s.id = SurfaceId{1};
+        s.name = QStringLiteral("plate");
+        s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
+        s.trims.push_back(loopOf(2, {polylineCurve({{0.1, 0.1}, {0.9, 0.1}}),
+                                     polylineCurve({{0.9, 0.1}, {0.5, 0.9}}),
+                                     polylineCurve({{0.5, 0.9}, {0.1, 0.1}})}));
+        s.trims.push_back(
+            loopOf(3, {polylineCurve({{0.4, 0.4}, {0.6, 0.4}, {0.4, 0.6}, {0.4, 0.4}})}));
+        const TrimLoopId tri = s.trims[0].id, poly = s.trims[1].id;
+        scene.surfaces.push_back(s);
+        scene.nextId = 4;
+        // A curve's start goes with the previous curve's end; a closed curve's start with its
+        // own end; an interior point and a ref to nothing alone.
+        using Refs = std::vector<TrimPointRef>;
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, tri, 1, 0}),
+                 (Refs{{s.id, tri, 1, 0}, {s.id, tri, 0, 1}}));
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, tri, 0, 0}),
+                 (Refs{{s.id, tri, 0, 0}, {s.id, tri, 2, 1}}));
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, poly, 0, 3}),
+                 (Refs{{s.id, poly, 0, 3}, {s.id, poly, 0, 0}}));
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, poly, 0, 1}), (Refs{{s.id, poly, 0, 1}}));
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, poly, 0, 7}), (Refs{{s.id, poly, 0, 7}}));
+        // Ends that meet within the closure tolerance, not exactly, also go together (the last
+        // bit of a coordinate differs in the trimmed_plate sample).
+        Surface off = s;
+        off.trims[0].curves[2].points[1].y = std::nextafter(0.1, 1.0);
+        QVERIFY(trimLoopError(off.trims[0]).isEmpty());
+        QCOMPARE(trimPointWithCoincidentEnds(off, {s.id, tri, 0, 0}),
+                 (Refs{{s.id, tri, 0, 0}, {s.id, tri, 2, 1}}));
+        QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, TrimLoopId{9}, 0, 0}),
+                 (Refs{{s.id, TrimLoopId{9}, 0, 0}}));
+        // The document refuses the point alone (the loop would open) and takes the set.
+        Document doc;
+        QString error;
+        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        const TrimPointRef start{s.id, tri, 0, 0};
+        QVERIFY(!doc.setTrimPoint(start, {0.2, 0.15}));
+        QCOMPARE(doc.scene().surfaces[0].trims, s.trims);
+        const Refs refs = trimPointWithCoincidentEnds(s, start);
+        QCOMPARE(refs.size(), size_t(2));
+        QVERIFY(doc.setTrimPoints(refs, std::vector<glm::dvec2>(2, {0.2, 0.15})));
+        QCOMPARE(doc.scene().surfaces[0].trims[0].curves[0].points[0], glm::dvec2(0.2, 0.15));
+        QCOMPARE(doc.scene().surfaces[0].trims[0].curves[2].points[1], glm::dvec2(0.2, 0.15));
     }
 
     void distanceToTrims() {

@@ -64,6 +64,17 @@ NurbsCurve3 CurveTool::curveThrough(const std::vector<glm::dvec3>& points, QStri
     return c;
 }
 
+const NurbsCurve3& CurveTool::preview() {
+    // Keyed on the points themselves rather than invalidated at each edit of m_points, so that
+    // no path that changes them can leave a stale curve.
+    if (m_previewPoints != m_points || m_previewInterpolating != m_interpolating) {
+        m_preview = curveThrough(m_points, nullptr);
+        m_previewPoints = m_points;
+        m_previewInterpolating = m_interpolating;
+    }
+    return m_preview;
+}
+
 bool CurveTool::mousePress(QMouseEvent* event, const ViewProjection& view) {
     if (!m_active || event->button() != Qt::LeftButton)
         return false;
@@ -154,8 +165,7 @@ void CurveTool::paint(QPainter& p, const ViewProjection& view) {
     };
     for (const NurbsCurve3& c : m_curves)
         drawCurve(c, QColor(120, 200, 255));
-    if (m_points.size() >= 2)
-        drawCurve(curveThrough(m_points, nullptr), QColor(80, 240, 200));
+    drawCurve(preview(), QColor(80, 240, 200)); // empty (nothing drawn) below two points
     p.setPen(QPen(QColor(80, 240, 200), 1.5));
     p.setBrush(Qt::NoBrush);
     for (const glm::dvec3& x : m_points)

@@ -36,6 +36,9 @@ public:
     const std::vector<NurbsCurve3>& curves() const { return m_curves; }
     /// The curve through `points` as the tool builds it; empty with *error set when it cannot.
     NurbsCurve3 curveThrough(const std::vector<glm::dvec3>& points, QString* error) const;
+    /// curveThrough(points()) as paint() draws it: solved once per change of the points or of
+    /// interpolating(), not on every repaint (a camera drag repaints many times a second).
+    const NurbsCurve3& preview();
 
     bool mousePress(QMouseEvent* event, const ViewProjection& view) override;
     bool keyPress(QKeyEvent* event) override;
@@ -58,6 +61,11 @@ private:
     QString m_purpose;
     std::vector<glm::dvec3> m_points;
     std::vector<NurbsCurve3> m_curves;
+    /// preview()'s curve and what it was built from; a different m_points or m_interpolating
+    /// rebuilds it.
+    NurbsCurve3 m_preview;
+    std::vector<glm::dvec3> m_previewPoints;
+    bool m_previewInterpolating = true;
     glm::dvec3 m_planePoint{0.0}, m_planeNormal{0.0, 0.0, 1.0}; ///< set by the first click
 };
 

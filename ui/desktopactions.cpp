@@ -11,6 +11,7 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QSettings>
+#include <QSignalBlocker>
 #include <QTextBrowser>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -50,6 +51,14 @@ void DesktopActions::applyPreferences() {
     m_viewport->setBackground(p.background);
     m_viewport->setHeadlight(p.headlight);
     m_viewport->setTrimMaskCap(p.trimMaskCap);
+    m_viewport->setPartitioning(p.partitionMode == QLatin1String("uniform")
+                                    ? RenderOptions::Partitioning::Uniform
+                                    : RenderOptions::Partitioning::Adaptive,
+                                p.pixelTolerance);
+    if (m_adaptive) {
+        const QSignalBlocker quiet(m_adaptive);
+        m_adaptive->setChecked(m_viewport->partitioning() == RenderOptions::Partitioning::Adaptive);
+    }
 }
 
 void DesktopActions::editPreferences() {
@@ -90,6 +99,22 @@ void DesktopActions::addViewEntries(QMenu* view) {
            &Viewport::setGroundGrid);
     toggle("actionAxisIndicator", tr("A&xis Indicator"), "view/axisIndicator", true,
            &Viewport::setAxisIndicator);
+    // The paper's uniform grid or view-adaptive partitions (issue 10): a preference, so it
+    // holds for every document and the next start.
+    m_adaptive = view->addAction(tr("Ada&ptive Partitions (within the pixel tolerance)"));
+    m_adaptive->setObjectName(QStringLiteral("actionAdaptivePartitions"));
+    m_adaptive->setCheckable(true);
+    m_adaptive->setChecked(Preferences::load().partitionMode != QLatin1String("uniform"));
+    m_adaptive->setToolTip(tr("On: each surface gets the fewest partitions (at least the "
+                              "sliders') that keep its base polygon within the Preferences' "
+                              "pixel tolerance of the exact surface. Off: the sliders' grid, "
+                              "as in the paper."));
+    connect(m_adaptive, &QAction::toggled, this, [this](bool on) {
+        Preferences p = Preferences::load();
+        p.partitionMode = on ? QStringLiteral("adaptive") : QStringLiteral("uniform");
+        p.save();
+        applyPreferences();
+    });
     QAction* head = view->addAction(tr("&Headlight (lights follow the camera)"));
     head->setObjectName(QStringLiteral("actionHeadlight"));
     head->setCheckable(true);

@@ -5,6 +5,8 @@
 #include "ui/preferences.h"
 
 #include <QObject>
+
+class QAction;
 #include <functional>
 #include <optional>
 
@@ -44,6 +46,7 @@ public:
 private:
     QMainWindow* m_window;
     Viewport* m_viewport;
+    QAction* m_adaptive = nullptr; ///< View › Adaptive Partitions
     Prompts m_prompts;
 };
 

@@ -225,7 +225,7 @@ void MainWindow::buildMenus() {
     m_desktop->addViewEntries(findChild<QMenu*>(QStringLiteral("menuView")));
     m_desktop->addHelpMenu(menuBar());
     m_desktop->applyPreferences();
-    auto* visibility = new VisibilityTools(this, m_doc, m_model, m_selection, m_stack);
+    auto* visibility = new VisibilityTools(this, m_doc, m_selection, m_stack);
     QMenu* view = findChild<QMenu*>(QStringLiteral("menuView"));
     view->addSeparator();
     visibility->install(view, m_tree);

@@ -1,6 +1,8 @@
 // Preferences: QSettings keys with defaults, and a form dialog for them.
 #include "ui/preferences.h"
 
+#include "render/render_types.h"
+
 #include <QCheckBox>
 #include <QColorDialog>
 #include <QComboBox>
@@ -15,7 +17,7 @@
 namespace kw {
 
 QStringList Preferences::availablePartitionModes() {
-    return {QStringLiteral("uniform")};
+    return {QStringLiteral("adaptive"), QStringLiteral("uniform")};
 }
 
 Preferences Preferences::load() {
@@ -76,7 +78,7 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
                                               "sliders' nu x nv)."));
     m_tolerance = new QDoubleSpinBox;
     m_tolerance->setObjectName(QStringLiteral("prefPixelTolerance"));
-    m_tolerance->setRange(0.05, 16.0);
+    m_tolerance->setRange(kMinPixelTolerance, kMaxPixelTolerance);
     m_tolerance->setDecimals(2);
     m_tolerance->setSuffix(tr(" px"));
     m_tolerance->setValue(p.pixelTolerance);

@@ -18,11 +18,12 @@ namespace kw {
 struct Preferences {
     int autosaveSeconds = 60; ///< "autosave/intervalSeconds", 0 = off
     bool keepBackup = true;   ///< "save/keepBackup": keep NAME.knot.bak on save
-    QString partitionMode = QStringLiteral("uniform"); ///< "view/partitionMode": uniform | adaptive
-    double pixelTolerance = 0.5;   ///< "view/pixelTolerance" (adaptive partitions)
-    int trimMaskCap = 1024;        ///< "view/trimMaskCap": trim budget, texels per mask side
-    bool headlight = true;         ///< "view/headlight": lights follow the camera
-    QColor background{46, 48, 54}; ///< "view/background"
+    QString partitionMode =
+        QStringLiteral("adaptive"); ///< "view/partitionMode": adaptive | uniform
+    double pixelTolerance = 0.5;    ///< "view/pixelTolerance" (adaptive partitions)
+    int trimMaskCap = 1024;         ///< "view/trimMaskCap": trim budget, texels per mask side
+    bool headlight = true;          ///< "view/headlight": lights follow the camera
+    QColor background{46, 48, 54};  ///< "view/background"
 
     static Preferences load();
     void save() const;

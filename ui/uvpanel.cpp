@@ -1,6 +1,7 @@
 // UvPanel: domain, trim loops, mask and trim control point dragging.
 #include "ui/uvpanel.h"
 
+#include "model/trim.h"
 #include "ui/edit/commands.h"
 
 #include <QKeyEvent>
@@ -245,7 +246,7 @@ void UvPanel::mousePressEvent(QMouseEvent* event) {
         return;
     }
     m_drag.clear();
-    for (const TrimPointRef& ref : withCoincidentEnds(*hit))
+    for (const TrimPointRef& ref : trimPointWithCoincidentEnds(*m_doc->surface(hit->surface), *hit))
         m_drag.push_back({ref, trimPointPosition(*m_doc, ref)});
     std::vector<TrimPointRef> refs;
     for (const Dragged& d : m_drag)

@@ -115,8 +115,6 @@ private:
     void finishShape(QPointF pixel);
     void finishClicked();
     void paintDrawing(class QPainter& p) const;
-    /// The picked trim point's loop, curve and the coinciding curve ends (to move together).
-    std::vector<TrimPointRef> withCoincidentEnds(const TrimPointRef& ref) const;
 
     Document* m_doc;
     Selection* m_selection;

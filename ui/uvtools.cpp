@@ -2,6 +2,7 @@
 // insertion / deletion / exact placement, zoom and pan.
 #include "model/nurbs_construct.h"
 #include "model/nurbs_shapes.h"
+#include "model/trim.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/modelcommands.h"
 #include "ui/uvpanel.h"
@@ -145,27 +146,6 @@ void UvPanel::wheelEvent(QWheelEvent* event) {
 QString UvPanel::crossingWarning() {
     refreshMask();
     return m_crossing;
-}
-
-std::vector<TrimPointRef> UvPanel::withCoincidentEnds(const TrimPointRef& hit) const {
-    std::vector<TrimPointRef> refs{hit};
-    const TrimLoop* loop = loopOf(m_doc, hit.surface, hit.loop);
-    if (!loop)
-        return refs;
-    const glm::dvec2 at = loop->curves[size_t(hit.curve)].points[size_t(hit.index)];
-    const int last = int(loop->curves[size_t(hit.curve)].points.size()) - 1;
-    if (hit.index != 0 && hit.index != last)
-        return refs;
-    // Curve ends that coincide with a picked curve end move with it, keeping the loop closed.
-    for (size_t c = 0; c < loop->curves.size(); ++c) {
-        const auto& pts = loop->curves[c].points;
-        for (int k : {0, int(pts.size()) - 1}) {
-            const TrimPointRef ref{hit.surface, hit.loop, int(c), k};
-            if (pts[size_t(k)] == at && std::find(refs.begin(), refs.end(), ref) == refs.end())
-                refs.push_back(ref);
-        }
-    }
-    return refs;
 }
 
 bool UvPanel::toolPress(QMouseEvent* event) {
@@ -341,7 +321,8 @@ bool UvPanel::setTrimPointPosition(glm::dvec2 uv) {
         Q_EMIT message(tr("Pick a trim control point first."));
         return false;
     }
-    std::vector<TrimPointRef> refs = withCoincidentEnds(picked.front());
+    std::vector<TrimPointRef> refs =
+        trimPointWithCoincidentEnds(*m_doc->surface(picked.front().surface), picked.front());
     std::vector<glm::dvec2> from, to;
     for (const TrimPointRef& r : refs) {
         from.push_back(trimPointPosition(*m_doc, r));

@@ -157,12 +157,21 @@ void Viewport::setTrimMaskCap(int texels) {
     update();
 }
 
+void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
+    m_options.partitioning = mode;
+    m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
+    update();
+}
+
 std::vector<SurfaceId> Viewport::netSurfaces() const {
     if (!m_options.controlNet)
         return {};
-    // Hidden surfaces show no net and no point of theirs can be picked.
+    return shownSurfaces(!m_netForAll); // a hidden surface's points cannot be picked either
+}
+
+std::vector<SurfaceId> Viewport::shownSurfaces(bool selectedOnly) const {
     std::vector<SurfaceId> shown;
-    if (!m_netForAll) {
+    if (selectedOnly) {
         for (SurfaceId id : m_selection->selectedSurfaces())
             if (const Surface* s = m_doc->surface(id); s && !s->hidden)
                 shown.push_back(id);

@@ -76,6 +76,10 @@ public:
     void setHeadlight(bool on);
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
+    /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
+    /// sliders then being the minimum, or the paper's uniform sliders' grid.
+    void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
+    RenderOptions::Partitioning partitioning() const { return m_options.partitioning; }
     /// The surfaces whose nets are drawn and pickable now.
     std::vector<SurfaceId> netSurfaces() const;
 
@@ -169,6 +173,9 @@ private:
     void drawOverlays(class QPainter& p, const ViewProjection& view);
     /// Ctrl + drag: every control point of the selected surfaces follows the drag.
     bool pressOnSurfaces(QPointF pixel);
+    /// The surfaces that are not hidden, in document order: the selected ones only, or all.
+    /// Hidden surfaces show no outline or net, and neither their points nor they can be dragged.
+    std::vector<SurfaceId> shownSurfaces(bool selectedOnly) const;
     void finishWeightDrag(bool cancel);
     /// Rotate and scale drags (viewport_transform.cpp).
     void applyTransformDrag();
@@ -197,7 +204,7 @@ private:
     SurfaceDrag m_surfaceDrag = SurfaceDrag::Move;
     bool m_snap = false; ///< Shift held during a rotate or scale drag
     ViewTool* m_tool = nullptr;
-    ControlPointRef m_weightRef;   ///< DragWeight: the point and its weight at press time
+    ControlPointRef m_weightRef; ///< DragWeight: the point and its weight at press time
     double m_weightFrom = 1.0;
     bool m_netForAll = false;
     bool m_grid = false;

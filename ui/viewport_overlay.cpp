@@ -136,10 +136,7 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
         }
     }
     // Selected surfaces: outlined.
-    std::vector<SurfaceId> selected;
-    for (SurfaceId id : m_selection->selectedSurfaces())
-        if (const Surface* s = m_doc->surface(id); s && !s->hidden)
-            selected.push_back(id);
+    const std::vector<SurfaceId> selected = shownSurfaces(true);
     p.setPen(QPen(QColor(255, 170, 40), 2.0));
     for (SurfaceId id : selected)
         if (const Surface* s = m_doc->surface(id))
@@ -196,13 +193,10 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
 }
 
 bool Viewport::pressOnSurfaces(QPointF pixel) {
-    const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
     m_drag.clear();
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (SurfaceId id : ids) {
+    for (SurfaceId id : shownSurfaces(true)) { // hidden ones stay where they are
         const Surface* s = m_doc->surface(id);
-        if (!s || s->hidden) // hidden ones stay where they are
-            continue;
         for (int j = 0; j < s->geometry.countV; ++j)
             for (int i = 0; i < s->geometry.countU; ++i) {
                 const glm::dvec3 x = s->geometry.points[size_t(s->geometry.index(i, j))];

@@ -42,9 +42,9 @@ QString surfaces(int n) {
 
 } // namespace
 
-VisibilityTools::VisibilityTools(QObject* parent, Document* document, SceneModel* model,
-                                 Selection* selection, QUndoStack* stack)
-    : QObject(parent), m_doc(document), m_model(model), m_selection(selection), m_stack(stack) {}
+VisibilityTools::VisibilityTools(QObject* parent, Document* document, Selection* selection,
+                                 QUndoStack* stack)
+    : QObject(parent), m_doc(document), m_selection(selection), m_stack(stack) {}
 
 bool VisibilityTools::apply(const std::vector<std::pair<SurfaceId, bool>>& states,
                             const QString& verb, int count) {
@@ -72,8 +72,8 @@ bool VisibilityTools::hideSelected() {
     if (!apply(states, tr("Hide")))
         return false;
     // What is hidden cannot stay selected: a drag or Delete would act on what is not seen.
-    m_selection->setControlPoints({});
-    m_selection->itemSelection()->clearSelection();
+    // That includes trim points picked in the UV editor, not only rows and control points.
+    m_selection->clear();
     return true;
 }
 

@@ -18,15 +18,15 @@ class VisibilityTools : public QObject {
     Q_OBJECT
 public:
     /// All pointers must outlive the tools (`parent` owns them and their actions).
-    VisibilityTools(QObject* parent, Document* document, SceneModel* model, Selection* selection,
-                    QUndoStack* stack);
+    VisibilityTools(QObject* parent, Document* document, Selection* selection, QUndoStack* stack);
 
     /// Adds the actions to `menu` (H, Shift+H, Ctrl+Alt+H) and as the context menu of `tree`;
     /// hidden rows of the tree are drawn greyed and in italics.
     void install(QMenu* menu, QAbstractItemView* tree);
 
     // One undo step each; false with message() when nothing changes.
-    /// Hides the selected surfaces and deselects them ("Hide 2 surfaces").
+    /// Hides the selected surfaces and clears the selection, trim points included ("Hide 2
+    /// surfaces").
     bool hideSelected();
     /// Shows the selected surfaces (hidden ones can be selected in the tree).
     bool showSelected();
@@ -44,7 +44,6 @@ private:
                int count = -1);
 
     Document* m_doc;
-    SceneModel* m_model;
     Selection* m_selection;
     QUndoStack* m_stack;
 };

@@ -52,24 +52,8 @@ QString occtUnavailableMessage() {
 
 // Loops bridged on import are saved closed (docs/FILE_FORMAT.md): every gap the file leaves
 // between consecutive trim curves is closed here, as the renderer would bridge it, and reported.
-static void closeImportedLoops(ImportResult& result) {
-    for (Surface& s : result.scene.surfaces)
-        for (TrimLoop& loop : s.trims) {
-            bool valid = true;
-            for (const NurbsCurve2& c : loop.curves)
-                valid = valid && curveValidationError(c).empty();
-            if (!valid)
-                continue; // sceneError names the curve
-            for (const QString& line : closeTrimLoop(loop, trimTolerance(s.geometry)))
-                result.report.warnings << QStringLiteral("surface '%1', trim loop %2: %3")
-                                              .arg(s.name)
-                                              .arg(loop.id.value)
-                                              .arg(line);
-        }
-}
-
 bool finishImport(ImportResult& result, const QString& path, QString& error) {
-    closeImportedLoops(result);
+    result.report.warnings << closeSceneTrimLoops(result.scene);
     const QString why = sceneError(result.scene);
     if (!why.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, why);

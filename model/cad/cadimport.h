@@ -43,7 +43,7 @@ struct ImportResult {
 std::optional<ImportResult> importFile(const QString& path, QString& error,
                                        const ImportProgress& progress = {});
 
-/// The last step of every import: trim loops with gaps are closed (kw::closeTrimLoop: snapped
+/// The last step of every import: trim loops with gaps are closed (kw::closeSceneTrimLoops: snapped
 /// within 1e-5 of the domain's diagonal, else bridged by a straight segment), each gap reported
 /// in result.report.warnings, so the scene saves closed and reopens; then the scene is checked
 /// with kw::sceneError. False with `error` "<path>: <reason>" when it is not valid.

@@ -102,11 +102,9 @@ bool writeImportForParent(const ImportResult& result, const QString& dir, QStrin
 }
 
 std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                                 QString& error, const ImportProgress& progress,
-                                                 const CadChildLimits& limits) {
+                                                 QString& error, const ImportProgress& progress) {
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
-    Q_UNUSED(limits);
     error = QStringLiteral("%1: cannot read %2: %3")
                 .arg(path, cadFormatName(format), occtUnavailableMessage());
     return std::nullopt;
@@ -118,9 +116,8 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                     .arg(path, reader, dir.errorString());
         return std::nullopt;
     }
-    const double seconds =
-        limits.seconds > 0 ? limits.seconds : cadTimeLimitSeconds(QFileInfo(path).size());
-    const long long memory = limits.memoryBytes > 0 ? limits.memoryBytes : cadMemoryLimitBytes();
+    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
+    const long long memory = cadMemoryLimitBytes();
     QProcess child;
     child.setProgram(cadReaderExecutable());
     child.setArguments({QString::fromLatin1(kReadCadVerb), path, dir.path(),

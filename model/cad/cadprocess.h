@@ -14,12 +14,6 @@ namespace kw {
 /// The verb of the knotwork executable that reads a CAD file for a parent (not in --help).
 constexpr const char* kReadCadVerb = "__read-cad";
 
-/// Limits of one child read.
-struct CadChildLimits {
-    double seconds = 0;        ///< wall-clock limit; 0: cadTimeLimitSeconds(file size)
-    long long memoryBytes = 0; ///< RLIMIT_AS of the child; 0: cadMemoryLimitBytes()
-};
-
 /// The time a file of `bytes` may take: 60 s plus 30 s per MB, or the value of the environment
 /// variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
 double cadTimeLimitSeconds(qint64 bytes);
@@ -34,14 +28,15 @@ QString cadReaderExecutable();
 /// Sets the executable for this process (tests, which are not knotwork themselves).
 void setCadReaderExecutable(const QString& path);
 
-/// Parent side: runs the child on `path` and reads back its scene and report. Errors, as
+/// Parent side: runs the child on `path` and reads back its scene and report, within
+/// cadTimeLimitSeconds(file size) and cadMemoryLimitBytes() (the environment variables there
+/// set other limits; the tests use them). Errors, as
 /// "<path>: <reason>" except for a crash: "the STEP reader crashed on <path> (signal 11:
 /// Segmentation fault)"; a time-out names the limit; a cancel (progress returned false) kills
 /// the child at once and gives "<path>: import cancelled".
 std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
                                                  QString& error,
-                                                 const ImportProgress& progress = {},
-                                                 const CadChildLimits& limits = {});
+                                                 const ImportProgress& progress = {});
 
 /// Child side: writes a finished import (finishImport) for the parent as DIR/scene.knot and
 /// DIR/report.json, atomically. False with `error` set when it cannot.

@@ -11,12 +11,12 @@
 #include "model/knotfile.h"
 #include "model/nurbs_curvature.h"
 #include "render/analysis.h"
+#include "render/image_save.h"
 
 #include <QFileInfo>
 #include <QGuiApplication>
 #include <QImage>
 #include <QPainter>
-#include <QSaveFile>
 #include <QStringList>
 #include <algorithm>
 #include <cmath>
@@ -230,10 +230,8 @@ int main(int argc, char** argv) {
                                  QStringLiteral("cotangent H, %1x%1 mesh").arg(parts[k]));
             }
             painter.end();
-            QSaveFile f(imagePath);
-            if (!f.open(QIODevice::WriteOnly) || !out.save(&f, "PNG") || !f.flush() ||
-                !f.commit()) {
-                std::fprintf(stderr, "%s: could not write the image\n", qPrintable(imagePath));
+            if (!kw::saveImageAtomically(out, imagePath, &error)) {
+                std::fprintf(stderr, "%s\n", qPrintable(error));
                 return 1;
             }
             std::printf("\nwrote %s (surface %d of %s, colour scale +-%.4g)\n",
