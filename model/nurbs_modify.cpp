@@ -143,21 +143,44 @@ void clampStart(Lines& ls) {
         l.erase(l.begin(), l.begin() + drop);
 }
 
-/// Blossom of the degree-p polynomial piece on span k (knots[k] < knots[k+1]) of a line, at the
-/// p arguments y[0..p-1]: de Boor's algorithm with one argument per level (Ramshaw's
-/// blossoming; The NURBS Book Sec. 5.5). With all arguments equal to u it is C(u).
-glm::dvec4 blossom(const Line& pw, const std::vector<double>& U, int p, int k, const double* y) {
-    glm::dvec4 d[kMaxDegree + 1];
-    for (int i = 0; i <= p; ++i)
-        d[i] = pw[size_t(k - p + i)];
-    for (int r = 1; r <= p; ++r) {
-        for (int i = p; i >= r; --i) {
-            const int g = k - p + i; // global index of d[i]
-            const double a = (y[r - 1] - U[size_t(g)]) / (U[size_t(g + p + 1 - r)] - U[size_t(g)]);
-            d[i] = (1.0 - a) * d[i - 1] + a * d[i];
-        }
+// B(y_1..y_p), the blossom of the degree-p polynomial piece on span k (knots[k] < knots[k+1])
+// of a line: de Boor's algorithm with one argument per level (Ramshaw's blossoming; The NURBS
+// Book Sec. 5.5), starting from the p + 1 points of the span. With all arguments u it is C(u).
+
+/// Level r (1..p) of that triangle, with argument y: d[r..p] change, d[r-1..p] are read.
+void blossomLevel(glm::dvec4* d, const std::vector<double>& U, int p, int k, int r, double y) {
+    for (int i = p; i >= r; --i) {
+        const int g = k - p + i; // global index of d[i]
+        const double a = (y - U[size_t(g)]) / (U[size_t(g + p + 1 - r)] - U[size_t(g)]);
+        d[i] = (1.0 - a) * d[i - 1] + a * d[i];
     }
-    return d[p];
+}
+
+/// (1 / (p + 1)) sum over m of B(args without args[m]) for the p + 1 arguments args[0..p].
+/// These blossoms share their first levels: the one without args[m] uses args[0..m-1] at levels
+/// 1..m, as does every blossom without a later argument. So the triangle runs once with
+/// args[0..p-1], keeping its state after each level, and the blossom without args[m] resumes
+/// from the state after level m with args[m+1..p]: the same operations on the same values as
+/// p + 1 separate blossoms (bit-identical), in about a third of the work (p^3 / 6 steps instead
+/// of p^3 / 2). Degree elevation of big surfaces spent most of its time here.
+glm::dvec4 blossomAverage(const Line& pw, const std::vector<double>& U, int p, int k,
+                          const double* args) {
+    glm::dvec4 level[kMaxDegree + 1][kMaxDegree + 1]; // level[r]: the triangle after level r
+    for (int i = 0; i <= p; ++i)
+        level[0][i] = pw[size_t(k - p + i)];
+    for (int r = 1; r <= p; ++r) {
+        std::copy(level[r - 1] + r - 1, level[r - 1] + p + 1, level[r] + r - 1);
+        blossomLevel(level[r], U, p, k, r, args[r - 1]);
+    }
+    glm::dvec4 sum(0.0);
+    glm::dvec4 d[kMaxDegree + 1];
+    for (int m = 0; m <= p; ++m) { // leave argument m out, in the order of the sum before
+        std::copy(level[m] + m, level[m] + p + 1, d + m);
+        for (int r = m + 1; r <= p; ++r)
+            blossomLevel(d, U, p, k, r, args[r]);
+        sum += d[p];
+    }
+    return sum / double(p + 1);
 }
 
 // Degree elevation by one, exactly equivalent to The NURBS Book A5.9 (same knots, same control
@@ -184,7 +207,6 @@ void elevateByOne(Lines& ls) {
     const int count = int(uh.size()) - ph - 1;
     std::vector<Line> out(ls.lines.size(), Line(size_t(count)));
     double args[kMaxDegree + 1];
-    double sub[kMaxDegree + 1];
     for (int j = 0; j < count; ++j) {
         // The non-empty span of the new knots inside [u'_j, u'_{j+ph+1}) nearest its middle.
         int best = -1;
@@ -195,17 +217,8 @@ void elevateByOne(Lines& ls) {
         const int span = findSpan(p, U, uh[size_t(best)]); // the same interval in the old knots
         for (int m = 0; m < ph; ++m)
             args[m] = uh[size_t(j + 1 + m)];
-        for (size_t l = 0; l < ls.lines.size(); ++l) {
-            glm::dvec4 sum(0.0);
-            for (int m = 0; m < ph; ++m) { // leave argument m out
-                int n = 0;
-                for (int q = 0; q < ph; ++q)
-                    if (q != m)
-                        sub[n++] = args[q];
-                sum += blossom(ls.lines[l], U, p, span, sub);
-            }
-            out[l][size_t(j)] = sum / double(ph);
-        }
+        for (size_t l = 0; l < ls.lines.size(); ++l)
+            out[l][size_t(j)] = blossomAverage(ls.lines[l], U, p, span, args);
     }
     ls.knots = std::move(uh);
     ls.lines = std::move(out);

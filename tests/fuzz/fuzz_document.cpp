@@ -311,17 +311,26 @@ public:
     void checkAfter(const Scene& before, const std::map<std::uint32_t, Revisions>& revsBefore,
                     bool ok) {
         const Scene& now = doc.scene();
-        const QString why = Document::validate(now);
-        KW_FUZZ_CHECK(why.isEmpty(), why);
-        Scene content = now;
-        content.nextId = before.nextId;
+        // Validation is a function of the scene alone and `before` passed it (after the previous
+        // call; the empty scene is valid), so an unchanged scene needs no second run.
+        const bool unchanged = now == before;
+        if (!unchanged) {
+            const QString why = Document::validate(now);
+            KW_FUZZ_CHECK(why.isEmpty(), why);
+        }
+        // The content is all but nextId, which id allocation moves; a copy only when it moved.
+        const bool sameContent = unchanged || (now.nextId != before.nextId && [&] {
+                                     Scene content = now;
+                                     content.nextId = before.nextId;
+                                     return content == before;
+                                 }());
         if (!ok) {
-            KW_FUZZ_CHECK(content == before, "a refused call changed the scene");
+            KW_FUZZ_CHECK(sameContent, "a refused call changed the scene");
             KW_FUZZ_CHECK(log.total == 0, "a refused call emitted signals");
             return;
         }
         KW_FUZZ_CHECK(now.nextId >= before.nextId || log.resets > 0, "nextId went down");
-        if (content == before && log.resets == 0)
+        if (sameContent && log.resets == 0)
             KW_FUZZ_CHECK(log.total == 0, "a call that changed nothing emitted signals");
         KW_FUZZ_CHECK(int(before.surfaces.size()) + log.surfacesIn - log.surfacesOut ==
                               int(now.surfaces.size()) ||
@@ -395,6 +404,7 @@ public:
     }
 
     void run() {
+        KW_FUZZ_CHECK(Document::validate(doc.scene()).isEmpty(), "a new document is invalid");
         for (int n = 0; n < 32 && !in.empty(); ++n) {
             const Scene before = doc.scene();
             std::map<std::uint32_t, Revisions> revs;
