@@ -3,6 +3,7 @@
 #include "render/analysis_gl.h"
 
 #include "render/image_reader.h"
+#include "render/shader_library.h"
 
 #include <QImage>
 #include <QOpenGLShaderProgram>
@@ -106,17 +107,16 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
                          const AnalysisOptions& o, const ValueRange& range,
                          const FrameCamera& camera, const std::vector<Light>& lights,
                          int environmentUnit) {
-    const auto loc = [&](const char* name) {
-        return program->uniformLocation(name);
-    };
+    // Locations looked up once per program (ShaderLibrary), not by name on every draw.
+    const UniformLocations& u = ShaderLibrary::uniforms(program);
     const float toRad = float(M_PI / 180.0);
     switch (o.mode) {
     case AnalysisMode::Gaussian:
     case AnalysisMode::Mean:
     case AnalysisMode::MaxCurvature:
     case AnalysisMode::MinRadius:
-        gl->glUniform2f(loc("uAnalysisRange"), float(range.low), float(range.high));
-        gl->glUniform1i(loc("uAnalysisScale"), int(o.scale.value_or(defaultScale(o.mode))));
+        gl->glUniform2f(u.analysisRange, float(range.low), float(range.high));
+        gl->glUniform1i(u.analysisScale, int(o.scale.value_or(defaultScale(o.mode))));
         break;
     case AnalysisMode::Zebra: {
         // The stripe axis in the view plane: angle 0 along the camera's right, 90 along its up.
@@ -124,8 +124,8 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
         const glm::vec3 right = rot[0], up = rot[1];
         const float a = float(o.stripeAngleDegrees) * toRad;
         const glm::vec3 axis = glm::normalize(std::cos(a) * right + std::sin(a) * up);
-        gl->glUniform1f(loc("uStripeCount"), float(o.stripeCount));
-        gl->glUniform3fv(loc("uStripeAxis"), 1, glm::value_ptr(axis));
+        gl->glUniform1f(u.stripeCount, float(o.stripeCount));
+        gl->glUniform3fv(u.stripeAxis, 1, glm::value_ptr(axis));
         break;
     }
     case AnalysisMode::Isophotes: {
@@ -134,36 +134,35 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
         if (!lights.empty() && lights.front().kind == Light::Kind::Directional &&
             glm::length(lights.front().vector) > 0.0)
             L = glm::vec3(glm::normalize(lights.front().vector));
-        gl->glUniform1f(loc("uIsophoteCount"), float(o.isophoteCount));
-        gl->glUniform3fv(loc("uIsophoteLight"), 1, glm::value_ptr(L));
+        gl->glUniform1f(u.isophoteCount, float(o.isophoteCount));
+        gl->glUniform3fv(u.isophoteLight, 1, glm::value_ptr(L));
         break;
     }
     case AnalysisMode::Environment:
-        gl->glUniform1i(loc("uEnvironment"), environmentUnit);
+        gl->glUniform1i(u.environment, environmentUnit);
         break;
     case AnalysisMode::Draft: {
         const glm::dvec3 d = glm::length(o.pullDirection) > 0.0 ? glm::normalize(o.pullDirection)
                                                                 : glm::dvec3(0.0, 0.0, 1.0);
-        gl->glUniform3fv(loc("uPullDirection"), 1, glm::value_ptr(glm::vec3(d)));
-        gl->glUniform1f(loc("uDraftAngle"), float(o.draftAngleDegrees) * toRad);
+        gl->glUniform3fv(u.pullDirection, 1, glm::value_ptr(glm::vec3(d)));
+        gl->glUniform1f(u.draftAngle, float(o.draftAngleDegrees) * toRad);
         break;
     }
     case AnalysisMode::Phong:
         break;
     }
     if (o.principalDirections) {
-        gl->glUniform1f(loc("uDirSpacing"),
-                        float(std::clamp(o.directionSpacingPixels, 6.0, 512.0)));
+        gl->glUniform1f(u.dirSpacing, float(std::clamp(o.directionSpacingPixels, 6.0, 512.0)));
         // Half the viewport: NDC differences to pixels.
-        gl->glUniform2f(loc("uDirViewport"), 0.5f * float(camera.viewport.x),
+        gl->glUniform2f(u.dirViewport, 0.5f * float(camera.viewport.x),
                         0.5f * float(camera.viewport.y));
     }
     if (o.isocurves) {
-        gl->glUniform2f(loc("uIsoCount"), float(std::max(o.isoCount.x, 0)),
+        gl->glUniform2f(u.isoCount, float(std::max(o.isoCount.x, 0)),
                         float(std::max(o.isoCount.y, 0)));
-        gl->glUniform1f(loc("uIsoWidth"), float(o.isoWidthPixels));
-        gl->glUniform3f(loc("uIsoColour"), 0.08f, 0.08f, 0.08f);
-        gl->glUniform3f(loc("uKnotColour"), 0.85f, 0.1f, 0.55f);
+        gl->glUniform1f(u.isoWidth, float(o.isoWidthPixels));
+        gl->glUniform3f(u.isoColour, 0.08f, 0.08f, 0.08f);
+        gl->glUniform3f(u.knotColour, 0.85f, 0.1f, 0.55f);
     }
 }
 

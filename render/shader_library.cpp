@@ -69,11 +69,6 @@ public:
                                                       {&u.color, "uColor"},
                                                       {&u.material, "uMaterial"},
                                                       {&u.surfaceId, "uSurfaceId"},
-                                                      {&u.domain, "uDomain"},
-                                                      {&u.origin, "uOrigin"},
-                                                      {&u.control, "uControl"},
-                                                      {&u.spansU, "uSpansU"},
-                                                      {&u.spansV, "uSpansV"},
                                                       {&u.trimMask, "uTrimMask"},
                                                       {&u.trimRect, "uTrimRect"},
                                                       {&u.trimSize, "uTrimSize"},
@@ -81,7 +76,22 @@ public:
                                                       {&u.trimLayer, "uTrimLayer"},
                                                       {&u.depthBias, "uDepthBias"},
                                                       {&u.pointSize, "uPointSize"},
-                                                      {&u.lineColor, "uLineColor"}};
+                                                      {&u.lineColor, "uLineColor"},
+                                                      {&u.analysisRange, "uAnalysisRange"},
+                                                      {&u.analysisScale, "uAnalysisScale"},
+                                                      {&u.stripeCount, "uStripeCount"},
+                                                      {&u.stripeAxis, "uStripeAxis"},
+                                                      {&u.isophoteCount, "uIsophoteCount"},
+                                                      {&u.isophoteLight, "uIsophoteLight"},
+                                                      {&u.environment, "uEnvironment"},
+                                                      {&u.pullDirection, "uPullDirection"},
+                                                      {&u.draftAngle, "uDraftAngle"},
+                                                      {&u.dirSpacing, "uDirSpacing"},
+                                                      {&u.dirViewport, "uDirViewport"},
+                                                      {&u.isoCount, "uIsoCount"},
+                                                      {&u.isoWidth, "uIsoWidth"},
+                                                      {&u.isoColour, "uIsoColour"},
+                                                      {&u.knotColour, "uKnotColour"}};
         for (const auto& [slot, name] : names)
             *slot = uniformLocation(name);
     }

@@ -17,9 +17,13 @@ struct UniformLocations {
     int viewProjection = -1, eye = -1, forward = -1;                           // camera
     int ambient = -1, lightVector = -1, lightDiffuse = -1, lightSpecular = -1; // phong.glsl
     int color = -1, material = -1, surfaceId = -1;                             // per surface
-    int domain = -1, origin = -1, control = -1, spansU = -1, spansV = -1;      // nurbs_surface.glsl
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
     int depthBias = -1, pointSize = -1, lineColor = -1; // lines.vert/.frag
+    // analysis.glsl (render/analysis_gl.cpp), by mode
+    int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;
+    int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;
+    int draftAngle = -1, dirSpacing = -1, dirViewport = -1, isoCount = -1, isoWidth = -1;
+    int isoColour = -1, knotColour = -1;
 };
 
 class ShaderLibrary {
