@@ -233,6 +233,8 @@ std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera,
         return std::nullopt;
     RenderOptions o = options;
     o.wireframe = o.controlNet = false;
+    // The pick reads ids and (u, v) only: no analysis colouring (and no colour range to find).
+    o.analysis = {};
     const int x = int(fx), y = viewport.height() - 1 - int(fy); // GL rows run bottom-up
     const QRect at(x, y, 1, 1);
     const FrameReport r = d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
