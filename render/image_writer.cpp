@@ -4,11 +4,10 @@
 #include "render/image_writer.h"
 
 #include "model/savefile.h"
+#include "render/image_save.h"
 #include "render/oiio/image_module.h"
 #include "render/oiio_loader.h"
 
-#include <QImageWriter>
-#include <QSaveFile>
 #include <algorithm>
 #include <vector>
 
@@ -51,22 +50,6 @@ bool writePixels(const QString& path, KwImageWrite image, QString* error) {
         error);
 }
 
-/// PNG needs no OpenImageIO: Qt's own encoder (in QtGui), written through QSaveFile so the old
-/// file stays until the new one is complete. The flush is checked before commit(), which in
-/// Qt 6.4 ignores a failed final flush.
-bool writePng(const QImage& rgb, const QString& path, QString* error) {
-    QSaveFile file(path);
-    QImageWriter writer(&file, "png");
-    if (!file.open(QIODevice::WriteOnly) || !writer.write(rgb) || !file.flush() || !file.commit()) {
-        const QString why =
-            file.error() != QFileDevice::NoError ? file.errorString() : writer.errorString();
-        file.cancelWriting();
-        *error = QStringLiteral("%1: could not write image: %2").arg(path, why);
-        return false;
-    }
-    return true;
-}
-
 } // namespace
 
 bool isSupportedImagePath(const QString& path) {
@@ -86,8 +69,9 @@ bool writeColorImage(const QImage& image, const QString& path, QString* error) {
         return false;
     }
     const QImage rgb = image.convertToFormat(QImage::Format_RGB888);
+    // PNG needs no OpenImageIO: Qt's own encoder, written atomically (image_save.h).
     if (suffixOf(path) == QLatin1String("png"))
-        return writePng(rgb, path, error);
+        return saveImageAtomically(rgb, path, error);
     const int w = rgb.width(), h = rgb.height();
     std::vector<unsigned char> bytes(size_t(w) * size_t(h) * 3);
     for (int y = 0; y < h; ++y)
