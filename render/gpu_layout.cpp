@@ -47,10 +47,6 @@ std::vector<glm::vec4> packSpanTable(const std::vector<double>& U, int p, int co
     return out;
 }
 
-std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n) {
-    return cellBreaks(knots, n, knotDomain(knots, degree));
-}
-
 std::vector<double> cellBreaks(const std::vector<double>& knots, int n, Interval range) {
     const double len = range.last - range.first;
     std::vector<double> b;

@@ -68,11 +68,9 @@ struct BasePolygon {
     int nodesU() const { return int(breaksU.size()); }
 };
 
-/// Breakpoints: n uniform cells of the domain merged with the distinct interior knots.
-/// Uniform breaks closer than 1e-9 of the domain length to a knot are dropped.
-std::vector<double> cellBreaks(const std::vector<double>& knots, int degree, int n);
-/// The same over `range` (inside the domain): n uniform cells of it merged with the distinct
-/// knots strictly inside it; the ends are range's.
+/// Breakpoints over `range` (inside the domain): n uniform cells of it merged with the
+/// distinct knots strictly inside it; the ends are range's. Uniform breaks closer than 1e-9 of
+/// the range's length to a knot are dropped.
 std::vector<double> cellBreaks(const std::vector<double>& knots, int n, Interval range);
 
 /// Builds the base polygon. Preconditions: valid surface, nu and nv >= 1.

@@ -118,9 +118,8 @@ public:
     /// Binds the surface table and the control and span pools as texture buffers to the units
     /// of shaders/surface_data.glsl (5-8) and the triangle VAO.
     void bindSurfaceData() const;
-    /// Vertex arrays over the pools: base polygon triangles (attributes 0-3 of BaseVertex and
-    /// the surface index at location 4, one per instance) and cell outlines.
-    GLuint triangleVao() const { return m_triangleVao; }
+    /// The vertex array of the cell outlines over the pools (the triangles' is bound by
+    /// bindSurfaceData: attributes 0-3 of BaseVertex, the surface index at 4 per instance).
     GLuint outlineVao() const { return m_outlineVao; }
     /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
     /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
