@@ -111,9 +111,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     const Scene& scene = doc.scene();
     // The project's display settings, unless the command line says otherwise.
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.partitionMode))
-        options.partitioning = scene.display.partitionMode == QLatin1String("uniform")
-                                   ? RenderOptions::Partitioning::Uniform
-                                   : RenderOptions::Partitioning::Adaptive;
+        options.partitioning = partitioningNamed(scene.display.partitionMode);
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
         options.pixelTolerance = scene.display.pixelTolerance;
     QString error;

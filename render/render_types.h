@@ -85,6 +85,13 @@ struct RenderOptions {
     bool headlight = false;
 };
 
+/// The partitioning a saved or preferred mode name asks for: "uniform" is the paper's, any
+/// other (validation allows only "adaptive" and "") the adaptive default.
+inline RenderOptions::Partitioning partitioningNamed(const QString& name) {
+    return name == QLatin1String("uniform") ? RenderOptions::Partitioning::Uniform
+                                            : RenderOptions::Partitioning::Adaptive;
+}
+
 /// Counts of data sent to the GPU, kept per surface and in total, and per frame in FrameReport.
 struct UploadStats {
     std::int64_t fullUploads = 0;       ///< control-point textures (re)created and filled

@@ -51,27 +51,20 @@ void DesktopActions::applyPreferences() {
     m_viewport->setBackground(p.background);
     m_viewport->setHeadlight(p.headlight);
     m_viewport->setTrimMaskCap(p.trimMaskCap);
-    m_viewport->setPartitioning(p.partitionMode == QLatin1String("uniform")
-                                    ? RenderOptions::Partitioning::Uniform
-                                    : RenderOptions::Partitioning::Adaptive,
-                                p.pixelTolerance);
-    if (m_adaptive) {
-        const QSignalBlocker quiet(m_adaptive);
-        m_adaptive->setChecked(m_viewport->partitioning() == RenderOptions::Partitioning::Adaptive);
-    }
+    showPartitions(p.partitionMode, p.pixelTolerance);
 }
 
 void DesktopActions::applyDisplay(const DisplaySettings& display) {
     applyPreferences();
-    if (display.partitionMode.isEmpty())
-        return;
-    m_viewport->setPartitioning(display.partitionMode == QLatin1String("uniform")
-                                    ? RenderOptions::Partitioning::Uniform
-                                    : RenderOptions::Partitioning::Adaptive,
-                                display.pixelTolerance);
+    if (!display.partitionMode.isEmpty())
+        showPartitions(display.partitionMode, display.pixelTolerance);
+}
+
+void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) {
+    m_viewport->setPartitioning(partitioningNamed(mode), pixelTolerance);
     if (m_adaptive) {
         const QSignalBlocker quiet(m_adaptive);
-        m_adaptive->setChecked(display.partitionMode != QLatin1String("uniform"));
+        m_adaptive->setChecked(m_viewport->partitioning() == RenderOptions::Partitioning::Adaptive);
     }
 }
 

@@ -50,6 +50,10 @@ public:
     QString shortcutsHtml() const;
 
 private:
+    /// The view draws `mode` ("adaptive" or "uniform") within `pixelTolerance`; the View
+    /// menu's check follows.
+    void showPartitions(const QString& mode, double pixelTolerance);
+
     QMainWindow* m_window;
     Viewport* m_viewport;
     QAction* m_adaptive = nullptr; ///< View › Adaptive Partitions
