@@ -28,12 +28,9 @@ double gatherMinCellPixels() {
 }
 } // namespace
 
-double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
-    const int cells = g.polygon.cellCount();
-    if (g.control.empty() || cells <= 0)
-        return 0.0;
-    // Bounding box of the control points (convex hull property: it holds the surface).
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+bool ExactSurfacePass::controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(-std::numeric_limits<float>::max());
     for (const glm::vec4& t : g.control) {
         if (!(t.w > 0.0f))
             continue;
@@ -42,12 +39,49 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
         hi = glm::max(hi, p);
     }
     if (lo.x > hi.x)
-        return 0.0;
+        return false;
     const glm::vec3 o(g.origin);
+    lo += o;
+    hi += o;
+    return true;
+}
+
+bool ExactSurfacePass::outsideView(const glm::vec3& lo, const glm::vec3& hi,
+                                   const glm::mat4& viewProjection) {
+    // Grown a little so that rounding in the transform never culls a surface whose edge
+    // touches the view.
+    const glm::vec3 margin(1e-4f * (glm::length(hi - lo) + glm::length(hi) + glm::length(lo)));
+    const glm::vec3 a = lo - margin, b = hi + margin;
+    // Each clip plane (-w <= x, y, z <= w) is a half-space in world space, at any w: the box is
+    // outside when all eight corners fail the same one.
+    int outside[6] = {0, 0, 0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec4 c = viewProjection * glm::vec4(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y,
+                                                       k & 4 ? b.z : a.z, 1.0f);
+        outside[0] += c.x < -c.w;
+        outside[1] += c.x > c.w;
+        outside[2] += c.y < -c.w;
+        outside[3] += c.y > c.w;
+        outside[4] += c.z < -c.w;
+        outside[5] += c.z > c.w;
+    }
+    return std::any_of(outside, outside + 6, [](int n) { return n == 8; });
+}
+
+double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
+    glm::vec3 lo, hi;
+    return controlBounds(g, lo, hi) ? projectedPixelsPerCell(g, lo, hi, camera) : 0.0;
+}
+
+double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
+                                                const glm::vec3& hi, const FrameCamera& camera) {
+    const int cells = g.polygon.cellCount();
+    if (cells <= 0)
+        return 0.0;
     glm::vec2 smin(std::numeric_limits<float>::max()), smax(-std::numeric_limits<float>::max());
     for (int k = 0; k < 8; ++k) {
         const glm::vec3 c(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
-        const glm::vec4 clip = camera.viewProjection * glm::vec4(c + o, 1.0f);
+        const glm::vec4 clip = camera.viewProjection * glm::vec4(c, 1.0f);
         if (!(clip.w > 0.0f)) // a corner behind the eye: treat the surface as large
             return std::numeric_limits<double>::infinity();
         const glm::vec2 ndc = glm::vec2(clip) / clip.w;
@@ -183,6 +217,14 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         const SurfaceGpu* g = r->exact.get();
         if (!g || r->slot < 0)
             continue;
+        // Wholly outside the view (its control bounds hold it): no triangle of it is sent,
+        // so a close-up costs what is visible, not the whole scene (issue 15).
+        glm::vec3 lo, hi;
+        const bool bounded = controlBounds(*g, lo, hi);
+        if (options.cullOutsideView && bounded && outsideView(lo, hi, camera.viewProjection)) {
+            ++culled;
+            continue;
+        }
         const DrawCommand c{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
                             GLint(g->vertexOffset), GLuint(r->slot)};
         const TrimMask* mask = trims ? maskOf(*r) : nullptr;
@@ -195,7 +237,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         const bool lookUp = mask && !prepass;
         // The gather pays only where a cell covers many fragments: on small cells its flat
         // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-        const bool gather = projectedPixelsPerCell(*g, camera) >= minCellPixels;
+        const bool gather = bounded && projectedPixelsPerCell(*g, lo, hi, camera) >= minCellPixels;
         Batch& b = variants[g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9];
         if (b.commands.empty()) {
             b.degreeU = g->degreeU;

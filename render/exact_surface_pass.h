@@ -47,6 +47,15 @@ public:
     /// projected bounding box of its control points (clamped to the viewport) over its cell
     /// count; infinity when the box reaches behind the eye, 0 for an empty surface.
     static double projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera);
+    /// The same from the bounds controlBounds gave.
+    static double projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
+                                         const glm::vec3& hi, const FrameCamera& camera);
+    /// World-space bounds of the control points of `g` (they hold the surface and its base
+    /// polygon); false without a point of positive weight.
+    static bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);
+    /// True when the box lies wholly outside one plane of the clip volume (slightly grown).
+    static bool outsideView(const glm::vec3& lo, const glm::vec3& hi,
+                            const glm::mat4& viewProjection);
 
     /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant
     /// (docs/PERFORMANCE.md). KW_GATHER_MIN_CELL_PX in the environment overrides it, for
@@ -54,6 +63,7 @@ public:
     static constexpr double kGatherMinCellPixels = 64.0;
 
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
+    int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
     /// One multi-draw per variant group (default). False: the same commands issued one draw
     /// per surface, for comparing images and costs (tests; KW_MULTI_DRAW=0 at initialize).
     bool multiDraw = true;

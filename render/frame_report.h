@@ -63,7 +63,10 @@ struct FrameReport {
     TrimMaskStats masks; ///< trim mask work of this frame (masks.redraws: mask rebuilds)
     int drawCalls = 0;   ///< glDraw* calls issued by this frame
     int surfaces = 0;    ///< surfaces drawn (hidden ones are not)
-    GpuBytes gpuBytes;   ///< resident after this frame
+    /// Of those, left out of the exact passes as wholly outside the view (their control
+    /// bounds are; RenderOptions::cullOutsideView).
+    int culled = 0;
+    GpuBytes gpuBytes; ///< resident after this frame
     /// What the frame drew differently from the document: trim loops repaired or ignored
     /// (each prefixed with its surface id) and surfaces left out. The current state, not only
     /// what changed in this frame.

@@ -80,6 +80,9 @@ struct RenderOptions {
     /// trimMaskCap]. The array holding all masks has layers of the largest side in use, so the
     /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).
     int trimMaskCap = kDefaultTrimMaskCap;
+    /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
+    /// view (FrameReport::culled). Off only to check that culling changes no pixel.
+    bool cullOutsideView = true;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;

@@ -96,6 +96,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
+    exact.culled = 0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
     QString syncError;
@@ -167,6 +168,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
     for (const SurfaceRecord* r : scene.records())
         report.surfaces += r->exact ? 1 : 0;
+    report.culled = exact.culled;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     if (!ok)

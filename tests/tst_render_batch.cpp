@@ -165,6 +165,38 @@ private Q_SLOTS:
         m_renderer.reset();
         qunsetenv("KW_GATHER_MIN_CELL_PX");
     }
+
+    // A close-up sends no triangle of the surfaces wholly outside the view, and changes no
+    // pixel: the same frame without culling is bit-identical.
+    void closeUpCullsWhatIsOutsideTheView() {
+        QString error;
+        Document doc;
+        QVERIFY2(doc.resetScene(grid(300), &error), qPrintable(error));
+        Camera close;
+        close.target = glm::dvec3(2.5, 2.0, 0.0); // between the first four patches
+        close.eye = close.target + glm::dvec3(0.0, -4.0, 6.0);
+        close.authored = true;
+        RenderOptions options;
+        const auto frame = [&](bool cull) {
+            options.cullOutsideView = cull;
+            m_renderer->render(doc, close, options, &error);
+            return std::pair(m_renderer->lastReport(), m_renderer->colorImage());
+        };
+        const auto [uncut, uncutImage] = frame(false);
+        const auto [cut, cutImage] = frame(true);
+        QVERIFY2(cut.ok && uncut.ok, qPrintable(cut.error + uncut.error));
+        QCOMPARE(uncut.culled, 0);
+        qInfo("close-up of 300 patches: %d culled, draw CPU %.2f -> %.2f ms", cut.culled,
+              uncut.cpuMs.surfaces, cut.cpuMs.surfaces);
+        QVERIFY(cut.culled >= 250);
+        QVERIFY(cut.culled <= 296); // the four patches around the target are drawn
+        QVERIFY(!uncutImage.isNull());
+        QCOMPARE(cutImage, uncutImage);
+        // The fitted view sees every patch: nothing is culled.
+        options.cullOutsideView = true;
+        m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options, &error);
+        QCOMPARE(m_renderer->lastReport().culled, 0);
+    }
 };
 
 QTEST_MAIN(TestRenderBatch)
