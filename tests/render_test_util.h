@@ -11,6 +11,7 @@
 #include <QString>
 #include <QTest>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 Q_DECLARE_METATYPE(kw::Scene)
@@ -21,6 +22,17 @@ inline QDir outputDir() {
     QDir d(QStringLiteral(KW_TEST_OUTPUT_DIR));
     d.mkpath(QStringLiteral("."));
     return d;
+}
+
+/// An off-screen renderer with a current OpenGL 4.5 context and a target of `size` (with the
+/// AOV attachments, and the curvature one, when asked), or null with *error set. The render
+/// tests' initTestCase: `m_renderer = offscreenRenderer(...); QVERIFY2(m_renderer, ...)`.
+inline std::unique_ptr<kw::OffscreenRenderer>
+offscreenRenderer(QSize size, bool aov, QString* error, bool curvature = false) {
+    auto r = std::make_unique<kw::OffscreenRenderer>();
+    if (!r->create(error) || !r->setSize(size, aov, error, curvature))
+        return nullptr;
+    return r;
 }
 
 inline std::optional<kw::Scene> loadSample(const QString& name, QString* error) {

@@ -117,10 +117,9 @@ class TestRenderAdaptive : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(kSize, false, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(kSize, false, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
         m_options.partitioning = RenderOptions::Partitioning::Adaptive;
         m_options.pixelTolerance = 0.5;
     }

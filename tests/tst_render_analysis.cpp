@@ -7,7 +7,6 @@
 #include "render/renderer_impl.h"
 #include "render_test_util.h"
 
-
 using namespace kw;
 
 Q_DECLARE_METATYPE(kw::AnalysisMode)
@@ -47,10 +46,9 @@ class TestRenderAnalysis : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error, true), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error, true);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void curvatureAovMatchesKernel_data();

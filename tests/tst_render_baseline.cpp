@@ -22,10 +22,9 @@ class TestRenderBaseline : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), false, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), false, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void matchesBaseline_data() {

@@ -52,10 +52,9 @@ private Q_SLOTS:
         // The gather choice depends on each surface's size on screen; fixed here so that each
         // degree pair is one variant at every size.
         qputenv("KW_GATHER_MIN_CELL_PX", "0");
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(320, 240), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(320, 240), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void drawCallsFollowVariantsNotSurfaces() {

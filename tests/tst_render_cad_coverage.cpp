@@ -20,10 +20,9 @@ private Q_SLOTS:
 #ifndef KW_HAVE_OCCT
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): IGES and STEP cannot be imported");
 #endif
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(1024, 1024), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(1024, 1024), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void facesAppearWhereTheTrimsSay_data() {

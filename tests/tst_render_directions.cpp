@@ -41,10 +41,9 @@ class TestRenderDirections : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error, true), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error, true);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
     void marksFollowTheKernelDirections_data();
     void marksFollowTheKernelDirections();

@@ -91,10 +91,9 @@ class TestRenderEnvironment : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
         m_scene.surfaces.push_back(kwtest::makeSurface(1, makeSphere(glm::dvec3(0.0), 1.0), 12));
         m_scene.camera.eye = glm::dvec3(0.0, -6.0, 0.0);
         m_scene.camera.target = glm::dvec3(0.0);

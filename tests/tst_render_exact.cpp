@@ -14,10 +14,9 @@ class TestRenderExact : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(512, 512), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(512, 512), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
         qInfo("GL: %s", qPrintable(m_renderer->renderer().glDescription()));
     }
 

@@ -20,10 +20,9 @@ class TestRenderScene : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(160, 120), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(160, 120), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void pickMatchesAov_data() {

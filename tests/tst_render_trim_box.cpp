@@ -36,10 +36,9 @@ class TestRenderTrimBox : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(256, 256), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(256, 256), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void polygonSpansTheTrimBox() {

@@ -103,10 +103,9 @@ class TestRenderTrims : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
     }
 
     void coveredAreaMatchesAnalyticArea() {

@@ -31,10 +31,9 @@ class TestRenderUploads : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(128, 128), true, &error), qPrintable(error));
+        m_renderer = kwtest::offscreenRenderer(QSize(128, 128), true, &error);
+        QVERIFY2(m_renderer, qPrintable(error));
         std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("bicubic"), &error);
         QVERIFY2(scene, qPrintable(error));
         m_bicubic = scene->surfaces.at(0).id;
