@@ -201,7 +201,7 @@ double screenDistanceBound(const ScreenScale& scale, double distance, double min
 
 bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
                        const glm::dvec3& hi) {
-    int outside[4] = {0, 0, 0, 0};
+    int outside[6] = {0, 0, 0, 0, 0, 0};
     for (int k = 0; k < 8; ++k) {
         const glm::dvec4 c =
             viewProjection *
@@ -210,8 +210,10 @@ bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
         outside[1] += c.x > c.w;
         outside[2] += c.y < -c.w;
         outside[3] += c.y > c.w;
+        outside[4] += c.z < -c.w;
+        outside[5] += c.z > c.w;
     }
-    return outside[0] == 8 || outside[1] == 8 || outside[2] == 8 || outside[3] == 8;
+    return std::any_of(outside, outside + 6, [](int n) { return n == 8; });
 }
 
 double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi) {

@@ -74,8 +74,9 @@ ScreenScale screenScale(const Camera& camera, int width, int height, double near
 /// the frustum; Cauchy-Schwarz on (a - b)). minDepth is clamped to nearDepth.
 double screenDistanceBound(const ScreenScale& scale, double distance, double minDepth);
 
-/// True when the box [lo, hi] lies wholly outside one of the left, right, bottom or top planes
-/// of the clip transform's frustum (all eight corners beyond it).
+/// True when the box [lo, hi] lies wholly outside one of the six planes of the clip
+/// transform's frustum (all eight corners beyond the same one). Each plane (-w <= x, y, z <= w)
+/// is a half-space in model space at any w, so corners behind the eye are classified right.
 bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
                        const glm::dvec3& hi);
 

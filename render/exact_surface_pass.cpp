@@ -2,6 +2,7 @@
 // (or one pass writing gl_FragDepth when options.shading is ExactDepth).
 #include "render/exact_surface_pass.h"
 
+#include "model/surface_bound.h"
 #include "render/shading_uniforms.h"
 
 #include <QOpenGLShaderProgram>
@@ -51,21 +52,8 @@ bool ExactSurfacePass::outsideView(const glm::vec3& lo, const glm::vec3& hi,
     // Grown a little so that rounding in the transform never culls a surface whose edge
     // touches the view.
     const glm::vec3 margin(1e-4f * (glm::length(hi - lo) + glm::length(hi) + glm::length(lo)));
-    const glm::vec3 a = lo - margin, b = hi + margin;
-    // Each clip plane (-w <= x, y, z <= w) is a half-space in world space, at any w: the box is
-    // outside when all eight corners fail the same one.
-    int outside[6] = {0, 0, 0, 0, 0, 0};
-    for (int k = 0; k < 8; ++k) {
-        const glm::vec4 c = viewProjection * glm::vec4(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y,
-                                                       k & 4 ? b.z : a.z, 1.0f);
-        outside[0] += c.x < -c.w;
-        outside[1] += c.x > c.w;
-        outside[2] += c.y < -c.w;
-        outside[3] += c.y > c.w;
-        outside[4] += c.z < -c.w;
-        outside[5] += c.z > c.w;
-    }
-    return std::any_of(outside, outside + 6, [](int n) { return n == 8; });
+    return boxOutsideFrustum(glm::dmat4(viewProjection), glm::dvec3(lo - margin),
+                             glm::dvec3(hi + margin));
 }
 
 double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
