@@ -86,6 +86,12 @@ private Q_SLOTS:
             << QStringList{sample("torus"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--aov"), output("a.png")};
         QTest::newRow("no output") << QStringList{sample("torus")};
+        QTest::newRow("bad partition mode")
+            << QStringList{sample("torus"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--partition-mode"), QStringLiteral("fine")};
+        QTest::newRow("bad pixel tolerance")
+            << QStringList{sample("torus"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--pixel-tolerance"), QStringLiteral("0")};
     }
     void usageErrorsExitTwo() {
         QFETCH(QStringList, args);
@@ -93,6 +99,11 @@ private Q_SLOTS:
         const Run r = knotwork(args);
         QCOMPARE(r.code, 2);
         QVERIFY(!r.err.isEmpty());
+        // The message names the option at fault.
+        if (args.contains(QStringLiteral("--partition-mode")))
+            QVERIFY2(r.err.contains(QStringLiteral("--partition-mode 'fine'")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--pixel-tolerance")))
+            QVERIFY2(r.err.contains(QStringLiteral("--pixel-tolerance '0'")), qPrintable(r.err));
     }
 
     void benchPrintsATable() {
