@@ -104,6 +104,7 @@ public:
         o.lightCount = lights;
         o.trims = trims;
         o.polygonOverTrims = trims; // --no-trims draws whole domains
+        o.trimMode = trimMode;
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// Clears the target as the renderer does (colour, AOVs, depth) by drawing an empty
@@ -136,6 +137,7 @@ public:
     Document empty;
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     bool trims = true;
+    RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
 
 private:
     bool m_withAov = false;
@@ -491,6 +493,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     Session s;
     s.shading = config.shading;
     s.trims = config.trims;
+    s.trimMode = config.trimMode;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

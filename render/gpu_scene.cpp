@@ -266,14 +266,16 @@ void GpuScene::syncTable() {
             e.colour = glm::vec4(glm::vec3(m.color), 1.0f);
             e.material = glm::vec4(float(m.ka), float(m.kd), float(m.ks),
                                    float(std::max(m.shininess, 1e-3)));
-            if (r->mask.active && r->mask.layer >= 0) {
+            int trimBlock = 0;
+            if (r->mask.usable()) {
                 e.trimRect = glm::vec4(r->mask.rect);
                 e.trimSize = glm::vec4(float(r->mask.width), float(r->mask.height),
                                        float(r->mask.layer), 0.0f);
+                trimBlock = int(r->mask.grid.offset);
             }
             e.data = glm::ivec4(int(g.controlOffset), g.countU, int(g.spanOffset),
                                 int(g.spanOffset + g.spanTexelsU));
-            e.ids = glm::ivec4(int(r->id.value), 0, 0, 0);
+            e.ids = glm::ivec4(int(r->id.value), trimBlock, 0, 0);
             SurfaceTableEntry& row = t.rows[size_t(r->slot)];
             if (!(row == e)) {
                 row = e;
@@ -455,7 +457,7 @@ const SurfaceGpu* GpuScene::surfaceGpu(SurfaceId id) const {
 
 const TrimMask* GpuScene::mask(SurfaceId id) const {
     const SurfaceRecord* r = find(id);
-    return r && r->mask.active && r->mask.layer >= 0 ? &r->mask : nullptr;
+    return r && r->mask.usable() ? &r->mask : nullptr;
 }
 
 UploadStats GpuScene::stats(SurfaceId id) const {
@@ -495,6 +497,8 @@ void GpuScene::resetStats() {
 
 QStringList GpuScene::maskWarnings() const {
     QStringList out;
+    if (!m_masks.budgetWarning().isEmpty())
+        out << m_masks.budgetWarning();
     for (const SurfaceRecord* r : m_order)
         for (const QString& w : r->mask.warnings)
             out << QStringLiteral("surface %1: %2").arg(r->id.value).arg(w);
