@@ -12,20 +12,29 @@ layout(binding = 9) uniform usamplerBuffer kwTrimGrid;
 uint kwTrimWord(uint i) { return texelFetch(kwTrimGrid, int(i)).x; }
 float kwTrimFloat(uint i) { return uintBitsToFloat(kwTrimWord(i)); }
 
-// The arc's point at t: de Casteljau on homogeneous control points (degree <= 15).
+// The arc's point at t by Horner's rule for the Bernstein form (Farin, "Curves and Surfaces
+// for CAGD", 5.3) on its homogeneous control points (degree <= 15), read from the buffer as it
+// goes: no local array, which llvmpipe kept in scratch memory for every fragment of the
+// variant (a tenth of the frame on trimmed_plate, docs/PERFORMANCE.md ## Trims).
 vec2 kwTrimArcPoint(uint arc, float t) {
     uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
-    uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
+    uint k = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
     int degree = int(kwTrimWord(header + 1u));
-    vec3 w[16];
-    for (int i = 0; i <= degree; ++i) {
-        uint k = first + 3u * uint(i);
-        w[i] = vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
+    float s = 1.0 - t, tn = 1.0, binomial = 1.0;
+    vec3 sum = vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
+    if (degree == 0)
+        return sum.xy / sum.z;
+    sum *= s;
+    for (int i = 1; i < degree; ++i) {
+        k += 3u;
+        tn *= t;
+        binomial *= float(degree - i + 1) / float(i);
+        sum = (sum + tn * binomial * vec3(kwTrimFloat(k), kwTrimFloat(k + 1u),
+                                          kwTrimFloat(k + 2u))) * s;
     }
-    for (int r = degree; r > 0; --r)
-        for (int i = 0; i < r; ++i)
-            w[i] = mix(w[i], w[i + 1], t);
-    return w[0].xy / w[0].z;
+    k += 3u;
+    vec3 h = sum + tn * t * vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
+    return h.xy / h.z;
 }
 
 // v of the piece where its u equals u, u strictly inside [u0, u1) of the piece's ends: the
@@ -85,6 +94,13 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
             h = (entry & 2u) != 0u;
         else if (uv.x >= max(p0.x, p1.x))
             h = (entry & 1u) != 0u;
+        // The piece is monotone in u and v, so it lies in the box of its ends: below the box it
+        // is above the point at every u, above the box below it. Only a point inside the box
+        // needs the root find (most fragments of an edge texel are not).
+        else if (uv.y < min(p0.y, p1.y))
+            h = true;
+        else if (uv.y >= max(p0.y, p1.y))
+            h = false;
         else
             h = kwTrimPieceV(kwTrimWord(p + 6u), uv.x, kwTrimFloat(p + 4u), kwTrimFloat(p + 5u),
                              p0, p1) > uv.y;
