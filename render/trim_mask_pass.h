@@ -23,6 +23,7 @@ class QOpenGLShaderProgram;
 namespace kw {
 
 struct SurfaceRecord;
+struct TrimSurfaceArcs;
 
 /// One surface's trims on the GPU. Mask mode: texels [0, width) x [0, height) of layer `layer`
 /// span `rect` in (u, v), the part of the domain inside the bounding box of the trim curves'
@@ -128,6 +129,7 @@ private:
     bool syncExact(const std::vector<SurfaceRecord*>& records, const RenderOptions& options,
                    QString* error);
     void buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew);
+    void buildGrid(TrimMask& m, const TrimSurfaceArcs& arcs, const Revisions& rev, bool* grew);
     void freeArray();
     void freeGrids();
     bool ensureArray(int size, int layers, QString* error);

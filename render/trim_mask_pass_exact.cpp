@@ -24,13 +24,50 @@ void TrimMaskPass::freeGrids() {
     m_budgetWarning.clear();
 }
 
-void TrimMaskPass::buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew) {
+/// A surface's arcs: loops repaired as makeTrimRegion repairs them, at the same tolerance as
+/// the CPU classification (model/trim_arcs.h).
+struct TrimSurfaceArcs {
+    TrimArcs arcs;
+    QStringList warnings;
+    std::int64_t nanoseconds = 0;
+};
+
+namespace {
+
+TrimSurfaceArcs arcsOf(const Surface& s) {
     QElapsedTimer timer;
     timer.start();
-    m.warnings.clear();
-    // Loops are repaired as makeTrimRegion repairs them, at the same tolerance as the CPU
-    // classification (model/trim_arcs.h).
-    const TrimArcs arcs = makeTrimArcs(s.trims, trimTolerance(s.geometry), &m.warnings);
+    TrimSurfaceArcs a;
+    a.arcs = makeTrimArcs(s.trims, trimTolerance(s.geometry), &a.warnings);
+    a.nanoseconds = timer.nsecsElapsed();
+    return a;
+}
+
+/// About the words a grid of `arcs` takes under `cap` (packTrimGrid's layout): texels exactly,
+/// arcs and points exactly, pieces and entries from the crossings of about four grid lines per
+/// texel row. Used to choose the cap before building (the builds then confirm it).
+std::int64_t estimatedWords(const TrimArcs& arcs, int cap) {
+    const std::int64_t side = trimGridResolution(arcs, cap).x;
+    std::int64_t points = 0;
+    for (const TrimArc& a : arcs.arcs)
+        points += std::int64_t(a.hw.size());
+    const std::int64_t n = std::int64_t(arcs.arcs.size());
+    const std::int64_t pieces = n + 4 * side;
+    return 5 + side * side + 2 * n + 3 * points + 8 * pieces + (3 * pieces) / 2;
+}
+
+} // namespace
+
+void TrimMaskPass::buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew) {
+    buildGrid(m, arcsOf(s), rev, grew);
+}
+
+void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisions& rev,
+                             bool* grew) {
+    QElapsedTimer timer;
+    timer.start();
+    const TrimArcs& arcs = a.arcs;
+    m.warnings = a.warnings;
     m.active = !arcs.empty();
     m.layer = -1;
     m.trimsRevision = rev.trims;
@@ -51,7 +88,7 @@ void TrimMaskPass::buildGrid(TrimMask& m, const Surface& s, const Revisions& rev
         m.width = m.height = 0;
     }
     m.grid.cap = m_gridCap;
-    d.cpuNanoseconds = timer.nsecsElapsed();
+    d.cpuNanoseconds = timer.nsecsElapsed() + a.nanoseconds;
     m.stats += d;
     m_frame += d;
 }
@@ -92,24 +129,51 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
 
     bool grew = false;
     std::vector<TrimMask*> rebuilt;
+    const int capBefore = m_gridCap;
     // Whether a grid built under another cap would come out differently under m_gridCap.
     const auto capMoved = [this](const TrimMask& m) {
         const int side = std::max(m.width, m.height);
         return (m.grid.cap > m_gridCap && side > m_gridCap) ||
                (m.grid.cap < m_gridCap && side >= m.grid.cap);
     };
+    std::vector<SurfaceRecord*> stale;
     for (SurfaceRecord* r : trimmed) {
-        TrimMask& m = r->mask;
+        const TrimMask& m = r->mask;
         const Revisions& rev = r->revisions; // GpuScene::sync's, found by index
         if (m.grid.cap == 0 || m.trimsRevision != rev.trims || m.knotsRevision != rev.knots ||
-            (m.active && capMoved(m))) {
-            buildGrid(m, *r->surface, rev, &grew);
-            rebuilt.push_back(&m);
+            (m.active && capMoved(m)))
+            stale.push_back(r);
+    }
+    std::vector<TrimSurfaceArcs> arcs;
+    arcs.reserve(stale.size());
+    std::int64_t keptWords = m_grids.usedBytes() / 4, staleWords = 0;
+    for (SurfaceRecord* r : stale) {
+        arcs.push_back(arcsOf(*r->surface));
+        keptWords -= r->mask.grid.words;
+        staleWords += estimatedWords(arcs.back().arcs, m_gridCap);
+    }
+    // Over budget: choose the cap from estimates before building, so that opening a large model
+    // builds each grid once, not once per halving of the cap.
+    std::int64_t wanted = 4 * (keptWords + staleWords);
+    if (wanted > budget && !stale.empty()) {
+        while (m_gridCap > 1) {
+            std::int64_t words = keptWords;
+            for (const TrimSurfaceArcs& a : arcs)
+                words += estimatedWords(a.arcs, m_gridCap);
+            if (4 * words <= budget)
+                break;
+            m_gridCap /= 2;
         }
     }
-    // Over budget: halve the cap of the largest grids and rebuild them, until the blocks fit or
-    // the grids are one texel (every piece then in one list: still exact, slower).
-    const std::int64_t wanted = m_grids.usedBytes();
+    for (size_t k = 0; k < stale.size(); ++k) {
+        buildGrid(stale[k]->mask, arcs[k], stale[k]->revisions, &grew);
+        rebuilt.push_back(&stale[k]->mask);
+    }
+    arcs.clear();
+    // Still over budget (estimates are estimates, and grids built under a larger cap are
+    // kept): halve the cap of the largest grids and rebuild them, until the blocks fit or the
+    // grids are one texel (every piece then in one list: still exact, slower).
+    wanted = std::max(wanted, m_grids.usedBytes());
     while (m_grids.usedBytes() > budget && m_gridCap > 1) {
         int largest = 0;
         for (const SurfaceRecord* r : trimmed)
@@ -122,6 +186,8 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
                 rebuilt.push_back(&m);
             }
         }
+    }
+    if (m_gridCap < capBefore) {
         const std::int64_t now = m_grids.usedBytes();
         m_budgetWarning =
             QStringLiteral("trim grids need %1 MiB, over the budget of %2 MiB: grids capped at "
