@@ -4,6 +4,7 @@
 
 #include "model/surface_bound.h"
 #include "render/shading_uniforms.h"
+#include "render/thread_clock.h"
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
@@ -140,6 +141,8 @@ void ExactSurfacePass::releaseCommands() {
 
 void ExactSurfacePass::drawBatch(const Batch& batch) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (firstDrawCpuMs < 0.0 && !batch.commands.empty())
+        firstDrawCpuMs = threadCpuMs();
     if (multiDraw) {
         gl->glMultiDrawElementsIndirect(
             GL_TRIANGLES, GL_UNSIGNED_INT,

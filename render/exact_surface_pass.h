@@ -64,6 +64,9 @@ public:
 
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
+    /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
+    /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
+    double firstDrawCpuMs = -1.0;
     /// One multi-draw per variant group (default). False: the same commands issued one draw
     /// per surface, for comparing images and costs (tests; KW_MULTI_DRAW=0 at initialize).
     bool multiDraw = true;

@@ -50,6 +50,11 @@ struct FrameTimes {
     double surfaces = 0.0; ///< issuing the surface passes
     double overlays = 0.0; ///< wireframe and control net
     double total = 0.0;    ///< the whole call
+    /// Thread CPU (CLOCK_THREAD_CPUTIME_ID, not wall) from the call's start to the first draw
+    /// call of the surface pass: sync, uploads, partition choices, masks, culling and batching,
+    /// everything the frame does before it draws (the whole call when it draws no surface).
+    /// The "mouse-move to draw call" is the edit's own time plus this.
+    double beforeDraws = 0.0;
 };
 
 /// The result of Renderer::render.

@@ -2,6 +2,7 @@
 // frame report, and the pick query.
 #include "render/gl_context.h"
 #include "render/renderer_impl.h"
+#include "render/thread_clock.h"
 
 #include <QElapsedTimer>
 #include <QOpenGLContext>
@@ -75,6 +76,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                                         const QRect* pickPixel) {
     QElapsedTimer total;
     total.start();
+    const double cpuStart = threadCpuMs();
     FrameReport report;
     const auto fail = [&](const QString& message) {
         report.ok = false;
@@ -97,6 +99,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
     exact.culled = 0;
+    exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
     QString syncError;
@@ -139,6 +142,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, &error)
             : tessellated.draw(scene, options.trims, fc, lights, options, &error);
     report.cpuMs.surfaces = msSince(phase);
+    const double firstDraw =
+        options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
+    report.cpuMs.beforeDraws = (firstDraw >= 0.0 ? firstDraw : threadCpuMs()) - cpuStart;
     phase.restart();
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
