@@ -71,6 +71,9 @@ struct FrameReport {
     /// Of those, left out of the exact passes as wholly outside the view (their control
     /// bounds are; RenderOptions::cullOutsideView).
     int culled = 0;
+    /// Surface records whose revisions the sync compared: every visible one after a
+    /// structural change or a new view, else only those the document reported changed.
+    int recordsSynced = 0;
     GpuBytes gpuBytes; ///< resident after this frame
     /// What the frame drew differently from the document: trim loops repaired or ignored
     /// (each prefixed with its surface id) and surfaces left out. The current state, not only

@@ -92,7 +92,12 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
-    FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
+    // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
+    // follows the document's changes: no walk over every control point per frame.
+    scene.prepare(doc);
+    glm::dvec3 box[2];
+    FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
+                                 double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights =
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
@@ -172,8 +177,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     report.drawCalls +=
         exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
-    for (const SurfaceRecord* r : scene.records())
-        report.surfaces += r->exact ? 1 : 0;
+    report.surfaces = scene.drawnCount();
     report.culled = exact.culled;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
