@@ -7,6 +7,7 @@
 #include "model/document.h"
 #include "model/knotfile.h"
 #include "render/offscreen_renderer.h"
+#include "render/thread_clock.h"
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -20,12 +21,6 @@
 namespace kw::bench {
 
 namespace {
-
-double threadCpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
 
 double processCpuMs() {
     rusage u{};
@@ -129,30 +124,37 @@ struct Frames {
     }
 
     /// Moves one control point of the first surface per step, as a drag does, and times the
-    /// edit plus the render call that issues the frame (thread CPU; glFinish outside).
-    bool drag(Document& doc, const Camera& camera, double& stepMs, QString* error) {
+    /// edit plus the render call that issues the frame (thread CPU; glFinish outside), and the
+    /// edit plus the render call's part before its first surface draw call
+    /// (FrameTimes::beforeDraws): the issue's "mouse-move to draw call".
+    bool drag(Document& doc, const Camera& camera, double& stepMs, double& toDrawMs,
+              QString* error) {
         const Surface& s = doc.scene().surfaces.front();
         const int index = s.geometry.index(s.geometry.countU / 2, s.geometry.countV / 2);
         const glm::dvec3 start = s.geometry.points[size_t(index)];
         glm::dvec3 lo, hi;
         sceneBounds(doc.scene(), lo, hi);
         const double step = 1e-4 * glm::length(hi - lo);
-        std::vector<double> ms;
+        std::vector<double> ms, toDraw;
         for (int k = 0; k <= config.dragSteps; ++k) {
             const double t0 = threadCpuMs();
             if (!doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)})) {
                 *error = QStringLiteral("the drag step could not move the control point");
                 return false;
             }
+            const double edited = threadCpuMs();
             if (!render(doc, camera, error))
                 return false;
             const double t1 = threadCpuMs();
             renderer.finish();
-            if (k > 0) // the first step pays for the first partial upload path
+            if (k > 0) { // the first step pays for the first partial upload path
                 ms.push_back(t1 - t0);
+                toDraw.push_back(edited - t0 + renderer.lastReport().cpuMs.beforeDraws);
+            }
         }
         doc.setControlPoints(s.id, {index}, {start});
         stepMs = median(ms);
+        toDrawMs = median(toDraw);
         return true;
     }
 };
@@ -218,10 +220,11 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
             return false;
         row.drawCalls = renderer.lastReport().drawCalls; // a steady fitted frame's
         if (!frames.time(doc, closeUp, row.closeUp, error) ||
-            !frames.drag(doc, fitted, row.dragStepMs, error))
+            !frames.drag(doc, fitted, row.dragStepMs, row.dragToDrawMs, error))
             return false;
         progress(QStringLiteral("scale %1 x %2 = %3 faces: load %4 s, %5 MiB, fitted %6 FPS "
-                                "(%7 CPU ms, %8 draw calls), close-up %9 FPS, drag step %10 ms")
+                                "(%7 CPU ms, %8 draw calls), close-up %9 FPS, drag step %10 ms "
+                                "(edit to draw call %11 ms)")
                      .arg(row.copies)
                      .arg(report.unitFaces)
                      .arg(row.faces)
@@ -231,7 +234,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
                      .arg(row.fitted.timing.cpuMs, 0, 'f', 1)
                      .arg(row.drawCalls)
                      .arg(row.closeUp.timing.fps(), 0, 'f', 1)
-                     .arg(row.dragStepMs, 0, 'f', 2));
+                     .arg(row.dragStepMs, 0, 'f', 2)
+                     .arg(row.dragToDrawMs, 0, 'f', 2));
         row.warning = frames.warning;
         if (!row.warning.isEmpty())
             progress(QStringLiteral("scale %1 faces: warning: %2").arg(row.faces).arg(row.warning));

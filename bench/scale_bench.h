@@ -44,6 +44,10 @@ struct ScaleRow {
     /// Median thread CPU ms from moving one control point (Document::setControlPoints, what a
     /// drag step does) to the end of the render call that issues the frame's draws.
     double dragStepMs = 0.0;
+    /// Median thread CPU ms of the same steps from the edit to the first surface draw call:
+    /// the edit (with the document's signals) plus FrameTimes::beforeDraws of its frame (sync,
+    /// uploads, partition choices, masks, culling, batching). The issue's drag target.
+    double dragToDrawMs = 0.0;
     /// Empty, or why frames were not drawn as asked (e.g. trimmed surfaces beyond the GPU's
     /// mask layers drawn untrimmed); the numbers are those of the frames as drawn.
     QString warning;

@@ -4,10 +4,12 @@
 
 #include "model/surface_bound.h"
 #include "render/shading_uniforms.h"
+#include "render/thread_clock.h"
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <map>
@@ -31,21 +33,7 @@ double gatherMinCellPixels() {
 } // namespace
 
 bool ExactSurfacePass::controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
-    lo = glm::vec3(std::numeric_limits<float>::max());
-    hi = glm::vec3(-std::numeric_limits<float>::max());
-    for (const glm::vec4& t : g.control) {
-        if (!(t.w > 0.0f))
-            continue;
-        const glm::vec3 p = glm::vec3(t) / t.w;
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    if (lo.x > hi.x)
-        return false;
-    const glm::vec3 o(g.origin);
-    lo += o;
-    hi += o;
-    return true;
+    return kw::controlBounds(g, lo, hi);
 }
 
 bool ExactSurfacePass::outsideView(const glm::vec3& lo, const glm::vec3& hi,
@@ -143,6 +131,8 @@ void ExactSurfacePass::releaseCommands() {
 
 void ExactSurfacePass::drawBatch(const Batch& batch) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (firstDrawCpuMs < 0.0 && !batch.commands.empty())
+        firstDrawCpuMs = threadCpuMs();
     if (multiDraw) {
         gl->glMultiDrawElementsIndirect(
             GL_TRIANGLES, GL_UNSIGNED_INT,
@@ -158,6 +148,119 @@ void ExactSurfacePass::drawBatch(const Batch& batch) {
             c.baseVertex, c.baseInstance);
         ++drawCalls;
     }
+}
+
+ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const CacheKey& key,
+                                                   const FrameCamera& camera,
+                                                   DrawCommand& command) const {
+    Place p;
+    const SurfaceGpu* g = r.exact.get();
+    if (!g || r.slot < 0)
+        return p;
+    p.drawn = true;
+    // Wholly outside the view (its control bounds hold it): no triangle of it is sent, so a
+    // close-up costs what is visible, not the whole scene (issue 15). The bounds are kept
+    // with the record (GpuScene), not taken from its points per frame.
+    if (key.cull && r.bounded && outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
+        p.culled = true;
+        return p;
+    }
+    command = DrawCommand{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
+                          GLint(g->vertexOffset), GLuint(r.slot)};
+    const TrimMask* mask = key.trims ? maskOf(r) : nullptr;
+    p.prepassTrimmed = mask != nullptr;
+    // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL rejects it
+    // before shading and early-z stays on: no lookup needed here. A discard in this shader
+    // costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the exact-depth way, which
+    // has no pre-pass, looks the mask up.
+    const bool lookUp = mask && !key.prepass;
+    // The gather pays only where a cell covers many fragments: on small cells its flat
+    // varyings cost llvmpipe's triangle setup more than the fetches it saves.
+    const bool gather = r.bounded && projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) >=
+                                         key.minCellPixels;
+    p.variant = g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9;
+    return p;
+}
+
+void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
+                                    const FrameCamera& camera) {
+    // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
+    // bits each), trimmed, gather.
+    m_plain = Batch{};
+    m_trimmed = Batch{};
+    m_trimmed.trimmed = true;
+    m_variants.clear();
+    m_places.clear();
+    m_places.reserve(scene.records().size());
+    m_culled = 0;
+    for (const SurfaceRecord* r : scene.records()) {
+        DrawCommand c{};
+        Place p = classify(*r, key, camera, c);
+        if (p.drawn && !p.culled) {
+            if (key.prepass) {
+                Batch& pre = p.prepassTrimmed ? m_trimmed : m_plain;
+                p.prepassIndex = int(pre.commands.size());
+                pre.commands.push_back(c);
+            }
+            Batch& b = m_variants[p.variant];
+            if (b.commands.empty()) {
+                const SurfaceGpu& g = *r->exact;
+                b.degreeU = g.degreeU;
+                b.degreeV = g.degreeV;
+                b.trimmed = (p.variant >> 8) & 1;
+                b.gather = (p.variant >> 9) & 1;
+            }
+            p.index = int(b.commands.size());
+            b.commands.push_back(c);
+        }
+        m_culled += p.culled ? 1 : 0;
+        m_places[r] = p;
+    }
+    std::vector<Batch*> batches{&m_plain, &m_trimmed};
+    for (auto& [k, b] : m_variants)
+        batches.push_back(&b);
+    uploadCommands(batches);
+    m_key = key;
+    m_haveBatches = true;
+}
+
+bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
+                                    const FrameCamera& camera) {
+    struct Write {
+        std::int64_t at;
+        DrawCommand command;
+    };
+    std::vector<Write> writes;
+    for (const SurfaceRecord* r : scene.touched()) {
+        const auto it = m_places.find(r);
+        if (it == m_places.end())
+            return false;
+        const Place& was = it->second;
+        DrawCommand c{};
+        const Place now = classify(*r, key, camera, c);
+        if (now.drawn != was.drawn || now.culled != was.culled)
+            return false;
+        if (!now.drawn || now.culled)
+            continue;
+        if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed)
+            return false;
+        const auto patch = [&](Batch& b, int index) {
+            DrawCommand& old = b.commands[size_t(index)];
+            if (std::memcmp(&old, &c, sizeof(DrawCommand)) != 0) {
+                old = c;
+                writes.push_back({b.first + index, c});
+            }
+        };
+        patch(m_variants.at(now.variant), was.index);
+        if (key.prepass)
+            patch(was.prepassTrimmed ? m_trimmed : m_plain, was.prepassIndex);
+    }
+    for (const Write& w : writes)
+        m_gl->glNamedBufferSubData(m_commands, GLintptr(w.at * std::int64_t(sizeof(DrawCommand))),
+                                   GLsizeiptr(sizeof(DrawCommand)), &w.command);
+    if (m_commands)
+        m_gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
+    return true;
 }
 
 bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
@@ -198,52 +301,17 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
         return false;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
-    // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
-    // bits each), trimmed, gather.
-    Batch plain, trimmed;
-    trimmed.trimmed = true;
-    std::map<int, Batch> variants;
-    const double minCellPixels = gatherMinCellPixels();
-    for (const SurfaceRecord* r : scene.records()) {
-        const SurfaceGpu* g = r->exact.get();
-        if (!g || r->slot < 0)
-            continue;
-        // Wholly outside the view (its control bounds hold it): no triangle of it is sent,
-        // so a close-up costs what is visible, not the whole scene (issue 15).
-        glm::vec3 lo, hi;
-        const bool bounded = controlBounds(*g, lo, hi);
-        if (options.cullOutsideView && bounded && outsideView(lo, hi, camera.viewProjection)) {
-            ++culled;
-            continue;
-        }
-        const DrawCommand c{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
-                            GLint(g->vertexOffset), GLuint(r->slot)};
-        const TrimMask* mask = trims ? maskOf(*r) : nullptr;
-        if (prepass)
-            (mask ? trimmed : plain).commands.push_back(c);
-        // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL
-        // rejects it before shading and early-z stays on: no lookup needed here. A discard
-        // in this shader costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the
-        // exact-depth way, which has no pre-pass, looks the mask up.
-        const bool lookUp = mask && !prepass;
-        // The gather pays only where a cell covers many fragments: on small cells its flat
-        // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-        const bool gather = bounded && projectedPixelsPerCell(*g, lo, hi, camera) >= minCellPixels;
-        Batch& b = variants[g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9];
-        if (b.commands.empty()) {
-            b.degreeU = g->degreeU;
-            b.degreeV = g->degreeV;
-            b.trimmed = lookUp;
-            b.gather = gather;
-        }
-        b.commands.push_back(c);
-    }
-    std::vector<Batch*> batches{&plain, &trimmed};
-    for (auto& [key, b] : variants)
-        batches.push_back(&b);
-    uploadCommands(batches);
-    if (variants.empty())
+    const CacheKey key{
+        &scene,  scene.layoutStamp(),     camera.viewProjection, camera.viewport, trims,
+        prepass, options.cullOutsideView, gatherMinCellPixels()};
+    if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
+        buildBatches(scene, key, camera);
+    culled += m_culled;
+    if (m_variants.empty())
         return true; // nothing to draw
+    Batch& plain = m_plain;
+    Batch& trimmed = m_trimmed;
+    std::map<int, Batch>& variants = m_variants;
 
     scene.bindSurfaceData();
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).

@@ -10,6 +10,8 @@
 #include "render/shader_library.h"
 
 #include <QString>
+#include <map>
+#include <unordered_map>
 
 namespace kw {
 
@@ -32,6 +34,8 @@ public:
     void release() {
         m_environment.release();
         releaseCommands();
+        m_haveBatches = false;
+        m_places.clear();
     }
     /// Bytes of the indirect command buffer (FrameReport::gpuBytes.perSurface).
     std::int64_t residentBytes() const { return m_commandBytes; }
@@ -64,6 +68,9 @@ public:
 
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
+    /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
+    /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
+    double firstDrawCpuMs = -1.0;
     /// One multi-draw per variant group (default). False: the same commands issued one draw
     /// per surface, for comparing images and costs (tests; KW_MULTI_DRAW=0 at initialize).
     bool multiDraw = true;
@@ -82,6 +89,34 @@ private:
         std::vector<DrawCommand> commands;
         std::int64_t first = 0;
     };
+    /// Where a record's commands are in the cached batches.
+    struct Place {
+        bool drawn = false;  ///< has exact data and a table row
+        bool culled = false; ///< left out as outside the view
+        int variant = -1;    ///< key into m_variants
+        int index = -1;      ///< its command in that batch
+        bool prepassTrimmed = false;
+        int prepassIndex = -1; ///< its command in m_plain or m_trimmed (with the pre-pass)
+    };
+    /// What the cached batches were built for; any difference (or a GpuScene layout stamp
+    /// change) builds them again, else only the records GpuScene::touched() are looked at.
+    struct CacheKey {
+        const GpuScene* scene = nullptr;
+        std::uint64_t layout = 0;
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        bool trims = false, prepass = false, cull = false;
+        double minCellPixels = 0.0;
+        bool operator==(const CacheKey&) const = default;
+    };
+    /// A record's variant and command as this frame would draw it.
+    Place classify(const SurfaceRecord& r, const CacheKey& key, const FrameCamera& camera,
+                   DrawCommand& command) const;
+    /// Builds the batches from every record (and uploads them all).
+    void buildBatches(const GpuScene& scene, const CacheKey& key, const FrameCamera& camera);
+    /// Updates the commands of the touched records in place; false when one changed variant,
+    /// culling or presence (then the batches are built again).
+    bool patchBatches(const GpuScene& scene, const CacheKey& key, const FrameCamera& camera);
     /// Writes every batch's commands into the command buffer (one upload per frame) and binds it.
     void uploadCommands(const std::vector<Batch*>& batches);
     void drawBatch(const Batch& batch);
@@ -94,6 +129,15 @@ private:
     EnvironmentMap m_environment;
     GLuint m_commands = 0;
     std::int64_t m_commandBytes = 0;
+
+    /// The draw lists of the last frame, kept while nothing but a few records changed, so a
+    /// drag step does not sort every surface into its variant again (issue 15).
+    bool m_haveBatches = false;
+    CacheKey m_key;
+    Batch m_plain, m_trimmed;
+    std::map<int, Batch> m_variants;
+    std::unordered_map<const SurfaceRecord*, Place> m_places;
+    int m_culled = 0;
 };
 
 } // namespace kw

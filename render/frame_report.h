@@ -50,6 +50,11 @@ struct FrameTimes {
     double surfaces = 0.0; ///< issuing the surface passes
     double overlays = 0.0; ///< wireframe and control net
     double total = 0.0;    ///< the whole call
+    /// Thread CPU (CLOCK_THREAD_CPUTIME_ID, not wall) from the call's start to the first draw
+    /// call of the surface pass: sync, uploads, partition choices, masks, culling and batching,
+    /// everything the frame does before it draws (the whole call when it draws no surface).
+    /// The "mouse-move to draw call" is the edit's own time plus this.
+    double beforeDraws = 0.0;
 };
 
 /// The result of Renderer::render.
@@ -66,6 +71,9 @@ struct FrameReport {
     /// Of those, left out of the exact passes as wholly outside the view (their control
     /// bounds are; RenderOptions::cullOutsideView).
     int culled = 0;
+    /// Surface records whose revisions the sync compared: every visible one after a
+    /// structural change or a new view, else only those the document reported changed.
+    int recordsSynced = 0;
     GpuBytes gpuBytes; ///< resident after this frame
     /// What the frame drew differently from the document: trim loops repaired or ignored
     /// (each prefixed with its surface id) and surfaces left out. The current state, not only

@@ -8,6 +8,7 @@
 #include "render/adaptive_partitions.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
+#include "render/scene_changes.h"
 #include "render/surface_upload.h"
 #include "render/trim_mask_pass.h"
 
@@ -16,6 +17,7 @@
 #include <QString>
 #include <map>
 #include <memory>
+#include <set>
 #include <vector>
 
 namespace kw {
@@ -66,6 +68,15 @@ struct SurfaceRecord {
     MeshGpu mesh;        ///< built when a frame draws tessellated
     NetGpu net;          ///< built when a frame shows the control net
     TrimMask mask;       ///< layer >= 0 while the surface is trimmed and a frame used trims
+    /// World-space bounds of `exact`'s control texels (they hold the surface and its base
+    /// polygon; kw::controlBounds), kept with the data for culling; valid while `bounded`.
+    glm::vec3 boundsLo{0.0f}, boundsHi{0.0f};
+    bool bounded = false;
+    Revisions boundsOf; ///< the exact data's revisions the bounds were taken from
+    /// What this record adds to the frame's partition figures (FrameReport::Partitions).
+    std::int64_t cells = 0;
+    double boundPixels = 0.0;
+    bool inOrder = false; ///< in records() (visible) as of the last sync
 };
 
 class GpuScene {
@@ -87,8 +98,29 @@ public:
     /// shown, the trim mask when trims are on. Adds to `report` its uploads, mask work and
     /// warnings. Returns false with *error set when a surface is too large for a texture or
     /// the masks exceed the GPU's limits (the rest is synced regardless).
+    ///
+    /// Which surfaces it compares: every visible one after a structural change (insert,
+    /// removal, reset, another document), a hidden surface shown or a shown one hidden, or a
+    /// change of view or of the options the records depend on; otherwise only those the
+    /// document's signals reported changed since the last sync (SceneChanges), plus those
+    /// that did not fit and are retried. FrameReport::recordsSynced counts them. Call
+    /// prepare() first in the frame.
     bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
               FrameReport& report, QString* error);
+    /// Starts a frame of `doc`: follows its signals (dropping everything when it is not the
+    /// document of the last frame) and brings the scene's control bounds up to date from the
+    /// surfaces that changed. The frame's camera planes come from bounds().
+    void prepare(const Document& doc);
+    /// The scene's control bounds as of prepare() (kw::sceneBounds); false without points.
+    bool bounds(glm::dvec3& lo, glm::dvec3& hi) const { return m_changes.bounds(lo, hi); }
+    /// Records whose exact data, table row or partitions the last sync may have changed, when
+    /// it was incremental (layoutStamp() unchanged); when layoutStamp() moved, any record may
+    /// have changed. For the exact pass's cached draw commands.
+    const std::vector<SurfaceRecord*>& touched() const { return m_touched; }
+    /// Bumped by every sync that walked every record or redrew trim masks.
+    std::uint64_t layoutStamp() const { return m_layoutStamp; }
+    /// Records of the last sync that have exact data (FrameReport::surfaces).
+    int drawnCount() const { return m_drawn; }
 
     /// The records of the last sync in the document's surface order: the frame's draw list.
     /// Hidden surfaces (Surface::hidden) are not in it, so no pass draws or picks them.
@@ -138,11 +170,19 @@ private:
         std::uint64_t seen = 0; ///< the last sync whose document held the surface
         AdaptivePartitions adaptive;
     };
+    /// What one sync knows while it goes through the records.
+    struct Pass;
     void drop(Entry& e);
     void dropExact(SurfaceRecord& r);
-    /// Writes the table rows that changed since the last frame and re-points the VAOs at the
-    /// pools' current buffers.
-    void syncTable();
+    /// Brings one visible surface's record up to date (the per-record part of sync).
+    void syncSurface(Entry& e, const Surface& s, int index, Pass& pass);
+    /// Whether the trim mask pass has anything to do for record `r` (its layer, revisions or
+    /// resolution are stale), so that a frame that changed no mask skips the pass.
+    bool maskStale(const SurfaceRecord& r, const FrameCamera& camera,
+                   const RenderOptions& options) const;
+    /// Writes the rows of `records` that changed since the last frame and re-points the VAOs
+    /// at the pools' current buffers.
+    void syncTable(const std::vector<SurfaceRecord*>& records);
     void syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up);
     void syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up);
 
@@ -176,6 +216,34 @@ private:
     std::uint64_t m_viewStamp = 0;
     UploadStats m_removedStats;
     TrimMaskStats m_removedMaskStats;
+
+    SceneChanges m_changes;
+    /// What the records were last synced for: any difference walks them all.
+    struct FrameKey {
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        RenderMode mode = RenderMode::Exact;
+        RenderOptions::Partitioning partitioning = RenderOptions::Partitioning::Uniform;
+        double pixelTolerance = 0.0;
+        int partitionsU = 0, partitionsV = 0, trimMaskCap = 0;
+        bool polygonOverTrims = false, controlNet = false, trims = false;
+        bool operator==(const FrameKey&) const = default;
+    };
+    FrameKey m_frameKey;
+    bool m_haveFrameKey = false;
+    std::vector<SurfaceRecord*> m_touched;
+    std::uint64_t m_layoutStamp = 0;
+    int m_drawn = 0;
+    /// The partition figures over records(), kept across incremental syncs.
+    std::int64_t m_cells = 0;
+    double m_worstBound = 0.0;
+    std::set<int> m_unmet;    ///< indices of surfaces whose tolerance was not met
+    std::set<int> m_tooLarge; ///< indices of visible surfaces whose data did not fit
+    /// The mask pass's last answer, repeated by frames that skip it.
+    QStringList m_maskWarnings;
+    QString m_maskError;
+    int m_maxTextureSize = 0;
+    std::int64_t m_meshBytes = 0, m_netBytes = 0; ///< over every record
 };
 
 } // namespace kw

@@ -33,6 +33,16 @@ UploadStats& UploadStats::operator+=(const UploadStats& o) {
 }
 
 CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double aspect) {
+    glm::dvec3 box[2];
+    return cameraMatrices(camera, sceneBounds(scene, box[0], box[1]) ? &box : nullptr, aspect);
+}
+
+FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect) {
+    glm::dvec3 box[2];
+    return frameCamera(camera, sceneBounds(scene, box[0], box[1]) ? &box : nullptr, aspect);
+}
+
+CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect) {
     CameraMatrices m;
     m.eye = camera.eye;
     glm::dvec3 forward = camera.target - camera.eye;
@@ -45,8 +55,8 @@ CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double a
 
     m.nearPlane = 0.01;
     m.farPlane = 100.0;
-    glm::dvec3 lo, hi;
-    if (sceneBounds(scene, lo, hi)) {
+    if (bounds) {
+        const glm::dvec3 lo = (*bounds)[0], hi = (*bounds)[1];
         const glm::dvec3 centre = 0.5 * (lo + hi);
         const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
         const double d = glm::dot(centre - m.eye, m.forward);
@@ -59,8 +69,8 @@ CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double a
     return m;
 }
 
-FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect) {
-    const CameraMatrices m = cameraMatrices(camera, scene, aspect);
+FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect) {
+    const CameraMatrices m = cameraMatrices(camera, bounds, aspect);
     FrameCamera fc;
     fc.view = glm::mat4(m.view);
     fc.projection = glm::mat4(m.projection);

@@ -178,6 +178,10 @@ struct CameraMatrices {
 CameraMatrices cameraMatrices(const Camera& camera, const Scene& scene, double aspect);
 /// cameraMatrices in float for the GPU (viewport left {1, 1}).
 FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect);
+/// The same from the scene's control bounds already known (`bounds` null: no surface has
+/// points), as the renderer keeps them per surface instead of walking every point per frame.
+CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
+FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,
 /// then copies of them rotated about the camera's up axis, so `--lights 8` works on any file.

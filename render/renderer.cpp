@@ -2,6 +2,7 @@
 // frame report, and the pick query.
 #include "render/gl_context.h"
 #include "render/renderer_impl.h"
+#include "render/thread_clock.h"
 
 #include <QElapsedTimer>
 #include <QOpenGLContext>
@@ -75,6 +76,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                                         const QRect* pickPixel) {
     QElapsedTimer total;
     total.start();
+    const double cpuStart = threadCpuMs();
     FrameReport report;
     const auto fail = [&](const QString& message) {
         report.ok = false;
@@ -90,13 +92,19 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
-    FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
+    // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
+    // follows the document's changes: no walk over every control point per frame.
+    scene.prepare(doc);
+    glm::dvec3 box[2];
+    FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
+                                 double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights =
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
     exact.culled = 0;
+    exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
     QString syncError;
@@ -139,6 +147,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, &error)
             : tessellated.draw(scene, options.trims, fc, lights, options, &error);
     report.cpuMs.surfaces = msSince(phase);
+    const double firstDraw =
+        options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
+    report.cpuMs.beforeDraws = (firstDraw >= 0.0 ? firstDraw : threadCpuMs()) - cpuStart;
     phase.restart();
     if (ok && (options.wireframe || options.controlNet)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
@@ -166,8 +177,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     report.drawCalls +=
         exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
-    for (const SurfaceRecord* r : scene.records())
-        report.surfaces += r->exact ? 1 : 0;
+    report.surfaces = scene.drawnCount();
     report.culled = exact.culled;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();

@@ -2,6 +2,7 @@
 #include "render/surface_upload.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace kw {
 
@@ -140,6 +141,24 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
 void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g) {
     freeControl(pools, g);
     freePolygon(pools, g);
+}
+
+bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(-std::numeric_limits<float>::max());
+    for (const glm::vec4& t : g.control) {
+        if (!(t.w > 0.0f))
+            continue;
+        const glm::vec3 p = glm::vec3(t) / t.w;
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    if (lo.x > hi.x)
+        return false;
+    const glm::vec3 o(g.origin);
+    lo += o;
+    hi += o;
+    return true;
 }
 
 } // namespace kw

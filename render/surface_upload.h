@@ -60,6 +60,9 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
 /// exceed its limit.
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                     const ParameterBox& box, UploadStats& stats);
+/// World-space bounds of the control points of `g` as on the GPU (texels plus origin; they
+/// hold the surface and its base polygon); false without a point of positive weight.
+bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);
 /// Returns the surface's ranges to the pools.
 void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g);
 

@@ -2,6 +2,7 @@
 #include "render/tessellated_pass.h"
 
 #include "render/shading_uniforms.h"
+#include "render/thread_clock.h"
 
 #include <QOpenGLShaderProgram>
 
@@ -47,6 +48,8 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
         if (mask)
             masks.setUniforms(prog, *mask, 0);
         gl->glBindVertexArray(m.vao);
+        if (firstDrawCpuMs < 0.0)
+            firstDrawCpuMs = threadCpuMs();
         gl->glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
         ++drawCalls;
     }

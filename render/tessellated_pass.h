@@ -20,6 +20,8 @@ public:
     bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
               const std::vector<Light>& lights, const RenderOptions& options, QString* error);
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
+    /// As ExactSurfacePass::firstDrawCpuMs.
+    double firstDrawCpuMs = -1.0;
 
 private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;

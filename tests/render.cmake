@@ -26,3 +26,6 @@ kw_add_test(tst_render_scene LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_rend
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
 kw_add_test(tst_render_batch LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_batch.cpp
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
+kw_add_test(tst_render_incremental LABEL gl SOURCES
+            ${CMAKE_CURRENT_LIST_DIR}/tst_render_incremental.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)

@@ -115,8 +115,13 @@ void TestBenchScale::smokeRunWritesWellFormedReport() {
         const QJsonObject row = rows.at(k).toObject();
         QCOMPARE(row.value(QStringLiteral("copies")).toInt(), copies[k]);
         QCOMPARE(row.value(QStringLiteral("faces")).toInt(), 45 * copies[k]);
-        for (const char* key : {"loadSeconds", "firstFrameSeconds", "residentMiB", "dragStepMs"})
+        for (const char* key :
+             {"loadSeconds", "firstFrameSeconds", "residentMiB", "dragStepMs", "dragToDrawMs"})
             QVERIFY2(finiteNonNegative(row.value(QLatin1String(key))), key);
+        // Edit to draw call is a part of each step: its median cannot exceed the step's.
+        QVERIFY(row.value(QStringLiteral("dragToDrawMs")).toDouble() > 0.0);
+        QVERIFY(row.value(QStringLiteral("dragToDrawMs")).toDouble() <=
+                row.value(QStringLiteral("dragStepMs")).toDouble());
         QVERIFY(row.value(QStringLiteral("loadSeconds")).toDouble() > 0.0);
         QVERIFY(row.value(QStringLiteral("residentMiB")).toDouble() > 1.0);
         // From FrameReport: a frame of trimmed faces holds GPU data and issues draws.

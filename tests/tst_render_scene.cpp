@@ -136,6 +136,9 @@ private Q_SLOTS:
                 first.gpuBytes.basePolygons > 0 && first.gpuBytes.controlNets > 0 &&
                 first.gpuBytes.trimMasks > 0);
         QVERIFY(first.cpuMs.total >= first.cpuMs.surfaces);
+        // Thread CPU up to the first surface draw: some, and not more than the call's wall.
+        QVERIFY(first.cpuMs.beforeDraws > 0.0);
+        QVERIFY(first.cpuMs.beforeDraws <= first.cpuMs.total + 1.0);
         // Nothing changed: the next frame uploads and redraws nothing, holds the same bytes.
         const FrameReport second = frame(doc, options);
         QCOMPARE(second.uploads, UploadStats{});

@@ -1,0 +1,116 @@
+// SceneChanges: the document's signals collected between frames, and the scene's control
+// bounds kept per surface.
+#include "render/scene_changes.h"
+
+#include <QObject>
+
+namespace kw {
+
+SceneChanges::SceneChanges() = default;
+SceneChanges::~SceneChanges() = default;
+
+void SceneChanges::follow(const Document& doc) {
+    if (m_document == &doc && m_context)
+        return;
+    forget();
+    m_document = &doc;
+    m_context = std::make_unique<QObject>();
+    QObject* ctx = m_context.get();
+    const auto structural = [this] {
+        m_structure = true;
+    };
+    QObject::connect(&doc, &Document::sceneReset, ctx, structural);
+    QObject::connect(&doc, &Document::surfaceInserted, ctx, structural);
+    QObject::connect(&doc, &Document::surfaceRemoved, ctx, structural);
+    QObject::connect(&doc, &Document::surfaceChanged, ctx,
+                     [this](SurfaceId id, Aspects aspects) { changedSurface(id, aspects); });
+    // A destroyed document takes its connections with it; the next one is structural anyway.
+    QObject::connect(&doc, &QObject::destroyed, ctx, [this] { m_document = nullptr; });
+}
+
+void SceneChanges::forget() {
+    m_context.reset(); // disconnects
+    m_document = nullptr;
+    m_structure = true;
+    m_boundsValid = false;
+    m_changed.clear();
+    m_changedSet.clear();
+}
+
+void SceneChanges::changedSurface(SurfaceId id, Aspects aspects) {
+    if (!(aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims | Aspect::Display)))
+        return; // a rename draws nothing differently
+    if (m_changedSet.insert(id.value).second)
+        m_changed.push_back(id);
+}
+
+void SceneChanges::clear() {
+    m_structure = false;
+    m_changed.clear();
+    m_changedSet.clear();
+}
+
+SceneChanges::Box SceneChanges::boxOf(const Surface& s) const {
+    Box b;
+    if (!s.geometry.points.empty()) {
+        surfaceControlBounds(s.geometry, b.lo, b.hi);
+        b.any = true;
+    }
+    return b;
+}
+
+void SceneChanges::updateBounds(const Document& doc) {
+    const std::vector<Surface>& surfaces = doc.scene().surfaces;
+    bool changed = false;
+    if (m_structure || !m_boundsValid || m_boxes.size() != surfaces.size()) {
+        m_boxes.resize(surfaces.size());
+        m_index.clear();
+        m_index.reserve(surfaces.size());
+        for (size_t i = 0; i < surfaces.size(); ++i) {
+            m_boxes[i] = boxOf(surfaces[i]);
+            m_index[surfaces[i].id.value] = int(i);
+        }
+        m_boundsValid = true;
+        changed = true;
+    } else {
+        for (const SurfaceId id : m_changed) {
+            const int i = indexOf(id);
+            if (i < 0 || surfaces[size_t(i)].id != id)
+                continue; // removed: a structural change came with it
+            const Box b = boxOf(surfaces[size_t(i)]);
+            Box& old = m_boxes[size_t(i)];
+            if (b.any != old.any || b.lo != old.lo || b.hi != old.hi) {
+                old = b;
+                changed = true;
+            }
+        }
+    }
+    if (!changed)
+        return;
+    // The union of the boxes: a pass over one box per surface, not over their points. The
+    // same min and max as kw::sceneBounds, so the camera planes are bit-identical.
+    Box u;
+    for (const Box& b : m_boxes) {
+        if (!b.any)
+            continue;
+        u.lo = u.any ? glm::min(u.lo, b.lo) : b.lo;
+        u.hi = u.any ? glm::max(u.hi, b.hi) : b.hi;
+        u.any = true;
+    }
+    m_union = u;
+}
+
+bool SceneChanges::bounds(glm::dvec3& lo, glm::dvec3& hi) const {
+    if (!m_union.any)
+        return false;
+    lo = m_union.lo;
+    hi = m_union.hi;
+    return true;
+}
+
+int SceneChanges::indexOf(SurfaceId id) const {
+    const auto it = m_index.find(id.value);
+    return it == m_index.end() ? -1 : it->second;
+}
+
+} // namespace kw
