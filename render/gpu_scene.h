@@ -227,6 +227,8 @@ private:
         double pixelTolerance = 0.0;
         int partitionsU = 0, partitionsV = 0, trimMaskCap = 0;
         bool polygonOverTrims = false, controlNet = false, trims = false;
+        RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
+        std::int64_t trimBudgetBytes = 0;
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;
