@@ -40,6 +40,13 @@ vec2 kwTrimArcPoint(uint arc, float t) {
 // v of the piece where its u equals u, u strictly inside [u0, u1) of the piece's ends: the
 // Illinois variant of regula falsi (Dowell & Jarratt 1971), as trimArcSolve does on the CPU.
 float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
+    // At an end the answer is that end: the bracket's sign test below would take fa == 0 for
+    // the wrong side (a fragment whose u is an end's u to the last bit, as at a loop vertex).
+    bool rising = p1.x >= p0.x;
+    if (rising ? u <= p0.x : u >= p0.x)
+        return p0.y;
+    if (rising ? u >= p1.x : u <= p1.x)
+        return p1.y;
     float a = t0, b = t1, fa = p0.x - u, fb = p1.x - u;
     float va = p0.y, vb = p1.y;
     int side = 0;
