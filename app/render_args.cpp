@@ -175,6 +175,18 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                .arg(kMinTrimMaskSize)
                                .arg(kDefaultTrimMaskCap),
                            QStringLiteral("N"), QString::number(kDefaultTrimMaskCap)),
+        QCommandLineOption(QStringLiteral("trim-mode"),
+                           QStringLiteral("exact (default: trim edges exact at any zoom, by each "
+                                          "surface's trim grid) or mask (the paper's trim mask "
+                                          "alone, accurate to its texels: --trim-mask-cap)."),
+                           QStringLiteral("MODE"), QStringLiteral("exact")),
+        QCommandLineOption(QStringLiteral("trim-budget"),
+                           QStringLiteral("GPU memory for exact trims in MiB, 1..%1 (default %2); "
+                                          "past it the trim grids get coarser: slower, never "
+                                          "wrong, with a warning.")
+                               .arg(kMaxTrimBudgetBytes >> 20)
+                               .arg(kDefaultTrimBudgetBytes >> 20),
+                           QStringLiteral("MIB"), QString::number(kDefaultTrimBudgetBytes >> 20)),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
                                           "max-curvature, min-radius, zebra, isophotes, "
@@ -221,11 +233,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("principal-directions"),
                            QStringLiteral("Overlay short marks of the principal curvature "
                                           "directions (k1 red, k2 blue) on any --shading mode."))};
-    parser.addOptions({o.mode,    o.partitions, o.partitionMode, o.pixelTolerance,
-                       o.lights,  o.depth,      o.noTrims,       o.trimMaskCap,
-                       o.shading, o.isocurves,  o.isoLines,      o.range,
-                       o.scale,   o.stripes,    o.stripeAngle,   o.isophoteBands,
-                       o.pull,    o.draftAngle, o.envMap,        o.directions});
+    parser.addOptions({o.mode,    o.partitions,  o.partitionMode, o.pixelTolerance, o.lights,
+                       o.depth,   o.noTrims,     o.trimMaskCap,   o.trimMode,       o.trimBudget,
+                       o.shading, o.isocurves,   o.isoLines,      o.range,          o.scale,
+                       o.stripes, o.stripeAngle, o.isophoteBands, o.pull,           o.draftAngle,
+                       o.envMap,  o.directions});
     return o;
 }
 
@@ -275,6 +287,17 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
         return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
     options.trims = !parser.isSet(o.noTrims);
+    const QString trimMode = parser.value(o.trimMode);
+    if (trimMode == QLatin1String("exact"))
+        options.trimMode = RenderOptions::TrimMode::Exact;
+    else if (trimMode == QLatin1String("mask"))
+        options.trimMode = RenderOptions::TrimMode::Mask;
+    else
+        return fail(o.trimMode, QStringLiteral("exact or mask"));
+    int budgetMiB = 0;
+    if (!parseIntIn(parser.value(o.trimBudget), 1, int(kMaxTrimBudgetBytes >> 20), budgetMiB))
+        return fail(o.trimBudget, QStringLiteral("in 1..%1").arg(kMaxTrimBudgetBytes >> 20));
+    options.trimBudgetBytes = std::int64_t(budgetMiB) << 20;
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return true;
 }

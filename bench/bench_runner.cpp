@@ -93,6 +93,7 @@ public:
         o.lightCount = lights;
         o.trims = trims;
         o.polygonOverTrims = trims; // --no-trims draws whole domains
+        o.trimMode = trimMode;
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
@@ -121,6 +122,7 @@ public:
     OffscreenRenderer renderer;
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     bool trims = true;
+    RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
 
 private:
     SceneMesh m_gluMesh;
@@ -474,6 +476,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     Session s;
     s.shading = config.shading;
     s.trims = config.trims;
+    s.trimMode = config.trimMode;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

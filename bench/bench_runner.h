@@ -38,6 +38,8 @@ struct BenchConfig {
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     /// False (--no-trims): every renderer frame draws trimmed surfaces over their whole domains.
     bool trims = true;
+    /// --trim-mode: exact trims (default) or the trim mask alone, for comparison.
+    RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
     /// --trim-drag: each Table 1 row also times frames that each move one trim control point of
     /// the file's first trimmed surface (its mask is redrawn every frame). Needs trims on.
     bool trimDrag = false;

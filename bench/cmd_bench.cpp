@@ -172,6 +172,12 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     parser.addOptions({sizes,      partitions, t1Partitions, frames, lights,  tables,  scaleModel,
                        scaleFaces, scaleSize,  smoke,        t2Size, samples, mode,    shading,
                        floor,      json,       markdown,     plots,  noTrims, trimDrag});
+    const QCommandLineOption trimMode(
+        QStringLiteral("trim-mode"),
+        QStringLiteral("exact (default: exact trim edges) or mask (the paper's trim mask alone, "
+                       "for comparison)."),
+        QStringLiteral("MODE"), QStringLiteral("exact"));
+    parser.addOption(trimMode);
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -225,6 +231,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
     config.trims = !parser.isSet(noTrims);
     config.trimDrag = parser.isSet(trimDrag);
+    if (parser.value(trimMode) == QLatin1String("mask")) {
+        config.trimMode = RenderOptions::TrimMode::Mask;
+    } else if (parser.value(trimMode) != QLatin1String("exact")) {
+        printError(QStringLiteral("%1: --trim-mode '%2' is not exact or mask")
+                       .arg(cmd, parser.value(trimMode)));
+        return kExitUsage;
+    }
     if (config.trimDrag && (!config.trims || !table1)) {
         printError(QStringLiteral("%1: --trim-drag needs Table 1 (--tables 1) and trims (not "
                                   "--no-trims)")

@@ -17,11 +17,12 @@
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray)
+constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray; exact mode's
+                                    // grids are on kTrimGridUnit)
 constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
-    return r.mask.active && r.mask.layer >= 0 ? &r.mask : nullptr;
+    return r.mask.usable() ? &r.mask : nullptr;
 }
 
 double gatherMinCellPixels() {
@@ -93,6 +94,8 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_EXACT_DEPTH");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
+    if (trimmed && options.trimMode == RenderOptions::TrimMode::Exact)
+        d << QStringLiteral("KW_TRIM_EXACT");
     d << analysisDefines(options.analysis, options.writeCurvatureAov);
     return d;
 }
@@ -273,7 +276,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene
             continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"),
-                               b->trimmed ? QStringList{QStringLiteral("KW_TRIM")} : QStringList{});
+                               b->trimmed ? scene.trimMasks().trimDefines() : QStringList{});
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;

@@ -173,9 +173,13 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
 bool GpuScene::maskStale(const SurfaceRecord& r, const FrameCamera& camera,
                          const RenderOptions& options) const {
     const TrimMask& m = r.mask;
-    if (r.surface->trims.empty() || !r.exact)
-        return m.layer >= 0 || m.active || !m.warnings.isEmpty(); // a layer to give back
-    if (m.layer < 0 || m.trimsRevision != r.revisions.trims || m.knotsRevision != r.revisions.knots)
+    if (r.surface->trims.empty() || !r.exact) // a layer or grid block to give back
+        return m.layer >= 0 || m.active || !m.warnings.isEmpty() || m.grid.words || m.grid.cap;
+    if (m.trimsRevision != r.revisions.trims || m.knotsRevision != r.revisions.knots)
+        return true;
+    if (options.trimMode == RenderOptions::TrimMode::Exact) // grids do not follow the view
+        return m.grid.cap == 0 || m.layer >= 0;
+    if (m.layer < 0)
         return true;
     const int cap = std::clamp(options.trimMaskCap, kMinTrimMaskSize, m_maxTextureSize);
     return TrimMaskPass::maskResolution(*r.surface, camera, cap) != glm::ivec2(m.width, m.height);
@@ -209,10 +213,11 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     }
     // Everything a record depends on besides its own surface: when one of these changed,
     // every record is compared (each still rebuilds only what is stale).
-    const FrameKey key{camera.viewProjection, camera.viewport,        options.mode,
-                       options.partitioning,  options.pixelTolerance, options.partitionsU,
-                       options.partitionsV,   options.trimMaskCap,    options.polygonOverTrims,
-                       options.controlNet,    options.trims};
+    const FrameKey key{camera.viewProjection,  camera.viewport,        options.mode,
+                       options.partitioning,   options.pixelTolerance, options.partitionsU,
+                       options.partitionsV,    options.trimMaskCap,    options.polygonOverTrims,
+                       options.controlNet,     options.trims,          options.trimMode,
+                       options.trimBudgetBytes};
     bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
@@ -415,7 +420,7 @@ const SurfaceGpu* GpuScene::surfaceGpu(SurfaceId id) const {
 
 const TrimMask* GpuScene::mask(SurfaceId id) const {
     const SurfaceRecord* r = find(id);
-    return r && r->mask.active && r->mask.layer >= 0 ? &r->mask : nullptr;
+    return r && r->mask.usable() ? &r->mask : nullptr;
 }
 
 UploadStats GpuScene::stats(SurfaceId id) const {
@@ -455,6 +460,8 @@ void GpuScene::resetStats() {
 
 QStringList GpuScene::maskWarnings() const {
     QStringList out;
+    if (!m_masks.budgetWarning().isEmpty())
+        out << m_masks.budgetWarning();
     for (const SurfaceRecord* r : m_order)
         for (const QString& w : r->mask.warnings)
             out << QStringLiteral("surface %1: %2").arg(r->id.value).arg(w);

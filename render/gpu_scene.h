@@ -48,10 +48,10 @@ struct SurfaceTableEntry {
     glm::vec4 origin{0.0f};   ///< xyz: the control texels' origin
     glm::vec4 colour{0.0f};   ///< rgb material colour
     glm::vec4 material{0.0f}; ///< ka, kd, ks, shininess
-    glm::vec4 trimRect{0.0f}; ///< the trim mask's (u, v) rectangle (TrimMask::rect)
-    glm::vec4 trimSize{0.0f}; ///< mask width, height (texels), array layer, unused
+    glm::vec4 trimRect{0.0f}; ///< the trim mask's or grid's (u, v) rectangle (TrimMask::rect)
+    glm::vec4 trimSize{0.0f}; ///< mask or grid width, height (texels), array layer, unused
     glm::ivec4 data{0};       ///< control offset, countU, u span-table offset, v's (texels)
-    glm::ivec4 ids{0};        ///< surface id, unused x3
+    glm::ivec4 ids{0};        ///< surface id, exact trim grid's first word, unused x2
     bool operator==(const SurfaceTableEntry&) const = default;
 };
 static_assert(sizeof(SurfaceTableEntry) == 128, "must match surface_data.glsl's 8 texels per row");
@@ -227,6 +227,8 @@ private:
         double pixelTolerance = 0.0;
         int partitionsU = 0, partitionsV = 0, trimMaskCap = 0;
         bool polygonOverTrims = false, controlNet = false, trims = false;
+        RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
+        std::int64_t trimBudgetBytes = 0;
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

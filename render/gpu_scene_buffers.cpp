@@ -34,14 +34,16 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
             e.colour = glm::vec4(glm::vec3(m.color), 1.0f);
             e.material = glm::vec4(float(m.ka), float(m.kd), float(m.ks),
                                    float(std::max(m.shininess, 1e-3)));
-            if (r->mask.active && r->mask.layer >= 0) {
+            int trimBlock = 0;
+            if (r->mask.usable()) {
                 e.trimRect = glm::vec4(r->mask.rect);
                 e.trimSize = glm::vec4(float(r->mask.width), float(r->mask.height),
                                        float(r->mask.layer), 0.0f);
+                trimBlock = int(r->mask.grid.offset);
             }
             e.data = glm::ivec4(int(g.controlOffset), g.countU, int(g.spanOffset),
                                 int(g.spanOffset + g.spanTexelsU));
-            e.ids = glm::ivec4(int(r->id.value), 0, 0, 0);
+            e.ids = glm::ivec4(int(r->id.value), trimBlock, 0, 0);
             SurfaceTableEntry& row = t.rows[size_t(r->slot)];
             if (!(row == e)) {
                 row = e;

@@ -17,6 +17,15 @@ enum class RenderMode {
 /// Trim mask side limits in texels (RenderOptions::trimMaskCap).
 constexpr int kMinTrimMaskSize = 32;
 constexpr int kDefaultTrimMaskCap = 1024;
+/// Largest exact trim grid side in texels (model/trim_grid.h's trimGridResolution cap).
+constexpr int kMaxTrimGridSide = 1024;
+/// Default GPU memory budget of the exact trim grids (RenderOptions::trimBudgetBytes), and the
+/// range a user may set. 512 MiB: at most what one R32UI texture buffer holds on llvmpipe, and
+/// room for about 1,800 trimmed faces of hammer.iges at full grids (docs/PERFORMANCE.md ##
+/// Trims); larger models get coarser grids, still exact.
+constexpr std::int64_t kDefaultTrimBudgetBytes = std::int64_t(512) << 20;
+constexpr std::int64_t kMinTrimBudgetBytes = std::int64_t(4) << 10;
+constexpr std::int64_t kMaxTrimBudgetBytes = std::int64_t(16) << 30;
 
 /// What a frame draws. Defaults are the editor's: exact surfaces, two lights, no overlays.
 struct RenderOptions {
@@ -80,6 +89,14 @@ struct RenderOptions {
     /// trimMaskCap]. The array holding all masks has layers of the largest side in use, so the
     /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).
     int trimMaskCap = kDefaultTrimMaskCap;
+    /// How trims cut (issue 11). Exact (default): by the hybrid trim grid of model/trim_grid.h,
+    /// trim edges exact at any zoom. Mask: by the paper's FBO mask alone, accurate to its texels
+    /// (kept for comparison, docs/PERFORMANCE.md ## Trims).
+    enum class TrimMode { Exact, Mask };
+    TrimMode trimMode = TrimMode::Exact;
+    /// Bytes the exact trim grids may take on the GPU (kMinTrimBudgetBytes..kMaxTrimBudgetBytes,
+    /// also limited by the GPU); past it they get coarser (still exact, slower), with a warning.
+    std::int64_t trimBudgetBytes = kDefaultTrimBudgetBytes;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
@@ -90,6 +107,11 @@ struct RenderOptions {
 
 /// The partitioning a saved or preferred mode name asks for: "uniform" is the paper's, any
 /// other (validation allows only "adaptive" and "") the adaptive default.
+/// "exact" or "mask" (the command line's and the settings' spelling).
+inline QString trimModeName(RenderOptions::TrimMode m) {
+    return m == RenderOptions::TrimMode::Mask ? QStringLiteral("mask") : QStringLiteral("exact");
+}
+
 inline RenderOptions::Partitioning partitioningNamed(const QString& name) {
     return name == QLatin1String("uniform") ? RenderOptions::Partitioning::Uniform
                                             : RenderOptions::Partitioning::Adaptive;

@@ -74,6 +74,7 @@ public:
                                                       {&u.trimSize, "uTrimSize"},
                                                       {&u.trimLayerScale, "uTrimLayerScale"},
                                                       {&u.trimLayer, "uTrimLayer"},
+                                                      {&u.trimBlock, "uTrimBlock"},
                                                       {&u.depthBias, "uDepthBias"},
                                                       {&u.pointSize, "uPointSize"},
                                                       {&u.lineColor, "uLineColor"},

@@ -18,6 +18,7 @@ struct UniformLocations {
     int ambient = -1, lightVector = -1, lightDiffuse = -1, lightSpecular = -1; // phong.glsl
     int color = -1, material = -1, surfaceId = -1;                             // per surface
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
+    int trimBlock = -1;
     int depthBias = -1, pointSize = -1, lineColor = -1; // lines.vert/.frag
     // analysis.glsl (render/analysis_gl.cpp), by mode
     int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;

@@ -24,7 +24,7 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
                                                      QStringLiteral("tessellated.frag"), defines);
     QOpenGLShaderProgram* trimmed =
         m_shaders->program(QStringLiteral("tessellated.vert"), QStringLiteral("tessellated.frag"),
-                           defines + QStringList{QStringLiteral("KW_TRIM")});
+                           defines + scene.trimMasks().trimDefines());
     if (!plain || !trimmed) {
         *error = m_shaders->lastError();
         return false;
@@ -37,7 +37,7 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
         const MeshGpu& m = r->mesh;
         if (!m.vao)
             continue;
-        const TrimMask* mask = trims && r->mask.active && r->mask.layer >= 0 ? &r->mask : nullptr;
+        const TrimMask* mask = trims && r->mask.usable() ? &r->mask : nullptr;
         QOpenGLShaderProgram* prog = mask ? trimmed : plain;
         if (prog != bound) {
             prog->bind();

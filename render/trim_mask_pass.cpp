@@ -1,4 +1,5 @@
 // Trim masks: resolution from the screen, one array layer per trimmed surface, XOR fan fill.
+// Exact mode's grids are in trim_mask_pass_exact.cpp.
 #include "render/trim_mask_pass.h"
 
 #include "model/trim.h"
@@ -135,6 +136,14 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_frame = {};
     drawCalls = 0;
+    m_exactMode = options.trimMode == RenderOptions::TrimMode::Exact;
+    if (m_exactMode)
+        return syncExact(records, options, error);
+    // Mask mode: what exact mode held goes (the records' blocks, then the buffer).
+    for (SurfaceRecord* r : records)
+        if (r->mask.grid.words || r->mask.grid.cap)
+            freeLayer(r->mask);
+    freeGrids();
     GLint maxSize = 0, maxLayers = 0;
     gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     gl->glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
@@ -164,12 +173,7 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
     }
     if (wants.empty()) {
         // No trimmed surface left: free the array, so an emptied scene holds no mask memory.
-        if (m_texture) {
-            gl->glDeleteTextures(1, &m_texture);
-            m_texture = 0;
-            m_size = m_layers = 0;
-            m_freeLayers.clear();
-        }
+        freeArray();
         return ok;
     }
 
@@ -218,11 +222,21 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
     return ok;
 }
 
+void TrimMaskPass::freeArray() {
+    if (m_texture) {
+        m_gl->glDeleteTextures(1, &m_texture);
+        m_texture = 0;
+    }
+    m_size = m_layers = 0;
+    m_freeLayers.clear();
+}
+
 void TrimMaskPass::freeLayer(TrimMask& m) {
-    if (m.layer < 0 && !m.active && m.warnings.isEmpty())
+    if (m.layer < 0 && !m.active && m.warnings.isEmpty() && !m.grid.words && !m.grid.cap)
         return; // nothing held (the common case: an untrimmed surface)
     if (m.layer >= 0 && m.layer < m_layers)
         m_freeLayers.push_back(m.layer);
+    m_grids.release(m.grid);
     const TrimMaskStats stats = m.stats;
     m = TrimMask{};
     m.stats = stats;
@@ -297,22 +311,31 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     account();
 }
 
+QStringList TrimMaskPass::trimDefines() const {
+    return m_exactMode ? QStringList{QStringLiteral("KW_TRIM"), QStringLiteral("KW_TRIM_EXACT")}
+                       : QStringList{QStringLiteral("KW_TRIM")};
+}
+
 void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask,
                                int unit) const {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    gl->glBindTextureUnit(GLuint(unit), m_texture);
-    gl->glUniform1i(ShaderLibrary::uniforms(program).trimMask, unit);
+    bindArray(program, unit);
+    const UniformLocations& u = ShaderLibrary::uniforms(program);
     const glm::vec4 rect(mask.rect);
-    gl->glUniform4f(ShaderLibrary::uniforms(program).trimRect, rect.x, rect.y, rect.z, rect.w);
-    gl->glUniform2f(ShaderLibrary::uniforms(program).trimSize, float(mask.width),
-                    float(mask.height));
-    gl->glUniform2f(ShaderLibrary::uniforms(program).trimLayerScale, 1.0f / float(m_size),
-                    1.0f / float(m_size));
-    gl->glUniform1f(ShaderLibrary::uniforms(program).trimLayer, float(mask.layer));
+    gl->glUniform4f(u.trimRect, rect.x, rect.y, rect.z, rect.w);
+    gl->glUniform2f(u.trimSize, float(mask.width), float(mask.height));
+    if (m_exactMode)
+        gl->glUniform1ui(u.trimBlock, mask.grid.offset);
+    else
+        gl->glUniform1f(u.trimLayer, float(mask.layer));
 }
 
 void TrimMaskPass::bindArray(QOpenGLShaderProgram* program, int unit) const {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (m_exactMode) {
+        gl->glBindTextureUnit(GLuint(kTrimGridUnit), m_gridView);
+        return;
+    }
     gl->glBindTextureUnit(GLuint(unit), m_texture);
     gl->glUniform1i(ShaderLibrary::uniforms(program).trimMask, unit);
     gl->glUniform2f(ShaderLibrary::uniforms(program).trimLayerScale, 1.0f / float(m_size),
@@ -334,7 +357,7 @@ std::vector<unsigned char> TrimMaskPass::readMask(const TrimMask& mask) const {
 }
 
 std::int64_t TrimMaskPass::residentBytes() const {
-    return std::int64_t(m_size) * m_size * m_layers; // GL_R8
+    return std::int64_t(m_size) * m_size * m_layers + m_gridBufferBytes; // GL_R8, R32UI
 }
 
 void TrimMaskPass::release() {
@@ -351,6 +374,7 @@ void TrimMaskPass::release() {
     m_texture = m_fbo = m_vao = m_buffer = 0;
     m_size = m_layers = 0;
     m_freeLayers.clear();
+    freeGrids();
 }
 
 } // namespace kw

@@ -1,10 +1,15 @@
-// Trim masks (paper 3.4.2): each trimmed surface's loops drawn in (u, v) into one layer of a
-// GL_TEXTURE_2D_ARRAY by triangle fans with XOR parity; the surface passes sample it and discard.
+// Trims on the GPU, in one of two modes (RenderOptions::TrimMode):
+//  - exact (issue 11): each trimmed surface's hybrid trim grid (model/trim_grid.h) in a block of
+//    one texture buffer, sized by the surface's own need under a memory budget; the surface
+//    passes classify each fragment's exact (u, v) against it (shaders/trim_exact.glsl);
+//  - mask (paper 3.4.2): each trimmed surface's loops drawn in (u, v) into one layer of a
+//    GL_TEXTURE_2D_ARRAY by triangle fans with XOR parity; the surface passes sample it.
 #pragma once
 
 #include "model/document.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
+#include "render/trim_grid_store.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QString>
@@ -18,11 +23,14 @@ class QOpenGLShaderProgram;
 namespace kw {
 
 struct SurfaceRecord;
+struct TrimSurfaceArcs;
 
-/// One surface's mask: texels [0, width) x [0, height) of layer `layer` span `rect` in (u, v),
-/// the part of the domain inside the bounding box of the trim curves' control points (the
-/// curves lie in it: convex hull property). Outside it no point is inside any loop, so the
-/// shader discards there without a lookup, and the texels go where the trims are.
+/// One surface's trims on the GPU. Mask mode: texels [0, width) x [0, height) of layer `layer`
+/// span `rect` in (u, v), the part of the domain inside the bounding box of the trim curves'
+/// control points (the curves lie in it: convex hull property). Outside it no point is inside
+/// any loop, so the shader discards there without a lookup, and the texels go where the trims
+/// are. Exact mode: `grid` is the surface's block of the trim grid buffer, whose width x height
+/// texels span `rect` (the arcs' bounds), and layer is -1.
 struct TrimMask {
     int layer = -1;
     int width = 0, height = 0;
@@ -32,16 +40,25 @@ struct TrimMask {
     /// False when every loop was dropped (degenerate): the surface is drawn untrimmed, as
     /// trimRegionContains treats a region without loops.
     bool active = false;
-    QStringList warnings; ///< from makeTrimRegion when the mask was last drawn
+    QStringList warnings; ///< from makeTrimRegion (makeTrimArcs) when last drawn (built)
     TrimMaskStats stats;  ///< since creation or resetStats()
+    TrimGridBlock grid;   ///< exact mode: the block (grid.words == 0: none)
+
+    /// Whether the passes classify by it: a mask layer or a grid block holding a loop.
+    bool usable() const { return active && (layer >= 0 || grid.words > 0); }
 };
+
+/// The texture unit of the exact trim grids' buffer (shaders/trim_exact.glsl's binding).
+constexpr int kTrimGridUnit = 9;
 
 class TrimMaskPass {
 public:
     /// Needs the context current for every call below; `shaders` outlives the pass.
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
 
-    /// Brings the masks of the records' surfaces up to date for this frame and frees the
+    /// Brings the trims of the records' surfaces up to date for this frame in options.trimMode
+    /// and frees what records no longer trimmed (and the other mode) held. Exact mode: see
+    /// syncExact. Mask mode: frees the
     /// layers of records no longer trimmed. A surface's mask is redrawn only when its trims (or
     /// knots, which move the domain) revision changed or its mask resolution changed; the
     /// resolution is four times the surface's control-net length on screen (pixels) along u and
@@ -52,15 +69,23 @@ public:
     /// untrimmed).
     bool sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
               const FrameCamera& camera, const RenderOptions& options, QString* error);
-    /// Gives the mask's layer back (a removed or untrimmed surface); keeps its statistics.
+    /// Gives the mask's layer or grid block back (a removed, hidden or untrimmed surface);
+    /// keeps its statistics.
     void freeLayer(TrimMask& mask);
 
-    /// Binds the mask array to `unit` and sets uTrimMask and uTrimLayerScale on the bound
-    /// program, whose shaders read each surface's rectangle, size and layer from its row of the
-    /// surface table (shaders/surface_data.glsl).
+    /// Whether the last sync was in exact mode: the trimmed shader variants then need the
+    /// KW_TRIM_EXACT define (trimDefines()).
+    bool exact() const { return m_exactMode; }
+    /// The defines of the trimmed shader variants for the mode of the last sync.
+    QStringList trimDefines() const;
+
+    /// Binds the trim data of the last sync's mode: the grid buffer to kTrimGridUnit, or the
+    /// mask array to `unit` with uTrimMask and uTrimLayerScale set on the bound program. The
+    /// program's shaders read each surface's rectangle, size and layer or block from its row of
+    /// the surface table (shaders/surface_data.glsl).
     void bindArray(QOpenGLShaderProgram* program, int unit) const;
 
-    /// Binds the mask array to `unit` and sets trim_sample.glsl's uniforms on the bound program.
+    /// bindArray, then trim_sample.glsl's per-surface uniforms on the bound program.
     void setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask, int unit) const;
 
     /// The mask array (0 before the first trimmed surface) and its layer size in texels.
@@ -72,8 +97,14 @@ public:
     void resetArrayAllocations() { m_arrayAllocations = 0; }
     /// What the last sync did (for FrameReport).
     const TrimMaskStats& frameStats() const { return m_frame; }
-    /// Bytes of the mask array.
+    /// Bytes of the mask array and of the trim grid buffer.
     std::int64_t residentBytes() const;
+    /// Exact mode: bytes of the grid blocks in use (the buffer holds them with packing slack),
+    /// and the warning while the budget coarsened the grids (else empty).
+    std::int64_t gridBytesUsed() const { return m_grids.usedBytes(); }
+    const QString& budgetWarning() const { return m_budgetWarning; }
+    /// The grid words as uploaded (exact mode), for tests.
+    const std::vector<std::uint32_t>& gridWords() const { return m_grids.words(); }
     int drawCalls = 0; ///< mask draws of the last sync
     /// The mask texels read back (width x height, row 0 at v first; 0 trimmed, 255 kept), for
     /// tests. Empty for an inactive mask.
@@ -89,6 +120,18 @@ public:
     static glm::dvec4 maskRect(const Surface& surface);
 
 private:
+    /// Exact mode: every trimmed record's grid built (only when its trims or knots changed, or
+    /// the budget's cap moved past its size) and placed in the word array, which goes up whole
+    /// when it grew or was compacted, else block by block. Past the budget (options'
+    /// trimBudgetBytes, at most what one texture buffer holds) the cap on the grids' sides is
+    /// halved for the largest until they fit: classification stays exact, more fragments walk
+    /// lists; the warning says so. Errors leave the trimmed surfaces untrimmed this frame.
+    bool syncExact(const std::vector<SurfaceRecord*>& records, const RenderOptions& options,
+                   QString* error);
+    void buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew);
+    void buildGrid(TrimMask& m, const TrimSurfaceArcs& arcs, const Revisions& rev, bool* grew);
+    void freeArray();
+    void freeGrids();
     bool ensureArray(int size, int layers, QString* error);
     void redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution);
 
@@ -99,6 +142,14 @@ private:
     std::vector<int> m_freeLayers;
     std::int64_t m_arrayAllocations = 0;
     TrimMaskStats m_frame;
+    // Exact mode (trim_mask_pass_exact.cpp).
+    bool m_exactMode = false; ///< the mode of the last sync
+    TrimGridStore m_grids;
+    GLuint m_gridBuffer = 0, m_gridView = 0; ///< the words and their R32UI texture buffer
+    std::int64_t m_gridBufferBytes = 0;
+    int m_gridCap = kMaxTrimGridSide; ///< the side cap the budget allows now
+    std::int64_t m_gridBudget = 0;    ///< the budget the cap was found under
+    QString m_budgetWarning;
 };
 
 } // namespace kw

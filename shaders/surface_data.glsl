@@ -3,7 +3,8 @@
 // draw's surface index (surface.vert's aSurface, fed by the draw's base instance), so surfaces
 // of one shader variant are drawn by one multi-draw with no per-surface uniforms.
 // Defines the per-surface values under the names the per-draw uniforms had (uDomain, uOrigin,
-// uColor, uMaterial, uSurfaceId, uTrimRect, uTrimSize, uTrimLayer) for the shared includes.
+// uColor, uMaterial, uSurfaceId, uTrimRect, uTrimSize, uTrimLayer, uTrimBlock) for the shared
+// includes.
 #ifndef KW_SURFACE_DATA
 #define KW_SURFACE_DATA
 
@@ -14,7 +15,7 @@
 // The table: 8 RGBA32F texels per surface (kw::SurfaceTableEntry), read as floats for texels
 // 0-5 (domain; origin; colour; ka, kd, ks, shininess; trim rectangle; trim size and layer) and
 // through an RGBA32I view for texels 6-7 (control offset, countU, u and v span-table offsets;
-// surface id).
+// surface id, exact trim grid's first word).
 layout(binding = 5) uniform samplerBuffer kwSurfaceTable;
 layout(binding = 6) uniform isamplerBuffer kwSurfaceInts;
 layout(binding = 7) uniform samplerBuffer kwControl; // RGBA32F (w (P - origin), w)
@@ -33,6 +34,7 @@ int kwSurface = 0;
 #define uTrimRect KW_ROW(4)
 #define uTrimSize (KW_ROW(5).xy)
 #define uTrimLayer (KW_ROW(5).z)
+#define uTrimBlock uint(texelFetch(kwSurfaceInts, kwSurface * 8 + 7).y)
 
 #ifndef KW_SPAN_TEXELS
 #define KW_SPAN_TEXELS(P) ((2 * (P) + (P) * ((P) + 1) / 2 + 3) / 4)

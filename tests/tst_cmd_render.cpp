@@ -92,6 +92,12 @@ private Q_SLOTS:
         QTest::newRow("bad pixel tolerance")
             << QStringList{sample("torus"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--pixel-tolerance"), QStringLiteral("0")};
+        QTest::newRow("bad trim mode")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--trim-mode"), QStringLiteral("fuzzy")};
+        QTest::newRow("bad trim budget")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--trim-budget"), QStringLiteral("0")};
     }
     void usageErrorsExitTwo() {
         QFETCH(QStringList, args);
@@ -104,6 +110,10 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--partition-mode 'fine'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--pixel-tolerance")))
             QVERIFY2(r.err.contains(QStringLiteral("--pixel-tolerance '0'")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--trim-mode")))
+            QVERIFY2(r.err.contains(QStringLiteral("--trim-mode 'fuzzy'")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--trim-budget")))
+            QVERIFY2(r.err.contains(QStringLiteral("--trim-budget '0'")), qPrintable(r.err));
     }
 
     void benchPrintsATable() {

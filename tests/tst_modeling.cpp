@@ -445,6 +445,8 @@ private Q_SLOTS:
         wanted.partitionMode = QStringLiteral("adaptive");
         wanted.pixelTolerance = 1.25;
         wanted.trimMaskCap = 256;
+        wanted.trimMode = QStringLiteral("mask");
+        wanted.trimBudgetMiB = 64;
         wanted.headlight = false;
         wanted.background = QColor(10, 20, 30);
         QVERIFY(!(Preferences::load() == wanted));
@@ -477,6 +479,8 @@ private Q_SLOTS:
         const RenderOptions& o = m_window->viewport()->renderOptions();
         QVERIFY(!o.headlight);
         QCOMPARE(o.trimMaskCap, 256);
+        QVERIFY(o.trimMode == RenderOptions::TrimMode::Mask);
+        QCOMPARE(o.trimBudgetBytes, std::int64_t(64) << 20);
         QCOMPARE(o.background.r, float(10 / 255.0));
         QCOMPARE(QSettings().value(QStringLiteral("autosave/intervalSeconds")).toInt(), 0);
         QCOMPARE(QSettings().value(QStringLiteral("save/keepBackup")).toBool(), false);

@@ -1,6 +1,7 @@
-// GL test: trimmed surfaces (issue 4). Covered area against the analytic trimmed area, every
-// pixel against the CPU classification of model/trim.h, nested and concave loops, messy input,
-// one mask redrawn per trim edit, and the trim-edge error against mask resolution.
+// GL test: trimmed surfaces by the paper's trim mask (issue 4). Covered area against the analytic
+// trimmed area, every pixel against the CPU classification of model/trim.h, nested and concave
+// loops, messy input, one mask redrawn per trim edit, and the trim-edge error against mask
+// resolution.
 #include "model/trim.h"
 #include "render/renderer_impl.h"
 #include "render_test_util.h"
@@ -14,6 +15,14 @@ using namespace kwtest;
 namespace {
 
 constexpr int kSide = 1024;
+
+/// Every test here is of the paper's FBO mask (RenderOptions::TrimMode::Mask); the default,
+/// exact mode, is tested by tst_render_trims_exact.
+RenderOptions maskMode() {
+    RenderOptions o;
+    o.trimMode = RenderOptions::TrimMode::Mask;
+    return o;
+}
 
 /// |det d(u, v)/d(pixel)| at (x, y) from differences of the AOV's (u, v): central where both
 /// neighbours along an axis show the same surface, one-sided where only one does (at the edge
@@ -115,7 +124,7 @@ private Q_SLOTS:
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         AovBuffer trimmed, whole;
-        QVERIFY(renderPair(doc, RenderOptions{}, trimmed, whole));
+        QVERIFY(renderPair(doc, maskMode(), trimmed, whole));
         const Surface& s = scene->surfaces.front();
         // Each covered pixel contributes |Su x Sv| times its (u, v) footprint, measured on the
         // untrimmed render (its neighbours exist across the trim edges).
@@ -169,7 +178,7 @@ private Q_SLOTS:
         QVERIFY2(scene, qPrintable(error));
         Document doc;
         QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
-        RenderOptions opt;
+        RenderOptions opt = maskMode();
         opt.mode = RenderMode(mode);
         if (exactDepth)
             opt.shading = RenderOptions::Shading::ExactDepth;
@@ -194,7 +203,7 @@ private Q_SLOTS:
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         AovBuffer trimmed, whole;
-        QVERIFY(renderPair(doc, RenderOptions{}, trimmed, whole));
+        QVERIFY(renderPair(doc, maskMode(), trimmed, whole));
         const SurfaceId id{1};
         // Island (nesting depth 3) drawn, the hole ring around it not, the plate outside drawn.
         QVERIFY(coveredNear(trimmed, id, {0.7, 0.5}, 0.03) > 50);
@@ -256,7 +265,7 @@ private Q_SLOTS:
         Document doc;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         const Camera cam = fitCamera(scene, 1.0);
-        RenderOptions opt;
+        RenderOptions opt = maskMode();
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         GpuScene& masks = m_renderer->renderer().internals().scene;
         QVERIFY(masks.mask(SurfaceId{1}) && masks.mask(SurfaceId{20}));
@@ -316,7 +325,7 @@ private Q_SLOTS:
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         GpuScene& masks = m_renderer->renderer().internals().scene;
         AovBuffer trimmed, whole;
-        QVERIFY(renderPair(doc, RenderOptions{}, trimmed, whole));
+        QVERIFY(renderPair(doc, maskMode(), trimmed, whole));
         const TrimMaskStats st = masks.totalMaskStats();
         QCOMPARE(st.redraws, 256);
         QCOMPARE(st.arrayAllocations, 1);
@@ -364,7 +373,7 @@ private Q_SLOTS:
         const TrimRegion region = makeTrimRegion(s.trims, 1e-6);
         double worst64 = 0.0, worst1024 = 0.0;
         for (int cap : {32, 64, 128, 256, 512, 1024, 2048}) {
-            RenderOptions opt;
+            RenderOptions opt = maskMode();
             opt.trimMaskCap = cap;
             AovBuffer trimmed, whole;
             QVERIFY(renderPair(doc, opt, trimmed, whole));

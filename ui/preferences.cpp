@@ -32,6 +32,12 @@ Preferences Preferences::load() {
         p.pixelTolerance = d.pixelTolerance;
     p.trimMaskCap =
         std::clamp(s.value(QStringLiteral("view/trimMaskCap"), d.trimMaskCap).toInt(), 64, 16384);
+    p.trimMode = s.value(QStringLiteral("view/trimMode"), d.trimMode).toString();
+    if (p.trimMode != QLatin1String("mask"))
+        p.trimMode = d.trimMode;
+    p.trimBudgetMiB =
+        std::clamp(s.value(QStringLiteral("view/trimBudgetMiB"), d.trimBudgetMiB).toInt(), 1,
+                   int(kMaxTrimBudgetBytes >> 20));
     p.headlight = s.value(QStringLiteral("view/headlight"), d.headlight).toBool();
     const QColor c(s.value(QStringLiteral("view/background"), d.background.name()).toString());
     p.background = c.isValid() ? c : d.background;
@@ -45,6 +51,8 @@ void Preferences::save() const {
     s.setValue(QStringLiteral("view/partitionMode"), partitionMode);
     s.setValue(QStringLiteral("view/pixelTolerance"), pixelTolerance);
     s.setValue(QStringLiteral("view/trimMaskCap"), trimMaskCap);
+    s.setValue(QStringLiteral("view/trimMode"), trimMode);
+    s.setValue(QStringLiteral("view/trimBudgetMiB"), trimBudgetMiB);
     s.setValue(QStringLiteral("view/headlight"), headlight);
     s.setValue(QStringLiteral("view/background"), background.name());
 }
@@ -88,6 +96,26 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     m_trimCap->setRange(64, 16384);
     m_trimCap->setSuffix(tr(" texels"));
     m_trimCap->setValue(p.trimMaskCap);
+    m_trimMode = new QComboBox;
+    m_trimMode->setObjectName(QStringLiteral("prefTrimMode"));
+    m_trimMode->addItems({QStringLiteral("exact"), QStringLiteral("mask")});
+    m_trimMode->setCurrentText(p.trimMode);
+    m_trimMode->setToolTip(tr("exact: trim edges exact at any zoom; mask: the paper's trim mask "
+                              "alone, accurate to its texels"));
+    m_trimBudget = new QSpinBox;
+    m_trimBudget->setObjectName(QStringLiteral("prefTrimBudget"));
+    m_trimBudget->setRange(1, int(kMaxTrimBudgetBytes >> 20));
+    m_trimBudget->setSuffix(tr(" MiB"));
+    m_trimBudget->setValue(p.trimBudgetMiB);
+    m_trimBudget->setToolTip(tr("GPU memory for exact trims; past it trims get coarser grids "
+                                "(slower, never wrong) and a warning"));
+    const auto enableTrimFields = [this] {
+        const bool exact = m_trimMode->currentText() == QLatin1String("exact");
+        m_trimBudget->setEnabled(exact);
+        m_trimCap->setEnabled(!exact);
+    };
+    enableTrimFields();
+    connect(m_trimMode, &QComboBox::currentTextChanged, this, enableTrimFields);
     m_headlight = new QCheckBox(tr("Lights follow the camera (headlight)"));
     m_headlight->setObjectName(QStringLiteral("prefHeadlight"));
     m_headlight->setChecked(p.headlight);
@@ -109,7 +137,9 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     form->addRow(QString(), m_backup);
     form->addRow(tr("Partition mode"), m_partitionMode);
     form->addRow(tr("Pixel tolerance"), m_tolerance);
-    form->addRow(tr("Trim mask budget"), m_trimCap);
+    form->addRow(tr("Trims"), m_trimMode);
+    form->addRow(tr("Trim memory budget"), m_trimBudget);
+    form->addRow(tr("Trim mask size cap"), m_trimCap);
     form->addRow(tr("Light rig"), m_headlight);
     form->addRow(tr("Background"), m_background);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
@@ -125,6 +155,8 @@ Preferences PreferencesDialog::value() const {
     p.partitionMode = m_partitionMode->currentText();
     p.pixelTolerance = m_tolerance->value();
     p.trimMaskCap = m_trimCap->value();
+    p.trimMode = m_trimMode->currentText();
+    p.trimBudgetMiB = m_trimBudget->value();
     p.headlight = m_headlight->isChecked();
     p.background = m_color;
     return p;

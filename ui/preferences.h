@@ -21,9 +21,11 @@ struct Preferences {
     QString partitionMode =
         QStringLiteral("adaptive"); ///< "view/partitionMode": adaptive | uniform
     double pixelTolerance = 0.5;    ///< "view/pixelTolerance" (adaptive partitions)
-    int trimMaskCap = 1024;         ///< "view/trimMaskCap": trim budget, texels per mask side
-    bool headlight = true;          ///< "view/headlight": lights follow the camera
-    QColor background{46, 48, 54};  ///< "view/background"
+    int trimMaskCap = 1024;         ///< "view/trimMaskCap": mask mode, texels per mask side
+    QString trimMode = QStringLiteral("exact"); ///< "view/trimMode": exact | mask
+    int trimBudgetMiB = 512;       ///< "view/trimBudgetMiB": exact trims' GPU memory budget
+    bool headlight = true;         ///< "view/headlight": lights follow the camera
+    QColor background{46, 48, 54}; ///< "view/background"
 
     static Preferences load();
     void save() const;
@@ -45,6 +47,8 @@ private:
     QComboBox* m_partitionMode;
     QDoubleSpinBox* m_tolerance;
     QSpinBox* m_trimCap;
+    QComboBox* m_trimMode;
+    QSpinBox* m_trimBudget;
     QCheckBox* m_headlight;
     QPushButton* m_background;
     QColor m_color;

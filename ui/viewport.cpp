@@ -157,6 +157,12 @@ void Viewport::setTrimMaskCap(int texels) {
     update();
 }
 
+void Viewport::setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes) {
+    m_options.trimMode = mode;
+    m_options.trimBudgetBytes = std::clamp(budgetBytes, kMinTrimBudgetBytes, kMaxTrimBudgetBytes);
+    update();
+}
+
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
     m_options.partitioning = mode;
     m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);

@@ -76,6 +76,8 @@ public:
     void setHeadlight(bool on);
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
+    /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.
+    void setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes);
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);

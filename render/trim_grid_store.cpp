@@ -1,0 +1,145 @@
+// Trim grid blocks: packing for the shader, first-fit word allocation, budget degradation.
+#include "render/trim_grid_store.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace kw {
+namespace {
+
+std::uint32_t floatBits(double x) {
+    return std::bit_cast<std::uint32_t>(float(x));
+}
+
+} // namespace
+
+std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs,
+                                        TrimGridBlock& block) {
+    std::vector<std::uint32_t> w(4, 0u); // the header, filled below
+    const size_t texels = size_t(grid.texelCount());
+    w.reserve(4 + texels + 1 + grid.entries.size() + 8 * grid.pieces.size() + 2 * arcs.arcs.size());
+    for (size_t k = 0; k <= texels; ++k)
+        w.push_back(grid.first[k] << 1 | (k < texels ? grid.base[k] : 0u));
+    w[0] = std::uint32_t(w.size());
+    w.insert(w.end(), grid.entries.begin(), grid.entries.end());
+    w[1] = std::uint32_t(w.size());
+    for (const TrimPiece& p : grid.pieces)
+        w.insert(w.end(), {floatBits(p.p0.x), floatBits(p.p0.y), floatBits(p.p1.x),
+                           floatBits(p.p1.y), floatBits(p.t0), floatBits(p.t1), p.arc, 0u});
+    w[2] = std::uint32_t(w.size());
+    std::uint32_t point = 0;
+    for (const TrimArc& a : arcs.arcs) {
+        w.insert(w.end(), {point, std::uint32_t(a.degree)});
+        point += std::uint32_t(a.hw.size());
+    }
+    w[3] = std::uint32_t(w.size());
+    for (const TrimArc& a : arcs.arcs)
+        for (const glm::dvec3& h : a.hw)
+            w.insert(w.end(), {floatBits(h.x), floatBits(h.y), floatBits(h.z)});
+    block.rect = grid.rect;
+    block.size = {grid.width, grid.height};
+    block.stats = trimGridStats(grid, arcs);
+    return w;
+}
+
+std::uint32_t TrimWordArena::allocate(std::uint32_t words) {
+    words = std::max<std::uint32_t>(words, 1);
+    for (auto it = m_free.begin(); it != m_free.end(); ++it) {
+        if (it->second < words)
+            continue;
+        const std::uint32_t offset = it->first, left = it->second - words;
+        m_free.erase(it);
+        if (left)
+            m_free[offset + words] = left;
+        m_used += words;
+        return offset;
+    }
+    // Grow: double (at least to fit), the new space free after the old end.
+    const std::uint32_t old = m_capacity;
+    std::uint32_t cap = std::max<std::uint32_t>(m_capacity, 1024);
+    while (cap - old < words)
+        cap *= 2;
+    if (cap == old)
+        cap *= 2;
+    m_capacity = cap;
+    addFree(old, cap - old);
+    return allocate(words);
+}
+
+void TrimWordArena::release(std::uint32_t offset, std::uint32_t words) {
+    words = std::max<std::uint32_t>(words, 1);
+    m_used -= std::min(m_used, words);
+    addFree(offset, words);
+}
+
+void TrimWordArena::addFree(std::uint32_t offset, std::uint32_t words) {
+    auto next = m_free.lower_bound(offset);
+    if (next != m_free.end() && next->first == offset + words) {
+        words += next->second;
+        next = m_free.erase(next);
+    }
+    if (next != m_free.begin()) {
+        auto prev = std::prev(next);
+        if (prev->first + prev->second == offset) {
+            prev->second += words;
+            return;
+        }
+    }
+    m_free[offset] = words;
+}
+
+void TrimWordArena::reset(std::uint32_t words) {
+    m_free.clear();
+    m_used = 0;
+    m_capacity = words;
+    if (words)
+        m_free[0] = words;
+}
+
+void TrimGridStore::place(TrimGridBlock& block, const std::vector<std::uint32_t>& data,
+                          bool* grew) {
+    release(block);
+    const std::uint32_t words = std::max<std::uint32_t>(std::uint32_t(data.size()), 1);
+    const std::uint32_t before = m_arena.capacity();
+    block.offset = m_arena.allocate(words);
+    block.words = words;
+    if (m_arena.capacity() != before) {
+        *grew = true;
+        m_words.resize(m_arena.capacity(), 0u);
+    }
+    std::copy(data.begin(), data.end(), m_words.begin() + block.offset);
+}
+
+void TrimGridStore::release(TrimGridBlock& block) {
+    if (block.words)
+        m_arena.release(block.offset, block.words);
+    block.offset = block.words = 0;
+}
+
+void TrimGridStore::compact(const std::vector<TrimGridBlock*>& blocks) {
+    std::uint32_t total = 0;
+    for (const TrimGridBlock* b : blocks)
+        total += b->words;
+    std::vector<std::uint32_t> old = std::move(m_words);
+    m_arena.reset(total);
+    m_words.assign(total, 0u);
+    for (TrimGridBlock* b : blocks) {
+        const std::uint32_t from = b->offset;
+        b->offset = m_arena.allocate(b->words);
+        std::copy(old.begin() + from, old.begin() + from + b->words, m_words.begin() + b->offset);
+    }
+}
+
+bool TrimGridStore::wantsCompaction(std::int64_t budgetBytes) const {
+    const std::int64_t used = usedBytes(), capacity = capacityBytes();
+    return (capacity > budgetBytes && used <= budgetBytes) ||
+           (capacity > 4 * used && capacity > 16384);
+}
+
+void TrimGridStore::clear() {
+    m_arena.reset(0);
+    m_words.clear();
+    m_words.shrink_to_fit();
+}
+
+} // namespace kw

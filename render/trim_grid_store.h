@@ -1,0 +1,81 @@
+// The hybrid trim grids of every trimmed surface packed into one word array (the texture buffer
+// shaders/trim_exact.glsl reads), each surface in a block sized by its own need, under a memory
+// budget. No GL here: TrimMaskPass uploads the words.
+#pragma once
+
+#include "model/trim_grid.h"
+
+#include <QStringList>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace kw {
+
+/// Where one surface's grid lies in the word array. Offsets are in 32-bit words from the
+/// block's start. Layout (matches shaders/trim_exact.glsl):
+///   header: 4 words, the offsets of entries, pieces, arcs and points in the block;
+///   texels: width * height + 1 words from word 4, texel k = first entry << 1 | base bit (the
+///           next word's first entry ends the list);
+///   entries: piece << 2 | left bit << 1 | right bit (model/trim_grid.h);
+///   pieces: 8 words each: p0.x p0.y p1.x p1.y t0 t1 (floats), arc, 0;
+///   arcs: 2 words each: first control point (index into points), degree;
+///   points: 3 floats each: w u, w v, w.
+struct TrimGridBlock {
+    std::uint32_t offset = 0, words = 0; ///< words == 0: no block
+    glm::dvec4 rect{0.0, 1.0, 0.0, 1.0};
+    glm::ivec2 size{0, 0};
+    int cap = 0; ///< the resolution cap it was built under (budget degradation)
+    TrimGridStats stats;
+};
+
+/// Packs a grid and its arcs into block words (layout above); fills the block's rect, size and
+/// statistics. Floats are stored by their bits.
+std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs,
+                                        TrimGridBlock& block);
+
+/// First-fit allocation of word ranges in an array that grows by doubling. Freed ranges are
+/// merged with free neighbours.
+class TrimWordArena {
+public:
+    /// Offset of a new range of `words` words; grows the capacity when no free range fits.
+    std::uint32_t allocate(std::uint32_t words);
+    void release(std::uint32_t offset, std::uint32_t words);
+    std::uint32_t capacity() const { return m_capacity; }
+    std::uint32_t used() const { return m_used; }
+    /// Drops everything and sets the capacity to exactly `words` (compaction).
+    void reset(std::uint32_t words);
+
+private:
+    void addFree(std::uint32_t offset, std::uint32_t words); ///< merged with free neighbours
+    std::map<std::uint32_t, std::uint32_t> m_free;           ///< offset -> words
+    std::uint32_t m_capacity = 0, m_used = 0;
+};
+
+/// The word array and its allocation. Blocks belong to their surfaces' records (TrimMask::grid):
+/// the owner of the records places, releases and, when asked, moves them (compact).
+class TrimGridStore {
+public:
+    /// Copies `data` into a new range for `block` (its old range, if any, is released first).
+    /// Sets *grew when the array grew: every block's words must then go up again.
+    void place(TrimGridBlock& block, const std::vector<std::uint32_t>& data, bool* grew);
+    void release(TrimGridBlock& block);
+    /// Moves `blocks` (every live block) to the front of an array of exactly their size.
+    void compact(const std::vector<TrimGridBlock*>& blocks);
+    /// Whether compact() is due under `budgetBytes`: the array (grown by doubling) exceeds the
+    /// budget while the blocks fit, or is over four times their size.
+    bool wantsCompaction(std::int64_t budgetBytes) const;
+
+    const std::vector<std::uint32_t>& words() const { return m_words; }
+    /// Bytes of the word array (its capacity) and of the blocks in it.
+    std::int64_t capacityBytes() const { return 4 * std::int64_t(m_arena.capacity()); }
+    std::int64_t usedBytes() const { return 4 * std::int64_t(m_arena.used()); }
+    /// Drops the word array (no block may be live).
+    void clear();
+
+private:
+    std::vector<std::uint32_t> m_words;
+    TrimWordArena m_arena;
+};
+
+} // namespace kw
