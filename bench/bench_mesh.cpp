@@ -1,23 +1,9 @@
-// Scene-wide CPU meshes for the benchmark: counts and the uniform fine mesh.
+// The benchmark's uniform fine mesh.
 #include "bench/bench_mesh.h"
 
 #include "render/gpu_layout.h"
 
 namespace kw::bench {
-
-long long SceneMesh::triangleCount() const {
-    long long n = 0;
-    for (const SurfaceMesh& s : surfaces)
-        n += (long long)(s.indices.size() / 3);
-    return n;
-}
-
-long long SceneMesh::vertexCount() const {
-    long long n = 0;
-    for (const SurfaceMesh& s : surfaces)
-        n += (long long)s.positions.size();
-    return n;
-}
 
 SceneMesh uniformSceneMesh(const Scene& scene, int nu, int nv) {
     SceneMesh out;

@@ -2,27 +2,17 @@
 #pragma once
 
 #include "model/scene.h"
+#include "render/triangle_mesh.h"
 
 #include <glm/glm.hpp>
 #include <vector>
 
 namespace kw::bench {
 
-/// One surface's triangles: per-vertex position, unit normal and (u, v); GL_TRIANGLES indices.
-struct SurfaceMesh {
-    SurfaceId id;
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> uvs;
-    std::vector<unsigned> indices;
-};
-
-/// Triangles over every surface of a scene, one SurfaceMesh per surface in scene order.
-struct SceneMesh {
-    std::vector<SurfaceMesh> surfaces;
-    long long triangleCount() const;
-    long long vertexCount() const;
-};
+/// The renderer's public mesh types (render/triangle_mesh.h): the GLU and fine meshes are
+/// handed to it (Renderer::setMesh) and drawn through its public interface.
+using SurfaceMesh = kw::SurfaceMesh;
+using SceneMesh = kw::TriangleMesh;
 
 /// The uniform nu x nv tessellation of every surface (kw::tessellate: kernel points and
 /// normals at the grid vertices), the "prebuilt fine mesh". nu, nv >= 1 (clamped).

@@ -3,7 +3,6 @@
 #include "bench/bench_runner.h"
 
 #include "bench/glu_tessellator.h"
-#include "bench/mesh_pass.h"
 #include "model/document.h"
 #include "model/knotfile.h"
 #include "model/trim.h"
@@ -64,28 +63,18 @@ bool loadModel(const QString& file, double aspect, Model& m, QString* error) {
     return true;
 }
 
-/// The GL side of a run: the off-screen renderer and the two comparison passes, which must be
-/// released while the context is still alive.
+/// The GL side of a run: the off-screen renderer, which also draws the two comparison meshes
+/// (Renderer::setMesh and renderMesh: the bench uses render's public interface only).
 class Session {
 public:
+    /// The renderer's mesh slots of the comparison rows.
+    static constexpr int kGluSlot = 0, kFineSlot = 1;
+
     Session() = default;
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
-    ~Session() {
-        if (renderer.makeCurrent()) {
-            glu.release();
-            fine.release();
-        }
-    }
-    bool create(QString* error) {
-        if (!renderer.create(error))
-            return false;
-        glu.initialize();
-        fine.initialize();
-        return empty.resetScene(Scene{}, error);
-    }
+    bool create(QString* error) { return renderer.create(error); }
     bool setSize(QSize size, bool withAov, QString* error) {
-        m_withAov = withAov;
         return renderer.setSize(size, withAov, error);
     }
     FrameCamera frameCamera(const Model& m) const {
@@ -107,13 +96,12 @@ public:
         o.trimMode = trimMode;
         return renderer.render(m.doc, m.camera, o, error);
     }
-    /// Clears the target as the renderer does (colour, AOVs, depth) by drawing an empty
-    /// document, then draws `pass` with the model's camera and lights.
-    bool drawMesh(MeshPass& pass, const Model& m, int lights, QString* error) {
-        if (!renderer.render(empty, m.camera, RenderOptions{}, error))
-            return false;
-        return pass.draw(m.doc.scene(), frameCamera(m), lightsFor(m.doc.scene(), m.camera, lights),
-                         m_withAov, error);
+    /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
+    /// (cleared as the renderer clears, the baseline's Gouraud shading).
+    bool drawMesh(int slot, const Model& m, int lights, QString* error) {
+        RenderOptions o;
+        o.lightCount = lights;
+        return renderer.renderMesh(m.doc, slot, m.camera, o, error);
     }
     /// One GLU frame: tessellate with the current camera, upload, draw.
     bool drawGlu(const Model& m, double tolerance, int lights, long long* vertices,
@@ -123,24 +111,20 @@ public:
         if (vertices)
             *vertices = m_gluMesh.vertexCount();
         m_gluTriangles = m_gluMesh.triangleCount();
-        if (!renderer.makeCurrent()) {
+        if (renderer.setMesh(kGluSlot, m_gluMesh) < 0) {
             *error = QStringLiteral("lost the OpenGL context");
             return false;
         }
-        glu.upload(m_gluMesh);
-        return drawMesh(glu, m, lights, error);
+        return drawMesh(kGluSlot, m, lights, error);
     }
     long long gluTriangles() const { return m_gluTriangles; }
 
     OffscreenRenderer renderer;
-    MeshPass glu, fine;
-    Document empty;
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     bool trims = true;
     RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
 
 private:
-    bool m_withAov = false;
     SceneMesh m_gluMesh;
     long long m_gluTriangles = 0;
 };
@@ -350,12 +334,11 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         if (n == fineUploaded)
             return;
         const SceneMesh mesh = uniformSceneMesh(scene, n, n);
-        s.renderer.makeCurrent();
-        s.fine.upload(mesh);
+        s.renderer.setMesh(Session::kFineSlot, mesh);
         fineUploaded = n;
     };
     const Frame fineFrame = [&](QString* e) {
-        return s.drawMesh(s.fine, m, config.lights, e);
+        return s.drawMesh(Session::kFineSlot, m, config.lights, e);
     };
     auto fineQuality = [&](int n, SearchPoint& sp) {
         if (auto it = fineSeen.find(n); it != fineSeen.end()) {

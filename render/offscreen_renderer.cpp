@@ -157,6 +157,23 @@ bool OffscreenRenderer::render(const Document& doc, const Camera& camera,
     return d->report.ok;
 }
 
+std::int64_t OffscreenRenderer::setMesh(int slot, const TriangleMesh& mesh) {
+    return makeCurrent() ? d->renderer.setMesh(slot, mesh) : -1;
+}
+
+bool OffscreenRenderer::renderMesh(const Document& doc, int slot, const Camera& camera,
+                                   const RenderOptions& options, QString* error) {
+    if (!d->fbo || !makeCurrent()) {
+        *error = QStringLiteral("OffscreenRenderer::renderMesh needs create() and setSize() first");
+        return false;
+    }
+    d->report = d->renderer.renderMesh(doc, slot, camera,
+                                       {d->fbo, d->size, d->withAov, d->withCurvature}, options);
+    if (!d->report.ok)
+        *error = d->report.error;
+    return d->report.ok;
+}
+
 std::optional<PickHit> OffscreenRenderer::pick(const Document& doc, const Camera& camera,
                                                QPointF pixel, const RenderOptions& options) {
     if (!d->fbo || !makeCurrent())

@@ -39,6 +39,11 @@ public:
     bool render(const Document& doc, const Camera& camera, const RenderOptions& options,
                 QString* error);
     const FrameReport& lastReport() const;
+    /// Renderer::setMesh with this context current (-1 when it cannot be made current).
+    std::int64_t setMesh(int slot, const TriangleMesh& mesh);
+    /// Renderer::renderMesh into the FBO; returns and reports as render().
+    bool renderMesh(const Document& doc, int slot, const Camera& camera,
+                    const RenderOptions& options, QString* error);
     /// Renderer::pick at `pixel` of a frame of size() with this context current.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QPointF pixel,
                                 const RenderOptions& options = {});

@@ -110,35 +110,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     QString syncError;
     const bool synced = scene.sync(doc, fc, options, report, &syncError);
 
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-    if (pickPixel) {
-        // The framebuffer holds one pixel of the frame: shift the viewport so that pixel lands
-        // on (0, 0); the rasterisation is the full frame's, translated by whole pixels.
-        gl->glViewport(-pickPixel->x(), -pickPixel->y(), size.width(), size.height());
-        gl->glEnable(GL_SCISSOR_TEST);
-        gl->glScissor(0, 0, 1, 1);
-    } else {
-        gl->glViewport(0, 0, size.width(), size.height());
-    }
-    gl->glDisable(GL_BLEND);
-    gl->glDisable(GL_CULL_FACE);
-    gl->glEnable(GL_DEPTH_TEST);
-    gl->glDepthMask(GL_TRUE);
-    gl->glClearBufferfv(GL_COLOR, 0, &options.background.x);
-    if (options.writeAov) {
-        const GLfloat background[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // surface id -1
-        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        gl->glClearBufferfv(GL_COLOR, 1, background);
-        gl->glClearBufferfv(GL_COLOR, 2, zero);
-        gl->glClearBufferfv(GL_COLOR, 3, zero);
-        if (options.writeCurvatureAov) {
-            gl->glClearBufferfv(GL_COLOR, 4, zero);
-            gl->glClearBufferfv(GL_COLOR, 5, zero);
-        }
-    }
+    beginTarget(target, options, pickPixel);
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
-    const GLfloat farDepth = 1.0f;
-    gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
 
     QElapsedTimer phase;
     phase.start();
@@ -186,6 +159,90 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     else if (!synced)
         report.error = syncError;
     report.ok = ok && synced;
+    report.cpuMs.total = msSince(total);
+    return report;
+}
+
+void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions& options,
+                                 const QRect* pickPixel) {
+    const QSize size = target.size;
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    if (pickPixel) {
+        // The framebuffer holds one pixel of the frame: shift the viewport so that pixel lands
+        // on (0, 0); the rasterisation is the full frame's, translated by whole pixels.
+        gl->glViewport(-pickPixel->x(), -pickPixel->y(), size.width(), size.height());
+        gl->glEnable(GL_SCISSOR_TEST);
+        gl->glScissor(0, 0, 1, 1);
+    } else {
+        gl->glViewport(0, 0, size.width(), size.height());
+    }
+    gl->glDisable(GL_BLEND);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthMask(GL_TRUE);
+    gl->glClearBufferfv(GL_COLOR, 0, &options.background.x);
+    if (options.writeAov) {
+        const GLfloat background[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // surface id -1
+        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        gl->glClearBufferfv(GL_COLOR, 1, background);
+        gl->glClearBufferfv(GL_COLOR, 2, zero);
+        gl->glClearBufferfv(GL_COLOR, 3, zero);
+        if (options.writeCurvatureAov) {
+            gl->glClearBufferfv(GL_COLOR, 4, zero);
+            gl->glClearBufferfv(GL_COLOR, 5, zero);
+        }
+    }
+    const GLfloat farDepth = 1.0f;
+    gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
+}
+
+std::int64_t Renderer::setMesh(int slot, const TriangleMesh& mesh) {
+    if (!d->gl || slot < 0 || slot >= kMeshSlots)
+        return -1;
+    std::unique_ptr<TriangleMeshPass>& pass = d->meshes[slot];
+    if (!pass) {
+        pass = std::make_unique<TriangleMeshPass>();
+        pass->initialize(d->gl, &d->shaders);
+    }
+    return pass->upload(mesh);
+}
+
+FrameReport Renderer::renderMesh(const Document& doc, int slot, const Camera& camera,
+                                 const RenderTarget& target, const RenderOptions& options) {
+    QElapsedTimer total;
+    total.start();
+    FrameReport report;
+    TriangleMeshPass* pass =
+        d->gl && slot >= 0 && slot < kMeshSlots ? d->meshes[slot].get() : nullptr;
+    const QSize size = target.size;
+    if (!pass || size.isEmpty()) {
+        report.ok = false;
+        report.error =
+            !pass
+                ? QStringLiteral("Renderer::renderMesh: no mesh in slot %1").arg(slot)
+                : QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height());
+        d->error = report.error;
+        return report;
+    }
+    RenderOptions o = options;
+    o.writeAov = target.aov;
+    o.writeCurvatureAov = false;
+    FrameCamera fc = frameCamera(camera, doc.scene(), double(size.width()) / size.height());
+    fc.viewport = glm::ivec2(size.width(), size.height());
+    const std::vector<Light> lights = lightsFor(doc.scene(), camera, o.lightCount, o.headlight);
+    d->beginTarget(target, o, nullptr);
+    QString error;
+    report.ok = pass->draw(doc.scene(), fc, lights, o, &error);
+    if (!report.ok)
+        d->error = report.error = error;
+    report.drawCalls = pass->drawCalls;
+    report.surfaces = pass->surfaces;
+    report.cpuMs.surfaces = msSince(total);
+    d->scene.residentBytes(report.gpuBytes);
+    report.gpuBytes.perSurface += d->exact.residentBytes();
+    for (const std::unique_ptr<TriangleMeshPass>& m : d->meshes)
+        if (m)
+            report.gpuBytes.tessellatedMeshes += m->residentBytes();
     report.cpuMs.total = msSince(total);
     return report;
 }
@@ -293,6 +350,9 @@ void Renderer::release() {
     if (!d->gl)
         return;
     d->releasePickTarget();
+    for (std::unique_ptr<TriangleMeshPass>& m : d->meshes)
+        if (m)
+            m->release(), m.reset();
     d->scene.release();
     d->exact.release();
     d->rangeKey = {};

@@ -6,6 +6,7 @@
 #include "model/document.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
+#include "render/triangle_mesh.h"
 
 #include <QPointF>
 #include <QSize>
@@ -46,6 +47,23 @@ public:
     /// ignored. Needs the renderer's context current; leaves the framebuffer binding at 0.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QSize viewport,
                                 QPointF pixel, const RenderOptions& options = {});
+
+    /// Meshes built outside the renderer (the benchmark's comparison rows: libGLU's
+    /// tessellation, a prebuilt fine mesh) for renderMesh. Sends `mesh` to the GPU as mesh
+    /// `slot` (0..kMeshSlots - 1), replacing what it held; returns the bytes sent, or -1 for
+    /// a bad slot or before initialize(). Needs the renderer's context current.
+    std::int64_t setMesh(int slot, const TriangleMesh& mesh);
+    static constexpr int kMeshSlots = 4;
+    /// Draws mesh `slot` into `target` instead of the document's surfaces: the target cleared
+    /// as render() clears it, the camera's planes and lights from `doc` and `options` as
+    /// render() takes them, and each surface's triangles with the tessellated baseline's
+    /// Gouraud shading and the material of the surface of `doc` with its id (triangles of
+    /// other ids are skipped). Trims, partitions and overlays do not apply. The report has
+    /// the draw calls, the surfaces drawn, CPU ms and the bytes resident (the meshes' under
+    /// tessellatedMeshes); ok false with error set for an empty slot or a shader that does
+    /// not build.
+    FrameReport renderMesh(const Document& doc, int slot, const Camera& camera,
+                           const RenderTarget& target, const RenderOptions& options);
 
     /// Frees all GL objects; the initialising context must be current.
     void release();

@@ -8,6 +8,7 @@
 #include "render/renderer.h"
 #include "render/shader_library.h"
 #include "render/tessellated_pass.h"
+#include "render/triangle_mesh_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QRect>
@@ -21,6 +22,10 @@ struct Renderer::Impl {
                             RenderOptions options, const QRect* scissor);
     /// The colour range of a colour-map analysis mode for this frame (see FrameReport).
     ValueRange resolveAnalysisRange(const Document& doc, const AnalysisOptions& analysis);
+    /// Binds `target`, sets the frame's fixed state and clears colour, AOVs and depth (only
+    /// the pick pixel's when `pickPixel`).
+    void beginTarget(const RenderTarget& target, const RenderOptions& options,
+                     const QRect* pickPixel);
     bool ensurePickTarget(QSize size);
     void releasePickTarget();
 
@@ -31,6 +36,8 @@ struct Renderer::Impl {
     TessellatedPass tessellated;
     WireframePass wireframe;
     ControlNetPass controlNet;
+    /// Renderer::setMesh's meshes, created on first use.
+    std::unique_ptr<TriangleMeshPass> meshes[Renderer::kMeshSlots];
     QString error;
     QString glDescription;
 

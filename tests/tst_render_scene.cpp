@@ -1,6 +1,7 @@
 // GL test: the renderer's public interface. The pick query against the AOV of a full frame and
 // the kernel; the FrameReport's uploads, draw calls and GPU bytes, which go back to the empty
 // document's when every surface is removed; hidden surfaces left out of frames and picks.
+#include "render/gpu_layout.h"
 #include "render_test_util.h"
 
 #include <QGuiApplication>
@@ -157,6 +158,45 @@ private Q_SLOTS:
         const FrameReport tess = frame(doc, options);
         QCOMPARE(tess.uploads.meshBuilds, n);
         QVERIFY(tess.gpuBytes.tessellatedMeshes > 0);
+    }
+
+    /// Renderer::renderMesh (the bench's comparison meshes through the public interface):
+    /// the surfaces' own baseline meshes handed in from outside draw the image the
+    /// tessellated mode draws, AOVs included; a mesh of a surface the document lacks is
+    /// skipped, an empty slot is an error.
+    void externalMeshDrawsAsTheBaseline() {
+        QString error;
+        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("teapot"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
+        RenderOptions tessellated;
+        tessellated.mode = RenderMode::Tessellated;
+        QVERIFY2(m_renderer->render(doc, camera, tessellated, &error), qPrintable(error));
+        const QImage baseline = m_renderer->colorImage();
+        const AovBuffer baselineAov = m_renderer->aov();
+        TriangleMesh mesh;
+        for (const Surface& s : doc.scene().surfaces) {
+            TessellatedMesh t = tessellate(s.geometry, s.partitionsU, s.partitionsV);
+            mesh.surfaces.push_back(SurfaceMesh{s.id, std::move(t.positions), std::move(t.normals),
+                                                std::move(t.uvs), std::move(t.indices)});
+        }
+        mesh.surfaces.push_back(mesh.surfaces.front());
+        mesh.surfaces.back().id = SurfaceId{999999}; // not in the document: skipped
+        QVERIFY(m_renderer->setMesh(1, mesh) > 0);
+        QVERIFY2(m_renderer->renderMesh(doc, 1, camera, RenderOptions{}, &error),
+                 qPrintable(error));
+        const FrameReport& r = m_renderer->lastReport();
+        QCOMPARE(r.surfaces, int(doc.scene().surfaces.size()));
+        QCOMPARE(r.drawCalls, int(doc.scene().surfaces.size()));
+        QVERIFY(r.gpuBytes.tessellatedMeshes > 0);
+        QVERIFY(m_renderer->colorImage() == baseline);
+        const AovBuffer aov = m_renderer->aov();
+        QVERIFY(aov.data == baselineAov.data);
+        QVERIFY(!m_renderer->renderMesh(doc, 2, camera, RenderOptions{}, &error));
+        QVERIFY2(error.contains(QStringLiteral("no mesh")), qPrintable(error));
+        QCOMPARE(m_renderer->setMesh(Renderer::kMeshSlots, mesh), std::int64_t(-1));
     }
 
     void hiddenSurfacesAreNeitherDrawnNorPicked() {

@@ -1,22 +1,16 @@
-// One VAO, three attribute buffers and one index buffer; a draw per surface with its material.
-#include "bench/mesh_pass.h"
+// TriangleMeshPass: the benchmark's comparison meshes drawn through the renderer.
+#include "render/triangle_mesh_pass.h"
 
 #include "render/shading_uniforms.h"
 
-#include <QOpenGLContext>
 #include <QOpenGLShaderProgram>
-#include <QOpenGLVersionFunctionsFactory>
+#include <unordered_map>
 
-namespace kw::bench {
+namespace kw {
 
-MeshPass::~MeshPass() = default;
-
-void MeshPass::initialize() {
-    // The context is the off-screen renderer's; the pass keeps its own GL entry points rather
-    // than reaching into the renderer.
-    QOpenGLFunctions_4_5_Core* gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(
-        QOpenGLContext::currentContext());
+void TriangleMeshPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
+    m_shaders = shaders;
     gl->glCreateVertexArrays(1, &m_vao);
     gl->glCreateBuffers(4, m_buffers);
     const int sizes[] = {3, 3, 2};
@@ -29,7 +23,7 @@ void MeshPass::initialize() {
     gl->glVertexArrayElementBuffer(m_vao, m_buffers[3]);
 }
 
-void MeshPass::upload(const SceneMesh& mesh) {
+std::int64_t TriangleMeshPass::upload(const TriangleMesh& mesh) {
     m_positions.clear();
     m_normals.clear();
     m_uvs.clear();
@@ -43,29 +37,35 @@ void MeshPass::upload(const SceneMesh& mesh) {
         m_uvs.insert(m_uvs.end(), s.uvs.begin(), s.uvs.end());
         m_indices.insert(m_indices.end(), s.indices.begin(), s.indices.end());
     }
+    m_bytes = 0;
     auto send = [&](GLuint buffer, const auto& v) {
         const auto bytes = GLsizeiptr(v.size() * sizeof(v[0]));
         m_gl->glNamedBufferData(buffer, bytes, v.empty() ? nullptr : v.data(), GL_STREAM_DRAW);
-        m_bytes = m_bytes + bytes;
+        m_bytes += bytes;
     };
-    m_bytes = 0;
     send(m_buffers[0], m_positions);
     send(m_buffers[1], m_normals);
     send(m_buffers[2], m_uvs);
     send(m_buffers[3], m_indices);
+    return m_bytes;
 }
 
-bool MeshPass::draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
-                    bool writeAov, QString* error) {
+bool TriangleMeshPass::draw(const Scene& scene, const FrameCamera& camera,
+                            const std::vector<Light>& lights, const RenderOptions& options,
+                            QString* error) {
+    drawCalls = surfaces = 0;
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
-    if (writeAov)
+    if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
-    QOpenGLShaderProgram* prog = m_shaders.program(QStringLiteral("tessellated.vert"),
-                                                   QStringLiteral("tessellated.frag"), defines);
+    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("tessellated.vert"),
+                                                    QStringLiteral("tessellated.frag"), defines);
     if (!prog) {
-        *error = m_shaders.lastError();
+        *error = m_shaders->lastError();
         return false;
     }
+    std::unordered_map<std::uint32_t, const Surface*> byId;
+    for (const Surface& s : scene.surfaces)
+        byId.emplace(s.id.value, &s);
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     prog->bind();
     setFrameUniforms(gl, prog, camera, lights);
@@ -74,28 +74,29 @@ bool MeshPass::draw(const Scene& scene, const FrameCamera& camera, const std::ve
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(m_vao);
     for (const Range& r : m_ranges) {
-        const auto it = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
-                                     [&](const Surface& s) { return s.id == r.id; });
-        if (it == scene.surfaces.end() || r.count == 0)
+        const auto it = byId.find(r.id.value);
+        if (it == byId.end() || r.count == 0)
             continue;
-        setSurfaceUniforms(gl, prog, *it);
+        setSurfaceUniforms(gl, prog, *it->second);
         gl->glDrawElementsBaseVertex(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
                                      reinterpret_cast<const void*>(r.firstIndexByte), r.baseVertex);
+        ++drawCalls;
+        ++surfaces;
     }
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
     return true;
 }
 
-void MeshPass::release() {
+void TriangleMeshPass::release() {
     if (!m_gl)
         return;
-    m_shaders.clear();
     m_gl->glDeleteBuffers(4, m_buffers);
     m_gl->glDeleteVertexArrays(1, &m_vao);
     m_vao = 0;
     m_buffers[0] = m_buffers[1] = m_buffers[2] = m_buffers[3] = 0;
+    m_bytes = 0;
     m_gl = nullptr;
 }
 
-} // namespace kw::bench
+} // namespace kw
