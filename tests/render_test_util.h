@@ -40,6 +40,25 @@ inline std::optional<kw::Scene> loadSample(const QString& name, QString* error) 
                             error);
 }
 
+/// trimmed_plate with star_island beside it, moved by `shift` along x: the star's surface gets
+/// id 20 and its loops' ids 20 more; the scene's nextId is 40.
+inline std::optional<kw::Scene> plateBesideStar(double shift, QString* error) {
+    const auto plate = loadSample(QStringLiteral("trimmed_plate"), error);
+    const auto star = plate ? loadSample(QStringLiteral("star_island"), error) : std::nullopt;
+    if (!plate || !star)
+        return std::nullopt;
+    kw::Scene scene = *plate;
+    kw::Surface second = star->surfaces.front();
+    second.id = kw::SurfaceId{20};
+    for (kw::TrimLoop& l : second.trims)
+        l.id.value += 20;
+    for (glm::dvec3& p : second.geometry.points)
+        p.x += shift;
+    scene.surfaces.push_back(second);
+    scene.nextId = 40;
+    return scene;
+}
+
 inline kw::Surface makeSurface(std::uint32_t id, const kw::NurbsSurface& g, int parts = 10) {
     kw::Surface s;
     s.id = kw::SurfaceId{id};

@@ -245,18 +245,9 @@ private Q_SLOTS:
 
     void trimEditRedrawsOnlyThatMask() {
         QString error;
-        const auto plate = loadSample(QStringLiteral("trimmed_plate"), &error);
-        const auto star = loadSample(QStringLiteral("star_island"), &error);
-        QVERIFY(plate && star);
-        Scene scene = *plate;
-        Surface second = star->surfaces.front();
-        second.id = SurfaceId{20};
-        for (TrimLoop& l : second.trims)
-            l.id.value += 20;
-        for (glm::dvec3& p : second.geometry.points)
-            p.x += 4.5;
-        scene.surfaces.push_back(second);
-        scene.nextId = 40;
+        const auto both = plateBesideStar(4.5, &error);
+        QVERIFY2(both, qPrintable(error));
+        Scene scene = *both;
         Surface untrimmed =
             makeSurface(30, wavyPatch(3, 3, clampedUniform(3, 5), clampedUniform(3, 5)));
         for (glm::dvec3& p : untrimmed.geometry.points)

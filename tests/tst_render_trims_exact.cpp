@@ -284,17 +284,9 @@ private Q_SLOTS:
 
     void oneTrimEditRebuildsOneSurface() {
         QString error;
-        const auto plate = loadSample(QStringLiteral("trimmed_plate"), &error);
-        const auto star = loadSample(QStringLiteral("star_island"), &error);
-        QVERIFY(plate && star);
-        Scene scene = *plate;
-        Surface second = star->surfaces.front();
-        second.id = SurfaceId{scene.nextId++};
-        for (TrimLoop& l : second.trims)
-            l.id = TrimLoopId{scene.nextId++};
-        for (glm::dvec3& p : second.geometry.points)
-            p += glm::dvec3(5.0, 0.0, 0.0);
-        scene.surfaces.push_back(second);
+        const auto both = plateBesideStar(5.0, &error);
+        QVERIFY2(both, qPrintable(error));
+        const Scene& scene = *both;
         Document doc;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         const Camera cam = fitCamera(scene, 1.0);
