@@ -25,7 +25,7 @@ constexpr int kMaxTrimGridSide = 1024;
 /// Trims); larger models get coarser grids, still exact.
 constexpr std::int64_t kDefaultTrimBudgetBytes = std::int64_t(512) << 20;
 constexpr std::int64_t kMinTrimBudgetBytes = std::int64_t(4) << 10;
-constexpr std::int64_t kMaxTrimBudgetBytes = std::int64_t(16) << 30;
+constexpr std::int64_t kMaxTrimBudgetBytes = std::int64_t(4) << 30;
 
 /// What a frame draws. Defaults are the editor's: exact surfaces, two lights, no overlays.
 struct RenderOptions {

@@ -54,15 +54,20 @@ std::uint32_t TrimWordArena::allocate(std::uint32_t words) {
         m_used += words;
         return offset;
     }
-    // Grow: double (at least to fit), the new space free after the old end.
-    const std::uint32_t old = m_capacity;
-    std::uint32_t cap = std::max<std::uint32_t>(m_capacity, 1024);
+    // Grow: double (at least to fit), the new space free after the old end. Offsets are the
+    // shader's 32-bit words, so the array stops at 2^32 - 1 words (16 GiB; the budget stays far
+    // below, kMaxTrimBudgetBytes).
+    const std::uint64_t old = m_capacity;
+    std::uint64_t cap = std::max<std::uint64_t>(old, 1024);
     while (cap - old < words)
         cap *= 2;
     if (cap == old)
         cap *= 2;
-    m_capacity = cap;
-    addFree(old, cap - old);
+    cap = std::min<std::uint64_t>(cap, kNoRoom);
+    if (cap - old < words)
+        return kNoRoom;
+    m_capacity = std::uint32_t(cap);
+    addFree(std::uint32_t(old), std::uint32_t(cap - old));
     return allocate(words);
 }
 
@@ -96,18 +101,22 @@ void TrimWordArena::reset(std::uint32_t words) {
         m_free[0] = words;
 }
 
-void TrimGridStore::place(TrimGridBlock& block, const std::vector<std::uint32_t>& data,
+bool TrimGridStore::place(TrimGridBlock& block, const std::vector<std::uint32_t>& data,
                           bool* grew) {
     release(block);
     const std::uint32_t words = std::max<std::uint32_t>(std::uint32_t(data.size()), 1);
     const std::uint32_t before = m_arena.capacity();
-    block.offset = m_arena.allocate(words);
+    const std::uint32_t offset = m_arena.allocate(words);
+    if (offset == TrimWordArena::kNoRoom)
+        return false;
+    block.offset = offset;
     block.words = words;
     if (m_arena.capacity() != before) {
         *grew = true;
         m_words.resize(m_arena.capacity(), 0u);
     }
     std::copy(data.begin(), data.end(), m_words.begin() + block.offset);
+    return true;
 }
 
 void TrimGridStore::release(TrimGridBlock& block) {

@@ -38,6 +38,8 @@ std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& ar
 /// merged with free neighbours.
 class TrimWordArena {
 public:
+    /// What allocate() returns when 2^32 - 1 words cannot hold the range.
+    static constexpr std::uint32_t kNoRoom = 0xFFFFFFFFu;
     /// Offset of a new range of `words` words; grows the capacity when no free range fits.
     std::uint32_t allocate(std::uint32_t words);
     void release(std::uint32_t offset, std::uint32_t words);
@@ -57,8 +59,9 @@ private:
 class TrimGridStore {
 public:
     /// Copies `data` into a new range for `block` (its old range, if any, is released first).
-    /// Sets *grew when the array grew: every block's words must then go up again.
-    void place(TrimGridBlock& block, const std::vector<std::uint32_t>& data, bool* grew);
+    /// Sets *grew when the array grew: every block's words must then go up again. False (and
+    /// no block) when the array cannot address that many words.
+    bool place(TrimGridBlock& block, const std::vector<std::uint32_t>& data, bool* grew);
     void release(TrimGridBlock& block);
     /// Moves `blocks` (every live block) to the front of an array of exactly their size.
     void compact(const std::vector<TrimGridBlock*>& blocks);

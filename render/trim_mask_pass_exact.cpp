@@ -76,7 +76,13 @@ void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisi
     d.redraws = 1;
     if (m.active) {
         const TrimGrid grid = makeTrimGrid(arcs, trimGridResolution(arcs, m_gridCap));
-        m_grids.place(m.grid, packTrimGrid(grid, arcs, m.grid), grew);
+        if (!m_grids.place(m.grid, packTrimGrid(grid, arcs, m.grid), grew)) {
+            // Never a wrong picture: a surface whose trims cannot be addressed is left out of
+            // the trimmed draws (drawn untrimmed) and says so.
+            m.active = false;
+            m.warnings << QStringLiteral("its trim grid does not fit the 16 GiB the trim "
+                                         "buffer can address; drawn untrimmed");
+        }
         m.rect = grid.rect;
         m.width = grid.width;
         m.height = grid.height;

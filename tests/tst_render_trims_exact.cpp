@@ -4,6 +4,7 @@
 #include "model/cad/cadimport.h"
 #include "model/trim_arcs.h"
 #include "render/renderer_impl.h"
+#include "render/trim_grid_store.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -280,6 +281,19 @@ private Q_SLOTS:
         QVERIFY(doc.resetScene(Scene{}));
         QVERIFY2(m_renderer->render(doc, fitCamera(scene, 1.0), opt, &error), qPrintable(error));
         QCOMPARE(masks().residentBytes(), 0);
+    }
+
+    void arenaStopsAtWhatTheShaderAddresses() {
+        // Bookkeeping only (no words are stored): offsets are the shader's 32-bit words.
+        TrimWordArena arena;
+        QCOMPARE(arena.allocate(100), 0u);
+        const std::uint32_t half = 0x80000000u;
+        const std::uint32_t second = arena.allocate(half);
+        QVERIFY(second != TrimWordArena::kNoRoom);
+        QCOMPARE(arena.allocate(half), TrimWordArena::kNoRoom); // would need 2^32 words
+        QCOMPARE(arena.used(), 100u + half);
+        arena.release(second, half);
+        QVERIFY(arena.allocate(half) != TrimWordArena::kNoRoom); // the freed range again
     }
 
     void oneTrimEditRebuildsOneSurface() {
