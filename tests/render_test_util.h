@@ -6,6 +6,7 @@
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
 #include "render/offscreen_renderer.h"
+#include "trim_test_util.h"
 
 #include <QDir>
 #include <QString>
@@ -167,6 +168,34 @@ inline AovComparison compareAovWithKernel(const kw::Scene& scene, const kw::AovB
             }
         }
     return r;
+}
+
+/// `n` wavy patches in rows of 20, of two shader variants (bicubic and biquadratic) in a
+/// checkerboard; with `trimEveryOther`, every other one is trimmed by a disc. Ids count up from
+/// 1 over the surfaces and their loops in order.
+inline kw::Scene variantGrid(int n, bool trimEveryOther = false) {
+    kw::Scene scene;
+    const int columns = 20;
+    std::uint32_t next = 1;
+    for (int k = 0; k < n; ++k) {
+        const bool cubic = (k + k / columns) % 2 == 0;
+        kw::NurbsSurface g = cubic ? wavyPatch(3, 3, clampedUniform(3, 5), clampedUniform(3, 6))
+                                   : wavyPatch(2, 2, clampedUniform(2, 4), clampedUniform(2, 5));
+        for (glm::dvec3& p : g.points)
+            p += glm::dvec3(5.0 * (k % columns), 4.0 * (k / columns), 0.0);
+        kw::Surface s = makeSurface(next++, g, 6);
+        if (trimEveryOther && k % 2 == 1) {
+            std::vector<glm::dvec2> disc;
+            for (int i = 0; i <= 24; ++i) {
+                const double a = 2.0 * M_PI * (i % 24) / 24.0 + 0.1 * k;
+                disc.emplace_back(0.5 + 0.4 * std::cos(a), 0.5 + 0.35 * std::sin(a));
+            }
+            s.trims.push_back(loopOf(next++, {polylineCurve(disc)}));
+        }
+        scene.surfaces.push_back(s);
+    }
+    scene.nextId = next;
+    return scene;
 }
 
 } // namespace kwtest

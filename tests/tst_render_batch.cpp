@@ -11,23 +11,9 @@ using namespace kw;
 
 namespace {
 
-/// `n` wavy patches in a grid, alternating two variants: bicubic and biquadratic.
+/// `n` wavy patches of two variants (render_test_util.h).
 Scene grid(int n) {
-    Scene scene;
-    const int columns = 20;
-    for (int k = 0; k < n; ++k) {
-        const bool cubic = (k + k / columns) % 2 == 0;
-        NurbsSurface g = cubic ? kwtest::wavyPatch(3, 3, kwtest::clampedUniform(3, 5),
-                                                   kwtest::clampedUniform(3, 6))
-                               : kwtest::wavyPatch(2, 2, kwtest::clampedUniform(2, 4),
-                                                   kwtest::clampedUniform(2, 5));
-        const glm::dvec3 at(5.0 * (k % columns), 4.0 * (k / columns), 0.0);
-        for (glm::dvec3& p : g.points)
-            p += at;
-        scene.surfaces.push_back(kwtest::makeSurface(std::uint32_t(k + 1), g, 6));
-    }
-    scene.nextId = std::uint32_t(n + 1);
-    return scene;
+    return kwtest::variantGrid(n);
 }
 
 } // namespace

@@ -13,33 +13,9 @@ using namespace kw;
 
 namespace {
 
-/// `n` wavy patches in a grid, two variants (bicubic, biquadratic), every other one trimmed
-/// by a disc.
+/// `n` wavy patches of two variants, every other one trimmed by a disc (render_test_util.h).
 Scene grid(int n) {
-    Scene scene;
-    const int columns = 20;
-    std::uint32_t next = 1;
-    for (int k = 0; k < n; ++k) {
-        const bool cubic = (k + k / columns) % 2 == 0;
-        NurbsSurface g = cubic ? kwtest::wavyPatch(3, 3, kwtest::clampedUniform(3, 5),
-                                                   kwtest::clampedUniform(3, 6))
-                               : kwtest::wavyPatch(2, 2, kwtest::clampedUniform(2, 4),
-                                                   kwtest::clampedUniform(2, 5));
-        for (glm::dvec3& p : g.points)
-            p += glm::dvec3(5.0 * (k % columns), 4.0 * (k / columns), 0.0);
-        Surface s = kwtest::makeSurface(next++, g, 6);
-        if (k % 2 == 1) {
-            std::vector<glm::dvec2> disc;
-            for (int i = 0; i <= 24; ++i) {
-                const double a = 2.0 * M_PI * (i % 24) / 24.0 + 0.1 * k;
-                disc.emplace_back(0.5 + 0.4 * std::cos(a), 0.5 + 0.35 * std::sin(a));
-            }
-            s.trims.push_back(kwtest::loopOf(next++, {kwtest::polylineCurve(disc)}));
-        }
-        scene.surfaces.push_back(s);
-    }
-    scene.nextId = next;
-    return scene;
+    return kwtest::variantGrid(n, true);
 }
 
 } // namespace
