@@ -287,13 +287,10 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.trimMaskCap), kMinTrimMaskSize, 16384, options.trimMaskCap))
         return fail(o.trimMaskCap, QStringLiteral("in %1..16384").arg(kMinTrimMaskSize));
     options.trims = !parser.isSet(o.noTrims);
-    const QString trimMode = parser.value(o.trimMode);
-    if (trimMode == QLatin1String("exact"))
-        options.trimMode = RenderOptions::TrimMode::Exact;
-    else if (trimMode == QLatin1String("mask"))
-        options.trimMode = RenderOptions::TrimMode::Mask;
-    else
+    const std::optional<RenderOptions::TrimMode> trimMode = trimModeNamed(parser.value(o.trimMode));
+    if (!trimMode)
         return fail(o.trimMode, QStringLiteral("exact or mask"));
+    options.trimMode = *trimMode;
     int budgetMiB = 0;
     if (!parseIntIn(parser.value(o.trimBudget), 1, int(kMaxTrimBudgetBytes >> 20), budgetMiB))
         return fail(o.trimBudget, QStringLiteral("in 1..%1").arg(kMaxTrimBudgetBytes >> 20));

@@ -231,9 +231,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     const bool table2 = std::count(tableList.begin(), tableList.end(), 2) > 0;
     config.trims = !parser.isSet(noTrims);
     config.trimDrag = parser.isSet(trimDrag);
-    if (parser.value(trimMode) == QLatin1String("mask")) {
-        config.trimMode = RenderOptions::TrimMode::Mask;
-    } else if (parser.value(trimMode) != QLatin1String("exact")) {
+    if (const auto mode = trimModeNamed(parser.value(trimMode))) {
+        config.trimMode = *mode;
+    } else {
         printError(QStringLiteral("%1: --trim-mode '%2' is not exact or mask")
                        .arg(cmd, parser.value(trimMode)));
         return kExitUsage;

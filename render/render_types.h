@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 
 namespace kw {
 
@@ -105,13 +106,18 @@ struct RenderOptions {
     bool headlight = false;
 };
 
-/// The partitioning a saved or preferred mode name asks for: "uniform" is the paper's, any
-/// other (validation allows only "adaptive" and "") the adaptive default.
-/// "exact" or "mask" (the command line's and the settings' spelling).
-inline QString trimModeName(RenderOptions::TrimMode m) {
-    return m == RenderOptions::TrimMode::Mask ? QStringLiteral("mask") : QStringLiteral("exact");
+/// The trim mode named "exact" or "mask" (the command line's and the settings' spelling), or
+/// nothing for any other name.
+inline std::optional<RenderOptions::TrimMode> trimModeNamed(const QString& name) {
+    if (name == QLatin1String("exact"))
+        return RenderOptions::TrimMode::Exact;
+    if (name == QLatin1String("mask"))
+        return RenderOptions::TrimMode::Mask;
+    return std::nullopt;
 }
 
+/// The partitioning a saved or preferred mode name asks for: "uniform" is the paper's, any
+/// other (validation allows only "adaptive" and "") the adaptive default.
 inline RenderOptions::Partitioning partitioningNamed(const QString& name) {
     return name == QLatin1String("uniform") ? RenderOptions::Partitioning::Uniform
                                             : RenderOptions::Partitioning::Adaptive;

@@ -33,7 +33,7 @@ Preferences Preferences::load() {
     p.trimMaskCap =
         std::clamp(s.value(QStringLiteral("view/trimMaskCap"), d.trimMaskCap).toInt(), 64, 16384);
     p.trimMode = s.value(QStringLiteral("view/trimMode"), d.trimMode).toString();
-    if (p.trimMode != QLatin1String("mask"))
+    if (!trimModeNamed(p.trimMode))
         p.trimMode = d.trimMode;
     p.trimBudgetMiB =
         std::clamp(s.value(QStringLiteral("view/trimBudgetMiB"), d.trimBudgetMiB).toInt(), 1,
