@@ -13,8 +13,7 @@ std::uint32_t floatBits(double x) {
 
 } // namespace
 
-std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs,
-                                        TrimGridBlock& block) {
+std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs) {
     std::vector<std::uint32_t> w(4, 0u); // the header, filled below
     const size_t texels = size_t(grid.texelCount());
     w.reserve(4 + texels + 1 + grid.entries.size() + 8 * grid.pieces.size() + 2 * arcs.arcs.size());
@@ -36,9 +35,6 @@ std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& ar
     for (const TrimArc& a : arcs.arcs)
         for (const glm::dvec3& h : a.hw)
             w.insert(w.end(), {floatBits(h.x), floatBits(h.y), floatBits(h.z)});
-    block.rect = grid.rect;
-    block.size = {grid.width, grid.height};
-    block.stats = trimGridStats(grid, arcs);
     return w;
 }
 

@@ -23,16 +23,11 @@ namespace kw {
 ///   points: 3 floats each: w u, w v, w.
 struct TrimGridBlock {
     std::uint32_t offset = 0, words = 0; ///< words == 0: no block
-    glm::dvec4 rect{0.0, 1.0, 0.0, 1.0};
-    glm::ivec2 size{0, 0};
-    int cap = 0; ///< the resolution cap it was built under (budget degradation)
-    TrimGridStats stats;
+    int cap = 0; ///< the resolution cap it was built under (budget degradation); 0: not built
 };
 
-/// Packs a grid and its arcs into block words (layout above); fills the block's rect, size and
-/// statistics. Floats are stored by their bits.
-std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs,
-                                        TrimGridBlock& block);
+/// Packs a grid and its arcs into block words (layout above). Floats are stored by their bits.
+std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs);
 
 /// First-fit allocation of word ranges in an array that grows by doubling. Freed ranges are
 /// merged with free neighbours.

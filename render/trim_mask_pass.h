@@ -103,8 +103,6 @@ public:
     /// and the warning while the budget coarsened the grids (else empty).
     std::int64_t gridBytesUsed() const { return m_grids.usedBytes(); }
     const QString& budgetWarning() const { return m_budgetWarning; }
-    /// The grid words as uploaded (exact mode), for tests.
-    const std::vector<std::uint32_t>& gridWords() const { return m_grids.words(); }
     int drawCalls = 0; ///< mask draws of the last sync
     /// The mask texels read back (width x height, row 0 at v first; 0 trimmed, 255 kept), for
     /// tests. Empty for an inactive mask.

@@ -76,7 +76,7 @@ void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisi
     d.redraws = 1;
     if (m.active) {
         const TrimGrid grid = makeTrimGrid(arcs, trimGridResolution(arcs, m_gridCap));
-        if (!m_grids.place(m.grid, packTrimGrid(grid, arcs, m.grid), grew)) {
+        if (!m_grids.place(m.grid, packTrimGrid(grid, arcs), grew)) {
             // Never a wrong picture: a surface whose trims cannot be addressed is left out of
             // the trimmed draws (drawn untrimmed) and says so.
             m.active = false;

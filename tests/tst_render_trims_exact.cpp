@@ -302,10 +302,9 @@ private Q_SLOTS:
             for (TrimLoop& l : s.trims)
                 l.id = TrimLoopId{std::uint32_t(1000 + 10 * k + (l.id.value % 10))};
             const TrimArcs arcs = makeTrimArcs(s.trims, trimTolerance(s.geometry));
-            TrimGridBlock b;
             need +=
                 4 * std::int64_t(
-                        packTrimGrid(makeTrimGrid(arcs, trimGridResolution(arcs)), arcs, b).size());
+                        packTrimGrid(makeTrimGrid(arcs, trimGridResolution(arcs)), arcs).size());
             scene.surfaces.push_back(s);
         }
         scene.nextId = 5000;
