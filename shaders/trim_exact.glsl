@@ -15,11 +15,10 @@ float kwTrimFloat(uint i) { return uintBitsToFloat(kwTrimWord(i)); }
 // The arc's point at t by Horner's rule for the Bernstein form (Farin, "Curves and Surfaces
 // for CAGD", 5.3) on its homogeneous control points (degree <= 15), read from the buffer as it
 // goes: no local array, which llvmpipe kept in scratch memory for every fragment of the
-// variant (a tenth of the frame on trimmed_plate, docs/PERFORMANCE.md ## Trims).
-vec2 kwTrimArcPoint(uint arc, float t) {
-    uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
-    uint k = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
-    int degree = int(kwTrimWord(header + 1u));
+// variant (a tenth of the frame on trimmed_plate, docs/PERFORMANCE.md ## Trims). `first` is
+// the word of its first control point (kwTrimPieceV looks it and the degree up once).
+vec2 kwTrimArcPoint(uint first, int degree, float t) {
+    uint k = first;
     float s = 1.0 - t, tn = 1.0, binomial = 1.0;
     vec3 sum = vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
     if (degree == 0)
@@ -47,6 +46,10 @@ float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
         return p0.y;
     if (rising ? u >= p1.x : u <= p1.x)
         return p1.y;
+    // The arc's header, once per piece rather than once per evaluation below.
+    uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
+    uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
+    int degree = int(kwTrimWord(header + 1u));
     float a = t0, b = t1, fa = p0.x - u, fb = p1.x - u;
     float va = p0.y, vb = p1.y;
     int side = 0;
@@ -58,7 +61,7 @@ float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
             m = 0.5 * (a + b);
         if (m <= a || m >= b)
             break;
-        vec2 pm = kwTrimArcPoint(arc, m);
+        vec2 pm = kwTrimArcPoint(first, degree, m);
         float fm = pm.x - u;
         if (fm == 0.0)
             return pm.y;
