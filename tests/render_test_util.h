@@ -170,6 +170,17 @@ inline AovComparison compareAovWithKernel(const kw::Scene& scene, const kw::AovB
     return r;
 }
 
+/// A closed 24-gon loop inside (u, v) in [0.1, 0.9] x [0.15, 0.85] (an ellipse of radii 0.4 and
+/// 0.35 about the middle), its first corner turned by `turn` radians.
+inline kw::TrimLoop discLoop(std::uint32_t id, double turn) {
+    std::vector<glm::dvec2> disc;
+    for (int i = 0; i <= 24; ++i) {
+        const double a = 2.0 * M_PI * (i % 24) / 24.0 + turn;
+        disc.emplace_back(0.5 + 0.4 * std::cos(a), 0.5 + 0.35 * std::sin(a));
+    }
+    return loopOf(id, {polylineCurve(disc)});
+}
+
 /// `n` wavy patches in rows of 20, of two shader variants (bicubic and biquadratic) in a
 /// checkerboard; with `trimEveryOther`, every other one is trimmed by a disc. Ids count up from
 /// 1 over the surfaces and their loops in order.
@@ -184,14 +195,8 @@ inline kw::Scene variantGrid(int n, bool trimEveryOther = false) {
         for (glm::dvec3& p : g.points)
             p += glm::dvec3(5.0 * (k % columns), 4.0 * (k / columns), 0.0);
         kw::Surface s = makeSurface(next++, g, 6);
-        if (trimEveryOther && k % 2 == 1) {
-            std::vector<glm::dvec2> disc;
-            for (int i = 0; i <= 24; ++i) {
-                const double a = 2.0 * M_PI * (i % 24) / 24.0 + 0.1 * k;
-                disc.emplace_back(0.5 + 0.4 * std::cos(a), 0.5 + 0.35 * std::sin(a));
-            }
-            s.trims.push_back(loopOf(next++, {polylineCurve(disc)}));
-        }
+        if (trimEveryOther && k % 2 == 1)
+            s.trims.push_back(discLoop(next++, 0.1 * k));
         scene.surfaces.push_back(s);
     }
     scene.nextId = next;

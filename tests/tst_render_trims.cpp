@@ -302,12 +302,7 @@ private Q_SLOTS:
                 makeSurface(next++, wavyPatch(2, 2, clampedUniform(2, 4), clampedUniform(2, 4)), 4);
             for (glm::dvec3& p : s.geometry.points)
                 p += glm::dvec3(5.0 * (k % 16), 4.0 * (k / 16), 0.0);
-            std::vector<glm::dvec2> disc;
-            for (int i = 0; i <= 24; ++i) {
-                const double a = 2.0 * M_PI * (i % 24) / 24.0 + 0.1 * k;
-                disc.emplace_back(0.5 + 0.4 * std::cos(a), 0.5 + 0.35 * std::sin(a));
-            }
-            s.trims.push_back(loopOf(next++, {polylineCurve(disc)}));
+            s.trims.push_back(discLoop(next++, 0.1 * k));
             scene.surfaces.push_back(s);
         }
         scene.nextId = next;
