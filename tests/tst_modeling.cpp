@@ -447,6 +447,7 @@ private Q_SLOTS:
         wanted.trimMaskCap = 256;
         wanted.trimMode = QStringLiteral("mask");
         wanted.trimBudgetMiB = 64;
+        wanted.samples = 2;
         wanted.headlight = false;
         wanted.background = QColor(10, 20, 30);
         QVERIFY(!(Preferences::load() == wanted));
@@ -481,6 +482,7 @@ private Q_SLOTS:
         QCOMPARE(o.trimMaskCap, 256);
         QVERIFY(o.trimMode == RenderOptions::TrimMode::Mask);
         QCOMPARE(o.trimBudgetBytes, std::int64_t(64) << 20);
+        QCOMPARE(o.samples, 2);
         QCOMPARE(o.background.r, float(10 / 255.0));
         QCOMPARE(QSettings().value(QStringLiteral("autosave/intervalSeconds")).toInt(), 0);
         QCOMPARE(QSettings().value(QStringLiteral("save/keepBackup")).toBool(), false);

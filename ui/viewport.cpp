@@ -163,6 +163,11 @@ void Viewport::setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetByte
     update();
 }
 
+void Viewport::setSamples(int samples) {
+    m_options.samples = std::clamp(samples, 1, kMaxSamples);
+    update();
+}
+
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
     m_options.partitioning = mode;
     m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);

@@ -78,6 +78,8 @@ public:
     void setTrimMaskCap(int texels);
     /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.
     void setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes);
+    /// Anti-aliasing samples per pixel (RenderOptions::samples), clamped to 1..kMaxSamples.
+    void setSamples(int samples);
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
