@@ -39,7 +39,7 @@ Preferences Preferences::load() {
         std::clamp(s.value(QStringLiteral("view/trimBudgetMiB"), d.trimBudgetMiB).toInt(), 1,
                    int(kMaxTrimBudgetBytes >> 20));
     p.samples =
-        std::clamp(s.value(QStringLiteral("view/samples"), d.samples).toInt(), 1, kMaxSamples);
+        std::clamp(s.value(QStringLiteral("view/samples"), d.samples).toInt(), 0, kMaxSamples);
     p.headlight = s.value(QStringLiteral("view/headlight"), d.headlight).toBool();
     const QColor c(s.value(QStringLiteral("view/background"), d.background.name()).toString());
     p.background = c.isValid() ? c : d.background;
@@ -121,13 +121,14 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     connect(m_trimMode, &QComboBox::currentTextChanged, this, enableTrimFields);
     m_samples = new QSpinBox;
     m_samples->setObjectName(QStringLiteral("prefSamples"));
-    m_samples->setRange(1, kMaxSamples);
-    m_samples->setSpecialValueText(tr("off"));
-    m_samples->setSuffix(tr(" samples"));
+    m_samples->setRange(0, kMaxSamples);
+    m_samples->setSpecialValueText(tr("automatic"));
+    m_samples->setSuffix(tr(" per pixel"));
     m_samples->setValue(p.samples);
     m_samples->setToolTip(tr("Anti-aliasing: MSAA samples per pixel for silhouettes (at most "
-                             "what the GPU allows); trim edges are covered by their exact "
-                             "distance"));
+                             "what the GPU allows), trim edges covered by their exact "
+                             "distance; 1 is off; automatic: 4 on a GPU, off on software "
+                             "OpenGL, where it costs several times the frame"));
     m_headlight = new QCheckBox(tr("Lights follow the camera (headlight)"));
     m_headlight->setObjectName(QStringLiteral("prefHeadlight"));
     m_headlight->setChecked(p.headlight);

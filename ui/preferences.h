@@ -24,7 +24,9 @@ struct Preferences {
     int trimMaskCap = 1024;         ///< "view/trimMaskCap": mask mode, texels per mask side
     QString trimMode = QStringLiteral("exact"); ///< "view/trimMode": exact | mask
     int trimBudgetMiB = 512; ///< "view/trimBudgetMiB": exact trims' GPU memory budget
-    int samples = 4; ///< "view/samples": anti-aliasing samples per pixel, 1 (off)..kMaxSamples
+    /// "view/samples": anti-aliasing samples per pixel, 1 (off)..kMaxSamples, or 0: automatic
+    /// (Viewport::kGpuSamples on a GPU, off on software OpenGL)
+    int samples = 0;
     bool headlight = true;         ///< "view/headlight": lights follow the camera
     QColor background{46, 48, 54}; ///< "view/background"
 
