@@ -4,6 +4,7 @@
 #include "model/nurbs.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace kw::detail {
 
@@ -33,6 +34,11 @@ constexpr double kTinyDerivativeRel = 1e-8;
 constexpr double kParallelRel = 1e-10;
 /// Step towards the domain centre, as a fraction of the domain width, for the last fallback.
 constexpr double kInteriorStep = 1e-4;
+
+/// Point operations (one combination of two homogeneous points for one line of the control
+/// net) done by degree elevation on this thread so far. Lets the tests check that elevating by
+/// t costs one pass, not t (the work is the answer's only witness that the tests can read).
+std::uint64_t& elevationWork();
 
 /// Derivatives to order 2 at a point plus the length scale of the span's control points.
 struct LocalEval {

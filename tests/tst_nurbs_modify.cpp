@@ -1,5 +1,6 @@
 // Kernel modification tests: knot insertion and degree elevation never move the surface.
 #include "kernel_test_util.h"
+#include "model/nurbs_internal.h"
 #include "model/nurbs_shapes.h"
 
 #include <QTest>
@@ -54,6 +55,9 @@ private Q_SLOTS:
     void elevateSphere();
     void elevateKeepsLinearPrecision_data();
     void elevateKeepsLinearPrecision();
+    void elevateInOneGoMatchesRepeated_data();
+    void elevateInOneGoMatchesRepeated();
+    void elevateByTIsOnePass();
 };
 
 void TestNurbsModify::insertKnot_data() {
@@ -279,6 +283,75 @@ void TestNurbsModify::elevateKeepsLinearPrecision() {
                          QString("t=%1 u=%2: x=%3").arg(t).arg(u).arg(surfacePoint(e, u, 0.5).x)));
         }
     }
+}
+
+void TestNurbsModify::elevateInOneGoMatchesRepeated_data() {
+    QTest::addColumn<int>("degree");
+    QTest::addColumn<int>("t");
+    QTest::addColumn<int>("maxMult");
+    QTest::addColumn<bool>("unclamped");
+    QTest::newRow("p3+12, 60 points, simple knots") << 3 << 12 << 1 << false;
+    QTest::newRow("p3+12, 60 points, double knots") << 3 << 12 << 2 << false;
+    QTest::newRow("p1+14, 60 points") << 1 << 14 << 1 << false;
+    QTest::newRow("p8+7, 60 points, triple knots") << 8 << 7 << 3 << false;
+    QTest::newRow("p10+5, 60 points, unclamped") << 10 << 5 << 1 << true;
+    QTest::newRow("p5+10, 60 points, breaks") << 5 << 10 << 6 << false;
+}
+
+void TestNurbsModify::elevateInOneGoMatchesRepeated() {
+    // Elevating by t in one pass and t times by one give the same knots and, up to rounding,
+    // the same control points (both are exact), and the surface stays where it was: at high
+    // degree and over many spans, where the extrapolating knot removal of A5.9 lost precision.
+    QFETCH(int, degree);
+    QFETCH(int, t);
+    QFETCH(int, maxMult);
+    QFETCH(bool, unclamped);
+    std::mt19937 rng(4242u + unsigned(degree * 16 + t));
+    const NurbsSurface s = kwtest::randomSurface(rng, degree, 2, 60, 3, true, maxMult, unclamped);
+    QVERIFY2(surfaceValidationError(s).empty(), surfaceValidationError(s).c_str());
+    const NurbsSurface once = surfaceElevateDegreeU(s, t);
+    NurbsSurface steps = s;
+    for (int q = 0; q < t; ++q)
+        steps = surfaceElevateDegreeU(steps, 1);
+    QVERIFY2(surfaceValidationError(once).empty(), surfaceValidationError(once).c_str());
+    QCOMPARE(once.degreeU, degree + t);
+    QCOMPARE(once.knotsU, steps.knotsU);
+    QCOMPARE(once.countU, steps.countU);
+    const double scale = kwtest::controlScale(s);
+    double worst = 0.0;
+    for (size_t k = 0; k < once.points.size(); ++k) {
+        const glm::dvec4 a(once.points[k] * once.weights[k], once.weights[k]);
+        const glm::dvec4 b(steps.points[k] * steps.weights[k], steps.weights[k]);
+        worst = std::max(worst, glm::length(a - b) / scale);
+    }
+    QVERIFY2(worst < 1e-12, qPrintable(QString("control points differ by %1").arg(worst)));
+    const double dev = maxRelativeDeviation(s, once);
+    QVERIFY2(dev < 1e-12, qPrintable(QString("deviation %1").arg(dev)));
+}
+
+void TestNurbsModify::elevateByTIsOnePass() {
+    // The work of one elevation by t must be far below that of t elevations by one, which is
+    // how it was done until the fuzzer found 5 to 15 s inputs: with one pass, each argument of
+    // a new control point's blossom touches at most t + 1 levels of a degree-p triangle.
+    std::mt19937 rng(77);
+    const NurbsSurface s = kwtest::randomSurface(rng, 3, 2, 80, 5, true, 2);
+    const int t = kMaxDegree - 3;
+    std::uint64_t& work = detail::elevationWork();
+    const std::uint64_t w0 = work;
+    const NurbsSurface once = surfaceElevateDegreeU(s, t);
+    const std::uint64_t onePass = work - w0;
+    NurbsSurface steps = s;
+    for (int q = 0; q < t; ++q)
+        steps = surfaceElevateDegreeU(steps, 1);
+    const std::uint64_t repeated = work - w0 - onePass;
+    QCOMPARE(once.knotsU, steps.knotsU);
+    // Bound: new points x lines x ph arguments x (p + 1) levels x (p + 1) rows.
+    const std::uint64_t bound =
+        std::uint64_t(once.countU) * std::uint64_t(s.countV) * std::uint64_t(kMaxDegree) * 4u * 4u;
+    QVERIFY2(onePass > 0 && onePass <= bound,
+             qPrintable(QString("work %1, bound %2").arg(onePass).arg(bound)));
+    QVERIFY2(onePass * 5 < repeated,
+             qPrintable(QString("one pass %1, t passes %2").arg(onePass).arg(repeated)));
 }
 
 QTEST_APPLESS_MAIN(TestNurbsModify)
