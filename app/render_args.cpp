@@ -187,6 +187,13 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                .arg(kMaxTrimBudgetBytes >> 20)
                                .arg(kDefaultTrimBudgetBytes >> 20),
                            QStringLiteral("MIB"), QString::number(kDefaultTrimBudgetBytes >> 20)),
+        QCommandLineOption(QStringLiteral("samples"),
+                           QStringLiteral("Anti-aliasing: samples per pixel, 1..%1 (default 1, "
+                                          "aliased). N > 1: N MSAA samples for silhouettes and "
+                                          "trim edges covered by their exact distance; at most "
+                                          "what the GPU allows (a warning says so).")
+                               .arg(kMaxSamples),
+                           QStringLiteral("N"), QStringLiteral("1")),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
                                           "max-curvature, min-radius, zebra, isophotes, "
@@ -233,11 +240,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("principal-directions"),
                            QStringLiteral("Overlay short marks of the principal curvature "
                                           "directions (k1 red, k2 blue) on any --shading mode."))};
-    parser.addOptions({o.mode,    o.partitions,  o.partitionMode, o.pixelTolerance, o.lights,
-                       o.depth,   o.noTrims,     o.trimMaskCap,   o.trimMode,       o.trimBudget,
-                       o.shading, o.isocurves,   o.isoLines,      o.range,          o.scale,
-                       o.stripes, o.stripeAngle, o.isophoteBands, o.pull,           o.draftAngle,
-                       o.envMap,  o.directions});
+    parser.addOptions({o.mode,       o.partitions, o.partitionMode, o.pixelTolerance, o.lights,
+                       o.depth,      o.noTrims,    o.trimMaskCap,   o.trimMode,       o.trimBudget,
+                       o.samples,    o.shading,    o.isocurves,     o.isoLines,       o.range,
+                       o.scale,      o.stripes,    o.stripeAngle,   o.isophoteBands,  o.pull,
+                       o.draftAngle, o.envMap,     o.directions});
     return o;
 }
 
@@ -295,6 +302,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.trimBudget), 1, int(kMaxTrimBudgetBytes >> 20), budgetMiB))
         return fail(o.trimBudget, QStringLiteral("in 1..%1").arg(kMaxTrimBudgetBytes >> 20));
     options.trimBudgetBytes = std::int64_t(budgetMiB) << 20;
+    if (!parseIntIn(parser.value(o.samples), 1, kMaxSamples, options.samples))
+        return fail(o.samples, QStringLiteral("in 1..%1").arg(kMaxSamples));
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return true;
 }

@@ -24,13 +24,13 @@ QString modeName(RenderMode mode);
 QString shadingName(RenderOptions::Shading shading);
 
 /// --mode, --partitions, --partition-mode, --pixel-tolerance, --lights, --depth, --no-trims,
-/// --trim-mask-cap, --trim-mode, --trim-budget and the analysis options (--shading MODE,
+/// --trim-mask-cap, --trim-mode, --trim-budget, --samples and the analysis options (--shading MODE,
 /// --isocurves, --iso-lines, --range,
 /// --scale, --stripes,
 /// --stripe-angle, --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
     QCommandLineOption mode, partitions, partitionMode, pixelTolerance, lights, depth, noTrims,
-        trimMaskCap, trimMode, trimBudget;
+        trimMaskCap, trimMode, trimBudget, samples;
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
         isophoteBands, pull, draftAngle, envMap, directions;
 };

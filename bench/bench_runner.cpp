@@ -94,6 +94,7 @@ public:
         o.trims = trims;
         o.polygonOverTrims = trims; // --no-trims draws whole domains
         o.trimMode = trimMode;
+        o.samples = aaSamples;
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
@@ -123,6 +124,7 @@ public:
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     bool trims = true;
     RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
+    int aaSamples = 1;
 
 private:
     SceneMesh m_gluMesh;
@@ -477,6 +479,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     s.shading = config.shading;
     s.trims = config.trims;
     s.trimMode = config.trimMode;
+    s.aaSamples = config.aaSamples;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

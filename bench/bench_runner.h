@@ -40,6 +40,9 @@ struct BenchConfig {
     bool trims = true;
     /// --trim-mode: exact trims (default) or the trim mask alone, for comparison.
     RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
+    /// --aa-samples: anti-aliasing samples per pixel of the renderer's timed frames
+    /// (RenderOptions::samples; the quality frames read AOVs and are never anti-aliased).
+    int aaSamples = 1;
     /// --trim-drag: each Table 1 row also times frames that each move one trim control point of
     /// the file's first trimmed surface (its mask is redrawn every frame). Needs trims on.
     bool trimDrag = false;

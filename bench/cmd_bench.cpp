@@ -178,6 +178,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "for comparison)."),
         QStringLiteral("MODE"), QStringLiteral("exact"));
     parser.addOption(trimMode);
+    const QCommandLineOption aaSamples(
+        QStringLiteral("aa-samples"),
+        QStringLiteral("Anti-aliasing samples per pixel of the renderer's timed frames, 1..%1 "
+                       "(default 1; as render --samples).")
+            .arg(kMaxSamples),
+        QStringLiteral("N"), QStringLiteral("1"));
+    parser.addOption(aaSamples);
     parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
@@ -236,6 +243,12 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     } else {
         printError(QStringLiteral("%1: --trim-mode '%2' is not exact or mask")
                        .arg(cmd, parser.value(trimMode)));
+        return kExitUsage;
+    }
+    if (!parseIntIn(parser.value(aaSamples), 1, kMaxSamples, config.aaSamples)) {
+        printError(QStringLiteral("%1: --aa-samples '%2' is not in 1..%3")
+                       .arg(cmd, parser.value(aaSamples))
+                       .arg(kMaxSamples));
         return kExitUsage;
     }
     if (config.trimDrag && (!config.trims || !table1)) {

@@ -81,7 +81,7 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options, bool trimmed,
-                                             bool gatherAllowed) {
+                                             bool gatherAllowed, TrimAa trimAa) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
@@ -96,6 +96,10 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_TRIM");
     if (trimmed && options.trimMode == RenderOptions::TrimMode::Exact)
         d << QStringLiteral("KW_TRIM_EXACT");
+    if (trimmed && trimAa != TrimAa::Off)
+        d << QStringLiteral("KW_TRIM_AA");
+    if (trimmed && trimAa == TrimAa::Edge)
+        d << QStringLiteral("KW_TRIM_EDGE");
     d << analysisDefines(options.analysis, options.writeCurvatureAov);
     return d;
 }
@@ -179,6 +183,8 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     const bool gather = r.bounded && projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) >=
                                          key.minCellPixels;
     p.variant = g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9;
+    if (mask)
+        p.edgeVariant = g->degreeU | g->degreeV << 4 | int(gather) << 9;
     return p;
 }
 
@@ -190,6 +196,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     m_trimmed = Batch{};
     m_trimmed.trimmed = true;
     m_variants.clear();
+    m_edges.clear();
     m_places.clear();
     m_places.reserve(scene.records().size());
     m_culled = 0;
@@ -212,12 +219,25 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
             }
             p.index = int(b.commands.size());
             b.commands.push_back(c);
+            if (p.edgeVariant >= 0) {
+                Batch& e = m_edges[p.edgeVariant];
+                if (e.commands.empty()) {
+                    e.degreeU = b.degreeU;
+                    e.degreeV = b.degreeV;
+                    e.trimmed = true;
+                    e.gather = b.gather;
+                }
+                p.edgeIndex = int(e.commands.size());
+                e.commands.push_back(c);
+            }
         }
         m_culled += p.culled ? 1 : 0;
         m_places[r] = p;
     }
     std::vector<Batch*> batches{&m_plain, &m_trimmed};
     for (auto& [k, b] : m_variants)
+        batches.push_back(&b);
+    for (auto& [k, b] : m_edges)
         batches.push_back(&b);
     uploadCommands(batches);
     m_key = key;
@@ -242,7 +262,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
             return false;
         if (!now.drawn || now.culled)
             continue;
-        if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed)
+        if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
+            now.edgeVariant != was.edgeVariant)
             return false;
         const auto patch = [&](Batch& b, int index) {
             DrawCommand& old = b.commands[size_t(index)];
@@ -254,6 +275,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         patch(m_variants.at(now.variant), was.index);
         if (key.prepass)
             patch(was.prepassTrimmed ? m_trimmed : m_plain, was.prepassIndex);
+        if (was.edgeVariant >= 0)
+            patch(m_edges.at(was.edgeVariant), was.edgeIndex);
     }
     for (const Write& w : writes)
         m_gl->glNamedBufferSubData(m_commands, GLintptr(w.at * std::int64_t(sizeof(DrawCommand))),
@@ -264,8 +287,11 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
 }
 
 bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
-                                    const FrameCamera& camera, QString* error) {
+                                    const FrameCamera& camera, bool antialiased, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QStringList trimDefines = scene.trimMasks().trimDefines();
+    if (antialiased)
+        trimDefines << QStringLiteral("KW_TRIM_AA");
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(GL_LESS);
@@ -276,7 +302,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene
             continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"),
-                               b->trimmed ? scene.trimMasks().trimDefines() : QStringList{});
+                               b->trimmed ? trimDefines : QStringList{});
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -295,7 +321,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene
 
 bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
                             const std::vector<Light>& lights, const RenderOptions& options,
-                            const ValueRange& range, QString* error) {
+                            const ValueRange& range, AntialiasTarget* aa, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (options.analysis.mode == AnalysisMode::Environment &&
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
@@ -320,7 +346,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     bool ok = true;
     if (prepass) {
-        ok = depthPrepass(plain, trimmed, scene, camera, error);
+        ok = depthPrepass(plain, trimmed, scene, camera, aa != nullptr, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -331,7 +357,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         const Batch& b = it->second;
         QOpenGLShaderProgram* prog = m_shaders->program(
             QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, b.gather));
+            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, b.gather,
+                           aa ? TrimAa::Opaque : TrimAa::Off));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -344,10 +371,47 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
     }
+    if (ok && aa && !m_edges.empty())
+        ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(GL_LESS);
     gl->glDepthMask(GL_TRUE);
+    return ok;
+}
+
+bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,
+                                const std::vector<Light>& lights, const RenderOptions& options,
+                                const ValueRange& range, AntialiasTarget& aa, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // After every opaque fragment: a partly covered one is summed where it is nearer than
+    // what was drawn (GL_LESS: its own surface's wholly covered fragments fail), and writes no
+    // depth, so every partly covered layer in front of the opaque one counts.
+    aa.drawToAccumulation(true);
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_FALSE);
+    gl->glEnable(GL_BLEND);
+    gl->glBlendEquation(GL_FUNC_ADD);
+    gl->glBlendFunc(GL_ONE, GL_ONE);
+    bool ok = true;
+    for (auto& [k, b] : m_edges) {
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
+                                              true, b.gather, TrimAa::Edge));
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
+        }
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(b);
+    }
+    gl->glDisable(GL_BLEND);
+    aa.drawToAccumulation(false);
     return ok;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/analysis_gl.h"
+#include "render/antialias_target.h"
 #include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
@@ -27,9 +28,13 @@ public:
     /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
     /// with *error set when a shader variant cannot be built.
     /// `range` is the resolved colour range of a colour-map analysis mode (else unused).
+    /// With `aa` (the renderer's anti-aliased frame, bound), the trimmed surfaces' opaque
+    /// passes keep only fragments their trims cover wholly, and an edge pass after every
+    /// surface sums the partly covered ones into aa's accumulation (coverage from the exact
+    /// distance to the trim curve, shaders/trim_sample.glsl).
     bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
               const std::vector<Light>& lights, const RenderOptions& options,
-              const ValueRange& range, QString* error);
+              const ValueRange& range, AntialiasTarget* aa, QString* error);
     /// Frees the environment map texture and the command buffer; the context must be current.
     void release() {
         m_environment.release();
@@ -43,9 +48,12 @@ public:
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
     /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
-    /// `gatherAllowed` is true.
+    /// `gatherAllowed` is true. A trimmed variant of an anti-aliased frame: `trimAa`
+    /// Opaque keeps wholly covered fragments only, Edge is the edge pass's.
+    enum class TrimAa { Off, Opaque, Edge };
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
-                                      bool trimmed = false, bool gatherAllowed = true);
+                                      bool trimmed = false, bool gatherAllowed = true,
+                                      TrimAa trimAa = TrimAa::Off);
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
     /// projected bounding box of its control points (clamped to the viewport) over its cell
@@ -97,6 +105,8 @@ private:
         int index = -1;      ///< its command in that batch
         bool prepassTrimmed = false;
         int prepassIndex = -1; ///< its command in m_plain or m_trimmed (with the pre-pass)
+        int edgeVariant = -1;  ///< trimmed: key into m_edges (degrees and gather)
+        int edgeIndex = -1;    ///< its command there
     };
     /// What the cached batches were built for; any difference (or a GpuScene layout stamp
     /// change) builds them again, else only the records GpuScene::touched() are looked at.
@@ -122,7 +132,11 @@ private:
     void drawBatch(const Batch& batch);
     void releaseCommands();
     bool depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
-                      const FrameCamera& camera, QString* error);
+                      const FrameCamera& camera, bool antialiased, QString* error);
+    /// The anti-aliased frame's edge pass over m_edges (see draw).
+    bool edgePass(const GpuScene& scene, const FrameCamera& camera,
+                  const std::vector<Light>& lights, const RenderOptions& options,
+                  const ValueRange& range, AntialiasTarget& aa, QString* error);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
@@ -136,6 +150,8 @@ private:
     CacheKey m_key;
     Batch m_plain, m_trimmed;
     std::map<int, Batch> m_variants;
+    /// The trimmed surfaces again, by degrees and gather, for the anti-aliased edge pass.
+    std::map<int, Batch> m_edges;
     std::unordered_map<const SurfaceRecord*, Place> m_places;
     int m_culled = 0;
 };

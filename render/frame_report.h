@@ -34,10 +34,11 @@ struct GpuBytes {
     std::int64_t controlNets = 0;       ///< control-net overlay points and lines
     std::int64_t trimMasks = 0;         ///< the trim mask array
     std::int64_t perSurface = 0;        ///< per-surface tables (draw parameters and commands)
+    std::int64_t frameTargets = 0;      ///< the anti-aliased frame's attachments (samples > 1)
 
     std::int64_t total() const {
         return controlPoints + spanTables + basePolygons + tessellatedMeshes + controlNets +
-               trimMasks + perSurface;
+               trimMasks + perSurface + frameTargets;
     }
     bool operator==(const GpuBytes&) const = default;
 };

@@ -54,6 +54,7 @@ bool Renderer::initialize() {
     d->glDescription = currentContextReport();
     d->scene.initialize(gl, &d->shaders);
     d->exact.initialize(gl, &d->shaders);
+    d->antialias.initialize(gl, &d->shaders);
     d->tessellated.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
@@ -110,15 +111,35 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     QString syncError;
     const bool synced = scene.sync(doc, fc, options, report, &syncError);
 
+    const int samples = frameSamples(options, target.aov, pickPixel != nullptr, report);
+    AntialiasTarget* aa = nullptr;
+    if (samples > 1) {
+        QString aaError;
+        if (antialias.ensure(size, samples, &aaError))
+            aa = &antialias;
+        else
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(aaError);
+    } else if (!target.aov && !pickPixel) {
+        antialias.release(); // anti-aliasing turned off: free its framebuffer
+    }
     beginTarget(target, options, pickPixel);
+    if (aa)
+        aa->begin(&options.background.x);
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
 
     QElapsedTimer phase;
     phase.start();
-    bool ok =
-        options.mode == RenderMode::Exact
-            ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, &error)
-            : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+    bool ok = options.mode == RenderMode::Exact
+                  ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
+                               &error)
+                  : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+    // Resolved before the overlays: they are drawn into the host's framebuffer over the
+    // composite's colour and depth, as without anti-aliasing.
+    if (QString aaError; aa && !aa->composite(target.framebuffer, &aaError)) {
+        if (ok)
+            error = aaError;
+        ok = false;
+    }
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
         options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
@@ -154,6 +175,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.culled = exact.culled;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
+    report.gpuBytes.frameTargets = antialias.residentBytes();
     if (!ok)
         report.error = error;
     else if (!synced)
@@ -161,6 +183,20 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.ok = ok && synced;
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+int Renderer::Impl::frameSamples(const RenderOptions& options, bool aov, bool pick,
+                                 FrameReport& report) {
+    if (options.samples <= 1 || aov || pick)
+        return 1;
+    GLint most = 1;
+    gl->glGetIntegerv(GL_MAX_SAMPLES, &most);
+    const int limit = std::clamp(int(most), 1, kMaxSamples);
+    if (options.samples > limit)
+        report.warnings << QStringLiteral("%1 samples asked, the GPU allows %2: using %2")
+                               .arg(options.samples)
+                               .arg(limit);
+    return std::min(options.samples, limit);
 }
 
 void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions& options,
@@ -355,6 +391,7 @@ void Renderer::release() {
             m->release(), m.reset();
     d->scene.release();
     d->exact.release();
+    d->antialias.release();
     d->rangeKey = {};
     d->shaders.clear();
     d->gl = nullptr;

@@ -2,6 +2,7 @@
 // (and to render's tests, which inspect uploads and masks through Renderer::internals()).
 #pragma once
 
+#include "render/antialias_target.h"
 #include "render/exact_surface_pass.h"
 #include "render/gpu_scene.h"
 #include "render/overlay_passes.h"
@@ -26,6 +27,9 @@ struct Renderer::Impl {
     /// the pick pixel's when `pickPixel`).
     void beginTarget(const RenderTarget& target, const RenderOptions& options,
                      const QRect* pickPixel);
+    /// The samples a frame is drawn with: options.samples within the GPU's GL_MAX_SAMPLES
+    /// (a warning in `report` when it is cut), 1 for AOV frames and picks.
+    int frameSamples(const RenderOptions& options, bool aov, bool pick, FrameReport& report);
     bool ensurePickTarget(QSize size);
     void releasePickTarget();
 
@@ -33,6 +37,7 @@ struct Renderer::Impl {
     ShaderLibrary shaders;
     GpuScene scene; ///< every per-surface GPU object
     ExactSurfacePass exact;
+    AntialiasTarget antialias; ///< the multisampled frame of RenderOptions::samples > 1
     TessellatedPass tessellated;
     WireframePass wireframe;
     ControlNetPass controlNet;

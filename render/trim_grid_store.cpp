@@ -17,8 +17,23 @@ std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& ar
     std::vector<std::uint32_t> w(4, 0u); // the header, filled below
     const size_t texels = size_t(grid.texelCount());
     w.reserve(4 + texels + 1 + grid.entries.size() + 8 * grid.pieces.size() + 2 * arcs.arcs.size());
-    for (size_t k = 0; k <= texels; ++k)
-        w.push_back(grid.first[k] << 1 | (k < texels ? grid.base[k] : 0u));
+    // The near bit: an edge texel in the 3 x 3 texels about this one. The anti-aliased edge
+    // pass skips a texel without it at once when the pixel's footprint is at most a texel.
+    const auto nearEdge = [&](int i, int j) {
+        for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+                const int x = i + di, y = j + dj;
+                if (x >= 0 && y >= 0 && x < grid.width && y < grid.height &&
+                    grid.isEdge(y * grid.width + x))
+                    return true;
+            }
+        return false;
+    };
+    for (size_t k = 0; k <= texels; ++k) {
+        const bool near = k < texels && nearEdge(int(k) % grid.width, int(k) / grid.width);
+        w.push_back(grid.first[k] << 2 | std::uint32_t(near) << 1 |
+                    (k < texels ? grid.base[k] : 0u));
+    }
     w[0] = std::uint32_t(w.size());
     w.insert(w.end(), grid.entries.begin(), grid.entries.end());
     w[1] = std::uint32_t(w.size());

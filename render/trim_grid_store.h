@@ -15,8 +15,9 @@ namespace kw {
 /// Where one surface's grid lies in the word array. Offsets are in 32-bit words from the
 /// block's start. Layout (matches shaders/trim_exact.glsl):
 ///   header: 4 words, the offsets of entries, pieces, arcs and points in the block;
-///   texels: width * height + 1 words from word 4, texel k = first entry << 1 | base bit (the
-///           next word's first entry ends the list);
+///   texels: width * height + 1 words from word 4, texel k = first entry << 2 | near bit << 1 |
+///           base bit (the next word's first entry ends the list; near: an edge texel is among
+///           the 3 x 3 about it);
 ///   entries: piece << 2 | left bit << 1 | right bit (model/trim_grid.h);
 ///   pieces: 8 words each: p0.x p0.y p1.x p1.y t0 t1 (floats), arc, 0;
 ///   arcs: 2 words each: first control point (index into points), degree;

@@ -2,6 +2,9 @@
 // Variants: DEGREE_U/DEGREE_V (1..15), KW_AOV (write AOV targets), KW_EXACT_DEPTH (gl_FragDepth),
 // KW_TRIM (discard where the surface's trim mask says trimmed; only used without the depth
 // pre-pass, whose own KW_TRIM variant makes GL_EQUAL reject trimmed fragments here),
+// KW_TRIM_AA (with KW_TRIM: keep only fragments the trims cover wholly, anti-aliasing),
+// KW_TRIM_EDGE (with KW_TRIM_AA: the edge pass, which keeps the partly covered fragments and
+// writes colour times coverage and the coverage, for kw::AntialiasTarget's accumulation),
 // KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
 // iso-parameter lines over the colour), KW_DIRECTIONS (principal-direction marks; needs
 // KW_SECOND_ORDER), KW_SECOND_ORDER (second derivatives and curvature,
@@ -26,6 +29,12 @@ uniform vec3 uForward;
 #include "analysis.glsl"
 #endif
 
+#if defined(KW_TRIM_EDGE) && !defined(KW_EXACT_DEPTH)
+// The edge pass writes no depth: test it before shading, so fragments behind what the opaque
+// passes drew (the surface's own inside among them: equal depth fails GL_LESS) cost nothing.
+layout(early_fragment_tests) in;
+#endif
+
 layout(location = 0) out vec4 fragColor;
 #ifdef KW_AOV
 layout(location = 1) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
@@ -39,7 +48,13 @@ layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (w
 
 void main() {
     kwSurface = vSurface;
+#ifdef KW_TRIM_EDGE
+    float coverage = trimCoverage(vUv);
+    if (coverage <= 0.0 || coverage > 1.0)
+        discard; // nothing here, or the opaque passes drew it
+#else
     KW_DISCARD_TRIMMED(vUv);
+#endif
     // The interpolated (u, v) can leave the domain by ~1e-5 at grazing pixels on the boundary
     // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,
     // as kw::surfacePoint does, instead of extrapolating the boundary span's polynomial.
@@ -65,7 +80,11 @@ void main() {
 #ifdef KW_DIRECTIONS
     colour = overlayDirections(colour, s.normal, vUv, vSpan);
 #endif
+#ifdef KW_TRIM_EDGE
+    fragColor = vec4(colour * coverage, coverage); // premultiplied, summed by the blend
+#else
     fragColor = vec4(colour, 1.0);
+#endif
 #ifdef KW_AOV
     aovIdUvDepth = vec4(uSurfaceId, uv, dot(s.point - uEye, uForward));
     aovPosition = vec4(s.point, 1.0);

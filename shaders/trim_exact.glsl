@@ -36,22 +36,28 @@ vec2 kwTrimArcPoint(uint first, int degree, float t) {
     return h.xy / h.z;
 }
 
-// v of the piece where its u equals u, u strictly inside [u0, u1) of the piece's ends: the
+// The point of the piece where its coordinate `axis` (0: u, 1: v) equals `value`, strictly
+// inside the range of the piece's ends (else the nearer end), and its parameter *t: the
 // Illinois variant of regula falsi (Dowell & Jarratt 1971), as trimArcSolve does on the CPU.
-float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
+// The piece is monotone in u and in v, so there is one such point.
+vec2 kwTrimPieceSolve(uint arc, int axis, float value, float t0, float t1, vec2 p0, vec2 p1,
+                      out float t) {
     // At an end the answer is that end: the bracket's sign test below would take fa == 0 for
     // the wrong side (a fragment whose u is an end's u to the last bit, as at a loop vertex).
-    bool rising = p1.x >= p0.x;
-    if (rising ? u <= p0.x : u >= p0.x)
-        return p0.y;
-    if (rising ? u >= p1.x : u <= p1.x)
-        return p1.y;
+    float c0 = p0[axis], c1 = p1[axis];
+    bool rising = c1 >= c0;
+    t = t0;
+    if (rising ? value <= c0 : value >= c0)
+        return p0;
+    t = t1;
+    if (rising ? value >= c1 : value <= c1)
+        return p1;
     // The arc's header, once per piece rather than once per evaluation below.
     uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
     uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
     int degree = int(kwTrimWord(header + 1u));
-    float a = t0, b = t1, fa = p0.x - u, fb = p1.x - u;
-    float va = p0.y, vb = p1.y;
+    float a = t0, b = t1, fa = c0 - value, fb = c1 - value;
+    vec2 pa = p0, pb = p1;
     int side = 0;
     bool bisect = false;
     for (int k = 0; k < 80; ++k) {
@@ -62,23 +68,33 @@ float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
         if (m <= a || m >= b)
             break;
         vec2 pm = kwTrimArcPoint(first, degree, m);
-        float fm = pm.x - u;
-        if (fm == 0.0)
-            return pm.y;
+        float fm = pm[axis] - value;
+        if (fm == 0.0) {
+            t = m;
+            return pm;
+        }
         if ((fm < 0.0) == (fa < 0.0)) {
-            a = m, fa = fm, va = pm.y;
+            a = m, fa = fm, pa = pm;
             if (side == -1)
                 fb *= 0.5;
             side = -1;
         } else {
-            b = m, fb = fm, vb = pm.y;
+            b = m, fb = fm, pb = pm;
             if (side == 1)
                 fa *= 0.5;
             side = 1;
         }
         bisect = b - a > 0.75 * width; // slow progress: bisect next
     }
-    return abs(fa) < abs(fb) ? va : vb;
+    bool atA = abs(fa) < abs(fb);
+    t = atA ? a : b;
+    return atA ? pa : pb;
+}
+
+// v of the piece where its u equals u (kwTrimPieceSolve along u).
+float kwTrimPieceV(uint arc, float u, float t0, float t1, vec2 p0, vec2 p1) {
+    float t;
+    return kwTrimPieceSolve(arc, 0, u, t0, t1, p0, p1, t).y;
 }
 
 // True where the grid says (u, v) is outside the trimmed surface; unit is (u, v) mapped to the
@@ -89,12 +105,12 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
     uint k = uTrimBlock + 4u + uint(cell.y * size.x + cell.x);
     uint word = kwTrimWord(k);
     bool inside = (word & 1u) != 0u;
-    uint last = kwTrimWord(k + 1u) >> 1;
-    if (last == word >> 1)
+    uint last = kwTrimWord(k + 1u) >> 2;
+    if (last == word >> 2)
         return !inside; // no piece in this texel: its parity alone decides
     uint entries = uTrimBlock + kwTrimWord(uTrimBlock);
     uint pieces = uTrimBlock + kwTrimWord(uTrimBlock + 1u);
-    for (uint e = word >> 1; e < last; ++e) {
+    for (uint e = word >> 2; e < last; ++e) {
         uint entry = kwTrimWord(entries + e);
         uint p = pieces + 8u * (entry >> 2);
         vec2 p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
@@ -118,3 +134,193 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
     }
     return !inside;
 }
+
+#ifdef KW_TRIM_AA
+// Anti-aliasing (issue 11 item 4): the fraction of the fragment's pixel that lies inside the
+// trimmed surface, from the exact distance to the nearest trim curve in screen pixels (after
+// Schollmeyer & Froehlich 2019). `jacobian` holds d(u, v)/dx and d(u, v)/dy (screen pixels).
+//
+// The candidates are the pieces of the texels under the pixel's footprint (the box in (u, v)
+// that holds the image of the screen square of half-size 0.75 px), at most 8 x 8 texels: past
+// that, every k-th texel, so a pixel much larger than the grid's texels (far out, or at a
+// grazing angle) can miss a curve and stay aliased there. For each piece
+// whose box meets the footprint: its ends, its chord (the segment between its ends) where the
+// arc is straight or the piece within a pixel, and where it crosses the fragment's u line and v line (the crossings
+// kwTrimPieceSolve finds), the distance to its tangent there, used when the crossing itself lies
+// within 2 px (so that a tangent taken far along a curved piece cannot pass near the fragment)
+// and the line's nearest point is on the piece.
+// Two faces sharing a trim curve cut it into pieces at different places (their grids differ),
+// and the chords still find the same nearest line on a straight curve, so their coverages add up
+// to the pixel (no seam, tst_render_trims_aa). The nearest one is the edge: the pixel is
+// covered as the box filter covers it on the inside of that straight edge (kwEdgeCoverage), the
+// side given by the exact classification of the pixel's centre.
+// True where `point` (on screen, from the fragment) lies on the line whose nearest point to the
+// fragment is `foot`, to a fiftieth of a pixel.
+bool kwTrimOnLine(vec2 point, vec2 foot) {
+    float f = length(foot);
+    return f > 1e-6 && abs(dot(point, foot) / f - f) < 0.02;
+}
+
+// Keeps the three nearest feet (nearest points of lines on screen, from the fragment) of
+// different lines in order: a, b, c. Empty slots hold vec2(1e15). A line found again (by its
+// chord and its tangents, or by the pieces of another texel) is one line.
+void kwTrimKeepFoot(vec2 f, inout vec2 a, inout vec2 b, inout vec2 c) {
+    if (kwTrimOnLine(f, a) && kwTrimOnLine(a, f))
+        return;
+    if (kwTrimOnLine(f, b) && kwTrimOnLine(b, f))
+        return;
+    if (kwTrimOnLine(f, c) && kwTrimOnLine(c, f))
+        return;
+    float d = dot(f, f);
+    if (d < dot(a, a)) {
+        c = b, b = a, a = f;
+    } else if (d < dot(b, b)) {
+        c = b, b = f;
+    } else if (d < dot(c, c)) {
+        c = f;
+    }
+}
+
+// The same for piece ends with their piece's chord direction (xy: the end, zw: the chord).
+void kwTrimKeepEnd(vec4 e, inout vec4 a, inout vec4 b, inout vec4 c) {
+    float d = dot(e.xy, e.xy);
+    if (d < dot(a.xy, a.xy)) {
+        c = b, b = a, a = e;
+    } else if (d < dot(b.xy, b.xy)) {
+        c = b, b = e;
+    } else if (d < dot(c.xy, c.xy)) {
+        c = e;
+    }
+}
+
+// Whether the piece end e (xy) is within reach of the pixel and not a mere cut of the edge
+// whose foot is f: off that line, or its piece (chord zw) turned away from it by more than
+// 5 degrees (a vertex of the loop lies on both its edges' lines). No foot counts as off.
+bool kwTrimOffLine(vec4 e, vec2 f) {
+    if (!(dot(e.xy, e.xy) < 0.5625))
+        return false;
+    if (!(dot(f, f) < 1e29) || !kwTrimOnLine(e.xy, f))
+        return true;
+    float chord = length(e.zw), foot = length(f);
+    return !(chord > 0.0 && foot > 1e-6) || abs(dot(e.zw, f)) > 0.09 * chord * foot;
+}
+
+// Whether foot g, within reach of the pixel, is on another edge than foot f: neither is on the
+// other's line (the same line found twice, by its chord and by its tangent, is one edge; the
+// two sides of a sliver thinner than a pixel, or of a corner, are two).
+bool kwTrimOtherEdge(vec2 f, vec2 g) {
+    return dot(g, g) < 0.5625 && !kwTrimOnLine(g, f) && !kwTrimOnLine(f, g);
+}
+
+// The coverage, or -1 where the pixel holds more than one straight edge can stand for: two
+// features in different directions (two edges of a corner, a sliver thinner than a pixel), or a
+// nearest point that is an end of the curve's pieces with no piece going on past it (a vertex
+// of the loop, where a corner's edges may also meet far from the fragment): the caller then
+// counts samples (trimCoverage).
+float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
+    float det = determinant(jacobian);
+    if (!(abs(det) > 0.0))
+        return inside ? KW_WHOLLY : 0.0; // degenerate (edge-on) pixel: no area to share
+    mat2 toScreen = inverse(jacobian);
+    vec2 size = uTrimSize;
+    vec2 span = uTrimRect.yw - uTrimRect.xz;
+    // The footprint: the box in (u, v) holding the screen square of half-size 0.75 about the
+    // fragment, so that the nearest point of any curve that reaches into the pixel (within
+    // 0.71 px of its centre) is inside it, with the piece that holds it.
+    vec2 reach = 0.75 * (abs(jacobian[0]) + abs(jacobian[1]));
+    vec2 boxLo = uv - reach, boxHi = uv + reach;
+    ivec2 isize = ivec2(size);
+    ivec2 lo = clamp(ivec2(floor((boxLo - uTrimRect.xz) / span * size)), ivec2(0), isize - 1);
+    ivec2 hi = clamp(ivec2(floor((boxHi - uTrimRect.xz) / span * size)), ivec2(0), isize - 1);
+    // A footprint within a texel of the fragment's texel, which has no edge texel about it:
+    // no curve in reach, known from one word (most fragments).
+    ivec2 cell = clamp(ivec2(floor(unit * size)), ivec2(0), isize - 1);
+    if (all(lessThanEqual(hi - cell, ivec2(1))) && all(lessThanEqual(cell - lo, ivec2(1))) &&
+        (kwTrimWord(uTrimBlock + 4u + uint(cell.y * isize.x + cell.x)) & 2u) == 0u)
+        return inside ? KW_WHOLLY : 0.0;
+    ivec2 stride = max(ivec2(1), (hi - lo + 8) / 8);
+    uint entries = uTrimBlock + kwTrimWord(uTrimBlock);
+    uint pieces = uTrimBlock + kwTrimWord(uTrimBlock + 1u);
+    vec2 foot0 = vec2(1e15), foot1 = vec2(1e15), foot2 = vec2(1e15);
+    vec4 end0 = vec4(1e15), end1 = vec4(1e15), end2 = vec4(1e15); // the nearest piece ends
+    for (int j = lo.y; j <= hi.y; j += stride.y) {
+        for (int i = lo.x; i <= hi.x; i += stride.x) {
+            uint k = uTrimBlock + 4u + uint(j * isize.x + i);
+            uint last = kwTrimWord(k + 1u) >> 2;
+            for (uint e = kwTrimWord(k) >> 2; e < last; ++e) {
+                uint p = pieces + 8u * (kwTrimWord(entries + e) >> 2);
+                vec2 p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
+                vec2 p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
+                vec2 pieceLo = min(p0, p1), pieceHi = max(p0, p1);
+                if (any(greaterThan(pieceLo, boxHi)) || any(lessThan(pieceHi, boxLo)))
+                    continue;
+                uint arc = kwTrimWord(p + 6u);
+                float t0 = kwTrimFloat(p + 4u), t1 = kwTrimFloat(p + 5u);
+                uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
+                uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
+                int degree = int(kwTrimWord(header + 1u));
+                // The piece's ends, exact points of the curve, and its chord on screen where
+                // that is the curve: a straight arc, or a piece within a pixel (its sagitta a
+                // small part of that).
+                vec2 s0 = toScreen * (p0 - uv), s1 = toScreen * (p1 - uv);
+                vec2 chord = s1 - s0;
+                float along = 0.0;
+                if ((degree <= 1 || dot(chord, chord) <= 1.0) && dot(chord, chord) > 0.0)
+                    along = clamp(-dot(s0, chord) / dot(chord, chord), 0.0, 1.0);
+                else if (dot(s1, s1) < dot(s0, s0))
+                    along = 1.0;
+                vec2 q = s0 + along * chord;
+                if (along > 0.0 && along < 1.0)
+                    kwTrimKeepFoot(q, foot0, foot1, foot2);
+                else
+                    kwTrimKeepEnd(vec4(q, chord), end0, end1, end2);
+                // A straight arc's chord is exact; a curved one's tangents where the
+                // fragment's u and v lines cross it.
+                for (int axis = 0; axis < (degree > 1 ? 2 : 0); ++axis) {
+                    if (!(uv[axis] > pieceLo[axis] && uv[axis] < pieceHi[axis]))
+                        continue;
+                    float t;
+                    vec2 c = kwTrimPieceSolve(arc, axis, uv[axis], t0, t1, p0, p1, t);
+                    vec2 sc = toScreen * (c - uv);
+                    if (dot(sc, sc) > 4.0)
+                        continue;
+                    // The tangent by a central difference inside the piece (the exact
+                    // derivative would need the arc's hodograph; a direction is all we use).
+                    float h = 1e-3 * (t1 - t0);
+                    vec2 tangent = kwTrimArcPoint(first, degree, min(t + h, t1)) -
+                                   kwTrimArcPoint(first, degree, max(t - h, t0));
+                    if (!(dot(tangent, tangent) > 0.0))
+                        tangent = p1 - p0;
+                    // The tangent line's nearest point to the fragment, on screen (the
+                    // screen's metric, not the (u, v) one, decides what is near).
+                    vec2 ts = toScreen * tangent;
+                    if (!(dot(ts, ts) > 0.0))
+                        continue;
+                    vec2 foot = sc - ts * (dot(sc, ts) / dot(ts, ts));
+                    // Only where that point is on this piece: past the piece's end (a corner
+                    // of the loop) the line would come nearer than the curve, and the face on
+                    // the other side, whose pieces end elsewhere, would not see that line.
+                    vec2 footUv = uv + jacobian * foot;
+                    vec2 slack = 0.05 * reach; // a twentieth of a pixel: rounding, not corners
+                    if (any(lessThan(footUv, pieceLo - slack)) ||
+                        any(greaterThan(footUv, pieceHi + slack)))
+                        continue;
+                    kwTrimKeepFoot(foot, foot0, foot1, foot2);
+                }
+            }
+        }
+    }
+    float best = length(foot0);
+    if (min(best, length(end0.xy)) >= 0.75) // no curve reaches into the pixel (0.71 px at most)
+        return inside ? KW_WHOLLY : 0.0;
+    // An end in reach that is off the nearest line: a vertex of the loop (a piece's end where
+    // the curve goes on is on its line), or two edges in different directions.
+    if (kwTrimOffLine(end0, foot0) || kwTrimOffLine(end1, foot0) ||
+        kwTrimOffLine(end2, foot0) || kwTrimOtherEdge(foot0, foot1) ||
+        kwTrimOtherEdge(foot0, foot2))
+        return -1.0;
+    if (!(best > 1e-6)) // the curve through the pixel's centre
+        return 0.5;
+    return kwEdgeCoverage(inside ? best : -best, foot0 / best);
+}
+#endif

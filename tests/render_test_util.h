@@ -170,6 +170,17 @@ inline AovComparison compareAovWithKernel(const kw::Scene& scene, const kw::AovB
     return r;
 }
 
+/// The camera of `fit` moved towards the surface point at (u, v) of `s`, `zoom` times closer.
+inline kw::Camera zoomedOn(const kw::Camera& fit, const kw::Surface& s, glm::dvec2 uv,
+                           double zoom) {
+    kw::Camera c = fit;
+    c.target = kw::surfacePoint(s.geometry, uv.x, uv.y);
+    const glm::dvec3 away = fit.eye - fit.target;
+    c.eye = c.target + away / zoom;
+    c.authored = true;
+    return c;
+}
+
 /// A closed 24-gon loop inside (u, v) in [0.1, 0.9] x [0.15, 0.85] (an ellipse of radii 0.4 and
 /// 0.35 about the middle), its first corner turned by `turn` radians.
 inline kw::TrimLoop discLoop(std::uint32_t id, double turn) {

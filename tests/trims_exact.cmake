@@ -18,3 +18,7 @@ kw_add_test(tst_render_trims_exact LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/ts
             LIBS ${KW_TRIM_EXACT_GL_LIBS})
 set_tests_properties(tst_render_trims_exact PROPERTIES TIMEOUT 900)
 kw_use_cad_reader(tst_render_trims_exact)
+# Anti-aliased trim edges and silhouettes (issue 11 item 4, gl).
+kw_add_test(tst_render_trims_aa LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_trims_aa.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/trim_test_util.h ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h
+            LIBS knotwork_render)

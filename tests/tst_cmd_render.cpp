@@ -98,6 +98,9 @@ private Q_SLOTS:
         QTest::newRow("bad trim budget")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--trim-budget"), QStringLiteral("0")};
+        QTest::newRow("bad samples")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--samples"), QStringLiteral("17")};
     }
     void usageErrorsExitTwo() {
         QFETCH(QStringList, args);
@@ -114,6 +117,8 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--trim-mode 'fuzzy'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--trim-budget")))
             QVERIFY2(r.err.contains(QStringLiteral("--trim-budget '0'")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--samples")))
+            QVERIFY2(r.err.contains(QStringLiteral("--samples '17'")), qPrintable(r.err));
     }
 
     void benchPrintsATable() {

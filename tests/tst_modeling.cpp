@@ -15,6 +15,8 @@
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QFileInfo>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
 #include <QProgressDialog>
 #include <QSettings>
 #include <QTreeView>
@@ -437,6 +439,36 @@ private Q_SLOTS:
         QVERIFY(page.contains(QStringLiteral("Save As")));
     }
 
+    // Anti-aliasing is on by default where it is cheap: automatic picks 4 samples on a GPU
+    // and none on software OpenGL (llvmpipe here, CI), and an explicit choice is drawn.
+    void antiAliasingFollowsTheRenderer() {
+        QSettings().clear();
+        openWindow("trimmed_plate");
+        Viewport* vp = m_window->viewport();
+        QCOMPARE(Preferences::load().samples, Viewport::kAutoSamples);
+        QTRY_VERIFY(vp->framesDrawn() > 0);
+        vp->makeCurrent();
+        const QString gl = QString::fromLatin1(reinterpret_cast<const char*>(
+            QOpenGLContext::currentContext()->functions()->glGetString(GL_RENDERER)));
+        vp->doneCurrent();
+        const bool software = gl.contains(QStringLiteral("llvmpipe"), Qt::CaseInsensitive) ||
+                              gl.contains(QStringLiteral("softpipe"), Qt::CaseInsensitive);
+        qInfo("GL_RENDERER %s: automatic anti-aliasing draws %d sample(s)", qPrintable(gl),
+              vp->samples());
+        QCOMPARE(vp->samples(), software ? 1 : Viewport::kGpuSamples);
+        vp->setSamples(4);
+        const std::int64_t before = vp->framesDrawn();
+        vp->update();
+        QTRY_VERIFY(vp->framesDrawn() > before);
+        QVERIFY(vp->lastFrameReport().ok);
+        QVERIFY(vp->lastFrameReport().gpuBytes.frameTargets > 0);
+        vp->setSamples(1);
+        const std::int64_t again = vp->framesDrawn();
+        vp->update();
+        QTRY_VERIFY(vp->framesDrawn() > again);
+        QCOMPARE(vp->lastFrameReport().gpuBytes.frameTargets, std::int64_t(0));
+    }
+
     void preferencesPersistAcrossRestart() {
         openWindow();
         Preferences wanted;
@@ -447,6 +479,7 @@ private Q_SLOTS:
         wanted.trimMaskCap = 256;
         wanted.trimMode = QStringLiteral("mask");
         wanted.trimBudgetMiB = 64;
+        wanted.samples = 2;
         wanted.headlight = false;
         wanted.background = QColor(10, 20, 30);
         QVERIFY(!(Preferences::load() == wanted));
@@ -481,6 +514,7 @@ private Q_SLOTS:
         QCOMPARE(o.trimMaskCap, 256);
         QVERIFY(o.trimMode == RenderOptions::TrimMode::Mask);
         QCOMPARE(o.trimBudgetBytes, std::int64_t(64) << 20);
+        QCOMPARE(m_window->viewport()->samples(), 2);
         QCOMPARE(o.background.r, float(10 / 255.0));
         QCOMPARE(QSettings().value(QStringLiteral("autosave/intervalSeconds")).toInt(), 0);
         QCOMPARE(QSettings().value(QStringLiteral("save/keepBackup")).toBool(), false);

@@ -92,16 +92,6 @@ PixelAgreement comparePixels(const Scene& scene, const AovBuffer& trimmed, const
     return r;
 }
 
-/// The camera of `fit` moved towards the surface point at (u, v) of `s`, `zoom` times closer.
-Camera zoomedOn(const Camera& fit, const Surface& s, glm::dvec2 uv, double zoom) {
-    Camera c = fit;
-    c.target = surfacePoint(s.geometry, uv.x, uv.y);
-    const glm::dvec3 away = fit.eye - fit.target;
-    c.eye = c.target + away / zoom;
-    c.authored = true;
-    return c;
-}
-
 } // namespace
 
 class TestRenderTrimsExact : public QObject {

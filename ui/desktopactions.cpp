@@ -51,6 +51,7 @@ void DesktopActions::applyPreferences() {
     m_viewport->setBackground(p.background);
     m_viewport->setHeadlight(p.headlight);
     m_viewport->setTrimMaskCap(p.trimMaskCap);
+    m_viewport->setSamples(p.samples);
     m_viewport->setTrimMode(trimModeNamed(p.trimMode).value_or(RenderOptions::TrimMode::Exact),
                             std::int64_t(p.trimBudgetMiB) << 20);
     showPartitions(p.partitionMode, p.pixelTolerance);

@@ -23,7 +23,10 @@ struct Preferences {
     double pixelTolerance = 0.5;    ///< "view/pixelTolerance" (adaptive partitions)
     int trimMaskCap = 1024;         ///< "view/trimMaskCap": mask mode, texels per mask side
     QString trimMode = QStringLiteral("exact"); ///< "view/trimMode": exact | mask
-    int trimBudgetMiB = 512;       ///< "view/trimBudgetMiB": exact trims' GPU memory budget
+    int trimBudgetMiB = 512; ///< "view/trimBudgetMiB": exact trims' GPU memory budget
+    /// "view/samples": anti-aliasing samples per pixel, 1 (off)..kMaxSamples, or 0: automatic
+    /// (Viewport::kGpuSamples on a GPU, off on software OpenGL)
+    int samples = 0;
     bool headlight = true;         ///< "view/headlight": lights follow the camera
     QColor background{46, 48, 54}; ///< "view/background"
 
@@ -49,6 +52,7 @@ private:
     QSpinBox* m_trimCap;
     QComboBox* m_trimMode;
     QSpinBox* m_trimBudget;
+    QSpinBox* m_samples;
     QCheckBox* m_headlight;
     QPushButton* m_background;
     QColor m_color;

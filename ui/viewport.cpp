@@ -163,6 +163,26 @@ void Viewport::setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetByte
     update();
 }
 
+void Viewport::setSamples(int samples) {
+    m_samplesWanted = samples == kAutoSamples ? kAutoSamples : std::clamp(samples, 1, kMaxSamples);
+    update();
+}
+
+int Viewport::samples() const {
+    if (m_samplesWanted != kAutoSamples)
+        return m_samplesWanted;
+    if (!m_renderer.isInitialized())
+        return 1;
+    // Software OpenGL rasterises every sample on the CPU.
+    static const QStringList software{QStringLiteral("llvmpipe"), QStringLiteral("softpipe"),
+                                      QStringLiteral("SwiftShader"), QStringLiteral("swrast")};
+    const QString gl = m_renderer.glDescription();
+    for (const QString& s : software)
+        if (gl.contains(s, Qt::CaseInsensitive))
+            return 1;
+    return kGpuSamples;
+}
+
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
     m_options.partitioning = mode;
     m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
@@ -220,6 +240,7 @@ void Viewport::paintGL() {
         return;
     }
     RenderOptions options = m_options;
+    options.samples = samples();
     options.analysis.holdRange = isDragging();
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;

@@ -78,6 +78,15 @@ public:
     void setTrimMaskCap(int texels);
     /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.
     void setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes);
+    /// Anti-aliasing samples per pixel (RenderOptions::samples), clamped to 1..kMaxSamples;
+    /// 0 (kAutoSamples) picks kGpuSamples on a GPU and 1 on a software rasteriser (llvmpipe),
+    /// where 4 samples cost 4-16x the frame (docs/PERFORMANCE.md ## Trims).
+    void setSamples(int samples);
+    static constexpr int kAutoSamples = 0;
+    static constexpr int kGpuSamples = 4;
+    /// The samples frames are drawn with now (setSamples' choice, auto resolved once the
+    /// context exists; 1 before).
+    int samples() const;
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
@@ -194,6 +203,7 @@ private:
     CameraController m_camera;
     ControlPointPicker m_picker;
     RenderOptions m_options;
+    int m_samplesWanted = kAutoSamples;
     QString m_glError;
     QString m_lastRenderError;
     FrameReport m_lastReport;

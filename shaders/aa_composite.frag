@@ -1,0 +1,27 @@
+// Resolves kw::AntialiasTarget into the host's framebuffer: per sample, the edge pass's
+// accumulated premultiplied colour over what the opaque passes drew, then the box filter's
+// average of the samples (the MSAA resolve). Coverage summed past 1 (partly covered fragments
+// of overlapping edges) is normalised. The depth written is the nearest sample's, so overlays
+// drawn afterwards are hidden by the surfaces as without anti-aliasing.
+layout(binding = 0) uniform sampler2DMS uColour;
+layout(binding = 1) uniform sampler2DMS uAccum;
+layout(binding = 2) uniform sampler2DMS uDepth;
+uniform int uSamples;
+
+out vec4 fragColor;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 sum = vec4(0.0);
+    float depth = 1.0;
+    for (int s = 0; s < uSamples; ++s) {
+        vec4 below = texelFetch(uColour, pixel, s);
+        vec4 edge = texelFetch(uAccum, pixel, s);
+        float covered = min(edge.a, 1.0);
+        vec4 over = edge.a > 1.0 ? edge / edge.a : edge;
+        sum += vec4(over.rgb, covered) + (1.0 - covered) * below;
+        depth = min(depth, texelFetch(uDepth, pixel, s).r);
+    }
+    fragColor = sum / float(uSamples);
+    gl_FragDepth = depth;
+}
