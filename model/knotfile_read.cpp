@@ -10,6 +10,7 @@
 #include <QRegularExpression>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace kw {
 
@@ -123,18 +124,73 @@ QJsonArray asArrayOfSize(const QJsonValue& v, const QString& path, qsizetype n,
     return a;
 }
 
+// The elements of the big arrays (points, knots, weights) are read by the functions below
+// without their JSON path, which only an error needs: building "$.surfaces[0].points[12][1]"
+// for every number took more time than reading the numbers (an eighth of fuzz_document's
+// time, 2026-11-23). Whatever plainNumber does not accept goes to the checks above, with the
+// path, so the values and the errors are the same as with the checks alone.
+
+/// A finite number in [lo, hi]: exactly what asNumberIn accepts, with the same value.
+std::optional<double> plainNumber(const QJsonValue& v, double lo = -HUGE_VAL,
+                                  double hi = HUGE_VAL) {
+    if (!v.isDouble())
+        return std::nullopt;
+    const double d = v.toDouble();
+    if (!std::isfinite(d) || d < lo || d > hi)
+        return std::nullopt;
+    return d;
+}
+
+/// asNumber(a[k], element(path, k)), the path built only for an error.
+double numberAt(const QJsonArray& a, qsizetype k, const QString& path) {
+    const QJsonValue v = a[k];
+    if (const std::optional<double> d = plainNumber(v))
+        return *d;
+    return asNumber(v, element(path, k));
+}
+
 glm::dvec3 asVec3(const QJsonValue& v, const QString& path, double lo = -HUGE_VAL,
                   double hi = HUGE_VAL) {
     const QJsonArray a = asArrayOfSize(v, path, 3, QStringLiteral("3 numbers"));
     glm::dvec3 r;
-    for (int k = 0; k < 3; ++k)
-        r[k] = asNumberIn(a[k], element(path, k), lo, hi);
+    for (int k = 0; k < 3; ++k) {
+        const std::optional<double> d = plainNumber(a[k], lo, hi);
+        r[k] = d ? *d : asNumberIn(a[k], element(path, k), lo, hi);
+    }
     return r;
 }
 
 glm::dvec2 asVec2(const QJsonValue& v, const QString& path) {
     const QJsonArray a = asArrayOfSize(v, path, 2, QStringLiteral("2 numbers"));
-    return {asNumber(a[0], element(path, 0)), asNumber(a[1], element(path, 1))};
+    return {numberAt(a, 0, path), numberAt(a, 1, path)};
+}
+
+/// asVec3(a[k], element(path, k)) and asVec2 likewise, the path built only for an error.
+glm::dvec3 vec3At(const QJsonArray& a, qsizetype k, const QString& path) {
+    const QJsonValue v = a[k];
+    if (v.isArray()) {
+        const QJsonArray c = v.toArray();
+        if (c.size() == 3) {
+            const std::optional<double> x = plainNumber(c[0]), y = plainNumber(c[1]),
+                                        z = plainNumber(c[2]);
+            if (x && y && z)
+                return {*x, *y, *z};
+        }
+    }
+    return asVec3(v, element(path, k));
+}
+
+glm::dvec2 vec2At(const QJsonArray& a, qsizetype k, const QString& path) {
+    const QJsonValue v = a[k];
+    if (v.isArray()) {
+        const QJsonArray c = v.toArray();
+        if (c.size() == 2) {
+            const std::optional<double> x = plainNumber(c[0]), y = plainNumber(c[1]);
+            if (x && y)
+                return {*x, *y};
+        }
+    }
+    return asVec2(v, element(path, k));
 }
 
 // Ids of surfaces and loops come from one counter, so all of them must differ.
@@ -169,7 +225,7 @@ std::vector<double> readKnots(const QJsonValue& v, const QString& path, int degr
     std::vector<double> knots(size_t(a.size()));
     int multiplicity = 0;
     for (qsizetype k = 0; k < a.size(); ++k) {
-        knots[size_t(k)] = asNumber(a[k], element(path, k));
+        knots[size_t(k)] = numberAt(a, k, path);
         if (k > 0 && knots[size_t(k)] < knots[size_t(k - 1)])
             fail(element(path, k), QStringLiteral("knot %1 is smaller than the previous knot %2 "
                                                   "(knots must not decrease)")
@@ -193,7 +249,7 @@ std::vector<double> readWeights(const QJsonValue& v, const QString& path, qsizet
         asArrayOfSize(v, path, n, QStringLiteral("%1 weights, one per control point").arg(n));
     std::vector<double> w(size_t(a.size()));
     for (qsizetype k = 0; k < a.size(); ++k) {
-        w[size_t(k)] = asNumber(a[k], element(path, k));
+        w[size_t(k)] = numberAt(a, k, path);
         if (!(w[size_t(k)] > 0.0))
             fail(element(path, k),
                  QStringLiteral("weight must be positive, found ") + num(w[size_t(k)]));
@@ -213,7 +269,7 @@ NurbsCurve2 readCurve(const QJsonObject& o, const QString& path) {
                              .arg(kMaxKnotCurvePoints)
                              .arg(pts.size()));
     for (qsizetype k = 0; k < pts.size(); ++k)
-        c.points.push_back(asVec2(pts[k], element(pointsPath, k)));
+        c.points.push_back(vec2At(pts, k, pointsPath));
     const int n = int(pts.size());
     c.knots = readKnots(required(o, path, "knots"), member(path, "knots"), c.degree, n,
                         QStringLiteral("points"), QStringLiteral("degree"));
@@ -302,7 +358,7 @@ void readNet(const QJsonObject& o, const QString& path, NurbsSurface& g) {
                                              .arg(g.countV));
     g.points.reserve(size_t(total));
     for (qsizetype k = 0; k < pts.size(); ++k)
-        g.points.push_back(asVec3(pts[k], element(pointsPath, k)));
+        g.points.push_back(vec3At(pts, k, pointsPath));
     g.weights = readWeights(required(o, path, "weights"), member(path, "weights"), total);
 }
 
