@@ -353,16 +353,31 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         gl->glDepthFunc(GL_LESS);
         gl->glDepthMask(GL_TRUE);
     }
-    for (auto it = variants.begin(); ok && it != variants.end(); ++it) {
-        const Batch& b = it->second;
-        QOpenGLShaderProgram* prog = m_shaders->program(
-            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, b.gather,
-                           aa ? TrimAa::Opaque : TrimAa::Off));
+    if (ok)
+        ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
+                         options, range, error);
+    if (ok && aa && !m_edges.empty())
+        ok = edgePass(scene, camera, lights, options, range, *aa, error);
+    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
+    gl->glDepthFunc(GL_LESS);
+    gl->glDepthMask(GL_TRUE);
+    return ok;
+}
+
+bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa,
+                                   const GpuScene& scene, const FrameCamera& camera,
+                                   const std::vector<Light>& lights, const RenderOptions& options,
+                                   const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    for (const auto& [key, b] : batches) {
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
+                                              b.trimmed, b.gather, trimAa));
         if (!prog) {
             *error = m_shaders->lastError();
-            ok = false;
-            break;
+            return false;
         }
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
@@ -371,13 +386,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
     }
-    if (ok && aa && !m_edges.empty())
-        ok = edgePass(scene, camera, lights, options, range, *aa, error);
-    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
-    gl->glDepthFunc(GL_LESS);
-    gl->glDepthMask(GL_TRUE);
-    return ok;
+    return true;
 }
 
 bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,
@@ -393,23 +402,8 @@ bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera
     gl->glEnable(GL_BLEND);
     gl->glBlendEquation(GL_FUNC_ADD);
     gl->glBlendFunc(GL_ONE, GL_ONE);
-    bool ok = true;
-    for (auto& [k, b] : m_edges) {
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                              true, b.gather, TrimAa::Edge));
-        if (!prog) {
-            *error = m_shaders->lastError();
-            ok = false;
-            break;
-        }
-        prog->bind();
-        setFrameUniforms(gl, prog, camera, lights);
-        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-        scene.trimMasks().bindArray(prog, kTrimMaskUnit);
-        drawBatch(b);
-    }
+    const bool ok =
+        drawBatches(m_edges, TrimAa::Edge, scene, camera, lights, options, range, error);
     gl->glDisable(GL_BLEND);
     aa.drawToAccumulation(false);
     return ok;

@@ -133,6 +133,10 @@ private:
     void releaseCommands();
     bool depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
                       const FrameCamera& camera, bool antialiased, QString* error);
+    /// Draws each batch with its variant's program (trimAa for the trimmed ones).
+    bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
+                     const FrameCamera& camera, const std::vector<Light>& lights,
+                     const RenderOptions& options, const ValueRange& range, QString* error);
     /// The anti-aliased frame's edge pass over m_edges (see draw).
     bool edgePass(const GpuScene& scene, const FrameCamera& camera,
                   const std::vector<Light>& lights, const RenderOptions& options,

@@ -136,24 +136,11 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
 }
 
 #ifdef KW_TRIM_AA
+#define KW_TRIM_AA_MAX_TEXELS 4
 // Anti-aliasing (issue 11 item 4): the fraction of the fragment's pixel that lies inside the
 // trimmed surface, from the exact distance to the nearest trim curve in screen pixels (after
-// Schollmeyer & Froehlich 2019). `jacobian` holds d(u, v)/dx and d(u, v)/dy (screen pixels).
-//
-// The candidates are the pieces of the texels under the pixel's footprint (the box in (u, v)
-// that holds the image of the screen square of half-size 0.75 px), at most 8 x 8 texels: past
-// that, every k-th texel, so a pixel much larger than the grid's texels (far out, or at a
-// grazing angle) can miss a curve and stay aliased there. For each piece
-// whose box meets the footprint: its ends, its chord (the segment between its ends) where the
-// arc is straight or the piece within a pixel, and where it crosses the fragment's u line and v line (the crossings
-// kwTrimPieceSolve finds), the distance to its tangent there, used when the crossing itself lies
-// within 2 px (so that a tangent taken far along a curved piece cannot pass near the fragment)
-// and the line's nearest point is on the piece.
-// Two faces sharing a trim curve cut it into pieces at different places (their grids differ),
-// and the chords still find the same nearest line on a straight curve, so their coverages add up
-// to the pixel (no seam, tst_render_trims_aa). The nearest one is the edge: the pixel is
-// covered as the box filter covers it on the inside of that straight edge (kwEdgeCoverage), the
-// side given by the exact classification of the pixel's centre.
+// Schollmeyer & Froehlich 2019); see kwTrimCoverageExact.
+
 // True where `point` (on screen, from the fragment) lies on the line whose nearest point to the
 // fragment is `foot`, to a fiftieth of a pixel.
 bool kwTrimOnLine(vec2 point, vec2 foot) {
@@ -212,11 +199,28 @@ bool kwTrimOtherEdge(vec2 f, vec2 g) {
     return dot(g, g) < 0.5625 && !kwTrimOnLine(g, f) && !kwTrimOnLine(f, g);
 }
 
-// The coverage, or -1 where the pixel holds more than one straight edge can stand for: two
-// features in different directions (two edges of a corner, a sliver thinner than a pixel), or a
-// nearest point that is an end of the curve's pieces with no piece going on past it (a vertex
-// of the loop, where a corner's edges may also meet far from the fragment): the caller then
-// counts samples (trimCoverage).
+// The coverage of the pixel by the trimmed surface (KW_WHOLLY where no curve is in reach and
+// the centre is inside), or -1 where the pixel holds more than one straight edge can stand for.
+// `jacobian` holds d(u, v)/dx and d(u, v)/dy (screen pixels); `inside` is the exact
+// classification of the pixel's centre.
+//
+// Candidates: the pieces of the texels under the pixel's footprint (the box in (u, v) holding
+// the image of the screen square of half-size 0.75 px), at most KW_TRIM_AA_MAX_TEXELS a side:
+// past that the pixel is aliased (see below). A footprint within one texel of a texel without the near bit
+// (no edge texel about it) has none, known from one word. For each piece whose box meets the
+// footprint: its chord (the segment between its ends) where the arc is straight or the piece
+// within a pixel, else its nearer end; on curved arcs, the tangent where the fragment's u and v
+// lines cross it, when that crossing lies within 2 px and the tangent's nearest point lies on
+// the piece (so that a tangent taken far along a curved piece, or past a corner, cannot pass
+// near the fragment). What is kept is the nearest point ("foot") of each line and the nearest
+// piece ends.
+//
+// One line in reach: the pixel is covered as the box filter covers it on the inside of that
+// straight edge (kwEdgeCoverage). Two faces sharing a trim curve cut it into pieces at different
+// places (their grids differ) and still find the same line, so their coverages add up to the
+// pixel (no seam, tst_render_trims_aa). -1, for the caller to count samples (trimCoverage):
+// a second line in reach (the far side of a sliver thinner than a pixel, the other edge of a
+// corner), or a piece end in reach that is not a mere cut of the nearest line (a vertex).
 float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
     float det = determinant(jacobian);
     if (!(abs(det) > 0.0))
@@ -238,13 +242,18 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
     if (all(lessThanEqual(hi - cell, ivec2(1))) && all(lessThanEqual(cell - lo, ivec2(1))) &&
         (kwTrimWord(uTrimBlock + 4u + uint(cell.y * isize.x + cell.x)) & 2u) == 0u)
         return inside ? KW_WHOLLY : 0.0;
-    ivec2 stride = max(ivec2(1), (hi - lo + 8) / 8);
+    // A grid much finer than the pixel (small faces seen from afar: the grid's resolution
+    // follows the loops' complexity, not the screen): walking every texel under the footprint
+    // would cost each fragment dozens of lists, so such pixels keep the exact classification of
+    // their centre, aliased (MSAA still smooths the silhouettes).
+    if (any(greaterThan(hi - lo, ivec2(KW_TRIM_AA_MAX_TEXELS - 1))))
+        return inside ? KW_WHOLLY : 0.0;
     uint entries = uTrimBlock + kwTrimWord(uTrimBlock);
     uint pieces = uTrimBlock + kwTrimWord(uTrimBlock + 1u);
     vec2 foot0 = vec2(1e15), foot1 = vec2(1e15), foot2 = vec2(1e15);
     vec4 end0 = vec4(1e15), end1 = vec4(1e15), end2 = vec4(1e15); // the nearest piece ends
-    for (int j = lo.y; j <= hi.y; j += stride.y) {
-        for (int i = lo.x; i <= hi.x; i += stride.x) {
+    for (int j = lo.y; j <= hi.y; ++j) {
+        for (int i = lo.x; i <= hi.x; ++i) {
             uint k = uTrimBlock + 4u + uint(j * isize.x + i);
             uint last = kwTrimWord(k + 1u) >> 2;
             for (uint e = kwTrimWord(k) >> 2; e < last; ++e) {

@@ -66,12 +66,47 @@ bool trimmedAway(vec2 uv) {
 #endif
 }
 #ifdef KW_TRIM_AA
+// The box filter's coverage of the pixel by the surface's domain as its base polygon spans it,
+// from the nearest side of the (u, v) rectangle. MSAA already leaves out the samples past the
+// polygon's edge, so a trim curve on (or next to) the domain's boundary, as CAD faces' outer
+// loops often are, must not cut them again: trimCoverage divides by this.
+float kwDomainCoverage(vec2 uv, mat2 jacobian) {
+    vec4 d = uDomain;
+    vec2 gu = vec2(jacobian[0].x, jacobian[1].x), gv = vec2(jacobian[0].y, jacobian[1].y);
+    float lu = length(gu), lv = length(gv);
+    float best = 1e30;
+    vec2 normal = vec2(1.0, 0.0);
+    if (lu > 0.0) {
+        float a = (uv.x - d.x) / lu, b = (d.y - uv.x) / lu;
+        if (a < best)
+            best = a, normal = gu / lu;
+        if (b < best)
+            best = b, normal = gu / lu;
+    }
+    if (lv > 0.0) {
+        float a = (uv.y - d.z) / lv, b = (d.w - uv.y) / lv;
+        if (a < best)
+            best = a, normal = gv / lv;
+        if (b < best)
+            best = b, normal = gv / lv;
+    }
+    return best > 1.0 ? 1.0 : kwEdgeCoverage(best, normal);
+}
+
 // The fraction of the fragment's pixel kept by the trims (issue 11 item 4), or KW_WHOLLY, for
 // the anti-aliased passes (kw::ExactSurfacePass): opaque passes keep only fragments covered
 // wholly, the edge pass sums the rest by this coverage. Call it from main() before any
 // discard: it takes screen derivatives.
+float trimCoverageOfPixel(vec2 uv, mat2 jacobian);
 float trimCoverage(vec2 uv) {
     mat2 jacobian = mat2(dFdx(uv), dFdy(uv));
+    float coverage = trimCoverageOfPixel(uv, jacobian);
+    if (!(coverage > 0.0 && coverage <= 1.0))
+        return coverage;
+    float domain = kwDomainCoverage(uv, jacobian);
+    return domain > 0.0 ? min(coverage / domain, 1.0) : coverage;
+}
+float trimCoverageOfPixel(vec2 uv, mat2 jacobian) {
 #ifdef KW_TRIM_EXACT
     vec2 unit = (uv - uTrimRect.xz) / (uTrimRect.yw - uTrimRect.xz);
     bool inside = !trimmedAway(uv);

@@ -127,8 +127,8 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     m_samples->setValue(p.samples);
     m_samples->setToolTip(tr("Anti-aliasing: MSAA samples per pixel for silhouettes (at most "
                              "what the GPU allows), trim edges covered by their exact "
-                             "distance; 1 is off; automatic: 4 on a GPU, off on software "
-                             "OpenGL, where it costs several times the frame"));
+                             "distance; 1 is off; automatic: 4, and on software OpenGL, where "
+                             "it costs several times the frame, only once the view is still"));
     m_headlight = new QCheckBox(tr("Lights follow the camera (headlight)"));
     m_headlight->setObjectName(QStringLiteral("prefHeadlight"));
     m_headlight->setChecked(p.headlight);

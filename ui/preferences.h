@@ -25,7 +25,7 @@ struct Preferences {
     QString trimMode = QStringLiteral("exact"); ///< "view/trimMode": exact | mask
     int trimBudgetMiB = 512; ///< "view/trimBudgetMiB": exact trims' GPU memory budget
     /// "view/samples": anti-aliasing samples per pixel, 1 (off)..kMaxSamples, or 0: automatic
-    /// (Viewport::kGpuSamples on a GPU, off on software OpenGL)
+    /// (4, and on software OpenGL only for still frames: Viewport::setSamples)
     int samples = 0;
     bool headlight = true;         ///< "view/headlight": lights follow the camera
     QColor background{46, 48, 54}; ///< "view/background"

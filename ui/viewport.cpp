@@ -9,6 +9,7 @@
 #include <QOpenGLContext>
 #include <QPainter>
 #include <QRubberBand>
+#include <QTimer>
 #include <QUndoStack>
 #include <QWheelEvent>
 #include <algorithm>
@@ -169,18 +170,18 @@ void Viewport::setSamples(int samples) {
 }
 
 int Viewport::samples() const {
-    if (m_samplesWanted != kAutoSamples)
-        return m_samplesWanted;
-    if (!m_renderer.isInitialized())
-        return 1;
+    return m_samplesWanted == kAutoSamples ? kAutoSamplesCount : m_samplesWanted;
+}
+
+bool Viewport::aliasedWhileMoving() const {
+    if (m_samplesWanted != kAutoSamples || !m_renderer.isInitialized())
+        return false;
     // Software OpenGL rasterises every sample on the CPU.
     static const QStringList software{QStringLiteral("llvmpipe"), QStringLiteral("softpipe"),
                                       QStringLiteral("SwiftShader"), QStringLiteral("swrast")};
     const QString gl = m_renderer.glDescription();
-    for (const QString& s : software)
-        if (gl.contains(s, Qt::CaseInsensitive))
-            return 1;
-    return kGpuSamples;
+    return std::any_of(software.begin(), software.end(),
+                       [&](const QString& s) { return gl.contains(s, Qt::CaseInsensitive); });
 }
 
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
@@ -241,6 +242,17 @@ void Viewport::paintGL() {
     }
     RenderOptions options = m_options;
     options.samples = samples();
+    const bool moving =
+        m_gesture != Gesture::None || (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
+    if (moving && options.samples > 1 && aliasedWhileMoving()) {
+        options.samples = 1;
+        if (!m_stillTimer) {
+            m_stillTimer = new QTimer(this);
+            m_stillTimer->setSingleShot(true);
+            connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
+        }
+        m_stillTimer->start(kStillMs);
+    }
     options.analysis.holdRange = isDragging();
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;
@@ -582,6 +594,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
 
 void Viewport::wheelEvent(QWheelEvent* event) {
     m_autoFit = false;
+    m_wheelClock.start();
     // Toward the cursor: the point under it on the target's view plane stays under it, so
     // eye and target both move toward that point by the zoom's fraction.
     const ViewProjection view = viewProjection();

@@ -19,6 +19,8 @@ class QPainter;
 class QRubberBand;
 class QUndoStack;
 
+class QTimer;
+
 namespace kw {
 
 /// A tool that takes the view's plain left clicks and keys first (the curve tool) and draws
@@ -79,14 +81,19 @@ public:
     /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.
     void setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes);
     /// Anti-aliasing samples per pixel (RenderOptions::samples), clamped to 1..kMaxSamples;
-    /// 0 (kAutoSamples) picks kGpuSamples on a GPU and 1 on a software rasteriser (llvmpipe),
-    /// where 4 samples cost 4-16x the frame (docs/PERFORMANCE.md ## Trims).
+    /// 0 (kAutoSamples, the default) draws kAutoSamplesCount, except that on a software
+    /// rasteriser (llvmpipe), where 4 samples cost several times the frame (docs/PERFORMANCE.md
+    /// ## Trims), frames drawn while the view moves or points are dragged are aliased and the
+    /// still frame kStillMs later is anti-aliased.
     void setSamples(int samples);
     static constexpr int kAutoSamples = 0;
-    static constexpr int kGpuSamples = 4;
-    /// The samples frames are drawn with now (setSamples' choice, auto resolved once the
-    /// context exists; 1 before).
+    static constexpr int kAutoSamplesCount = 4;
+    static constexpr int kStillMs = 250;
+    /// The samples of a still frame (setSamples' choice, automatic resolved).
     int samples() const;
+    /// Whether frames drawn while the view moves are aliased (automatic on software OpenGL;
+    /// known once the context exists).
+    bool aliasedWhileMoving() const;
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
@@ -204,6 +211,8 @@ private:
     ControlPointPicker m_picker;
     RenderOptions m_options;
     int m_samplesWanted = kAutoSamples;
+    QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
+    QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
     QString m_glError;
     QString m_lastRenderError;
     FrameReport m_lastReport;
