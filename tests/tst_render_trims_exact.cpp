@@ -99,6 +99,26 @@ PixelAgreement comparePixels(const Scene& scene, const AovBuffer& trimmed, const
     return r;
 }
 
+/// The middle of the trim curve of `s` that lies furthest inside its trims' (u, v) box: where
+/// a zoom onto a trim edge keeps the surface around the edge in view.
+glm::dvec2 innermostCurveMiddle(const Surface& s) {
+    const ParameterBox box = trimParameterBox(s);
+    glm::dvec2 target{0.0};
+    double inside = -1.0;
+    for (const TrimLoop& l : s.trims)
+        for (const NurbsCurve2& c : l.curves) {
+            const Interval d = curveDomain(c);
+            const glm::dvec2 m = curvePoint(c, 0.5 * (d.first + d.last));
+            const double margin = std::min({(m.x - box.u.first) / (box.u.last - box.u.first),
+                                            (box.u.last - m.x) / (box.u.last - box.u.first),
+                                            (m.y - box.v.first) / (box.v.last - box.v.first),
+                                            (box.v.last - m.y) / (box.v.last - box.v.first)});
+            if (margin > inside)
+                inside = margin, target = m;
+        }
+    return target;
+}
+
 } // namespace
 
 class TestRenderTrimsExact : public QObject {
@@ -242,21 +262,7 @@ private Q_SLOTS:
                     bestCut = cut / 1024.0, best = &s;
             }
             QVERIFY(best && bestCut > 0.05);
-            const ParameterBox box = trimParameterBox(*best);
-            glm::dvec2 target{0.0};
-            double inside = -1.0;
-            for (const TrimLoop& l : best->trims)
-                for (const NurbsCurve2& c : l.curves) {
-                    const Interval d = curveDomain(c);
-                    const glm::dvec2 m = curvePoint(c, 0.5 * (d.first + d.last));
-                    const double margin =
-                        std::min({(m.x - box.u.first) / (box.u.last - box.u.first),
-                                  (box.u.last - m.x) / (box.u.last - box.u.first),
-                                  (m.y - box.v.first) / (box.v.last - box.v.first),
-                                  (box.v.last - m.y) / (box.v.last - box.v.first)});
-                    if (margin > inside)
-                        inside = margin, target = m;
-                }
+            const glm::dvec2 target = innermostCurveMiddle(*best);
             const Surface face = *best;
             scene.surfaces = {face};
             cam = zoomedOn(fitCamera(scene, 1.0), face, target, zoom);
@@ -299,21 +305,7 @@ private Q_SLOTS:
             if (face.trims.empty())
                 continue;
             ++faces;
-            const ParameterBox box = trimParameterBox(face);
-            glm::dvec2 target{0.0};
-            double inside = -1.0;
-            for (const TrimLoop& l : face.trims)
-                for (const NurbsCurve2& c : l.curves) {
-                    const Interval d = curveDomain(c);
-                    const glm::dvec2 m = curvePoint(c, 0.5 * (d.first + d.last));
-                    const double margin =
-                        std::min({(m.x - box.u.first) / (box.u.last - box.u.first),
-                                  (box.u.last - m.x) / (box.u.last - box.u.first),
-                                  (m.y - box.v.first) / (box.v.last - box.v.first),
-                                  (box.v.last - m.y) / (box.v.last - box.v.first)});
-                    if (margin > inside)
-                        inside = margin, target = m;
-                }
+            const glm::dvec2 target = innermostCurveMiddle(face);
             Scene scene = imported->scene;
             scene.surfaces = {face};
             Document doc;
