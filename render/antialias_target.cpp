@@ -70,7 +70,6 @@ bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
     gl->glDepthFunc(GL_ALWAYS);
     gl->glDepthMask(GL_TRUE);
     prog->bind();
-    prog->setUniformValue("uSamples", m_samples);
     gl->glBindTextureUnit(0, m_colour);
     gl->glBindTextureUnit(1, m_accumulation);
     gl->glBindTextureUnit(2, m_depth);

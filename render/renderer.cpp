@@ -55,6 +55,9 @@ bool Renderer::initialize() {
     d->scene.initialize(gl, &d->shaders);
     d->exact.initialize(gl, &d->shaders);
     d->antialias.initialize(gl, &d->shaders);
+    GLint maxSamples = 1;
+    gl->glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    d->maxSamples = std::clamp(int(maxSamples), 1, kMaxSamples);
     d->tessellated.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
@@ -189,9 +192,7 @@ int Renderer::Impl::frameSamples(const RenderOptions& options, bool aov, bool pi
                                  FrameReport& report) {
     if (options.samples <= 1 || aov || pick)
         return 1;
-    GLint most = 1;
-    gl->glGetIntegerv(GL_MAX_SAMPLES, &most);
-    const int limit = std::clamp(int(most), 1, kMaxSamples);
+    const int limit = maxSamples;
     if (options.samples > limit)
         report.warnings << QStringLiteral("%1 samples asked, the GPU allows %2: using %2")
                                .arg(options.samples)

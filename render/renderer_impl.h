@@ -38,6 +38,7 @@ struct Renderer::Impl {
     GpuScene scene; ///< every per-surface GPU object
     ExactSurfacePass exact;
     AntialiasTarget antialias; ///< the multisampled frame of RenderOptions::samples > 1
+    int maxSamples = 1;        ///< GL_MAX_SAMPLES within 1..kMaxSamples, read at initialize
     TessellatedPass tessellated;
     WireframePass wireframe;
     ControlNetPass controlNet;

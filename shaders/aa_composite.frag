@@ -6,7 +6,6 @@
 layout(binding = 0) uniform sampler2DMS uColour;
 layout(binding = 1) uniform sampler2DMS uAccum;
 layout(binding = 2) uniform sampler2DMS uDepth;
-uniform int uSamples;
 
 out vec4 fragColor;
 
@@ -14,7 +13,8 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec4 sum = vec4(0.0);
     float depth = 1.0;
-    for (int s = 0; s < uSamples; ++s) {
+    int samples = textureSamples(uColour);
+    for (int s = 0; s < samples; ++s) {
         vec4 below = texelFetch(uColour, pixel, s);
         vec4 edge = texelFetch(uAccum, pixel, s);
         float covered = min(edge.a, 1.0);
@@ -22,6 +22,6 @@ void main() {
         sum += vec4(over.rgb, covered) + (1.0 - covered) * below;
         depth = min(depth, texelFetch(uDepth, pixel, s).r);
     }
-    fragColor = sum / float(uSamples);
+    fragColor = sum / float(samples);
     gl_FragDepth = depth;
 }

@@ -225,7 +225,6 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
     float det = determinant(jacobian);
     if (!(abs(det) > 0.0))
         return inside ? KW_WHOLLY : 0.0; // degenerate (edge-on) pixel: no area to share
-    mat2 toScreen = inverse(jacobian);
     vec2 size = uTrimSize;
     vec2 span = uTrimRect.yw - uTrimRect.xz;
     // The footprint: the box in (u, v) holding the screen square of half-size 0.75 about the
@@ -248,6 +247,7 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
     // their centre, aliased (MSAA still smooths the silhouettes).
     if (any(greaterThan(hi - lo, ivec2(KW_TRIM_AA_MAX_TEXELS - 1))))
         return inside ? KW_WHOLLY : 0.0;
+    mat2 toScreen = inverse(jacobian); // only for the few fragments near a curve
     uint entries = uTrimBlock + kwTrimWord(uTrimBlock);
     uint pieces = uTrimBlock + kwTrimWord(uTrimBlock + 1u);
     vec2 foot0 = vec2(1e15), foot1 = vec2(1e15), foot2 = vec2(1e15);
