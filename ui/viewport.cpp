@@ -174,14 +174,7 @@ int Viewport::samples() const {
 }
 
 bool Viewport::aliasedWhileMoving() const {
-    if (m_samplesWanted != kAutoSamples || !m_renderer.isInitialized())
-        return false;
-    // Software OpenGL rasterises every sample on the CPU.
-    static const QStringList software{QStringLiteral("llvmpipe"), QStringLiteral("softpipe"),
-                                      QStringLiteral("SwiftShader"), QStringLiteral("swrast")};
-    const QString gl = m_renderer.glDescription();
-    return std::any_of(software.begin(), software.end(),
-                       [&](const QString& s) { return gl.contains(s, Qt::CaseInsensitive); });
+    return m_samplesWanted == kAutoSamples && m_softwareGl;
 }
 
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
@@ -218,7 +211,15 @@ void Viewport::initializeGL() {
     if (!m_renderer.initialize()) {
         m_glError = m_renderer.lastError();
         Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));
+        return;
     }
+    // Software OpenGL rasterises every sample on the CPU (aliasedWhileMoving).
+    static const QStringList software{QStringLiteral("llvmpipe"), QStringLiteral("softpipe"),
+                                      QStringLiteral("SwiftShader"), QStringLiteral("swrast")};
+    const QString gl = m_renderer.glDescription();
+    m_softwareGl = std::any_of(software.begin(), software.end(), [&](const QString& s) {
+        return gl.contains(s, Qt::CaseInsensitive);
+    });
 }
 
 void Viewport::resizeGL(int, int) {

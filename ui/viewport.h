@@ -211,6 +211,7 @@ private:
     ControlPointPicker m_picker;
     RenderOptions m_options;
     int m_samplesWanted = kAutoSamples;
+    bool m_softwareGl = false;      ///< the context is a software rasteriser (set at initializeGL)
     QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
     QString m_glError;
