@@ -7,7 +7,9 @@
 #include "render/reference_render.h"
 
 #include <QSaveFile>
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 
 namespace kw::cli {
 
@@ -37,7 +39,10 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
     glm::dvec3 lo(0.0), hi(0.0);
     sceneBounds(scene, lo, hi);
     EdgeMetrics m;
-    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error))
+    const double pixelAngle =
+        2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
+        double(gpu.height);
+    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle))
         return false;
     const QByteArray json = edgeMetricsJson(m).toUtf8();
     if (jsonPath == QLatin1String("-")) {
@@ -55,8 +60,8 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
         }
     }
     printOut(QStringLiteral("edges: silhouette mean %1 px max %2 px, %3 crack pixels, %4 id and "
-                            "%5 depth disagreements outside the edge band, normal error mean "
-                            "%6 p99 %7 max %8 deg\n")
+                            "%5 depth disagreements outside the edge band (%9 coincident), "
+                            "normal error mean %6 p99 %7 max %8 deg\n")
                  .arg(m.silhouetteMeanPixels, 0, 'f', 2)
                  .arg(m.silhouetteMaxPixels, 0, 'f', 2)
                  .arg(m.crackPixels)
@@ -64,7 +69,8 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
                  .arg(m.depthDisagreements)
                  .arg(m.normalMeanDegrees, 0, 'g', 3)
                  .arg(m.normalP99Degrees, 0, 'g', 3)
-                 .arg(m.normalMaxDegrees, 0, 'g', 3));
+                 .arg(m.normalMaxDegrees, 0, 'g', 3)
+                 .arg(m.idCoincident));
     return true;
 }
 

@@ -3,14 +3,19 @@
 
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 
 namespace kw {
 namespace {
 
 constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+/// Neighbouring reference pixels of one surface whose eye depths differ by more than this many
+/// pixel footprints are on either side of the surface's own silhouette: a continuous surface
+/// only gets there where it is within 3 degrees of edge-on (1 / tan 3 degrees = 19), that is,
+/// on a curved surface, within a small fraction of a pixel of its silhouette.
+constexpr double kDepthJumpFootprints = 19.0;
 
 bool covered(const AovBuffer& b, int x, int y) {
     return b.pixel(x, y)[0] >= 0.0f;
@@ -76,7 +81,7 @@ long long crackPixels(const AovBuffer& frame) {
 }
 
 bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error) {
+                          EdgeMetrics& out, QString* error, double pixelAngle) {
     out = EdgeMetrics{};
     if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
         frame.height <= 0) {
@@ -111,6 +116,15 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
                     }
                     const int other = idAt(reference, xx, yy);
                     idEdge |= other != id;
+                    // A surface's silhouette over itself (a torus's inner rim over its far
+                    // side) is an edge too: the same id on both sides, but the depth jumps.
+                    if (id >= 0 && other == id) {
+                        const double z = double(reference.pixel(x, y)[9]);
+                        const double zo = double(reference.pixel(xx, yy)[9]);
+                        idEdge |=
+                            pixelAngle > 0.0 &&
+                            std::abs(z - zo) > kDepthJumpFootprints * pixelAngle * std::min(z, zo);
+                    }
                     if ((dx == 0) != (dy == 0))
                         uncoveredNeighbour |= other < 0;
                 }
@@ -148,14 +162,16 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
                 continue;
             }
             const int idF = idAt(frame, x, y), idR = idAt(reference, x, y);
+            const float* pf = frame.pixel(x, y);
+            const float* pr = reference.pixel(x, y);
             if (idF != idR) {
-                ++out.idDisagreements;
+                const bool tie = idF >= 0 && idR >= 0 &&
+                                 std::abs(double(pf[9]) - double(pr[9])) <= depthTolerance;
+                ++(tie ? out.idCoincident : out.idDisagreements);
                 continue;
             }
             if (idR < 0)
                 continue;
-            const float* pf = frame.pixel(x, y);
-            const float* pr = reference.pixel(x, y);
             if (!(std::abs(double(pf[9]) - double(pr[9])) <= depthTolerance))
                 ++out.depthDisagreements;
             const glm::dvec3 nf(pf[6], pf[7], pf[8]), nr(pr[6], pr[7], pr[8]);
@@ -191,6 +207,7 @@ QString edgeMetricsJson(const EdgeMetrics& m) {
     o[QStringLiteral("crackPixelsCoveredInReference")] = double(m.crackPixelsCoveredInReference);
     o[QStringLiteral("edgeBandPixels")] = double(m.edgeBandPixels);
     o[QStringLiteral("idDisagreements")] = double(m.idDisagreements);
+    o[QStringLiteral("idCoincident")] = double(m.idCoincident);
     o[QStringLiteral("depthDisagreements")] = double(m.depthDisagreements);
     o[QStringLiteral("depthTolerance")] = m.depthTolerance;
     o[QStringLiteral("normalPixels")] = double(m.normalPixels);

@@ -27,10 +27,17 @@ struct EdgeMetrics {
     long long crackPixels = 0;
     long long crackPixelsCoveredInReference = 0;
 
-    /// The edge band: pixels within one pixel (8-neighbourhood) of a pixel whose reference id
-    /// differs (background included). Outside it:
+    /// The edge band: pixels within one pixel (8-neighbourhood) of an edge of the reference: a
+    /// pixel whose reference id differs (background included), or of the same surface with an
+    /// eye depth farther away than a surface within 3 degrees of edge-on would put it (the
+    /// surface's silhouette over itself). Outside it:
     long long edgeBandPixels = 0;
-    long long idDisagreements = 0;    ///< visible surface id differs from the reference
+    /// Visible surface id differs from the reference, and so does the depth: another surface
+    /// is in front. Where the ids differ at the same depth (within depthTolerance) the two
+    /// surfaces coincide there (touching parts of an assembly) and either is the true surface:
+    /// those pixels are counted in idCoincident instead.
+    long long idDisagreements = 0;
+    long long idCoincident = 0;
     long long depthDisagreements = 0; ///< same id, |Z - Z_ref| > depthTolerance
     double depthTolerance = 0.0;
 
@@ -46,8 +53,10 @@ struct EdgeMetrics {
 /// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,
 /// camera and size). depthTolerance in model units (>= 0). Returns false with *error naming the
 /// sizes when the two buffers differ in size or are empty.
+/// `pixelAngle` is the angle one pixel spans at the image centre (2 tan(fovY / 2) / height), for
+/// the band's depth jumps; 0 leaves surfaces' silhouettes over themselves out of the band.
 bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error);
+                          EdgeMetrics& out, QString* error, double pixelAngle = 0.0);
 
 /// Crack pixels of one frame alone (EdgeMetrics::crackPixels).
 long long crackPixels(const AovBuffer& frame);

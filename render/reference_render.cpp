@@ -28,6 +28,7 @@ struct Vertex {
     double x = 0.0, y = 0.0; ///< pixels, y down (row 0 at the top, as AovBuffer)
     double z = 0.0;          ///< eye depth
     double u = 0.0, v = 0.0;
+    glm::dvec3 p{0.0}; ///< world position, for clipping at the near plane
 };
 
 struct Raster {
@@ -36,12 +37,11 @@ struct Raster {
     ReferenceStats* stats = nullptr;
 };
 
-/// Rasterises one triangle at pixel centres with perspective-correct (u, v) and eye depth.
-/// Centres on an edge belong to both triangles (harmless: neighbours share the surface).
-void rasterise(Raster& r, const Vertex& a, const Vertex& b, const Vertex& c, int surface,
-               const TrimRegion& trims, double nearDepth, double cellU, double cellV) {
-    if (a.z <= nearDepth || b.z <= nearDepth || c.z <= nearDepth)
-        return;
+/// Rasterises one triangle, wholly in front of the near plane, at pixel centres with
+/// perspective-correct (u, v) and eye depth. Centres on an edge belong to both triangles
+/// (harmless: neighbours share the surface).
+void rasteriseInFront(Raster& r, const Vertex& a, const Vertex& b, const Vertex& c, int surface,
+                      const TrimRegion& trims, double cellU, double cellV) {
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (!(std::abs(area) > 1e-12))
         return;
@@ -85,6 +85,7 @@ struct View {
     Vertex project(const glm::dvec3& p, double u, double v) const {
         const glm::dvec4 c = viewProjection * glm::dvec4(p, 1.0);
         Vertex out;
+        out.p = p;
         out.z = glm::dot(p - eye, forward);
         const double w = c.w != 0.0 ? c.w : 1e-300;
         out.x = (c.x / w * 0.5 + 0.5) * width;
@@ -116,6 +117,38 @@ struct View {
         return std::any_of(outside, outside + 5, [](int n) { return n == 8; });
     }
 };
+
+/// Rasterises one triangle clipped to the near plane, as the GPU clips its base polygon:
+/// a close-up's large faces reach behind the eye and must still cover the pixels they cover.
+/// (u, v) are affine on the planar triangle, so they are clipped with the world position.
+void rasterise(Raster& r, const View& view, const Vertex& a, const Vertex& b, const Vertex& c,
+               int surface, const TrimRegion& trims, double cellU, double cellV) {
+    const double nearDepth = view.nearDepth;
+    if (a.z > nearDepth && b.z > nearDepth && c.z > nearDepth) {
+        rasteriseInFront(r, a, b, c, surface, trims, cellU, cellV);
+        return;
+    }
+    // Sutherland-Hodgman against the one plane z = nearDepth: at most 4 vertices.
+    const Vertex* in[3] = {&a, &b, &c};
+    Vertex out[4];
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+        const Vertex& s = *in[k];
+        const Vertex& e = *in[(k + 1) % 3];
+        const bool sIn = s.z > nearDepth, eIn = e.z > nearDepth;
+        if (sIn)
+            out[n++] = s;
+        if (sIn != eIn) {
+            const double t = (nearDepth - s.z) / (e.z - s.z);
+            out[n++] =
+                view.project(glm::mix(s.p, e.p, t), s.u + (e.u - s.u) * t, s.v + (e.v - s.v) * t);
+        }
+    }
+    if (n >= 3)
+        rasteriseInFront(r, out[0], out[1], out[2], surface, trims, cellU, cellV);
+    if (n == 4)
+        rasteriseInFront(r, out[0], out[2], out[3], surface, trims, cellU, cellV);
+}
 
 /// Tessellates one surface span by span, each as finely as its bound requires, and rasterises.
 void rasteriseSurface(Raster& r, const View& view, const ScreenScale& scale, const Surface& surf,
@@ -152,8 +185,8 @@ void rasteriseSurface(Raster& r, const View& view, const ScreenScale& scale, con
                 const Vertex& lr = grid[size_t(j * (nu + 1) + i + 1)];
                 const Vertex& ul = grid[size_t((j + 1) * (nu + 1) + i)];
                 const Vertex& ur = grid[size_t((j + 1) * (nu + 1) + i + 1)];
-                rasterise(r, ll, lr, ur, index, trims, view.nearDepth, du, dv);
-                rasterise(r, ll, ur, ul, index, trims, view.nearDepth, du, dv);
+                rasterise(r, view, ll, lr, ur, index, trims, du, dv);
+                rasterise(r, view, ll, ur, ul, index, trims, du, dv);
             }
     }
 }

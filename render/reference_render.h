@@ -38,8 +38,8 @@ struct ReferenceStats {
 /// (u, v) then starts Newton's method on the ray equations a.(S(u,v) - E) = b.(S(u,v) - E) = 0
 /// (a, b orthonormal to the ray) on the exact surface. Channels as AovBuffer: id, (u, v), P,
 /// N = kw::surfaceFrame's unit normal, Z = eye depth. Invalid surfaces are skipped. Triangles
-/// with a corner behind the near plane are skipped (no clipping: the reference is for views of
-/// a whole part). Precondition: width, height >= 1.
+/// are clipped at the camera's near plane, as the GPU clips (close-ups of faces reaching behind
+/// the eye). Precondition: width, height >= 1.
 AovBuffer renderReference(const Scene& scene, const Camera& camera, int width, int height,
                           const ReferenceOptions& options = {}, ReferenceStats* stats = nullptr);
 

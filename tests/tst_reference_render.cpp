@@ -43,6 +43,7 @@ class TstReferenceRender : public QObject {
 private Q_SLOTS:
     void sphereMatchesAnalyticRays();
     void trimmedHoleShowsWhatIsBehind();
+    void faceReachingBehindTheEyeIsClipped();
     void metricsOnHandMadeFrames();
 };
 
@@ -157,6 +158,40 @@ void TstReferenceRender::trimmedHoleShowsWhatIsBehind() {
     QCOMPARE(ref.pixel(w / 2, h / 2)[0], 2.0f);
 }
 
+void TstReferenceRender::faceReachingBehindTheEyeIsClipped() {
+    // A close-up over a floor that extends behind the eye (one bilinear cell: a single pair of
+    // triangles, each with corners behind the eye). Every pixel below the horizon shows the
+    // floor at the depth of the ray's hit, as the GPU's clipped polygon does.
+    Scene scene;
+    scene.surfaces.push_back(surfaceOf(makePlane({-10, -10, 0}, {20, 0, 0}, {0, 20, 0}), 1));
+    Camera cam;
+    cam.eye = {0.0, -9.0, 0.5};
+    cam.target = {0.0, -7.0, 0.0};
+    cam.authored = true;
+    const int w = 64, h = 48;
+    const AovBuffer ref = renderReference(scene, cam, w, h);
+    const CameraMatrices m = cameraMatrices(cam, scene, double(w) / h);
+    const glm::dmat4 inv = glm::inverse(m.projection * m.view);
+    long long floor = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::dvec4 q =
+                inv * glm::dvec4(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, 0.0, 1.0);
+            const glm::dvec3 d = glm::normalize(glm::dvec3(q) / q.w - m.eye);
+            if (!(d.z < -1e-3))
+                continue; // at or above the horizon
+            const double t = -m.eye.z / d.z;
+            const glm::dvec3 hit = m.eye + t * d;
+            if (std::abs(hit.x) > 9.9 || std::abs(hit.y) > 9.9)
+                continue; // beyond the floor's far edge
+            const float* p = ref.pixel(x, y);
+            QCOMPARE(p[0], 1.0f);
+            QVERIFY(std::abs(double(p[9]) - t * glm::dot(d, m.forward)) < 1e-6 * t);
+            ++floor;
+        }
+    QVERIFY(floor > w * h / 3);
+}
+
 void TstReferenceRender::metricsOnHandMadeFrames() {
     // Reference: a 10 x 10 square of surface 1 in a 20 x 20 frame.
     std::vector<glm::ivec2> square;
@@ -196,6 +231,28 @@ void TstReferenceRender::metricsOnHandMadeFrames() {
     QCOMPARE(m.silhouetteMismatched, 1LL);
     QCOMPARE(m.silhouetteMaxPixels, 2.0);
     QCOMPARE(m.idDisagreements, 0LL); // (16, 9) lies in the edge band
+    // Another surface at the square's centre: at the same depth it is a coincident surface
+    // (touching parts), nearer it is a visibility error.
+    AovBuffer other = frameWith(20, 20, square);
+    other.data[size_t((10 * 20 + 10) * AovBuffer::kChannels)] = 2.0f;
+    QVERIFY(compareWithReference(other, reference, 1e-3, m, &error));
+    QCOMPARE(m.idDisagreements, 0LL);
+    QCOMPARE(m.idCoincident, 1LL);
+    other.data[size_t((10 * 20 + 10) * AovBuffer::kChannels) + 9] = 0.9f;
+    QVERIFY(compareWithReference(other, reference, 1e-3, m, &error));
+    QCOMPARE(m.idDisagreements, 1LL);
+    QCOMPARE(m.idCoincident, 0LL);
+    // The square's right half 1 deeper: the same surface over itself (a torus's rim over its
+    // far side). With the pixel's angle known that jump is an edge, and the band grows by the
+    // two columns on either side of it (rows 4..15, clipped to the old band's inside).
+    AovBuffer stepped = frameWith(20, 20, square);
+    for (const glm::ivec2& p : square)
+        if (p.x >= 10)
+            stepped.data[size_t((p.y * 20 + p.x) * AovBuffer::kChannels) + 9] = 2.0f;
+    QVERIFY(compareWithReference(stepped, stepped, 0.0, m, &error));
+    QCOMPARE(m.edgeBandPixels, 14LL * 14LL - 6LL * 6LL);
+    QVERIFY(compareWithReference(stepped, stepped, 0.0, m, &error, 0.01));
+    QCOMPARE(m.edgeBandPixels, 14LL * 14LL - 6LL * 6LL + 4LL * 6LL);
     // Sizes must agree.
     QVERIFY(
         !compareWithReference(frameWith(20, 20, square), frameWith(10, 20, {}), 0.0, m, &error));
