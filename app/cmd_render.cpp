@@ -7,6 +7,7 @@
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QRegularExpression>
 #include <algorithm>
 #include <vector>
 
@@ -53,7 +54,15 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "metrics (silhouette, cracks, id/depth, normal error) as JSON ('-': "
                        "stdout)."),
         QStringLiteral("REPORT.json"));
-    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport});
+    const QCommandLineOption zoom(
+        QStringLiteral("zoom"),
+        QStringLiteral("Magnify the view F times (1..1e6) about the point shown at image "
+                       "fractions X,Y (0,0 top left; default 0.5,0.5, the centre), which becomes "
+                       "the centre: the camera turns to it and narrows its field of view, the eye "
+                       "stays (a close-up that never puts the camera inside the part)."),
+        QStringLiteral("F[@X,Y]"));
+    parser.addOptions(
+        {out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport, zoom});
     const RenderCliOptions shared = addRenderOptions(
         parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
@@ -98,6 +107,30 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        .arg(cmd, parser.value(timeFrames)));
         return kExitUsage;
     }
+    double zoomFactor = 1.0;
+    glm::dvec2 zoomAt(0.5);
+    if (parser.isSet(zoom)) {
+        static const QRegularExpression form(
+            QStringLiteral("^([0-9.eE+-]+)(?:@([0-9.eE+-]+),([0-9.eE+-]+))?$"));
+        const QRegularExpressionMatch m = form.match(parser.value(zoom));
+        bool ok = m.hasMatch();
+        if (ok) {
+            zoomFactor = m.captured(1).toDouble(&ok);
+            ok = ok && zoomFactor >= 1.0 && zoomFactor <= 1e6;
+        }
+        if (ok && m.hasCaptured(2)) {
+            bool okX = false, okY = false;
+            zoomAt = {m.captured(2).toDouble(&okX), m.captured(3).toDouble(&okY)};
+            ok = okX && okY && zoomAt.x >= 0.0 && zoomAt.x <= 1.0 && zoomAt.y >= 0.0 &&
+                 zoomAt.y <= 1.0;
+        }
+        if (!ok) {
+            printError(QStringLiteral("%1: --zoom '%2' is not F[@X,Y] with F in 1..1e6 and "
+                                      "X, Y in 0..1")
+                           .arg(cmd, parser.value(zoom)));
+            return kExitUsage;
+        }
+    }
     if (parser.isSet(reference) && parser.isSet(edgeReport)) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
@@ -115,10 +148,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
         options.pixelTolerance = scene.display.pixelTolerance;
     QString error;
-    const Camera camera =
-        scene.camera.authored
-            ? scene.camera
-            : fitCamera(scene, double(imageSize.width()) / double(imageSize.height()));
+    const double aspect = double(imageSize.width()) / double(imageSize.height());
+    Camera camera = scene.camera.authored ? scene.camera : fitCamera(scene, aspect);
+    if (parser.isSet(zoom))
+        camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);
     if (parser.isSet(reference)) {
         if (!writeReferenceRender(scene, camera, imageSize, options.lightCount, outPath, aovPath,
                                   &error)) {

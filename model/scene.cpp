@@ -74,4 +74,26 @@ Camera fitCamera(const Scene& scene, double aspect) {
     return cam;
 }
 
+Camera zoomedCamera(const Camera& camera, double factor, glm::dvec2 at, double aspect) {
+    Camera cam = camera;
+    const glm::dvec3 toTarget = camera.target - camera.eye;
+    const double distance = glm::length(toTarget);
+    if (!(distance > 0.0) || !(factor >= 1.0))
+        return cam;
+    const glm::dvec3 forward = toTarget / distance;
+    glm::dvec3 right = glm::cross(forward, camera.up);
+    if (!(glm::length(right) > 0.0)) // up along the view: any side will do
+        right = glm::cross(forward, std::abs(forward.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0)
+                                                              : glm::dvec3(0.0, 1.0, 0.0));
+    right = glm::normalize(right);
+    const glm::dvec3 up = glm::cross(right, forward);
+    const double halfY = distance * std::tan(glm::radians(camera.fovYDegrees) * 0.5);
+    const double halfX = halfY * std::max(aspect, 1e-3);
+    cam.target =
+        camera.target + right * ((2.0 * at.x - 1.0) * halfX) + up * ((1.0 - 2.0 * at.y) * halfY);
+    cam.fovYDegrees =
+        glm::degrees(2.0 * std::atan(std::tan(glm::radians(camera.fovYDegrees) * 0.5) / factor));
+    return cam;
+}
+
 } // namespace kw

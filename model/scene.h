@@ -145,5 +145,11 @@ bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
 /// It frames the exact trimmed geometry (sceneVisibleBounds, model/visible_bounds.h), or the
 /// control points when that gives no bounds.
 Camera fitCamera(const Scene& scene, double aspect);
+/// `camera` magnified `factor` (>= 1) times about the point of its target plane that shows at
+/// `at` in an image of width / height `aspect` (fractions of the image, (0, 0) its top left,
+/// (0.5, 0.5) its centre, the target): it turns to that point, which becomes the target, and
+/// narrows its field of view; the eye stays, so a close-up never puts it inside the part. The
+/// close-ups of `knotwork render --zoom`.
+Camera zoomedCamera(const Camera& camera, double factor, glm::dvec2 at, double aspect);
 
 } // namespace kw

@@ -101,6 +101,12 @@ private Q_SLOTS:
         QTest::newRow("bad samples")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--samples"), QStringLiteral("17")};
+        QTest::newRow("bad zoom point")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--zoom"), QStringLiteral("8@1.5,0.5")};
+        QTest::newRow("bad zoom factor")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--zoom"), QStringLiteral("0.5")};
     }
     void usageErrorsExitTwo() {
         QFETCH(QStringList, args);
@@ -119,6 +125,8 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--trim-budget '0'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--samples")))
             QVERIFY2(r.err.contains(QStringLiteral("--samples '17'")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--zoom")))
+            QVERIFY2(r.err.contains(QStringLiteral("--zoom '")), qPrintable(r.err));
     }
 
     void benchPrintsATable() {

@@ -93,6 +93,31 @@ private Q_SLOTS:
         QVERIFY(covered >= 0.25);
         QVERIFY(lo.x >= -1.0 && lo.y >= -1.0 && hi.x <= 1.0 && hi.y <= 1.0);
     }
+
+    // render --zoom F@X,Y: the point shown at image fractions (X, Y) becomes the centre, seen
+    // from the same eye with an F times narrower field of view.
+    void zoomCentresThePointAndMovesNearer() {
+        Camera cam;
+        cam.eye = {3.0, -4.0, 2.0};
+        cam.target = {0.5, 0.25, -0.5};
+        const double aspect = 16.0 / 9.0;
+        const glm::dvec2 at(0.2, 0.7);
+        const Camera z = zoomedCamera(cam, 8.0, at, aspect);
+        const glm::dmat4 vp = glm::perspective(glm::radians(cam.fovYDegrees), aspect, 0.01, 100.0) *
+                              glm::lookAt(cam.eye, cam.target, cam.up);
+        const glm::dvec4 c = vp * glm::dvec4(z.target, 1.0);
+        const glm::dvec2 ndc = glm::dvec2(c) / c.w;
+        // NDC y points up, image fractions down.
+        QVERIFY(std::abs(ndc.x - (2.0 * at.x - 1.0)) < 1e-12);
+        QVERIFY(std::abs(ndc.y - (1.0 - 2.0 * at.y)) < 1e-12);
+        QCOMPARE(z.eye, cam.eye);
+        QVERIFY(std::abs(std::tan(glm::radians(z.fovYDegrees) * 0.5) * 8.0 -
+                         std::tan(glm::radians(cam.fovYDegrees) * 0.5)) < 1e-12);
+        // The centre with factor 1 is the camera itself.
+        const Camera same = zoomedCamera(cam, 1.0, glm::dvec2(0.5), aspect);
+        QVERIFY(glm::length(same.eye - cam.eye) < 1e-12 &&
+                glm::length(same.target - cam.target) < 1e-12);
+    }
 };
 
 QTEST_GUILESS_MAIN(TstVisibleBounds)
