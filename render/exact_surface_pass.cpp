@@ -92,6 +92,10 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
         d << QStringLiteral("KW_AOV");
     if (options.shading == RenderOptions::Shading::ExactDepth)
         d << QStringLiteral("KW_EXACT_DEPTH");
+    // Adaptive partitions guarantee the polygon's (u, v) starts Newton's method within the
+    // pixel tolerance of the point under the pixel; uniform mode stays the paper's.
+    if (options.partitioning == RenderOptions::Partitioning::Adaptive)
+        d << QStringLiteral("KW_RAY_NEWTON");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
     if (trimmed && options.trimMode == RenderOptions::TrimMode::Exact)

@@ -173,6 +173,9 @@ struct FrameCamera {
     float nearPlane = 0.1f;
     float farPlane = 100.0f;
     glm::ivec2 viewport{1, 1}; ///< pixels
+    /// Window position of the viewport's lower left corner (glViewport's x, y): non-zero when
+    /// a pick draws one pixel of the frame into a 1 x 1 target.
+    glm::ivec2 viewportOrigin{0, 0};
 };
 
 /// The same camera in double precision, for picking and dragging on the CPU (pixels round-trip

@@ -62,6 +62,7 @@ public:
         const std::pair<int*, const char*> names[] = {{&u.viewProjection, "uViewProjection"},
                                                       {&u.eye, "uEye"},
                                                       {&u.forward, "uForward"},
+                                                      {&u.viewport, "uViewport"},
                                                       {&u.ambient, "uAmbient"},
                                                       {&u.lightVector, "uLightVector"},
                                                       {&u.lightDiffuse, "uLightDiffuse"},

@@ -14,7 +14,7 @@ namespace kw {
 /// Uniform locations of one program, looked up once when it is linked (-1 where the program
 /// does not use the uniform), so no draw asks the driver by name. Names are the shaders'.
 struct UniformLocations {
-    int viewProjection = -1, eye = -1, forward = -1;                           // camera
+    int viewProjection = -1, eye = -1, forward = -1, viewport = -1;            // camera
     int ambient = -1, lightVector = -1, lightDiffuse = -1, lightSpecular = -1; // phong.glsl
     int color = -1, material = -1, surfaceId = -1;                             // per surface
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;

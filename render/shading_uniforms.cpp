@@ -15,6 +15,10 @@ void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* progr
                            glm::value_ptr(camera.viewProjection));
     gl->glUniform3fv(ShaderLibrary::uniforms(program).eye, 1, glm::value_ptr(camera.eye));
     gl->glUniform3fv(ShaderLibrary::uniforms(program).forward, 1, glm::value_ptr(camera.forward));
+    if (ShaderLibrary::uniforms(program).viewport >= 0)
+        gl->glUniform4f(ShaderLibrary::uniforms(program).viewport, float(camera.viewportOrigin.x),
+                        float(camera.viewportOrigin.y), float(camera.viewport.x),
+                        float(camera.viewport.y));
     const int n = std::min<int>(int(lights.size()), kMaxLights);
     glm::vec4 vec[kMaxLights];
     glm::vec3 amb[kMaxLights], dif[kMaxLights], spe[kMaxLights];

@@ -9,7 +9,8 @@
 // iso-parameter lines over the colour), KW_DIRECTIONS (principal-direction marks; needs
 // KW_SECOND_ORDER), KW_SECOND_ORDER (second derivatives and curvature,
 // for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
-// principal direction of k1 at location 5).
+// principal direction of k1 at location 5), KW_RAY_NEWTON (adaptive partitions: shade the
+// point truly under the pixel, kwOntoRay).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -33,6 +34,53 @@ uniform vec3 uForward;
 // The edge pass writes no depth: test it before shading, so fragments behind what the opaque
 // passes drew (the surface's own inside among them: equal depth fails GL_LESS) cost nothing.
 layout(early_fragment_tests) in;
+#endif
+
+#ifdef KW_RAY_NEWTON
+uniform vec4 uViewport; // glViewport's x, y, width, height (pixels)
+
+// Screen position (pixels) of the world point p, and the screen-space images of the tangents
+// su and sv there (the derivative of the perspective division: d(xy/w) = (dxy - xy/w dw)/w).
+vec2 kwScreen(vec3 p, vec3 su, vec3 sv, out mat2 jacobian) {
+    vec4 clip = uViewProjection * vec4(p, 1.0);
+    vec4 cu = uViewProjection * vec4(su, 0.0);
+    vec4 cv = uViewProjection * vec4(sv, 0.0);
+    vec2 ndc = clip.xy / clip.w;
+    vec2 halfSize = 0.5 * uViewport.zw;
+    jacobian = mat2((cu.xy - ndc * cu.w) / clip.w * halfSize, (cv.xy - ndc * cv.w) / clip.w * halfSize);
+    return uViewport.xy + (ndc + 1.0) * halfSize;
+}
+
+// The (u, v) of the surface point under this pixel's centre, from the base polygon's (u, v).
+// In adaptive mode the polygon lies within the pixel tolerance of the exact surface on screen,
+// so S(uv) projects up to that far from the pixel centre and the normal shown would be the
+// exact normal of a point up to 0.5 px away (an error of the curvature times the offset, 0.3
+// degrees p99 on the teapot). One Newton step on project(S(u, v)) = pixel centre (2 equations,
+// 2 unknowns, Jacobian = the projected tangents) moves it onto the pixel's ray; convergence is
+// quadratic, so the residual falls from <= 0.5 px to the order of (0.5 px)^2 times the
+// projection's curvature. No step where the start is farther than KW_NEWTON_REACH px (not the
+// adaptive polygon's neighbourhood) or where the projected tangents are nearly parallel (the
+// silhouette, where the ray may miss the surface): the polygon's (u, v) is kept there.
+// `residual` is the start's distance to the pixel centre in pixels.
+#define KW_NEWTON_REACH 4.0
+vec2 kwOntoRay(vec2 uv, out float residual) {
+    SurfacePartials d = surfacePartials(uv, vSpan);
+    mat2 j;
+    vec2 r = kwScreen(d.s + uOrigin, d.su, d.sv, j) - gl_FragCoord.xy;
+    residual = length(r);
+    float det = determinant(j);
+    if (!(residual <= KW_NEWTON_REACH) ||
+        !(abs(det) > 1e-3 * length(j[0]) * length(j[1])))
+        return uv;
+    vec2 step = -(inverse(j) * r);
+    return clamp(uv + step, uDomain.xz, uDomain.yw);
+}
+
+// Distance in pixels from the pixel centre to where p projects.
+float kwPixelResidual(vec3 p) {
+    vec4 clip = uViewProjection * vec4(p, 1.0);
+    return length(uViewport.xy + (clip.xy / clip.w + 1.0) * 0.5 * uViewport.zw - gl_FragCoord.xy);
+}
 #endif
 
 layout(location = 0) out vec4 fragColor;
@@ -59,7 +107,19 @@ void main() {
     // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,
     // as kw::surfacePoint does, instead of extrapolating the boundary span's polynomial.
     vec2 uv = clamp(vUv, uDomain.xz, uDomain.yw);
+#ifdef KW_RAY_NEWTON
+    float before;
+    vec2 onto = kwOntoRay(uv, before);
+    SurfaceSample s = evaluateSurface(onto, vSpan, vSpanScale);
+    // A step that did not bring the point nearer the pixel centre (a strongly curved
+    // projection near a silhouette) is undone.
+    if (onto != uv && !(kwPixelResidual(s.point) < before))
+        s = evaluateSurface(uv, vSpan, vSpanScale);
+    else
+        uv = onto;
+#else
     SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
+#endif
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);

@@ -44,6 +44,39 @@ QJsonObject edgeReport(const char* name, const QString& partitions,
     return QJsonDocument::fromJson(f.readAll()).object();
 }
 
+/// tests/data/NAME.brep converted to a project in the test output (once per run).
+QString convertedPart(const char* name) {
+    const QString knot = output(QStringLiteral("%1.knot").arg(QLatin1String(name)));
+    if (!QFile::exists(knot)) {
+        const Run r =
+            knotwork({QStringLiteral("convert"),
+                      QStringLiteral(KW_TEST_DATA_DIR "/%1.brep").arg(QLatin1String(name)), knot});
+        if (r.code != 0)
+            qWarning("%s", qPrintable(r.err));
+    }
+    return knot;
+}
+
+/// render --edge-report of `knot` at 256 x 256 in adaptive mode (the default), the fitted view
+/// moved by --zoom `zoom` ("1" keeps it).
+QJsonObject partReport(const QString& knot, const QString& zoom) {
+    const QString json =
+        output(QStringLiteral("edges_part_%1.json")
+                   .arg(zoom)
+                   .replace(QRegularExpression(QStringLiteral("[@,]")), QStringLiteral("_")));
+    QFile::remove(json);
+    const Run r = knotwork({QStringLiteral("render"), knot, QStringLiteral("-o"),
+                            output(QStringLiteral("edges_part.png")), QStringLiteral("--size"),
+                            QStringLiteral("256x256"), QStringLiteral("--zoom"), zoom,
+                            QStringLiteral("--edge-report"), json});
+    if (r.code != 0)
+        qWarning("%s", qPrintable(r.err));
+    QFile f(json);
+    if (!f.open(QIODevice::ReadOnly))
+        return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
+}
+
 } // namespace
 
 class TestRenderEdges : public QObject {
@@ -121,10 +154,15 @@ private Q_SLOTS:
         QVERIFY(cells > 0);
         QVERIFY(adaptive[QStringLiteral("silhouetteMaxPixels")].toDouble() <= 1.0);
         QCOMPARE(adaptive[QStringLiteral("crackPixelsCoveredInReference")].toDouble(), 0.0);
-        // The normal shown is exact at the polygon's (u, v), which lies within the tolerance
-        // of the point truly under the pixel: the error scales with the tolerance (teapot p99
-        // 1.08 deg at 0.5 px, 0.55 at 0.25, 0.22 at 0.1; measured 2026-11-22).
-        QVERIFY(adaptive[QStringLiteral("normalP99Degrees")].toDouble() < 1.5);
+        // The polygon's (u, v) lies within the tolerance of the point truly under the pixel
+        // and one Newton step per pixel moves it there (exact_surface.frag, kwOntoRay): the
+        // normal and depth shown are the exact ones (issue 10's targets: p99 <= 0.1 deg,
+        // max <= 1 deg). Without the step the teapot showed p99 1.08 deg at this size.
+        QVERIFY(adaptive[QStringLiteral("normalP99Degrees")].toDouble() <= 0.1);
+        QVERIFY(adaptive[QStringLiteral("normalMaxDegrees")].toDouble() <= 1.0);
+        QCOMPARE(adaptive[QStringLiteral("idDisagreements")].toDouble(), 0.0);
+        QVERIFY(adaptive[QStringLiteral("depthDisagreements")].toDouble() * 1000.0 <=
+                adaptive[QStringLiteral("normalPixels")].toDouble());
         // Fewer cells than the uniform 96 x 96 grid per surface that reaches the same.
         const QString uniformOut =
             knotwork({QStringLiteral("render"), sample(qPrintable(name)), QStringLiteral("-o"),
@@ -138,6 +176,65 @@ private Q_SLOTS:
                 .match(uniformOut);
         QVERIFY2(u.hasMatch(), qPrintable(uniformOut));
         QVERIFY(cells < u.captured(1).toLongLong());
+    }
+
+    // A closed solid (Pump_Nut from tests/data) shows no background between its faces in the
+    // fitted view and in close-ups at 2x and 8x (issue 10 item 4), and the visible faces,
+    // depths and normals are the CPU reference's outside the edge band.
+    void closedSolidHasNoCracksInCloseUps_data() {
+        QTest::addColumn<QString>("zoom");
+        QTest::newRow("fitted") << QStringLiteral("1");
+        QTest::newRow("2x") << QStringLiteral("2@0.4,0.5");
+        QTest::newRow("8x") << QStringLiteral("8@0.3,0.6");
+    }
+    void closedSolidHasNoCracksInCloseUps() {
+        QFETCH(QString, zoom);
+        const QJsonObject m = partReport(convertedPart("Pump_Nut"), zoom);
+        QVERIFY(!m.isEmpty());
+        qInfo("Pump_Nut at %s: %g covered, %g crack pixels, %g id disagreements, normal p99 "
+              "%.4f deg",
+              qPrintable(zoom), m[QStringLiteral("covered")].toDouble(),
+              m[QStringLiteral("crackPixels")].toDouble(),
+              m[QStringLiteral("idDisagreements")].toDouble(),
+              m[QStringLiteral("normalP99Degrees")].toDouble());
+        QVERIFY(m[QStringLiteral("covered")].toDouble() > 20000);
+        QCOMPARE(m[QStringLiteral("crackPixels")].toDouble(), 0.0);
+        QCOMPARE(m[QStringLiteral("idDisagreements")].toDouble(), 0.0);
+        QCOMPARE(m[QStringLiteral("depthDisagreements")].toDouble(), 0.0);
+        QVERIFY(m[QStringLiteral("silhouetteMaxPixels")].toDouble() <= 1.0);
+        QVERIFY(m[QStringLiteral("normalP99Degrees")].toDouble() <= 0.1);
+    }
+
+    // A close-up where a torus fillet (Axis_of_bearing's face 13, surface id 25, seen in this
+    // view's id AOV with its neighbours 23, 27 and 29) meets a cylinder and a plane: every pixel
+    // outside the edge band shows the face the CPU reference shows, at its depth. The paper's
+    // coarse polygons (uniform 10 x 10) do not.
+    void filletShowsTheReferenceFaces() {
+        const QString knot = convertedPart("Axis_of_bearing");
+        const QJsonObject m = partReport(knot, QStringLiteral("8@0.6,0.4"));
+        QVERIFY(!m.isEmpty());
+        QCOMPARE(m[QStringLiteral("idDisagreements")].toDouble(), 0.0);
+        QCOMPARE(m[QStringLiteral("depthDisagreements")].toDouble(), 0.0);
+        QVERIFY(m[QStringLiteral("normalPixels")].toDouble() > 20000);
+        // The same view from the paper's polygons: the metric sees the wrong faces in front.
+        const Run r = knotwork(
+            {QStringLiteral("render"), knot, QStringLiteral("-o"),
+             output(QStringLiteral("edges_fillet.png")), QStringLiteral("--size"),
+             QStringLiteral("256x256"), QStringLiteral("--zoom"), QStringLiteral("8@0.6,0.4"),
+             QStringLiteral("--partition-mode"), QStringLiteral("uniform"),
+             QStringLiteral("--edge-report"), output(QStringLiteral("edges_fillet_uniform.json"))});
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        QFile f(output(QStringLiteral("edges_fillet_uniform.json")));
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QJsonObject u = QJsonDocument::fromJson(f.readAll()).object();
+        qInfo("fillet close-up: adaptive %g id / %g depth disagreements, uniform %g / %g",
+              m[QStringLiteral("idDisagreements")].toDouble(),
+              m[QStringLiteral("depthDisagreements")].toDouble(),
+              u[QStringLiteral("idDisagreements")].toDouble(),
+              u[QStringLiteral("depthDisagreements")].toDouble());
+        QVERIFY(u[QStringLiteral("idDisagreements")].toDouble() +
+                    u[QStringLiteral("depthDisagreements")].toDouble() >
+                100.0);
     }
 
     // A project's saved display settings choose the partitioning unless the command line does.
