@@ -31,6 +31,7 @@ import time
 # angle and 2x in distance (a chord's deflection grows with the square of its angle).
 LINEAR = [4e-3 / 2.0 ** k for k in range(16)]
 ANGULAR = [round(20.0 / 2.0 ** (k / 2.0), 3) for k in range(16)]
+TIME = "/usr/bin/time"
 
 
 def run(cmd, env):
@@ -61,8 +62,10 @@ class Model:
     def render(self, tag, extra, frames=0):
         """render at the size with --edge-report (frames == 0) or --time-frames; the numbers."""
         out_png = os.path.join(self.dir, tag + ".png")
-        cmd = ["/usr/bin/time", "-f", "maxrss_kb %M", self.args.knotwork, "render", self.knot,
-               "-o", out_png, "--size", "%dx%d" % (self.args.size, self.args.size)] + extra
+        cmd = [self.args.knotwork, "render", self.knot, "-o", out_png, "--size",
+               "%dx%d" % (self.args.size, self.args.size)] + extra
+        if os.access(TIME, os.X_OK):  # Debian's package "time"; without it no peak RSS
+            cmd = [TIME, "-f", "maxrss_kb %M"] + cmd
         report = os.path.join(self.dir, tag + ".json")
         if frames:
             cmd += ["--time-frames", str(frames)]
@@ -149,16 +152,21 @@ class Model:
     def row(self):
         b, k = self.best, self.kw
         met = "" if self.good(b) else " (not reached)"
-        return ("| %s | %.3g / %g°%s | %d | %.2f / %.4f | %.1f (%.1f FPS) | %.1f MB / %.0f MB | "
-                "%.2f / %.4f | %d cells | %.1f (%.1f FPS) | %.1f MB / %.0f MB | %.2f× | %.2f× / "
-                "%.2f× | %.1f s |" % (
+        def rss(r):
+            return "%.0f MB" % (r["maxrss_kb"] / 1024.0) if r["maxrss_kb"] else "n/a"
+
+        rss_ratio = ("%.2f×" % (k["maxrss_kb"] / b["maxrss_kb"])
+                     if k["maxrss_kb"] and b["maxrss_kb"] else "n/a")
+        return ("| %s | %.3g / %g°%s | %d | %.2f / %.4f | %.1f (%.1f FPS) | %.1f MB / %s | "
+                "%.2f / %.4f | %d cells | %.1f (%.1f FPS) | %.1f MB / %s | %.2f× | %.2f× / "
+                "%s | %.1f s |" % (
                     self.name, LINEAR[b["li"]] * self.side, ANGULAR[b["ai"]], met, b["triangles"],
                     b["silhouetteMaxPixels"], b["normalP99Degrees"], self.peer_ms,
-                    1000.0 / self.peer_ms, b["gpu_bytes"] / 1e6, b["maxrss_kb"] / 1024.0,
+                    1000.0 / self.peer_ms, b["gpu_bytes"] / 1e6, rss(b),
                     k["silhouetteMaxPixels"], k["normalP99Degrees"], k["cells"], self.kw_ms,
-                    1000.0 / self.kw_ms, k["gpu_bytes"] / 1e6, k["maxrss_kb"] / 1024.0,
-                    self.peer_ms / self.kw_ms, k["gpu_bytes"] / b["gpu_bytes"],
-                    k["maxrss_kb"] / b["maxrss_kb"], b["mesh_seconds"]))
+                    1000.0 / self.kw_ms, k["gpu_bytes"] / 1e6, rss(k),
+                    self.peer_ms / self.kw_ms, k["gpu_bytes"] / b["gpu_bytes"], rss_ratio,
+                    b["mesh_seconds"]))
 
 
 HEADER = ("| model | peer deflection linear / angular | peer triangles | peer silhouette max px / "
