@@ -9,6 +9,7 @@
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <algorithm>
+#include <cmath>
 #include <unordered_set>
 #include <vector>
 
@@ -97,8 +98,14 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "tessellated baseline's shading, FILE's materials, lights and view; "
                        "--aov, --edge-report and --time-frames work as for the surfaces."),
         QStringLiteral("MESH.obj"));
-    parser.addOptions(
-        {out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport, peerMesh});
+    const QCommandLineOption zoom(
+        QStringLiteral("zoom"),
+        QStringLiteral("Magnify the view F times (1..1000) about its centre by narrowing the "
+                       "field of view; the eye stays where it is (a close-up that never puts "
+                       "the camera inside the part)."),
+        QStringLiteral("F"));
+    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport,
+                       peerMesh, zoom});
     const RenderCliOptions shared = addRenderOptions(
         parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
@@ -152,6 +159,16 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
     }
+    double zoomFactor = 1.0;
+    if (parser.isSet(zoom)) {
+        bool ok = false;
+        zoomFactor = parser.value(zoom).toDouble(&ok);
+        if (!ok || !(zoomFactor >= 1.0 && zoomFactor <= 1000.0)) {
+            printError(
+                QStringLiteral("%1: --zoom '%2' is not in 1..1000").arg(cmd, parser.value(zoom)));
+            return kExitUsage;
+        }
+    }
     if (!startGui())
         return kExitBadInput;
 
@@ -165,10 +182,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
         options.pixelTolerance = scene.display.pixelTolerance;
     QString error;
-    const Camera camera =
-        scene.camera.authored
-            ? scene.camera
-            : fitCamera(scene, double(imageSize.width()) / double(imageSize.height()));
+    Camera camera = scene.camera.authored
+                        ? scene.camera
+                        : fitCamera(scene, double(imageSize.width()) / double(imageSize.height()));
+    if (zoomFactor != 1.0) {
+        const double halfFov = 0.5 * glm::radians(camera.fovYDegrees);
+        camera.fovYDegrees = glm::degrees(2.0 * std::atan(std::tan(halfFov) / zoomFactor));
+    }
     if (parser.isSet(reference)) {
         if (!writeReferenceRender(scene, camera, imageSize, options.lightCount, outPath, aovPath,
                                   &error)) {

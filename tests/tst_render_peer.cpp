@@ -111,6 +111,32 @@ private Q_SLOTS:
                  qPrintable(QString::number(r[QStringLiteral("idDisagreements")].toDouble())));
     }
 
+    // --zoom F narrows the field of view: the part covers more of the frame, the peer mesh and
+    // the reference alike (the edge report still agrees on ids).
+    void zoomMagnifiesTheView() {
+        const QString json = output(QStringLiteral("rpeer_zoom.json"));
+        QFile::remove(json);
+        const Run r = knotwork({QStringLiteral("render"), output(kKnot), QStringLiteral("-o"),
+                                output(QStringLiteral("rpeer_zoom.png")), QStringLiteral("--size"),
+                                QStringLiteral("192x192"), QStringLiteral("--peer-mesh"),
+                                output(QStringLiteral("rpeer_0.02.obj")), QStringLiteral("--zoom"),
+                                QStringLiteral("3"), QStringLiteral("--edge-report"), json});
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        QFile f(json);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QJsonObject zoomed = QJsonDocument::fromJson(f.readAll()).object();
+        const QJsonObject fitted = peerReport(output(QStringLiteral("rpeer_0.02.obj")));
+        const double ratio = zoomed[QStringLiteral("referenceCovered")].toDouble() /
+                             fitted[QStringLiteral("referenceCovered")].toDouble();
+        qInfo("covered pixels x%.2f at --zoom 3", ratio);
+        QVERIFY(ratio > 1.3); // the frame fills up: 1.58 measured
+        QCOMPARE(zoomed[QStringLiteral("idDisagreements")].toDouble(), 0.0);
+        const Run bad = knotwork({QStringLiteral("render"), output(kKnot), QStringLiteral("-o"),
+                                  output(QStringLiteral("rpeer_zoom.png")),
+                                  QStringLiteral("--zoom"), QStringLiteral("0.5")});
+        QCOMPARE(bad.code, 2);
+    }
+
     void meshOfAnotherModelIsRefused() {
         const QString other = output(QStringLiteral("rpeer_other.obj"));
         QFile f(other);

@@ -54,7 +54,9 @@ class Model:
         self.args = args
         self.cad = cad
         self.name = os.path.splitext(os.path.basename(cad))[0]
-        self.dir = os.path.join(args.work, self.name)
+        self.dir = os.path.join(args.work, self.name + ("_zoom%g" % args.zoom
+                                                        if args.zoom != 1.0 else ""))
+        self.label = self.name + (" (%g× close-up)" % args.zoom if args.zoom != 1.0 else "")
         os.makedirs(self.dir, exist_ok=True)
         self.knot = os.path.join(self.dir, self.name + ".knot")
         self.env = dict(os.environ, QT_QPA_PLATFORM="xcb")
@@ -64,6 +66,8 @@ class Model:
         out_png = os.path.join(self.dir, tag + ".png")
         cmd = [self.args.knotwork, "render", self.knot, "-o", out_png, "--size",
                "%dx%d" % (self.args.size, self.args.size)] + extra
+        if self.args.zoom != 1.0:
+            cmd += ["--zoom", repr(self.args.zoom)]
         if os.access(TIME, os.X_OK):  # Debian's package "time"; without it no peak RSS
             cmd = [TIME, "-f", "maxrss_kb %M"] + cmd
         report = os.path.join(self.dir, tag + ".json")
@@ -160,7 +164,7 @@ class Model:
         return ("| %s | %.3g / %g°%s | %d | %.2f / %.4f | %.1f (%.1f FPS) | %.1f MB / %s | "
                 "%.2f / %.4f | %d cells | %.1f (%.1f FPS) | %.1f MB / %s | %.2f× | %.2f× / "
                 "%s | %.1f s |" % (
-                    self.name, LINEAR[b["li"]] * self.side, ANGULAR[b["ai"]], met, b["triangles"],
+                    self.label, LINEAR[b["li"]] * self.side, ANGULAR[b["ai"]], met, b["triangles"],
                     b["silhouetteMaxPixels"], b["normalP99Degrees"], self.peer_ms,
                     1000.0 / self.peer_ms, b["gpu_bytes"] / 1e6, rss(b),
                     k["silhouetteMaxPixels"], k["normalP99Degrees"], k["cells"], self.kw_ms,
@@ -185,6 +189,8 @@ def main():
     ap.add_argument("--size", type=int, default=1024)
     ap.add_argument("--frames", type=int, default=15, help="--time-frames per timing run")
     ap.add_argument("--rounds", type=int, default=3, help="alternating timing rounds")
+    ap.add_argument("--zoom", type=float, default=1.0,
+                    help="render --zoom F: a close-up F times magnified (default 1: fitted)")
     ap.add_argument("--max-triangles", type=int, default=4000000,
                     help="stop refining past a mesh of this many triangles")
     args = ap.parse_args()
