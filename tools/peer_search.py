@@ -34,13 +34,21 @@ ANGULAR = [round(20.0 / 2.0 ** (k / 2.0), 3) for k in range(16)]
 TIME = "/usr/bin/time"
 
 
-def run(cmd, env):
-    """Runs cmd; returns (stdout, stderr, seconds). Exits with the message on failure."""
+class Failed(Exception):
+    pass
+
+
+def run(cmd, env, fatal=True):
+    """Runs cmd; returns (stdout, stderr, seconds). On failure exits with the message, or
+    raises Failed when not fatal."""
     start = time.monotonic()
     p = subprocess.run(cmd, env=env, capture_output=True, text=True)
     seconds = time.monotonic() - start
     if p.returncode != 0:
-        sys.exit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr))
+        message = "failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr)
+        if fatal:
+            sys.exit(message)
+        raise Failed(message)
     return p.stdout, p.stderr, seconds
 
 
@@ -91,7 +99,8 @@ class Model:
         obj = os.path.join(self.dir, "mesh_%g_%g.obj" % (lin_frac, ang))
         cmd = [self.args.knotwork, "mesh", self.cad, "-o", obj, "--linear-deflection",
                repr(lin_frac * self.side), "--angular-deflection", repr(ang)]
-        out, _, seconds = run(cmd, self.env)
+        # Not fatal: a very fine mesh can pass the CAD child's time limit; the search stops there.
+        out, _, seconds = run(cmd, self.env, fatal=False)
         return obj, int(number(r"(\d+) triangles", out)), seconds
 
     def peer_quality(self, li, ai):
@@ -129,6 +138,12 @@ class Model:
         step = 0
         while (not self.good(self.peer_quality(step, step)) and step + 1 < len(LINEAR) and
                self.peer_quality(step, step)["triangles"] < self.args.max_triangles):
+            try:
+                self.peer_quality(step + 1, step + 1)
+            except Failed as e:
+                print("  %s: stopped refining: %s" % (self.name, str(e).strip().splitlines()[-1]),
+                      file=sys.stderr)
+                break
             step += 1
         best = self.peer_quality(step, step)
         # Relax one deflection at a time while the quality holds and triangles drop.
@@ -138,7 +153,10 @@ class Model:
             for li, ai in ((best["li"] - 1, best["ai"]), (best["li"], best["ai"] - 1)):
                 if li < 0 or ai < 0:
                     continue
-                q = self.peer_quality(li, ai)
+                try:
+                    q = self.peer_quality(li, ai)
+                except Failed:
+                    continue
                 if self.good(q) and q["triangles"] < best["triangles"]:
                     best, improved = q, True
         self.best = best

@@ -123,7 +123,9 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                 .arg(path, cadFormatName(format), occtUnavailableMessage());
     return std::nullopt;
 #else
-    const QString reader = QStringLiteral("the %1 reader").arg(cadFormatName(format));
+    const QString reader =
+        QString::fromLatin1(deflection && mesh ? "the %1 reader and mesher" : "the %1 reader")
+            .arg(cadFormatName(format));
     QTemporaryDir dir;
     if (!dir.isValid()) {
         error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
