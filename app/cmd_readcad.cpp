@@ -1,29 +1,46 @@
-// knotwork __read-cad IN DIR [--max-memory-mb N]: the child process that reads an IGES, STEP or
-// BREP file for a parent (model/cad/cadprocess.h), with OpenCASCADE loaded from the module
-// libknotwork_occt.so only here. Hidden from --help.
+// knotwork __read-cad IN DIR [--max-memory-mb N] [--mesh LINEAR ANGULAR_DEG]: the child process
+// that reads an IGES, STEP or BREP file for a parent (model/cad/cadprocess.h), with OpenCASCADE
+// loaded from the module libknotwork_occt.so only here; with --mesh it also triangulates the
+// shape (`knotwork mesh`) into DIR/mesh.obj. Hidden from --help.
 #include "app/commands.h"
 #include "app/plugin.h"
 #include "model/cad/cadprocess.h"
 #include "model/cad/occtimport.h"
 
 #include <cstdio>
+#include <optional>
 #include <sys/resource.h>
 
 namespace kw::cli {
 
 int runReadCad(const QStringList& args) {
     // args[0] is "knotwork __read-cad"; no QCommandLineParser: the parent builds the line.
-    if (args.size() != 3 && !(args.size() == 5 && args[3] == QLatin1String("--max-memory-mb"))) {
-        printError(QStringLiteral("%1: expected IN DIR [--max-memory-mb N] (used by knotwork "
-                                  "itself to read CAD files in a child process)")
+    bool usage = args.size() < 3;
+    long long memoryMb = 0;
+    std::optional<MeshDeflection> deflection;
+    for (qsizetype k = 3; k < args.size() && !usage;) {
+        bool ok1 = false, ok2 = true;
+        if (args[k] == QLatin1String("--max-memory-mb") && k + 1 < args.size()) {
+            memoryMb = args[k + 1].toLongLong(&ok1);
+            k += 2;
+        } else if (args[k] == QLatin1String("--mesh") && k + 2 < args.size()) {
+            deflection = MeshDeflection{args[k + 1].toDouble(&ok1), args[k + 2].toDouble(&ok2)};
+            k += 3;
+        }
+        usage = !ok1 || !ok2;
+    }
+    if (usage) {
+        printError(QStringLiteral("%1: expected IN DIR [--max-memory-mb N] [--mesh LINEAR "
+                                  "ANGULAR_DEG] (used by knotwork itself to read CAD files in a "
+                                  "child process)")
                        .arg(args.value(0)));
         return kExitUsage;
     }
     const QString in = args[1], dir = args[2];
-    if (args.size() == 5) {
+    if (memoryMb != 0) {
         // RLIMIT_AS: an allocation beyond it fails (bad_alloc, caught as an error) instead of
         // driving the machine into swap.
-        const rlim_t bytes = rlim_t(args[4].toLongLong()) << 20;
+        const rlim_t bytes = rlim_t(memoryMb) << 20;
         const rlimit limit{bytes, bytes};
         if (bytes > 0 && ::setrlimit(RLIMIT_AS, &limit) != 0)
             printError(QStringLiteral("%1: cannot set the memory limit").arg(args.value(0)));
@@ -34,9 +51,13 @@ int runReadCad(const QStringList& args) {
         return kExitUsage;
     }
     QString error;
-    const auto read = reinterpret_cast<OcctImportFunction>(
-        app::resolveModuleSymbol(QString::fromLatin1(kOcctModuleName), kOcctImportSymbol, &error));
-    if (!read) {
+    const auto resolve = [&](const char* symbol) {
+        return app::resolveModuleSymbol(QString::fromLatin1(kOcctModuleName), symbol, &error);
+    };
+    const auto read = reinterpret_cast<OcctImportFunction>(resolve(kOcctImportSymbol));
+    const auto mesh =
+        deflection ? reinterpret_cast<OcctMeshFunction>(resolve(kOcctMeshSymbol)) : nullptr;
+    if (!read || (deflection && !mesh)) {
         printError(QStringLiteral("%1: cannot read %2: %3").arg(in, cadFormatName(format), error));
         return kExitBadInput;
     }
@@ -47,8 +68,12 @@ int runReadCad(const QStringList& args) {
         return true; // the parent cancels by killing this process
     };
     ImportResult result;
-    if (!read(in, format, &result, &error, &progress) || !finishImport(result, in, error) ||
-        !writeImportForParent(result, dir, error)) {
+    TaggedMeshSet triangles;
+    const bool ok = deflection
+                        ? mesh(in, format, &*deflection, &result, &triangles, &error, &progress) &&
+                              writeMeshForParent(triangles, dir, error)
+                        : read(in, format, &result, &error, &progress);
+    if (!ok || !finishImport(result, in, error) || !writeImportForParent(result, dir, error)) {
         printError(error);
         return kExitBadInput;
     }

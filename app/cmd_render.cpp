@@ -2,6 +2,7 @@
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "app/render_reference.h"
+#include "model/meshobj.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 
@@ -9,9 +10,46 @@
 #include <QElapsedTimer>
 #include <QRegularExpression>
 #include <algorithm>
+#include <cmath>
+#include <unordered_set>
 #include <vector>
 
 namespace kw::cli {
+
+namespace {
+
+/// Reads a tagged mesh (model/meshobj.h) for `scene` into the renderer's form. False with
+/// *error naming the file when it cannot be read or tags a surface `scene` does not have (a
+/// mesh of another file would compare nonsense).
+bool loadPeerMesh(const QString& path, const QString& knotPath, const Scene& scene,
+                  TriangleMesh& mesh, QString* error) {
+    TaggedMeshSet set;
+    if (!readTaggedMeshObjFile(path, set, *error))
+        return false;
+    std::unordered_set<std::uint32_t> ids;
+    for (const Surface& s : scene.surfaces)
+        ids.insert(s.id.value);
+    for (const TaggedMesh& f : set.faces) {
+        if (!ids.count(f.id.value)) {
+            *error = QStringLiteral("%1: group surface_%2 names no surface of %3 (mesh and "
+                                    "model from different files?)")
+                         .arg(path)
+                         .arg(f.id.value)
+                         .arg(knotPath);
+            return false;
+        }
+        SurfaceMesh s;
+        s.id = f.id;
+        s.positions.assign(f.positions.begin(), f.positions.end());
+        s.normals.assign(f.normals.begin(), f.normals.end());
+        s.uvs.assign(f.uvs.begin(), f.uvs.end());
+        s.indices = f.indices;
+        mesh.surfaces.push_back(std::move(s));
+    }
+    return true;
+}
+
+} // namespace
 
 int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     QCommandLineParser parser;
@@ -54,6 +92,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "metrics (silhouette, cracks, id/depth, normal error) as JSON ('-': "
                        "stdout)."),
         QStringLiteral("REPORT.json"));
+    const QCommandLineOption peerMesh(
+        QStringLiteral("peer-mesh"),
+        QStringLiteral("Draw this triangle mesh (from 'knotwork mesh': groups surface_<id> with "
+                       "the ids of FILE's surfaces) instead of FILE's surfaces, with the "
+                       "tessellated baseline's shading, FILE's materials, lights and view; "
+                       "--aov, --edge-report and --time-frames work as for the surfaces."),
+        QStringLiteral("MESH.obj"));
     const QCommandLineOption zoom(
         QStringLiteral("zoom"),
         QStringLiteral("Magnify the view F times (1..1e6) about the point shown at image "
@@ -61,8 +106,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "the centre: the camera turns to it and narrows its field of view, the eye "
                        "stays (a close-up that never puts the camera inside the part)."),
         QStringLiteral("F[@X,Y]"));
-    parser.addOptions(
-        {out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport, zoom});
+    parser.addOptions({out, size, aov, aovCurvature, timeFrames, wire, net, reference, edgeReport,
+                       peerMesh, zoom});
     const RenderCliOptions shared = addRenderOptions(
         parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
     parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
@@ -131,6 +176,11 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             return kExitUsage;
         }
     }
+    if (parser.isSet(peerMesh) && (parser.isSet(reference) || parser.isSet(aovCurvature))) {
+        printError(
+            QStringLiteral("%1: --peer-mesh excludes --reference and --aov-curvature").arg(cmd));
+        return kExitUsage;
+    }
     if (parser.isSet(reference) && parser.isSet(edgeReport)) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
@@ -160,6 +210,12 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         }
         return kExitOk;
     }
+    TriangleMesh mesh;
+    if (parser.isSet(peerMesh) &&
+        !loadPeerMesh(parser.value(peerMesh), files[0], scene, mesh, &error)) {
+        printError(error);
+        return kExitBadInput;
+    }
     const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
     OffscreenRenderer renderer;
     if (!renderer.create(&error) ||
@@ -167,7 +223,17 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: %2").arg(cmd, error));
         return kExitBadInput;
     }
-    if (!renderer.render(doc, camera, options, &error)) {
+    std::int64_t meshBytes = 0;
+    if (parser.isSet(peerMesh) && (meshBytes = renderer.setMesh(0, mesh)) < 0) {
+        printError(QStringLiteral("%1: cannot send the mesh to the GPU").arg(cmd));
+        return kExitBadInput;
+    }
+    // One frame: the document's surfaces, or the peer mesh in their place.
+    const auto frame = [&] {
+        return parser.isSet(peerMesh) ? renderer.renderMesh(doc, 0, camera, options, &error)
+                                      : renderer.render(doc, camera, options, &error);
+    };
+    if (!frame()) {
         printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
         return kExitBadInput;
     }
@@ -191,7 +257,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         for (int k = 0; k < timedFrames; ++k) {
             QElapsedTimer t;
             t.start();
-            if (!renderer.render(doc, camera, options, &error)) {
+            if (!frame()) {
                 printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
                 return kExitBadInput;
             }
@@ -206,7 +272,15 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      .arg(analysisModeName(options.analysis.mode)));
     }
     const FrameReport::Partitions& parts = renderer.lastReport().partitions;
-    if (options.mode == RenderMode::Exact)
+    if (parser.isSet(peerMesh))
+        printOut(QStringLiteral("%1: peer mesh %2: %3 triangles, %4 vertices, %5 bytes on the GPU "
+                                "(%6 faces drawn)\n")
+                     .arg(files[0], parser.value(peerMesh))
+                     .arg(mesh.triangleCount())
+                     .arg(mesh.vertexCount())
+                     .arg(meshBytes)
+                     .arg(renderer.lastReport().surfaces));
+    else if (options.mode == RenderMode::Exact)
         printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
                                       "(tolerance %4 px)\n")
@@ -217,12 +291,15 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])
                            .arg(parts.cells));
+    printOut(QStringLiteral("%1: %2 bytes resident on the GPU\n")
+                 .arg(files[0])
+                 .arg(renderer.lastReport().gpuBytes.total()));
     printOut(
         QStringLiteral("%1: %2x%3 %4 render of %5 surface(s) -> %6%7\n")
             .arg(files[0])
             .arg(imageSize.width())
             .arg(imageSize.height())
-            .arg(modeName(options.mode))
+            .arg(parser.isSet(peerMesh) ? QStringLiteral("peer-mesh") : modeName(options.mode))
             .arg(scene.surfaces.size())
             .arg(outPath, parser.isSet(aov) ? QStringLiteral(", AOVs -> ") + aovPath : QString()));
     return kExitOk;

@@ -39,6 +39,7 @@ const std::vector<Command>& commands();
 int runInfo(const QStringList& args);    ///< knotwork
 int runEval(const QStringList& args);    ///< knotwork
 int runConvert(const QStringList& args); ///< knotwork
+int runMesh(const QStringList& args);    ///< knotwork
 /// knotwork-gl and knotwork-bench: they call `startGui` (app/gl_command.h) once their
 /// arguments are valid and return kExitBadInput when it returns false.
 int runRender(const QStringList& args, const std::function<bool()>& startGui);

@@ -49,6 +49,14 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
 /// with kw::sceneError. False with `error` "<path>: <reason>" when it is not valid.
 bool finishImport(ImportResult& result, const QString& path, QString& error);
 
+/// How `knotwork mesh` asks OpenCASCADE to triangulate a CAD file (BRepMesh_IncrementalMesh's
+/// absolute linear deflection in model units and angular deflection in degrees). linear 0:
+/// OCCT viewers' default (0.004 times the largest side of the shape's bounding box).
+struct MeshDeflection {
+    double linear = 0.0;
+    double angularDegrees = 20.0; ///< AIS_Shape's default deviation angle
+};
+
 /// Message for OCCT formats in a build without OpenCASCADE.
 QString occtUnavailableMessage();
 

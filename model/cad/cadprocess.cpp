@@ -101,15 +101,31 @@ bool writeImportForParent(const ImportResult& result, const QString& dir, QStrin
     return true;
 }
 
+bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& error) {
+    QString why;
+    if (!saveBytesAtomically(QDir(dir).filePath(QStringLiteral("mesh.obj")),
+                             writeTaggedMeshObj(mesh), &why)) {
+        error = why;
+        return false;
+    }
+    return true;
+}
+
 std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                                 QString& error, const ImportProgress& progress) {
+                                                 QString& error, const ImportProgress& progress,
+                                                 const MeshDeflection* deflection,
+                                                 TaggedMeshSet* mesh) {
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
+    Q_UNUSED(deflection);
+    Q_UNUSED(mesh);
     error = QStringLiteral("%1: cannot read %2: %3")
                 .arg(path, cadFormatName(format), occtUnavailableMessage());
     return std::nullopt;
 #else
-    const QString reader = QStringLiteral("the %1 reader").arg(cadFormatName(format));
+    const QString reader =
+        QString::fromLatin1(deflection && mesh ? "the %1 reader and mesher" : "the %1 reader")
+            .arg(cadFormatName(format));
     QTemporaryDir dir;
     if (!dir.isValid()) {
         error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
@@ -120,8 +136,12 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
     const long long memory = cadMemoryLimitBytes();
     QProcess child;
     child.setProgram(cadReaderExecutable());
-    child.setArguments({QString::fromLatin1(kReadCadVerb), path, dir.path(),
-                        QStringLiteral("--max-memory-mb"), QString::number(memory >> 20)});
+    QStringList childArgs{QString::fromLatin1(kReadCadVerb), path, dir.path(),
+                          QStringLiteral("--max-memory-mb"), QString::number(memory >> 20)};
+    if (deflection && mesh)
+        childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
+                  << QString::number(deflection->angularDegrees, 'g', 17);
+    child.setArguments(childArgs);
     child.start(QIODevice::ReadOnly);
     if (!child.waitForStarted(30000)) {
         error = QStringLiteral("%1: cannot start %2 (%3): %4")
@@ -200,6 +220,11 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
         result.sourceFaces.push_back(f.toInt());
     if (result.sourceFaces.size() != result.scene.surfaces.size()) {
         error = QStringLiteral("%1: %2 gave an inconsistent result").arg(path, reader);
+        return std::nullopt;
+    }
+    if (deflection && mesh &&
+        !readTaggedMeshObjFile(dir.filePath(QStringLiteral("mesh.obj")), *mesh, why)) {
+        error = QStringLiteral("%1: %2 gave no readable mesh: %3").arg(path, reader, why);
         return std::nullopt;
     }
     return result;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
+#include "model/meshobj.h"
 
 #include <QString>
 #include <QStringList>
@@ -34,13 +35,21 @@ void setCadReaderExecutable(const QString& path);
 /// "<path>: <reason>" except for a crash: "the STEP reader crashed on <path> (signal 11:
 /// Segmentation fault)"; a time-out names the limit; a cancel (progress returned false) kills
 /// the child at once and gives "<path>: import cancelled".
+/// With `deflection` (and `mesh`) set, the child also triangulates the shape with OpenCASCADE
+/// (importAndMeshOcctFile, `knotwork mesh`) and `mesh` gets its triangles, tagged with the ids
+/// of the returned scene's surfaces.
 std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
                                                  QString& error,
-                                                 const ImportProgress& progress = {});
+                                                 const ImportProgress& progress = {},
+                                                 const MeshDeflection* deflection = nullptr,
+                                                 TaggedMeshSet* mesh = nullptr);
 
 /// Child side: writes a finished import (finishImport) for the parent as DIR/scene.knot and
 /// DIR/report.json, atomically. False with `error` set when it cannot.
 bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error);
+
+/// Child side: writes the mesh for the parent as DIR/mesh.obj (writeTaggedMeshObj), atomically.
+bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& error);
 
 /// "progress DONE TOTAL\n", the line the child prints for the parent's progress bar.
 QByteArray progressLine(int done, int total);

@@ -1,11 +1,15 @@
 // Internal to knotwork_cad: conversion of one OpenCASCADE face into a Knotwork surface.
 #pragma once
 
+#include "model/cad/cadimport.h"
+#include "model/meshobj.h"
 #include "model/scene.h"
 
 #include <QString>
 #include <QStringList>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
 
 namespace kw::occt {
 
@@ -20,5 +24,20 @@ namespace kw::occt {
 /// no p-curve, conversion failure); OCCT exceptions are the caller's to catch.
 bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings);
+
+/// OCCT viewers' default linear deflection for `shape` (AIS_Shape: 0.004 times the largest side
+/// of its bounding box); 0 for an empty shape.
+double defaultLinearDeflection(const TopoDS_Shape& shape);
+
+/// Triangulates `shape` with BRepMesh_IncrementalMesh(shape, linear, absolute, angular,
+/// sequential) and fills `out` with the triangles of each imported face (`faces` is the map
+/// imported.sourceFaces indexes; one TaggedMesh per surface of imported.scene, tagged with its
+/// id), positions and normals (OCCT viewers' nodal normals, occtmesh.cpp) moved by the face's
+/// location. A face left without triangles is a warning. False with `error` when the
+/// deflections are not positive, BRepMesh fails or no face got triangles; OCCT exceptions are
+/// the caller's to catch.
+bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+               const ImportResult& imported, double linear, double angularDegrees,
+               TaggedMeshSet& out, QStringList& warnings, QString& error);
 
 } // namespace kw::occt

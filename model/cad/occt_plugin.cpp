@@ -13,3 +13,16 @@ extern "C" Q_DECL_EXPORT bool knotwork_occt_import(const QString& path, kw::CadF
     *result = std::move(*r);
     return true;
 }
+
+extern "C" Q_DECL_EXPORT bool knotwork_occt_mesh(const QString& path, kw::CadFormat format,
+                                                 const kw::MeshDeflection* deflection,
+                                                 kw::ImportResult* result, kw::TaggedMeshSet* mesh,
+                                                 QString* error,
+                                                 const kw::ImportProgress* progress) {
+    auto r = kw::importAndMeshOcctFile(path, format, *deflection, *mesh, *error,
+                                       progress ? *progress : kw::ImportProgress{});
+    if (!r)
+        return false;
+    *result = std::move(*r);
+    return true;
+}

@@ -336,10 +336,9 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     return true;
 }
 
-} // namespace
-
-std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
-                                           const ImportProgress& progress) {
+std::optional<ImportResult> importImpl(const QString& path, CadFormat format, QString& error,
+                                       const ImportProgress& progress,
+                                       const MeshDeflection* deflection, TaggedMeshSet* mesh) {
     setUpOcctOnce();
     // Also in this thread (the editor imports on a worker thread): FPE masks and handlers.
     OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
@@ -425,9 +424,42 @@ std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format
                     .arg(result.report.skipped.value(0));
         return std::nullopt;
     }
+    if (deflection) {
+        try {
+            OCC_CATCH_SIGNALS
+            QString why;
+            const double linear = deflection->linear > 0.0
+                                      ? deflection->linear
+                                      : occt::defaultLinearDeflection(read.shape);
+            if (!occt::meshFaces(read.shape, faces, result, linear, deflection->angularDegrees,
+                                 *mesh, result.report.warnings, why)) {
+                error = QStringLiteral("%1: cannot mesh: %2").arg(path, why);
+                return std::nullopt;
+            }
+        } catch (const Standard_Failure& e) {
+            error = QStringLiteral("%1: OpenCASCADE failed meshing the shape: %2 (%3)")
+                        .arg(path, QString::fromUtf8(e.GetMessageString()),
+                             QString::fromLatin1(e.DynamicType()->Name()));
+            return std::nullopt;
+        }
+    }
     if (progress)
         progress(kSteps, kSteps);
     return result;
+}
+
+} // namespace
+
+std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
+                                           const ImportProgress& progress) {
+    return importImpl(path, format, error, progress, nullptr, nullptr);
+}
+
+std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
+                                                  const MeshDeflection& deflection,
+                                                  TaggedMeshSet& mesh, QString& error,
+                                                  const ImportProgress& progress) {
+    return importImpl(path, format, error, progress, &deflection, &mesh);
 }
 
 } // namespace kw

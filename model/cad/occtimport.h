@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
+#include "model/meshobj.h"
 
 namespace kw {
 
@@ -14,11 +15,25 @@ namespace kw {
 std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
                                            const ImportProgress& progress = {});
 
+/// importOcctFile, then the shape triangulated by OpenCASCADE (occt::meshFaces): `mesh` gets
+/// one TaggedMesh per imported surface, tagged with its id. A meshing failure is an error;
+/// faces left without triangles are warnings in the report.
+std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
+                                                  const MeshDeflection& deflection,
+                                                  TaggedMeshSet& mesh, QString& error,
+                                                  const ImportProgress& progress = {});
+
 /// The exported entry point of the module libknotwork_occt.so (QLibrary resolves it by this
 /// name): calls importOcctFile. Returns true and fills *result, or false with *error set.
 using OcctImportFunction = bool (*)(const QString& path, CadFormat format, ImportResult* result,
                                     QString* error, const ImportProgress* progress);
 constexpr const char* kOcctImportSymbol = "knotwork_occt_import";
+/// The module's second entry point: importAndMeshOcctFile.
+using OcctMeshFunction = bool (*)(const QString& path, CadFormat format,
+                                  const MeshDeflection* deflection, ImportResult* result,
+                                  TaggedMeshSet* mesh, QString* error,
+                                  const ImportProgress* progress);
+constexpr const char* kOcctMeshSymbol = "knotwork_occt_mesh";
 constexpr const char* kOcctModuleName = "knotwork_occt";
 
 } // namespace kw
