@@ -59,9 +59,10 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
             return false;
         }
     }
-    printOut(QStringLiteral("edges: silhouette mean %1 px max %2 px, %3 crack pixels, %4 id and "
-                            "%5 depth disagreements outside the edge band (%9 coincident), "
-                            "normal error mean %6 p99 %7 max %8 deg\n")
+    printOut(QStringLiteral(
+                 "edges: silhouette mean %1 px max %2 px, %3 crack pixels, %4 id and "
+                 "%5 depth disagreements outside the edge band (%9 of the id ones at equal depth), "
+                 "normal error mean %6 p99 %7 max %8 deg\n")
                  .arg(m.silhouetteMeanPixels, 0, 'f', 2)
                  .arg(m.silhouetteMaxPixels, 0, 'f', 2)
                  .arg(m.crackPixels)

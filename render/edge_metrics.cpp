@@ -167,7 +167,8 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
             if (idF != idR) {
                 const bool tie = idF >= 0 && idR >= 0 &&
                                  std::abs(double(pf[9]) - double(pr[9])) <= depthTolerance;
-                ++(tie ? out.idCoincident : out.idDisagreements);
+                ++out.idDisagreements;
+                out.idCoincident += tie;
                 continue;
             }
             if (idR < 0)

@@ -32,10 +32,10 @@ struct EdgeMetrics {
     /// eye depth farther away than a surface within 3 degrees of edge-on would put it (the
     /// surface's silhouette over itself). Outside it:
     long long edgeBandPixels = 0;
-    /// Visible surface id differs from the reference, and so does the depth: another surface
-    /// is in front. Where the ids differ at the same depth (within depthTolerance) the two
-    /// surfaces coincide there (touching parts of an assembly) and either is the true surface:
-    /// those pixels are counted in idCoincident instead.
+    /// Visible surface id differs from the reference. idCoincident counts those of them at the
+    /// same depth (within depthTolerance): where two surfaces coincide (touching parts of an
+    /// assembly) either is the true surface, and where the frame's depth is exact (adaptive
+    /// mode) a wrong face in front is a disagreement not counted there.
     long long idDisagreements = 0;
     long long idCoincident = 0;
     long long depthDisagreements = 0; ///< same id, |Z - Z_ref| > depthTolerance
