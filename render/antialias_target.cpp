@@ -1,5 +1,7 @@
 #include "render/antialias_target.h"
 
+#include "render/depth_convention.h"
+
 #include <QOpenGLShaderProgram>
 
 namespace kw {
@@ -17,7 +19,7 @@ bool AntialiasTarget::ensure(QSize size, int samples, QString* error) {
     };
     m_colour = texture(GL_RGBA8);
     m_accumulation = texture(GL_RGBA16F);
-    m_depth = texture(GL_DEPTH_COMPONENT32F);
+    m_depth = texture(kDepthFormat);
     gl->glCreateFramebuffers(1, &m_fbo);
     gl->glNamedFramebufferTexture(m_fbo, kColour, m_colour, 0);
     gl->glNamedFramebufferTexture(m_fbo, kAccumulation, m_accumulation, 0);
@@ -45,8 +47,7 @@ void AntialiasTarget::begin(const float background[4]) {
     const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     gl->glClearBufferfv(GL_COLOR, 0, background);
     gl->glClearBufferfv(GL_COLOR, 1, zero);
-    const GLfloat farDepth = 1.0f;
-    gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    gl->glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
     drawToAccumulation(false);
 }
 
@@ -78,7 +79,7 @@ bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
     gl->glBindVertexArray(0);
     for (GLuint unit = 0; unit < 3; ++unit)
         gl->glBindTextureUnit(unit, 0);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     return true;
 }
 

@@ -3,6 +3,7 @@
 #include "render/exact_surface_pass.h"
 
 #include "model/surface_bound.h"
+#include "render/depth_convention.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
@@ -298,7 +299,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene
         trimDefines << QStringLiteral("KW_TRIM_AA");
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     bool ok = true;
     // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
     for (Batch* b : {&plain, &trimmed}) {
@@ -354,7 +355,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
-        gl->glDepthFunc(GL_LESS);
+        gl->glDepthFunc(kDepthNearer);
         gl->glDepthMask(GL_TRUE);
     }
     if (ok)
@@ -364,7 +365,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     return ok;
 }
@@ -398,10 +399,10 @@ bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera
                                 const ValueRange& range, AntialiasTarget& aa, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // After every opaque fragment: a partly covered one is summed where it is nearer than
-    // what was drawn (GL_LESS: its own surface's wholly covered fragments fail), and writes no
-    // depth, so every partly covered layer in front of the opaque one counts.
+    // what was drawn (the strict nearer test: its own surface's wholly covered fragments fail), and
+    // writes no depth, so every partly covered layer in front of the opaque one counts.
     aa.drawToAccumulation(true);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_FALSE);
     gl->glEnable(GL_BLEND);
     gl->glBlendEquation(GL_FUNC_ADD);

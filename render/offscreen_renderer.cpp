@@ -1,6 +1,7 @@
 // Off-screen context and framebuffer with colour and AOV targets; read-back of both.
 #include "render/offscreen_renderer.h"
 
+#include "render/depth_convention.h"
 #include "render/gl_context.h"
 
 #include <QOffscreenSurface>
@@ -117,7 +118,7 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool w
     };
     gl->glCreateFramebuffers(1, &d->fbo);
     d->color = texture(GL_RGBA8);
-    d->depth = texture(GL_DEPTH_COMPONENT24);
+    d->depth = texture(kDepthFormat);
     gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT0, d->color, 0);
     gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_ATTACHMENT, d->depth, 0);
     GLenum buffers[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,

@@ -1,6 +1,8 @@
 // Wireframe of the base polygon and the control net.
 #include "render/overlay_passes.h"
 
+#include "render/depth_convention.h"
+
 #include <QOpenGLShaderProgram>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -19,7 +21,7 @@ QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     prog->bind();
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(camera.viewProjection));
-    gl->glDepthFunc(GL_LEQUAL);
+    gl->glDepthFunc(kDepthNearerOrEqual);
     gl->glDepthMask(GL_FALSE);
     return prog;
 }
@@ -47,7 +49,7 @@ bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QStri
                 GLint(g->vertexOffset));
             ++drawCalls;
         }
-    m_gl->glDepthFunc(GL_LESS);
+    m_gl->glDepthFunc(kDepthNearer);
     m_gl->glDepthMask(GL_TRUE);
     return true;
 }
@@ -77,7 +79,7 @@ bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera, QStr
         drawCalls += 2;
     }
     gl->glDisable(GL_PROGRAM_POINT_SIZE);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     return true;
 }

@@ -71,10 +71,18 @@ CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2
 
 FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect) {
     const CameraMatrices m = cameraMatrices(camera, bounds, aspect);
+    // Reversed depth for the GPU (glClipControl's zero-to-one range): depth = near / distance,
+    // 1 at the near plane and 0 at infinity, so a float depth buffer resolves about 1e-7 of the
+    // distance at every distance, where GL's -1..1 mapping leaves 1e-3 when near is 1e-5 of far
+    // (the eye inside the scene's bounds: close-ups). Row z becomes (row w - row z) / 2, in
+    // double before rounding: exactly n / (f - n) z + f n / (f - n).
+    glm::dmat4 projection = m.projection;
+    for (int c = 0; c < 4; ++c)
+        projection[c][2] = 0.5 * (m.projection[c][3] - m.projection[c][2]);
     FrameCamera fc;
     fc.view = glm::mat4(m.view);
-    fc.projection = glm::mat4(m.projection);
-    fc.viewProjection = glm::mat4(m.projection * m.view);
+    fc.projection = glm::mat4(projection);
+    fc.viewProjection = glm::mat4(projection * m.view);
     fc.eye = glm::vec3(m.eye);
     fc.forward = glm::vec3(m.forward);
     fc.nearPlane = float(m.nearPlane);

@@ -1,5 +1,6 @@
 // Renderer: context check, per-frame state setup, cache sync, passes in order, overlays, the
 // frame report, and the pick query.
+#include "render/depth_convention.h"
 #include "render/gl_context.h"
 #include "render/renderer_impl.h"
 #include "render/thread_clock.h"
@@ -173,6 +174,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     gl->glUseProgram(0);
     if (pickPixel)
         gl->glDisable(GL_SCISSOR_TEST);
+    endReversedDepth(gl);
 
     report.drawCalls +=
         exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
@@ -206,6 +208,7 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
                                  const QRect* pickPixel) {
     const QSize size = target.size;
     gl->glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    beginReversedDepth(gl);
     if (pickPixel) {
         // The framebuffer holds one pixel of the frame: shift the viewport so that pixel lands
         // on (0, 0); the rasterisation is the full frame's, translated by whole pixels.
@@ -231,8 +234,7 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
             gl->glClearBufferfv(GL_COLOR, 5, zero);
         }
     }
-    const GLfloat farDepth = 1.0f;
-    gl->glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    gl->glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
 }
 
 std::int64_t Renderer::setMesh(int slot, const TriangleMesh& mesh) {
@@ -272,6 +274,7 @@ FrameReport Renderer::renderMesh(const Document& doc, int slot, const Camera& ca
     d->beginTarget(target, o, nullptr);
     QString error;
     report.ok = pass->draw(doc.scene(), fc, lights, o, &error);
+    endReversedDepth(d->gl);
     if (!report.ok)
         d->error = report.error = error;
     report.drawCalls = pass->drawCalls;
@@ -298,7 +301,7 @@ bool Renderer::Impl::ensurePickTarget(QSize size) {
         return t;
     };
     gl->glCreateFramebuffers(1, &pickFbo);
-    const GLenum formats[5] = {GL_RGBA8, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, GL_DEPTH_COMPONENT24};
+    const GLenum formats[5] = {GL_RGBA8, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, kDepthFormat};
     for (int k = 0; k < 5; ++k)
         pickTextures[k] = texture(formats[k]);
     for (int k = 0; k < 4; ++k)

@@ -1,6 +1,7 @@
 // Baseline pass: meshes from kw::tessellate (built by GpuScene), Gouraud shading on the GPU.
 #include "render/tessellated_pass.h"
 
+#include "render/depth_convention.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
@@ -29,7 +30,7 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
         *error = m_shaders->lastError();
         return false;
     }
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     QOpenGLShaderProgram* bound = nullptr;
     const TrimMaskPass& masks = scene.trimMasks();

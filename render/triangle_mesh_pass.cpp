@@ -1,6 +1,7 @@
 // TriangleMeshPass: the benchmark's comparison meshes drawn through the renderer.
 #include "render/triangle_mesh_pass.h"
 
+#include "render/depth_convention.h"
 #include "render/shading_uniforms.h"
 
 #include <QOpenGLShaderProgram>
@@ -70,7 +71,7 @@ bool TriangleMeshPass::draw(const Scene& scene, const FrameCamera& camera,
     prog->bind();
     setFrameUniforms(gl, prog, camera, lights);
     gl->glEnable(GL_DEPTH_TEST);
-    gl->glDepthFunc(GL_LESS);
+    gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(m_vao);
     for (const Range& r : m_ranges) {

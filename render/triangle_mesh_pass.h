@@ -22,10 +22,10 @@ public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
     /// Sends `mesh` to the GPU, replacing the previous one. Returns the bytes sent.
     std::int64_t upload(const TriangleMesh& mesh);
-    /// Draws the uploaded mesh into the bound framebuffer with depth test GL_LESS, writing the
-    /// AOV attachments when options.writeAov; each surface with the material of the surface of
-    /// `scene` with its id (others are skipped). Returns false with *error set when the shader
-    /// does not build.
+    /// Draws the uploaded mesh into the bound framebuffer with the nearer depth test
+    /// (render/depth_convention.h), writing the AOV attachments when options.writeAov; each surface
+    /// with the material of the surface of `scene` with its id (others are skipped). Returns false
+    /// with *error set when the shader does not build.
     bool draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
               const RenderOptions& options, QString* error);
     /// Frees the GL objects.

@@ -12,7 +12,7 @@ out vec4 fragColor;
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec4 sum = vec4(0.0);
-    float depth = 1.0;
+    float depth = 0.0; // reversed depth (render/depth_convention.h): the nearest is the greatest
     int samples = textureSamples(uColour);
     for (int s = 0; s < samples; ++s) {
         vec4 below = texelFetch(uColour, pixel, s);
@@ -20,7 +20,7 @@ void main() {
         float covered = min(edge.a, 1.0);
         vec4 over = edge.a > 1.0 ? edge / edge.a : edge;
         sum += vec4(over.rgb, covered) + (1.0 - covered) * below;
-        depth = min(depth, texelFetch(uDepth, pixel, s).r);
+        depth = max(depth, texelFetch(uDepth, pixel, s).r);
     }
     fragColor = sum / float(samples);
     gl_FragDepth = depth;

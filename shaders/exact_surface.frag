@@ -32,7 +32,8 @@ uniform vec3 uForward;
 
 #if defined(KW_TRIM_EDGE) && !defined(KW_EXACT_DEPTH)
 // The edge pass writes no depth: test it before shading, so fragments behind what the opaque
-// passes drew (the surface's own inside among them: equal depth fails GL_LESS) cost nothing.
+// passes drew (the surface's own inside among them: equal depth fails the strict nearer
+// test) cost nothing.
 layout(early_fragment_tests) in;
 #endif
 
@@ -122,7 +123,7 @@ void main() {
 #endif
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
-    gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+    gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // zero-to-one clip range, reversed
 #endif
 #ifdef KW_SECOND_ORDER
     vec4 curvature = s.curvature;

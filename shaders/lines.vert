@@ -8,6 +8,8 @@ uniform float uPointSize;
 
 void main() {
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
-    gl_Position.z -= uDepthBias * gl_Position.w;
+    // Reversed depth (render/depth_convention.h): nearer is greater. Half the bias in the
+    // zero-to-one range moves a line as far as the full bias did in GL's -1..1 range.
+    gl_Position.z += 0.5 * uDepthBias * gl_Position.w;
     gl_PointSize = uPointSize;
 }

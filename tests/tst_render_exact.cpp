@@ -1,5 +1,6 @@
 // GL test: the exact renderer's AOV (position, normal at each pixel's (u, v)) against the CPU
 // kernel, for every sample and for scenes built in code (poles, high degree, multiplicities).
+#include "model/nurbs_shapes.h"
 #include "render_test_util.h"
 
 #include <QGuiApplication>
@@ -80,6 +81,66 @@ private Q_SLOTS:
                 5, kwtest::wavyPatch(3, 3, {0, 0, 0, 0, 0.3, 0.3, 0.3, 0.6, 0.6, 1, 1, 1, 1},
                                      {0, 0, 0, 0, 0.45, 0.45, 1, 1, 1, 1})));
             addScene("code: interior multiplicity", s);
+        }
+    }
+
+    // Exact visibility in a close-up with the eye inside the scene's bounds (issue 10 item
+    // 3): there the near plane is 1e-5 of the far one, and GL's depth range resolved only about
+    // 1e-3 of the distance, so a ring 1e-4 above a plate z-fought with it and the ring's hole
+    // (trimmed away, but equal in depth to the plate behind) showed the ring. Reversed depth
+    // resolves both: the ring where it is, the plate through its hole.
+    void nearLayersResolveWithTheEyeInsideTheBounds() {
+        const double gap = 1e-4;
+        Scene s;
+        s.surfaces.push_back(
+            kwtest::makeSurface(1, makePlane({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}), 1));
+        Surface ring = kwtest::makeSurface(2, makePlane({-1, -1, gap}, {2, 0, 0}, {0, 2, 0}), 1);
+        ring.trims.push_back(kwtest::loopOf(3, {makeCircle2({0.5, 0.5}, 0.45)}));
+        ring.trims.push_back(kwtest::loopOf(4, {makeCircle2({0.5, 0.5}, 0.2)}));
+        s.surfaces.push_back(ring);
+        // Far off to the side and out of view: it makes the bounds hold the eye.
+        s.surfaces.push_back(
+            kwtest::makeSurface(5, makePlane({100, -100, -100}, {1, 0, 0}, {0, 1, 0}), 1));
+        s.nextId = 6;
+        s.camera.eye = glm::dvec3(0.05, -0.02, 2.0);
+        s.camera.target = glm::dvec3(0.0);
+        s.camera.up = glm::dvec3(0.0, 1.0, 0.0);
+        s.camera.authored = true;
+        Document doc;
+        QString error;
+        QVERIFY2(doc.resetScene(s, &error), qPrintable(error));
+        const CameraMatrices m = cameraMatrices(s.camera, doc.scene(), 1.0);
+        QVERIFY(m.nearPlane < 2e-3); // the case: the eye inside the bounds
+        for (const RenderOptions::Shading shading :
+             {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth}) {
+            RenderOptions opt;
+            opt.shading = shading;
+            QVERIFY2(m_renderer->render(doc, s.camera, opt, &error), qPrintable(error));
+            const AovBuffer aov = m_renderer->aov();
+            const glm::dmat4 inv = glm::inverse(m.projection * m.view);
+            int ring2 = 0, hole1 = 0, wrong = 0;
+            for (int y = 0; y < aov.height; ++y)
+                for (int x = 0; x < aov.width; ++x) {
+                    const glm::dvec4 q = inv * glm::dvec4(2.0 * (x + 0.5) / aov.width - 1.0,
+                                                          1.0 - 2.0 * (y + 0.5) / aov.height,
+                                                          0.0, 1.0);
+                    const glm::dvec3 d = glm::normalize(glm::dvec3(q) / q.w - m.eye);
+                    const glm::dvec3 hit = m.eye + (-m.eye.z / d.z) * d;
+                    const double r = glm::length(glm::dvec2(hit) - glm::dvec2(0.0));
+                    // Plate (u, v) = (x + 1) / 2: radius 0.45 / 0.2 in (u, v) is 0.9 / 0.4 here.
+                    const float id = aov.pixel(x, y)[0];
+                    if (r > 0.42 && r < 0.88) {
+                        ++ring2;
+                        wrong += id != 2.0f;
+                    } else if (r < 0.38) {
+                        ++hole1;
+                        wrong += id != 1.0f;
+                    }
+                }
+            qInfo("shading %d: %d ring and %d hole pixels, %d show the wrong face", int(shading),
+                  ring2, hole1, wrong);
+            QVERIFY(ring2 > 10000 && hole1 > 10000);
+            QCOMPARE(wrong, 0);
         }
     }
 
