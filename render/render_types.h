@@ -163,7 +163,8 @@ struct TrimMaskStats {
     bool operator==(const TrimMaskStats&) const = default;
 };
 
-/// Camera matrices for one frame (OpenGL clip conventions).
+/// Camera matrices for one frame, for the GPU: x, y and w as OpenGL's, depth reversed for the
+/// zero-to-one clip range (render/depth_convention.h): 1 at the near plane, towards 0 far away.
 struct FrameCamera {
     glm::mat4 view{1.0f};
     glm::mat4 projection{1.0f};

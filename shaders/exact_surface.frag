@@ -48,7 +48,8 @@ vec2 kwScreen(vec3 p, vec3 su, vec3 sv, out mat2 jacobian) {
     vec4 cv = uViewProjection * vec4(sv, 0.0);
     vec2 ndc = clip.xy / clip.w;
     vec2 halfSize = 0.5 * uViewport.zw;
-    jacobian = mat2((cu.xy - ndc * cu.w) / clip.w * halfSize, (cv.xy - ndc * cv.w) / clip.w * halfSize);
+    jacobian = mat2((cu.xy - ndc * cu.w) / clip.w * halfSize,
+                    (cv.xy - ndc * cv.w) / clip.w * halfSize);
     return uViewport.xy + (ndc + 1.0) * halfSize;
 }
 
