@@ -126,6 +126,18 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         QStringLiteral("scale-size"),
         QStringLiteral("Scale table: square image side, 1..4096 (default 1024)."),
         QStringLiteral("N"), QStringLiteral("1024"));
+    const QCommandLineOption scalePartitionMode(
+        QStringLiteral("scale-partition-mode"),
+        QStringLiteral("Scale table: uniform (default, the paper's grid) or adaptive (the "
+                       "editor's: the fewest partitions at or above each surface's own that keep "
+                       "0.5 px)."),
+        QStringLiteral("MODE"), QStringLiteral("uniform"));
+    const QCommandLineOption scalePartitions(
+        QStringLiteral("scale-partitions"),
+        QStringLiteral("Scale table: partitions N for every surface, 1..%1 (default: each "
+                       "surface's own; in adaptive mode the minimum).")
+            .arg(kMaxPartitions),
+        QStringLiteral("N"));
     const QCommandLineOption smoke(
         QStringLiteral("smoke"),
         QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
@@ -169,9 +181,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "trim control point of the file's first trimmed surface (its mask is "
                        "redrawn every frame) and report their median, the CPU ms per mask "
                        "redraw and the mask side ('-' for files without trims)."));
-    parser.addOptions({sizes,      partitions, t1Partitions, frames, lights,  tables,  scaleModel,
-                       scaleFaces, scaleSize,  smoke,        t2Size, samples, mode,    shading,
-                       floor,      json,       markdown,     plots,  noTrims, trimDrag});
+    parser.addOptions(
+        {sizes,          partitions, t1Partitions, frames, lights,  tables,   scaleModel,
+         scaleFaces,     scaleSize,  smoke,        t2Size, samples, mode,     shading,
+         floor,          json,       markdown,     plots,  noTrims, trimDrag, scalePartitionMode,
+         scalePartitions});
     const QCommandLineOption trimMode(
         QStringLiteral("trim-mode"),
         QStringLiteral("exact (default: exact trim edges) or mask (the paper's trim mask alone, "
@@ -288,6 +302,21 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     if (table2)
         config.table2Files = files2;
     scaleConfig.model = parser.value(scaleModel);
+    const QString scaleMode = parser.value(scalePartitionMode);
+    if (scaleMode != QLatin1String("uniform") && scaleMode != QLatin1String("adaptive")) {
+        printError(QStringLiteral("%1: --scale-partition-mode '%2' is not uniform or adaptive")
+                       .arg(cmd, scaleMode));
+        return kExitUsage;
+    }
+    scaleConfig.partitioning = partitioningNamed(scaleMode);
+    if (parser.isSet(scalePartitions) && !parseIntIn(parser.value(scalePartitions), kMinPartitions,
+                                                     kMaxPartitions, scaleConfig.partitions)) {
+        printError(QStringLiteral("%1: --scale-partitions '%2' is not in %3..%4")
+                       .arg(cmd, parser.value(scalePartitions))
+                       .arg(kMinPartitions)
+                       .arg(kMaxPartitions));
+        return kExitUsage;
+    }
     scaleConfig.frames = config.frames;
     scaleConfig.trims = config.trims;
     if (parser.isSet(smoke)) {

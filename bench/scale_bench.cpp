@@ -187,6 +187,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     Frames frames{renderer, config, RenderOptions{}, QString()};
     frames.options.trims = config.trims;
     frames.options.polygonOverTrims = config.trims;
+    frames.options.partitioning = config.partitioning;
+    frames.options.partitionsU = frames.options.partitionsV = config.partitions;
     const Camera closeUp = closeUpCamera(*unit, 1.0);
 
     for (int faces : config.faces) {

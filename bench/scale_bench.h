@@ -22,6 +22,11 @@ struct ScaleConfig {
     int warmup = 3;     ///< untimed frames first
     int dragSteps = 20; ///< control-point moves timed per row
     bool trims = true;
+    /// How the base polygons are partitioned: the paper's uniform grid by default, or the
+    /// editor's adaptive mode; `partitions` > 0 overrides every surface's own (the minimum in
+    /// adaptive mode).
+    RenderOptions::Partitioning partitioning = RenderOptions::Partitioning::Uniform;
+    int partitions = 0;
 };
 
 /// One view's frames: wall and process CPU (all threads, llvmpipe rasterises on its own), and

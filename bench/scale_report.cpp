@@ -13,6 +13,15 @@ namespace kw::bench {
 
 namespace {
 
+/// How the polygons were cut, for the report: "uniform partitions, each surface's own", ...
+QString partitioningLabel(const ScaleConfig& c) {
+    const bool adaptive = c.partitioning == RenderOptions::Partitioning::Adaptive;
+    const QString own = c.partitions > 0 ? QStringLiteral("%1 x %1").arg(c.partitions)
+                                         : QStringLiteral("each surface's own");
+    return adaptive ? QStringLiteral("adaptive partitions from %1").arg(own)
+                    : QStringLiteral("uniform partitions, %1").arg(own);
+}
+
 QJsonObject viewJson(const ScaleView& v) {
     return QJsonObject{{QStringLiteral("fps"), v.timing.fps()},
                        {QStringLiteral("msMedian"), v.timing.medianMs},
@@ -60,13 +69,14 @@ QJsonObject scaleJson(const ScaleReport& report) {
                        {QStringLiteral("warmup"), c.warmup},
                        {QStringLiteral("dragSteps"), c.dragSteps},
                        {QStringLiteral("trims"), c.trims},
+                       {QStringLiteral("partitioning"), partitioningLabel(c)},
                        {QStringLiteral("rows"), rows}};
 }
 
 QString scaleMarkdown(const ScaleReport& report) {
     const ScaleConfig& c = report.config;
     QString md = QStringLiteral(
-                     "### Scale: %1 (%2 faces, %3 trimmed) tiled N times, %4 × %4\n\n"
+                     "### Scale: %1 (%2 faces, %3 trimmed) tiled N times, %4 × %4, %5\n\n"
                      "| copies | faces | load (s) | first frame (s) | resident (MiB) | GPU (MiB) | "
                      "draw calls | fitted FPS | fitted CPU ms/frame | fitted render call (ms) | "
                      "close-up FPS | close-up CPU ms/frame | close-up render call (ms) | drag "
@@ -75,7 +85,8 @@ QString scaleMarkdown(const ScaleReport& report) {
                      .arg(report.model)
                      .arg(report.unitFaces)
                      .arg(report.unitTrimmed)
-                     .arg(c.side);
+                     .arg(c.side)
+                     .arg(partitioningLabel(c));
     for (const ScaleRow& r : report.rows)
         md +=
             QStringLiteral("| %1 | %2 | %3 | %4 | %5 | %6 | %7 | %8 | %9 | %10 | %11 | %12 | "

@@ -108,6 +108,8 @@ void TestBenchScale::smokeRunWritesWellFormedReport() {
     QCOMPARE(scale.value(QStringLiteral("unitFaces")).toInt(), 45);
     QVERIFY(scale.value(QStringLiteral("unitTrimmed")).toInt() > 0);
     QCOMPARE(scale.value(QStringLiteral("width")).toInt(), 64);
+    QCOMPARE(scale.value(QStringLiteral("partitioning")).toString(),
+             QStringLiteral("uniform partitions, each surface's own"));
     const QJsonArray rows = scale.value(QStringLiteral("rows")).toArray();
     QCOMPARE(rows.size(), 2);
     const int copies[] = {1, 10};
@@ -144,6 +146,31 @@ void TestBenchScale::smokeRunWritesWellFormedReport() {
     QVERIFY(text.contains(QStringLiteral("Targets, 450 faces against 45")));
     const QImage plot(dir + QStringLiteral("/scale.png"));
     QVERIFY(!plot.isNull() && plot.width() > 100);
+
+    // The editor's adaptive mode from a 1 x 1 minimum, as the report says; a bad mode is a
+    // usage error.
+    const Run a =
+        knotwork({QStringLiteral("bench"), QStringLiteral("--tables"), QStringLiteral("scale"),
+                  QStringLiteral("--smoke"), QStringLiteral("--scale-faces"), QStringLiteral("1"),
+                  QStringLiteral("--scale-size"), QStringLiteral("64"), QStringLiteral("--json"),
+                  json, QStringLiteral("--scale-partition-mode"), QStringLiteral("adaptive"),
+                  QStringLiteral("--scale-partitions"), QStringLiteral("1")});
+    QVERIFY2(a.code == 0, qPrintable(a.err));
+    QFile f2(json);
+    QVERIFY(f2.open(QIODevice::ReadOnly));
+    QCOMPARE(QJsonDocument::fromJson(f2.readAll())
+                 .object()
+                 .value(QStringLiteral("scale"))
+                 .toObject()
+                 .value(QStringLiteral("partitioning"))
+                 .toString(),
+             QStringLiteral("adaptive partitions from 1 x 1"));
+    const Run bad =
+        knotwork({QStringLiteral("bench"), QStringLiteral("--tables"), QStringLiteral("scale"),
+                  QStringLiteral("--scale-partition-mode"), QStringLiteral("fine")});
+    QCOMPARE(bad.code, 2);
+    QVERIFY2(bad.err.contains(QStringLiteral("--scale-partition-mode 'fine'")),
+             qPrintable(bad.err));
 #endif
 }
 
