@@ -153,9 +153,6 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
     }
     if (o.principalDirections) {
         gl->glUniform1f(u.dirSpacing, float(std::clamp(o.directionSpacingPixels, 6.0, 512.0)));
-        // Half the viewport: NDC differences to pixels.
-        gl->glUniform2f(u.dirViewport, 0.5f * float(camera.viewport.x),
-                        0.5f * float(camera.viewport.y));
     }
     if (o.isocurves) {
         gl->glUniform2f(u.isoCount, float(std::max(o.isoCount.x, 0)),

@@ -89,7 +89,6 @@ public:
                                                       {&u.pullDirection, "uPullDirection"},
                                                       {&u.draftAngle, "uDraftAngle"},
                                                       {&u.dirSpacing, "uDirSpacing"},
-                                                      {&u.dirViewport, "uDirViewport"},
                                                       {&u.isoCount, "uIsoCount"},
                                                       {&u.isoWidth, "uIsoWidth"},
                                                       {&u.isoColour, "uIsoColour"},

@@ -23,7 +23,7 @@ struct UniformLocations {
     // analysis.glsl (render/analysis_gl.cpp), by mode
     int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;
     int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;
-    int draftAngle = -1, dirSpacing = -1, dirViewport = -1, isoCount = -1, isoWidth = -1;
+    int draftAngle = -1, dirSpacing = -1, isoCount = -1, isoWidth = -1;
     int isoColour = -1, knotColour = -1;
 };
 

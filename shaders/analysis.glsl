@@ -152,7 +152,7 @@ vec3 overlayIsocurves(vec3 colour, vec2 uv, vec2 knotsU, vec2 knotsV) {
 
 #ifdef KW_DIRECTIONS
 uniform float uDirSpacing; // pixels between the marks' centres
-uniform vec2 uDirViewport; // viewport size in pixels (NDC to pixels)
+#include "window.glsl"
 
 // Coverage of a mark: a segment of length 0.8 spacing and width 1.5 px through the grid cell's
 // centre along the unit screen direction s, anti-aliased by a one-pixel box filter.
@@ -160,14 +160,6 @@ float markCover(vec2 r, vec2 s) {
     float along = abs(dot(r, s));
     float across = abs(dot(r, vec2(-s.y, s.x)));
     return clamp(1.25 - across, 0.0, 1.0) * clamp(0.4 * uDirSpacing + 0.5 - along, 0.0, 1.0);
-}
-
-// The screen direction (pixels, y up) of the world tangent t at the world point p: the
-// derivative of the perspective division of uViewProjection (an exact_surface.frag uniform).
-vec2 screenDirection(vec3 p, vec3 t) {
-    vec4 c = uViewProjection * vec4(p, 1.0);
-    vec4 ct = uViewProjection * vec4(t, 0.0);
-    return (ct.xy * c.w - c.xy * ct.w) * uDirViewport;
 }
 
 // Principal-direction marks (a cross per grid cell: k1's direction dark red, k2's dark blue).
@@ -195,7 +187,8 @@ vec3 overlayDirections(vec3 colour, vec3 normal, vec2 uv, ivec2 span) {
     if (!(k.z - k.w > 1e-3 * kmax))
         return colour;
     vec3 p = d.s + uOrigin;
-    vec2 s1 = screenDirection(p, dir1), s2 = screenDirection(p, cross(n, dir1));
+    vec4 clip = uViewProjection * vec4(p, 1.0);
+    vec2 s1 = kwWindowTangent(clip, dir1), s2 = kwWindowTangent(clip, cross(n, dir1));
     float c1 = length(s1) > 0.0 ? markCover(r, normalize(s1)) : 0.0;
     float c2 = length(s2) > 0.0 ? markCover(r, normalize(s2)) : 0.0;
     colour = mix(colour, vec3(0.1, 0.2, 0.85), c2);

@@ -38,20 +38,7 @@ layout(early_fragment_tests) in;
 #endif
 
 #ifdef KW_RAY_NEWTON
-uniform vec4 uViewport; // glViewport's x, y, width, height (pixels)
-
-// Screen position (pixels) of the world point p, and the screen-space images of the tangents
-// su and sv there (the derivative of the perspective division: d(xy/w) = (dxy - xy/w dw)/w).
-vec2 kwScreen(vec3 p, vec3 su, vec3 sv, out mat2 jacobian) {
-    vec4 clip = uViewProjection * vec4(p, 1.0);
-    vec4 cu = uViewProjection * vec4(su, 0.0);
-    vec4 cv = uViewProjection * vec4(sv, 0.0);
-    vec2 ndc = clip.xy / clip.w;
-    vec2 halfSize = 0.5 * uViewport.zw;
-    jacobian = mat2((cu.xy - ndc * cu.w) / clip.w * halfSize,
-                    (cv.xy - ndc * cv.w) / clip.w * halfSize);
-    return uViewport.xy + (ndc + 1.0) * halfSize;
-}
+#include "window.glsl"
 
 // The (u, v) of the surface point under this pixel's centre, from the base polygon's (u, v).
 // In adaptive mode the polygon lies within the pixel tolerance of the exact surface on screen,
@@ -67,9 +54,10 @@ vec2 kwScreen(vec3 p, vec3 su, vec3 sv, out mat2 jacobian) {
 #define KW_NEWTON_REACH 4.0
 vec2 kwOntoRay(vec2 uv, out float residual) {
     SurfacePartials d = surfacePartials(uv, vSpan);
-    mat2 j;
-    vec2 r = kwScreen(d.s + uOrigin, d.su, d.sv, j) - gl_FragCoord.xy;
+    vec4 clip = uViewProjection * vec4(d.s + uOrigin, 1.0);
+    vec2 r = kwWindow(clip) - gl_FragCoord.xy;
     residual = length(r);
+    mat2 j = mat2(kwWindowTangent(clip, d.su), kwWindowTangent(clip, d.sv));
     float det = determinant(j);
     if (!(residual <= KW_NEWTON_REACH) ||
         !(abs(det) > 1e-3 * length(j[0]) * length(j[1])))
@@ -78,11 +66,6 @@ vec2 kwOntoRay(vec2 uv, out float residual) {
     return clamp(uv + step, uDomain.xz, uDomain.yw);
 }
 
-// Distance in pixels from the pixel centre to where p projects.
-float kwPixelResidual(vec3 p) {
-    vec4 clip = uViewProjection * vec4(p, 1.0);
-    return length(uViewport.xy + (clip.xy / clip.w + 1.0) * 0.5 * uViewport.zw - gl_FragCoord.xy);
-}
 #endif
 
 layout(location = 0) out vec4 fragColor;
@@ -115,7 +98,8 @@ void main() {
     SurfaceSample s = evaluateSurface(onto, vSpan, vSpanScale);
     // A step that did not bring the point nearer the pixel centre (a strongly curved
     // projection near a silhouette) is undone.
-    if (onto != uv && !(kwPixelResidual(s.point) < before))
+    if (onto != uv &&
+        !(length(kwWindow(uViewProjection * vec4(s.point, 1.0)) - gl_FragCoord.xy) < before))
         s = evaluateSurface(uv, vSpan, vSpanScale);
     else
         uv = onto;
