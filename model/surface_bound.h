@@ -77,6 +77,9 @@ double screenDistanceBound(const ScreenScale& scale, double distance, double min
 /// True when the box [lo, hi] lies wholly outside one of the six planes of the clip
 /// transform's frustum (all eight corners beyond the same one). Each plane (-w <= x, y, z <= w)
 /// is a half-space in model space at any w, so corners behind the eye are classified right.
+/// The renderer's reversed-depth matrices (render/depth_convention.h, depth in 0..w, 1 at the
+/// near plane) are right here too: z > w is nearer than the near plane or behind the eye, and
+/// z < -w lies beyond the far plane, so only the far test is looser (z < 0 would do).
 bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
                        const glm::dvec3& hi);
 
