@@ -13,3 +13,8 @@ kw_add_test(tst_render_trim_box LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_r
 # View-adaptive partitions: the renderer's choice against the CPU's, the bound sampled, and
 # re-tessellation only where the required density changed.
 kw_add_test(tst_render_adaptive LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_adaptive.cpp LIBS knotwork_render)
+# No cracks while the view moves and while a control point is dragged: the editor's moving
+# frames (one renderer across frames, its options and framebuffer) against the CPU reference.
+kw_add_test(tst_render_motion LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_motion.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_ui)
+kw_use_cad_reader(tst_render_motion)
