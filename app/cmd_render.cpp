@@ -181,7 +181,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             return kExitUsage;
         }
     }
-    options.trimGridCap = trimGridCapForImage(imageSize, zoomFactor);
+    // Anti-aliasing reads the grids' texels about each trim-edge pixel (up to 4 x 4, else it
+    // keeps the aliased answer), so coarser grids would change its edges: only --samples 1.
+    if (options.samples == 1)
+        options.trimGridCap = trimGridCapForImage(imageSize, zoomFactor);
     if (parser.isSet(peerMesh) && (parser.isSet(reference) || parser.isSet(aovCurvature))) {
         printError(
             QStringLiteral("%1: --peer-mesh excludes --reference and --aov-curvature").arg(cmd));

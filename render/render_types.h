@@ -104,8 +104,10 @@ struct RenderOptions {
     /// Largest exact trim grid side in texels, 1..kMaxTrimGridSide (the budget may lower it
     /// further, with its warning; this cap gives none). A grid indexes the trim curves, it does
     /// not approximate them: a coarser one classifies every pixel the same way, with more curve
-    /// pieces to test in each texel, and costs less to build, send and keep. `knotwork render`
-    /// sets it from the image size (docs/PERFORMANCE.md ## Start-up); the editor keeps this.
+    /// pieces to test in each texel, and costs less to build, send and keep. Anti-aliased trim
+    /// edges (samples > 1) read the texels about a pixel, so they can differ. `knotwork render`
+    /// sets it from the image size with --samples 1 (docs/PERFORMANCE.md ## Start-up); the
+    /// editor keeps this.
     int trimGridCap = kMaxTrimGridSide;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
