@@ -43,4 +43,16 @@ QString fullPrecision(double value) {
     return QString::fromLatin1(buf);
 }
 
+void printImportRemarks(const QString& file, const ImportReport& report) {
+    if (report.facesSkipped() > 0)
+        printError(QStringLiteral("%1: %2 face(s) skipped, %3 imported")
+                       .arg(file)
+                       .arg(report.facesSkipped())
+                       .arg(report.facesImported));
+    for (const QString& s : report.skipped)
+        printError(QStringLiteral("%1: skipped: %2").arg(file, s));
+    for (const QString& w : report.warnings)
+        printError(QStringLiteral("%1: warning: %2").arg(file, w));
+}
+
 } // namespace kw::cli

@@ -1,6 +1,6 @@
 // knotwork info FILE [--json]: a summary of a .knot project's surfaces, lights and camera.
 #include "app/commands.h"
-#include "model/knotfile.h"
+#include "model/cad/cadimport.h"
 #include "model/trim.h"
 
 #include <QCommandLineParser>
@@ -159,11 +159,15 @@ QString toText(const QString& file, const Scene& scene) {
 int runInfo(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(
-        QStringLiteral("Summarise a .knot project: surfaces (id, name, degrees, control-point "
+        QStringLiteral("Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
+                       "degrees, control-point "
                        "counts, knot ranges, trim loops, partitions), lights and camera."));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
     parser.addOption(json);
-    parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
+    parser.addPositionalArgument(
+        QStringLiteral("FILE"),
+        QStringLiteral("A .knot project, or .igs/.iges, .stp/.step, .brep/.brp or .obj (imported "
+                       "as 'knotwork convert' does; skipped faces and warnings on stderr)."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
     const QStringList files = parser.positionalArguments();
@@ -174,15 +178,17 @@ int runInfo(const QStringList& args) {
         return kExitUsage;
     }
     QString error;
-    const std::optional<Scene> scene = readKnotFile(files[0], &error);
-    if (!scene) {
+    const std::optional<ImportResult> imported = openModelFile(files[0], error);
+    if (!imported) {
         printError(error);
         return kExitBadInput;
     }
+    printImportRemarks(files[0], imported->report);
+    const Scene& scene = imported->scene;
     if (parser.isSet(json))
-        printOut(QString::fromUtf8(QJsonDocument(toJson(files[0], *scene)).toJson()));
+        printOut(QString::fromUtf8(QJsonDocument(toJson(files[0], scene)).toJson()));
     else
-        printOut(toText(files[0], *scene));
+        printOut(toText(files[0], scene));
     return kExitOk;
 }
 

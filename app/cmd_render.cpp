@@ -1,5 +1,7 @@
-// knotwork render FILE -o OUT [...]: headless render of a .knot project to an image (and AOVs).
+// knotwork render FILE -o OUT [...]: headless render of a .knot project or a CAD file (IGES,
+// STEP, BREP, OBJ) to an image (and AOVs).
 #include "app/commands.h"
+#include "app/model_loader.h"
 #include "app/render_args.h"
 #include "app/render_reference.h"
 #include "model/meshobj.h"
@@ -54,9 +56,10 @@ bool loadPeerMesh(const QString& path, const QString& knotPath, const Scene& sce
 int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
-        "Render a .knot project off-screen with the exact per-pixel NURBS renderer (or the "
-        "tessellated baseline) and write the image (PNG with Qt; JPG, TIF, EXR with OpenImageIO). "
-        "Uses the project's camera, "
+        "Render a .knot project, or an IGES, STEP, BREP or OBJ file (imported as 'knotwork "
+        "convert' does; skipped faces and warnings on stderr), off-screen with the exact "
+        "per-pixel NURBS renderer (or the tessellated baseline) and write the image (PNG with "
+        "Qt; JPG, TIF, EXR with OpenImageIO). Uses the project's camera, "
         "or fits one to the scene. Needs OpenGL 4.5 core: on a machine without a display run "
         "under xvfb-run -a -s \"-screen 0 1280x1024x24\" with QT_QPA_PLATFORM=xcb."));
     const QCommandLineOption out({QStringLiteral("o"), QStringLiteral("output")},
@@ -110,7 +113,9 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        peerMesh, zoom});
     const RenderCliOptions shared = addRenderOptions(
         parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
-    parser.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("A .knot project."));
+    parser.addPositionalArgument(
+        QStringLiteral("FILE"),
+        QStringLiteral("A .knot project, or .igs/.iges, .stp/.step, .brep/.brp or .obj."));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;
     const QString cmd = args.value(0);
@@ -176,6 +181,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             return kExitUsage;
         }
     }
+    options.trimGridCap = trimGridCapForImage(imageSize, zoomFactor);
     if (parser.isSet(peerMesh) && (parser.isSet(reference) || parser.isSet(aovCurvature))) {
         printError(
             QStringLiteral("%1: --peer-mesh excludes --reference and --aov-curvature").arg(cmd));
@@ -188,18 +194,38 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (!startGui())
         return kExitBadInput;
 
-    Document doc;
-    if (!loadDocument(files[0], doc))
+    // The file is read (a CAD file by its child process) and the camera fitted on a second
+    // thread while this one starts OpenGL: the first image costs the longer of the two, not
+    // their sum (docs/PERFORMANCE.md ## Start-up).
+    const double aspect = double(imageSize.width()) / double(imageSize.height());
+    ModelLoader loader;
+    loader.start(files[0], aspect);
+    const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
+    OffscreenRenderer renderer;
+    QString glError;
+    const bool glReady =
+        parser.isSet(reference) || // drawn on the CPU
+        (renderer.create(&glError) &&
+         renderer.setSize(imageSize, withAov, &glError, parser.isSet(aovCurvature)));
+    QString error;
+    std::optional<LoadedModel> model = loader.wait(error);
+    if (!model) {
+        printError(error);
         return kExitBadInput;
+    }
+    printImportRemarks(files[0], model->import.report);
+    Document doc;
+    if (!doc.resetScene(std::move(model->import.scene), &error)) {
+        printError(QStringLiteral("%1: %2").arg(files[0], error));
+        return kExitBadInput;
+    }
     const Scene& scene = doc.scene();
     // The project's display settings, unless the command line says otherwise.
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.partitionMode))
         options.partitioning = partitioningNamed(scene.display.partitionMode);
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
         options.pixelTolerance = scene.display.pixelTolerance;
-    QString error;
-    const double aspect = double(imageSize.width()) / double(imageSize.height());
-    Camera camera = scene.camera.authored ? scene.camera : fitCamera(scene, aspect);
+    Camera camera = model->camera;
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);
     if (parser.isSet(reference)) {
@@ -216,11 +242,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         printError(error);
         return kExitBadInput;
     }
-    const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
-    OffscreenRenderer renderer;
-    if (!renderer.create(&error) ||
-        !renderer.setSize(imageSize, withAov, &error, parser.isSet(aovCurvature))) {
-        printError(QStringLiteral("%1: %2").arg(cmd, error));
+    if (!glReady) {
+        printError(QStringLiteral("%1: %2").arg(cmd, glError));
         return kExitBadInput;
     }
     std::int64_t meshBytes = 0;

@@ -4,6 +4,8 @@
 // that do not never load Qt's GUI, OpenGL or OpenImageIO libraries.
 #pragma once
 
+#include "model/importreport.h"
+
 #include <QString>
 #include <QStringList>
 #include <functional>
@@ -56,6 +58,11 @@ void printOut(const QString& text);
 /// Parses args with parser (which gets --help added). Returns -1 to go on, or the exit code to
 /// return at once: kExitOk after printing help, kExitUsage after printing the parse error.
 int parseOrExit(QCommandLineParser& parser, const QStringList& args);
+/// Prints on stderr what an import skipped and warned about, each line led by `file`:
+/// "FILE: N face(s) skipped, M imported", then "FILE: skipped: ..." and "FILE: warning: ...".
+/// Nothing for a clean import. (`render` and `info` on a CAD file; `convert --report` lists the
+/// same on stdout.)
+void printImportRemarks(const QString& file, const ImportReport& report);
 /// "%.17g": the shortest printf form that reads back as the same double.
 QString fullPrecision(double value);
 

@@ -19,7 +19,7 @@ const std::vector<Command>& commands() {
     // One row per subcommand; each lives in its own cmd_<name>.cpp.
     static const std::vector<Command> table = {
         {QStringLiteral("info"),
-         QStringLiteral("Summarise a .knot project (surfaces, lights, camera)."), runInfo},
+         QStringLiteral("Summarise a project or CAD file (surfaces, lights, camera)."), runInfo},
         {QStringLiteral("eval"),
          QStringLiteral("Evaluate a surface's point, partials and normal at (u, v)."), runEval},
         {QStringLiteral("convert"),
@@ -29,7 +29,7 @@ const std::vector<Command>& commands() {
          QStringLiteral("Triangulate IGES/STEP/BREP with OpenCASCADE (the viewers' mesh) to OBJ."),
          runMesh},
         {QStringLiteral("render"),
-         QStringLiteral("Render a project off-screen to an image (and AOVs)."), nullptr,
+         QStringLiteral("Render a project or CAD file off-screen to an image (and AOVs)."), nullptr,
          kGlProgram},
         {QStringLiteral("bench"), QStringLiteral("Measure off-screen frame rates per image size."),
          nullptr, kBenchProgram},

@@ -2,7 +2,7 @@
 #include "app/render_args.h"
 
 #include "app/commands.h"
-#include "model/knotfile.h"
+#include "model/trim_grid.h"
 
 #include <QCommandLineParser>
 #include <QStringList>
@@ -122,6 +122,14 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
 }
 
 } // namespace
+
+int trimGridCapForImage(QSize size, double zoom) {
+    const double side = double(std::max(size.width(), size.height())) * std::max(zoom, 1.0);
+    int cap = kMinTrimGridSize;
+    while (cap < kMaxTrimGridSide && cap < side)
+        cap *= 2;
+    return cap;
+}
 
 QString partitioningName(RenderOptions::Partitioning p) {
     return p == RenderOptions::Partitioning::Adaptive ? QStringLiteral("adaptive")
@@ -305,20 +313,6 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.samples), 1, kMaxSamples, options.samples))
         return fail(o.samples, QStringLiteral("in 1..%1").arg(kMaxSamples));
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
-    return true;
-}
-
-bool loadDocument(const QString& file, Document& doc) {
-    QString error;
-    const std::optional<Scene> scene = readKnotFile(file, &error);
-    if (!scene) {
-        printError(error);
-        return false;
-    }
-    if (!doc.resetScene(*scene, &error)) {
-        printError(QStringLiteral("%1: %2").arg(file, error));
-        return false;
-    }
     return true;
 }
 

@@ -39,13 +39,15 @@ struct RenderCliOptions {
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions,
                                   const QString& defaultPartitioning);
 QString partitioningName(RenderOptions::Partitioning p);
+/// The trim grid cap (RenderOptions::trimGridCap) for one image of `size` magnified `zoom`
+/// times: the smallest power of two at least the longer side times `zoom`, in
+/// [kMinTrimGridSize, kMaxTrimGridSide]. A surface in a fitted view spans at most the image, so
+/// finer grids give its pixels no fewer curve pieces to test; they only cost building (at 64 x
+/// 64, 1024 texels a side made most of a first image's CPU time: docs/PERFORMANCE.md).
+int trimGridCapForImage(QSize size, double zoom);
 /// Reads them into `options`. On a malformed value prints "<cmd>: --option 'value' is ..."
 /// on stderr and returns false (the caller exits with kExitUsage).
 bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions& o,
                        const QString& cmd, RenderOptions& options);
-
-/// Reads `file` into `doc`. On failure prints the error naming the file and returns false
-/// (the caller exits with kExitBadInput).
-bool loadDocument(const QString& file, Document& doc);
 
 } // namespace kw::cli

@@ -413,6 +413,31 @@ bool trimRegionContains(const TrimRegion& region, glm::dvec2 uv) {
     return inside;
 }
 
+void trimRegionContainsColumn(const TrimRegion& region, double u, const double* v, int count,
+                              bool* inside) {
+    std::fill(inside, inside + count, region.empty());
+    std::vector<double> crossings;
+    for (size_t l = 0; l < region.loops.size(); ++l) {
+        if (u < region.lo[l].x || u > region.hi[l].x)
+            continue;
+        // The edges trimRegionContains counts for any point of this column, same rule.
+        crossings.clear();
+        const TrimPolygon& poly = region.loops[l];
+        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+            const glm::dvec2 a = poly[j], b = poly[i];
+            if ((a.x <= u) != (b.x <= u))
+                crossings.push_back(crossingV(a, b, u));
+        }
+        for (int k = 0; k < count; ++k) {
+            if (v[k] < region.lo[l].y || v[k] > region.hi[l].y)
+                continue;
+            for (double c : crossings)
+                if (c > v[k])
+                    inside[k] = !inside[k];
+        }
+    }
+}
+
 std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double v0, double v1) {
     if (region.empty())
         return {Interval{v0, v1}};

@@ -90,6 +90,12 @@ double trimTolerance(const NurbsSurface& surface, double relative = 1e-5);
 /// loops. A region without loops contains every point (an untrimmed surface).
 bool trimRegionContains(const TrimRegion& region, glm::dvec2 uv);
 
+/// trimRegionContains(region, (u, v[k])) for k in [0, count), into inside[k]: the same answers,
+/// with one walk of each loop's edges per column instead of per point (the crossings of the line
+/// u = const are found once and each v counts those above it). For grids of samples.
+void trimRegionContainsColumn(const TrimRegion& region, double u, const double* v, int count,
+                              bool* inside);
+
 /// The parameter intervals of the vertical line u = const that lie inside the region by the
 /// parity rule, clipped to [v0, v1], sorted and disjoint. Without loops: {[v0, v1]}.
 std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double v0, double v1);

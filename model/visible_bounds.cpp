@@ -97,13 +97,19 @@ bool surfaceVisibleBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi
         surface.trims.empty() ? TrimRegion{} : makeTrimRegion(surface.trims, trimTolerance(g));
     bool any = false;
     glm::dvec3 a(0.0), b(0.0);
+    // Column by column: one walk of the loops classifies a whole column (the answers of
+    // trimRegionContains at each point; this is most of fitCamera's time on imported parts).
+    double v[kGrid];
+    bool inside[kGrid];
     for (int j = 0; j < kGrid; ++j)
-        for (int i = 0; i < kGrid; ++i) {
-            const glm::dvec2 uv(box.u.first + (box.u.last - box.u.first) * i / (kGrid - 1),
-                                box.v.first + (box.v.last - box.v.first) * j / (kGrid - 1));
-            if (region.empty() || trimRegionContains(region, uv))
-                grow(any, a, b, surfacePoint(g, uv.x, uv.y));
-        }
+        v[j] = box.v.first + (box.v.last - box.v.first) * j / (kGrid - 1);
+    for (int i = 0; i < kGrid; ++i) {
+        const double u = box.u.first + (box.u.last - box.u.first) * i / (kGrid - 1);
+        trimRegionContainsColumn(region, u, v, kGrid, inside);
+        for (int j = 0; j < kGrid; ++j)
+            if (inside[j])
+                grow(any, a, b, surfacePoint(g, u, v[j]));
+    }
     // The loops are where trimmed faces end; a small face may hold no grid point at all.
     const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
     for (const TrimPolygon& loop : region.loops)

@@ -213,11 +213,11 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     }
     // Everything a record depends on besides its own surface: when one of these changed,
     // every record is compared (each still rebuilds only what is stale).
-    const FrameKey key{camera.viewProjection,  camera.viewport,        options.mode,
-                       options.partitioning,   options.pixelTolerance, options.partitionsU,
-                       options.partitionsV,    options.trimMaskCap,    options.polygonOverTrims,
-                       options.controlNet,     options.trims,          options.trimMode,
-                       options.trimBudgetBytes};
+    const FrameKey key{camera.viewProjection,   camera.viewport,        options.mode,
+                       options.partitioning,    options.pixelTolerance, options.partitionsU,
+                       options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
+                       options.controlNet,      options.trims,          options.trimMode,
+                       options.trimBudgetBytes, options.trimGridCap};
     bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;

@@ -229,6 +229,7 @@ private:
         bool polygonOverTrims = false, controlNet = false, trims = false;
         RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
         std::int64_t trimBudgetBytes = 0;
+        int trimGridCap = 0;
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

@@ -101,6 +101,12 @@ struct RenderOptions {
     /// Bytes the exact trim grids may take on the GPU (kMinTrimBudgetBytes..kMaxTrimBudgetBytes,
     /// also limited by the GPU); past it they get coarser (still exact, slower), with a warning.
     std::int64_t trimBudgetBytes = kDefaultTrimBudgetBytes;
+    /// Largest exact trim grid side in texels, 1..kMaxTrimGridSide (the budget may lower it
+    /// further, with its warning; this cap gives none). A grid indexes the trim curves, it does
+    /// not approximate them: a coarser one classifies every pixel the same way, with more curve
+    /// pieces to test in each texel, and costs less to build, send and keep. `knotwork render`
+    /// sets it from the image size (docs/PERFORMANCE.md ## Start-up); the editor keeps this.
+    int trimGridCap = kMaxTrimGridSide;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     /// Anti-aliasing (issue 11 item 4): 1 draws aliased, as the paper does; N > 1 draws into a

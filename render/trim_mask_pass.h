@@ -147,6 +147,7 @@ private:
     std::int64_t m_gridBufferBytes = 0;
     int m_gridCap = kMaxTrimGridSide; ///< the side cap the budget allows now
     std::int64_t m_gridBudget = 0;    ///< the budget the cap was found under
+    int m_gridOptionCap = 0;          ///< RenderOptions::trimGridCap the cap was found under
     QString m_budgetWarning;
 };
 

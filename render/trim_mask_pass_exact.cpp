@@ -21,6 +21,7 @@ void TrimMaskPass::freeGrids() {
     m_grids.clear();
     m_gridCap = kMaxTrimGridSide;
     m_gridBudget = 0;
+    m_gridOptionCap = 0;
     m_budgetWarning.clear();
 }
 
@@ -125,11 +126,13 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
     const std::int64_t budget =
         std::min(std::clamp(options.trimBudgetBytes, kMinTrimBudgetBytes, kMaxTrimBudgetBytes),
                  4 * std::int64_t(maxTexels));
-    if (budget != m_gridBudget) {
-        // A new budget: start again from full grids (the loop below coarsens them again if
-        // they still do not fit).
+    const int optionCap = std::clamp(options.trimGridCap, 1, kMaxTrimGridSide);
+    if (budget != m_gridBudget || optionCap != m_gridOptionCap) {
+        // A new budget or cap: start again from the largest grids the options allow (the loop
+        // below coarsens them again if they still do not fit).
         m_gridBudget = budget;
-        m_gridCap = kMaxTrimGridSide;
+        m_gridOptionCap = optionCap;
+        m_gridCap = optionCap;
         m_budgetWarning.clear();
     }
 

@@ -4,6 +4,7 @@
 #include "model/knotfile.h"
 
 #include <QDir>
+#include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -70,6 +71,7 @@ private Q_SLOTS:
     void helpAndVersion();
     void infoOnEverySample();
     void infoJsonMatchesScene();
+    void infoOnCadFile();
     void fileAloneOpensEditor();
     void evalMatchesKernel();
     void evalJsonMatchesKernel();
@@ -157,6 +159,18 @@ void TestCli::infoJsonMatchesScene() {
                                .toObject();
     QCOMPARE(ku.value(QStringLiteral("distinctInterior")).toInt(), 1);
     QCOMPARE(ku.value(QStringLiteral("count")).toInt(), 10);
+}
+
+// info reads what render reads: a CAD file is imported (as convert does) and summarised.
+void TestCli::infoOnCadFile() {
+    const QString step = QStringLiteral(KW_TEST_DATA_DIR "/screw.step");
+    const Run r = knotwork({QStringLiteral("info"), step});
+    if (r.err.contains(QStringLiteral("built without OpenCASCADE")))
+        QSKIP("built without OpenCASCADE");
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.startsWith(step + QStringLiteral(": 10 surface(s)")), qPrintable(r.out));
+    QVERIFY2(r.out.contains(QStringLiteral("camera: none")), qPrintable(r.out));
+    QVERIFY2(r.err.isEmpty(), qPrintable(r.err)); // a clean import says nothing on stderr
 }
 
 void TestCli::fileAloneOpensEditor() {
@@ -279,6 +293,13 @@ void TestCli::badInputExitsOne_data() {
                            QStringLiteral("--uv"),      QStringLiteral("0.5,0.5")}
             << path << QStringLiteral("$");
     }
+    // A file that only claims to be IGES: the importer's one-line error, naming it.
+    const QString notIges = QStringLiteral(KW_TEST_OUTPUT_DIR "/not iges.igs");
+    QFile f(notIges);
+    QVERIFY(f.open(QIODevice::WriteOnly) && f.write("not an IGES file\n") > 0);
+    f.close();
+    QTest::newRow("info not IGES")
+        << QStringList{QStringLiteral("info"), notIges} << notIges << QString();
     const QString missing = QStringLiteral(KW_TEST_OUTPUT_DIR "/no such file.knot");
     QTest::newRow("missing file") << QStringList{QStringLiteral("info"), missing} << missing
                                   << QStringLiteral("cannot open");

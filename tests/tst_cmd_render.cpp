@@ -1,10 +1,13 @@
-// GL test: 'knotwork render' end to end (image, AOV EXR channels, error exits) and 'bench'.
+// GL test: 'knotwork render' end to end (image, AOV EXR channels, error exits, CAD files) and
+// 'bench'.
 #include "knotwork_process.h"
 
 #include <OpenImageIO/imageio.h>
 #include <QDir>
+#include <QFile>
 #include <QProcess>
 #include <QTest>
+#include <vector>
 
 namespace {
 
@@ -15,6 +18,49 @@ QString sample(const char* name) {
 QString output(const char* name) {
     QDir(QStringLiteral(KW_TEST_OUTPUT_DIR)).mkpath(QStringLiteral("."));
     return QStringLiteral(KW_TEST_OUTPUT_DIR "/%1").arg(QString::fromLatin1(name));
+}
+
+QString testData(const char* name) {
+    return QStringLiteral(KW_TEST_DATA_DIR "/%1").arg(QString::fromLatin1(name));
+}
+
+/// An 8-bit RGB(A) image read with OpenImageIO: width, height, channels and pixels.
+struct Pixels {
+    int width = 0, height = 0, channels = 0;
+    std::vector<unsigned char> data;
+};
+
+Pixels readPixels(const QString& path) {
+    Pixels p;
+    auto in = OIIO::ImageInput::open(path.toStdString());
+    if (!in)
+        return p;
+    p.width = in->spec().width;
+    p.height = in->spec().height;
+    p.channels = in->spec().nchannels;
+    p.data.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
+    if (!in->read_image(0, 0, 0, p.channels, OIIO::TypeDesc::UINT8, p.data.data()))
+        p.data.clear();
+    in->close();
+    return p;
+}
+
+/// teapot.igs with the second patch's u knots all 1.0: OpenCASCADE cannot make that surface, so
+/// the import skips one face of 32 (as tst_cadimport's untransferableEntityIsReported).
+QString teapotWithBadPatch() {
+    QFile in(testData("teapot.igs"));
+    if (!in.open(QIODevice::ReadOnly))
+        return {};
+    QList<QByteArray> lines = in.readAll().split('\n');
+    const int firstParameterLineOfPatch2 = 1 + 1 + 64 + 26; // S, G, 64 D lines, 26 P lines
+    if (!lines.value(firstParameterLineOfPatch2).startsWith("128,3,3,3,3"))
+        return {};
+    lines[firstParameterLineOfPatch2 + 1].replace(0, 16, "1.0,1.0,1.0,1.0,");
+    const QString path = output("cmd_teapot_bad_patch.igs");
+    QFile out(path);
+    if (!out.open(QIODevice::WriteOnly) || out.write(lines.join('\n')) < 0)
+        return {};
+    return path;
 }
 
 } // namespace
@@ -67,6 +113,115 @@ private Q_SLOTS:
                                 QStringLiteral("-o"), output("x.png")});
         QCOMPARE(r.code, 1);
         QVERIFY2(r.err.contains(QStringLiteral("/nonexistent/x.knot")), qPrintable(r.err));
+    }
+
+    // `render part.step` draws what `convert part.step part.knot` then `render part.knot` draws:
+    // the same import (in the CAD reader's child process), the same fitted camera.
+    void cadFileRendersAsItsConvertedKnot_data() {
+        QTest::addColumn<QString>("cad");
+        QTest::addColumn<int>("faces");
+        QTest::newRow("STEP") << testData("screw.step") << 10;
+        QTest::newRow("IGES") << testData("hammer.iges") << 45;
+        QTest::newRow("BREP") << testData("Pump_Nut.brep") << 25;
+    }
+    void cadFileRendersAsItsConvertedKnot() {
+        QFETCH(QString, cad);
+        QFETCH(int, faces);
+        const Run probe = knotwork({QStringLiteral("convert"), cad, output("cmd_cad.knot")});
+        if (probe.err.contains(QStringLiteral("built without OpenCASCADE")))
+            QSKIP("built without OpenCASCADE");
+        QVERIFY2(probe.code == 0, qPrintable(probe.err));
+        const QString fromCad = output("cmd_cad_direct.png"), fromKnot = output("cmd_cad_knot.png");
+        QFile::remove(fromCad);
+        QFile::remove(fromKnot);
+        const QString size = QStringLiteral("120x90");
+        const Run direct = knotwork({QStringLiteral("render"), cad, QStringLiteral("-o"), fromCad,
+                                     QStringLiteral("--size"), size});
+        QVERIFY2(direct.code == 0, qPrintable(direct.err));
+        QVERIFY2(direct.out.contains(QStringLiteral("render of %1 surface(s)").arg(faces)),
+                 qPrintable(direct.out));
+        const Run viaKnot =
+            knotwork({QStringLiteral("render"), output("cmd_cad.knot"), QStringLiteral("-o"),
+                      fromKnot, QStringLiteral("--size"), size});
+        QVERIFY2(viaKnot.code == 0, qPrintable(viaKnot.err));
+        const Pixels a = readPixels(fromCad), b = readPixels(fromKnot);
+        QCOMPARE(a.width, 120);
+        QCOMPARE(a.height, 90);
+        QVERIFY(!a.data.empty());
+        QCOMPARE(b.width, a.width);
+        QCOMPARE(b.height, a.height);
+        QCOMPARE(b.channels, a.channels);
+        QCOMPARE(b.data.size(), a.data.size());
+        // Tolerance: every channel of every pixel within 2 of 255 (the two paths run the same
+        // code on the same scene, so they agree exactly today); and the part is in the picture.
+        int differ = 0, part = 0;
+        const size_t n = size_t(a.channels);
+        for (size_t px = 0; px < a.data.size() / n; ++px) {
+            bool same = true, background = true;
+            for (size_t c = 0; c < n; ++c) {
+                same = same && std::abs(int(a.data[px * n + c]) - int(b.data[px * n + c])) <= 2;
+                background = background && a.data[px * n + c] == a.data[c]; // corner's colour
+            }
+            differ += !same;
+            part += !background;
+        }
+        QCOMPARE(differ, 0);
+        QVERIFY2(part > a.width * a.height / 40, qPrintable(QString::number(part)));
+    }
+
+    // A CAD file that cannot be read: exit 1, the message names the file, no image.
+    void unreadableCadFileExitsOne_data() {
+        QTest::addColumn<QString>("path");
+        QTest::addColumn<QByteArray>("content"); // empty: the file does not exist
+        QTest::newRow("missing STEP") << output("cmd_missing.step") << QByteArray();
+        QTest::newRow("not IGES") << output("cmd_not_iges.iges")
+                                  << QByteArray("this is not an IGES file\n").repeated(40);
+        QFile screw(testData("screw.step"));
+        QVERIFY(screw.open(QIODevice::ReadOnly));
+        QTest::newRow("truncated STEP") << output("cmd_truncated.step") << screw.read(600);
+        QTest::newRow("corrupt BREP") << output("cmd_corrupt.brep")
+                                      << QByteArray("DBRep_DrawableShape\n\nCASCADE Topology "
+                                                    "V1, (c) Matra-Datavision\nLocations 3\n");
+    }
+    void unreadableCadFileExitsOne() {
+        QFETCH(QString, path);
+        QFETCH(QByteArray, content);
+        QFile::remove(path);
+        if (!content.isEmpty()) {
+            QFile f(path);
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            QCOMPARE(f.write(content), content.size());
+        }
+        const QString png = output("cmd_unreadable.png");
+        QFile::remove(png);
+        const Run r = knotwork({QStringLiteral("render"), path, QStringLiteral("-o"), png,
+                                QStringLiteral("--size"), QStringLiteral("64x64")},
+                               QProcessEnvironment::systemEnvironment(), 120000);
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.contains(path), qPrintable(r.err));
+        QVERIFY(!QFile::exists(png));
+    }
+
+    // Faces the importer skips are reported on stderr, naming the file; the rest is drawn.
+    void skippedFacesWarn() {
+        const QString igs = teapotWithBadPatch();
+        QVERIFY(!igs.isEmpty());
+        const QString png = output("cmd_teapot_bad_patch.png");
+        QFile::remove(png);
+        const Run r = knotwork({QStringLiteral("render"), igs, QStringLiteral("-o"), png,
+                                QStringLiteral("--size"), QStringLiteral("64x64")});
+        if (r.err.contains(QStringLiteral("built without OpenCASCADE")))
+            QSKIP("built without OpenCASCADE");
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        QVERIFY2(r.err.contains(QStringLiteral("%1: 1 face(s) skipped, 31 imported").arg(igs)),
+                 qPrintable(r.err));
+        QVERIFY2(r.err.contains(QStringLiteral("%1: skipped: ").arg(igs)) &&
+                     r.err.contains(QStringLiteral("IGESGeom_BSplineSurface")),
+                 qPrintable(r.err));
+        // The file's repaired numbering is an import warning, reported the same way.
+        QVERIFY2(r.err.contains(QStringLiteral("%1: warning: ").arg(igs)), qPrintable(r.err));
+        QVERIFY2(r.out.contains(QStringLiteral("render of 31 surface(s)")), qPrintable(r.out));
+        QCOMPARE(readPixels(png).width, 64);
     }
 
     void usageErrorsExitTwo_data() {

@@ -6,6 +6,7 @@
 
 #include <QtTest>
 #include <cmath>
+#include <memory>
 
 using namespace kw;
 using namespace kw::test;
@@ -48,6 +49,7 @@ private Q_SLOTS:
     void flatteningStaysWithinTolerance();
     void classificationIsEvenOdd();
     void spansMatchClassification();
+    void columnClassificationMatchesPointwise();
     void hugeCoordinatesDoNotOverflow();
     void areaOfPlateWithHoleAndIsland();
     void areaOfUntrimmedSphere();
@@ -123,6 +125,53 @@ void TestTrim::spansMatchClassification() {
             QCOMPARE(inSpan, trimRegionContains(r, {u, v}));
         }
     }
+}
+
+// trimRegionContainsColumn (surfaceVisibleBounds, hence fitCamera) must answer exactly as
+// trimRegionContains, also on the polygon's own vertices and its loops' bounding boxes, where the
+// half-open rule and the per-loop box test decide.
+void TestTrim::columnClassificationMatchesPointwise() {
+    std::vector<TrimRegion> regions;
+    regions.push_back(makeTrimRegion({}, 1e-6));
+    regions.push_back(makeTrimRegion({rectLoop(TrimLoopId{1}, 0.1, 0.1, 0.9, 0.9),
+                                      circleLoop(TrimLoopId{2}, {0.5, 0.5}, 0.3),
+                                      rectLoop(TrimLoopId{3}, 0.45, 0.45, 0.55, 0.55)},
+                                     1e-6));
+    for (const char* name : {"trimmed_plate", "star_island"}) {
+        QString error;
+        const auto scene = readKnotFile(
+            QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QLatin1String(name)), &error);
+        QVERIFY2(scene, qPrintable(error));
+        for (const Surface& s : scene->surfaces)
+            if (!s.trims.empty())
+                regions.push_back(makeTrimRegion(s.trims, trimTolerance(s.geometry)));
+    }
+    QVERIFY(regions.size() >= 4);
+    int inside = 0, outside = 0;
+    for (const TrimRegion& r : regions) {
+        std::vector<double> us, vs;
+        for (double t = -0.05; t < 1.1; t += 0.0173) {
+            us.push_back(t);
+            vs.push_back(t * 0.97 + 0.004);
+        }
+        for (size_t l = 0; l < r.loops.size(); ++l) {
+            us.insert(us.end(), {r.lo[l].x, r.hi[l].x});
+            vs.insert(vs.end(), {r.lo[l].y, r.hi[l].y});
+            for (size_t k = 0; k < r.loops[l].size(); k += 7) {
+                us.push_back(r.loops[l][k].x);
+                vs.push_back(r.loops[l][k].y);
+            }
+        }
+        std::unique_ptr<bool[]> column(new bool[vs.size()]);
+        for (double u : us) {
+            trimRegionContainsColumn(r, u, vs.data(), int(vs.size()), column.get());
+            for (size_t k = 0; k < vs.size(); ++k) {
+                QCOMPARE(column[k], trimRegionContains(r, {u, vs[k]}));
+                (column[k] ? inside : outside) += 1;
+            }
+        }
+    }
+    QVERIFY(inside > 100 && outside > 100); // both answers were exercised
 }
 
 // Finite but huge polygon points (a file can hold them): the crossing of an edge with a

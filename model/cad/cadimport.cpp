@@ -122,4 +122,21 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
     return result;
 }
 
+std::optional<ImportResult> openModelFile(const QString& path, QString& error,
+                                          const ImportProgress& progress) {
+    // Any other name is read as .knot, as these tools always did (its error says what is wrong).
+    if (const CadFormat f = cadFormatFromPath(path);
+        f != CadFormat::Knot && f != CadFormat::Unknown)
+        return importFile(path, error, progress);
+    std::optional<Scene> scene = readKnotFile(path, &error);
+    if (!scene)
+        return std::nullopt;
+    ImportResult result;
+    result.scene = std::move(*scene);
+    result.report.facesImported = static_cast<int>(result.scene.surfaces.size());
+    for (int k = 0; k < result.report.facesImported; ++k)
+        result.sourceFaces.push_back(k + 1);
+    return result;
+}
+
 } // namespace kw

@@ -43,6 +43,13 @@ struct ImportResult {
 std::optional<ImportResult> importFile(const QString& path, QString& error,
                                        const ImportProgress& progress = {});
 
+/// What the tools that take any model file open (`knotwork render` and `info`, the editor's
+/// command line): a .knot project as saved (readKnotFile: its camera, lights and display settings,
+/// nothing repaired; also any path whose extension names no format), IGES, STEP, BREP and OBJ
+/// through importFile. Errors as readKnotFile's and importFile's, naming the file.
+std::optional<ImportResult> openModelFile(const QString& path, QString& error,
+                                          const ImportProgress& progress = {});
+
 /// The last step of every import: trim loops with gaps are closed (kw::closeSceneTrimLoops: snapped
 /// within 1e-5 of the domain's diagonal, else bridged by a straight segment), each gap reported
 /// in result.report.warnings, so the scene saves closed and reopens; then the scene is checked
