@@ -2,6 +2,7 @@
 #include "app/editor.h"
 
 #include "app/commands.h"
+#include "model/cad/cadimport.h"
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
 #include "render/analysis.h"
@@ -172,6 +173,18 @@ int runEditor(int argc, char** argv) {
     const QString file = parser.positionalArguments().value(0);
     if (!file.isEmpty()) {
         // Fail before any window (or Qt platform) appears, with the loader's one-line message.
+        // A CAD file is not a project: say where it is read instead of "not valid JSON".
+        // (Importing it here would need the import's progress dialog and message boxes before
+        // the window exists; `render` and `info` read it directly.)
+        if (const CadFormat f = cadFormatFromPath(file);
+            f != CadFormat::Knot && f != CadFormat::Unknown) {
+            cli::printError(QStringLiteral("%1: a %2 file, not a .knot project: open the editor "
+                                           "and use File > Import..., or convert it with "
+                                           "'knotwork convert %1 OUT.knot' (render and info "
+                                           "read it as it is)")
+                                .arg(file, cadFormatName(f)));
+            return cli::kExitBadInput;
+        }
         QString error;
         if (!readKnotFile(file, &error)) {
             cli::printError(error);

@@ -124,7 +124,8 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
 } // namespace
 
 int trimGridCapForImage(QSize size, double zoom) {
-    const double side = double(std::max(size.width(), size.height())) * std::max(zoom, 1.0);
+    const double side = double(std::max(size.width(), size.height())) * std::max(zoom, 1.0) /
+                        kImagePixelsPerTrimTexel;
     int cap = kMinTrimGridSize;
     while (cap < kMaxTrimGridSide && cap < side)
         cap *= 2;

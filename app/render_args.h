@@ -39,11 +39,17 @@ struct RenderCliOptions {
 RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& defaultPartitions,
                                   const QString& defaultPartitioning);
 QString partitioningName(RenderOptions::Partitioning p);
+/// Image pixels per trim grid texel, at most, for a surface as large as the whole image.
+constexpr int kImagePixelsPerTrimTexel = 8;
 /// The trim grid cap (RenderOptions::trimGridCap) for one image of `size` magnified `zoom`
-/// times: the smallest power of two at least the longer side times `zoom`, in
-/// [kMinTrimGridSize, kMaxTrimGridSide]. A surface in a fitted view spans at most the image, so
-/// finer grids give its pixels no fewer curve pieces to test; they only cost building (at 64 x
-/// 64, 1024 texels a side made most of a first image's CPU time: docs/PERFORMANCE.md).
+/// times: the smallest power of two at least the longer side times `zoom` over
+/// kImagePixelsPerTrimTexel, in [kMinTrimGridSize, kMaxTrimGridSide]. One frame pays once for
+/// building the grids (texels) and once for the pixels' tests (curve pieces per texel); the
+/// editor's many frames pay for the tests again each time, a render does not. A surface of a
+/// fitted view spans at most the image, so its texels stay within 8 x 8 pixels. Measured on
+/// hammer.iges (docs/PERFORMANCE.md ## Start-up): the grids were most of a 64 x 64 first
+/// image's CPU time; with this cap every image tried (64 x 64 to 1024 x 768, the samples,
+/// hammer.iges, Axis_of_bearing.brep) came out bit-identical.
 int trimGridCapForImage(QSize size, double zoom);
 /// Reads them into `options`. On a malformed value prints "<cmd>: --option 'value' is ..."
 /// on stderr and returns false (the caller exits with kExitUsage).

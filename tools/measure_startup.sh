@@ -67,6 +67,15 @@ measure "hammer.iges convert + render 1024x768" bash -c "$(declare -f convert_an
   bin=$bin hammer=$hammer tmp=$tmp convert_and_render"
 measure "hammer.iges convert + render 64x64" bash -c "$(declare -f convert_and_render); \
   bin=$bin hammer=$hammer tmp=$tmp convert_and_render --size 64x64"
+# The same first image in one command: render reads the IGES file itself (its CAD reader's child
+# process runs beside the OpenGL start-up). Builds before that refuse it; they get no row.
+# Peak RSS is the larger of the two processes' peaks (GNU time's, for waited-for children),
+# as for convert + render; both run at once here, so their sum at one moment can be higher.
+if [[ "$("$bin/knotwork" render --help 2>/dev/null)" == *IGES* ]]; then
+  measure "render hammer.iges 1024x768" "$bin/knotwork" render "$hammer" -o "$tmp/direct.png"
+  measure "render hammer.iges 64x64" "$bin/knotwork" render "$hammer" -o "$tmp/direct.png" \
+    --size 64x64
+fi
 
 if command -v occt-draw >/dev/null; then
   mkdir -p "$tmp/occtlibs"
