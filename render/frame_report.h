@@ -35,10 +35,13 @@ struct GpuBytes {
     std::int64_t trimMasks = 0;         ///< the trim mask array
     std::int64_t perSurface = 0;        ///< per-surface tables (draw parameters and commands)
     std::int64_t frameTargets = 0;      ///< the anti-aliased frame's attachments (samples > 1)
+    /// The aliased frame's own colour and float depth when the host's depth is not float
+    /// (render/float_depth_target.h: the editor's widget framebuffer).
+    std::int64_t floatDepthTarget = 0;
 
     std::int64_t total() const {
         return controlPoints + spanTables + basePolygons + tessellatedMeshes + controlNets +
-               trimMasks + perSurface + frameTargets;
+               trimMasks + perSurface + frameTargets + floatDepthTarget;
     }
     bool operator==(const GpuBytes&) const = default;
 };

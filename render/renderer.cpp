@@ -56,6 +56,7 @@ bool Renderer::initialize() {
     d->scene.initialize(gl, &d->shaders);
     d->exact.initialize(gl, &d->shaders);
     d->antialias.initialize(gl, &d->shaders);
+    d->floatDepth.initialize(gl);
     GLint maxSamples = 1;
     gl->glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
     d->maxSamples = std::clamp(int(maxSamples), 1, kMaxSamples);
@@ -128,7 +129,19 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     } else if (!target.aov && !pickPixel) {
         antialias.release(); // anti-aliasing turned off: free its framebuffer
     }
-    beginTarget(target, options, pickPixel);
+    // An aliased frame into a host whose depth is not float (Qt's widget framebuffers: 24-bit)
+    // is drawn into the float-depth target and its colour copied over (float_depth_target.h).
+    // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
+    RenderTarget drawn = target;
+    if (!aa && !target.aov && !pickPixel && floatDepth.hostNeedsIt(target.framebuffer)) {
+        if (QString fdError; floatDepth.ensure(size, &fdError))
+            drawn.framebuffer = floatDepth.framebuffer();
+        else
+            report.warnings << fdError;
+    } else if (!pickPixel) {
+        floatDepth.release();
+    }
+    beginTarget(drawn, options, pickPixel);
     if (aa)
         aa->begin(&options.background.x);
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
@@ -169,6 +182,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                                               all);
         }
     }
+    if (drawn.framebuffer != target.framebuffer)
+        floatDepth.copyColourTo(target.framebuffer);
     report.cpuMs.overlays = msSince(phase);
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
@@ -183,6 +198,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes();
+    report.gpuBytes.floatDepthTarget = floatDepth.residentBytes();
     if (!ok)
         report.error = error;
     else if (!synced)
@@ -398,6 +414,7 @@ void Renderer::release() {
     d->scene.release();
     d->exact.release();
     d->antialias.release();
+    d->floatDepth.release();
     d->rangeKey = {};
     d->shaders.clear();
     d->gl = nullptr;

@@ -4,6 +4,7 @@
 
 #include "render/antialias_target.h"
 #include "render/exact_surface_pass.h"
+#include "render/float_depth_target.h"
 #include "render/gpu_scene.h"
 #include "render/overlay_passes.h"
 #include "render/renderer.h"
@@ -37,8 +38,9 @@ struct Renderer::Impl {
     ShaderLibrary shaders;
     GpuScene scene; ///< every per-surface GPU object
     ExactSurfacePass exact;
-    AntialiasTarget antialias; ///< the multisampled frame of RenderOptions::samples > 1
-    int maxSamples = 1;        ///< GL_MAX_SAMPLES within 1..kMaxSamples, read at initialize
+    AntialiasTarget antialias;   ///< the multisampled frame of RenderOptions::samples > 1
+    int maxSamples = 1;          ///< GL_MAX_SAMPLES within 1..kMaxSamples, read at initialize
+    FloatDepthTarget floatDepth; ///< aliased frames into hosts without float depth
     TessellatedPass tessellated;
     WireframePass wireframe;
     ControlNetPass controlNet;

@@ -1,0 +1,79 @@
+// Single-sample colour + float depth framebuffer for aliased frames into 24-bit hosts.
+#include "render/float_depth_target.h"
+
+#include "render/depth_convention.h"
+
+namespace kw {
+
+bool FloatDepthTarget::hostNeedsIt(std::uint32_t framebuffer) const {
+    // A multisampled host cannot be blitted into from one sample (and is not what Qt's widgets
+    // give); left alone.
+    GLint samples = 0;
+    m_gl->glGetNamedFramebufferParameteriv(framebuffer, GL_SAMPLES, &samples);
+    if (samples > 0)
+        return false;
+    // The default framebuffer names its depth GL_DEPTH, a framebuffer object GL_DEPTH_ATTACHMENT.
+    const GLenum attachment = framebuffer == 0 ? GL_DEPTH : GL_DEPTH_ATTACHMENT;
+    GLint type = GL_NONE;
+    m_gl->glGetNamedFramebufferAttachmentParameteriv(framebuffer, attachment,
+                                                     GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type == GL_NONE)
+        return true; // no depth at all: the frame needs one
+    GLint component = GL_FLOAT;
+    m_gl->glGetNamedFramebufferAttachmentParameteriv(
+        framebuffer, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component);
+    return component != GL_FLOAT;
+}
+
+bool FloatDepthTarget::ensure(QSize size, QString* error) {
+    if (m_fbo && size == m_size)
+        return true;
+    release();
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    auto texture = [&](GLenum format) {
+        GLuint t = 0;
+        gl->glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        gl->glTextureStorage2D(t, 1, format, size.width(), size.height());
+        return t;
+    };
+    m_colour = texture(GL_RGBA8);
+    m_depth = texture(kDepthFormat);
+    gl->glCreateFramebuffers(1, &m_fbo);
+    gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT0, m_colour, 0);
+    gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
+    if (gl->glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        *error = QStringLiteral("the float-depth framebuffer (%1x%2) is incomplete")
+                     .arg(size.width())
+                     .arg(size.height());
+        release();
+        return false;
+    }
+    m_size = size;
+    return true;
+}
+
+void FloatDepthTarget::copyColourTo(std::uint32_t framebuffer) {
+    const int w = m_size.width(), h = m_size.height();
+    m_gl->glBlitNamedFramebuffer(m_fbo, framebuffer, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+                                 GL_NEAREST);
+    m_gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+}
+
+void FloatDepthTarget::release() {
+    if (!m_gl)
+        return;
+    if (m_fbo)
+        m_gl->glDeleteFramebuffers(1, &m_fbo);
+    const GLuint textures[2] = {m_colour, m_depth};
+    for (GLuint t : textures)
+        if (t)
+            m_gl->glDeleteTextures(1, &t);
+    m_fbo = m_colour = m_depth = 0;
+    m_size = QSize();
+}
+
+std::int64_t FloatDepthTarget::residentBytes() const {
+    return m_fbo ? std::int64_t(m_size.width()) * m_size.height() * 8 : 0;
+}
+
+} // namespace kw

@@ -1,0 +1,41 @@
+// The aliased frame's own framebuffer when the host's depth is not float: RGBA8 colour and 32-bit
+// float depth, one sample, copied into the host's colour at the end of the frame. The editor's
+// frames on a software rasteriser while the view moves (Viewport::aliasedWhileMoving) go to
+// QOpenGLWidget's default framebuffer, whose depth is 24-bit integer; with the near plane at
+// 1e-5 of the far one in close-ups, 24 bits do not separate faces 1e-4 of the view apart and the
+// wrong one of two touching faces showed (tst_render_motion). Reversed depth in 32-bit float
+// resolves about 1e-7 of the distance at any distance (render/depth_convention.h).
+#pragma once
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QSize>
+#include <QString>
+#include <cstdint>
+
+namespace kw {
+
+class FloatDepthTarget {
+public:
+    void initialize(QOpenGLFunctions_4_5_Core* gl) { m_gl = gl; }
+    /// True when `framebuffer` is single-sampled and its depth buffer is not floating point
+    /// (24-bit integer, as Qt's widget framebuffers) or missing: a frame into it is better drawn
+    /// here and copied. State queries only.
+    bool hostNeedsIt(std::uint32_t framebuffer) const;
+    /// (Re)allocates for `size` when it changed. False with *error set when the framebuffer
+    /// cannot be made.
+    bool ensure(QSize size, QString* error);
+    GLuint framebuffer() const { return m_fbo; }
+    /// Copies the colour into `framebuffer`'s draw buffers over the whole size (the host's depth
+    /// is left as it was: nothing is drawn into the host after the frame's overlays).
+    void copyColourTo(std::uint32_t framebuffer);
+    void release();
+    /// Bytes of the attachments (4 + 4 per pixel).
+    std::int64_t residentBytes() const;
+
+private:
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    GLuint m_fbo = 0, m_colour = 0, m_depth = 0;
+    QSize m_size;
+};
+
+} // namespace kw
