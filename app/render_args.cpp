@@ -314,6 +314,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!parseIntIn(parser.value(o.samples), 1, kMaxSamples, options.samples))
         return fail(o.samples, QStringLiteral("in 1..%1").arg(kMaxSamples));
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
+    // The trimmed-cell split's before and after (docs/PERFORMANCE.md ## Trims): same pixels.
+    options.splitCellsByTrims = qEnvironmentVariable("KW_TRIM_CELL_SPLIT") != QLatin1String("0");
     return true;
 }
 

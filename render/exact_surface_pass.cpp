@@ -161,7 +161,7 @@ void ExactSurfacePass::drawBatch(const Batch& batch) {
 
 ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const CacheKey& key,
                                                    const FrameCamera& camera,
-                                                   DrawCommand& command) const {
+                                                   Commands& commands) const {
     Place p;
     const SurfaceGpu* g = r.exact.get();
     if (!g || r.slot < 0)
@@ -174,10 +174,24 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
         p.culled = true;
         return p;
     }
-    command = DrawCommand{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
-                          GLint(g->vertexOffset), GLuint(r.slot)};
+    commands.all = DrawCommand{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
+                               GLint(g->vertexOffset), GLuint(r.slot)};
     const TrimMask* mask = key.trims ? maskOf(r) : nullptr;
     p.prepassTrimmed = mask != nullptr;
+    // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
+    // costs llvmpipe its early depth test), and no pass draws the cells they remove.
+    p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
+              g->splitClasses == mask->classSerial;
+    if (p.split) {
+        const GLuint inside = GLuint(g->insideIndexCount), edge = GLuint(g->edgeIndexCount);
+        p.awayCells = (g->triangleIndexCount - g->insideIndexCount - g->edgeIndexCount) / 6;
+        commands.inside = commands.all;
+        commands.inside.count = inside;
+        commands.edge = commands.all;
+        commands.edge.count = edge;
+        commands.edge.firstIndex += inside;
+        commands.all.count = inside + edge;
+    }
     // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL rejects it
     // before shading and early-z stays on: no lookup needed here. A discard in this shader
     // costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the exact-depth way, which
@@ -205,14 +219,20 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     m_places.clear();
     m_places.reserve(scene.records().size());
     m_culled = 0;
+    m_trimmedAway = 0;
     for (const SurfaceRecord* r : scene.records()) {
-        DrawCommand c{};
-        Place p = classify(*r, key, camera, c);
+        Commands cs;
+        Place p = classify(*r, key, camera, cs);
+        const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
                 Batch& pre = p.prepassTrimmed ? m_trimmed : m_plain;
                 p.prepassIndex = int(pre.commands.size());
-                pre.commands.push_back(c);
+                pre.commands.push_back(p.split ? cs.edge : c);
+                if (p.split) {
+                    p.insideIndex = int(m_plain.commands.size());
+                    m_plain.commands.push_back(cs.inside);
+                }
             }
             Batch& b = m_variants[p.variant];
             if (b.commands.empty()) {
@@ -233,10 +253,11 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                     e.gather = b.gather;
                 }
                 p.edgeIndex = int(e.commands.size());
-                e.commands.push_back(c);
+                e.commands.push_back(c); // with anti-aliasing: never split
             }
         }
         m_culled += p.culled ? 1 : 0;
+        m_trimmedAway += p.awayCells;
         m_places[r] = p;
     }
     std::vector<Batch*> batches{&m_plain, &m_trimmed};
@@ -261,27 +282,33 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         if (it == m_places.end())
             return false;
         const Place& was = it->second;
-        DrawCommand c{};
-        const Place now = classify(*r, key, camera, c);
+        Commands cs;
+        const Place now = classify(*r, key, camera, cs);
+        const DrawCommand& c = cs.all;
         if (now.drawn != was.drawn || now.culled != was.culled)
             return false;
         if (!now.drawn || now.culled)
             continue;
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
-            now.edgeVariant != was.edgeVariant)
+            now.edgeVariant != was.edgeVariant || now.split != was.split)
             return false;
-        const auto patch = [&](Batch& b, int index) {
+        const auto patch = [&](Batch& b, int index, const DrawCommand& command) {
             DrawCommand& old = b.commands[size_t(index)];
-            if (std::memcmp(&old, &c, sizeof(DrawCommand)) != 0) {
-                old = c;
-                writes.push_back({b.first + index, c});
+            if (std::memcmp(&old, &command, sizeof(DrawCommand)) != 0) {
+                old = command;
+                writes.push_back({b.first + index, command});
             }
         };
-        patch(m_variants.at(now.variant), was.index);
+        patch(m_variants.at(now.variant), was.index, c);
         if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmed : m_plain, was.prepassIndex);
+            patch(was.prepassTrimmed ? m_trimmed : m_plain, was.prepassIndex,
+                  was.split ? cs.edge : c);
+        if (was.split)
+            patch(m_plain, was.insideIndex, cs.inside);
         if (was.edgeVariant >= 0)
-            patch(m_edges.at(was.edgeVariant), was.edgeIndex);
+            patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
+        m_trimmedAway += now.awayCells - was.awayCells;
+        it->second.awayCells = now.awayCells;
     }
     for (const Write& w : writes)
         m_gl->glNamedBufferSubData(m_commands, GLintptr(w.at * std::int64_t(sizeof(DrawCommand))),
@@ -333,11 +360,19 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         return false;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
     const CacheKey key{
-        &scene,  scene.layoutStamp(),     camera.viewProjection, camera.viewport, trims,
-        prepass, options.cullOutsideView, gatherMinCellPixels()};
+        &scene,  scene.layoutStamp(),     camera.viewProjection, camera.viewport,      trims,
+        prepass, options.cullOutsideView, aa != nullptr,         gatherMinCellPixels()};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
+    // What the pre-pass tests the trims on, and what the split leaves out (per frame: the
+    // batches may have been patched).
+    trimTestedCells = trimmedAwayCells = 0;
+    if (prepass) {
+        for (const DrawCommand& c : m_trimmed.commands)
+            trimTestedCells += c.count / 6;
+        trimmedAwayCells = m_trimmedAway;
+    }
     if (m_variants.empty())
         return true; // nothing to draw
     Batch& plain = m_plain;

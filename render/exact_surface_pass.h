@@ -76,6 +76,8 @@ public:
 
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
+    /// FrameReport::Partitions' trimTestedCells and trimmedAwayCells of the last draw.
+    std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
     /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
     /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
     double firstDrawCpuMs = -1.0;
@@ -105,8 +107,13 @@ private:
         int index = -1;      ///< its command in that batch
         bool prepassTrimmed = false;
         int prepassIndex = -1; ///< its command in m_plain or m_trimmed (with the pre-pass)
-        int edgeVariant = -1;  ///< trimmed: key into m_edges (degrees and gather)
-        int edgeIndex = -1;    ///< its command there
+        /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
+        /// m_plain (this command), those near a curve in m_trimmed (prepassIndex).
+        bool split = false;
+        int insideIndex = -1;
+        std::int64_t awayCells = 0; ///< split: the cells left out as trimmed away
+        int edgeVariant = -1;       ///< trimmed: key into m_edges (degrees and gather)
+        int edgeIndex = -1;         ///< its command there
     };
     /// What the cached batches were built for; any difference (or a GpuScene layout stamp
     /// change) builds them again, else only the records GpuScene::touched() are looked at.
@@ -116,12 +123,19 @@ private:
         glm::mat4 viewProjection{0.0f};
         glm::ivec2 viewport{0};
         bool trims = false, prepass = false, cull = false;
+        bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
         double minCellPixels = 0.0;
         bool operator==(const CacheKey&) const = default;
     };
-    /// A record's variant and command as this frame would draw it.
+    /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
+    /// not split); split: the cells inside the trims and those near a curve, and the shading
+    /// pass's range covering both (not the trimmed-away cells).
+    struct Commands {
+        DrawCommand all{}, inside{}, edge{};
+    };
+    /// A record's variant and commands as this frame would draw it.
     Place classify(const SurfaceRecord& r, const CacheKey& key, const FrameCamera& camera,
-                   DrawCommand& command) const;
+                   Commands& commands) const;
     /// Builds the batches from every record (and uploads them all).
     void buildBatches(const GpuScene& scene, const CacheKey& key, const FrameCamera& camera);
     /// Updates the commands of the touched records in place; false when one changed variant,
@@ -157,6 +171,7 @@ private:
     /// The trimmed surfaces again, by degrees and gather, for the anti-aliased edge pass.
     std::map<int, Batch> m_edges;
     std::unordered_map<const SurfaceRecord*, Place> m_places;
+    std::int64_t m_trimmedAway = 0; ///< the batches' Place::awayCells, summed
     int m_culled = 0;
 };
 

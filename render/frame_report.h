@@ -93,6 +93,10 @@ struct FrameReport {
         double worstBoundPixels = 0.0;
         std::int64_t cells = 0; ///< base polygon cells drawn, in either mode
         int unmet = 0;
+        /// Exact mode with the depth pre-pass: the cells whose pre-pass fragments test the
+        /// trims (every cell of a trimmed surface, or with RenderOptions::splitCellsByTrims
+        /// only those near a curve), and the cells the split left out as trimmed away.
+        std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
     } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while

@@ -217,7 +217,7 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                        options.partitioning,    options.pixelTolerance, options.partitionsU,
                        options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
                        options.controlNet,      options.trims,          options.trimMode,
-                       options.trimBudgetBytes, options.trimGridCap};
+                       options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims};
     bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
@@ -377,6 +377,14 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         report.warnings << m_maskWarnings;
         report.cpuMs.masks += double(timer.nsecsElapsed()) * 1e-6;
     }
+    // Cells ordered by how the trims cut them (inside, near a curve, trimmed away), for the
+    // pre-pass's split draws: after the masks, whose grids classify them.
+    const bool split = options.splitCellsByTrims && options.trims &&
+                       options.trimMode == RenderOptions::TrimMode::Exact &&
+                       options.mode == RenderMode::Exact;
+    for (SurfaceRecord* r : masksRan ? m_order : m_touched)
+        if (r->exact)
+            splitByTrims(m_pools, *r->exact, split ? &r->mask : nullptr);
     timer.restart();
     syncTable(masksRan ? m_order : m_touched);
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;

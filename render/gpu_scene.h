@@ -230,6 +230,7 @@ private:
         RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
+        bool splitCellsByTrims = false;
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

@@ -87,6 +87,11 @@ struct RenderOptions {
     /// surfaces; with only `trims` false the same fragments as the cut frame are drawn, less
     /// the mask's discards (what the trim tests compare).
     bool polygonOverTrims = true;
+    /// Exact trims with the depth pre-pass, no anti-aliasing: each trimmed surface's cells are
+    /// ordered by how its trim grid cuts them (kw::splitByTrims) and the pre-pass tests the
+    /// trims only on the cells near a curve; cells the trims remove are not drawn. The same
+    /// pixels either way (tst_render_trims); off only to measure the difference.
+    bool splitCellsByTrims = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
     /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
     /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,

@@ -1,7 +1,10 @@
 // Uploads of one surface's exact-mode data into its ranges of the shared scene buffers.
 #include "render/surface_upload.h"
 
+#include "render/trim_mask_pass.h"
+
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace kw {
@@ -129,6 +132,11 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
     g.vertexOffset = v, g.vertexCount = vertices;
     g.triangleOffset = t, g.triangleIndexCount = int(tri.size());
     g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
+    static std::uint64_t serial = 0;
+    g.polygonSerial = ++serial;
+    g.insideIndexCount = -1;
+    g.edgeIndexCount = 0;
+    g.splitPolygon = g.splitClasses = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, std::int64_t(tri.size()), tri.data());
     pools.outlines.write(o, std::int64_t(lines.size()), lines.data());
@@ -158,6 +166,80 @@ bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
     const glm::vec3 o(g.origin);
     lo += o;
     hi += o;
+    return true;
+}
+
+namespace {
+
+/// 0 trimmed away, 1 inside, 2 near an edge, for the (u, v) rectangle [u0, u1] x [v0, v1].
+int cellTrimClass(const TrimMask& m, double u0, double u1, double v0, double v1) {
+    const double sx = double(m.width) / (m.rect.y - m.rect.x);
+    const double sy = double(m.height) / (m.rect.w - m.rect.z);
+    // The texels the rectangle overlaps, grown by one; beyond the grid everything is outside
+    // every loop (trimGridRect).
+    const double fx0 = std::floor((u0 - m.rect.x) * sx) - 1,
+                 fx1 = std::floor((u1 - m.rect.x) * sx) + 1;
+    const double fy0 = std::floor((v0 - m.rect.z) * sy) - 1,
+                 fy1 = std::floor((v1 - m.rect.z) * sy) + 1;
+    bool in = false, out = false;
+    if (fx0 < 0 || fy0 < 0 || fx1 >= m.width || fy1 >= m.height)
+        out = true;
+    const int i0 = int(std::clamp(fx0, 0.0, double(m.width - 1)));
+    const int i1 = int(std::clamp(fx1, 0.0, double(m.width - 1)));
+    const int j0 = int(std::clamp(fy0, 0.0, double(m.height - 1)));
+    const int j1 = int(std::clamp(fy1, 0.0, double(m.height - 1)));
+    if (fx1 < 0 || fy1 < 0 || fx0 >= m.width || fy0 >= m.height)
+        return 0; // wholly beside the grid
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            const std::uint8_t c = m.texelClass[size_t(j * m.width + i)];
+            if (c == 2)
+                return 2;
+            (c ? in : out) = true;
+            if (in && out)
+                return 2;
+        }
+    return in ? 1 : 0;
+}
+
+} // namespace
+
+bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask) {
+    const bool usable = mask && mask->usable() && !mask->texelClass.empty() && mask->width > 0 &&
+                        mask->height > 0 && g.triangleOffset >= 0;
+    const std::uint64_t classes = usable ? mask->classSerial : 0;
+    if (g.splitPolygon == g.polygonSerial && g.splitClasses == classes)
+        return false;
+    g.splitPolygon = g.polygonSerial;
+    g.splitClasses = classes;
+    const bool wasSplit = g.insideIndexCount >= 0;
+    if (!usable) {
+        // One range of every cell, in whatever order the last split left them.
+        g.insideIndexCount = -1;
+        g.edgeIndexCount = 0;
+        return wasSplit;
+    }
+    const BasePolygon& poly = g.polygon;
+    std::vector<unsigned> byClass[3];
+    const unsigned row = unsigned(poly.nodesU());
+    for (int cv = 0; cv < poly.cellsV(); ++cv)
+        for (int cu = 0; cu < poly.cellsU(); ++cu) {
+            const int c =
+                cellTrimClass(*mask, poly.breaksU[size_t(cu)], poly.breaksU[size_t(cu + 1)],
+                              poly.breaksV[size_t(cv)], poly.breaksV[size_t(cv + 1)]);
+            const unsigned ll = unsigned(cv) * row + unsigned(cu), lr = ll + 1, ul = ll + row,
+                           ur = ul + 1;
+            byClass[c].insert(byClass[c].end(), {ll, lr, ur, ll, ur, ul});
+        }
+    const int inside = int(byClass[1].size()), outside = int(byClass[0].size());
+    std::vector<unsigned> tri = std::move(byClass[1]);
+    tri.insert(tri.end(), byClass[2].begin(), byClass[2].end());
+    tri.insert(tri.end(), byClass[0].begin(), byClass[0].end());
+    if (int(tri.size()) != g.triangleIndexCount)
+        return false; // not this polygon's cells (cannot happen: built from g.polygon)
+    pools.triangles.write(g.triangleOffset, std::int64_t(tri.size()), tri.data());
+    g.insideIndexCount = inside;
+    g.edgeIndexCount = int(tri.size()) - inside - outside;
     return true;
 }
 

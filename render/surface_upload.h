@@ -38,10 +38,16 @@ struct SurfaceGpu {
     std::int64_t vertexOffset = -1, vertexCount = 0;
     std::int64_t triangleOffset = -1, outlineOffset = -1;
     int triangleIndexCount = 0, outlineIndexCount = 0;
-    std::vector<glm::vec4> control; ///< the texels now on the GPU
-    BasePolygon polygon;            ///< the vertices now on the GPU
-    ParameterBox polygonBox;        ///< the (u, v) box the polygon spans
-    bool polygonTrimmed = false;    ///< polygonBox is trimParameterBox, not the domain
+    std::vector<glm::vec4> control;  ///< the texels now on the GPU
+    BasePolygon polygon;             ///< the vertices now on the GPU
+    ParameterBox polygonBox;         ///< the (u, v) box the polygon spans
+    bool polygonTrimmed = false;     ///< polygonBox is trimParameterBox, not the domain
+    std::uint64_t polygonSerial = 0; ///< changes whenever the polygon is rebuilt
+    /// splitByTrims: the triangle range holds the cells wholly inside the trims first
+    /// (insideIndexCount indices), then those near a trim curve (edgeIndexCount), then those
+    /// wholly trimmed away. insideIndexCount < 0: not split (one range, every cell).
+    int insideIndexCount = -1, edgeIndexCount = 0;
+    std::uint64_t splitPolygon = 0, splitClasses = 0; ///< what the split was made for
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
@@ -60,6 +66,18 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
 /// exceed its limit.
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
                     const ParameterBox& box, UploadStats& stats);
+struct TrimMask;
+/// Orders the polygon's triangles by how the trims cut their cells (SurfaceGpu's
+/// insideIndexCount and edgeIndexCount), from the mask's texel classes: a cell is inside (or
+/// trimmed away) when every grid texel it overlaps, and every texel next to those, is inside
+/// (outside) with no curve; else it is near an edge. The one-texel ring keeps a margin for
+/// float (u, v) rounding at cell borders. Without classes (mask mode, untrimmed) the polygon
+/// is left one range. Rewrites the triangle indices in place (same count); a cell's two
+/// triangles stay together, starting at its provoking vertex. Returns true when the split
+/// changed. Why: the depth pre-pass then tests the trims only on cells near a curve and draws
+/// no cell the trims remove (docs/PERFORMANCE.md ## Trims).
+bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask);
+
 /// World-space bounds of the control points of `g` as on the GPU (texels plus origin; they
 /// hold the surface and its base polygon); false without a point of positive weight.
 bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);

@@ -43,6 +43,10 @@ struct TrimMask {
     QStringList warnings; ///< from makeTrimRegion (makeTrimArcs) when last drawn (built)
     TrimMaskStats stats;  ///< since creation or resetStats()
     TrimGridBlock grid;   ///< exact mode: the block (grid.words == 0: none)
+    /// Exact mode: the grid's texels (width x height over rect, as TrimGrid) as 0 outside,
+    /// 1 inside, 2 edge (a curve crosses it), for splitByTrims; empty otherwise.
+    std::vector<std::uint8_t> texelClass;
+    std::uint64_t classSerial = 0; ///< changes whenever texelClass is rebuilt or dropped
 
     /// Whether the passes classify by it: a mask layer or a grid block holding a loop.
     bool usable() const { return active && (layer >= 0 || grid.words > 0); }

@@ -35,6 +35,11 @@ struct TrimSurfaceArcs {
 
 namespace {
 
+std::uint64_t nextClassSerial() {
+    static std::uint64_t serial = 0;
+    return ++serial;
+}
+
 TrimSurfaceArcs arcsOf(const Surface& s) {
     QElapsedTimer timer;
     timer.start();
@@ -87,12 +92,18 @@ void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisi
         m.rect = grid.rect;
         m.width = grid.width;
         m.height = grid.height;
+        m.texelClass.resize(size_t(grid.texelCount()));
+        for (int k = 0; k < grid.texelCount(); ++k)
+            m.texelClass[size_t(k)] = grid.isEdge(k) ? 2 : grid.base[size_t(k)];
+        m.classSerial = nextClassSerial();
         d.loops = arcs.loops;
         d.texels = std::int64_t(grid.width) * grid.height;
         d.largestSide = std::max(grid.width, grid.height);
     } else {
         m_grids.release(m.grid);
         m.width = m.height = 0;
+        m.texelClass.clear();
+        m.classSerial = nextClassSerial();
     }
     m.grid.cap = m_gridCap;
     d.cpuNanoseconds = timer.nsecsElapsed() + a.nanoseconds;

@@ -342,6 +342,83 @@ private Q_SLOTS:
 #endif
     }
 
+    void splitByTrimsKeepsEveryPixel_data() {
+        QTest::addColumn<QString>("model");
+        QTest::addColumn<double>("zoom");
+        QTest::addColumn<bool>("adaptive");
+        for (const char* m : {"star_island", "trimmed_plate", "hammer"}) {
+            QTest::addRow("%s fitted uniform", m) << QString(m) << 1.0 << false;
+            QTest::addRow("%s fitted adaptive", m) << QString(m) << 1.0 << true;
+            QTest::addRow("%s 6x adaptive", m) << QString(m) << 6.0 << true;
+        }
+    }
+
+    /// The pre-pass split by the trims (RenderOptions::splitCellsByTrims, kw::splitByTrims)
+    /// shows exactly the pixels and AOVs of the pre-pass over whole ranges, while it tests the
+    /// trims on fewer cells and leaves out cells the trims remove.
+    void splitByTrimsKeepsEveryPixel() {
+        QFETCH(QString, model);
+        QFETCH(double, zoom);
+        QFETCH(bool, adaptive);
+        QString error;
+        Scene scene;
+        if (model == QLatin1String("hammer")) {
+#ifndef KW_HAVE_OCCT
+            QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): hammer.iges cannot be imported");
+#else
+            const auto imported =
+                importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
+            QVERIFY2(imported, qPrintable(error));
+            scene = imported->scene;
+#endif
+        } else {
+            const std::optional<Scene> sample = loadSample(model, &error);
+            QVERIFY2(sample, qPrintable(error));
+            scene = *sample;
+        }
+        Document doc;
+        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        Camera cam = fitCamera(doc.scene(), 1.0);
+        if (zoom > 1.0) {
+            // Into the middle of the first trimmed surface's trim box (cut away on the star).
+            const auto it = std::find_if(doc.scene().surfaces.begin(), doc.scene().surfaces.end(),
+                                         [](const Surface& s) { return !s.trims.empty(); });
+            QVERIFY(it != doc.scene().surfaces.end());
+            const ParameterBox box = trimParameterBox(*it);
+            cam = zoomedOn(cam, *it,
+                           {0.5 * (box.u.first + box.u.last), 0.5 * (box.v.first + box.v.last)},
+                           zoom);
+        }
+        RenderOptions opt;
+        opt.partitioning =
+            adaptive ? RenderOptions::Partitioning::Adaptive : RenderOptions::Partitioning::Uniform;
+        QImage colour[2];
+        AovBuffer aov[2];
+        FrameReport report[2];
+        for (int k = 0; k < 2; ++k) {
+            opt.splitCellsByTrims = k == 1;
+            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            colour[k] = m_renderer->colorImage();
+            aov[k] = m_renderer->aov();
+            report[k] = m_renderer->lastReport();
+        }
+        const FrameReport::Partitions& off = report[0].partitions;
+        const FrameReport::Partitions& on = report[1].partitions;
+        qInfo("%s: %lld cells; trims tested on %lld cells, split: %lld (%lld left out)",
+              qPrintable(QTest::currentDataTag()), (long long)off.cells,
+              (long long)off.trimTestedCells, (long long)on.trimTestedCells,
+              (long long)on.trimmedAwayCells);
+        QCOMPARE(colour[1], colour[0]);
+        QVERIFY(aov[1].data == aov[0].data);
+        QCOMPARE(off.trimmedAwayCells, std::int64_t(0));
+        QVERIFY(off.trimTestedCells > 0);
+        QVERIFY(on.trimTestedCells < off.trimTestedCells);
+        // Finer cells fit between the curves and the box: some lie wholly outside the trims
+        // (the coarse 10 x 10 star keeps a texel's margin in every cell).
+        if (adaptive)
+            QVERIFY(on.trimmedAwayCells > 0);
+    }
+
     void memoryFollowsEachSurfacesNeed() {
         // 256 trimmed surfaces, scaled from tiny to large on screen: the grids depend on the
         // trims alone, so the words in use are the sum of each surface's own packed grid, and
