@@ -114,14 +114,14 @@ struct RenderOptions {
     /// sets it from the image size with --samples 1 (docs/PERFORMANCE.md ## Start-up); the
     /// editor keeps this.
     int trimGridCap = kMaxTrimGridSide;
-    /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
-    /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     /// Anti-aliasing (issue 11 item 4): 1 draws aliased, as the paper does; N > 1 draws into a
     /// private framebuffer with N MSAA samples (silhouettes and base-polygon edges; shading
     /// stays once per pixel) and covers trim-edge pixels by the exact distance to the curve
     /// (kw::AntialiasTarget). Clamped to the GPU's limit with a warning. Frames with AOVs and
     /// picks are never anti-aliased (their pixels are exact samples).
     int samples = 1;
+    /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
+    /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.

@@ -139,7 +139,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             drawn.framebuffer = floatDepth.framebuffer();
         else
             report.warnings << fdError;
-    } else if (!pickPixel) {
+    } else if (!aa && !pickPixel) {
+        // Freed only when an aliased frame goes straight to its host: the editor alternates
+        // aliased frames while moving with anti-aliased still ones, and would otherwise
+        // allocate the target again at every move.
         floatDepth.release();
     }
     beginTarget(drawn, options, pickPixel);

@@ -235,8 +235,12 @@ bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask) {
     std::vector<unsigned> tri = std::move(byClass[1]);
     tri.insert(tri.end(), byClass[2].begin(), byClass[2].end());
     tri.insert(tri.end(), byClass[0].begin(), byClass[0].end());
-    if (int(tri.size()) != g.triangleIndexCount)
-        return false; // not this polygon's cells (cannot happen: built from g.polygon)
+    if (int(tri.size()) != g.triangleIndexCount) {
+        // Not this polygon's cells (cannot happen: built from g.polygon): stay one range.
+        g.insideIndexCount = -1;
+        g.edgeIndexCount = 0;
+        return wasSplit;
+    }
     pools.triangles.write(g.triangleOffset, std::int64_t(tri.size()), tri.data());
     g.insideIndexCount = inside;
     g.edgeIndexCount = int(tri.size()) - inside - outside;
