@@ -1,12 +1,14 @@
 // knotwork __read-cad IN DIR [--max-memory-mb N] [--mesh LINEAR ANGULAR_DEG]: the child process
 // that reads an IGES, STEP or BREP file for a parent (model/cad/cadprocess.h), with OpenCASCADE
-// loaded from the module libknotwork_occt.so only here; with --mesh it also triangulates the
-// shape (`knotwork mesh`) into DIR/mesh.obj. Hidden from --help.
+// loaded only here, from the module of the file's format (libknotwork_occt_iges.so, ...); with
+// --mesh it also triangulates the shape (`knotwork mesh`) into DIR/mesh.obj, with the module
+// libknotwork_occt.so (every format and the mesher). Hidden from --help.
 #include "app/commands.h"
 #include "app/plugin.h"
 #include "model/cad/cadprocess.h"
 #include "model/cad/occtimport.h"
 
+#include <QElapsedTimer>
 #include <cstdio>
 #include <optional>
 #include <sys/resource.h>
@@ -51,8 +53,11 @@ int runReadCad(const QStringList& args) {
         return kExitUsage;
     }
     QString error;
+    // A plain read loads only its format's toolkits: their symbol relocations are a large part
+    // of a small file's read (docs/PERFORMANCE.md, First image of a CAD file).
+    const char* module = deflection ? kOcctModuleName : occtReadModuleName(format);
     const auto resolve = [&](const char* symbol) {
-        return app::resolveModuleSymbol(QString::fromLatin1(kOcctModuleName), symbol, &error);
+        return app::resolveModuleSymbol(QString::fromLatin1(module), symbol, &error);
     };
     const auto read = reinterpret_cast<OcctImportFunction>(resolve(kOcctImportSymbol));
     const auto mesh =
@@ -61,7 +66,16 @@ int runReadCad(const QStringList& args) {
         printError(QStringLiteral("%1: cannot read %2: %3").arg(in, cadFormatName(format), error));
         return kExitBadInput;
     }
-    const ImportProgress progress = [](int done, int total) {
+    // One line per change of `done`, at most one per 20 ms but always the last: the parent
+    // reads them every 50 ms, and OCCT reports hundreds of steps for a small file (391 lines,
+    // each a write and a wake-up of the parent, for hammer.iges).
+    QElapsedTimer sinceLine;
+    int lastDone = -1;
+    const ImportProgress progress = [&](int done, int total) {
+        if (done == lastDone || (done < total && sinceLine.isValid() && sinceLine.elapsed() < 20))
+            return true;
+        lastDone = done;
+        sinceLine.start();
         const QByteArray line = progressLine(done, total);
         std::fwrite(line.constData(), 1, size_t(line.size()), stdout);
         std::fflush(stdout);

@@ -25,3 +25,10 @@ set_tests_properties(tst_reliability PROPERTIES TIMEOUT 1200)
 # Each knotwork process takes about a second on a loaded 2-core machine: allow Qt Test more than
 # its default 300 s per function for the property test over every input file.
 set_property(TEST tst_reliability APPEND PROPERTY ENVIRONMENT QTEST_FUNCTION_TIMEOUT=1100000)
+# The OCCT modules, one per format (docs/IMPORT.md): which module and toolkits each read loads.
+if(TARGET knotwork_occt_plugin)
+  kw_add_test(tst_cad_modules LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_cad_modules.cpp
+              ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h LIBS knotwork_cad)
+  target_compile_definitions(tst_cad_modules PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+  kw_use_cad_reader(tst_cad_modules)
+endif()

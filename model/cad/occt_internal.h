@@ -7,11 +7,43 @@
 
 #include <QString>
 #include <QStringList>
+#include <Standard_Handle.hxx>
+#include <Standard_Transient.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
+#include <XSControl_Reader.hxx>
+#include <functional>
+#include <memory>
 
 namespace kw::occt {
+
+/// What differs between the formats OCCT's data exchange reads (IGES, STEP): kept out of
+/// occtimport.cpp so that each format's module (docs/IMPORT.md) links only its own toolkits
+/// (TKIGES or TKSTEP and TKSTEPBase); dlopen's symbol relocations are most of a small file's
+/// read (docs/PERFORMANCE.md, First image of a CAD file).
+struct ExchangeFormat {
+    std::unique_ptr<XSControl_Reader> (*makeReader)();
+    /// The name the file gives `entity` (empty when none); *igesType gets its IGES entity type
+    /// number (0 for other formats' entities).
+    QString (*entityName)(const Handle(Standard_Transient) & entity, int* igesType);
+};
+const ExchangeFormat& igesFormat(); // occt_iges.cpp
+const ExchangeFormat& stepFormat(); // occt_step.cpp
+/// The reader for `format` in this binary, nullptr when it was linked without it. Defined by
+/// occt_formats.cpp, compiled into each module with the formats it reads (KW_OCCT_IGES,
+/// KW_OCCT_STEP).
+const ExchangeFormat* exchangeFormat(CadFormat format);
+
+/// A step after every face is converted (`knotwork mesh`: triangulating the shape), given the
+/// transferred shape and the face map result.sourceFaces indexes; it catches OCCT's exceptions
+/// itself. False with `error` "<path>: <reason>".
+using AfterImport =
+    std::function<bool(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                       ImportResult& result, QString& error)>;
+/// importOcctFile (occtimport.h), with `after` run before the final progress step when set.
+std::optional<ImportResult> importShape(const QString& path, CadFormat format, QString& error,
+                                        const ImportProgress& progress, const AfterImport& after);
 
 /// Converts a face: its surface to a kw::NurbsSurface in OCCT's own (u, v) parameterisation
 /// (B-spline surfaces as they are, made non-periodic; Bezier and analytic surfaces converted

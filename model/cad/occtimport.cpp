@@ -6,9 +6,6 @@
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
-#include <IGESControl_Reader.hxx>
-#include <IGESData_IGESEntity.hxx>
-#include <IGESData_IGESModel.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
 #include <Interface_InterfaceModel.hxx>
@@ -20,10 +17,8 @@
 #include <OSD.hxx>
 #include <QFile>
 #include <QTemporaryFile>
-#include <STEPControl_Reader.hxx>
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
-#include <StepRepr_RepresentationItem.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -148,25 +143,6 @@ QString stepListTooLong(const QString& path) {
     return {};
 }
 
-QString entityName(const Handle(Standard_Transient) & entity) {
-    if (auto step = Handle(StepRepr_RepresentationItem)::DownCast(entity)) {
-        if (!step->Name().IsNull())
-            return QString::fromUtf8(step->Name()->ToCString()).trimmed();
-    } else if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity)) {
-        if (iges->HasName()) {
-            QString name = QString::fromUtf8(iges->NameValue()->ToCString()).trimmed();
-            // OCCT appends the subscript as "label(n)", also when the file's subscript is 0.
-            if (iges->HasSubScriptNumber() && iges->SubScriptNumber() == 0 &&
-                name.endsWith(QLatin1String("(0)")))
-                name.chop(3);
-            return name;
-        }
-        if (iges->HasShortLabel())
-            return QString::fromUtf8(iges->ShortLabel()->ToCString()).trimmed();
-    }
-    return {};
-}
-
 // Where a face came from in the file: the name of its entity and, for IGES, the entity type
 // (144/143 are trimmed/bounded surfaces; any other type is an untrimmed surface).
 struct FaceOrigin {
@@ -178,9 +154,10 @@ struct FaceOrigin {
 // Walks the transfer's entity -> shape records and assigns each face of `faces` the entity
 // that produced exactly that face (or, failing that, a named entity holding only that face).
 std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & reader,
+                                    const occt::ExchangeFormat* format,
                                     const TopTools_IndexedMapOfShape& faces) {
     std::vector<FaceOrigin> origins(faces.Extent() + 1);
-    if (reader.IsNull() || reader->TransientProcess().IsNull())
+    if (!format || reader.IsNull() || reader->TransientProcess().IsNull())
         return origins;
     const Handle(Transfer_TransientProcess) tp = reader->TransientProcess();
     for (int i = 1; i <= tp->NbMapped(); ++i) {
@@ -198,14 +175,13 @@ std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & rea
         FaceOrigin& o = origins[index];
         if (o.fromFaceEntity && !isFace)
             continue; // the entity that made exactly this face wins over its containers
-        const Handle(Standard_Transient) entity = tp->Mapped(i);
-        const QString name = entityName(entity);
+        int igesType = 0;
+        const QString name = format->entityName(tp->Mapped(i), &igesType);
         if (!name.isEmpty())
             o.name = name;
         if (isFace) {
             o.fromFaceEntity = true;
-            if (auto iges = Handle(IGESData_IGESEntity)::DownCast(entity); !iges.IsNull())
-                o.igesType = iges->TypeNumber();
+            o.igesType = igesType;
         }
     }
     return origins;
@@ -213,10 +189,11 @@ std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & rea
 
 struct ReadShape {
     TopoDS_Shape shape;
-    std::unique_ptr<XSControl_Reader> reader; // kept alive: it owns the transfer records
-    Handle(XSControl_TransferReader) names;   // null for BREP
-    QStringList notes;                        // for the report's warnings
-    QStringList skipped;                      // root entities that gave no shape
+    std::unique_ptr<XSControl_Reader> reader;     // kept alive: it owns the transfer records
+    Handle(XSControl_TransferReader) names;       // null for BREP
+    const occt::ExchangeFormat* format = nullptr; // null for BREP
+    QStringList notes;                            // for the report's warnings
+    QStringList skipped;                          // root entities that gave no shape
 };
 
 // Reads and transfers the file; false with `error` set on any fault.
@@ -275,11 +252,13 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
             out.notes << note;
         }
     }
-    std::unique_ptr<XSControl_Reader> reader;
-    if (format == CadFormat::Iges)
-        reader = std::make_unique<IGESControl_Reader>();
-    else
-        reader = std::make_unique<STEPControl_Reader>();
+    out.format = occt::exchangeFormat(format);
+    if (!out.format) { // a module built for other formats (cmd_readcad.cpp picks the right one)
+        error = QStringLiteral("this OpenCASCADE module does not read %1 files")
+                    .arg(cadFormatName(format));
+        return false;
+    }
+    std::unique_ptr<XSControl_Reader> reader = out.format->makeReader();
     if (reader->ReadFile(fileToRead.constData()) != IFSelect_RetDone) {
         const QString why = loadFailures(reader->WS());
         error =
@@ -336,9 +315,12 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     return true;
 }
 
-std::optional<ImportResult> importImpl(const QString& path, CadFormat format, QString& error,
-                                       const ImportProgress& progress,
-                                       const MeshDeflection* deflection, TaggedMeshSet* mesh) {
+} // namespace
+
+namespace occt {
+
+std::optional<ImportResult> importShape(const QString& path, CadFormat format, QString& error,
+                                        const ImportProgress& progress, const AfterImport& after) {
     setUpOcctOnce();
     // Also in this thread (the editor imports on a worker thread): FPE masks and handlers.
     OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
@@ -357,7 +339,7 @@ std::optional<ImportResult> importImpl(const QString& path, CadFormat format, QS
             return std::nullopt;
         }
         TopExp::MapShapes(read.shape, TopAbs_FACE, faces);
-        origins = faceOrigins(read.names, faces);
+        origins = faceOrigins(read.names, read.format, faces);
         for (const QString& n : read.notes)
             result.report.warnings << n;
         result.report.skipped << read.skipped;
@@ -424,42 +406,18 @@ std::optional<ImportResult> importImpl(const QString& path, CadFormat format, QS
                     .arg(result.report.skipped.value(0));
         return std::nullopt;
     }
-    if (deflection) {
-        try {
-            OCC_CATCH_SIGNALS
-            QString why;
-            const double linear = deflection->linear > 0.0
-                                      ? deflection->linear
-                                      : occt::defaultLinearDeflection(read.shape);
-            if (!occt::meshFaces(read.shape, faces, result, linear, deflection->angularDegrees,
-                                 *mesh, result.report.warnings, why)) {
-                error = QStringLiteral("%1: cannot mesh: %2").arg(path, why);
-                return std::nullopt;
-            }
-        } catch (const Standard_Failure& e) {
-            error = QStringLiteral("%1: OpenCASCADE failed meshing the shape: %2 (%3)")
-                        .arg(path, QString::fromUtf8(e.GetMessageString()),
-                             QString::fromLatin1(e.DynamicType()->Name()));
-            return std::nullopt;
-        }
-    }
+    if (after && !after(read.shape, faces, result, error))
+        return std::nullopt;
     if (progress)
         progress(kSteps, kSteps);
     return result;
 }
 
-} // namespace
+} // namespace occt
 
 std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
                                            const ImportProgress& progress) {
-    return importImpl(path, format, error, progress, nullptr, nullptr);
-}
-
-std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
-                                                  const MeshDeflection& deflection,
-                                                  TaggedMeshSet& mesh, QString& error,
-                                                  const ImportProgress& progress) {
-    return importImpl(path, format, error, progress, &deflection, &mesh);
+    return occt::importShape(path, format, error, progress, {});
 }
 
 } // namespace kw

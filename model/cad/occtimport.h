@@ -23,8 +23,8 @@ std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat
                                                   TaggedMeshSet& mesh, QString& error,
                                                   const ImportProgress& progress = {});
 
-/// The exported entry point of the module libknotwork_occt.so (QLibrary resolves it by this
-/// name): calls importOcctFile. Returns true and fills *result, or false with *error set.
+/// The exported entry point of the OCCT modules (QLibrary resolves it by this name): calls
+/// importOcctFile. Returns true and fills *result, or false with *error set.
 using OcctImportFunction = bool (*)(const QString& path, CadFormat format, ImportResult* result,
                                     QString* error, const ImportProgress* progress);
 constexpr const char* kOcctImportSymbol = "knotwork_occt_import";
@@ -34,6 +34,24 @@ using OcctMeshFunction = bool (*)(const QString& path, CadFormat format,
                                   TaggedMeshSet* mesh, QString* error,
                                   const ImportProgress* progress);
 constexpr const char* kOcctMeshSymbol = "knotwork_occt_mesh";
+/// The module with every format and the mesher (both entry points): `knotwork mesh`.
 constexpr const char* kOcctModuleName = "knotwork_occt";
+
+/// The module a child process loads to read `format` without meshing: knotwork_occt_iges,
+/// knotwork_occt_step or knotwork_occt_brep (kOcctImportSymbol only). Each links only the
+/// toolkits of its format, so reading one file does not relocate the others' symbols
+/// (docs/IMPORT.md). kOcctModuleName for any other format.
+inline const char* occtReadModuleName(CadFormat format) {
+    switch (format) {
+    case CadFormat::Iges:
+        return "knotwork_occt_iges";
+    case CadFormat::Step:
+        return "knotwork_occt_step";
+    case CadFormat::Brep:
+        return "knotwork_occt_brep";
+    default:
+        return kOcctModuleName;
+    }
+}
 
 } // namespace kw

@@ -1,6 +1,7 @@
 // The OpenCASCADE mesh peer (issue 10 item 5): the faces of a CAD file triangulated the way
 // OCCT-based viewers (FreeCAD, Mayo, f3d, AIS_Shape) display them.
 #include "model/cad/occt_internal.h"
+#include "model/cad/occtimport.h"
 
 #include <BRepBndLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
@@ -10,6 +11,8 @@
 #include <Poly_Connect.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Precision.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
 #include <TopLoc_Location.hxx>
 #include <TopoDS.hxx>
 #include <cmath>
@@ -132,3 +135,35 @@ bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& face
 }
 
 } // namespace kw::occt
+
+namespace kw {
+
+// Here rather than in occtimport.cpp so that the import-only modules do not link TKMesh.
+std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
+                                                  const MeshDeflection& deflection,
+                                                  TaggedMeshSet& mesh, QString& error,
+                                                  const ImportProgress& progress) {
+    const auto triangulate = [&](const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                                 ImportResult& result, QString& why) {
+        try {
+            OCC_CATCH_SIGNALS
+            QString fault;
+            const double linear =
+                deflection.linear > 0.0 ? deflection.linear : occt::defaultLinearDeflection(shape);
+            if (!occt::meshFaces(shape, faces, result, linear, deflection.angularDegrees, mesh,
+                                 result.report.warnings, fault)) {
+                why = QStringLiteral("%1: cannot mesh: %2").arg(path, fault);
+                return false;
+            }
+        } catch (const Standard_Failure& e) {
+            why = QStringLiteral("%1: OpenCASCADE failed meshing the shape: %2 (%3)")
+                      .arg(path, QString::fromUtf8(e.GetMessageString()),
+                           QString::fromLatin1(e.DynamicType()->Name()));
+            return false;
+        }
+        return true;
+    };
+    return occt::importShape(path, format, error, progress, triangulate);
+}
+
+} // namespace kw
