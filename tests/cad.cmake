@@ -32,3 +32,6 @@ if(TARGET knotwork_occt_plugin)
   target_compile_definitions(tst_cad_modules PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
   kw_use_cad_reader(tst_cad_modules)
 endif()
+# The CAD child's binary hand-over: round trip, truncation, corruption (model/cad/handover.h).
+kw_add_test(tst_handover LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_handover.cpp
+            LIBS knotwork_cad)

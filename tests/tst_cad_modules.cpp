@@ -74,7 +74,7 @@ private Q_SLOTS:
         const auto viaChild = kw::importFile(file, error);
         QVERIFY2(viaChild, qPrintable(error));
         QVERIFY(!viaChild->scene.surfaces.empty());
-        QVERIFY(QFileInfo(dir.filePath(QStringLiteral("scene.knot"))).size() > 0);
+        QVERIFY(QFileInfo(dir.filePath(QStringLiteral("import.kwi"))).size() > 0);
     }
 
     void meshLoadsTheModuleWithEveryFormat() {

@@ -2,16 +2,13 @@
 // (progress, time limit, Cancel) and reads back the scene; the child side writes it.
 #include "model/cad/cadprocess.h"
 
-#include "model/knotfile.h"
+#include "model/cad/handover.h"
 #include "model/savefile.h"
 
 #include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileInfo>
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
 #include <QMutex>
 #include <QProcess>
 #include <QTemporaryDir>
@@ -28,23 +25,7 @@ QString executableOverride;
 
 constexpr int kPollMs = 50;
 
-QJsonObject reportToJson(const ImportResult& r) {
-    QJsonArray faces;
-    for (int f : r.sourceFaces)
-        faces.append(f);
-    return QJsonObject{{QStringLiteral("facesImported"), r.report.facesImported},
-                       {QStringLiteral("skipped"), QJsonArray::fromStringList(r.report.skipped)},
-                       {QStringLiteral("warnings"), QJsonArray::fromStringList(r.report.warnings)},
-                       {QStringLiteral("sourceFaces"), faces},
-                       {QStringLiteral("seconds"), r.report.seconds}};
-}
-
-QStringList strings(const QJsonValue& v) {
-    QStringList out;
-    for (const QJsonValue& s : v.toArray())
-        out << s.toString();
-    return out;
-}
+constexpr const char* kHandoverFile = "import.kwi"; // handover.h
 
 QString signalText(int sig) {
     const char* name = ::strsignal(sig);
@@ -92,9 +73,8 @@ QByteArray progressLine(int done, int total) {
 
 bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error) {
     QString why;
-    if (!writeKnotFile(QDir(dir).filePath(QStringLiteral("scene.knot")), result.scene, &why) ||
-        !saveBytesAtomically(QDir(dir).filePath(QStringLiteral("report.json")),
-                             QJsonDocument(reportToJson(result)).toJson(), &why)) {
+    if (!saveBytesAtomically(QDir(dir).filePath(QString::fromLatin1(kHandoverFile)),
+                             encodeImportHandover(result), &why)) {
         error = why;
         return false;
     }
@@ -202,26 +182,18 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                     : QString::fromLocal8Bit(lines.back().trimmed());
         return std::nullopt;
     }
-    ImportResult result;
     QString why;
-    auto scene = readKnotFile(dir.filePath(QStringLiteral("scene.knot")), &why);
-    QFile reportFile(dir.filePath(QStringLiteral("report.json")));
-    if (!scene || !reportFile.open(QIODevice::ReadOnly)) {
-        error = QStringLiteral("%1: %2 gave no readable result: %3")
-                    .arg(path, reader, why.isEmpty() ? reportFile.errorString() : why);
+    QFile handover(dir.filePath(QString::fromLatin1(kHandoverFile)));
+    std::optional<ImportResult> read;
+    if (!handover.open(QIODevice::ReadOnly))
+        why = handover.errorString();
+    else
+        read = decodeImportHandover(handover.readAll(), why);
+    if (!read) {
+        error = QStringLiteral("%1: %2 gave no readable result: %3").arg(path, reader, why);
         return std::nullopt;
     }
-    result.scene = std::move(*scene);
-    const QJsonObject report = QJsonDocument::fromJson(reportFile.readAll()).object();
-    result.report.facesImported = report.value(QStringLiteral("facesImported")).toInt();
-    result.report.skipped = strings(report.value(QStringLiteral("skipped")));
-    result.report.warnings = strings(report.value(QStringLiteral("warnings")));
-    for (const QJsonValue& f : report.value(QStringLiteral("sourceFaces")).toArray())
-        result.sourceFaces.push_back(f.toInt());
-    if (result.sourceFaces.size() != result.scene.surfaces.size()) {
-        error = QStringLiteral("%1: %2 gave an inconsistent result").arg(path, reader);
-        return std::nullopt;
-    }
+    ImportResult result = std::move(*read);
     if (deflection && mesh &&
         !readTaggedMeshObjFile(dir.filePath(QStringLiteral("mesh.obj")), *mesh, why)) {
         error = QStringLiteral("%1: %2 gave no readable mesh: %3").arg(path, reader, why);

@@ -1,5 +1,5 @@
 // IGES, STEP and BREP read by OpenCASCADE in a child process: `knotwork __read-cad IN DIR`
-// writes the scene as DIR/scene.knot and the report as DIR/report.json. OCCT's readers can
+// writes the scene, its report and face indices as DIR/import.kwi (handover.h). OCCT's readers can
 // overflow the stack or run for ever on hostile input, and no signal handler recovers from
 // that; a child that crashes, runs out of time or memory, or is cancelled is simply killed.
 #pragma once
@@ -44,8 +44,8 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                                                  const MeshDeflection* deflection = nullptr,
                                                  TaggedMeshSet* mesh = nullptr);
 
-/// Child side: writes a finished import (finishImport) for the parent as DIR/scene.knot and
-/// DIR/report.json, atomically. False with `error` set when it cannot.
+/// Child side: writes a finished import (finishImport) for the parent as DIR/import.kwi
+/// (encodeImportHandover), atomically. False with `error` set when it cannot.
 bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error);
 
 /// Child side: writes the mesh for the parent as DIR/mesh.obj (writeTaggedMeshObj), atomically.
