@@ -35,3 +35,8 @@ endif()
 # The CAD child's binary hand-over: round trip, truncation, corruption (model/cad/handover.h).
 kw_add_test(tst_handover LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_handover.cpp
             LIBS knotwork_cad)
+# The IGES numbering repair's quick check against its full rebuild.
+if(TARGET knotwork_occt_read)
+  kw_add_test(tst_igesrepair LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_igesrepair.cpp
+              LIBS knotwork_occt_read)
+endif()

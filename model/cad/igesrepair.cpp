@@ -2,6 +2,7 @@
 #include "model/cad/igesrepair.h"
 
 #include <QList>
+#include <algorithm>
 #include <vector>
 
 namespace kw {
@@ -11,13 +12,108 @@ QByteArray field(int value) {
     return QByteArray::number(value).rightJustified(8, ' ');
 }
 
-int readInt(const QByteArray& line, int column, bool& ok) {
-    return line.mid(column, 8).trimmed().toInt(&ok);
+// QByteArray::mid for a view (Qt 6.4's QByteArrayView has none): columns [at, at + n) that exist.
+QByteArrayView columns(QByteArrayView line, qsizetype at, qsizetype n) {
+    return at >= line.size() ? QByteArrayView() : line.sliced(at, std::min(n, line.size() - at));
+}
+
+int readInt(QByteArrayView line, int column, bool& ok) {
+    return columns(line, column, 8).trimmed().toInt(&ok);
+}
+
+// The sequence number of a record (columns 74-80) is `seq`.
+bool hasSequence(QByteArrayView line, int seq) {
+    bool ok = false;
+    return columns(line, 73, 7).trimmed().toInt(&ok) == seq && ok;
 }
 
 } // namespace
 
+bool igesNumberingNeedsRepair(QByteArrayView file) {
+    // rebuildIgesNumbering's checks in its order, on views: lines shorter than 80 columns are
+    // padded with spaces there, which reads the same as the missing columns here (a line
+    // shorter than 73 has a space in column 73: not fixed-format).
+    std::vector<QByteArrayView> s, g, d, p;
+    p.reserve(size_t(file.size() / 81));
+    for (qsizetype from = 0; from <= file.size();) {
+        qsizetype eol = file.indexOf('\n', from);
+        if (eol < 0)
+            eol = file.size();
+        QByteArrayView line = file.sliced(from, eol - from);
+        from = eol + 1;
+        if (line.endsWith('\r'))
+            line.chop(1);
+        if (line.trimmed().isEmpty())
+            continue;
+        if (line.size() < 73)
+            return false;
+        switch (line[72]) {
+        case 'S':
+            s.push_back(line);
+            break;
+        case 'G':
+            g.push_back(line);
+            break;
+        case 'D':
+            d.push_back(line);
+            break;
+        case 'P':
+            p.push_back(line);
+            break;
+        case 'T':
+            break;
+        default:
+            return false;
+        }
+    }
+    if (d.empty() || d.size() % 2 != 0 || p.empty())
+        return false;
+    const int n = static_cast<int>(d.size() / 2);
+    std::vector<int> start(n);
+    for (int k = 0; k < n; ++k) {
+        bool ok = false;
+        start[k] = readInt(d[2 * k], 8, ok);
+        if (!ok || start[k] < 1 || start[k] > qsizetype(p.size()) ||
+            (k > 0 && start[k] <= start[k - 1]) || (k == 0 && start[k] != 1))
+            return false;
+    }
+    for (size_t i = 0; i < s.size(); ++i)
+        if (!hasSequence(s[i], int(i + 1)))
+            return true;
+    QByteArray global;
+    for (QByteArrayView line : g)
+        global += columns(line, 0, 72);
+    if (!global.contains(';') && (global.trimmed() == "1H," || global.trimmed().isEmpty()))
+        return true;
+    for (size_t i = 0; i < g.size(); ++i)
+        if (!hasSequence(g[i], int(i + 1)))
+            return true;
+    for (int k = 0; k < n; ++k) {
+        const int count = (k + 1 < n ? start[k + 1] : static_cast<int>(p.size()) + 1) - start[k];
+        bool ok = false;
+        if (readInt(d[2 * k + 1], 24, ok) != count || !ok || !hasSequence(d[2 * k], 2 * k + 1) ||
+            !hasSequence(d[2 * k + 1], 2 * k + 2))
+            return true;
+    }
+    for (int k = 0; k < n; ++k) {
+        const int end = k + 1 < n ? start[k + 1] : static_cast<int>(p.size()) + 1;
+        for (int i = start[k]; i < end; ++i) {
+            bool ok = false;
+            if (readInt(p[size_t(i - 1)], 64, ok) != 2 * k + 1 || !ok ||
+                !hasSequence(p[size_t(i - 1)], i))
+                return true;
+        }
+    }
+    return false;
+}
+
 std::optional<QByteArray> repairIgesNumbering(const QByteArray& file, QString& note) {
+    if (!igesNumberingNeedsRepair(file))
+        return std::nullopt;
+    return rebuildIgesNumbering(file, note);
+}
+
+std::optional<QByteArray> rebuildIgesNumbering(const QByteArray& file, QString& note) {
     QList<QByteArray> s, g, d, p;
     for (QByteArray line : file.split('\n')) {
         if (line.endsWith('\r'))
