@@ -2,9 +2,10 @@
 // the equal-quality searches for the fine mesh and the GLU tessellator.
 #include "bench/bench_runner.h"
 
+#include "app/commands.h"
 #include "bench/glu_tessellator.h"
+#include "model/cad/cadimport.h"
 #include "model/document.h"
-#include "model/knotfile.h"
 #include "model/trim.h"
 
 #include <QElapsedTimer>
@@ -46,10 +47,14 @@ struct Model {
     Camera camera;
 };
 
+// Read as `knotwork render` reads it (kw::openModelFile): a .knot as saved, IGES, STEP and BREP
+// through the CAD reader's child process, OBJ; the import's remarks on stderr.
 bool loadModel(const QString& file, double aspect, Model& m, QString* error) {
-    std::optional<Scene> scene = readKnotFile(file, error);
-    if (!scene)
+    std::optional<ImportResult> read = openModelFile(file, *error);
+    if (!read)
         return false;
+    cli::printImportRemarks(file, read->report);
+    const std::optional<Scene> scene = std::move(read->scene);
     if (!m.doc.resetScene(*scene, error)) {
         *error = QStringLiteral("%1: %2").arg(file, *error);
         return false;

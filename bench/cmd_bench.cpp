@@ -80,7 +80,8 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
         "The paper's Tables 1 and 2, off-screen, speed and quality in one run, for every FILE "
-        "or, with none, the bundled samples (Table 2: teapot.knot).\n"
+        "(.knot, IGES, STEP, BREP or OBJ, read as render reads them) or, with none, the bundled "
+        "samples (Table 2: teapot.knot).\n"
         "Table 1: exact mode at each --sizes (square), --table1-partitions, --lights. "
         "Table 2: at --table2-size and each --partitions, exact mode against "
         "the tessellated baseline at the same partitions, a prebuilt fine mesh and libGLU's "
@@ -199,7 +200,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
             .arg(kMaxSamples),
         QStringLiteral("N"), QStringLiteral("1"));
     parser.addOption(aaSamples);
-    parser.addPositionalArgument(QStringLiteral("FILES"), QStringLiteral(".knot projects."),
+    parser.addPositionalArgument(QStringLiteral("FILES"),
+                                 QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
+                                                "(read as render reads them)."),
                                  QStringLiteral("[FILE...]"));
     if (const int code = parseOrExit(parser, args); code >= 0)
         return code;

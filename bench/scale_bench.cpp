@@ -2,8 +2,9 @@
 // memory, frame cost in a fitted view and a close-up, and the cost of one drag step.
 #include "bench/scale_bench.h"
 
-#include "app/launch.h"
+#include "app/commands.h"
 #include "bench/scale_scene.h"
+#include "model/cad/cadimport.h"
 #include "model/document.h"
 #include "model/knotfile.h"
 #include "render/offscreen_renderer.h"
@@ -12,7 +13,6 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
-#include <QProcess>
 #include <QTemporaryDir>
 #include <algorithm>
 #include <ctime>
@@ -48,25 +48,18 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// The part as a Scene: a .knot read directly, anything else converted by `knotwork convert`.
-std::optional<Scene> loadUnit(const QString& model, const QString& tmp, QString* error) {
+/// The part as a Scene, read as `knotwork render` reads it (kw::openModelFile: a .knot as saved,
+/// IGES, STEP and BREP in the CAD reader's child process, OBJ), its import remarks on stderr.
+std::optional<Scene> loadUnit(const QString& model, QString* error) {
     if (!QFileInfo(model).isFile()) {
         *error = QStringLiteral("no such file: %1").arg(model);
         return std::nullopt;
     }
-    QString knot = model;
-    if (!model.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive)) {
-        knot = tmp + QStringLiteral("/unit.knot");
-        QProcess p;
-        p.start(app::siblingPath("knotwork"), {QStringLiteral("convert"), model, knot});
-        if (!p.waitForFinished(600000) || p.exitStatus() != QProcess::NormalExit ||
-            p.exitCode() != 0) {
-            *error = QStringLiteral("knotwork convert %1 failed: %2")
-                         .arg(model, QString::fromLocal8Bit(p.readAllStandardError()).trimmed());
-            return std::nullopt;
-        }
-    }
-    return readKnotFile(knot, error);
+    std::optional<ImportResult> read = openModelFile(model, *error);
+    if (!read)
+        return std::nullopt;
+    cli::printImportRemarks(model, read->report);
+    return std::move(read->scene);
 }
 
 struct Frames {
@@ -168,7 +161,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         *error = QStringLiteral("cannot create a temporary folder: %1").arg(tmp.errorString());
         return false;
     }
-    const std::optional<Scene> unit = loadUnit(config.model, tmp.path(), error);
+    const std::optional<Scene> unit = loadUnit(config.model, error);
     if (!unit)
         return false;
     if (unit->surfaces.empty()) {

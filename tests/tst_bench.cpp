@@ -257,6 +257,30 @@ private Q_SLOTS:
         QCOMPARE(coverage(wholeRows.at(1).toObject()), coverage(bicubic));
     }
 
+    void cadFilesAreReadAsRenderReadsThem() {
+        // A BREP part through kw::openModelFile (the CAD reader's child process), as `render`.
+        const QString json = outDir() + QStringLiteral("/cad.json");
+        const Run r = knotwork(
+            {QStringLiteral("bench"), QStringLiteral(KW_TEST_DATA_DIR "/Pump_Nut.brep"),
+             QStringLiteral("--smoke"), QStringLiteral("--tables"), QStringLiteral("1"),
+             QStringLiteral("--sizes"), QStringLiteral("64"), QStringLiteral("--json"), json});
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        const QJsonArray rows = readJson(json).value(QStringLiteral("table1")).toArray();
+        QCOMPARE(rows.size(), 1);
+        QCOMPARE(rows.at(0).toObject().value(QStringLiteral("model")).toString(),
+                 QStringLiteral("Pump_Nut.brep"));
+        QVERIFY(rows.at(0).toObject().value(QStringLiteral("coverage")).toDouble() > 0.0);
+        // A CAD file that cannot be read: exit 1, the reader's error naming the file.
+        const QString bad = outDir() + QStringLiteral("/bench_broken.iges");
+        QFile f(bad);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write("not an IGES file\n");
+        f.close();
+        const Run broken = knotwork({QStringLiteral("bench"), bad, QStringLiteral("--smoke")});
+        QCOMPARE(broken.code, 1);
+        QVERIFY2(broken.err.contains(bad + QStringLiteral(": ")), qPrintable(broken.err));
+    }
+
     void badInputIsAnErrorNotACrash() {
         const Run missing = knotwork({QStringLiteral("bench"), QStringLiteral("/no/such.knot")});
         QCOMPARE(missing.code, 1);
