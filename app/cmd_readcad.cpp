@@ -9,9 +9,12 @@
 #include "model/cad/occtimport.h"
 
 #include <QElapsedTimer>
+#include <csignal>
 #include <cstdio>
 #include <optional>
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace kw::cli {
 
@@ -25,6 +28,12 @@ int runReadCad(const QStringList& args) {
         if (args[k] == QLatin1String("--max-memory-mb") && k + 1 < args.size()) {
             memoryMb = args[k + 1].toLongLong(&ok1);
             k += 2;
+        } else if (args[k] == QLatin1String("--die-with-parent")) {
+            // Started by the launcher for the program it becomes (cadprestart.h): if that
+            // program dies without taking this read over, so does this process.
+            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+            ok1 = ::getppid() != 1;
+            ++k;
         } else if (args[k] == QLatin1String("--mesh") && k + 2 < args.size()) {
             deflection = MeshDeflection{args[k + 1].toDouble(&ok1), args[k + 2].toDouble(&ok2)};
             k += 3;

@@ -4,10 +4,13 @@
 #include "app/commands.h"
 #include "app/editor.h"
 #include "app/gl_command.h"
+#include "model/cad/cadprestart.h"
 
 #include <cstring>
 
 int main(int argc, char** argv) {
+    // A CAD read the launcher started for `render` (before any other thread exists here).
+    kw::claimPrestartedCadRead();
     if (argc > 1 && std::strcmp(argv[1], "render") == 0)
         return kw::cli::runGlCommand(argc, argv, kw::cli::runRender);
     return kw::app::runEditor(argc, argv);

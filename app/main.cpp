@@ -3,6 +3,7 @@
 // the editor, render and bench to knotwork-gl / knotwork-bench (app/launch.h).
 #include "app/commands.h"
 #include "app/launch.h"
+#include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
 
 #include <QCoreApplication>
@@ -110,8 +111,17 @@ int main(int argc, char** argv) {
     // Decided before any Q*Application exists: the editor makes its own QApplication.
     if (isEditorInvocation(argc, argv))
         return runElsewhere(kGlProgram, argv);
-    if (const Command* c = findCommand(QString::fromLocal8Bit(argv[1])); c && c->program)
+    if (const Command* c = findCommand(QString::fromLocal8Bit(argv[1])); c && c->program) {
+        // `render FILE.iges ...`: the CAD reader's child starts now and reads while knotwork-gl
+        // starts; knotwork-gl takes it over (model/cad/cadprestart.h). Only for FILE right after
+        // the verb, the form --help shows; any other form reads the file as usual.
+        if (c->name == QLatin1String("render") && argc > 2 && argv[2][0] != '-') {
+            const QString reader = qEnvironmentVariable("KNOTWORK_CAD_READER");
+            kw::prestartCadRead(reader.isEmpty() ? kw::app::siblingPath("knotwork") : reader,
+                                QString::fromLocal8Bit(argv[2]));
+        }
         return runElsewhere(c->program, argv);
+    }
     QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));

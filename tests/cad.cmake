@@ -40,3 +40,8 @@ if(TARGET knotwork_occt_read)
   kw_add_test(tst_igesrepair LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_igesrepair.cpp
               LIBS knotwork_occt_read)
 endif()
+# `render FILE.iges` with the CAD child started by the launcher (model/cad/cadprestart.h).
+kw_add_test(tst_cad_prestart LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_cad_prestart.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h LIBS Qt6::Core)
+target_compile_definitions(tst_cad_prestart PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+add_dependencies(tst_cad_prestart knotwork)

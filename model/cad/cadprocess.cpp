@@ -2,6 +2,7 @@
 // (progress, time limit, Cancel) and reads back the scene; the child side writes it.
 #include "model/cad/cadprocess.h"
 
+#include "model/cad/cadprestart.h"
 #include "model/cad/handover.h"
 #include "model/savefile.h"
 
@@ -12,8 +13,12 @@
 #include <QMutex>
 #include <QProcess>
 #include <QTemporaryDir>
+#include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <poll.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace kw {
@@ -91,6 +96,176 @@ bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& 
     return true;
 }
 
+#ifdef KW_HAVE_OCCT
+namespace {
+
+// How a child ended, and what it wrote on stderr (its last line is its error).
+struct ChildEnd {
+    bool crashed = false;
+    int signal = 0;
+    int exitCode = 0;
+    QByteArray err;
+};
+
+// Removes a folder when it goes out of scope (the prestarted child's, not a QTemporaryDir).
+struct FolderRemover {
+    QString path;
+    explicit FolderRemover(QString p) : path(std::move(p)) {}
+    ~FolderRemover() { QDir(path).removeRecursively(); }
+};
+
+// The child's "progress DONE TOTAL" lines.
+struct ProgressLines {
+    QByteArray out;
+    // The OCCT import counts 1000 steps (occtimport.cpp): 0 of 1000 until the child reports.
+    int done = 0, total = 1000;
+    void take(const QByteArray& bytes) {
+        out += bytes;
+        for (qsizetype eol; (eol = out.indexOf('\n')) >= 0; out.remove(0, eol + 1)) {
+            const QList<QByteArray> t = out.left(eol).split(' ');
+            if (t.size() == 3 && t[0] == "progress") {
+                done = t[1].toInt();
+                total = t[2].toInt();
+            }
+        }
+    }
+};
+
+QString cancelled(const QString& path) {
+    return QStringLiteral("%1: import cancelled").arg(path);
+}
+
+QString outOfTime(const QString& path, const QString& reader, double seconds) {
+    return QStringLiteral("%1: %2 did not finish within %3 s (the limit for a file of this size; "
+                          "KNOTWORK_CAD_TIME_LIMIT sets another) and was stopped")
+        .arg(path, reader)
+        .arg(seconds, 0, 'f', 0);
+}
+
+// Runs the child with QProcess and watches it: progress every kPollMs, Cancel, time limit.
+// False with `error` when it was stopped.
+bool watchQProcess(const QString& path, const QString& reader, const QString& dir, long long memory,
+                   const MeshDeflection* deflection, TaggedMeshSet* mesh,
+                   const ImportProgress& progress, ChildEnd& end, QString& error) {
+    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
+    QProcess child;
+    child.setProgram(cadReaderExecutable());
+    QStringList childArgs{QString::fromLatin1(kReadCadVerb), path, dir,
+                          QStringLiteral("--max-memory-mb"), QString::number(memory >> 20)};
+    if (deflection && mesh)
+        childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
+                  << QString::number(deflection->angularDegrees, 'g', 17);
+    child.setArguments(childArgs);
+    child.start(QIODevice::ReadOnly);
+    if (!child.waitForStarted(30000)) {
+        error = QStringLiteral("%1: cannot start %2 (%3): %4")
+                    .arg(path, reader, child.program(), child.errorString());
+        return false;
+    }
+    QElapsedTimer clock;
+    clock.start();
+    ProgressLines lines;
+    auto stop = [&](const QString& why) {
+        child.kill();
+        child.waitForFinished(-1);
+        error = why;
+        return false;
+    };
+    while (child.state() != QProcess::NotRunning) {
+        child.waitForFinished(kPollMs);
+        lines.take(child.readAllStandardOutput());
+        end.err += child.readAllStandardError();
+        // Called every poll, not only on news: the editor's Cancel must not wait for OCCT.
+        if (progress && !progress(lines.done, lines.total))
+            return stop(cancelled(path));
+        if (clock.elapsed() > seconds * 1000.0)
+            return stop(outOfTime(path, reader, seconds));
+    }
+    end.err += child.readAllStandardError();
+    end.crashed = child.exitStatus() == QProcess::CrashExit || child.error() == QProcess::Crashed;
+    end.signal = end.crashed ? child.exitCode() : 0; // Qt reports the signal as the exit code
+    end.exitCode = end.crashed ? 0 : child.exitCode();
+    return true;
+}
+
+// Reads what is there on a non-blocking pipe; false once it is closed (or broken).
+bool drain(int fd, QByteArray& into) {
+    char buffer[65536];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n > 0) {
+            into.append(buffer, n);
+            continue;
+        }
+        if (n < 0 && errno == EINTR)
+            continue;
+        return n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK);
+    }
+}
+
+// The same watch on a child the launcher started (cadprestart.h), by its pid and pipes; the
+// time limit counts from its start. Closes the pipes; false with `error` when it was stopped.
+bool watchPrestarted(const PrestartedCadRead& child, double seconds, const ImportProgress& progress,
+                     const QString& path, const QString& reader, ChildEnd& end, QString& error) {
+    ProgressLines lines;
+    // A pidfd wakes the poll when the child exits (QProcess waits the same way); without one
+    // (kernels before 5.3) the poll falls back to short naps once both pipes are closed.
+    const int pidfd = int(::syscall(SYS_pidfd_open, child.pid, 0));
+    pollfd fds[3] = {{child.out, POLLIN, 0}, {child.err, POLLIN, 0}, {pidfd, POLLIN, 0}};
+    int status = 0;
+    bool exited = false;
+    const auto finish = [&] {
+        ::close(child.out);
+        ::close(child.err);
+        if (pidfd >= 0)
+            ::close(pidfd);
+    };
+    const auto stop = [&](const QString& why) {
+        ::kill(child.pid, SIGKILL);
+        while (!exited && ::waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        finish();
+        error = why;
+        return false;
+    };
+    for (;;) {
+        const bool napping = pidfd < 0 && fds[0].fd < 0 && fds[1].fd < 0;
+        ::poll(fds, 3, napping ? 2 : kPollMs);
+        QByteArray out;
+        for (int k = 0; k < 2; ++k)
+            if (fds[k].fd >= 0 && !drain(fds[k].fd, k == 0 ? out : end.err))
+                fds[k].fd = -1; // closed: poll ignores negative descriptors
+        lines.take(out);
+        if (!exited) {
+            const pid_t w = ::waitpid(child.pid, &status, WNOHANG);
+            exited = w == child.pid || (w < 0 && errno == ECHILD);
+        }
+        // Once the child has exited, what it wrote is in the pipes: one more read and done.
+        if (exited) {
+            QByteArray rest;
+            drain(child.out, rest);
+            lines.take(rest);
+            drain(child.err, end.err);
+            break;
+        }
+        if (progress && !progress(lines.done, lines.total))
+            return stop(cancelled(path));
+        if (double(monotonicNs() - child.startedNs) > seconds * 1e9)
+            return stop(outOfTime(path, reader, seconds));
+    }
+    finish();
+    if (WIFSIGNALED(status)) {
+        end.crashed = true;
+        end.signal = WTERMSIG(status);
+    } else {
+        end.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    }
+    return true;
+}
+
+} // namespace
+#endif
+
 std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
                                                  QString& error, const ImportProgress& progress,
                                                  const MeshDeflection* deflection,
@@ -106,63 +281,33 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
     const QString reader =
         QString::fromLatin1(deflection && mesh ? "the %1 reader and mesher" : "the %1 reader")
             .arg(cadFormatName(format));
-    QTemporaryDir dir;
-    if (!dir.isValid()) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, reader, dir.errorString());
-        return std::nullopt;
-    }
-    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
     const long long memory = cadMemoryLimitBytes();
-    QProcess child;
-    child.setProgram(cadReaderExecutable());
-    QStringList childArgs{QString::fromLatin1(kReadCadVerb), path, dir.path(),
-                          QStringLiteral("--max-memory-mb"), QString::number(memory >> 20)};
-    if (deflection && mesh)
-        childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
-                  << QString::number(deflection->angularDegrees, 'g', 17);
-    child.setArguments(childArgs);
-    child.start(QIODevice::ReadOnly);
-    if (!child.waitForStarted(30000)) {
-        error = QStringLiteral("%1: cannot start %2 (%3): %4")
-                    .arg(path, reader, child.program(), child.errorString());
-        return std::nullopt;
-    }
-    QElapsedTimer clock;
-    clock.start();
-    QByteArray out, err;
-    // The OCCT import counts 1000 steps (occtimport.cpp): 0 of 1000 until the child reports.
-    int done = 0, total = 1000;
-    auto stop = [&](const QString& why) {
-        child.kill();
-        child.waitForFinished(-1);
-        error = why;
-        return std::nullopt;
-    };
-    while (child.state() != QProcess::NotRunning) {
-        child.waitForFinished(kPollMs);
-        out += child.readAllStandardOutput();
-        err += child.readAllStandardError();
-        for (qsizetype eol; (eol = out.indexOf('\n')) >= 0; out.remove(0, eol + 1)) {
-            const QList<QByteArray> t = out.left(eol).split(' ');
-            if (t.size() == 3 && t[0] == "progress") {
-                done = t[1].toInt();
-                total = t[2].toInt();
-            }
+    ChildEnd end;
+    QString dirPath;
+    std::optional<QTemporaryDir> dir;
+    std::optional<FolderRemover> adoptedDir;
+    if (std::optional<PrestartedCadRead> pre =
+            deflection && mesh ? std::nullopt : takePrestartedCadRead(path)) {
+        // Started by the launcher before it became this program (cadprestart.h): the same
+        // watch, on its pid and pipes.
+        adoptedDir.emplace(pre->dir);
+        dirPath = pre->dir;
+        const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
+        if (!watchPrestarted(*pre, seconds, progress, path, reader, end, error))
+            return std::nullopt;
+    } else {
+        dir.emplace();
+        if (!dir->isValid()) {
+            error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                        .arg(path, reader, dir->errorString());
+            return std::nullopt;
         }
-        // Called every poll, not only on news: the editor's Cancel must not wait for OCCT.
-        if (progress && !progress(done, total))
-            return stop(QStringLiteral("%1: import cancelled").arg(path));
-        if (clock.elapsed() > seconds * 1000.0)
-            return stop(QStringLiteral("%1: %2 did not finish within %3 s (the limit for a file "
-                                       "of this size; KNOTWORK_CAD_TIME_LIMIT sets another) and "
-                                       "was stopped")
-                            .arg(path, reader)
-                            .arg(seconds, 0, 'f', 0));
+        dirPath = dir->path();
+        if (!watchQProcess(path, reader, dirPath, memory, deflection, mesh, progress, end, error))
+            return std::nullopt;
     }
-    err += child.readAllStandardError();
-    if (child.exitStatus() == QProcess::CrashExit || child.error() == QProcess::Crashed) {
-        const int sig = child.exitCode(); // Qt reports the signal number as the exit code
+    if (end.crashed) {
+        const int sig = end.signal;
         // SIGSEGV is the stack overflow of a cyclic file; an abort can also be memory the
         // limit refused, so that one names the limit.
         error = QStringLiteral("%1 crashed on %2 (%3); nothing was imported%4")
@@ -173,17 +318,17 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                                               .arg(memory >> 20));
         return std::nullopt;
     }
-    if (child.exitCode() != 0) {
-        const QList<QByteArray> lines = err.trimmed().split('\n');
+    if (end.exitCode != 0) {
+        const QList<QByteArray> lines = end.err.trimmed().split('\n');
         error = lines.isEmpty() || lines.back().trimmed().isEmpty()
                     ? QStringLiteral("%1: %2 failed with exit code %3")
                           .arg(path, reader)
-                          .arg(child.exitCode())
+                          .arg(end.exitCode)
                     : QString::fromLocal8Bit(lines.back().trimmed());
         return std::nullopt;
     }
     QString why;
-    QFile handover(dir.filePath(QString::fromLatin1(kHandoverFile)));
+    QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
     std::optional<ImportResult> read;
     if (!handover.open(QIODevice::ReadOnly))
         why = handover.errorString();
@@ -195,7 +340,7 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
     }
     ImportResult result = std::move(*read);
     if (deflection && mesh &&
-        !readTaggedMeshObjFile(dir.filePath(QStringLiteral("mesh.obj")), *mesh, why)) {
+        !readTaggedMeshObjFile(QDir(dirPath).filePath(QStringLiteral("mesh.obj")), *mesh, why)) {
         error = QStringLiteral("%1: %2 gave no readable mesh: %3").arg(path, reader, why);
         return std::nullopt;
     }
