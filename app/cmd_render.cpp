@@ -309,11 +309,12 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     else if (options.mode == RenderMode::Exact)
         printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
-                                      "(tolerance %4 px)\n")
+                                      "(tolerance %4 px), %5 edge skirt triangles\n")
                            .arg(files[0])
                            .arg(parts.cells)
                            .arg(parts.worstBoundPixels, 0, 'f', 3)
                            .arg(options.pixelTolerance)
+                           .arg(parts.skirtTriangles)
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])
                            .arg(parts.cells));

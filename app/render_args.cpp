@@ -316,6 +316,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     // The trimmed-cell split's before and after (docs/PERFORMANCE.md ## Trims): same pixels.
     options.splitCellsByTrims = qEnvironmentVariable("KW_TRIM_CELL_SPLIT") != QLatin1String("0");
+    // The edge skirts' before and after (docs/PERFORMANCE.md ## Edges): cracks and cost.
+    options.edgeSkirts = qEnvironmentVariable("KW_EDGE_SKIRTS") != QLatin1String("0");
     return true;
 }
 

@@ -204,6 +204,11 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     p.variant = g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9;
     if (mask)
         p.edgeVariant = g->degreeU | g->degreeV << 4 | int(gather) << 9;
+    if (key.skirts && g->skirtIndexCount > 0 && g->skirtIndexOffset >= 0) {
+        commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
+                                     GLint(g->skirtVertexOffset), GLuint(r.slot)};
+        p.skirtVariant = g->degreeU | g->degreeV << 4 | int(mask != nullptr) << 8;
+    }
     return p;
 }
 
@@ -216,6 +221,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     m_trimmed.trimmed = true;
     m_variants.clear();
     m_edges.clear();
+    m_skirts.clear();
     m_places.clear();
     m_places.reserve(scene.records().size());
     m_culled = 0;
@@ -255,6 +261,16 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                 p.edgeIndex = int(e.commands.size());
                 e.commands.push_back(c); // with anti-aliasing: never split
             }
+            if (p.skirtVariant >= 0) {
+                Batch& k = m_skirts[p.skirtVariant];
+                if (k.commands.empty()) {
+                    k.degreeU = b.degreeU;
+                    k.degreeV = b.degreeV;
+                    k.trimmed = (p.skirtVariant >> 8) & 1;
+                }
+                p.skirtIndex = int(k.commands.size());
+                k.commands.push_back(cs.skirt);
+            }
         }
         m_culled += p.culled ? 1 : 0;
         m_trimmedAway += p.awayCells;
@@ -264,6 +280,8 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     for (auto& [k, b] : m_variants)
         batches.push_back(&b);
     for (auto& [k, b] : m_edges)
+        batches.push_back(&b);
+    for (auto& [k, b] : m_skirts)
         batches.push_back(&b);
     uploadCommands(batches);
     m_key = key;
@@ -290,7 +308,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         if (!now.drawn || now.culled)
             continue;
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
-            now.edgeVariant != was.edgeVariant || now.split != was.split)
+            now.edgeVariant != was.edgeVariant || now.split != was.split ||
+            now.skirtVariant != was.skirtVariant)
             return false;
         const auto patch = [&](Batch& b, int index, const DrawCommand& command) {
             DrawCommand& old = b.commands[size_t(index)];
@@ -307,6 +326,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
             patch(m_plain, was.insideIndex, cs.inside);
         if (was.edgeVariant >= 0)
             patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
+        if (was.skirtVariant >= 0)
+            patch(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
         m_trimmedAway += now.awayCells - was.awayCells;
         it->second.awayCells = now.awayCells;
     }
@@ -359,9 +380,20 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
         return false;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
-    const CacheKey key{
-        &scene,  scene.layoutStamp(),     camera.viewProjection, camera.viewport,      trims,
-        prepass, options.cullOutsideView, aa != nullptr,         gatherMinCellPixels()};
+    // Skirts close the gap between an adaptive polygon's edge chords and the true edges; the
+    // paper's uniform mode stays as it was, and anti-aliased frames' MSAA covers the edges.
+    const bool skirts = options.edgeSkirts && aa == nullptr &&
+                        options.partitioning == RenderOptions::Partitioning::Adaptive;
+    const CacheKey key{&scene,
+                       scene.layoutStamp(),
+                       camera.viewProjection,
+                       camera.viewport,
+                       trims,
+                       prepass,
+                       options.cullOutsideView,
+                       aa != nullptr,
+                       skirts,
+                       gatherMinCellPixels()};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
@@ -396,6 +428,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (ok)
         ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                          options, range, error);
+    if (ok && !m_skirts.empty())
+        ok = skirtPass(scene, camera, lights, options, range, error);
     if (ok && aa && !m_edges.empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -427,6 +461,55 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
         drawBatch(b);
     }
     return true;
+}
+
+float ExactSurfacePass::skirtDepthScale(const FrameCamera& camera) {
+    // A pixel spans distance * 2 / (P[1][1] * height) of world at that distance; pushing the
+    // distance by k of those scales near / distance by 1 / (1 + 2 k / (P[1][1] * height)).
+    const float focal = camera.projection[1][1] * 0.5f * float(std::max(camera.viewport.y, 1));
+    return focal > 0.0f ? 1.0f / (1.0f + kSkirtDepthPixels / focal) : 1.0f;
+}
+
+bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camera,
+                                 const std::vector<Light>& lights, const RenderOptions& options,
+                                 const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Nearer than what is there, and written: of two skirts over one gap the nearer wins. The
+    // strip's depth is its polygon's, pushed back a little (surface.vert), so a face's own
+    // pixels and those of faces in front reject it before shading; the shader writes no
+    // gl_FragDepth, so the test stays early (a discarded fragment writes nothing).
+    gl->glDepthFunc(kDepthNearer);
+    gl->glDepthMask(GL_TRUE);
+    gl->glBindVertexArray(scene.skirtVao());
+    bool ok = true;
+    for (const auto& [key, b] : m_skirts) {
+        QStringList defines =
+            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, false);
+        defines.removeAll(QStringLiteral("KW_EXACT_DEPTH"));
+        defines.removeAll(QStringLiteral("KW_RAY_NEWTON")); // the skirt's own Newton solve
+        defines << QStringLiteral("KW_SKIRT");
+        QOpenGLShaderProgram* prog = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), defines);
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
+        }
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtPixels,
+                        float(options.pixelTolerance) + kSkirtMarginPixels);
+        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);
+        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtDepthScale, skirtDepthScale(camera));
+        if (b.trimmed)
+            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(b);
+        for (const DrawCommand& c : b.commands)
+            skirtTriangles += c.count / 3;
+    }
+    scene.bindSurfaceData(); // the triangles' vertex array again
+    return ok;
 }
 
 bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,

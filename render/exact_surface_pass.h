@@ -78,6 +78,28 @@ public:
     int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
     /// FrameReport::Partitions' trimTestedCells and trimmedAwayCells of the last draw.
     std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
+    /// Triangles of the edge skirts the last draw sent (FrameReport::Partitions).
+    std::int64_t skirtTriangles = 0;
+    /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
+    /// conservative overlap where faces meet (issue 10 item 4). B-rep faces meet within the
+    /// model's tolerance, not exactly; Axis_of_bearing's faces miss each other by 0.1-0.15 px
+    /// at 256^2, which showed as a pinhole with 0.05 px here (tst_render_motion).
+    static constexpr float kSkirtReachPixels = 0.25f;
+    /// The strip's width past the adaptive tolerance, square to the polygon's edge on screen:
+    /// the true edge lies within the tolerance of the edge's chord, the reach beyond it, and
+    /// the margin covers rounding.
+    static constexpr float kSkirtMarginPixels = kSkirtReachPixels + 0.1f;
+    /// How far behind its polygon a skirt lies, in pixels' worth of distance along the ray at
+    /// its depth. The adaptive bound is isotropic in 3D, so a neighbour's polygon lies within
+    /// the tolerance of the surface along the ray too, and near a shared edge both approximate
+    /// the same depth: a skirt pushed back this far fills gaps but never covers a face's
+    /// polygon next to its edge (it did at 1e-3 of the distance: 16 depth disagreements on
+    /// the sphere's seam at 256 x 192, tst_render_edges).
+    static constexpr float kSkirtDepthPixels = 4.0f;
+    /// The clip z factor that moves a point kSkirtDepthPixels pixels' worth further along its
+    /// ray under `camera`'s perspective with reversed depth (z_clip is constant, w the distance:
+    /// z / w = near / distance), the same at every distance.
+    static float skirtDepthScale(const FrameCamera& camera);
     /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
     /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
     double firstDrawCpuMs = -1.0;
@@ -114,6 +136,8 @@ private:
         std::int64_t awayCells = 0; ///< split: the cells left out as trimmed away
         int edgeVariant = -1;       ///< trimmed: key into m_edges (degrees and gather)
         int edgeIndex = -1;         ///< its command there
+        int skirtVariant = -1;      ///< with skirts: key into m_skirts (degrees and trimmed)
+        int skirtIndex = -1;        ///< its command there
     };
     /// What the cached batches were built for; any difference (or a GpuScene layout stamp
     /// change) builds them again, else only the records GpuScene::touched() are looked at.
@@ -124,6 +148,7 @@ private:
         glm::ivec2 viewport{0};
         bool trims = false, prepass = false, cull = false;
         bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
+        bool skirts = false;      ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         double minCellPixels = 0.0;
         bool operator==(const CacheKey&) const = default;
     };
@@ -131,7 +156,7 @@ private:
     /// not split); split: the cells inside the trims and those near a curve, and the shading
     /// pass's range covering both (not the trimmed-away cells).
     struct Commands {
-        DrawCommand all{}, inside{}, edge{};
+        DrawCommand all{}, inside{}, edge{}, skirt{};
     };
     /// A record's variant and commands as this frame would draw it.
     Place classify(const SurfaceRecord& r, const CacheKey& key, const FrameCamera& camera,
@@ -151,6 +176,11 @@ private:
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
                      const RenderOptions& options, const ValueRange& range, QString* error);
+    /// The skirts of every drawn polygon (m_skirts; RenderOptions::edgeSkirts), after the
+    /// opaque passes: they fill only pixels no surface covered nearer.
+    bool skirtPass(const GpuScene& scene, const FrameCamera& camera,
+                   const std::vector<Light>& lights, const RenderOptions& options,
+                   const ValueRange& range, QString* error);
     /// The anti-aliased frame's edge pass over m_edges (see draw).
     bool edgePass(const GpuScene& scene, const FrameCamera& camera,
                   const std::vector<Light>& lights, const RenderOptions& options,
@@ -170,6 +200,8 @@ private:
     std::map<int, Batch> m_variants;
     /// The trimmed surfaces again, by degrees and gather, for the anti-aliased edge pass.
     std::map<int, Batch> m_edges;
+    /// The skirts, by degrees and trimmed (they test the trims themselves: no pre-pass).
+    std::map<int, Batch> m_skirts;
     std::unordered_map<const SurfaceRecord*, Place> m_places;
     std::int64_t m_trimmedAway = 0; ///< the batches' Place::awayCells, summed
     int m_culled = 0;

@@ -97,6 +97,8 @@ struct FrameReport {
         /// trims (every cell of a trimmed surface, or with RenderOptions::splitCellsByTrims
         /// only those near a curve), and the cells the split left out as trimmed away.
         std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
+        /// Triangles of the edge skirts drawn (RenderOptions::edgeSkirts); 0 without.
+        std::int64_t skirtTriangles = 0;
     } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while

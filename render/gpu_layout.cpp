@@ -173,6 +173,54 @@ std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly) {
     return idx;
 }
 
+std::vector<SkirtVertex> skirtVertices(const BasePolygon& poly) {
+    std::vector<SkirtVertex> out;
+    const int nu = poly.nodesU(), nv = int(poly.breaksV.size());
+    if (nu < 2 || nv < 2 || poly.vertices.size() != size_t(nu) * size_t(nv))
+        return out;
+    const auto side = [&](int g0u, int g0v, int du, int dv, int count, glm::vec2 outward) {
+        for (int k = 0; k < count; ++k) {
+            const BaseVertex& b = poly.vertices[size_t((g0v + k * dv) * nu + g0u + k * du)];
+            out.push_back({b, glm::vec2(0.0f)});
+            out.push_back({b, outward});
+        }
+    };
+    side(0, 0, 1, 0, nu, {0.0f, -1.0f});     // bottom, u increasing
+    side(nu - 1, 0, 0, 1, nv, {1.0f, 0.0f}); // right, v increasing
+    side(0, nv - 1, 1, 0, nu, {0.0f, 1.0f}); // top, u increasing
+    side(0, 0, 0, 1, nv, {-1.0f, 0.0f});     // left, v increasing
+    return out;
+}
+
+void buildSkirt(const BasePolygon& poly, std::vector<SkirtVertex>& vertices,
+                std::vector<unsigned>& indices) {
+    vertices = skirtVertices(poly);
+    indices.clear();
+    if (vertices.empty())
+        return;
+    const unsigned nu = unsigned(poly.nodesU()), nv = unsigned(poly.breaksV.size());
+    // Each side's nodes run with increasing u or v, so a segment's first node is the lower-left
+    // corner of (or, on the last row and column, repeats the span of) the cell it borders.
+    unsigned first = 0;
+    for (unsigned count : {nu, nv, nu, nv}) {
+        for (unsigned k = 0; k + 1 < count; ++k) {
+            const unsigned a = first + 2 * k, aOut = a + 1, b = a + 2, bOut = a + 3;
+            indices.insert(indices.end(), {a, b, bOut, a, bOut, aOut});
+        }
+        first += 2 * count;
+    }
+    // The wedge between two sides' pushes at each corner: a triangle from the corner's inner
+    // copy (the corner cell's span) to the two sides' outer copies.
+    const unsigned right = 2 * nu, top = 2 * nu + 2 * nv, left = 4 * nu + 2 * nv;
+    const unsigned corners[4][3] = {
+        {0, 1, left + 1},                                                       // (0, 0)
+        {2 * (nu - 1), 2 * (nu - 1) + 1, right + 1},                            // (last, 0)
+        {top + 2 * (nu - 1), top + 2 * (nu - 1) + 1, right + 2 * (nv - 1) + 1}, // (last, last)
+        {top, top + 1, left + 2 * (nv - 1) + 1}};                               // (0, last)
+    for (const auto& c : corners)
+        indices.insert(indices.end(), {c[0], c[1], c[2]});
+}
+
 TessellatedMesh tessellate(const NurbsSurface& s, int nu, int nv) {
     TessellatedMesh m;
     nu = std::max(nu, 1);

@@ -92,6 +92,29 @@ std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly);
 /// Indices of the four outline edges per cell (GL_LINES).
 std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly);
 
+/// One vertex of a base polygon's skirt (issue 10 item 4, docs/RENDERING.md "Skirts"): a node
+/// of the polygon's outline and the outward (u, v) direction across its edge, (0, 0) on the
+/// strip's inner side. Attributes 0-3 as BaseVertex; location 5 of shaders/surface.vert
+/// (KW_SKIRT) is `outward`.
+struct SkirtVertex {
+    BaseVertex base;
+    glm::vec2 outward;
+};
+static_assert(sizeof(SkirtVertex) == 40);
+
+/// The skirt of `poly`: along each side of its outline (bottom, right, top, left) every
+/// boundary node twice, as it is (outward (0, 0)) and marked with the side's outward (u, v)
+/// direction (surface.vert pushes those across the edge on screen); and for each boundary
+/// segment a quad of two triangles, both starting at the inner copy of the segment's first
+/// node, whose BaseVertex span is that of the cell the segment borders (first-vertex
+/// provoking convention, as basePolygonTriangles); then at each of the four corners a
+/// triangle from the corner's inner copy to its two sides' outer copies, covering the wedge
+/// between their pushes. Indices are relative to the first vertex.
+void buildSkirt(const BasePolygon& poly, std::vector<SkirtVertex>& vertices,
+                std::vector<unsigned>& indices);
+/// The vertices only, for a polygon whose nodes moved (same count and order as buildSkirt's).
+std::vector<SkirtVertex> skirtVertices(const BasePolygon& poly);
+
 /// Uniform tessellation for the baseline mode: (nu+1) x (nv+1) grid vertices with the
 /// kernel's exact point and unit normal (kw::surfaceFrame).
 struct TessellatedMesh {

@@ -23,6 +23,8 @@ void GpuScene::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders)
     m_pools.vertices.initialize(gl, sizeof(BaseVertex), max);
     m_pools.triangles.initialize(gl, sizeof(unsigned), max);
     m_pools.outlines.initialize(gl, sizeof(unsigned), max);
+    m_pools.skirtVertices.initialize(gl, sizeof(SkirtVertex), max);
+    m_pools.skirtIndices.initialize(gl, sizeof(unsigned), max);
 }
 
 std::int64_t GpuScene::bufferLimit() const {
@@ -99,6 +101,9 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     const bool boxStale = fresh || g->polygonTrimmed != options.polygonOverTrims ||
                           (options.polygonOverTrims && g->revisions.trims != rev.trims);
     const ParameterBox box = boxStale ? boxFor() : g->polygonBox;
+    // Skirts are drawn only in adaptive exact frames (ExactSurfacePass::skirtPass): built only
+    // then, so the paper's mode uploads what it did.
+    const bool skirt = pass.adaptive && options.edgeSkirts;
     int nu = sliderU, nv = sliderV;
     r.boundPixels = 0.0;
     m_unmet.erase(index);
@@ -119,13 +124,14 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
             g = std::make_unique<SurfaceGpu>();
             g->id = s.id;
         }
-        fits = uploadSurface(m_pools, *g, s, nu, nv, box, up);
+        fits = uploadSurface(m_pools, *g, s, nu, nv, box, skirt, up);
     } else {
-        if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox) {
+        if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox ||
+            (g->skirtVertexOffset >= 0) != skirt) {
             // The polygon is rebuilt from the current points; pick up a point change.
             if (g->revisions.points != rev.points)
                 uploadChangedPoints(m_pools, *g, s, up);
-            fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, up);
+            fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, skirt, up);
         } else if (g->revisions.points != rev.points) {
             uploadChangedPoints(m_pools, *g, s, up);
         }
@@ -195,10 +201,11 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     Pass pass(doc, camera, options);
     pass.limit = bufferLimit();
     for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
-                       &m_pools.outlines})
+                       &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
         p->initialize(gl,
                       p == &m_pools.control || p == &m_pools.spans ? sizeof(glm::vec4)
                       : p == &m_pools.vertices                     ? sizeof(BaseVertex)
+                      : p == &m_pools.skirtVertices                ? sizeof(SkirtVertex)
                                                                    : sizeof(unsigned),
                       pass.limit);
     pass.adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive &&
@@ -217,7 +224,8 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                        options.partitioning,    options.pixelTolerance, options.partitionsU,
                        options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
                        options.controlNet,      options.trims,          options.trimMode,
-                       options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims};
+                       options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
+                       options.edgeSkirts};
     bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
@@ -486,7 +494,8 @@ void GpuScene::residentBytes(GpuBytes& out) const {
     out.controlPoints += m_pools.control.residentBytes();
     out.spanTables += m_pools.spans.residentBytes();
     out.basePolygons += m_pools.vertices.residentBytes() + m_pools.triangles.residentBytes() +
-                        m_pools.outlines.residentBytes();
+                        m_pools.outlines.residentBytes() + m_pools.skirtVertices.residentBytes() +
+                        m_pools.skirtIndices.residentBytes();
     out.perSurface +=
         std::int64_t(m_table.capacity) * std::int64_t(sizeof(SurfaceTableEntry) + sizeof(int));
     out.tessellatedMeshes += m_meshBytes; // kept by syncMesh, syncNet and drop
@@ -519,9 +528,9 @@ void GpuScene::release() {
                 m_gl->glDeleteBuffers(1, b), *b = 0;
         m_table = Table{};
         for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
-                           &m_pools.outlines})
+                           &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
             p->release();
-        for (GLuint* a : {&m_triangleVao, &m_outlineVao})
+        for (GLuint* a : {&m_triangleVao, &m_outlineVao, &m_skirtVao})
             if (*a)
                 m_gl->glDeleteVertexArrays(1, a), *a = 0;
         for (int k = 0; k < 4; ++k)

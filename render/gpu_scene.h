@@ -153,6 +153,9 @@ public:
     /// The vertex array of the cell outlines over the pools (the triangles' is bound by
     /// bindSurfaceData: attributes 0-3 of BaseVertex, the surface index at 4 per instance).
     GLuint outlineVao() const { return m_outlineVao; }
+    /// The vertex array of the skirts (kw::SkirtVertex: attributes 0-3 as the triangles', the
+    /// outward direction at 5, the surface index at 4 per instance) over the skirt pools.
+    GLuint skirtVao() const { return m_skirtVao; }
     /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
     /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
     std::int64_t bufferLimit() const;
@@ -198,7 +201,7 @@ private:
         GLuint buffer = 0, instances = 0;
         int capacity = 0;
     } m_table;
-    GLuint m_triangleVao = 0, m_outlineVao = 0;
+    GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0;
     /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
     GLuint m_views[4] = {0, 0, 0, 0};
     TrimMaskPass m_masks;
@@ -230,7 +233,7 @@ private:
         RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
-        bool splitCellsByTrims = false;
+        bool splitCellsByTrims = false, edgeSkirts = false;
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

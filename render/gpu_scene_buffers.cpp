@@ -95,6 +95,28 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
         gl->glVertexArrayAttribBinding(m_triangleVao, 4, 1);
         gl->glVertexArrayBindingDivisor(m_triangleVao, 1, 1);
     }
+    if (!m_skirtVao) {
+        gl->glCreateVertexArrays(1, &m_skirtVao);
+        for (GLuint a : {0u, 1u, 2u, 3u, 5u}) {
+            gl->glEnableVertexArrayAttrib(m_skirtVao, a);
+            gl->glVertexArrayAttribBinding(m_skirtVao, a, 0);
+        }
+        gl->glVertexArrayAttribFormat(m_skirtVao, 0, 3, GL_FLOAT, GL_FALSE,
+                                      offsetof(SkirtVertex, base) + offsetof(BaseVertex, position));
+        gl->glVertexArrayAttribFormat(m_skirtVao, 1, 2, GL_FLOAT, GL_FALSE,
+                                      offsetof(SkirtVertex, base) + offsetof(BaseVertex, uv));
+        gl->glVertexArrayAttribIFormat(m_skirtVao, 2, 2, GL_INT,
+                                       offsetof(SkirtVertex, base) + offsetof(BaseVertex, span));
+        gl->glVertexArrayAttribFormat(m_skirtVao, 3, 1, GL_FLOAT, GL_FALSE,
+                                      offsetof(SkirtVertex, base) +
+                                          offsetof(BaseVertex, spanScale));
+        gl->glVertexArrayAttribFormat(m_skirtVao, 5, 2, GL_FLOAT, GL_FALSE,
+                                      offsetof(SkirtVertex, outward));
+        gl->glEnableVertexArrayAttrib(m_skirtVao, 4);
+        gl->glVertexArrayAttribIFormat(m_skirtVao, 4, 1, GL_INT, 0);
+        gl->glVertexArrayAttribBinding(m_skirtVao, 4, 1);
+        gl->glVertexArrayBindingDivisor(m_skirtVao, 1, 1);
+    }
     const GLuint buffers[4] = {t.buffer, t.buffer, m_pools.control.buffer(),
                                m_pools.spans.buffer()};
     const GLenum formats[4] = {GL_RGBA32F, GL_RGBA32I, GL_RGBA32F, GL_RGBA32F};
@@ -109,6 +131,10 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
     for (GLuint vao : {m_triangleVao, m_outlineVao})
         gl->glVertexArrayVertexBuffer(vao, 0, m_pools.vertices.buffer(), 0, sizeof(BaseVertex));
     gl->glVertexArrayVertexBuffer(m_triangleVao, 1, t.instances, 0, sizeof(int));
+    gl->glVertexArrayVertexBuffer(m_skirtVao, 0, m_pools.skirtVertices.buffer(), 0,
+                                  sizeof(SkirtVertex));
+    gl->glVertexArrayVertexBuffer(m_skirtVao, 1, t.instances, 0, sizeof(int));
+    gl->glVertexArrayElementBuffer(m_skirtVao, m_pools.skirtIndices.buffer());
     gl->glVertexArrayElementBuffer(m_triangleVao, m_pools.triangles.buffer());
     gl->glVertexArrayElementBuffer(m_outlineVao, m_pools.outlines.buffer());
 }

@@ -92,6 +92,13 @@ struct RenderOptions {
     /// trims only on the cells near a curve; cells the trims remove are not drawn. The same
     /// pixels either way (tst_render_trims); off only to measure the difference.
     bool splitCellsByTrims = true;
+    /// Adaptive partitions, aliased frames: after the exact pass each base polygon's outline gets
+    /// a skirt, a strip pushed kSkirtPixels across its edge on screen whose fragments are kept
+    /// only where Newton's method puts the pixel's ray on the exact surface inside its domain
+    /// and trims (docs/RENDERING.md, "Skirts"). It fills the pixels between a polygon's edge
+    /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).
+    /// Off only to measure the difference (`KW_EDGE_SKIRTS=0`).
+    bool edgeSkirts = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
     /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
     /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,

@@ -112,7 +112,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
     exact.culled = 0;
-    exact.trimTestedCells = exact.trimmedAwayCells = 0;
+    exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
@@ -201,6 +201,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.culled = exact.culled;
     report.partitions.trimTestedCells = exact.trimTestedCells;
     report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
+    report.partitions.skirtTriangles = exact.skirtTriangles;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes();

@@ -19,7 +19,8 @@ struct UniformLocations {
     int color = -1, material = -1, surfaceId = -1;                             // per surface
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
     int trimBlock = -1;
-    int depthBias = -1, pointSize = -1, lineColor = -1; // lines.vert/.frag
+    int skirtPixels = -1, skirtReach = -1, skirtDepthScale = -1; // the edge skirts' (KW_SKIRT)
+    int depthBias = -1, pointSize = -1, lineColor = -1;          // lines.vert/.frag
     // analysis.glsl (render/analysis_gl.cpp), by mode
     int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;
     int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace kw {
@@ -15,9 +16,12 @@ void freePolygon(ScenePools& pools, SurfaceGpu& g) {
     pools.vertices.free(g.vertexOffset, g.vertexCount);
     pools.triangles.free(g.triangleOffset, g.triangleIndexCount);
     pools.outlines.free(g.outlineOffset, g.outlineIndexCount);
+    pools.skirtVertices.free(g.skirtVertexOffset, g.skirtVertexCount);
+    pools.skirtIndices.free(g.skirtIndexOffset, g.skirtIndexCount);
     g.vertexOffset = g.triangleOffset = g.outlineOffset = -1;
-    g.vertexCount = 0;
-    g.triangleIndexCount = g.outlineIndexCount = 0;
+    g.skirtVertexOffset = g.skirtIndexOffset = -1;
+    g.vertexCount = g.skirtVertexCount = 0;
+    g.triangleIndexCount = g.outlineIndexCount = g.skirtIndexCount = 0;
 }
 
 void freeControl(ScenePools& pools, SurfaceGpu& g) {
@@ -30,7 +34,7 @@ void freeControl(ScenePools& pools, SurfaceGpu& g) {
 } // namespace
 
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   const ParameterBox& box, UploadStats& stats) {
+                   const ParameterBox& box, bool skirt, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     freeControl(pools, g);
     g.degreeU = geo.degreeU;
@@ -66,7 +70,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, i
     pools.spans.write(g.spanOffset + g.spanTexelsU, g.spanTexelsV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    if (!rebuildPolygon(pools, g, s, nu, nv, box, stats)) {
+    if (!rebuildPolygon(pools, g, s, nu, nv, box, skirt, stats)) {
         freeControl(pools, g);
         return false;
     }
@@ -98,6 +102,7 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
+    const std::vector<SkirtVertex> skirtBefore = skirtVertices(g.polygon);
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
         const std::int64_t count = last - first + 1;
         pools.vertices.write(g.vertexOffset + first, count,
@@ -106,11 +111,34 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
         stats.vertexUpdates += 1;
         stats.vertexBytes += size;
         stats.bytes += size;
+        // The skirt repeats the outline's nodes: only the runs of its vertices that moved (a
+        // moved point reaches the outline in at most a few places).
+        const std::vector<SkirtVertex> skirt = skirtVertices(g.polygon);
+        if (std::int64_t(skirt.size()) != g.skirtVertexCount || g.skirtVertexOffset < 0 ||
+            skirt.size() != skirtBefore.size())
+            return;
+        const auto moved = [&](size_t k) {
+            return std::memcmp(&skirt[k], &skirtBefore[k], sizeof(SkirtVertex)) != 0;
+        };
+        for (size_t k = 0; k < skirt.size();) {
+            if (!moved(k)) {
+                ++k;
+                continue;
+            }
+            size_t end = k + 1;
+            while (end < skirt.size() && moved(end))
+                ++end;
+            const std::int64_t n = std::int64_t(end - k);
+            pools.skirtVertices.write(g.skirtVertexOffset + std::int64_t(k), n, skirt.data() + k);
+            stats.vertexBytes += n * std::int64_t(sizeof(SkirtVertex));
+            stats.bytes += n * std::int64_t(sizeof(SkirtVertex));
+            k = end;
+        }
     }
 }
 
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    const ParameterBox& box, UploadStats& stats) {
+                    const ParameterBox& box, bool withSkirt, UploadStats& stats) {
     freePolygon(pools, g);
     g.partitionsU = nu;
     g.partitionsV = nv;
@@ -122,16 +150,30 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
     const std::int64_t v = pools.vertices.allocate(vertices);
     const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(std::int64_t(tri.size()));
     const std::int64_t o = t < 0 ? -1 : pools.outlines.allocate(std::int64_t(lines.size()));
-    if (o < 0) {
+    std::vector<SkirtVertex> skirt;
+    std::vector<unsigned> skirtIdx;
+    if (withSkirt)
+        buildSkirt(g.polygon, skirt, skirtIdx);
+    const std::int64_t sv = o < 0 ? -1 : pools.skirtVertices.allocate(std::int64_t(skirt.size()));
+    const std::int64_t si =
+        sv < 0 ? -1 : pools.skirtIndices.allocate(std::int64_t(skirtIdx.size()));
+    if (si < 0) {
         if (v >= 0)
             pools.vertices.free(v, vertices);
         if (t >= 0)
             pools.triangles.free(t, std::int64_t(tri.size()));
+        if (o >= 0)
+            pools.outlines.free(o, std::int64_t(lines.size()));
+        if (sv >= 0)
+            pools.skirtVertices.free(sv, std::int64_t(skirt.size()));
         return false;
     }
     g.vertexOffset = v, g.vertexCount = vertices;
     g.triangleOffset = t, g.triangleIndexCount = int(tri.size());
     g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
+    // (An empty allocation is offset 0: no skirt is -1.)
+    g.skirtVertexOffset = withSkirt ? sv : -1, g.skirtVertexCount = std::int64_t(skirt.size());
+    g.skirtIndexOffset = withSkirt ? si : -1, g.skirtIndexCount = int(skirtIdx.size());
     static std::uint64_t serial = 0;
     g.polygonSerial = ++serial;
     g.insideIndexCount = -1;
@@ -140,9 +182,14 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, std::int64_t(tri.size()), tri.data());
     pools.outlines.write(o, std::int64_t(lines.size()), lines.data());
+    if (withSkirt) {
+        pools.skirtVertices.write(sv, std::int64_t(skirt.size()), skirt.data());
+        pools.skirtIndices.write(si, std::int64_t(skirtIdx.size()), skirtIdx.data());
+    }
     stats.basePolygonBuilds += 1;
     stats.bytes += vertices * std::int64_t(sizeof(BaseVertex)) +
-                   std::int64_t((tri.size() + lines.size()) * sizeof(unsigned));
+                   std::int64_t(skirt.size() * sizeof(SkirtVertex)) +
+                   std::int64_t((tri.size() + lines.size() + skirtIdx.size()) * sizeof(unsigned));
     return true;
 }
 

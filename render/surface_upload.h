@@ -18,9 +18,10 @@ namespace kw {
 /// control texels (w (P - origin), w) row by row (v outer), span-table rows
 /// (kw::packSpanTable; a surface's u table then its v table), base polygon vertices
 /// (kw::BaseVertex) and its triangle and outline indices, relative to the surface's first
-/// vertex (drawn with a base vertex).
+/// vertex (drawn with a base vertex), and its skirt's vertices (kw::SkirtVertex) and triangle
+/// indices, relative to the skirt's first vertex.
 struct ScenePools {
-    GpuPool control, spans, vertices, triangles, outlines;
+    GpuPool control, spans, vertices, triangles, outlines, skirtVertices, skirtIndices;
 };
 
 /// Where one surface's data lies in the pools, and the CPU copies the partial updates compare
@@ -38,6 +39,11 @@ struct SurfaceGpu {
     std::int64_t vertexOffset = -1, vertexCount = 0;
     std::int64_t triangleOffset = -1, outlineOffset = -1;
     int triangleIndexCount = 0, outlineIndexCount = 0;
+    /// The polygon's skirt (kw::buildSkirt): built and freed with the polygon; offset -1 when
+    /// the polygon has none (rebuildPolygon's `skirt`).
+    std::int64_t skirtVertexOffset = -1, skirtVertexCount = 0;
+    std::int64_t skirtIndexOffset = -1;
+    int skirtIndexCount = 0;
     std::vector<glm::vec4> control;  ///< the texels now on the GPU
     BasePolygon polygon;             ///< the vertices now on the GPU
     ParameterBox polygonBox;         ///< the (u, v) box the polygon spans
@@ -54,18 +60,20 @@ struct SurfaceGpu {
 /// (re)allocated and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
 /// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                   const ParameterBox& box, UploadStats& stats);
+                   const ParameterBox& box, bool skirt, UploadStats& stats);
 /// After a Points revision change: the texels of the bounding rectangle of those that differ
 /// (one sub-range write per row of it, counted as one sub-image upload), and only the base
-/// polygon vertices in the support of those points.
+/// polygon vertices in the support of those points (and the polygon's skirt vertices, a few
+/// per boundary node).
 void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
 /// The base polygon at nu x nv partitions over `box` (a rectangle of the domain: GpuScene
 /// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
 /// cells go where its trims keep the surface, issue 10 item 1) from the current points;
 /// control data untouched. Returns false (the polygon's ranges freed) when a pool would
-/// exceed its limit.
+/// exceed its limit. With `skirt`, the polygon's skirt too (kw::buildSkirt; adaptive frames
+/// draw it), else none.
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
-                    const ParameterBox& box, UploadStats& stats);
+                    const ParameterBox& box, bool skirt, UploadStats& stats);
 struct TrimMask;
 /// Orders the polygon's triangles by how the trims cut their cells (SurfaceGpu's
 /// insideIndexCount and edgeIndexCount), from the mask's texel classes: a cell is inside (or

@@ -10,7 +10,8 @@
 // KW_SECOND_ORDER), KW_SECOND_ORDER (second derivatives and curvature,
 // for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
 // principal direction of k1 at location 5), KW_RAY_NEWTON (adaptive partitions: shade the
-// point truly under the pixel, kwOntoRay).
+// point truly under the pixel, kwOntoRay), KW_SKIRT (the edge skirts: keep a fragment only
+// where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -35,6 +36,48 @@ uniform vec3 uForward;
 // passes drew (the surface's own inside among them: equal depth fails the strict nearer
 // test) cost nothing.
 layout(early_fragment_tests) in;
+#endif
+
+#ifdef KW_SKIRT
+#include "window.glsl"
+
+// The edge skirt (surface.vert KW_SKIRT): the (u, v) of this surface's point under the pixel
+// centre, by Newton's method on project(S(u, v)) = pixel centre from the strip's extrapolated
+// (u, v), with S continued linearly past the domain; true when it converges within 0.02 px to
+// a point at most uSkirtReach px (on screen) outside the domain: a quarter pixel of overlap
+// where faces meet, so that B-rep edges whose faces miss each other by a fraction of a pixel
+// (within the model's tolerance) show no pinhole, and the depth test picks the face in front.
+// The point shown is then the edge's (clamped into the domain). False where the ray misses the
+// face:
+// beyond its edge, at a silhouette (degenerate Jacobian), or when the iteration wanders. A step
+// moves the point on screen by about the residual, so a point further outside than twice the
+// residual cannot come back: rejected at once (most of the strip, at one evaluation).
+uniform float uSkirtReach;
+bool kwSkirtPoint(inout vec2 uv) {
+    for (int k = 0; k < 5; ++k) {
+        vec2 inside = clamp(uv, uDomain.xz, uDomain.yw);
+        SurfacePartials d = surfacePartials(inside, vSpan);
+        vec3 p = d.s + d.su * (uv.x - inside.x) + d.sv * (uv.y - inside.y);
+        vec4 clip = uViewProjection * vec4(p + uOrigin, 1.0);
+        if (!(clip.w > 0.0))
+            return false;
+        vec2 r = kwWindow(clip) - gl_FragCoord.xy;
+        mat2 j = mat2(kwWindowTangent(clip, d.su), kwWindowTangent(clip, d.sv));
+        float outside = length(j * (uv - inside));
+        float residual = length(r);
+        if (residual < 0.02) {
+            uv = inside;
+            return outside <= uSkirtReach;
+        }
+        if (!(residual < 8.0) || outside > uSkirtReach + 2.0 * residual)
+            return false;
+        float det = determinant(j);
+        if (!(abs(det) > 1e-3 * length(j[0]) * length(j[1])))
+            return false;
+        uv -= inverse(j) * r;
+    }
+    return false;
+}
 #endif
 
 #ifdef KW_RAY_NEWTON
@@ -81,6 +124,14 @@ layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (w
 
 void main() {
     kwSurface = vSurface;
+#ifdef KW_SKIRT
+    vec2 skirtUv = vUv;
+    if (!kwSkirtPoint(skirtUv))
+        discard;
+    KW_DISCARD_TRIMMED(skirtUv);
+    vec2 uv = skirtUv;
+    SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
+#else
 #ifdef KW_TRIM_EDGE
     float coverage = trimCoverage(vUv);
     if (coverage <= 0.0 || coverage > 1.0)
@@ -106,6 +157,7 @@ void main() {
 #else
     SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
 #endif
+#endif // KW_SKIRT
 #ifdef KW_EXACT_DEPTH
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // zero-to-one clip range, reversed

@@ -18,6 +18,15 @@ flat out float vSpanScale;
 flat out int vSurface;
 
 #include "surface_data.glsl"
+#ifdef KW_SKIRT
+// The edge skirt (kw::buildSkirt, kw::ExactSurfacePass::skirtPass): the outline's nodes, those
+// marked with an outward (u, v) direction pushed uSkirtPixels across the edge on screen.
+layout(location = 5) in vec2 aOutward;
+uniform float uSkirtPixels;
+uniform float uSkirtDepthScale; // clip z factor: the strip lies kSkirtDepthPixels behind
+#include "nurbs_surface.glsl"
+#include "window.glsl"
+#endif
 #ifdef KW_CELL_GATHER
 #define KW_CELL_IO flat out
 #include "cell_data.glsl"
@@ -40,4 +49,32 @@ void main() {
         vCellSpanV[x] = KW_SPAN_V(x, first.y);
 #endif
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
+#ifdef KW_SKIRT
+    if (aOutward != vec2(0.0) && gl_Position.w > 0.0) {
+        // The screen images of the tangents across the edge (outward) and along it.
+        SurfacePartials d = surfacePartials(clamp(aUv, uDomain.xz, uDomain.yw), aSpan);
+        vec2 across = kwWindowTangent(gl_Position, aOutward.x * d.su + aOutward.y * d.sv);
+        vec2 along = kwWindowTangent(gl_Position, aOutward.y * d.su + aOutward.x * d.sv);
+        float rate = length(across);
+        // The strip must reach uSkirtPixels from the edge measured square to it on screen: the
+        // push along `across` is longer where it runs obliquely to the edge, up to 4 times.
+        float square = length(along) > 0.0 ? abs(determinant(mat2(across, along))) / length(along)
+                                            : rate;
+        square = max(square, 0.25 * rate);
+        if (square > 0.0) {
+            // (u, v) moves with the point to first order; at most a quarter of the domain across
+            // (an edge seen end on, or collapsed, has no gap to cover).
+            vec2 extent = uDomain.yw - uDomain.xz;
+            float du = min(uSkirtPixels / square, 0.25 * abs(dot(extent, aOutward)));
+            vUv = aUv + aOutward * du;
+            gl_Position.xy += across * du * 2.0 / uViewport.zw * gl_Position.w;
+        }
+    }
+    // Behind its own polygon by a few pixels' worth of distance along the ray (reversed depth:
+    // smaller is farther), so the face's own pixels, a neighbour's polygon (within the
+    // tolerance of the same surface in 3D, by the adaptive bound) and anything in front reject
+    // the strip before it is shaded: it fills only gaps, over the background or a face far
+    // behind.
+    gl_Position.z *= uSkirtDepthScale;
+#endif
 }

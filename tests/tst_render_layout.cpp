@@ -140,6 +140,99 @@ private Q_SLOTS:
         }
     }
 
+    /// The skirt (issue 10 item 4): one quad per boundary segment of the outline, inner nodes
+    /// unmarked and outer ones marked with the side's outward direction, both triangles of a
+    /// quad starting at a vertex whose span holds the whole segment.
+    void skirtRingsTheOutline() {
+        const NurbsSurface s = kwtest::wavyPatch(
+            3, 2, {0, 0, 0, 0, 0.3, 0.3, 0.3, 0.61, 1, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1});
+        const BasePolygon poly = buildBasePolygon(s, 7, 3);
+        std::vector<SkirtVertex> vertices;
+        std::vector<unsigned> indices;
+        buildSkirt(poly, vertices, indices);
+        const int nu = poly.nodesU(), nv = poly.cellsV() + 1;
+        QCOMPARE(int(vertices.size()), 2 * (2 * nu + 2 * nv));
+        const int segments = 2 * poly.cellsU() + 2 * poly.cellsV();
+        QCOMPARE(int(indices.size()), 6 * segments + 4 * 3);
+        const glm::vec2 lo(0.0f), hi(1.0f);
+        int perSide[4] = {0, 0, 0, 0};
+        const size_t quads = size_t(6 * segments);
+        for (size_t t = 0; t < quads; t += 6) {
+            // a, b, bOut, a, bOut, aOut: a and b inner, the outer copies at the same nodes.
+            const SkirtVertex& a = vertices[indices[t]];
+            const SkirtVertex& b = vertices[indices[t + 1]];
+            const SkirtVertex& bOut = vertices[indices[t + 2]];
+            const SkirtVertex& aOut = vertices[indices[t + 5]];
+            QCOMPARE(indices[t + 3], indices[t]);
+            QCOMPARE(indices[t + 4], indices[t + 2]);
+            QCOMPARE(a.outward, glm::vec2(0.0f));
+            QCOMPARE(b.outward, glm::vec2(0.0f));
+            QVERIFY(aOut.outward != glm::vec2(0.0f));
+            QCOMPARE(aOut.outward, bOut.outward);
+            QCOMPARE(aOut.base.uv, a.base.uv);
+            QCOMPARE(bOut.base.uv, b.base.uv);
+            QCOMPARE(aOut.base.position, a.base.position);
+            QCOMPARE(aOut.base.span, a.base.span);
+            // On the side the direction points out of, and along it.
+            const glm::vec2 n = aOut.outward;
+            const float edge = n.x + n.y > 0.0f ? 1.0f : 0.0f;
+            const float across = n.x != 0.0f ? a.base.uv.x : a.base.uv.y;
+            QCOMPARE(across, edge);
+            QCOMPARE(n.x != 0.0f ? b.base.uv.x : b.base.uv.y, edge);
+            const int side = n.y < 0.0f ? 0 : n.x > 0.0f ? 1 : n.y > 0.0f ? 2 : 3;
+            ++perSide[side];
+            // The provoking vertex's span holds the whole segment (its cell borders it).
+            const glm::ivec2 span = a.base.span;
+            for (const SkirtVertex* v : {&a, &b}) {
+                QVERIFY(float(s.knotsU[size_t(span.x)]) <= v->base.uv.x &&
+                        v->base.uv.x <= float(s.knotsU[size_t(span.x + 1)]));
+                QVERIFY(float(s.knotsV[size_t(span.y)]) <= v->base.uv.y &&
+                        v->base.uv.y <= float(s.knotsV[size_t(span.y + 1)]));
+            }
+            QVERIFY(glm::all(glm::greaterThanEqual(a.base.uv, lo)) &&
+                    glm::all(glm::lessThanEqual(a.base.uv, hi)));
+        }
+        QCOMPARE(perSide[0], poly.cellsU());
+        QCOMPARE(perSide[1], poly.cellsV());
+        QCOMPARE(perSide[2], poly.cellsU());
+        QCOMPARE(perSide[3], poly.cellsV());
+        // The corners: from the corner's inner copy to two outer copies of it pushed across the
+        // two sides meeting there; every corner of the domain once.
+        std::vector<glm::vec2> cornersSeen;
+        for (size_t t = quads; t < indices.size(); t += 3) {
+            const SkirtVertex& c = vertices[indices[t]];
+            const SkirtVertex& a = vertices[indices[t + 1]];
+            const SkirtVertex& b = vertices[indices[t + 2]];
+            QCOMPARE(c.outward, glm::vec2(0.0f));
+            QVERIFY(a.outward != glm::vec2(0.0f) && b.outward != glm::vec2(0.0f));
+            QCOMPARE(glm::dot(a.outward, b.outward), 0.0f);
+            QCOMPARE(a.base.uv, c.base.uv);
+            QCOMPARE(b.base.uv, c.base.uv);
+            QVERIFY(c.base.uv.x == 0.0f || c.base.uv.x == 1.0f);
+            QVERIFY(c.base.uv.y == 0.0f || c.base.uv.y == 1.0f);
+            // Each outward direction points away from the corner's side of the domain.
+            for (const SkirtVertex* o : {&a, &b}) {
+                const glm::vec2 n = o->outward;
+                QCOMPARE(n.x != 0.0f ? c.base.uv.x : c.base.uv.y, n.x + n.y > 0.0f ? 1.0f : 0.0f);
+            }
+            cornersSeen.push_back(c.base.uv);
+        }
+        QCOMPARE(int(cornersSeen.size()), 4);
+        for (const glm::vec2 corner :
+             {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+            QVERIFY(std::count(cornersSeen.begin(), cornersSeen.end(), corner) == 1);
+        // A moved node moves its skirt copies (skirtVertices after updateBasePolygon).
+        NurbsSurface moved = s;
+        moved.points[0] += glm::dvec3(0.0, 0.0, 0.5);
+        BasePolygon updated = poly;
+        int first = -1, last = -1;
+        QVERIFY(updateBasePolygon(updated, moved, 0, 0, 0, 0, first, last));
+        const std::vector<SkirtVertex> now = skirtVertices(updated);
+        QCOMPARE(now.size(), vertices.size());
+        QVERIFY(now[0].base.position != vertices[0].base.position); // corner (0, 0)
+        QCOMPARE(now[0].base.position, updated.vertices[0].position);
+    }
+
     void controlPointsAreHomogeneousAroundOrigin() {
         NurbsSurface s =
             kwtest::wavyPatch(2, 2, kwtest::clampedUniform(2, 4), kwtest::clampedUniform(2, 3));
