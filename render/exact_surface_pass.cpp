@@ -381,7 +381,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         return false;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
     // Skirts close the gap between an adaptive polygon's edge chords and the true edges; the
-    // paper's uniform mode stays as it was, and anti-aliased frames' MSAA covers the edges.
+    // paper's uniform mode stays as it was. Not in anti-aliased frames: their trimmed
+    // surfaces' partly covered pixels belong to the edge pass (docs/RENDERING.md, "Skirts").
     const bool skirts = options.edgeSkirts && aa == nullptr &&
                         options.partitioning == RenderOptions::Partitioning::Adaptive;
     const CacheKey key{&scene,
