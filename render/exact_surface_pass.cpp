@@ -82,20 +82,23 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options, bool trimmed,
-                                             bool gatherAllowed, TrimAa trimAa) {
+                                             bool gatherAllowed, TrimAa trimAa, bool skirt) {
     QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
                   QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
-    if (gatherAllowed && (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
+    if (!skirt && gatherAllowed &&
+        (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
         d << QStringLiteral("KW_CELL_GATHER");
     if (options.writeAov)
         d << QStringLiteral("KW_AOV");
-    if (options.shading == RenderOptions::Shading::ExactDepth)
+    if (skirt)
+        d << QStringLiteral("KW_SKIRT");
+    else if (options.shading == RenderOptions::Shading::ExactDepth)
         d << QStringLiteral("KW_EXACT_DEPTH");
     // Adaptive partitions guarantee the polygon's (u, v) starts Newton's method within the
     // pixel tolerance of the point under the pixel; uniform mode stays the paper's.
-    if (options.partitioning == RenderOptions::Partitioning::Adaptive)
+    if (options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt)
         d << QStringLiteral("KW_RAY_NEWTON");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
@@ -204,7 +207,7 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     p.variant = g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9;
     if (mask)
         p.edgeVariant = g->degreeU | g->degreeV << 4 | int(gather) << 9;
-    if (key.skirts && g->skirtIndexCount > 0 && g->skirtIndexOffset >= 0) {
+    if (key.skirts && g->skirtIndexOffset >= 0) {
         commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
                                      GLint(g->skirtVertexOffset), GLuint(r.slot)};
         p.skirtVariant = g->degreeU | g->degreeV << 4 | int(mask != nullptr) << 8;
@@ -484,13 +487,10 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     gl->glBindVertexArray(scene.skirtVao());
     bool ok = true;
     for (const auto& [key, b] : m_skirts) {
-        QStringList defines =
-            variantDefines(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed, false);
-        defines.removeAll(QStringLiteral("KW_EXACT_DEPTH"));
-        defines.removeAll(QStringLiteral("KW_RAY_NEWTON")); // the skirt's own Newton solve
-        defines << QStringLiteral("KW_SKIRT");
-        QOpenGLShaderProgram* prog = m_shaders->program(
-            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), defines);
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
+                                              b.trimmed, false, TrimAa::Off, true));
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;

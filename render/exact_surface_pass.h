@@ -49,11 +49,13 @@ public:
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
     /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
     /// `gatherAllowed` is true. A trimmed variant of an anti-aliased frame: `trimAa`
-    /// Opaque keeps wholly covered fragments only, Edge is the edge pass's.
+    /// Opaque keeps wholly covered fragments only, Edge is the edge pass's. `skirt`: the
+    /// skirt pass's variant (KW_SKIRT: its own Newton solve and trim test, the strip's depth;
+    /// no gather, no KW_RAY_NEWTON, no KW_EXACT_DEPTH).
     enum class TrimAa { Off, Opaque, Edge };
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
                                       bool trimmed = false, bool gatherAllowed = true,
-                                      TrimAa trimAa = TrimAa::Off);
+                                      TrimAa trimAa = TrimAa::Off, bool skirt = false);
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
     /// projected bounding box of its control points (clamped to the viewport) over its cell

@@ -74,48 +74,41 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
                                      GLsizeiptr(hi - lo + 1) * sizeof(SurfaceTableEntry),
                                      t.rows.data() + lo);
     }
+    // BaseVertex's attributes 0-3 from binding 0, at `base` bytes into each vertex; the surface
+    // index at 4, one int per instance from binding 1 (a draw's base instance picks its row).
+    const auto baseAttributes = [&](GLuint vao, GLuint base, bool instanced) {
+        for (GLuint a = 0; a < 4; ++a) {
+            gl->glEnableVertexArrayAttrib(vao, a);
+            gl->glVertexArrayAttribBinding(vao, a, 0);
+        }
+        gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
+                                      base + offsetof(BaseVertex, position));
+        gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE,
+                                      base + offsetof(BaseVertex, uv));
+        gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, base + offsetof(BaseVertex, span));
+        gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
+                                      base + offsetof(BaseVertex, spanScale));
+        if (instanced) {
+            gl->glEnableVertexArrayAttrib(vao, 4);
+            gl->glVertexArrayAttribIFormat(vao, 4, 1, GL_INT, 0);
+            gl->glVertexArrayAttribBinding(vao, 4, 1);
+            gl->glVertexArrayBindingDivisor(vao, 1, 1);
+        }
+    };
     if (!m_triangleVao) {
         gl->glCreateVertexArrays(1, &m_triangleVao);
         gl->glCreateVertexArrays(1, &m_outlineVao);
-        for (GLuint vao : {m_triangleVao, m_outlineVao}) {
-            for (GLuint a = 0; a < 4; ++a) {
-                gl->glEnableVertexArrayAttrib(vao, a);
-                gl->glVertexArrayAttribBinding(vao, a, 0);
-            }
-            gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
-                                          offsetof(BaseVertex, position));
-            gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(BaseVertex, uv));
-            gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, offsetof(BaseVertex, span));
-            gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
-                                          offsetof(BaseVertex, spanScale));
-        }
-        // The surface index: one int per instance; a draw's base instance picks its row.
-        gl->glEnableVertexArrayAttrib(m_triangleVao, 4);
-        gl->glVertexArrayAttribIFormat(m_triangleVao, 4, 1, GL_INT, 0);
-        gl->glVertexArrayAttribBinding(m_triangleVao, 4, 1);
-        gl->glVertexArrayBindingDivisor(m_triangleVao, 1, 1);
+        baseAttributes(m_triangleVao, 0, true);
+        baseAttributes(m_outlineVao, 0, false);
     }
     if (!m_skirtVao) {
+        // SkirtVertex: its BaseVertex, then the outward (u, v) direction at 5.
         gl->glCreateVertexArrays(1, &m_skirtVao);
-        for (GLuint a : {0u, 1u, 2u, 3u, 5u}) {
-            gl->glEnableVertexArrayAttrib(m_skirtVao, a);
-            gl->glVertexArrayAttribBinding(m_skirtVao, a, 0);
-        }
-        gl->glVertexArrayAttribFormat(m_skirtVao, 0, 3, GL_FLOAT, GL_FALSE,
-                                      offsetof(SkirtVertex, base) + offsetof(BaseVertex, position));
-        gl->glVertexArrayAttribFormat(m_skirtVao, 1, 2, GL_FLOAT, GL_FALSE,
-                                      offsetof(SkirtVertex, base) + offsetof(BaseVertex, uv));
-        gl->glVertexArrayAttribIFormat(m_skirtVao, 2, 2, GL_INT,
-                                       offsetof(SkirtVertex, base) + offsetof(BaseVertex, span));
-        gl->glVertexArrayAttribFormat(m_skirtVao, 3, 1, GL_FLOAT, GL_FALSE,
-                                      offsetof(SkirtVertex, base) +
-                                          offsetof(BaseVertex, spanScale));
+        baseAttributes(m_skirtVao, offsetof(SkirtVertex, base), true);
+        gl->glEnableVertexArrayAttrib(m_skirtVao, 5);
+        gl->glVertexArrayAttribBinding(m_skirtVao, 5, 0);
         gl->glVertexArrayAttribFormat(m_skirtVao, 5, 2, GL_FLOAT, GL_FALSE,
                                       offsetof(SkirtVertex, outward));
-        gl->glEnableVertexArrayAttrib(m_skirtVao, 4);
-        gl->glVertexArrayAttribIFormat(m_skirtVao, 4, 1, GL_INT, 0);
-        gl->glVertexArrayAttribBinding(m_skirtVao, 4, 1);
-        gl->glVertexArrayBindingDivisor(m_skirtVao, 1, 1);
     }
     const GLuint buffers[4] = {t.buffer, t.buffer, m_pools.control.buffer(),
                                m_pools.spans.buffer()};

@@ -93,7 +93,7 @@ struct RenderOptions {
     /// pixels either way (tst_render_trims); off only to measure the difference.
     bool splitCellsByTrims = true;
     /// Adaptive partitions, aliased frames: after the exact pass each base polygon's outline gets
-    /// a skirt, a strip pushed kSkirtPixels across its edge on screen whose fragments are kept
+    /// a skirt, a strip pushed a little past its edge on screen whose fragments are kept
     /// only where Newton's method puts the pixel's ray on the exact surface inside its domain
     /// and trims (docs/RENDERING.md, "Skirts"). It fills the pixels between a polygon's edge
     /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).

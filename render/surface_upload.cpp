@@ -102,7 +102,9 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
-    const std::vector<SkirtVertex> skirtBefore = skirtVertices(g.polygon);
+    const bool hasSkirt = g.skirtVertexOffset >= 0;
+    const std::vector<SkirtVertex> skirtBefore =
+        hasSkirt ? skirtVertices(g.polygon) : std::vector<SkirtVertex>{};
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
         const std::int64_t count = last - first + 1;
         pools.vertices.write(g.vertexOffset + first, count,
@@ -111,11 +113,12 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
         stats.vertexUpdates += 1;
         stats.vertexBytes += size;
         stats.bytes += size;
+        if (!hasSkirt)
+            return;
         // The skirt repeats the outline's nodes: only the runs of its vertices that moved (a
         // moved point reaches the outline in at most a few places).
         const std::vector<SkirtVertex> skirt = skirtVertices(g.polygon);
-        if (std::int64_t(skirt.size()) != g.skirtVertexCount || g.skirtVertexOffset < 0 ||
-            skirt.size() != skirtBefore.size())
+        if (skirt.size() != skirtBefore.size())
             return;
         const auto moved = [&](size_t k) {
             return std::memcmp(&skirt[k], &skirtBefore[k], sizeof(SkirtVertex)) != 0;
@@ -154,10 +157,14 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
     std::vector<unsigned> skirtIdx;
     if (withSkirt)
         buildSkirt(g.polygon, skirt, skirtIdx);
-    const std::int64_t sv = o < 0 ? -1 : pools.skirtVertices.allocate(std::int64_t(skirt.size()));
-    const std::int64_t si =
-        sv < 0 ? -1 : pools.skirtIndices.allocate(std::int64_t(skirtIdx.size()));
-    if (si < 0) {
+    std::int64_t sv = -1, si = -1; // -1: no skirt
+    bool fits = o >= 0;
+    if (fits && withSkirt) {
+        sv = pools.skirtVertices.allocate(std::int64_t(skirt.size()));
+        si = sv < 0 ? -1 : pools.skirtIndices.allocate(std::int64_t(skirtIdx.size()));
+        fits = si >= 0;
+    }
+    if (!fits) {
         if (v >= 0)
             pools.vertices.free(v, vertices);
         if (t >= 0)
@@ -171,9 +178,8 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, 
     g.vertexOffset = v, g.vertexCount = vertices;
     g.triangleOffset = t, g.triangleIndexCount = int(tri.size());
     g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
-    // (An empty allocation is offset 0: no skirt is -1.)
-    g.skirtVertexOffset = withSkirt ? sv : -1, g.skirtVertexCount = std::int64_t(skirt.size());
-    g.skirtIndexOffset = withSkirt ? si : -1, g.skirtIndexCount = int(skirtIdx.size());
+    g.skirtVertexOffset = sv, g.skirtVertexCount = std::int64_t(skirt.size());
+    g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIdx.size());
     static std::uint64_t serial = 0;
     g.polygonSerial = ++serial;
     g.insideIndexCount = -1;
