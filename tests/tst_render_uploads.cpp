@@ -3,6 +3,7 @@
 #include "render_test_util.h"
 
 #include <QScopeGuard>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
 using namespace kw;
@@ -213,6 +214,57 @@ private Q_SLOTS:
             sphere += aov.data[size_t(k) * AovBuffer::kChannels] == 4.0f;
         }
         QVERIFY(sphere > 100);
+    }
+
+    // The edge skirts (issue 10 item 4): built only for adaptive frames, and a moved point
+    // brings the GPU's skirt vertices up to date without rebuilding the polygon.
+    void skirtFollowsAMovedPointWithoutARebuild() {
+        QString error;
+        std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("bicubic"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const SurfaceId id = doc.scene().surfaces.at(0).id;
+        const Camera camera = fitCamera(doc.scene(), 1.0);
+        const GpuScene& gpu = m_renderer->renderer().internals().scene;
+        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        QCOMPARE(gpu.surfaceGpu(id)->skirtVertexOffset, std::int64_t(-1)); // uniform: none
+        RenderOptions adaptive;
+        adaptive.partitioning = RenderOptions::Partitioning::Adaptive;
+        QVERIFY2(m_renderer->render(doc, camera, adaptive, &error), qPrintable(error));
+        QVERIFY(m_renderer->lastReport().partitions.skirtTriangles > 0);
+        const auto gpuSkirt = [&] {
+            const SurfaceGpu* g = gpu.surfaceGpu(id);
+            std::vector<SkirtVertex> out(size_t(g->skirtVertexCount));
+            m_renderer->makeCurrent();
+            m_renderer->renderer().internals().gl->glGetNamedBufferSubData(
+                gpu.pools().skirtVertices.buffer(),
+                GLintptr(g->skirtVertexOffset * std::int64_t(sizeof(SkirtVertex))),
+                GLsizeiptr(out.size() * sizeof(SkirtVertex)), out.data());
+            return out;
+        };
+        const std::vector<SkirtVertex> before = gpuSkirt();
+        QVERIFY(!before.empty());
+
+        // The corner point (0, 0): every skirt copy of the corner node moves.
+        const Surface* s = doc.surface(id);
+        const glm::dvec3 lo = s->geometry.points.front(), hi = s->geometry.points.back();
+        QVERIFY(doc.setControlPoints(id, {0}, {lo + 1e-3 * (hi - lo)}));
+        m_renderer->renderer().internals().scene.resetStats();
+        QVERIFY2(m_renderer->render(doc, camera, adaptive, &error), qPrintable(error));
+        const UploadStats st = gpu.stats(id);
+        QCOMPARE(st.basePolygonBuilds, 0);
+        QCOMPARE(st.vertexUpdates, 1);
+        const std::vector<SkirtVertex> after = gpuSkirt();
+        const std::vector<SkirtVertex> expected = skirtVertices(gpu.surfaceGpu(id)->polygon);
+        QCOMPARE(after.size(), expected.size());
+        QVERIFY(std::memcmp(after.data(), expected.data(), after.size() * sizeof(SkirtVertex)) ==
+                0);
+        QVERIFY(after.front().base.position != before.front().base.position);
+        // Only what moved was written: less than the whole skirt.
+        QVERIFY(st.vertexBytes <
+                std::int64_t(before.size() * sizeof(SkirtVertex)) +
+                    std::int64_t(gpu.surfaceGpu(id)->polygon.vertices.size() * sizeof(BaseVertex)));
     }
 
     void cleanupTestCase() { m_renderer.reset(); }
