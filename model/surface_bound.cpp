@@ -399,4 +399,210 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
     return c;
 }
 
+PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
+                             const Interval& boxV, const ScreenScale& scale, double pixelTolerance,
+                             int minU, int minV, int visibleU, int visibleV) {
+    PartitionChoice c;
+    const Interval box[2] = {boxU, boxV};
+    const int minimum[2] = {std::clamp(minU, kMinPartitions, kMaxPartitions),
+                            std::clamp(minV, kMinPartitions, kMaxPartitions)};
+    // 1. Columns (d = 0) and rows (d = 1): the sub-rectangles' sides inside the box, computed
+    // as surfaceSpanBounds cuts them, so the spans of one knot interval give the same values.
+    std::vector<double> edges[2];
+    const auto subSide = [](double t0, double t1, int g, int i) {
+        return i == g ? t1 : t0 + (t1 - t0) / g * i;
+    };
+    for (int d = 0; d < 2; ++d) {
+        edges[d] = {box[d].first, box[d].last};
+        for (const SpanBound& b : spans)
+            for (int i = 0; i <= b.grid; ++i) {
+                const double t =
+                    d == 0 ? subSide(b.u0, b.u1, b.grid, i) : subSide(b.v0, b.v1, b.grid, i);
+                if (t > box[d].first && t < box[d].last)
+                    edges[d].push_back(t);
+            }
+        std::sort(edges[d].begin(), edges[d].end());
+        edges[d].erase(std::unique(edges[d].begin(), edges[d].end()), edges[d].end());
+    }
+    const int lanes[2] = {int(edges[0].size()) - 1, int(edges[1].size()) - 1};
+    if (lanes[0] < 1 || lanes[1] < 1 || !(pixelTolerance > 0.0)) {
+        c.met = false;
+        return c;
+    }
+    std::vector<double> width[2];
+    std::vector<int> count[2], low[2], high[2];
+    for (int d = 0; d < 2; ++d) {
+        const double whole = box[d].last - box[d].first;
+        for (int k = 0; k < lanes[d]; ++k) {
+            const double w = edges[d][size_t(k + 1)] - edges[d][size_t(k)];
+            const int lo = std::max(1, int(std::ceil(w * minimum[d] / whole - 1e-9)));
+            width[d].push_back(w);
+            low[d].push_back(lo);
+            high[d].push_back(std::max(lo, int(std::ceil(w * kMaxPartitions / whole - 1e-9))));
+        }
+        count[d] = low[d];
+    }
+    // 2. One entry per sub-rectangle inside the box: its column, row, bounds and depth.
+    struct Entry {
+        int lane[2];
+        SecondDerivativeBound m;
+        glm::dvec3 lo, hi;
+        double minDepth;
+    };
+    std::vector<Entry> entries;
+    std::vector<std::vector<int>> byLane[2];
+    byLane[0].resize(size_t(lanes[0]));
+    byLane[1].resize(size_t(lanes[1]));
+    for (const SpanBound& b : spans)
+        for (int j = 0; j < b.grid; ++j)
+            for (int i = 0; i < b.grid; ++i) {
+                const double u0 = std::max(subSide(b.u0, b.u1, b.grid, i), box[0].first);
+                const double u1 = std::min(subSide(b.u0, b.u1, b.grid, i + 1), box[0].last);
+                const double v0 = std::max(subSide(b.v0, b.v1, b.grid, j), box[1].first);
+                const double v1 = std::min(subSide(b.v0, b.v1, b.grid, j + 1), box[1].last);
+                if (!(u0 < u1 && v0 < v1))
+                    continue;
+                const SpanBound::Sub& s = b.subs[size_t(j * b.grid + i)];
+                if (boxMaxDepth(scale, s.lo, s.hi) < scale.nearDepth)
+                    continue; // wholly behind the near plane: never drawn
+                Entry e;
+                e.lane[0] =
+                    int(std::lower_bound(edges[0].begin(), edges[0].end(), u0) - edges[0].begin());
+                e.lane[1] =
+                    int(std::lower_bound(edges[1].begin(), edges[1].end(), v0) - edges[1].begin());
+                e.m = s.m;
+                e.lo = s.lo;
+                e.hi = s.hi;
+                e.minDepth = boxMinDepth(scale, s.lo, s.hi);
+                byLane[0][size_t(e.lane[0])].push_back(int(entries.size()));
+                byLane[1][size_t(e.lane[1])].push_back(int(entries.size()));
+                entries.push_back(e);
+            }
+    // Lanes on screen keep at least visibleU (visibleV) cells across the box's width.
+    const int visible[2] = {visibleU, visibleV};
+    if (visible[0] > 0 || visible[1] > 0) {
+        for (const Entry& e : entries) {
+            double cell[2];
+            for (int d = 0; d < 2; ++d) {
+                const double w = width[d][size_t(e.lane[d])];
+                cell[d] = visible[d] > 0 ? std::min(w, (box[d].last - box[d].first) / visible[d])
+                                         : w / low[d][size_t(e.lane[d])];
+            }
+            const double deviation = cellDeviationBound(e.m, cell[0], cell[1]);
+            if (scale.cullOutsideView &&
+                boxOutsideFrustum(scale.viewProjection, e.lo - glm::dvec3(deviation),
+                                  e.hi + glm::dvec3(deviation)))
+                continue;
+            for (int d = 0; d < 2; ++d) {
+                const size_t k = size_t(e.lane[d]);
+                if (visible[d] > 0) {
+                    const int n = int(std::ceil(width[d][k] / cell[d] - 1e-9));
+                    low[d][k] = std::max(low[d][k], n);
+                    high[d][k] = std::max(high[d][k], low[d][k]);
+                }
+            }
+        }
+        count[0] = low[0];
+        count[1] = low[1];
+    }
+    // The screen bound of an entry's cells at the current counts (0 when never on screen).
+    struct Score {
+        double pixels = 0.0, uPart = 0.0, vPart = 0.0, du = 0.0, dv = 0.0;
+    };
+    const auto score = [&](const Entry& e) {
+        Score sc;
+        sc.du = width[0][size_t(e.lane[0])] / count[0][size_t(e.lane[0])];
+        sc.dv = width[1][size_t(e.lane[1])] / count[1][size_t(e.lane[1])];
+        const double deviation = cellDeviationBound(e.m, sc.du, sc.dv);
+        if (scale.cullOutsideView &&
+            boxOutsideFrustum(scale.viewProjection, e.lo - glm::dvec3(deviation),
+                              e.hi + glm::dvec3(deviation)))
+            return sc;
+        sc.pixels = screenDistanceBound(scale, deviation, e.minDepth);
+        sc.uPart = e.m.uu * sc.du * sc.du + e.m.uv * sc.du * sc.dv;
+        sc.vPart = e.m.vv * sc.dv * sc.dv + e.m.uv * sc.du * sc.dv;
+        return sc;
+    };
+    // 3. Grow: each cell over the tolerance asks its column and row for cells sqrt(excess)
+    // times smaller (the bound is quadratic in the cell size), the direction(s) that matter.
+    c.met = true;
+    for (;;) {
+        std::vector<int> want[2] = {count[0], count[1]};
+        bool over = false;
+        for (const Entry& e : entries) {
+            const Score sc = score(e);
+            if (!(sc.pixels > pixelTolerance))
+                continue;
+            over = true;
+            const int ku = e.lane[0], kv = e.lane[1];
+            const bool canU = count[0][size_t(ku)] < high[0][size_t(ku)];
+            const bool canV = count[1][size_t(kv)] < high[1][size_t(kv)];
+            const double shrink = std::sqrt(sc.pixels / pixelTolerance);
+            const double total = sc.uPart + sc.vPart;
+            const auto grow = [&](int d, int k, double cell) {
+                const double target = std::ceil(width[d][size_t(k)] / (cell / shrink));
+                const int n = int(std::clamp(target, double(count[d][size_t(k)] + 1),
+                                             double(high[d][size_t(k)])));
+                want[d][size_t(k)] = std::max(want[d][size_t(k)], n);
+            };
+            if (canU && (sc.uPart >= 0.25 * total || !canV))
+                grow(0, ku, sc.du);
+            if (canV && (sc.vPart >= 0.25 * total || !canU))
+                grow(1, kv, sc.dv);
+        }
+        if (!over)
+            break;
+        if (want[0] == count[0] && want[1] == count[1]) {
+            c.met = false; // every such cell is at kMaxPartitions in both directions
+            break;
+        }
+        count[0] = std::move(want[0]);
+        count[1] = std::move(want[1]);
+    }
+    // 4. Trim the overshoot: a lane's bound only grows as its count falls, so bisect each
+    // column's smallest count with the rows fixed, then each row's.
+    if (c.met)
+        for (int d = 0; d < 2; ++d)
+            for (int k = 0; k < lanes[d]; ++k) {
+                const auto ok = [&](int n) {
+                    const int keep = count[d][size_t(k)];
+                    count[d][size_t(k)] = n;
+                    bool fine = true;
+                    for (int i : byLane[d][size_t(k)])
+                        if (score(entries[size_t(i)]).pixels > pixelTolerance) {
+                            fine = false;
+                            break;
+                        }
+                    count[d][size_t(k)] = keep;
+                    return fine;
+                };
+                int lo = low[d][size_t(k)], hi = count[d][size_t(k)];
+                while (lo < hi) {
+                    const int mid = lo + (hi - lo) / 2;
+                    if (ok(mid))
+                        hi = mid;
+                    else
+                        lo = mid + 1;
+                }
+                count[d][size_t(k)] = hi;
+            }
+    c.boundPixels = 0.0;
+    for (const Entry& e : entries)
+        c.boundPixels = std::max(c.boundPixels, score(e).pixels);
+    // 5. The breaks: each lane cut into its count of equal cells.
+    std::vector<double>* out[2] = {&c.breaksU, &c.breaksV};
+    for (int d = 0; d < 2; ++d) {
+        for (int k = 0; k < lanes[d]; ++k) {
+            const double a = edges[d][size_t(k)], w = width[d][size_t(k)];
+            const int n = count[d][size_t(k)];
+            for (int i = 0; i < n; ++i)
+                out[d]->push_back(i == 0 ? a : a + w * i / n);
+        }
+        out[d]->push_back(box[d].last);
+    }
+    c.nu = int(c.breaksU.size()) - 1;
+    c.nv = int(c.breaksV.size()) - 1;
+    return c;
+}
+
 } // namespace kw

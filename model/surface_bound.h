@@ -112,6 +112,9 @@ struct PartitionChoice {
     int nv = 1;
     double boundPixels = 0.0; ///< the guaranteed screen deviation bound at (nu, nv)
     bool met = true;          ///< false when kMaxPartitions could not reach the tolerance
+    /// The cell boundaries (chooseBreaks; empty from choosePartitions): nu + 1 increasing
+    /// values along u from the box's first to its last, nv + 1 along v.
+    std::vector<double> breaksU, breaksV;
 };
 
 /// The uniform partitions (nu, nv) >= (minU, minV), as buildBasePolygon cuts them (nu uniform
@@ -124,6 +127,25 @@ struct PartitionChoice {
 PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Interval& domainU,
                                  const Interval& domainV, const ScreenScale& scale,
                                  double pixelTolerance, int minU = 1, int minV = 1);
+
+/// Non-uniform partitions of the box [boxU] x [boxV] (inside the domain, e.g. the trims' box):
+/// a tensor-product grid whose columns and rows follow the sub-rectangles of `spans` (the
+/// spans meeting the box), each column cut into its own number of equal cells, so that every
+/// cell lies inside one sub-rectangle and is scored with that sub-rectangle's own bounds and
+/// depth (no reach, unlike choosePartitions). A column whose sub-rectangles are all off
+/// screen or far away keeps few cells while another is refined, and since whole columns and
+/// rows are cut, the grid has no T-junctions: neighbouring cells share their corners. The
+/// counts are the fewest, column by column and row by row, for which every cell lies within
+/// `pixelTolerance` pixels on screen by cellDeviationBound and screenDistanceBound; cells are
+/// at most 1 / minU of the box's width (1 / minV of its height) and at least 1 / kMaxPartitions
+/// (then `met` is false where that does not reach the tolerance). With visibleU (visibleV)
+/// > 0, a column (row) holding a sub-rectangle that is on screen keeps cells at most
+/// 1 / visibleU (1 / visibleV) of the box wide: the polygon is then at least as fine as the
+/// uniform nu x nv = visibleU x visibleV wherever it is seen, and coarse only where it is not.
+/// Returns the breaks and nu, nv as the cell counts along u and v.
+PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
+                             const Interval& boxV, const ScreenScale& scale, double pixelTolerance,
+                             int minU = 1, int minV = 1, int visibleU = 0, int visibleV = 0);
 
 /// The screen deviation bound of the base polygon at (nu, nv) (the largest over the spans).
 double partitionBoundPixels(const std::vector<SpanBound>& spans, const Interval& domainU,

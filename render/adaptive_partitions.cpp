@@ -21,14 +21,37 @@ ScreenScale frameScreenScale(const FrameCamera& camera) {
     return sc;
 }
 
+PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                          const ParameterBox& box, const ScreenScale& scale, double tolerance,
+                          int minU, int minV) {
+    PartitionChoice uniform = choosePartitions(spans, box.u, box.v, scale, tolerance, minU, minV);
+    uniform.breaksU = cellBreaks(s.knotsU, uniform.nu, box.u);
+    uniform.breaksV = cellBreaks(s.knotsV, uniform.nv, box.v);
+    // At least as fine as the uniform choice wherever a sub-rectangle is on screen: the
+    // tensor grid saves only the cells nobody sees (a close-up of a large face). Coarser
+    // visible cells would still be within the bound, but the bound's slack is what keeps
+    // silhouette pixel centres covered: the base polygon's silhouette lies inside the exact
+    // one by up to the tolerance, and nothing but the polygon covers pixels there (the
+    // skirts run along the outline only; docs/PERFORMANCE.md ## Edges).
+    PartitionChoice tensor =
+        chooseBreaks(spans, box.u, box.v, scale, tolerance, minU, minV, uniform.nu, uniform.nv);
+    const auto cells = [](const PartitionChoice& c) {
+        return std::int64_t(c.breaksU.size() - 1) * std::int64_t(c.breaksV.size() - 1);
+    };
+    if (!tensor.met || tensor.breaksU.size() < 2 || tensor.breaksV.size() < 2 ||
+        (uniform.met && cells(uniform) <= cells(tensor)))
+        return uniform;
+    return tensor;
+}
+
 int AdaptivePartitions::gridFor(int spans) {
     return spans <= 16 ? 4 : spans <= 64 ? 2 : 1;
 }
 
-PartitionChoice AdaptivePartitions::choose(const Surface& surface, const Revisions& rev,
-                                           const ParameterBox& box, const ScreenScale& scale,
-                                           std::uint64_t viewStamp, double tolerance, int minU,
-                                           int minV, bool* recomputed) {
+const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const Revisions& rev,
+                                                  const ParameterBox& box, const ScreenScale& scale,
+                                                  std::uint64_t viewStamp, double tolerance,
+                                                  int minU, int minV, bool* recomputed) {
     if (recomputed)
         *recomputed = false;
     const NurbsSurface& g = surface.geometry;
@@ -57,7 +80,8 @@ PartitionChoice AdaptivePartitions::choose(const Surface& surface, const Revisio
         stale = true;
     }
     if (stale) {
-        m_choice = choosePartitions(m_inBox, box.u, box.v, scale, tolerance, minU, minV);
+        m_choice = chooseCut(g, m_inBox, box, scale, tolerance, minU, minV);
+        m_cut = PolygonCut{m_choice.nu, m_choice.nv, m_choice.breaksU, m_choice.breaksV};
         m_viewStamp = viewStamp;
         m_minU = minU;
         m_minV = minV;

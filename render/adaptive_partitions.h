@@ -6,6 +6,7 @@
 #include "model/document.h"
 #include "model/surface_bound.h"
 #include "model/visible_bounds.h"
+#include "render/gpu_layout.h"
 #include "render/render_types.h"
 
 #include <cstdint>
@@ -17,6 +18,16 @@ namespace kw {
 /// culling of what lies outside the view.
 ScreenScale frameScreenScale(const FrameCamera& camera);
 
+/// The adaptive cut of `s` over `box` (spans: those meeting it): whichever of the uniform
+/// partitions (choosePartitions, its breaks from cellBreaks) and the tensor-product breaks
+/// (chooseBreaks) meets the tolerance with fewer cells; both are proven bounds, and neither is
+/// always smaller (uniform wins where the sliders' minimum decides, since the tensor grid
+/// rounds it up per sub-rectangle column). When neither meets it, the uniform one (its
+/// nu x nv are then kMaxPartitions where the bound fell short). Breaks always set.
+PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                          const ParameterBox& box, const ScreenScale& scale, double tolerance,
+                          int minU, int minV);
+
 /// One surface's cached adaptive choice. The span bounds depend on the geometry only (points
 /// and knots revisions); the choice on them, the polygon's box, the minimum and the view.
 class AdaptivePartitions {
@@ -24,9 +35,12 @@ public:
     /// The partitions for `surface` (valid) over `box` seen with `scale`; `viewStamp` changes
     /// whenever the camera, viewport or tolerance does. Recomputes only what is stale; sets
     /// `recomputed` when the choice was evaluated again (not when it was reused).
-    PartitionChoice choose(const Surface& surface, const Revisions& rev, const ParameterBox& box,
-                           const ScreenScale& scale, std::uint64_t viewStamp, double tolerance,
-                           int minU, int minV, bool* recomputed = nullptr);
+    const PartitionChoice& choose(const Surface& surface, const Revisions& rev,
+                                  const ParameterBox& box, const ScreenScale& scale,
+                                  std::uint64_t viewStamp, double tolerance, int minU, int minV,
+                                  bool* recomputed = nullptr);
+    /// The last choice as a polygon cut (its breaks).
+    const PolygonCut& cut() const { return m_cut; }
 
     /// Sub-rectangles per span side: 4, fewer for surfaces of many spans so that the bounds
     /// of one surface cost at most ~256 Bezier extractions (measured: 0.27 ms per hammer.iges
@@ -43,6 +57,7 @@ private:
     int m_minU = 0, m_minV = 0;
     bool m_haveChoice = false;
     PartitionChoice m_choice;
+    PolygonCut m_cut;
 };
 
 } // namespace kw

@@ -111,9 +111,15 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
 }
 
 BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, int nu, int nv) {
+    return buildBasePolygon(s, box, PolygonCut{nu, nv, {}, {}});
+}
+
+BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box,
+                             const PolygonCut& cut) {
     BasePolygon poly;
-    poly.breaksU = cellBreaks(s.knotsU, std::max(nu, 1), box.u);
-    poly.breaksV = cellBreaks(s.knotsV, std::max(nv, 1), box.v);
+    const bool given = cut.breaksU.size() >= 2 && cut.breaksV.size() >= 2;
+    poly.breaksU = given ? cut.breaksU : cellBreaks(s.knotsU, std::max(cut.nu, 1), box.u);
+    poly.breaksV = given ? cut.breaksV : cellBreaks(s.knotsV, std::max(cut.nv, 1), box.v);
     poly.spanU = cellSpans(poly.breaksU, s.knotsU, s.degreeU);
     poly.spanV = cellSpans(poly.breaksV, s.knotsV, s.degreeV);
     const int nodesV = int(poly.breaksV.size());

@@ -79,6 +79,17 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv);
 /// face's partitions go where its trims keep the surface, issue 10 item 1).
 BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, int nu, int nv);
 
+/// Where a base polygon's cells go: the paper's nu x nv uniform partitions of the box merged
+/// with the knots, or, when breaksU and breaksV are set, exactly those (adaptive mode's
+/// choice, kw::chooseBreaks or cellBreaks; each cell inside one knot span).
+struct PolygonCut {
+    int nu = 1, nv = 1;
+    std::vector<double> breaksU, breaksV; ///< increasing, ends = the box's
+    bool operator==(const PolygonCut&) const = default;
+};
+/// The base polygon over `box` cut as `cut` says (with breaks, `box` is theirs).
+BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, const PolygonCut& cut);
+
 /// Re-evaluates the vertices whose (u, v) lie in the support of control points
 /// [i0, i1] x [j0, j1] (the only ones a move of those points can change), and the span scales
 /// of the cells there, and returns the range of vertex indices [first, last] that changed,

@@ -104,34 +104,35 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     // Skirts are drawn only in adaptive exact frames (ExactSurfacePass::skirtPass): built only
     // then, so the paper's mode uploads what it did.
     const bool skirt = pass.adaptive && options.edgeSkirts;
-    int nu = sliderU, nv = sliderV;
+    // Adaptive mode: the cached choice's breaks (AdaptivePartitions::cut), not copied.
+    const PolygonCut uniformCut{sliderU, sliderV, {}, {}};
+    const PolygonCut* chosenCut = &uniformCut;
     r.boundPixels = 0.0;
     m_unmet.erase(index);
     if (pass.adaptive) {
         bool evaluated = false;
-        const PartitionChoice c =
+        const PartitionChoice& c =
             e.adaptive.choose(s, rev, box, pass.scale, m_viewStamp, options.pixelTolerance, sliderU,
                               sliderV, &evaluated);
-        nu = c.nu;
-        nv = c.nv;
+        chosenCut = &e.adaptive.cut();
         pass.choicesEvaluated += evaluated;
         r.boundPixels = c.boundPixels;
         if (!c.met)
             m_unmet.insert(index);
     }
+    const PolygonCut& cut = *chosenCut;
     if (fresh) {
         if (!g) {
             g = std::make_unique<SurfaceGpu>();
             g->id = s.id;
         }
-        fits = uploadSurface(m_pools, *g, s, nu, nv, box, skirt, up);
+        fits = uploadSurface(m_pools, *g, s, cut, box, skirt, up);
     } else {
-        if (g->partitionsU != nu || g->partitionsV != nv || box != g->polygonBox ||
-            (g->skirtVertexOffset >= 0) != skirt) {
+        if (g->cut != cut || box != g->polygonBox || (g->skirtVertexOffset >= 0) != skirt) {
             // The polygon is rebuilt from the current points; pick up a point change.
             if (g->revisions.points != rev.points)
                 uploadChangedPoints(m_pools, *g, s, up);
-            fits = rebuildPolygon(m_pools, *g, s, nu, nv, box, skirt, up);
+            fits = rebuildPolygon(m_pools, *g, s, cut, box, skirt, up);
         } else if (g->revisions.points != rev.points) {
             uploadChangedPoints(m_pools, *g, s, up);
         }

@@ -33,7 +33,7 @@ void freeControl(ScenePools& pools, SurfaceGpu& g) {
 
 } // namespace
 
-bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                    const ParameterBox& box, bool skirt, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     freeControl(pools, g);
@@ -70,7 +70,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, i
     pools.spans.write(g.spanOffset + g.spanTexelsU, g.spanTexelsV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    if (!rebuildPolygon(pools, g, s, nu, nv, box, skirt, stats)) {
+    if (!rebuildPolygon(pools, g, s, cut, box, skirt, stats)) {
         freeControl(pools, g);
         return false;
     }
@@ -140,13 +140,12 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     }
 }
 
-bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                     const ParameterBox& box, bool withSkirt, UploadStats& stats) {
     freePolygon(pools, g);
-    g.partitionsU = nu;
-    g.partitionsV = nv;
+    g.cut = cut;
     g.polygonBox = box;
-    g.polygon = buildBasePolygon(s.geometry, box, nu, nv);
+    g.polygon = buildBasePolygon(s.geometry, box, cut);
     const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
     const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
     const std::int64_t vertices = std::int64_t(g.polygon.vertices.size());

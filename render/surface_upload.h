@@ -29,7 +29,7 @@ struct ScenePools {
 struct SurfaceGpu {
     SurfaceId id;
     Revisions revisions; ///< what is on the GPU
-    int partitionsU = 0, partitionsV = 0;
+    PolygonCut cut;      ///< how the polygon now on the GPU was cut
     int degreeU = 1, degreeV = 1, countU = 0, countV = 0;
     glm::vec4 domain{0.0f, 1.0f, 0.0f, 1.0f};
     glm::dvec3 origin{0.0};          ///< control texels are relative to it (packControlPoints)
@@ -57,22 +57,22 @@ struct SurfaceGpu {
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
-/// (re)allocated and filled, base polygon rebuilt at nu x nv partitions over `box`. Counts into
+/// (re)allocated and filled, base polygon rebuilt cut as `cut` over `box`. Counts into
 /// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
-bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                    const ParameterBox& box, bool skirt, UploadStats& stats);
 /// After a Points revision change: the texels of the bounding rectangle of those that differ
 /// (one sub-range write per row of it, counted as one sub-image upload), and only the base
 /// polygon vertices in the support of those points (and the polygon's skirt vertices, a few
 /// per boundary node).
 void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
-/// The base polygon at nu x nv partitions over `box` (a rectangle of the domain: GpuScene
+/// The base polygon cut as `cut` over `box` (a rectangle of the domain: GpuScene
 /// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
 /// cells go where its trims keep the surface, issue 10 item 1) from the current points;
 /// control data untouched. Returns false (the polygon's ranges freed) when a pool would
 /// exceed its limit. With `skirt`, the polygon's skirt too (kw::buildSkirt; adaptive frames
 /// draw it), else none.
-bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, int nu, int nv,
+bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                     const ParameterBox& box, bool skirt, UploadStats& stats);
 struct TrimMask;
 /// Orders the polygon's triangles by how the trims cut their cells (SurfaceGpu's

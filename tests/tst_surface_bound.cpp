@@ -45,6 +45,42 @@ glm::dvec2 project(const Camera& cam, int w, int h, const glm::dvec3& p) {
     return {(c.x / c.w * 0.5 + 0.5) * w, (c.y / c.w * 0.5 + 0.5) * h};
 }
 
+/// Largest screen distance between the base polygon cut at `bu` x `bv` and the surface, over
+/// sampled points of every cell; with `onScreenOnly`, of the cells with a sample on screen
+/// (the only ones the bound speaks for when it culls what is off screen).
+double measuredScreenDeviation(const NurbsSurface& s, const Camera& cam, int w, int h,
+                               const std::vector<double>& bu, const std::vector<double>& bv,
+                               bool onScreenOnly = false) {
+    double worst = 0.0;
+    const int n = 6;
+    for (size_t i = 0; i + 1 < bu.size(); ++i)
+        for (size_t j = 0; j + 1 < bv.size(); ++j) {
+            const double u0 = bu[i], u1 = bu[i + 1], v0 = bv[j], v1 = bv[j + 1];
+            const glm::dvec3 ll = surfacePoint(s, u0, v0), lr = surfacePoint(s, u1, v0);
+            const glm::dvec3 ul = surfacePoint(s, u0, v1), ur = surfacePoint(s, u1, v1);
+            double cell = 0.0;
+            bool seen = !onScreenOnly;
+            for (int a = 0; a <= n; ++a)
+                for (int b = 0; a + b <= n; ++b) {
+                    const double l1 = double(a) / n, l2 = double(b) / n, l0 = 1.0 - l1 - l2;
+                    // Both triangles: (ll, lr, ur) and (ll, ur, ul).
+                    const double ua = l0 * u0 + (l1 + l2) * u1, va = (l0 + l1) * v0 + l2 * v1;
+                    const double ub = (l0 + l2) * u0 + l1 * u1, vb = l0 * v0 + (l1 + l2) * v1;
+                    for (const auto& [poly, u, v] :
+                         {std::tuple{l0 * ll + l1 * lr + l2 * ur, ua, va},
+                          std::tuple{l0 * ll + l1 * ur + l2 * ul, ub, vb}}) {
+                        const glm::dvec2 exact = project(cam, w, h, surfacePoint(s, u, v));
+                        seen =
+                            seen || (exact.x >= 0 && exact.y >= 0 && exact.x <= w && exact.y <= h);
+                        cell = std::max(cell, glm::length(project(cam, w, h, poly) - exact));
+                    }
+                }
+            if (seen)
+                worst = std::max(worst, cell);
+        }
+    return worst;
+}
+
 /// Largest screen distance between the base polygon at (nu, nv) (uniform cells merged with the
 /// knots, as buildBasePolygon cuts them) and the surface, over sampled points of every cell.
 double measuredScreenDeviation(const NurbsSurface& s, const Camera& cam, int w, int h, int nu,
@@ -94,6 +130,8 @@ private Q_SLOTS:
     void pixelBoundHoldsForProjectedPairs();
     void chosenPartitionsMeetTolerance();
     void partitionsFollowZoom();
+    void chosenBreaksMeetTolerance();
+    void breaksStayCoarseOffScreen();
 };
 
 void TstSurfaceBound::secondDerivativesWithinBoundEverywhere() {
@@ -270,6 +308,118 @@ void TstSurfaceBound::partitionsFollowZoom() {
                                                screenScale(far, 1024, 1024, 0.01), 0.5, 3, 3);
     QCOMPARE(c.nu, 3);
     QCOMPARE(c.nv, 3);
+}
+
+namespace {
+
+std::int64_t cells(const PartitionChoice& c) {
+    return std::int64_t(c.breaksU.size() - 1) * std::int64_t(c.breaksV.size() - 1);
+}
+
+/// Breaks run from the domain's first to its last value, increase, and hold every knot inside
+/// it (each cell inside one knot span).
+bool wellFormedBreaks(const std::vector<double>& b, const std::vector<double>& knots, int p) {
+    const Interval d = knotDomain(knots, p);
+    if (b.size() < 2 || b.front() != d.first || b.back() != d.last)
+        return false;
+    for (size_t k = 0; k + 1 < b.size(); ++k)
+        if (!(b[k] < b[k + 1]))
+            return false;
+    for (double k : knots)
+        if (k > d.first && k < d.last && !std::binary_search(b.begin(), b.end(), k))
+            return false;
+    return true;
+}
+
+} // namespace
+
+// Tensor-product breaks (chooseBreaks): the same guarantee as the uniform choice, each column
+// and row cut as finely as its own sub-rectangles need.
+void TstSurfaceBound::chosenBreaksMeetTolerance() {
+    std::mt19937 rng(3);
+    const NurbsSurface rough = kwtest::randomSurface(rng, 3, 3, 6, 5, false);
+    Camera cam;
+    cam.eye = {1.5, -3.5, 2.0};
+    cam.target = {0.0, 0.0, 0.0};
+    const int w = 512, h = 512;
+    const ScreenScale scale = screenScale(cam, w, h, 0.01);
+    for (const NurbsSurface& s :
+         {makeSphere({0, 0, 0}, 1.0), makeTorus({0, 0, 0}, 0.8, 0.3), rough}) {
+        const std::vector<SpanBound> spans = surfaceSpanBounds(s, 4);
+        const PartitionChoice c =
+            chooseBreaks(spans, surfaceDomainU(s), surfaceDomainV(s), scale, 0.5);
+        QVERIFY(c.met);
+        QVERIFY(c.boundPixels <= 0.5);
+        QVERIFY(wellFormedBreaks(c.breaksU, s.knotsU, s.degreeU));
+        QVERIFY(wellFormedBreaks(c.breaksV, s.knotsV, s.degreeV));
+        QCOMPARE(std::int64_t(c.nu) * c.nv, cells(c));
+        const double measured = measuredScreenDeviation(s, cam, w, h, c.breaksU, c.breaksV);
+        const PartitionChoice u =
+            choosePartitions(spans, surfaceDomainU(s), surfaceDomainV(s), scale, 0.5);
+        qDebug("breaks %d x %d: bound %.3f px, measured %.3f px; uniform %d x %d", c.nu, c.nv,
+               c.boundPixels, measured, u.nu, u.nv);
+        QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
+        // The sliders' minimum holds: cells at most a third of the domain.
+        const PartitionChoice m =
+            chooseBreaks(spans, surfaceDomainU(s), surfaceDomainV(s), scale, 0.5, 3, 3);
+        const Interval du = surfaceDomainU(s);
+        for (size_t k = 0; k + 1 < m.breaksU.size(); ++k)
+            QVERIFY(m.breaksU[k + 1] - m.breaksU[k] <= (du.last - du.first) / 3.0 + 1e-12);
+    }
+    // Where the need varies (the random surface's spans), the tensor grid takes fewer cells
+    // than the uniform one, whose worst span sets every cell.
+    const std::vector<SpanBound> spans = surfaceSpanBounds(rough, 4);
+    const PartitionChoice t =
+        chooseBreaks(spans, surfaceDomainU(rough), surfaceDomainV(rough), scale, 0.5);
+    const PartitionChoice u =
+        choosePartitions(spans, surfaceDomainU(rough), surfaceDomainV(rough), scale, 0.5);
+    QVERIFY2(
+        2 * std::int64_t(t.nu) * t.nv < std::int64_t(u.nu) * u.nv,
+        qPrintable(QString("%1 x %2 against %3 x %4").arg(t.nu).arg(t.nv).arg(u.nu).arg(u.nv)));
+}
+
+// A close-up of a sphere: with the uniform choice as the floor where a sub-rectangle is on
+// screen (as the renderer calls it), the cells on screen are as fine as the uniform grid's
+// and within the tolerance, and most of the sphere, off screen, takes few cells.
+void TstSurfaceBound::breaksStayCoarseOffScreen() {
+    const NurbsSurface s = makeSphere({0, 0, 0}, 1.0);
+    Camera cam;
+    cam.eye = {0.0, -10.0, 0.3};
+    cam.target = {0.0, -1.0, 0.3};
+    cam.fovYDegrees = 4.0;
+    const int w = 512, h = 512;
+    ScreenScale scale = screenScale(cam, w, h, 0.01);
+    scale.cullOutsideView = true;
+    scale.viewProjection =
+        glm::perspective(glm::radians(cam.fovYDegrees), double(w) / double(h), 0.01, 100.0) *
+        glm::lookAt(cam.eye, cam.target, cam.up);
+    const std::vector<SpanBound> spans = surfaceSpanBounds(s, 4);
+    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
+    const PartitionChoice u = choosePartitions(spans, du, dv, scale, 0.5);
+    const PartitionChoice t = chooseBreaks(spans, du, dv, scale, 0.5, 1, 1, u.nu, u.nv);
+    qDebug("close-up: uniform %d x %d (%.3f px, met %d), breaks %d x %d (%.3f px, met %d)", u.nu,
+           u.nv, u.boundPixels, int(u.met), t.nu, t.nv, t.boundPixels, int(t.met));
+    QVERIFY(u.met && t.met);
+    const std::int64_t uniformCells = std::int64_t(u.nu) * u.nv;
+    qDebug("close-up: uniform %d x %d, breaks %d x %d", u.nu, u.nv, t.nu, t.nv);
+    QVERIFY(4 * cells(t) < uniformCells);
+    const double measured =
+        measuredScreenDeviation(s, cam, w, h, t.breaksU, t.breaksV, /*onScreenOnly=*/true);
+    QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
+    // Cells with a point on screen are no wider than the uniform grid's.
+    int seen = 0;
+    for (size_t i = 0; i + 1 < t.breaksU.size(); ++i)
+        for (size_t j = 0; j + 1 < t.breaksV.size(); ++j) {
+            const glm::dvec2 c = project(cam, w, h,
+                                         surfacePoint(s, 0.5 * (t.breaksU[i] + t.breaksU[i + 1]),
+                                                      0.5 * (t.breaksV[j] + t.breaksV[j + 1])));
+            if (c.x < 0 || c.y < 0 || c.x > w || c.y > h)
+                continue;
+            ++seen;
+            QVERIFY(t.breaksU[i + 1] - t.breaksU[i] <= (du.last - du.first) / u.nu + 1e-12);
+            QVERIFY(t.breaksV[j + 1] - t.breaksV[j] <= (dv.last - dv.first) / u.nv + 1e-12);
+        }
+    QVERIFY(seen > 20);
 }
 
 QTEST_GUILESS_MAIN(TstSurfaceBound)
