@@ -269,6 +269,19 @@ struct SpanScore {
     double du = 0.0, dv = 0.0;
 };
 
+/// The smallest n in [lo, hi] with ok(n), for ok monotone (false below some n, true from it
+/// on) and ok(hi) true.
+template <class Ok> int smallestPassing(int lo, int hi, Ok ok) {
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (ok(mid))
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return hi;
+}
+
 double boxMaxDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi) {
     ScreenScale backwards = scale;
     backwards.forward = -scale.forward;
@@ -382,18 +395,10 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
     }
     // 2. Trim the overshoot: the bound only grows as n falls (cells are min(span, 1/n)), so
     // bisect the smallest nu with nv fixed, then the smallest nv.
-    auto smallest = [&](int lo, int hi, auto ok) {
-        while (lo < hi) {
-            const int mid = lo + (hi - lo) / 2;
-            if (ok(mid))
-                hi = mid;
-            else
-                lo = mid + 1;
-        }
-        return hi;
-    };
-    c.nu = smallest(lowU, c.nu, [&](int n) { return worstAt(n, c.nv).pixels <= pixelTolerance; });
-    c.nv = smallest(lowV, c.nv, [&](int n) { return worstAt(c.nu, n).pixels <= pixelTolerance; });
+    c.nu = smallestPassing(lowU, c.nu,
+                           [&](int n) { return worstAt(n, c.nv).pixels <= pixelTolerance; });
+    c.nv = smallestPassing(lowV, c.nv,
+                           [&](int n) { return worstAt(c.nu, n).pixels <= pixelTolerance; });
     c.boundPixels = worstAt(c.nu, c.nv).pixels;
     c.met = true;
     return c;
@@ -576,15 +581,7 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
                     count[d][size_t(k)] = keep;
                     return fine;
                 };
-                int lo = low[d][size_t(k)], hi = count[d][size_t(k)];
-                while (lo < hi) {
-                    const int mid = lo + (hi - lo) / 2;
-                    if (ok(mid))
-                        hi = mid;
-                    else
-                        lo = mid + 1;
-                }
-                count[d][size_t(k)] = hi;
+                count[d][size_t(k)] = smallestPassing(low[d][size_t(k)], count[d][size_t(k)], ok);
             }
     c.boundPixels = 0.0;
     for (const Entry& e : entries)

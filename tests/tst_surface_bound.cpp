@@ -97,26 +97,8 @@ double measuredScreenDeviation(const NurbsSurface& s, const Camera& cam, int w, 
         b.erase(std::unique(b.begin(), b.end()), b.end());
         return b;
     };
-    const std::vector<double> bu = breaks(s.knotsU, s.degreeU, nu);
-    const std::vector<double> bv = breaks(s.knotsV, s.degreeV, nv);
-    double worst = 0.0;
-    const int n = 6;
-    for (size_t i = 0; i + 1 < bu.size(); ++i)
-        for (size_t j = 0; j + 1 < bv.size(); ++j) {
-            const double u0 = bu[i], u1 = bu[i + 1], v0 = bv[j], v1 = bv[j + 1];
-            const glm::dvec3 ll = surfacePoint(s, u0, v0), lr = surfacePoint(s, u1, v0);
-            const glm::dvec3 ur = surfacePoint(s, u1, v1);
-            for (int a = 0; a <= n; ++a)
-                for (int b = 0; a + b <= n; ++b) {
-                    const double l1 = double(a) / n, l2 = double(b) / n, l0 = 1.0 - l1 - l2;
-                    const double u = l0 * u0 + (l1 + l2) * u1, v = (l0 + l1) * v0 + l2 * v1;
-                    const glm::dvec3 poly = l0 * ll + l1 * lr + l2 * ur;
-                    const double d = glm::length(project(cam, w, h, poly) -
-                                                 project(cam, w, h, surfacePoint(s, u, v)));
-                    worst = std::max(worst, d);
-                }
-        }
-    return worst;
+    return measuredScreenDeviation(s, cam, w, h, breaks(s.knotsU, s.degreeU, nu),
+                                   breaks(s.knotsV, s.degreeV, nv));
 }
 
 } // namespace
