@@ -77,6 +77,7 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_gl = gl;
     m_shaders = shaders;
     multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
+    fins = qEnvironmentVariable("KW_FINS") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
@@ -434,6 +435,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                          options, range, error);
     if (ok && !m_skirts.empty())
         ok = skirtPass(scene, camera, lights, options, range, error);
+    finTriangles = 0;
+    if (ok && !m_skirts.empty() && fins)
+        ok = finPass(scene, camera, lights, options, range, error);
     if (ok && aa && !m_edges.empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -487,29 +491,166 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     gl->glBindVertexArray(scene.skirtVao());
     bool ok = true;
     for (const auto& [key, b] : m_skirts) {
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                              b.trimmed, false, TrimAa::Off, true));
-        if (!prog) {
-            *error = m_shaders->lastError();
+        if (!bindSkirtProgram(b.degreeU, b.degreeV, b.trimmed, scene, camera, lights, options,
+                              range, error)) {
             ok = false;
             break;
         }
-        prog->bind();
-        setFrameUniforms(gl, prog, camera, lights);
-        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtPixels,
-                        float(options.pixelTolerance) + kSkirtMarginPixels);
-        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);
-        gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtDepthScale, skirtDepthScale(camera));
-        if (b.trimmed)
-            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
         for (const DrawCommand& c : b.commands)
             skirtTriangles += c.count / 3;
     }
     scene.bindSurfaceData(); // the triangles' vertex array again
+    return ok;
+}
+
+QOpenGLShaderProgram* ExactSurfacePass::bindSkirtProgram(int p, int q, bool trimmed,
+                                                         const GpuScene& scene,
+                                                         const FrameCamera& camera,
+                                                         const std::vector<Light>& lights,
+                                                         const RenderOptions& options,
+                                                         const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QOpenGLShaderProgram* prog = m_shaders->program(
+        QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+        variantDefines(p, q, int(lights.size()), options, trimmed, false, TrimAa::Off, true));
+    if (!prog) {
+        *error = m_shaders->lastError();
+        return nullptr;
+    }
+    prog->bind();
+    setFrameUniforms(gl, prog, camera, lights);
+    setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+    gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtPixels,
+                    float(options.pixelTolerance) + kSkirtMarginPixels);
+    gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);
+    gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtDepthScale, skirtDepthScale(camera));
+    if (trimmed)
+        scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+    return prog;
+}
+
+void ExactSurfacePass::releaseFins() {
+    if (m_gl)
+        for (GLuint* b : {&m_finVertexBuffer, &m_finIndexBuffer, &m_finCommandBuffer})
+            if (*b)
+                m_gl->glDeleteBuffers(1, b), *b = 0;
+    m_finBytes = 0;
+    m_fins.clear();
+    m_finBatches.clear();
+    m_finCommands.clear();
+    m_finLayout.clear();
+}
+
+bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
+                               const std::vector<Light>& lights, const RenderOptions& options,
+                               const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // 1. The fins of every skirted record drawn, rebuilt where the view or its polygon
+    // changed (a still view costs one comparison per record).
+    ++m_finFrame;
+    const float pixels = float(options.pixelTolerance) + kSkirtMarginPixels;
+    std::vector<std::tuple<const SurfaceRecord*, int, int>> layout;
+    bool rebuilt = false;
+    for (const SurfaceRecord* r : scene.records()) {
+        const auto place = m_places.find(r);
+        if (place == m_places.end() || !place->second.drawn || place->second.culled ||
+            place->second.skirtVariant < 0)
+            continue;
+        const SurfaceGpu& g = *r->exact;
+        Fins& f = m_fins[r];
+        f.frame = m_finFrame;
+        if (f.viewProjection != camera.viewProjection || f.viewport != camera.viewport ||
+            f.pixels != pixels || f.polygonSerial != g.polygonSerial ||
+            f.points != g.revisions.points) {
+            f.vertices.clear();
+            f.indices.clear();
+            buildFins(g.polygon, glm::dmat4(camera.viewProjection), glm::dvec3(camera.eye),
+                      camera.viewport, pixels, f.vertices, f.indices);
+            f.viewProjection = camera.viewProjection;
+            f.viewport = camera.viewport;
+            f.pixels = pixels;
+            f.polygonSerial = g.polygonSerial;
+            f.points = g.revisions.points;
+            rebuilt = true;
+        }
+        if (!f.indices.empty())
+            layout.emplace_back(r, r->slot, place->second.skirtVariant);
+    }
+    for (auto it = m_fins.begin(); it != m_fins.end();)
+        it = it->second.frame == m_finFrame ? std::next(it) : m_fins.erase(it);
+    // 2. One upload of them all when any changed, grouped by skirt variant.
+    if (rebuilt || layout != m_finLayout) {
+        m_finLayout = layout;
+        std::stable_sort(layout.begin(), layout.end(), [](const auto& a, const auto& b) {
+            return std::get<2>(a) < std::get<2>(b);
+        });
+        std::vector<SkirtVertex> vertices;
+        std::vector<unsigned> indices;
+        m_finCommands.clear();
+        m_finBatches.clear();
+        int lastVariant = -1;
+        for (const auto& [r, slot, variant] : layout) {
+            const Fins& f = m_fins.at(r);
+            if (variant != lastVariant) {
+                lastVariant = variant;
+                FinBatch b;
+                b.degreeU = variant & 15;
+                b.degreeV = (variant >> 4) & 15;
+                b.trimmed = (variant >> 8) & 1;
+                b.first = std::int64_t(m_finCommands.size());
+                m_finBatches.push_back(b);
+            }
+            m_finCommands.push_back(DrawCommand{GLuint(f.indices.size()), 1, GLuint(indices.size()),
+                                                GLint(vertices.size()), GLuint(slot)});
+            ++m_finBatches.back().count;
+            vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
+            indices.insert(indices.end(), f.indices.begin(), f.indices.end());
+        }
+        for (GLuint* b : {&m_finVertexBuffer, &m_finIndexBuffer, &m_finCommandBuffer})
+            if (!*b)
+                gl->glCreateBuffers(1, b);
+        const auto upload = [&](GLuint buffer, std::size_t bytes, const void* data) {
+            gl->glNamedBufferData(buffer, GLsizeiptr(std::max<std::size_t>(bytes, 4)), data,
+                                  GL_DYNAMIC_DRAW);
+            return std::int64_t(bytes);
+        };
+        m_finBytes = upload(m_finVertexBuffer, vertices.size() * sizeof(SkirtVertex),
+                            vertices.empty() ? nullptr : vertices.data()) +
+                     upload(m_finIndexBuffer, indices.size() * sizeof(unsigned),
+                            indices.empty() ? nullptr : indices.data()) +
+                     upload(m_finCommandBuffer, m_finCommands.size() * sizeof(DrawCommand),
+                            m_finCommands.empty() ? nullptr : m_finCommands.data());
+    }
+    if (m_finBatches.empty())
+        return true;
+    // 3. Drawn as the skirts are (nearer, depth written, pushed back: they fill only pixels
+    // nothing nearer covered), from the fins' own buffers.
+    gl->glDepthFunc(kDepthNearer);
+    gl->glDepthMask(GL_TRUE);
+    const GLuint vao = scene.finVao();
+    gl->glVertexArrayVertexBuffer(vao, 0, m_finVertexBuffer, 0, sizeof(SkirtVertex));
+    gl->glVertexArrayElementBuffer(vao, m_finIndexBuffer);
+    gl->glBindVertexArray(vao);
+    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_finCommandBuffer);
+    bool ok = true;
+    for (const FinBatch& b : m_finBatches) {
+        if (!bindSkirtProgram(b.degreeU, b.degreeV, b.trimmed, scene, camera, lights, options,
+                              range, error)) {
+            ok = false;
+            break;
+        }
+        Batch batch;
+        batch.commands.assign(m_finCommands.begin() + b.first,
+                              m_finCommands.begin() + b.first + b.count);
+        batch.first = b.first;
+        drawBatch(batch);
+        for (const DrawCommand& c : batch.commands)
+            finTriangles += c.count / 3;
+    }
+    skirtTriangles += finTriangles;
+    gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
+    scene.bindSurfaceData();
     return ok;
 }
 

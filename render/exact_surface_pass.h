@@ -12,7 +12,11 @@
 
 #include <QString>
 #include <map>
+#include <tuple>
 #include <unordered_map>
+#include <vector>
+
+class QOpenGLShaderProgram;
 
 namespace kw {
 
@@ -39,11 +43,13 @@ public:
     void release() {
         m_environment.release();
         releaseCommands();
+        releaseFins();
         m_haveBatches = false;
         m_places.clear();
     }
-    /// Bytes of the indirect command buffer (FrameReport::gpuBytes.perSurface).
-    std::int64_t residentBytes() const { return m_commandBytes; }
+    /// Bytes of the indirect command buffer and of the silhouette fins
+    /// (FrameReport::gpuBytes.perSurface).
+    std::int64_t residentBytes() const { return m_commandBytes + m_finBytes; }
     const EnvironmentMap& environment() const { return m_environment; }
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
@@ -80,8 +86,13 @@ public:
     int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
     /// FrameReport::Partitions' trimTestedCells and trimmedAwayCells of the last draw.
     std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
-    /// Triangles of the edge skirts the last draw sent (FrameReport::Partitions).
+    /// Triangles of the edge skirts the last draw sent (FrameReport::Partitions), silhouette
+    /// fins included; the fins alone in finTriangles.
     std::int64_t skirtTriangles = 0;
+    std::int64_t finTriangles = 0;
+    /// Silhouette fins (kw::buildFins) with the skirts: on by default; KW_FINS=0 at initialize
+    /// turns them off, for measuring what they cover and cost.
+    bool fins = true;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
     /// conservative overlap where faces meet (issue 10 item 4). B-rep faces meet within the
     /// model's tolerance, not exactly; Axis_of_bearing's faces miss each other by 0.1-0.15 px
@@ -183,6 +194,18 @@ private:
     bool skirtPass(const GpuScene& scene, const FrameCamera& camera,
                    const std::vector<Light>& lights, const RenderOptions& options,
                    const ValueRange& range, QString* error);
+    /// The silhouette fins of the skirted records, rebuilt for those whose view or polygon
+    /// changed, drawn with the skirt programs after the skirts.
+    bool finPass(const GpuScene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
+                 const RenderOptions& options, const ValueRange& range, QString* error);
+    void releaseFins();
+    /// The skirt pass's program for degrees (p, q), bound with its uniforms; nullptr (and
+    /// *error set) when it cannot be built.
+    QOpenGLShaderProgram* bindSkirtProgram(int p, int q, bool trimmed, const GpuScene& scene,
+                                           const FrameCamera& camera,
+                                           const std::vector<Light>& lights,
+                                           const RenderOptions& options, const ValueRange& range,
+                                           QString* error);
     /// The anti-aliased frame's edge pass over m_edges (see draw).
     bool edgePass(const GpuScene& scene, const FrameCamera& camera,
                   const std::vector<Light>& lights, const RenderOptions& options,
@@ -207,6 +230,34 @@ private:
     std::unordered_map<const SurfaceRecord*, Place> m_places;
     std::int64_t m_trimmedAway = 0; ///< the batches' Place::awayCells, summed
     int m_culled = 0;
+
+    /// One record's fins and what they were built for.
+    struct Fins {
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        float pixels = 0.0f;
+        std::uint64_t polygonSerial = 0;
+        std::uint64_t points = 0; ///< SurfaceGpu::revisions.points
+        std::vector<SkirtVertex> vertices;
+        std::vector<unsigned> indices;
+        std::uint64_t frame = 0; ///< the last finPass that drew its record
+    };
+    std::unordered_map<const SurfaceRecord*, Fins> m_fins;
+    std::uint64_t m_finFrame = 0;
+    /// The fins on the GPU: every record's, one after another, and one command per record
+    /// grouped by skirt variant (the same programs as m_skirts).
+    GLuint m_finVertexBuffer = 0, m_finIndexBuffer = 0, m_finCommandBuffer = 0;
+    std::int64_t m_finBytes = 0;
+    struct FinBatch {
+        int degreeU = 1, degreeV = 1;
+        bool trimmed = false;
+        std::int64_t first = 0; ///< in m_finCommandBuffer, in commands
+        std::int64_t count = 0;
+    };
+    std::vector<FinBatch> m_finBatches;
+    std::vector<DrawCommand> m_finCommands;
+    /// The records, slots and variants the uploaded fins were laid out for.
+    std::vector<std::tuple<const SurfaceRecord*, int, int>> m_finLayout;
 };
 
 } // namespace kw

@@ -227,6 +227,82 @@ void buildSkirt(const BasePolygon& poly, std::vector<SkirtVertex>& vertices,
         indices.insert(indices.end(), {c[0], c[1], c[2]});
 }
 
+void buildFins(const BasePolygon& poly, const glm::dmat4& viewProjection, const glm::dvec3& eye,
+               glm::ivec2 viewport, double pixels, std::vector<SkirtVertex>& vertices,
+               std::vector<unsigned>& indices) {
+    const int nu = poly.nodesU(), nv = int(poly.breaksV.size());
+    if (nu < 2 || nv < 2 || poly.vertices.size() != size_t(nu) * size_t(nv) || viewport.x < 1 ||
+        viewport.y < 1)
+        return;
+    const int cu = nu - 1, cv = nv - 1;
+    const auto pos = [&](int node) {
+        return glm::dvec3(poly.vertices[size_t(node)].position);
+    };
+    // Facing of triangle t of cell c (t = 0: ll, lr, ur; t = 1: ll, ur, ul): +1 towards the
+    // eye, -1 away, 0 for no area or edge on.
+    std::vector<signed char> facing(size_t(cu) * size_t(cv) * 2);
+    const auto face = [&](int a, int b, int c) {
+        const glm::dvec3 pa = pos(a), n = glm::cross(pos(b) - pa, pos(c) - pa);
+        const glm::dvec3 view = pa - eye;
+        const double f = glm::dot(n, view);
+        if (!(std::abs(f) > 1e-9 * glm::length(n) * glm::length(view)))
+            return (signed char)0;
+        return f < 0.0 ? (signed char)1 : (signed char)-1;
+    };
+    for (int j = 0; j < cv; ++j)
+        for (int i = 0; i < cu; ++i) {
+            const int ll = j * nu + i, lr = ll + 1, ul = ll + nu, ur = ul + 1;
+            const size_t c = size_t(j * cu + i) * 2;
+            facing[c] = face(ll, lr, ur);
+            facing[c + 1] = face(ll, ur, ul);
+        }
+    const glm::dmat4 inverse = glm::inverse(viewProjection);
+    const glm::dvec2 size(viewport);
+    const auto fin = [&](int a, int b) {
+        const glm::dvec4 ca = viewProjection * glm::dvec4(pos(a), 1.0);
+        const glm::dvec4 cb = viewProjection * glm::dvec4(pos(b), 1.0);
+        if (!(ca.w > 0.0) || !(cb.w > 0.0))
+            return;
+        const glm::dvec2 wa = (glm::dvec2(ca) / ca.w * 0.5 + 0.5) * size;
+        const glm::dvec2 wb = (glm::dvec2(cb) / cb.w * 0.5 + 0.5) * size;
+        const double length = glm::length(wb - wa);
+        if (!(length > 1e-3))
+            return;
+        const glm::dvec2 along = (wb - wa) / length, across(-along.y, along.x);
+        // A window position at the clip depth of `c`, back in model space.
+        const auto lift = [&](const glm::dvec4& c, const glm::dvec2& w) {
+            const glm::dvec2 ndc = w / size * 2.0 - 1.0;
+            const glm::dvec4 h = inverse * glm::dvec4(ndc * c.w, c.z, c.w);
+            return glm::dvec3(h) / h.w;
+        };
+        const unsigned first = unsigned(vertices.size());
+        for (const auto& [node, clip, window, end] :
+             {std::tuple{a, ca, wa, -1.0}, std::tuple{b, cb, wb, 1.0}})
+            for (const double side : {1.0, -1.0}) {
+                SkirtVertex v{poly.vertices[size_t(node)], glm::vec2(0.0f)};
+                v.base.position =
+                    glm::vec3(lift(clip, window + pixels * (end * along + side * across)));
+                vertices.push_back(v);
+            }
+        // a+, a-, b+, b-: two triangles from a's copies (a's span, first-vertex provoking).
+        indices.insert(indices.end(), {first, first + 1, first + 3, first, first + 3, first + 2});
+    };
+    const auto flips = [&](size_t t0, size_t t1) {
+        return facing[t0] * facing[t1] < 0;
+    };
+    for (int j = 0; j < cv; ++j)
+        for (int i = 0; i < cu; ++i) {
+            const int ll = j * nu + i, lr = ll + 1, ul = ll + nu, ur = ul + 1;
+            const size_t c = size_t(j * cu + i) * 2;
+            if (flips(c, c + 1))
+                fin(ll, ur); // the diagonal
+            if (j > 0 && flips(c, size_t((j - 1) * cu + i) * 2 + 1))
+                fin(ll, lr); // the bottom edge: the cell below's upper triangle
+            if (i > 0 && flips(c + 1, size_t(j * cu + i - 1) * 2))
+                fin(ll, ul); // the left edge: the cell to the left's lower triangle
+        }
+}
+
 TessellatedMesh tessellate(const NurbsSurface& s, int nu, int nv) {
     TessellatedMesh m;
     nu = std::max(nu, 1);

@@ -126,6 +126,21 @@ void buildSkirt(const BasePolygon& poly, std::vector<SkirtVertex>& vertices,
 /// The vertices only, for a polygon whose nodes moved (same count and order as buildSkirt's).
 std::vector<SkirtVertex> skirtVertices(const BasePolygon& poly);
 
+/// The silhouette fins of `poly` for one view (docs/RENDERING.md "Silhouette fins"): for each
+/// polygon edge whose two triangles face opposite ways as seen from `eye` (the polygon's
+/// silhouette; triangles of no area count as neither), a quad on screen around the edge,
+/// `pixels` wide on either side and `pixels` past either end, made of SkirtVertex with
+/// outward (0, 0): positions are the edge's end points moved on screen (unprojected through
+/// `viewProjection` at their own clip depth), (u, v), span and span scale are the end point's
+/// own, so the shader's (u, v) runs along the edge and the skirt shader's per-pixel Newton
+/// test keeps only pixels whose ray meets the surface. Two triangles per fin, both starting
+/// at the first end's copies. Edges with an end behind the eye, or seen end on (< 1e-3 px
+/// long), get none. Appends to `vertices` and `indices` (indices count from `vertices`
+/// first element).
+void buildFins(const BasePolygon& poly, const glm::dmat4& viewProjection, const glm::dvec3& eye,
+               glm::ivec2 viewport, double pixels, std::vector<SkirtVertex>& vertices,
+               std::vector<unsigned>& indices);
+
 /// Uniform tessellation for the baseline mode: (nu+1) x (nv+1) grid vertices with the
 /// kernel's exact point and unit normal (kw::surfaceFrame).
 struct TessellatedMesh {

@@ -531,7 +531,7 @@ void GpuScene::release() {
         for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
                            &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
             p->release();
-        for (GLuint* a : {&m_triangleVao, &m_outlineVao, &m_skirtVao})
+        for (GLuint* a : {&m_triangleVao, &m_outlineVao, &m_skirtVao, &m_finVao})
             if (*a)
                 m_gl->glDeleteVertexArrays(1, a), *a = 0;
         for (int k = 0; k < 4; ++k)

@@ -156,6 +156,10 @@ public:
     /// The vertex array of the skirts (kw::SkirtVertex: attributes 0-3 as the triangles', the
     /// outward direction at 5, the surface index at 4 per instance) over the skirt pools.
     GLuint skirtVao() const { return m_skirtVao; }
+    /// A vertex array with the skirts' layout and surface index binding, and no vertex or
+    /// element buffer: the exact pass points binding 0 and the elements at its silhouette
+    /// fins (kw::buildFins), which change with the view.
+    GLuint finVao() const { return m_finVao; }
     /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
     /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
     std::int64_t bufferLimit() const;
@@ -201,7 +205,7 @@ private:
         GLuint buffer = 0, instances = 0;
         int capacity = 0;
     } m_table;
-    GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0;
+    GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0, m_finVao = 0;
     /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
     GLuint m_views[4] = {0, 0, 0, 0};
     TrimMaskPass m_masks;

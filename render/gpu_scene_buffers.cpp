@@ -101,15 +101,16 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
         baseAttributes(m_triangleVao, 0, true);
         baseAttributes(m_outlineVao, 0, false);
     }
-    if (!m_skirtVao) {
-        // SkirtVertex: its BaseVertex, then the outward (u, v) direction at 5.
-        gl->glCreateVertexArrays(1, &m_skirtVao);
-        baseAttributes(m_skirtVao, offsetof(SkirtVertex, base), true);
-        gl->glEnableVertexArrayAttrib(m_skirtVao, 5);
-        gl->glVertexArrayAttribBinding(m_skirtVao, 5, 0);
-        gl->glVertexArrayAttribFormat(m_skirtVao, 5, 2, GL_FLOAT, GL_FALSE,
-                                      offsetof(SkirtVertex, outward));
-    }
+    for (GLuint* vao : {&m_skirtVao, &m_finVao})
+        if (!*vao) {
+            // SkirtVertex: its BaseVertex, then the outward (u, v) direction at 5.
+            gl->glCreateVertexArrays(1, vao);
+            baseAttributes(*vao, offsetof(SkirtVertex, base), true);
+            gl->glEnableVertexArrayAttrib(*vao, 5);
+            gl->glVertexArrayAttribBinding(*vao, 5, 0);
+            gl->glVertexArrayAttribFormat(*vao, 5, 2, GL_FLOAT, GL_FALSE,
+                                          offsetof(SkirtVertex, outward));
+        }
     const GLuint buffers[4] = {t.buffer, t.buffer, m_pools.control.buffer(),
                                m_pools.spans.buffer()};
     const GLenum formats[4] = {GL_RGBA32F, GL_RGBA32I, GL_RGBA32F, GL_RGBA32F};
@@ -127,6 +128,7 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
     gl->glVertexArrayVertexBuffer(m_skirtVao, 0, m_pools.skirtVertices.buffer(), 0,
                                   sizeof(SkirtVertex));
     gl->glVertexArrayVertexBuffer(m_skirtVao, 1, t.instances, 0, sizeof(int));
+    gl->glVertexArrayVertexBuffer(m_finVao, 1, t.instances, 0, sizeof(int));
     gl->glVertexArrayElementBuffer(m_skirtVao, m_pools.skirtIndices.buffer());
     gl->glVertexArrayElementBuffer(m_triangleVao, m_pools.triangles.buffer());
     gl->glVertexArrayElementBuffer(m_outlineVao, m_pools.outlines.buffer());

@@ -1,6 +1,7 @@
 // Render data layouts without GL: span tables reproduce the kernel's basis functions, base
 // polygon cells lie in one knot span each, partial vertex updates equal a rebuild,
 // the pixels-per-cell estimate behind the per-cell gather choice.
+#include "model/nurbs_shapes.h"
 #include "render/exact_surface_pass.h"
 #include "render/gpu_layout.h"
 #include "render/gpu_pool.h"
@@ -138,6 +139,66 @@ private Q_SLOTS:
             QVERIFY(glm::length(poly.vertices[k].position - fresh.vertices[k].position) < 1e-6f);
             QCOMPARE(poly.vertices[k].spanScale, fresh.vertices[k].spanScale);
         }
+    }
+
+    /// Silhouette fins: one quad per polygon edge whose triangles face opposite ways, around
+    /// the edge on screen; none on a patch whose triangles all face the eye.
+    void finsFollowTheSilhouette() {
+        const NurbsSurface sphere = makeSphere({0, 0, 0}, 1.0);
+        const BasePolygon poly = buildBasePolygon(sphere, 16, 8);
+        const glm::dvec3 eye(0.3, -5.0, 0.8);
+        const glm::ivec2 viewport(512, 512);
+        const glm::dmat4 vp = glm::perspective(glm::radians(40.0), 1.0, 0.1, 100.0) *
+                              glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
+        const auto window = [&](const glm::vec3& p) {
+            const glm::dvec4 c = vp * glm::dvec4(glm::dvec3(p), 1.0);
+            return (glm::dvec2(c) / c.w * 0.5 + 0.5) * glm::dvec2(viewport);
+        };
+        std::vector<SkirtVertex> vertices;
+        std::vector<unsigned> indices;
+        const double pixels = 1.5;
+        buildFins(poly, vp, eye, viewport, pixels, vertices, indices);
+        QCOMPARE(vertices.size() % 4, size_t(0));
+        QCOMPARE(indices.size(), vertices.size() / 4 * 6);
+        // The outline of 16 x 8 cells around the sphere: at least one fin per column.
+        QVERIFY2(vertices.size() / 4 >= 16, qPrintable(QString::number(vertices.size() / 4)));
+        for (size_t f = 0; f < vertices.size(); f += 4) {
+            const SkirtVertex &aUp = vertices[f], &aDown = vertices[f + 1];
+            const SkirtVertex &bUp = vertices[f + 2], &bDown = vertices[f + 3];
+            QCOMPARE(indices[f / 4 * 6], unsigned(f));
+            for (const SkirtVertex* v : {&aUp, &aDown, &bUp, &bDown})
+                QCOMPARE(v->outward, glm::vec2(0.0f));
+            QCOMPARE(aUp.base.uv, aDown.base.uv);
+            QCOMPARE(bUp.base.uv, bDown.base.uv);
+            // The edge's ends lie where the view grazes the sphere: the normal (the point,
+            // on a unit sphere at the origin) nearly square to the ray (cells of 22.5 deg).
+            for (const SkirtVertex* v : {&aUp, &bUp}) {
+                const glm::dvec3 p = surfacePoint(sphere, v->base.uv.x, v->base.uv.y);
+                QVERIFY(std::abs(glm::dot(glm::normalize(p - eye), glm::normalize(p))) < 0.45);
+            }
+            // 2 x pixels apart across the edge, and pushed `pixels` past each end.
+            QVERIFY(std::abs(glm::length(window(aUp.base.position) - window(aDown.base.position)) -
+                             2.0 * pixels) < 1e-2);
+            const glm::dvec2 a = 0.5 * (window(aUp.base.position) + window(aDown.base.position));
+            const glm::dvec2 b = 0.5 * (window(bUp.base.position) + window(bDown.base.position));
+            const glm::dvec3 pa = surfacePoint(sphere, aUp.base.uv.x, aUp.base.uv.y);
+            const glm::dvec3 pb = surfacePoint(sphere, bUp.base.uv.x, bUp.base.uv.y);
+            const double edge = glm::length(window(glm::vec3(pb)) - window(glm::vec3(pa)));
+            QVERIFY(std::abs(glm::length(b - a) - (edge + 2.0 * pixels)) < 1e-2);
+        }
+        // A flat patch seen from above: every triangle faces the eye, no fin.
+        NurbsSurface flat =
+            kwtest::wavyPatch(3, 2, kwtest::clampedUniform(3, 6), kwtest::clampedUniform(2, 4));
+        for (glm::dvec3& p : flat.points)
+            p.z = 0.0;
+        vertices.clear();
+        indices.clear();
+        buildFins(buildBasePolygon(flat, 9, 7),
+                  glm::perspective(glm::radians(40.0), 1.0, 0.1, 100.0) *
+                      glm::lookAt(glm::dvec3(0.5, 0.4, 3.0), glm::dvec3(0.5, 0.5, 0.0),
+                                  glm::dvec3(0, 1, 0)),
+                  glm::dvec3(0.5, 0.4, 3.0), viewport, pixels, vertices, indices);
+        QVERIFY(vertices.empty() && indices.empty());
     }
 
     /// The skirt (issue 10 item 4): one quad per boundary segment of the outline, inner nodes
