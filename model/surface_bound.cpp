@@ -406,7 +406,7 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
 
 PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
                              const Interval& boxV, const ScreenScale& scale, double pixelTolerance,
-                             int minU, int minV, int visibleU, int visibleV) {
+                             int minU, int minV) {
     PartitionChoice c;
     const Interval box[2] = {boxU, boxV};
     const int minimum[2] = {std::clamp(minU, kMinPartitions, kMaxPartitions),
@@ -483,33 +483,6 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
                 byLane[1][size_t(e.lane[1])].push_back(int(entries.size()));
                 entries.push_back(e);
             }
-    // Lanes on screen keep at least visibleU (visibleV) cells across the box's width.
-    const int visible[2] = {visibleU, visibleV};
-    if (visible[0] > 0 || visible[1] > 0) {
-        for (const Entry& e : entries) {
-            double cell[2];
-            for (int d = 0; d < 2; ++d) {
-                const double w = width[d][size_t(e.lane[d])];
-                cell[d] = visible[d] > 0 ? std::min(w, (box[d].last - box[d].first) / visible[d])
-                                         : w / low[d][size_t(e.lane[d])];
-            }
-            const double deviation = cellDeviationBound(e.m, cell[0], cell[1]);
-            if (scale.cullOutsideView &&
-                boxOutsideFrustum(scale.viewProjection, e.lo - glm::dvec3(deviation),
-                                  e.hi + glm::dvec3(deviation)))
-                continue;
-            for (int d = 0; d < 2; ++d) {
-                const size_t k = size_t(e.lane[d]);
-                if (visible[d] > 0) {
-                    const int n = int(std::ceil(width[d][k] / cell[d] - 1e-9));
-                    low[d][k] = std::max(low[d][k], n);
-                    high[d][k] = std::max(high[d][k], low[d][k]);
-                }
-            }
-        }
-        count[0] = low[0];
-        count[1] = low[1];
-    }
     // The screen bound of an entry's cells at the current counts (0 when never on screen).
     struct Score {
         double pixels = 0.0, uPart = 0.0, vPart = 0.0, du = 0.0, dv = 0.0;

@@ -138,14 +138,11 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
 /// counts are the fewest, column by column and row by row, for which every cell lies within
 /// `pixelTolerance` pixels on screen by cellDeviationBound and screenDistanceBound; cells are
 /// at most 1 / minU of the box's width (1 / minV of its height) and at least 1 / kMaxPartitions
-/// (then `met` is false where that does not reach the tolerance). With visibleU (visibleV)
-/// > 0, a column (row) holding a sub-rectangle that is on screen keeps cells at most
-/// 1 / visibleU (1 / visibleV) of the box wide: the polygon is then at least as fine as the
-/// uniform nu x nv = visibleU x visibleV wherever it is seen, and coarse only where it is not.
-/// Returns the breaks and nu, nv as the cell counts along u and v.
+/// (then `met` is false where that does not reach the tolerance). Returns the breaks and
+/// nu, nv as the cell counts along u and v.
 PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
                              const Interval& boxV, const ScreenScale& scale, double pixelTolerance,
-                             int minU = 1, int minV = 1, int visibleU = 0, int visibleV = 0);
+                             int minU = 1, int minV = 1);
 
 /// The screen deviation bound of the base polygon at (nu, nv) (the largest over the spans).
 double partitionBoundPixels(const std::vector<SpanBound>& spans, const Interval& domainU,

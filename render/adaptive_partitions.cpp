@@ -27,14 +27,10 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
     PartitionChoice uniform = choosePartitions(spans, box.u, box.v, scale, tolerance, minU, minV);
     uniform.breaksU = cellBreaks(s.knotsU, uniform.nu, box.u);
     uniform.breaksV = cellBreaks(s.knotsV, uniform.nv, box.v);
-    // At least as fine as the uniform choice wherever a sub-rectangle is on screen: the
-    // tensor grid saves only the cells nobody sees (a close-up of a large face). Coarser
-    // visible cells would still be within the bound, but the bound's slack is what keeps
-    // silhouette pixel centres covered: the base polygon's silhouette lies inside the exact
-    // one by up to the tolerance, and nothing but the polygon covers pixels there (the
-    // skirts run along the outline only; docs/PERFORMANCE.md ## Edges).
-    PartitionChoice tensor =
-        chooseBreaks(spans, box.u, box.v, scale, tolerance, minU, minV, uniform.nu, uniform.nv);
+    // Both meet the tolerance; the tensor grid leaves coarse what needs little or is not
+    // seen. Its coarser cells put the polygon's silhouettes nearer the full tolerance inside
+    // the exact ones: the silhouette fins (kw::buildFins) cover the pixel centres there.
+    PartitionChoice tensor = chooseBreaks(spans, box.u, box.v, scale, tolerance, minU, minV);
     const auto cells = [](const PartitionChoice& c) {
         return std::int64_t(c.breaksU.size() - 1) * std::int64_t(c.breaksV.size() - 1);
     };
