@@ -160,12 +160,10 @@ private Q_SLOTS:
             }
             qInfo("zoom %g: %lld cells (uniform choice %lld), bound %.3f px, measured %.3f px",
                   zoom, (long long)cells, (long long)uniformCells, worstBound, worstMeasured);
-            // Never more than the uniform choice; closer up, where the patches reach off
-            // screen, the tensor grid leaves what is not seen coarse (measured: 0.71 x at
-            // zoom 3, 0.78 x at zoom 8).
-            QVERIFY(cells <= uniformCells);
-            if (zoom > 1.0)
-                QVERIFY(cells < uniformCells);
+            // The tensor grid leaves coarse what needs little (the flatter spans) or is not
+            // seen (closer up, where the patches reach off screen): measured 0.40 x the
+            // uniform choice's cells at zoom 1, 0.27 x at 3, 0.20 x at 8.
+            QVERIFY(2 * cells < uniformCells);
             QCOMPARE(r.partitions.cells, cells);
             QCOMPARE(r.partitions.worstBoundPixels, worstBound);
             QVERIFY(worstBound <= m_options.pixelTolerance);
