@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace kw {
 namespace {
@@ -404,6 +405,11 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
     return c;
 }
 
+namespace {
+/// The most cells chooseBreaks gives one surface: as many as the uniform choice's largest.
+constexpr std::int64_t kMaxCells = std::int64_t(kMaxPartitions) * kMaxPartitions;
+} // namespace
+
 PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
                              const Interval& boxV, const ScreenScale& scale, double pixelTolerance,
                              int minU, int minV) {
@@ -443,7 +449,7 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
             const int lo = std::max(1, int(std::ceil(w * minimum[d] / whole - 1e-9)));
             width[d].push_back(w);
             low[d].push_back(lo);
-            high[d].push_back(std::max(lo, int(std::ceil(w * kMaxPartitions / whole - 1e-9))));
+            high[d].push_back(std::max(lo, kMaxPartitions));
         }
         count[d] = low[d];
     }
@@ -530,8 +536,14 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
         }
         if (!over)
             break;
-        if (want[0] == count[0] && want[1] == count[1]) {
-            c.met = false; // every such cell is at kMaxPartitions in both directions
+        const auto total = [](const std::vector<int>& n) {
+            return std::int64_t(std::accumulate(n.begin(), n.end(), 0));
+        };
+        if ((want[0] == count[0] && want[1] == count[1]) ||
+            total(want[0]) * total(want[1]) > kMaxCells) {
+            // Every such cell is at kMaxPartitions in both directions, or the grid would pass
+            // the uniform choice's largest.
+            c.met = false;
             break;
         }
         count[0] = std::move(want[0]);

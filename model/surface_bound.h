@@ -137,8 +137,10 @@ PartitionChoice choosePartitions(const std::vector<SpanBound>& spans, const Inte
 /// rows are cut, the grid has no T-junctions: neighbouring cells share their corners. The
 /// counts are the fewest, column by column and row by row, for which every cell lies within
 /// `pixelTolerance` pixels on screen by cellDeviationBound and screenDistanceBound; cells are
-/// at most 1 / minU of the box's width (1 / minV of its height) and at least 1 / kMaxPartitions
-/// (then `met` is false where that does not reach the tolerance). Returns the breaks and
+/// at most 1 / minU of the box's width (1 / minV of its height). A column or row holds at most
+/// kMaxPartitions cells, and the grid at most kMaxPartitions^2 (the uniform choice's largest),
+/// so a close-up can put more cells where it looks than the uniform choice can; `met` is false
+/// where that does not reach the tolerance. Returns the breaks and
 /// nu, nv as the cell counts along u and v.
 PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval& boxU,
                              const Interval& boxV, const ScreenScale& scale, double pixelTolerance,

@@ -174,6 +174,36 @@ private Q_SLOTS:
         }
     }
 
+    // A close-up of a sphere that the uniform choice cannot bring within the tolerance at
+    // 256 x 256 (its cells are the same everywhere): the tensor grid can, with fewer cells.
+    void closeUpMeetsTheBoundWhereUniformCannot() {
+        QString error;
+        Document doc;
+        Scene scene;
+        scene.surfaces.push_back(kwtest::makeSurface(1, makeSphere({0, 0, 0}, 1.0), 1));
+        scene.nextId = 2;
+        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        const double aspect = double(kSize.width()) / kSize.height();
+        const Camera camera =
+            zoomedCamera(fitCamera(doc.scene(), aspect), 24.0, glm::dvec2(0.5), aspect);
+        const FrameReport r = frame(doc, camera);
+        QVERIFY2(r.ok, qPrintable(r.error));
+        const Surface& s = doc.scene().surfaces[0];
+        const PartitionChoice u = choosePartitions(
+            surfaceSpanBounds(s.geometry, 4), surfaceDomainU(s.geometry),
+            surfaceDomainV(s.geometry), frameScreenScale(frameOf(doc.scene(), camera)),
+            m_options.pixelTolerance);
+        qInfo("sphere at 24x: uniform %d x %d (%.3f px, met %d); drawn %lld cells, %.3f px, "
+              "unmet %d",
+              u.nu, u.nv, u.boundPixels, int(u.met), (long long)r.partitions.cells,
+              r.partitions.worstBoundPixels, r.partitions.unmet);
+        QVERIFY(!u.met);
+        QCOMPARE(r.partitions.unmet, 0);
+        QVERIFY(r.partitions.worstBoundPixels <= m_options.pixelTolerance);
+        QVERIFY(r.partitions.cells < std::int64_t(u.nu) * u.nv);
+        QVERIFY(r.warnings.isEmpty());
+    }
+
     // Only what changed is evaluated and rebuilt.
     void retessellatesOnlyWhatChanged() {
         QString error;

@@ -114,6 +114,7 @@ private Q_SLOTS:
     void partitionsFollowZoom();
     void chosenBreaksMeetTolerance();
     void breaksStayCoarseOffScreen();
+    void breaksMeetWhereUniformCannot();
 };
 
 void TstSurfaceBound::secondDerivativesWithinBoundEverywhere() {
@@ -402,6 +403,35 @@ void TstSurfaceBound::breaksStayCoarseOffScreen() {
         }
     QVERIFY(seen > 20);
     QVERIFY(widest > 10.0 * widestSeen);
+}
+
+// Closer still: the uniform choice cannot meet the tolerance within 256 x 256 (its cells are
+// the same everywhere), the tensor grid can, by putting its cells where the view looks.
+void TstSurfaceBound::breaksMeetWhereUniformCannot() {
+    const NurbsSurface s = makeSphere({0, 0, 0}, 1.0);
+    Camera cam;
+    cam.eye = {0.0, -4.0, 0.3};
+    cam.target = {0.0, -1.0, 0.3};
+    cam.fovYDegrees = 6.0;
+    const int w = 512, h = 512;
+    ScreenScale scale = screenScale(cam, w, h, 0.01);
+    scale.cullOutsideView = true;
+    scale.viewProjection =
+        glm::perspective(glm::radians(cam.fovYDegrees), double(w) / double(h), 0.01, 100.0) *
+        glm::lookAt(cam.eye, cam.target, cam.up);
+    const std::vector<SpanBound> spans = surfaceSpanBounds(s, 4);
+    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
+    const PartitionChoice u = choosePartitions(spans, du, dv, scale, 0.5);
+    const PartitionChoice t = chooseBreaks(spans, du, dv, scale, 0.5);
+    qDebug("closer: uniform %d x %d (%.3f px, met %d), breaks %d x %d (%.3f px, met %d)", u.nu,
+           u.nv, u.boundPixels, int(u.met), t.nu, t.nv, t.boundPixels, int(t.met));
+    QVERIFY(!u.met);
+    QVERIFY(t.met);
+    QVERIFY(t.boundPixels <= 0.5);
+    QVERIFY(cells(t) <= std::int64_t(kMaxPartitions) * kMaxPartitions);
+    const double measured =
+        measuredScreenDeviation(s, cam, w, h, t.breaksU, t.breaksV, /*onScreenOnly=*/true);
+    QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
 }
 
 QTEST_GUILESS_MAIN(TstSurfaceBound)
