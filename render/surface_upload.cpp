@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace kw {
@@ -102,9 +101,6 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
     int first = 0, last = -1;
-    const bool hasSkirt = g.skirtVertexOffset >= 0;
-    const std::vector<SkirtVertex> skirtBefore =
-        hasSkirt ? skirtVertices(g.polygon) : std::vector<SkirtVertex>{};
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
         const std::int64_t count = last - first + 1;
         pools.vertices.write(g.vertexOffset + first, count,
@@ -113,30 +109,34 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
         stats.vertexUpdates += 1;
         stats.vertexBytes += size;
         stats.bytes += size;
-        if (!hasSkirt)
+        if (g.skirtVertexOffset < 0)
             return;
-        // The skirt repeats the outline's nodes: only the runs of its vertices that moved (a
-        // moved point reaches the outline in at most a few places).
+        // The skirt repeats the outline's nodes, two vertices each, side by side (bottom,
+        // right, top, left; kw::skirtVertices): rewrite the runs of the sides that pass
+        // through the rectangle of nodes updateBasePolygon re-evaluated (first and last are
+        // its corners), a few per boundary node a moved point reaches.
+        const int nu = g.polygon.nodesU(), nv = int(g.polygon.breaksV.size());
+        const int gu0 = first % nu, gv0 = first / nu, gu1 = last % nu, gv1 = last / nu;
         const std::vector<SkirtVertex> skirt = skirtVertices(g.polygon);
-        if (skirt.size() != skirtBefore.size())
-            return;
-        const auto moved = [&](size_t k) {
-            return std::memcmp(&skirt[k], &skirtBefore[k], sizeof(SkirtVertex)) != 0;
-        };
-        for (size_t k = 0; k < skirt.size();) {
-            if (!moved(k)) {
-                ++k;
-                continue;
-            }
-            size_t end = k + 1;
-            while (end < skirt.size() && moved(end))
-                ++end;
-            const std::int64_t n = std::int64_t(end - k);
-            pools.skirtVertices.write(g.skirtVertexOffset + std::int64_t(k), n, skirt.data() + k);
+        const auto run = [&](std::int64_t side, int k0, int k1) {
+            const std::int64_t at = side + 2 * std::int64_t(k0);
+            const std::int64_t n = 2 * std::int64_t(k1 - k0 + 1);
+            if (at < 0 || at + n > std::int64_t(skirt.size()))
+                return;
+            pools.skirtVertices.write(g.skirtVertexOffset + at, n, skirt.data() + at);
             stats.vertexBytes += n * std::int64_t(sizeof(SkirtVertex));
             stats.bytes += n * std::int64_t(sizeof(SkirtVertex));
-            k = end;
-        }
+        };
+        const std::int64_t right = 2 * std::int64_t(nu), top = right + 2 * std::int64_t(nv),
+                           left = top + 2 * std::int64_t(nu);
+        if (gv0 == 0)
+            run(0, gu0, gu1);
+        if (gu1 == nu - 1)
+            run(right, gv0, gv1);
+        if (gv1 == nv - 1)
+            run(top, gu0, gu1);
+        if (gu0 == 0)
+            run(left, gv0, gv1);
     }
 }
 
