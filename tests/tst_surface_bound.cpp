@@ -361,30 +361,46 @@ void TstSurfaceBound::chosenBreaksMeetTolerance() {
         qPrintable(QString("%1 x %2 against %3 x %4").arg(t.nu).arg(t.nv).arg(u.nu).arg(u.nv)));
 }
 
+/// A unit sphere seen from `eye` towards (0, -1, 0.3) through a field of view of `fov` degrees
+/// at 512 x 512, off-screen parts culled: both cuts for a 0.5 px tolerance.
+struct SphereView {
+    NurbsSurface sphere = makeSphere({0, 0, 0}, 1.0);
+    Camera cam;
+    PartitionChoice uniform, breaks;
+    static constexpr int w = 512, h = 512;
+    SphereView(const glm::dvec3& eye, double fov) {
+        cam.eye = eye;
+        cam.target = {0.0, -1.0, 0.3};
+        cam.fovYDegrees = fov;
+        ScreenScale scale = screenScale(cam, w, h, 0.01);
+        scale.cullOutsideView = true;
+        scale.viewProjection =
+            glm::perspective(glm::radians(fov), double(w) / double(h), 0.01, 100.0) *
+            glm::lookAt(cam.eye, cam.target, cam.up);
+        const std::vector<SpanBound> spans = surfaceSpanBounds(sphere, 4);
+        const Interval du = surfaceDomainU(sphere), dv = surfaceDomainV(sphere);
+        uniform = choosePartitions(spans, du, dv, scale, 0.5);
+        breaks = chooseBreaks(spans, du, dv, scale, 0.5);
+        qDebug("sphere from (%g, %g, %g) at %g deg: uniform %d x %d (%.3f px, met %d), breaks "
+               "%d x %d (%.3f px, met %d)",
+               eye.x, eye.y, eye.z, fov, uniform.nu, uniform.nv, uniform.boundPixels,
+               int(uniform.met), breaks.nu, breaks.nv, breaks.boundPixels, int(breaks.met));
+    }
+    /// The largest sampled deviation of the breaks' cells that have a point on screen.
+    double measuredOnScreen() const {
+        return measuredScreenDeviation(sphere, cam, w, h, breaks.breaksU, breaks.breaksV,
+                                       /*onScreenOnly=*/true);
+    }
+};
+
 // A close-up of a sphere: the cells on screen are within the tolerance, and most of the
 // sphere, off screen, takes few cells (the uniform choice refines it all).
 void TstSurfaceBound::breaksStayCoarseOffScreen() {
-    const NurbsSurface s = makeSphere({0, 0, 0}, 1.0);
-    Camera cam;
-    cam.eye = {0.0, -10.0, 0.3};
-    cam.target = {0.0, -1.0, 0.3};
-    cam.fovYDegrees = 4.0;
-    const int w = 512, h = 512;
-    ScreenScale scale = screenScale(cam, w, h, 0.01);
-    scale.cullOutsideView = true;
-    scale.viewProjection =
-        glm::perspective(glm::radians(cam.fovYDegrees), double(w) / double(h), 0.01, 100.0) *
-        glm::lookAt(cam.eye, cam.target, cam.up);
-    const std::vector<SpanBound> spans = surfaceSpanBounds(s, 4);
-    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
-    const PartitionChoice u = choosePartitions(spans, du, dv, scale, 0.5);
-    const PartitionChoice t = chooseBreaks(spans, du, dv, scale, 0.5);
-    qDebug("close-up: uniform %d x %d (%.3f px, met %d), breaks %d x %d (%.3f px, met %d)", u.nu,
-           u.nv, u.boundPixels, int(u.met), t.nu, t.nv, t.boundPixels, int(t.met));
+    const SphereView view({0.0, -10.0, 0.3}, 4.0);
+    const PartitionChoice &u = view.uniform, &t = view.breaks;
     QVERIFY(u.met && t.met);
     QVERIFY(4 * cells(t) < std::int64_t(u.nu) * u.nv);
-    const double measured =
-        measuredScreenDeviation(s, cam, w, h, t.breaksU, t.breaksV, /*onScreenOnly=*/true);
+    const double measured = view.measuredOnScreen();
     QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
     // Off screen the cells are far wider than on screen.
     double widestSeen = 0.0, widest = 0.0;
@@ -393,10 +409,11 @@ void TstSurfaceBound::breaksStayCoarseOffScreen() {
         for (size_t j = 0; j + 1 < t.breaksV.size(); ++j) {
             const double width = t.breaksU[i + 1] - t.breaksU[i];
             widest = std::max(widest, width);
-            const glm::dvec2 c = project(cam, w, h,
-                                         surfacePoint(s, 0.5 * (t.breaksU[i] + t.breaksU[i + 1]),
-                                                      0.5 * (t.breaksV[j] + t.breaksV[j + 1])));
-            if (c.x < 0 || c.y < 0 || c.x > w || c.y > h)
+            const glm::dvec2 c =
+                project(view.cam, view.w, view.h,
+                        surfacePoint(view.sphere, 0.5 * (t.breaksU[i] + t.breaksU[i + 1]),
+                                     0.5 * (t.breaksV[j] + t.breaksV[j + 1])));
+            if (c.x < 0 || c.y < 0 || c.x > view.w || c.y > view.h)
                 continue;
             ++seen;
             widestSeen = std::max(widestSeen, width);
@@ -408,29 +425,12 @@ void TstSurfaceBound::breaksStayCoarseOffScreen() {
 // Closer still: the uniform choice cannot meet the tolerance within 256 x 256 (its cells are
 // the same everywhere), the tensor grid can, by putting its cells where the view looks.
 void TstSurfaceBound::breaksMeetWhereUniformCannot() {
-    const NurbsSurface s = makeSphere({0, 0, 0}, 1.0);
-    Camera cam;
-    cam.eye = {0.0, -4.0, 0.3};
-    cam.target = {0.0, -1.0, 0.3};
-    cam.fovYDegrees = 6.0;
-    const int w = 512, h = 512;
-    ScreenScale scale = screenScale(cam, w, h, 0.01);
-    scale.cullOutsideView = true;
-    scale.viewProjection =
-        glm::perspective(glm::radians(cam.fovYDegrees), double(w) / double(h), 0.01, 100.0) *
-        glm::lookAt(cam.eye, cam.target, cam.up);
-    const std::vector<SpanBound> spans = surfaceSpanBounds(s, 4);
-    const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
-    const PartitionChoice u = choosePartitions(spans, du, dv, scale, 0.5);
-    const PartitionChoice t = chooseBreaks(spans, du, dv, scale, 0.5);
-    qDebug("closer: uniform %d x %d (%.3f px, met %d), breaks %d x %d (%.3f px, met %d)", u.nu,
-           u.nv, u.boundPixels, int(u.met), t.nu, t.nv, t.boundPixels, int(t.met));
-    QVERIFY(!u.met);
-    QVERIFY(t.met);
-    QVERIFY(t.boundPixels <= 0.5);
-    QVERIFY(cells(t) <= std::int64_t(kMaxPartitions) * kMaxPartitions);
-    const double measured =
-        measuredScreenDeviation(s, cam, w, h, t.breaksU, t.breaksV, /*onScreenOnly=*/true);
+    const SphereView view({0.0, -4.0, 0.3}, 6.0);
+    QVERIFY(!view.uniform.met);
+    QVERIFY(view.breaks.met);
+    QVERIFY(view.breaks.boundPixels <= 0.5);
+    QVERIFY(cells(view.breaks) <= std::int64_t(kMaxPartitions) * kMaxPartitions);
+    const double measured = view.measuredOnScreen();
     QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
 }
 
