@@ -441,15 +441,14 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
         return c;
     }
     std::vector<double> width[2];
-    std::vector<int> count[2], low[2], high[2];
+    std::vector<int> count[2], low[2];
     for (int d = 0; d < 2; ++d) {
         const double whole = box[d].last - box[d].first;
         for (int k = 0; k < lanes[d]; ++k) {
             const double w = edges[d][size_t(k + 1)] - edges[d][size_t(k)];
             const int lo = std::max(1, int(std::ceil(w * minimum[d] / whole - 1e-9)));
-            width[d].push_back(w);
+            width[d].push_back(w); // lo <= minimum[d] <= kMaxPartitions
             low[d].push_back(lo);
-            high[d].push_back(std::max(lo, kMaxPartitions));
         }
         count[d] = low[d];
     }
@@ -519,14 +518,14 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
                 continue;
             over = true;
             const int ku = e.lane[0], kv = e.lane[1];
-            const bool canU = count[0][size_t(ku)] < high[0][size_t(ku)];
-            const bool canV = count[1][size_t(kv)] < high[1][size_t(kv)];
+            const bool canU = count[0][size_t(ku)] < kMaxPartitions;
+            const bool canV = count[1][size_t(kv)] < kMaxPartitions;
             const double shrink = std::sqrt(sc.pixels / pixelTolerance);
             const double total = sc.uPart + sc.vPart;
             const auto grow = [&](int d, int k, double cell) {
                 const double target = std::ceil(width[d][size_t(k)] / (cell / shrink));
-                const int n = int(std::clamp(target, double(count[d][size_t(k)] + 1),
-                                             double(high[d][size_t(k)])));
+                const int n = int(
+                    std::clamp(target, double(count[d][size_t(k)] + 1), double(kMaxPartitions)));
                 want[d][size_t(k)] = std::max(want[d][size_t(k)], n);
             };
             if (canU && (sc.uPart >= 0.25 * total || !canV))

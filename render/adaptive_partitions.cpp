@@ -34,8 +34,7 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
     const auto cells = [](const PartitionChoice& c) {
         return std::int64_t(c.breaksU.size() - 1) * std::int64_t(c.breaksV.size() - 1);
     };
-    if (!tensor.met || tensor.breaksU.size() < 2 || tensor.breaksV.size() < 2 ||
-        (uniform.met && cells(uniform) <= cells(tensor)))
+    if (!tensor.met || (uniform.met && cells(uniform) <= cells(tensor)))
         return uniform;
     return tensor;
 }
