@@ -75,8 +75,12 @@ const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const 
         stale = true;
     }
     if (stale) {
-        m_choice = chooseCut(g, m_inBox, box, scale, tolerance, minU, minV);
-        m_cut = PolygonCut{m_choice.nu, m_choice.nv, m_choice.breaksU, m_choice.breaksV};
+        // The breaks are kept once, in the cut the polygon is built from.
+        PartitionChoice c = chooseCut(g, m_inBox, box, scale, tolerance, minU, minV);
+        m_cut = PolygonCut{c.nu, c.nv, std::move(c.breaksU), std::move(c.breaksV)};
+        c.breaksU.clear();
+        c.breaksV.clear();
+        m_choice = std::move(c);
         m_viewStamp = viewStamp;
         m_minU = minU;
         m_minV = minV;

@@ -35,7 +35,8 @@ class AdaptivePartitions {
 public:
     /// The partitions for `surface` (valid) over `box` seen with `scale`; `viewStamp` changes
     /// whenever the camera, viewport or tolerance does. Recomputes only what is stale; sets
-    /// `recomputed` when the choice was evaluated again (not when it was reused).
+    /// `recomputed` when the choice was evaluated again (not when it was reused). The choice
+    /// returned holds the counts, bound and whether it was met; its breaks are in cut().
     const PartitionChoice& choose(const Surface& surface, const Revisions& rev,
                                   const ParameterBox& box, const ScreenScale& scale,
                                   std::uint64_t viewStamp, double tolerance, int minU, int minV,

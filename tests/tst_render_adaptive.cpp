@@ -54,8 +54,11 @@ std::vector<PartitionChoice> cpuChoices(const Scene& scene, const Camera& camera
     std::vector<PartitionChoice> out;
     for (const Surface& s : scene.surfaces) {
         AdaptivePartitions a;
-        out.push_back(a.choose(s, Revisions{}, trimParameterBox(s), scale, 1, tol, s.partitionsU,
-                               s.partitionsV));
+        PartitionChoice c = a.choose(s, Revisions{}, trimParameterBox(s), scale, 1, tol,
+                                     s.partitionsU, s.partitionsV);
+        c.breaksU = a.cut().breaksU; // the breaks are kept in the cut
+        c.breaksV = a.cut().breaksV;
+        out.push_back(c);
     }
     return out;
 }
