@@ -433,11 +433,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (ok)
         ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                          options, range, error);
+    finTriangles = 0;
     if (ok && !m_skirts.empty())
         ok = skirtPass(scene, camera, lights, options, range, error);
-    finTriangles = 0;
-    if (ok && !m_skirts.empty() && fins)
-        ok = finPass(scene, camera, lights, options, range, error);
     if (ok && aa && !m_edges.empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -500,6 +498,8 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
         for (const DrawCommand& c : b.commands)
             skirtTriangles += c.count / 3;
     }
+    if (ok && fins)
+        ok = finPass(scene, camera, lights, options, range, error);
     scene.bindSurfaceData(); // the triangles' vertex array again
     return ok;
 }
@@ -538,7 +538,6 @@ void ExactSurfacePass::releaseFins() {
     m_finBytes = 0;
     m_fins.clear();
     m_finBatches.clear();
-    m_finCommands.clear();
     m_finLayout.clear();
 }
 
@@ -587,23 +586,24 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
         });
         std::vector<SkirtVertex> vertices;
         std::vector<unsigned> indices;
-        m_finCommands.clear();
+        std::vector<DrawCommand> commands;
         m_finBatches.clear();
         int lastVariant = -1;
         for (const auto& [r, slot, variant] : layout) {
             const Fins& f = m_fins.at(r);
             if (variant != lastVariant) {
                 lastVariant = variant;
-                FinBatch b;
+                Batch b;
                 b.degreeU = variant & 15;
                 b.degreeV = (variant >> 4) & 15;
                 b.trimmed = (variant >> 8) & 1;
-                b.first = std::int64_t(m_finCommands.size());
+                b.first = std::int64_t(commands.size());
                 m_finBatches.push_back(b);
             }
-            m_finCommands.push_back(DrawCommand{GLuint(f.indices.size()), 1, GLuint(indices.size()),
-                                                GLint(vertices.size()), GLuint(slot)});
-            ++m_finBatches.back().count;
+            const DrawCommand c{GLuint(f.indices.size()), 1, GLuint(indices.size()),
+                                GLint(vertices.size()), GLuint(slot)};
+            commands.push_back(c);
+            m_finBatches.back().commands.push_back(c);
             vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
             indices.insert(indices.end(), f.indices.begin(), f.indices.end());
         }
@@ -619,8 +619,8 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
                             vertices.empty() ? nullptr : vertices.data()) +
                      upload(m_finIndexBuffer, indices.size() * sizeof(unsigned),
                             indices.empty() ? nullptr : indices.data()) +
-                     upload(m_finCommandBuffer, m_finCommands.size() * sizeof(DrawCommand),
-                            m_finCommands.empty() ? nullptr : m_finCommands.data());
+                     upload(m_finCommandBuffer, commands.size() * sizeof(DrawCommand),
+                            commands.empty() ? nullptr : commands.data());
     }
     if (m_finBatches.empty())
         return true;
@@ -634,24 +634,19 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
     gl->glBindVertexArray(vao);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_finCommandBuffer);
     bool ok = true;
-    for (const FinBatch& b : m_finBatches) {
+    for (const Batch& b : m_finBatches) {
         if (!bindSkirtProgram(b.degreeU, b.degreeV, b.trimmed, scene, camera, lights, options,
                               range, error)) {
             ok = false;
             break;
         }
-        Batch batch;
-        batch.commands.assign(m_finCommands.begin() + b.first,
-                              m_finCommands.begin() + b.first + b.count);
-        batch.first = b.first;
-        drawBatch(batch);
-        for (const DrawCommand& c : batch.commands)
+        drawBatch(b);
+        for (const DrawCommand& c : b.commands)
             finTriangles += c.count / 3;
     }
     skirtTriangles += finTriangles;
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
-    scene.bindSurfaceData();
-    return ok;
+    return ok; // skirtPass binds the triangles' vertex array again
 }
 
 bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,

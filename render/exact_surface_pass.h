@@ -189,13 +189,14 @@ private:
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
                      const RenderOptions& options, const ValueRange& range, QString* error);
-    /// The skirts of every drawn polygon (m_skirts; RenderOptions::edgeSkirts), after the
-    /// opaque passes: they fill only pixels no surface covered nearer.
+    /// The skirts of every drawn polygon (m_skirts; RenderOptions::edgeSkirts), then their
+    /// silhouette fins (finPass), after the opaque passes: they fill only pixels no surface
+    /// covered nearer.
     bool skirtPass(const GpuScene& scene, const FrameCamera& camera,
                    const std::vector<Light>& lights, const RenderOptions& options,
                    const ValueRange& range, QString* error);
     /// The silhouette fins of the skirted records, rebuilt for those whose view or polygon
-    /// changed, drawn with the skirt programs after the skirts.
+    /// changed, drawn with the skirt programs (skirtPass calls it after the skirts).
     bool finPass(const GpuScene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
                  const RenderOptions& options, const ValueRange& range, QString* error);
     void releaseFins();
@@ -248,14 +249,7 @@ private:
     /// grouped by skirt variant (the same programs as m_skirts).
     GLuint m_finVertexBuffer = 0, m_finIndexBuffer = 0, m_finCommandBuffer = 0;
     std::int64_t m_finBytes = 0;
-    struct FinBatch {
-        int degreeU = 1, degreeV = 1;
-        bool trimmed = false;
-        std::int64_t first = 0; ///< in m_finCommandBuffer, in commands
-        std::int64_t count = 0;
-    };
-    std::vector<FinBatch> m_finBatches;
-    std::vector<DrawCommand> m_finCommands;
+    std::vector<Batch> m_finBatches; ///< `first` counts in m_finCommandBuffer
     /// The records, slots and variants the uploaded fins were laid out for.
     std::vector<std::tuple<const SurfaceRecord*, int, int>> m_finLayout;
 };

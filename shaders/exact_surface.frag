@@ -87,7 +87,7 @@ ivec2 kwSpanAt(vec2 uv, ivec2 span) {
 bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
     span = vSpan;
     ivec2 bestSpan = vSpan;
-    vec2 best = uv, trial = uv, bestInside = uv;
+    vec2 best = uv, trial = uv;
     mat2 bestJ = mat2(0.0);
     vec2 bestR = vec2(0.0);
     float bestResidual = 1e30, damping = 0.0;
@@ -114,7 +114,6 @@ bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
                     return false;
                 best = trial;
                 bestSpan = at;
-                bestInside = inside;
                 bestJ = j;
                 bestR = r;
                 bestResidual = residual;
