@@ -488,35 +488,27 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(scene.skirtVao());
     bool ok = true;
-    for (const auto& [key, b] : m_skirts) {
-        if (!bindSkirtProgram(b.degreeU, b.degreeV, b.trimmed, scene, camera, lights, options,
-                              range, error)) {
-            ok = false;
+    for (const auto& [key, b] : m_skirts)
+        if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles, error)))
             break;
-        }
-        drawBatch(b);
-        for (const DrawCommand& c : b.commands)
-            skirtTriangles += c.count / 3;
-    }
     if (ok && fins)
         ok = finPass(scene, camera, lights, options, range, error);
     scene.bindSurfaceData(); // the triangles' vertex array again
     return ok;
 }
 
-QOpenGLShaderProgram* ExactSurfacePass::bindSkirtProgram(int p, int q, bool trimmed,
-                                                         const GpuScene& scene,
-                                                         const FrameCamera& camera,
-                                                         const std::vector<Light>& lights,
-                                                         const RenderOptions& options,
-                                                         const ValueRange& range, QString* error) {
+bool ExactSurfacePass::drawSkirtBatch(const Batch& b, const GpuScene& scene,
+                                      const FrameCamera& camera, const std::vector<Light>& lights,
+                                      const RenderOptions& options, const ValueRange& range,
+                                      std::int64_t& triangles, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = m_shaders->program(
-        QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-        variantDefines(p, q, int(lights.size()), options, trimmed, false, TrimAa::Off, true));
+    QOpenGLShaderProgram* prog =
+        m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                           variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
+                                          b.trimmed, false, TrimAa::Off, true));
     if (!prog) {
         *error = m_shaders->lastError();
-        return nullptr;
+        return false;
     }
     prog->bind();
     setFrameUniforms(gl, prog, camera, lights);
@@ -525,9 +517,12 @@ QOpenGLShaderProgram* ExactSurfacePass::bindSkirtProgram(int p, int q, bool trim
                     float(options.pixelTolerance) + kSkirtMarginPixels);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtDepthScale, skirtDepthScale(camera));
-    if (trimmed)
+    if (b.trimmed)
         scene.trimMasks().bindArray(prog, kTrimMaskUnit);
-    return prog;
+    drawBatch(b);
+    for (const DrawCommand& c : b.commands)
+        triangles += c.count / 3;
+    return true;
 }
 
 void ExactSurfacePass::releaseFins() {
@@ -624,26 +619,17 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
     }
     if (m_finBatches.empty())
         return true;
-    // 3. Drawn as the skirts are (nearer, depth written, pushed back: they fill only pixels
-    // nothing nearer covered), from the fins' own buffers.
-    gl->glDepthFunc(kDepthNearer);
-    gl->glDepthMask(GL_TRUE);
+    // 3. Drawn as the skirts are, in skirtPass's depth state (nearer, depth written, pushed
+    // back: they fill only pixels nothing nearer covered), from the fins' own buffers.
     const GLuint vao = scene.finVao();
     gl->glVertexArrayVertexBuffer(vao, 0, m_finVertexBuffer, 0, sizeof(SkirtVertex));
     gl->glVertexArrayElementBuffer(vao, m_finIndexBuffer);
     gl->glBindVertexArray(vao);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_finCommandBuffer);
     bool ok = true;
-    for (const Batch& b : m_finBatches) {
-        if (!bindSkirtProgram(b.degreeU, b.degreeV, b.trimmed, scene, camera, lights, options,
-                              range, error)) {
-            ok = false;
+    for (const Batch& b : m_finBatches)
+        if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, finTriangles, error)))
             break;
-        }
-        drawBatch(b);
-        for (const DrawCommand& c : b.commands)
-            finTriangles += c.count / 3;
-    }
     skirtTriangles += finTriangles;
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
     return ok; // skirtPass binds the triangles' vertex array again

@@ -16,8 +16,6 @@
 #include <unordered_map>
 #include <vector>
 
-class QOpenGLShaderProgram;
-
 namespace kw {
 
 class ExactSurfacePass {
@@ -200,13 +198,12 @@ private:
     bool finPass(const GpuScene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
                  const RenderOptions& options, const ValueRange& range, QString* error);
     void releaseFins();
-    /// The skirt pass's program for degrees (p, q), bound with its uniforms; nullptr (and
-    /// *error set) when it cannot be built.
-    QOpenGLShaderProgram* bindSkirtProgram(int p, int q, bool trimmed, const GpuScene& scene,
-                                           const FrameCamera& camera,
-                                           const std::vector<Light>& lights,
-                                           const RenderOptions& options, const ValueRange& range,
-                                           QString* error);
+    /// Draws batch `b` (skirts or fins) with the skirt pass's program for its degrees and
+    /// trims, adding its triangles to `triangles`; false (and *error set) when the program
+    /// cannot be built.
+    bool drawSkirtBatch(const Batch& b, const GpuScene& scene, const FrameCamera& camera,
+                        const std::vector<Light>& lights, const RenderOptions& options,
+                        const ValueRange& range, std::int64_t& triangles, QString* error);
     /// The anti-aliased frame's edge pass over m_edges (see draw).
     bool edgePass(const GpuScene& scene, const FrameCamera& camera,
                   const std::vector<Light>& lights, const RenderOptions& options,
