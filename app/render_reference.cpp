@@ -42,7 +42,8 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
     const double pixelAngle =
         2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
         double(gpu.height);
-    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle))
+    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle,
+                              &camera.eye))
         return false;
     const QByteArray json = edgeMetricsJson(m).toUtf8();
     if (jsonPath == QLatin1String("-")) {

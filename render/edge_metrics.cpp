@@ -81,7 +81,8 @@ long long crackPixels(const AovBuffer& frame) {
 }
 
 bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error, double pixelAngle) {
+                          EdgeMetrics& out, QString* error, double pixelAngle,
+                          const glm::dvec3* eye) {
     out = EdgeMetrics{};
     if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
         frame.height <= 0) {
@@ -157,13 +158,23 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
                 silhouetteSum += d;
                 out.silhouetteMaxPixels = std::max(out.silhouetteMaxPixels, d);
             }
+            const int idF = idAt(frame, x, y), idR = idAt(reference, x, y);
+            const float* pf = frame.pixel(x, y);
+            const float* pr = reference.pixel(x, y);
+            if (eye && idF >= 0 && idF == idR) {
+                const glm::dvec3 ray = glm::dvec3(pr[3], pr[4], pr[5]) - *eye;
+                const glm::dvec3 nf(pf[6], pf[7], pf[8]), nr(pr[6], pr[7], pr[8]);
+                const double cr = glm::dot(nr, ray), cf = glm::dot(nf, ray);
+                // The hidden sheet lies behind: a nearer point of the same surface is one the
+                // reference's ray casting missed, not the frame's fault.
+                out.facingDisagreements +=
+                    std::abs(cr) >= 0.01 * glm::length(nr) * glm::length(ray) && cr * cf < 0.0 &&
+                    double(pf[9]) >= double(pr[9]) * (1.0 - 1e-6);
+            }
             if (band[k]) {
                 ++out.edgeBandPixels;
                 continue;
             }
-            const int idF = idAt(frame, x, y), idR = idAt(reference, x, y);
-            const float* pf = frame.pixel(x, y);
-            const float* pr = reference.pixel(x, y);
             if (idF != idR) {
                 const bool tie = idF >= 0 && idR >= 0 &&
                                  std::abs(double(pf[9]) - double(pr[9])) <= depthTolerance;
@@ -215,6 +226,7 @@ QString edgeMetricsJson(const EdgeMetrics& m) {
     o[QStringLiteral("normalMeanDegrees")] = m.normalMeanDegrees;
     o[QStringLiteral("normalP99Degrees")] = m.normalP99Degrees;
     o[QStringLiteral("normalMaxDegrees")] = m.normalMaxDegrees;
+    o[QStringLiteral("facingDisagreements")] = double(m.facingDisagreements);
     return QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Indented));
 }
 

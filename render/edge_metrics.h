@@ -5,6 +5,7 @@
 #include "render/aov_buffer.h"
 
 #include <QString>
+#include <glm/vec3.hpp>
 
 namespace kw {
 
@@ -48,6 +49,14 @@ struct EdgeMetrics {
     double normalMeanDegrees = 0.0;
     double normalP99Degrees = 0.0;
     double normalMaxDegrees = 0.0;
+
+    /// Pixels, edge band included, where both frames show the same surface but the frame's
+    /// normal faces the eye from the other side than the reference's: near a fold (a
+    /// silhouette) the pixel's ray meets the surface twice, and the frame shows the far,
+    /// hidden sheet, which the shading (turned towards the eye) lights as the inside. Counted
+    /// where the reference's normal is at least 0.01 (cosine) off edge-on and the frame's point
+    /// is not nearer than the reference's (then the reference missed it); needs the eye.
+    long long facingDisagreements = 0;
 };
 
 /// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,
@@ -55,8 +64,10 @@ struct EdgeMetrics {
 /// sizes when the two buffers differ in size or are empty.
 /// `pixelAngle` is the angle one pixel spans at the image centre (2 tan(fovY / 2) / height), for
 /// the band's depth jumps; 0 leaves surfaces' silhouettes over themselves out of the band.
+/// `eye` (model space) enables facingDisagreements.
 bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error, double pixelAngle = 0.0);
+                          EdgeMetrics& out, QString* error, double pixelAngle = 0.0,
+                          const glm::dvec3* eye = nullptr);
 
 /// Crack pixels of one frame alone (EdgeMetrics::crackPixels).
 long long crackPixels(const AovBuffer& frame);

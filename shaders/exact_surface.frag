@@ -84,9 +84,10 @@ ivec2 kwSpanAt(vec2 uv, ivec2 span) {
     }
     return span;
 }
-bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
-    span = vSpan;
-    ivec2 bestSpan = vSpan;
+// The Levenberg-Marquardt solve above from `uv` in `span`; `span` ends where the point is, and
+// `found` holds the surface's partials there.
+bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
+    ivec2 bestSpan = span;
     vec2 best = uv, trial = uv;
     mat2 bestJ = mat2(0.0);
     vec2 bestR = vec2(0.0);
@@ -107,6 +108,7 @@ bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
             if (residual < 0.002) {
                 uv = inside;
                 span = at;
+                found = d;
                 return outside <= uSkirtReach;
             }
             if (residual < bestResidual) {
@@ -134,6 +136,88 @@ bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
         trial = best - inverse(m) * (transpose(bestJ) * bestR);
     }
     return false;
+}
+
+// Near a fold (a silhouette) the pixel's ray meets the surface twice, on the sheet in front and
+// on the hidden one behind it, and the solve may end on either; the one behind, lit as if seen
+// (phong turns the normal to the eye), showed as black specks along silhouettes. Which sheet a
+// point is on follows from the normal curvature along the ray's direction t in the tangent
+// plane: the ray's curve through the fold bends towards its centre of curvature, and on the
+// front sheet the normal pointing to that centre points away from the eye (the surface curves
+// away behind its outline). So with n the unit normal, r the ray and II = S_tt . n (estimated
+// from S_t two pixels along t), the point is in front when II (n . r) > 0; an edge-on or flat
+// direction has no fold. On the hidden sheet `restart` is the front one's estimate: the ray's
+// curve is a parabola about the fold, whose two meetings lie 2 |n . r| / |II| apart along t.
+bool kwFrontSheet(vec2 uv, ivec2 span, SurfacePartials d, out vec2 restart) {
+    restart = uv;
+    vec3 p = d.s + uOrigin;
+    vec3 n = cross(d.su, d.sv);
+    vec3 r = p - uEye;
+    float ln = length(n), lr = length(r);
+    if (!(ln > 0.0) || !(lr > 0.0))
+        return true;
+    n /= ln;
+    r /= lr;
+    float c = dot(n, r);
+    vec3 t = r - c * n, b = cross(n, t);
+    float lt = length(t);
+    if (!(lt > 1e-6))
+        return true; // looking straight at it: no fold
+    t /= lt;
+    b /= lt;
+    // The (u, v) directions of unit steps along t and b (least squares through the tangents).
+    float e = dot(d.su, d.su), f = dot(d.su, d.sv), g = dot(d.sv, d.sv);
+    float det = e * g - f * f;
+    if (!(det > 0.0))
+        return true;
+    vec2 wt = vec2(g * dot(d.su, t) - f * dot(d.sv, t), e * dot(d.sv, t) - f * dot(d.su, t)) / det;
+    vec2 wb = vec2(g * dot(d.su, b) - f * dot(d.sv, b), e * dot(d.sv, b) - f * dot(d.su, b)) / det;
+    // Two pixels of length, from the screen rate along b (square to the ray, not foreshortened).
+    vec4 clip = uViewProjection * vec4(p, 1.0);
+    float rate = length(kwWindowTangent(clip, d.su * wb.x + d.sv * wb.y));
+    if (!(rate > 0.0))
+        return true;
+    float h = 2.0 / rate;
+    vec2 there = uv + h * wt;
+    if (any(lessThan(there, uDomain.xz)) || any(greaterThan(there, uDomain.yw)))
+        h = -h, there = uv + h * wt;
+    there = clamp(there, uDomain.xz, uDomain.yw);
+    SurfacePartials d2 = surfacePartials(there, kwSpanAt(there, span));
+    float second = dot((d2.su - d.su) * wt.x + (d2.sv - d.sv) * wt.y, n) / h;
+    if (!(abs(second) > 1e-6 / lr) || second * c > 0.0)
+        return true;
+    restart = uv - 2.0 * abs(c) / abs(second) * wt;
+    return false;
+}
+
+// The point under the pixel on the sheet in front. Where kwFrontSheet finds the solve's point
+// on the hidden sheet, the solve starts again from its estimate of the other meeting, and the
+// nearer of the two points is kept: the criterion holds at folds, but away from one (a saddle's
+// inside, where a skirt fills a seam) the normal curvature along the ray has either sign, so
+// it only says where to look, and the depth decides. The restarts begin at the strip's own
+// span and look the knot span up again as they go.
+bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
+    span = vSpan;
+    vec2 restart;
+    SurfacePartials d;
+    if (!kwSkirtSolve(uv, span, d))
+        return false;
+    if (kwFrontSheet(uv, span, d, restart))
+        return true;
+    vec2 first = uv;
+    ivec2 firstSpan = span;
+    float firstDistance = distance(d.s + uOrigin, uEye);
+    // From the estimate, then from the first point mirrored about the strip's own (u, v) (on
+    // the polygon's edge, near the fold) where that fails.
+    for (int k = 0; k < 2; ++k) {
+        uv = k == 0 ? restart : 2.0 * vUv - first;
+        span = vSpan;
+        if (kwSkirtSolve(uv, span, d) && distance(d.s + uOrigin, uEye) < firstDistance)
+            return true;
+    }
+    uv = first;
+    span = firstSpan;
+    return true;
 }
 #endif
 
@@ -213,6 +297,18 @@ void main() {
         s = evaluateSurface(uv, vSpan, vSpanScale);
     else
         uv = onto;
+    // Near a fold (a silhouette) the polygon's triangle in front can span, in (u, v), past the
+    // fold onto the hidden sheet behind it, and the point found is then the ray's far meeting
+    // with the surface; lit with its normal turned to the eye (phong), it showed as a black
+    // speck along the outline. The sheet a triangle stands for has the triangle's winding on
+    // screen, so a point that faces the eye the other way than its triangle is on the other
+    // sheet. The ray's near meeting mirrors it about the fold: the ray's curve there is a
+    // parabola about the fold, symmetric along the ray, so the near point's normal is this
+    // one with its component along the ray reversed (its depth differs by a fraction of the
+    // pixel's footprint along the ray).
+    vec3 ray = normalize(s.point - uEye);
+    if ((dot(s.normal, ray) < 0.0) != gl_FrontFacing)
+        s.normal -= 2.0 * dot(s.normal, ray) * ray;
 #else
     SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
 #endif

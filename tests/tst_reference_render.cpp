@@ -242,6 +242,21 @@ void TstReferenceRender::metricsOnHandMadeFrames() {
     QVERIFY(compareWithReference(other, reference, 1e-3, m, &error));
     QCOMPARE(m.idDisagreements, 1LL);
     QCOMPARE(m.idCoincident, 0LL);
+    // The normal at the centre tilted past edge-on, so that it faces the eye the other way
+    // (the hidden sheet behind a fold): counted only with the eye given; tilted as far but
+    // towards the eye it agrees.
+    AovBuffer tilted = frameWith(20, 20, square);
+    float* centre = tilted.data.data() + size_t((10 * 20 + 10) * AovBuffer::kChannels);
+    centre[6] = 1.0f;
+    centre[8] = -0.5f;
+    const glm::dvec3 eye(0.3, 0.0, 1.0);
+    QVERIFY(compareWithReference(tilted, reference, 1e-3, m, &error, 0.0, &eye));
+    QCOMPARE(m.facingDisagreements, 1LL);
+    QVERIFY(compareWithReference(tilted, reference, 1e-3, m, &error));
+    QCOMPARE(m.facingDisagreements, 0LL);
+    centre[8] = 1.0f;
+    QVERIFY(compareWithReference(tilted, reference, 1e-3, m, &error, 0.0, &eye));
+    QCOMPARE(m.facingDisagreements, 0LL);
     // The square's right half 1 deeper: the same surface over itself (a torus's rim over its
     // far side). With the pixel's angle known that jump is an edge, and the band grows by the
     // two columns on either side of it (rows 4..15, clipped to the old band's inside).
