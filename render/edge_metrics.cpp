@@ -173,6 +173,8 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
             }
             if (band[k]) {
                 ++out.edgeBandPixels;
+                out.bandBehind += idF >= 0 && idR >= 0 && idF != idR &&
+                                  double(pf[9]) > double(pr[9]) + depthTolerance;
                 continue;
             }
             if (idF != idR) {
@@ -227,6 +229,7 @@ QString edgeMetricsJson(const EdgeMetrics& m) {
     o[QStringLiteral("normalP99Degrees")] = m.normalP99Degrees;
     o[QStringLiteral("normalMaxDegrees")] = m.normalMaxDegrees;
     o[QStringLiteral("facingDisagreements")] = double(m.facingDisagreements);
+    o[QStringLiteral("bandBehind")] = double(m.bandBehind);
     return QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Indented));
 }
 

@@ -57,6 +57,9 @@ struct EdgeMetrics {
     /// where the reference's normal is at least 0.01 (cosine) off edge-on and the frame's point
     /// is not nearer than the reference's (then the reference missed it); needs the eye.
     long long facingDisagreements = 0;
+    /// Edge band pixels showing another surface than the reference, farther than it by more
+    /// than depthTolerance: a face behind showing through along an edge of the one in front.
+    long long bandBehind = 0;
 };
 
 /// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,

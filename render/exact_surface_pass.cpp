@@ -182,13 +182,20 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
                                GLint(g->vertexOffset), GLuint(r.slot)};
     const TrimMask* mask = key.trims ? maskOf(r) : nullptr;
     p.prepassTrimmed = mask != nullptr;
+    if (p.prepassTrimmed)
+        p.prepassKey = g->degreeU | g->degreeV << 4;
     // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
     // costs llvmpipe its early depth test), and no pass draws the cells they remove.
     p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
               g->splitClasses == mask->classSerial;
     if (p.split) {
-        const GLuint inside = GLuint(g->insideIndexCount), edge = GLuint(g->edgeIndexCount);
-        p.awayCells = (g->triangleIndexCount - g->insideIndexCount - g->edgeIndexCount) / 6;
+        // Tested at the point under the pixel, a pixel of a cell the trims remove (its texels
+        // and their neighbours all outside) may still be kept where the grid is finer than
+        // the pixel tolerance on screen: those cells are tested with the ones near a curve.
+        const GLuint inside = GLuint(g->insideIndexCount),
+                     edge = GLuint(key.trimsAtRay ? g->triangleIndexCount - g->insideIndexCount
+                                                  : g->edgeIndexCount);
+        p.awayCells = (g->triangleIndexCount - std::int64_t(inside) - std::int64_t(edge)) / 6;
         commands.inside = commands.all;
         commands.inside.count = inside;
         commands.edge = commands.all;
@@ -221,8 +228,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
     // bits each), trimmed, gather.
     m_plain = Batch{};
-    m_trimmed = Batch{};
-    m_trimmed.trimmed = true;
+    m_trimmedPre.clear();
     m_variants.clear();
     m_edges.clear();
     m_skirts.clear();
@@ -236,7 +242,14 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
-                Batch& pre = p.prepassTrimmed ? m_trimmed : m_plain;
+                if (p.prepassTrimmed) {
+                    const SurfaceGpu& g = *r->exact;
+                    Batch& t = m_trimmedPre[p.prepassKey];
+                    t.trimmed = true;
+                    t.degreeU = g.degreeU;
+                    t.degreeV = g.degreeV;
+                }
+                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey] : m_plain;
                 p.prepassIndex = int(pre.commands.size());
                 pre.commands.push_back(p.split ? cs.edge : c);
                 if (p.split) {
@@ -280,7 +293,9 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         m_trimmedAway += p.awayCells;
         m_places[r] = p;
     }
-    std::vector<Batch*> batches{&m_plain, &m_trimmed};
+    std::vector<Batch*> batches{&m_plain};
+    for (auto& [k, b] : m_trimmedPre)
+        batches.push_back(&b);
     for (auto& [k, b] : m_variants)
         batches.push_back(&b);
     for (auto& [k, b] : m_edges)
@@ -324,7 +339,7 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         };
         patch(m_variants.at(now.variant), was.index, c);
         if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmed : m_plain, was.prepassIndex,
+            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey) : m_plain, was.prepassIndex,
                   was.split ? cs.edge : c);
         if (was.split)
             patch(m_plain, was.insideIndex, cs.inside);
@@ -343,31 +358,54 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
     return true;
 }
 
-bool ExactSurfacePass::depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
-                                    const FrameCamera& camera, bool antialiased, QString* error) {
+bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
+                                    const GpuScene& scene, const FrameCamera& camera,
+                                    const std::vector<Light>& lights, const RenderOptions& options,
+                                    bool antialiased, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QStringList trimDefines = scene.trimMasks().trimDefines();
     if (antialiased)
         trimDefines << QStringLiteral("KW_TRIM_AA");
+    // Adaptive, aliased frames test the trims at the point under the pixel (the colour pass's
+    // Newton step), not at the polygon's (u, v), which lies up to the tolerance away: a pixel
+    // centre just inside a trimmed edge was dropped there and the face behind showed through
+    // (docs/RENDERING.md, "Adaptive partitions: the point under the pixel").
+    const bool atRay = m_key.trimsAtRay;
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(kDepthNearer);
+    std::vector<Batch*> batches{&plain};
+    for (auto& [k, b] : trimmed)
+        batches.push_back(&b);
     bool ok = true;
     // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
-    for (Batch* b : {&plain, &trimmed}) {
+    for (Batch* b : batches) {
         if (b->commands.empty())
             continue;
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"),
-                               b->trimmed ? trimDefines : QStringList{});
+        QOpenGLShaderProgram* prog = nullptr;
+        if (b->trimmed && atRay)
+            prog = m_shaders->program(
+                QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                QStringList{QStringLiteral("DEGREE_U %1").arg(b->degreeU),
+                            QStringLiteral("DEGREE_V %1").arg(b->degreeV),
+                            QStringLiteral("LIGHT_COUNT %1").arg(lights.size()),
+                            QStringLiteral("KW_RAY_NEWTON"), QStringLiteral("KW_DEPTH_ONLY")}
+                    << trimDefines);
+        else
+            prog = m_shaders->program(QStringLiteral("surface.vert"),
+                                      QStringLiteral("depth_only.frag"),
+                                      b->trimmed ? trimDefines : QStringList{});
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
             break;
         }
         prog->bind();
-        gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
-                               glm::value_ptr(camera.viewProjection));
+        if (b->trimmed && atRay)
+            setFrameUniforms(gl, prog, camera, lights);
+        else
+            gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
+                                   glm::value_ptr(camera.viewProjection));
         if (b->trimmed)
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(*b);
@@ -398,7 +436,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        options.cullOutsideView,
                        aa != nullptr,
                        skirts,
-                       gatherMinCellPixels()};
+                       gatherMinCellPixels(),
+                       prepass && aa == nullptr &&
+                           options.partitioning == RenderOptions::Partitioning::Adaptive};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
@@ -406,14 +446,14 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     // batches may have been patched).
     trimTestedCells = trimmedAwayCells = 0;
     if (prepass) {
-        for (const DrawCommand& c : m_trimmed.commands)
-            trimTestedCells += c.count / 6;
+        for (const auto& [k, b] : m_trimmedPre)
+            for (const DrawCommand& c : b.commands)
+                trimTestedCells += c.count / 6;
         trimmedAwayCells = m_trimmedAway;
     }
     if (m_variants.empty())
         return true; // nothing to draw
     Batch& plain = m_plain;
-    Batch& trimmed = m_trimmed;
     std::map<int, Batch>& variants = m_variants;
 
     scene.bindSurfaceData();
@@ -423,7 +463,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     bool ok = true;
     if (prepass) {
-        ok = depthPrepass(plain, trimmed, scene, camera, aa != nullptr, error);
+        ok =
+            depthPrepass(plain, m_trimmedPre, scene, camera, lights, options, aa != nullptr, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {

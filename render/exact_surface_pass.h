@@ -139,9 +139,10 @@ private:
         int variant = -1;    ///< key into m_variants
         int index = -1;      ///< its command in that batch
         bool prepassTrimmed = false;
-        int prepassIndex = -1; ///< its command in m_plain or m_trimmed (with the pre-pass)
+        int prepassKey = -1;   ///< trimmed: key into m_trimmedPre (degrees)
+        int prepassIndex = -1; ///< its command in m_plain or m_trimmedPre (with the pre-pass)
         /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
-        /// m_plain (this command), those near a curve in m_trimmed (prepassIndex).
+        /// m_plain (this command), those near a curve in m_trimmedPre (prepassIndex).
         bool split = false;
         int insideIndex = -1;
         std::int64_t awayCells = 0; ///< split: the cells left out as trimmed away
@@ -161,6 +162,9 @@ private:
         bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
         bool skirts = false;      ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         double minCellPixels = 0.0;
+        /// The pre-pass tests the trims at the point under the pixel (adaptive, aliased): a
+        /// split leaves no cell out then, since that point may lie across a cell's trim curve.
+        bool trimsAtRay = false;
         bool operator==(const CacheKey&) const = default;
     };
     /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
@@ -181,8 +185,12 @@ private:
     void uploadCommands(const std::vector<Batch*>& batches);
     void drawBatch(const Batch& batch);
     void releaseCommands();
-    bool depthPrepass(Batch& plain, Batch& trimmed, const GpuScene& scene,
-                      const FrameCamera& camera, bool antialiased, QString* error);
+    /// The depth pre-pass: `plain` with the empty fragment shader, the trimmed surfaces' cells
+    /// near a curve by degrees, tested on the trims (in adaptive, aliased frames at the point
+    /// under the pixel: exact_surface.frag KW_DEPTH_ONLY, else depth_only.frag).
+    bool depthPrepass(Batch& plain, std::map<int, Batch>& trimmed, const GpuScene& scene,
+                      const FrameCamera& camera, const std::vector<Light>& lights,
+                      const RenderOptions& options, bool antialiased, QString* error);
     /// Draws each batch with its variant's program (trimAa for the trimmed ones).
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
@@ -219,7 +227,9 @@ private:
     /// drag step does not sort every surface into its variant again (issue 15).
     bool m_haveBatches = false;
     CacheKey m_key;
-    Batch m_plain, m_trimmed;
+    Batch m_plain;
+    /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4).
+    std::map<int, Batch> m_trimmedPre;
     std::map<int, Batch> m_variants;
     /// The trimmed surfaces again, by degrees and gather, for the anti-aliased edge pass.
     std::map<int, Batch> m_edges;

@@ -11,7 +11,9 @@
 // for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
 // principal direction of k1 at location 5), KW_RAY_NEWTON (adaptive partitions: shade the
 // point truly under the pixel, kwOntoRay), KW_SKIRT (the edge skirts: keep a fragment only
-// where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint).
+// where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint),
+// KW_DEPTH_ONLY (with KW_RAY_NEWTON and KW_TRIM: the depth pre-pass of cells near a trim curve,
+// which tests the trims at the point under the pixel and shades nothing).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -279,8 +281,8 @@ void main() {
     float coverage = trimCoverage(vUv);
     if (coverage <= 0.0 || coverage > 1.0)
         discard; // nothing here, or the opaque passes drew it
-#else
-    KW_DISCARD_TRIMMED(vUv);
+#elif !defined(KW_RAY_NEWTON) || defined(KW_TRIM_AA)
+    KW_DISCARD_TRIMMED(vUv); // anti-aliased: the coverage's derivatives need the polygon's
 #endif
     // The interpolated (u, v) can leave the domain by ~1e-5 at grazing pixels on the boundary
     // (float barycentrics of thin triangles); the surface ends at its domain, so clamp there,
@@ -289,6 +291,16 @@ void main() {
 #ifdef KW_RAY_NEWTON
     float before;
     vec2 onto = kwOntoRay(uv, before);
+#ifndef KW_TRIM_AA
+    // The trims are tested at the point under the pixel, as the depth pre-pass does
+    // (KW_DEPTH_ONLY): at the polygon's (u, v), up to the tolerance away, a pixel centre just
+    // inside a trimmed edge was dropped and the face behind showed through.
+    KW_DISCARD_TRIMMED(onto);
+#endif
+#ifdef KW_DEPTH_ONLY
+    fragColor = vec4(0.0);
+    return; // the pre-pass of cells near a trim curve: the rasteriser writes the depth
+#endif
     SurfaceSample s = evaluateSurface(onto, vSpan, vSpanScale);
     // A step that did not bring the point nearer the pixel centre (a strongly curved
     // projection near a silhouette) is undone.
