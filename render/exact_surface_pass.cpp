@@ -189,12 +189,7 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
               g->splitClasses == mask->classSerial;
     if (p.split) {
-        // Tested at the point under the pixel, a pixel of a cell the trims remove (its texels
-        // and their neighbours all outside) may still be kept where the grid is finer than
-        // the pixel tolerance on screen: those cells are tested with the ones near a curve.
-        const GLuint inside = GLuint(g->insideIndexCount),
-                     edge = GLuint(key.trimsAtRay ? g->triangleIndexCount - g->insideIndexCount
-                                                  : g->edgeIndexCount);
+        const GLuint inside = GLuint(g->insideIndexCount), edge = GLuint(g->edgeIndexCount);
         p.awayCells = (g->triangleIndexCount - std::int64_t(inside) - std::int64_t(edge)) / 6;
         commands.inside = commands.all;
         commands.inside.count = inside;

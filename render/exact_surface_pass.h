@@ -162,8 +162,7 @@ private:
         bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
         bool skirts = false;      ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         double minCellPixels = 0.0;
-        /// The pre-pass tests the trims at the point under the pixel (adaptive, aliased): a
-        /// split leaves no cell out then, since that point may lie across a cell's trim curve.
+        /// The pre-pass tests the trims at the point under the pixel (adaptive, aliased).
         bool trimsAtRay = false;
         bool operator==(const CacheKey&) const = default;
     };

