@@ -237,14 +237,12 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
-                if (p.prepassTrimmed) {
-                    const SurfaceGpu& g = *r->exact;
-                    Batch& t = m_trimmedPre[p.prepassKey];
-                    t.trimmed = true;
-                    t.degreeU = g.degreeU;
-                    t.degreeV = g.degreeV;
-                }
                 Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey] : m_plain;
+                if (p.prepassTrimmed && pre.commands.empty()) {
+                    pre.trimmed = true;
+                    pre.degreeU = r->exact->degreeU;
+                    pre.degreeV = r->exact->degreeV;
+                }
                 p.prepassIndex = int(pre.commands.size());
                 pre.commands.push_back(p.split ? cs.edge : c);
                 if (p.split) {
@@ -355,8 +353,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
 
 bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
                                     const GpuScene& scene, const FrameCamera& camera,
-                                    const std::vector<Light>& lights, const RenderOptions& options,
-                                    bool antialiased, QString* error) {
+                                    const std::vector<Light>& lights, bool antialiased,
+                                    QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QStringList trimDefines = scene.trimMasks().trimDefines();
     if (antialiased)
@@ -458,8 +456,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     bool ok = true;
     if (prepass) {
-        ok =
-            depthPrepass(plain, m_trimmedPre, scene, camera, lights, options, aa != nullptr, error);
+        ok = depthPrepass(plain, m_trimmedPre, scene, camera, lights, aa != nullptr, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {

@@ -188,8 +188,8 @@ private:
     /// near a curve by degrees, tested on the trims (in adaptive, aliased frames at the point
     /// under the pixel: exact_surface.frag KW_DEPTH_ONLY, else depth_only.frag).
     bool depthPrepass(Batch& plain, std::map<int, Batch>& trimmed, const GpuScene& scene,
-                      const FrameCamera& camera, const std::vector<Light>& lights,
-                      const RenderOptions& options, bool antialiased, QString* error);
+                      const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
+                      QString* error);
     /// Draws each batch with its variant's program (trimAa for the trimmed ones).
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
