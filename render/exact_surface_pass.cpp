@@ -181,9 +181,11 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     commands.all = DrawCommand{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
                                GLint(g->vertexOffset), GLuint(r.slot)};
     const TrimMask* mask = key.trims ? maskOf(r) : nullptr;
+    // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
+    const int degrees = g->degreeU | g->degreeV << 4;
     p.prepassTrimmed = mask != nullptr;
     if (p.prepassTrimmed)
-        p.prepassKey = g->degreeU | g->degreeV << 4;
+        p.prepassKey = degrees;
     // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
     // costs llvmpipe its early depth test), and no pass draws the cells they remove.
     p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
@@ -207,13 +209,13 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     // varyings cost llvmpipe's triangle setup more than the fetches it saves.
     const bool gather = r.bounded && projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) >=
                                          key.minCellPixels;
-    p.variant = g->degreeU | g->degreeV << 4 | int(lookUp) << 8 | int(gather) << 9;
+    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9;
     if (mask)
-        p.edgeVariant = g->degreeU | g->degreeV << 4 | int(gather) << 9;
+        p.edgeVariant = degrees | int(gather) << 9;
     if (key.skirts && g->skirtIndexOffset >= 0) {
         commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
                                      GLint(g->skirtVertexOffset), GLuint(r.slot)};
-        p.skirtVariant = g->degreeU | g->degreeV << 4 | int(mask != nullptr) << 8;
+        p.skirtVariant = degrees | int(mask != nullptr) << 8;
     }
     return p;
 }
@@ -353,17 +355,12 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
 
 bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
                                     const GpuScene& scene, const FrameCamera& camera,
-                                    const std::vector<Light>& lights, bool antialiased,
+                                    const std::vector<Light>& lights, bool antialiased, bool atRay,
                                     QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QStringList trimDefines = scene.trimMasks().trimDefines();
     if (antialiased)
         trimDefines << QStringLiteral("KW_TRIM_AA");
-    // Adaptive, aliased frames test the trims at the point under the pixel (the colour pass's
-    // Newton step), not at the polygon's (u, v), which lies up to the tolerance away: a pixel
-    // centre just inside a trimmed edge was dropped there and the face behind showed through
-    // (docs/RENDERING.md, "Adaptive partitions: the point under the pixel").
-    const bool atRay = m_key.trimsAtRay;
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(kDepthNearer);
@@ -429,9 +426,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        options.cullOutsideView,
                        aa != nullptr,
                        skirts,
-                       gatherMinCellPixels(),
-                       prepass && aa == nullptr &&
-                           options.partitioning == RenderOptions::Partitioning::Adaptive};
+                       gatherMinCellPixels()};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
@@ -456,7 +451,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     bool ok = true;
     if (prepass) {
-        ok = depthPrepass(plain, m_trimmedPre, scene, camera, lights, aa != nullptr, error);
+        ok = depthPrepass(
+            plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
+            aa == nullptr && options.partitioning == RenderOptions::Partitioning::Adaptive, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {

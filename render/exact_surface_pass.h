@@ -162,8 +162,6 @@ private:
         bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
         bool skirts = false;      ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         double minCellPixels = 0.0;
-        /// The pre-pass tests the trims at the point under the pixel (adaptive, aliased).
-        bool trimsAtRay = false;
         bool operator==(const CacheKey&) const = default;
     };
     /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
@@ -185,11 +183,15 @@ private:
     void drawBatch(const Batch& batch);
     void releaseCommands();
     /// The depth pre-pass: `plain` with the empty fragment shader, the trimmed surfaces' cells
-    /// near a curve by degrees, tested on the trims (in adaptive, aliased frames at the point
-    /// under the pixel: exact_surface.frag KW_DEPTH_ONLY, else depth_only.frag).
+    /// near a curve by degrees, tested on the trims. `atRay` (adaptive, aliased frames) tests
+    /// them at the point under the pixel (the colour pass's Newton step; exact_surface.frag
+    /// KW_DEPTH_ONLY), not at the polygon's (u, v), which lies up to the tolerance away: a
+    /// pixel centre just inside a trimmed edge was dropped there and the face behind showed
+    /// through (docs/RENDERING.md, "Adaptive partitions: the point under the pixel");
+    /// otherwise depth_only.frag.
     bool depthPrepass(Batch& plain, std::map<int, Batch>& trimmed, const GpuScene& scene,
                       const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
-                      QString* error);
+                      bool atRay, QString* error);
     /// Draws each batch with its variant's program (trimAa for the trimmed ones).
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
