@@ -81,11 +81,15 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_environment.initialize(gl);
 }
 
+QStringList ExactSurfacePass::degreeDefines(int p, int q, int lightCount) {
+    return {QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
+            QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
+}
+
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options, bool trimmed,
                                              bool gatherAllowed, TrimAa trimAa, bool skirt) {
-    QStringList d{QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
-                  QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
+    QStringList d = degreeDefines(p, q, lightCount);
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
     if (!skirt && gatherAllowed &&
@@ -372,26 +376,23 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
     for (Batch* b : batches) {
         if (b->commands.empty())
             continue;
-        QOpenGLShaderProgram* prog = nullptr;
-        if (b->trimmed && atRay)
-            prog = m_shaders->program(
-                QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                QStringList{QStringLiteral("DEGREE_U %1").arg(b->degreeU),
-                            QStringLiteral("DEGREE_V %1").arg(b->degreeV),
-                            QStringLiteral("LIGHT_COUNT %1").arg(lights.size()),
-                            QStringLiteral("KW_RAY_NEWTON"), QStringLiteral("KW_DEPTH_ONLY")}
-                    << trimDefines);
-        else
-            prog = m_shaders->program(QStringLiteral("surface.vert"),
-                                      QStringLiteral("depth_only.frag"),
-                                      b->trimmed ? trimDefines : QStringList{});
+        const bool onRay = b->trimmed && atRay;
+        QOpenGLShaderProgram* prog =
+            onRay ? m_shaders->program(QStringLiteral("surface.vert"),
+                                       QStringLiteral("exact_surface.frag"),
+                                       degreeDefines(b->degreeU, b->degreeV, int(lights.size()))
+                                           << QStringLiteral("KW_RAY_NEWTON")
+                                           << QStringLiteral("KW_DEPTH_ONLY") << trimDefines)
+                  : m_shaders->program(QStringLiteral("surface.vert"),
+                                       QStringLiteral("depth_only.frag"),
+                                       b->trimmed ? trimDefines : QStringList{});
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
             break;
         }
         prog->bind();
-        if (b->trimmed && atRay)
+        if (onRay)
             setFrameUniforms(gl, prog, camera, lights);
         else
             gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,

@@ -57,6 +57,8 @@ public:
     /// skirt pass's variant (KW_SKIRT: its own Newton solve and trim test, the strip's depth;
     /// no gather, no KW_RAY_NEWTON, no KW_EXACT_DEPTH).
     enum class TrimAa { Off, Opaque, Edge };
+    /// DEGREE_U, DEGREE_V and LIGHT_COUNT: what every exact_surface.frag program needs.
+    static QStringList degreeDefines(int p, int q, int lightCount);
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
                                       bool trimmed = false, bool gatherAllowed = true,
                                       TrimAa trimAa = TrimAa::Off, bool skirt = false);
