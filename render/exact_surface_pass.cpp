@@ -188,8 +188,6 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
     const int degrees = g->degreeU | g->degreeV << 4;
     p.prepassTrimmed = mask != nullptr;
-    if (p.prepassTrimmed)
-        p.prepassKey = degrees;
     // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
     // costs llvmpipe its early depth test), and no pass draws the cells they remove.
     p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
@@ -243,7 +241,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
-                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey] : m_plain;
+                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey()] : m_plain;
                 if (p.prepassTrimmed && pre.commands.empty()) {
                     pre.trimmed = true;
                     pre.degreeU = r->exact->degreeU;
@@ -338,8 +336,8 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         };
         patch(m_variants.at(now.variant), was.index, c);
         if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey) : m_plain, was.prepassIndex,
-                  was.split ? cs.edge : c);
+            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey()) : m_plain,
+                  was.prepassIndex, was.split ? cs.edge : c);
         if (was.split)
             patch(m_plain, was.insideIndex, cs.inside);
         if (was.edgeVariant >= 0)

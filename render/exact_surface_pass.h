@@ -141,8 +141,9 @@ private:
         int variant = -1;    ///< key into m_variants
         int index = -1;      ///< its command in that batch
         bool prepassTrimmed = false;
-        int prepassKey = -1;   ///< trimmed: key into m_trimmedPre (degrees)
         int prepassIndex = -1; ///< its command in m_plain or m_trimmedPre (with the pre-pass)
+        /// Trimmed: its batch in m_trimmedPre, keyed by the variant's degree bits.
+        int prepassKey() const { return variant & 0xff; }
         /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
         /// m_plain (this command), those near a curve in m_trimmedPre (prepassIndex).
         bool split = false;
