@@ -68,6 +68,12 @@ std::int64_t GpuPool::allocate(std::int64_t count) {
         if (m_buffer) {
             m_gl->glCopyNamedBufferSubData(m_buffer, grown, 0, 0,
                                            GLsizeiptr(m_capacity * m_elementBytes));
+            // The copy must have run before the old buffer goes and before the next
+            // glNamedBufferSubData into the new one. GL orders them, but NVIDIA 580.159 (H100,
+            // GLX) did not: ranges copied here read as zeros in the draws (vertices at the
+            // origin, stray triangles on every CAD part; docs/PERFORMANCE.md "On a GPU").
+            // A pool grows only when it doubles, so the wait is rare.
+            m_gl->glFinish();
             m_gl->glDeleteBuffers(1, &m_buffer);
         }
         m_buffer = grown;

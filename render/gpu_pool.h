@@ -30,9 +30,9 @@ private:
 };
 
 /// One GL buffer holding elements of `elementBytes` each, sub-allocated by a RangeAllocator.
-/// It grows by doubling (the old contents copied on the GPU) and is deleted when its last range
-/// is freed, so an empty scene holds no pool memory. Growth replaces the buffer name: users
-/// re-bind buffer() after every allocate (GpuScene does, once per sync).
+/// It grows by doubling (the old contents copied on the GPU, waited for: see allocate) and is
+/// deleted when its last range is freed, so an empty scene holds no pool memory. Growth replaces
+/// the buffer name: users re-bind buffer() after every allocate (GpuScene does, once per sync).
 class GpuPool {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, std::int64_t elementBytes,
