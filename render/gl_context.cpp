@@ -12,6 +12,10 @@ QSurfaceFormat requiredSurfaceFormat() {
     f.setVersion(4, 5);
     f.setProfile(QSurfaceFormat::CoreProfile);
     f.setDepthBufferSize(24);
+    // KW_GL_DEBUG=1 (development): a debug context, whose driver messages the off-screen
+    // renderer prints (render/offscreen_renderer.cpp).
+    if (qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0)
+        f.setOption(QSurfaceFormat::DebugContext);
     return f;
 }
 

@@ -4,8 +4,10 @@
 #include "render/depth_convention.h"
 #include "render/gl_context.h"
 
+#include <QDebug>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLDebugLogger>
 #include <QOpenGLFunctions_4_5_Core>
 #include <QOpenGLVersionFunctionsFactory>
 #include <algorithm>
@@ -18,7 +20,8 @@ struct OffscreenRenderer::Impl {
 
     std::unique_ptr<QOpenGLContext> context;
     std::unique_ptr<QOffscreenSurface> surface;
-    QOpenGLFunctions_4_5_Core* gl = nullptr; ///< set once the renderer is initialised
+    std::unique_ptr<QOpenGLDebugLogger> debugLogger; ///< KW_GL_DEBUG=1 only
+    QOpenGLFunctions_4_5_Core* gl = nullptr;         ///< set once the renderer is initialised
     Renderer renderer;
     FrameReport report;
     QSize size;
@@ -35,6 +38,7 @@ OffscreenRenderer::~OffscreenRenderer() {
     if (d->context && makeCurrent()) {
         d->destroyFramebuffer();
         d->renderer.release();
+        d->debugLogger.reset(); // stops logging while its context is current
         d->context->doneCurrent();
     }
 }
@@ -70,6 +74,18 @@ bool OffscreenRenderer::create(QString* error) {
     if (!makeCurrent()) {
         *error = QStringLiteral("could not make the OpenGL context current");
         return false;
+    }
+    if (d->context->format().testOption(QSurfaceFormat::DebugContext)) {
+        // KW_GL_DEBUG=1: every driver message on stderr as it comes (synchronous, so each
+        // follows the call that raised it).
+        d->debugLogger = std::make_unique<QOpenGLDebugLogger>();
+        if (d->debugLogger->initialize()) {
+            QObject::connect(d->debugLogger.get(), &QOpenGLDebugLogger::messageLogged,
+                             [](const QOpenGLDebugMessage& m) {
+                                 qWarning().noquote() << "GL debug:" << m.message();
+                             });
+            d->debugLogger->startLogging(QOpenGLDebugLogger::SynchronousLogging);
+        }
     }
     // Renderer::initialize checks the version (render/gl_context.h).
     if (!d->renderer.initialize()) {

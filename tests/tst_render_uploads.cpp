@@ -45,6 +45,21 @@ private Q_SLOTS:
         QVERIFY2(m_doc.resetScene(*scene, &error), qPrintable(error));
     }
 
+    void glDebugPrintsDriverMessages() {
+        // KW_GL_DEBUG=1 (a development switch, docs/PERFORMANCE.md "On a GPU"): a debug
+        // context whose driver messages reach stderr, here a GL error on purpose.
+        qputenv("KW_GL_DEBUG", "1");
+        auto unset = qScopeGuard([] { qunsetenv("KW_GL_DEBUG"); });
+        QString error;
+        std::unique_ptr<OffscreenRenderer> r =
+            kwtest::offscreenRenderer(QSize(8, 8), false, &error);
+        QVERIFY2(r, qPrintable(error));
+        QVERIFY(r->makeCurrent());
+        QTest::ignoreMessage(QtWarningMsg, QRegularExpression(QStringLiteral("^GL debug: .+")));
+        r->renderer().internals().gl->glBindBuffer(GL_ARRAY_BUFFER, 987654321u); // never created
+        QVERIFY(r->renderer().internals().gl->glGetError() != GL_NO_ERROR);
+    }
+
     void poolGrowthKeepsEveryRange() {
         // Ranges written before and after each growth, and into ranges freed before one, all
         // read back. NVIDIA 580.159 lost the copied ranges when the old buffer was deleted
