@@ -83,4 +83,4 @@ for ph in "$@"; do
     echo "after $ph: $(($(date +%s) - T0)) s"
 done
 tar -C "$OUT" -czf "$OUT/results.tgz" res
-tar -C /tmp/kwwork -czf "$OUT/images.tgz" --wildcards '*.png' 2>/dev/null
+(cd /tmp/kwwork && ls *.png > /dev/null 2>&1 && tar -czf "$OUT/images.tgz" *.png)
