@@ -8,9 +8,12 @@
 #   bench                  knotwork bench (paper Tables 1 and 2) on the bundled samples
 #   debug                  KW_GL_DEBUG=1 renders of two CAD parts: the driver's messages
 # LIMIT (seconds, default 570) bounds the whole run; a phase that would start past it is skipped.
+# $OUT keeps at most 6 files (the device returns 8): res/go.log, res/results.txt, res/bench.json,
+# res/bench.md as they are written, and at the end results.tgz (those and the other logs) and
+# images.tgz (the frames rendered).
 T0=$(date +%s)
 : "${OUT:?OUT must name the folder for the results}"
-mkdir -p "$OUT/res" /tmp/kwwork
+mkdir -p "$OUT/res" /tmp/kwwork /tmp/kwlogs
 exec > >(tee -a "$OUT/res/go.log") 2>&1
 left() { echo $((${LIMIT:-570} - ($(date +%s) - T0))); }
 
@@ -34,7 +37,7 @@ echo "NVIDIA GLX: $NVGLX; EGL vendor file: $EGLJSON"
 D=/usr/lib/x86_64-linux-gnu/dri
 mkdir -p $D && { [ -e $D/swrast_dri.so ] || cp $K/dri/swrast_dri.so $D/; }
 LD_LIBRARY_PATH=$K/lib GALLIUM_DRIVER=softpipe DRAW_USE_LLVM=0 setsid $K/bin/Xvfb :5 \
-    -screen 0 1280x1024x24 -nolisten tcp -fp built-ins -xkbdir $K/xkb > "$OUT/res/xvfb.log" 2>&1 &
+    -screen 0 1280x1024x24 -nolisten tcp -fp built-ins -xkbdir $K/xkb > /tmp/kwlogs/xvfb.log 2>&1 &
 sleep 3
 export DISPLAY=:5 XDG_RUNTIME_DIR=/tmp/xdg QT_QPA_PLATFORM=xcb QT_PLUGIN_PATH=$K/plugins
 mkdir -p -m700 /tmp/xdg
@@ -58,7 +61,7 @@ if ! grep -q "NVIDIA" /tmp/p.json 2>/dev/null; then
     probe
 fi
 if ! grep -q "NVIDIA" /tmp/p.json 2>/dev/null; then
-    echo "no OpenGL on the GPU: $(tail -3 /tmp/p.err)"
+    echo "no OpenGL on the GPU: $(tail -3 /tmp/p.err)"; tail -5 /tmp/kwlogs/xvfb.log
     exit 4
 fi
 
@@ -68,19 +71,21 @@ for ph in "$@"; do
     bench)
         timeout "$(left)" $K/bin/knotwork bench --frames 20 --samples resources/samples \
             --json "$OUT/res/bench.json" --markdown "$OUT/res/bench.md" --plots /tmp/kwwork \
-            > /dev/null 2> "$OUT/res/bench.err"
+            > /dev/null 2> /tmp/kwlogs/bench.err
         echo "bench rc $?" ;;
     debug)
         for m in tests/data/hammer.iges tests/data/Pump_Nut.brep; do
-            echo "=== $m" >> "$OUT/res/debug.txt"
+            echo "=== $m" >> /tmp/kwlogs/debug.txt
             KW_GL_DEBUG=1 timeout 120 $K/bin/knotwork render $m -o /tmp/kwwork/debug.png \
                 --size 1024x1024 2>&1 | sed 's/[0-9][0-9]*/N/g' | sort | uniq -c | sort -rn |
-                head -40 >> "$OUT/res/debug.txt"
+                head -40 >> /tmp/kwlogs/debug.txt
         done ;;
     *)
         KW_MODES=${KW_MODES:-adaptive,uniform,aa4} timeout "$(left)" python3 tools/gpu/kw.py "$ph" ;;
     esac
     echo "after $ph: $(($(date +%s) - T0)) s"
 done
-tar -C "$OUT" -czf "$OUT/results.tgz" res
+cp /tmp/kwlogs/* "$OUT/res/" 2>/dev/null
+tar -C "$OUT" -czf /tmp/results.tgz res && rm -f "$OUT"/res/{xvfb.log,bench.err,debug.txt} &&
+    mv /tmp/results.tgz "$OUT/"
 (cd /tmp/kwwork && ls *.png > /dev/null 2>&1 && tar -czf "$OUT/images.tgz" *.png)
