@@ -79,7 +79,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     const QCommandLineOption timeFrames(
         QStringLiteral("time-frames"),
         QStringLiteral("After the image, render N more frames (1..10000) and print the median "
-                       "frame time in ms (glFinish per frame), for docs/PERFORMANCE.md."),
+                       "frame time in ms (glFinish per frame) and the OpenGL renderer it ran on, "
+                       "for docs/PERFORMANCE.md."),
         QStringLiteral("N"));
     const QCommandLineOption wire(QStringLiteral("wireframe"),
                                   QStringLiteral("Overlay the base polygon cells."));
@@ -291,11 +292,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             ms.push_back(double(t.nsecsElapsed()) * 1e-6);
         }
         std::sort(ms.begin(), ms.end());
-        printOut(QStringLiteral("%1: median frame %2 ms over %3 frames (--shading %4)\n")
-                     .arg(files[0])
-                     .arg(ms[ms.size() / 2], 0, 'f', 2)
-                     .arg(timedFrames)
-                     .arg(analysisModeName(options.analysis.mode)));
+        // The GL renderer too: a timing is only comparable with one taken on the same device.
+        printOut(
+            QStringLiteral("%1: median frame %2 ms over %3 frames (--shading %4) on %5\n")
+                .arg(files[0])
+                .arg(ms[ms.size() / 2], 0, 'f', 2)
+                .arg(timedFrames)
+                .arg(analysisModeName(options.analysis.mode), renderer.renderer().glDescription()));
     }
     const FrameReport::Partitions& parts = renderer.lastReport().partitions;
     if (parser.isSet(peerMesh))

@@ -70,6 +70,9 @@ private Q_SLOTS:
         QString text;
         const QJsonObject c = peerReport(coarse, &text);
         QVERIFY2(text.contains(QStringLiteral("median frame")), qPrintable(text));
+        // The timing names the device it was taken on (GL_RENDERER, GL_VERSION).
+        QVERIFY2(text.contains(QRegularExpression(QStringLiteral("median frame .* on .+OpenGL"))),
+                 qPrintable(text));
         QVERIFY2(text.contains(QStringLiteral("916 triangles")), qPrintable(text));
         QVERIFY2(text.contains(QStringLiteral("bytes on the GPU")), qPrintable(text));
         const QJsonObject f = peerReport(fine);
