@@ -15,6 +15,7 @@
 #include <QDirIterator>
 #include <QFile>
 #include <QOpenGLContext>
+#include <QOpenGLFunctions>
 #include <QScopeGuard>
 #include <QSignalSpy>
 #include <QStatusBar>
@@ -230,6 +231,25 @@ private Q_SLOTS:
         QVERIFY(e.frames(2));
         QVERIFY(e.w->viewport()->lastFrameReport().ok);
         QVERIFY(e.stillEditable());
+    }
+
+    void glDebugInTheEditor() {
+        // KW_GL_DEBUG=1: the viewport asks for a debug context and prints the driver's
+        // messages (how a user's GPU fault gets reported, docs/PERFORMANCE.md "On a GPU").
+        qputenv("KW_GL_DEBUG", "1");
+        auto unset = qScopeGuard([] { qunsetenv("KW_GL_DEBUG"); });
+        Editor e;
+        QVERIFY(e.open());
+        QVERIFY(e.frames(1));
+        Viewport* vp = e.w->viewport();
+        QVERIFY(vp->format().testOption(QSurfaceFormat::DebugContext));
+        vp->makeCurrent();
+        QTest::ignoreMessage(QtWarningMsg, QRegularExpression(QStringLiteral("^GL debug: .+")));
+        QOpenGLContext::currentContext()->functions()->glBindBuffer(GL_ARRAY_BUFFER, 987654321u);
+        QVERIFY(QOpenGLContext::currentContext()->functions()->glGetError() != GL_NO_ERROR);
+        vp->doneCurrent();
+        QVERIFY(e.frames(1)); // and it still draws
+        QVERIFY(vp->lastFrameReport().ok);
     }
 
     void contextDestroyedAndRecreated() {

@@ -4,6 +4,7 @@
 #include "ui/analysiscontrols.h"
 #include "ui/edit/commands.h"
 
+#include <QDebug>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
@@ -25,6 +26,13 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
       m_stack(stack) {
     setFocusPolicy(Qt::StrongFocus);
     setMouseTracking(false);
+    // KW_GL_DEBUG=1 (development, also for reports from users' GPUs): a debug context whose
+    // driver messages go to stderr (initializeGL), whatever the application's default format.
+    if (qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0) {
+        QSurfaceFormat f = format();
+        f.setOption(QSurfaceFormat::DebugContext);
+        setFormat(f);
+    }
     setMinimumSize(160, 120);
     m_options.controlNet = true;
     // A document change only schedules a repaint; nothing renders inside a signal.
@@ -54,10 +62,11 @@ Viewport::~Viewport() {
 }
 
 void Viewport::releaseGl() {
-    if (!m_renderer.isInitialized())
+    if (!m_renderer.isInitialized() && !m_glDebug)
         return;
     makeCurrent();
     m_renderer.release();
+    m_glDebug.reset(); // stops logging while its context is current
     doneCurrent();
 }
 
@@ -208,6 +217,18 @@ std::vector<SurfaceId> Viewport::shownSurfaces(bool selectedOnly) const {
 void Viewport::initializeGL() {
     connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl,
             Qt::DirectConnection);
+    if (context()->format().testOption(QSurfaceFormat::DebugContext)) {
+        m_glDebug = std::make_unique<QOpenGLDebugLogger>();
+        if (m_glDebug->initialize()) {
+            connect(m_glDebug.get(), &QOpenGLDebugLogger::messageLogged, this,
+                    [](const QOpenGLDebugMessage& m) {
+                        qWarning().noquote() << "GL debug:" << m.message();
+                    });
+            m_glDebug->startLogging(QOpenGLDebugLogger::SynchronousLogging);
+        } else {
+            m_glDebug.reset();
+        }
+    }
     if (!m_renderer.initialize()) {
         m_glError = m_renderer.lastError();
         Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));

@@ -8,9 +8,11 @@
 #include "ui/controlpointpicker.h"
 
 #include <QElapsedTimer>
+#include <QOpenGLDebugLogger>
 #include <QOpenGLWidget>
 #include <QPointer>
 #include <map>
+#include <memory>
 #include <vector>
 
 class QKeyEvent;
@@ -179,6 +181,8 @@ private:
     /// position (identity: back where the drag began).
     PointsBySurface dragPointsBySurface(const glm::dmat4& map) const;
     void releaseGl();
+    /// KW_GL_DEBUG=1: the debug context's driver messages, on stderr.
+    std::unique_ptr<QOpenGLDebugLogger> m_glDebug;
     void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
     void dragTo(QPointF pixel);
     void applyDrag();
