@@ -1,7 +1,9 @@
 // OpenGL requirement check and context description.
 #include "render/gl_context.h"
 
+#include <QDebug>
 #include <QOpenGLContext>
+#include <QOpenGLDebugLogger>
 #include <QOpenGLFunctions>
 
 namespace kw {
@@ -12,11 +14,27 @@ QSurfaceFormat requiredSurfaceFormat() {
     f.setVersion(4, 5);
     f.setProfile(QSurfaceFormat::CoreProfile);
     f.setDepthBufferSize(24);
-    // KW_GL_DEBUG=1 (development): a debug context, whose driver messages the off-screen
-    // renderer prints (render/offscreen_renderer.cpp).
-    if (qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0)
+    if (glDebugRequested())
         f.setOption(QSurfaceFormat::DebugContext);
     return f;
+}
+
+bool glDebugRequested() {
+    return qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0;
+}
+
+std::unique_ptr<QOpenGLDebugLogger> startDebugLog() {
+    const QOpenGLContext* ctx = QOpenGLContext::currentContext();
+    if (!ctx || !ctx->format().testOption(QSurfaceFormat::DebugContext))
+        return nullptr;
+    auto log = std::make_unique<QOpenGLDebugLogger>();
+    if (!log->initialize())
+        return nullptr;
+    QObject::connect(
+        log.get(), &QOpenGLDebugLogger::messageLogged,
+        [](const QOpenGLDebugMessage& m) { qWarning().noquote() << "GL debug:" << m.message(); });
+    log->startLogging(QOpenGLDebugLogger::SynchronousLogging);
+    return log;
 }
 
 QString openGlShortfall(const QSurfaceFormat& format, bool isOpenGLES) {

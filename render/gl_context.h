@@ -4,12 +4,25 @@
 
 #include <QString>
 #include <QSurfaceFormat>
+#include <memory>
+
+class QOpenGLDebugLogger;
 
 namespace kw {
 
-/// The surface format every Knotwork GL context asks for: OpenGL 4.5 core, depth 24. Set it as
-/// the default (QSurfaceFormat::setDefaultFormat) before creating the application.
+/// The surface format every Knotwork GL context asks for: OpenGL 4.5 core, depth 24 (and a
+/// debug context with KW_GL_DEBUG). Set it as the default (QSurfaceFormat::setDefaultFormat)
+/// before creating the application.
 QSurfaceFormat requiredSurfaceFormat();
+
+/// KW_GL_DEBUG=1 (development, and for reports from users' GPUs): contexts are debug contexts
+/// and their driver messages go to stderr (startDebugLog).
+bool glDebugRequested();
+
+/// For a current debug context: a logger printing each driver message to stderr ("GL debug:
+/// ..."), synchronously, so each follows the call that raised it. Null for other contexts.
+/// Destroy it while its context is current.
+std::unique_ptr<QOpenGLDebugLogger> startDebugLog();
 
 /// Empty when a created context with `format` (QOpenGLContext::format()) and `isOpenGLES`
 /// meets the requirement; otherwise what it is instead, e.g. "OpenGL ES 3.2" or "OpenGL 3.1

@@ -4,7 +4,6 @@
 #include "render/depth_convention.h"
 #include "render/gl_context.h"
 
-#include <QDebug>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLDebugLogger>
@@ -75,18 +74,7 @@ bool OffscreenRenderer::create(QString* error) {
         *error = QStringLiteral("could not make the OpenGL context current");
         return false;
     }
-    if (d->context->format().testOption(QSurfaceFormat::DebugContext)) {
-        // KW_GL_DEBUG=1: every driver message on stderr as it comes (synchronous, so each
-        // follows the call that raised it).
-        d->debugLogger = std::make_unique<QOpenGLDebugLogger>();
-        if (d->debugLogger->initialize()) {
-            QObject::connect(d->debugLogger.get(), &QOpenGLDebugLogger::messageLogged,
-                             [](const QOpenGLDebugMessage& m) {
-                                 qWarning().noquote() << "GL debug:" << m.message();
-                             });
-            d->debugLogger->startLogging(QOpenGLDebugLogger::SynchronousLogging);
-        }
-    }
+    d->debugLogger = startDebugLog(); // KW_GL_DEBUG=1 only
     // Renderer::initialize checks the version (render/gl_context.h).
     if (!d->renderer.initialize()) {
         *error = d->renderer.lastError() +

@@ -1,10 +1,10 @@
 // Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
 #include "ui/viewport.h"
 
+#include "render/gl_context.h"
 #include "ui/analysiscontrols.h"
 #include "ui/edit/commands.h"
 
-#include <QDebug>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
@@ -26,9 +26,9 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
       m_stack(stack) {
     setFocusPolicy(Qt::StrongFocus);
     setMouseTracking(false);
-    // KW_GL_DEBUG=1 (development, also for reports from users' GPUs): a debug context whose
-    // driver messages go to stderr (initializeGL), whatever the application's default format.
-    if (qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0) {
+    // KW_GL_DEBUG=1: a debug context whatever the application's default format (initializeGL
+    // starts its log).
+    if (glDebugRequested()) {
         QSurfaceFormat f = format();
         f.setOption(QSurfaceFormat::DebugContext);
         setFormat(f);
@@ -217,18 +217,7 @@ std::vector<SurfaceId> Viewport::shownSurfaces(bool selectedOnly) const {
 void Viewport::initializeGL() {
     connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl,
             Qt::DirectConnection);
-    if (context()->format().testOption(QSurfaceFormat::DebugContext)) {
-        m_glDebug = std::make_unique<QOpenGLDebugLogger>();
-        if (m_glDebug->initialize()) {
-            connect(m_glDebug.get(), &QOpenGLDebugLogger::messageLogged, this,
-                    [](const QOpenGLDebugMessage& m) {
-                        qWarning().noquote() << "GL debug:" << m.message();
-                    });
-            m_glDebug->startLogging(QOpenGLDebugLogger::SynchronousLogging);
-        } else {
-            m_glDebug.reset();
-        }
-    }
+    m_glDebug = startDebugLog(); // KW_GL_DEBUG=1 only
     if (!m_renderer.initialize()) {
         m_glError = m_renderer.lastError();
         Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));

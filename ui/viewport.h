@@ -181,8 +181,6 @@ private:
     /// position (identity: back where the drag began).
     PointsBySurface dragPointsBySurface(const glm::dmat4& map) const;
     void releaseGl();
-    /// KW_GL_DEBUG=1: the debug context's driver messages, on stderr.
-    std::unique_ptr<QOpenGLDebugLogger> m_glDebug;
     void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
     void dragTo(QPointF pixel);
     void applyDrag();
@@ -215,7 +213,8 @@ private:
     ControlPointPicker m_picker;
     RenderOptions m_options;
     int m_samplesWanted = kAutoSamples;
-    bool m_softwareGl = false;      ///< the context is a software rasteriser (set at initializeGL)
+    bool m_softwareGl = false; ///< the context is a software rasteriser (set at initializeGL)
+    std::unique_ptr<QOpenGLDebugLogger> m_glDebug; ///< KW_GL_DEBUG=1: the driver's messages
     QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
     QString m_glError;
