@@ -6,7 +6,14 @@ Usage: kw.py PHASE...
   modes, modes4k           Knotwork's frame time per KW_MODES (adaptive, uniform, aa4, ...)
   diag                     edge reports per KW_VARIANTS (renderer switches), models in KW_ONLY
 Lines go to $OUT/res/results.txt; KW_FRAMES overrides the timed frames."""
-import os, re, subprocess, sys, statistics, json, time
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
 K = os.environ.get("KW", "/opt/kw")
 KW = K + "/bin/knotwork"
 RES = os.path.join(os.environ["OUT"], "res")
@@ -58,8 +65,7 @@ def render(knot, size, extra, frames=0, tag="t"):
     cmd = [KW, "render", knot, "-o", png, "--size", size] + extra
     if frames:
         cmd += ["--time-frames", str(frames)]
-    out, sec = run(cmd)
-    return out
+    return run(cmd)[0]
 
 def timed(knot, size, extra, frames):
     out = render(knot, size, extra, frames)
@@ -71,7 +77,6 @@ FRAMES = int(os.environ.get("KW_FRAMES", "0"))
 def compare(tag, table, size, zoom, frames, rounds=3, report=True):
     table = {n: v for n, v in table.items() if not ONLY or n in ONLY.split(",")}
     frames = FRAMES or frames
-    from concurrent.futures import ThreadPoolExecutor
     with ThreadPoolExecutor(8) as ex:
         made = dict(zip(table, ex.map(lambda n: mesh(n, *table[n]), table)))
     for name in table:
@@ -115,7 +120,6 @@ def modes(size, frames):
             + (" | adaptive/uniform %.2fx" % (med["adaptive"] / med["uniform"]) if "uniform" in med else ""))
 
 def diag(models, variants, size="1024x1024", zoom=1):
-    import shutil
     for name in models:
         knot, obj = mesh(name, *FIT[name])
         for tag, (env, extra) in variants.items():
@@ -123,7 +127,7 @@ def diag(models, variants, size="1024x1024", zoom=1):
             old = dict(os.environ); os.environ.update(env)
             try:
                 z = ["--zoom", str(zoom)] if zoom != 1 else []
-                out = render(knot, size, z + extra + ["--edge-report", rep], tag="diag_%s_%s" % (name, tag))
+                render(knot, size, z + extra + ["--edge-report", rep], tag="diag_%s_%s" % (name, tag))
                 q = json.load(open(rep))
                 log("diag", "%s %s: silhouette max %.2f px, normal p99 %.4f deg, crack %d (%d), id %d, covered %d/%d" %
                     (name, tag, q["silhouetteMaxPixels"], q["normalP99Degrees"], q["crackPixels"],
