@@ -198,11 +198,16 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                            QStringLiteral("MIB"), QString::number(kDefaultTrimBudgetBytes >> 20)),
         QCommandLineOption(QStringLiteral("samples"),
                            QStringLiteral("Anti-aliasing: samples per pixel, 1..%1 (default 1, "
-                                          "aliased). N > 1: N MSAA samples for silhouettes and "
-                                          "trim edges covered by their exact distance; at most "
-                                          "what the GPU allows (a warning says so).")
+                                          "aliased); how, --aa-method.")
                                .arg(kMaxSamples),
                            QStringLiteral("N"), QStringLiteral("1")),
+        QCommandLineOption(QStringLiteral("aa-method"),
+                           QStringLiteral("With --samples N > 1: accumulate (default: N whole "
+                                          "frames, each shifted by a sub-pixel offset, averaged; "
+                                          "seams between faces stay closed) or coverage (N MSAA "
+                                          "samples, trim edges covered by their exact distance; "
+                                          "at most what the GPU allows)."),
+                           QStringLiteral("METHOD"), QStringLiteral("accumulate")),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
                                           "max-curvature, min-radius, zebra, isophotes, "
@@ -249,11 +254,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("principal-directions"),
                            QStringLiteral("Overlay short marks of the principal curvature "
                                           "directions (k1 red, k2 blue) on any --shading mode."))};
-    parser.addOptions({o.mode,       o.partitions, o.partitionMode, o.pixelTolerance, o.lights,
-                       o.depth,      o.noTrims,    o.trimMaskCap,   o.trimMode,       o.trimBudget,
-                       o.samples,    o.shading,    o.isocurves,     o.isoLines,       o.range,
-                       o.scale,      o.stripes,    o.stripeAngle,   o.isophoteBands,  o.pull,
-                       o.draftAngle, o.envMap,     o.directions});
+    parser.addOptions({o.mode,    o.partitions, o.partitionMode, o.pixelTolerance, o.lights,
+                       o.depth,   o.noTrims,    o.trimMaskCap,   o.trimMode,       o.trimBudget,
+                       o.samples, o.aaMethod,   o.shading,       o.isocurves,      o.isoLines,
+                       o.range,   o.scale,      o.stripes,       o.stripeAngle,    o.isophoteBands,
+                       o.pull,    o.draftAngle, o.envMap,        o.directions});
     return o;
 }
 
@@ -313,6 +318,11 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     options.trimBudgetBytes = std::int64_t(budgetMiB) << 20;
     if (!parseIntIn(parser.value(o.samples), 1, kMaxSamples, options.samples))
         return fail(o.samples, QStringLiteral("in 1..%1").arg(kMaxSamples));
+    const std::optional<RenderOptions::Antialiasing> aaMethod =
+        antialiasingNamed(parser.value(o.aaMethod));
+    if (!aaMethod)
+        return fail(o.aaMethod, QStringLiteral("accumulate or coverage"));
+    options.antialiasing = *aaMethod;
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     // The trimmed-cell split's before and after (docs/PERFORMANCE.md ## Trims): same pixels.
     options.splitCellsByTrims = qEnvironmentVariable("KW_TRIM_CELL_SPLIT") != QLatin1String("0");

@@ -394,7 +394,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
             setFrameUniforms(gl, prog, camera, lights);
         else
             gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
-                                   glm::value_ptr(camera.viewProjection));
+                                   glm::value_ptr(drawnViewProjection(camera)));
         if (b->trimmed)
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(*b);

@@ -20,7 +20,7 @@ QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     }
     prog->bind();
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
-                           glm::value_ptr(camera.viewProjection));
+                           glm::value_ptr(drawnViewProjection(camera)));
     gl->glDepthFunc(kDepthNearerOrEqual);
     gl->glDepthMask(GL_FALSE);
     return prog;

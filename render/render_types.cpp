@@ -69,6 +69,16 @@ CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2
     return m;
 }
 
+glm::mat4 drawnViewProjection(const FrameCamera& camera) {
+    if (camera.jitter == glm::vec2(0.0f))
+        return camera.viewProjection;
+    // x_ndc' = x_ndc + 2 jitter.x / width: in clip space x' = x + (2 jitter.x / width) w.
+    glm::mat4 shift(1.0f);
+    shift[3][0] = 2.0f * camera.jitter.x / float(std::max(camera.viewport.x, 1));
+    shift[3][1] = 2.0f * camera.jitter.y / float(std::max(camera.viewport.y, 1));
+    return shift * camera.viewProjection;
+}
+
 FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect) {
     const CameraMatrices m = cameraMatrices(camera, bounds, aspect);
     // Reversed depth for the GPU (glClipControl's zero-to-one range): depth = near / distance,

@@ -127,6 +127,20 @@ struct RenderOptions {
     /// (kw::AntialiasTarget). Clamped to the GPU's limit with a warning. Frames with AOVs and
     /// picks are never anti-aliased (their pixels are exact samples).
     int samples = 1;
+    /// How a frame with samples > 1 is anti-aliased.
+    enum class Antialiasing {
+        /// `samples` whole aliased frames, each with the pixel grid shifted by its own sub-pixel
+        /// offset (a rotated grid: FrameCamera::jitter), averaged (kw::AccumulateTarget). Every
+        /// sample is an exact aliased frame's pixel, skirts and fins included, so seams stay
+        /// closed and highlights and analysis stripes are filtered too; trim edges get
+        /// `samples` levels. The default (docs/RENDERING.md, "Anti-aliasing").
+        Accumulate,
+        /// One frame into `samples` MSAA samples, trim edges covered by the exact distance to
+        /// the curve (issue 11; kw::AntialiasTarget): smooth trim edges at any sample count,
+        /// but no skirts or fins, so seams of B-reps can show the far side.
+        Coverage,
+    };
+    Antialiasing antialiasing = Antialiasing::Accumulate;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
@@ -142,6 +156,16 @@ inline std::optional<RenderOptions::TrimMode> trimModeNamed(const QString& name)
         return RenderOptions::TrimMode::Exact;
     if (name == QLatin1String("mask"))
         return RenderOptions::TrimMode::Mask;
+    return std::nullopt;
+}
+
+/// The anti-aliasing method named "accumulate" or "coverage" (the command line's and the
+/// settings' spelling), or nothing for any other name.
+inline std::optional<RenderOptions::Antialiasing> antialiasingNamed(const QString& name) {
+    if (name == QLatin1String("accumulate"))
+        return RenderOptions::Antialiasing::Accumulate;
+    if (name == QLatin1String("coverage"))
+        return RenderOptions::Antialiasing::Coverage;
     return std::nullopt;
 }
 
@@ -197,7 +221,15 @@ struct FrameCamera {
     /// Window position of the viewport's lower left corner (glViewport's x, y): non-zero when
     /// a pick draws one pixel of the frame into a 1 x 1 target.
     glm::ivec2 viewportOrigin{0, 0};
+    /// Sub-pixel shift of the whole image, in pixels (RenderOptions::Antialiasing::Accumulate's
+    /// samples): applied to what the shaders get (drawnViewProjection), not to viewProjection,
+    /// which the passes' caches and the CPU's choices keep, so a frame's samples share them.
+    glm::vec2 jitter{0.0f};
 };
+
+/// The view-projection the shaders draw with: camera.viewProjection followed by the shift of
+/// camera.jitter pixels on screen (a translation in normalised device coordinates).
+glm::mat4 drawnViewProjection(const FrameCamera& camera);
 
 /// The same camera in double precision, for picking and dragging on the CPU (pixels round-trip
 /// exactly); frameCamera is this, rounded to float.

@@ -56,6 +56,7 @@ bool Renderer::initialize() {
     d->scene.initialize(gl, &d->shaders);
     d->exact.initialize(gl, &d->shaders);
     d->antialias.initialize(gl, &d->shaders);
+    d->accumulate.initialize(gl, &d->shaders);
     d->floatDepth.initialize(gl);
     GLint maxSamples = 1;
     gl->glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
@@ -121,20 +122,31 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     const int samples = frameSamples(options, target.aov, pickPixel != nullptr, report);
     AntialiasTarget* aa = nullptr;
-    if (samples > 1) {
+    AccumulateTarget* accumulated = nullptr;
+    if (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
+        QString aaError;
+        if (accumulate.ensure(size, &aaError))
+            accumulated = &accumulate;
+        else
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(aaError);
+        antialias.release();
+    } else if (samples > 1) {
         QString aaError;
         if (antialias.ensure(size, samples, &aaError))
             aa = &antialias;
         else
             report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(aaError);
     } else if (!target.aov && !pickPixel) {
-        antialias.release(); // anti-aliasing turned off: free its framebuffer
+        antialias.release(); // anti-aliasing turned off: free its framebuffers
     }
+    if (!accumulated && !target.aov && !pickPixel)
+        accumulate.release();
     // An aliased frame into a host whose depth is not float (Qt's widget framebuffers: 24-bit)
     // is drawn into the float-depth target and its colour copied over (float_depth_target.h).
     // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
     RenderTarget drawn = target;
-    if (!aa && !target.aov && !pickPixel && floatDepth.hostNeedsIt(target.framebuffer)) {
+    if (!aa && !accumulated && !target.aov && !pickPixel &&
+        floatDepth.hostNeedsIt(target.framebuffer)) {
         if (QString fdError; floatDepth.ensure(size, &fdError))
             drawn.framebuffer = floatDepth.framebuffer();
         else
@@ -145,17 +157,36 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         // allocate the target again at every move.
         floatDepth.release();
     }
-    beginTarget(drawn, options, pickPixel);
-    if (aa)
-        aa->begin(&options.background.x);
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
 
     QElapsedTimer phase;
     phase.start();
-    bool ok = options.mode == RenderMode::Exact
-                  ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
-                               &error)
-                  : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+    // Accumulated anti-aliasing draws the whole aliased frame once per sample, shifted by the
+    // sample's offset, into its own framebuffer, and adds it up; otherwise one frame.
+    const std::vector<glm::vec2> offsets =
+        accumulated ? accumulationOffsets(samples) : std::vector<glm::vec2>{glm::vec2(0.0f)};
+    RenderTarget sampleTarget = drawn;
+    if (accumulated)
+        sampleTarget.framebuffer = accumulated->sampleFramebuffer();
+    bool ok = true;
+    for (size_t i = 0; ok && i < offsets.size(); ++i) {
+        fc.jitter = offsets[i];
+        beginTarget(sampleTarget, options, pickPixel);
+        if (aa)
+            aa->begin(&options.background.x);
+        ok = options.mode == RenderMode::Exact
+                 ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
+                              &error)
+                 : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+        if (ok && accumulated)
+            ok = accumulated->add(i == 0, &error);
+    }
+    fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
+    if (QString accError;
+        ok && accumulated && !accumulated->resolve(target.framebuffer, samples, &accError)) {
+        error = accError;
+        ok = false;
+    }
     // Resolved before the overlays: they are drawn into the host's framebuffer over the
     // composite's colour and depth, as without anti-aliasing.
     if (QString aaError; aa && !aa->composite(target.framebuffer, &aaError)) {
@@ -204,7 +235,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.partitions.skirtTriangles = exact.skirtTriangles;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
-    report.gpuBytes.frameTargets = antialias.residentBytes();
+    report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();
     report.gpuBytes.floatDepthTarget = floatDepth.residentBytes();
     if (!ok)
         report.error = error;
@@ -219,6 +250,8 @@ int Renderer::Impl::frameSamples(const RenderOptions& options, bool aov, bool pi
                                  FrameReport& report) {
     if (options.samples <= 1 || aov || pick)
         return 1;
+    if (options.antialiasing == RenderOptions::Antialiasing::Accumulate)
+        return std::min(options.samples, kMaxSamples); // whole frames: no GPU limit
     const int limit = maxSamples;
     if (options.samples > limit)
         report.warnings << QStringLiteral("%1 samples asked, the GPU allows %2: using %2")
@@ -421,6 +454,7 @@ void Renderer::release() {
     d->scene.release();
     d->exact.release();
     d->antialias.release();
+    d->accumulate.release();
     d->floatDepth.release();
     d->rangeKey = {};
     d->shaders.clear();

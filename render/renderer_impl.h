@@ -2,6 +2,7 @@
 // (and to render's tests, which inspect uploads and masks through Renderer::internals()).
 #pragma once
 
+#include "render/accumulate_target.h"
 #include "render/antialias_target.h"
 #include "render/exact_surface_pass.h"
 #include "render/float_depth_target.h"
@@ -39,6 +40,7 @@ struct Renderer::Impl {
     GpuScene scene; ///< every per-surface GPU object
     ExactSurfacePass exact;
     AntialiasTarget antialias;   ///< the multisampled frame of RenderOptions::samples > 1
+    AccumulateTarget accumulate; ///< the accumulated frame (Antialiasing::Accumulate)
     int maxSamples = 1;          ///< GL_MAX_SAMPLES within 1..kMaxSamples, read at initialize
     FloatDepthTarget floatDepth; ///< aliased frames into hosts without float depth
     TessellatedPass tessellated;

@@ -12,7 +12,7 @@ namespace kw {
 void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
                       const FrameCamera& camera, const std::vector<Light>& lights) {
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(program).viewProjection, 1, GL_FALSE,
-                           glm::value_ptr(camera.viewProjection));
+                           glm::value_ptr(drawnViewProjection(camera)));
     gl->glUniform3fv(ShaderLibrary::uniforms(program).eye, 1, glm::value_ptr(camera.eye));
     gl->glUniform3fv(ShaderLibrary::uniforms(program).forward, 1, glm::value_ptr(camera.forward));
     if (ShaderLibrary::uniforms(program).viewport >= 0)

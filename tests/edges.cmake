@@ -3,7 +3,7 @@ kw_add_test(tst_surface_bound LABEL kernel SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst
 # The CPU reference frame against analytic ray casting, and the edge metrics (no GL).
 kw_add_test(tst_reference_render LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_reference_render.cpp LIBS knotwork_render)
 # knotwork render --reference / --edge-report end to end (label gl: the GPU frame is compared).
-kw_add_test(tst_render_edges LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_edges.cpp LIBS Qt6::Core)
+kw_add_test(tst_render_edges LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_edges.cpp LIBS Qt6::Gui)
 target_compile_definitions(tst_render_edges PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_render_edges knotwork)
 # Partitions and Fit where the face is: trim parameter boxes, trimmed-geometry bounds, fitCamera.

@@ -256,6 +256,10 @@ private Q_SLOTS:
         QTest::newRow("bad samples")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--samples"), QStringLiteral("17")};
+        QTest::newRow("bad aa method") << QStringList{
+            sample("trimmed_plate"),     QStringLiteral("-o"), output("x.png"),
+            QStringLiteral("--samples"), QStringLiteral("4"),  QStringLiteral("--aa-method"),
+            QStringLiteral("msaa")};
         QTest::newRow("bad zoom point")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--zoom"), QStringLiteral("8@1.5,0.5")};
@@ -278,7 +282,11 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--trim-mode 'fuzzy'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--trim-budget")))
             QVERIFY2(r.err.contains(QStringLiteral("--trim-budget '0'")), qPrintable(r.err));
-        if (args.contains(QStringLiteral("--samples")))
+        if (args.contains(QStringLiteral("--aa-method")))
+            QVERIFY2(r.err.contains(QStringLiteral("--aa-method 'msaa' is not accumulate or "
+                                                   "coverage")),
+                     qPrintable(r.err));
+        else if (args.contains(QStringLiteral("--samples")))
             QVERIFY2(r.err.contains(QStringLiteral("--samples '17'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--zoom")))
             QVERIFY2(r.err.contains(QStringLiteral("--zoom '")), qPrintable(r.err));

@@ -498,6 +498,7 @@ private Q_SLOTS:
         wanted.trimMode = QStringLiteral("mask");
         wanted.trimBudgetMiB = 64;
         wanted.samples = 2;
+        wanted.aaMethod = QStringLiteral("coverage");
         wanted.headlight = false;
         wanted.background = QColor(10, 20, 30);
         QVERIFY(!(Preferences::load() == wanted));
@@ -533,6 +534,7 @@ private Q_SLOTS:
         QVERIFY(o.trimMode == RenderOptions::TrimMode::Mask);
         QCOMPARE(o.trimBudgetBytes, std::int64_t(64) << 20);
         QCOMPARE(m_window->viewport()->samples(), 2);
+        QVERIFY(o.antialiasing == RenderOptions::Antialiasing::Coverage);
         QCOMPARE(o.background.r, float(10 / 255.0));
         QCOMPARE(QSettings().value(QStringLiteral("autosave/intervalSeconds")).toInt(), 0);
         QCOMPARE(QSettings().value(QStringLiteral("save/keepBackup")).toBool(), false);

@@ -5,6 +5,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QImage>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QRegularExpression>
@@ -96,6 +97,62 @@ QJsonObject coarseReport(const QString& name, bool fins) {
     QFile f(json);
     return f.open(QIODevice::ReadOnly) ? QJsonDocument::fromJson(f.readAll()).object()
                                        : QJsonObject{};
+}
+
+/// render of `knot` at `side` x `side` (fitted view) with `extra` arguments; the image, or a null
+/// one when the run failed.
+QImage renderPart(const QString& knot, int side, const QString& tag, const QStringList& extra) {
+    const QString png = output(QStringLiteral("aa_%1.png").arg(tag));
+    QFile::remove(png);
+    const Run r =
+        knotwork(QStringList{QStringLiteral("render"), knot, QStringLiteral("-o"), png,
+                             QStringLiteral("--size"), QStringLiteral("%1x%1").arg(side)} +
+                 extra);
+    if (r.code != 0)
+        qWarning("%s", qPrintable(r.err));
+    return QImage(png).convertToFormat(QImage::Format_RGB32);
+}
+
+/// Seams of an anti-aliased frame against the truth (the aliased frame at 4 x the size,
+/// box-filtered: 16 samples per pixel): the pixels at least 2 px from the background in the
+/// aliased frame (seams and inner outlines, not the part's outline) whose anti-aliased value is
+/// darker than the truth's by more than 8 levels (mean of R, G, B), and the mean absolute
+/// difference over them.
+struct SeamCount {
+    int interior = 0, darker = 0;
+    double meanDifference = 0.0;
+};
+SeamCount seams(const QImage& aliased, const QImage& big, const QImage& aa) {
+    SeamCount c;
+    const int w = aliased.width(), h = aliased.height();
+    const QRgb background = aliased.pixel(0, 0);
+    double sum = 0.0;
+    for (int y = 2; y < h - 2; ++y)
+        for (int x = 2; x < w - 2; ++x) {
+            bool interior = true;
+            for (int dy = -2; dy <= 2 && interior; ++dy)
+                for (int dx = -2; dx <= 2; ++dx)
+                    if (aliased.pixel(x + dx, y + dy) == background) {
+                        interior = false;
+                        break;
+                    }
+            if (!interior)
+                continue;
+            double truth = 0.0;
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) {
+                    const QRgb p = big.pixel(4 * x + i, 4 * y + j);
+                    truth += (qRed(p) + qGreen(p) + qBlue(p)) / 3.0;
+                }
+            truth /= 16.0;
+            const QRgb p = aa.pixel(x, y);
+            const double value = (qRed(p) + qGreen(p) + qBlue(p)) / 3.0;
+            ++c.interior;
+            sum += std::abs(value - truth);
+            c.darker += value < truth - 8.0;
+        }
+    c.meanDifference = c.interior > 0 ? sum / c.interior : 0.0;
+    return c;
 }
 
 } // namespace
@@ -265,6 +322,47 @@ private Q_SLOTS:
         QTest::newRow("2x") << QStringLiteral("2@0.4,0.5");
         QTest::newRow("8x") << QStringLiteral("8@0.3,0.6");
     }
+    // Anti-aliased still frames (the editor's) of closed solids: the default accumulated frames
+    // (each sample an aliased frame, skirts and fins included) stay within quantisation of the
+    // 16-sample truth along seams and inner outlines; the MSAA frame with exact trim coverage
+    // showed dark dotted seams there (74 and 105 such pixels at this size, 90 and 142 in the
+    // aliased frame itself, docs/PERFORMANCE.md "Anti-aliasing by accumulation").
+    void antialiasedSeamsStayClosed_data() {
+        QTest::addColumn<QString>("part");
+        QTest::addColumn<int>("most");
+        QTest::addColumn<double>("meanMost");
+        QTest::addRow("Pump_Nut") << QStringLiteral("Pump_Nut") << 32 << 0.15;
+        QTest::addRow("Axis_of_bearing") << QStringLiteral("Axis_of_bearing") << 45 << 0.45;
+    }
+    void antialiasedSeamsStayClosed() {
+        QFETCH(QString, part);
+        QFETCH(int, most);
+        QFETCH(double, meanMost);
+        const QString knot = convertedPart(qPrintable(part));
+        constexpr int kSide = 256;
+        const QImage aliased = renderPart(knot, kSide, part + QStringLiteral("_1"), {});
+        const QImage big = renderPart(knot, 4 * kSide, part + QStringLiteral("_big"), {});
+        const QImage accumulated = renderPart(knot, kSide, part + QStringLiteral("_acc"),
+                                              {QStringLiteral("--samples"), QStringLiteral("4")});
+        const QImage coverage =
+            renderPart(knot, kSide, part + QStringLiteral("_cov"),
+                       {QStringLiteral("--samples"), QStringLiteral("4"),
+                        QStringLiteral("--aa-method"), QStringLiteral("coverage")});
+        QVERIFY(!aliased.isNull() && !big.isNull() && !accumulated.isNull() && !coverage.isNull());
+        const SeamCount acc = seams(aliased, big, accumulated);
+        const SeamCount cov = seams(aliased, big, coverage);
+        const SeamCount none = seams(aliased, big, aliased);
+        qInfo("%s: %d interior pixels; darker than the truth by > 8 levels: accumulated %d "
+              "(mean |difference| %.3f), coverage %d (%.3f), aliased %d (%.3f)",
+              qPrintable(part), acc.interior, acc.darker, acc.meanDifference, cov.darker,
+              cov.meanDifference, none.darker, none.meanDifference);
+        QVERIFY(acc.interior > 5000);
+        QVERIFY2(acc.darker <= most, qPrintable(QString::number(acc.darker)));
+        QVERIFY2(acc.meanDifference <= meanMost, qPrintable(QString::number(acc.meanDifference)));
+        // Anti-aliased at all: nearer the truth than the aliased frame.
+        QVERIFY(acc.meanDifference < 0.6 * none.meanDifference);
+    }
+
     void closedSolidHasNoCracksInCloseUps() {
         QFETCH(QString, zoom);
         const QJsonObject m = partReport(convertedPart("Pump_Nut"), zoom);

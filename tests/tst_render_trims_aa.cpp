@@ -5,6 +5,7 @@
 // aliased; AOV frames and picks are never anti-aliased.
 #include "model/trim_arcs.h"
 #include "model/visible_bounds.h"
+#include "render/accumulate_target.h"
 #include "render/renderer_impl.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
@@ -106,9 +107,12 @@ class TestRenderTrimsAa : public QObject {
         return c;
     }
 
-    static RenderOptions aaOptions(int samples, RenderOptions::TrimMode mode) {
+    static RenderOptions
+    aaOptions(int samples, RenderOptions::TrimMode mode,
+              RenderOptions::Antialiasing method = RenderOptions::Antialiasing::Coverage) {
         RenderOptions o;
         o.samples = samples;
+        o.antialiasing = method;
         o.trimMode = mode;
         o.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
         o.lightCount = 1;
@@ -192,28 +196,37 @@ private Q_SLOTS:
     void straightEdgeCoverage_data() {
         QTest::addColumn<double>("degrees");
         QTest::addColumn<bool>("mask");
+        QTest::addColumn<int>("accumulated"); // samples of Antialiasing::Accumulate, 0: coverage
         for (double deg : {0.0, 7.0, 30.0, 45.0, 62.0, 90.0, 121.0})
-            QTest::addRow("exact %g deg", deg) << deg << false;
+            QTest::addRow("exact %g deg", deg) << deg << false << 0;
         // The paper's mask (--trim-mode mask) is anti-aliased from its bilinear value's
         // gradient, but its edge is only as accurate as its texels (about a pixel here), so
         // only its print-out is kept (docs/PERFORMANCE.md ## Trims).
-        QTest::addRow("mask 30 deg") << 30.0 << true;
+        QTest::addRow("mask 30 deg") << 30.0 << true << 0;
+        // Accumulated frames: each sample is the aliased frame's exact classification, so the
+        // coverage is the fraction of the 16 sample offsets inside the line.
+        for (double deg : {7.0, 30.0, 62.0, 121.0})
+            QTest::addRow("accumulated 16 %g deg", deg) << deg << false << 16;
     }
 
     // The test: within 1/8 of the analytic coverage for a straight trim edge.
     void straightEdgeCoverage() {
         QFETCH(double, degrees);
         QFETCH(bool, mask);
+        QFETCH(int, accumulated);
         const double a = glm::radians(degrees);
         const glm::dvec2 dir(std::cos(a), std::sin(a));
         // Off the pixel grid's symmetry: the line misses pixel centres and corners.
         const glm::dvec2 c(0.5 + 0.0123, 0.5 - 0.0071);
-        const EdgeCoverage r = measure(
-            c, dir,
-            aaOptions(4, mask ? RenderOptions::TrimMode::Mask : RenderOptions::TrimMode::Exact));
+        const EdgeCoverage r =
+            measure(c, dir,
+                    aaOptions(accumulated > 0 ? accumulated : 4,
+                              mask ? RenderOptions::TrimMode::Mask : RenderOptions::TrimMode::Exact,
+                              accumulated > 0 ? RenderOptions::Antialiasing::Accumulate
+                                              : RenderOptions::Antialiasing::Coverage));
         qInfo("%s %g deg: %d edge pixels, mean error %.4f, max %.4f at (%d, %d): %.3f for %.3f",
-              mask ? "mask" : "exact", degrees, r.edgePixels, r.meanEdgeError, r.maxError, r.worstX,
-              r.worstY, r.worstGot, r.worstWant);
+              mask ? "mask" : (accumulated > 0 ? "accumulated" : "exact"), degrees, r.edgePixels,
+              r.meanEdgeError, r.maxError, r.worstX, r.worstY, r.worstGot, r.worstWant);
         QVERIFY(r.checked > kSide * kSide / 2);
         QVERIFY2(r.edgePixels >= kSide / 2, qPrintable(QString::number(r.edgePixels)));
         if (mask)
@@ -383,7 +396,14 @@ private Q_SLOTS:
 
     // MSAA: a silhouette (the plane's own border, not a trim) gets partly covered pixels with
     // samples > 1 and none with 1; shading stays once per pixel, so the inside is unchanged.
+    void silhouetteIsMultisampled_data() {
+        QTest::addColumn<int>("method");
+        QTest::addRow("coverage") << int(RenderOptions::Antialiasing::Coverage);
+        QTest::addRow("accumulate") << int(RenderOptions::Antialiasing::Accumulate);
+    }
     void silhouetteIsMultisampled() {
+        QFETCH(int, method);
+        const auto antialiasing = RenderOptions::Antialiasing(method);
         Scene scene;
         Surface s = plane(1);
         for (glm::dvec3& p : s.geometry.points)
@@ -398,7 +418,8 @@ private Q_SLOTS:
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         auto partial = [&](int samples, QImage& image) {
-            if (!renderImage(doc, aaOptions(samples, RenderOptions::TrimMode::Exact), image))
+            if (!renderImage(doc, aaOptions(samples, RenderOptions::TrimMode::Exact, antialiasing),
+                             image))
                 return -1;
             int n = 0;
             for (int y = 0; y < kSide; ++y)
@@ -416,7 +437,11 @@ private Q_SLOTS:
         QVERIFY2(some > 100, qPrintable(QString::number(some)));
         QCOMPARE(smooth.pixelColor(kSide / 2, kSide / 2), aliased.pixelColor(kSide / 2, kSide / 2));
         const FrameReport& report = m_renderer->lastReport();
-        QVERIFY(report.gpuBytes.frameTargets >= std::int64_t(kSide) * kSide * 4 * 16);
+        // MSAA: 4 samples of colour, sum and depth; accumulated: one sample's colour and depth
+        // and the float sum.
+        QVERIFY(report.gpuBytes.frameTargets >=
+                std::int64_t(kSide) * kSide *
+                    (antialiasing == RenderOptions::Antialiasing::Coverage ? 4 * 16 : 24));
     }
 
     // Past the GPU's limit the frame is drawn with its most samples, with a warning; turning
@@ -441,6 +466,36 @@ private Q_SLOTS:
         QVERIFY(r.gpuBytes.frameTargets > 0);
         QVERIFY(renderImage(doc, aaOptions(1, RenderOptions::TrimMode::Exact), image));
         QCOMPARE(m_renderer->lastReport().gpuBytes.frameTargets, std::int64_t(0));
+        // Accumulated frames are whole frames: any count up to kMaxSamples, with no warning.
+        QVERIFY(renderImage(doc,
+                            aaOptions(kMaxSamples, RenderOptions::TrimMode::Exact,
+                                      RenderOptions::Antialiasing::Accumulate),
+                            image));
+        QVERIFY2(m_renderer->lastReport().warnings.isEmpty(),
+                 qPrintable(m_renderer->lastReport().warnings.join(' ')));
+        QVERIFY(m_renderer->lastReport().gpuBytes.frameTargets > 0);
+        QVERIFY(renderImage(doc, aaOptions(1, RenderOptions::TrimMode::Exact), image));
+        QCOMPARE(m_renderer->lastReport().gpuBytes.frameTargets, std::int64_t(0));
+    }
+
+    // The accumulated samples' offsets: inside the pixel, on distinct rows and columns for the
+    // standard counts (an edge near the pixel grid still gets every level), centred.
+    void accumulationOffsetsAreSpread() {
+        for (int n = 1; n <= kMaxSamples; ++n) {
+            const std::vector<glm::vec2> o = accumulationOffsets(n);
+            QCOMPARE(int(o.size()), n);
+            glm::vec2 mean(0.0f);
+            for (const glm::vec2& p : o) {
+                QVERIFY(std::abs(p.x) <= 0.5f && std::abs(p.y) <= 0.5f);
+                mean += p / float(n);
+            }
+            QVERIFY2(glm::length(mean) <= 1.0f / 16.0f + 1e-6f, qPrintable(QString::number(n)));
+            if (n == 2 || n == 4 || n == 8 || n == 16) {
+                for (size_t i = 0; i < o.size(); ++i)
+                    for (size_t j = i + 1; j < o.size(); ++j)
+                        QVERIFY(o[i].x != o[j].x && o[i].y != o[j].y);
+            }
+        }
     }
 };
 

@@ -52,6 +52,8 @@ void DesktopActions::applyPreferences() {
     m_viewport->setHeadlight(p.headlight);
     m_viewport->setTrimMaskCap(p.trimMaskCap);
     m_viewport->setSamples(p.samples);
+    m_viewport->setAntialiasing(
+        antialiasingNamed(p.aaMethod).value_or(RenderOptions::Antialiasing::Accumulate));
     m_viewport->setTrimMode(trimModeNamed(p.trimMode).value_or(RenderOptions::TrimMode::Exact),
                             std::int64_t(p.trimBudgetMiB) << 20);
     showPartitions(p.partitionMode, p.pixelTolerance);

@@ -40,6 +40,9 @@ Preferences Preferences::load() {
                    int(kMaxTrimBudgetBytes >> 20));
     p.samples =
         std::clamp(s.value(QStringLiteral("view/samples"), d.samples).toInt(), 0, kMaxSamples);
+    p.aaMethod = s.value(QStringLiteral("view/aaMethod"), d.aaMethod).toString();
+    if (!antialiasingNamed(p.aaMethod))
+        p.aaMethod = d.aaMethod;
     p.headlight = s.value(QStringLiteral("view/headlight"), d.headlight).toBool();
     const QColor c(s.value(QStringLiteral("view/background"), d.background.name()).toString());
     p.background = c.isValid() ? c : d.background;
@@ -56,6 +59,7 @@ void Preferences::save() const {
     s.setValue(QStringLiteral("view/trimMode"), trimMode);
     s.setValue(QStringLiteral("view/trimBudgetMiB"), trimBudgetMiB);
     s.setValue(QStringLiteral("view/samples"), samples);
+    s.setValue(QStringLiteral("view/aaMethod"), aaMethod);
     s.setValue(QStringLiteral("view/headlight"), headlight);
     s.setValue(QStringLiteral("view/background"), background.name());
 }
@@ -125,10 +129,18 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     m_samples->setSpecialValueText(tr("automatic"));
     m_samples->setSuffix(tr(" per pixel"));
     m_samples->setValue(p.samples);
-    m_samples->setToolTip(tr("Anti-aliasing: MSAA samples per pixel for silhouettes (at most "
-                             "what the GPU allows), trim edges covered by their exact "
-                             "distance; 1 is off; automatic: 4, and on software OpenGL, where "
-                             "it costs several times the frame, only once the view is still"));
+    m_samples->setToolTip(tr("Anti-aliasing: samples per pixel; 1 is off; automatic: 4, and on "
+                             "software OpenGL, where it costs several times the frame, only "
+                             "once the view is still"));
+    m_aaMethod = new QComboBox;
+    m_aaMethod->setObjectName(QStringLiteral("prefAaMethod"));
+    m_aaMethod->addItems({QStringLiteral("accumulate"), QStringLiteral("coverage")});
+    m_aaMethod->setCurrentText(p.aaMethod);
+    m_aaMethod->setToolTip(tr("accumulate: the whole frame once per sample, each shifted by a "
+                              "sub-pixel offset, averaged (seams between faces stay closed, "
+                              "highlights and analysis stripes are smoothed too); coverage: "
+                              "MSAA samples (at most what the GPU allows), trim edges covered "
+                              "by their exact distance"));
     m_headlight = new QCheckBox(tr("Lights follow the camera (headlight)"));
     m_headlight->setObjectName(QStringLiteral("prefHeadlight"));
     m_headlight->setChecked(p.headlight);
@@ -154,6 +166,7 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     form->addRow(tr("Trim memory budget"), m_trimBudget);
     form->addRow(tr("Trim mask size cap"), m_trimCap);
     form->addRow(tr("Anti-aliasing"), m_samples);
+    form->addRow(tr("Anti-aliasing method"), m_aaMethod);
     form->addRow(tr("Light rig"), m_headlight);
     form->addRow(tr("Background"), m_background);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
@@ -172,6 +185,7 @@ Preferences PreferencesDialog::value() const {
     p.trimMode = m_trimMode->currentText();
     p.trimBudgetMiB = m_trimBudget->value();
     p.samples = m_samples->value();
+    p.aaMethod = m_aaMethod->currentText();
     p.headlight = m_headlight->isChecked();
     p.background = m_color;
     return p;

@@ -27,6 +27,9 @@ struct Preferences {
     /// "view/samples": anti-aliasing samples per pixel, 1 (off)..kMaxSamples, or 0: automatic
     /// (4, and on software OpenGL only for still frames: Viewport::setSamples)
     int samples = 0;
+    /// "view/aaMethod": accumulate (whole frames at sub-pixel offsets, averaged: seams stay
+    /// closed) | coverage (MSAA, trim edges covered exactly); RenderOptions::Antialiasing
+    QString aaMethod = QStringLiteral("accumulate");
     bool headlight = true;         ///< "view/headlight": lights follow the camera
     QColor background{46, 48, 54}; ///< "view/background"
 
@@ -53,6 +56,7 @@ private:
     QComboBox* m_trimMode;
     QSpinBox* m_trimBudget;
     QSpinBox* m_samples;
+    QComboBox* m_aaMethod;
     QCheckBox* m_headlight;
     QPushButton* m_background;
     QColor m_color;

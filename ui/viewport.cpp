@@ -178,6 +178,11 @@ void Viewport::setSamples(int samples) {
     update();
 }
 
+void Viewport::setAntialiasing(RenderOptions::Antialiasing method) {
+    m_options.antialiasing = method;
+    update();
+}
+
 int Viewport::samples() const {
     return m_samplesWanted == kAutoSamples ? kAutoSamplesCount : m_samplesWanted;
 }

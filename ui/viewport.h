@@ -88,6 +88,8 @@ public:
     /// ## Trims), frames drawn while the view moves or points are dragged are aliased and the
     /// still frame kStillMs later is anti-aliased.
     void setSamples(int samples);
+    /// How frames with samples > 1 are anti-aliased (RenderOptions::antialiasing).
+    void setAntialiasing(RenderOptions::Antialiasing method);
     static constexpr int kAutoSamples = 0;
     static constexpr int kAutoSamplesCount = 4;
     static constexpr int kStillMs = 250;

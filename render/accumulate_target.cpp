@@ -1,0 +1,166 @@
+#include "render/accumulate_target.h"
+
+#include "render/depth_convention.h"
+
+#include <QOpenGLShaderProgram>
+#include <algorithm>
+#include <glm/common.hpp>
+
+namespace kw {
+
+std::vector<glm::vec2> accumulationOffsets(int samples) {
+    // Direct3D's standard sample positions, in sixteenths of a pixel from its centre.
+    static const int two[2][2] = {{4, 4}, {-4, -4}};
+    static const int four[4][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
+    static const int eight[8][2] = {{1, -3}, {-1, 3},  {5, 1}, {-3, -5},
+                                    {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
+    static const int sixteen[16][2] = {{1, 1},  {-1, -3}, {-3, 2}, {4, -1}, {-5, -2}, {2, 5},
+                                       {5, 3},  {3, -5},  {-2, 6}, {0, -7}, {-4, -6}, {-6, 4},
+                                       {-8, 0}, {7, -4},  {6, 7},  {-7, -8}};
+    std::vector<glm::vec2> offsets;
+    const auto fromTable = [&](const int(*table)[2], int n) {
+        for (int i = 0; i < n; ++i)
+            offsets.emplace_back(float(table[i][0]) / 16.0f, float(table[i][1]) / 16.0f);
+    };
+    if (samples <= 1)
+        offsets.emplace_back(0.0f, 0.0f);
+    else if (samples == 2)
+        fromTable(two, 2);
+    else if (samples == 4)
+        fromTable(four, 4);
+    else if (samples == 8)
+        fromTable(eight, 8);
+    else if (samples == 16)
+        fromTable(sixteen, 16);
+    else {
+        const auto halton = [](int i, int base) {
+            float f = 1.0f, r = 0.0f;
+            for (; i > 0; i /= base) {
+                f /= float(base);
+                r += f * float(i % base);
+            }
+            return r;
+        };
+        glm::vec2 mean(0.0f);
+        for (int i = 1; i <= samples; ++i) {
+            offsets.emplace_back(halton(i, 2) - 0.5f, halton(i, 3) - 0.5f);
+            mean += offsets.back() / float(samples);
+        }
+        // Centred, so that the image does not drift by the points' mean (up to 0.13 px).
+        for (glm::vec2& o : offsets)
+            o = glm::clamp(o - mean, glm::vec2(-0.5f), glm::vec2(0.5f));
+    }
+    return offsets;
+}
+
+bool AccumulateTarget::ensure(QSize size, QString* error) {
+    if (m_sampleFbo && size == m_size)
+        return true;
+    release();
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    auto texture = [&](GLenum format) {
+        GLuint t = 0;
+        gl->glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        gl->glTextureStorage2D(t, 1, format, size.width(), size.height());
+        return t;
+    };
+    m_colour = texture(GL_RGBA8);
+    m_depth = texture(kDepthFormat);
+    m_sum = texture(GL_RGBA32F);
+    gl->glCreateFramebuffers(1, &m_sampleFbo);
+    gl->glNamedFramebufferTexture(m_sampleFbo, GL_COLOR_ATTACHMENT0, m_colour, 0);
+    gl->glNamedFramebufferTexture(m_sampleFbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
+    gl->glCreateFramebuffers(1, &m_sumFbo);
+    gl->glNamedFramebufferTexture(m_sumFbo, GL_COLOR_ATTACHMENT0, m_sum, 0);
+    if (gl->glCheckNamedFramebufferStatus(m_sampleFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+        gl->glCheckNamedFramebufferStatus(m_sumFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        *error = QStringLiteral("the accumulated anti-aliasing framebuffers (%1x%2) are incomplete")
+                     .arg(size.width())
+                     .arg(size.height());
+        release();
+        return false;
+    }
+    gl->glCreateVertexArrays(1, &m_vao);
+    m_size = size;
+    return true;
+}
+
+QOpenGLShaderProgram* AccumulateTarget::program(const QString& fragment, QString* error) {
+    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("aa_composite.vert"), fragment);
+    if (!prog)
+        *error = m_shaders->lastError();
+    return prog;
+}
+
+bool AccumulateTarget::add(bool first, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_add.frag"), error);
+    if (!prog)
+        return false;
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, m_sumFbo);
+    gl->glViewport(0, 0, m_size.width(), m_size.height());
+    gl->glDisable(GL_DEPTH_TEST);
+    if (first) {
+        gl->glDisable(GL_BLEND);
+    } else {
+        gl->glEnable(GL_BLEND);
+        gl->glBlendEquation(GL_FUNC_ADD);
+        gl->glBlendFunc(GL_ONE, GL_ONE);
+    }
+    prog->bind();
+    gl->glBindTextureUnit(0, m_colour);
+    gl->glBindVertexArray(m_vao);
+    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl->glBindVertexArray(0);
+    gl->glBindTextureUnit(0, 0);
+    gl->glDisable(GL_BLEND);
+    gl->glEnable(GL_DEPTH_TEST);
+    return true;
+}
+
+bool AccumulateTarget::resolve(std::uint32_t framebuffer, int samples, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_resolve.frag"), error);
+    if (!prog)
+        return false;
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl->glViewport(0, 0, m_size.width(), m_size.height());
+    gl->glDisable(GL_BLEND);
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthFunc(GL_ALWAYS);
+    gl->glDepthMask(GL_TRUE);
+    prog->bind();
+    gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(samples, 1)));
+    gl->glBindTextureUnit(0, m_sum);
+    gl->glBindTextureUnit(1, m_depth);
+    gl->glBindVertexArray(m_vao);
+    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl->glBindVertexArray(0);
+    gl->glBindTextureUnit(0, 0);
+    gl->glBindTextureUnit(1, 0);
+    gl->glDepthFunc(kDepthNearer);
+    return true;
+}
+
+std::int64_t AccumulateTarget::residentBytes() const {
+    if (!m_sampleFbo)
+        return 0;
+    return std::int64_t(m_size.width()) * m_size.height() * (4 + 4 + 16);
+}
+
+void AccumulateTarget::release() {
+    if (!m_gl)
+        return;
+    for (GLuint* f : {&m_sampleFbo, &m_sumFbo})
+        if (*f)
+            m_gl->glDeleteFramebuffers(1, f), *f = 0;
+    for (GLuint* t : {&m_colour, &m_depth, &m_sum})
+        if (*t)
+            m_gl->glDeleteTextures(1, t), *t = 0;
+    if (m_vao)
+        m_gl->glDeleteVertexArrays(1, &m_vao);
+    m_vao = 0;
+    m_size = QSize();
+}
+
+} // namespace kw

@@ -1,0 +1,58 @@
+// The accumulated anti-aliased frame (RenderOptions::Antialiasing::Accumulate): the renderer
+// draws the whole aliased frame once per sample into this target's single-sampled framebuffer,
+// each time with the image shifted by that sample's sub-pixel offset (FrameCamera::jitter), adds
+// its colour into a float sum, and resolves the mean into the host's framebuffer at the end.
+// Every sample is then a pixel of the exact aliased frame, with the skirts and fins that close
+// the seams between faces (docs/RENDERING.md, "Skirts"), which the MSAA frame
+// (kw::AntialiasTarget) cannot draw.
+#pragma once
+
+#include "render/shader_library.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QSize>
+#include <QString>
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <vector>
+
+namespace kw {
+
+/// The sub-pixel offsets (pixels, each coordinate in [-0.5, 0.5]) of `samples` accumulated
+/// samples: the rotated grids of Direct3D's standard 2, 4, 8 and 16-sample patterns, whose
+/// samples fall on distinct rows and columns (an edge near horizontal or vertical still gets
+/// `samples` levels), and for other counts the first points of the (2, 3) Halton sequence,
+/// centred. Their mean is within 1/16 px of the pixel centre.
+std::vector<glm::vec2> accumulationOffsets(int samples);
+
+class AccumulateTarget {
+public:
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
+        m_gl = gl;
+        m_shaders = shaders;
+    }
+    /// (Re)allocates for `size` when it changed. False with *error set when the framebuffers
+    /// cannot be made.
+    bool ensure(QSize size, QString* error);
+    /// The framebuffer one sample is drawn into (RGBA8 colour, 32-bit float depth).
+    GLuint sampleFramebuffer() const { return m_sampleFbo; }
+    /// Adds the sample just drawn into the sum (the first sample of a frame replaces it).
+    bool add(bool first, QString* error);
+    /// Writes the mean of the `samples` sums into `framebuffer` (colour, and the depth of the
+    /// last sample for the overlays drawn afterwards) and leaves it bound; depth test on,
+    /// writes on.
+    bool resolve(std::uint32_t framebuffer, int samples, QString* error);
+    void release();
+    /// Bytes of the attachments (4 + 4 per pixel for the sample, 16 for the sum).
+    std::int64_t residentBytes() const;
+
+private:
+    QOpenGLShaderProgram* program(const QString& fragment, QString* error);
+
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ShaderLibrary* m_shaders = nullptr;
+    GLuint m_sampleFbo = 0, m_colour = 0, m_depth = 0, m_sumFbo = 0, m_sum = 0, m_vao = 0;
+    QSize m_size;
+};
+
+} // namespace kw

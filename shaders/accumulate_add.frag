@@ -1,0 +1,9 @@
+// Adds one accumulated sample's colour into the sum (kw::AccumulateTarget::add; blended with
+// GL_ONE, GL_ONE after the first sample).
+layout(binding = 0) uniform sampler2D uSample;
+
+out vec4 fragColor;
+
+void main() {
+    fragColor = texelFetch(uSample, ivec2(gl_FragCoord.xy), 0);
+}
