@@ -54,27 +54,19 @@ std::vector<glm::vec2> accumulationOffsets(int samples) {
 }
 
 bool AccumulateTarget::ensure(QSize size, QString* error) {
-    if (m_sampleFbo && size == m_size)
+    if (m_sumFbo && size == m_size)
         return true;
     release();
+    // One sample's frame is the aliased frame's own float-depth framebuffer.
+    if (!m_sample.ensure(size, error))
+        return false;
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    auto texture = [&](GLenum format) {
-        GLuint t = 0;
-        gl->glCreateTextures(GL_TEXTURE_2D, 1, &t);
-        gl->glTextureStorage2D(t, 1, format, size.width(), size.height());
-        return t;
-    };
-    m_colour = texture(GL_RGBA8);
-    m_depth = texture(kDepthFormat);
-    m_sum = texture(GL_RGBA32F);
-    gl->glCreateFramebuffers(1, &m_sampleFbo);
-    gl->glNamedFramebufferTexture(m_sampleFbo, GL_COLOR_ATTACHMENT0, m_colour, 0);
-    gl->glNamedFramebufferTexture(m_sampleFbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
+    gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_sum);
+    gl->glTextureStorage2D(m_sum, 1, GL_RGBA32F, size.width(), size.height());
     gl->glCreateFramebuffers(1, &m_sumFbo);
     gl->glNamedFramebufferTexture(m_sumFbo, GL_COLOR_ATTACHMENT0, m_sum, 0);
-    if (gl->glCheckNamedFramebufferStatus(m_sampleFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
-        gl->glCheckNamedFramebufferStatus(m_sumFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        *error = QStringLiteral("the accumulated anti-aliasing framebuffers (%1x%2) are incomplete")
+    if (gl->glCheckNamedFramebufferStatus(m_sumFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        *error = QStringLiteral("the accumulated anti-aliasing sum (%1x%2) is incomplete")
                      .arg(size.width())
                      .arg(size.height());
         release();
@@ -108,7 +100,7 @@ bool AccumulateTarget::add(bool first, QString* error) {
         gl->glBlendFunc(GL_ONE, GL_ONE);
     }
     prog->bind();
-    gl->glBindTextureUnit(0, m_colour);
+    gl->glBindTextureUnit(0, m_sample.colourTexture());
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
@@ -132,7 +124,7 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, int samples, QString* 
     prog->bind();
     gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(samples, 1)));
     gl->glBindTextureUnit(0, m_sum);
-    gl->glBindTextureUnit(1, m_depth);
+    gl->glBindTextureUnit(1, m_sample.depthTexture());
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
@@ -143,20 +135,20 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, int samples, QString* 
 }
 
 std::int64_t AccumulateTarget::residentBytes() const {
-    if (!m_sampleFbo)
+    if (!m_sumFbo)
         return 0;
-    return std::int64_t(m_size.width()) * m_size.height() * (4 + 4 + 16);
+    return m_sample.residentBytes() + std::int64_t(m_size.width()) * m_size.height() * 16;
 }
 
 void AccumulateTarget::release() {
     if (!m_gl)
         return;
-    for (GLuint* f : {&m_sampleFbo, &m_sumFbo})
-        if (*f)
-            m_gl->glDeleteFramebuffers(1, f), *f = 0;
-    for (GLuint* t : {&m_colour, &m_depth, &m_sum})
-        if (*t)
-            m_gl->glDeleteTextures(1, t), *t = 0;
+    m_sample.release();
+    if (m_sumFbo)
+        m_gl->glDeleteFramebuffers(1, &m_sumFbo);
+    if (m_sum)
+        m_gl->glDeleteTextures(1, &m_sum);
+    m_sumFbo = m_sum = 0;
     if (m_vao)
         m_gl->glDeleteVertexArrays(1, &m_vao);
     m_vao = 0;

@@ -7,6 +7,7 @@
 // (kw::AntialiasTarget) cannot draw.
 #pragma once
 
+#include "render/float_depth_target.h"
 #include "render/shader_library.h"
 
 #include <QOpenGLFunctions_4_5_Core>
@@ -30,12 +31,13 @@ public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
         m_gl = gl;
         m_shaders = shaders;
+        m_sample.initialize(gl);
     }
     /// (Re)allocates for `size` when it changed. False with *error set when the framebuffers
     /// cannot be made.
     bool ensure(QSize size, QString* error);
     /// The framebuffer one sample is drawn into (RGBA8 colour, 32-bit float depth).
-    GLuint sampleFramebuffer() const { return m_sampleFbo; }
+    GLuint sampleFramebuffer() const { return m_sample.framebuffer(); }
     /// Adds the sample just drawn into the sum (the first sample of a frame replaces it).
     bool add(bool first, QString* error);
     /// Writes the mean of the `samples` sums into `framebuffer` (colour, and the depth of the
@@ -51,7 +53,8 @@ private:
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
-    GLuint m_sampleFbo = 0, m_colour = 0, m_depth = 0, m_sumFbo = 0, m_sum = 0, m_vao = 0;
+    FloatDepthTarget m_sample; ///< one sample's frame
+    GLuint m_sumFbo = 0, m_sum = 0, m_vao = 0;
     QSize m_size;
 };
 

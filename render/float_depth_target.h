@@ -1,5 +1,6 @@
 // The aliased frame's own framebuffer when the host's depth is not float: RGBA8 colour and 32-bit
-// float depth, one sample, copied into the host's colour at the end of the frame. The editor's
+// float depth, one sample, copied into the host's colour at the end of the frame (and each
+// sample's frame of kw::AccumulateTarget). The editor's
 // frames on a software rasteriser while the view moves (Viewport::aliasedWhileMoving) go to
 // QOpenGLWidget's default framebuffer, whose depth is 24-bit integer; with the near plane at
 // 1e-5 of the far one in close-ups, 24 bits do not separate faces 1e-4 of the view apart and the
@@ -25,6 +26,8 @@ public:
     /// cannot be made.
     bool ensure(QSize size, QString* error);
     GLuint framebuffer() const { return m_fbo; }
+    GLuint colourTexture() const { return m_colour; }
+    GLuint depthTexture() const { return m_depth; }
     /// Copies the colour into `framebuffer`'s draw buffers over the whole size (the host's depth
     /// is left as it was: nothing is drawn into the host after the frame's overlays).
     void copyColourTo(std::uint32_t framebuffer);

@@ -199,6 +199,14 @@ bool kwTrimOtherEdge(vec2 f, vec2 g) {
     return dot(g, g) < 0.5625 && !kwTrimOnLine(g, f) && !kwTrimOnLine(f, g);
 }
 
+// The ends of the piece at word p (exact points of its arc), and whether the box of the piece
+// (which holds it: a piece is monotone in u and v) meets the box [boxLo, boxHi].
+bool kwTrimPieceMeets(uint p, vec2 boxLo, vec2 boxHi, out vec2 p0, out vec2 p1) {
+    p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
+    p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
+    return !(any(greaterThan(min(p0, p1), boxHi)) || any(lessThan(max(p0, p1), boxLo)));
+}
+
 // The coverage of the pixel by the trimmed surface (KW_WHOLLY where no curve is in reach and
 // the centre is inside), or -1 where the pixel holds more than one straight edge can stand for.
 // `jacobian` holds d(u, v)/dx and d(u, v)/dy (screen pixels); `inside` is the exact
@@ -262,10 +270,9 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
             uint k = uTrimBlock + 4u + uint(j * isize.x + i);
             uint last = kwTrimWord(k + 1u) >> 2;
             for (uint e = kwTrimWord(k) >> 2; e < last; ++e) {
-                uint p = pieces + 8u * (kwTrimWord(entries + e) >> 2);
-                vec2 p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
-                vec2 p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
-                if (!(any(greaterThan(min(p0, p1), boxHi)) || any(lessThan(max(p0, p1), boxLo)))) {
+                vec2 p0, p1;
+                if (kwTrimPieceMeets(pieces + 8u * (kwTrimWord(entries + e) >> 2), boxLo, boxHi,
+                                     p0, p1)) {
                     hitLo = min(hitLo, ivec2(i, j));
                     hitHi = max(hitHi, ivec2(i, j));
                 }
@@ -285,11 +292,10 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
             uint last = kwTrimWord(k + 1u) >> 2;
             for (uint e = kwTrimWord(k) >> 2; e < last; ++e) {
                 uint p = pieces + 8u * (kwTrimWord(entries + e) >> 2);
-                vec2 p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
-                vec2 p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
-                vec2 pieceLo = min(p0, p1), pieceHi = max(p0, p1);
-                if (any(greaterThan(pieceLo, boxHi)) || any(lessThan(pieceHi, boxLo)))
+                vec2 p0, p1;
+                if (!kwTrimPieceMeets(p, boxLo, boxHi, p0, p1))
                     continue;
+                vec2 pieceLo = min(p0, p1), pieceHi = max(p0, p1);
                 uint arc = kwTrimWord(p + 6u);
                 float t0 = kwTrimFloat(p + 4u), t1 = kwTrimFloat(p + 5u);
                 uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
