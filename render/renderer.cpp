@@ -151,7 +151,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             drawn.framebuffer = floatDepth.framebuffer();
         else
             report.warnings << fdError;
-    } else if (!aa && !pickPixel) {
+    } else if (!aa && !accumulated && !pickPixel) {
         // Freed only when an aliased frame goes straight to its host: the editor alternates
         // aliased frames while moving with anti-aliased still ones, and would otherwise
         // allocate the target again at every move.
