@@ -482,6 +482,47 @@ private Q_SLOTS:
         QVERIFY2(m_gl, qPrintable(error));
     }
 
+    // The editor on a software rasteriser: aliased frames while moving, through the float-depth
+    // target (its widget's depth is 24-bit), and an anti-aliased still frame when it stops. The
+    // accumulated still frame leaves the float-depth target in place (else every move would
+    // allocate it again), draws the same pixels into a 24-bit host as into a float one, and the
+    // next aliased frame frees its own framebuffers.
+    void stillFramesKeepTheFloatDepthTarget() {
+        const std::optional<Scene> loaded = part(QStringLiteral("Pump_Nut.brep"));
+        QVERIFY(loaded);
+        Document doc;
+        QVERIFY(doc.resetScene(*loaded));
+        Pipeline editor{"editor colour, 24-bit host", GL_DEPTH24_STENCIL8,
+                        RenderOptions::Partitioning::Adaptive, false};
+        Pipeline floatHost{"colour, float host", GL_DEPTH32F_STENCIL8,
+                           RenderOptions::Partitioning::Adaptive, false};
+        for (Pipeline* p : {&editor, &floatHost})
+            start(*p, doc.scene());
+        if (QTest::currentTestFailed())
+            return;
+        const Camera camera = fitCamera(doc.scene(), 1.0);
+        auto draw = [&](Pipeline& p, int samples) {
+            p.options.samples = samples;
+            p.last = p.renderer.render(doc, camera, p.target.target(), p.options);
+            return p.last.ok;
+        };
+        QVERIFY(m_gl->makeCurrent());
+        QVERIFY(draw(editor, 1));
+        QVERIFY(editor.last.gpuBytes.floatDepthTarget > 0);
+        QCOMPARE(editor.last.gpuBytes.frameTargets, std::int64_t(0));
+        QVERIFY(draw(editor, 4));
+        QVERIFY(editor.last.gpuBytes.floatDepthTarget > 0);
+        QVERIFY(editor.last.gpuBytes.frameTargets > 0);
+        QVERIFY(draw(floatHost, 4));
+        const QImage a = editor.target.colour(), b = floatHost.target.colour();
+        QCOMPARE(a, b);
+        QVERIFY(draw(editor, 1));
+        QVERIFY(editor.last.gpuBytes.floatDepthTarget > 0);
+        QCOMPARE(editor.last.gpuBytes.frameTargets, std::int64_t(0));
+        for (Pipeline* p : {&editor, &floatHost})
+            finish(*p);
+    }
+
     void orbitAndZoom_data() {
         QTest::addColumn<QString>("file");
         QTest::newRow("Pump_Nut") << QStringLiteral("Pump_Nut.brep");
