@@ -100,6 +100,7 @@ public:
         o.polygonOverTrims = trims; // --no-trims draws whole domains
         o.trimMode = trimMode;
         o.samples = aaSamples;
+        o.antialiasing = aaMethod;
         return renderer.render(m.doc, m.camera, o, error);
     }
     /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
@@ -130,6 +131,7 @@ public:
     bool trims = true;
     RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
     int aaSamples = 1;
+    RenderOptions::Antialiasing aaMethod = RenderOptions::Antialiasing::Accumulate;
 
 private:
     SceneMesh m_gluMesh;
@@ -485,6 +487,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     s.trims = config.trims;
     s.trimMode = config.trimMode;
     s.aaSamples = config.aaSamples;
+    s.aaMethod = config.aaMethod;
     if (!s.create(error))
         return false;
     report.gl = s.renderer.renderer().glDescription();

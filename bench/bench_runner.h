@@ -43,6 +43,8 @@ struct BenchConfig {
     /// --aa-samples: anti-aliasing samples per pixel of the renderer's timed frames
     /// (RenderOptions::samples; the quality frames read AOVs and are never anti-aliased).
     int aaSamples = 1;
+    /// --aa-method: how those samples are drawn (RenderOptions::antialiasing).
+    RenderOptions::Antialiasing aaMethod = RenderOptions::Antialiasing::Accumulate;
     /// --trim-drag: each Table 1 row also times frames that each move one trim control point of
     /// the file's first trimmed surface (its mask is redrawn every frame). Needs trims on.
     bool trimDrag = false;

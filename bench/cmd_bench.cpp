@@ -200,6 +200,12 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
             .arg(kMaxSamples),
         QStringLiteral("N"), QStringLiteral("1"));
     parser.addOption(aaSamples);
+    const QCommandLineOption aaMethod(
+        QStringLiteral("aa-method"),
+        QStringLiteral("How --aa-samples are drawn: accumulate (default) or coverage (as render "
+                       "--aa-method)."),
+        QStringLiteral("METHOD"), QStringLiteral("accumulate"));
+    parser.addOption(aaMethod);
     parser.addPositionalArgument(QStringLiteral("FILES"),
                                  QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
                                                 "(read as render reads them)."),
@@ -266,6 +272,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: --aa-samples '%2' is not in 1..%3")
                        .arg(cmd, parser.value(aaSamples))
                        .arg(kMaxSamples));
+        return kExitUsage;
+    }
+    if (const auto method = antialiasingNamed(parser.value(aaMethod))) {
+        config.aaMethod = *method;
+    } else {
+        printError(QStringLiteral("%1: --aa-method '%2' is not accumulate or coverage")
+                       .arg(cmd, parser.value(aaMethod)));
         return kExitUsage;
     }
     if (config.trimDrag && (!config.trims || !table1)) {

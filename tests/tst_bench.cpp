@@ -295,7 +295,8 @@ private Q_SLOTS:
               QStringList{QStringLiteral("--trim-drag"), QStringLiteral("--no-trims")},
               QStringList{QStringLiteral("--trim-drag"), QStringLiteral("--tables"),
                           QStringLiteral("2")},
-              QStringList{QStringLiteral("--normal-floor"), QStringLiteral("-1")}}) {
+              QStringList{QStringLiteral("--normal-floor"), QStringLiteral("-1")},
+              QStringList{QStringLiteral("--aa-method"), QStringLiteral("msaa")}}) {
             const Run r = knotwork(QStringList{QStringLiteral("bench"), sample("bicubic")} + bad);
             QVERIFY2(r.code == 2, qPrintable(bad.join(QLatin1Char(' ')) + r.err));
         }
