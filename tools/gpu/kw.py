@@ -108,7 +108,9 @@ def modes(size, frames):
         knot, obj = mesh(name, *FIT[name])
         res = {}
         variants = {"adaptive": [], "uniform": ["--partition-mode", "uniform"],
-                    "aa4": ["--samples", "4"], "exactdepth": ["--depth", "exact-depth"],
+                    "aa4": ["--samples", "4"],
+                    "aa4cov": ["--samples", "4", "--aa-method", "coverage"],
+                    "exactdepth": ["--depth", "exact-depth"],
                     "zebra": ["--shading", "zebra"], "notrims": ["--no-trims"]}
         keep = os.environ.get("KW_MODES")
         variants = {v: e for v, e in variants.items() if not keep or v in keep.split(",")}
