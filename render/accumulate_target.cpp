@@ -115,12 +115,7 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, int samples, QString* 
     QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_resolve.frag"), error);
     if (!prog)
         return false;
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    gl->glViewport(0, 0, m_size.width(), m_size.height());
-    gl->glDisable(GL_BLEND);
-    gl->glEnable(GL_DEPTH_TEST);
-    gl->glDepthFunc(GL_ALWAYS);
-    gl->glDepthMask(GL_TRUE);
+    beginResolve(gl, framebuffer, m_size);
     prog->bind();
     gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(samples, 1)));
     gl->glBindTextureUnit(0, m_sum);

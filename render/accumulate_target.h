@@ -7,6 +7,7 @@
 // (kw::AntialiasTarget) cannot draw.
 #pragma once
 
+#include "render/antialias_target.h"
 #include "render/float_depth_target.h"
 #include "render/shader_library.h"
 

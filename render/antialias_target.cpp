@@ -6,6 +6,15 @@
 
 namespace kw {
 
+void beginResolve(QOpenGLFunctions_4_5_Core* gl, std::uint32_t framebuffer, QSize size) {
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl->glViewport(0, 0, size.width(), size.height());
+    gl->glDisable(GL_BLEND);
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthFunc(GL_ALWAYS);
+    gl->glDepthMask(GL_TRUE);
+}
+
 bool AntialiasTarget::ensure(QSize size, int samples, QString* error) {
     if (m_fbo && size == m_size && samples == m_samples)
         return true;
@@ -64,12 +73,7 @@ bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
         *error = m_shaders->lastError();
         return false;
     }
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    gl->glViewport(0, 0, m_size.width(), m_size.height());
-    gl->glDisable(GL_BLEND);
-    gl->glEnable(GL_DEPTH_TEST);
-    gl->glDepthFunc(GL_ALWAYS);
-    gl->glDepthMask(GL_TRUE);
+    beginResolve(gl, framebuffer, m_size);
     prog->bind();
     gl->glBindTextureUnit(0, m_colour);
     gl->glBindTextureUnit(1, m_accumulation);

@@ -16,6 +16,11 @@
 
 namespace kw {
 
+/// Binds `framebuffer` with its viewport over `size` for a full-screen resolve of an
+/// anti-aliased frame (AntialiasTarget::composite, AccumulateTarget::resolve) that writes colour
+/// and depth: no blending, the depth test on and always passing, depth writes on.
+void beginResolve(QOpenGLFunctions_4_5_Core* gl, std::uint32_t framebuffer, QSize size);
+
 class AntialiasTarget {
 public:
     /// Attachment 0: colour RGBA8 (the opaque passes); 1: RGBA16F, the edge pass's sum of
