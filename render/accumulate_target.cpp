@@ -107,17 +107,18 @@ bool AccumulateTarget::add(bool first, QString* error) {
     gl->glBindTextureUnit(0, 0);
     gl->glDisable(GL_BLEND);
     gl->glEnable(GL_DEPTH_TEST);
+    m_added = first ? 1 : m_added + 1;
     return true;
 }
 
-bool AccumulateTarget::resolve(std::uint32_t framebuffer, int samples, QString* error) {
+bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_resolve.frag"), error);
     if (!prog)
         return false;
     beginResolve(gl, framebuffer, m_size);
     prog->bind();
-    gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(samples, 1)));
+    gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(m_added, 1)));
     gl->glBindTextureUnit(0, m_sum);
     gl->glBindTextureUnit(1, m_sample.depthTexture());
     gl->glBindVertexArray(m_vao);
@@ -148,6 +149,7 @@ void AccumulateTarget::release() {
         m_gl->glDeleteVertexArrays(1, &m_vao);
     m_vao = 0;
     m_size = QSize();
+    m_added = 0;
 }
 
 } // namespace kw

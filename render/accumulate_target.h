@@ -41,10 +41,10 @@ public:
     GLuint sampleFramebuffer() const { return m_sample.framebuffer(); }
     /// Adds the sample just drawn into the sum (the first sample of a frame replaces it).
     bool add(bool first, QString* error);
-    /// Writes the mean of the `samples` sums into `framebuffer` (colour, and the depth of the
-    /// last sample for the overlays drawn afterwards) and leaves it bound; depth test on,
-    /// writes on.
-    bool resolve(std::uint32_t framebuffer, int samples, QString* error);
+    /// Writes the mean of the samples added since the first into `framebuffer` (colour, and the
+    /// depth of the last sample for the overlays drawn afterwards) and leaves it bound; depth
+    /// test on, writes on.
+    bool resolve(std::uint32_t framebuffer, QString* error);
     void release();
     /// Bytes of the attachments (4 + 4 per pixel for the sample, 16 for the sum).
     std::int64_t residentBytes() const;
@@ -57,6 +57,7 @@ private:
     FloatDepthTarget m_sample; ///< one sample's frame
     GLuint m_sumFbo = 0, m_sum = 0, m_vao = 0;
     QSize m_size;
+    int m_added = 0; ///< samples in the sum
 };
 
 } // namespace kw

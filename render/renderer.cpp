@@ -183,7 +183,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     }
     fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
     if (QString accError;
-        ok && accumulated && !accumulated->resolve(target.framebuffer, samples, &accError)) {
+        ok && accumulated && !accumulated->resolve(target.framebuffer, &accError)) {
         error = accError;
         ok = false;
     }
