@@ -541,6 +541,17 @@ private Q_SLOTS:
         QSettings().clear();
     }
 
+    // A stored anti-aliasing method this build does not know (a hand-edited or newer settings
+    // file) loads as the default, accumulation, and the viewport draws with it.
+    void unknownAntialiasingMethodLoadsTheDefault() {
+        QSettings().setValue(QStringLiteral("view/aaMethod"), QStringLiteral("msaa8x"));
+        QCOMPARE(Preferences::load().aaMethod, QStringLiteral("accumulate"));
+        openWindow();
+        QVERIFY(m_window->viewport()->renderOptions().antialiasing ==
+                RenderOptions::Antialiasing::Accumulate);
+        QSettings().clear();
+    }
+
     void disabledFieldsAreClearedWithoutSelection() {
         openWindow("bicubic");
         m_window->selection()->setControlPoints({ControlPointRef{SurfaceId{1}, 1, 1}});
