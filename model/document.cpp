@@ -4,6 +4,7 @@
 #include "model/validation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -32,6 +33,15 @@ bool idUsed(const Scene& scene, std::uint32_t id) {
                 return true;
     }
     return false;
+}
+
+// Revisions come from one counter shared by every Document of the process, so no value is handed
+// out twice, not even by two documents: a cache keyed by a document's address and revision (the
+// renderer's accumulated frame, its analysis range) cannot mistake a new document at the old
+// address for the old one.
+std::uint64_t processRevision() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
 }
 
 int loopIndex(const Surface& s, TrimLoopId id) {
@@ -102,7 +112,7 @@ bool Document::resetScene(Scene scene, QString* error) {
     }
     Q_EMIT sceneAboutToBeReset();
     m_scene = std::move(scene);
-    const std::uint64_t rev = ++m_counter;
+    const std::uint64_t rev = nextRevision();
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
     m_cameraRevision = rev;
@@ -126,7 +136,7 @@ bool Document::insertSurface(int index, Surface surface) {
     const SurfaceId id = surface.id;
     Q_EMIT surfaceAboutToBeInserted(index);
     m_scene.surfaces.insert(m_scene.surfaces.begin() + index, std::move(surface));
-    const std::uint64_t rev = ++m_counter;
+    const std::uint64_t rev = nextRevision();
     m_revisions.insert(m_revisions.begin() + index, Revisions{rev, rev, rev, rev});
     m_scene.nextId = std::max(m_scene.nextId, maxId + 1);
     Q_EMIT surfaceInserted(id, index);
@@ -140,6 +150,7 @@ bool Document::removeSurface(SurfaceId id) {
     Q_EMIT surfaceAboutToBeRemoved(id, index);
     m_scene.surfaces.erase(m_scene.surfaces.begin() + index);
     m_revisions.erase(m_revisions.begin() + index);
+    nextRevision(); // the scene changed, though no surface's revisions did
     Q_EMIT surfaceRemoved(id);
     return true;
 }
@@ -255,7 +266,7 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     const std::uint32_t loopId = loop.id.value;
     s->trims.insert(s->trims.begin() + index, std::move(loop));
     m_scene.nextId = std::max(m_scene.nextId, loopId + 1);
-    m_revisions[size_t(indexOf(id))].trims = ++m_counter;
+    m_revisions[size_t(indexOf(id))].trims = nextRevision();
     Q_EMIT trimLoopInserted(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
     return true;
@@ -268,7 +279,7 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
         return false;
     Q_EMIT trimLoopAboutToBeRemoved(id, index);
     s->trims.erase(s->trims.begin() + index);
-    m_revisions[size_t(indexOf(id))].trims = ++m_counter;
+    m_revisions[size_t(indexOf(id))].trims = nextRevision();
     Q_EMIT trimLoopRemoved(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
     return true;
@@ -322,7 +333,7 @@ bool Document::setLights(std::vector<Light> lights) {
     if (m_scene.lights == lights)
         return true;
     m_scene.lights = std::move(lights);
-    m_lightsRevision = ++m_counter;
+    m_lightsRevision = nextRevision();
     Q_EMIT lightsChanged();
     return true;
 }
@@ -333,7 +344,7 @@ bool Document::setCamera(const Camera& camera) {
     if (m_scene.camera == camera)
         return true;
     m_scene.camera = camera;
-    m_cameraRevision = ++m_counter;
+    m_cameraRevision = nextRevision();
     Q_EMIT cameraChanged();
     return true;
 }
@@ -341,12 +352,20 @@ bool Document::setCamera(const Camera& camera) {
 bool Document::setDisplay(const DisplaySettings& display) {
     if (!displayError(display).isEmpty())
         return false;
+    if (m_scene.display == display)
+        return true;
     m_scene.display = display;
+    nextRevision(); // no surface or signal: the scene's content changed all the same
     return true;
 }
 
 QString Document::validate(const Scene& scene) {
     return sceneError(scene);
+}
+
+std::uint64_t Document::nextRevision() {
+    m_counter = processRevision();
+    return m_counter;
 }
 
 Surface* Document::mutableSurface(SurfaceId id) {
@@ -358,7 +377,7 @@ Surface* Document::mutableSurface(SurfaceId id) {
 // Name has no revision: nothing is uploaded for it.
 void Document::bump(SurfaceId id, Aspects aspects) {
     Revisions& r = m_revisions[size_t(indexOf(id))];
-    const std::uint64_t rev = ++m_counter;
+    const std::uint64_t rev = nextRevision();
     if (aspects & Aspect::Points)
         r.points = rev;
     if (aspects & Aspect::Knots)

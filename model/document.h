@@ -22,8 +22,8 @@ enum class Aspect : unsigned {
 Q_DECLARE_FLAGS(Aspects, Aspect)
 Q_DECLARE_OPERATORS_FOR_FLAGS(Aspects)
 
-/// Per-surface revision of each aspect. Values come from one document-wide counter, so every
-/// change (undo included) yields a value never seen before for that surface.
+/// Per-surface revision of each aspect. Values come from one counter shared by every document
+/// (Document::revision), so every change (undo included) yields a value never seen before.
 struct Revisions {
     std::uint64_t points = 0;
     std::uint64_t knots = 0;
@@ -52,6 +52,11 @@ public:
     /// search: for passes over every surface (the renderer's per-frame sync).
     Revisions revisionsAt(int index) const { return m_revisions[size_t(index)]; }
     std::uint64_t lightsRevision() const { return m_lightsRevision; }
+    /// Changes with every change of the scene (a surface inserted, removed or edited, the
+    /// lights, the camera, a reset) and never takes a value twice, in any document of the
+    /// process: "nothing changed" is `revision()` unchanged (the renderer's progressive
+    /// anti-aliasing keys its sum by it).
+    std::uint64_t revision() const { return m_counter; }
     std::uint64_t cameraRevision() const { return m_cameraRevision; }
 
     /// Fresh ids that no surface or loop of this document uses (never reused in a session).
@@ -116,10 +121,12 @@ Q_SIGNALS:
 private:
     Surface* mutableSurface(SurfaceId id);
     void bump(SurfaceId id, Aspects aspects);
+    /// A fresh value of the process-wide revision counter, kept as the document's revision().
+    std::uint64_t nextRevision();
 
     Scene m_scene;
     std::vector<Revisions> m_revisions; // parallel to m_scene.surfaces
-    std::uint64_t m_counter = 0;
+    std::uint64_t m_counter = 0;        ///< revision(): the newest value this document handed out
     std::uint64_t m_lightsRevision = 0;
     std::uint64_t m_cameraRevision = 0;
 };

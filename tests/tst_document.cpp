@@ -52,6 +52,7 @@ private Q_SLOTS:
     void setTrimPoint();
     void lightsAndCamera();
     void revisionsNeverRepeat();
+    void revisionMovesWithEveryChange();
     void idsNeverReused();
 };
 
@@ -557,6 +558,62 @@ void TestDocument::revisionsNeverRepeat() {
     const Revisions after = f.doc.revisions(id);
     QVERIFY(after.points > before.points && after.knots > before.knots &&
             after.trims > before.trims && after.display > before.display);
+}
+
+void TestDocument::revisionMovesWithEveryChange() {
+    // revision() is "has anything changed": the renderer adds samples of one anti-aliased image
+    // while it stays (Renderer's progressive accumulation), so a change it missed would leave a
+    // stale image on screen.
+    Fixture f;
+    std::uint64_t last = f.doc.revision();
+    QVERIFY(last > 0);
+    auto moved = [&](bool changed) {
+        const std::uint64_t now = f.doc.revision();
+        const bool ok = changed ? now > last : now == last;
+        last = now;
+        return ok;
+    };
+    const SurfaceId id{1};
+    const glm::dvec3 p = f.doc.surface(id)->geometry.points[5];
+    QVERIFY(f.doc.setControlPoints(id, {5}, {p + glm::dvec3(1)}));
+    QVERIFY(moved(true));
+    QVERIFY(f.doc.setControlPoints(id, {5}, {p + glm::dvec3(1)})); // the same positions
+    QVERIFY(moved(false));
+    QVERIFY(f.doc.setWeight(id, 5, 2.0));
+    QVERIFY(moved(true));
+    QVERIFY(f.doc.setPartitions(id, 7, 9));
+    QVERIFY(moved(true));
+    QVERIFY(f.doc.setHidden(id, true));
+    QVERIFY(moved(true));
+    QVERIFY(f.doc.setName(id, QStringLiteral("renamed")));
+    QVERIFY(moved(true));
+    // A removal bumps no surface's revisions (the surface is gone), but the scene changed.
+    QVERIFY(f.doc.removeSurface(SurfaceId{2}));
+    QVERIFY(moved(true));
+    QVERIFY(!f.doc.removeSurface(SurfaceId{2}));
+    QVERIFY(moved(false));
+    std::vector<Light> lights = f.doc.scene().lights;
+    lights.push_back(Light{});
+    QVERIFY(f.doc.setLights(lights));
+    QVERIFY(moved(true));
+    Camera camera = f.doc.scene().camera;
+    camera.fovYDegrees += 5.0;
+    QVERIFY(f.doc.setCamera(camera));
+    QVERIFY(moved(true));
+    DisplaySettings display = f.doc.scene().display;
+    display.partitionMode = QStringLiteral("uniform");
+    QVERIFY(f.doc.setDisplay(display));
+    QVERIFY(moved(true));
+    QVERIFY(f.doc.setDisplay(display));
+    QVERIFY(moved(false));
+    QVERIFY(f.doc.resetScene(threeSurfaceScene()));
+    QVERIFY(moved(true));
+    // Two documents never hand out the same value, so a new document at an old one's address
+    // with the same number of edits is not taken for the old one.
+    Fixture g;
+    QVERIFY(g.doc.revision() > f.doc.revision());
+    QVERIFY(f.doc.setHidden(id, true));
+    QVERIFY(f.doc.revision() > g.doc.revision());
 }
 
 void TestDocument::idsNeverReused() {

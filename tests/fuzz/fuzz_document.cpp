@@ -324,6 +324,14 @@ public:
                                      content.nextId = before.nextId;
                                      return content == before;
                                  }());
+        // The document's revision moves exactly when the content does (or on a reset).
+        KW_FUZZ_CHECK((doc.revision() != revisionBefore) == (!sameContent || log.resets > 0),
+                      QStringLiteral("revision %1 -> %2 with the content %3")
+                          .arg(revisionBefore)
+                          .arg(doc.revision())
+                          .arg(sameContent ? "unchanged" : "changed"));
+        KW_FUZZ_CHECK(doc.revision() == revisionBefore || doc.revision() > maxRevision,
+                      "a new document revision was handed out before");
         if (!ok) {
             KW_FUZZ_CHECK(sameContent, "a refused call changed the scene");
             KW_FUZZ_CHECK(log.total == 0, "a refused call emitted signals");
@@ -413,7 +421,9 @@ public:
                 const Revisions r = revs[s.id.value];
                 maxRevision = std::max({maxRevision, r.points, r.knots, r.trims, r.display});
             }
-            maxRevision = std::max({maxRevision, doc.lightsRevision(), doc.cameraRevision()});
+            maxRevision =
+                std::max({maxRevision, doc.lightsRevision(), doc.cameraRevision(), doc.revision()});
+            revisionBefore = doc.revision();
             log.clear();
             const bool ok = step();
             checkAfter(before, revs, ok);
@@ -424,7 +434,8 @@ public:
     Input& in;
     Document doc;
     SignalLog log;
-    std::uint64_t maxRevision = 0; ///< the largest revision seen before the current call
+    std::uint64_t maxRevision = 0;    ///< the largest revision seen before the current call
+    std::uint64_t revisionBefore = 0; ///< doc.revision() before the current call
 };
 
 } // namespace
