@@ -46,6 +46,8 @@ public:
     /// test on, writes on.
     bool resolve(std::uint32_t framebuffer, QString* error);
     void release();
+    /// Samples in the sum (0 before the first add and after release or a resize).
+    int added() const { return m_added; }
     /// Bytes of the attachments (4 + 4 per pixel for the sample, 16 for the sum).
     std::int64_t residentBytes() const;
 

@@ -104,6 +104,12 @@ struct FrameReport {
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while
     /// AnalysisOptions::holdRange is set); {0, 1} for other modes. For the legend.
     ValueRange analysisRange;
+    /// Samples per pixel in the image: 1 aliased, RenderOptions::samples when anti-aliased, and
+    /// with RenderOptions::progressive those accumulated so far.
+    int samplesInImage = 1;
+    /// Progressive accumulation has samples left to add: render again, unchanged, to add the
+    /// next one.
+    bool refining = false;
 };
 
 /// The answer of Renderer::pick: the surface visible at a pixel, its parameters there and the

@@ -141,12 +141,23 @@ struct RenderOptions {
         Coverage,
     };
     Antialiasing antialiasing = Antialiasing::Accumulate;
+    /// Accumulated anti-aliasing a sample at a time (the editor on software OpenGL): each
+    /// Renderer::render draws one more sample into the sum kept from the previous call and
+    /// shows the mean so far, for as long as nothing drawn changes (the document's revision,
+    /// the camera, the target and its size, these options); any change starts again at the
+    /// first sample. Once all `samples` are in, a call draws no surface and resolves the sum
+    /// again. FrameReport::refining asks the host for the next call. A frame costs about one
+    /// aliased frame, so a view that moves stays as fast as aliased and a still one converges
+    /// to the image of all samples drawn at once (the same pixels: tst_render_trims_aa).
+    bool progressive = false;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;
+
+    bool operator==(const RenderOptions&) const = default;
 };
 
 /// The trim mode named "exact" or "mask" (the command line's and the settings' spelling), or

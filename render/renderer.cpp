@@ -165,11 +165,24 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     // sample's offset, into its own framebuffer, and adds it up; otherwise one frame.
     const std::vector<glm::vec2> offsets =
         accumulated ? accumulationOffsets(samples) : std::vector<glm::vec2>{glm::vec2(0.0f)};
+    size_t firstSample = 0, endSample = offsets.size();
+    if (accumulated && options.progressive) {
+        // One sample per call onto the sum of the calls before, while they drew the same thing.
+        const ProgressKey key{&doc, doc.revision(), camera, target.framebuffer, size, options};
+        const int inSum = progressKey && *progressKey == key ? accumulate.added() : 0;
+        progressKey = key;
+        firstSample = size_t(std::clamp(inSum, 0, samples));
+        endSample = std::min(firstSample + 1, offsets.size());
+        if (firstSample == endSample) // all in: the sum is resolved again, nothing drawn
+            beginReversedDepth(gl);
+    } else if (!pickPixel && !target.aov) {
+        progressKey.reset();
+    }
     RenderTarget sampleTarget = drawn;
     if (accumulated)
         sampleTarget.framebuffer = accumulated->sampleFramebuffer();
     bool ok = true;
-    for (size_t i = 0; ok && i < offsets.size(); ++i) {
+    for (size_t i = firstSample; ok && i < endSample; ++i) {
         fc.jitter = offsets[i];
         beginTarget(sampleTarget, options, pickPixel);
         if (aa)
@@ -228,6 +241,14 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     report.drawCalls +=
         exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
+    if (!ok)
+        progressKey.reset(); // a sum with a failed sample in it is not kept
+    if (accumulated) {
+        report.samplesInImage = accumulate.added();
+        report.refining = ok && options.progressive && accumulate.added() < samples;
+    } else if (aa) {
+        report.samplesInImage = samples;
+    }
     report.surfaces = scene.drawnCount();
     report.culled = exact.culled;
     report.partitions.trimTestedCells = exact.trimTestedCells;

@@ -15,6 +15,7 @@
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QRect>
+#include <optional>
 
 namespace kw {
 
@@ -63,6 +64,19 @@ struct Renderer::Impl {
     };
     RangeKey rangeKey;
     ValueRange autoAnalysisRange;
+
+    /// What the progressive sum in `accumulate` was drawn from (RenderOptions::progressive);
+    /// empty when the sum is not one of a progressive image.
+    struct ProgressKey {
+        const Document* document = nullptr;
+        std::uint64_t revision = 0; ///< Document::revision: never repeats, in any document
+        Camera camera;
+        std::uint32_t framebuffer = 0;
+        QSize size;
+        RenderOptions options;
+        bool operator==(const ProgressKey&) const = default;
+    };
+    std::optional<ProgressKey> progressKey;
 
     /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
     /// so the surface shaders' outputs keep their locations).

@@ -478,6 +478,98 @@ private Q_SLOTS:
         QCOMPARE(m_renderer->lastReport().gpuBytes.frameTargets, std::int64_t(0));
     }
 
+    // Progressive accumulation (the editor on software OpenGL): a sample per call, added to the
+    // sum while nothing drawn changes, ends on the very image of all samples drawn in one call;
+    // once complete, a call draws no surface; any change (document, camera, options, a frame
+    // drawn otherwise in between) starts the image again. Without the restart a dragged point
+    // or a moved view would leave its old samples mixed into the new image.
+    void progressiveFramesAddUpToTheWholeImage() {
+        Scene scene;
+        scene.surfaces = {plane(1), plane(2)};
+        // A small square turned 20 degrees over the plate's corner, and the plate with a hole.
+        const double t = glm::radians(20.0);
+        for (glm::dvec3& p : scene.surfaces[0].geometry.points)
+            p = glm::dvec3(p.x * 0.1 * std::cos(t) - p.y * 0.1 * std::sin(t) - 0.4,
+                           p.x * 0.1 * std::sin(t) + p.y * 0.1 * std::cos(t) - 0.4, 0.05);
+        scene.surfaces[1].trims = {
+            loopOf(11, {polylineCurve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}})}), smallDisc(12)};
+        Document doc;
+        QString error;
+        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        RenderOptions o =
+            aaOptions(4, RenderOptions::TrimMode::Exact, RenderOptions::Antialiasing::Accumulate);
+        QImage whole;
+        QVERIFY(renderImage(doc, o, whole));
+        QCOMPARE(m_renderer->lastReport().samplesInImage, 4);
+        QVERIFY(!m_renderer->lastReport().refining);
+        const auto differing = [](const QImage& a, const QImage& b) {
+            int n = 0;
+            for (int y = 0; y < a.height(); ++y)
+                for (int x = 0; x < a.width(); ++x)
+                    n += a.pixel(x, y) != b.pixel(x, y);
+            return n;
+        };
+        o.progressive = true;
+        QImage image;
+        for (int i = 1; i <= 4; ++i) {
+            QVERIFY(renderImage(doc, o, image));
+            const FrameReport& r = m_renderer->lastReport();
+            QCOMPARE(r.samplesInImage, i);
+            QCOMPARE(r.refining, i < 4);
+            QVERIFY(r.drawCalls > 0);
+            const int off = differing(image, whole);
+            qInfo("progressive sample %d: %d pixels differ from the 4-sample image", i, off);
+            if (i == 1)
+                QVERIFY(off > 100); // the hole's edge and the square's: aliased
+            if (i == 4)
+                QCOMPARE(off, 0);
+        }
+        // Complete: resolved again, nothing drawn.
+        QVERIFY(renderImage(doc, o, image));
+        QCOMPARE(m_renderer->lastReport().samplesInImage, 4);
+        QVERIFY(!m_renderer->lastReport().refining);
+        QCOMPARE(m_renderer->lastReport().drawCalls, 0);
+        QCOMPARE(differing(image, whole), 0);
+        const auto restarts = [&](const char* what) {
+            QImage restarted;
+            if (!renderImage(doc, o, restarted))
+                return false;
+            const FrameReport& r = m_renderer->lastReport();
+            if (r.samplesInImage != 1 || !r.refining || r.drawCalls == 0)
+                return qWarning("%s: %d samples, refining %d, %d draws", what, r.samplesInImage,
+                                int(r.refining), r.drawCalls),
+                       false;
+            for (int i = 2; i <= 4; ++i)
+                if (!renderImage(doc, o, restarted))
+                    return false;
+            return m_renderer->lastReport().samplesInImage == 4;
+        };
+        // A control point moved (and moved back: a new revision all the same).
+        const glm::dvec3 p = doc.surface(SurfaceId{1})->geometry.points[0];
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p + glm::dvec3(0.0, 0.0, 0.01)}));
+        QVERIFY(restarts("a moved point"));
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
+        QVERIFY(restarts("the point moved back"));
+        QVERIFY(renderImage(doc, o, image));
+        QCOMPARE(differing(image, whole), 0);
+        // Another option, the camera, a surface removed, a frame drawn in between.
+        o.background = glm::vec4(0.1f, 0.0f, 0.0f, 1.0f);
+        QVERIFY(restarts("another background"));
+        QString cameraError;
+        Camera nearer = topCamera();
+        nearer.eye.z = 2.5;
+        QVERIFY(m_renderer->render(doc, nearer, o, &cameraError));
+        QCOMPARE(m_renderer->lastReport().samplesInImage, 1);
+        QVERIFY(restarts("the camera back"));
+        RenderOptions once = o;
+        once.progressive = false;
+        once.samples = 2;
+        QVERIFY(renderImage(doc, once, image));
+        QVERIFY(restarts("a whole frame in between"));
+        QVERIFY(doc.removeSurface(SurfaceId{2}));
+        QVERIFY(restarts("a surface removed"));
+    }
+
     // The accumulated samples' offsets: inside the pixel, on distinct rows and columns for the
     // standard counts (an edge near the pixel grid still gets every level), centred.
     void accumulationOffsetsAreSpread() {
