@@ -108,7 +108,21 @@ bool AccumulateTarget::add(bool first, QString* error) {
     gl->glDisable(GL_BLEND);
     gl->glEnable(GL_DEPTH_TEST);
     m_added = first ? 1 : m_added + 1;
+    m_firstOnly = false;
     return true;
+}
+
+bool AccumulateTarget::resolveFirst(std::uint32_t framebuffer, QString* error) {
+    m_added = 1;
+    m_firstOnly = true;
+    return resolve(framebuffer, error);
+}
+
+bool AccumulateTarget::keepFirst(QString* error) {
+    if (!m_firstOnly)
+        return true;
+    m_firstOnly = false;
+    return add(true, error);
 }
 
 bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
@@ -119,7 +133,8 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
     beginResolve(gl, framebuffer, m_size);
     prog->bind();
     gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(m_added, 1)));
-    gl->glBindTextureUnit(0, m_sum);
+    // The colour of one sample not yet in the sum is the sample's own.
+    gl->glBindTextureUnit(0, m_firstOnly ? m_sample.colourTexture() : m_sum);
     gl->glBindTextureUnit(1, m_sample.depthTexture());
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -150,6 +165,7 @@ void AccumulateTarget::release() {
     m_vao = 0;
     m_size = QSize();
     m_added = 0;
+    m_firstOnly = false;
 }
 
 } // namespace kw

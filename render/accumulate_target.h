@@ -45,6 +45,13 @@ public:
     /// depth of the last sample for the overlays drawn afterwards) and leaves it bound; depth
     /// test on, writes on.
     bool resolve(std::uint32_t framebuffer, QString* error);
+    /// The first sample of a progressive image, just drawn, resolved straight from its own
+    /// framebuffer (one full-screen pass where add() and resolve() take two: a moving view's
+    /// frames cost what an aliased frame copied to its host does). It counts as added; the sum
+    /// takes it in keepFirst(), which must come before the next sample is drawn over it.
+    bool resolveFirst(std::uint32_t framebuffer, QString* error);
+    /// Adds the sample resolveFirst() showed into the sum (nothing when there is none).
+    bool keepFirst(QString* error);
     void release();
     /// Samples in the sum (0 before the first add and after release or a resize).
     int added() const { return m_added; }
@@ -59,7 +66,8 @@ private:
     FloatDepthTarget m_sample; ///< one sample's frame
     GLuint m_sumFbo = 0, m_sum = 0, m_vao = 0;
     QSize m_size;
-    int m_added = 0; ///< samples in the sum
+    int m_added = 0; ///< samples in the sum (the first may still be in m_sample: m_firstOnly)
+    bool m_firstOnly = false; ///< resolveFirst's sample is not in the sum yet
 };
 
 } // namespace kw

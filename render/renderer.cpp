@@ -182,6 +182,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     if (accumulated)
         sampleTarget.framebuffer = accumulated->sampleFramebuffer();
     bool ok = true;
+    if (accumulated && firstSample > 0 && firstSample < endSample)
+        ok = accumulated->keepFirst(&error); // before the next sample is drawn over it
     for (size_t i = firstSample; ok && i < endSample; ++i) {
         fc.jitter = offsets[i];
         beginTarget(sampleTarget, options, pickPixel);
@@ -191,12 +193,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                  ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
                               &error)
                  : tessellated.draw(scene, options.trims, fc, lights, options, &error);
-        if (ok && accumulated)
+        // A progressive image's first sample is shown as it is, without the sum.
+        if (ok && accumulated && !(options.progressive && i == 0))
             ok = accumulated->add(i == 0, &error);
     }
     fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
     if (QString accError;
-        ok && accumulated && !accumulated->resolve(target.framebuffer, &accError)) {
+        ok && accumulated &&
+        !(options.progressive && firstSample == 0
+              ? accumulated->resolveFirst(target.framebuffer, &accError)
+              : accumulated->resolve(target.framebuffer, &accError))) {
         error = accError;
         ok = false;
     }
@@ -265,6 +271,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.ok = ok && synced;
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+void Renderer::restartProgressive() {
+    d->progressKey.reset();
 }
 
 int Renderer::Impl::frameSamples(const RenderOptions& options, bool aov, bool pick,

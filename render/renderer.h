@@ -65,6 +65,9 @@ public:
     FrameReport renderMesh(const Document& doc, int slot, const Camera& camera,
                            const RenderTarget& target, const RenderOptions& options);
 
+    /// The next RenderOptions::progressive frame starts its image again at the first sample,
+    /// though nothing changed (what changes a frame's pixels restarts it by itself).
+    void restartProgressive();
     /// Frees all GL objects; the initialising context must be current.
     void release();
 

@@ -108,6 +108,36 @@ private Q_SLOTS:
         QCOMPARE(background + torus, spec.width * spec.height);
     }
 
+    // --progressive draws the anti-aliased image a sample per frame, as the editor does on
+    // software OpenGL: the same pixels as all samples at once; --time-frames then also times
+    // whole images.
+    void progressiveWritesTheSameImage() {
+        const QString once = output("cmd_aa_once.png"), progressive = output("cmd_aa_prog.png"),
+                      aliased = output("cmd_aa_aliased.png");
+        const QStringList common{QStringLiteral("render"), sample("trimmed_plate"),
+                                 QStringLiteral("--size"), QStringLiteral("160x120")};
+        const Run a = knotwork(common + QStringList{QStringLiteral("-o"), once,
+                                                    QStringLiteral("--samples"),
+                                                    QStringLiteral("4")});
+        QVERIFY2(a.code == 0, qPrintable(a.err));
+        const Run b = knotwork(common + QStringList{QStringLiteral("-o"), progressive,
+                                                    QStringLiteral("--samples"),
+                                                    QStringLiteral("4"),
+                                                    QStringLiteral("--progressive"),
+                                                    QStringLiteral("--time-frames"),
+                                                    QStringLiteral("8")});
+        QVERIFY2(b.code == 0, qPrintable(b.err));
+        QVERIFY2(b.out.contains(QStringLiteral("median whole image of 4 samples")) &&
+                     b.out.contains(QStringLiteral("over 2 images")),
+                 qPrintable(b.out));
+        const Run c = knotwork(common + QStringList{QStringLiteral("-o"), aliased});
+        QVERIFY2(c.code == 0, qPrintable(c.err));
+        const Pixels p = readPixels(once), q = readPixels(progressive), r = readPixels(aliased);
+        QVERIFY(!p.data.empty() && p.data.size() == q.data.size() && p.data.size() == r.data.size());
+        QVERIFY(p.data == q.data);
+        QVERIFY(p.data != r.data); // anti-aliased: the trim edges differ from the aliased frame
+    }
+
     void badInputExitsOneNamingTheFile() {
         const Run r = knotwork({QStringLiteral("render"), QStringLiteral("/nonexistent/x.knot"),
                                 QStringLiteral("-o"), output("x.png")});
@@ -260,6 +290,13 @@ private Q_SLOTS:
             sample("trimmed_plate"),     QStringLiteral("-o"), output("x.png"),
             QStringLiteral("--samples"), QStringLiteral("4"),  QStringLiteral("--aa-method"),
             QStringLiteral("msaa")};
+        QTest::newRow("progressive aliased")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--progressive")};
+        QTest::newRow("progressive msaa") << QStringList{
+            sample("trimmed_plate"),     QStringLiteral("-o"), output("x.png"),
+            QStringLiteral("--samples"), QStringLiteral("4"),  QStringLiteral("--aa-method"),
+            QStringLiteral("coverage"),  QStringLiteral("--progressive")};
         QTest::newRow("bad zoom point")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--zoom"), QStringLiteral("8@1.5,0.5")};
@@ -282,7 +319,10 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--trim-mode 'fuzzy'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--trim-budget")))
             QVERIFY2(r.err.contains(QStringLiteral("--trim-budget '0'")), qPrintable(r.err));
-        if (args.contains(QStringLiteral("--aa-method")))
+        if (args.contains(QStringLiteral("--progressive")))
+            QVERIFY2(r.err.contains(QStringLiteral("--progressive needs --samples N > 1")),
+                     qPrintable(r.err));
+        else if (args.contains(QStringLiteral("--aa-method")))
             QVERIFY2(r.err.contains(QStringLiteral("--aa-method 'msaa' is not accumulate or "
                                                    "coverage")),
                      qPrintable(r.err));
