@@ -442,8 +442,10 @@ private Q_SLOTS:
 
     // Anti-aliasing is on by default: automatic draws 4 samples; on software OpenGL (llvmpipe
     // here and in CI), where they cost several times the frame, frames drawn while the view
-    // moves are aliased and the still frame after is anti-aliased. An explicit choice is drawn
-    // as it is, moving or not.
+    // moves are aliased. With accumulation (the default method) every frame draws one sample,
+    // the still view is drawn again until all 4 are in (RenderOptions::progressive), so no
+    // frame costs more than an aliased one; with MSAA the still frame after draws all at once.
+    // An explicit choice is drawn as it is, moving or not.
     void antiAliasingIsOnByDefault() {
         QSettings().clear();
         openWindow("trimmed_plate");
@@ -451,13 +453,25 @@ private Q_SLOTS:
         QCOMPARE(Preferences::load().samples, Viewport::kAutoSamples);
         QCOMPARE(vp->samples(), Viewport::kAutoSamplesCount);
         QTRY_VERIFY(vp->framesDrawn() > 0);
+        std::vector<int> samplesDrawn; // FrameReport::samplesInImage of each frame
+        connect(vp, &Viewport::frameDrawn, this,
+                [&](const FrameReport& r) { samplesDrawn.push_back(r.samplesInImage); });
+        auto settled = [&] {
+            return QTest::qWaitFor(
+                [&] {
+                    const FrameReport& r = vp->lastFrameReport();
+                    return !r.refining && r.samplesInImage == vp->samples();
+                },
+                5000);
+        };
         auto nextFrame = [&] {
             const std::int64_t before = vp->framesDrawn();
             vp->update();
             return QTest::qWaitFor([&] { return vp->framesDrawn() > before; }, 5000);
         };
         QVERIFY(nextFrame());
-        QVERIFY(vp->lastFrameReport().gpuBytes.frameTargets > 0); // a still frame: 4 samples
+        QVERIFY(settled());
+        QVERIFY(vp->lastFrameReport().gpuBytes.frameTargets > 0);
         vp->makeCurrent();
         const QString gl = QString::fromLatin1(reinterpret_cast<const char*>(
             QOpenGLContext::currentContext()->functions()->glGetString(GL_RENDERER)));
@@ -466,25 +480,52 @@ private Q_SLOTS:
                               gl.contains(QStringLiteral("softpipe"), Qt::CaseInsensitive);
         QCOMPARE(vp->aliasedWhileMoving(), software);
         // A wheel zoom: the frame it draws, then the still one.
-        const std::int64_t before = vp->framesDrawn();
         const QPoint middle(vp->width() / 2, vp->height() / 2);
-        QWheelEvent wheel(middle, vp->mapToGlobal(middle), QPoint(), QPoint(0, 120), Qt::NoButton,
-                          Qt::NoModifier, Qt::NoScrollPhase, false);
-        QCoreApplication::sendEvent(vp, &wheel);
-        QTRY_VERIFY(vp->framesDrawn() > before);
-        const bool movingAliased = vp->lastFrameReport().gpuBytes.frameTargets == 0;
-        QCOMPARE(movingAliased, software);
-        QTRY_VERIFY_WITH_TIMEOUT(vp->lastFrameReport().gpuBytes.frameTargets > 0, 3000);
-        qInfo("GL_RENDERER %s: the zoom's frame %s, the still frame anti-aliased", qPrintable(gl),
-              movingAliased ? "aliased" : "anti-aliased");
+        auto zoom = [&] {
+            samplesDrawn.clear();
+            const std::int64_t before = vp->framesDrawn();
+            QWheelEvent wheel(middle, vp->mapToGlobal(middle), QPoint(), QPoint(0, 120),
+                              Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+            QCoreApplication::sendEvent(vp, &wheel);
+            return QTest::qWaitFor([&] { return vp->framesDrawn() > before; }, 5000);
+        };
+        QVERIFY(zoom());
+        QCOMPARE(samplesDrawn.front(), software ? 1 : 4);
+        QVERIFY(settled());
+        qInfo("GL_RENDERER %s: samples of the frames after a zoom: %s", qPrintable(gl),
+              qPrintable([&] {
+                  QStringList l;
+                  for (int n : samplesDrawn)
+                      l << QString::number(n);
+                  return l.join(' ');
+              }()));
+        if (software) { // a sample per frame, in order, until all are in
+            QVERIFY(samplesDrawn.size() >= 4);
+            for (size_t i = 0; i < 4; ++i)
+                QCOMPARE(samplesDrawn[i], int(i) + 1);
+        }
+        // MSAA: aliased while moving on software OpenGL, then all samples in one frame.
+        vp->setAntialiasing(RenderOptions::Antialiasing::Coverage);
+        QVERIFY(nextFrame());
+        QVERIFY(settled());
+        QVERIFY(zoom());
+        QCOMPARE(samplesDrawn.front(), software ? 1 : 4);
+        QVERIFY(settled());
+        QVERIFY(std::none_of(samplesDrawn.begin(), samplesDrawn.end(),
+                             [](int n) { return n > 1 && n < 4; }));
+        vp->setAntialiasing(RenderOptions::Antialiasing::Accumulate);
         // Explicit choices.
         vp->setSamples(1);
         QVERIFY(nextFrame());
         QCOMPARE(vp->lastFrameReport().gpuBytes.frameTargets, std::int64_t(0));
+        QCOMPARE(vp->lastFrameReport().samplesInImage, 1);
         vp->setSamples(2);
         QVERIFY(!vp->aliasedWhileMoving());
         QVERIFY(nextFrame());
         QVERIFY(vp->lastFrameReport().gpuBytes.frameTargets > 0);
+        QCOMPARE(vp->lastFrameReport().samplesInImage, 2);
+        QVERIFY(!vp->lastFrameReport().refining);
+        disconnect(vp, &Viewport::frameDrawn, this, nullptr);
     }
 
     void preferencesPersistAcrossRestart() {

@@ -131,7 +131,7 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     m_samples->setValue(p.samples);
     m_samples->setToolTip(tr("Anti-aliasing: samples per pixel; 1 is off; automatic: 4, and on "
                              "software OpenGL, where it costs several times the frame, only "
-                             "once the view is still"));
+                             "once the view is still (accumulated one sample per frame)"));
     m_aaMethod = new QComboBox;
     m_aaMethod->setObjectName(QStringLiteral("prefAaMethod"));
     m_aaMethod->addItems({QStringLiteral("accumulate"), QStringLiteral("coverage")});

@@ -260,14 +260,14 @@ void Viewport::paintGL() {
     options.samples = samples();
     const bool moving =
         m_gesture != Gesture::None || (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
-    if (moving && options.samples > 1 && aliasedWhileMoving()) {
-        options.samples = 1;
-        if (!m_stillTimer) {
-            m_stillTimer = new QTimer(this);
-            m_stillTimer->setSingleShot(true);
-            connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
+    if (options.samples > 1 && aliasedWhileMoving()) {
+        if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
+            // A sample per frame: a moving view draws its first, a still one adds the rest.
+            options.progressive = true;
+        } else if (moving) { // MSAA: aliased while moving, all samples in the still frame
+            options.samples = 1;
+            drawAgainWhenStill();
         }
-        m_stillTimer->start(kStillMs);
     }
     options.analysis.holdRange = isDragging();
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
@@ -284,6 +284,14 @@ void Viewport::paintGL() {
         }
     } else {
         m_lastRenderError.clear();
+    }
+    if (m_lastReport.refining) {
+        // The next sample: at once when the view is still, else once it has been for kStillMs
+        // (a moving view's next frame starts the image again).
+        if (moving)
+            drawAgainWhenStill();
+        else
+            update();
     }
     drawSelection();
     drawLegend();
@@ -303,6 +311,15 @@ void Viewport::paintGL() {
         m_frames = 0;
         m_fpsClock.restart();
     }
+}
+
+void Viewport::drawAgainWhenStill() {
+    if (!m_stillTimer) {
+        m_stillTimer = new QTimer(this);
+        m_stillTimer->setSingleShot(true);
+        connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
+    }
+    m_stillTimer->start(kStillMs);
 }
 
 std::optional<PickHit> Viewport::pickSurface(QPointF position) {

@@ -85,8 +85,11 @@ public:
     /// Anti-aliasing samples per pixel (RenderOptions::samples), clamped to 1..kMaxSamples;
     /// 0 (kAutoSamples, the default) draws kAutoSamplesCount, except that on a software
     /// rasteriser (llvmpipe), where 4 samples cost several times the frame (docs/PERFORMANCE.md
-    /// ## Trims), frames drawn while the view moves or points are dragged are aliased and the
-    /// still frame kStillMs later is anti-aliased.
+    /// ## Trims), frames drawn while the view moves or points are dragged are aliased: with
+    /// accumulation (the default method) each frame draws one sample, the first of a new image
+    /// or the next of a still one (RenderOptions::progressive), and a still view is drawn
+    /// again until all its samples are in; with MSAA the still frame kStillMs later draws all
+    /// of them at once.
     void setSamples(int samples);
     /// How frames with samples > 1 are anti-aliased (RenderOptions::antialiasing).
     void setAntialiasing(RenderOptions::Antialiasing method);
@@ -96,7 +99,8 @@ public:
     /// The samples of a still frame (setSamples' choice, automatic resolved).
     int samples() const;
     /// Whether frames drawn while the view moves are aliased (automatic on software OpenGL;
-    /// known once the context exists).
+    /// known once the context exists). With accumulation, still frames are then drawn a sample
+    /// at a time (FrameReport::samplesInImage, refining).
     bool aliasedWhileMoving() const;
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
@@ -183,6 +187,8 @@ private:
     /// position (identity: back where the drag began).
     PointsBySurface dragPointsBySurface(const glm::dmat4& map) const;
     void releaseGl();
+    /// Draws again kStillMs from now (restarted by every call): the still frame after a move.
+    void drawAgainWhenStill();
     void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
     void dragTo(QPointF pixel);
     void applyDrag();
