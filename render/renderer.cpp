@@ -198,11 +198,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             ok = accumulated->add(i == 0, &error);
     }
     fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
-    if (QString accError;
-        ok && accumulated &&
-        !(options.progressive && firstSample == 0
-              ? accumulated->resolveFirst(target.framebuffer, &accError)
-              : accumulated->resolve(target.framebuffer, &accError))) {
+    if (QString accError; ok && accumulated &&
+                          !(options.progressive && firstSample == 0
+                                ? accumulated->resolveFirst(target.framebuffer, &accError)
+                                : accumulated->resolve(target.framebuffer, &accError))) {
         error = accError;
         ok = false;
     }

@@ -116,16 +116,14 @@ private Q_SLOTS:
                       aliased = output("cmd_aa_aliased.png");
         const QStringList common{QStringLiteral("render"), sample("trimmed_plate"),
                                  QStringLiteral("--size"), QStringLiteral("160x120")};
-        const Run a = knotwork(common + QStringList{QStringLiteral("-o"), once,
-                                                    QStringLiteral("--samples"),
-                                                    QStringLiteral("4")});
+        const Run a =
+            knotwork(common + QStringList{QStringLiteral("-o"), once, QStringLiteral("--samples"),
+                                          QStringLiteral("4")});
         QVERIFY2(a.code == 0, qPrintable(a.err));
-        const Run b = knotwork(common + QStringList{QStringLiteral("-o"), progressive,
-                                                    QStringLiteral("--samples"),
-                                                    QStringLiteral("4"),
-                                                    QStringLiteral("--progressive"),
-                                                    QStringLiteral("--time-frames"),
-                                                    QStringLiteral("8")});
+        const Run b = knotwork(
+            common + QStringList{QStringLiteral("-o"), progressive, QStringLiteral("--samples"),
+                                 QStringLiteral("4"), QStringLiteral("--progressive"),
+                                 QStringLiteral("--time-frames"), QStringLiteral("8")});
         QVERIFY2(b.code == 0, qPrintable(b.err));
         QVERIFY2(b.out.contains(QStringLiteral("median whole image of 4 samples")) &&
                      b.out.contains(QStringLiteral("over 2 images")),
@@ -133,7 +131,8 @@ private Q_SLOTS:
         const Run c = knotwork(common + QStringList{QStringLiteral("-o"), aliased});
         QVERIFY2(c.code == 0, qPrintable(c.err));
         const Pixels p = readPixels(once), q = readPixels(progressive), r = readPixels(aliased);
-        QVERIFY(!p.data.empty() && p.data.size() == q.data.size() && p.data.size() == r.data.size());
+        QVERIFY(!p.data.empty() && p.data.size() == q.data.size() &&
+                p.data.size() == r.data.size());
         QVERIFY(p.data == q.data);
         QVERIFY(p.data != r.data); // anti-aliased: the trim edges differ from the aliased frame
     }
@@ -293,10 +292,14 @@ private Q_SLOTS:
         QTest::newRow("progressive aliased")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--progressive")};
-        QTest::newRow("progressive msaa") << QStringList{
-            sample("trimmed_plate"),     QStringLiteral("-o"), output("x.png"),
-            QStringLiteral("--samples"), QStringLiteral("4"),  QStringLiteral("--aa-method"),
-            QStringLiteral("coverage"),  QStringLiteral("--progressive")};
+        QTest::newRow("progressive msaa") << QStringList{sample("trimmed_plate"),
+                                                         QStringLiteral("-o"),
+                                                         output("x.png"),
+                                                         QStringLiteral("--samples"),
+                                                         QStringLiteral("4"),
+                                                         QStringLiteral("--aa-method"),
+                                                         QStringLiteral("coverage"),
+                                                         QStringLiteral("--progressive")};
         QTest::newRow("bad zoom point")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--zoom"), QStringLiteral("8@1.5,0.5")};
