@@ -504,6 +504,15 @@ private Q_SLOTS:
             for (size_t i = 0; i < 4; ++i)
                 QCOMPARE(samplesDrawn[i], int(i) + 1);
         }
+        // Edits with the view still, one per frame (a slider held): each starts the image
+        // again, and it is still completed once they stop.
+        Document* doc = m_window->document();
+        const SurfaceId first = doc->scene().surfaces.front().id;
+        for (int k = 0; k < 4; ++k) {
+            QVERIFY(doc->setPartitions(first, 4 + k % 2, 4));
+            QVERIFY(nextFrame());
+        }
+        QVERIFY(settled());
         // MSAA: aliased while moving on software OpenGL, then all samples in one frame.
         vp->setAntialiasing(RenderOptions::Antialiasing::Coverage);
         QVERIFY(nextFrame());

@@ -285,10 +285,17 @@ void Viewport::paintGL() {
     } else {
         m_lastRenderError.clear();
     }
+    // Still frames that started their image again, one after the other: each found something
+    // changed though the view did not move (a slider held, or something that changes every
+    // frame).
+    const bool restarted = !moving && m_lastReport.samplesInImage == 1;
+    m_stillRestarts = restarted ? m_stillRestarts + 1 : 0;
     if (m_lastReport.refining) {
         // The next sample: at once when the view is still, else once it has been for kStillMs
-        // (a moving view's next frame starts the image again).
-        if (moving)
+        // (a moving view's next frame starts the image again). After two restarts in a row
+        // also kStillMs later, so that what changes the image every frame is not drawn again
+        // and again as fast as the machine can.
+        if (moving || m_stillRestarts >= 2)
             drawAgainWhenStill();
         else
             update();

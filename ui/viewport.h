@@ -225,6 +225,7 @@ private:
     std::unique_ptr<QOpenGLDebugLogger> m_glDebug; ///< KW_GL_DEBUG=1: the driver's messages
     QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
+    int m_stillRestarts = 0; ///< consecutive still frames that were a new image's first sample
     QString m_glError;
     QString m_lastRenderError;
     FrameReport m_lastReport;
