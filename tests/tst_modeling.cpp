@@ -644,6 +644,26 @@ private Q_SLOTS:
                 covered += image.pixel(x, y) != image.pixel(1, 1);
         QVERIFY2(covered > 50, qPrintable(QString::number(covered)));
         QVERIFY(QFileInfo(exr).size() > 1000); // compressed float channels
+        // The picture is anti-aliased as the view is (automatic: 4 samples), AOVs or not: the
+        // same pixels with and without them, others than with anti-aliasing off.
+        d.exportOptions = [&](QWidget*, const MainWindow::Dialogs::ExportOptions&) {
+            return std::optional(MainWindow::Dialogs::ExportOptions{QSize(320, 200), false});
+        };
+        m_window->setDialogs(d);
+        act("actionExportImage")->trigger();
+        const QImage withoutAov(png);
+        QVERIFY(withoutAov.convertToFormat(QImage::Format_RGB32) ==
+                image.convertToFormat(QImage::Format_RGB32));
+        m_window->viewport()->setSamples(1);
+        act("actionExportImage")->trigger();
+        const QImage aliased(png);
+        m_window->viewport()->setSamples(Viewport::kAutoSamples);
+        QCOMPARE(aliased.size(), image.size());
+        int differing = 0; // the torus's outline
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                differing += aliased.pixel(x, y) != image.pixel(x, y);
+        QVERIFY2(differing > 100, qPrintable(QString::number(differing)));
     }
 
     void recentFilesTellSameNamesApart() {

@@ -187,7 +187,9 @@ void MainWindow::exportImage() {
         options = *chosen;
     }
     // Rendered again off screen at the chosen size with the view's camera and options, and
-    // written through OpenImageIO, as `knotwork render` does.
+    // written through OpenImageIO, as `knotwork render` does. The picture is anti-aliased as
+    // the view is (all samples at once); AOV frames are exact samples, so they are a second,
+    // aliased frame.
     const QString aovPath = QFileInfo(path).dir().filePath(QFileInfo(path).completeBaseName() +
                                                            QStringLiteral("_aov.exr"));
     QString error;
@@ -195,11 +197,14 @@ void MainWindow::exportImage() {
     RenderOptions render = m_viewport->renderOptions();
     render.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     render.controlNet = false; // the picture of the surfaces, not of the editing aids
-    const bool ok =
-        renderer.create(&error) && renderer.setSize(options.size, options.aov, &error) &&
-        renderer.render(*m_doc, m_viewport->cameraController().camera(), render, &error) &&
-        writeColorImage(renderer.colorImage(), path, &error) &&
-        (!options.aov || writeAovImage(renderer.aov(), aovPath, &error));
+    render.samples = m_viewport->samples();
+    const Camera camera = m_viewport->cameraController().camera();
+    const bool ok = renderer.create(&error) && renderer.setSize(options.size, false, &error) &&
+                    renderer.render(*m_doc, camera, render, &error) &&
+                    writeColorImage(renderer.colorImage(), path, &error) &&
+                    (!options.aov || (renderer.setSize(options.size, true, &error) &&
+                                      renderer.render(*m_doc, camera, render, &error) &&
+                                      writeAovImage(renderer.aov(), aovPath, &error)));
     if (!ok) {
         showError(tr("Cannot export image"), error);
         return;
