@@ -81,6 +81,12 @@ TrimLoop smallDisc(std::uint32_t id) {
     return loopOf(id, {polylineCurve(disc)});
 }
 
+/// The trims of the whole domain with smallDisc cut out: loops `id` and `id + 1`.
+std::vector<TrimLoop> domainWithHole(std::uint32_t id) {
+    return {loopOf(id, {polylineCurve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}})}),
+            smallDisc(id + 1)};
+}
+
 /// One straight trim edge on screen: pixel coverages of an anti-aliased frame against the
 /// analytic ones.
 struct EdgeCoverage {
@@ -363,8 +369,7 @@ private Q_SLOTS:
         Scene scene;
         scene.surfaces = {plane(1), plane(2)};
         scene.surfaces[0].trims = {smallDisc(10)};
-        scene.surfaces[1].trims = {
-            loopOf(11, {polylineCurve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}})}), smallDisc(12)};
+        scene.surfaces[1].trims = domainWithHole(11);
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
@@ -491,8 +496,7 @@ private Q_SLOTS:
         for (glm::dvec3& p : scene.surfaces[0].geometry.points)
             p = glm::dvec3(p.x * 0.1 * std::cos(t) - p.y * 0.1 * std::sin(t) - 0.4,
                            p.x * 0.1 * std::sin(t) + p.y * 0.1 * std::cos(t) - 0.4, 0.05);
-        scene.surfaces[1].trims = {
-            loopOf(11, {polylineCurve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}})}), smallDisc(12)};
+        scene.surfaces[1].trims = domainWithHole(11);
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
