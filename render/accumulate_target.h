@@ -46,9 +46,9 @@ public:
     /// test on, writes on.
     bool resolve(std::uint32_t framebuffer, QString* error);
     /// The first sample of a progressive image, just drawn, resolved straight from its own
-    /// framebuffer (one full-screen pass where add() and resolve() take two: a moving view's
-    /// frames cost what an aliased frame copied to its host does). It counts as added; the sum
-    /// takes it in keepFirst(), which must come before the next sample is drawn over it.
+    /// framebuffer (one full-screen pass where add() and resolve() take two, so a moving
+    /// view's frames cost the aliased frame and one pass). It counts as added; the sum takes it
+    /// in keepFirst(), which must come before the next sample is drawn over it.
     bool resolveFirst(std::uint32_t framebuffer, QString* error);
     /// Adds the sample resolveFirst() showed into the sum (nothing when there is none).
     bool keepFirst(QString* error);
