@@ -147,9 +147,9 @@ struct RenderOptions {
     /// the camera, the target and its size, these options); any change starts again at the
     /// first sample. Once all `samples` are in, a call draws no surface and resolves the sum
     /// again. FrameReport::refining asks the host for the next call. A frame costs one aliased
-    /// frame and a full-screen pass or two (1.1-1.3x the aliased frame on llvmpipe at 1024 x 1024),
-    /// a view that moves stays near aliased speed and a still one converges to the image of
-    /// all samples drawn at once (the same pixels: tst_render_trims_aa).
+    /// frame and a full-screen pass or two (1.1-1.3x the aliased frame on llvmpipe at 1024 x
+    /// 1024), so a view that moves stays near aliased speed and a still one converges to the
+    /// image of all samples drawn at once (the same pixels: tst_render_trims_aa).
     bool progressive = false;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
