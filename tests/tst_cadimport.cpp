@@ -11,6 +11,7 @@
 #ifdef KW_HAVE_OCCT
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -29,6 +30,8 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 #endif
 
 #include <cmath>
@@ -244,6 +247,7 @@ private Q_SLOTS:
     void brepRoundTrip();
     void untransferableEntityIsReported();
     void locatedFacesAreMoved();
+    void coincidentFacesAreReported();
     void cancelStopsImport();
     void brokenFiles_data();
     void brokenFiles();
@@ -425,6 +429,100 @@ void TestCadImport::locatedFacesAreMoved() {
         QVERIFY2(std::abs(areaMoved - area) <= 1e-6 * area,
                  qPrintable(QStringLiteral("%1 vs %2").arg(areaMoved).arg(area)));
     }
+#endif
+}
+
+void TestCadImport::coincidentFacesAreReported() {
+#ifndef KW_HAVE_OCCT
+    QSKIP("built without OpenCASCADE: BREP import unavailable");
+#else
+    // Faces lying on one another have equal depth where both are drawn, so either shows, pixel
+    // by pixel (Motor-c's parts in contact): the import says so. Built from screw.step's faces.
+    const TopTools_IndexedMapOfShape faces = occtFaces(dataFile("screw.step"));
+    QCOMPARE(faces.Extent(), 10);
+    BRep_Builder b;
+    const auto importShape = [&](const TopoDS_Shape& shape, const char* name) {
+        const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/") + QLatin1String(name);
+        QString error;
+        std::optional<ImportResult> r;
+        if (BRepTools::Write(shape, QFile::encodeName(path).constData()))
+            r = importFile(path, error);
+        if (!r)
+            qWarning("%s: %s", name, qPrintable(error));
+        return r;
+    };
+    const auto coincidences = [](const ImportResult& r) {
+        QStringList lines;
+        for (const QString& w : r.report.warnings)
+            if (w.contains(QLatin1String("coincide")))
+                lines << w;
+        return lines;
+    };
+    // A face given twice (a copy, so the file holds it twice), no solid: one line, naming both.
+    TopoDS_Compound twice;
+    b.MakeCompound(twice);
+    for (int k = 1; k <= faces.Extent(); ++k)
+        b.Add(twice, faces(k));
+    b.Add(twice, BRepBuilderAPI_Copy(faces(3)).Shape());
+    auto r = importShape(twice, "screw_face_twice.brep");
+    QVERIFY(r);
+    QCOMPARE(r->scene.surfaces.size(), size_t(11));
+    QStringList lines = coincidences(*r);
+    QCOMPARE(lines.size(), 1);
+    QVERIFY2(lines[0].startsWith(QLatin1String("face 3 (")) &&
+                 lines[0].contains(QLatin1String("and face 11 (")) &&
+                 lines[0].contains(QLatin1String("9 of 9 points")) &&
+                 lines[0].contains(QLatin1String("a face given twice")),
+             qPrintable(lines[0]));
+    // The same copy moved off by 1e-4 of the part's size: not coincident.
+    Bnd_Box box;
+    for (int k = 1; k <= faces.Extent(); ++k)
+        BRepBndLib::Add(faces(k), box);
+    const double size = std::sqrt(box.SquareExtent());
+    gp_Trsf off;
+    off.SetTranslation(gp_Vec(0.6, 0.64, 0.48) * (1e-4 * size));
+    TopoDS_Compound apart;
+    b.MakeCompound(apart);
+    for (int k = 1; k <= faces.Extent(); ++k)
+        b.Add(apart, faces(k));
+    b.Add(apart, BRepBuilderAPI_Copy(faces(3)).Shape().Moved(TopLoc_Location(off)));
+    r = importShape(apart, "screw_face_apart.brep");
+    QVERIFY(r);
+    QVERIFY2(coincidences(*r).isEmpty(), qPrintable(coincidences(*r).join('\n')));
+    // Two solids of the same faces: parts in contact, said once with their count.
+    const auto solidOf = [&](const TopoDS_Shape& source) {
+        TopTools_IndexedMapOfShape sourceFaces;
+        TopExp::MapShapes(source, TopAbs_FACE, sourceFaces);
+        TopoDS_Shell shell;
+        b.MakeShell(shell);
+        for (int k = 1; k <= sourceFaces.Extent(); ++k)
+            b.Add(shell, sourceFaces(k));
+        TopoDS_Solid solid;
+        b.MakeSolid(solid);
+        b.Add(solid, shell);
+        return solid;
+    };
+    TopoDS_Compound one;
+    b.MakeCompound(one);
+    for (int k = 1; k <= faces.Extent(); ++k)
+        b.Add(one, faces(k));
+    TopoDS_Compound two;
+    b.MakeCompound(two);
+    b.Add(two, solidOf(one));
+    b.Add(two, solidOf(BRepBuilderAPI_Copy(one).Shape()));
+    r = importShape(two, "screw_two_solids.brep");
+    QVERIFY(r);
+    QCOMPARE(r->scene.surfaces.size(), size_t(20));
+    lines = coincidences(*r);
+    QCOMPARE(lines.size(), 1);
+    QVERIFY2(lines[0].startsWith(QLatin1String("10 pair(s) of faces of different solids")) &&
+                 lines[0].contains(QLatin1String("parts in contact")),
+             qPrintable(lines[0]));
+    // A closed solid on its own: nothing.
+    QString error;
+    const auto nut = importFile(dataFile("Pump_Nut.brep"), error);
+    QVERIFY2(nut, qPrintable(error));
+    QVERIFY2(coincidences(*nut).isEmpty(), qPrintable(coincidences(*nut).join('\n')));
 #endif
 }
 

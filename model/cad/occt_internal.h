@@ -15,6 +15,7 @@
 #include <XSControl_Reader.hxx>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace kw::occt {
 
@@ -56,6 +57,19 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
 /// no p-curve, conversion failure); OCCT exceptions are the caller's to catch.
 bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings);
+
+/// Pairs of imported faces that lie on one another (the same surface twice, or a face on part
+/// of another): at least half of up to 9 points inside one face's wires lie on the other,
+/// within both faces' tolerances (and 1e-6 of the model's size), inside its wires. Such faces
+/// have equal depth wherever both are drawn, so either may show, pixel by pixel. Pairs within
+/// one solid (or outside solids) get a line each, "face K (LABEL) and face K' (LABEL')
+/// coincide: ...", K the file's face numbers (`sourceFaces`, parallel to `labels`), at most
+/// `maxReported` and then a count of the rest; pairs of two solids of `shape` (parts of an
+/// assembly in contact) one line with their count and the first pair. OCCT exceptions are the
+/// caller's to catch.
+QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                            const std::vector<int>& sourceFaces, const QStringList& labels,
+                            int maxReported);
 
 /// OCCT viewers' default linear deflection for `shape` (AIS_Shape: 0.004 times the largest side
 /// of its bounding box); 0 for an empty shape.

@@ -406,6 +406,19 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
                     .arg(result.report.skipped.value(0));
         return std::nullopt;
     }
+    // Faces lying on one another: a defect of the file that shows as either face, pixel by
+    // pixel, where both are drawn.
+    try {
+        OCC_CATCH_SIGNALS
+        QStringList labels;
+        for (const Surface& s : scene.surfaces)
+            labels << s.name;
+        result.report.warnings << coincidentFaces(read.shape, faces, result.sourceFaces, labels,
+                                                  20);
+    } catch (const Standard_Failure& e) {
+        result.report.warnings << QStringLiteral("the check for coincident faces failed: %1")
+                                      .arg(QString::fromUtf8(e.GetMessageString()));
+    }
     if (after && !after(read.shape, faces, result, error))
         return std::nullopt;
     if (progress)
