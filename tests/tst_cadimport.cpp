@@ -518,6 +518,24 @@ void TestCadImport::coincidentFacesAreReported() {
     QVERIFY2(lines[0].startsWith(QLatin1String("10 pair(s) of faces of different solids")) &&
                  lines[0].contains(QLatin1String("parts in contact")),
              qPrintable(lines[0]));
+    // 2000 copies of one face: 2 million coincident pairs, minutes of projections; the check
+    // stops after its 3 s and says so, and the import completes.
+    TopoDS_Compound pile;
+    b.MakeCompound(pile);
+    for (int k = 0; k < 2000; ++k)
+        b.Add(pile, BRepBuilderAPI_Copy(faces(3)).Shape());
+    QElapsedTimer clock;
+    clock.start();
+    r = importShape(pile, "screw_face_pile.brep");
+    QVERIFY(r);
+    qInfo("2000 coincident faces imported in %lld ms", qint64(clock.elapsed()));
+    QCOMPARE(r->scene.surfaces.size(), size_t(2000));
+    lines = coincidences(*r);
+    QVERIFY2(lines.size() == 22 &&
+                 lines[20].startsWith(
+                     QLatin1String("the check for coincident faces stopped after 3 s")) &&
+                 lines[21].contains(QLatin1String("more pairs of coincident faces")),
+             qPrintable(lines.mid(19).join('\n')));
     // A closed solid on its own: nothing.
     QString error;
     const auto nut = importFile(dataFile("Pump_Nut.brep"), error);

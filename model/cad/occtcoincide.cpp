@@ -11,6 +11,7 @@
 #include <Bnd_Box.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Surface.hxx>
+#include <QElapsedTimer>
 #include <TopExp.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -91,10 +92,17 @@ QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMap
     TopExp::MapShapes(shape, TopAbs_SOLID, solids);
     TopTools_IndexedDataMapOfShapeListOfShape solidOf;
     TopExp::MapShapesAndAncestors(shape, TopAbs_FACE, TopAbs_SOLID, solidOf);
+    // A file of many faces piled on one another (hostile, or a model of 100 000 faces) would
+    // make the pairs too many: the check stops after kBudgetMs and says so.
+    constexpr qint64 kBudgetMs = 3000;
+    QElapsedTimer clock;
+    clock.start();
+    bool stopped = false;
     std::vector<FaceProbe> probes;
     Bnd_Box all;
     probes.reserve(sourceFaces.size());
-    for (size_t s = 0; s < sourceFaces.size(); ++s) {
+    for (size_t s = 0; s < sourceFaces.size() && !stopped; ++s) {
+        stopped = clock.elapsed() > kBudgetMs;
         const TopoDS_Face& face = TopoDS::Face(faces(sourceFaces[s]));
         FaceProbe f;
         f.surface = int(s);
@@ -115,7 +123,7 @@ QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMap
             probes.push_back(std::move(f));
     }
     QStringList found;
-    if (probes.size() < 2 || all.IsVoid())
+    if ((probes.size() < 2 || all.IsVoid()) && !stopped)
         return found;
     // Coincident within the faces' own tolerances, and never closer than a millionth of the
     // model: the depth buffer cannot tell such faces apart either.
@@ -136,9 +144,15 @@ QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMap
     };
     int duplicates = 0, contacts = 0;
     QString firstContact;
-    for (size_t i = 0; i < probes.size(); ++i) {
+    std::int64_t steps = 0;
+    size_t compared = 0; // faces whose pairs with every later face were tested
+    for (size_t i = 0; i < probes.size() && !stopped; ++i, compared = i) {
         const double xMax = probes[i].box.CornerMax().X();
         for (size_t j = i + 1; j < probes.size() && probes[j].box.CornerMin().X() <= xMax; ++j) {
+            if ((++steps & 255) == 0 && clock.elapsed() > kBudgetMs) {
+                stopped = true;
+                break;
+            }
             const FaceProbe &a = probes[i], &b = probes[j];
             if (a.box.IsOut(b.box))
                 continue;
@@ -178,6 +192,12 @@ QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMap
                          .arg(tolerance, 0, 'g', 2);
         }
     }
+    if (stopped)
+        found << QStringLiteral("the check for coincident faces stopped after %1 s, %2 of %3 "
+                                "faces compared with the others; more may coincide")
+                     .arg(kBudgetMs / 1000)
+                     .arg(compared)
+                     .arg(sourceFaces.size());
     if (duplicates > maxReported)
         found << QStringLiteral("%1 more pairs of coincident faces").arg(duplicates - maxReported);
     if (contacts > 0)
