@@ -458,13 +458,19 @@ void TestCadImport::coincidentFacesAreReported() {
                 lines << w;
         return lines;
     };
+    // The screw's faces in a compound, and `extra` when given.
+    const auto screwFaces = [&](const TopoDS_Shape& extra) {
+        TopoDS_Compound c;
+        b.MakeCompound(c);
+        for (int k = 1; k <= faces.Extent(); ++k)
+            b.Add(c, faces(k));
+        if (!extra.IsNull())
+            b.Add(c, extra);
+        return c;
+    };
     // A face given twice (a copy, so the file holds it twice), no solid: one line, naming both.
-    TopoDS_Compound twice;
-    b.MakeCompound(twice);
-    for (int k = 1; k <= faces.Extent(); ++k)
-        b.Add(twice, faces(k));
-    b.Add(twice, BRepBuilderAPI_Copy(faces(3)).Shape());
-    auto r = importShape(twice, "screw_face_twice.brep");
+    auto r =
+        importShape(screwFaces(BRepBuilderAPI_Copy(faces(3)).Shape()), "screw_face_twice.brep");
     QVERIFY(r);
     QCOMPARE(r->scene.surfaces.size(), size_t(11));
     QStringList lines = coincidences(*r);
@@ -481,12 +487,8 @@ void TestCadImport::coincidentFacesAreReported() {
     const double size = std::sqrt(box.SquareExtent());
     gp_Trsf off;
     off.SetTranslation(gp_Vec(0.6, 0.64, 0.48) * (1e-4 * size));
-    TopoDS_Compound apart;
-    b.MakeCompound(apart);
-    for (int k = 1; k <= faces.Extent(); ++k)
-        b.Add(apart, faces(k));
-    b.Add(apart, BRepBuilderAPI_Copy(faces(3)).Shape().Moved(TopLoc_Location(off)));
-    r = importShape(apart, "screw_face_apart.brep");
+    r = importShape(screwFaces(BRepBuilderAPI_Copy(faces(3)).Shape().Moved(TopLoc_Location(off))),
+                    "screw_face_apart.brep");
     QVERIFY(r);
     QVERIFY2(coincidences(*r).isEmpty(), qPrintable(coincidences(*r).join('\n')));
     // Two solids of the same faces: parts in contact, said once with their count.
@@ -502,10 +504,7 @@ void TestCadImport::coincidentFacesAreReported() {
         b.Add(solid, shell);
         return solid;
     };
-    TopoDS_Compound one;
-    b.MakeCompound(one);
-    for (int k = 1; k <= faces.Extent(); ++k)
-        b.Add(one, faces(k));
+    const TopoDS_Compound one = screwFaces(TopoDS_Shape());
     TopoDS_Compound two;
     b.MakeCompound(two);
     b.Add(two, solidOf(one));
