@@ -188,8 +188,8 @@ void MainWindow::exportImage() {
     }
     // Rendered again off screen at the chosen size with the view's camera and options, and
     // written through OpenImageIO, as `knotwork render` does. The picture is anti-aliased as
-    // the view is (all samples at once); AOV frames are exact samples, so they are a second,
-    // aliased frame.
+    // the view is (its options carry the samples; all at once); AOV frames are exact samples,
+    // so they are a second, aliased frame.
     const QString aovPath = QFileInfo(path).dir().filePath(QFileInfo(path).completeBaseName() +
                                                            QStringLiteral("_aov.exr"));
     QString error;
@@ -197,7 +197,6 @@ void MainWindow::exportImage() {
     RenderOptions render = m_viewport->renderOptions();
     render.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     render.controlNet = false; // the picture of the surfaces, not of the editing aids
-    render.samples = m_viewport->samples();
     const Camera camera = m_viewport->cameraController().camera();
     const bool ok = renderer.create(&error) && renderer.setSize(options.size, false, &error) &&
                     renderer.render(*m_doc, camera, render, &error) &&

@@ -35,6 +35,7 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     }
     setMinimumSize(160, 120);
     m_options.controlNet = true;
+    m_options.samples = samples(); // the automatic count: kept resolved, as setSamples does
     // A document change only schedules a repaint; nothing renders inside a signal.
     auto repaint = [this] {
         update();
@@ -175,6 +176,7 @@ void Viewport::setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetByte
 
 void Viewport::setSamples(int samples) {
     m_samplesWanted = samples == kAutoSamples ? kAutoSamples : std::clamp(samples, 1, kMaxSamples);
+    m_options.samples = this->samples();
     update();
 }
 
@@ -257,7 +259,6 @@ void Viewport::paintGL() {
         return;
     }
     RenderOptions options = m_options;
-    options.samples = samples();
     const bool moving =
         m_gesture != Gesture::None || (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
     if (options.samples > 1 && aliasedWhileMoving()) {

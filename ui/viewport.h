@@ -61,6 +61,8 @@ public:
     /// The mapping the picker uses for the current camera and size.
     ViewProjection viewProjection() const;
 
+    /// The view's options, samples resolved (automatic: kAutoSamplesCount); what a frame
+    /// changes while the view moves (fewer samples, progressive) is not in them.
     const RenderOptions& renderOptions() const { return m_options; }
     void setRenderMode(RenderMode mode);
     void setWireframe(bool on);
