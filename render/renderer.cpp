@@ -172,15 +172,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         const int inSum = progressKey && *progressKey == key ? accumulate.added() : 0;
         progressKey = key;
         firstSample = size_t(std::clamp(inSum, 0, samples));
-        endSample = std::min(firstSample + 1, offsets.size());
-        if (firstSample == endSample) // all in: the sum is resolved again, nothing drawn
-            beginReversedDepth(gl);
+        endSample = std::min(firstSample + 1, offsets.size()); // all in: none, resolved again
     } else if (!pickPixel && !target.aov) {
         progressKey.reset();
     }
     RenderTarget sampleTarget = drawn;
     if (accumulated)
         sampleTarget.framebuffer = accumulated->sampleFramebuffer();
+    // The frame's depth convention, for the overlays too when no sample is drawn (beginTarget
+    // sets it again per sample).
+    beginReversedDepth(gl);
     bool ok = true;
     if (accumulated && firstSample > 0 && firstSample < endSample)
         ok = accumulated->keepFirst(&error); // before the next sample is drawn over it
