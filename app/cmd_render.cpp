@@ -316,11 +316,14 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             }
             renderer.finish();
             ms.push_back(double(t.nsecsElapsed()) * 1e-6);
-            image += ms.back();
-            (renderer.lastReport().samplesInImage == 1 ? firstMs : laterMs).push_back(ms.back());
-            if (options.progressive && !renderer.lastReport().refining) {
-                imageMs.push_back(image);
-                image = 0.0;
+            if (options.progressive) {
+                const FrameReport& r = renderer.lastReport();
+                (r.samplesInImage == 1 ? firstMs : laterMs).push_back(ms.back());
+                image += ms.back();
+                if (!r.refining) {
+                    imageMs.push_back(image);
+                    image = 0.0;
+                }
             }
         }
         const auto median = [](std::vector<double>& v) {
