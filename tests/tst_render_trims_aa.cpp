@@ -534,6 +534,28 @@ private Q_SLOTS:
         QVERIFY(!m_renderer->lastReport().refining);
         QCOMPARE(m_renderer->lastReport().drawCalls, 0);
         QCOMPARE(differing(image, whole), 0);
+        // The overlays are drawn over a complete image (no surface drawn) as over one drawn in
+        // a single call: a square under the plate's hole, wider than it, with its control net.
+        Scene under = scene;
+        for (glm::dvec3& p : under.surfaces[0].geometry.points)
+            p = glm::dvec3(p.x * 1.5 + 0.6, p.y * 1.5 + 0.6, -0.05); // centred on the hole
+        Document underDoc;
+        QVERIFY2(underDoc.resetScene(under, &error), qPrintable(error));
+        RenderOptions net = o;
+        net.controlNet = true;
+        net.progressive = false;
+        QImage netWhole, noNet;
+        QVERIFY(renderImage(underDoc, net, netWhole));
+        net.controlNet = false;
+        QVERIFY(renderImage(underDoc, net, noNet));
+        net.controlNet = true;
+        net.progressive = true;
+        for (int i = 0; i < 5; ++i)
+            QVERIFY(renderImage(underDoc, net, image));
+        QCOMPARE(m_renderer->lastReport().samplesInImage, 4);
+        QCOMPARE(m_renderer->lastReport().drawCalls > 0, true); // the net's, no surface's
+        QVERIFY(differing(netWhole, noNet) > 50);               // the net shows in the hole
+        QCOMPARE(differing(image, netWhole), 0);
         const auto restarts = [&](const char* what) {
             QImage restarted;
             if (!renderImage(doc, o, restarted))
