@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 
 // Beyond the header's contract: a valid call that would change nothing (same name, same
 // positions, same lights...) returns true and emits nothing, so a no-op never costs an upload.
@@ -134,6 +135,7 @@ bool Document::insertSurface(int index, Surface surface) {
         maxId = std::max(maxId, l.id.value);
     }
     const SurfaceId id = surface.id;
+    surface.solid = -1; // joins no solid: its siblings' marks may have been cleared meanwhile
     Q_EMIT surfaceAboutToBeInserted(index);
     m_scene.surfaces.insert(m_scene.surfaces.begin() + index, std::move(surface));
     const std::uint64_t rev = nextRevision();
@@ -147,11 +149,13 @@ bool Document::removeSurface(SurfaceId id) {
     const int index = indexOf(id);
     if (index < 0)
         return false;
+    const int solid = m_scene.surfaces[size_t(index)].solid;
     Q_EMIT surfaceAboutToBeRemoved(id, index);
     m_scene.surfaces.erase(m_scene.surfaces.begin() + index);
     m_revisions.erase(m_revisions.begin() + index);
     nextRevision(); // the scene changed, though no surface's revisions did
     Q_EMIT surfaceRemoved(id);
+    openSolid(solid);
     return true;
 }
 
@@ -267,8 +271,10 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     s->trims.insert(s->trims.begin() + index, std::move(loop));
     m_scene.nextId = std::max(m_scene.nextId, loopId + 1);
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
+    const int solid = std::exchange(s->solid, -1);
     Q_EMIT trimLoopInserted(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
+    openSolid(solid);
     return true;
 }
 
@@ -280,8 +286,10 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     Q_EMIT trimLoopAboutToBeRemoved(id, index);
     s->trims.erase(s->trims.begin() + index);
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
+    const int solid = std::exchange(s->solid, -1);
     Q_EMIT trimLoopRemoved(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
+    openSolid(solid);
     return true;
 }
 
@@ -386,7 +394,24 @@ void Document::bump(SurfaceId id, Aspects aspects) {
         r.trims = rev;
     if (aspects & Aspect::Display)
         r.display = rev;
+    Surface& s = m_scene.surfaces[size_t(indexOf(id))];
+    const int solid = aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)
+                          ? std::exchange(s.solid, -1)
+                          : -1;
     Q_EMIT surfaceChanged(id, aspects);
+    openSolid(solid);
+}
+
+// A face of `solid` changed shape or went away: a seam may be open, and through it the other
+// faces' insides may show, so none of them is marked any more (Surface::solid).
+void Document::openSolid(int solid) {
+    if (solid < 0)
+        return;
+    for (Surface& s : m_scene.surfaces)
+        if (s.solid == solid) {
+            s.solid = -1;
+            bump(s.id, Aspect::Display);
+        }
 }
 
 } // namespace kw

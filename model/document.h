@@ -16,7 +16,7 @@ enum class Aspect : unsigned {
     Points = 1 << 0,  ///< control point positions or weights (same counts)
     Knots = 1 << 1,   ///< degrees, knot vectors, or control-net size
     Trims = 1 << 2,   ///< trim loops
-    Display = 1 << 3, ///< partitions, material, hidden
+    Display = 1 << 3, ///< partitions, material, hidden, the solid mark
     Name = 1 << 4,
 };
 Q_DECLARE_FLAGS(Aspects, Aspect)
@@ -121,6 +121,7 @@ Q_SIGNALS:
 private:
     Surface* mutableSurface(SurfaceId id);
     void bump(SurfaceId id, Aspects aspects);
+    void openSolid(int solid);
     /// A fresh value of the process-wide revision counter, kept as the document's revision().
     std::uint64_t nextRevision();
 

@@ -79,6 +79,12 @@ QJsonObject surfaceToJson(const Surface& s) {
     o.insert(QStringLiteral("material"), materialToJson(s.material));
     if (s.hidden) // optional, written only when set: files of visible scenes stay as they were
         o.insert(QStringLiteral("hidden"), true);
+    if (s.solid >= 0) // optional (1.2): a face of a closed solid, as imported
+        o.insert(QStringLiteral("solid"),
+                 QJsonObject{{QStringLiteral("index"), s.solid},
+                             {QStringLiteral("outside"), s.outsideAlongNormal
+                                                             ? QStringLiteral("normal")
+                                                             : QStringLiteral("reversed")}});
     return o;
 }
 

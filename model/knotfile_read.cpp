@@ -401,6 +401,19 @@ Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) 
                  QStringLiteral("expected true or false, found ") + describe(v));
         s.hidden = v.toBool();
     }
+    if (o.contains(QLatin1String("solid"))) {
+        const QString p = member(path, "solid");
+        const QJsonObject solid = asObject(o.value(QLatin1String("solid")), p);
+        s.solid =
+            int(asInteger(required(solid, p, "index"), member(p, "index"), 0, kMaxKnotSurfaces));
+        const QString outsidePath = member(p, "outside");
+        const QString outside = asString(required(solid, p, "outside"), outsidePath);
+        if (outside == QLatin1String("normal") || outside == QLatin1String("reversed"))
+            s.outsideAlongNormal = outside == QLatin1String("normal");
+        else
+            fail(outsidePath, QStringLiteral("expected \"normal\" or \"reversed\", found ") +
+                                  describe(QJsonValue(outside)));
+    }
     return s;
 }
 

@@ -84,6 +84,16 @@ struct Surface {
     /// Hidden by the user (View > Hide): not drawn and not pickable, still part of the
     /// document (saved, exported, counted). An edit like any other: undoable, marks modified.
     bool hidden = false;
+    /// A face of a closed solid, all of whose faces were imported (kw::importOcctFile): the
+    /// solid's number (>= 0), and whether the solid's outside lies on the side S_u x S_v
+    /// points to (false: the other side). While the eye sees the solid from outside, the
+    /// renderer skips the base polygon's triangles that turn their inside to the eye: the
+    /// solid's own faces in front hide them (docs/RENDERING.md, "Back faces of closed
+    /// solids"). -1: not known to bound a solid. A change of any of its faces' shape or trims,
+    /// or the removal of one, may open the solid: Document then clears the mark on all of
+    /// them, and a surface inserted into a document never carries one.
+    int solid = -1;
+    bool outsideAlongNormal = true;
     bool operator==(const Surface&) const = default;
 };
 

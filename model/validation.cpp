@@ -161,6 +161,8 @@ QString surfaceError(const Surface& s) {
         e = partitionsError(s.partitionsU, s.partitionsV);
     if (e.isEmpty())
         e = materialError(s.material);
+    if (e.isEmpty() && s.solid < -1)
+        e = QStringLiteral("solid number %1 is negative").arg(s.solid);
     if (e.isEmpty() && s.trims.size() > size_t(kMaxTrimLoops))
         e = QStringLiteral("%1 trim loops, more than the limit %2")
                 .arg(s.trims.size())

@@ -53,8 +53,70 @@ private Q_SLOTS:
     void lightsAndCamera();
     void revisionsNeverRepeat();
     void revisionMovesWithEveryChange();
+    void editedFaceOpensItsSolid();
     void idsNeverReused();
 };
+
+// Surface::solid: a change of a face's shape or trims, or its removal, clears the mark on every
+// face of its solid (a seam may be open), with a display revision for each; other changes and
+// other solids keep theirs; an inserted surface never carries one.
+void TestDocument::editedFaceOpensItsSolid() {
+    const auto marked = [] {
+        Scene scene = threeSurfaceScene();
+        scene.surfaces[0].solid = scene.surfaces[1].solid = 4;
+        scene.surfaces[1].outsideAlongNormal = false;
+        scene.surfaces[2].solid = 5;
+        return scene;
+    };
+    const auto solids = [](const Document& doc) {
+        std::vector<int> out;
+        for (const Surface& s : doc.scene().surfaces)
+            out.push_back(s.solid);
+        return out;
+    };
+    {
+        Document doc;
+        QVERIFY(doc.resetScene(marked()));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
+        // What keeps the shape keeps the solid.
+        QVERIFY(doc.setName(SurfaceId{1}, QStringLiteral("A")));
+        QVERIFY(doc.setPartitions(SurfaceId{1}, 7, 7));
+        Material m = doc.scene().surfaces[0].material;
+        m.shininess += 1.0;
+        QVERIFY(doc.setMaterial(SurfaceId{1}, m));
+        QVERIFY(doc.setHidden(SurfaceId{1}, true));
+        QVERIFY(doc.setHidden(SurfaceId{1}, false));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
+        // A moved point opens solid 4, both faces, each with a new display revision.
+        const std::uint64_t before = doc.revisions(SurfaceId{2}).display;
+        const glm::dvec3 p = doc.scene().surfaces[0].geometry.points[0];
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p + glm::dvec3(0.1)}));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        QVERIFY(doc.revisions(SurfaceId{2}).display > before);
+        // Moving it back does not close it again (nothing says the seams met).
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+    }
+    {
+        Document doc;
+        QVERIFY(doc.resetScene(marked()));
+        QVERIFY(doc.setWeight(SurfaceId{2}, 0, 2.0));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        const TrimLoop loop = doc.scene().surfaces[2].trims[0];
+        QVERIFY(doc.removeTrimLoop(SurfaceId{3}, loop.id));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, -1}));
+    }
+    {
+        Document doc;
+        QVERIFY(doc.resetScene(marked()));
+        const Surface removed = doc.scene().surfaces[1];
+        QVERIFY(doc.removeSurface(SurfaceId{2}));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, 5}));
+        QVERIFY(doc.insertSurface(1, removed)); // undo of the removal
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        QCOMPARE(Document::validate(doc.scene()), QString());
+    }
+}
 
 void TestDocument::emptyDocument() {
     Document doc;

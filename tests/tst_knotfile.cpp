@@ -5,6 +5,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QRandomGenerator>
@@ -136,6 +137,7 @@ private Q_SLOTS:
     void doublesRoundTripBitForBit();
     void cameraOmittedWhenNotAuthored();
     void displayOptionalAndChecked();
+    void solidOptionalAndChecked();
     void idsKeptAndNextIdRaised();
     void newerMinorVersionAccepted();
     void readFileRoundTrip();
@@ -210,7 +212,7 @@ void TestKnotFile::displayOptionalAndChecked() {
     Scene scene = richScene();
     QCOMPARE(
         QJsonDocument::fromJson(sceneToJson(scene)).object()[QStringLiteral("version")].toString(),
-        QStringLiteral("1.1"));
+        QStringLiteral("1.2"));
     scene.display = DisplaySettings{};
     QJsonObject root = QJsonDocument::fromJson(sceneToJson(scene)).object();
     QVERIFY(!root.contains(QStringLiteral("display")));
@@ -249,6 +251,55 @@ void TestKnotFile::displayOptionalAndChecked() {
     }
     // The one validation refuses it too (Document, writers).
     scene.display = DisplaySettings{QStringLiteral("adaptive"), 100.0};
+    QVERIFY(!sceneError(scene).isEmpty());
+}
+
+// 1.2: a face of a closed solid (Surface::solid) says so; unmarked surfaces write nothing, so
+// older files read as before and files without solids stay as they were.
+void TestKnotFile::solidOptionalAndChecked() {
+    Scene scene = richScene();
+    QJsonObject root = QJsonDocument::fromJson(sceneToJson(scene)).object();
+    for (const QJsonValue& s : root[QStringLiteral("surfaces")].toArray())
+        QVERIFY(!s.toObject().contains(QStringLiteral("solid")));
+    scene.surfaces[0].solid = 3;
+    scene.surfaces[0].outsideAlongNormal = false;
+    scene.surfaces[1].solid = 0;
+    std::optional<Scene> back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), nullptr);
+    QVERIFY(back);
+    QVERIFY(*back == scene);
+    QCOMPARE(back->surfaces[0].solid, 3);
+    QVERIFY(!back->surfaces[0].outsideAlongNormal);
+    QVERIFY(back->surfaces[1].outsideAlongNormal);
+    root = QJsonDocument::fromJson(sceneToJson(scene)).object();
+    QCOMPARE(root[QStringLiteral("surfaces")][0][QStringLiteral("solid")].toObject(),
+             (QJsonObject{{QStringLiteral("index"), 3},
+                          {QStringLiteral("outside"), QStringLiteral("reversed")}}));
+    const struct {
+        QJsonValue solid;
+        const char* path;
+    } bad[] = {
+        {QJsonValue(2), "mem: $.surfaces[0].solid: "},
+        {QJsonObject{{QStringLiteral("outside"), QStringLiteral("normal")}},
+         "mem: $.surfaces[0].solid.index: missing"},
+        {QJsonObject{{QStringLiteral("index"), -1},
+                     {QStringLiteral("outside"), QStringLiteral("normal")}},
+         "mem: $.surfaces[0].solid.index: "},
+        {QJsonObject{{QStringLiteral("index"), 1},
+                     {QStringLiteral("outside"), QStringLiteral("in")}},
+         "mem: $.surfaces[0].solid.outside: "},
+        {QJsonObject{{QStringLiteral("index"), 1}}, "mem: $.surfaces[0].solid.outside: missing"},
+    };
+    for (const auto& b : bad) {
+        QJsonArray surfaces = root[QStringLiteral("surfaces")].toArray();
+        QJsonObject first = surfaces[0].toObject();
+        first.insert(QStringLiteral("solid"), b.solid);
+        surfaces[0] = first;
+        root.insert(QStringLiteral("surfaces"), surfaces);
+        QString error;
+        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), &error));
+        QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
+    }
+    scene.surfaces[0].solid = -2;
     QVERIFY(!sceneError(scene).isEmpty());
 }
 

@@ -12,12 +12,12 @@ namespace {
 // "KWIMPORT", then the version: bump it with any change below. The end mark catches a block
 // cut at a field boundary.
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;           // 2: Surface::solid, outsideAlongNormal
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
 // are checked so that the build fails instead of the field being dropped on the way back.
-static_assert(sizeof(void*) != 8 || sizeof(Surface) == 240, "update the CAD hand-over");
+static_assert(sizeof(void*) != 8 || sizeof(Surface) == 248, "update the CAD hand-over");
 static_assert(sizeof(NurbsSurface) == 112, "update the CAD hand-over");
 static_assert(sizeof(NurbsCurve2) == 80, "update the CAD hand-over");
 static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
@@ -160,6 +160,8 @@ void writeSurface(Writer& w, const Surface& s) {
     w.value(std::int32_t(s.partitionsV));
     w.value(s.material);
     w.value(std::uint8_t(s.hidden));
+    w.value(std::int32_t(s.solid));
+    w.value(std::uint8_t(s.outsideAlongNormal));
 }
 
 Surface readSurface(Reader& r) {
@@ -187,6 +189,8 @@ Surface readSurface(Reader& r) {
     s.partitionsV = r.value<std::int32_t>("surface partitions");
     s.material = r.value<Material>("surface material");
     s.hidden = r.flag("surface hidden flag");
+    s.solid = r.value<std::int32_t>("surface solid");
+    s.outsideAlongNormal = r.flag("surface outside flag");
     return s;
 }
 
