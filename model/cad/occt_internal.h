@@ -71,6 +71,16 @@ QStringList coincidentFaces(const TopoDS_Shape& shape, const TopTools_IndexedMap
                             const std::vector<int>& sourceFaces, const QStringList& labels,
                             int maxReported);
 
+/// Marks the surfaces of every closed solid of `shape` whose faces were all imported
+/// (Surface::solid, numbered from 0 in the order of the solids; Surface::outsideAlongNormal from
+/// each face's orientation in the solid and the sign of its volume). Left unmarked: solids with
+/// a shell that BRepCheck finds open or inconsistently oriented, no volume, a face skipped,
+/// shared with another solid or used twice, or whose first face's outward normal a point
+/// classification does not confirm. `faces` and `sourceFaces` as for coincidentFaces. OCCT
+/// exceptions are the caller's to catch.
+void markClosedSolids(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                      const std::vector<int>& sourceFaces, Scene& scene);
+
 /// OCCT viewers' default linear deflection for `shape` (AIS_Shape: 0.004 times the largest side
 /// of its bounding box); 0 for an empty shape.
 double defaultLinearDeflection(const TopoDS_Shape& shape);

@@ -419,6 +419,16 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         result.report.warnings << QStringLiteral("the check for coincident faces failed: %1")
                                       .arg(QString::fromUtf8(e.GetMessageString()));
     }
+    // Closed solids: the renderer skips their polygons' back faces.
+    try {
+        OCC_CATCH_SIGNALS
+        markClosedSolids(read.shape, faces, result.sourceFaces, scene);
+    } catch (const Standard_Failure& e) {
+        for (Surface& s : scene.surfaces)
+            s.solid = -1;
+        result.report.warnings << QStringLiteral("the check for closed solids failed: %1")
+                                      .arg(QString::fromUtf8(e.GetMessageString()));
+    }
     if (after && !after(read.shape, faces, result, error))
         return std::nullopt;
     if (progress)
