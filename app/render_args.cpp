@@ -328,6 +328,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     options.splitCellsByTrims = qEnvironmentVariable("KW_TRIM_CELL_SPLIT") != QLatin1String("0");
     // The edge skirts' before and after (docs/PERFORMANCE.md ## Edges): cracks and cost.
     options.edgeSkirts = qEnvironmentVariable("KW_EDGE_SKIRTS") != QLatin1String("0");
+    // Closed solids' back faces drawn or skipped (docs/PERFORMANCE.md ## Edges): same pixels.
+    options.skipBackFaces = qEnvironmentVariable("KW_BACK_FACES") != QLatin1String("1");
     return true;
 }
 

@@ -148,6 +148,12 @@ void ExactSurfacePass::releaseCommands() {
 
 void ExactSurfacePass::drawBatch(const Batch& batch) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (batch.cullFace != 0) {
+        gl->glEnable(GL_CULL_FACE);
+        gl->glCullFace(batch.cullFace);
+    } else {
+        gl->glDisable(GL_CULL_FACE);
+    }
     if (firstDrawCpuMs < 0.0 && !batch.commands.empty())
         firstDrawCpuMs = threadCpuMs();
     if (multiDraw) {
@@ -211,9 +217,14 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     // varyings cost llvmpipe's triangle setup more than the fetches it saves.
     const bool gather = r.bounded && projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) >=
                                          key.minCellPixels;
-    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9;
+    // A closed solid seen from outside: the triangles facing away from the eye are hidden by
+    // its faces in front (chooseBackCulled).
+    const int solid = r.surface ? r.surface->solid : -1;
+    if (solid >= 0 && m_backCulled.count(solid))
+        p.face = r.surface->outsideAlongNormal ? 1 : 2;
+    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10;
     if (mask)
-        p.edgeVariant = degrees | int(gather) << 9;
+        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10;
     if (key.skirts && g->skirtIndexOffset >= 0) {
         commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
                                      GLint(g->skirtVertexOffset), GLuint(r.slot)};
@@ -222,11 +233,56 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     return p;
 }
 
+void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& key,
+                                        const FrameCamera& camera) {
+    m_backCulled.clear();
+    if (!key.skipBackFaces)
+        return;
+    struct Solid {
+        int drawn = 0;
+        bool complete = true;
+        glm::vec3 lo{0.0f}, hi{0.0f};
+    };
+    std::map<int, Solid> solids;
+    for (const SurfaceRecord* r : scene.records()) {
+        const int k = r->surface ? r->surface->solid : -1;
+        if (k < 0)
+            continue;
+        Solid& s = solids[k];
+        if (!r->exact || r->slot < 0 || !r->bounded) {
+            s.complete = false; // a member not drawn: a hole
+            continue;
+        }
+        s.lo = s.drawn ? glm::min(s.lo, r->boundsLo) : r->boundsLo;
+        s.hi = s.drawn ? glm::max(s.hi, r->boundsHi) : r->boundsHi;
+        ++s.drawn;
+    }
+    const glm::dmat4 view(camera.view);
+    // A little past the near plane: the bounds hold the polygon, rounding aside.
+    const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
+    for (const auto& [k, s] : solids) {
+        if (!s.complete || s.drawn != scene.solidMembers(k))
+            continue;
+        bool beyond = true;
+        for (int c = 0; c < 8 && beyond; ++c) {
+            const glm::dvec3 p(c & 1 ? s.hi.x : s.lo.x, c & 2 ? s.hi.y : s.lo.y,
+                               c & 4 ? s.hi.z : s.lo.z);
+            beyond = -(view * glm::dvec4(p, 1.0)).z > nearest;
+        }
+        if (beyond)
+            m_backCulled.insert(k);
+    }
+}
+
 void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                                     const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
     // bits each), trimmed, gather.
-    m_plain = Batch{};
+    for (int f = 0; f < 3; ++f)
+        m_plain[f] = Batch{};
+    m_plain[1].cullFace = GL_BACK;
+    m_plain[2].cullFace = GL_FRONT;
+    chooseBackCulled(scene, key, camera);
     m_trimmedPre.clear();
     m_variants.clear();
     m_edges.clear();
@@ -241,17 +297,18 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
-                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey()] : m_plain;
+                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey()] : m_plain[p.face];
                 if (p.prepassTrimmed && pre.commands.empty()) {
                     pre.trimmed = true;
+                    pre.cullFace = cullFaceOf(p.face);
                     pre.degreeU = r->exact->degreeU;
                     pre.degreeV = r->exact->degreeV;
                 }
                 p.prepassIndex = int(pre.commands.size());
                 pre.commands.push_back(p.split ? cs.edge : c);
                 if (p.split) {
-                    p.insideIndex = int(m_plain.commands.size());
-                    m_plain.commands.push_back(cs.inside);
+                    p.insideIndex = int(m_plain[p.face].commands.size());
+                    m_plain[p.face].commands.push_back(cs.inside);
                 }
             }
             Batch& b = m_variants[p.variant];
@@ -261,6 +318,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                 b.degreeV = g.degreeV;
                 b.trimmed = (p.variant >> 8) & 1;
                 b.gather = (p.variant >> 9) & 1;
+                b.cullFace = cullFaceOf(p.face);
             }
             p.index = int(b.commands.size());
             b.commands.push_back(c);
@@ -271,6 +329,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                     e.degreeV = b.degreeV;
                     e.trimmed = true;
                     e.gather = b.gather;
+                    e.cullFace = b.cullFace;
                 }
                 p.edgeIndex = int(e.commands.size());
                 e.commands.push_back(c); // with anti-aliasing: never split
@@ -290,7 +349,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         m_trimmedAway += p.awayCells;
         m_places[r] = p;
     }
-    std::vector<Batch*> batches{&m_plain};
+    std::vector<Batch*> batches{&m_plain[0], &m_plain[1], &m_plain[2]};
     for (auto& [k, b] : m_trimmedPre)
         batches.push_back(&b);
     for (auto& [k, b] : m_variants)
@@ -336,10 +395,10 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         };
         patch(m_variants.at(now.variant), was.index, c);
         if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey()) : m_plain,
+            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey()) : m_plain[was.face],
                   was.prepassIndex, was.split ? cs.edge : c);
         if (was.split)
-            patch(m_plain, was.insideIndex, cs.inside);
+            patch(m_plain[was.face], was.insideIndex, cs.inside);
         if (was.edgeVariant >= 0)
             patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
         if (was.skirtVariant >= 0)
@@ -355,7 +414,7 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
     return true;
 }
 
-bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
+bool ExactSurfacePass::depthPrepass(Batch (&plain)[3], std::map<int, Batch>& trimmed,
                                     const GpuScene& scene, const FrameCamera& camera,
                                     const std::vector<Light>& lights, bool antialiased, bool atRay,
                                     QString* error) {
@@ -366,7 +425,7 @@ bool ExactSurfacePass::depthPrepass(Batch& plain, std::map<int, Batch>& trimmed,
     gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(kDepthNearer);
-    std::vector<Batch*> batches{&plain};
+    std::vector<Batch*> batches{&plain[0], &plain[1], &plain[2]};
     for (auto& [k, b] : trimmed)
         batches.push_back(&b);
     bool ok = true;
@@ -425,10 +484,12 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        options.cullOutsideView,
                        aa != nullptr,
                        skirts,
+                       options.skipBackFaces,
                        gatherMinCellPixels()};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
+    solidsBackCulled += int(m_backCulled.size());
     // What the pre-pass tests the trims on, and what the split leaves out (per frame: the
     // batches may have been patched).
     trimTestedCells = trimmedAwayCells = 0;
@@ -440,7 +501,6 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     }
     if (m_variants.empty())
         return true; // nothing to draw
-    Batch& plain = m_plain;
     std::map<int, Batch>& variants = m_variants;
 
     scene.bindSurfaceData();
@@ -451,7 +511,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     bool ok = true;
     if (prepass) {
         ok = depthPrepass(
-            plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
+            m_plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
             aa == nullptr && options.partitioning == RenderOptions::Partitioning::Adaptive, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
@@ -467,6 +527,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         ok = skirtPass(scene, camera, lights, options, range, error);
     if (ok && aa && !m_edges.empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
+    gl->glDisable(GL_CULL_FACE);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(kDepthNearer);

@@ -12,6 +12,7 @@
 
 #include <QString>
 #include <map>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -82,8 +83,9 @@ public:
     /// measuring (0: always gather, 1e30: never).
     static constexpr double kGatherMinCellPixels = 64.0;
 
-    int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
-    int culled = 0;    ///< surfaces left out as wholly outside the view; zeroed likewise
+    int drawCalls = 0;        ///< counted by draw; the renderer zeroes it per frame
+    int culled = 0;           ///< surfaces left out as wholly outside the view; zeroed likewise
+    int solidsBackCulled = 0; ///< FrameReport::solidsBackCulled, added likewise
     /// FrameReport::Partitions' trimTestedCells and trimmedAwayCells of the last draw.
     std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
     /// Triangles of the edge skirts the last draw sent (FrameReport::Partitions), silhouette
@@ -131,6 +133,7 @@ private:
     struct Batch {
         int degreeU = 1, degreeV = 1;
         bool trimmed = false, gather = false;
+        GLenum cullFace = 0; ///< GL_BACK or GL_FRONT: a closed solid's back faces skipped
         std::vector<DrawCommand> commands;
         std::int64_t first = 0;
     };
@@ -139,13 +142,16 @@ private:
         bool drawn = false;  ///< has exact data and a table row
         bool culled = false; ///< left out as outside the view
         int variant = -1;    ///< key into m_variants
-        int index = -1;      ///< its command in that batch
+        /// Which triangles are skipped (variant bits 10-11): 0 none, 1 the back ones (the
+        /// solid's outside along S_u x S_v), 2 the front ones (cullFaceOf).
+        int face = 0;
+        int index = -1; ///< its command in that batch
         bool prepassTrimmed = false;
-        int prepassIndex = -1; ///< its command in m_plain or m_trimmedPre (with the pre-pass)
+        int prepassIndex = -1; ///< its command in m_plain[face] or m_trimmedPre (pre-pass)
         /// Trimmed: its batch in m_trimmedPre, keyed by the variant's degree bits.
-        int prepassKey() const { return variant & 0xff; }
+        int prepassKey() const { return variant & (0xff | 3 << 10); }
         /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
-        /// m_plain (this command), those near a curve in m_trimmedPre (prepassIndex).
+        /// m_plain[face] (this command), those near a curve in m_trimmedPre (prepassIndex).
         bool split = false;
         int insideIndex = -1;
         std::int64_t awayCells = 0; ///< split: the cells left out as trimmed away
@@ -162,8 +168,9 @@ private:
         glm::mat4 viewProjection{0.0f};
         glm::ivec2 viewport{0};
         bool trims = false, prepass = false, cull = false;
-        bool antialiased = false; ///< no split pre-pass (the edge pass wants whole ranges)
-        bool skirts = false;      ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
+        bool antialiased = false;   ///< no split pre-pass (the edge pass wants whole ranges)
+        bool skirts = false;        ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
+        bool skipBackFaces = false; ///< RenderOptions::skipBackFaces
         double minCellPixels = 0.0;
         bool operator==(const CacheKey&) const = default;
     };
@@ -176,6 +183,13 @@ private:
     /// A record's variant and commands as this frame would draw it.
     Place classify(const SurfaceRecord& r, const CacheKey& key, const FrameCamera& camera,
                    Commands& commands) const;
+    /// m_backCulled for this frame: the closed solids (Surface::solid) all of whose members are
+    /// records with exact data (none hidden, none too large: GpuScene::solidMembers) and whose
+    /// members' control bounds lie wholly beyond the near plane, so the eye sees them from
+    /// outside and nothing of them is clipped. Empty unless key.skipBackFaces.
+    void chooseBackCulled(const GpuScene& scene, const CacheKey& key, const FrameCamera& camera);
+    /// GL_BACK, GL_FRONT or 0 for Place::face 1, 2, 0.
+    static GLenum cullFaceOf(int face) { return face == 1 ? GL_BACK : face == 2 ? GL_FRONT : 0; }
     /// Builds the batches from every record (and uploads them all).
     void buildBatches(const GpuScene& scene, const CacheKey& key, const FrameCamera& camera);
     /// Updates the commands of the touched records in place; false when one changed variant,
@@ -192,7 +206,7 @@ private:
     /// pixel centre just inside a trimmed edge was dropped there and the face behind showed
     /// through (docs/RENDERING.md, "Adaptive partitions: the point under the pixel");
     /// otherwise depth_only.frag.
-    bool depthPrepass(Batch& plain, std::map<int, Batch>& trimmed, const GpuScene& scene,
+    bool depthPrepass(Batch (&plain)[3], std::map<int, Batch>& trimmed, const GpuScene& scene,
                       const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
                       bool atRay, QString* error);
     /// Draws each batch with its variant's program (trimAa for the trimmed ones).
@@ -231,7 +245,10 @@ private:
     /// drag step does not sort every surface into its variant again (issue 15).
     bool m_haveBatches = false;
     CacheKey m_key;
-    Batch m_plain;
+    /// The pre-pass's untrimmed ranges, by Place::face.
+    Batch m_plain[3];
+    /// The closed solids (Surface::solid) whose back faces this frame skips.
+    std::set<int> m_backCulled;
     /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4).
     std::map<int, Batch> m_trimmedPre;
     std::map<int, Batch> m_variants;

@@ -75,6 +75,9 @@ struct FrameReport {
     /// Of those, left out of the exact passes as wholly outside the view (their control
     /// bounds are; RenderOptions::cullOutsideView).
     int culled = 0;
+    /// Closed solids (Surface::solid) whose polygons' back faces the exact passes skipped
+    /// (RenderOptions::skipBackFaces): every face drawn, the eye outside.
+    int solidsBackCulled = 0;
     /// Surface records whose revisions the sync compared: every visible one after a
     /// structural change or a new view, else only those the document reported changed.
     int recordsSynced = 0;

@@ -262,8 +262,11 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         m_tooLarge.clear();
         ++m_syncs;
         ++m_layoutStamp;
+        m_solidMembers.clear();
         for (int index = 0; index < int(scene.surfaces.size()); ++index) {
             const Surface& s = scene.surfaces[size_t(index)];
+            if (s.solid >= 0)
+                ++m_solidMembers[s.solid];
             // The draw list: a hidden surface is left out of the frame (every pass and the
             // pick query draw records() only) but keeps its record, so showing it again
             // uploads only what changed meanwhile. Its trim mask layer is given back: the

@@ -119,6 +119,15 @@ public:
     const std::vector<SurfaceRecord*>& touched() const { return m_touched; }
     /// Bumped by every sync that walked every record or redrew trim masks.
     std::uint64_t layoutStamp() const { return m_layoutStamp; }
+    /// How many of the document's surfaces, hidden ones included, carry the mark of `solid`
+    /// (Surface::solid) as of the last sync that walked every surface. Marks are only ever
+    /// cleared in between (Document::openSolid clears a solid's all at once), and hiding or
+    /// showing a surface walks every surface again, so a solid whose members are all among
+    /// records() has them all drawn.
+    int solidMembers(int solid) const {
+        const auto it = m_solidMembers.find(solid);
+        return it == m_solidMembers.end() ? 0 : it->second;
+    }
     /// Records of the last sync that have exact data (FrameReport::surfaces).
     int drawnCount() const { return m_drawn; }
 
@@ -244,6 +253,7 @@ private:
     bool m_haveFrameKey = false;
     std::vector<SurfaceRecord*> m_touched;
     std::uint64_t m_layoutStamp = 0;
+    std::map<int, int> m_solidMembers; ///< solidMembers()
     int m_drawn = 0;
     /// The partition figures over records(), kept across incremental syncs.
     std::int64_t m_cells = 0;

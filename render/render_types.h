@@ -99,6 +99,12 @@ struct RenderOptions {
     /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).
     /// Off only to measure the difference (`KW_EDGE_SKIRTS=0`).
     bool edgeSkirts = true;
+    /// Exact mode: the base polygon triangles of a closed solid's faces (Surface::solid) that
+    /// turn their inside to the eye are skipped while the solid lies wholly beyond the near
+    /// plane (the eye outside it): its faces in front cover them (docs/RENDERING.md, "Back
+    /// faces of closed solids"). The same pixels either way; off only to measure the
+    /// difference (`KW_BACK_FACES=1`).
+    bool skipBackFaces = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
     /// Each surface's mask follows its size on screen (four texels per pixel of its control-net
     /// length along u and v), rounded up to a power of two, within [kMinTrimMaskSize,

@@ -112,7 +112,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
-    exact.culled = 0;
+    exact.culled = exact.solidsBackCulled = 0;
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
@@ -257,6 +257,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     }
     report.surfaces = scene.drawnCount();
     report.culled = exact.culled;
+    report.solidsBackCulled = exact.solidsBackCulled;
     report.partitions.trimTestedCells = exact.trimTestedCells;
     report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
     report.partitions.skirtTriangles = exact.skirtTriangles;
