@@ -55,8 +55,10 @@ layout(early_fragment_tests) in;
 // equations, 2 unknowns, the Jacobian is the projected tangents) while it brings the point
 // nearer; where it does not (near a silhouette the Jacobian is nearly singular and the full
 // step overshoots along the fold), back to the best point with the step damped 8 times more.
-// A point further outside than twice its residual cannot come back: rejected at once (most
-// of an edge strip, at one evaluation). The acceptance is tight because a pixel centre just
+// Every start is solved: an early rejection of points further outside than twice their
+// residual (on the reasoning that a step moves a point about its residual) left pinholes in
+// seams, where near a fold a step moves the point much farther (docs/PERFORMANCE.md ## Edges,
+// "Back faces of closed solids"), and saved no measurable time. The acceptance is tight because a pixel centre just
 // outside a silhouette stalls the solve at its distance to it: at 0.02 px the fins drew 2 % of
 // the pixels along a silhouette that the exact surface misses by less than that.
 uniform float uSkirtReach;
@@ -114,7 +116,7 @@ bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
                 return outside <= uSkirtReach;
             }
             if (residual < bestResidual) {
-                if (!(residual < 8.0) || outside > uSkirtReach + 2.0 * residual)
+                if (!(residual < 8.0))
                     return false;
                 best = trial;
                 bestSpan = at;
