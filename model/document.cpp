@@ -384,7 +384,8 @@ Surface* Document::mutableSurface(SurfaceId id) {
 // Gives every changed aspect one fresh value of the document-wide counter, then signals.
 // Name has no revision: nothing is uploaded for it.
 void Document::bump(SurfaceId id, Aspects aspects) {
-    Revisions& r = m_revisions[size_t(indexOf(id))];
+    const size_t index = size_t(indexOf(id));
+    Revisions& r = m_revisions[index];
     const std::uint64_t rev = nextRevision();
     if (aspects & Aspect::Points)
         r.points = rev;
@@ -394,7 +395,7 @@ void Document::bump(SurfaceId id, Aspects aspects) {
         r.trims = rev;
     if (aspects & Aspect::Display)
         r.display = rev;
-    Surface& s = m_scene.surfaces[size_t(indexOf(id))];
+    Surface& s = m_scene.surfaces[index];
     const int solid = aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)
                           ? std::exchange(s.solid, -1)
                           : -1;
@@ -407,10 +408,11 @@ void Document::bump(SurfaceId id, Aspects aspects) {
 void Document::openSolid(int solid) {
     if (solid < 0)
         return;
-    for (Surface& s : m_scene.surfaces)
-        if (s.solid == solid) {
-            s.solid = -1;
-            bump(s.id, Aspect::Display);
+    for (size_t i = 0; i < m_scene.surfaces.size(); ++i)
+        if (m_scene.surfaces[i].solid == solid) {
+            m_scene.surfaces[i].solid = -1;
+            m_revisions[i].display = nextRevision();
+            Q_EMIT surfaceChanged(m_scene.surfaces[i].id, Aspect::Display);
         }
 }
 

@@ -277,7 +277,7 @@ void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& k
 void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                                     const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
-    // bits each), trimmed, gather.
+    // bits each), trimmed, gather, the side culled (Place::face).
     for (int f = 0; f < 3; ++f)
         m_plain[f] = Batch{};
     m_plain[1].cullFace = GL_BACK;
