@@ -16,9 +16,11 @@ kw_add_test(tst_render_adaptive LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_r
 # No cracks while the view moves and while a control point is dragged: the editor's moving
 # frames (one renderer across frames, its options and framebuffer) against the CPU reference.
 kw_add_test(tst_render_motion LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_motion.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_ui)
+            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h ${CMAKE_CURRENT_LIST_DIR}/cad_test_util.h
+            LIBS knotwork_ui)
 kw_use_cad_reader(tst_render_motion)
 # Closed solids drawn without their polygons' back faces: the same pixels from outside; the eye
 # inside, a hidden or an edited face draws them again.
-kw_add_test(tst_render_solids LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_solids.cpp LIBS knotwork_render knotwork_cad Qt6::Gui)
+kw_add_test(tst_render_solids LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_solids.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/cad_test_util.h LIBS knotwork_render knotwork_cad Qt6::Gui)
 kw_use_cad_reader(tst_render_solids)

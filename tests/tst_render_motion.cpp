@@ -42,7 +42,7 @@
 // another face beyond the depth tolerance, 20,494 and 1,976 depth disagreements); without the
 // float-depth target the editor's frames differ. The orbit asserts its own control: the same
 // poses in uniform mode show > 1000 disagreements.
-#include "model/cad/cadimport.h"
+#include "cad_test_util.h"
 #include "model/visible_bounds.h"
 #include "render/edge_metrics.h"
 #include "render/reference_render.h"
@@ -303,17 +303,6 @@ class TestRenderMotion : public QObject {
     Q_OBJECT
     std::unique_ptr<OffscreenRenderer> m_gl; ///< the context; its own FBO is not used
 
-    static std::optional<Scene> part(const QString& file) {
-        QString error;
-        std::optional<ImportResult> imported =
-            importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file, error);
-        if (!imported) {
-            qWarning("%s", qPrintable(error));
-            return std::nullopt;
-        }
-        return std::move(imported->scene);
-    }
-
     void start(Pipeline& p, const Scene& scene) {
         QString error;
         QVERIFY(m_gl->makeCurrent());
@@ -488,7 +477,7 @@ private Q_SLOTS:
     // allocate it again), draws the same pixels into a 24-bit host as into a float one, and the
     // next aliased frame frees its own framebuffers.
     void stillFramesKeepTheFloatDepthTarget() {
-        const std::optional<Scene> loaded = part(QStringLiteral("Pump_Nut.brep"));
+        const std::optional<Scene> loaded = kwtest::importedPart(QStringLiteral("Pump_Nut.brep"));
         QVERIFY(loaded);
         Document doc;
         QVERIFY(doc.resetScene(*loaded));
@@ -530,7 +519,7 @@ private Q_SLOTS:
     }
     void orbitAndZoom() {
         QFETCH(QString, file);
-        const std::optional<Scene> loaded = part(file);
+        const std::optional<Scene> loaded = kwtest::importedPart(file);
         QVERIFY(loaded);
         Document doc;
         QVERIFY(doc.resetScene(*loaded));
@@ -624,7 +613,7 @@ private Q_SLOTS:
     void dragOnePoint() {
         QFETCH(QString, file);
         QFETCH(int, withoutSkirts);
-        const std::optional<Scene> loaded = part(file);
+        const std::optional<Scene> loaded = kwtest::importedPart(file);
         QVERIFY(loaded);
         Document doc;
         QVERIFY(doc.resetScene(*loaded));

@@ -2,7 +2,7 @@
 // "Back faces of closed solids"): imported solids drawn without their polygons' back faces show
 // the same pixels as with them, from outside in several views; the eye inside a solid, a hidden
 // face or an edited one draws them again.
-#include "model/cad/cadimport.h"
+#include "cad_test_util.h"
 #include "model/document.h"
 #include "render/offscreen_renderer.h"
 
@@ -69,17 +69,6 @@ class TestRenderSolids : public QObject {
 
     std::unique_ptr<OffscreenRenderer> m_gl;
 
-    static std::optional<Scene> part(const QString& file) {
-        QString error;
-        std::optional<ImportResult> imported =
-            importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file, error);
-        if (!imported) {
-            qWarning("%s", qPrintable(error));
-            return std::nullopt;
-        }
-        return std::move(imported->scene);
-    }
-
     /// One aliased adaptive frame (the editor's moving frame, with skirts and fins).
     QImage frame(const Document& doc, const Camera& camera, bool skip, FrameReport* report) {
         RenderOptions options;
@@ -106,11 +95,12 @@ private Q_SLOTS:
 
     // Import marks every face of a closed solid; a surface part is not one.
     void importMarksClosedSolids() {
-        const std::optional<Scene> nut = part(QStringLiteral("Pump_Nut.brep"));
+        const std::optional<Scene> nut = kwtest::importedPart(QStringLiteral("Pump_Nut.brep"));
         QVERIFY(nut);
         for (const Surface& s : nut->surfaces)
             QCOMPARE(s.solid, 0);
-        const std::optional<Scene> bearing = part(QStringLiteral("Axis_of_bearing.brep"));
+        const std::optional<Scene> bearing =
+            kwtest::importedPart(QStringLiteral("Axis_of_bearing.brep"));
         QVERIFY(bearing);
         std::set<int> solids;
         for (const Surface& s : bearing->surfaces) {
@@ -118,7 +108,7 @@ private Q_SLOTS:
             solids.insert(s.solid);
         }
         QVERIFY(solids.size() > 1);
-        const std::optional<Scene> hammer = part(QStringLiteral("hammer.iges"));
+        const std::optional<Scene> hammer = kwtest::importedPart(QStringLiteral("hammer.iges"));
         QVERIFY(hammer);
         for (const Surface& s : hammer->surfaces)
             QCOMPARE(s.solid, -1);
@@ -149,7 +139,7 @@ private Q_SLOTS:
         QFETCH(double, orbit);
         QFETCH(double, zoom);
         QFETCH(bool, turnLargest);
-        std::optional<Scene> scene = part(file);
+        std::optional<Scene> scene = kwtest::importedPart(file);
         QVERIFY(scene);
         if (turnLargest) {
             Surface* largest = nullptr;
@@ -200,7 +190,7 @@ private Q_SLOTS:
 
     // The eye inside a solid's bounds sees (or may see) its inside: nothing is skipped there.
     void eyeInsideDrawsBackFaces() {
-        std::optional<Scene> scene = part(QStringLiteral("Pump_Nut.brep"));
+        std::optional<Scene> scene = kwtest::importedPart(QStringLiteral("Pump_Nut.brep"));
         QVERIFY(scene);
         Document doc;
         QVERIFY(doc.resetScene(*scene));
@@ -221,7 +211,7 @@ private Q_SLOTS:
     // A hidden face opens a view into the solid; an edited one may open a seam. Hiding is
     // undone by showing the face; an edit clears the solid's marks for good.
     void hiddenOrEditedFaceDrawsBackFaces() {
-        std::optional<Scene> scene = part(QStringLiteral("Pump_Nut.brep"));
+        std::optional<Scene> scene = kwtest::importedPart(QStringLiteral("Pump_Nut.brep"));
         QVERIFY(scene);
         Document doc;
         QVERIFY(doc.resetScene(*scene));
