@@ -127,6 +127,8 @@ struct Metadata {
     std::optional<Material> material;
     std::vector<std::uint32_t> loopIds;
     bool hidden = false;
+    int solid = -1;
+    bool outsideAlongNormal = true;
 };
 
 class ObjParser {
@@ -304,6 +306,13 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         m_meta.name = QUrl::fromPercentEncoding(t.value(3));
     } else if (key == "hidden") {
         m_meta.hidden = true;
+    } else if (key == "solid") {
+        m_meta.solid = static_cast<int>(integer(3, 0, kMaxSurfaces));
+        const QByteArray side = t.value(4);
+        if (side != "normal" && side != "reversed")
+            fail(line, QStringLiteral("knotwork solid: expected normal or reversed, found '%1'")
+                           .arg(QString::fromUtf8(side)));
+        m_meta.outsideAlongNormal = side == "normal";
     } else if (key == "loops") {
         for (int i = 3; i < t.size(); ++i)
             m_meta.loopIds.push_back(static_cast<std::uint32_t>(integer(i, 1, 4294967294.0)));
@@ -578,6 +587,8 @@ void ObjParser::finishSurface() {
     if (meta.name)
         s.name = *meta.name;
     s.hidden = meta.hidden;
+    s.solid = meta.solid;
+    s.outsideAlongNormal = meta.outsideAlongNormal;
     m_object.clear();
     m_scene.surfaces.push_back(std::move(s));
     ++m_report.facesImported;

@@ -126,6 +126,9 @@ QByteArray writeObj(const Scene& scene) {
         out += "# knotwork name " + QUrl::toPercentEncoding(s.name) + '\n';
         if (s.hidden) // hidden in the editor: a saved flag like the name (docs/FILE_FORMAT.md)
             out += "# knotwork hidden\n";
+        if (s.solid >= 0) // a face of a closed solid (docs/FILE_FORMAT.md, "Solid")
+            out += "# knotwork solid " + QByteArray::number(s.solid) +
+                   (s.outsideAlongNormal ? " normal\n" : " reversed\n");
         if (!s.trims.empty()) {
             out += "# knotwork loops";
             for (const TrimLoop& l : s.trims)

@@ -92,6 +92,8 @@ void TestObjFile::roundTripEveryField() {
     s.surfaces[0].trims[1].curves[2].weights[1] = 1.0 / 3.0;
     s.camera = {{1e-300, -5, 3}, {0.1, 0.2, 0.3}, {0, 0, 1}, 42.5, true};
     s.display = {QStringLiteral("uniform"), 0.3};
+    s.surfaces[0].solid = s.surfaces[2].solid = 6; // a face of a closed solid (.knot 1.2)
+    s.surfaces[2].outsideAlongNormal = false;
     Light point;
     point.kind = Light::Kind::Point;
     point.vector = {1, 2, 3};
@@ -250,6 +252,10 @@ void TestObjFile::errors_data() {
     QTest::newRow("stray end") << QByteArray("end\n") << "t.obj:1: 'end' without";
     QTest::newRow("no surfaces") << QByteArray("v 0 0 0\n") << "t.obj: no free-form surfaces";
     QTest::newRow("bad cstype") << QByteArray("cstype nurbs\n") << "t.obj:1: unknown cstype";
+    QTest::newRow("solid side") << QByteArray("# knotwork solid 2 inward\n")
+                                << "t.obj:1: knotwork solid: expected normal or reversed";
+    QTest::newRow("solid number") << QByteArray("# knotwork solid -1 normal\n")
+                                  << "t.obj:1: knotwork solid: -1 is not an integer";
 }
 
 void TestObjFile::errors() {
