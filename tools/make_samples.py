@@ -71,9 +71,12 @@ def surface_json(s):
                                            if loops else "", ""))
     lines.append('%s  "partitions": %s,' % (pad, numbers(s["partitions"])))
     m = s["material"]
-    lines.append('%s  "material": {"color": %s, "ka": %s, "kd": %s, "ks": %s, "shininess": %s}'
+    lines.append('%s  "material": {"color": %s, "ka": %s, "kd": %s, "ks": %s, "shininess": %s}%s'
                  % (pad, numbers(m["color"]), num(m["ka"]), num(m["kd"]), num(m["ks"]),
-                    num(m["shininess"])))
+                    num(m["shininess"]), "," if "solid" in s else ""))
+    if "solid" in s:  # format 1.2: a face of a closed solid (docs/FILE_FORMAT.md, "Solid")
+        lines.append('%s  "solid": {"index": %d, "outside": %s}'
+                     % (pad, s["solid"][0], json.dumps(s["solid"][1])))
     lines.append(pad + "}")
     return "\n".join(lines)
 
@@ -98,9 +101,12 @@ def write_knot(name, surfaces, lights=None):
         '    {"kind": %s, "vector": %s, "ambient": %s, "diffuse": %s, "specular": %s}'
         % (json.dumps(l["kind"]), numbers(l["vector"]), numbers(l["ambient"]),
            numbers(l["diffuse"]), numbers(l["specular"])) for l in (lights or default_lights()))
-    text = ('{\n  "format": "knotwork",\n  "version": "1.0",\n  "nextId": %d,\n'
+    # 1.0 unless a surface uses a member of a later minor version.
+    version = "1.2" if any("solid" in s for s in surfaces) else "1.0"
+    text = ('{\n  "format": "knotwork",\n  "version": "%s",\n  "nextId": %d,\n'
             '  "surfaces": [\n%s\n  ],\n  "lights": [\n%s\n  ]\n}\n'
-            % (max(ids) + 1, ",\n".join(surface_json(s) for s in surfaces), light_text))
+            % (version, max(ids) + 1, ",\n".join(surface_json(s) for s in surfaces),
+               light_text))
     json.loads(text)  # the output must be valid JSON
     path = os.path.join(SAMPLES, name)
     if CHECK_ONLY:
@@ -181,6 +187,9 @@ def sphere():
     pts, ws = revolve(HALF_RZ, HALF_W)
     s = surface(1, "Unit sphere", 2, 2, CIRCLE_KNOTS, HALF_KNOTS, pts, ws, partitions=(16, 8),
                 mat=material([0.3, 0.55, 0.85], ks=0.6, shininess=80.0))
+    # Closed (the seam at u = 0 = 1, the poles collapsed), S_u x S_v pointing out: the renderer
+    # may skip its polygon's back faces (docs/RENDERING.md, "Back faces of closed solids").
+    s["solid"] = (0, "normal")
     write_knot("sphere.knot", [s])
 
 
@@ -189,6 +198,7 @@ def torus(major=2.0, minor=0.6):
     pts, ws = revolve(profile, CIRCLE_W)
     s = surface(1, "Torus R2 r0.6", 2, 2, CIRCLE_KNOTS, CIRCLE_KNOTS, pts, ws,
                 partitions=(24, 12), mat=material([0.8, 0.35, 0.35], ks=0.45, shininess=50.0))
+    s["solid"] = (0, "normal")  # closed in u and v, S_u x S_v pointing out, as the sphere's
     write_knot("torus.knot", [s])
 
 
