@@ -75,7 +75,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
         for (const TrimLoop& loop : s.trims)
             loops.append(QJsonObject{{QStringLiteral("id"), qint64(loop.id.value)},
                                      {QStringLiteral("curves"), int(loop.curves.size())}});
-        surfaces.append(QJsonObject{
+        QJsonObject o{
             {QStringLiteral("id"), qint64(s.id.value)},
             {QStringLiteral("name"), s.name},
             {QStringLiteral("degreeU"), g.degreeU},
@@ -89,7 +89,14 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
             {QStringLiteral("trimWarnings"), QJsonArray::fromStringList(warnings)},
             {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
             {QStringLiteral("color"), vec(s.material.color)},
-        });
+        };
+        if (s.solid >= 0) // as the .knot file writes it (docs/FILE_FORMAT.md, "Solid")
+            o.insert(QStringLiteral("solid"),
+                     QJsonObject{{QStringLiteral("index"), s.solid},
+                                 {QStringLiteral("outside"), s.outsideAlongNormal
+                                                                 ? QStringLiteral("normal")
+                                                                 : QStringLiteral("reversed")}});
+        surfaces.append(o);
     }
     QJsonArray lights;
     for (const Light& l : scene.lights)
@@ -140,6 +147,11 @@ QString toText(const QString& file, const Scene& scene) {
         for (const QString& w : trimWarnings(s))
             out += QStringLiteral("  trim warning: %1\n").arg(w);
         out += QStringLiteral("  partitions: %1 x %2\n").arg(s.partitionsU).arg(s.partitionsV);
+        if (s.solid >= 0)
+            out += QStringLiteral("  face of closed solid %1, outside %2\n")
+                       .arg(s.solid)
+                       .arg(s.outsideAlongNormal ? QStringLiteral("along Su x Sv")
+                                                 : QStringLiteral("against Su x Sv"));
     }
     for (size_t k = 0; k < scene.lights.size(); ++k)
         out += QStringLiteral("light %1: %2 %3\n")

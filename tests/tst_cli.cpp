@@ -146,6 +146,15 @@ void TestCli::infoJsonMatchesScene() {
                 QCOMPARE(loops[l].toObject().value(QStringLiteral("curves")).toInt(),
                          int(s.trims[size_t(l)].curves.size()));
             QCOMPARE(o.value(QStringLiteral("partitions")).toArray().at(0).toInt(), s.partitionsU);
+            // The solid mark as the file has it (the sphere and torus samples), else none.
+            const QJsonObject solid = o.value(QStringLiteral("solid")).toObject();
+            QCOMPARE(o.contains(QStringLiteral("solid")), s.solid >= 0);
+            if (s.solid >= 0) {
+                QCOMPARE(solid.value(QStringLiteral("index")).toInt(), s.solid);
+                QCOMPARE(solid.value(QStringLiteral("outside")).toString(),
+                         s.outsideAlongNormal ? QStringLiteral("normal")
+                                              : QStringLiteral("reversed"));
+            }
         }
         QCOMPARE(root.value(QStringLiteral("lights")).toArray().size(),
                  qsizetype(scene->lights.size()));
@@ -169,6 +178,8 @@ void TestCli::infoOnCadFile() {
         QSKIP("built without OpenCASCADE");
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.out.startsWith(step + QStringLiteral(": 10 surface(s)")), qPrintable(r.out));
+    // The screw is one closed solid: every face says so (docs/IMPORT.md item 8).
+    QCOMPARE(r.out.count(QStringLiteral("  face of closed solid 0, outside ")), 10);
     QVERIFY2(r.out.contains(QStringLiteral("camera: none")), qPrintable(r.out));
     QVERIFY2(r.err.isEmpty(), qPrintable(r.err)); // a clean import says nothing on stderr
 }
