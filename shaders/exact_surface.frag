@@ -107,13 +107,12 @@ bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
         if (clip.w > 0.0) {
             vec2 r = kwWindow(clip) - gl_FragCoord.xy;
             mat2 j = mat2(kwWindowTangent(clip, d.su), kwWindowTangent(clip, d.sv));
-            float outside = length(j * (trial - inside));
             residual = length(r);
             if (residual < 0.002) {
                 uv = inside;
                 span = at;
                 found = d;
-                return outside <= uSkirtReach;
+                return length(j * (trial - inside)) <= uSkirtReach; // on screen, past the edge
             }
             if (residual < bestResidual) {
                 if (!(residual < 8.0))
