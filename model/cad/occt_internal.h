@@ -5,6 +5,7 @@
 #include "model/meshobj.h"
 #include "model/scene.h"
 
+#include <BRepTopAdaptor_FClass2d.hxx>
 #include <QString>
 #include <QStringList>
 #include <Standard_Handle.hxx>
@@ -14,6 +15,7 @@
 #include <TopoDS_Shape.hxx>
 #include <XSControl_Reader.hxx>
 #include <functional>
+#include <gp_Pnt2d.hxx>
 #include <memory>
 #include <vector>
 
@@ -57,6 +59,13 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
 /// no p-curve, conversion failure); OCCT exceptions are the caller's to catch.
 bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings);
+
+/// Up to `count` parameter points (u, v) inside `face`'s wires (`inside` is the face's
+/// BRepTopAdaptor_FClass2d): an odd stride over a 5 x 5 grid of its (u, v) bounds, which spreads
+/// the first few over the face, then a 13 x 13 grid when that finds none (a thin face). Empty
+/// when neither grid has a point inside.
+std::vector<gp_Pnt2d> parametersInside(const TopoDS_Face& face,
+                                       const BRepTopAdaptor_FClass2d& inside, int count);
 
 /// Pairs of imported faces that lie on one another (the same surface twice, or a face on part
 /// of another): at least half of up to 9 points inside one face's wires lie on the other,

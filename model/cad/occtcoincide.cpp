@@ -37,23 +37,11 @@ struct FaceProbe {
     int solid = 0; ///< 1-based index of the solid holding the face, 0 for none
 };
 
-/// Up to 9 points inside the face's wires, on a grid over its (u, v) bounds (finer when the
-/// coarse grid misses a thin face).
+/// Up to 9 points inside the face's wires (parametersInside).
 void sample(const TopoDS_Face& face, FaceProbe& f) {
     BRepAdaptor_Surface surface(face);
-    for (int n : {5, 13}) {
-        for (int j = 0; j < n && f.samples.size() < 9; ++j)
-            for (int i = 0; i < n && f.samples.size() < 9; ++i) {
-                // An odd stride over the grid spreads the first nine over the face.
-                const int k = (i * 7 + j * n * 3) % (n * n);
-                const double u = f.u0 + (f.u1 - f.u0) * ((k % n) + 0.5) / n;
-                const double v = f.v0 + (f.v1 - f.v0) * ((k / n) + 0.5) / n;
-                if (f.inside->Perform(gp_Pnt2d(u, v)) == TopAbs_IN)
-                    f.samples.push_back(surface.Value(u, v));
-            }
-        if (!f.samples.empty())
-            return;
-    }
+    for (const gp_Pnt2d& p : parametersInside(face, *f.inside, 9))
+        f.samples.push_back(surface.Value(p.X(), p.Y()));
 }
 
 /// How many of a's samples lie on b (within the tolerance, inside b's wires); stops at the

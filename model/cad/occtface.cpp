@@ -186,6 +186,26 @@ bool isNaturalBoundary(const TrimLoop& loop, const NurbsSurface& s) {
 
 } // namespace
 
+std::vector<gp_Pnt2d> parametersInside(const TopoDS_Face& face,
+                                       const BRepTopAdaptor_FClass2d& inside, int count) {
+    double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    std::vector<gp_Pnt2d> out;
+    for (int n : {5, 13}) {
+        for (int j = 0; j < n && int(out.size()) < count; ++j)
+            for (int i = 0; i < n && int(out.size()) < count; ++i) {
+                const int k = (i * 7 + j * n * 3) % (n * n);
+                const gp_Pnt2d p(u0 + (u1 - u0) * ((k % n) + 0.5) / n,
+                                 v0 + (v1 - v0) * ((k / n) + 0.5) / n);
+                if (inside.Perform(p) == TopAbs_IN)
+                    out.push_back(p);
+            }
+        if (!out.empty())
+            break;
+    }
+    return out;
+}
+
 bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings) {
     TopoDS_Face face = original;

@@ -5,8 +5,6 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepCheck_Shell.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
-#include <BRepTools.hxx>
-#include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -25,40 +23,32 @@ namespace {
 
 /// Which side of `face` the inside of `solid` lies on: a point just off the face along OCCT's
 /// face normal (Su x Sv, reversed on a REVERSED face) and one just off the other way, at the
-/// first point of a grid over the face's (u, v) bounds that lies inside its wires, classified
+/// first point inside its wires (parametersInside) where the normal is defined, classified
 /// against the solid. 1: the normal points out; -1: in (an inside-out solid); 0: no such point,
 /// or the two classifications do not say one inside and one outside.
 int normalSide(const TopoDS_Solid& solid, const TopoDS_Face& face, double tolerance) {
-    double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-    BRepTools::UVBounds(face, u0, u1, v0, v1);
-    BRepTopAdaptor_FClass2d inside(face, 1e-9);
+    const BRepTopAdaptor_FClass2d inside(face, 1e-9);
     BRepAdaptor_Surface surface(face);
-    for (int n : {3, 7, 15})
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const double u = u0 + (u1 - u0) * (i + 0.5) / n;
-                const double v = v0 + (v1 - v0) * (j + 0.5) / n;
-                if (inside.Perform(gp_Pnt2d(u, v)) != TopAbs_IN)
-                    continue;
-                gp_Pnt p;
-                gp_Vec du, dv;
-                surface.D1(u, v, p, du, dv);
-                gp_Vec normal = du.Crossed(dv);
-                if (!(normal.Magnitude() > 1e-12))
-                    continue;
-                normal.Normalize();
-                if (face.Orientation() == TopAbs_REVERSED)
-                    normal.Reverse();
-                // Far enough past the tolerances to classify, near enough to stay by the face.
-                const gp_Vec step = normal * (20.0 * tolerance);
-                BRepClass3d_SolidClassifier ahead(solid, p.Translated(step), tolerance);
-                BRepClass3d_SolidClassifier behind(solid, p.Translated(-step), tolerance);
-                if (ahead.State() == TopAbs_OUT && behind.State() == TopAbs_IN)
-                    return 1;
-                if (ahead.State() == TopAbs_IN && behind.State() == TopAbs_OUT)
-                    return -1;
-                return 0;
-            }
+    for (const gp_Pnt2d& uv : parametersInside(face, inside, 9)) {
+        gp_Pnt p;
+        gp_Vec du, dv;
+        surface.D1(uv.X(), uv.Y(), p, du, dv);
+        gp_Vec normal = du.Crossed(dv);
+        if (!(normal.Magnitude() > 1e-12))
+            continue;
+        normal.Normalize();
+        if (face.Orientation() == TopAbs_REVERSED)
+            normal.Reverse();
+        // Far enough past the tolerances to classify, near enough to stay by the face.
+        const gp_Vec step = normal * (20.0 * tolerance);
+        BRepClass3d_SolidClassifier ahead(solid, p.Translated(step), tolerance);
+        BRepClass3d_SolidClassifier behind(solid, p.Translated(-step), tolerance);
+        if (ahead.State() == TopAbs_OUT && behind.State() == TopAbs_IN)
+            return 1;
+        if (ahead.State() == TopAbs_IN && behind.State() == TopAbs_OUT)
+            return -1;
+        return 0;
+    }
     return 0;
 }
 
@@ -77,7 +67,7 @@ void markClosedSolids(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShap
     for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) {
         const TopoDS_Solid solid = TopoDS::Solid(x.Current());
         if (!seen.Add(solid))
-            continue; // the same solid placed twice is still one TShape: it has no own faces
+            continue; // the same solid listed twice (same shape and placement)
         // Every shell closed and consistently oriented (BRepCheck).
         bool closed = true;
         for (TopExp_Explorer sh(solid, TopAbs_SHELL); closed && sh.More(); sh.Next()) {
