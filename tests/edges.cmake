@@ -22,5 +22,6 @@ kw_use_cad_reader(tst_render_motion)
 # Closed solids drawn without their polygons' back faces: the same pixels from outside; the eye
 # inside, a hidden or an edited face draws them again.
 kw_add_test(tst_render_solids LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_solids.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/cad_test_util.h LIBS knotwork_render knotwork_cad Qt6::Gui)
+            ${CMAKE_CURRENT_LIST_DIR}/cad_test_util.h ${CMAKE_CURRENT_LIST_DIR}/image_test_util.h
+            LIBS knotwork_ui knotwork_cad Qt6::Gui)
 kw_use_cad_reader(tst_render_solids)

@@ -3,9 +3,11 @@
 // the same pixels as with them, from outside in several views; the eye inside a solid, a hidden
 // face or an edited one draws them again.
 #include "cad_test_util.h"
+#include "image_test_util.h"
 #include "model/document.h"
 #include "render/offscreen_renderer.h"
 #include "render_test_util.h"
+#include "ui/cameracontroller.h"
 
 #include <QGuiApplication>
 #include <QImage>
@@ -18,18 +20,6 @@ using namespace kw;
 namespace {
 
 constexpr int kSide = 384;
-
-/// Pixels whose colour differs by more than 2 levels in a channel.
-int differing(const QImage& a, const QImage& b) {
-    int n = 0;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
-            n += std::abs(qRed(p) - qRed(q)) > 2 || std::abs(qGreen(p) - qGreen(q)) > 2 ||
-                 std::abs(qBlue(p) - qBlue(q)) > 2;
-        }
-    return n;
-}
 
 /// Pixels of the background (the top left pixel's colour) in `b` and not in `a`.
 int opened(const QImage& a, const QImage& b) {
@@ -51,16 +41,12 @@ int covered(const QImage& a) {
     return n;
 }
 
-/// `camera` turned about its target by `degrees` around the up axis.
-Camera orbited(Camera camera, double degrees) {
-    const double a = glm::radians(degrees);
-    const glm::dvec3 up = glm::normalize(camera.up);
-    const glm::dvec3 d = camera.eye - camera.target;
-    // Rodrigues' rotation of the eye's offset about `up`.
-    const glm::dvec3 turned = d * std::cos(a) + glm::cross(up, d) * std::sin(a) +
-                              up * glm::dot(up, d) * (1.0 - std::cos(a));
-    camera.eye = camera.target + turned;
-    return camera;
+/// `camera` turned about its target by `degrees` around the vertical, as the editor orbits.
+Camera orbited(const Camera& camera, double degrees) {
+    CameraController c;
+    c.setCamera(camera);
+    c.orbit(degrees / CameraController::kDegreesPerPixel, 0.0);
+    return c.camera();
 }
 
 } // namespace
@@ -87,10 +73,9 @@ class TestRenderSolids : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        m_gl = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_gl->create(&error), qPrintable(error));
-        QVERIFY2(m_gl->setSize(QSize(kSide, kSide), false, &error), qPrintable(error));
+        m_gl = kwtest::offscreenRenderer(QSize(kSide, kSide), false, &error);
+        QVERIFY2(m_gl, qPrintable(error));
     }
     void cleanupTestCase() { m_gl.reset(); }
 
@@ -175,7 +160,7 @@ private Q_SLOTS:
         QVERIFY(skipped.solidsBackCulled > 0);
         if (zoom == 1.0)
             QCOMPARE(skipped.solidsBackCulled, int(solids.size()));
-        const int n = differing(all, front), background = opened(all, front);
+        const int n = kwtest::differingPixels(all, front), background = opened(all, front);
         qInfo("%s orbit %g zoom %g: %d solid(s) without back faces, %d of %d covered pixels "
               "differ, %d now background",
               qPrintable(file), orbit, zoom, skipped.solidsBackCulled, n, covered(all), background);
@@ -214,7 +199,7 @@ private Q_SLOTS:
         const QImage front = frame(doc, camera, true, &skipped);
         QVERIFY(!all.isNull() && !front.isNull());
         QCOMPARE(skipped.solidsBackCulled, 1);
-        const int n = differing(all, front);
+        const int n = kwtest::differingPixels(all, front);
         qInfo("%s orbit %g: %d of %d covered pixels differ, %d now background", qPrintable(sample),
               orbit, n, covered(all), opened(all, front));
         QVERIFY(n <= 4);
