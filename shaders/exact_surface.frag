@@ -88,9 +88,14 @@ ivec2 kwSpanAt(vec2 uv, ivec2 span) {
     }
     return span;
 }
-// The Levenberg-Marquardt solve above from `uv` in `span`; `span` ends where the point is, and
-// `found` holds the surface's partials there.
-bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
+// The Levenberg-Marquardt solve above from `uv` in `span`: KW_SOLVE_FOUND where it ends within
+// uSkirtReach of the domain (`uv` the point clamped into it), KW_SOLVE_BEYOND where it ends on
+// the continuation farther out (`uv` the point outside), KW_SOLVE_MISSED where it ends nowhere.
+// `span` ends at the clamped point, and `found` holds the surface's partials there.
+#define KW_SOLVE_MISSED 0
+#define KW_SOLVE_FOUND 1
+#define KW_SOLVE_BEYOND 2
+int kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
     ivec2 bestSpan = span;
     vec2 best = uv, trial = uv;
     mat2 bestJ = mat2(0.0);
@@ -109,14 +114,18 @@ bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
             mat2 j = mat2(kwWindowTangent(clip, d.su), kwWindowTangent(clip, d.sv));
             residual = length(r);
             if (residual < 0.002) {
-                uv = inside;
                 span = at;
                 found = d;
-                return length(j * (trial - inside)) <= uSkirtReach; // on screen, past the edge
+                if (length(j * (trial - inside)) > uSkirtReach) { // on screen, past the edge
+                    uv = trial;
+                    return KW_SOLVE_BEYOND;
+                }
+                uv = inside;
+                return KW_SOLVE_FOUND;
             }
             if (residual < bestResidual) {
                 if (!(residual < 8.0))
-                    return false;
+                    return KW_SOLVE_MISSED;
                 best = trial;
                 bestSpan = at;
                 bestJ = j;
@@ -129,16 +138,16 @@ bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
         if (!improved)
             damping = max(damping * 8.0, 1e-3);
         if (bestResidual == 1e30)
-            return false; // the start is behind the eye
+            return KW_SOLVE_MISSED; // the start is behind the eye
         mat2 a = transpose(bestJ) * bestJ;
         float scale = a[0][0] + a[1][1];
         mat2 m = a + mat2(damping * scale);
         float det = determinant(m);
         if (!(abs(det) > 1e-10 * scale * scale))
-            return false; // no tangent plane on screen (edge on, or collapsed)
+            return KW_SOLVE_MISSED; // no tangent plane on screen (edge on, or collapsed)
         trial = best - inverse(m) * (transpose(bestJ) * bestR);
     }
-    return false;
+    return KW_SOLVE_MISSED;
 }
 
 // Near a fold (a silhouette) the pixel's ray meets the surface twice, on the sheet in front and
@@ -147,65 +156,97 @@ bool kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
 // point is on follows from the normal curvature along the ray's direction t in the tangent
 // plane: the ray's curve through the fold bends towards its centre of curvature, and on the
 // front sheet the normal pointing to that centre points away from the eye (the surface curves
-// away behind its outline). So with n the unit normal, r the ray and II = S_tt . n (estimated
-// from S_t two pixels along t), the point is in front when II (n . r) > 0; an edge-on or flat
-// direction has no fold. On the hidden sheet `restart` is the front one's estimate: the ray's
-// curve is a parabola about the fold, whose two meetings lie 2 |n . r| / |II| apart along t.
-bool kwFrontSheet(vec2 uv, ivec2 span, SurfacePartials d, out vec2 restart) {
-    restart = uv;
-    vec3 p = d.s + uOrigin;
+// away behind its outline). So with n the unit normal, r the unit ray, c = n . r and II =
+// S_tt . n (estimated from S_t two pixels along t), the point is in front (`front`) when
+// II c > 0. The ray's curve is a parabola about the fold: in the plane of n and t the surface
+// rises II s^2 / 2 over the tangent at arc length s, the ray rises c / |r - c n| per unit of
+// s, so the ray meets it again at s = 2 c / (II |r - c n|) (`other`; where the ray runs
+// nearly along the surface that is far from the first point, and the old estimate without
+// the 1 / |r - c n| started the solve short of it). `uv` may lie outside the domain (a
+// solve that ended on the continuation, KW_SOLVE_BEYOND): the point and the tangent plane are
+// then the continuation's, the curvature the edge's. False where the ray has no fold here
+// (looking straight at the surface, edge on, or flat along t): `front` is then true.
+bool kwRayCurve(vec2 uv, ivec2 span, SurfacePartials d, out bool front, out vec2 other) {
+    front = true;
+    other = uv;
+    vec2 inside = clamp(uv, uDomain.xz, uDomain.yw);
+    vec3 p = d.s + d.su * (uv.x - inside.x) + d.sv * (uv.y - inside.y) + uOrigin;
     vec3 n = cross(d.su, d.sv);
     vec3 r = p - uEye;
     float ln = length(n), lr = length(r);
     if (!(ln > 0.0) || !(lr > 0.0))
-        return true;
+        return false;
     n /= ln;
     r /= lr;
     float c = dot(n, r);
     vec3 t = r - c * n, b = cross(n, t);
     float lt = length(t);
     if (!(lt > 1e-6))
-        return true; // looking straight at it: no fold
+        return false; // looking straight at it: no fold
     t /= lt;
     b /= lt;
     // The (u, v) directions of unit steps along t and b (least squares through the tangents).
     float e = dot(d.su, d.su), f = dot(d.su, d.sv), g = dot(d.sv, d.sv);
     float det = e * g - f * f;
     if (!(det > 0.0))
-        return true;
+        return false;
     vec2 wt = vec2(g * dot(d.su, t) - f * dot(d.sv, t), e * dot(d.sv, t) - f * dot(d.su, t)) / det;
     vec2 wb = vec2(g * dot(d.su, b) - f * dot(d.sv, b), e * dot(d.sv, b) - f * dot(d.su, b)) / det;
     // Two pixels of length, from the screen rate along b (square to the ray, not foreshortened).
     vec4 clip = uViewProjection * vec4(p, 1.0);
     float rate = length(kwWindowTangent(clip, d.su * wb.x + d.sv * wb.y));
     if (!(rate > 0.0))
-        return true;
+        return false;
     float h = 2.0 / rate;
-    vec2 there = uv + h * wt;
+    vec2 there = inside + h * wt;
     if (any(lessThan(there, uDomain.xz)) || any(greaterThan(there, uDomain.yw)))
-        h = -h, there = uv + h * wt;
+        h = -h, there = inside + h * wt;
     there = clamp(there, uDomain.xz, uDomain.yw);
+    if (there == inside)
+        return false;
     SurfacePartials d2 = surfacePartials(there, kwSpanAt(there, span));
     float second = dot((d2.su - d.su) * wt.x + (d2.sv - d.sv) * wt.y, n) / h;
-    if (!(abs(second) > 1e-6 / lr) || second * c > 0.0)
-        return true;
-    restart = uv - 2.0 * abs(c) / abs(second) * wt;
-    return false;
+    if (!(abs(second) > 1e-6 / lr))
+        return false;
+    front = second * c > 0.0;
+    other = uv + 2.0 * c / (second * lt) * wt;
+    return true;
 }
 
-// The point under the pixel on the sheet in front. Where kwFrontSheet finds the solve's point
+// The point under the pixel on the sheet in front. Where kwRayCurve finds the solve's point
 // on the hidden sheet, the solve starts again from its estimate of the other meeting, and the
 // nearer of the two points is kept: the criterion holds at folds, but away from one (a saddle's
 // inside, where a skirt fills a seam) the normal curvature along the ray has either sign, so
 // it only says where to look, and the depth decides. The restarts begin at the strip's own
 // span and look the knot span up again as they go.
+// Where the solve ends on the continuation past the edge (KW_SOLVE_BEYOND), the ray may still
+// meet the face itself near the edge: looking into a bore past its rim, the ray meets the
+// bore's continuation first and the far wall second (Axis_of_bearing (457, 775) at 1024²
+// fitted, a pinhole in a seam). The solve starts again from the other meeting when that lies
+// in the domain, and keeps the point only when it lies near the strip's depth: the strip is
+// drawn at its polygon's depth, pushed back kSkirtDepthPixels, so a point farther behind it
+// (uSkirtDepthScale once more) would be drawn in front of faces that hide it.
+uniform float uSkirtDepthScale;
 bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
     span = vSpan;
-    vec2 restart;
     SurfacePartials d;
-    if (!kwSkirtSolve(uv, span, d))
+    int solved = kwSkirtSolve(uv, span, d);
+    if (solved == KW_SOLVE_MISSED)
         return false;
-    if (kwFrontSheet(uv, span, d, restart))
+    bool front;
+    vec2 restart;
+    bool fold = kwRayCurve(uv, span, d, front, restart);
+    if (solved == KW_SOLVE_BEYOND) {
+        if (!fold || any(lessThan(restart, uDomain.xz)) || any(greaterThan(restart, uDomain.yw)))
+            return false;
+        uv = restart;
+        if (kwSkirtSolve(uv, span, d) != KW_SOLVE_FOUND)
+            return false;
+        vec4 clip = uViewProjection * vec4(d.s + uOrigin, 1.0);
+        return clip.w > 0.0 &&
+               clip.z / clip.w >= gl_FragCoord.z * uSkirtDepthScale * uSkirtDepthScale;
+    }
+    if (front)
         return true;
     vec2 first = uv;
     ivec2 firstSpan = span;
@@ -215,7 +256,8 @@ bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
     for (int k = 0; k < 2; ++k) {
         uv = k == 0 ? restart : 2.0 * vUv - first;
         span = vSpan;
-        if (kwSkirtSolve(uv, span, d) && distance(d.s + uOrigin, uEye) < firstDistance)
+        if (kwSkirtSolve(uv, span, d) == KW_SOLVE_FOUND &&
+            distance(d.s + uOrigin, uEye) < firstDistance)
             return true;
     }
     uv = first;
