@@ -3,6 +3,7 @@
 
 #include "model/validation.h"
 
+#include <QCryptographicHash>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -50,6 +51,38 @@ int loopIndex(const Surface& s, TrimLoopId id) {
         if (s.trims[i].id == id)
             return int(i);
     return -1;
+}
+
+// SHA-1 of a surface's shape: degrees, knots, control points, weights and trim curves, as
+// their bytes (an undo restores the very values). Names, ids, display and marks are left out.
+QByteArray shapeDigest(const Surface& s) {
+    QCryptographicHash h(QCryptographicHash::Sha1);
+    const auto ints = [&h](std::initializer_list<std::int64_t> values) {
+        for (std::int64_t v : values)
+            h.addData(QByteArrayView(reinterpret_cast<const char*>(&v), sizeof v));
+    };
+    const auto bytes = [&h, &ints](const auto& values) {
+        ints({std::int64_t(values.size())});
+        h.addData(QByteArrayView(reinterpret_cast<const char*>(values.data()),
+                                 qsizetype(values.size() * sizeof(values[0]))));
+    };
+    const NurbsSurface& g = s.geometry;
+    ints({g.degreeU, g.degreeV, g.countU, g.countV});
+    bytes(g.knotsU);
+    bytes(g.knotsV);
+    bytes(g.points);
+    bytes(g.weights);
+    ints({std::int64_t(s.trims.size())});
+    for (const TrimLoop& loop : s.trims) {
+        ints({std::int64_t(loop.curves.size())});
+        for (const NurbsCurve2& c : loop.curves) {
+            ints({c.degree});
+            bytes(c.knots);
+            bytes(c.points);
+            bytes(c.weights);
+        }
+    }
+    return h.result();
 }
 
 } // namespace
@@ -113,6 +146,10 @@ bool Document::resetScene(Scene scene, QString* error) {
     }
     Q_EMIT sceneAboutToBeReset();
     m_scene = std::move(scene);
+    m_markedFaces.clear();
+    for (const Surface& s : m_scene.surfaces)
+        if (s.solid >= 0)
+            m_markedFaces.insert(s.id, MarkedFace{s.solid, s.outsideAlongNormal, shapeDigest(s)});
     const std::uint64_t rev = nextRevision();
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
@@ -142,6 +179,7 @@ bool Document::insertSurface(int index, Surface surface) {
     m_revisions.insert(m_revisions.begin() + index, Revisions{rev, rev, rev, rev});
     m_scene.nextId = std::max(m_scene.nextId, maxId + 1);
     Q_EMIT surfaceInserted(id, index);
+    closeSolid(id); // the undo of a face's removal
     return true;
 }
 
@@ -275,6 +313,7 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Q_EMIT trimLoopInserted(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
     openSolid(solid);
+    closeSolid(id);
     return true;
 }
 
@@ -290,6 +329,7 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     Q_EMIT trimLoopRemoved(id, index);
     Q_EMIT surfaceChanged(id, Aspect::Trims);
     openSolid(solid);
+    closeSolid(id);
     return true;
 }
 
@@ -401,6 +441,8 @@ void Document::bump(SurfaceId id, Aspects aspects) {
                           : -1;
     Q_EMIT surfaceChanged(id, aspects);
     openSolid(solid);
+    if (aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims))
+        closeSolid(id);
 }
 
 // A face of `solid` changed shape or went away: a seam may be open, and through it the other
@@ -414,6 +456,34 @@ void Document::openSolid(int solid) {
             m_revisions[i].display = nextRevision();
             Q_EMIT surfaceChanged(m_scene.surfaces[i].id, Aspect::Display);
         }
+}
+
+// `id`'s shape changed or it came back: where it was a face of a solid that an edit opened and
+// every face of that solid now has its marked shape again (the seams are the imported ones),
+// the solid is marked again, with a display revision for each face.
+void Document::closeSolid(SurfaceId id) {
+    const auto marked = m_markedFaces.constFind(id);
+    const Surface* s = surface(id);
+    if (marked == m_markedFaces.cend() || !s || s->solid >= 0 || shapeDigest(*s) != marked->shape)
+        return;
+    std::vector<size_t> faces;
+    for (auto f = m_markedFaces.cbegin(); f != m_markedFaces.cend(); ++f) {
+        if (f->solid != marked->solid)
+            continue;
+        const int i = indexOf(f.key());
+        if (i < 0 || m_scene.surfaces[size_t(i)].solid >= 0 ||
+            (f.key() != id && shapeDigest(m_scene.surfaces[size_t(i)]) != f->shape))
+            return;
+        faces.push_back(size_t(i));
+    }
+    const int solid = marked->solid;
+    for (size_t i : faces) {
+        Surface& face = m_scene.surfaces[i];
+        face.solid = solid;
+        face.outsideAlongNormal = m_markedFaces.value(face.id).outsideAlongNormal;
+        m_revisions[i].display = nextRevision();
+        Q_EMIT surfaceChanged(face.id, Aspect::Display);
+    }
 }
 
 } // namespace kw

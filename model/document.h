@@ -3,7 +3,9 @@
 
 #include "model/scene.h"
 
+#include <QByteArray>
 #include <QFlags>
+#include <QHash>
 #include <QObject>
 #include <QString>
 #include <cstdint>
@@ -122,6 +124,18 @@ private:
     Surface* mutableSurface(SurfaceId id);
     void bump(SurfaceId id, Aspects aspects);
     void openSolid(int solid);
+    void closeSolid(SurfaceId id);
+
+    /// A face of a closed solid as the last reset marked it (Surface::solid): its solid, its
+    /// side, and a digest of its shape (shapeDigest: geometry and trims). An edit opens the
+    /// solid (openSolid); once every one of its faces has its marked shape again (undo, or a
+    /// point moved back), closeSolid marks them again.
+    struct MarkedFace {
+        int solid = -1;
+        bool outsideAlongNormal = true;
+        QByteArray shape;
+    };
+    QHash<SurfaceId, MarkedFace> m_markedFaces;
     /// A fresh value of the process-wide revision counter, kept as the document's revision().
     std::uint64_t nextRevision();
 

@@ -91,7 +91,8 @@ struct Surface {
     /// solid's own faces in front hide them (docs/RENDERING.md, "Back faces of closed
     /// solids"). -1: not known to bound a solid. A change of any of its faces' shape or trims,
     /// or the removal of one, may open the solid: Document then clears the mark on all of
-    /// them, and a surface inserted into a document never carries one.
+    /// them, and marks them again once every face has the shape it had when the scene was
+    /// loaded (undo); a surface inserted into a document carries none but as such a face.
     int solid = -1;
     bool outsideAlongNormal = true;
     bool operator==(const Surface&) const = default;

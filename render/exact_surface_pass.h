@@ -247,8 +247,9 @@ private:
     CacheKey m_key;
     /// The pre-pass's untrimmed ranges, by Place::face.
     Batch m_plain[3];
-    /// The closed solids (Surface::solid) whose back faces this frame skips.
-    std::set<int> m_backCulled;
+    /// The closed solids (Surface::solid) whose back faces this frame skips, and those
+    /// chooseBackCulled weighed (a record marked with another needs the choice again).
+    std::set<int> m_backCulled, m_solidsWeighed;
     /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4).
     std::map<int, Batch> m_trimmedPre;
     std::map<int, Batch> m_variants;

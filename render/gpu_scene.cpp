@@ -262,11 +262,8 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         m_tooLarge.clear();
         ++m_syncs;
         ++m_layoutStamp;
-        m_solidMembers.clear();
         for (int index = 0; index < int(scene.surfaces.size()); ++index) {
             const Surface& s = scene.surfaces[size_t(index)];
-            if (s.solid >= 0)
-                ++m_solidMembers[s.solid];
             // The draw list: a hidden surface is left out of the frame (every pass and the
             // pick query draw records() only) but keeps its record, so showing it again
             // uploads only what changed meanwhile. Its trim mask layer is given back: the
@@ -331,6 +328,14 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
             for (const SurfaceRecord* r : m_order)
                 m_worstBound = std::max(m_worstBound, r->boundPixels);
         }
+    }
+    // Marks are cleared and set again only by a change of their faces (Document::openSolid,
+    // closeSolid), hidden ones included: count them again after any.
+    if (full || !m_changes.changed().empty()) {
+        m_solidMembers.clear();
+        for (const Surface& s : scene.surfaces)
+            if (s.solid >= 0)
+                ++m_solidMembers[s.solid];
     }
     m_changes.clear();
     report.recordsSynced += pass.examined;

@@ -120,10 +120,9 @@ public:
     /// Bumped by every sync that walked every record or redrew trim masks.
     std::uint64_t layoutStamp() const { return m_layoutStamp; }
     /// How many of the document's surfaces, hidden ones included, carry the mark of `solid`
-    /// (Surface::solid) as of the last sync that walked every surface. Marks are only ever
-    /// cleared in between (Document::openSolid clears a solid's all at once), and hiding or
-    /// showing a surface walks every surface again, so a solid whose members are all among
-    /// records() has them all drawn.
+    /// (Surface::solid) as of the last sync: counted again by every sync with a change (a mark
+    /// changes only with a change of its face: Document::openSolid, closeSolid), so a solid
+    /// whose members are all among records() has them all drawn.
     int solidMembers(int solid) const {
         const auto it = m_solidMembers.find(solid);
         return it == m_solidMembers.end() ? 0 : it->second;

@@ -59,7 +59,9 @@ private Q_SLOTS:
 
 // Surface::solid: a change of a face's shape or trims, or its removal, clears the mark on every
 // face of its solid (a seam may be open), with a display revision for each; other changes and
-// other solids keep theirs; an inserted surface never carries one.
+// other solids keep theirs; an inserted surface never carries one. Once every face of an
+// opened solid has its loaded shape again (undo), the solid is marked again: the seams are the
+// imported ones.
 void TestDocument::editedFaceOpensItsSolid() {
     const auto marked = [] {
         Scene scene = threeSurfaceScene();
@@ -93,9 +95,32 @@ void TestDocument::editedFaceOpensItsSolid() {
         QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p + glm::dvec3(0.1)}));
         QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
         QVERIFY(doc.revisions(SurfaceId{2}).display > before);
-        // Moving it back does not close it again (nothing says the seams met).
+        // Moving it back closes it again, both faces, each with a new display revision, and
+        // each on its side.
+        const std::uint64_t opened = doc.revisions(SurfaceId{2}).display;
+        QSignalSpy changed(&doc, &Document::surfaceChanged);
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
+        QVERIFY(doc.revisions(SurfaceId{2}).display > opened);
+        QCOMPARE(changed.size(), 3); // the points of 1, then the display of 1 and 2
+        QVERIFY(doc.scene().surfaces[0].outsideAlongNormal);
+        QVERIFY(!doc.scene().surfaces[1].outsideAlongNormal);
+        // With two faces changed, only both back close it.
+        const glm::dvec3 q = doc.scene().surfaces[1].geometry.points[1];
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p + glm::dvec3(0.1)}));
+        QVERIFY(doc.setControlPoints(SurfaceId{2}, {1}, {q - glm::dvec3(0.2)}));
         QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
         QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        // A shape near the loaded one is not it.
+        QVERIFY(doc.setControlPoints(SurfaceId{2}, {1}, {q + glm::dvec3(1e-12, 0.0, 0.0)}));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        QVERIFY(doc.setControlPoints(SurfaceId{2}, {1}, {q}));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
+        // A new scene forgets the old marks: the same ids and shapes, unmarked, stay so.
+        QVERIFY(doc.resetScene(threeSurfaceScene()));
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p + glm::dvec3(0.1)}));
+        QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, -1}));
     }
     {
         Document doc;
@@ -105,6 +130,11 @@ void TestDocument::editedFaceOpensItsSolid() {
         const TrimLoop loop = doc.scene().surfaces[2].trims[0];
         QVERIFY(doc.removeTrimLoop(SurfaceId{3}, loop.id));
         QCOMPARE(solids(doc), (std::vector<int>{-1, -1, -1}));
+        // Undone in reverse: the loop closes solid 5, the weight solid 4.
+        QVERIFY(doc.insertTrimLoop(SurfaceId{3}, 0, loop));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        QVERIFY(doc.setWeight(SurfaceId{2}, 0, 1.0));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
     }
     {
         Document doc;
@@ -113,8 +143,20 @@ void TestDocument::editedFaceOpensItsSolid() {
         QVERIFY(doc.removeSurface(SurfaceId{2}));
         QCOMPARE(solids(doc), (std::vector<int>{-1, 5}));
         QVERIFY(doc.insertSurface(1, removed)); // undo of the removal
-        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
         QCOMPARE(Document::validate(doc.scene()), QString());
+        // A face of another shape under the removed one's id does not close it.
+        QVERIFY(doc.removeSurface(SurfaceId{2}));
+        Surface other = removed;
+        other.geometry.points[0].z += 1.0;
+        QVERIFY(doc.insertSurface(1, other));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
+        // Nor does a new surface of the removed one's shape.
+        QVERIFY(doc.removeSurface(SurfaceId{2}));
+        Surface copy = removed;
+        copy.id = doc.allocateSurfaceId();
+        QVERIFY(doc.insertSurface(1, copy));
+        QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
     }
 }
 

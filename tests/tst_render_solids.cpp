@@ -8,9 +8,11 @@
 #include "render/offscreen_renderer.h"
 #include "render_test_util.h"
 #include "ui/cameracontroller.h"
+#include "ui/edit/commands.h"
 
 #include <QGuiApplication>
 #include <QImage>
+#include <QUndoStack>
 #include <QtTest>
 #include <memory>
 #include <set>
@@ -227,7 +229,8 @@ private Q_SLOTS:
     }
 
     // A hidden face opens a view into the solid; an edited one may open a seam. Hiding is
-    // undone by showing the face; an edit clears the solid's marks for good.
+    // undone by showing the face; an edit clears the solid's marks until its undo (the editor's
+    // commands, a drag and a removal) gives every face its loaded shape back.
     void hiddenOrEditedFaceDrawsBackFaces() {
         std::optional<Scene> scene = kwtest::importedPart(QStringLiteral("Pump_Nut.brep"));
         QVERIFY(scene);
@@ -243,11 +246,33 @@ private Q_SLOTS:
         QVERIFY(!frame(doc, camera, true, &report).isNull());
         QCOMPARE(report.solidsBackCulled, 1);
         const glm::dvec3 p = doc.scene().surfaces[0].geometry.points[0];
-        QVERIFY(doc.setControlPoints(first, {0}, {p + glm::dvec3(0.5)}));
+        QUndoStack stack;
+        QVERIFY(pushCommand(
+            &stack, MoveControlPoints::create(&doc, first, {0}, {p}, {p + glm::dvec3(0.5)})));
         QVERIFY(!frame(doc, camera, true, &report).isNull());
         QCOMPARE(report.solidsBackCulled, 0);
         for (const Surface& s : doc.scene().surfaces)
             QCOMPARE(s.solid, -1);
+        // A view change walks every record (the renderer counts the solid's members again),
+        // then the undo's frame syncs only the changed faces.
+        QVERIFY(!frame(doc, orbited(camera, 30.0), true, &report).isNull());
+        QVERIFY(!frame(doc, camera, true, &report).isNull());
+        stack.undo();
+        for (const Surface& s : doc.scene().surfaces)
+            QCOMPARE(s.solid, 0);
+        QVERIFY(!frame(doc, camera, true, &report).isNull());
+        QCOMPARE(report.solidsBackCulled, 1);
+        stack.redo();
+        QVERIFY(!frame(doc, camera, true, &report).isNull());
+        QCOMPARE(report.solidsBackCulled, 0);
+        stack.undo();
+        QVERIFY(pushCommand(&stack, RemoveSurface::create(&doc, doc.scene().surfaces[3].id)));
+        QVERIFY(!frame(doc, camera, true, &report).isNull());
+        QCOMPARE(report.solidsBackCulled, 0);
+        stack.undo();
+        QVERIFY(!frame(doc, camera, true, &report).isNull());
+        QCOMPARE(report.solidsBackCulled, 1);
+        QCOMPARE(doc.scene(), *scene);
     }
 };
 
