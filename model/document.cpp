@@ -154,6 +154,7 @@ bool Document::resetScene(Scene scene, QString* error) {
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
     m_cameraRevision = rev;
+    m_marksRevision = rev;
     Q_EMIT sceneReset();
     return true;
 }
@@ -450,6 +451,7 @@ void Document::bump(SurfaceId id, Aspects aspects) {
 void Document::openSolid(int solid) {
     if (solid < 0)
         return;
+    m_marksRevision = nextRevision();
     for (size_t i = 0; i < m_scene.surfaces.size(); ++i)
         if (m_scene.surfaces[i].solid == solid) {
             m_scene.surfaces[i].solid = -1;
@@ -477,6 +479,7 @@ void Document::closeSolid(SurfaceId id) {
         faces.push_back(size_t(i));
     }
     const int solid = marked->solid;
+    m_marksRevision = nextRevision();
     for (size_t i : faces) {
         Surface& face = m_scene.surfaces[i];
         face.solid = solid;

@@ -60,6 +60,9 @@ public:
     /// anti-aliasing keys its sum by it).
     std::uint64_t revision() const { return m_counter; }
     std::uint64_t cameraRevision() const { return m_cameraRevision; }
+    /// Changes whenever some surface's Surface::solid mark is set or cleared (a reset, an edit
+    /// that opens a solid, an undo that closes it again), and only then.
+    std::uint64_t marksRevision() const { return m_marksRevision; }
 
     /// Fresh ids that no surface or loop of this document uses (never reused in a session).
     SurfaceId allocateSurfaceId();
@@ -144,6 +147,7 @@ private:
     std::uint64_t m_counter = 0;        ///< revision(): the newest value this document handed out
     std::uint64_t m_lightsRevision = 0;
     std::uint64_t m_cameraRevision = 0;
+    std::uint64_t m_marksRevision = 0;
 };
 
 } // namespace kw

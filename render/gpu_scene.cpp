@@ -329,9 +329,10 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                 m_worstBound = std::max(m_worstBound, r->boundPixels);
         }
     }
-    // Marks are cleared and set again only by a change of their faces (Document::openSolid,
-    // closeSolid), hidden ones included: count them again after any.
-    if (full || !m_changes.changed().empty()) {
+    // Marks are cleared and set again by edits of their faces (Document::openSolid,
+    // closeSolid), hidden ones included, between full walks too: counted again when they did.
+    if (full || doc.marksRevision() != m_marksRevision) {
+        m_marksRevision = doc.marksRevision();
         m_solidMembers.clear();
         for (const Surface& s : scene.surfaces)
             if (s.solid >= 0)

@@ -120,9 +120,9 @@ public:
     /// Bumped by every sync that walked every record or redrew trim masks.
     std::uint64_t layoutStamp() const { return m_layoutStamp; }
     /// How many of the document's surfaces, hidden ones included, carry the mark of `solid`
-    /// (Surface::solid) as of the last sync: counted again by every sync with a change (a mark
-    /// changes only with a change of its face: Document::openSolid, closeSolid), so a solid
-    /// whose members are all among records() has them all drawn.
+    /// (Surface::solid) as of the last sync: counted again by every full walk and every sync
+    /// after Document::marksRevision() moved (an edit opened a solid, an undo closed one), so
+    /// a solid whose members are all among records() has them all drawn.
     int solidMembers(int solid) const {
         const auto it = m_solidMembers.find(solid);
         return it == m_solidMembers.end() ? 0 : it->second;
@@ -253,6 +253,7 @@ private:
     std::vector<SurfaceRecord*> m_touched;
     std::uint64_t m_layoutStamp = 0;
     std::map<int, int> m_solidMembers; ///< solidMembers()
+    std::uint64_t m_marksRevision = 0; ///< Document::marksRevision() when they were counted
     int m_drawn = 0;
     /// The partition figures over records(), kept across incremental syncs.
     std::int64_t m_cells = 0;

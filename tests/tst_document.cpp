@@ -96,13 +96,19 @@ void TestDocument::editedFaceOpensItsSolid() {
         QCOMPARE(solids(doc), (std::vector<int>{-1, -1, 5}));
         QVERIFY(doc.revisions(SurfaceId{2}).display > before);
         // Moving it back closes it again, both faces, each with a new display revision, and
-        // each on its side.
+        // each on its side; the marks' revision moves with each opening and closing only.
         const std::uint64_t opened = doc.revisions(SurfaceId{2}).display;
+        const std::uint64_t marks = doc.marksRevision();
         QSignalSpy changed(&doc, &Document::surfaceChanged);
         QVERIFY(doc.setControlPoints(SurfaceId{1}, {0}, {p}));
         QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
         QVERIFY(doc.revisions(SurfaceId{2}).display > opened);
         QCOMPARE(changed.size(), 3); // the points of 1, then the display of 1 and 2
+        QVERIFY(doc.marksRevision() > marks);
+        const std::uint64_t closed = doc.marksRevision();
+        QVERIFY(doc.setName(SurfaceId{1}, QStringLiteral("B")));
+        QVERIFY(doc.setPartitions(SurfaceId{3}, 5, 5));
+        QCOMPARE(doc.marksRevision(), closed);
         QVERIFY(doc.scene().surfaces[0].outsideAlongNormal);
         QVERIFY(!doc.scene().surfaces[1].outsideAlongNormal);
         // With two faces changed, only both back close it.
