@@ -50,7 +50,8 @@ layout(early_fragment_tests) in;
 // faces meet, so that B-rep edges whose faces miss each other by a fraction of a pixel (within
 // the model's tolerance) show no pinhole, and the depth test picks the face in front. The
 // point shown is then the edge's (clamped into the domain). False where the ray misses the
-// face: beyond its edge, outside its silhouette, or when the solve makes no progress.
+// face: beyond its edge (unless it meets the face farther on, kwSkirtPoint), outside its
+// silhouette, or when the solve makes no progress.
 // The solve is Levenberg-Marquardt on project(S(u, v)) = pixel centre: the Newton step (2
 // equations, 2 unknowns, the Jacobian is the projected tangents) while it brings the point
 // nearer; where it does not (near a silhouette the Jacobian is nearly singular and the full
