@@ -236,7 +236,6 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
 void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& key,
                                         const FrameCamera& camera) {
     m_backCulled.clear();
-    m_solidsWeighed.clear();
     if (!key.skipBackFaces)
         return;
     struct Solid {
@@ -262,7 +261,6 @@ void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& k
     // A little past the near plane: the bounds hold the polygon, rounding aside.
     const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
     for (const auto& [k, s] : solids) {
-        m_solidsWeighed.insert(k);
         if (!s.complete || s.drawn != scene.solidMembers(k))
             continue;
         bool beyond = true;
@@ -376,11 +374,6 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         const auto it = m_places.find(r);
         if (it == m_places.end())
             return false;
-        // A solid marked again since the choice (Document::closeSolid, an undo) is weighed
-        // again: its members' variants depend on it.
-        if (const int k = r->surface ? r->surface->solid : -1;
-            key.skipBackFaces && k >= 0 && !m_solidsWeighed.count(k))
-            return false;
         const Place& was = it->second;
         Commands cs;
         const Place now = classify(*r, key, camera, cs);
@@ -484,6 +477,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                         options.partitioning == RenderOptions::Partitioning::Adaptive;
     const CacheKey key{&scene,
                        scene.layoutStamp(),
+                       scene.marksRevision(),
                        camera.viewProjection,
                        camera.viewport,
                        trims,

@@ -165,6 +165,7 @@ private:
     struct CacheKey {
         const GpuScene* scene = nullptr;
         std::uint64_t layout = 0;
+        std::uint64_t marks = 0; ///< GpuScene::marksRevision: the solids' marks
         glm::mat4 viewProjection{0.0f};
         glm::ivec2 viewport{0};
         bool trims = false, prepass = false, cull = false;
@@ -247,9 +248,8 @@ private:
     CacheKey m_key;
     /// The pre-pass's untrimmed ranges, by Place::face.
     Batch m_plain[3];
-    /// The closed solids (Surface::solid) whose back faces this frame skips, and those
-    /// chooseBackCulled weighed (a record marked with another needs the choice again).
-    std::set<int> m_backCulled, m_solidsWeighed;
+    /// The closed solids (Surface::solid) whose back faces this frame skips.
+    std::set<int> m_backCulled;
     /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4).
     std::map<int, Batch> m_trimmedPre;
     std::map<int, Batch> m_variants;

@@ -127,6 +127,9 @@ public:
         const auto it = m_solidMembers.find(solid);
         return it == m_solidMembers.end() ? 0 : it->second;
     }
+    /// Document::marksRevision() as of the last sync: the passes' batches depend on the marks
+    /// (which solids skip their back faces), so it is part of their cache key.
+    std::uint64_t marksRevision() const { return m_marksRevision; }
     /// Records of the last sync that have exact data (FrameReport::surfaces).
     int drawnCount() const { return m_drawn; }
 
