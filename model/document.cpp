@@ -149,7 +149,7 @@ bool Document::resetScene(Scene scene, QString* error) {
     m_markedFaces.clear();
     for (const Surface& s : m_scene.surfaces)
         if (s.solid >= 0)
-            m_markedFaces.insert(s.id, MarkedFace{s.solid, s.outsideAlongNormal, shapeDigest(s)});
+            m_markedFaces.insert(s.id, MarkedFace{s.solid, shapeDigest(s)});
     const std::uint64_t rev = nextRevision();
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
@@ -468,24 +468,26 @@ void Document::closeSolid(SurfaceId id) {
     const Surface* s = surface(id);
     if (marked == m_markedFaces.cend() || !s || s->solid >= 0 || shapeDigest(*s) != marked->shape)
         return;
-    std::vector<size_t> faces;
-    for (auto f = m_markedFaces.cbegin(); f != m_markedFaces.cend(); ++f) {
-        if (f->solid != marked->solid)
-            continue;
-        const int i = indexOf(f.key());
-        if (i < 0 || m_scene.surfaces[size_t(i)].solid >= 0 ||
-            (f.key() != id && shapeDigest(m_scene.surfaces[size_t(i)]) != f->shape))
-            return;
-        faces.push_back(size_t(i));
-    }
     const int solid = marked->solid;
+    std::vector<size_t> faces;
+    for (size_t i = 0; i < m_scene.surfaces.size(); ++i) {
+        const Surface& face = m_scene.surfaces[i];
+        const auto f = m_markedFaces.constFind(face.id);
+        if (f == m_markedFaces.cend() || f->solid != solid)
+            continue;
+        if (face.solid >= 0 || (face.id != id && shapeDigest(face) != f->shape))
+            return;
+        faces.push_back(i);
+    }
+    if (faces.size() !=
+        size_t(std::count_if(m_markedFaces.cbegin(), m_markedFaces.cend(),
+                             [solid](const MarkedFace& f) { return f.solid == solid; })))
+        return; // a face is missing
     m_marksRevision = nextRevision();
     for (size_t i : faces) {
-        Surface& face = m_scene.surfaces[i];
-        face.solid = solid;
-        face.outsideAlongNormal = m_markedFaces.value(face.id).outsideAlongNormal;
+        m_scene.surfaces[i].solid = solid;
         m_revisions[i].display = nextRevision();
-        Q_EMIT surfaceChanged(face.id, Aspect::Display);
+        Q_EMIT surfaceChanged(m_scene.surfaces[i].id, Aspect::Display);
     }
 }
 

@@ -129,13 +129,12 @@ private:
     void openSolid(int solid);
     void closeSolid(SurfaceId id);
 
-    /// A face of a closed solid as the last reset marked it (Surface::solid): its solid, its
-    /// side, and a digest of its shape (shapeDigest: geometry and trims). An edit opens the
-    /// solid (openSolid); once every one of its faces has its marked shape again (undo, or a
-    /// point moved back), closeSolid marks them again.
+    /// A face of a closed solid as the last reset marked it (Surface::solid): its solid and a
+    /// digest of its shape (shapeDigest: geometry and trims). An edit opens the solid
+    /// (openSolid; its side, Surface::outsideAlongNormal, stays); once every one of its faces
+    /// has its marked shape again (undo, or a point moved back), closeSolid marks them again.
     struct MarkedFace {
         int solid = -1;
-        bool outsideAlongNormal = true;
         QByteArray shape;
     };
     QHash<SurfaceId, MarkedFace> m_markedFaces;
