@@ -345,14 +345,21 @@ void main() {
     fragColor = vec4(0.0);
     return; // the pre-pass of cells near a trim curve: the rasteriser writes the depth
 #endif
-    SurfaceSample s = evaluateSurface(onto, vSpan, vSpanScale);
     // A step that did not bring the point nearer the pixel centre (a strongly curved
-    // projection near a silhouette) is undone.
-    if (onto != uv &&
-        !(length(kwWindow(uViewProjection * vec4(s.point, 1.0)) - gl_FragCoord.xy) < before))
-        s = evaluateSurface(uv, vSpan, vSpanScale);
-    else
-        uv = onto;
+    // projection near a silhouette) is undone: a second round evaluates the polygon's (u, v)
+    // for those fragments. A loop, not an `if`: SIMD lanes (llvmpipe's, a GPU's) run an `if`
+    // body under a mask for the whole group, but leave a loop once no lane is left in it, so
+    // the rare undo costs an evaluation only where some fragment of the block needs it.
+    SurfaceSample s;
+    vec2 at = onto;
+    for (int round = 0; round < 2; ++round) {
+        s = evaluateSurface(at, vSpan, vSpanScale);
+        if (round == 1 || at == uv ||
+            length(kwWindow(uViewProjection * vec4(s.point, 1.0)) - gl_FragCoord.xy) < before)
+            break;
+        at = uv;
+    }
+    uv = at;
     // Near a fold (a silhouette) the polygon's triangle in front can span, in (u, v), past the
     // fold onto the hidden sheet behind it, and the point found is then the ray's far meeting
     // with the surface; lit with its normal turned to the eye (phong), it showed as a black
