@@ -44,7 +44,7 @@ class TestEditorAnalysis : public QObject {
 public:
     static void initMain() {
         QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat());
-        qputenv("XDG_CONFIG_HOME", QByteArrayLiteral(KW_TEST_OUTPUT_DIR "/editor-config"));
+        qputenv("XDG_CONFIG_HOME", QByteArrayLiteral(KW_TEST_OUTPUT_DIR "/analysis-config"));
     }
 
 private:

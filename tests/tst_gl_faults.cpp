@@ -27,7 +27,14 @@ using namespace kwtest;
 
 namespace {
 
-const QString kWorkDir = QStringLiteral(KW_TEST_OUTPUT_DIR "/gl-faults");
+/// The folder this process works in. CTest runs the three fault modes of this binary as
+/// separate tests, possibly at once: each needs its own copy of the sample, its own shaders and
+/// its own settings, or one process deletes the file another is opening.
+QString workDir() {
+    const QByteArray fault = qgetenv("KW_GL_FAULT");
+    return QStringLiteral(KW_TEST_OUTPUT_DIR "/gl-faults-") +
+           (fault.isEmpty() ? QStringLiteral("none") : QString::fromLatin1(fault));
+}
 constexpr char kForced[] = "forced by tst_gl_faults";
 
 /// Copies the bundled shaders to `dir`, with `#error` at the top of `file`, guarded by `guard`
@@ -63,10 +70,10 @@ bool writeBrokenShaders(const QString& dir, const QString& file, const QString& 
 struct Editor {
     DialogScript script;
     std::unique_ptr<MainWindow> w = std::make_unique<MainWindow>();
-    QString path = kWorkDir + QStringLiteral("/plate.knot");
+    QString path = workDir() + QStringLiteral("/plate.knot");
 
     bool open() {
-        QDir().mkpath(kWorkDir);
+        QDir().mkpath(workDir());
         QFile::remove(path);
         if (!QFile::copy(samplePath("trimmed_plate"), path))
             return false;
@@ -285,13 +292,13 @@ private Q_SLOTS:
 
 int main(int argc, char** argv) {
     QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat());
-    qputenv("XDG_CONFIG_HOME", QByteArrayLiteral(KW_TEST_OUTPUT_DIR "/gl-faults-config"));
+    qputenv("XDG_CONFIG_HOME", (workDir() + QStringLiteral("/config")).toLocal8Bit());
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("KnotworkTest"));
     const QByteArray fault = qgetenv("KW_GL_FAULT");
     if (!fault.isEmpty()) {
         // KW_SHADER_DIR is read once, at the first shader built: set it before any window.
-        const QString dir = kWorkDir + QStringLiteral("/shaders-") + QString::fromLatin1(fault);
+        const QString dir = workDir() + QStringLiteral("/shaders");
         const bool variant = fault == "variant";
         if (!writeBrokenShaders(dir,
                                 variant ? QStringLiteral("tessellated.frag")
