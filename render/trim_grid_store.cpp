@@ -36,6 +36,11 @@ std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& ar
     }
     w[0] = std::uint32_t(w.size());
     w.insert(w.end(), grid.entries.begin(), grid.entries.end());
+    // Pieces and points start on 4 words, which the shader reads 4 at a time (kwTrimQuad).
+    const auto align = [&w] {
+        w.resize((w.size() + 3) & ~size_t(3), 0u);
+    };
+    align();
     w[1] = std::uint32_t(w.size());
     for (const TrimPiece& p : grid.pieces)
         w.insert(w.end(), {floatBits(p.p0.x), floatBits(p.p0.y), floatBits(p.p1.x),
@@ -46,10 +51,11 @@ std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& ar
         w.insert(w.end(), {point, std::uint32_t(a.degree)});
         point += std::uint32_t(a.hw.size());
     }
+    align();
     w[3] = std::uint32_t(w.size());
     for (const TrimArc& a : arcs.arcs)
         for (const glm::dvec3& h : a.hw)
-            w.insert(w.end(), {floatBits(h.x), floatBits(h.y), floatBits(h.z)});
+            w.insert(w.end(), {floatBits(h.x), floatBits(h.y), floatBits(h.z), 0u});
     return w;
 }
 
@@ -115,7 +121,10 @@ void TrimWordArena::reset(std::uint32_t words) {
 bool TrimGridStore::place(TrimGridBlock& block, const std::vector<std::uint32_t>& data,
                           bool* grew) {
     release(block);
-    const std::uint32_t words = std::max<std::uint32_t>(std::uint32_t(data.size()), 1);
+    // Whole quads (packTrimGrid's blocks are already): every range the arena hands out then
+    // starts on a multiple of 4 words, where the shader's RGBA32UI view of the array reads.
+    const std::uint32_t words =
+        std::max<std::uint32_t>((std::uint32_t(data.size()) + 3u) & ~3u, 4u);
     const std::uint32_t before = m_arena.capacity();
     const std::uint32_t offset = m_arena.allocate(words);
     if (offset == TrimWordArena::kNoRoom)

@@ -19,9 +19,11 @@ namespace kw {
 ///           base bit (the next word's first entry ends the list; near: an edge texel is among
 ///           the 3 x 3 about it);
 ///   entries: piece << 2 | left bit << 1 | right bit (model/trim_grid.h);
-///   pieces: 8 words each: p0.x p0.y p1.x p1.y t0 t1 (floats), arc, 0;
+///   pieces: 8 words each from a multiple of 4: p0.x p0.y p1.x p1.y t0 t1 (floats), arc, 0;
 ///   arcs: 2 words each: first control point (index into points), degree;
-///   points: 3 floats each: w u, w v, w.
+///   points: 4 words each from a multiple of 4: w u, w v, w (floats), 0.
+/// A block's size is a multiple of 4 words, so blocks placed in a TrimWordArena start on one
+/// too, and the shader reads a piece's half or a point as one RGBA32UI texel.
 struct TrimGridBlock {
     std::uint32_t offset = 0, words = 0; ///< words == 0: no block
     int cap = 0; ///< the resolution cap it was built under (budget degradation); 0: not built

@@ -334,6 +334,7 @@ void TrimMaskPass::bindArray(QOpenGLShaderProgram* program, int unit) const {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (m_exactMode) {
         gl->glBindTextureUnit(GLuint(kTrimGridUnit), m_gridView);
+        gl->glBindTextureUnit(GLuint(kTrimGridQuadUnit), m_gridQuads);
         return;
     }
     gl->glBindTextureUnit(GLuint(unit), m_texture);

@@ -54,6 +54,8 @@ struct TrimMask {
 
 /// The texture unit of the exact trim grids' buffer (shaders/trim_exact.glsl's binding).
 constexpr int kTrimGridUnit = 9;
+/// The same array by 4 words (RGBA32UI): the pieces and points (shaders/trim_exact.glsl).
+constexpr int kTrimGridQuadUnit = 10;
 
 class TrimMaskPass {
 public:
@@ -148,6 +150,7 @@ private:
     bool m_exactMode = false; ///< the mode of the last sync
     TrimGridStore m_grids;
     GLuint m_gridBuffer = 0, m_gridView = 0; ///< the words and their R32UI texture buffer
+    GLuint m_gridQuads = 0;                  ///< the same words as an RGBA32UI texture buffer
     std::int64_t m_gridBufferBytes = 0;
     int m_gridCap = kMaxTrimGridSide; ///< the side cap the budget allows now
     std::int64_t m_gridBudget = 0;    ///< the budget the cap was found under

@@ -13,10 +13,12 @@ void TrimMaskPass::freeGrids() {
     if (m_gl) {
         if (m_gridView)
             m_gl->glDeleteTextures(1, &m_gridView);
+        if (m_gridQuads)
+            m_gl->glDeleteTextures(1, &m_gridQuads);
         if (m_gridBuffer)
             m_gl->glDeleteBuffers(1, &m_gridBuffer);
     }
-    m_gridView = m_gridBuffer = 0;
+    m_gridView = m_gridQuads = m_gridBuffer = 0;
     m_gridBufferBytes = 0;
     m_grids.clear();
     m_gridCap = kMaxTrimGridSide;
@@ -59,7 +61,7 @@ std::int64_t estimatedWords(const TrimArcs& arcs, int cap) {
         points += std::int64_t(a.hw.size());
     const std::int64_t n = std::int64_t(arcs.arcs.size());
     const std::int64_t pieces = n + 4 * side;
-    return 5 + side * side + 2 * n + 3 * points + 8 * pieces + (3 * pieces) / 2;
+    return 5 + side * side + 2 * n + 4 * points + 8 * pieces + (3 * pieces) / 2 + 6;
 }
 
 } // namespace
@@ -238,10 +240,12 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
         if (!m_gridBuffer) {
             gl->glCreateBuffers(1, &m_gridBuffer);
             gl->glCreateTextures(GL_TEXTURE_BUFFER, 1, &m_gridView);
+            gl->glCreateTextures(GL_TEXTURE_BUFFER, 1, &m_gridQuads);
         }
         gl->glNamedBufferData(m_gridBuffer, GLsizeiptr(std::max<std::int64_t>(bytes, 4)),
                               words.empty() ? nullptr : words.data(), GL_DYNAMIC_DRAW);
         gl->glTextureBuffer(m_gridView, GL_R32UI, m_gridBuffer);
+        gl->glTextureBuffer(m_gridQuads, GL_RGBA32UI, m_gridBuffer); // the same words by 4
         m_gridBufferBytes = std::max<std::int64_t>(bytes, 4);
     } else {
         for (const TrimMask* m : rebuilt)

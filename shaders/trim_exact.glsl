@@ -8,31 +8,38 @@
 // A texture buffer, not an SSBO: llvmpipe (Mesa 22.3) returns 0 from SSBO loads in helper
 // invocations (shaders/surface_data.glsl). Unit 9 is kw::kTrimGridUnit.
 layout(binding = 9) uniform usamplerBuffer kwTrimGrid;
+// The same words 4 at a time (RGBA32UI, unit 10: kw::kTrimGridQuadUnit), for the pieces and
+// points, which start on a multiple of 4 words (render/trim_grid_store.h): a point or a piece's
+// half in one fetch instead of 3 or 4. On llvmpipe each fetch is a gather per lane with its own
+// bounds check, and the root find's arc points were most of the exact trim test's cost.
+layout(binding = 10) uniform usamplerBuffer kwTrimQuads;
 
 uint kwTrimWord(uint i) { return texelFetch(kwTrimGrid, int(i)).x; }
-float kwTrimFloat(uint i) { return uintBitsToFloat(kwTrimWord(i)); }
+// The 4 words from word i, a multiple of 4.
+uvec4 kwTrimQuad(uint i) { return texelFetch(kwTrimQuads, int(i >> 2)); }
+vec4 kwTrimQuadFloats(uint i) { return uintBitsToFloat(kwTrimQuad(i)); }
 
 // The arc's point at t by Horner's rule for the Bernstein form (Farin, "Curves and Surfaces
 // for CAGD", 5.3) on its homogeneous control points (degree <= 15), read from the buffer as it
 // goes: no local array, which llvmpipe kept in scratch memory for every fragment of the
 // variant (a tenth of the frame on trimmed_plate, docs/PERFORMANCE.md ## Trims). `first` is
-// the word of its first control point (kwTrimPieceV looks it and the degree up once).
+// the word of its first control point (kwTrimPieceV looks it and the degree up once), each
+// point one quad (kwTrimQuad).
 vec2 kwTrimArcPoint(uint first, int degree, float t) {
     uint k = first;
     float s = 1.0 - t, tn = 1.0, binomial = 1.0;
-    vec3 sum = vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
+    vec3 sum = kwTrimQuadFloats(k).xyz;
     if (degree == 0)
         return sum.xy / sum.z;
     sum *= s;
     for (int i = 1; i < degree; ++i) {
-        k += 3u;
+        k += 4u;
         tn *= t;
         binomial *= float(degree - i + 1) / float(i);
-        sum = (sum + tn * binomial * vec3(kwTrimFloat(k), kwTrimFloat(k + 1u),
-                                          kwTrimFloat(k + 2u))) * s;
+        sum = (sum + tn * binomial * kwTrimQuadFloats(k).xyz) * s;
     }
-    k += 3u;
-    vec3 h = sum + tn * t * vec3(kwTrimFloat(k), kwTrimFloat(k + 1u), kwTrimFloat(k + 2u));
+    k += 4u;
+    vec3 h = sum + tn * t * kwTrimQuadFloats(k).xyz;
     return h.xy / h.z;
 }
 
@@ -54,7 +61,7 @@ vec2 kwTrimPieceSolve(uint arc, int axis, float value, float t0, float t1, vec2 
         return p1;
     // The arc's header, once per piece rather than once per evaluation below.
     uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
-    uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
+    uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 4u * kwTrimWord(header);
     int degree = int(kwTrimWord(header + 1u));
     float a = t0, b = t1, fa = c0 - value, fb = c1 - value;
     vec2 pa = p0, pb = p1;
@@ -113,8 +120,8 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
     for (uint e = word >> 2; e < last; ++e) {
         uint entry = kwTrimWord(entries + e);
         uint p = pieces + 8u * (entry >> 2);
-        vec2 p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
-        vec2 p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
+        vec4 ends = kwTrimQuadFloats(p);
+        vec2 p0 = ends.xy, p1 = ends.zw;
         bool h;
         if (uv.x < min(p0.x, p1.x))
             h = (entry & 2u) != 0u;
@@ -127,9 +134,11 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
             h = true;
         else if (uv.y >= max(p0.y, p1.y))
             h = false;
-        else
-            h = kwTrimPieceV(kwTrimWord(p + 6u), uv.x, kwTrimFloat(p + 4u), kwTrimFloat(p + 5u),
-                             p0, p1) > uv.y;
+        else {
+            uvec4 rest = kwTrimQuad(p + 4u); // t0, t1, arc
+            h = kwTrimPieceV(rest.z, uv.x, uintBitsToFloat(rest.x), uintBitsToFloat(rest.y), p0,
+                             p1) > uv.y;
+        }
         inside = inside != h;
     }
     return !inside;
@@ -202,8 +211,9 @@ bool kwTrimOtherEdge(vec2 f, vec2 g) {
 // The ends of the piece at word p (exact points of its arc), and whether the box of the piece
 // (which holds it: a piece is monotone in u and v) meets the box [boxLo, boxHi].
 bool kwTrimPieceMeets(uint p, vec2 boxLo, vec2 boxHi, out vec2 p0, out vec2 p1) {
-    p0 = vec2(kwTrimFloat(p), kwTrimFloat(p + 1u));
-    p1 = vec2(kwTrimFloat(p + 2u), kwTrimFloat(p + 3u));
+    vec4 ends = kwTrimQuadFloats(p);
+    p0 = ends.xy;
+    p1 = ends.zw;
     return !(any(greaterThan(min(p0, p1), boxHi)) || any(lessThan(max(p0, p1), boxLo)));
 }
 
@@ -296,10 +306,11 @@ float kwTrimCoverageExact(vec2 uv, vec2 unit, mat2 jacobian, bool inside) {
                 if (!kwTrimPieceMeets(p, boxLo, boxHi, p0, p1))
                     continue;
                 vec2 pieceLo = min(p0, p1), pieceHi = max(p0, p1);
-                uint arc = kwTrimWord(p + 6u);
-                float t0 = kwTrimFloat(p + 4u), t1 = kwTrimFloat(p + 5u);
+                uvec4 rest = kwTrimQuad(p + 4u);
+                uint arc = rest.z;
+                float t0 = uintBitsToFloat(rest.x), t1 = uintBitsToFloat(rest.y);
                 uint header = uTrimBlock + kwTrimWord(uTrimBlock + 2u) + 2u * arc;
-                uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 3u * kwTrimWord(header);
+                uint first = uTrimBlock + kwTrimWord(uTrimBlock + 3u) + 4u * kwTrimWord(header);
                 int degree = int(kwTrimWord(header + 1u));
                 // The piece's ends, exact points of the curve, and its chord on screen where
                 // that is the curve: a straight arc, or a piece within a pixel (its sagitta a

@@ -495,6 +495,35 @@ private Q_SLOTS:
         QCOMPARE(masks().residentBytes(), 0);
     }
 
+    void blocksStartOnWholeQuads() {
+        // The shader reads pieces and points 4 words at a time through an RGBA32UI view of the
+        // array (shaders/trim_exact.glsl, kwTrimQuad): blocks, pieces and points must start on
+        // a multiple of 4 words, whatever the sizes before them.
+        QString error;
+        TrimGridStore store;
+        std::vector<TrimGridBlock> blocks(6);
+        bool grew = false;
+        for (size_t k = 0; k < blocks.size(); ++k) {
+            const auto scene = loadSample(k % 2 ? "star_island" : "trimmed_plate", &error);
+            QVERIFY2(scene, qPrintable(error));
+            const Surface& s = scene->surfaces.front();
+            const TrimArcs arcs = makeTrimArcs(s.trims, trimTolerance(s.geometry));
+            // Resolutions whose texel lists leave the entries at every length modulo 4.
+            const int side = 16 + int(k);
+            std::vector<std::uint32_t> words = packTrimGrid(makeTrimGrid(arcs, {side, side}), arcs);
+            QCOMPARE(words.size() % 4, size_t(0));
+            QCOMPARE(words[1] % 4, 0u); // pieces
+            QCOMPARE(words[3] % 4, 0u); // points
+            if (k == 3)
+                words.resize(words.size() - 3); // a size not of whole quads still places on one
+            QVERIFY(store.place(blocks[k], words, &grew));
+            QCOMPARE(blocks[k].offset % 4, 0u);
+            QCOMPARE(blocks[k].words % 4, 0u);
+            if (k == 2)
+                store.release(blocks[1]); // a hole for the next blocks to fill
+        }
+    }
+
     void arenaStopsAtWhatTheShaderAddresses() {
         // Bookkeeping only (no words are stored): offsets are the shader's 32-bit words.
         TrimWordArena arena;
