@@ -32,8 +32,8 @@ struct TrimGridBlock {
 /// Packs a grid and its arcs into block words (layout above). Floats are stored by their bits.
 std::vector<std::uint32_t> packTrimGrid(const TrimGrid& grid, const TrimArcs& arcs);
 
-/// First-fit allocation of word ranges in an array that grows by doubling. Freed ranges are
-/// merged with free neighbours.
+/// First-fit allocation of word ranges in an array that grows by a quarter (at least what the
+/// range needs, in steps of 1024 words). Freed ranges are merged with free neighbours.
 class TrimWordArena {
 public:
     /// What allocate() returns when 2^32 - 1 words cannot hold the range.
@@ -63,7 +63,7 @@ public:
     void release(TrimGridBlock& block);
     /// Moves `blocks` (every live block) to the front of an array of exactly their size.
     void compact(const std::vector<TrimGridBlock*>& blocks);
-    /// Whether compact() is due under `budgetBytes`: the array (grown by doubling) exceeds the
+    /// Whether compact() is due under `budgetBytes`: the array (grown in steps) exceeds the
     /// budget while the blocks fit, or is over four times their size.
     bool wantsCompaction(std::int64_t budgetBytes) const;
 
