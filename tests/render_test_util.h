@@ -170,6 +170,14 @@ inline AovComparison compareAovWithKernel(const kw::Scene& scene, const kw::AovB
     return r;
 }
 
+/// Window position in pixels (OpenGL conventions: y up, pixel centres at + 0.5) of the model
+/// point `p` under `viewProjection` in a viewport of `size` pixels.
+inline glm::dvec2 windowPixels(const glm::dmat4& viewProjection, const glm::dvec3& p,
+                               glm::dvec2 size) {
+    const glm::dvec4 c = viewProjection * glm::dvec4(p, 1.0);
+    return (glm::dvec2(c) / c.w * 0.5 + 0.5) * size;
+}
+
 /// The camera of `fit` moved towards the surface point at (u, v) of `s`, `zoom` times closer.
 inline kw::Camera zoomedOn(const kw::Camera& fit, const kw::Surface& s, glm::dvec2 uv,
                            double zoom) {

@@ -65,9 +65,7 @@ std::vector<PartitionChoice> cpuChoices(const Scene& scene, const Camera& camera
 
 /// Pixel position of a model point (OpenGL conventions, y up).
 glm::dvec2 toPixels(const FrameCamera& fc, const glm::dvec3& p) {
-    const glm::dvec4 c = glm::dmat4(fc.viewProjection) * glm::dvec4(p, 1.0);
-    const glm::dvec2 ndc = glm::dvec2(c) / c.w;
-    return (ndc * 0.5 + 0.5) * glm::dvec2(fc.viewport);
+    return kwtest::windowPixels(glm::dmat4(fc.viewProjection), p, glm::dvec2(fc.viewport));
 }
 
 /// The largest screen distance, over 5 x 5 points of each triangle of every cell of the

@@ -121,9 +121,9 @@ private Q_SLOTS:
             int ring2 = 0, hole1 = 0, wrong = 0;
             for (int y = 0; y < aov.height; ++y)
                 for (int x = 0; x < aov.width; ++x) {
-                    const glm::dvec4 q = inv * glm::dvec4(2.0 * (x + 0.5) / aov.width - 1.0,
-                                                          1.0 - 2.0 * (y + 0.5) / aov.height,
-                                                          0.0, 1.0);
+                    const glm::dvec4 q =
+                        inv * glm::dvec4(2.0 * (x + 0.5) / aov.width - 1.0,
+                                         1.0 - 2.0 * (y + 0.5) / aov.height, 0.0, 1.0);
                     const glm::dvec3 d = glm::normalize(glm::dvec3(q) / q.w - m.eye);
                     const glm::dvec3 hit = m.eye + (-m.eye.z / d.z) * d;
                     const double r = glm::length(glm::dvec2(hit) - glm::dvec2(0.0));
@@ -202,9 +202,8 @@ private Q_SLOTS:
                 if (a[0] < 0.0f)
                     continue;
                 ++covered;
-                const glm::dvec4 c = vp * glm::dvec4(a[3], a[4], a[5], 1.0);
-                const glm::dvec2 at =
-                    (glm::dvec2(c) / c.w * 0.5 + 0.5) * glm::dvec2(aov.width, aov.height);
+                const glm::dvec2 at = kwtest::windowPixels(vp, glm::dvec3(a[3], a[4], a[5]),
+                                                           glm::dvec2(aov.width, aov.height));
                 const double d = glm::length(at - glm::dvec2(x + 0.5, aov.height - y - 0.5));
                 off += d > opt.pixelTolerance + 0.05;
                 if (d > worst)

@@ -151,8 +151,7 @@ private Q_SLOTS:
         const glm::dmat4 vp = glm::perspective(glm::radians(40.0), 1.0, 0.1, 100.0) *
                               glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
         const auto window = [&](const glm::vec3& p) {
-            const glm::dvec4 c = vp * glm::dvec4(glm::dvec3(p), 1.0);
-            return (glm::dvec2(c) / c.w * 0.5 + 0.5) * glm::dvec2(viewport);
+            return kwtest::windowPixels(vp, glm::dvec3(p), glm::dvec2(viewport));
         };
         std::vector<SkirtVertex> vertices;
         std::vector<unsigned> indices;

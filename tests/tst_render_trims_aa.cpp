@@ -156,8 +156,7 @@ class TestRenderTrimsAa : public QObject {
         // the (u, v) line is a straight line.
         const CameraMatrices m = cameraMatrices(topCamera(), scene, 1.0);
         const auto window = [&](glm::dvec2 uv) {
-            const glm::dvec4 clip = m.projection * m.view * glm::dvec4(worldOf(uv), 1.0);
-            return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * double(kSide);
+            return kwtest::windowPixels(m.projection * m.view, worldOf(uv), glm::dvec2(kSide));
         };
         const glm::dvec2 a = window(c), b = window(c + 0.1 * dir);
         const glm::dvec2 side = window(c + 0.1 * glm::dvec2(-dir.y, dir.x)); // kept side
