@@ -53,7 +53,8 @@ TrimSurfaceArcs arcsOf(const Surface& s) {
 
 /// About the words a grid of `arcs` takes under `cap` (packTrimGrid's layout): texels exactly,
 /// arcs and points exactly, pieces and entries from the crossings of about four grid lines per
-/// texel row. Used to choose the cap before building (the builds then confirm it).
+/// texel row, plus at most 6 words that start the pieces and points on a multiple of 4. Used to
+/// choose the cap before building (the builds then confirm it).
 std::int64_t estimatedWords(const TrimArcs& arcs, int cap) {
     const std::int64_t side = trimGridResolution(arcs, cap).x;
     std::int64_t points = 0;
