@@ -361,12 +361,14 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     else if (options.mode == RenderMode::Exact)
         printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
-                                      "(tolerance %4 px), %5 edge skirt triangles\n")
+                                      "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
+                                      "surfaces drawn as their polygon\n")
                            .arg(files[0])
                            .arg(parts.cells)
                            .arg(parts.worstBoundPixels, 0, 'f', 3)
                            .arg(options.pixelTolerance)
                            .arg(parts.skirtTriangles)
+                           .arg(parts.affineSurfaces)
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])
                            .arg(parts.cells));

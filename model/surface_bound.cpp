@@ -227,6 +227,53 @@ double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dv
     return best;
 }
 
+namespace {
+/// The Greville abscissa of control point i of a degree-p knot vector.
+double greville(const std::vector<double>& knots, int p, int i) {
+    double sum = 0.0;
+    for (int k = 1; k <= p; ++k)
+        sum += knots[size_t(i + k)];
+    return sum / double(p);
+}
+} // namespace
+
+bool surfaceIsAffine(const NurbsSurface& s, double relTolerance) {
+    const int n = s.countU, m = s.countV;
+    if (n < 2 || m < 2 || s.points.size() != size_t(n) * size_t(m) ||
+        s.weights.size() != s.points.size())
+        return false;
+    const double w0 = s.weights[0];
+    for (double w : s.weights)
+        if (!(std::abs(w - w0) <= relTolerance * std::abs(w0)))
+            return false;
+    glm::dvec3 lo = s.points[0], hi = s.points[0];
+    for (const glm::dvec3& p : s.points)
+        lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double extent = glm::length(hi - lo);
+    if (!(extent > 0.0) || !std::isfinite(extent))
+        return false;
+    std::vector<double> xi(static_cast<size_t>(n)), eta(static_cast<size_t>(m));
+    for (int i = 0; i < n; ++i)
+        xi[size_t(i)] = greville(s.knotsU, s.degreeU, i);
+    for (int j = 0; j < m; ++j)
+        eta[size_t(j)] = greville(s.knotsV, s.degreeV, j);
+    const double spanU = xi.back() - xi.front(), spanV = eta.back() - eta.front();
+    if (!(spanU > 0.0) || !(spanV > 0.0))
+        return false;
+    // A, B and C from three corners of the net; every point must then agree.
+    const glm::dvec3 p00 = s.points[size_t(s.index(0, 0))];
+    const glm::dvec3 b = (s.points[size_t(s.index(n - 1, 0))] - p00) / spanU;
+    const glm::dvec3 c = (s.points[size_t(s.index(0, m - 1))] - p00) / spanV;
+    const double tolerance = relTolerance * extent;
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec3 q = p00 + b * (xi[size_t(i)] - xi[0]) + c * (eta[size_t(j)] - eta[0]);
+            if (!(glm::length(s.points[size_t(s.index(i, j))] - q) <= tolerance))
+                return false;
+        }
+    return true;
+}
+
 std::vector<SpanBound> surfaceSpanBounds(const NurbsSurface& s, int grid) {
     grid = std::clamp(grid, 1, 16);
     std::vector<SpanBound> out;

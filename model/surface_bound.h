@@ -46,6 +46,17 @@ SecondDerivativeBound spanSecondDerivativeBound(const NurbsSurface& s, int spanU
 /// interpolant of the four corners.
 double cellDeviationBound(const SecondDerivativeBound& m, double du, double dv);
 
+/// True when S is an affine map of (u, v), S(u, v) = A + B u + C v: every weight equal, and
+/// every control point within `relTolerance` of the net's extent from A + B xi_i + C eta_j,
+/// with xi and eta the Greville abscissae (knot averages; B-splines reproduce linear functions
+/// through them, Marsden's identity). Then a triangle through exact corner points lies on S
+/// with its (u, v) interpolated exactly: the base polygon is the surface, and the point it
+/// puts under a pixel is the point truly there. Planes from CAD files (degree 1 x 1
+/// rectangles, or degree-elevated ones) are such surfaces; a bilinear patch whose net is no
+/// parallelogram, a rational plane with unequal weights, or a net of one point is not.
+/// Precondition: a valid surface.
+bool surfaceIsAffine(const NurbsSurface& s, double relTolerance = 1e-9);
+
 /// The screen scale of a perspective camera: how a distance in model units near a point maps
 /// to pixels.
 struct ScreenScale {

@@ -78,6 +78,7 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_shaders = shaders;
     multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
     fins = qEnvironmentVariable("KW_FINS") != QLatin1String("0");
+    skipAffineNewton = qEnvironmentVariable("KW_AFFINE") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
@@ -88,7 +89,8 @@ QStringList ExactSurfacePass::degreeDefines(int p, int q, int lightCount) {
 
 QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
                                              const RenderOptions& options, bool trimmed,
-                                             bool gatherAllowed, TrimAa trimAa, bool skirt) {
+                                             bool gatherAllowed, TrimAa trimAa, bool skirt,
+                                             bool affine) {
     QStringList d = degreeDefines(p, q, lightCount);
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
@@ -102,8 +104,9 @@ QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
     else if (options.shading == RenderOptions::Shading::ExactDepth)
         d << QStringLiteral("KW_EXACT_DEPTH");
     // Adaptive partitions guarantee the polygon's (u, v) starts Newton's method within the
-    // pixel tolerance of the point under the pixel; uniform mode stays the paper's.
-    if (options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt)
+    // pixel tolerance of the point under the pixel; uniform mode stays the paper's. An affine
+    // surface's polygon puts the point under the pixel there already.
+    if (options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt && !affine)
         d << QStringLiteral("KW_RAY_NEWTON");
     if (trimmed)
         d << QStringLiteral("KW_TRIM");
@@ -222,9 +225,12 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     const int solid = r.surface ? r.surface->solid : -1;
     if (solid >= 0 && m_backCulled.count(solid))
         p.face = r.surface->outsideAlongNormal ? 1 : 2;
-    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10;
+    // The polygon is the surface (planes): in adaptive mode its (u, v) is already the point
+    // under the pixel, and the Newton step would only evaluate the surface once more.
+    const bool affine = key.adaptive && skipAffineNewton && g->affine;
+    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12;
     if (mask)
-        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10;
+        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12;
     if (key.skirts && g->skirtIndexOffset >= 0) {
         commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
                                      GLint(g->skirtVertexOffset), GLuint(r.slot)};
@@ -277,7 +283,7 @@ void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& k
 void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                                     const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
-    // bits each), trimmed, gather, the side culled (Place::face).
+    // bits each), trimmed, gather, the side culled (Place::face), affine.
     for (int f = 0; f < 3; ++f)
         m_plain[f] = Batch{};
     m_plain[1].cullFace = GL_BACK;
@@ -291,6 +297,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     m_places.reserve(scene.records().size());
     m_culled = 0;
     m_trimmedAway = 0;
+    m_affine = 0;
     for (const SurfaceRecord* r : scene.records()) {
         Commands cs;
         Place p = classify(*r, key, camera, cs);
@@ -303,6 +310,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                     pre.cullFace = cullFaceOf(p.face);
                     pre.degreeU = r->exact->degreeU;
                     pre.degreeV = r->exact->degreeV;
+                    pre.affine = (p.variant >> 12) & 1;
                 }
                 p.prepassIndex = int(pre.commands.size());
                 pre.commands.push_back(p.split ? cs.edge : c);
@@ -318,8 +326,10 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                 b.degreeV = g.degreeV;
                 b.trimmed = (p.variant >> 8) & 1;
                 b.gather = (p.variant >> 9) & 1;
+                b.affine = (p.variant >> 12) & 1;
                 b.cullFace = cullFaceOf(p.face);
             }
+            m_affine += b.affine ? 1 : 0;
             p.index = int(b.commands.size());
             b.commands.push_back(c);
             if (p.edgeVariant >= 0) {
@@ -329,6 +339,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                     e.degreeV = b.degreeV;
                     e.trimmed = true;
                     e.gather = b.gather;
+                    e.affine = b.affine;
                     e.cullFace = b.cullFace;
                 }
                 p.edgeIndex = int(e.commands.size());
@@ -433,7 +444,7 @@ bool ExactSurfacePass::depthPrepass(Batch (&plain)[3], std::map<int, Batch>& tri
     for (Batch* b : batches) {
         if (b->commands.empty())
             continue;
-        const bool onRay = b->trimmed && atRay;
+        const bool onRay = b->trimmed && atRay && !b->affine;
         QOpenGLShaderProgram* prog =
             onRay ? m_shaders->program(QStringLiteral("surface.vert"),
                                        QStringLiteral("exact_surface.frag"),
@@ -486,10 +497,12 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        aa != nullptr,
                        skirts,
                        options.skipBackFaces,
+                       options.partitioning == RenderOptions::Partitioning::Adaptive,
                        gatherMinCellPixels()};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
+    affineSurfaces = m_affine;
     solidsBackCulled += int(m_backCulled.size());
     // What the pre-pass tests the trims on, and what the split leaves out (per frame: the
     // batches may have been patched).
@@ -545,7 +558,7 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
                                variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                              b.trimmed, b.gather, trimAa));
+                                              b.trimmed, b.gather, trimAa, false, b.affine));
         if (!prog) {
             *error = m_shaders->lastError();
             return false;

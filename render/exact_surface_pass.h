@@ -56,13 +56,16 @@ public:
     /// `gatherAllowed` is true. A trimmed variant of an anti-aliased frame: `trimAa`
     /// Opaque keeps wholly covered fragments only, Edge is the edge pass's. `skirt`: the
     /// skirt pass's variant (KW_SKIRT: its own Newton solve and trim test, the strip's depth;
-    /// no gather, no KW_RAY_NEWTON, no KW_EXACT_DEPTH).
+    /// no gather, no KW_RAY_NEWTON, no KW_EXACT_DEPTH). `affine`: the surface is its own
+    /// polygon (SurfaceGpu::affine), whose (u, v) is already the point under the pixel: no
+    /// Newton step (no KW_RAY_NEWTON) in adaptive mode.
     enum class TrimAa { Off, Opaque, Edge };
     /// DEGREE_U, DEGREE_V and LIGHT_COUNT: what every exact_surface.frag program needs.
     static QStringList degreeDefines(int p, int q, int lightCount);
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
                                       bool trimmed = false, bool gatherAllowed = true,
-                                      TrimAa trimAa = TrimAa::Off, bool skirt = false);
+                                      TrimAa trimAa = TrimAa::Off, bool skirt = false,
+                                      bool affine = false);
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
     /// projected bounding box of its control points (clamped to the viewport) over its cell
@@ -92,6 +95,12 @@ public:
     /// fins included; the fins alone in finTriangles.
     std::int64_t skirtTriangles = 0;
     std::int64_t finTriangles = 0;
+    /// FrameReport::Partitions::affineSurfaces of the last draw: in adaptive mode, the surfaces
+    /// drawn without the Newton step because their polygon is the surface.
+    int affineSurfaces = 0;
+    /// Affine surfaces without the Newton step (above): on by default; KW_AFFINE=0 at
+    /// initialize gives them the step like every other surface, for measuring what it saves.
+    bool skipAffineNewton = true;
     /// Silhouette fins (kw::buildFins) with the skirts: on by default; KW_FINS=0 at initialize
     /// turns them off, for measuring what they cover and cost.
     bool fins = true;
@@ -133,6 +142,7 @@ private:
     struct Batch {
         int degreeU = 1, degreeV = 1;
         bool trimmed = false, gather = false;
+        bool affine = false; ///< the polygon is the surface: no Newton step (variant bit 12)
         GLenum cullFace = 0; ///< GL_BACK or GL_FRONT: a closed solid's back faces skipped
         std::vector<DrawCommand> commands;
         std::int64_t first = 0;
@@ -148,8 +158,9 @@ private:
         int index = -1; ///< its command in that batch
         bool prepassTrimmed = false;
         int prepassIndex = -1; ///< its command in m_plain[face] or m_trimmedPre (pre-pass)
-        /// Trimmed: its batch in m_trimmedPre, keyed by the variant's degree bits.
-        int prepassKey() const { return variant & (0xff | 3 << 10); }
+        /// Trimmed: its batch in m_trimmedPre, keyed by the variant's degree, face and affine
+        /// bits.
+        int prepassKey() const { return variant & (0xff | 3 << 10 | 1 << 12); }
         /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
         /// m_plain[face] (this command), those near a curve in m_trimmedPre (prepassIndex).
         bool split = false;
@@ -172,6 +183,7 @@ private:
         bool antialiased = false;   ///< no split pre-pass (the edge pass wants whole ranges)
         bool skirts = false;        ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         bool skipBackFaces = false; ///< RenderOptions::skipBackFaces
+        bool adaptive = false;      ///< adaptive partitions: the exact shaders' Newton step
         double minCellPixels = 0.0;
         bool operator==(const CacheKey&) const = default;
     };
@@ -206,7 +218,8 @@ private:
     /// KW_DEPTH_ONLY), not at the polygon's (u, v), which lies up to the tolerance away: a
     /// pixel centre just inside a trimmed edge was dropped there and the face behind showed
     /// through (docs/RENDERING.md, "Adaptive partitions: the point under the pixel");
-    /// otherwise depth_only.frag.
+    /// otherwise, and for affine surfaces (whose polygon's (u, v) is that point),
+    /// depth_only.frag.
     bool depthPrepass(Batch (&plain)[3], std::map<int, Batch>& trimmed, const GpuScene& scene,
                       const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
                       bool atRay, QString* error);
@@ -250,16 +263,19 @@ private:
     Batch m_plain[3];
     /// The closed solids (Surface::solid) whose back faces this frame skips.
     std::set<int> m_backCulled;
-    /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4).
+    /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4), face
+    /// and affine (Place::prepassKey).
     std::map<int, Batch> m_trimmedPre;
     std::map<int, Batch> m_variants;
-    /// The trimmed surfaces again, by degrees and gather, for the anti-aliased edge pass.
+    /// The trimmed surfaces again, by degrees, gather, face and affine, for the anti-aliased
+    /// edge pass.
     std::map<int, Batch> m_edges;
     /// The skirts, by degrees and trimmed (they test the trims themselves: no pre-pass).
     std::map<int, Batch> m_skirts;
     std::unordered_map<const SurfaceRecord*, Place> m_places;
     std::int64_t m_trimmedAway = 0; ///< the batches' Place::awayCells, summed
     int m_culled = 0;
+    int m_affine = 0; ///< the batches' surfaces with the affine bit
 
     /// One record's fins and what they were built for.
     struct Fins {

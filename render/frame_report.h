@@ -102,6 +102,10 @@ struct FrameReport {
         std::int64_t trimTestedCells = 0, trimmedAwayCells = 0;
         /// Triangles of the edge skirts drawn (RenderOptions::edgeSkirts); 0 without.
         std::int64_t skirtTriangles = 0;
+        /// Adaptive exact frames: the surfaces drawn without the Newton step onto the pixel's
+        /// ray, because they are affine in (u, v) (planes: kw::surfaceIsAffine) and their
+        /// polygon's (u, v) is already the point under the pixel.
+        int affineSurfaces = 0;
     } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while

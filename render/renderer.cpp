@@ -114,6 +114,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
     exact.culled = exact.solidsBackCulled = 0;
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
+    exact.affineSurfaces = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
@@ -261,6 +262,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.partitions.trimTestedCells = exact.trimTestedCells;
     report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
     report.partitions.skirtTriangles = exact.skirtTriangles;
+    report.partitions.affineSurfaces = exact.affineSurfaces;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();

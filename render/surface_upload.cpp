@@ -1,6 +1,7 @@
 // Uploads of one surface's exact-mode data into its ranges of the shared scene buffers.
 #include "render/surface_upload.h"
 
+#include "model/surface_bound.h"
 #include "render/trim_mask_pass.h"
 
 #include <algorithm>
@@ -45,6 +46,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Pol
 
     g.origin = controlOrigin(geo);
     g.control = packControlPoints(geo, g.origin);
+    g.affine = surfaceIsAffine(geo);
     const std::vector<glm::vec4> su = packSpanTable(geo.knotsU, geo.degreeU, geo.countU);
     const std::vector<glm::vec4> sv = packSpanTable(geo.knotsV, geo.degreeV, geo.countV);
     const std::int64_t texels = std::int64_t(g.control.size());
@@ -90,6 +92,7 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     if (i1 < 0)
         return; // revision moved (e.g. undo then redo) but the texels are identical
     g.control = now;
+    g.affine = surfaceIsAffine(s.geometry);
     const int w = i1 - i0 + 1, h = j1 - j0 + 1;
     // Rows are contiguous in the pool: one write per row of the rectangle (one in a drag).
     for (int j = j0; j <= j1; ++j) {

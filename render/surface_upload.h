@@ -54,6 +54,9 @@ struct SurfaceGpu {
     /// wholly trimmed away. insideIndexCount < 0: not split (one range, every cell).
     int insideIndexCount = -1, edgeIndexCount = 0;
     std::uint64_t splitPolygon = 0, splitClasses = 0; ///< what the split was made for
+    /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
+    /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
+    bool affine = false;
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges

@@ -4,6 +4,7 @@
 #include "render_test_util.h"
 
 #include <QGuiApplication>
+#include <map>
 
 using namespace kw;
 
@@ -82,6 +83,97 @@ private Q_SLOTS:
                                      {0, 0, 0, 0, 0.45, 0.45, 1, 1, 1, 1})));
             addScene("code: interior multiplicity", s);
         }
+    }
+
+    // Affine faces (planes) skip the Newton step onto the pixel's ray in adaptive mode
+    // (ExactSurfacePass, kw::surfaceIsAffine): their polygon's (u, v) must already be the point
+    // under the pixel, and a face that is flat but not affine, or stops being affine when a
+    // point is dragged, must still get the step. A loose tolerance (2 px) makes the polygon's
+    // own error plain: without the step, a face shows points up to that far off their rays.
+    void affineFacesShowThePointOnTheirRay() {
+        // A CAD plane (degree 1 x 1) with a hole, a plane of degree 3 x 2 on uneven knots, and
+        // the same with one inner point moved within its plane (flat, not affine).
+        Scene s;
+        Surface holed = kwtest::makeSurface(1, makePlane({-3.4, -1, 0}, {2, 0, 0.8}, {0, 2, 0}), 1);
+        holed.trims.push_back(kwtest::loopOf(2, {makeCircle2({0.5, 0.5}, 0.3, true)}));
+        s.surfaces.push_back(holed);
+        NurbsSurface high;
+        high.degreeU = 3;
+        high.degreeV = 2;
+        high.countU = 6;
+        high.countV = 4;
+        high.knotsU = {0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1};
+        high.knotsV = {0, 0, 0, 0.3, 1, 1, 1};
+        for (int j = 0; j < high.countV; ++j)
+            for (int i = 0; i < high.countU; ++i) {
+                double xi = 0.0, eta = 0.0;
+                for (int k = 1; k <= 3; ++k)
+                    xi += high.knotsU[size_t(i + k)] / 3.0;
+                for (int k = 1; k <= 2; ++k)
+                    eta += high.knotsV[size_t(j + k)] / 2.0;
+                high.points.push_back(glm::dvec3(-1.0 + 2.0 * xi, -1.0 + 2.0 * eta, -0.6 * xi));
+                high.weights.push_back(1.0);
+            }
+        s.surfaces.push_back(kwtest::makeSurface(3, high, 1));
+        NurbsSurface flat = high;
+        for (glm::dvec3& p : flat.points)
+            p.x += 2.4, p.z += 0.6;
+        const int inner = flat.index(2, 1);
+        flat.points[size_t(inner)] += glm::dvec3(0.5, 0.3, -0.3);
+        s.surfaces.push_back(kwtest::makeSurface(4, flat, 1));
+        s.nextId = 5;
+        s.camera.eye = glm::dvec3(0.5, -6.0, 7.0);
+        s.camera.target = glm::dvec3(0.0);
+        s.camera.up = glm::dvec3(0.0, 0.0, 1.0);
+        s.camera.authored = true;
+        Document doc;
+        QString error;
+        QVERIFY2(doc.resetScene(s, &error), qPrintable(error));
+        RenderOptions opt;
+        opt.partitioning = RenderOptions::Partitioning::Adaptive;
+        opt.pixelTolerance = 2.0;
+        // Per surface id: covered pixels and the farthest ray offset in pixels. Pixels showing
+        // a point on the domain's edge are left out: there the skirts reach up to
+        // kSkirtReachPixels past it and show the edge's point (ExactSurfacePass).
+        const auto offsets = [&](std::map<int, std::pair<int, double>>& out) {
+            QString e;
+            QVERIFY2(m_renderer->render(doc, doc.scene().camera, opt, &e), qPrintable(e));
+            const AovBuffer aov = m_renderer->aov();
+            const glm::dmat4 vp(frameCamera(doc.scene().camera, doc.scene(), 1.0).viewProjection);
+            for (int y = 0; y < aov.height; ++y)
+                for (int x = 0; x < aov.width; ++x) {
+                    const float* a = aov.pixel(x, y);
+                    if (a[0] < 0.0f || std::min({a[1], a[2], 1.0f - a[1], 1.0f - a[2]}) < 1e-6f)
+                        continue;
+                    const glm::dvec2 at = kwtest::windowPixels(vp, glm::dvec3(a[3], a[4], a[5]),
+                                                               glm::dvec2(aov.width, aov.height));
+                    auto& [n, worst] = out[int(a[0])];
+                    ++n;
+                    worst = std::max(worst,
+                                     glm::length(at - glm::dvec2(x + 0.5, aov.height - y - 0.5)));
+                }
+            for (const auto& [id, r] : out)
+                qInfo("surface %d: %d pixels, farthest %.4f px off its ray", id, r.first, r.second);
+        };
+        std::map<int, std::pair<int, double>> before;
+        offsets(before);
+        QCOMPARE(m_renderer->lastReport().partitions.affineSurfaces, 2);
+        QCOMPARE(int(before.size()), 3);
+        for (const auto& [id, r] : before) {
+            QVERIFY2(r.first > 5000, qPrintable(QString("surface %1").arg(id)));
+            // The affine faces' points are their pixels' (float rounding aside); the flat one's
+            // come from the Newton step, quadratically close.
+            QVERIFY2(r.second < (id == 4 ? 0.1 : 0.02), qPrintable(QString("surface %1").arg(id)));
+        }
+        // A drag bends the degree 3 x 2 plane: the step comes back for it.
+        const int k = high.index(3, 2);
+        QVERIFY(doc.setControlPoints(SurfaceId{3}, {k},
+                                     {high.points[size_t(k)] + glm::dvec3(0.0, 0.0, 0.8)}));
+        std::map<int, std::pair<int, double>> after;
+        offsets(after);
+        QCOMPARE(m_renderer->lastReport().partitions.affineSurfaces, 1);
+        QVERIFY(after[3].first > 5000);
+        QVERIFY(after[3].second < 0.1);
     }
 
     // Exact visibility in a close-up with the eye inside the scene's bounds (issue 10 item

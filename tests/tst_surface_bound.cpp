@@ -115,6 +115,7 @@ private Q_SLOTS:
     void chosenBreaksMeetTolerance();
     void breaksStayCoarseOffScreen();
     void breaksMeetWhereUniformCannot();
+    void affineSurfacesAreTheirPolygon();
 };
 
 void TstSurfaceBound::secondDerivativesWithinBoundEverywhere() {
@@ -432,6 +433,67 @@ void TstSurfaceBound::breaksMeetWhereUniformCannot() {
     QVERIFY(cells(view.breaks) <= std::int64_t(kMaxPartitions) * kMaxPartitions);
     const double measured = view.measuredOnScreen();
     QVERIFY2(measured <= 0.5, qPrintable(QString("measured %1 px").arg(measured)));
+}
+
+void TstSurfaceBound::affineSurfacesAreTheirPolygon() {
+    // surfaceIsAffine lets the exact shader skip the Newton step onto the pixel's ray
+    // (ExactSurfacePass): it must hold only where the polygon's point at each (u, v) is the
+    // surface's, and hold for the planes CAD files bring.
+    const auto deviation = [](const NurbsSurface& s) {
+        const Interval du = surfaceDomainU(s), dv = surfaceDomainV(s);
+        double worst = 0.0;
+        for (int i = 0; i < 3; ++i) // a 3 x 3 grid of cells over the domain
+            for (int j = 0; j < 3; ++j) {
+                const double a = du.first + (du.last - du.first) * i / 3.0;
+                const double b = dv.first + (dv.last - dv.first) * j / 3.0;
+                worst = std::max(worst, measuredCellDeviation(s, a, a + (du.last - du.first) / 3, b,
+                                                              b + (dv.last - dv.first) / 3));
+            }
+        return worst;
+    };
+    // A CAD plane: a degree 1 x 1 rectangle, far from the origin.
+    const NurbsSurface plane = makePlane({1e3, -2e3, 5.0}, {4.0, 1.0, 0.0}, {0.0, 0.5, 3.0});
+    QVERIFY(surfaceIsAffine(plane));
+    QVERIFY(deviation(plane) < 1e-9);
+    // A plane of degree 3 x 2 on uneven knots, its points at the Greville abscissae.
+    NurbsSurface high;
+    high.degreeU = 3;
+    high.degreeV = 2;
+    high.countU = 6;
+    high.countV = 4;
+    high.knotsU = {0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1};
+    high.knotsV = {-1, -1, -1, 0.5, 3, 3, 3};
+    const glm::dvec3 a(0.5, 1.0, -2.0), b(3.0, 0.0, 1.0), c(0.0, 2.0, 0.5);
+    for (int j = 0; j < high.countV; ++j)
+        for (int i = 0; i < high.countU; ++i) {
+            double xi = 0.0, eta = 0.0;
+            for (int k = 1; k <= 3; ++k)
+                xi += high.knotsU[size_t(i + k)] / 3.0;
+            for (int k = 1; k <= 2; ++k)
+                eta += high.knotsV[size_t(j + k)] / 2.0;
+            high.points.push_back(a + b * xi + c * eta);
+            high.weights.push_back(2.5);
+        }
+    QVERIFY(surfaceValidationError(high).empty());
+    QVERIFY(surfaceIsAffine(high));
+    QVERIFY(deviation(high) < 1e-12);
+    // The same plane with one inner point moved within it: still flat, but the polygon's
+    // (u, v) is no longer the surface's, so the polygon's point is not the one at its (u, v).
+    NurbsSurface moved = high;
+    moved.points[size_t(moved.index(2, 1))] += 0.3 * b;
+    QVERIFY(!surfaceIsAffine(moved));
+    QVERIFY(deviation(moved) > 1e-3);
+    // Equal weights matter: a plane with one weight changed is projective, not affine.
+    NurbsSurface weighted = high;
+    weighted.weights[size_t(weighted.index(3, 2))] = 3.0;
+    QVERIFY(!surfaceIsAffine(weighted));
+    QVERIFY(deviation(weighted) > 1e-3);
+    // A bilinear patch whose net is no parallelogram, a sphere, and a net of one point.
+    const NurbsSurface twisted = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.2});
+    QVERIFY(!surfaceIsAffine(twisted));
+    QVERIFY(deviation(twisted) > 1e-3);
+    QVERIFY(!surfaceIsAffine(makeSphere({0, 0, 0}, 2.0)));
+    QVERIFY(!surfaceIsAffine(makePlane({1, 2, 3}, {0, 0, 0}, {0, 0, 0})));
 }
 
 QTEST_GUILESS_MAIN(TstSurfaceBound)
