@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/nurbs.h"
+#include "model/nurbs_shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,6 +96,18 @@ inline double randomInSpan(std::mt19937& rng, const std::vector<double>& knots, 
     const double b = knots[size_t(k + 1)];
     spanWidth = b - a;
     return a + (b - a) * std::uniform_real_distribution<double>(margin, 1.0 - margin)(rng);
+}
+
+/// The plane makePlane(origin, edgeU, edgeV) elevated to degree 3 x 2 and refined at u = 0.2,
+/// 0.7 and v = 0.3, as the editor's commands do: the same plane with 6 x 4 control points on
+/// uneven knots (an affine surface of higher degree, kw::surfaceIsAffine).
+inline kw::NurbsSurface refinedPlane(const glm::dvec3& origin, const glm::dvec3& edgeU,
+                                     const glm::dvec3& edgeV) {
+    using namespace kw;
+    NurbsSurface s =
+        surfaceElevateDegreeV(surfaceElevateDegreeU(makePlane(origin, edgeU, edgeV), 2), 1);
+    s = surfaceInsertKnotU(surfaceInsertKnotU(s, 0.2), 0.7);
+    return surfaceInsertKnotV(s, 0.3);
 }
 
 /// Diagonal of the control-point bounds: the length scale for relative tolerances.

@@ -178,6 +178,17 @@ inline glm::dvec2 windowPixels(const glm::dmat4& viewProjection, const glm::dvec
     return (glm::dvec2(c) / c.w * 0.5 + 0.5) * size;
 }
 
+/// How far in pixels the point a covered AOV pixel (x, y) shows (its position channels)
+/// projects from the pixel's centre under `viewProjection`: 0 for the point truly under it.
+/// (AOV rows run top-down, window y up.)
+inline double rayOffsetPixels(const kw::AovBuffer& aov, int x, int y,
+                              const glm::dmat4& viewProjection) {
+    const float* a = aov.pixel(x, y);
+    const glm::dvec2 at = windowPixels(viewProjection, glm::dvec3(a[3], a[4], a[5]),
+                                       glm::dvec2(aov.width, aov.height));
+    return glm::length(at - glm::dvec2(x + 0.5, aov.height - y - 0.5));
+}
+
 /// The camera of `fit` moved towards the surface point at (u, v) of `s`, `zoom` times closer.
 inline kw::Camera zoomedOn(const kw::Camera& fit, const kw::Surface& s, glm::dvec2 uv,
                            double zoom) {

@@ -1,5 +1,6 @@
 // GL test: the exact renderer's AOV (position, normal at each pixel's (u, v)) against the CPU
 // kernel, for every sample and for scenes built in code (poles, high degree, multiplicities).
+#include "kernel_test_util.h"
 #include "model/nurbs_shapes.h"
 #include "render_test_util.h"
 
@@ -97,23 +98,7 @@ private Q_SLOTS:
         Surface holed = kwtest::makeSurface(1, makePlane({-3.4, -1, 0}, {2, 0, 0.8}, {0, 2, 0}), 1);
         holed.trims.push_back(kwtest::loopOf(2, {makeCircle2({0.5, 0.5}, 0.3, true)}));
         s.surfaces.push_back(holed);
-        NurbsSurface high;
-        high.degreeU = 3;
-        high.degreeV = 2;
-        high.countU = 6;
-        high.countV = 4;
-        high.knotsU = {0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1};
-        high.knotsV = {0, 0, 0, 0.3, 1, 1, 1};
-        for (int j = 0; j < high.countV; ++j)
-            for (int i = 0; i < high.countU; ++i) {
-                double xi = 0.0, eta = 0.0;
-                for (int k = 1; k <= 3; ++k)
-                    xi += high.knotsU[size_t(i + k)] / 3.0;
-                for (int k = 1; k <= 2; ++k)
-                    eta += high.knotsV[size_t(j + k)] / 2.0;
-                high.points.push_back(glm::dvec3(-1.0 + 2.0 * xi, -1.0 + 2.0 * eta, -0.6 * xi));
-                high.weights.push_back(1.0);
-            }
+        const NurbsSurface high = kwtest::refinedPlane({-1, -1, 0}, {2, 0, -0.6}, {0, 2, 0});
         s.surfaces.push_back(kwtest::makeSurface(3, high, 1));
         NurbsSurface flat = high;
         for (glm::dvec3& p : flat.points)
@@ -145,12 +130,9 @@ private Q_SLOTS:
                     const float* a = aov.pixel(x, y);
                     if (a[0] < 0.0f || std::min({a[1], a[2], 1.0f - a[1], 1.0f - a[2]}) < 1e-6f)
                         continue;
-                    const glm::dvec2 at = kwtest::windowPixels(vp, glm::dvec3(a[3], a[4], a[5]),
-                                                               glm::dvec2(aov.width, aov.height));
                     auto& [n, worst] = out[int(a[0])];
                     ++n;
-                    worst = std::max(worst,
-                                     glm::length(at - glm::dvec2(x + 0.5, aov.height - y - 0.5)));
+                    worst = std::max(worst, kwtest::rayOffsetPixels(aov, x, y, vp));
                 }
             for (const auto& [id, r] : out)
                 qInfo("surface %d: %d pixels, farthest %.4f px off its ray", id, r.first, r.second);
@@ -290,13 +272,10 @@ private Q_SLOTS:
         double worst = 0.0;
         for (int y = 0; y < aov.height; ++y)
             for (int x = 0; x < aov.width; ++x) {
-                const float* a = aov.pixel(x, y);
-                if (a[0] < 0.0f)
+                if (aov.pixel(x, y)[0] < 0.0f)
                     continue;
                 ++covered;
-                const glm::dvec2 at = kwtest::windowPixels(vp, glm::dvec3(a[3], a[4], a[5]),
-                                                           glm::dvec2(aov.width, aov.height));
-                const double d = glm::length(at - glm::dvec2(x + 0.5, aov.height - y - 0.5));
+                const double d = kwtest::rayOffsetPixels(aov, x, y, vp);
                 off += d > opt.pixelTolerance + 0.05;
                 if (d > worst)
                     worst = d, worstX = x, worstY = y;

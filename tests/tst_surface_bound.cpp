@@ -455,28 +455,19 @@ void TstSurfaceBound::affineSurfacesAreTheirPolygon() {
     const NurbsSurface plane = makePlane({1e3, -2e3, 5.0}, {4.0, 1.0, 0.0}, {0.0, 0.5, 3.0});
     QVERIFY(surfaceIsAffine(plane));
     QVERIFY(deviation(plane) < 1e-9);
-    // A plane of degree 3 x 2 on uneven knots, its points at the Greville abscissae.
-    NurbsSurface high;
-    high.degreeU = 3;
-    high.degreeV = 2;
-    high.countU = 6;
-    high.countV = 4;
-    high.knotsU = {0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1};
-    high.knotsV = {-1, -1, -1, 0.5, 3, 3, 3};
-    const glm::dvec3 a(0.5, 1.0, -2.0), b(3.0, 0.0, 1.0), c(0.0, 2.0, 0.5);
-    for (int j = 0; j < high.countV; ++j)
-        for (int i = 0; i < high.countU; ++i) {
-            double xi = 0.0, eta = 0.0;
-            for (int k = 1; k <= 3; ++k)
-                xi += high.knotsU[size_t(i + k)] / 3.0;
-            for (int k = 1; k <= 2; ++k)
-                eta += high.knotsV[size_t(j + k)] / 2.0;
-            high.points.push_back(a + b * xi + c * eta);
-            high.weights.push_back(2.5);
-        }
+    // A plane elevated to degree 3 x 2 and refined on uneven knots, and the same with every
+    // weight 2.5 (equal weights cancel).
+    const glm::dvec3 b(3.0, 0.0, 1.0);
+    const NurbsSurface high = kwtest::refinedPlane({0.5, 1.0, -2.0}, b, {0.0, 2.0, 0.5});
+    QCOMPARE(high.countU, 6);
+    QCOMPARE(high.countV, 4);
     QVERIFY(surfaceValidationError(high).empty());
     QVERIFY(surfaceIsAffine(high));
     QVERIFY(deviation(high) < 1e-12);
+    NurbsSurface heavy = high;
+    for (double& w : heavy.weights)
+        w = 2.5;
+    QVERIFY(surfaceIsAffine(heavy));
     // The same plane with one inner point moved within it: still flat, but the polygon's
     // (u, v) is no longer the surface's, so the polygon's point is not the one at its (u, v).
     NurbsSurface moved = high;
