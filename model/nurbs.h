@@ -68,6 +68,10 @@ void basisFunctionDerivatives(int span, double u, int degree, int order,
                               const std::vector<double>& knots, double* out);
 
 Interval knotDomain(const std::vector<double>& knots, int degree);
+/// The Greville abscissa of control point i (degree >= 1, knots valid for it): the average of
+/// knots i + 1 .. i + degree, where the point has most influence; B-splines reproduce linear
+/// functions through them (sum of xi_i N_i(u) = u).
+double grevilleAbscissa(const std::vector<double>& knots, int degree, int i);
 
 // ---- Surface evaluation. Preconditions: a valid surface; (u, v) is clamped to the domain.
 

@@ -6,6 +6,13 @@
 
 namespace kw {
 
+double grevilleAbscissa(const std::vector<double>& knots, int degree, int i) {
+    double sum = 0.0;
+    for (int k = 1; k <= degree; ++k)
+        sum += knots[size_t(i + k)];
+    return sum / double(degree);
+}
+
 Interval knotDomain(const std::vector<double>& knots, int degree) {
     // Domain [u_p, u_{m-p}] with m = knots.size() - 1. A knot vector too short for the degree
     // (invalid, see knotVectorError) yields its own first and last knot, or [0, 0] if empty.

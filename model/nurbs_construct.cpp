@@ -574,10 +574,7 @@ NurbsCurve2 curve2RemovePoint(const NurbsCurve2& c, int index) {
     const int p = c.degree;
     if (n - 1 >= p + 1) {
         // Drop the interior knot nearest the Greville abscissa of the removed point.
-        double greville = 0.0;
-        for (int k = 1; k <= p; ++k)
-            greville += c.knots[size_t(index + k)];
-        greville /= double(p);
+        const double greville = grevilleAbscissa(c.knots, p, index);
         int best = -1;
         for (int k = p + 1; k < n; ++k) // interior knots: indices p + 1 .. n - 1
             if (best < 0 || std::abs(c.knots[size_t(k)] - greville) <

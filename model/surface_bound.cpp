@@ -227,16 +227,6 @@ double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dv
     return best;
 }
 
-namespace {
-/// The Greville abscissa of control point i of a degree-p knot vector.
-double greville(const std::vector<double>& knots, int p, int i) {
-    double sum = 0.0;
-    for (int k = 1; k <= p; ++k)
-        sum += knots[size_t(i + k)];
-    return sum / double(p);
-}
-} // namespace
-
 bool surfaceIsAffine(const NurbsSurface& s, double relTolerance) {
     const int n = s.countU, m = s.countV;
     if (n < 2 || m < 2 || s.points.size() != size_t(n) * size_t(m) ||
@@ -254,9 +244,9 @@ bool surfaceIsAffine(const NurbsSurface& s, double relTolerance) {
         return false;
     std::vector<double> xi(static_cast<size_t>(n)), eta(static_cast<size_t>(m));
     for (int i = 0; i < n; ++i)
-        xi[size_t(i)] = greville(s.knotsU, s.degreeU, i);
+        xi[size_t(i)] = grevilleAbscissa(s.knotsU, s.degreeU, i);
     for (int j = 0; j < m; ++j)
-        eta[size_t(j)] = greville(s.knotsV, s.degreeV, j);
+        eta[size_t(j)] = grevilleAbscissa(s.knotsV, s.degreeV, j);
     const double spanU = xi.back() - xi.front(), spanV = eta.back() - eta.front();
     if (!(spanU > 0.0) || !(spanV > 0.0))
         return false;
