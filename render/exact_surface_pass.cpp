@@ -297,7 +297,6 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
     m_places.reserve(scene.records().size());
     m_culled = 0;
     m_trimmedAway = 0;
-    m_affine = 0;
     for (const SurfaceRecord* r : scene.records()) {
         Commands cs;
         Place p = classify(*r, key, camera, cs);
@@ -329,7 +328,6 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                 b.affine = (p.variant >> 12) & 1;
                 b.cullFace = cullFaceOf(p.face);
             }
-            m_affine += b.affine ? 1 : 0;
             p.index = int(b.commands.size());
             b.commands.push_back(c);
             if (p.edgeVariant >= 0) {
@@ -502,7 +500,6 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
-    affineSurfaces = m_affine;
     solidsBackCulled += int(m_backCulled.size());
     // What the pre-pass tests the trims on, and what the split leaves out (per frame: the
     // batches may have been patched).
@@ -513,6 +510,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                 trimTestedCells += c.count / 6;
         trimmedAwayCells = m_trimmedAway;
     }
+    affineSurfaces = 0; // each drawn record has one command in m_variants
+    for (const auto& [k, b] : m_variants)
+        affineSurfaces += b.affine ? int(b.commands.size()) : 0;
     if (m_variants.empty())
         return true; // nothing to draw
     std::map<int, Batch>& variants = m_variants;

@@ -275,7 +275,6 @@ private:
     std::unordered_map<const SurfaceRecord*, Place> m_places;
     std::int64_t m_trimmedAway = 0; ///< the batches' Place::awayCells, summed
     int m_culled = 0;
-    int m_affine = 0; ///< the batches' surfaces with the affine bit
 
     /// One record's fins and what they were built for.
     struct Fins {
