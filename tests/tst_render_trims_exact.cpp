@@ -173,9 +173,10 @@ private Q_SLOTS:
         QTest::addRow("trimmed_plate 64x, 8 KiB budget")
             << "trimmed_plate" << 64.0 << 8 << 0 << 0.5;
         // Near either end of a quarter circle, where it turns into a straight edge: one of its
-        // coordinates nears its extremum, so the root the GPU takes for a conic's piece
-        // (shaders/trim_exact.glsl) nears the quadratic's other root, and the arc's slope
-        // magnifies any error in it. (Right at the ends the view holds too little cut away.)
+        // coordinates nears its extremum, so the GPU's root find on the piece
+        // (shaders/trim_exact.glsl) works where the arc's slope along the solved axis nears
+        // zero, its least well-conditioned place. (Right at the ends the view holds too little
+        // cut away.)
         for (double along : {0.1, 0.9})
             QTest::addRow("trimmed_plate arc at %g, 512x", along)
                 << "trimmed_plate" << 512.0 << 0 << 0 << along;
