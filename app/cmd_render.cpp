@@ -362,13 +362,15 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
                                       "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
-                                      "surfaces drawn as their polygon\n")
+                                      "surfaces drawn as their polygon, %7 surfaces shaded by "
+                                      "the deferred pass\n")
                            .arg(files[0])
                            .arg(parts.cells)
                            .arg(parts.worstBoundPixels, 0, 'f', 3)
                            .arg(options.pixelTolerance)
                            .arg(parts.skirtTriangles)
                            .arg(parts.affineSurfaces)
+                           .arg(parts.deferredSurfaces)
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])
                            .arg(parts.cells));

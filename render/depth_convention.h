@@ -15,6 +15,9 @@ inline constexpr GLenum kDepthNearerOrEqual = GL_GEQUAL;
 inline constexpr GLfloat kFarDepth = 0.0f;
 /// The depth format of Knotwork's own framebuffers (off-screen, pick, anti-aliasing).
 inline constexpr GLenum kDepthFormat = GL_DEPTH_COMPONENT32F;
+/// The same with an 8-bit stencil (8 bytes a pixel), for the framebuffers aliased frames are
+/// drawn into (off-screen, float-depth): the deferred exact pass routes pixels by stencil.
+inline constexpr GLenum kDepthStencilFormat = GL_DEPTH32F_STENCIL8;
 
 /// Switches the clip range to zero-to-one for a frame, and back to GL's default after it (the
 /// host, e.g. QPainter on the same context, expects the default).

@@ -21,9 +21,21 @@ namespace {
 constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray; exact mode's
                                     // grids are on kTrimGridUnit)
 constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
+// The deferred pass: the pre-pass's texture (exact_surface.frag kwPrepass) and the vertex pool
+// (KwVertices); the pre-pass writes its texture at this colour attachment of the frame's
+// framebuffer, the last of the 8 every GL 4.5 context has.
+constexpr int kPrepassUnit = 11;
+constexpr int kVertexStorageBinding = 1;
+constexpr int kPrepassAttachment = 7;
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
     return r.mask.usable() ? &r.mask : nullptr;
+}
+
+double deferMaxCellPixels() {
+    if (const char* e = std::getenv("KW_DEFER_MAX_CELL_PX"))
+        return std::atof(e);
+    return ExactSurfacePass::kDeferMaxCellPixels;
 }
 
 double gatherMinCellPixels() {
@@ -52,7 +64,8 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
 }
 
 double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
-                                                const glm::vec3& hi, const FrameCamera& camera) {
+                                                const glm::vec3& hi, const FrameCamera& camera,
+                                                bool clampToView) {
     const int cells = g.polygon.cellCount();
     if (cells <= 0)
         return 0.0;
@@ -66,8 +79,10 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const glm::
         smin = glm::min(smin, ndc);
         smax = glm::max(smax, ndc);
     }
-    smin = glm::clamp(smin, glm::vec2(-1.0f), glm::vec2(1.0f));
-    smax = glm::clamp(smax, glm::vec2(-1.0f), glm::vec2(1.0f));
+    if (clampToView) {
+        smin = glm::clamp(smin, glm::vec2(-1.0f), glm::vec2(1.0f));
+        smax = glm::clamp(smax, glm::vec2(-1.0f), glm::vec2(1.0f));
+    }
     const glm::vec2 extent =
         glm::max(smax - smin, glm::vec2(0.0f)) * 0.5f * glm::vec2(camera.viewport);
     return double(extent.x) * double(extent.y) / double(cells);
@@ -79,6 +94,7 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
     fins = qEnvironmentVariable("KW_FINS") != QLatin1String("0");
     skipAffineNewton = qEnvironmentVariable("KW_AFFINE") != QLatin1String("0");
+    deferred = qEnvironmentVariable("KW_DEFERRED") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
@@ -218,8 +234,15 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     const bool lookUp = mask && !key.prepass;
     // The gather pays only where a cell covers many fragments: on small cells its flat
     // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-    const bool gather = r.bounded && projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) >=
-                                         key.minCellPixels;
+    const double cellPixels =
+        r.bounded ? projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) : 0.0;
+    const bool gather = cellPixels >= key.minCellPixels;
+    // Large cells the forward way (exact_surface_pass.h, kDeferMaxCellPixels). The cells'
+    // size on screen, not clamped to the view: in a close-up most of them lie outside it,
+    // and those inside are the large ones.
+    const bool forward =
+        key.deferred && (!r.bounded || projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera,
+                                                              false) >= key.deferMaxCellPixels);
     // A closed solid seen from outside: the triangles facing away from the eye are hidden by
     // its faces in front (chooseBackCulled).
     const int solid = r.surface ? r.surface->solid : -1;
@@ -228,7 +251,8 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     // The polygon is the surface (planes): in adaptive mode its (u, v) is already the point
     // under the pixel, and the Newton step would only evaluate the surface once more.
     const bool affine = key.adaptive && skipAffineNewton && g->affine;
-    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12;
+    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
+                int(forward) << 13;
     if (mask)
         p.edgeVariant = degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12;
     if (key.skirts && g->skirtIndexOffset >= 0) {
@@ -284,10 +308,8 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                                     const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
     // bits each), trimmed, gather, the side culled (Place::face), affine.
-    for (int f = 0; f < 3; ++f)
-        m_plain[f] = Batch{};
-    m_plain[1].cullFace = GL_BACK;
-    m_plain[2].cullFace = GL_FRONT;
+    m_plain.clear();
+    m_routes.clear();
     chooseBackCulled(scene, key, camera);
     m_trimmedPre.clear();
     m_variants.clear();
@@ -303,20 +325,31 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         const DrawCommand& c = cs.all;
         if (p.drawn && !p.culled) {
             if (key.prepass) {
-                Batch& pre = p.prepassTrimmed ? m_trimmedPre[p.prepassKey()] : m_plain[p.face];
+                const auto plain = [&]() -> Batch& {
+                    Batch& b = m_plain[p.plainKey(key.deferred)];
+                    b.cullFace = cullFaceOf(p.face);
+                    b.route = p.route();
+                    return b;
+                };
+                Batch& pre =
+                    p.prepassTrimmed ? m_trimmedPre[p.trimmedPreKey(key.deferred)] : plain();
                 if (p.prepassTrimmed && pre.commands.empty()) {
                     pre.trimmed = true;
                     pre.cullFace = cullFaceOf(p.face);
                     pre.degreeU = r->exact->degreeU;
                     pre.degreeV = r->exact->degreeV;
                     pre.affine = (p.variant >> 12) & 1;
+                    pre.route = p.route();
                 }
                 p.prepassIndex = int(pre.commands.size());
                 pre.commands.push_back(p.split ? cs.edge : c);
                 if (p.split) {
-                    p.insideIndex = int(m_plain[p.face].commands.size());
-                    m_plain[p.face].commands.push_back(cs.inside);
+                    Batch& inside = plain();
+                    p.insideIndex = int(inside.commands.size());
+                    inside.commands.push_back(cs.inside);
                 }
+                if (key.deferred && p.route() >= 0)
+                    addToRoute(p.route(), *r, camera);
             }
             Batch& b = m_variants[p.variant];
             if (b.commands.empty()) {
@@ -358,7 +391,12 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
         m_trimmedAway += p.awayCells;
         m_places[r] = p;
     }
-    std::vector<Batch*> batches{&m_plain[0], &m_plain[1], &m_plain[2]};
+    int stencil = 0;
+    for (auto& [k, route] : m_routes)
+        route.stencil = ++stencil;
+    std::vector<Batch*> batches;
+    for (auto& [k, b] : m_plain)
+        batches.push_back(&b);
     for (auto& [k, b] : m_trimmedPre)
         batches.push_back(&b);
     for (auto& [k, b] : m_variants)
@@ -404,14 +442,17 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
         };
         patch(m_variants.at(now.variant), was.index, c);
         if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmedPre.at(was.prepassKey()) : m_plain[was.face],
+            patch(was.prepassTrimmed ? m_trimmedPre.at(was.trimmedPreKey(key.deferred))
+                                     : m_plain.at(was.plainKey(key.deferred)),
                   was.prepassIndex, was.split ? cs.edge : c);
         if (was.split)
-            patch(m_plain[was.face], was.insideIndex, cs.inside);
+            patch(m_plain.at(was.plainKey(key.deferred)), was.insideIndex, cs.inside);
         if (was.edgeVariant >= 0)
             patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
         if (was.skirtVariant >= 0)
             patch(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
+        if (key.deferred && was.route() >= 0)
+            addToRoute(was.route(), *r, camera); // grown only: it may have moved
         m_trimmedAway += now.awayCells - was.awayCells;
         it->second.awayCells = now.awayCells;
     }
@@ -423,18 +464,26 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
     return true;
 }
 
-bool ExactSurfacePass::depthPrepass(Batch (&plain)[3], std::map<int, Batch>& trimmed,
+int ExactSurfacePass::stencilOf(const Batch& b) const {
+    return b.route >= 0 ? m_routes.at(b.route).stencil : 0;
+}
+
+bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, Batch>& trimmed,
                                     const GpuScene& scene, const FrameCamera& camera,
                                     const std::vector<Light>& lights, bool antialiased, bool atRay,
-                                    QString* error) {
+                                    bool deferred, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QStringList trimDefines = scene.trimMasks().trimDefines();
     if (antialiased)
         trimDefines << QStringLiteral("KW_TRIM_AA");
-    gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const QStringList output = deferred ? QStringList{QStringLiteral("KW_GBUFFER")} : QStringList{};
+    if (!deferred)
+        gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(kDepthNearer);
-    std::vector<Batch*> batches{&plain[0], &plain[1], &plain[2]};
+    std::vector<Batch*> batches;
+    for (auto& [k, b] : plain)
+        batches.push_back(&b);
     for (auto& [k, b] : trimmed)
         batches.push_back(&b);
     bool ok = true;
@@ -444,14 +493,14 @@ bool ExactSurfacePass::depthPrepass(Batch (&plain)[3], std::map<int, Batch>& tri
             continue;
         const bool onRay = b->trimmed && atRay && !b->affine;
         QOpenGLShaderProgram* prog =
-            onRay ? m_shaders->program(QStringLiteral("surface.vert"),
-                                       QStringLiteral("exact_surface.frag"),
-                                       degreeDefines(b->degreeU, b->degreeV, int(lights.size()))
-                                           << QStringLiteral("KW_RAY_NEWTON")
-                                           << QStringLiteral("KW_DEPTH_ONLY") << trimDefines)
+            onRay ? m_shaders->program(
+                        QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                        degreeDefines(b->degreeU, b->degreeV, int(lights.size()))
+                            << QStringLiteral("KW_RAY_NEWTON") << QStringLiteral("KW_DEPTH_ONLY")
+                            << trimDefines << output)
                   : m_shaders->program(QStringLiteral("surface.vert"),
                                        QStringLiteral("depth_only.frag"),
-                                       b->trimmed ? trimDefines : QStringList{});
+                                       (b->trimmed ? trimDefines : QStringList{}) << output);
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -465,7 +514,44 @@ bool ExactSurfacePass::depthPrepass(Batch (&plain)[3], std::map<int, Batch>& tri
                                    glm::value_ptr(drawnViewProjection(camera)));
         if (b->trimmed)
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        // A stencil write with a discard in the shader would move llvmpipe's depth test after
+        // the shader: the trimmed batches write theirs in a second pass below.
+        if (deferred && b->trimmed)
+            gl->glDisable(GL_STENCIL_TEST);
+        else if (deferred)
+            gl->glStencilFunc(GL_ALWAYS, stencilOf(*b), 0xff);
+        // The forward pass's surfaces (no route) need no input for the deferred pass.
+        const GLboolean write = deferred && b->route >= 0 ? GL_TRUE : GL_FALSE;
+        if (deferred)
+            gl->glColorMask(write, write, write, write);
         drawBatch(*b);
+        if (deferred && b->trimmed)
+            gl->glEnable(GL_STENCIL_TEST);
+    }
+    if (ok && deferred && !trimmed.empty()) {
+        // The trimmed batches' stencil: drawn again without the trim test, on the pixels
+        // whose depth they left (GL_EQUAL before the shader: early).
+        QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("surface.vert"),
+                                                        QStringLiteral("depth_only.frag"), {});
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+        } else {
+            prog->bind();
+            gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
+                                   glm::value_ptr(drawnViewProjection(camera)));
+            gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            gl->glDepthFunc(GL_EQUAL);
+            gl->glDepthMask(GL_FALSE);
+            for (auto& [k, b] : trimmed) {
+                if (b.route < 0)
+                    continue; // drawn the forward way: no stencil needed (deferredPass)
+                gl->glStencilFunc(GL_ALWAYS, stencilOf(b), 0xff);
+                drawBatch(b);
+            }
+            gl->glDepthFunc(kDepthNearer);
+            gl->glDepthMask(GL_TRUE);
+        }
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     return ok;
@@ -484,6 +570,12 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     // surfaces' partly covered pixels belong to the edge pass (docs/RENDERING.md, "Skirts").
     const bool skirts = options.edgeSkirts && aa == nullptr &&
                         options.partitioning == RenderOptions::Partitioning::Adaptive;
+    // The deferred exact pass: each pixel shaded once however small the cells (docs/
+    // RENDERING.md, "The deferred exact pass"). The pre-pass's batches are then split by route.
+    glm::ivec2 targetSize{0};
+    const bool deferredWanted = deferred && options.deferredPass && prepass && aa == nullptr &&
+                                options.partitioning == RenderOptions::Partitioning::Adaptive &&
+                                (targetSize = deferredTargetSize()) != glm::ivec2(0);
     const CacheKey key{&scene,
                        scene.layoutStamp(),
                        scene.marksRevision(),
@@ -496,7 +588,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        skirts,
                        options.skipBackFaces,
                        options.partitioning == RenderOptions::Partitioning::Adaptive,
-                       gatherMinCellPixels()};
+                       gatherMinCellPixels(),
+                       deferMaxCellPixels(),
+                       deferredWanted};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
     culled += m_culled;
@@ -523,19 +617,75 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     bool ok = true;
+    // One stencil value per route, 1..255 (0: no surface); none when every surface has large
+    // cells (a close-up): then the forward way alone, without the deferred pass's set-up.
+    const bool defer = deferredWanted && !m_routes.empty() && m_routes.size() <= 255;
+    deferredSurfaces = 0;
+    if (defer)
+        for (const auto& [k, b] : variants)
+            deferredSurfaces += (k >> 13) & 1 ? 0 : int(b.commands.size());
+    GLint framebuffer = 0;
+    std::vector<GLenum> drawBuffers;
+    if (defer) {
+        gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+        if (m_prepassSize != targetSize) {
+            releaseDeferred();
+            gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_prepassTexture);
+            gl->glTextureStorage2D(m_prepassTexture, 1, GL_RGBA32UI, targetSize.x, targetSize.y);
+            // An integer texture is complete only with nearest filtering.
+            gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            m_prepassSize = targetSize;
+        }
+        GLint count = 0;
+        gl->glGetIntegerv(GL_MAX_DRAW_BUFFERS, &count);
+        for (int k = 0; k < count; ++k) {
+            GLint b = GL_NONE;
+            gl->glGetIntegerv(GL_DRAW_BUFFER0 + GLenum(k), &b);
+            drawBuffers.push_back(GLenum(b));
+        }
+        while (!drawBuffers.empty() && drawBuffers.back() == GL_NONE)
+            drawBuffers.pop_back();
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment);
+        gl->glNamedFramebufferTexture(GLuint(framebuffer), attachment, m_prepassTexture, 0);
+        gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), 1, &attachment);
+        const GLint zero = 0;
+        gl->glStencilMask(0xff);
+        gl->glClearBufferiv(GL_STENCIL, 0, &zero);
+        gl->glEnable(GL_STENCIL_TEST);
+        gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    }
     if (prepass) {
-        ok = depthPrepass(
-            m_plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
-            aa == nullptr && options.partitioning == RenderOptions::Partitioning::Adaptive, error);
+        ok = depthPrepass(m_plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
+                          aa == nullptr &&
+                              options.partitioning == RenderOptions::Partitioning::Adaptive,
+                          defer, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
         gl->glDepthFunc(kDepthNearer);
         gl->glDepthMask(GL_TRUE);
     }
-    if (ok)
+    if (defer) {
+        gl->glNamedFramebufferTexture(GLuint(framebuffer),
+                                      GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment), 0, 0);
+        gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), GLsizei(drawBuffers.size()),
+                                          drawBuffers.data());
+        if (ok)
+            ok = deferredPass(scene, camera, lights, options, range, error);
+        gl->glDisable(GL_STENCIL_TEST);
+        scene.bindSurfaceData();
+        // The gather variants (no route) the forward way, on the pre-pass's depth.
+        std::map<int, Batch> forward;
+        for (const auto& [k, b] : variants)
+            if ((k >> 13) & 1)
+                forward.emplace(k, b);
+        if (ok && !forward.empty())
+            ok = drawBatches(forward, TrimAa::Off, scene, camera, lights, options, range, error);
+    } else if (ok) {
         ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                          options, range, error);
+    }
     finTriangles = 0;
     if (ok && !m_skirts.empty())
         ok = skirtPass(scene, camera, lights, options, range, error);
@@ -571,6 +721,134 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
         drawBatch(b);
     }
     return true;
+}
+
+void ExactSurfacePass::addToRoute(int route, const SurfaceRecord& r, const FrameCamera& camera) {
+    Route& to = m_routes[route];
+    GLint view[4] = {0, 0, 0, 0};
+    m_gl->glGetIntegerv(GL_VIEWPORT, view);
+    const glm::vec2 origin = glm::vec2(view[0], view[1]), size = glm::vec2(view[2], view[3]);
+    glm::vec4 window(origin, origin + size); // all of the view
+    if (r.bounded) {
+        glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        bool behind = false;
+        for (int k = 0; k < 8 && !behind; ++k) {
+            const glm::vec3 c(k & 1 ? r.boundsHi.x : r.boundsLo.x,
+                              k & 2 ? r.boundsHi.y : r.boundsLo.y,
+                              k & 4 ? r.boundsHi.z : r.boundsLo.z);
+            const glm::vec4 clip = camera.viewProjection * glm::vec4(c, 1.0f);
+            behind = !(clip.w > 0.0f);
+            const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+            lo = glm::min(lo, ndc);
+            hi = glm::max(hi, ndc);
+        }
+        if (!behind) {
+            // A pixel more on each side: rounding, and the polygon's pixel centres.
+            const glm::vec2 a = origin + (glm::clamp(lo, -1.0f, 1.0f) * 0.5f + 0.5f) * size - 1.0f;
+            const glm::vec2 b = origin + (glm::clamp(hi, -1.0f, 1.0f) * 0.5f + 0.5f) * size + 1.0f;
+            window = glm::vec4(glm::max(a, origin), glm::min(b, origin + size));
+        }
+    }
+    const bool empty = to.window.z <= to.window.x || to.window.w <= to.window.y;
+    to.window = empty ? window
+                      : glm::vec4(glm::min(glm::vec2(to.window), glm::vec2(window)),
+                                  glm::max(glm::vec2(to.window.z, to.window.w),
+                                           glm::vec2(window.z, window.w)));
+}
+
+glm::ivec2 ExactSurfacePass::deferredTargetSize() const {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    GLint framebuffer = 0, attachments = 0;
+    gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    gl->glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attachments);
+    if (framebuffer == 0 || attachments <= kPrepassAttachment)
+        return glm::ivec2(0);
+    const auto attachment = [&](GLenum point, GLenum what) {
+        GLint v = 0;
+        gl->glGetNamedFramebufferAttachmentParameteriv(GLuint(framebuffer), point, what, &v);
+        return v;
+    };
+    if (attachment(GL_STENCIL_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE) < 8 ||
+        attachment(GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_TEXTURE ||
+        attachment(GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment),
+                   GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE)
+        return glm::ivec2(0);
+    // The pre-pass's texture covers the depth texture: a smaller one would shrink the
+    // framebuffer's drawable area to it.
+    const GLuint depth =
+        GLuint(attachment(GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME));
+    GLint width = 0, height = 0, samples = 0;
+    gl->glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_WIDTH, &width);
+    gl->glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_HEIGHT, &height);
+    gl->glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_SAMPLES, &samples);
+    if (samples > 1 || width <= 0 || height <= 0)
+        return glm::ivec2(0);
+    return glm::ivec2(width, height);
+}
+
+void ExactSurfacePass::releaseDeferred() {
+    if (m_gl) {
+        if (m_prepassTexture)
+            m_gl->glDeleteTextures(1, &m_prepassTexture);
+        if (m_emptyVao)
+            m_gl->glDeleteVertexArrays(1, &m_emptyVao);
+    }
+    m_prepassTexture = m_emptyVao = 0;
+    m_prepassSize = glm::ivec2(0);
+}
+
+bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& camera,
+                                    const std::vector<Light>& lights, const RenderOptions& options,
+                                    const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Each pixel's colour once: no depth test (the pre-pass left the depth), the stencil test
+    // before the shader keeps the route's pixels, and llvmpipe skips a block of pixels none of
+    // which passes it.
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    if (!m_emptyVao)
+        gl->glCreateVertexArrays(1, &m_emptyVao);
+    gl->glBindVertexArray(m_emptyVao);
+    gl->glBindTextureUnit(kPrepassUnit, m_prepassTexture);
+    gl->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexStorageBinding,
+                         scene.pools().vertices.buffer());
+    bool ok = true;
+    const GLboolean scissored = gl->glIsEnabled(GL_SCISSOR_TEST);
+    GLint scissor[4] = {0, 0, 0, 0};
+    gl->glGetIntegerv(GL_SCISSOR_BOX, scissor);
+    gl->glEnable(GL_SCISSOR_TEST);
+    for (const auto& [route, r] : m_routes) {
+        const glm::ivec4 box(glm::floor(r.window.x), glm::floor(r.window.y), glm::ceil(r.window.z),
+                             glm::ceil(r.window.w));
+        if (box.z <= box.x || box.w <= box.y)
+            continue;
+        QOpenGLShaderProgram* prog = m_shaders->program(
+            QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
+            variantDefines(route & 15, (route >> 4) & 15, int(lights.size()), options, false, false,
+                           TrimAa::Off, false, (route >> 12) & 1)
+                << QStringLiteral("KW_DEFERRED"));
+        if (!prog) {
+            *error = m_shaders->lastError();
+            ok = false;
+            break;
+        }
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        gl->glStencilFunc(GL_EQUAL, r.stencil, 0xff);
+        // The route's rectangle only: llvmpipe bins nothing outside the scissor.
+        gl->glScissor(box.x, box.y, box.z - box.x, box.w - box.y);
+        gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+        ++drawCalls;
+    }
+    gl->glScissor(scissor[0], scissor[1], scissor[2], scissor[3]);
+    if (!scissored)
+        gl->glDisable(GL_SCISSOR_TEST);
+    gl->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexStorageBinding, 0);
+    gl->glBindTextureUnit(kPrepassUnit, 0);
+    gl->glEnable(GL_DEPTH_TEST);
+    return ok;
 }
 
 float ExactSurfacePass::skirtDepthScale(const FrameCamera& camera) {

@@ -41,14 +41,18 @@ public:
     /// Frees the environment map texture and the command buffer; the context must be current.
     void release() {
         m_environment.release();
+        releaseDeferred();
         releaseCommands();
         releaseFins();
         m_haveBatches = false;
         m_places.clear();
     }
-    /// Bytes of the indirect command buffer and of the silhouette fins
-    /// (FrameReport::gpuBytes.perSurface).
-    std::int64_t residentBytes() const { return m_commandBytes + m_finBytes; }
+    /// Bytes of the indirect command buffer, of the silhouette fins and of the deferred
+    /// pass's input texture (FrameReport::gpuBytes.perSurface).
+    std::int64_t residentBytes() const {
+        return m_commandBytes + m_finBytes +
+               std::int64_t(m_prepassSize.x) * m_prepassSize.y * 16; // the deferred pass's input
+    }
     const EnvironmentMap& environment() const { return m_environment; }
 
     /// The defines of the exact shader variant for degrees (p, q) and these options. The
@@ -71,9 +75,11 @@ public:
     /// projected bounding box of its control points (clamped to the viewport) over its cell
     /// count; infinity when the box reaches behind the eye, 0 for an empty surface.
     static double projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera);
-    /// The same from the bounds controlBounds gave.
+    /// The same from the bounds controlBounds gave; with `clampToView` false, the box is not
+    /// clamped to the viewport (the cells' own size, however many lie outside the view).
     static double projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
-                                         const glm::vec3& hi, const FrameCamera& camera);
+                                         const glm::vec3& hi, const FrameCamera& camera,
+                                         bool clampToView = true);
     /// World-space bounds of the control points of `g` (they hold the surface and its base
     /// polygon); false without a point of positive weight.
     static bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);
@@ -85,6 +91,10 @@ public:
     /// (docs/PERFORMANCE.md). KW_GATHER_MIN_CELL_PX in the environment overrides it, for
     /// measuring (0: always gather, 1e30: never).
     static constexpr double kGatherMinCellPixels = 64.0;
+    /// Surfaces with at least this many estimated pixels per cell are drawn the forward way
+    /// in frames that use the deferred pass (docs/PERFORMANCE.md, "The deferred exact pass").
+    /// KW_DEFER_MAX_CELL_PX overrides it, for measuring.
+    static constexpr double kDeferMaxCellPixels = 1024.0;
 
     int drawCalls = 0;        ///< counted by draw; the renderer zeroes it per frame
     int culled = 0;           ///< surfaces left out as wholly outside the view; zeroed likewise
@@ -104,6 +114,12 @@ public:
     /// Silhouette fins (kw::buildFins) with the skirts: on by default; KW_FINS=0 at initialize
     /// turns them off, for measuring what they cover and cost.
     bool fins = true;
+    /// The deferred exact pass where the frame allows it (adaptive, aliased, a target with a
+    /// stencil: ExactSurfacePass::deferredTargetSize): on by default; KW_DEFERRED=0 at
+    /// initialize draws every frame the forward way, for comparing images and costs.
+    bool deferred = true;
+    /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
+    int deferredSurfaces = 0;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
     /// conservative overlap where faces meet (issue 10 item 4). B-rep faces meet within the
     /// model's tolerance, not exactly; Axis_of_bearing's faces miss each other by 0.1-0.15 px
@@ -143,6 +159,7 @@ private:
         int degreeU = 1, degreeV = 1;
         bool trimmed = false, gather = false;
         bool affine = false; ///< the polygon is the surface: no Newton step (variant bit 12)
+        int route = 0;       ///< pre-pass batches of the deferred pass: Place::route
         GLenum cullFace = 0; ///< GL_BACK or GL_FRONT: a closed solid's back faces skipped
         std::vector<DrawCommand> commands;
         std::int64_t first = 0;
@@ -157,12 +174,24 @@ private:
         int face = 0;
         int index = -1; ///< its command in that batch
         bool prepassTrimmed = false;
-        int prepassIndex = -1; ///< its command in m_plain[face] or m_trimmedPre (pre-pass)
+        int prepassIndex = -1; ///< its command in m_plain or m_trimmedPre (pre-pass)
         /// Trimmed: its batch in m_trimmedPre, keyed by the variant's degree, face and affine
         /// bits.
         int prepassKey() const { return variant & (0xff | 3 << 10 | 1 << 12); }
+        /// Its trimmed pre-pass batch: by prepassKey, and with the deferred pass by whether
+        /// it has a route.
+        int trimmedPreKey(bool deferred) const {
+            return prepassKey() | (deferred && route() < 0 ? 1 << 9 : 0);
+        }
+        /// Its route in the deferred pass: what that pass's program depends on, the degrees
+        /// and affine bits; -1 for the surfaces the forward pass draws (variant bit 13: cells
+        /// of many pixels each, where a pixel is shaded about once anyway).
+        int route() const { return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12); }
+        /// Its untrimmed pre-pass batch in m_plain: by face, and with the deferred pass by
+        /// route too (each route's pre-pass writes its own stencil value).
+        int plainKey(bool deferred) const { return face << 14 | (deferred ? route() & 0x1fff : 0); }
         /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
-        /// m_plain[face] (this command), those near a curve in m_trimmedPre (prepassIndex).
+        /// m_plain (this command), those near a curve in m_trimmedPre (prepassIndex).
         bool split = false;
         int insideIndex = -1;
         std::int64_t awayCells = 0; ///< split: the cells left out as trimmed away
@@ -185,6 +214,8 @@ private:
         bool skipBackFaces = false; ///< RenderOptions::skipBackFaces
         bool adaptive = false;      ///< adaptive partitions: the exact shaders' Newton step
         double minCellPixels = 0.0;
+        double deferMaxCellPixels = 0.0;
+        bool deferred = false; ///< the deferred exact pass (pre-pass batches by route)
         bool operator==(const CacheKey&) const = default;
     };
     /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
@@ -220,9 +251,22 @@ private:
     /// through (docs/RENDERING.md, "Adaptive partitions: the point under the pixel");
     /// otherwise, and for affine surfaces (whose polygon's (u, v) is that point),
     /// depth_only.frag.
-    bool depthPrepass(Batch (&plain)[3], std::map<int, Batch>& trimmed, const GpuScene& scene,
-                      const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
-                      bool atRay, QString* error);
+    /// With `deferred`, each batch also writes its route's stencil value and the deferred
+    /// pass's input (KW_GBUFFER) into the bound draw buffer 0.
+    bool depthPrepass(std::map<int, Batch>& plain, std::map<int, Batch>& trimmed,
+                      const GpuScene& scene, const FrameCamera& camera,
+                      const std::vector<Light>& lights, bool antialiased, bool atRay, bool deferred,
+                      QString* error);
+    /// The draw framebuffer's size when the deferred pass can draw into it (a framebuffer
+    /// object with a stencil attachment and a texture depth attachment; a colour attachment
+    /// point free for the pre-pass's buffer), else (0, 0).
+    glm::ivec2 deferredTargetSize() const;
+    /// The deferred exact pass (after depthPrepass with `deferred`): per route, one triangle
+    /// over the view whose stencil test keeps the pixels that route's pre-pass drew.
+    bool deferredPass(const GpuScene& scene, const FrameCamera& camera,
+                      const std::vector<Light>& lights, const RenderOptions& options,
+                      const ValueRange& range, QString* error);
+    void releaseDeferred();
     /// Draws each batch with its variant's program (trimAa for the trimmed ones).
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
@@ -259,8 +303,24 @@ private:
     /// drag step does not sort every surface into its variant again (issue 15).
     bool m_haveBatches = false;
     CacheKey m_key;
-    /// The pre-pass's untrimmed ranges, by Place::face.
-    Batch m_plain[3];
+    /// The pre-pass's untrimmed ranges, by Place::plainKey.
+    std::map<int, Batch> m_plain;
+    /// The deferred pass's routes (Place::route): their stencil values, 1, 2, ..., and the
+    /// window rectangle holding their surfaces' control bounds (x0, y0, x1, y1; all of it
+    /// where a bound reaches behind the eye).
+    struct Route {
+        int stencil = 0;
+        glm::vec4 window{0.0f};
+    };
+    std::map<int, Route> m_routes;
+    /// The stencil value of a pre-pass batch's route (0: none, the forward pass draws it).
+    int stencilOf(const Batch& b) const;
+    /// Grows m_routes[route]'s window by the record's control bounds (GL_VIEWPORT's window).
+    void addToRoute(int route, const SurfaceRecord& r, const FrameCamera& camera);
+    /// The pre-pass's output for the deferred pass (RGBA32UI: the polygon's (u, v), the
+    /// surface row and facing, the provoking vertex), its size, and an empty vertex array.
+    GLuint m_prepassTexture = 0, m_emptyVao = 0;
+    glm::ivec2 m_prepassSize{0};
     /// The closed solids (Surface::solid) whose back faces this frame skips.
     std::set<int> m_backCulled;
     /// The pre-pass's trimmed cells near a curve, by degrees (DEGREE_U | DEGREE_V << 4), face

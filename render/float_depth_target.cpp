@@ -37,10 +37,10 @@ bool FloatDepthTarget::ensure(QSize size, QString* error) {
         return t;
     };
     m_colour = texture(GL_RGBA8);
-    m_depth = texture(kDepthFormat);
+    m_depth = texture(kDepthStencilFormat);
     gl->glCreateFramebuffers(1, &m_fbo);
     gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT0, m_colour, 0);
-    gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
+    gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_STENCIL_ATTACHMENT, m_depth, 0);
     if (gl->glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         *error = QStringLiteral("the float-depth framebuffer (%1x%2) is incomplete")
                      .arg(size.width())
@@ -73,7 +73,7 @@ void FloatDepthTarget::release() {
 }
 
 std::int64_t FloatDepthTarget::residentBytes() const {
-    return m_fbo ? std::int64_t(m_size.width()) * m_size.height() * 8 : 0;
+    return m_fbo ? std::int64_t(m_size.width()) * m_size.height() * 12 : 0;
 }
 
 } // namespace kw

@@ -1,6 +1,7 @@
 // The aliased frame's own framebuffer when the host's depth is not float: RGBA8 colour and 32-bit
-// float depth, one sample, copied into the host's colour at the end of the frame (and each
-// sample's frame of kw::AccumulateTarget). The editor's
+// float depth with an 8-bit stencil (the deferred exact pass routes pixels by it), one sample,
+// copied into the host's colour at the end of the frame (and each sample's frame of
+// kw::AccumulateTarget). The editor's
 // frames on a software rasteriser while the view moves (Viewport::aliasedWhileMoving) go to
 // QOpenGLWidget's default framebuffer, whose depth is 24-bit integer; with the near plane at
 // 1e-5 of the far one in close-ups, 24 bits do not separate faces 1e-4 of the view apart and the
@@ -32,7 +33,7 @@ public:
     /// is left as it was: nothing is drawn into the host after the frame's overlays).
     void copyColourTo(std::uint32_t framebuffer);
     void release();
-    /// Bytes of the attachments (4 + 4 per pixel).
+    /// Bytes of the attachments (4 + 8 per pixel: colour, depth and stencil).
     std::int64_t residentBytes() const;
 
 private:

@@ -106,6 +106,9 @@ struct FrameReport {
         /// ray, because they are affine in (u, v) (planes: kw::surfaceIsAffine) and their
         /// polygon's (u, v) is already the point under the pixel.
         int affineSurfaces = 0;
+        /// Surfaces shaded by the deferred exact pass (RenderOptions::deferredPass) in the
+        /// last aliased frame; 0 when every surface was drawn the forward way.
+        int deferredSurfaces = 0;
     } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while

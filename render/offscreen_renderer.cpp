@@ -122,9 +122,9 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool w
     };
     gl->glCreateFramebuffers(1, &d->fbo);
     d->color = texture(GL_RGBA8);
-    d->depth = texture(kDepthFormat);
+    d->depth = texture(kDepthStencilFormat);
     gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT0, d->color, 0);
-    gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_ATTACHMENT, d->depth, 0);
+    gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_STENCIL_ATTACHMENT, d->depth, 0);
     GLenum buffers[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                          GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
     const int aovTargets = withAov ? (withCurvature ? 5 : 3) : 0;

@@ -99,6 +99,12 @@ struct RenderOptions {
     /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).
     /// Off only to measure the difference (`KW_EDGE_SKIRTS=0`).
     bool edgeSkirts = true;
+    /// Adaptive exact frames with the depth pre-pass, aliased (each sample of accumulated
+    /// anti-aliasing is one): the pre-pass also writes each pixel's (u, v), surface and cell,
+    /// and a deferred pass shades each pixel once from them, however small the adaptive
+    /// polygon's cells (docs/RENDERING.md, "The deferred exact pass"). The same image as the
+    /// forward pass; off only to compare the two (`KW_DEFERRED=0` turns it off too).
+    bool deferredPass = true;
     /// Exact mode: the base polygon triangles of a closed solid's faces (Surface::solid) that
     /// turn their inside to the eye are skipped while the solid lies wholly beyond the near
     /// plane (the eye outside it): its faces in front cover them (docs/RENDERING.md, "Back

@@ -115,6 +115,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     exact.culled = exact.solidsBackCulled = 0;
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.affineSurfaces = 0;
+    exact.deferredSurfaces = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
@@ -263,6 +264,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
     report.partitions.skirtTriangles = exact.skirtTriangles;
     report.partitions.affineSurfaces = exact.affineSurfaces;
+    report.partitions.deferredSurfaces = exact.deferredSurfaces;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();

@@ -6,8 +6,18 @@
 
 in vec2 vUv;
 flat in int vSurface;
+#ifdef KW_GBUFFER
+// With the deferred exact pass (kw::ExactSurfacePass): the polygon's (u, v), the surface's
+// row and facing, and the cell's provoking vertex, for exact_surface.frag's KW_DEFERRED.
+flat in int vVertex;
+layout(location = 0) out uvec4 kwPrepassOut;
+#endif
 
 void main() {
     kwSurface = vSurface;
     KW_DISCARD_TRIMMED(vUv);
+#ifdef KW_GBUFFER
+    kwPrepassOut = uvec4(floatBitsToUint(vUv), uint(vSurface) | (gl_FrontFacing ? 0x80000000u : 0u),
+                         uint(vVertex));
+#endif
 }

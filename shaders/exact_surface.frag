@@ -21,10 +21,36 @@
 #define KW_ANALYSIS 0
 #endif
 
+#ifdef KW_DEFERRED
+// The deferred exact pass (kw::ExactSurfacePass, "deferred"): one triangle over the view per
+// variant, routed by the stencil the pre-pass wrote; what the base polygon's fragment would
+// have carried comes from the pre-pass's buffer (kwReadPrepass, at the top of main).
+layout(binding = 11) uniform usampler2D kwPrepass;
+layout(std430, binding = 1) readonly buffer KwVertices {
+    uint kwVertexWords[]; // kw::BaseVertex: position 0-2, uv 3-4, span 5-6, span scale 7
+};
+vec2 vUv;
+ivec2 vSpan;
+float vSpanScale;
+int vSurface;
+bool kwFrontFacing;
+void kwReadPrepass() {
+    uvec4 g = texelFetch(kwPrepass, ivec2(gl_FragCoord.xy), 0);
+    vUv = uintBitsToFloat(g.xy);
+    vSurface = int(g.z & 0x7fffffffu);
+    kwFrontFacing = (g.z >> 31) != 0u;
+    uint at = g.w * 8u;
+    vSpan = ivec2(kwVertexWords[at + 5u], kwVertexWords[at + 6u]);
+    vSpanScale = uintBitsToFloat(kwVertexWords[at + 7u]);
+}
+#define KW_FRONT_FACING kwFrontFacing
+#else
 in vec2 vUv;
 flat in ivec2 vSpan;
 flat in float vSpanScale;
 flat in int vSurface; // row of the surface table (surface_data.glsl)
+#define KW_FRONT_FACING gl_FrontFacing
+#endif
 
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
@@ -298,7 +324,13 @@ vec2 kwOntoRay(vec2 uv, out float residual) {
 
 #endif
 
+#ifdef KW_GBUFFER
+layout(location = 0) out uvec4 kwPrepassOut; // the deferred pass's input (depth_only.frag)
+flat in int vVertex;
+vec4 fragColor; // not written: the pre-pass returns before shading
+#else
 layout(location = 0) out vec4 fragColor;
+#endif
 #ifdef KW_AOV
 layout(location = 1) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
 layout(location = 2) out vec4 aovPosition;  // exact point, w = 1
@@ -310,6 +342,9 @@ layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (w
 #endif
 
 void main() {
+#ifdef KW_DEFERRED
+    kwReadPrepass();
+#endif
     kwSurface = vSurface;
 #ifdef KW_SKIRT
     vec2 skirtUv = vUv;
@@ -342,7 +377,12 @@ void main() {
     KW_DISCARD_TRIMMED(onto);
 #endif
 #ifdef KW_DEPTH_ONLY
+#ifdef KW_GBUFFER
+    kwPrepassOut = uvec4(floatBitsToUint(vUv), uint(vSurface) | (gl_FrontFacing ? 0x80000000u : 0u),
+                         uint(vVertex));
+#else
     fragColor = vec4(0.0);
+#endif
     return; // the pre-pass of cells near a trim curve: the rasteriser writes the depth
 #endif
     // A step that did not bring the point nearer the pixel centre (a strongly curved
@@ -370,7 +410,7 @@ void main() {
     // one with its component along the ray reversed (its depth differs by a fraction of the
     // pixel's footprint along the ray).
     vec3 ray = normalize(s.point - uEye);
-    if ((dot(s.normal, ray) < 0.0) != gl_FrontFacing)
+    if ((dot(s.normal, ray) < 0.0) != KW_FRONT_FACING)
         s.normal -= 2.0 * dot(s.normal, ray) * ray;
 #else
     SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);

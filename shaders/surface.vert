@@ -16,6 +16,9 @@ out vec2 vUv;
 flat out ivec2 vSpan;
 flat out float vSpanScale;
 flat out int vSurface;
+#ifdef KW_GBUFFER
+flat out int vVertex; // the provoking vertex: the cell's span and span scale (KW_DEFERRED)
+#endif
 
 #include "surface_data.glsl"
 #ifdef KW_SKIRT
@@ -38,6 +41,9 @@ void main() {
     vSpanScale = aSpanScale;
     vSurface = aSurface;
     kwSurface = aSurface;
+#ifdef KW_GBUFFER
+    vVertex = gl_VertexID;
+#endif
 #ifdef KW_CELL_GATHER
     ivec2 first = aSpan - ivec2(DEGREE_U, DEGREE_V);
     for (int j = 0; j <= DEGREE_V; ++j)

@@ -5,6 +5,7 @@
 #include "render_test_util.h"
 
 #include <QGuiApplication>
+#include <QScopeGuard>
 #include <map>
 
 using namespace kw;
@@ -319,6 +320,111 @@ private Q_SLOTS:
         qInfo("%d of %d covered pixels show another surface than with the pre-pass", differentId,
               r.covered);
         QVERIFY(differentId <= r.covered / 100);
+    }
+
+    void deferredPassMatchesForward_data() {
+        QTest::addColumn<QString>("sample");
+        QTest::addColumn<double>("zoom");
+        QTest::addColumn<int>("samples");
+        QTest::newRow("teapot fitted") << QStringLiteral("teapot") << 1.0 << 1;
+        // Some surfaces' cells large enough for the forward way, the rest deferred.
+        QTest::newRow("teapot 6x") << QStringLiteral("teapot") << 6.0 << 1;
+        QTest::newRow("torus, 4 samples") << QStringLiteral("torus") << 1.0 << 4;
+        // Trimmed: the pre-pass's cells near a curve write their stencil in a second pass.
+        QTest::newRow("plate beside star") << QStringLiteral("plate+star") << 1.0 << 1;
+        QTest::newRow("plate beside star 3x") << QStringLiteral("plate+star") << 3.0 << 1;
+        // The drag moves the whole plane (its polygon's cells stay as they were: the batches
+        // are patched, not built again), past the rectangle its route had.
+        QTest::newRow("plane beside torus") << QStringLiteral("plane+torus") << 1.0 << 1;
+    }
+    void deferredPassMatchesForward() {
+        // The deferred exact pass (RenderOptions::deferredPass) shades each pixel from the
+        // pre-pass's (u, v), surface and cell: the same image and AOV as the forward pass,
+        // before and after a drag moves a surface past where its route was drawn.
+        QFETCH(QString, sample);
+        QFETCH(double, zoom);
+        QFETCH(int, samples);
+        QString error;
+        std::optional<Scene> s = sample == QLatin1String("plate+star")
+                                     ? kwtest::plateBesideStar(2.4, &error)
+                                 : sample == QLatin1String("plane+torus")
+                                     ? kwtest::loadSample(QStringLiteral("torus"), &error)
+                                     : kwtest::loadSample(sample, &error);
+        QVERIFY2(s, qPrintable(error));
+        const bool plane = sample == QLatin1String("plane+torus");
+        // The plane's one cell covers thousands of pixels: it would be drawn the forward way
+        // (ExactSurfacePass::kDeferMaxCellPixels) unless every surface is deferred.
+        if (plane)
+            qputenv("KW_DEFER_MAX_CELL_PX", "1e30");
+        const auto restore = qScopeGuard([] { qunsetenv("KW_DEFER_MAX_CELL_PX"); });
+        if (plane) {
+            s->surfaces.insert(
+                s->surfaces.begin(),
+                kwtest::makeSurface(s->nextId++,
+                                    makePlane(glm::dvec3(-1.2, -0.4, 0.9),
+                                              glm::dvec3(0.8, 0.0, 0.0), glm::dvec3(0.0, 0.8, 0.0)),
+                                    1));
+        }
+        Document doc;
+        QVERIFY(doc.resetScene(*s, &error));
+        Camera cam = fitCamera(doc.scene(), 1.0);
+        cam.eye = cam.target + (cam.eye - cam.target) / zoom;
+        RenderOptions opt;
+        opt.partitioning = RenderOptions::Partitioning::Adaptive;
+        opt.samples = samples;
+        const auto compare = [&](const char* when) {
+            opt.deferredPass = true;
+            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            const int deferred = m_renderer->lastReport().partitions.deferredSurfaces;
+            const QImage colour = m_renderer->colorImage();
+            const AovBuffer aov = m_renderer->aov();
+            opt.deferredPass = false;
+            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            QCOMPARE(m_renderer->lastReport().partitions.deferredSurfaces, 0);
+            const QImage forwardColour = m_renderer->colorImage();
+            const AovBuffer forward = m_renderer->aov();
+            int covered = 0, otherId = 0, otherColour = 0, worst = 0;
+            for (int y = 0; y < aov.height; ++y)
+                for (int x = 0; x < aov.width; ++x) {
+                    covered += forward.pixel(x, y)[0] >= 0.0f;
+                    otherId += aov.pixel(x, y)[0] != forward.pixel(x, y)[0];
+                    const QRgb a = colour.pixel(x, y), b = forwardColour.pixel(x, y);
+                    const int d =
+                        std::max({std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
+                                  std::abs(qBlue(a) - qBlue(b))});
+                    otherColour += d > 2;
+                    worst = std::max(worst, d);
+                }
+            qInfo("%s: %d surfaces deferred; of %d covered pixels %d show another surface, %d "
+                  "another colour (worst %d / 255)",
+                  when, deferred, covered, otherId, otherColour, worst);
+            QVERIFY2(deferred > 0, when);
+            QVERIFY2(covered > 10000, when);
+            QVERIFY2(otherId <= covered / 2000, when);
+            QVERIFY2(otherColour <= covered / 2000, when);
+        };
+        compare("before the drag");
+        if (QTest::currentTestFailed())
+            return;
+        // Pull one control point of the first surface far out towards the eye and sideways
+        // (the plane: all of them, sideways).
+        const Surface& first = doc.scene().surfaces.front();
+        const NurbsSurface& g = first.geometry;
+        const glm::dvec3 side = glm::normalize(glm::cross(cam.target - cam.eye, cam.up));
+        const double size = glm::length(cam.target - cam.eye) / zoom;
+        std::vector<int> moved;
+        std::vector<glm::dvec3> to;
+        for (int k = 0; k < int(g.points.size()); ++k)
+            if (plane || k == g.index(g.countU / 2, g.countV / 2)) {
+                moved.push_back(k);
+                to.push_back(g.points[size_t(k)] + (plane ? 0.25 : 0.3) * size * side +
+                             (plane ? 0.0 : 0.2) * (cam.eye - cam.target) / zoom);
+            }
+        // A deferred frame before the drag, so that the one after it patches its batches.
+        opt.deferredPass = true;
+        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        QVERIFY(doc.setControlPoints(first.id, moved, to));
+        compare("after the drag");
     }
 
     void overlaysLeaveTheAovAlone() {
