@@ -675,13 +675,10 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
             ok = deferredPass(scene, camera, lights, options, range, error);
         gl->glDisable(GL_STENCIL_TEST);
         scene.bindSurfaceData();
-        // The gather variants (no route) the forward way, on the pre-pass's depth.
-        std::map<int, Batch> forward;
-        for (const auto& [k, b] : variants)
-            if ((k >> 13) & 1)
-                forward.emplace(k, b);
-        if (ok && !forward.empty())
-            ok = drawBatches(forward, TrimAa::Off, scene, camera, lights, options, range, error);
+        // The surfaces with large cells (no route) the forward way, on the pre-pass's depth.
+        if (ok)
+            ok = drawBatches(variants, TrimAa::Off, scene, camera, lights, options, range, error,
+                             true);
     } else if (ok) {
         ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                          options, range, error);
@@ -702,9 +699,11 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
 bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa,
                                    const GpuScene& scene, const FrameCamera& camera,
                                    const std::vector<Light>& lights, const RenderOptions& options,
-                                   const ValueRange& range, QString* error) {
+                                   const ValueRange& range, QString* error, bool largeCellsOnly) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     for (const auto& [key, b] : batches) {
+        if (largeCellsOnly && !((key >> 13) & 1))
+            continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
                                variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,

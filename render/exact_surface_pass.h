@@ -267,10 +267,12 @@ private:
                       const std::vector<Light>& lights, const RenderOptions& options,
                       const ValueRange& range, QString* error);
     void releaseDeferred();
-    /// Draws each batch with its variant's program (trimAa for the trimmed ones).
+    /// Draws each batch with its variant's program (trimAa for the trimmed ones); with
+    /// `largeCellsOnly`, only those the deferred pass leaves to it (variant bit 13).
     bool drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa, const GpuScene& scene,
                      const FrameCamera& camera, const std::vector<Light>& lights,
-                     const RenderOptions& options, const ValueRange& range, QString* error);
+                     const RenderOptions& options, const ValueRange& range, QString* error,
+                     bool largeCellsOnly = false);
     /// The skirts of every drawn polygon (m_skirts; RenderOptions::edgeSkirts), then their
     /// silhouette fins (finPass), after the opaque passes: they fill only pixels no surface
     /// covered nearer.
