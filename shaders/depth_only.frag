@@ -17,7 +17,6 @@ void main() {
     kwSurface = vSurface;
     KW_DISCARD_TRIMMED(vUv);
 #ifdef KW_GBUFFER
-    kwPrepassOut = uvec4(floatBitsToUint(vUv), uint(vSurface) | (gl_FrontFacing ? 0x80000000u : 0u),
-                         uint(vVertex));
+    kwPrepassOut = kwPrepassWords(vUv, vSurface, gl_FrontFacing, vVertex);
 #endif
 }

@@ -378,8 +378,7 @@ void main() {
 #endif
 #ifdef KW_DEPTH_ONLY
 #ifdef KW_GBUFFER
-    kwPrepassOut = uvec4(floatBitsToUint(vUv), uint(vSurface) | (gl_FrontFacing ? 0x80000000u : 0u),
-                         uint(vVertex));
+    kwPrepassOut = kwPrepassWords(vUv, vSurface, gl_FrontFacing, vVertex);
 #else
     fragColor = vec4(0.0);
 #endif

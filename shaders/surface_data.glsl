@@ -44,4 +44,13 @@ int kwSurface = 0;
 #define KW_SPAN_U(x, row) texelFetch(kwSpans, KW_DATA.z + (row) * KW_SPAN_TEXELS(DEGREE_U) + (x))
 #define KW_SPAN_V(x, row) texelFetch(kwSpans, KW_DATA.w + (row) * KW_SPAN_TEXELS(DEGREE_V) + (x))
 
+#ifdef KW_GBUFFER
+// The deferred exact pass's input, as the pre-pass writes it (exact_surface.frag's
+// kwReadPrepass reads it back): the polygon's (u, v), the surface's row with the facing bit,
+// and the cell's provoking vertex.
+uvec4 kwPrepassWords(vec2 uv, int surface, bool front, int vertex) {
+    return uvec4(floatBitsToUint(uv), uint(surface) | (front ? 0x80000000u : 0u), uint(vertex));
+}
+#endif
+
 #endif // KW_SURFACE_DATA
