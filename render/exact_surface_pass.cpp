@@ -64,27 +64,41 @@ double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const Frame
 }
 
 double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
-                                                const glm::vec3& hi, const FrameCamera& camera,
-                                                bool clampToView) {
-    const int cells = g.polygon.cellCount();
-    if (cells <= 0)
-        return 0.0;
-    glm::vec2 smin(std::numeric_limits<float>::max()), smax(-std::numeric_limits<float>::max());
+                                                const glm::vec3& hi, const FrameCamera& camera) {
+    return pixelsPerCell(screenBox(lo, hi, camera.viewProjection), g.polygon.cellCount(),
+                         camera.viewport, true);
+}
+
+ExactSurfacePass::ScreenBox ExactSurfacePass::screenBox(const glm::vec3& lo, const glm::vec3& hi,
+                                                        const glm::mat4& viewProjection) {
+    ScreenBox box{glm::vec2(std::numeric_limits<float>::max()),
+                  glm::vec2(-std::numeric_limits<float>::max()), false};
     for (int k = 0; k < 8; ++k) {
         const glm::vec3 c(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
-        const glm::vec4 clip = camera.viewProjection * glm::vec4(c, 1.0f);
-        if (!(clip.w > 0.0f)) // a corner behind the eye: treat the surface as large
-            return std::numeric_limits<double>::infinity();
+        const glm::vec4 clip = viewProjection * glm::vec4(c, 1.0f);
+        if (!(clip.w > 0.0f)) {
+            box.behind = true;
+            return box;
+        }
         const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-        smin = glm::min(smin, ndc);
-        smax = glm::max(smax, ndc);
+        box.lo = glm::min(box.lo, ndc);
+        box.hi = glm::max(box.hi, ndc);
     }
+    return box;
+}
+
+double ExactSurfacePass::pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,
+                                       bool clampToView) {
+    if (cells <= 0)
+        return 0.0;
+    if (box.behind) // a corner behind the eye: treat the surface as large
+        return std::numeric_limits<double>::infinity();
+    glm::vec2 lo = box.lo, hi = box.hi;
     if (clampToView) {
-        smin = glm::clamp(smin, glm::vec2(-1.0f), glm::vec2(1.0f));
-        smax = glm::clamp(smax, glm::vec2(-1.0f), glm::vec2(1.0f));
+        lo = glm::clamp(lo, glm::vec2(-1.0f), glm::vec2(1.0f));
+        hi = glm::clamp(hi, glm::vec2(-1.0f), glm::vec2(1.0f));
     }
-    const glm::vec2 extent =
-        glm::max(smax - smin, glm::vec2(0.0f)) * 0.5f * glm::vec2(camera.viewport);
+    const glm::vec2 extent = glm::max(hi - lo, glm::vec2(0.0f)) * 0.5f * glm::vec2(viewport);
     return double(extent.x) * double(extent.y) / double(cells);
 }
 
@@ -234,15 +248,20 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     const bool lookUp = mask && !key.prepass;
     // The gather pays only where a cell covers many fragments: on small cells its flat
     // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-    const double cellPixels =
-        r.bounded ? projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera) : 0.0;
-    const bool gather = cellPixels >= key.minCellPixels;
+    ScreenBox box;
+    box.behind = true;
+    if (r.bounded)
+        box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+    const int cells = g->polygon.cellCount();
+    const bool gather =
+        r.bounded && pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
     // Large cells the forward way (exact_surface_pass.h, kDeferMaxCellPixels). The cells'
     // size on screen, not clamped to the view: in a close-up most of them lie outside it,
     // and those inside are the large ones.
     const bool forward =
-        key.deferred && (!r.bounded || projectedPixelsPerCell(*g, r.boundsLo, r.boundsHi, camera,
-                                                              false) >= key.deferMaxCellPixels);
+        key.deferred && pixelsPerCell(box, cells, camera.viewport, false) >= key.deferMaxCellPixels;
+    if (key.deferred && !box.behind)
+        p.window = glm::vec4(glm::clamp(box.lo, -1.0f, 1.0f), glm::clamp(box.hi, -1.0f, 1.0f));
     // A closed solid seen from outside: the triangles facing away from the eye are hidden by
     // its faces in front (chooseBackCulled).
     const int solid = r.surface ? r.surface->solid : -1;
@@ -349,7 +368,7 @@ void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
                     inside.commands.push_back(cs.inside);
                 }
                 if (key.deferred && p.route() >= 0)
-                    addToRoute(p.route(), *r, camera);
+                    addToRoute(p);
             }
             Batch& b = m_variants[p.variant];
             if (b.commands.empty()) {
@@ -451,8 +470,10 @@ bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
             patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
         if (was.skirtVariant >= 0)
             patch(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
-        if (key.deferred && was.route() >= 0)
-            addToRoute(was.route(), *r, camera); // grown only: it may have moved
+        if (key.deferred && now.route() >= 0) {
+            it->second.window = now.window;
+            addToRoute(now); // grown only: it may have moved
+        }
         m_trimmedAway += now.awayCells - was.awayCells;
         it->second.awayCells = now.awayCells;
     }
@@ -624,37 +645,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (defer)
         for (const auto& [k, b] : variants)
             deferredSurfaces += (k >> 13) & 1 ? 0 : int(b.commands.size());
-    GLint framebuffer = 0;
-    std::vector<GLenum> drawBuffers;
-    if (defer) {
-        gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-        if (m_prepassSize != targetSize) {
-            releaseDeferred();
-            gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_prepassTexture);
-            gl->glTextureStorage2D(m_prepassTexture, 1, GL_RGBA32UI, targetSize.x, targetSize.y);
-            // An integer texture is complete only with nearest filtering.
-            gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            m_prepassSize = targetSize;
-        }
-        GLint count = 0;
-        gl->glGetIntegerv(GL_MAX_DRAW_BUFFERS, &count);
-        for (int k = 0; k < count; ++k) {
-            GLint b = GL_NONE;
-            gl->glGetIntegerv(GL_DRAW_BUFFER0 + GLenum(k), &b);
-            drawBuffers.push_back(GLenum(b));
-        }
-        while (!drawBuffers.empty() && drawBuffers.back() == GL_NONE)
-            drawBuffers.pop_back();
-        const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment);
-        gl->glNamedFramebufferTexture(GLuint(framebuffer), attachment, m_prepassTexture, 0);
-        gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), 1, &attachment);
-        const GLint zero = 0;
-        gl->glStencilMask(0xff);
-        gl->glClearBufferiv(GL_STENCIL, 0, &zero);
-        gl->glEnable(GL_STENCIL_TEST);
-        gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    }
+    std::vector<GLenum> drawBuffers; // the frame's, while the pre-pass writes its texture
+    if (defer)
+        drawBuffers = attachPrepassTexture(targetSize);
     if (prepass) {
         ok = depthPrepass(m_plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
                           aa == nullptr &&
@@ -667,10 +660,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
         gl->glDepthMask(GL_TRUE);
     }
     if (defer) {
-        gl->glNamedFramebufferTexture(GLuint(framebuffer),
-                                      GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment), 0, 0);
-        gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), GLsizei(drawBuffers.size()),
-                                          drawBuffers.data());
+        detachPrepassTexture(drawBuffers);
         if (ok)
             ok = deferredPass(scene, camera, lights, options, range, error);
         gl->glDisable(GL_STENCIL_TEST);
@@ -722,37 +712,12 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
     return true;
 }
 
-void ExactSurfacePass::addToRoute(int route, const SurfaceRecord& r, const FrameCamera& camera) {
-    Route& to = m_routes[route];
-    GLint view[4] = {0, 0, 0, 0};
-    m_gl->glGetIntegerv(GL_VIEWPORT, view);
-    const glm::vec2 origin = glm::vec2(view[0], view[1]), size = glm::vec2(view[2], view[3]);
-    glm::vec4 window(origin, origin + size); // all of the view
-    if (r.bounded) {
-        glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        bool behind = false;
-        for (int k = 0; k < 8 && !behind; ++k) {
-            const glm::vec3 c(k & 1 ? r.boundsHi.x : r.boundsLo.x,
-                              k & 2 ? r.boundsHi.y : r.boundsLo.y,
-                              k & 4 ? r.boundsHi.z : r.boundsLo.z);
-            const glm::vec4 clip = camera.viewProjection * glm::vec4(c, 1.0f);
-            behind = !(clip.w > 0.0f);
-            const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-            lo = glm::min(lo, ndc);
-            hi = glm::max(hi, ndc);
-        }
-        if (!behind) {
-            // A pixel more on each side: rounding, and the polygon's pixel centres.
-            const glm::vec2 a = origin + (glm::clamp(lo, -1.0f, 1.0f) * 0.5f + 0.5f) * size - 1.0f;
-            const glm::vec2 b = origin + (glm::clamp(hi, -1.0f, 1.0f) * 0.5f + 0.5f) * size + 1.0f;
-            window = glm::vec4(glm::max(a, origin), glm::min(b, origin + size));
-        }
-    }
-    const bool empty = to.window.z <= to.window.x || to.window.w <= to.window.y;
-    to.window = empty ? window
-                      : glm::vec4(glm::min(glm::vec2(to.window), glm::vec2(window)),
-                                  glm::max(glm::vec2(to.window.z, to.window.w),
-                                           glm::vec2(window.z, window.w)));
+void ExactSurfacePass::addToRoute(const Place& p) {
+    const auto [it, added] = m_routes.try_emplace(p.route(), Route{0, p.window});
+    glm::vec4& w = it->second.window;
+    if (!added)
+        w = glm::vec4(glm::min(glm::vec2(w), glm::vec2(p.window)),
+                      glm::max(glm::vec2(w.z, w.w), glm::vec2(p.window.z, p.window.w)));
 }
 
 glm::ivec2 ExactSurfacePass::deferredTargetSize() const {
@@ -783,6 +748,48 @@ glm::ivec2 ExactSurfacePass::deferredTargetSize() const {
     if (samples > 1 || width <= 0 || height <= 0)
         return glm::ivec2(0);
     return glm::ivec2(width, height);
+}
+
+std::vector<GLenum> ExactSurfacePass::attachPrepassTexture(glm::ivec2 size) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (m_prepassSize != size) {
+        releaseDeferred();
+        gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_prepassTexture);
+        gl->glTextureStorage2D(m_prepassTexture, 1, GL_RGBA32UI, size.x, size.y);
+        // An integer texture is complete only with nearest filtering.
+        gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        m_prepassSize = size;
+    }
+    GLint framebuffer = 0, count = 0;
+    gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    gl->glGetIntegerv(GL_MAX_DRAW_BUFFERS, &count);
+    std::vector<GLenum> drawBuffers;
+    for (int k = 0; k < count; ++k) {
+        GLint b = GL_NONE;
+        gl->glGetIntegerv(GL_DRAW_BUFFER0 + GLenum(k), &b);
+        drawBuffers.push_back(GLenum(b));
+    }
+    while (!drawBuffers.empty() && drawBuffers.back() == GL_NONE)
+        drawBuffers.pop_back();
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment);
+    gl->glNamedFramebufferTexture(GLuint(framebuffer), attachment, m_prepassTexture, 0);
+    gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), 1, &attachment);
+    const GLint zero = 0;
+    gl->glStencilMask(0xff);
+    gl->glClearBufferiv(GL_STENCIL, 0, &zero);
+    gl->glEnable(GL_STENCIL_TEST);
+    gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    return drawBuffers;
+}
+
+void ExactSurfacePass::detachPrepassTexture(const std::vector<GLenum>& drawBuffers) {
+    GLint framebuffer = 0;
+    m_gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    m_gl->glNamedFramebufferTexture(GLuint(framebuffer),
+                                    GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment), 0, 0);
+    m_gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), GLsizei(drawBuffers.size()),
+                                        drawBuffers.data());
 }
 
 void ExactSurfacePass::releaseDeferred() {
@@ -817,10 +824,16 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
     GLint scissor[4] = {0, 0, 0, 0};
     gl->glGetIntegerv(GL_SCISSOR_BOX, scissor);
     gl->glEnable(GL_SCISSOR_TEST);
+    GLint view[4] = {0, 0, 0, 0};
+    gl->glGetIntegerv(GL_VIEWPORT, view);
+    const glm::vec2 origin(view[0], view[1]), size(view[2], view[3]);
     for (const auto& [route, r] : m_routes) {
-        const glm::ivec4 box(glm::floor(r.window.x), glm::floor(r.window.y), glm::ceil(r.window.z),
-                             glm::ceil(r.window.w));
-        if (box.z <= box.x || box.w <= box.y)
+        // The route's window in pixels, a pixel more on each side (rounding, and the
+        // polygon's pixel centres).
+        const glm::ivec2 lo(glm::floor(origin + (glm::vec2(r.window) * 0.5f + 0.5f) * size) - 1.0f);
+        const glm::ivec2 hi(
+            glm::ceil(origin + (glm::vec2(r.window.z, r.window.w) * 0.5f + 0.5f) * size) + 1.0f);
+        if (hi.x <= lo.x || hi.y <= lo.y)
             continue;
         QOpenGLShaderProgram* prog = m_shaders->program(
             QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
@@ -837,7 +850,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
         gl->glStencilFunc(GL_EQUAL, r.stencil, 0xff);
         // The route's rectangle only: llvmpipe bins nothing outside the scissor.
-        gl->glScissor(box.x, box.y, box.z - box.x, box.w - box.y);
+        gl->glScissor(lo.x, lo.y, hi.x - lo.x, hi.y - lo.y);
         gl->glDrawArrays(GL_TRIANGLES, 0, 3);
         ++drawCalls;
     }

@@ -75,11 +75,21 @@ public:
     /// projected bounding box of its control points (clamped to the viewport) over its cell
     /// count; infinity when the box reaches behind the eye, 0 for an empty surface.
     static double projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera);
-    /// The same from the bounds controlBounds gave; with `clampToView` false, the box is not
-    /// clamped to the viewport (the cells' own size, however many lie outside the view).
+    /// The same from the bounds controlBounds gave.
     static double projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
-                                         const glm::vec3& hi, const FrameCamera& camera,
-                                         bool clampToView = true);
+                                         const glm::vec3& hi, const FrameCamera& camera);
+    /// A box's corners projected: their normalised device bounds, or `behind` when a corner
+    /// lies behind the eye (lo and hi then undefined).
+    struct ScreenBox {
+        glm::vec2 lo{0.0f}, hi{0.0f};
+        bool behind = false;
+    };
+    static ScreenBox screenBox(const glm::vec3& lo, const glm::vec3& hi,
+                               const glm::mat4& viewProjection);
+    /// Pixels per cell of `cells` cells over the box (clamped to the view with `clampToView`;
+    /// without, the cells' own size however many lie outside it); infinity when `behind`.
+    static double pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,
+                                bool clampToView);
     /// World-space bounds of the control points of `g` (they hold the surface and its base
     /// polygon); false without a point of positive weight.
     static bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);
@@ -199,6 +209,9 @@ private:
         int edgeIndex = -1;         ///< its command there
         int skirtVariant = -1;      ///< with skirts: key into m_skirts (degrees and trimmed)
         int skirtIndex = -1;        ///< its command there
+        /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
+        /// control bounds, all of the view when they reach behind the eye.
+        glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
     };
     /// What the cached batches were built for; any difference (or a GpuScene layout stamp
     /// change) builds them again, else only the records GpuScene::touched() are looked at.
@@ -266,6 +279,12 @@ private:
     bool deferredPass(const GpuScene& scene, const FrameCamera& camera,
                       const std::vector<Light>& lights, const RenderOptions& options,
                       const ValueRange& range, QString* error);
+    /// Before the deferred frame's pre-pass: the texture (re)made for `size`, attached at
+    /// kPrepassAttachment of the draw framebuffer as its only draw buffer, the stencil cleared
+    /// and its test on. Returns the framebuffer's draw buffers, for detachPrepassTexture.
+    std::vector<GLenum> attachPrepassTexture(glm::ivec2 size);
+    /// After the pre-pass: the texture detached and the draw buffers put back.
+    void detachPrepassTexture(const std::vector<GLenum>& drawBuffers);
     void releaseDeferred();
     /// Draws each batch with its variant's program (trimAa for the trimmed ones); with
     /// `largeCellsOnly`, only those the deferred pass leaves to it (variant bit 13).
@@ -308,8 +327,7 @@ private:
     /// The pre-pass's untrimmed ranges, by Place::plainKey.
     std::map<int, Batch> m_plain;
     /// The deferred pass's routes (Place::route): their stencil values, 1, 2, ..., and the
-    /// window rectangle holding their surfaces' control bounds (x0, y0, x1, y1; all of it
-    /// where a bound reaches behind the eye).
+    /// union of their surfaces' Place::window.
     struct Route {
         int stencil = 0;
         glm::vec4 window{0.0f};
@@ -317,8 +335,8 @@ private:
     std::map<int, Route> m_routes;
     /// The stencil value of a pre-pass batch's route (0: none, the forward pass draws it).
     int stencilOf(const Batch& b) const;
-    /// Grows m_routes[route]'s window by the record's control bounds (GL_VIEWPORT's window).
-    void addToRoute(int route, const SurfaceRecord& r, const FrameCamera& camera);
+    /// Adds a record's place to its route (m_routes), growing the route's window by its own.
+    void addToRoute(const Place& p);
     /// The pre-pass's output for the deferred pass (RGBA32UI: the polygon's (u, v), the
     /// surface row and facing, the provoking vertex), its size, and an empty vertex array.
     GLuint m_prepassTexture = 0, m_emptyVao = 0;
