@@ -115,23 +115,26 @@ ivec2 kwSpanAt(vec2 uv, ivec2 span) {
     }
     return span;
 }
-// The Levenberg-Marquardt solve above from `uv` in `span`: KW_SOLVE_FOUND where it ends within
-// uSkirtReach of the domain (`uv` the point clamped into it), KW_SOLVE_BEYOND where it ends on
-// the continuation farther out (`uv` the point outside), KW_SOLVE_MISSED where it ends nowhere.
-// `span` ends at the clamped point, and `found` holds the surface's partials there.
+// The Levenberg-Marquardt solve above from `uv` in `span`, in at most `steps` evaluations:
+// KW_SOLVE_FOUND where it ends within uSkirtReach of the domain (`uv` the point clamped into it),
+// KW_SOLVE_BEYOND where it ends on the continuation farther out (`uv` the point outside),
+// KW_SOLVE_MISSED where it ends nowhere. `span` ends at the clamped point, and `found` holds the
+// surface's partials there (with KW_SOLVE_MISSED, those of the last point evaluated: with
+// `steps` 1, the start clamped into the domain).
 #define KW_SOLVE_MISSED 0
 #define KW_SOLVE_FOUND 1
 #define KW_SOLVE_BEYOND 2
-int kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
+int kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found, int steps) {
     ivec2 bestSpan = span;
     vec2 best = uv, trial = uv;
     mat2 bestJ = mat2(0.0);
     vec2 bestR = vec2(0.0);
     float bestResidual = 1e30, damping = 0.0;
-    for (int k = 0; k < 12; ++k) {
+    for (int k = 0; k < steps; ++k) {
         vec2 inside = clamp(trial, uDomain.xz, uDomain.yw);
         ivec2 at = kwSpanAt(inside, bestSpan);
         SurfacePartials d = surfacePartials(inside, at);
+        found = d;
         vec3 p = d.s + d.su * (trial.x - inside.x) + d.sv * (trial.y - inside.y);
         vec4 clip = uViewProjection * vec4(p + uOrigin, 1.0);
         float residual = 1e30;
@@ -142,7 +145,6 @@ int kwSkirtSolve(inout vec2 uv, inout ivec2 span, out SurfacePartials found) {
             residual = length(r);
             if (residual < 0.002) {
                 span = at;
-                found = d;
                 if (length(j * (trial - inside)) > uSkirtReach) { // on screen, past the edge
                     uv = trial;
                     return KW_SOLVE_BEYOND;
@@ -254,41 +256,88 @@ bool kwRayCurve(vec2 uv, ivec2 span, SurfacePartials d, out bool front, out vec2
 // drawn at its polygon's depth, pushed back kSkirtDepthPixels, so a point farther behind it
 // (uSkirtDepthScale once more) would be drawn in front of faces that hide it.
 uniform float uSkirtDepthScale;
-bool kwSkirtPoint(inout vec2 uv, out ivec2 span) {
-    span = vSpan;
-    SurfacePartials d;
-    int solved = kwSkirtSolve(uv, span, d);
-    if (solved == KW_SOLVE_MISSED)
-        return false;
-    bool front;
-    vec2 restart;
-    bool fold = kwRayCurve(uv, span, d, front, restart);
-    if (solved == KW_SOLVE_BEYOND) {
-        if (!fold || any(lessThan(restart, uDomain.xz)) || any(greaterThan(restart, uDomain.yw)))
-            return false;
-        uv = restart;
-        if (kwSkirtSolve(uv, span, d) != KW_SOLVE_FOUND)
-            return false;
-        vec4 clip = uViewProjection * vec4(d.s + uOrigin, 1.0);
-        return clip.w > 0.0 &&
-               clip.z / clip.w >= gl_FragCoord.z * uSkirtDepthScale * uSkirtDepthScale;
-    }
-    if (front)
-        return true;
-    vec2 first = uv;
-    ivec2 firstSpan = span;
-    float firstDistance = distance(d.s + uOrigin, uEye);
-    // From the estimate, then from the first point mirrored about the strip's own (u, v) (on
-    // the polygon's edge, near the fold) where that fails.
-    for (int k = 0; k < 2; ++k) {
-        uv = k == 0 ? restart : 2.0 * vUv - first;
-        span = vSpan;
-        if (kwSkirtSolve(uv, span, d) == KW_SOLVE_FOUND &&
-            distance(d.s + uOrigin, uEye) < firstDistance)
+// The attempts, one solve each: the strip's own (u, v); the other meeting past the edge; the
+// estimate of the sheet in front; the first point mirrored about the strip's (u, v); and last,
+// for a point with no plain normal, the evaluation of the nearby interior point that the
+// normal rule asks for (surfaceSampleRound). One loop, not a sequence of calls in `if`s: SIMD
+// lanes (llvmpipe's, a GPU's) run an `if` body under a mask for the whole group, so each
+// attempt's first evaluation cost every skirt fragment; a loop's later rounds run only in the
+// groups where some fragment needs them. `s` is the sample of the point found, from the
+// solve's own partials there (evaluateSurface's first round would evaluate them again).
+#define KW_TRY_STRIP 0
+#define KW_TRY_BEYOND 1
+#define KW_TRY_ESTIMATE 2
+#define KW_TRY_MIRRORED 3
+#define KW_TRY_INTERIOR 4
+bool kwSkirtPoint(inout vec2 uv, out ivec2 span, out SurfaceSample s) {
+    bool limitNormal;
+    beginSurfaceSample(s, limitNormal);
+    vec2 start = uv, restart = uv, first = uv, interior = uv;
+    ivec2 startSpan = vSpan, firstSpan = vSpan;
+    SurfacePartials d, firstD;
+    float firstDistance = 0.0;
+    int attempt = KW_TRY_STRIP;
+    for (int round = 0; round < 4; ++round) {
+        vec2 tried = start;
+        span = startSpan;
+        int solved = kwSkirtSolve(tried, span, d, attempt == KW_TRY_INTERIOR ? 1 : 12);
+        if (attempt == KW_TRY_INTERIOR) {
+            surfaceSampleRound(d, 1, uv, vSpanScale, s, limitNormal, interior);
             return true;
+        }
+        if (attempt == KW_TRY_STRIP) {
+            if (solved == KW_SOLVE_MISSED)
+                return false;
+            bool front;
+            bool fold = kwRayCurve(tried, span, d, front, restart);
+            if (solved == KW_SOLVE_BEYOND) {
+                if (!fold || any(lessThan(restart, uDomain.xz)) ||
+                    any(greaterThan(restart, uDomain.yw)))
+                    return false;
+                attempt = KW_TRY_BEYOND; // from the same span
+                start = restart;
+                startSpan = span;
+                continue;
+            }
+            if (!front) {
+                first = tried;
+                firstSpan = span;
+                firstD = d;
+                firstDistance = distance(d.s + uOrigin, uEye);
+                // From the estimate, then from the first point mirrored about the strip's own
+                // (u, v) (on the polygon's edge, near the fold) where that fails.
+                attempt = KW_TRY_ESTIMATE;
+                start = restart;
+                startSpan = vSpan;
+                continue;
+            }
+        } else if (attempt == KW_TRY_BEYOND) {
+            if (solved != KW_SOLVE_FOUND)
+                return false;
+            vec4 clip = uViewProjection * vec4(d.s + uOrigin, 1.0);
+            if (!(clip.w > 0.0 &&
+                  clip.z / clip.w >= gl_FragCoord.z * uSkirtDepthScale * uSkirtDepthScale))
+                return false;
+        } else if (solved == KW_SOLVE_FOUND && distance(d.s + uOrigin, uEye) < firstDistance) {
+            // a restart found the nearer point
+        } else if (attempt == KW_TRY_ESTIMATE) {
+            attempt = KW_TRY_MIRRORED;
+            start = 2.0 * vUv - first;
+            startSpan = vSpan;
+            continue;
+        } else { // neither restart found a nearer point: the first one
+            tried = first;
+            span = firstSpan;
+            d = firstD;
+        }
+        // Accepted: the point and its sample.
+        uv = tried;
+        if (surfaceSampleRound(d, 0, uv, vSpanScale, s, limitNormal, interior))
+            return true;
+        attempt = KW_TRY_INTERIOR;
+        start = interior;
+        startSpan = span;
     }
-    uv = first;
-    span = firstSpan;
     return true;
 }
 #endif
@@ -349,11 +398,11 @@ void main() {
 #ifdef KW_SKIRT
     vec2 skirtUv = vUv;
     ivec2 span; // where the solve ended: a fin's (u, v) may cross a knot
-    if (!kwSkirtPoint(skirtUv, span))
+    SurfaceSample s;
+    if (!kwSkirtPoint(skirtUv, span, s))
         discard;
     KW_DISCARD_TRIMMED(skirtUv);
     vec2 uv = skirtUv;
-    SurfaceSample s = evaluateSurface(uv, span, vSpanScale);
 #else
     ivec2 span = vSpan;
 #ifdef KW_TRIM_EDGE

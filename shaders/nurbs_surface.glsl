@@ -190,65 +190,84 @@ bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, o
 }
 
 // The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs_surface.cpp);
-// thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL).
-SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
-    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
-    vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
-    float tinyLen = KW_TINY_REL * spanScale;
-    SurfaceSample s;
+// thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL). It takes one or two
+// rounds: round 0 with the partials at uv, round 1 (where that gives no plain normal, or with
+// KW_SECOND_ORDER no curvature) with those of a nearby interior point. beginSurfaceSample sets
+// up, and surfaceSampleRound takes round `round`'s partials `d`: true when the sample is
+// complete, else `at` is where round 1 evaluates (in the same span: the step is tiny). Split so
+// that a caller which already holds round 0's partials (the skirts' solve) does not evaluate
+// them again.
+void beginSurfaceSample(out SurfaceSample s, out bool limitNormal) {
+    s.point = vec3(0.0);
+    s.du = vec3(0.0);
+    s.dv = vec3(0.0);
+    s.normal = vec3(0.0, 0.0, 1.0);
 #ifdef KW_SECOND_ORDER
     s.curvature = vec4(0.0); // step 4: no regular point nearby
     s.dir1 = vec3(1.0, 0.0, 0.0);
 #endif
-    bool limitNormal = false; // step 2 gave the normal; the curvature still needs step 3
-    // One evaluation site for steps 1-2 at uv and step 3 at a nearby interior point: the second
-    // round runs only for fragments (SIMD lanes) that need it, and the code is not duplicated.
-    vec2 at = uv;
-    for (int round = 0; round < 2; ++round) {
-        SurfacePartials d = surfacePartials(at, span);
-        if (round == 0) {
-            s.point = d.s + uOrigin;
-            s.du = d.su;
-            s.dv = d.sv;
-        }
-        bool tinyU, tinyV;
-        vec3 n;
-        if (plainNormal(d, tinyLen, n, tinyU, tinyV)) {
-            if (!limitNormal)
-                s.normal = n;
-#ifdef KW_SECOND_ORDER
-            s.curvature = curvatureFrom(d, dot(n, s.normal) < 0.0 ? -n : n, s.dir1);
-            // At a collapsed edge: tangent to the reported (limit) normal, as the kernel.
-            if (round == 1)
-                s.dir1 = normalize(s.dir1 - dot(s.dir1, s.normal) * s.normal);
-#endif
-            break;
-        }
-        if (round == 1) {
-            if (!limitNormal)
-                s.normal = vec3(0.0, 0.0, 1.0); // step 4
-#ifdef KW_SECOND_ORDER
-            s.dir1 = anyPerpendicular(s.normal);
-#endif
-            break;
-        }
-        if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
-            vec3 other = tinyU ? d.sv : d.su;
-            vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
-                           : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
-            float lm = length(m);
-            if (length(d.suv) * width.x * width.y > tinyLen &&
-                lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
-                s.normal = m / lm;
-                limitNormal = true;
-#ifndef KW_SECOND_ORDER
-                break;
-#endif
-            }
-        }
-        // Step 3: the plain normal (and the curvature) of a nearby interior point (same span:
-        // the step is tiny).
-        at = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
+    limitNormal = false; // step 2 gave the normal; the curvature still needs step 3
+}
+bool surfaceSampleRound(SurfacePartials d, int round, vec2 uv, float spanScale,
+                        inout SurfaceSample s, inout bool limitNormal, out vec2 at) {
+    vec2 width = vec2(uDomain.y - uDomain.x, uDomain.w - uDomain.z);
+    vec2 centre = 0.5 * vec2(uDomain.x + uDomain.y, uDomain.z + uDomain.w);
+    float tinyLen = KW_TINY_REL * spanScale;
+    at = uv;
+    if (round == 0) {
+        s.point = d.s + uOrigin;
+        s.du = d.su;
+        s.dv = d.sv;
     }
+    bool tinyU, tinyV;
+    vec3 n;
+    if (plainNormal(d, tinyLen, n, tinyU, tinyV)) {
+        if (!limitNormal)
+            s.normal = n;
+#ifdef KW_SECOND_ORDER
+        s.curvature = curvatureFrom(d, dot(n, s.normal) < 0.0 ? -n : n, s.dir1);
+        // At a collapsed edge: tangent to the reported (limit) normal, as the kernel.
+        if (round == 1)
+            s.dir1 = normalize(s.dir1 - dot(s.dir1, s.normal) * s.normal);
+#endif
+        return true;
+    }
+    if (round == 1) {
+        if (!limitNormal)
+            s.normal = vec3(0.0, 0.0, 1.0); // step 4
+#ifdef KW_SECOND_ORDER
+        s.dir1 = anyPerpendicular(s.normal);
+#endif
+        return true;
+    }
+    if (tinyU != tinyV) { // step 2: the limit normal, approached from the domain's interior
+        vec3 other = tinyU ? d.sv : d.su;
+        vec3 m = tinyU ? (uv.y < centre.y ? 1.0 : -1.0) * cross(d.suv, d.sv)
+                       : (uv.x < centre.x ? 1.0 : -1.0) * cross(d.su, d.suv);
+        float lm = length(m);
+        if (length(d.suv) * width.x * width.y > tinyLen &&
+            lm > KW_PARALLEL_REL * length(d.suv) * length(other)) {
+            s.normal = m / lm;
+            limitNormal = true;
+#ifndef KW_SECOND_ORDER
+            return true;
+#endif
+        }
+    }
+    // Step 3: the plain normal (and the curvature) of a nearby interior point.
+    at = uv + sign(centre - uv) * KW_INTERIOR_STEP * width;
+    return false;
+}
+SurfaceSample evaluateSurface(vec2 uv, ivec2 span, float spanScale) {
+    SurfaceSample s;
+    bool limitNormal;
+    beginSurfaceSample(s, limitNormal);
+    // One evaluation site for both rounds: the second runs only for fragments (SIMD lanes) that
+    // need it, and the code is not duplicated.
+    vec2 at = uv;
+    for (int round = 0; round < 2; ++round)
+        if (surfaceSampleRound(surfacePartials(at, span), round, uv, spanScale, s, limitNormal,
+                               at))
+            break;
     return s;
 }
