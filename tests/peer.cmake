@@ -18,3 +18,25 @@ if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
                        PASS_REGULAR_EXPRESSION "\\| Pump_Nut \\| [0-9.e+-]+ / [0-9.]+° \\| [0-9]+ \\| [^\n]* cells \\|"
                        FAIL_REGULAR_EXPRESSION "not reached|Traceback")
 endif()
+# tools/speed_floor.py end to end at 256x256 (every variant once, the peer too): guards its
+# patched shader copies (they must compile and the anchor must exist) and the lines it reads.
+if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
+  add_test(NAME speed_floor_script
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/speed_floor.py
+                   --knotwork $<TARGET_FILE:knotwork> --work ${KW_TEST_OUTPUT_DIR}/speed_floor
+                   --size 256 --frames 1 --rounds 1
+                   ${PROJECT_SOURCE_DIR}/resources/samples/trimmed_plate.knot
+                   ${KW_TEST_DATA_DIR}/Pump_Nut.brep --peer ${KW_TEST_DATA_DIR}/Pump_Nut.brep=0.06,3.536)
+  # One row per model: five times, A / U and **floor / U**; the peer's row adds P, P / A and
+  # **P / floor** (a difference of 1-frame times at 256x256 may come out negative).
+  # (CMake's regular expressions have no {n} repetition and at most 9 groups.)
+  set(t "( \\| [-0-9.]+)+") # times in ms
+  set(r "[-0-9.]+×")         # a ratio
+  string(CONCAT speed_floor_rows
+         "\\| trimmed_plate\\.knot \\| fitted${t} \\| ${r}[^\n]*\n"
+         "\\| Pump_Nut\\.brep \\| fitted${t} \\| ${r} \\| \\*\\*${r}\\*\\*"
+         "${t} \\| ${r} \\| \\*\\*${r}\\*\\* \\|")
+  set_tests_properties(speed_floor_script PROPERTIES LABELS gl TIMEOUT 300
+                       PASS_REGULAR_EXPRESSION "${speed_floor_rows}"
+                       FAIL_REGULAR_EXPRESSION "Traceback|speed_floor.py:")
+endif()
