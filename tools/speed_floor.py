@@ -41,6 +41,7 @@ import shutil
 import statistics
 import sys
 
+sys.dont_write_bytecode = True  # no tools/__pycache__ in the source tree from ctest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from peer_search import number, run  # noqa: E402
 
