@@ -92,6 +92,10 @@ def main():
         if not path or not angular:
             sys.exit("speed_floor.py: --peer takes FILE=LINEAR,ANGULAR, not '%s'" % spec)
         peers[os.path.abspath(path)] = (linear, angular)
+    unknown = set(peers) - {os.path.abspath(f) for f in args.files}
+    if unknown:
+        sys.exit("speed_floor.py: --peer names a file that is not timed: %s" %
+                 ", ".join(sorted(unknown)))
 
     variants = [("U", {}, ["--partition-mode", "uniform", "--partitions", "10"]),
                 ("U0", {"KW_SHADER_DIR": no_op}, ["--partition-mode", "uniform", "--partitions",
@@ -132,13 +136,12 @@ def main():
         ms = {tag: statistics.median(v) for tag, v in times.items()}
         floor = ms["G"] + ms["U"] - ms["U0"]
         peer = ms.get("P")
-        cells = lambda v: "%.2f" % v  # noqa: E731
-        row = [label, "fitted" if args.zoom == 1.0 else "%g×" % args.zoom, cells(ms["U"]),
-               cells(ms["U0"]), cells(ms["A"]), cells(ms["G"]), cells(floor),
-               "%.2f×" % (ms["A"] / ms["U"]), "**%.2f×**" % (floor / ms["U"]),
-               cells(peer) if peer else "—",
-               "%.2f×" % (peer / ms["A"]) if peer else "—",
-               "**%.2f×**" % (peer / floor) if peer else "—"]
+        times_ms = ["%.2f" % v for v in (ms["U"], ms["U0"], ms["A"], ms["G"], floor)]
+        row = ([label, "fitted" if args.zoom == 1.0 else "%g×" % args.zoom] + times_ms +
+               ["%.2f×" % (ms["A"] / ms["U"]), "**%.2f×**" % (floor / ms["U"]),
+                "%.2f" % peer if peer else "—",
+                "%.2f×" % (peer / ms["A"]) if peer else "—",
+                "**%.2f×**" % (peer / floor) if peer else "—"])
         print("| " + " | ".join(row) + " |", flush=True)
 
 
