@@ -23,7 +23,8 @@ cheapest evaluation the renderer has). It leaves out what the other targets need
 Newton step onto the pixel's ray (normal error p99 <= 0.1 deg; without it the teapot's is 0.3
 deg), the skirts and fins (0 crack pixels), and any cost of shading small cells. A frame-time
 target below floor / U, or a peer target above P / floor, cannot be met on the machine measured
-by an implementation that rasterises today's adaptive polygon and evaluates its pixels.
+by an implementation that rasterises today's adaptive polygon and evaluates its pixels no more
+cheaply than uniform 10 x 10 does.
 
 U0 and G read a copy of shaders/ (KW_SHADER_DIR) with an early return at the top of
 exact_surface.frag's main() in the exact pass's variants (not the pre-pass's G-buffer variant,
