@@ -39,4 +39,17 @@ if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
   set_tests_properties(speed_floor_script PROPERTIES LABELS gl TIMEOUT 300
                        PASS_REGULAR_EXPRESSION "${speed_floor_rows}"
                        FAIL_REGULAR_EXPRESSION "Traceback|speed_floor.py:")
+  # Bad --peer arguments are refused with a message before anything is drawn (no display).
+  add_test(NAME speed_floor_bad_peer_spec
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/speed_floor.py
+                   --work ${KW_TEST_OUTPUT_DIR}/speed_floor_bad ${KW_TEST_DATA_DIR}/Pump_Nut.brep
+                   --peer ${KW_TEST_DATA_DIR}/Pump_Nut.brep)
+  set_tests_properties(speed_floor_bad_peer_spec PROPERTIES LABELS app
+                       PASS_REGULAR_EXPRESSION "--peer takes FILE=LINEAR,ANGULAR, not '.*Pump_Nut.brep'")
+  add_test(NAME speed_floor_peer_not_timed
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/speed_floor.py
+                   --work ${KW_TEST_OUTPUT_DIR}/speed_floor_bad ${KW_TEST_DATA_DIR}/Pump_Nut.brep
+                   --peer ${KW_TEST_DATA_DIR}/screw.step=0.1,5)
+  set_tests_properties(speed_floor_peer_not_timed PROPERTIES LABELS app
+                       PASS_REGULAR_EXPRESSION "--peer names a file that is not timed: .*screw.step")
 endif()
