@@ -17,10 +17,8 @@ if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
   set_tests_properties(peer_search_script PROPERTIES LABELS gl TIMEOUT 300
                        PASS_REGULAR_EXPRESSION "\\| Pump_Nut \\| [0-9.e+-]+ / [0-9.]+° \\| [0-9]+ \\| [^\n]* cells \\|"
                        FAIL_REGULAR_EXPRESSION "not reached|Traceback")
-endif()
-# tools/speed_floor.py end to end at 256x256 (every variant once, the peer too): guards its
-# patched shader copies (they must compile and the anchor must exist) and the lines it reads.
-if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
+  # tools/speed_floor.py end to end at 256x256 (every variant once, the peer too): guards its
+  # patched shader copies (they must compile and the anchor must exist) and the lines it reads.
   add_test(NAME speed_floor_script
            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/speed_floor.py
                    --knotwork $<TARGET_FILE:knotwork> --work ${KW_TEST_OUTPUT_DIR}/speed_floor
@@ -52,4 +50,11 @@ if(Python3_Interpreter_FOUND AND TARGET knotwork_occt_plugin)
                    --peer ${KW_TEST_DATA_DIR}/screw.step=0.1,5)
   set_tests_properties(speed_floor_peer_not_timed PROPERTIES LABELS app
                        PASS_REGULAR_EXPRESSION "--peer names a file that is not timed: .*screw.step")
+  # A knotwork that prints no frame time (echo stands in) is named, not a Python traceback.
+  add_test(NAME speed_floor_no_frame_time
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/speed_floor.py
+                   --knotwork echo --work ${KW_TEST_OUTPUT_DIR}/speed_floor_bad
+                   ${PROJECT_SOURCE_DIR}/resources/samples/trimmed_plate.knot)
+  set_tests_properties(speed_floor_no_frame_time PROPERTIES LABELS app
+                       PASS_REGULAR_EXPRESSION "echo printed no median frame time: render .*trimmed_plate.knot")
 endif()

@@ -85,18 +85,18 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     env = dict(os.environ, QT_QPA_PLATFORM="xcb")
     env.pop("KW_SHADER_DIR", None)
-    no_op = no_op_shaders(args.work)
     peers = {}
     for spec in args.peer:
         path, _, defl = spec.rpartition("=")
         linear, _, angular = defl.partition(",")
-        if not path or not angular:
+        if not path or not linear or not angular:
             sys.exit("speed_floor.py: --peer takes FILE=LINEAR,ANGULAR, not '%s'" % spec)
         peers[os.path.abspath(path)] = (linear, angular)
     unknown = set(peers) - {os.path.abspath(f) for f in args.files}
     if unknown:
         sys.exit("speed_floor.py: --peer names a file that is not timed: %s" %
                  ", ".join(sorted(unknown)))
+    no_op = no_op_shaders(args.work)
 
     variants = [("U", {}, ["--partition-mode", "uniform", "--partitions", "10"]),
                 ("U0", {"KW_SHADER_DIR": no_op}, ["--partition-mode", "uniform", "--partitions",
@@ -133,7 +133,11 @@ def main():
                 if args.zoom != 1.0:
                     cmd += ["--zoom", repr(args.zoom)]
                 out, err, _ = run(cmd + extra, dict(env, **extra_env))
-                times[tag].append(number(r"median frame ([\d.]+) ms", out + err))
+                t = number(r"median frame ([\d.]+) ms", out + err)
+                if t is None:
+                    sys.exit("speed_floor.py: %s printed no median frame time: %s" %
+                             (cmd[0], " ".join(cmd[1:] + extra)))
+                times[tag].append(t)
         ms = {tag: statistics.median(v) for tag, v in times.items()}
         floor = ms["G"] + ms["U"] - ms["U0"]
         peer = ms.get("P")
