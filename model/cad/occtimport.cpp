@@ -80,6 +80,20 @@ QString loadFailures(const Handle(XSControl_WorkSession) & ws) {
     return lines.join(QStringLiteral("; "));
 }
 
+// Whether every load failure is a string parameter (a name or description) holding something
+// else, such as $: OCCT then sets it to the empty string and reads the rest of the entity.
+bool onlyUnsetNames(const Handle(XSControl_WorkSession) & ws) {
+    Interface_CheckIterator checks = ws->ModelCheckList(Standard_False);
+    int fails = 0;
+    for (checks.Start(); checks.More(); checks.Next()) {
+        const Handle(Interface_Check)& c = checks.Value();
+        for (int i = 1; i <= c->NbFails(); ++i, ++fails)
+            if (!QByteArray(c->Fail(i)->ToCString()).contains("not a quoted String"))
+                return false;
+    }
+    return fails > 0;
+}
+
 // Structural checks OCCT's parsers are lenient about: a STEP file must end with its
 // END-ISO-10303-21 line, an IGES file with its Terminate (T) record.
 QString truncation(const QString& path, CadFormat format) {
@@ -267,11 +281,20 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         return false;
     }
     // Entities the parser could not make sense of mean a corrupt file: refuse it rather than
-    // import what happens to survive.
+    // import what happens to survive. The one exception is a name or description that is not a
+    // string: Rhino writes `$` (unset) there, e.g. AXIS2_PLACEMENT_3D($, ...). OCCT reads such an
+    // entity whole with an empty name, so its geometry is intact; warn, as OCCT does.
     const Handle(Interface_InterfaceModel) model = reader->WS()->Model();
     int broken = 0;
     for (int i = 1; i <= model->NbEntities(); ++i)
         broken += model->IsErrorEntity(i) ? 1 : 0;
+    if (broken > 0 && format == CadFormat::Step && onlyUnsetNames(reader->WS())) {
+        out.notes << QStringLiteral("%1 of %2 entities have a name that is not a string (such as "
+                                    "$, as Rhino writes); read with empty names")
+                         .arg(broken)
+                         .arg(model->NbEntities());
+        broken = 0;
+    }
     if (broken > 0) {
         error = QStringLiteral("corrupt %1 file: %2 of %3 entities could not be parsed (%4)")
                     .arg(cadFormatName(format))

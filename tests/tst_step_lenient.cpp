@@ -1,0 +1,82 @@
+// STEP files whose names are `$` (unset), as Rhino 8 writes them, import with a warning as
+// OpenCASCADE reads them; a file whose geometry is damaged is still refused.
+#include "model/cad/cadimport.h"
+
+#include <QFile>
+#include <QRegularExpression>
+#include <QTest>
+
+using namespace kw;
+
+namespace {
+
+QByteArray readAll(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+QString writeCopy(const QByteArray& bytes, const QString& name) {
+    const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/lenient_") + name;
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size())
+        qFatal("cannot write %s", qPrintable(path));
+    return path;
+}
+
+const QString kRhino = QStringLiteral(KW_TEST_DATA_DIR "/rhino_unset_names.step");
+
+} // namespace
+
+class TestStepLenient : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void unsetNamesImportWithAWarning() {
+        QVERIFY(readAll(kRhino).contains("AXIS2_PLACEMENT_3D($,"));
+        QString error;
+        const auto result = importFile(kRhino, error);
+        QVERIFY2(result, qPrintable(error));
+        QCOMPARE(result->scene.surfaces.size(), size_t(3));
+        QCOMPARE(result->report.skipped.size(), 0);
+        // The warning says what was lenient, once.
+        int named = 0;
+        for (const QString& w : result->report.warnings)
+            named += w.contains(QStringLiteral("not a string")) ? 1 : 0;
+        QCOMPARE(named, 1);
+        // The geometry is whole: the cone and its two discs still close one solid.
+        for (const Surface& s : result->scene.surfaces)
+            QCOMPARE(s.solid, 0);
+    }
+
+    // A name replaced by an entity reference, a number or garbage that is not `$` is still a
+    // string failure only, and as harmless; but a point without its coordinates is not.
+    void damagedGeometryIsStillRefused() {
+        QByteArray bytes = readAll(kRhino);
+        const int at = bytes.indexOf("CARTESIAN_POINT($,(");
+        QVERIFY(at > 0);
+        const int open = bytes.indexOf('(', at + 16);
+        const int close = bytes.indexOf(')', open);
+        bytes.replace(open + 1, close - open - 1, "'x','y'");
+        QString error;
+        QVERIFY(!importFile(writeCopy(bytes, QStringLiteral("bad_point.step")), error));
+        QVERIFY2(error.contains(QStringLiteral("corrupt STEP file")), qPrintable(error));
+    }
+
+    void aFileWithOnlyGoodNamesHasNoWarning() {
+        QString text = QString::fromLatin1(readAll(kRhino));
+        text.replace(QStringLiteral("PRODUCT_DEFINITION_SHAPE($,"),
+                     QStringLiteral("PRODUCT_DEFINITION_SHAPE('',"));
+        text.replace(QRegularExpression(QStringLiteral(
+                         "(AXIS2_PLACEMENT_3D|CARTESIAN_POINT|DIRECTION|CIRCLE)\\(\\$,")),
+                     QStringLiteral("\\1('',"));
+        const QByteArray bytes = text.toLatin1();
+        QVERIFY(!bytes.contains("AXIS2_PLACEMENT_3D($,") && !bytes.contains("SHAPE($,"));
+        QString error;
+        const auto result = importFile(writeCopy(bytes, QStringLiteral("named.step")), error);
+        QVERIFY2(result, qPrintable(error));
+        for (const QString& w : result->report.warnings)
+            QVERIFY2(!w.contains(QStringLiteral("not a string")), qPrintable(w));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestStepLenient)
+#include "tst_step_lenient.moc"
