@@ -25,10 +25,10 @@ std::vector<Light> defaultLights() {
     return {key, fill};
 }
 
-bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi) {
+bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi, bool shownOnly) {
     bool any = false;
     for (const Surface& s : scene.surfaces) {
-        if (s.geometry.points.empty())
+        if (s.geometry.points.empty() || (shownOnly && s.hidden))
             continue;
         glm::dvec3 a, b;
         surfaceControlBounds(s.geometry, a, b);
@@ -42,10 +42,13 @@ bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi) {
 Camera fitCamera(const Scene& scene, double aspect) {
     Camera cam;
     glm::dvec3 lo(-1.0), hi(1.0);
-    // Frame what is drawn (the trimmed exact geometry), not the control nets, which can be
-    // several times larger (issue 10: imported faces on large B-spline domains).
-    if (!sceneVisibleBounds(scene, lo, hi))
-        sceneBounds(scene, lo, hi);
+    // Frame what is drawn (the trimmed exact geometry of the surfaces shown), not the control
+    // nets, which can be several times larger (imported faces on large B-spline domains).
+    bool framed = false;
+    for (const bool shownOnly : {true, false})
+        if (!framed)
+            framed = sceneVisibleBounds(scene, lo, hi, shownOnly) ||
+                     sceneBounds(scene, lo, hi, shownOnly);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1e-9);
     const double tanY = std::tan(glm::radians(cam.fovYDegrees) * 0.5);

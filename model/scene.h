@@ -150,11 +150,13 @@ struct Scene {
     bool operator==(const Scene&) const = default;
 };
 
-/// Axis-aligned bounds of all control points; false when the scene is empty.
-bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
+/// Axis-aligned bounds of all control points (with `shownOnly`, of the surfaces not hidden);
+/// false when there are none.
+bool sceneBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi, bool shownOnly = false);
 /// A camera that looks at the whole scene from the front-right-above, for views without one.
 /// It frames the exact trimmed geometry (sceneVisibleBounds, model/visible_bounds.h), or the
-/// control points when that gives no bounds.
+/// control points when that gives no bounds, of the surfaces shown; of all surfaces when every
+/// one is hidden.
 Camera fitCamera(const Scene& scene, double aspect);
 /// `camera` magnified `factor` (>= 1) times about the point of its target plane that shows at
 /// `at` in an image of width / height `aspect` (fractions of the image, (0, 0) its top left,

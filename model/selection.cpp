@@ -16,7 +16,10 @@ template <typename T> void sortUnique(std::vector<T>& v) {
 
 Selection::Selection(SceneModel& model, QObject* parent)
     : QObject(parent), m_doc(model.document()), m_items(new QItemSelectionModel(&model, this)) {
-    connect(m_items, &QItemSelectionModel::selectionChanged, this, &Selection::changed);
+    connect(m_items, &QItemSelectionModel::selectionChanged, this, [this] {
+        keepPointsOfSelectedRows();
+        Q_EMIT changed();
+    });
     connect(m_items, &QItemSelectionModel::currentChanged, this, &Selection::changed);
     connect(m_doc, &Document::sceneReset, this, [this] {
         m_points.clear();
@@ -28,6 +31,10 @@ Selection::Selection(SceneModel& model, QObject* parent)
     connect(m_doc, &Document::surfaceChanged, this, [this](SurfaceId id, Aspects aspects) {
         if (aspects & Aspect::Knots)
             dropSurface(id, true, false);
+        // A hidden surface's points can be neither seen nor dragged: unpick them.
+        const Surface* s = m_doc->surface(id);
+        if ((aspects & Aspect::Display) && s && s->hidden)
+            dropSurface(id, true, true);
     });
     connect(m_doc, &Document::trimLoopAboutToBeRemoved, this, [this](SurfaceId id, int index) {
         const Surface* s = m_doc->surface(id);
@@ -113,6 +120,17 @@ void Selection::dropSurface(SurfaceId id, bool points, bool trims) {
         std::erase_if(m_trimPoints, [id](const TrimPointRef& r) { return r.surface == id; });
     if (m_points.size() + m_trimPoints.size() != before)
         Q_EMIT changed();
+}
+
+void Selection::keepPointsOfSelectedRows() {
+    const std::vector<SurfaceId> rows = selectedSurfaces();
+    if (rows.empty())
+        return; // no row: points of any surface (Select All with none current)
+    const auto outside = [&rows](SurfaceId id) {
+        return std::find(rows.begin(), rows.end(), id) == rows.end();
+    };
+    std::erase_if(m_points, [&](const ControlPointRef& r) { return outside(r.surface); });
+    std::erase_if(m_trimPoints, [&](const TrimPointRef& r) { return outside(r.surface); });
 }
 
 void Selection::dropLoop(SurfaceId id, TrimLoopId loop) {

@@ -13,8 +13,9 @@ namespace kw {
 /// One selection shared by the scene tree, the viewport and the trim editor. Rows are held by a
 /// QItemSelectionModel over the SceneModel; picked control and trim points as typed refs, kept
 /// sorted and unique. The selection follows the document: points of a removed surface or
-/// loop, or of a surface whose net was re-sized (knot insertion renumbers points), are
-/// dropped; a scene reset clears everything. changed() fires after any of these.
+/// loop, of a surface whose net was re-sized (knot insertion renumbers points) or hidden, and
+/// of surfaces outside a new row selection, are dropped; a scene reset clears everything.
+/// changed() fires after any of these.
 class Selection : public QObject {
     Q_OBJECT
 public:
@@ -48,6 +49,9 @@ private:
     bool validRef(const ControlPointRef& r) const;
     bool validRef(const TrimPointRef& r) const;
     void dropSurface(SurfaceId id, bool points, bool trims);
+    /// Unpicks the points of surfaces whose rows are not selected, when any row is (another
+    /// surface picked in the tree or the view); emits nothing (the caller does).
+    void keepPointsOfSelectedRows();
     void dropLoop(SurfaceId id, TrimLoopId loop);
 
     const Document* m_doc;

@@ -123,11 +123,13 @@ bool surfaceVisibleBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi
     return true;
 }
 
-bool sceneVisibleBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi) {
+bool sceneVisibleBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi, bool shownOnly) {
     static std::mutex mutex;
     static std::unordered_map<std::uint64_t, CachedBounds> cache;
     bool any = false;
     for (const Surface& s : scene.surfaces) {
+        if (shownOnly && s.hidden)
+            continue;
         const std::uint64_t key = contentHash(s);
         CachedBounds entry;
         bool found = false;

@@ -27,7 +27,8 @@ bool surfaceVisibleBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi
 
 /// surfaceVisibleBounds over every surface. Results are cached by the content of each
 /// surface's points, weights, knots and trims, so a frame or a Fit after an edit recomputes
-/// only the surfaces that changed. False when no surface gives bounds.
-bool sceneVisibleBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
+/// only the surfaces that changed. With `shownOnly`, hidden surfaces (Surface::hidden) are left
+/// out. False when no surface gives bounds.
+bool sceneVisibleBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi, bool shownOnly = false);
 
 } // namespace kw

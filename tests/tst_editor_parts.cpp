@@ -4,6 +4,7 @@
 #include "ui/cameracontroller.h"
 #include "ui/controlpointpicker.h"
 #include "ui/trimmask.h"
+#include "ui/uvpanel.h"
 
 #include <QTest>
 #include <cmath>
@@ -53,6 +54,17 @@ double dist(QPointF a, QPointF b) {
 class TestEditorParts : public QObject {
     Q_OBJECT
 private Q_SLOTS:
+    // The UV panel's axis labels: rounded to the domain's span, so that the two ends of a
+    // narrow panel do not run into each other; no "-0".
+    void domainLabelsAreRounded() {
+        QCOMPARE(domainLabel(-0.00293838, 0.72), QStringLiteral("-0.003"));
+        QCOMPARE(domainLabel(0.71705, 0.72), QStringLiteral("0.717"));
+        QCOMPARE(domainLabel(6.283185307, 6.283185307), QStringLiteral("6.28"));
+        QCOMPARE(domainLabel(-20.8806, 20.8806), QStringLiteral("-20.9"));
+        QCOMPARE(domainLabel(1234.5678, 1000.0), QStringLiteral("1235"));
+        QCOMPARE(domainLabel(-1e-9, 1.0), QStringLiteral("0.00"));
+        QCOMPARE(domainLabel(1.0, 0.0), QStringLiteral("1.00")); // a degenerate span
+    }
     void orbitKeepsDistanceAndStaysUpright() {
         CameraController c;
         Camera cam;

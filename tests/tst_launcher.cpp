@@ -102,6 +102,16 @@ void TestLauncher::drawingCommandsRunThroughTheLauncher() {
                      r.err.contains(QStringLiteral("no X display")),
                  qPrintable(r.err));
     }
+    // The input comes before the display: a missing file or a folder is the error reported.
+    const QString missing = QDir::temp().filePath(QStringLiteral("no-such-model.knot"));
+    for (const QString& input : {missing, QDir::tempPath()}) {
+        const Run r = knotwork(
+            {QStringLiteral("render"), input, QStringLiteral("-o"), QStringLiteral("x.png")}, env);
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.startsWith(input + QStringLiteral(": cannot open: ")) &&
+                     !r.err.contains(QStringLiteral("display")),
+                 qPrintable(r.err));
+    }
     // Arguments are checked before the display is reached: a usage error and --help answer
     // the same with or without one (no X connection that load could break).
     const Run usage =
@@ -128,8 +138,8 @@ void TestLauncher::missingSiblingIsAClearError() {
         QStringList args;
         const char* program;
     } cases[] = {
-        {{QStringLiteral("render"), QStringLiteral("x.knot"), QStringLiteral("-o"),
-          QStringLiteral("x.png")},
+        {{QStringLiteral("render"), QStringLiteral(KW_SAMPLES_DIR "/torus.knot"),
+          QStringLiteral("-o"), QStringLiteral("x.png")},
          "knotwork-gl"},
         {{QStringLiteral("bench")}, "knotwork-bench"},
         {{}, "knotwork-gl"}, // the editor

@@ -40,6 +40,7 @@ private Q_SLOTS:
     void reset();
     void persistentIndexesFollowIds();
     void selectionFollowsDocument();
+    void pointsGoWithTheirSurfaceOutOfSight();
 };
 
 void TestSceneModel::structureAndTexts() {
@@ -260,6 +261,35 @@ void TestSceneModel::selectionFollowsDocument() {
     QVERIFY(f.doc.resetScene(threeSurfaceScene()));
     QVERIFY(sel.trimPoints().empty());
     QCOMPARE(sel.currentSurface(), SurfaceId{}); // a model reset clears the row selection
+}
+
+// A picked point is unpicked when its surface is hidden, or when another surface's row is
+// picked; with no row selected, points of several surfaces stay (Select All).
+void TestSceneModel::pointsGoWithTheirSurfaceOutOfSight() {
+    Fixture f;
+    Selection sel(f.model);
+    QVERIFY(sel.setControlPoints({{SurfaceId{1}, 0, 0}, {SurfaceId{2}, 1, 1}}));
+    QVERIFY(sel.setTrimPoints({{SurfaceId{1}, TrimLoopId{11}, 2, 2}}));
+    QSignalSpy changed(&sel, &Selection::changed);
+    QVERIFY(f.doc.setHidden(SurfaceId{2}, true));
+    QCOMPARE(sel.controlPoints(), std::vector<ControlPointRef>({{SurfaceId{1}, 0, 0}}));
+    QCOMPARE(changed.count(), 1);
+    QVERIFY(f.doc.setHidden(SurfaceId{2}, false)); // shown again: nothing comes back
+    QCOMPARE(sel.controlPoints().size(), size_t(1));
+
+    QVERIFY(sel.setControlPoints({{SurfaceId{1}, 0, 0}, {SurfaceId{2}, 1, 1}}));
+    changed.clear();
+    const QModelIndex row2 = f.model.index(1, 0);
+    QCOMPARE(row2.data(SceneModel::SurfaceIdRole).value<SurfaceId>(), SurfaceId{2});
+    sel.itemSelection()->setCurrentIndex(row2, QItemSelectionModel::ClearAndSelect |
+                                                   QItemSelectionModel::Rows);
+    QCOMPARE(sel.controlPoints(), std::vector<ControlPointRef>({{SurfaceId{2}, 1, 1}}));
+    QVERIFY(sel.trimPoints().empty());
+    QVERIFY(changed.count() > 0);
+    // Adding surface 1's row to the selection keeps surface 2's point.
+    sel.itemSelection()->select(f.model.index(0, 0),
+                                QItemSelectionModel::Select | QItemSelectionModel::Rows);
+    QCOMPARE(sel.controlPoints().size(), size_t(1));
 }
 
 QTEST_GUILESS_MAIN(TestSceneModel)

@@ -38,6 +38,13 @@ AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewpor
     QMenu* menu = viewMenu->addMenu(tr("&Analysis"));
     QToolBar* bar = window->addToolBar(tr("Analysis"));
     bar->setObjectName(QStringLiteral("analysisToolBar"));
+    // One combo box for the modes, not a button each: a row of ten text buttons overflowed the
+    // toolbar area of the first window. The menu keeps an action per mode, with the same state.
+    auto* modes = new QComboBox;
+    modes->setObjectName(QStringLiteral("analysisModeBox"));
+    modes->setToolTip(tr("Shading and analysis mode (View ▸ Analysis)"));
+    modes->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+    bar->addWidget(modes);
     auto* group = new QActionGroup(this);
     for (AnalysisMode mode : analysisModes()) {
         QAction* a = menu->addAction(analysisModeTitle(mode));
@@ -45,13 +52,25 @@ AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewpor
         a->setCheckable(true);
         a->setChecked(mode == viewport->renderOptions().analysis.mode);
         group->addAction(a);
-        bar->addAction(a);
+        const int index = modes->count();
+        modes->addItem(analysisModeTitle(mode));
+        if (a->isChecked())
+            modes->setCurrentIndex(index);
+        connect(a, &QAction::toggled, modes, [modes, index](bool on) {
+            if (on)
+                modes->setCurrentIndex(index);
+        });
         connect(a, &QAction::triggered, this, [this, mode] {
             AnalysisOptions o = m_viewport->renderOptions().analysis;
             o.mode = mode;
             m_viewport->setAnalysis(o);
         });
     }
+    const QList<QAction*> modeActions = group->actions();
+    connect(modes, &QComboBox::activated, this, [modeActions](int index) {
+        if (index >= 0 && index < modeActions.size() && !modeActions[index]->isChecked())
+            modeActions[index]->trigger();
+    });
     menu->addSeparator();
     bar->addSeparator();
     QAction* iso = menu->addAction(tr("&Isocurves"));

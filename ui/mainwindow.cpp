@@ -24,14 +24,17 @@
 #include <QMenuBar>
 #include <QProgressDialog>
 #include <QPushButton>
+#include <QScreen>
 #include <QScrollArea>
 #include <QSettings>
+#include <QShowEvent>
 #include <QSpinBox>
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
 #include <QTreeView>
 #include <QUndoStack>
+#include <algorithm>
 
 namespace kw {
 
@@ -150,14 +153,65 @@ MainWindow::MainWindow(QWidget* parent)
     });
 
     QSettings settings;
-    resize(1100, 720);
+    sizeFirstStart();
     restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
-    restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
     rebuildRecentMenu();
     updateTitle();
 }
 
 MainWindow::~MainWindow() = default;
+
+namespace {
+// The first widths of the left (scene, UV domain) and right (properties, lights) docks.
+constexpr double kLeftDockFraction = 0.18;
+constexpr double kRightDockFraction = 0.2;
+} // namespace
+
+// The first start, before any saved layout: most of the screen, as CAD viewers open.
+void MainWindow::sizeFirstStart() {
+    const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect();
+    if (screen.isEmpty()) {
+        resize(1100, 720);
+        return;
+    }
+    const int w = std::clamp(int(screen.width() * 0.9), std::min(1100, screen.width()), 1800);
+    const int h = std::clamp(int(screen.height() * 0.9), std::min(720, screen.height()), 1100);
+    resize(w, h);
+}
+
+// At the first show: the saved layout, or else the docks' first widths as fractions of the
+// window, so that the 3D view takes most of it (about 60 %) at any window size.
+void MainWindow::showEvent(QShowEvent* event) {
+    QMainWindow::showEvent(event);
+    if (m_docksSized)
+        return;
+    m_docksSized = true;
+    // The saved docks and toolbars, restored once the window has its size: restored before,
+    // the docks' widths came back tens of pixels off.
+    if (restoreState(QSettings().value(QStringLiteral("window/state")).toByteArray()))
+        return;
+    QList<QDockWidget*> left, right;
+    for (QDockWidget* d : findChildren<QDockWidget*>()) {
+        if (dockWidgetArea(d) == Qt::LeftDockWidgetArea)
+            left << d;
+        else if (dockWidgetArea(d) == Qt::RightDockWidgetArea)
+            right << d;
+    }
+    QList<QDockWidget*> docks;
+    QList<int> widths;
+    if (!left.isEmpty()) {
+        docks << left.first();
+        widths << int(width() * kLeftDockFraction);
+    }
+    if (!right.isEmpty()) {
+        docks << right.first();
+        widths << int(width() * kRightDockFraction);
+    }
+    resizeDocks(docks, widths, Qt::Horizontal);
+    // The scene tree above, the UV domain below it: the domain square gets the larger share.
+    if (left.size() > 1)
+        resizeDocks({left[0], left[1]}, {height() * 2 / 5, height() * 3 / 5}, Qt::Vertical);
+}
 
 void MainWindow::buildDocks() {
     auto dock = [this](const QString& title, const QString& name, QWidget* content,
@@ -189,8 +243,12 @@ void MainWindow::buildDocks() {
     QDockWidget* props =
         dock(tr("Properties"), QStringLiteral("dockProperties"), scroll, Qt::RightDockWidgetArea);
     m_lights = new LightsPanel(m_doc, m_stack);
+    // Scrolled like the properties, so that its width does not set the tabbed docks' minimum.
+    auto* lightsScroll = new QScrollArea;
+    lightsScroll->setWidgetResizable(true);
+    lightsScroll->setWidget(m_lights);
     QDockWidget* lights =
-        dock(tr("Lights"), QStringLiteral("dockLights"), m_lights, Qt::RightDockWidgetArea);
+        dock(tr("Lights"), QStringLiteral("dockLights"), lightsScroll, Qt::RightDockWidgetArea);
     tabifyDockWidget(props, lights);
     props->raise();
 }
@@ -216,6 +274,8 @@ void MainWindow::buildMenus() {
     m_tools = new ModelingTools(this, m_doc, m_model, m_selection, m_stack, m_viewport);
     connect(m_tools, &ModelingTools::message, this,
             [this](const QString& m) { statusBar()->showMessage(m, 5000); });
+    // A row of its own: beside the Analysis toolbar it ran out of room in the first window.
+    addToolBarBreak();
     QToolBar* toolbar = addToolBar(tr("Create"));
     toolbar->setObjectName(QStringLiteral("toolbarCreate")); // saveState() keys by name
     toolbar->setToolButtonStyle(Qt::ToolButtonTextOnly);

@@ -115,11 +115,13 @@ public:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void showEvent(QShowEvent* event) override;
     void dragEnterEvent(QDragEnterEvent* event) override;
     void dropEvent(QDropEvent* event) override;
 
 private:
     void buildDocks();
+    void sizeFirstStart();
     void buildMenus();
     void buildFileMenu();
     void buildEditMenu();
@@ -161,6 +163,7 @@ private:
     double m_lastFrameMs = 0.0;
     QString m_path;
     QString m_importedPath;
+    bool m_docksSized = false;                   ///< the first show restored or set the docks
     QProgressDialog* m_importProgress = nullptr; ///< while an import runs
     Dialogs m_dialogs;
 };

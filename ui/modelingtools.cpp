@@ -67,9 +67,31 @@ SurfaceId ModelingTools::add(Surface surface, const QString& text) {
     return id;
 }
 
+glm::dvec3 ModelingTools::placeBesideShown(double radius) const {
+    const Camera& c = m_viewport->cameraController().camera();
+    glm::dvec3 lo, hi;
+    if (!sceneBounds(m_doc->scene(), lo, hi, true))
+        return c.target;
+    // The box's nearest point: is the new shape's sphere clear of it, with the gap?
+    const double gap = 0.2 * radius;
+    const glm::dvec3 nearest = glm::clamp(c.target, lo, hi);
+    if (glm::length(c.target - nearest) >= radius + gap)
+        return c.target;
+    glm::dvec3 right = glm::cross(c.target - c.eye, c.up);
+    right = glm::length(right) > 1e-12 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);
+    double reach = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y,
+                                (k & 4) ? hi.z : lo.z);
+        reach = std::max(reach, glm::dot(corner - c.target, right));
+    }
+    return c.target + right * (reach + radius + gap);
+}
+
 SurfaceId ModelingTools::createPrimitive(Primitive kind) {
-    const glm::dvec3 at = m_viewport->cameraController().camera().target;
     const double r = 0.5 * viewScale();
+    // 1.45 r bounds every shape below (the plane's half diagonal is 1.41 r).
+    const glm::dvec3 at = placeBesideShown(1.45 * r);
     Surface s;
     switch (kind) {
     case Primitive::Plane:
@@ -107,9 +129,9 @@ SurfaceId ModelingTools::createPatch(const PatchParams& p) {
     }
     const double size = viewScale();
     Surface s;
-    s.geometry =
-        makePatch(m_viewport->cameraController().camera().target, p.degreeU, p.degreeV, p.countU,
-                  p.countV, p.sizeU > 0 ? p.sizeU : size, p.sizeV > 0 ? p.sizeV : size);
+    const double sizeU = p.sizeU > 0 ? p.sizeU : size, sizeV = p.sizeV > 0 ? p.sizeV : size;
+    s.geometry = makePatch(placeBesideShown(0.5 * std::hypot(sizeU, sizeV)), p.degreeU, p.degreeV,
+                           p.countU, p.countV, sizeU, sizeV);
     s.name = uniqueName(tr("Patch"));
     return add(std::move(s), tr("Create patch"));
 }
@@ -433,6 +455,19 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
             removeKnots(r->first == 0 ? Direction::U : Direction::V, r->second);
     });
 
+    // Short labels on the toolbar (the menus keep the full ones, shown as tool tips), so that
+    // the row fits a first window.
+    const std::pair<QAction*, QString> shortLabels[] = {{patch, tr("Patch")},
+                                                        {opActions[0], tr("Revolve")},
+                                                        {opActions[1], tr("Extrude")},
+                                                        {opActions[2], tr("Loft")},
+                                                        {drawActions[0], tr("Draw Revolve")},
+                                                        {drawActions[1], tr("Draw Extrude")},
+                                                        {drawActions[2], tr("Draw Loft")}};
+    for (const auto& [action, label] : shortLabels) {
+        action->setToolTip(QString(action->text()).remove(QLatin1Char('&')));
+        action->setIconText(label);
+    }
     toolbar->addAction(patch);
     for (QAction* a : shapeActions)
         toolbar->addAction(a);

@@ -106,6 +106,10 @@ public:
     static NurbsCurve3 surfaceCurve(const NurbsSurface& s, const CurveSpec& spec);
     /// A length that fills about a third of the view at the camera's target.
     double viewScale() const;
+    /// Where a new shape of bounding radius `radius` goes: the camera's target when nothing
+    /// shown is within its reach, else beside the shown surfaces, to the view's right of them
+    /// with a gap of a fifth of the radius, so new shapes never appear inside others.
+    glm::dvec3 placeBesideShown(double radius) const;
     /// Makes `ids` the selected surfaces (the first one current).
     void selectSurfaces(const std::vector<SurfaceId>& ids);
 

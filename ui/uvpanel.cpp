@@ -4,6 +4,7 @@
 #include "model/trim.h"
 #include "ui/edit/commands.h"
 
+#include <QFontMetricsF>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
@@ -74,6 +75,15 @@ UvPanel::UvPanel(Document* document, Selection* selection, QUndoStack* stack, QW
 SurfaceId UvPanel::surface() const {
     const Surface* s = shown(m_doc, m_selection);
     return s ? s->id : SurfaceId{};
+}
+
+QString domainLabel(double value, double span) {
+    const double magnitude = std::isfinite(span) && span > 0.0 ? std::floor(std::log10(span)) : 0.0;
+    const int decimals = int(std::clamp(2.0 - magnitude, 0.0, 9.0));
+    QString text = QString::number(value, 'f', decimals);
+    if (text.startsWith(QLatin1Char('-')) && text.toDouble() == 0.0)
+        text.remove(0, 1);
+    return text;
 }
 
 QRectF UvPanel::domainRect() const {
@@ -188,12 +198,21 @@ void UvPanel::paintEvent(QPaintEvent*) {
     p.setPen(QPen(palette().text().color(), 1.0));
     p.drawRect(r);
     const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
-    p.drawText(QRectF(r.left(), r.bottom(), r.width(), 14), Qt::AlignLeft,
-               QStringLiteral("u %1").arg(du.first));
-    p.drawText(QRectF(r.left(), r.bottom(), r.width(), 14), Qt::AlignRight,
-               QStringLiteral("%1").arg(du.last));
+    const double spanU = du.last - du.first;
+    const QString first = QStringLiteral("u %1").arg(domainLabel(du.first, spanU));
+    const QString last = domainLabel(du.last, spanU);
+    const QFontMetricsF fm(font());
+    const QRectF below(r.left(), r.bottom(), r.width(), 14);
+    if (fm.horizontalAdvance(first) + fm.horizontalAdvance(last) + 8 <= r.width()) {
+        p.drawText(below, Qt::AlignLeft, first);
+        p.drawText(below, Qt::AlignRight, last);
+    } else { // too narrow for both ends apart: one label, never one over the other
+        p.drawText(QRectF(r.left(), r.bottom(), width() - r.left(), 14), Qt::AlignLeft,
+                   fm.elidedText(first + QStringLiteral(" … ") + last, Qt::ElideRight,
+                                 width() - r.left()));
+    }
     p.drawText(QRectF(r.left() + 2, r.top() - 14, r.width(), 14), Qt::AlignLeft,
-               QStringLiteral("v %1").arg(dv.last));
+               QStringLiteral("v %1").arg(domainLabel(dv.last, dv.last - dv.first)));
 
     p.setRenderHint(QPainter::Antialiasing);
     // Trim loops, then control polygons and points.

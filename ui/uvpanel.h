@@ -29,6 +29,11 @@ class UvPanel;
 /// picked), and the panel.
 QWidget* makeUvEditor(UvPanel* panel, Selection* selection, Document* document);
 
+/// A domain bound for the UV panel's axis labels: rounded to three significant digits of the
+/// domain's `span` (0.72 -> 0.001, 20.9 -> 0.1), with no "-0" ("-0.00293838" over a span of
+/// 0.72 reads "-0.003").
+QString domainLabel(double value, double span);
+
 /// What a left press in the UV panel does: pick and drag trim points, or draw a new loop.
 enum class UvTool { Select, Rectangle, Circle, Polygon, Spline };
 

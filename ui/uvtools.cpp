@@ -10,6 +10,7 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QDoubleSpinBox>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QMouseEvent>
 #include <QPainter>
@@ -374,8 +375,11 @@ QWidget* makeUvEditor(UvPanel* panel, Selection* selection, Document* document) 
             a->objectName() == QLatin1String("uvDrawHoles"))
             bar->addSeparator();
     }
-    auto* point = new QToolBar;
-    point->addWidget(new QLabel(QObject::tr(" u ")));
+    // A plain row, not a toolbar: the fields share a narrow dock's width instead of hiding
+    // behind an overflow button (their size hint is that of +-1e9 with six decimals).
+    auto* point = new QWidget;
+    auto* row = new QHBoxLayout(point);
+    row->setContentsMargins(4, 0, 4, 0);
     QDoubleSpinBox* fields[2];
     for (int k = 0; k < 2; ++k) {
         fields[k] = new QDoubleSpinBox;
@@ -383,9 +387,10 @@ QWidget* makeUvEditor(UvPanel* panel, Selection* selection, Document* document) 
         fields[k]->setRange(-1e9, 1e9);
         fields[k]->setDecimals(6);
         fields[k]->setKeyboardTracking(false); // one edit per committed value
-        if (k == 1)
-            point->addWidget(new QLabel(QObject::tr(" v ")));
-        point->addWidget(fields[k]);
+        fields[k]->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+        fields[k]->setMinimumWidth(48);
+        row->addWidget(new QLabel(k == 0 ? QObject::tr("u") : QObject::tr("v")));
+        row->addWidget(fields[k], 1);
     }
     layout->addWidget(bar);
     layout->addWidget(point);
