@@ -37,10 +37,19 @@ QString quoteInput(QByteArrayView bytes, qsizetype maxChars) {
     // Decode no more than can be shown: a 3 MB token costs no more than an 80-byte one.
     const qsizetype take = std::min<qsizetype>(bytes.size(), maxChars * 4 + 4);
     const QString decoded = QString::fromUtf8(bytes.first(take)); // invalid UTF-8 -> U+FFFD
-    QString safe = safeMessageText(decoded);
-    if (take < bytes.size() && safe.size() <= maxChars)
-        safe += QChar(0x2026); // cut while decoding: say so even when it fits
-    return safe.size() > maxChars ? elided(safe, maxChars) : safe;
+    // Escaped character by character, so that a cut never splits an escape or a surrogate
+    // pair.
+    QString out;
+    for (qsizetype k = 0; k < decoded.size(); ++k) {
+        const qsizetype width = decoded[k].isHighSurrogate() && k + 1 < decoded.size() ? 2 : 1;
+        const QString piece = safeMessageText(QStringView(decoded).sliced(k, width));
+        const bool last = k + width >= decoded.size() && take == bytes.size();
+        if (out.size() + piece.size() > (last ? maxChars : maxChars - 1))
+            return out + QChar(0x2026);
+        out += piece;
+        k += width - 1;
+    }
+    return take < bytes.size() ? out + QChar(0x2026) : out;
 }
 
 QString occtMessageText(QByteArrayView message) {
@@ -54,7 +63,7 @@ QString occtMessageText(QByteArrayView message) {
         QStringLiteral("%[-+ #0]*[0-9*]*(\\.[0-9*]+)?"
                        "(hh|h|ll|l|L|z|j|t)?[diouxXeEfgGcsp]"));
     text.remove(placeholder);
-    text = safeMessageText(text).simplified();
+    text = safeMessageText(text.simplified());
     text.replace(QStringLiteral(" ."), QStringLiteral("."));
     return text;
 }

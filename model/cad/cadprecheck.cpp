@@ -79,7 +79,9 @@ QString stepProblem(QByteArrayView b) {
             continue;
         }
         if (c == '/' && k + 1 < n && b[k + 1] == '*') {
-            inComment = true;
+            inComment = true; // separates like white space
+            if (!separated.empty())
+                separated.back() = 1;
             ++k;
             continue;
         }

@@ -1,6 +1,5 @@
-/* An LD_PRELOAD library for tests: every write to a file under $KW_FAIL_WRITES_UNDER fails
- * with ENOSPC ("No space left on device"), as on a full disk; other writes are untouched. */
-#define _GNU_SOURCE
+// An LD_PRELOAD library for tests: every write to a file under $KW_FAIL_WRITES_UNDER fails with
+// ENOSPC ("No space left on device"), as on a full disk; other writes are untouched.
 #include <dlfcn.h>
 #include <errno.h>
 #include <stdio.h>
@@ -10,7 +9,9 @@
 #include <sys/uio.h>
 #include <unistd.h>
 
-static int targeted(int fd) {
+namespace {
+
+int targeted(int fd) {
     const char* prefix = getenv("KW_FAIL_WRITES_UNDER");
     if (!prefix || !*prefix)
         return 0;
@@ -23,13 +24,17 @@ static int targeted(int fd) {
     return strncmp(path, prefix, strlen(prefix)) == 0;
 }
 
+} // namespace
+
 typedef ssize_t (*write_fn)(int, const void*, size_t);
 typedef ssize_t (*writev_fn)(int, const struct iovec*, int);
 typedef ssize_t (*pwrite_fn)(int, const void*, size_t, off_t);
 #define REAL(name, type)                                                                           \
     static type real_##name;                                                                       \
     if (!real_##name)                                                                              \
-    real_##name = (type)dlsym(RTLD_NEXT, #name)
+    real_##name = reinterpret_cast<type>(dlsym(RTLD_NEXT, #name))
+
+extern "C" {
 
 ssize_t write(int fd, const void* buffer, size_t count) {
     REAL(write, write_fn);
@@ -61,3 +66,5 @@ ssize_t pwrite64(int fd, const void* buffer, size_t count, off_t offset) {
 ssize_t pwrite(int fd, const void* buffer, size_t count, off_t offset) {
     return pwrite64(fd, buffer, count, offset);
 }
+
+} // extern "C"
