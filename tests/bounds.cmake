@@ -9,3 +9,10 @@ add_dependencies(tst_bounds knotwork kw_failwrite)
 target_compile_definitions(tst_bounds PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>"
                            KW_FAILWRITE_LIB="$<TARGET_FILE:kw_failwrite>")
 set_tests_properties(tst_bounds PROPERTIES TIMEOUT 300)
+# The editor's Open and Import, and `knotwork render` (label gui: Xvfb, the real main window).
+kw_add_test(tst_bounds_gui LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_bounds_gui.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h LIBS knotwork_ui)
+kw_use_cad_reader(tst_bounds_gui)
+add_dependencies(tst_bounds_gui kw_failwrite)
+target_compile_definitions(tst_bounds_gui PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>"
+                           KW_FAILWRITE_LIB="$<TARGET_FILE:kw_failwrite>")

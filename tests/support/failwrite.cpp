@@ -67,4 +67,18 @@ ssize_t pwrite(int fd, const void* buffer, size_t count, off_t offset) {
     return pwrite64(fd, buffer, count, offset);
 }
 
+// Writers that use stdio (OpenImageIO, libjpeg): glibc's own fwrite calls its internal write,
+// which the wrappers above do not see.
+size_t fwrite(const void* buffer, size_t size, size_t count, FILE* stream) {
+    using fwrite_fn = size_t (*)(const void*, size_t, size_t, FILE*);
+    static fwrite_fn real_fwrite;
+    if (!real_fwrite)
+        real_fwrite = reinterpret_cast<fwrite_fn>(dlsym(RTLD_NEXT, "fwrite"));
+    if (size > 0 && count > 0 && targeted(fileno(stream))) {
+        errno = ENOSPC;
+        return 0;
+    }
+    return real_fwrite(buffer, size, count, stream);
+}
+
 } // extern "C"
