@@ -3,6 +3,7 @@
 
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprocess.h"
+#include "model/cad/cadtempdir.h"
 
 #include <QDir>
 #include <QFile>
@@ -37,7 +38,8 @@ struct Claimed {
         }
         ::close(read->out);
         ::close(read->err);
-        QDir(read->dir).removeRecursively();
+        unregisterCadChild(read->pid);
+        removeCadTempDir(read->dir);
     }
 };
 
@@ -141,6 +143,9 @@ void claimPrestartedCadRead() {
         ::fcntl(fd, F_SETFD, FD_CLOEXEC);
         ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     }
+    // Removed, and the child killed, should this program be stopped by a signal.
+    registerCadTempDir(r.dir);
+    registerCadChild(r.pid);
     QMutexLocker lock(&claimed().mutex);
     claimed().read = r;
 }

@@ -117,6 +117,14 @@ struct ChildEnd {
     QByteArray err;
 };
 
+// What the parent keeps of the child's stderr: its last line is the error, and a child that
+// writes without end must not grow the parent's memory.
+constexpr qsizetype kMaxStderrBytes = 64 * 1024;
+void keepTail(QByteArray& err) {
+    if (err.size() > kMaxStderrBytes)
+        err.remove(0, err.size() - kMaxStderrBytes);
+}
+
 // Removes a folder when it goes out of scope (the prestarted child's, not a QTemporaryDir).
 struct FolderRemover {
     QString path;
@@ -138,6 +146,8 @@ struct ProgressLines {
                 total = t[2].toInt();
             }
         }
+        if (out.size() > 4096) // no progress line is that long
+            out.clear();
     }
 };
 
@@ -207,6 +217,7 @@ bool watchQProcess(const QString& path, const QString& reader, const QString& di
         child.waitForFinished(kPollMs);
         lines.take(child.readAllStandardOutput());
         end.err += child.readAllStandardError();
+        keepTail(end.err);
         // Called every poll, not only on news: the editor's Cancel must not wait for OCCT.
         if (progress && !progress(lines.done, lines.total))
             return stop(cancelled(path));
@@ -267,6 +278,7 @@ bool watchPrestarted(const PrestartedCadRead& child, double seconds, const Impor
         for (int k = 0; k < 2; ++k)
             if (fds[k].fd >= 0 && !drain(fds[k].fd, k == 0 ? out : end.err))
                 fds[k].fd = -1; // closed: poll ignores negative descriptors
+        keepTail(end.err);
         lines.take(out);
         if (!exited) {
             const pid_t w = ::waitpid(child.pid, &status, WNOHANG);
