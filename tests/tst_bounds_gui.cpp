@@ -102,8 +102,7 @@ private Q_SLOTS:
 
     void renderNamesAFullDisk_data() {
         QTest::addColumn<QString>("suffix");
-        // JPEG is not here: libjpeg (inside OpenImageIO) ends the process on a write error.
-        for (const char* s : {"png", "exr", "tif"})
+        for (const char* s : {"png", "exr", "tif", "jpg"})
             QTest::newRow(s) << QString::fromLatin1(s);
     }
 
@@ -119,7 +118,12 @@ private Q_SLOTS:
                       QStringLiteral("-o"), full + QStringLiteral("/out.") + suffix},
                      e, 120000);
         QCOMPARE(r.code, 1);
-        QVERIFY2(r.err.contains(QLatin1String("No space left on device")), qPrintable(r.err));
+        // libjpeg (inside OpenImageIO) ends the process on a write error with its own words;
+        // the temporary file must go all the same.
+        QVERIFY2(r.err.contains(QLatin1String(suffix == QLatin1String("jpg")
+                                                  ? "out of disk space"
+                                                  : "No space left on device")),
+                 qPrintable(r.err));
         QVERIFY2(
             QDir(full).entryList(QDir::AllEntries | QDir::NoDotAndDotDot | QDir::Hidden).isEmpty(),
             "a temporary file was left");

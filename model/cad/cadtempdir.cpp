@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
@@ -86,9 +87,20 @@ void onSignal(int sig) {
     ::raise(sig);
 }
 
+// exit() from a library (libjpeg's error handler) skips the destructors that remove folders.
+void removeAllAtExit() {
+    for (auto& child : childSlots)
+        if (const pid_t pid = child.load(); pid > 0)
+            ::kill(pid, SIGKILL);
+    for (DirSlot& slot : dirSlots)
+        if (slot.used.load())
+            removeFlatFolder(slot.path);
+}
+
 void installHandlersOnce() {
     static std::once_flag once;
     std::call_once(once, [] {
+        std::atexit(removeAllAtExit);
         for (int k = 0; k < 3; ++k) {
             struct sigaction current {};
             ::sigaction(kSignals[k], nullptr, &current);
