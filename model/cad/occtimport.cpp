@@ -4,6 +4,7 @@
 #include "model/cad/cadprecheck.h"
 #include "model/cad/igesrepair.h"
 #include "model/cad/occt_internal.h"
+#include "model/cad/occtranges.h"
 #include "model/safetext.h"
 
 #include <BRepTools.hxx>
@@ -339,7 +340,11 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             const bool untrimmedInFile =
                 format == CadFormat::Iges && (type == 0 || (type != 144 && type != 143));
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
-            ok = occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
+            // An edge range outside its curve sends the conversion's projections into a
+            // minute of approximation: such a face is skipped before they see it.
+            why = occt::edgeRangeProblem(face);
+            ok = why.isEmpty() &&
+                 occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
             if (ok) {
                 surface.id = SurfaceId{scene.nextId};
                 scene.nextId = ids;
