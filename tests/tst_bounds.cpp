@@ -244,6 +244,11 @@ void TestBounds::notRegularFilesAnswerAtOnce_data() {
                   {"fifo.obj", "a FIFO (named pipe)"},
                   {"folder.knot", "a directory"},
                   {"folder.brep", "a directory"}};
+    // /dev/zero itself: no extension, so info and eval read it as a .knot file.
+    QTest::addRow("info /dev/zero") << QStringList{"info", "/dev/zero"} << "a character device";
+    QTest::addRow("eval /dev/zero")
+        << QStringList{"eval", "--surface", "1", "--uv", "0,0", "/dev/zero"}
+        << "a character device";
     for (const auto& in : inputs) {
         const QString file = work(QLatin1String(in.file));
         const QString out = work(QStringLiteral("out.knot"));
