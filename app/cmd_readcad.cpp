@@ -83,7 +83,6 @@ int runReadCad(const QStringList& args) {
     // is killed or aborts.
     qputenv("TMPDIR", QFile::encodeName(dir));
     QString error;
-
     // A plain read loads only its format's toolkits: their symbol relocations are a large part
     // of a small file's read (docs/PERFORMANCE.md, First image of a CAD file).
     const char* module = deflection ? kOcctModuleName : occtReadModuleName(format);

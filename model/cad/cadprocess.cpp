@@ -125,7 +125,7 @@ void keepTail(QByteArray& err) {
         err.remove(0, err.size() - kMaxStderrBytes);
 }
 
-// Removes a folder when it goes out of scope (the prestarted child's, not a QTemporaryDir).
+// Removes the child's folder (cadtempdir.h) when it goes out of scope.
 struct FolderRemover {
     QString path;
     explicit FolderRemover(QString p) : path(std::move(p)) {}
@@ -342,8 +342,7 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
             deflection && mesh ? std::nullopt : takePrestartedCadRead(path)) {
         // Started by the launcher before it became this program (cadprestart.h): the same
         // watch, on its pid and pipes.
-        registerCadTempDir(pre->dir);
-        registerCadChild(pre->pid);
+        // (Registered for removal on a signal when it was claimed.)
         adoptedDir.emplace(pre->dir);
         dirPath = pre->dir;
         const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
