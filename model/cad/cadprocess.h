@@ -15,9 +15,10 @@ namespace kw {
 /// The verb of the knotwork executable that reads a CAD file for a parent (not in --help).
 constexpr const char* kReadCadVerb = "__read-cad";
 
-/// The time a file of `bytes` may take: 10 s plus 10 s per MB, or the value of the environment
-/// variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
-double cadTimeLimitSeconds(qint64 bytes);
+/// The time a file of `bytes` may take: 10 s plus 10 s per MB to read it, twice that when it is
+/// also meshed (`mesh`: BRepMesh takes about as long as the read), or the value of the
+/// environment variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
+double cadTimeLimitSeconds(qint64 bytes, bool mesh = false);
 /// The child's address-space limit (RLIMIT_AS) for a file of `bytes`: 2 GiB plus 256 MiB per
 /// MB, at most the machine's physical memory (or 2 GiB when that is less), or
 /// KNOTWORK_CAD_MEMORY_MB megabytes when that environment variable is set.
