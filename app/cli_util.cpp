@@ -1,5 +1,6 @@
 // Helpers shared by every subcommand of the knotwork executables (see app/commands.h).
 #include "app/commands.h"
+#include "model/safetext.h"
 
 #include <QCommandLineParser>
 #include <cstdio>
@@ -7,7 +8,8 @@
 namespace kw::cli {
 
 void printError(const QString& line) {
-    std::fprintf(stderr, "%s\n", line.toLocal8Bit().constData());
+    // The last guard for text from files and libraries: no byte that steers the terminal.
+    std::fprintf(stderr, "%s\n", safeMessageText(line, true).toLocal8Bit().constData());
     std::fflush(stderr);
 }
 

@@ -9,6 +9,7 @@
 #include "model/cad/occtimport.h"
 
 #include <QElapsedTimer>
+#include <QFile>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -34,6 +35,22 @@ int runReadCad(const QStringList& args) {
             ::prctl(PR_SET_PDEATHSIG, SIGKILL);
             ok1 = ::getppid() != 1;
             ++k;
+        } else if (args[k] == QLatin1String("--parent-pid") && k + 1 < args.size()) {
+            // Dies with the parent (also set between fork and exec); a parent already gone
+            // means nobody waits for this read.
+            const long long parent = args[k + 1].toLongLong(&ok1);
+            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+            if (ok1 && ::getppid() != pid_t(parent))
+                return kExitBadInput;
+            k += 2;
+        } else if (args[k] == QLatin1String("--deadline-s") && k + 1 < args.size()) {
+            // Its own deadline, kept even when no parent watches any more: SIGALRM's default
+            // action ends the process.
+            const int seconds = args[k + 1].toInt(&ok1);
+            ok1 = ok1 && seconds > 0;
+            if (ok1)
+                ::alarm(unsigned(seconds));
+            k += 2;
         } else if (args[k] == QLatin1String("--mesh") && k + 2 < args.size()) {
             deflection = MeshDeflection{args[k + 1].toDouble(&ok1), args[k + 2].toDouble(&ok2)};
             k += 3;
@@ -61,6 +78,10 @@ int runReadCad(const QStringList& args) {
         printError(QStringLiteral("%1: not an IGES, STEP or BREP file").arg(in));
         return kExitUsage;
     }
+    // Every temporary file of this process (the IGES numbering repair's copy, anything OCCT
+    // makes) goes into the parent's folder, which the parent removes even when this process
+    // is killed or aborts.
+    qputenv("TMPDIR", QFile::encodeName(dir));
     QString error;
     // A plain read loads only its format's toolkits: their symbol relocations are a large part
     // of a small file's read (docs/PERFORMANCE.md, First image of a CAD file).

@@ -5,6 +5,7 @@
 #include "app/launch.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
+#include "model/inputcheck.h"
 
 #include <QCoreApplication>
 #include <QFileInfo>
@@ -99,18 +100,6 @@ bool isEditorInvocation(int argc, char** argv) {
     return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
 }
 
-/// Why `path` cannot be read as an input file, or empty when it can be tried.
-QString unreadableInput(const QString& path) {
-    const QFileInfo info(path);
-    if (!info.exists())
-        return QStringLiteral("No such file or directory");
-    if (info.isDir())
-        return QStringLiteral("it is a directory, not a file");
-    if (!info.isReadable())
-        return QStringLiteral("Permission denied");
-    return {};
-}
-
 /// Replaces this process with `program`; returns the exit code only when that fails.
 int runElsewhere(const char* program, char** argv) {
     printError(kw::app::execSibling(program, argv));
@@ -129,10 +118,9 @@ int main(int argc, char** argv) {
         // the verb, the form --help shows; any other form reads the file as usual.
         if (c->name == QLatin1String("render") && argc > 2 && argv[2][0] != '-') {
             // The input first: a missing file is the error to report, not a missing display.
-            if (const QString why = unreadableInput(QString::fromLocal8Bit(argv[2]));
-                !why.isEmpty()) {
-                printError(QStringLiteral("%1: cannot open: %2")
-                               .arg(QString::fromLocal8Bit(argv[2]), why));
+            const QString input = QString::fromLocal8Bit(argv[2]);
+            if (const QString why = kw::regularFileProblem(input); !why.isEmpty()) {
+                printError(QStringLiteral("%1: %2").arg(input, why));
                 return kExitBadInput;
             }
             const QString reader = qEnvironmentVariable("KNOTWORK_CAD_READER");

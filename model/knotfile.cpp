@@ -2,9 +2,11 @@
 // knotfile_read.cpp).
 #include "model/knotfile.h"
 
+#include "model/inputcheck.h"
 #include "model/savefile.h"
 
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -143,6 +145,19 @@ bool writeKnotFile(const QString& path, const Scene& scene, QString* error) {
 }
 
 std::optional<Scene> readKnotFile(const QString& path, QString* error) {
+    // Nothing but a regular file within the size limit is opened, and a file that does not
+    // start like JSON is refused from its first bytes, whatever its size.
+    // (A missing file is left to open(), which names the reason.)
+    QString why = QFileInfo::exists(path)
+                      ? regularFileProblem(path, kMaxKnotFileBytes, QStringLiteral(".knot"))
+                      : QString();
+    if (why.isEmpty() && QFileInfo::exists(path))
+        why = knotHeadProblem(fileHead(path, kSniffBytes));
+    if (!why.isEmpty()) {
+        if (error)
+            *error = QStringLiteral("%1: %2").arg(path, why);
+        return std::nullopt;
+    }
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) {
         if (error)

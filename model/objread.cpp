@@ -1,5 +1,7 @@
 // OBJ 3.0 free-form reader: rational/polynomial B-spline and Bezier surfaces with curv2 trims.
+#include "model/inputcheck.h"
 #include "model/objfile.h"
+#include "model/safetext.h"
 #include "model/trim.h"
 #include "model/validation.h"
 
@@ -27,7 +29,7 @@ double toNumber(const QByteArray& token, int line) {
     bool ok = false;
     const double x = token.toDouble(&ok);
     if (!ok || !std::isfinite(x))
-        fail(line, QStringLiteral("'%1' is not a finite number").arg(QString::fromUtf8(token)));
+        fail(line, QStringLiteral("'%1' is not a finite number").arg(quoteInput(token)));
     return x;
 }
 
@@ -35,7 +37,7 @@ int toInt(const QByteArray& token, int line) {
     bool ok = false;
     const int x = token.toInt(&ok);
     if (!ok)
-        fail(line, QStringLiteral("'%1' is not an integer").arg(QString::fromUtf8(token)));
+        fail(line, QStringLiteral("'%1' is not an integer").arg(quoteInput(token)));
     return x;
 }
 
@@ -146,9 +148,9 @@ private:
                                  const char* dir) const;
     void need(const QList<QByteArray>& t, int n, int line) const {
         if (t.size() < n)
-            fail(line, QStringLiteral("'%1' needs at least %2 value(s)")
-                           .arg(QString::fromUtf8(t[0]))
-                           .arg(n - 1));
+            fail(
+                line,
+                QStringLiteral("'%1' needs at least %2 value(s)").arg(quoteInput(t[0])).arg(n - 1));
     }
 
     QString m_file;
@@ -234,7 +236,7 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
     const QByteArray& key = t[2];
     auto num = [&](int i) {
         if (i >= t.size())
-            fail(line, QStringLiteral("knotwork %1: missing value").arg(QString::fromUtf8(key)));
+            fail(line, QStringLiteral("knotwork %1: missing value").arg(quoteInput(key)));
         return toNumber(t[i], line);
     };
     // Ids and counts: integers in range before they are converted (a cast of an out-of-range
@@ -243,14 +245,14 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         const double x = num(i);
         if (x != std::floor(x) || x < lo || x > hi)
             fail(line, QStringLiteral("knotwork %1: %2 is not an integer in [%3, %4]")
-                           .arg(QString::fromUtf8(key), QString::fromUtf8(t[i]))
+                           .arg(quoteInput(key), quoteInput(t[i]))
                            .arg(lo, 0, 'f', 0)
                            .arg(hi, 0, 'f', 0));
         return x;
     };
     auto check = [&](const QString& why) {
         if (!why.isEmpty())
-            fail(line, QStringLiteral("knotwork %1: %2").arg(QString::fromUtf8(key), why));
+            fail(line, QStringLiteral("knotwork %1: %2").arg(quoteInput(key), why));
     };
     if (key == "nextid") {
         m_nextId = static_cast<std::uint32_t>(integer(3, 1, 4294967295.0));
@@ -311,7 +313,7 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         const QByteArray side = t.value(4);
         if (side != "normal" && side != "reversed")
             fail(line, QStringLiteral("knotwork solid: expected normal or reversed, found '%1'")
-                           .arg(QString::fromUtf8(side)));
+                           .arg(quoteInput(side)));
         m_meta.outsideAlongNormal = side == "normal";
     } else if (key == "loops") {
         for (int i = 3; i < t.size(); ++i)
@@ -345,7 +347,7 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
         if (m_rational) // before t[2] is read (found by fuzz_obj: SIGSEGV or double free)
             need(t, 3, line);
         const QByteArray type = t[m_rational ? 2 : 1];
-        m_typeName = QString::fromUtf8(type);
+        m_typeName = quoteInput(type);
         m_bezier = type == "bezier";
         m_supported = type == "bspline" || type == "bezier";
         if (!m_supported && type != "bmatrix" && type != "cardinal" && type != "taylor")
@@ -365,7 +367,7 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
         if (m_el.kind != Element::Kind::None)
             fail(line, QStringLiteral("'%1' inside an element that has no 'end' (opened on "
                                       "line %2)")
-                           .arg(QString::fromUtf8(k))
+                           .arg(quoteInput(k))
                            .arg(m_el.line));
         m_el = Element{};
         m_el.line = line;
@@ -407,10 +409,9 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
             p.push_back(toNumber(t[i], line));
     } else if (k == "trim" || k == "hole") {
         if (m_el.kind != Element::Kind::Surface)
-            fail(line, QStringLiteral("'%1' outside a surf element").arg(QString::fromUtf8(k)));
+            fail(line, QStringLiteral("'%1' outside a surf element").arg(quoteInput(k)));
         if (t.size() < 4 || (t.size() - 1) % 3 != 0)
-            fail(line,
-                 QStringLiteral("'%1' needs triples 'u0 u1 curv2d'").arg(QString::fromUtf8(k)));
+            fail(line, QStringLiteral("'%1' needs triples 'u0 u1 curv2d'").arg(quoteInput(k)));
         std::vector<TrimRef> loop;
         for (int i = 1; i + 2 < t.size(); i += 3)
             loop.push_back(
@@ -424,7 +425,7 @@ void ObjParser::statement(const QList<QByteArray>& t, const QByteArray& rest, in
     } else if (k == "bmat" || k == "step" || k == "sp") {
         // Basis matrices of unsupported curve types; the element is reported as skipped.
     } else {
-        fail(line, QStringLiteral("unknown statement '%1'").arg(QString::fromUtf8(k)));
+        fail(line, QStringLiteral("unknown statement '%1'").arg(quoteInput(k)));
     }
 }
 
@@ -651,6 +652,17 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
 }
 
 bool readObjFile(const QString& path, Scene& scene, ImportReport& report, QString& error) {
+    // Only a regular file within the size limit, and only text that starts like OBJ: random
+    // bytes are refused from their first 4 KiB, not after reading and splitting all of them.
+    QString why = regularFileProblem(path, kMaxObjFileBytes, QStringLiteral("OBJ"));
+    if (why.isEmpty())
+        why = objHeadProblem(fileHead(path, kSniffBytes));
+    if (!why.isEmpty()) {
+        error = why.startsWith(QLatin1String("line "))
+                    ? QStringLiteral("%1:%2").arg(path, why.mid(5))
+                    : QStringLiteral("%1: %2").arg(path, why);
+        return false;
+    }
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly)) {
         error = QStringLiteral("%1: cannot open: %2").arg(path, f.errorString());

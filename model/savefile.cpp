@@ -8,8 +8,47 @@
 #include <QTemporaryFile>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <set>
+#include <unistd.h>
 
 namespace kw {
+
+namespace {
+
+// Temporary names of saveViaTemporaryName still in use. A writer library that ends the process
+// (libjpeg's default error handler calls exit() on a failed write) would leave its file behind:
+// exit() runs atexit handlers, so they are removed there. Leaked on purpose: no destructor
+// order to mind at exit.
+std::mutex& temporaryMutex() {
+    static auto* m = new std::mutex;
+    return *m;
+}
+std::set<QByteArray>& temporaryNames() {
+    static auto* names = new std::set<QByteArray>;
+    return *names;
+}
+void removeTemporariesAtExit() {
+    std::lock_guard lock(temporaryMutex());
+    for (const QByteArray& name : temporaryNames())
+        ::unlink(name.constData());
+}
+struct TemporaryName {
+    QByteArray name;
+    explicit TemporaryName(const QString& path) : name(QFile::encodeName(path)) {
+        static std::once_flag once;
+        std::call_once(once, [] { std::atexit(removeTemporariesAtExit); });
+        std::lock_guard lock(temporaryMutex());
+        temporaryNames().insert(name);
+    }
+    ~TemporaryName() {
+        std::lock_guard lock(temporaryMutex());
+        temporaryNames().erase(name);
+    }
+};
+
+} // namespace
 
 bool saveFileAtomically(const QString& path, const std::function<bool(QIODevice&)>& write,
                         QString* error) {
@@ -58,6 +97,7 @@ bool saveViaTemporaryName(const QString& path,
     }
     const QString temporaryPath = temporary.fileName();
     temporary.close(); // the writer opens the name itself; QTemporaryFile still removes it
+    const TemporaryName registered(temporaryPath);
     QString why;
     if (!write(temporaryPath, &why)) {
         if (error)

@@ -3,6 +3,7 @@
 
 #include "model/savefile.h"
 
+#include <QFileDevice>
 #include <QFileInfo>
 #include <QImageWriter>
 
@@ -30,7 +31,11 @@ bool saveImageAtomically(const QImage& image, const QString& path, QString* erro
             QImageWriter writer(&device, format);
             if (writer.write(image))
                 return true;
-            why = writer.errorString();
+            // A failed write of the file itself (a full disk) is named by the file's own error
+            // (errno's text); QImageWriter only knows "Unknown error".
+            const auto* file = qobject_cast<QFileDevice*>(&device);
+            if (!file || file->error() == QFileDevice::NoError)
+                why = writer.errorString();
             return false;
         },
         error);

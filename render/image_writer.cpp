@@ -9,6 +9,7 @@
 #include "render/oiio_loader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <vector>
 
 namespace kw {
@@ -41,8 +42,15 @@ bool writePixels(const QString& path, KwImageWrite image, QString* error) {
             const QByteArray file = temporary.toLocal8Bit();
             image.path = file.constData();
             char message[1024] = {0};
+            errno = 0;
             if (!write(&image, message, sizeof message)) {
-                *why = QStringLiteral("%1: %2").arg(path, QString::fromLocal8Bit(message));
+                // OpenImageIO's messages ("Could not open", "Write error") do not say why; the
+                // errno of the failed call does (a full disk: "No space left on device").
+                const int err = errno;
+                *why =
+                    QStringLiteral("%1: %2%3")
+                        .arg(path, QString::fromLocal8Bit(message),
+                             err ? QStringLiteral(" (%1)").arg(qt_error_string(err)) : QString());
                 return false;
             }
             return true;

@@ -20,3 +20,16 @@ foreach(harness knot obj trim document)
   set_tests_properties(fuzz_replay_${harness} PROPERTIES LABELS "${label};fuzz"
     ENVIRONMENT "QT_QPA_PLATFORM=offscreen")
 endforeach()
+# The CAD reader child's checks before OpenCASCADE (model/cad/cadprecheck.h), on STEP and IGES.
+foreach(harness step iges)
+  add_executable(fuzz_replay_${harness} ${KW_FUZZ_DIR}/fuzz_${harness}.cpp
+                 ${KW_FUZZ_DIR}/replay_main.cpp ${KW_FUZZ_DIR}/fuzz_util.h ${KW_FUZZ_DIR}/fuzz_cad.h)
+  target_link_libraries(fuzz_replay_${harness} PRIVATE knotwork_cad)
+  set(inputs ${KW_FUZZ_DIR}/corpus/${harness})
+  if(EXISTS ${KW_FUZZ_DIR}/repro/${harness})
+    list(APPEND inputs ${KW_FUZZ_DIR}/repro/${harness})
+  endif()
+  add_test(NAME fuzz_replay_${harness} COMMAND fuzz_replay_${harness} ${inputs})
+  set_tests_properties(fuzz_replay_${harness} PROPERTIES LABELS "model;fuzz"
+    ENVIRONMENT "QT_QPA_PLATFORM=offscreen")
+endforeach()

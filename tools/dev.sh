@@ -12,7 +12,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${KW_BUILD_DIR:-$root/build}
 fuzz_build_dir=${KW_FUZZ_BUILD_DIR:-$root/build-fuzz}
-fuzz_harnesses=(knot obj trim document)
+fuzz_harnesses=(knot obj trim document step iges)
 sample=$root/resources/samples/teapot.knot
 xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 

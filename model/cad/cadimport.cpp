@@ -2,6 +2,7 @@
 #include "model/cad/cadimport.h"
 
 #include "model/cad/cadprocess.h"
+#include "model/inputcheck.h"
 #include "model/knotfile.h"
 #include "model/objfile.h"
 #include "model/trim.h"
@@ -73,8 +74,10 @@ bool occtAvailable() {
 std::optional<ImportResult> importFile(const QString& path, QString& error,
                                        const ImportProgress& progress) {
     const CadFormat format = cadFormatFromPath(path);
-    if (!QFileInfo(path).isFile()) {
-        error = QStringLiteral("%1: no such file").arg(path);
+    // A device, FIFO or directory is named at once, never opened (each reader then sniffs
+    // the first bytes of its format).
+    if (const QString why = regularFileProblem(path); !why.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, why);
         return std::nullopt;
     }
     QElapsedTimer timer;

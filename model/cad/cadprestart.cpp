@@ -3,11 +3,13 @@
 
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprocess.h"
+#include "model/cad/cadtempdir.h"
 
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
 #include <QMutex>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <fcntl.h>
@@ -36,7 +38,8 @@ struct Claimed {
         }
         ::close(read->out);
         ::close(read->err);
-        QDir(read->dir).removeRecursively();
+        unregisterCadChild(read->pid);
+        removeCadTempDir(read->dir);
     }
 };
 
@@ -62,7 +65,10 @@ void prestartCadRead(const QString& reader, const QString& path) {
     if ((format != CadFormat::Iges && format != CadFormat::Step && format != CadFormat::Brep) ||
         !QFileInfo(path).isFile())
         return;
-    QByteArray dir = QFile::encodeName(QDir::tempPath()) + "/knotwork-XXXXXX";
+    // Named after this process, which becomes the program that takes the child over: a later
+    // run sweeps it should that program be killed (cadtempdir.h).
+    QByteArray dir = QFile::encodeName(QDir::tempPath()) + "/knotwork-" +
+                     QByteArray::number(::getpid()) + "-XXXXXX";
     if (!::mkdtemp(dir.data()))
         return;
     int out[2] = {-1, -1}, err[2] = {-1, -1};
@@ -75,10 +81,14 @@ void prestartCadRead(const QString& reader, const QString& path) {
     }
     const QByteArray program = QFile::encodeName(reader);
     const QByteArray file = QFile::encodeName(path);
-    const QByteArray memory = QByteArray::number(cadMemoryLimitBytes() >> 20);
-    const char* argv[] = {
-        program.constData(), kReadCadVerb,       file.constData(),    dir.constData(),
-        "--max-memory-mb",   memory.constData(), "--die-with-parent", nullptr};
+    const qint64 size = QFileInfo(path).size();
+    const QByteArray memory = QByteArray::number(cadMemoryLimitBytes(size) >> 20);
+    const QByteArray deadline = QByteArray::number(int(std::ceil(cadTimeLimitSeconds(size))) + 1);
+    const char* argv[] = {program.constData(), kReadCadVerb,
+                          file.constData(),    dir.constData(),
+                          "--max-memory-mb",   memory.constData(),
+                          "--deadline-s",      deadline.constData(),
+                          "--die-with-parent", nullptr};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
@@ -133,6 +143,9 @@ void claimPrestartedCadRead() {
         ::fcntl(fd, F_SETFD, FD_CLOEXEC);
         ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     }
+    // Removed, and the child killed, should this program be stopped by a signal.
+    registerCadTempDir(r.dir);
+    registerCadChild(r.pid);
     QMutexLocker lock(&claimed().mutex);
     claimed().read = r;
 }

@@ -2,8 +2,12 @@
 // (progress, time limit, Cancel) and reads back the scene; the child side writes it.
 #include "model/cad/cadprocess.h"
 
+#include "model/cad/cadprecheck.h"
 #include "model/cad/cadprestart.h"
+#include "model/cad/cadtempdir.h"
 #include "model/cad/handover.h"
+#include "model/inputcheck.h"
+#include "model/safetext.h"
 #include "model/savefile.h"
 
 #include <QCoreApplication>
@@ -12,11 +16,12 @@
 #include <QFileInfo>
 #include <QMutex>
 #include <QProcess>
-#include <QTemporaryDir>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -39,21 +44,27 @@ QString signalText(int sig) {
 
 } // namespace
 
-double cadTimeLimitSeconds(qint64 bytes) {
+double cadTimeLimitSeconds(qint64 bytes, bool mesh) {
     bool ok = false;
     const double forced = qEnvironmentVariable("KNOTWORK_CAD_TIME_LIMIT").toDouble(&ok);
     if (ok && forced > 0)
         return forced;
-    return 60.0 + 30.0 * double(bytes) / double(1 << 20);
+    // The readers' work grows with the file: hammer.iges (1 MB) takes well under a second, so
+    // ten seconds per megabyte leave room for a loaded machine and none for a runaway.
+    // Meshing (knotwork mesh) took 0.72 s against the read's 0.35 s for Axis_of_bearing.brep.
+    return (mesh ? 2.0 : 1.0) * (10.0 + 10.0 * double(bytes) / double(1 << 20));
 }
 
-long long cadMemoryLimitBytes() {
+long long cadMemoryLimitBytes(qint64 bytes) {
     bool ok = false;
     const long long mb = qEnvironmentVariable("KNOTWORK_CAD_MEMORY_MB").toLongLong(&ok);
     if (ok && mb > 0)
         return mb << 20;
+    // Address space, not resident memory: the OCCT libraries and thread stacks take a few
+    // hundred MB of it before anything is read.
     const long long physical = (long long)::sysconf(_SC_PHYS_PAGES) * ::sysconf(_SC_PAGESIZE);
-    return std::max(physical, 2LL << 30);
+    const long long scaled = (2LL << 30) + (256LL << 20) * std::max<qint64>(0, bytes >> 20);
+    return std::min(scaled, std::max(physical, 2LL << 30));
 }
 
 QString cadReaderExecutable() {
@@ -107,11 +118,19 @@ struct ChildEnd {
     QByteArray err;
 };
 
-// Removes a folder when it goes out of scope (the prestarted child's, not a QTemporaryDir).
+// What the parent keeps of the child's stderr: its last line is the error, and a child that
+// writes without end must not grow the parent's memory.
+constexpr qsizetype kMaxStderrBytes = 64 * 1024;
+void keepTail(QByteArray& err) {
+    if (err.size() > kMaxStderrBytes)
+        err.remove(0, err.size() - kMaxStderrBytes);
+}
+
+// Removes the child's folder (cadtempdir.h) when it goes out of scope.
 struct FolderRemover {
     QString path;
     explicit FolderRemover(QString p) : path(std::move(p)) {}
-    ~FolderRemover() { QDir(path).removeRecursively(); }
+    ~FolderRemover() { removeCadTempDir(path); }
 };
 
 // The child's "progress DONE TOTAL" lines.
@@ -128,6 +147,8 @@ struct ProgressLines {
                 total = t[2].toInt();
             }
         }
+        if (out.size() > 4096) // no progress line is that long
+            out.clear();
     }
 };
 
@@ -147,15 +168,31 @@ QString outOfTime(const QString& path, const QString& reader, double seconds) {
 bool watchQProcess(const QString& path, const QString& reader, const QString& dir, long long memory,
                    const MeshDeflection* deflection, TaggedMeshSet* mesh,
                    const ImportProgress& progress, ChildEnd& end, QString& error) {
-    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
+    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size(), deflection && mesh);
     QProcess child;
     child.setProgram(cadReaderExecutable());
-    QStringList childArgs{QString::fromLatin1(kReadCadVerb), path, dir,
-                          QStringLiteral("--max-memory-mb"), QString::number(memory >> 20)};
+    // The child's own deadline (a second after ours) holds should this process stop watching.
+    QStringList childArgs{QString::fromLatin1(kReadCadVerb),
+                          path,
+                          dir,
+                          QStringLiteral("--max-memory-mb"),
+                          QString::number(memory >> 20),
+                          QStringLiteral("--parent-pid"),
+                          QString::number(::getpid()),
+                          QStringLiteral("--deadline-s"),
+                          QString::number(int(std::ceil(seconds)) + 1)};
     if (deflection && mesh)
         childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
                   << QString::number(deflection->angularDegrees, 'g', 17);
     child.setArguments(childArgs);
+    // Between fork and exec: the child dies with this process (SIGKILL when it ends, even by
+    // kill -9), and if this process already ended before the request, the child does not run.
+    const pid_t parent = ::getpid();
+    child.setChildProcessModifier([parent] {
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent)
+            ::_exit(127);
+    });
     child.start(QIODevice::ReadOnly);
     if (!child.waitForStarted(30000)) {
         error = QStringLiteral("%1: cannot start %2 (%3): %4")
@@ -164,6 +201,12 @@ bool watchQProcess(const QString& path, const QString& reader, const QString& di
     }
     QElapsedTimer clock;
     clock.start();
+    const pid_t pid = pid_t(child.processId());
+    registerCadChild(pid); // killed before its folder is removed on SIGTERM or SIGINT
+    struct Unregister {
+        pid_t pid;
+        ~Unregister() { unregisterCadChild(pid); }
+    } unregister{pid};
     ProgressLines lines;
     auto stop = [&](const QString& why) {
         child.kill();
@@ -175,6 +218,7 @@ bool watchQProcess(const QString& path, const QString& reader, const QString& di
         child.waitForFinished(kPollMs);
         lines.take(child.readAllStandardOutput());
         end.err += child.readAllStandardError();
+        keepTail(end.err);
         // Called every poll, not only on news: the editor's Cancel must not wait for OCCT.
         if (progress && !progress(lines.done, lines.total))
             return stop(cancelled(path));
@@ -235,6 +279,7 @@ bool watchPrestarted(const PrestartedCadRead& child, double seconds, const Impor
         for (int k = 0; k < 2; ++k)
             if (fds[k].fd >= 0 && !drain(fds[k].fd, k == 0 ? out : end.err))
                 fds[k].fd = -1; // closed: poll ignores negative descriptors
+        keepTail(end.err);
         lines.take(out);
         if (!exited) {
             const pid_t w = ::waitpid(child.pid, &status, WNOHANG);
@@ -278,31 +323,43 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                 .arg(path, cadFormatName(format), occtUnavailableMessage());
     return std::nullopt;
 #else
+    // A device, FIFO or directory is named at once and never opened, and a file that does not
+    // start like its format is refused from its first bytes, before any child is started.
+    QString problem = regularFileProblem(path);
+    if (problem.isEmpty())
+        problem = cadHeadProblem(format, fileHead(path, kSniffBytes));
+    if (!problem.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, problem);
+        return std::nullopt;
+    }
     const QString reader =
         QString::fromLatin1(deflection && mesh ? "the %1 reader and mesher" : "the %1 reader")
             .arg(cadFormatName(format));
-    const long long memory = cadMemoryLimitBytes();
+    const long long memory = cadMemoryLimitBytes(QFileInfo(path).size());
     ChildEnd end;
     QString dirPath;
-    std::optional<QTemporaryDir> dir;
     std::optional<FolderRemover> adoptedDir;
     if (std::optional<PrestartedCadRead> pre =
             deflection && mesh ? std::nullopt : takePrestartedCadRead(path)) {
         // Started by the launcher before it became this program (cadprestart.h): the same
         // watch, on its pid and pipes.
+        // (Registered for removal on a signal when it was claimed.)
         adoptedDir.emplace(pre->dir);
         dirPath = pre->dir;
         const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
-        if (!watchPrestarted(*pre, seconds, progress, path, reader, end, error))
+        const bool watched = watchPrestarted(*pre, seconds, progress, path, reader, end, error);
+        unregisterCadChild(pre->pid);
+        if (!watched)
             return std::nullopt;
     } else {
-        dir.emplace();
-        if (!dir->isValid()) {
+        QString why;
+        dirPath = makeCadTempDir(&why);
+        if (dirPath.isEmpty()) {
             error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                        .arg(path, reader, dir->errorString());
+                        .arg(path, reader, why);
             return std::nullopt;
         }
-        dirPath = dir->path();
+        adoptedDir.emplace(dirPath);
         if (!watchQProcess(path, reader, dirPath, memory, deflection, mesh, progress, end, error))
             return std::nullopt;
     }
@@ -324,7 +381,7 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                     ? QStringLiteral("%1: %2 failed with exit code %3")
                           .arg(path, reader)
                           .arg(end.exitCode)
-                    : QString::fromLocal8Bit(lines.back().trimmed());
+                    : elided(safeMessageText(QString::fromLocal8Bit(lines.back().trimmed())), 1000);
         return std::nullopt;
     }
     QString why;

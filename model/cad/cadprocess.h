@@ -15,12 +15,14 @@ namespace kw {
 /// The verb of the knotwork executable that reads a CAD file for a parent (not in --help).
 constexpr const char* kReadCadVerb = "__read-cad";
 
-/// The time a file of `bytes` may take: 60 s plus 30 s per MB, or the value of the environment
-/// variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
-double cadTimeLimitSeconds(qint64 bytes);
-/// The child's address-space limit: the machine's physical memory (at least 2 GiB), or
+/// The time a file of `bytes` may take: 10 s plus 10 s per MB to read it, twice that when it is
+/// also meshed (`mesh`: BRepMesh takes about as long as the read), or the value of the
+/// environment variable KNOTWORK_CAD_TIME_LIMIT (seconds) when it is set.
+double cadTimeLimitSeconds(qint64 bytes, bool mesh = false);
+/// The child's address-space limit (RLIMIT_AS) for a file of `bytes`: 2 GiB plus 256 MiB per
+/// MB, at most the machine's physical memory (or 2 GiB when that is less), or
 /// KNOTWORK_CAD_MEMORY_MB megabytes when that environment variable is set.
-long long cadMemoryLimitBytes();
+long long cadMemoryLimitBytes(qint64 bytes = 0);
 
 /// The knotwork executable that runs the child: the one set with setCadReaderExecutable, else
 /// the environment variable KNOTWORK_CAD_READER (the tests set it), else `knotwork` in the

@@ -1,8 +1,11 @@
 // IGES, STEP and BREP files through OpenCASCADE: read, check, transfer, convert every face.
 #include "model/cad/occtimport.h"
 
+#include "model/cad/cadprecheck.h"
 #include "model/cad/igesrepair.h"
 #include "model/cad/occt_internal.h"
+#include "model/cad/occtranges.h"
+#include "model/safetext.h"
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -75,7 +78,7 @@ QString loadFailures(const Handle(XSControl_WorkSession) & ws) {
     for (checks.Start(); checks.More() && lines.size() < 3; checks.Next()) {
         const Handle(Interface_Check)& c = checks.Value();
         for (int i = 1; i <= c->NbFails() && lines.size() < 3; ++i)
-            lines << QString::fromUtf8(c->Fail(i)->ToCString()).trimmed();
+            lines << occtMessageText(c->Fail(i)->ToCString());
     }
     return lines.join(QStringLiteral("; "));
 }
@@ -110,49 +113,6 @@ QString truncation(const QString& path, CadFormat format) {
         if (last.size() < 73 || last[72] != 'T')
             return QStringLiteral("truncated IGES file: the last record is not the Terminate "
                                   "section (column 73 'T')");
-    }
-    return {};
-}
-
-// OCCT's STEP parser takes quadratic time in the length of one entity's list
-// (StepFile_ReadData::CreateNewArg: 16k items 2.8 s, 32k 9.8 s, 400k never finish); refuse a
-// list longer than kMaxStepListItems before parsing. One pass over the bytes: parentheses
-// and commas outside quoted strings ('' is a quote inside one), depth tracked per list.
-constexpr long long kMaxStepListItems = 50'000;
-
-QString stepListTooLong(const QString& path) {
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly))
-        return QStringLiteral("cannot open: %1").arg(f.errorString());
-    std::vector<long long> items; // per open list: items so far
-    bool inString = false;
-    long long line = 1;
-    QByteArray chunk;
-    while (!(chunk = f.read(1 << 20)).isEmpty()) {
-        for (const char c : chunk) {
-            if (c == '\n')
-                ++line;
-            if (inString) {
-                inString = c != '\''; // '' closes and reopens: same state after two quotes
-                continue;
-            }
-            if (c == '\'') {
-                inString = true;
-            } else if (c == '(') {
-                items.push_back(1);
-            } else if (c == ')') {
-                if (!items.empty())
-                    items.pop_back();
-            } else if (c == ',' && !items.empty() && ++items.back() > kMaxStepListItems) {
-                return QStringLiteral("a list on line %1 has more than %2 items; OpenCASCADE's "
-                                      "STEP parser takes quadratic time in the length of one "
-                                      "list, so the file is refused")
-                    .arg(line)
-                    .arg(kMaxStepListItems);
-            } else if (c == ';') {
-                items.clear();
-            }
-        }
     }
     return {};
 }
@@ -215,6 +175,10 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                QString& error) {
     const QByteArray native = QFile::encodeName(path);
     if (format == CadFormat::Brep) {
+        if (const QString why = cadFileProblem(path, format); !why.isEmpty()) {
+            error = why;
+            return false;
+        }
         std::ifstream in(native.constData(), std::ios::binary);
         if (!in) {
             error = QStringLiteral("cannot open the file");
@@ -242,8 +206,8 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         return true;
     }
     QString cut = truncation(path, format);
-    if (cut.isEmpty() && format == CadFormat::Step)
-        cut = stepListTooLong(path);
+    if (cut.isEmpty()) // numbers and lists OCCT would choke on (cadprecheck.h)
+        cut = cadFileProblem(path, format);
     if (!cut.isEmpty()) {
         error = cut;
         return false;
@@ -316,8 +280,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         QString why = QStringLiteral("OpenCASCADE could not transfer it");
         const Handle(Transfer_Binder) binder = tp->Find(root);
         if (!binder.IsNull() && binder->Check()->NbFails() > 0)
-            why += QStringLiteral(": ") +
-                   QString::fromUtf8(binder->Check()->Fail(1)->ToCString()).trimmed();
+            why += QStringLiteral(": ") + occtMessageText(binder->Check()->Fail(1)->ToCString());
         const Handle(TCollection_HAsciiString) label = model->StringLabel(root);
         out.skipped << QStringLiteral("entity %1 (%2): %3")
                            .arg(label.IsNull() ? QStringLiteral("?")
@@ -368,7 +331,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         result.report.skipped << read.skipped;
     } catch (const Standard_Failure& e) {
         error = QStringLiteral("%1: OpenCASCADE failed reading the file: %2 (%3)")
-                    .arg(path, QString::fromUtf8(e.GetMessageString()),
+                    .arg(path, occtMessageText(e.GetMessageString()),
                          QString::fromLatin1(e.DynamicType()->Name()));
         return std::nullopt;
     }
@@ -400,14 +363,18 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             const bool untrimmedInFile =
                 format == CadFormat::Iges && (type == 0 || (type != 144 && type != 143));
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
-            ok = occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
+            // An edge range outside its curve sends the conversion's projections into a
+            // minute of approximation: such a face is skipped before they see it.
+            why = occt::edgeRangeProblem(face);
+            ok = why.isEmpty() &&
+                 occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
             if (ok) {
                 surface.id = SurfaceId{scene.nextId};
                 scene.nextId = ids;
             }
         } catch (const Standard_Failure& e) {
             why = QStringLiteral("OpenCASCADE failed: %1 (%2)")
-                      .arg(QString::fromUtf8(e.GetMessageString()),
+                      .arg(occtMessageText(e.GetMessageString()),
                            QString::fromLatin1(e.DynamicType()->Name()));
         }
         const QString label = name.isEmpty() ? QStringLiteral("Face %1").arg(k) : name;
@@ -440,7 +407,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
                                                   20);
     } catch (const Standard_Failure& e) {
         result.report.warnings << QStringLiteral("the check for coincident faces failed: %1")
-                                      .arg(QString::fromUtf8(e.GetMessageString()));
+                                      .arg(occtMessageText(e.GetMessageString()));
     }
     // Closed solids: the renderer skips their polygons' back faces.
     try {
@@ -450,7 +417,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         for (Surface& s : scene.surfaces)
             s.solid = -1;
         result.report.warnings << QStringLiteral("the check for closed solids failed: %1")
-                                      .arg(QString::fromUtf8(e.GetMessageString()));
+                                      .arg(occtMessageText(e.GetMessageString()));
     }
     if (after && !after(read.shape, faces, result, error))
         return std::nullopt;
