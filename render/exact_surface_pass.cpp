@@ -4,6 +4,7 @@
 
 #include "model/surface_bound.h"
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
@@ -18,14 +19,8 @@
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray; exact mode's
-                                    // grids are on kTrimGridUnit)
-constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
-// The deferred pass: the pre-pass's texture (exact_surface.frag kwPrepass) and the vertex pool
-// (KwVertices); the pre-pass writes its texture at this colour attachment of the frame's
-// framebuffer, the last of the 8 every GL 4.5 context has.
-constexpr int kPrepassUnit = 11;
-constexpr int kVertexStorageBinding = 1;
+// The deferred pass's pre-pass writes its texture (kPrepassUnit) at this colour attachment of
+// the frame's framebuffer, the last of the 8 every GL 4.5 context has.
 constexpr int kPrepassAttachment = 7;
 
 const TrimMask* maskOf(const SurfaceRecord& r) {
@@ -113,7 +108,10 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
 }
 
 QStringList ExactSurfacePass::degreeDefines(int p, int q, int lightCount) {
+    // The span-table rows' width per degree, from the one formula (kw::spanTableTexels).
     return {QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
+            QStringLiteral("KW_SPAN_TEXELS_U %1").arg(spanTableTexels(p)),
+            QStringLiteral("KW_SPAN_TEXELS_V %1").arg(spanTableTexels(q)),
             QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
 }
 

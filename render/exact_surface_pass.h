@@ -64,7 +64,8 @@ public:
     /// polygon (SurfaceGpu::affine), whose (u, v) is already the point under the pixel: no
     /// Newton step (no KW_RAY_NEWTON) in adaptive mode.
     enum class TrimAa { Off, Opaque, Edge };
-    /// DEGREE_U, DEGREE_V and LIGHT_COUNT: what every exact_surface.frag program needs.
+    /// DEGREE_U, DEGREE_V, the span-table widths KW_SPAN_TEXELS_U/V and LIGHT_COUNT: what every
+    /// exact_surface.frag program needs.
     static QStringList degreeDefines(int p, int q, int lightCount);
     static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
                                       bool trimmed = false, bool gatherAllowed = true,

@@ -6,6 +6,7 @@
 
 #include "model/document.h"
 #include "render/adaptive_partitions.h"
+#include "render/exact_contract.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
 #include "render/scene_changes.h"
@@ -15,6 +16,7 @@
 #include <QOpenGLFunctions_4_5_Core>
 #include <QPointer>
 #include <QString>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <set>
@@ -54,7 +56,21 @@ struct SurfaceTableEntry {
     glm::ivec4 ids{0};        ///< surface id, exact trim grid's first word, unused x2
     bool operator==(const SurfaceTableEntry&) const = default;
 };
-static_assert(sizeof(SurfaceTableEntry) == 128, "must match surface_data.glsl's 8 texels per row");
+static_assert(sizeof(SurfaceTableEntry) == kSurfaceTableTexels * sizeof(glm::vec4));
+static_assert(
+    offsetof(SurfaceTableEntry, domain) == kSurfaceTableDomainTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, origin) == kSurfaceTableOriginTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, colour) == kSurfaceTableColourTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, material) == kSurfaceTableMaterialTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, trimRect) == kSurfaceTableTrimRectTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, trimSize) == kSurfaceTableTrimSizeTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, data) == kSurfaceTableDataTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, ids) == kSurfaceTableIdsTexel * sizeof(glm::vec4),
+    "must match exact_contract.h's texels, which surface_data.glsl reads");
+// The deferred pass reads the vertex pool as 32-bit words (exact_contract.h's offsets).
+static_assert(sizeof(BaseVertex) == kBaseVertexWords * 4 &&
+              offsetof(BaseVertex, span) == kBaseVertexSpanWord * 4 &&
+              offsetof(BaseVertex, spanScale) == kBaseVertexSpanScaleWord * 4);
 
 /// Everything on the GPU for one surface.
 struct SurfaceRecord {
@@ -218,7 +234,7 @@ private:
     } m_table;
     GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0, m_finVao = 0;
     /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
-    GLuint m_views[4] = {0, 0, 0, 0};
+    GLuint m_views[kSurfaceDataViews] = {0, 0, 0, 0};
     TrimMaskPass m_masks;
     QPointer<const Document> m_document;
     std::map<SurfaceId, Entry> m_entries;

@@ -1,6 +1,8 @@
 // Shader loading with #include expansion and variant defines; programs cached per variant.
 #include "render/shader_library.h"
 
+#include "render/exact_contract.h"
+
 #include <QFile>
 #include <QOpenGLShaderProgram>
 #include <QRegularExpression>
@@ -39,6 +41,13 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
 } // namespace
 
 ShaderLibrary::ShaderLibrary() = default;
+
+QString ShaderLibrary::preamble() {
+    QString out;
+    for (const ShaderConstant& c : kShaderConstants)
+        out += QStringLiteral("#define %1 %2\n").arg(QLatin1String(c.name)).arg(c.value);
+    return out;
+}
 ShaderLibrary::~ShaderLibrary() = default;
 
 QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
@@ -118,7 +127,8 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
             m_lastError = m_failures.value(key);
         return it.value().get();
     }
-    QString header = QStringLiteral("#version 450 core\n");
+    static const QString shared = preamble();
+    QString header = QStringLiteral("#version 450 core\n") + shared;
     for (const QString& d : defines)
         header += QStringLiteral("#define ") + d + QLatin1Char('\n');
 

@@ -36,10 +36,10 @@ public:
     ShaderLibrary& operator=(const ShaderLibrary&) = delete;
 
     /// The program linked from the resource files `vertex` and `fragment` (names under
-    /// :/shaders, or under $KW_SHADER_DIR when set, for shader development) with `defines` ("NAME"
-    /// or "NAME VALUE") inserted after the #version line. Needs a current OpenGL 4.5 core context.
-    /// Returns nullptr and sets lastError() when a file is missing or compiling/linking fails;
-    /// failures are cached too (no retry storms).
+    /// :/shaders, or under $KW_SHADER_DIR when set, for shader development) with the preamble
+    /// and `defines` ("NAME" or "NAME VALUE") inserted after the #version line. Needs a current
+    /// OpenGL 4.5 core context. Returns nullptr and sets lastError() when a file is missing or
+    /// compiling/linking fails; failures are cached too (no retry storms).
     QOpenGLShaderProgram* program(const QString& vertex, const QString& fragment,
                                   const QStringList& defines = {});
     QString lastError() const { return m_lastError; }
@@ -47,6 +47,10 @@ public:
     void clear();
     /// The locations of a program returned by any ShaderLibrary's program().
     static const UniformLocations& uniforms(const QOpenGLShaderProgram* program);
+
+    /// The #define line of every constant C++ and the shaders share (kw::kShaderConstants,
+    /// render/exact_contract.h), which program() puts after the #version line of each stage.
+    static QString preamble();
 
     /// The source of `file` with #include "x" lines replaced by the files (recursively, at
     /// most 8 deep), or an empty string with *error set.

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "model/document.h"
+#include "render/exact_contract.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
 #include "render/trim_grid_store.h"
@@ -51,11 +52,6 @@ struct TrimMask {
     /// Whether the passes classify by it: a mask layer or a grid block holding a loop.
     bool usable() const { return active && (layer >= 0 || grid.words > 0); }
 };
-
-/// The texture unit of the exact trim grids' buffer (shaders/trim_exact.glsl's binding).
-constexpr int kTrimGridUnit = 9;
-/// The same array by 4 words (RGBA32UI): the pieces and points (shaders/trim_exact.glsl).
-constexpr int kTrimGridQuadUnit = 10;
 
 class TrimMaskPass {
 public:
