@@ -1,12 +1,16 @@
-// The constants C++ and the shaders share, declared once. ShaderLibrary writes every one of
-// them into each program as a #define (shaderPreamble), so no GLSL file repeats a literal.
+// The exact pass's contract with its shaders, declared once: the constants C++ and GLSL share
+// (ShaderLibrary writes each into every program as a #define, so no GLSL file repeats a
+// literal) and the program variant as a typed bit set with one GLSL define per bit.
 #pragma once
 
 #include "model/scene.h"
 #include "render/analysis.h"
 
+#include <QFlags>
+#include <QStringList>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 namespace kw {
 
@@ -58,7 +62,7 @@ struct ShaderConstant {
 
 /// Every constant above that a shader reads, and the light count and analysis modes, under
 /// their GLSL names. The span-table width depends on the degree, so it is a per-variant
-/// define (ExactSurfacePass::degreeDefines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels).
+/// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels).
 inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_MAX_LIGHTS", kMaxLights},
     ShaderConstant{"KW_COMPOSITE_COLOUR_UNIT", kCompositeColourUnit},
@@ -101,5 +105,75 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_SCALE_SYMMETRIC", int(ColourScale::Symmetric)},
     ShaderConstant{"KW_SCALE_LOG", int(ColourScale::Log)},
 };
+
+/// One feature of an exact-pass program: a bit of ExactFeatures and one #define of
+/// exact_surface.frag (and of depth_only.frag for the trim and output bits), named in
+/// kExactFeatureDefines. The shaders' header comments say what each does.
+enum class ExactFeature : std::uint32_t {
+    Aov = 1u << 0,           ///< KW_AOV: write the AOV targets
+    CellGather = 1u << 1,    ///< KW_CELL_GATHER: per-cell data as flat inputs (cell_data.glsl)
+    RayNewton = 1u << 2,     ///< KW_RAY_NEWTON: adaptive partitions, the point under the pixel
+    ExactDepth = 1u << 3,    ///< KW_EXACT_DEPTH: one pass writing gl_FragDepth, no pre-pass
+    Skirt = 1u << 4,         ///< KW_SKIRT: the edge skirts' program
+    Trim = 1u << 5,          ///< KW_TRIM: discard trimmed fragments
+    TrimExact = 1u << 6,     ///< KW_TRIM_EXACT: by the exact trim grid instead of the mask
+    TrimAa = 1u << 7,        ///< KW_TRIM_AA: keep only wholly covered fragments
+    TrimEdge = 1u << 8,      ///< KW_TRIM_EDGE: the anti-aliased frame's edge pass
+    DepthOnly = 1u << 9,     ///< KW_DEPTH_ONLY: the pre-pass at the point under the pixel
+    GBuffer = 1u << 10,      ///< KW_GBUFFER: the pre-pass writes the deferred pass's input
+    Deferred = 1u << 11,     ///< KW_DEFERRED: the deferred pass, one triangle per route
+    Isocurves = 1u << 12,    ///< KW_ISOCURVES: knot and iso-parameter lines
+    Directions = 1u << 13,   ///< KW_DIRECTIONS: principal-direction marks
+    SecondOrder = 1u << 14,  ///< KW_SECOND_ORDER: second derivatives and curvature
+    AovCurvature = 1u << 15, ///< KW_AOV_CURVATURE: the curvature AOV targets
+};
+using ExactFeatures = QFlags<ExactFeature>;
+
+struct ExactFeatureDefine {
+    ExactFeature feature;
+    const char* define;
+};
+/// Each feature's GLSL define, in the order programs list them.
+inline constexpr std::array kExactFeatureDefines{
+    ExactFeatureDefine{ExactFeature::CellGather, "KW_CELL_GATHER"},
+    ExactFeatureDefine{ExactFeature::Aov, "KW_AOV"},
+    ExactFeatureDefine{ExactFeature::Skirt, "KW_SKIRT"},
+    ExactFeatureDefine{ExactFeature::ExactDepth, "KW_EXACT_DEPTH"},
+    ExactFeatureDefine{ExactFeature::RayNewton, "KW_RAY_NEWTON"},
+    ExactFeatureDefine{ExactFeature::DepthOnly, "KW_DEPTH_ONLY"},
+    ExactFeatureDefine{ExactFeature::Trim, "KW_TRIM"},
+    ExactFeatureDefine{ExactFeature::TrimExact, "KW_TRIM_EXACT"},
+    ExactFeatureDefine{ExactFeature::TrimAa, "KW_TRIM_AA"},
+    ExactFeatureDefine{ExactFeature::TrimEdge, "KW_TRIM_EDGE"},
+    ExactFeatureDefine{ExactFeature::GBuffer, "KW_GBUFFER"},
+    ExactFeatureDefine{ExactFeature::Deferred, "KW_DEFERRED"},
+    ExactFeatureDefine{ExactFeature::Isocurves, "KW_ISOCURVES"},
+    ExactFeatureDefine{ExactFeature::Directions, "KW_DIRECTIONS"},
+    ExactFeatureDefine{ExactFeature::SecondOrder, "KW_SECOND_ORDER"},
+    ExactFeatureDefine{ExactFeature::AovCurvature, "KW_AOV_CURVATURE"},
+};
+
+/// The defines of `features`, one per bit, in kExactFeatureDefines' order.
+QStringList featureDefines(ExactFeatures features);
+/// The analysis bits a frame with `options` needs (curvatureAov: the curvature AOV targets).
+ExactFeatures analysisFeatures(const AnalysisOptions& options, bool curvatureAov);
+
+/// One program of exact_surface.frag: what it is specialised for, turned into its defines in
+/// one place (defines()). degreeU == 0: a program without a surface's degrees (the pre-pass's
+/// depth_only.frag), whose defines are only the features'.
+struct ExactVariant {
+    int degreeU = 0, degreeV = 0; ///< 1..15 (DEGREE_U, DEGREE_V)
+    int lightCount = 1;           ///< LIGHT_COUNT, 1..kMaxLights
+    AnalysisMode analysis = AnalysisMode::Phong;
+    ExactFeatures features;
+    bool operator==(const ExactVariant&) const = default;
+    /// DEGREE_U/V, the span-table widths KW_SPAN_TEXELS_U/V (kw::spanTableTexels) and
+    /// LIGHT_COUNT (with degrees), then one define per feature, then KW_ANALYSIS and, for a
+    /// colour map, its ramp (KW_RAMP_STOPS, KW_RAMP).
+    QStringList defines() const;
+};
+
+// In the namespace, so that argument-dependent lookup finds the operators.
+Q_DECLARE_OPERATORS_FOR_FLAGS(ExactFeatures)
 
 } // namespace kw

@@ -107,45 +107,32 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_environment.initialize(gl);
 }
 
-QStringList ExactSurfacePass::degreeDefines(int p, int q, int lightCount) {
-    // The span-table rows' width per degree, from the one formula (kw::spanTableTexels).
-    return {QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
-            QStringLiteral("KW_SPAN_TEXELS_U %1").arg(spanTableTexels(p)),
-            QStringLiteral("KW_SPAN_TEXELS_V %1").arg(spanTableTexels(q)),
-            QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
-}
-
-QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
-                                             const RenderOptions& options, bool trimmed,
-                                             bool gatherAllowed, TrimAa trimAa, bool skirt,
-                                             bool affine) {
-    QStringList d = degreeDefines(p, q, lightCount);
+ExactVariant ExactSurfacePass::variant(int p, int q, int lightCount, const RenderOptions& options,
+                                       bool trimmed, bool gatherAllowed, TrimAa trimAa, bool skirt,
+                                       bool affine) {
+    ExactVariant v{p, q, lightCount, options.analysis.mode,
+                   analysisFeatures(options.analysis, options.writeCurvatureAov)};
+    ExactFeatures& f = v.features;
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
-    if (!skirt && gatherAllowed &&
-        (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
-        d << QStringLiteral("KW_CELL_GATHER");
-    if (options.writeAov)
-        d << QStringLiteral("KW_AOV");
-    if (skirt)
-        d << QStringLiteral("KW_SKIRT");
-    else if (options.shading == RenderOptions::Shading::ExactDepth)
-        d << QStringLiteral("KW_EXACT_DEPTH");
+    f.setFlag(ExactFeature::CellGather,
+              !skirt && gatherAllowed &&
+                  (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28);
+    f.setFlag(ExactFeature::Aov, options.writeAov);
+    f.setFlag(ExactFeature::Skirt, skirt);
+    f.setFlag(ExactFeature::ExactDepth,
+              !skirt && options.shading == RenderOptions::Shading::ExactDepth);
     // Adaptive partitions guarantee the polygon's (u, v) starts Newton's method within the
     // pixel tolerance of the point under the pixel; uniform mode stays the paper's. An affine
     // surface's polygon puts the point under the pixel there already.
-    if (options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt && !affine)
-        d << QStringLiteral("KW_RAY_NEWTON");
-    if (trimmed)
-        d << QStringLiteral("KW_TRIM");
-    if (trimmed && options.trimMode == RenderOptions::TrimMode::Exact)
-        d << QStringLiteral("KW_TRIM_EXACT");
-    if (trimmed && trimAa != TrimAa::Off)
-        d << QStringLiteral("KW_TRIM_AA");
-    if (trimmed && trimAa == TrimAa::Edge)
-        d << QStringLiteral("KW_TRIM_EDGE");
-    d << analysisDefines(options.analysis, options.writeCurvatureAov);
-    return d;
+    f.setFlag(ExactFeature::RayNewton,
+              options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt && !affine);
+    f.setFlag(ExactFeature::Trim, trimmed);
+    f.setFlag(ExactFeature::TrimExact,
+              trimmed && options.trimMode == RenderOptions::TrimMode::Exact);
+    f.setFlag(ExactFeature::TrimAa, trimmed && trimAa != TrimAa::Off);
+    f.setFlag(ExactFeature::TrimEdge, trimmed && trimAa == TrimAa::Edge);
+    return v;
 }
 
 void ExactSurfacePass::uploadCommands(const std::vector<Batch*>& batches) {
@@ -492,10 +479,11 @@ bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, B
                                     const std::vector<Light>& lights, bool antialiased, bool atRay,
                                     bool deferred, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QStringList trimDefines = scene.trimMasks().trimDefines();
-    if (antialiased)
-        trimDefines << QStringLiteral("KW_TRIM_AA");
-    const QStringList output = deferred ? QStringList{QStringLiteral("KW_GBUFFER")} : QStringList{};
+    // The pre-pass's programs test the trims of the frame's mode and, with the deferred pass,
+    // write its input.
+    ExactFeatures trimFeatures = scene.trimMasks().trimFeatures();
+    trimFeatures.setFlag(ExactFeature::TrimAa, antialiased);
+    const ExactFeatures output = deferred ? ExactFeatures(ExactFeature::GBuffer) : ExactFeatures();
     if (!deferred)
         gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
@@ -511,15 +499,15 @@ bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, B
         if (b->commands.empty())
             continue;
         const bool onRay = b->trimmed && atRay && !b->affine;
-        QOpenGLShaderProgram* prog =
-            onRay ? m_shaders->program(
-                        QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                        degreeDefines(b->degreeU, b->degreeV, int(lights.size()))
-                            << QStringLiteral("KW_RAY_NEWTON") << QStringLiteral("KW_DEPTH_ONLY")
-                            << trimDefines << output)
-                  : m_shaders->program(QStringLiteral("surface.vert"),
-                                       QStringLiteral("depth_only.frag"),
-                                       (b->trimmed ? trimDefines : QStringList{}) << output);
+        const ExactFeatures trims = b->trimmed ? trimFeatures : ExactFeatures();
+        const ExactVariant v =
+            onRay ? ExactVariant{b->degreeU, b->degreeV, int(lights.size()), AnalysisMode::Phong,
+                                 ExactFeature::RayNewton | ExactFeature::DepthOnly | trims | output}
+                  : ExactVariant{0, 0, 1, AnalysisMode::Phong, trims | output};
+        QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("surface.vert"),
+                                                        onRay ? QStringLiteral("exact_surface.frag")
+                                                              : QStringLiteral("depth_only.frag"),
+                                                        v.defines());
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -694,8 +682,9 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
             continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                              b.trimmed, b.gather, trimAa, false, b.affine));
+                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                       b.gather, trimAa, false, b.affine)
+                                   .defines());
         if (!prog) {
             *error = m_shaders->lastError();
             return false;
@@ -801,6 +790,14 @@ void ExactSurfacePass::releaseDeferred() {
     m_prepassSize = glm::ivec2(0);
 }
 
+ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
+                                               const RenderOptions& options) {
+    ExactVariant v = variant(route & 15, (route >> 4) & 15, lightCount, options, false, false,
+                             TrimAa::Off, false, (route >> 12) & 1);
+    v.features |= ExactFeature::Deferred;
+    return v;
+}
+
 bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& camera,
                                     const std::vector<Light>& lights, const RenderOptions& options,
                                     const ValueRange& range, QString* error) {
@@ -835,9 +832,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
             continue;
         QOpenGLShaderProgram* prog = m_shaders->program(
             QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
-            variantDefines(route & 15, (route >> 4) & 15, int(lights.size()), options, false, false,
-                           TrimAa::Off, false, (route >> 12) & 1)
-                << QStringLiteral("KW_DEFERRED"));
+            deferredVariant(route, int(lights.size()), options).defines());
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -896,8 +891,9 @@ bool ExactSurfacePass::drawSkirtBatch(const Batch& b, const GpuScene& scene,
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QOpenGLShaderProgram* prog =
         m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                           variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                          b.trimmed, false, TrimAa::Off, true));
+                           variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                   false, TrimAa::Off, true)
+                               .defines());
     if (!prog) {
         *error = m_shaders->lastError();
         return false;

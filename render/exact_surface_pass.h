@@ -6,6 +6,7 @@
 
 #include "render/analysis_gl.h"
 #include "render/antialias_target.h"
+#include "render/exact_contract.h"
 #include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
@@ -55,22 +56,21 @@ public:
     }
     const EnvironmentMap& environment() const { return m_environment; }
 
-    /// The defines of the exact shader variant for degrees (p, q) and these options. The
-    /// per-cell gather (KW_CELL_GATHER) is chosen when the cell's data fits the varyings and
+    /// The exact shader variant for degrees (p, q) and these options. The per-cell gather
+    /// (ExactFeature::CellGather) is chosen when the cell's data fits the varyings and
     /// `gatherAllowed` is true. A trimmed variant of an anti-aliased frame: `trimAa`
     /// Opaque keeps wholly covered fragments only, Edge is the edge pass's. `skirt`: the
-    /// skirt pass's variant (KW_SKIRT: its own Newton solve and trim test, the strip's depth;
-    /// no gather, no KW_RAY_NEWTON, no KW_EXACT_DEPTH). `affine`: the surface is its own
+    /// skirt pass's variant (ExactFeature::Skirt: its own Newton solve and trim test, the
+    /// strip's depth; no gather, no RayNewton, no ExactDepth). `affine`: the surface is its own
     /// polygon (SurfaceGpu::affine), whose (u, v) is already the point under the pixel: no
-    /// Newton step (no KW_RAY_NEWTON) in adaptive mode.
+    /// Newton step (no RayNewton) in adaptive mode.
     enum class TrimAa { Off, Opaque, Edge };
-    /// DEGREE_U, DEGREE_V, the span-table widths KW_SPAN_TEXELS_U/V and LIGHT_COUNT: what every
-    /// exact_surface.frag program needs.
-    static QStringList degreeDefines(int p, int q, int lightCount);
-    static QStringList variantDefines(int p, int q, int lightCount, const RenderOptions& options,
-                                      bool trimmed = false, bool gatherAllowed = true,
-                                      TrimAa trimAa = TrimAa::Off, bool skirt = false,
-                                      bool affine = false);
+    static ExactVariant variant(int p, int q, int lightCount, const RenderOptions& options,
+                                bool trimmed = false, bool gatherAllowed = true,
+                                TrimAa trimAa = TrimAa::Off, bool skirt = false,
+                                bool affine = false);
+    /// The deferred pass's program of `route` (Place::route: degrees and the affine bit).
+    static ExactVariant deferredVariant(int route, int lightCount, const RenderOptions& options);
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
     /// projected bounding box of its control points (clamped to the viewport) over its cell

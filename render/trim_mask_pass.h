@@ -78,7 +78,9 @@ public:
     /// Whether the last sync was in exact mode: the trimmed shader variants then need the
     /// KW_TRIM_EXACT define (trimDefines()).
     bool exact() const { return m_exactMode; }
-    /// The defines of the trimmed shader variants for the mode of the last sync.
+    /// The trim features of the trimmed shader variants for the mode of the last sync, and
+    /// their defines.
+    ExactFeatures trimFeatures() const;
     QStringList trimDefines() const;
 
     /// Binds the trim data of the last sync's mode: the grid buffer to kTrimGridUnit, or the

@@ -92,12 +92,78 @@ private Q_SLOTS:
     void degreeDefinesCarrySpanTableWidths() {
         for (int p = 1; p <= 15; ++p)
             for (int q : {1, 3, 15}) {
-                const QStringList d = ExactSurfacePass::degreeDefines(p, q, 2);
+                const QStringList d = ExactVariant{p, q, 2, AnalysisMode::Phong, {}}.defines();
                 QVERIFY(d.contains(QStringLiteral("KW_SPAN_TEXELS_U %1").arg(spanTableTexels(p))));
                 QVERIFY(d.contains(QStringLiteral("KW_SPAN_TEXELS_V %1").arg(spanTableTexels(q))));
                 QVERIFY(d.contains(QStringLiteral("DEGREE_U %1").arg(p)));
                 QVERIFY(d.contains(QStringLiteral("LIGHT_COUNT 2")));
             }
+    }
+
+    void variantDefinesOneLinePerBit() {
+        // Every feature has its own define, and a variant lists exactly its bits' defines.
+        QSet<QString> names;
+        ExactFeatures all;
+        for (const ExactFeatureDefine& f : kExactFeatureDefines) {
+            QVERIFY(!names.contains(QLatin1String(f.define)));
+            names.insert(QLatin1String(f.define));
+            QVERIFY(!all.testFlag(f.feature));
+            all |= f.feature;
+            QCOMPARE(featureDefines(f.feature), QStringList{QLatin1String(f.define)});
+        }
+        QCOMPARE(int(names.size()), 16);
+        const ExactVariant none{2, 3, 1, AnalysisMode::Phong, {}};
+        QCOMPARE(none.defines().size(), 5); // degrees, span widths, lights
+        ExactVariant v = none;
+        v.features = ExactFeature::Trim | ExactFeature::TrimExact | ExactFeature::RayNewton;
+        const QStringList d = v.defines();
+        QCOMPARE(d.size(), 8);
+        QVERIFY(d.contains(QStringLiteral("KW_TRIM")) &&
+                d.contains(QStringLiteral("KW_TRIM_EXACT")) &&
+                d.contains(QStringLiteral("KW_RAY_NEWTON")));
+        v.analysis = AnalysisMode::Gaussian;
+        QVERIFY(v.defines().contains(
+            QStringLiteral("KW_ANALYSIS %1").arg(int(AnalysisMode::Gaussian))));
+        QVERIFY(v.defines().contains(QStringLiteral("KW_RAMP_STOPS %1").arg(colourRamp().size())));
+        // A program without degrees (depth_only.frag) gets only its features.
+        QCOMPARE(ExactVariant({0, 0, 1, AnalysisMode::Phong, ExactFeature::GBuffer}).defines(),
+                 QStringList{QStringLiteral("KW_GBUFFER")});
+    }
+
+    void passVariantsFollowOptions() {
+        RenderOptions o;
+        o.partitioning = RenderOptions::Partitioning::Adaptive;
+        o.shading = RenderOptions::Shading::DepthPrepass;
+        o.trimMode = RenderOptions::TrimMode::Mask;
+        using TrimAa = ExactSurfacePass::TrimAa;
+        ExactVariant v = ExactSurfacePass::variant(3, 3, 2, o, true, true, TrimAa::Edge);
+        QCOMPARE(v.features, ExactFeature::CellGather | ExactFeature::RayNewton |
+                                 ExactFeature::Trim | ExactFeature::TrimAa |
+                                 ExactFeature::TrimEdge);
+        // Degree 5 x 5 does not fit the varyings: no gather. Affine: no Newton step.
+        v = ExactSurfacePass::variant(5, 5, 2, o, false, true, TrimAa::Off, false, true);
+        QCOMPARE(v.features, ExactFeatures());
+        // The skirt's program: no gather, no Newton step, never exact depth.
+        o.shading = RenderOptions::Shading::ExactDepth;
+        o.writeAov = true;
+        v = ExactSurfacePass::variant(1, 1, 1, o, false, true, TrimAa::Off, true);
+        QCOMPARE(v.features, ExactFeature::Skirt | ExactFeature::Aov);
+        v = ExactSurfacePass::variant(1, 1, 1, o);
+        QVERIFY(v.features.testFlag(ExactFeature::ExactDepth));
+        o.trimMode = RenderOptions::TrimMode::Exact;
+        QVERIFY(
+            ExactSurfacePass::variant(1, 1, 1, o, true).features.testFlag(ExactFeature::TrimExact));
+        QVERIFY(!ExactSurfacePass::variant(1, 1, 1, o, false)
+                     .features.testFlag(ExactFeature::TrimExact));
+        // The deferred pass's program: its route's degrees and affine bit.
+        o = RenderOptions{};
+        o.partitioning = RenderOptions::Partitioning::Adaptive;
+        v = ExactSurfacePass::deferredVariant(2 | 3 << 4 | 1 << 12, 1, o);
+        QCOMPARE(v.degreeU, 2);
+        QCOMPARE(v.degreeV, 3);
+        QVERIFY(v.features.testFlag(ExactFeature::Deferred));
+        QVERIFY(!v.features.testFlag(ExactFeature::RayNewton));
+        QVERIFY(!v.features.testFlag(ExactFeature::CellGather));
     }
 
     void checkFindsLiterals() {
@@ -152,7 +218,7 @@ private Q_SLOTS:
                 const QString n = it.next().captured(0);
                 if (n == QLatin1String("KW_SPAN_TEXELS_U") ||
                     n == QLatin1String("KW_SPAN_TEXELS_V"))
-                    continue; // per variant (degreeDefines)
+                    continue; // per variant (ExactVariant::defines)
                 QVERIFY2(declared.contains(n), qPrintable(f + QStringLiteral(": ") + n));
                 ++uses;
             }
