@@ -26,18 +26,6 @@ constexpr int kPrepassAttachment = 7;
 const TrimMask* maskOf(const SurfaceRecord& r) {
     return r.mask.usable() ? &r.mask : nullptr;
 }
-
-double deferMaxCellPixels() {
-    if (const char* e = std::getenv("KW_DEFER_MAX_CELL_PX"))
-        return std::atof(e);
-    return ExactSurfacePass::kDeferMaxCellPixels;
-}
-
-double gatherMinCellPixels() {
-    if (const char* e = std::getenv("KW_GATHER_MIN_CELL_PX"))
-        return std::atof(e);
-    return ExactSurfacePass::kGatherMinCellPixels;
-}
 } // namespace
 
 bool ExactSurfacePass::controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
@@ -100,10 +88,6 @@ double ExactSurfacePass::pixelsPerCell(const ScreenBox& box, int cells, glm::ive
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
-    multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
-    fins = qEnvironmentVariable("KW_FINS") != QLatin1String("0");
-    skipAffineNewton = qEnvironmentVariable("KW_AFFINE") != QLatin1String("0");
-    deferred = qEnvironmentVariable("KW_DEFERRED") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
@@ -174,7 +158,7 @@ void ExactSurfacePass::drawBatch(const Batch& batch) {
     }
     if (firstDrawCpuMs < 0.0 && !batch.commands.empty())
         firstDrawCpuMs = threadCpuMs();
-    if (multiDraw) {
+    if (m_multiDraw) {
         gl->glMultiDrawElementsIndirect(
             GL_TRIANGLES, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(batch.first * std::int64_t(sizeof(DrawCommand))),
@@ -240,7 +224,7 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
     const int cells = g->polygon.cellCount();
     const bool gather =
         r.bounded && pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
-    // Large cells the forward way (exact_surface_pass.h, kDeferMaxCellPixels). The cells'
+    // Large cells the forward way (RenderOptions::deferMaxCellPixels). The cells'
     // size on screen, not clamped to the view: in a close-up most of them lie outside it,
     // and those inside are the large ones.
     const bool forward =
@@ -254,7 +238,7 @@ ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const
         p.face = r.surface->outsideAlongNormal ? 1 : 2;
     // The polygon is the surface (planes): in adaptive mode its (u, v) is already the point
     // under the pixel, and the Newton step would only evaluate the surface once more.
-    const bool affine = key.adaptive && skipAffineNewton && g->affine;
+    const bool affine = key.adaptive && key.affineWithoutNewton && g->affine;
     p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
                 int(forward) << 13;
     if (mask)
@@ -568,6 +552,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                             const std::vector<Light>& lights, const RenderOptions& options,
                             const ValueRange& range, AntialiasTarget* aa, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    m_multiDraw = options.multiDraw;
     if (options.analysis.mode == AnalysisMode::Environment &&
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
         return false;
@@ -580,7 +565,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     // The deferred exact pass: each pixel shaded once however small the cells (docs/
     // RENDERING.md, "The deferred exact pass"). The pre-pass's batches are then split by route.
     glm::ivec2 targetSize{0};
-    const bool deferredWanted = deferred && options.deferredPass && prepass && aa == nullptr &&
+    const bool deferredWanted = options.deferredPass && prepass && aa == nullptr &&
                                 options.partitioning == RenderOptions::Partitioning::Adaptive &&
                                 (targetSize = deferredTargetSize()) != glm::ivec2(0);
     const CacheKey key{&scene,
@@ -595,8 +580,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                        skirts,
                        options.skipBackFaces,
                        options.partitioning == RenderOptions::Partitioning::Adaptive,
-                       gatherMinCellPixels(),
-                       deferMaxCellPixels(),
+                       options.affineWithoutNewton,
+                       options.gatherMinCellPixels,
+                       options.deferMaxCellPixels,
                        deferredWanted};
     if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
         buildBatches(scene, key, camera);
@@ -878,7 +864,7 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     for (const auto& [key, b] : m_skirts)
         if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles, error)))
             break;
-    if (ok && fins)
+    if (ok && options.silhouetteFins)
         ok = finPass(scene, camera, lights, options, range, error);
     scene.bindSurfaceData(); // the triangles' vertex array again
     return ok;

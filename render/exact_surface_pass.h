@@ -98,15 +98,6 @@ public:
     static bool outsideView(const glm::vec3& lo, const glm::vec3& hi,
                             const glm::mat4& viewProjection);
 
-    /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant
-    /// (docs/PERFORMANCE.md). KW_GATHER_MIN_CELL_PX in the environment overrides it, for
-    /// measuring (0: always gather, 1e30: never).
-    static constexpr double kGatherMinCellPixels = 64.0;
-    /// Surfaces with at least this many estimated pixels per cell are drawn the forward way
-    /// in frames that use the deferred pass (docs/PERFORMANCE.md, "The deferred exact pass").
-    /// KW_DEFER_MAX_CELL_PX overrides it, for measuring.
-    static constexpr double kDeferMaxCellPixels = 1024.0;
-
     int drawCalls = 0;        ///< counted by draw; the renderer zeroes it per frame
     int culled = 0;           ///< surfaces left out as wholly outside the view; zeroed likewise
     int solidsBackCulled = 0; ///< FrameReport::solidsBackCulled, added likewise
@@ -119,16 +110,6 @@ public:
     /// FrameReport::Partitions::affineSurfaces of the last draw: in adaptive mode, the surfaces
     /// drawn without the Newton step because their polygon is the surface.
     int affineSurfaces = 0;
-    /// Affine surfaces without the Newton step (above): on by default; KW_AFFINE=0 at
-    /// initialize gives them the step like every other surface, for measuring what it saves.
-    bool skipAffineNewton = true;
-    /// Silhouette fins (kw::buildFins) with the skirts: on by default; KW_FINS=0 at initialize
-    /// turns them off, for measuring what they cover and cost.
-    bool fins = true;
-    /// The deferred exact pass where the frame allows it (adaptive, aliased, a target with a
-    /// stencil: ExactSurfacePass::deferredTargetSize): on by default; KW_DEFERRED=0 at
-    /// initialize draws every frame the forward way, for comparing images and costs.
-    bool deferred = true;
     /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
     int deferredSurfaces = 0;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
@@ -154,9 +135,6 @@ public:
     /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
     /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
     double firstDrawCpuMs = -1.0;
-    /// One multi-draw per variant group (default). False: the same commands issued one draw
-    /// per surface, for comparing images and costs (tests; KW_MULTI_DRAW=0 at initialize).
-    bool multiDraw = true;
 
 private:
     /// glMultiDrawElementsIndirect's command layout.
@@ -227,6 +205,7 @@ private:
         bool skirts = false;        ///< edge skirts drawn (adaptive, aliased, edgeSkirts)
         bool skipBackFaces = false; ///< RenderOptions::skipBackFaces
         bool adaptive = false;      ///< adaptive partitions: the exact shaders' Newton step
+        bool affineWithoutNewton = false; ///< RenderOptions::affineWithoutNewton
         double minCellPixels = 0.0;
         double deferMaxCellPixels = 0.0;
         bool deferred = false; ///< the deferred exact pass (pre-pass batches by route)
@@ -315,6 +294,8 @@ private:
                   const std::vector<Light>& lights, const RenderOptions& options,
                   const ValueRange& range, AntialiasTarget& aa, QString* error);
 
+    /// RenderOptions::multiDraw of the frame being drawn (drawBatch).
+    bool m_multiDraw = true;
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;
     EnvironmentMap m_environment;

@@ -175,7 +175,7 @@ public:
     /// The shared buffers the exact pass draws from (valid after sync; renamed when they grow).
     const ScenePools& pools() const { return m_pools; }
     /// Binds the surface table and the control and span pools as texture buffers to the units
-    /// of shaders/surface_data.glsl (5-8) and the triangle VAO.
+    /// of shaders/surface_data.glsl (kSurfaceTableUnit..kSpanUnit) and the triangle VAO.
     void bindSurfaceData() const;
     /// The vertex array of the cell outlines over the pools (the triangles' is bound by
     /// bindSurfaceData: attributes 0-3 of BaseVertex, the surface index at 4 per instance).
@@ -187,9 +187,12 @@ public:
     /// element buffer: the exact pass points binding 0 and the elements at its silhouette
     /// fins (kw::buildFins), which change with the view.
     GLuint finVao() const { return m_finVao; }
-    /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
-    /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
+    /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less
+    /// after setBufferLimitForTests.
     std::int64_t bufferLimit() const;
+    /// Test hook, process-wide: lowers every scene's bufferLimit to `bytes` (0: the GPU's own),
+    /// so tests reach the too-large path with small data. Read at each sync.
+    static void setBufferLimitForTests(std::int64_t bytes);
 
     /// Adds the bytes of every record and of the mask array to `out` by kind.
     void residentBytes(GpuBytes& out) const;

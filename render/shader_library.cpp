@@ -16,8 +16,7 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
         *error = QStringLiteral("shader includes nested too deeply at %1").arg(file);
         return false;
     }
-    // KW_SHADER_DIR (development): read shaders from a folder instead of the resources.
-    static const QString dir = qEnvironmentVariable("KW_SHADER_DIR", QStringLiteral(":/shaders"));
+    const QString dir = ShaderLibrary::sourceDirectory();
     QFile f(dir + QLatin1Char('/') + file);
     if (!f.open(QIODevice::ReadOnly | QIODevice::Text)) {
         *error = QStringLiteral("shader file %1/%2 not found").arg(dir, file);
@@ -39,6 +38,22 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
 }
 
 } // namespace
+
+namespace {
+QString& sourceDirectoryOverride() {
+    static QString dir;
+    return dir;
+}
+} // namespace
+
+void ShaderLibrary::setSourceDirectory(const QString& dir) {
+    sourceDirectoryOverride() = dir;
+}
+
+QString ShaderLibrary::sourceDirectory() {
+    const QString& dir = sourceDirectoryOverride();
+    return dir.isEmpty() ? QStringLiteral(":/shaders") : dir;
+}
 
 ShaderLibrary::ShaderLibrary() = default;
 

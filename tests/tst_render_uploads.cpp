@@ -1,4 +1,5 @@
 // GL test: the renderer uploads only what the document's revisions say is stale.
+#include "render/gl_context.h"
 #include "render/renderer_impl.h"
 #include "render_test_util.h"
 
@@ -46,10 +47,10 @@ private Q_SLOTS:
     }
 
     void glDebugPrintsDriverMessages() {
-        // KW_GL_DEBUG=1 (a development switch, docs/PERFORMANCE.md "On a GPU"): a debug
-        // context whose driver messages reach stderr, here a GL error on purpose.
-        qputenv("KW_GL_DEBUG", "1");
-        auto unset = qScopeGuard([] { qunsetenv("KW_GL_DEBUG"); });
+        // kw::setGlDebug (KW_GL_DEBUG=1 in the executables, docs/PERFORMANCE.md "On a GPU"): a
+        // debug context whose driver messages reach stderr, here a GL error on purpose.
+        setGlDebug(true);
+        auto unset = qScopeGuard([] { setGlDebug(false); });
         QString error;
         std::unique_ptr<OffscreenRenderer> r =
             kwtest::offscreenRenderer(QSize(8, 8), false, &error);
@@ -233,8 +234,8 @@ private Q_SLOTS:
     void oversizedNetIsReportedNotDrawn() {
         // A degree-1 strip with one more control point than the shared control buffer may
         // hold, under a buffer limit lowered to 1 MiB (llvmpipe's real one is 128 MiB).
-        qputenv("KW_GPU_BUFFER_LIMIT", "1048576");
-        const auto restore = qScopeGuard([] { qunsetenv("KW_GPU_BUFFER_LIMIT"); });
+        GpuScene::setBufferLimitForTests(1048576);
+        const auto restore = qScopeGuard([] { GpuScene::setBufferLimitForTests(0); });
         const int maxSize = 1048576;
         NurbsSurface g;
         g.countU = maxSize / 16 / 2 + 1;
