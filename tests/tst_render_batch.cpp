@@ -2,7 +2,7 @@
 // multi-draw per pass, so 300 surfaces take as many draw calls as 3 of the same variants; the
 // image equals the one-draw-per-surface path's and the kernel's; a moved point is still one
 // texel in a scene of 300 surfaces.
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
 #include <QScopeGuard>
