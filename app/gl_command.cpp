@@ -2,7 +2,9 @@
 #include "app/gl_command.h"
 
 #include "app/commands.h"
+#include "render/gl_context.h"
 #include "render/offscreen_renderer.h"
+#include "render/shader_library.h"
 
 #include <QGuiApplication>
 #include <QSurfaceFormat>
@@ -10,8 +12,15 @@
 
 namespace kw::cli {
 
+void applyDevelopmentSwitches() {
+    if (const QString dir = qEnvironmentVariable("KW_SHADER_DIR"); !dir.isEmpty())
+        ShaderLibrary::setSourceDirectory(dir);
+    setGlDebug(qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0);
+}
+
 int runGlCommand(int argc, char** argv,
                  int (*run)(const QStringList& args, const GuiStarter& startGui)) {
+    applyDevelopmentSwitches();
     const QString name = QString::fromLocal8Bit(argc > 1 ? argv[1] : "");
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
     QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));

@@ -23,4 +23,10 @@ using GuiStarter = std::function<bool()>;
 int runGlCommand(int argc, char** argv,
                  int (*run)(const QStringList& args, const GuiStarter& startGui));
 
+/// The process-wide development switches of the GL executables, applied before any context
+/// or shader exists: KW_SHADER_DIR=DIR reads the shaders from DIR instead of the bundled ones
+/// (ShaderLibrary::setSourceDirectory; tools/speed_floor.py measures with it), KW_GL_DEBUG=1
+/// asks for debug contexts that print the driver's messages (kw::setGlDebug).
+void applyDevelopmentSwitches();
+
 } // namespace kw::cli

@@ -13,5 +13,6 @@ int main(int argc, char** argv) {
     kw::claimPrestartedCadRead();
     if (argc > 1 && std::strcmp(argv[1], "render") == 0)
         return kw::cli::runGlCommand(argc, argv, kw::cli::runRender);
+    kw::cli::applyDevelopmentSwitches();
     return kw::app::runEditor(argc, argv);
 }

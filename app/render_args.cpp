@@ -7,6 +7,7 @@
 #include <QCommandLineParser>
 #include <QStringList>
 #include <cmath>
+#include <utility>
 
 namespace kw::cli {
 
@@ -324,12 +325,38 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
         return fail(o.aaMethod, QStringLiteral("accumulate or coverage"));
     options.antialiasing = *aaMethod;
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
-    // The trimmed-cell split's before and after (docs/PERFORMANCE.md ## Trims): same pixels.
-    options.splitCellsByTrims = qEnvironmentVariable("KW_TRIM_CELL_SPLIT") != QLatin1String("0");
-    // The edge skirts' before and after (docs/PERFORMANCE.md ## Edges): cracks and cost.
-    options.edgeSkirts = qEnvironmentVariable("KW_EDGE_SKIRTS") != QLatin1String("0");
-    // Closed solids' back faces drawn or skipped (docs/PERFORMANCE.md ## Edges): same pixels.
-    options.skipBackFaces = qEnvironmentVariable("KW_BACK_FACES") != QLatin1String("1");
+    return readDevelopmentSwitches(cmd, options);
+}
+
+bool readDevelopmentSwitches(const QString& cmd, RenderOptions& options) {
+    const auto off = [](const char* name, const char* value = "0") {
+        return qEnvironmentVariable(name) == QLatin1String(value);
+    };
+    // Same pixels, different cost: the trimmed-cell split (## Trims), closed solids' back
+    // faces skipped, affine surfaces without the Newton step, the multi-draw, the deferred pass.
+    options.splitCellsByTrims = !off("KW_TRIM_CELL_SPLIT");
+    options.skipBackFaces = !off("KW_BACK_FACES", "1");
+    options.affineWithoutNewton = !off("KW_AFFINE");
+    options.multiDraw = !off("KW_MULTI_DRAW");
+    options.deferredPass = options.deferredPass && !off("KW_DEFERRED");
+    // The edge skirts and their silhouette fins (## Edges): cracks and cost.
+    options.edgeSkirts = !off("KW_EDGE_SKIRTS");
+    options.silhouetteFins = !off("KW_FINS");
+    // Thresholds of the per-cell gather and of the deferred pass's forward surfaces.
+    for (const auto& [name, value] :
+         {std::pair{"KW_GATHER_MIN_CELL_PX", &options.gatherMinCellPixels},
+          std::pair{"KW_DEFER_MAX_CELL_PX", &options.deferMaxCellPixels}}) {
+        if (!qEnvironmentVariableIsSet(name))
+            continue;
+        bool ok = false;
+        const double v = qEnvironmentVariable(name).toDouble(&ok);
+        if (!ok || !(v >= 0.0)) {
+            printError(QStringLiteral("%1: %2 '%3' is not a number of pixels >= 0")
+                           .arg(cmd, QLatin1String(name), qEnvironmentVariable(name)));
+            return false;
+        }
+        *value = v;
+    }
     return true;
 }
 

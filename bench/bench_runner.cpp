@@ -91,7 +91,7 @@ public:
     }
     /// Exact or baseline frame of the model at `partitions`.
     bool drawRenderer(const Model& m, RenderMode mode, int partitions, int lights, QString* error) {
-        RenderOptions o;
+        RenderOptions o = base;
         o.shading = shading;
         o.mode = mode;
         o.partitionsU = o.partitionsV = partitions;
@@ -127,6 +127,7 @@ public:
     long long gluTriangles() const { return m_gluTriangles; }
 
     OffscreenRenderer renderer;
+    RenderOptions base; ///< BenchConfig::base
     RenderOptions::Shading shading = RenderOptions::Shading::DepthPrepass;
     bool trims = true;
     RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
@@ -483,6 +484,7 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     Session s;
+    s.base = config.base;
     s.shading = config.shading;
     s.trims = config.trims;
     s.trimMode = config.trimMode;

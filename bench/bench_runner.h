@@ -52,6 +52,9 @@ struct BenchConfig {
     double gluMinTolerance = 0.25;
     /// GLU search also stops when one tessellation produces more vertices than this.
     long long gluMaxVertices = 4'000'000;
+    /// What every renderer frame starts from: the development switches
+    /// (kw::cli::readDevelopmentSwitches), the defaults otherwise.
+    RenderOptions base;
 };
 
 /// Median, fastest and slowest frame of a run of timed frames, in milliseconds.

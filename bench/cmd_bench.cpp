@@ -333,6 +333,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        .arg(kMaxPartitions));
         return kExitUsage;
     }
+    if (!readDevelopmentSwitches(cmd, config.base))
+        return kExitUsage;
+    scaleConfig.base = config.base;
     scaleConfig.frames = config.frames;
     scaleConfig.trims = config.trims;
     if (parser.isSet(smoke)) {

@@ -177,7 +177,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     OffscreenRenderer renderer;
     if (!renderer.create(error) || !renderer.setSize(QSize(config.side, config.side), false, error))
         return false;
-    Frames frames{renderer, config, RenderOptions{}, QString()};
+    Frames frames{renderer, config, config.base, QString()};
     frames.options.trims = config.trims;
     frames.options.polygonOverTrims = config.trims;
     frames.options.partitioning = config.partitioning;

@@ -22,6 +22,8 @@ struct ScaleConfig {
     int warmup = 3;     ///< untimed frames first
     int dragSteps = 20; ///< control-point moves timed per row
     bool trims = true;
+    /// What every frame starts from: the development switches (BenchConfig::base).
+    RenderOptions base;
     /// How the base polygons are partitioned: the paper's uniform grid by default, or the
     /// editor's adaptive mode; `partitions` > 0 overrides every surface's own (the minimum in
     /// adaptive mode).

@@ -1,6 +1,7 @@
 #include "render/accumulate_target.h"
 
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
@@ -100,11 +101,11 @@ bool AccumulateTarget::add(bool first, QString* error) {
         gl->glBlendFunc(GL_ONE, GL_ONE);
     }
     prog->bind();
-    gl->glBindTextureUnit(0, m_sample.colourTexture());
+    gl->glBindTextureUnit(kAccumulateSampleUnit, m_sample.colourTexture());
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
-    gl->glBindTextureUnit(0, 0);
+    gl->glBindTextureUnit(kAccumulateSampleUnit, 0);
     gl->glDisable(GL_BLEND);
     gl->glEnable(GL_DEPTH_TEST);
     m_added = first ? 1 : m_added + 1;
@@ -134,13 +135,13 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
     prog->bind();
     gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(m_added, 1)));
     // The colour of one sample not yet in the sum is the sample's own.
-    gl->glBindTextureUnit(0, m_firstOnly ? m_sample.colourTexture() : m_sum);
-    gl->glBindTextureUnit(1, m_sample.depthTexture());
+    gl->glBindTextureUnit(kAccumulateSampleUnit, m_firstOnly ? m_sample.colourTexture() : m_sum);
+    gl->glBindTextureUnit(kAccumulateDepthUnit, m_sample.depthTexture());
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
-    gl->glBindTextureUnit(0, 0);
-    gl->glBindTextureUnit(1, 0);
+    gl->glBindTextureUnit(kAccumulateSampleUnit, 0);
+    gl->glBindTextureUnit(kAccumulateDepthUnit, 0);
     gl->glDepthFunc(kDepthNearer);
     return true;
 }

@@ -2,6 +2,8 @@
 // and the automatic colour range from kernel curvature samples.
 #include "render/analysis.h"
 
+#include "render/exact_contract.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -138,26 +140,7 @@ glm::vec3 rampColour(double t) {
 }
 
 QStringList analysisDefines(const AnalysisOptions& options, bool curvatureAov) {
-    QStringList d;
-    if (options.mode != AnalysisMode::Phong)
-        d << QStringLiteral("KW_ANALYSIS %1").arg(int(options.mode));
-    if (options.isocurves)
-        d << QStringLiteral("KW_ISOCURVES");
-    if (options.principalDirections)
-        d << QStringLiteral("KW_DIRECTIONS");
-    if (needsCurvature(options.mode) || curvatureAov || options.principalDirections)
-        d << QStringLiteral("KW_SECOND_ORDER");
-    if (curvatureAov)
-        d << QStringLiteral("KW_AOV_CURVATURE");
-    if (isColourMap(options.mode)) {
-        const std::vector<glm::vec3>& r = colourRamp();
-        QStringList stops;
-        for (const glm::vec3& c : r)
-            stops << QStringLiteral("vec3(%1, %2, %3)").arg(c.x).arg(c.y).arg(c.z);
-        d << QStringLiteral("KW_RAMP_STOPS %1").arg(r.size())
-          << QStringLiteral("KW_RAMP vec3[](%1)").arg(stops.join(QStringLiteral(", ")));
-    }
-    return d;
+    return ExactVariant{0, 0, 1, options.mode, analysisFeatures(options, curvatureAov)}.defines();
 }
 
 double analysisValue(AnalysisMode mode, const SurfaceCurvature& c) {

@@ -1,6 +1,7 @@
 #include "render/antialias_target.h"
 
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 
 #include <QOpenGLShaderProgram>
 
@@ -75,14 +76,14 @@ bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
     }
     beginResolve(gl, framebuffer, m_size);
     prog->bind();
-    gl->glBindTextureUnit(0, m_colour);
-    gl->glBindTextureUnit(1, m_accumulation);
-    gl->glBindTextureUnit(2, m_depth);
+    gl->glBindTextureUnit(kCompositeColourUnit, m_colour);
+    gl->glBindTextureUnit(kCompositeAccumUnit, m_accumulation);
+    gl->glBindTextureUnit(kCompositeDepthUnit, m_depth);
     gl->glBindVertexArray(m_vao);
     gl->glDrawArrays(GL_TRIANGLES, 0, 3);
     gl->glBindVertexArray(0);
-    for (GLuint unit = 0; unit < 3; ++unit)
-        gl->glBindTextureUnit(unit, 0);
+    for (const int unit : {kCompositeColourUnit, kCompositeAccumUnit, kCompositeDepthUnit})
+        gl->glBindTextureUnit(GLuint(unit), 0);
     gl->glDepthFunc(kDepthNearer);
     return true;
 }

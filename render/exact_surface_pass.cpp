@@ -2,162 +2,72 @@
 // (or one pass writing gl_FragDepth when options.shading is ExactDepth).
 #include "render/exact_surface_pass.h"
 
-#include "model/surface_bound.h"
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
-#include <limits>
 #include <map>
 
 namespace kw {
 
 namespace {
-constexpr int kTrimMaskUnit = 3;    // the mask array (TrimMaskPass::bindArray; exact mode's
-                                    // grids are on kTrimGridUnit)
-constexpr int kEnvironmentUnit = 4; // analysis.glsl's uEnvironment
-// The deferred pass: the pre-pass's texture (exact_surface.frag kwPrepass) and the vertex pool
-// (KwVertices); the pre-pass writes its texture at this colour attachment of the frame's
-// framebuffer, the last of the 8 every GL 4.5 context has.
-constexpr int kPrepassUnit = 11;
-constexpr int kVertexStorageBinding = 1;
+// The deferred pass's pre-pass writes its texture (kPrepassUnit) at this colour attachment of
+// the frame's framebuffer, the last of the 8 every GL 4.5 context has.
 constexpr int kPrepassAttachment = 7;
-
-const TrimMask* maskOf(const SurfaceRecord& r) {
-    return r.mask.usable() ? &r.mask : nullptr;
-}
-
-double deferMaxCellPixels() {
-    if (const char* e = std::getenv("KW_DEFER_MAX_CELL_PX"))
-        return std::atof(e);
-    return ExactSurfacePass::kDeferMaxCellPixels;
-}
-
-double gatherMinCellPixels() {
-    if (const char* e = std::getenv("KW_GATHER_MIN_CELL_PX"))
-        return std::atof(e);
-    return ExactSurfacePass::kGatherMinCellPixels;
-}
 } // namespace
-
-bool ExactSurfacePass::controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi) {
-    return kw::controlBounds(g, lo, hi);
-}
-
-bool ExactSurfacePass::outsideView(const glm::vec3& lo, const glm::vec3& hi,
-                                   const glm::mat4& viewProjection) {
-    // Grown a little so that rounding in the transform never culls a surface whose edge
-    // touches the view.
-    const glm::vec3 margin(1e-4f * (glm::length(hi - lo) + glm::length(hi) + glm::length(lo)));
-    return boxOutsideFrustum(glm::dmat4(viewProjection), glm::dvec3(lo - margin),
-                             glm::dvec3(hi + margin));
-}
-
-double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
-    glm::vec3 lo, hi;
-    return controlBounds(g, lo, hi) ? projectedPixelsPerCell(g, lo, hi, camera) : 0.0;
-}
-
-double ExactSurfacePass::projectedPixelsPerCell(const SurfaceGpu& g, const glm::vec3& lo,
-                                                const glm::vec3& hi, const FrameCamera& camera) {
-    return pixelsPerCell(screenBox(lo, hi, camera.viewProjection), g.polygon.cellCount(),
-                         camera.viewport, true);
-}
-
-ExactSurfacePass::ScreenBox ExactSurfacePass::screenBox(const glm::vec3& lo, const glm::vec3& hi,
-                                                        const glm::mat4& viewProjection) {
-    ScreenBox box{glm::vec2(std::numeric_limits<float>::max()),
-                  glm::vec2(-std::numeric_limits<float>::max()), false};
-    for (int k = 0; k < 8; ++k) {
-        const glm::vec3 c(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
-        const glm::vec4 clip = viewProjection * glm::vec4(c, 1.0f);
-        if (!(clip.w > 0.0f)) {
-            box.behind = true;
-            return box;
-        }
-        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-        box.lo = glm::min(box.lo, ndc);
-        box.hi = glm::max(box.hi, ndc);
-    }
-    return box;
-}
-
-double ExactSurfacePass::pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,
-                                       bool clampToView) {
-    if (cells <= 0)
-        return 0.0;
-    if (box.behind) // a corner behind the eye: treat the surface as large
-        return std::numeric_limits<double>::infinity();
-    glm::vec2 lo = box.lo, hi = box.hi;
-    if (clampToView) {
-        lo = glm::clamp(lo, glm::vec2(-1.0f), glm::vec2(1.0f));
-        hi = glm::clamp(hi, glm::vec2(-1.0f), glm::vec2(1.0f));
-    }
-    const glm::vec2 extent = glm::max(hi - lo, glm::vec2(0.0f)) * 0.5f * glm::vec2(viewport);
-    return double(extent.x) * double(extent.y) / double(cells);
-}
 
 void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;
-    multiDraw = qEnvironmentVariable("KW_MULTI_DRAW") != QLatin1String("0");
-    fins = qEnvironmentVariable("KW_FINS") != QLatin1String("0");
-    skipAffineNewton = qEnvironmentVariable("KW_AFFINE") != QLatin1String("0");
-    deferred = qEnvironmentVariable("KW_DEFERRED") != QLatin1String("0");
     m_environment.initialize(gl);
 }
 
-QStringList ExactSurfacePass::degreeDefines(int p, int q, int lightCount) {
-    return {QStringLiteral("DEGREE_U %1").arg(p), QStringLiteral("DEGREE_V %1").arg(q),
-            QStringLiteral("LIGHT_COUNT %1").arg(lightCount)};
-}
-
-QStringList ExactSurfacePass::variantDefines(int p, int q, int lightCount,
-                                             const RenderOptions& options, bool trimmed,
-                                             bool gatherAllowed, TrimAa trimAa, bool skirt,
-                                             bool affine) {
-    QStringList d = degreeDefines(p, q, lightCount);
+ExactVariant ExactSurfacePass::variant(int p, int q, int lightCount, const RenderOptions& options,
+                                       bool trimmed, bool gatherAllowed, TrimAa trimAa, bool skirt,
+                                       bool affine) {
+    ExactVariant v{p, q, lightCount, options.analysis.mode,
+                   analysisFeatures(options.analysis, options.writeCurvatureAov)};
+    ExactFeatures& f = v.features;
     // Per-cell gather when the cell's control texels and span rows fit the 32 varying
     // vectors next to vUv, vSpan and vSpanScale (bicubic: 16 + 3 + 3).
-    if (!skirt && gatherAllowed &&
-        (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28)
-        d << QStringLiteral("KW_CELL_GATHER");
-    if (options.writeAov)
-        d << QStringLiteral("KW_AOV");
-    if (skirt)
-        d << QStringLiteral("KW_SKIRT");
-    else if (options.shading == RenderOptions::Shading::ExactDepth)
-        d << QStringLiteral("KW_EXACT_DEPTH");
+    f.setFlag(ExactFeature::CellGather,
+              !skirt && gatherAllowed &&
+                  (p + 1) * (q + 1) + spanTableTexels(p) + spanTableTexels(q) <= 28);
+    f.setFlag(ExactFeature::Aov, options.writeAov);
+    f.setFlag(ExactFeature::Skirt, skirt);
+    f.setFlag(ExactFeature::ExactDepth,
+              !skirt && options.shading == RenderOptions::Shading::ExactDepth);
     // Adaptive partitions guarantee the polygon's (u, v) starts Newton's method within the
     // pixel tolerance of the point under the pixel; uniform mode stays the paper's. An affine
     // surface's polygon puts the point under the pixel there already.
-    if (options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt && !affine)
-        d << QStringLiteral("KW_RAY_NEWTON");
-    if (trimmed)
-        d << QStringLiteral("KW_TRIM");
-    if (trimmed && options.trimMode == RenderOptions::TrimMode::Exact)
-        d << QStringLiteral("KW_TRIM_EXACT");
-    if (trimmed && trimAa != TrimAa::Off)
-        d << QStringLiteral("KW_TRIM_AA");
-    if (trimmed && trimAa == TrimAa::Edge)
-        d << QStringLiteral("KW_TRIM_EDGE");
-    d << analysisDefines(options.analysis, options.writeCurvatureAov);
-    return d;
+    f.setFlag(ExactFeature::RayNewton,
+              options.partitioning == RenderOptions::Partitioning::Adaptive && !skirt && !affine);
+    f.setFlag(ExactFeature::Trim, trimmed);
+    f.setFlag(ExactFeature::TrimExact,
+              trimmed && options.trimMode == RenderOptions::TrimMode::Exact);
+    f.setFlag(ExactFeature::TrimAa, trimmed && trimAa != TrimAa::Off);
+    f.setFlag(ExactFeature::TrimEdge, trimmed && trimAa == TrimAa::Edge);
+    return v;
 }
 
-void ExactSurfacePass::uploadCommands(const std::vector<Batch*>& batches) {
+void ExactSurfacePass::uploadCommands(bool rebuilt,
+                                      const std::vector<ExactPlanner::CommandWrite>& writes) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    std::vector<DrawCommand> all;
-    for (Batch* b : batches) {
-        b->first = std::int64_t(all.size());
-        all.insert(all.end(), b->commands.begin(), b->commands.end());
+    if (!rebuilt) {
+        for (const ExactPlanner::CommandWrite& w : writes)
+            gl->glNamedBufferSubData(m_commands,
+                                     GLintptr(w.at * std::int64_t(sizeof(IndirectCommand))),
+                                     GLsizeiptr(sizeof(IndirectCommand)), &w.command);
+        if (m_commands)
+            gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
+        return;
     }
-    const std::int64_t bytes = std::int64_t(all.size() * sizeof(DrawCommand));
+    const std::vector<IndirectCommand>& all = m_plan.commands();
+    const std::int64_t bytes = std::int64_t(all.size() * sizeof(IndirectCommand));
     if (bytes == 0) {
         releaseCommands(); // no surface: no buffer (the empty scene's bytes)
         return;
@@ -179,25 +89,25 @@ void ExactSurfacePass::releaseCommands() {
     m_commandBytes = 0;
 }
 
-void ExactSurfacePass::drawBatch(const Batch& batch) {
+void ExactSurfacePass::drawBatch(const ExactBatch& batch) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    if (batch.cullFace != 0) {
+    if (const GLenum cull = cullFaceOf(batch.face); cull != 0) {
         gl->glEnable(GL_CULL_FACE);
-        gl->glCullFace(batch.cullFace);
+        gl->glCullFace(cull);
     } else {
         gl->glDisable(GL_CULL_FACE);
     }
     if (firstDrawCpuMs < 0.0 && !batch.commands.empty())
         firstDrawCpuMs = threadCpuMs();
-    if (multiDraw) {
+    if (m_multiDraw) {
         gl->glMultiDrawElementsIndirect(
             GL_TRIANGLES, GL_UNSIGNED_INT,
-            reinterpret_cast<const void*>(batch.first * std::int64_t(sizeof(DrawCommand))),
+            reinterpret_cast<const void*>(batch.first * std::int64_t(sizeof(IndirectCommand))),
             GLsizei(batch.commands.size()), 0);
         ++drawCalls;
         return;
     }
-    for (const DrawCommand& c : batch.commands) {
+    for (const IndirectCommand& c : batch.commands) {
         gl->glDrawElementsInstancedBaseVertexBaseInstance(
             GL_TRIANGLES, GLsizei(c.count), GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(std::uintptr_t(c.firstIndex) * sizeof(unsigned)), 1,
@@ -206,322 +116,40 @@ void ExactSurfacePass::drawBatch(const Batch& batch) {
     }
 }
 
-ExactSurfacePass::Place ExactSurfacePass::classify(const SurfaceRecord& r, const CacheKey& key,
-                                                   const FrameCamera& camera,
-                                                   Commands& commands) const {
-    Place p;
-    const SurfaceGpu* g = r.exact.get();
-    if (!g || r.slot < 0)
-        return p;
-    p.drawn = true;
-    // Wholly outside the view (its control bounds hold it): no triangle of it is sent, so a
-    // close-up costs what is visible, not the whole scene (issue 15). The bounds are kept
-    // with the record (GpuScene), not taken from its points per frame.
-    if (key.cull && r.bounded && outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
-        p.culled = true;
-        return p;
-    }
-    commands.all = DrawCommand{GLuint(g->triangleIndexCount), 1, GLuint(g->triangleOffset),
-                               GLint(g->vertexOffset), GLuint(r.slot)};
-    const TrimMask* mask = key.trims ? maskOf(r) : nullptr;
-    // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
-    const int degrees = g->degreeU | g->degreeV << 4;
-    p.prepassTrimmed = mask != nullptr;
-    // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
-    // costs llvmpipe its early depth test), and no pass draws the cells they remove.
-    p.split = mask && key.prepass && !key.antialiased && g->insideIndexCount >= 0 &&
-              g->splitClasses == mask->classSerial;
-    if (p.split) {
-        const GLuint inside = GLuint(g->insideIndexCount), edge = GLuint(g->edgeIndexCount);
-        p.awayCells = (g->triangleIndexCount - std::int64_t(inside) - std::int64_t(edge)) / 6;
-        commands.inside = commands.all;
-        commands.inside.count = inside;
-        commands.edge = commands.all;
-        commands.edge.count = edge;
-        commands.edge.firstIndex += inside;
-        commands.all.count = inside + edge;
-    }
-    // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL rejects it
-    // before shading and early-z stays on: no lookup needed here. A discard in this shader
-    // costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the exact-depth way, which
-    // has no pre-pass, looks the mask up.
-    const bool lookUp = mask && !key.prepass;
-    // The gather pays only where a cell covers many fragments: on small cells its flat
-    // varyings cost llvmpipe's triangle setup more than the fetches it saves.
-    ScreenBox box;
-    box.behind = true;
-    if (r.bounded)
-        box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
-    const int cells = g->polygon.cellCount();
-    const bool gather =
-        r.bounded && pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
-    // Large cells the forward way (exact_surface_pass.h, kDeferMaxCellPixels). The cells'
-    // size on screen, not clamped to the view: in a close-up most of them lie outside it,
-    // and those inside are the large ones.
-    const bool forward =
-        key.deferred && pixelsPerCell(box, cells, camera.viewport, false) >= key.deferMaxCellPixels;
-    if (key.deferred && !box.behind)
-        p.window = glm::vec4(glm::clamp(box.lo, -1.0f, 1.0f), glm::clamp(box.hi, -1.0f, 1.0f));
-    // A closed solid seen from outside: the triangles facing away from the eye are hidden by
-    // its faces in front (chooseBackCulled).
-    const int solid = r.surface ? r.surface->solid : -1;
-    if (solid >= 0 && m_backCulled.count(solid))
-        p.face = r.surface->outsideAlongNormal ? 1 : 2;
-    // The polygon is the surface (planes): in adaptive mode its (u, v) is already the point
-    // under the pixel, and the Newton step would only evaluate the surface once more.
-    const bool affine = key.adaptive && skipAffineNewton && g->affine;
-    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
-                int(forward) << 13;
-    if (mask)
-        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12;
-    if (key.skirts && g->skirtIndexOffset >= 0) {
-        commands.skirt = DrawCommand{GLuint(g->skirtIndexCount), 1, GLuint(g->skirtIndexOffset),
-                                     GLint(g->skirtVertexOffset), GLuint(r.slot)};
-        p.skirtVariant = degrees | int(mask != nullptr) << 8;
-    }
-    return p;
-}
-
-void ExactSurfacePass::chooseBackCulled(const GpuScene& scene, const CacheKey& key,
-                                        const FrameCamera& camera) {
-    m_backCulled.clear();
-    if (!key.skipBackFaces)
-        return;
-    struct Solid {
-        int drawn = 0;
-        bool complete = true;
-        glm::vec3 lo{0.0f}, hi{0.0f};
-    };
-    std::map<int, Solid> solids;
-    for (const SurfaceRecord* r : scene.records()) {
-        const int k = r->surface ? r->surface->solid : -1;
-        if (k < 0)
-            continue;
-        Solid& s = solids[k];
-        if (!r->exact || r->slot < 0 || !r->bounded) {
-            s.complete = false; // a member not drawn: a hole
-            continue;
-        }
-        s.lo = s.drawn ? glm::min(s.lo, r->boundsLo) : r->boundsLo;
-        s.hi = s.drawn ? glm::max(s.hi, r->boundsHi) : r->boundsHi;
-        ++s.drawn;
-    }
-    const glm::dmat4 view(camera.view);
-    // A little past the near plane: the bounds hold the polygon, rounding aside.
-    const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
-    for (const auto& [k, s] : solids) {
-        if (!s.complete || s.drawn != scene.solidMembers(k))
-            continue;
-        bool beyond = true;
-        for (int c = 0; c < 8 && beyond; ++c) {
-            const glm::dvec3 p(c & 1 ? s.hi.x : s.lo.x, c & 2 ? s.hi.y : s.lo.y,
-                               c & 4 ? s.hi.z : s.lo.z);
-            beyond = -(view * glm::dvec4(p, 1.0)).z > nearest;
-        }
-        if (beyond)
-            m_backCulled.insert(k);
-    }
-}
-
-void ExactSurfacePass::buildBatches(const GpuScene& scene, const CacheKey& key,
-                                    const FrameCamera& camera) {
-    // Group the surfaces by variant (document order within a group). Key: degrees (1..15, 4
-    // bits each), trimmed, gather, the side culled (Place::face), affine.
-    m_plain.clear();
-    m_routes.clear();
-    chooseBackCulled(scene, key, camera);
-    m_trimmedPre.clear();
-    m_variants.clear();
-    m_edges.clear();
-    m_skirts.clear();
-    m_places.clear();
-    m_places.reserve(scene.records().size());
-    m_culled = 0;
-    m_trimmedAway = 0;
-    for (const SurfaceRecord* r : scene.records()) {
-        Commands cs;
-        Place p = classify(*r, key, camera, cs);
-        const DrawCommand& c = cs.all;
-        if (p.drawn && !p.culled) {
-            if (key.prepass) {
-                const auto plain = [&]() -> Batch& {
-                    Batch& b = m_plain[p.plainKey(key.deferred)];
-                    b.cullFace = cullFaceOf(p.face);
-                    b.route = p.route();
-                    return b;
-                };
-                Batch& pre =
-                    p.prepassTrimmed ? m_trimmedPre[p.trimmedPreKey(key.deferred)] : plain();
-                if (p.prepassTrimmed && pre.commands.empty()) {
-                    pre.trimmed = true;
-                    pre.cullFace = cullFaceOf(p.face);
-                    pre.degreeU = r->exact->degreeU;
-                    pre.degreeV = r->exact->degreeV;
-                    pre.affine = (p.variant >> 12) & 1;
-                    pre.route = p.route();
-                }
-                p.prepassIndex = int(pre.commands.size());
-                pre.commands.push_back(p.split ? cs.edge : c);
-                if (p.split) {
-                    Batch& inside = plain();
-                    p.insideIndex = int(inside.commands.size());
-                    inside.commands.push_back(cs.inside);
-                }
-                if (key.deferred && p.route() >= 0)
-                    addToRoute(p);
-            }
-            Batch& b = m_variants[p.variant];
-            if (b.commands.empty()) {
-                const SurfaceGpu& g = *r->exact;
-                b.degreeU = g.degreeU;
-                b.degreeV = g.degreeV;
-                b.trimmed = (p.variant >> 8) & 1;
-                b.gather = (p.variant >> 9) & 1;
-                b.affine = (p.variant >> 12) & 1;
-                b.cullFace = cullFaceOf(p.face);
-            }
-            p.index = int(b.commands.size());
-            b.commands.push_back(c);
-            if (p.edgeVariant >= 0) {
-                Batch& e = m_edges[p.edgeVariant];
-                if (e.commands.empty()) {
-                    e.degreeU = b.degreeU;
-                    e.degreeV = b.degreeV;
-                    e.trimmed = true;
-                    e.gather = b.gather;
-                    e.affine = b.affine;
-                    e.cullFace = b.cullFace;
-                }
-                p.edgeIndex = int(e.commands.size());
-                e.commands.push_back(c); // with anti-aliasing: never split
-            }
-            if (p.skirtVariant >= 0) {
-                Batch& k = m_skirts[p.skirtVariant];
-                if (k.commands.empty()) {
-                    k.degreeU = b.degreeU;
-                    k.degreeV = b.degreeV;
-                    k.trimmed = (p.skirtVariant >> 8) & 1;
-                }
-                p.skirtIndex = int(k.commands.size());
-                k.commands.push_back(cs.skirt);
-            }
-        }
-        m_culled += p.culled ? 1 : 0;
-        m_trimmedAway += p.awayCells;
-        m_places[r] = p;
-    }
-    int stencil = 0;
-    for (auto& [k, route] : m_routes)
-        route.stencil = ++stencil;
-    std::vector<Batch*> batches;
-    for (auto& [k, b] : m_plain)
-        batches.push_back(&b);
-    for (auto& [k, b] : m_trimmedPre)
-        batches.push_back(&b);
-    for (auto& [k, b] : m_variants)
-        batches.push_back(&b);
-    for (auto& [k, b] : m_edges)
-        batches.push_back(&b);
-    for (auto& [k, b] : m_skirts)
-        batches.push_back(&b);
-    uploadCommands(batches);
-    m_key = key;
-    m_haveBatches = true;
-}
-
-bool ExactSurfacePass::patchBatches(const GpuScene& scene, const CacheKey& key,
-                                    const FrameCamera& camera) {
-    struct Write {
-        std::int64_t at;
-        DrawCommand command;
-    };
-    std::vector<Write> writes;
-    for (const SurfaceRecord* r : scene.touched()) {
-        const auto it = m_places.find(r);
-        if (it == m_places.end())
-            return false;
-        const Place& was = it->second;
-        Commands cs;
-        const Place now = classify(*r, key, camera, cs);
-        const DrawCommand& c = cs.all;
-        if (now.drawn != was.drawn || now.culled != was.culled)
-            return false;
-        if (!now.drawn || now.culled)
-            continue;
-        if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
-            now.edgeVariant != was.edgeVariant || now.split != was.split ||
-            now.skirtVariant != was.skirtVariant)
-            return false;
-        const auto patch = [&](Batch& b, int index, const DrawCommand& command) {
-            DrawCommand& old = b.commands[size_t(index)];
-            if (std::memcmp(&old, &command, sizeof(DrawCommand)) != 0) {
-                old = command;
-                writes.push_back({b.first + index, command});
-            }
-        };
-        patch(m_variants.at(now.variant), was.index, c);
-        if (key.prepass)
-            patch(was.prepassTrimmed ? m_trimmedPre.at(was.trimmedPreKey(key.deferred))
-                                     : m_plain.at(was.plainKey(key.deferred)),
-                  was.prepassIndex, was.split ? cs.edge : c);
-        if (was.split)
-            patch(m_plain.at(was.plainKey(key.deferred)), was.insideIndex, cs.inside);
-        if (was.edgeVariant >= 0)
-            patch(m_edges.at(was.edgeVariant), was.edgeIndex, c);
-        if (was.skirtVariant >= 0)
-            patch(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
-        if (key.deferred && now.route() >= 0) {
-            it->second.window = now.window;
-            addToRoute(now); // grown only: it may have moved
-        }
-        m_trimmedAway += now.awayCells - was.awayCells;
-        it->second.awayCells = now.awayCells;
-    }
-    for (const Write& w : writes)
-        m_gl->glNamedBufferSubData(m_commands, GLintptr(w.at * std::int64_t(sizeof(DrawCommand))),
-                                   GLsizeiptr(sizeof(DrawCommand)), &w.command);
-    if (m_commands)
-        m_gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
-    return true;
-}
-
-int ExactSurfacePass::stencilOf(const Batch& b) const {
-    return b.route >= 0 ? m_routes.at(b.route).stencil : 0;
-}
-
-bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, Batch>& trimmed,
-                                    const GpuScene& scene, const FrameCamera& camera,
-                                    const std::vector<Light>& lights, bool antialiased, bool atRay,
-                                    bool deferred, QString* error) {
+bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
+                                    const std::map<int, ExactBatch>& trimmed, const GpuScene& scene,
+                                    const FrameCamera& camera, const std::vector<Light>& lights,
+                                    bool antialiased, bool atRay, bool deferred, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QStringList trimDefines = scene.trimMasks().trimDefines();
-    if (antialiased)
-        trimDefines << QStringLiteral("KW_TRIM_AA");
-    const QStringList output = deferred ? QStringList{QStringLiteral("KW_GBUFFER")} : QStringList{};
+    // The pre-pass's programs test the trims of the frame's mode and, with the deferred pass,
+    // write its input.
+    ExactFeatures trimFeatures = scene.trimMasks().trimFeatures();
+    trimFeatures.setFlag(ExactFeature::TrimAa, antialiased);
+    const ExactFeatures output = deferred ? ExactFeatures(ExactFeature::GBuffer) : ExactFeatures();
     if (!deferred)
         gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(kDepthNearer);
-    std::vector<Batch*> batches;
-    for (auto& [k, b] : plain)
+    std::vector<const ExactBatch*> batches;
+    for (const auto& [k, b] : plain)
         batches.push_back(&b);
-    for (auto& [k, b] : trimmed)
+    for (const auto& [k, b] : trimmed)
         batches.push_back(&b);
     bool ok = true;
     // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
-    for (Batch* b : batches) {
+    for (const ExactBatch* b : batches) {
         if (b->commands.empty())
             continue;
         const bool onRay = b->trimmed && atRay && !b->affine;
-        QOpenGLShaderProgram* prog =
-            onRay ? m_shaders->program(
-                        QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                        degreeDefines(b->degreeU, b->degreeV, int(lights.size()))
-                            << QStringLiteral("KW_RAY_NEWTON") << QStringLiteral("KW_DEPTH_ONLY")
-                            << trimDefines << output)
-                  : m_shaders->program(QStringLiteral("surface.vert"),
-                                       QStringLiteral("depth_only.frag"),
-                                       (b->trimmed ? trimDefines : QStringList{}) << output);
+        const ExactFeatures trims = b->trimmed ? trimFeatures : ExactFeatures();
+        const ExactVariant v =
+            onRay ? ExactVariant{b->degreeU, b->degreeV, int(lights.size()), AnalysisMode::Phong,
+                                 ExactFeature::RayNewton | ExactFeature::DepthOnly | trims | output}
+                  : ExactVariant{0, 0, 1, AnalysisMode::Phong, trims | output};
+        QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("surface.vert"),
+                                                        onRay ? QStringLiteral("exact_surface.frag")
+                                                              : QStringLiteral("depth_only.frag"),
+                                                        v.defines());
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -540,7 +168,7 @@ bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, B
         if (deferred && b->trimmed)
             gl->glDisable(GL_STENCIL_TEST);
         else if (deferred)
-            gl->glStencilFunc(GL_ALWAYS, stencilOf(*b), 0xff);
+            gl->glStencilFunc(GL_ALWAYS, m_plan.stencilOf(*b), 0xff);
         // The forward pass's surfaces (no route) need no input for the deferred pass.
         const GLboolean write = deferred && b->route >= 0 ? GL_TRUE : GL_FALSE;
         if (deferred)
@@ -564,10 +192,10 @@ bool ExactSurfacePass::depthPrepass(std::map<int, Batch>& plain, std::map<int, B
             gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             gl->glDepthFunc(GL_EQUAL);
             gl->glDepthMask(GL_FALSE);
-            for (auto& [k, b] : trimmed) {
+            for (const auto& [k, b] : trimmed) {
                 if (b.route < 0)
                     continue; // drawn the forward way: no stencil needed (deferredPass)
-                gl->glStencilFunc(GL_ALWAYS, stencilOf(b), 0xff);
+                gl->glStencilFunc(GL_ALWAYS, m_plan.stencilOf(b), 0xff);
                 drawBatch(b);
             }
             gl->glDepthFunc(kDepthNearer);
@@ -582,55 +210,39 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                             const std::vector<Light>& lights, const RenderOptions& options,
                             const ValueRange& range, AntialiasTarget* aa, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
+    m_multiDraw = options.multiDraw;
     if (options.analysis.mode == AnalysisMode::Environment &&
         !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
         return false;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
-    // Skirts close the gap between an adaptive polygon's edge chords and the true edges; the
-    // paper's uniform mode stays as it was. Not in anti-aliased frames: their trimmed
-    // surfaces' partly covered pixels belong to the edge pass (docs/RENDERING.md, "Skirts").
-    const bool skirts = options.edgeSkirts && aa == nullptr &&
-                        options.partitioning == RenderOptions::Partitioning::Adaptive;
+    const bool adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive;
     // The deferred exact pass: each pixel shaded once however small the cells (docs/
     // RENDERING.md, "The deferred exact pass"). The pre-pass's batches are then split by route.
     glm::ivec2 targetSize{0};
-    const bool deferredWanted = deferred && options.deferredPass && prepass && aa == nullptr &&
-                                options.partitioning == RenderOptions::Partitioning::Adaptive &&
+    const bool deferredWanted = options.deferredPass && prepass && aa == nullptr && adaptive &&
                                 (targetSize = deferredTargetSize()) != glm::ivec2(0);
-    const CacheKey key{&scene,
-                       scene.layoutStamp(),
-                       scene.marksRevision(),
-                       camera.viewProjection,
-                       camera.viewport,
-                       trims,
-                       prepass,
-                       options.cullOutsideView,
-                       aa != nullptr,
-                       skirts,
-                       options.skipBackFaces,
-                       options.partitioning == RenderOptions::Partitioning::Adaptive,
-                       gatherMinCellPixels(),
-                       deferMaxCellPixels(),
-                       deferredWanted};
-    if (!(m_haveBatches && key == m_key && patchBatches(scene, key, camera)))
-        buildBatches(scene, key, camera);
-    culled += m_culled;
-    solidsBackCulled += int(m_backCulled.size());
+    const ExactPlanScene planScene{&scene,
+                                   scene.layoutStamp(),
+                                   scene.marksRevision(),
+                                   &scene.records(),
+                                   &scene.touched(),
+                                   [&scene](int solid) {
+                                       return scene.solidMembers(solid);
+                                   }};
+    const ExactPlanKey key =
+        ExactPlanner::keyFor(planScene, camera, options, trims, aa != nullptr, deferredWanted);
+    std::vector<ExactPlanner::CommandWrite> writes;
+    uploadCommands(m_plan.update(planScene, key, camera, writes), writes);
+    culled += m_plan.culled();
+    solidsBackCulled += int(m_plan.backCulled().size());
     // What the pre-pass tests the trims on, and what the split leaves out (per frame: the
     // batches may have been patched).
-    trimTestedCells = trimmedAwayCells = 0;
-    if (prepass) {
-        for (const auto& [k, b] : m_trimmedPre)
-            for (const DrawCommand& c : b.commands)
-                trimTestedCells += c.count / 6;
-        trimmedAwayCells = m_trimmedAway;
-    }
-    affineSurfaces = 0; // each drawn record has one command in m_variants
-    for (const auto& [k, b] : m_variants)
-        affineSurfaces += b.affine ? int(b.commands.size()) : 0;
-    if (m_variants.empty())
+    trimTestedCells = prepass ? m_plan.trimTestedCells() : 0;
+    trimmedAwayCells = prepass ? m_plan.trimmedAwayCells() : 0;
+    affineSurfaces = m_plan.affineSurfaces();
+    const std::map<int, ExactBatch>& variants = m_plan.variants();
+    if (variants.empty())
         return true; // nothing to draw
-    std::map<int, Batch>& variants = m_variants;
 
     scene.bindSurfaceData();
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
@@ -640,19 +252,14 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     bool ok = true;
     // One stencil value per route, 1..255 (0: no surface); none when every surface has large
     // cells (a close-up): then the forward way alone, without the deferred pass's set-up.
-    const bool defer = deferredWanted && !m_routes.empty() && m_routes.size() <= 255;
-    deferredSurfaces = 0;
-    if (defer)
-        for (const auto& [k, b] : variants)
-            deferredSurfaces += (k >> 13) & 1 ? 0 : int(b.commands.size());
+    const bool defer = deferredWanted && !m_plan.routes().empty() && m_plan.routes().size() <= 255;
+    deferredSurfaces = defer ? m_plan.deferredSurfaces() : 0;
     std::vector<GLenum> drawBuffers; // the frame's, while the pre-pass writes its texture
     if (defer)
         drawBuffers = attachPrepassTexture(targetSize);
     if (prepass) {
-        ok = depthPrepass(m_plain, m_trimmedPre, scene, camera, lights, aa != nullptr,
-                          aa == nullptr &&
-                              options.partitioning == RenderOptions::Partitioning::Adaptive,
-                          defer, error);
+        ok = depthPrepass(m_plan.plain(), m_plan.trimmedPrepass(), scene, camera, lights,
+                          aa != nullptr, aa == nullptr && adaptive, defer, error);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -674,9 +281,9 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
                          options, range, error);
     }
     finTriangles = 0;
-    if (ok && !m_skirts.empty())
+    if (ok && !m_plan.skirts().empty())
         ok = skirtPass(scene, camera, lights, options, range, error);
-    if (ok && aa && !m_edges.empty())
+    if (ok && aa && !m_plan.edges().empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glDisable(GL_CULL_FACE);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -686,7 +293,7 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     return ok;
 }
 
-bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa trimAa,
+bool ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,
                                    const GpuScene& scene, const FrameCamera& camera,
                                    const std::vector<Light>& lights, const RenderOptions& options,
                                    const ValueRange& range, QString* error, bool largeCellsOnly) {
@@ -696,8 +303,9 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
             continue;
         QOpenGLShaderProgram* prog =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                              b.trimmed, b.gather, trimAa, false, b.affine));
+                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                       b.gather, trimAa, false, b.affine)
+                                   .defines());
         if (!prog) {
             *error = m_shaders->lastError();
             return false;
@@ -710,14 +318,6 @@ bool ExactSurfacePass::drawBatches(const std::map<int, Batch>& batches, TrimAa t
         drawBatch(b);
     }
     return true;
-}
-
-void ExactSurfacePass::addToRoute(const Place& p) {
-    const auto [it, added] = m_routes.try_emplace(p.route(), Route{0, p.window});
-    glm::vec4& w = it->second.window;
-    if (!added)
-        w = glm::vec4(glm::min(glm::vec2(w), glm::vec2(p.window)),
-                      glm::max(glm::vec2(w.z, w.w), glm::vec2(p.window.z, p.window.w)));
 }
 
 glm::ivec2 ExactSurfacePass::deferredTargetSize() const {
@@ -803,6 +403,14 @@ void ExactSurfacePass::releaseDeferred() {
     m_prepassSize = glm::ivec2(0);
 }
 
+ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
+                                               const RenderOptions& options) {
+    ExactVariant v = variant(route & 15, (route >> 4) & 15, lightCount, options, false, false,
+                             TrimAa::Off, false, (route >> 12) & 1);
+    v.features |= ExactFeature::Deferred;
+    return v;
+}
+
 bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& camera,
                                     const std::vector<Light>& lights, const RenderOptions& options,
                                     const ValueRange& range, QString* error) {
@@ -827,7 +435,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
     GLint view[4] = {0, 0, 0, 0};
     gl->glGetIntegerv(GL_VIEWPORT, view);
     const glm::vec2 origin(view[0], view[1]), size(view[2], view[3]);
-    for (const auto& [route, r] : m_routes) {
+    for (const auto& [route, r] : m_plan.routes()) {
         // The route's window in pixels, a pixel more on each side (rounding, and the
         // polygon's pixel centres).
         const glm::ivec2 lo(glm::floor(origin + (glm::vec2(r.window) * 0.5f + 0.5f) * size) - 1.0f);
@@ -837,9 +445,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
             continue;
         QOpenGLShaderProgram* prog = m_shaders->program(
             QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
-            variantDefines(route & 15, (route >> 4) & 15, int(lights.size()), options, false, false,
-                           TrimAa::Off, false, (route >> 12) & 1)
-                << QStringLiteral("KW_DEFERRED"));
+            deferredVariant(route, int(lights.size()), options).defines());
         if (!prog) {
             *error = m_shaders->lastError();
             ok = false;
@@ -882,24 +488,25 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(scene.skirtVao());
     bool ok = true;
-    for (const auto& [key, b] : m_skirts)
+    for (const auto& [key, b] : m_plan.skirts())
         if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles, error)))
             break;
-    if (ok && fins)
+    if (ok && options.silhouetteFins)
         ok = finPass(scene, camera, lights, options, range, error);
     scene.bindSurfaceData(); // the triangles' vertex array again
     return ok;
 }
 
-bool ExactSurfacePass::drawSkirtBatch(const Batch& b, const GpuScene& scene,
+bool ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& scene,
                                       const FrameCamera& camera, const std::vector<Light>& lights,
                                       const RenderOptions& options, const ValueRange& range,
                                       std::int64_t& triangles, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QOpenGLShaderProgram* prog =
         m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                           variantDefines(b.degreeU, b.degreeV, int(lights.size()), options,
-                                          b.trimmed, false, TrimAa::Off, true));
+                           variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                   false, TrimAa::Off, true)
+                               .defines());
     if (!prog) {
         *error = m_shaders->lastError();
         return false;
@@ -914,7 +521,7 @@ bool ExactSurfacePass::drawSkirtBatch(const Batch& b, const GpuScene& scene,
     if (b.trimmed)
         scene.trimMasks().bindArray(prog, kTrimMaskUnit);
     drawBatch(b);
-    for (const DrawCommand& c : b.commands)
+    for (const IndirectCommand& c : b.commands)
         triangles += c.count / 3;
     return true;
 }
@@ -941,9 +548,8 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
     std::vector<std::tuple<const SurfaceRecord*, int, int>> layout;
     bool rebuilt = false;
     for (const SurfaceRecord* r : scene.records()) {
-        const auto place = m_places.find(r);
-        if (place == m_places.end() || !place->second.drawn || place->second.culled ||
-            place->second.skirtVariant < 0)
+        const ExactPlace* place = m_plan.place(r);
+        if (!place || !place->drawn || place->culled || place->skirtVariant < 0)
             continue;
         const SurfaceGpu& g = *r->exact;
         Fins& f = m_fins[r];
@@ -963,7 +569,7 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
             rebuilt = true;
         }
         if (!f.indices.empty())
-            layout.emplace_back(r, r->slot, place->second.skirtVariant);
+            layout.emplace_back(r, r->slot, place->skirtVariant);
     }
     for (auto it = m_fins.begin(); it != m_fins.end();)
         it = it->second.frame == m_finFrame ? std::next(it) : m_fins.erase(it);
@@ -975,22 +581,23 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
         });
         std::vector<SkirtVertex> vertices;
         std::vector<unsigned> indices;
-        std::vector<DrawCommand> commands;
+        std::vector<IndirectCommand> commands;
         m_finBatches.clear();
         int lastVariant = -1;
         for (const auto& [r, slot, variant] : layout) {
             const Fins& f = m_fins.at(r);
             if (variant != lastVariant) {
                 lastVariant = variant;
-                Batch b;
+                ExactBatch b;
                 b.degreeU = variant & 15;
                 b.degreeV = (variant >> 4) & 15;
                 b.trimmed = (variant >> 8) & 1;
                 b.first = std::int64_t(commands.size());
                 m_finBatches.push_back(b);
             }
-            const DrawCommand c{GLuint(f.indices.size()), 1, GLuint(indices.size()),
-                                GLint(vertices.size()), GLuint(slot)};
+            const IndirectCommand c{std::uint32_t(f.indices.size()), 1,
+                                    std::uint32_t(indices.size()), std::int32_t(vertices.size()),
+                                    std::uint32_t(slot)};
             commands.push_back(c);
             m_finBatches.back().commands.push_back(c);
             vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
@@ -1008,7 +615,7 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
                             vertices.empty() ? nullptr : vertices.data()) +
                      upload(m_finIndexBuffer, indices.size() * sizeof(unsigned),
                             indices.empty() ? nullptr : indices.data()) +
-                     upload(m_finCommandBuffer, commands.size() * sizeof(DrawCommand),
+                     upload(m_finCommandBuffer, commands.size() * sizeof(IndirectCommand),
                             commands.empty() ? nullptr : commands.data());
     }
     if (m_finBatches.empty())
@@ -1021,7 +628,7 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
     gl->glBindVertexArray(vao);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_finCommandBuffer);
     bool ok = true;
-    for (const Batch& b : m_finBatches)
+    for (const ExactBatch& b : m_finBatches)
         if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, finTriangles, error)))
             break;
     skirtTriangles += finTriangles;
@@ -1043,7 +650,7 @@ bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera
     gl->glBlendEquation(GL_FUNC_ADD);
     gl->glBlendFunc(GL_ONE, GL_ONE);
     const bool ok =
-        drawBatches(m_edges, TrimAa::Edge, scene, camera, lights, options, range, error);
+        drawBatches(m_plan.edges(), TrimAa::Edge, scene, camera, lights, options, range, error);
     gl->glDisable(GL_BLEND);
     aa.drawToAccumulation(false);
     return ok;

@@ -5,6 +5,7 @@
 #include <QOpenGLContext>
 #include <QOpenGLDebugLogger>
 #include <QOpenGLFunctions>
+#include <atomic>
 
 namespace kw {
 
@@ -19,8 +20,16 @@ QSurfaceFormat requiredSurfaceFormat() {
     return f;
 }
 
+namespace {
+std::atomic<bool> g_glDebug{false};
+} // namespace
+
+void setGlDebug(bool on) {
+    g_glDebug = on;
+}
+
 bool glDebugRequested() {
-    return qEnvironmentVariableIntValue("KW_GL_DEBUG") != 0;
+    return g_glDebug;
 }
 
 std::unique_ptr<QOpenGLDebugLogger> startDebugLog() {

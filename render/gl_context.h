@@ -11,12 +11,14 @@ class QOpenGLDebugLogger;
 namespace kw {
 
 /// The surface format every Knotwork GL context asks for: OpenGL 4.5 core, depth 24 (and a
-/// debug context with KW_GL_DEBUG). Set it as the default (QSurfaceFormat::setDefaultFormat)
-/// before creating the application.
+/// debug context after setGlDebug(true)). Set it as the default
+/// (QSurfaceFormat::setDefaultFormat) before creating the application.
 QSurfaceFormat requiredSurfaceFormat();
 
-/// KW_GL_DEBUG=1 (development, and for reports from users' GPUs): contexts are debug contexts
-/// and their driver messages go to stderr (startDebugLog).
+/// Debug contexts whose driver messages go to stderr (startDebugLog), for development and for
+/// reports from users' GPUs; off by default. Process-wide: set it before the first context
+/// (the executables do for KW_GL_DEBUG=1, kw::cli::applyDevelopmentSwitches).
+void setGlDebug(bool on);
 bool glDebugRequested();
 
 /// For a current debug context: a logger printing each driver message to stderr ("GL debug:

@@ -46,7 +46,7 @@ struct BaseVertex {
     glm::ivec2 span;
     float spanScale;
 };
-static_assert(sizeof(BaseVertex) == 32);
+static_assert(sizeof(BaseVertex) == 32); // its word layout: render/gpu_scene.h
 
 /// The base polygon of one surface: the domain cut uniformly into nu x nv cells and further
 /// at every distinct interior knot, so each cell lies inside one knot span. Vertices form the

@@ -7,6 +7,7 @@
 
 #include <QElapsedTimer>
 #include <algorithm>
+#include <atomic>
 
 namespace kw {
 
@@ -27,10 +28,17 @@ void GpuScene::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders)
     m_pools.skirtIndices.initialize(gl, sizeof(unsigned), max);
 }
 
+namespace {
+std::atomic<std::int64_t> g_bufferLimitForTests{0};
+} // namespace
+
+void GpuScene::setBufferLimitForTests(std::int64_t bytes) {
+    g_bufferLimitForTests = bytes;
+}
+
 std::int64_t GpuScene::bufferLimit() const {
-    bool ok = false;
-    const qint64 env = qEnvironmentVariable("KW_GPU_BUFFER_LIMIT").toLongLong(&ok);
-    return ok && env > 0 ? std::min<std::int64_t>(env, m_glBufferLimit) : m_glBufferLimit;
+    const std::int64_t lowered = g_bufferLimitForTests;
+    return lowered > 0 ? std::min<std::int64_t>(lowered, m_glBufferLimit) : m_glBufferLimit;
 }
 
 void GpuScene::dropExact(SurfaceRecord& r) {

@@ -6,6 +6,7 @@
 
 #include "model/document.h"
 #include "render/adaptive_partitions.h"
+#include "render/exact_contract.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
 #include "render/scene_changes.h"
@@ -15,6 +16,7 @@
 #include <QOpenGLFunctions_4_5_Core>
 #include <QPointer>
 #include <QString>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <set>
@@ -54,7 +56,21 @@ struct SurfaceTableEntry {
     glm::ivec4 ids{0};        ///< surface id, exact trim grid's first word, unused x2
     bool operator==(const SurfaceTableEntry&) const = default;
 };
-static_assert(sizeof(SurfaceTableEntry) == 128, "must match surface_data.glsl's 8 texels per row");
+static_assert(sizeof(SurfaceTableEntry) == kSurfaceTableTexels * sizeof(glm::vec4));
+static_assert(
+    offsetof(SurfaceTableEntry, domain) == kSurfaceTableDomainTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, origin) == kSurfaceTableOriginTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, colour) == kSurfaceTableColourTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, material) == kSurfaceTableMaterialTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, trimRect) == kSurfaceTableTrimRectTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, trimSize) == kSurfaceTableTrimSizeTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, data) == kSurfaceTableDataTexel * sizeof(glm::vec4) &&
+        offsetof(SurfaceTableEntry, ids) == kSurfaceTableIdsTexel * sizeof(glm::vec4),
+    "must match exact_contract.h's texels, which surface_data.glsl reads");
+// The deferred pass reads the vertex pool as 32-bit words (exact_contract.h's offsets).
+static_assert(sizeof(BaseVertex) == kBaseVertexWords * 4 &&
+              offsetof(BaseVertex, span) == kBaseVertexSpanWord * 4 &&
+              offsetof(BaseVertex, spanScale) == kBaseVertexSpanScaleWord * 4);
 
 /// Everything on the GPU for one surface.
 struct SurfaceRecord {
@@ -159,7 +175,7 @@ public:
     /// The shared buffers the exact pass draws from (valid after sync; renamed when they grow).
     const ScenePools& pools() const { return m_pools; }
     /// Binds the surface table and the control and span pools as texture buffers to the units
-    /// of shaders/surface_data.glsl (5-8) and the triangle VAO.
+    /// of shaders/surface_data.glsl (kSurfaceTableUnit..kSpanUnit) and the triangle VAO.
     void bindSurfaceData() const;
     /// The vertex array of the cell outlines over the pools (the triangles' is bound by
     /// bindSurfaceData: attributes 0-3 of BaseVertex, the surface index at 4 per instance).
@@ -171,9 +187,12 @@ public:
     /// element buffer: the exact pass points binding 0 and the elements at its silhouette
     /// fins (kw::buildFins), which change with the view.
     GLuint finVao() const { return m_finVao; }
-    /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less when
-    /// KW_GPU_BUFFER_LIMIT (bytes) says so (tests of the too-large path).
+    /// The most bytes one pool may hold: GL_MAX_TEXTURE_BUFFER_SIZE RGBA32F texels, or less
+    /// after setBufferLimitForTests.
     std::int64_t bufferLimit() const;
+    /// Test hook, process-wide: lowers every scene's bufferLimit to `bytes` (0: the GPU's own),
+    /// so tests reach the too-large path with small data. Read at each sync.
+    static void setBufferLimitForTests(std::int64_t bytes);
 
     /// Adds the bytes of every record and of the mask array to `out` by kind.
     void residentBytes(GpuBytes& out) const;
@@ -218,7 +237,7 @@ private:
     } m_table;
     GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0, m_finVao = 0;
     /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
-    GLuint m_views[4] = {0, 0, 0, 0};
+    GLuint m_views[kSurfaceDataViews] = {0, 0, 0, 0};
     TrimMaskPass m_masks;
     QPointer<const Document> m_document;
     std::map<SurfaceId, Entry> m_entries;

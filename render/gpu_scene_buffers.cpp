@@ -1,12 +1,13 @@
 // GpuScene's buffers beside the records: the surface table and the vertex arrays over the
 // pools, and the per-record tessellated meshes and control nets.
+#include "render/exact_contract.h"
 #include "render/gpu_scene.h"
 
 namespace kw {
 
 void GpuScene::bindSurfaceData() const {
-    for (int k = 0; k < 4; ++k)
-        m_gl->glBindTextureUnit(GLuint(5 + k), m_views[k]);
+    for (int k = 0; k < kSurfaceDataViews; ++k)
+        m_gl->glBindTextureUnit(GLuint(kSurfaceTableUnit + k), m_views[k]);
     m_gl->glBindVertexArray(m_triangleVao);
 }
 

@@ -19,7 +19,7 @@ struct OffscreenRenderer::Impl {
 
     std::unique_ptr<QOpenGLContext> context;
     std::unique_ptr<QOffscreenSurface> surface;
-    std::unique_ptr<QOpenGLDebugLogger> debugLogger; ///< KW_GL_DEBUG=1 only
+    std::unique_ptr<QOpenGLDebugLogger> debugLogger; ///< glDebugRequested() only
     QOpenGLFunctions_4_5_Core* gl = nullptr;         ///< set once the renderer is initialised
     Renderer renderer;
     FrameReport report;
@@ -74,7 +74,7 @@ bool OffscreenRenderer::create(QString* error) {
         *error = QStringLiteral("could not make the OpenGL context current");
         return false;
     }
-    d->debugLogger = startDebugLog(); // KW_GL_DEBUG=1 only
+    d->debugLogger = startDebugLog(); // glDebugRequested() only
     // Renderer::initialize checks the version (render/gl_context.h).
     if (!d->renderer.initialize()) {
         *error = d->renderer.lastError() +

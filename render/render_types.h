@@ -97,19 +97,37 @@ struct RenderOptions {
     /// only where Newton's method puts the pixel's ray on the exact surface inside its domain
     /// and trims (docs/RENDERING.md, "Skirts"). It fills the pixels between a polygon's edge
     /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).
-    /// Off only to measure the difference (`KW_EDGE_SKIRTS=0`).
+    /// Off only to measure the difference.
     bool edgeSkirts = true;
     /// Adaptive exact frames with the depth pre-pass, aliased (each sample of accumulated
     /// anti-aliasing is one): the pre-pass also writes each pixel's (u, v), surface and cell,
     /// and a deferred pass shades each pixel once from them, however small the adaptive
     /// polygon's cells (docs/RENDERING.md, "The deferred exact pass"). The same image as the
-    /// forward pass; off only to compare the two (`KW_DEFERRED=0` turns it off too).
+    /// forward pass; off only to compare the two.
     bool deferredPass = true;
+    /// With the deferred pass: surfaces with at least this many estimated pixels per cell are
+    /// drawn the forward way, where a pixel is shaded about once anyway (docs/PERFORMANCE.md,
+    /// "The deferred exact pass"). Changed only for measuring (1e30: every surface deferred).
+    double deferMaxCellPixels = 1024.0;
+    /// Surfaces with fewer estimated pixels per cell use the per-fragment-fetch variant, the
+    /// others the per-cell gather (docs/PERFORMANCE.md). Changed only for measuring and tests
+    /// (0: always gather, 1e30: never).
+    double gatherMinCellPixels = 64.0;
+    /// Adaptive partitions: a surface that is its own polygon (SurfaceGpu::affine) is shaded at
+    /// its polygon's (u, v) without the Newton step. The same pixels; off only to measure
+    /// what it saves.
+    bool affineWithoutNewton = true;
+    /// Silhouette fins (kw::buildFins) with the edge skirts; off only to measure what they
+    /// cover and cost.
+    bool silhouetteFins = true;
+    /// One multi-draw per shader variant; off: the same commands issued one draw per
+    /// surface, for comparing images and costs.
+    bool multiDraw = true;
     /// Exact mode: the base polygon triangles of a closed solid's faces (Surface::solid) that
     /// turn their inside to the eye are skipped while the solid lies wholly beyond the near
     /// plane (the eye outside it): its faces in front cover them (docs/RENDERING.md, "Back
     /// faces of closed solids"). The same pixels either way; off only to measure the
-    /// difference (`KW_BACK_FACES=1`).
+    /// difference.
     bool skipBackFaces = true;
     /// Largest trim mask side in texels (kMinTrimMaskSize..16384, also limited by the GPU).
     /// Each surface's mask follows its size on screen (four texels per pixel of its control-net

@@ -75,13 +75,10 @@ public:
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const;
 
-    /// The private implementation, for render's own tests and tools that inspect GPU state
-    /// (include render/renderer_impl.h to use it). Hosts use the calls above.
-    struct Impl;
-    Impl& internals() { return *d; }
-    const Impl& internals() const { return *d; }
-
 private:
+    /// Render's tests inspect GPU state through RendererTestHook (render/renderer_test_hook.h).
+    friend struct RendererTestHook;
+    struct Impl;
     std::unique_ptr<Impl> d;
 };
 

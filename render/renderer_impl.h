@@ -1,5 +1,5 @@
 // Renderer's private implementation: the GPU scene and the stateless passes. Internal to render/
-// (and to render's tests, which inspect uploads and masks through Renderer::internals()).
+// (render's tests inspect uploads and masks through RendererTestHook).
 #pragma once
 
 #include "render/accumulate_target.h"

@@ -1,6 +1,8 @@
 // Shader loading with #include expansion and variant defines; programs cached per variant.
 #include "render/shader_library.h"
 
+#include "render/exact_contract.h"
+
 #include <QFile>
 #include <QOpenGLShaderProgram>
 #include <QRegularExpression>
@@ -14,8 +16,7 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
         *error = QStringLiteral("shader includes nested too deeply at %1").arg(file);
         return false;
     }
-    // KW_SHADER_DIR (development): read shaders from a folder instead of the resources.
-    static const QString dir = qEnvironmentVariable("KW_SHADER_DIR", QStringLiteral(":/shaders"));
+    const QString dir = ShaderLibrary::sourceDirectory();
     QFile f(dir + QLatin1Char('/') + file);
     if (!f.open(QIODevice::ReadOnly | QIODevice::Text)) {
         *error = QStringLiteral("shader file %1/%2 not found").arg(dir, file);
@@ -38,7 +39,30 @@ bool expand(const QString& file, int depth, QString& out, QString* error) {
 
 } // namespace
 
+namespace {
+QString& sourceDirectoryOverride() {
+    static QString dir;
+    return dir;
+}
+} // namespace
+
+void ShaderLibrary::setSourceDirectory(const QString& dir) {
+    sourceDirectoryOverride() = dir;
+}
+
+QString ShaderLibrary::sourceDirectory() {
+    const QString& dir = sourceDirectoryOverride();
+    return dir.isEmpty() ? QStringLiteral(":/shaders") : dir;
+}
+
 ShaderLibrary::ShaderLibrary() = default;
+
+QString ShaderLibrary::preamble() {
+    QString out;
+    for (const ShaderConstant& c : kShaderConstants)
+        out += QStringLiteral("#define %1 %2\n").arg(QLatin1String(c.name)).arg(c.value);
+    return out;
+}
 ShaderLibrary::~ShaderLibrary() = default;
 
 QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
@@ -118,7 +142,8 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
             m_lastError = m_failures.value(key);
         return it.value().get();
     }
-    QString header = QStringLiteral("#version 450 core\n");
+    static const QString shared = preamble();
+    QString header = QStringLiteral("#version 450 core\n") + shared;
     for (const QString& d : defines)
         header += QStringLiteral("#define ") + d + QLatin1Char('\n');
 

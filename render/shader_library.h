@@ -35,11 +35,18 @@ public:
     ShaderLibrary(const ShaderLibrary&) = delete;
     ShaderLibrary& operator=(const ShaderLibrary&) = delete;
 
-    /// The program linked from the resource files `vertex` and `fragment` (names under
-    /// :/shaders, or under $KW_SHADER_DIR when set, for shader development) with `defines` ("NAME"
-    /// or "NAME VALUE") inserted after the #version line. Needs a current OpenGL 4.5 core context.
-    /// Returns nullptr and sets lastError() when a file is missing or compiling/linking fails;
-    /// failures are cached too (no retry storms).
+    /// Where shader files are read from: the bundled :/shaders, or `dir` (not empty) for shader
+    /// development and measurements with modified shaders (the executables set it from
+    /// KW_SHADER_DIR, kw::cli::applyDevelopmentSwitches; tools/speed_floor.py relies on it).
+    /// Process-wide; set it before the first program is built (programs are cached).
+    static void setSourceDirectory(const QString& dir);
+    static QString sourceDirectory();
+
+    /// The program linked from the files `vertex` and `fragment` (names under
+    /// sourceDirectory()) with the preamble
+    /// and `defines` ("NAME" or "NAME VALUE") inserted after the #version line. Needs a current
+    /// OpenGL 4.5 core context. Returns nullptr and sets lastError() when a file is missing or
+    /// compiling/linking fails; failures are cached too (no retry storms).
     QOpenGLShaderProgram* program(const QString& vertex, const QString& fragment,
                                   const QStringList& defines = {});
     QString lastError() const { return m_lastError; }
@@ -47,6 +54,10 @@ public:
     void clear();
     /// The locations of a program returned by any ShaderLibrary's program().
     static const UniformLocations& uniforms(const QOpenGLShaderProgram* program);
+
+    /// The #define line of every constant C++ and the shaders share (kw::kShaderConstants,
+    /// render/exact_contract.h), which program() puts after the #version line of each stage.
+    static QString preamble();
 
     /// The source of `file` with #include "x" lines replaced by the files (recursively, at
     /// most 8 deep), or an empty string with *error set.

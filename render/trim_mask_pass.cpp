@@ -311,9 +311,13 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     account();
 }
 
+ExactFeatures TrimMaskPass::trimFeatures() const {
+    return m_exactMode ? ExactFeature::Trim | ExactFeature::TrimExact
+                       : ExactFeatures(ExactFeature::Trim);
+}
+
 QStringList TrimMaskPass::trimDefines() const {
-    return m_exactMode ? QStringList{QStringLiteral("KW_TRIM"), QStringLiteral("KW_TRIM_EXACT")}
-                       : QStringList{QStringLiteral("KW_TRIM")};
+    return featureDefines(trimFeatures());
 }
 
 void TrimMaskPass::setUniforms(QOpenGLShaderProgram* program, const TrimMask& mask,

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "model/document.h"
+#include "render/exact_contract.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
 #include "render/trim_grid_store.h"
@@ -52,11 +53,6 @@ struct TrimMask {
     bool usable() const { return active && (layer >= 0 || grid.words > 0); }
 };
 
-/// The texture unit of the exact trim grids' buffer (shaders/trim_exact.glsl's binding).
-constexpr int kTrimGridUnit = 9;
-/// The same array by 4 words (RGBA32UI): the pieces and points (shaders/trim_exact.glsl).
-constexpr int kTrimGridQuadUnit = 10;
-
 class TrimMaskPass {
 public:
     /// Needs the context current for every call below; `shaders` outlives the pass.
@@ -82,7 +78,9 @@ public:
     /// Whether the last sync was in exact mode: the trimmed shader variants then need the
     /// KW_TRIM_EXACT define (trimDefines()).
     bool exact() const { return m_exactMode; }
-    /// The defines of the trimmed shader variants for the mode of the last sync.
+    /// The trim features of the trimmed shader variants for the mode of the last sync, and
+    /// their defines.
+    ExactFeatures trimFeatures() const;
     QStringList trimDefines() const;
 
     /// Binds the trim data of the last sync's mode: the grid buffer to kTrimGridUnit, or the

@@ -3,9 +3,9 @@
 // average of the samples (the MSAA resolve). Coverage summed past 1 (partly covered fragments
 // of overlapping edges) is normalised. The depth written is the nearest sample's, so overlays
 // drawn afterwards are hidden by the surfaces as without anti-aliasing.
-layout(binding = 0) uniform sampler2DMS uColour;
-layout(binding = 1) uniform sampler2DMS uAccum;
-layout(binding = 2) uniform sampler2DMS uDepth;
+layout(binding = KW_COMPOSITE_COLOUR_UNIT) uniform sampler2DMS uColour;
+layout(binding = KW_COMPOSITE_ACCUM_UNIT) uniform sampler2DMS uAccum;
+layout(binding = KW_COMPOSITE_DEPTH_UNIT) uniform sampler2DMS uDepth;
 
 out vec4 fragColor;
 

@@ -1,6 +1,6 @@
 // Adds one accumulated sample's colour into the sum (kw::AccumulateTarget::add; blended with
 // GL_ONE, GL_ONE after the first sample).
-layout(binding = 0) uniform sampler2D uSample;
+layout(binding = KW_ACCUMULATE_SAMPLE_UNIT) uniform sampler2D uSample;
 
 out vec4 fragColor;
 

@@ -1,8 +1,8 @@
 // Resolves kw::AccumulateTarget into the host's framebuffer: the mean of the samples' colours,
 // and the last sample's depth, so overlays drawn afterwards are hidden by the surfaces as
 // without anti-aliasing.
-layout(binding = 0) uniform sampler2D uSum;
-layout(binding = 1) uniform sampler2D uDepth;
+layout(binding = KW_ACCUMULATE_SAMPLE_UNIT) uniform sampler2D uSum;
+layout(binding = KW_ACCUMULATE_DEPTH_UNIT) uniform sampler2D uDepth;
 uniform float uScale; // 1 / samples
 
 out vec4 fragColor;

@@ -6,18 +6,18 @@
 // scale of kw::colourRamp(), defined once in C++ (render/analysis.h) so the legend matches.
 // Uniforms are set by kw::setAnalysisUniforms.
 
-#if KW_ANALYSIS >= 1 && KW_ANALYSIS <= 4
+#if KW_ANALYSIS >= KW_ANALYSIS_GAUSSIAN && KW_ANALYSIS <= KW_ANALYSIS_MIN_RADIUS
 uniform vec2 uAnalysisRange; // the scale's low and high value (model units: 1/length, 1/length^2 or length)
 uniform int uAnalysisScale;  // kw::ColourScale: 0 linear, 1 symmetric about 0, 2 log
 
 // The colour scale position in [0, 1] of value x (kw::colourScalePosition in C++).
 float scalePosition(float x) {
     float lo = uAnalysisRange.x, hi = uAnalysisRange.y;
-    if (uAnalysisScale == 1) { // symmetric: 0 in the middle, +-max(|lo|, |hi|) at the ends
+    if (uAnalysisScale == KW_SCALE_SYMMETRIC) { // symmetric: 0 in the middle, +-max(|lo|, |hi|) at the ends
         float m = max(max(abs(lo), abs(hi)), 1e-30);
         return clamp(0.5 + 0.5 * x / m, 0.0, 1.0);
     }
-    if (uAnalysisScale == 2) { // signed log: linear within m * 1e-3 of 0, logarithmic beyond
+    if (uAnalysisScale == KW_SCALE_LOG) { // signed log: linear within m * 1e-3 of 0, logarithmic beyond
         float m = max(max(abs(lo), abs(hi)), 1e-30);
         float c = 1e-3 * m;
         return clamp(0.5 + 0.5 * sign(x) * log(1.0 + abs(x) / c) / log(1.0 + m / c), 0.0, 1.0);
@@ -34,13 +34,13 @@ vec3 rampColour(float t) {
 
 // The analysed quantity from (K, H, k1, k2).
 float analysisValue(vec4 c) {
-#if KW_ANALYSIS == 1
+#if KW_ANALYSIS == KW_ANALYSIS_GAUSSIAN
     return c.x;
-#elif KW_ANALYSIS == 2
+#elif KW_ANALYSIS == KW_ANALYSIS_MEAN
     return c.y;
 #else
     float kmax = max(abs(c.z), abs(c.w));
-#if KW_ANALYSIS == 3
+#if KW_ANALYSIS == KW_ANALYSIS_MAX_CURVATURE
     return kmax;
 #else
     return kmax > 0.0 ? 1.0 / kmax : 3.0e38; // a plane: infinite radius, the scale's top
@@ -49,18 +49,18 @@ float analysisValue(vec4 c) {
 }
 #endif
 
-#if KW_ANALYSIS == 5
+#if KW_ANALYSIS == KW_ANALYSIS_ZEBRA
 uniform float uStripeCount; // black and white stripe pairs per 180 degrees of reflection
 uniform vec3 uStripeAxis;   // unit world direction the stripes run along (in the view plane)
 #endif
-#if KW_ANALYSIS == 6
+#if KW_ANALYSIS == KW_ANALYSIS_ISOPHOTES
 uniform float uIsophoteCount; // bands across N.L in [-1, 1]
 uniform vec3 uIsophoteLight;  // unit world direction towards the light
 #endif
-#if KW_ANALYSIS == 7
+#if KW_ANALYSIS == KW_ANALYSIS_ENVIRONMENT
 uniform sampler2D uEnvironment; // equirectangular: longitude along x from -pi, latitude along y
 #endif
-#if KW_ANALYSIS == 8
+#if KW_ANALYSIS == KW_ANALYSIS_DRAFT
 uniform vec3 uPullDirection; // unit world vector
 uniform float uDraftAngle;   // threshold in radians
 #endif
@@ -85,9 +85,9 @@ float headlight(vec3 normal, vec3 V) {
 vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
     vec3 V = normalize(uEye - point);
     vec3 N = dot(normal, V) < 0.0 ? -normal : normal; // two-sided, as phong()
-#if KW_ANALYSIS >= 1 && KW_ANALYSIS <= 4
+#if KW_ANALYSIS >= KW_ANALYSIS_GAUSSIAN && KW_ANALYSIS <= KW_ANALYSIS_MIN_RADIUS
     return rampColour(scalePosition(analysisValue(curvature))) * headlight(normal, V);
-#elif KW_ANALYSIS == 5
+#elif KW_ANALYSIS == KW_ANALYSIS_ZEBRA
     // Zebra: infinitely long light tubes parallel to the stripe axis A (in the view plane),
     // evenly spread around it: a reflected view ray R sees the tube of its angle about A,
     // measured from the direction back to the viewer. That angle is a ratio of R's components,
@@ -99,14 +99,14 @@ vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
     vec3 B = normalize(cross(uStripeAxis, C));
     float phi = atan(dot(R, B), dot(R, C));
     return vec3(bands(phi / 3.14159265358979 * uStripeCount));
-#elif KW_ANALYSIS == 6
+#elif KW_ANALYSIS == KW_ANALYSIS_ISOPHOTES
     return vec3(bands(0.5 * (dot(N, uIsophoteLight) + 1.0) * uIsophoteCount));
-#elif KW_ANALYSIS == 7
+#elif KW_ANALYSIS == KW_ANALYSIS_ENVIRONMENT
     vec3 R = reflect(-V, N);
     vec2 uvEnv = vec2(atan(R.y, R.x) / 6.28318530717959 + 0.5,
                       0.5 - asin(clamp(R.z, -1.0, 1.0)) / 3.14159265358979);
     return texture(uEnvironment, uvEnv).rgb;
-#elif KW_ANALYSIS == 8
+#elif KW_ANALYSIS == KW_ANALYSIS_DRAFT
     // Draft angle of the oriented normal (Su x Sv side) against the pull direction: green at
     // or beyond +threshold, red at or beyond -threshold, yellow in between (insufficient).
     float a = asin(clamp(dot(normal, uPullDirection), -1.0, 1.0));

@@ -5,9 +5,6 @@
 // and "flat in" in the fragment stage. The renderer picks this variant only when the data
 // fits the 32 varying vectors (kw::ExactSurfacePass::variantDefines).
 #define KW_CTRL_COUNT ((DEGREE_U + 1) * (DEGREE_V + 1))
-#ifndef KW_SPAN_TEXELS
-#define KW_SPAN_TEXELS(P) ((2 * (P) + (P) * ((P) + 1) / 2 + 3) / 4)
-#endif
 KW_CELL_IO vec4 vCellControl[KW_CTRL_COUNT];
-KW_CELL_IO vec4 vCellSpanU[KW_SPAN_TEXELS(DEGREE_U)];
-KW_CELL_IO vec4 vCellSpanV[KW_SPAN_TEXELS(DEGREE_V)];
+KW_CELL_IO vec4 vCellSpanU[KW_SPAN_TEXELS_U];
+KW_CELL_IO vec4 vCellSpanV[KW_SPAN_TEXELS_V];

@@ -18,15 +18,15 @@
 #include "phong.glsl"
 #include "trim_sample.glsl"
 #ifndef KW_ANALYSIS
-#define KW_ANALYSIS 0
+#define KW_ANALYSIS KW_ANALYSIS_PHONG
 #endif
 
 #ifdef KW_DEFERRED
 // The deferred exact pass (kw::ExactSurfacePass, "deferred"): one triangle over the view per
 // variant, routed by the stencil the pre-pass wrote; what the base polygon's fragment would
 // have carried comes from the pre-pass's buffer (kwReadPrepass, at the top of main).
-layout(binding = 11) uniform usampler2D kwPrepass;
-layout(std430, binding = 1) readonly buffer KwVertices {
+layout(binding = KW_PREPASS_UNIT) uniform usampler2D kwPrepass;
+layout(std430, binding = KW_VERTEX_STORAGE_BINDING) readonly buffer KwVertices {
     uint kwVertexWords[]; // kw::BaseVertex: position 0-2, uv 3-4, span 5-6, span scale 7
 };
 vec2 vUv;
@@ -39,9 +39,10 @@ void kwReadPrepass() {
     vUv = uintBitsToFloat(g.xy);
     vSurface = int(g.z & 0x7fffffffu);
     kwFrontFacing = (g.z >> 31) != 0u;
-    uint at = g.w * 8u;
-    vSpan = ivec2(kwVertexWords[at + 5u], kwVertexWords[at + 6u]);
-    vSpanScale = uintBitsToFloat(kwVertexWords[at + 7u]);
+    uint at = g.w * uint(KW_VERTEX_WORDS);
+    uint span = at + uint(KW_VERTEX_SPAN_WORD);
+    vSpan = ivec2(kwVertexWords[span], kwVertexWords[span + 1u]);
+    vSpanScale = uintBitsToFloat(kwVertexWords[at + uint(KW_VERTEX_SPAN_SCALE_WORD)]);
 }
 #define KW_FRONT_FACING kwFrontFacing
 #else
@@ -55,7 +56,7 @@ flat in int vSurface; // row of the surface table (surface_data.glsl)
 uniform mat4 uViewProjection;
 uniform vec3 uForward;
 
-#if KW_ANALYSIS > 0 || defined(KW_ISOCURVES) || defined(KW_DIRECTIONS)
+#if KW_ANALYSIS != KW_ANALYSIS_PHONG || defined(KW_ISOCURVES) || defined(KW_DIRECTIONS)
 #include "analysis.glsl"
 #endif
 
@@ -473,7 +474,7 @@ void main() {
 #else
     vec4 curvature = vec4(0.0);
 #endif
-#if KW_ANALYSIS > 0
+#if KW_ANALYSIS != KW_ANALYSIS_PHONG
     vec3 colour = analysisColour(s.point, s.normal, curvature);
 #else
     vec3 colour = phong(s.point, s.normal);

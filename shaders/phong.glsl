@@ -1,12 +1,11 @@
 // Phong shading (paper eq. 3.8), two-sided: the normal is turned towards the viewer.
 // I = (ka * sum ia + sum kd max(L.N, 0) id) * colour + sum ks max(R.V, 0)^alpha is.
-// LIGHT_COUNT (1..8) is a compile-time constant so the light loop unrolls: on llvmpipe a
+// LIGHT_COUNT (1..KW_MAX_LIGHTS) is a compile-time constant so the light loop unrolls: on llvmpipe a
 // uniform-bounded loop cost as much as the whole NURBS evaluation (docs/PERFORMANCE.md).
 
-const int kMaxLights = 8;
-uniform vec4 uLightVector[kMaxLights];   // xyz: unit direction towards the light (w = 0) or position (w = 1)
-uniform vec3 uLightDiffuse[kMaxLights];
-uniform vec3 uLightSpecular[kMaxLights];
+uniform vec4 uLightVector[KW_MAX_LIGHTS];   // xyz: unit direction towards the light (w = 0) or position (w = 1)
+uniform vec3 uLightDiffuse[KW_MAX_LIGHTS];
+uniform vec3 uLightSpecular[KW_MAX_LIGHTS];
 uniform vec3 uAmbient;  // sum of the lights' ambient intensities
 #ifndef KW_SURFACE_DATA // else the surface's row of the surface table (surface_data.glsl)
 uniform vec3 uColor;

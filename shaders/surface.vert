@@ -49,9 +49,9 @@ void main() {
     for (int j = 0; j <= DEGREE_V; ++j)
         for (int i = 0; i <= DEGREE_U; ++i)
             vCellControl[j * (DEGREE_U + 1) + i] = KW_CONTROL(first + ivec2(i, j));
-    for (int x = 0; x < KW_SPAN_TEXELS(DEGREE_U); ++x)
+    for (int x = 0; x < KW_SPAN_TEXELS_U; ++x)
         vCellSpanU[x] = KW_SPAN_U(x, first.x);
-    for (int x = 0; x < KW_SPAN_TEXELS(DEGREE_V); ++x)
+    for (int x = 0; x < KW_SPAN_TEXELS_V; ++x)
         vCellSpanV[x] = KW_SPAN_V(x, first.y);
 #endif
     gl_Position = uViewProjection * vec4(aPosition, 1.0);

@@ -12,37 +12,34 @@
 // invocation, which broke the screen derivatives (fwidth) of the zebra and isophote bands along
 // every triangle edge; texel fetches run in helper invocations too. Units match
 // kw::GpuScene::bindSurfaceData.
-// The table: 8 RGBA32F texels per surface (kw::SurfaceTableEntry), read as floats for texels
+// The table: KW_TABLE_TEXELS RGBA32F texels per surface (kw::SurfaceTableEntry), read as floats for texels
 // 0-5 (domain; origin; colour; ka, kd, ks, shininess; trim rectangle; trim size and layer) and
 // through an RGBA32I view for texels 6-7 (control offset, countU, u and v span-table offsets;
 // surface id, exact trim grid's first word).
-layout(binding = 5) uniform samplerBuffer kwSurfaceTable;
-layout(binding = 6) uniform isamplerBuffer kwSurfaceInts;
-layout(binding = 7) uniform samplerBuffer kwControl; // RGBA32F (w (P - origin), w)
-layout(binding = 8) uniform samplerBuffer kwSpans;   // RGBA32F span-table rows
+layout(binding = KW_SURFACE_TABLE_UNIT) uniform samplerBuffer kwSurfaceTable;
+layout(binding = KW_SURFACE_INTS_UNIT) uniform isamplerBuffer kwSurfaceInts;
+layout(binding = KW_CONTROL_UNIT) uniform samplerBuffer kwControl; // RGBA32F (w (P - origin), w)
+layout(binding = KW_SPAN_UNIT) uniform samplerBuffer kwSpans; // RGBA32F span-table rows
 
 // The row of the surface being drawn; each stage's main() sets it first.
 int kwSurface = 0;
 
-#define KW_ROW(k) texelFetch(kwSurfaceTable, kwSurface * 8 + (k))
-#define KW_DATA texelFetch(kwSurfaceInts, kwSurface * 8 + 6)
-#define uDomain KW_ROW(0)
-#define uOrigin (KW_ROW(1).xyz)
-#define uColor (KW_ROW(2).rgb)
-#define uMaterial KW_ROW(3)
-#define uSurfaceId float(texelFetch(kwSurfaceInts, kwSurface * 8 + 7).x)
-#define uTrimRect KW_ROW(4)
-#define uTrimSize (KW_ROW(5).xy)
-#define uTrimLayer (KW_ROW(5).z)
-#define uTrimBlock uint(texelFetch(kwSurfaceInts, kwSurface * 8 + 7).y)
+#define KW_ROW(k) texelFetch(kwSurfaceTable, kwSurface * KW_TABLE_TEXELS + (k))
+#define KW_DATA texelFetch(kwSurfaceInts, kwSurface * KW_TABLE_TEXELS + KW_TABLE_DATA_TEXEL)
+#define uDomain KW_ROW(KW_TABLE_DOMAIN_TEXEL)
+#define uOrigin (KW_ROW(KW_TABLE_ORIGIN_TEXEL).xyz)
+#define uColor (KW_ROW(KW_TABLE_COLOUR_TEXEL).rgb)
+#define uMaterial KW_ROW(KW_TABLE_MATERIAL_TEXEL)
+#define uSurfaceId float(texelFetch(kwSurfaceInts, kwSurface * KW_TABLE_TEXELS + KW_TABLE_IDS_TEXEL).x)
+#define uTrimRect KW_ROW(KW_TABLE_TRIM_RECT_TEXEL)
+#define uTrimSize (KW_ROW(KW_TABLE_TRIM_SIZE_TEXEL).xy)
+#define uTrimLayer (KW_ROW(KW_TABLE_TRIM_SIZE_TEXEL).z)
+#define uTrimBlock uint(texelFetch(kwSurfaceInts, kwSurface * KW_TABLE_TEXELS + KW_TABLE_IDS_TEXEL).y)
 
-#ifndef KW_SPAN_TEXELS
-#define KW_SPAN_TEXELS(P) ((2 * (P) + (P) * ((P) + 1) / 2 + 3) / 4)
-#endif
 // Control texel (i, j) and texel x of span-table row `row` of the current surface.
 #define KW_CONTROL(ij) texelFetch(kwControl, KW_DATA.x + (ij).y * KW_DATA.y + (ij).x)
-#define KW_SPAN_U(x, row) texelFetch(kwSpans, KW_DATA.z + (row) * KW_SPAN_TEXELS(DEGREE_U) + (x))
-#define KW_SPAN_V(x, row) texelFetch(kwSpans, KW_DATA.w + (row) * KW_SPAN_TEXELS(DEGREE_V) + (x))
+#define KW_SPAN_U(x, row) texelFetch(kwSpans, KW_DATA.z + (row) * KW_SPAN_TEXELS_U + (x))
+#define KW_SPAN_V(x, row) texelFetch(kwSpans, KW_DATA.w + (row) * KW_SPAN_TEXELS_V + (x))
 
 #ifdef KW_GBUFFER
 // The deferred exact pass's input, as the pre-pass writes it (exact_surface.frag's

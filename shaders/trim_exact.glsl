@@ -6,13 +6,13 @@
 // declares uTrimRect, uTrimSize (the grid's texels along u and v) and uTrimBlock (the
 // surface's first word), per draw or from the surface table.
 // A texture buffer, not an SSBO: llvmpipe (Mesa 22.3) returns 0 from SSBO loads in helper
-// invocations (shaders/surface_data.glsl). Unit 9 is kw::kTrimGridUnit.
-layout(binding = 9) uniform usamplerBuffer kwTrimGrid;
-// The same words 4 at a time (RGBA32UI, unit 10: kw::kTrimGridQuadUnit), for the pieces and
+// invocations (shaders/surface_data.glsl). Its unit is kw::kTrimGridUnit.
+layout(binding = KW_TRIM_GRID_UNIT) uniform usamplerBuffer kwTrimGrid;
+// The same words 4 at a time (RGBA32UI, unit kw::kTrimGridQuadUnit), for the pieces and
 // points, which start on a multiple of 4 words (render/trim_grid_store.h): a point or a piece's
 // half in one fetch instead of 3 or 4. On llvmpipe each fetch is a gather per lane with its own
 // bounds check, and the root find's arc points were most of the exact trim test's cost.
-layout(binding = 10) uniform usamplerBuffer kwTrimQuads;
+layout(binding = KW_TRIM_QUAD_UNIT) uniform usamplerBuffer kwTrimQuads;
 
 uint kwTrimWord(uint i) { return texelFetch(kwTrimGrid, int(i)).x; }
 // The 4 words from word i, a multiple of 4.

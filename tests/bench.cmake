@@ -14,7 +14,7 @@ target_compile_definitions(tst_bench_scale PRIVATE KW_BENCH_RUN
                            KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_bench_scale knotwork)
 # The bench uses render's public interface only (no private render header, no Qt OpenGL
-# header, no Renderer::internals()): tools/check_bench_includes.cmake.
+# header, no RendererTestHook): tools/check_bench_includes.cmake.
 add_test(NAME bench_public_render
          COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -P
                  ${PROJECT_SOURCE_DIR}/tools/check_bench_includes.cmake)

@@ -1,5 +1,6 @@
-# GL faults in the editor (label gui): shader build failures forced through KW_SHADER_DIR, a
-# control net beyond the GPU's texture limit, a destroyed and recreated GL context.
+# GL faults in the editor (label gui): shader build failures forced through
+# ShaderLibrary::setSourceDirectory, a control net beyond the GPU's texture limit, a destroyed
+# and recreated GL context.
 kw_add_test(tst_gl_faults LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_gl_faults.cpp
             ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)
 foreach(fault variant init)

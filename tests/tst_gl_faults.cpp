@@ -1,13 +1,16 @@
 // GL faults in the editor (issue 14 item 6), under Xvfb: a shader that does not build (forced
-// through KW_SHADER_DIR, the renderer's shader-source hook), a control net larger than the GPU's
-// texture limit, and the GL context destroyed and recreated (the viewport moved to another
-// window). Each must give a clear message, keep the document editable and savable, and not
-// crash. One binary, three CTest entries: KW_GL_FAULT=variant|init breaks shaders, unset runs
-// the others.
+// through ShaderLibrary::setSourceDirectory, the renderer's shader-source hook), a control net
+// larger than the GPU's texture limit, and the GL context destroyed and recreated (the viewport
+// moved to another window). Each must give a clear message, keep the document editable and savable,
+// and not crash. One binary, three CTest entries: KW_GL_FAULT=variant|init breaks shaders, unset
+// runs the others.
 #include "editor_test_util.h"
 #include "model/knotfile.h"
 #include "render/frame_report.h"
+#include "render/gl_context.h"
+#include "render/gpu_scene.h"
 #include "render/offscreen_renderer.h"
+#include "render/shader_library.h"
 #include "ui/edit/commands.h"
 
 #include <QApplication>
@@ -205,8 +208,8 @@ private Q_SLOTS:
         const int before = covered(e.w->viewport()->grabFramebuffer());
         // 40000 x 2 points: within the file format's limits, beyond the shared control buffer
         // under a buffer limit lowered to 1 MiB (80000 texels of 16 bytes need 1.28 MB).
-        qputenv("KW_GPU_BUFFER_LIMIT", "1048576");
-        const auto restore = qScopeGuard([] { qunsetenv("KW_GPU_BUFFER_LIMIT"); });
+        GpuScene::setBufferLimitForTests(1048576);
+        const auto restore = qScopeGuard([] { GpuScene::setBufferLimitForTests(0); });
         Surface big;
         big.id = e.w->document()->allocateSurfaceId();
         big.name = QStringLiteral("Long strip");
@@ -241,10 +244,10 @@ private Q_SLOTS:
     }
 
     void glDebugInTheEditor() {
-        // KW_GL_DEBUG=1: the viewport asks for a debug context and prints the driver's
-        // messages (how a user's GPU fault gets reported, docs/PERFORMANCE.md "On a GPU").
-        qputenv("KW_GL_DEBUG", "1");
-        auto unset = qScopeGuard([] { qunsetenv("KW_GL_DEBUG"); });
+        // KW_GL_DEBUG=1 (kw::setGlDebug): the viewport asks for a debug context and prints the
+        // driver's messages (how a user's GPU fault gets reported, docs/PERFORMANCE.md "On a GPU").
+        setGlDebug(true);
+        auto unset = qScopeGuard([] { setGlDebug(false); });
         Editor e;
         QVERIFY(e.open());
         QVERIFY(e.frames(1));
@@ -297,7 +300,7 @@ int main(int argc, char** argv) {
     QCoreApplication::setOrganizationName(QStringLiteral("KnotworkTest"));
     const QByteArray fault = qgetenv("KW_GL_FAULT");
     if (!fault.isEmpty()) {
-        // KW_SHADER_DIR is read once, at the first shader built: set it before any window.
+        // The shader source directory (KW_SHADER_DIR in the executables): before any window.
         const QString dir = workDir() + QStringLiteral("/shaders");
         const bool variant = fault == "variant";
         if (!writeBrokenShaders(dir,
@@ -307,7 +310,7 @@ int main(int argc, char** argv) {
             qCritical("cannot write the broken shaders to %s", qPrintable(dir));
             return 1;
         }
-        qputenv("KW_SHADER_DIR", dir.toLocal8Bit());
+        ShaderLibrary::setSourceDirectory(dir);
         qputenv("QT_DISABLE_SHADER_DISK_CACHE", "1");
         if (variant) {
             TestShaderVariantFault t;

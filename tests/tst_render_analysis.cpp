@@ -4,7 +4,7 @@
 // baseline image per mode under a stated tolerance (KW_UPDATE_BASELINES=1 writes them).
 #include "baseline_compare.h"
 #include "render/image_writer.h"
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
 using namespace kw;
@@ -431,7 +431,7 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
     const Camera cam = fitCamera(*scene, 1.0);
     RenderOptions opt;
-    const int loads0 = m_renderer->renderer().internals().exact.environment().loads();
+    const int loads0 = RendererTestHook::environment(m_renderer->renderer()).loads();
     QElapsedTimer first, again;
     first.start();
     for (AnalysisMode m : analysisModes()) {
@@ -449,7 +449,7 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     m_renderer->finish();
     const qint64 againMs = again.elapsed();
     // The environment image is read once however often the mode comes back.
-    QCOMPARE(m_renderer->renderer().internals().exact.environment().loads() - loads0,
+    QCOMPARE(RendererTestHook::environment(m_renderer->renderer()).loads() - loads0,
              loads0 == 0 ? 1 : 0);
     qInfo("first pass over %zu modes %lld ms (compiles), two more passes %lld ms",
           analysisModes().size(), (long long)firstMs, (long long)againMs);

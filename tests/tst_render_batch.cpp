@@ -2,7 +2,7 @@
 // multi-draw per pass, so 300 surfaces take as many draw calls as 3 of the same variants; the
 // image equals the one-draw-per-surface path's and the kernel's; a moved point is still one
 // texel in a scene of 300 surfaces.
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
 #include <QScopeGuard>
@@ -16,16 +16,23 @@ Scene grid(int n) {
     return kwtest::variantGrid(n);
 }
 
+/// The gather choice depends on each surface's size on screen; fixed here so that each degree
+/// pair is one variant at every size. `multiDraw` false: one draw per surface.
+RenderOptions batchOptions(bool multiDraw = true) {
+    RenderOptions o;
+    o.gatherMinCellPixels = 0.0;
+    o.multiDraw = multiDraw;
+    return o;
+}
+
 } // namespace
 
 class TestRenderBatch : public QObject {
     Q_OBJECT
     std::unique_ptr<OffscreenRenderer> m_renderer;
 
-    ExactSurfacePass& exact() { return m_renderer->renderer().internals().exact; }
-
     /// The report of the second frame of `doc` (the first uploads everything).
-    FrameReport steadyFrame(const Document& doc, const RenderOptions& options = {}) {
+    FrameReport steadyFrame(const Document& doc, const RenderOptions& options = batchOptions()) {
         QString error;
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
         m_renderer->render(doc, camera, options, &error);
@@ -35,9 +42,6 @@ class TestRenderBatch : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        // The gather choice depends on each surface's size on screen; fixed here so that each
-        // degree pair is one variant at every size.
-        qputenv("KW_GATHER_MIN_CELL_PX", "0");
         QString error;
         m_renderer = kwtest::offscreenRenderer(QSize(320, 240), true, &error);
         QVERIFY2(m_renderer, qPrintable(error));
@@ -50,7 +54,7 @@ private Q_SLOTS:
         QVERIFY2(many.resetScene(grid(300), &error), qPrintable(error));
         for (auto shading :
              {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth}) {
-            RenderOptions options;
+            RenderOptions options = batchOptions();
             options.shading = shading;
             const FrameReport a = steadyFrame(few, options);
             const FrameReport b = steadyFrame(many, options);
@@ -64,9 +68,7 @@ private Q_SLOTS:
             QCOMPARE(b.drawCalls, expected);
         }
         // The per-surface path draws each surface (twice with the pre-pass): the count is real.
-        exact().multiDraw = false;
-        const auto restore = qScopeGuard([this] { exact().multiDraw = true; });
-        QCOMPARE(steadyFrame(many).drawCalls, 600);
+        QCOMPARE(steadyFrame(many, batchOptions(false)).drawCalls, 600);
     }
 
     void batchedImageEqualsPerSurfaceImage() {
@@ -78,9 +80,7 @@ private Q_SLOTS:
         QVERIFY2(batched.ok, qPrintable(batched.error));
         const QImage colour = m_renderer->colorImage();
         const AovBuffer aov = m_renderer->aov();
-        exact().multiDraw = false;
-        const auto restore = qScopeGuard([this] { exact().multiDraw = true; });
-        QVERIFY(steadyFrame(doc).ok);
+        QVERIFY(steadyFrame(doc, batchOptions(false)).ok);
         const QImage colourPerSurface = m_renderer->colorImage();
         const AovBuffer aovPerSurface = m_renderer->aov();
 
@@ -131,8 +131,7 @@ private Q_SLOTS:
         const int index = s.geometry.index(2, 2);
         QVERIFY(doc.setControlPoints(s.id, {index},
                                      {s.geometry.points[size_t(index)] + glm::dvec3(0, 0, 0.3)}));
-        QVERIFY(
-            m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), RenderOptions{}, &error));
+        QVERIFY(m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), batchOptions(), &error));
         const FrameReport moved = m_renderer->lastReport();
         QCOMPARE(moved.uploads.fullUploads, 0);
         QCOMPARE(moved.uploads.subImageUploads, 1);
@@ -146,10 +145,7 @@ private Q_SLOTS:
         QVERIFY2(r.maxPosition <= 1e-5 * r.modelSize, qPrintable(QString::number(r.maxPosition)));
     }
 
-    void cleanupTestCase() {
-        m_renderer.reset();
-        qunsetenv("KW_GATHER_MIN_CELL_PX");
-    }
+    void cleanupTestCase() { m_renderer.reset(); }
 
     // A close-up sends no triangle of the surfaces wholly outside the view, and changes no
     // pixel: the same frame without culling is bit-identical.
@@ -161,7 +157,7 @@ private Q_SLOTS:
         close.target = glm::dvec3(2.5, 2.0, 0.0); // between the first four patches
         close.eye = close.target + glm::dvec3(0.0, -4.0, 6.0);
         close.authored = true;
-        RenderOptions options;
+        RenderOptions options = batchOptions();
         const auto frame = [&](bool cull) {
             options.cullOutsideView = cull;
             m_renderer->render(doc, close, options, &error);

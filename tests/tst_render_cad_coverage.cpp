@@ -2,7 +2,7 @@
 // OpenCASCADE's trims say they are. Every pixel of a trimmed face in the trimmed or untrimmed
 // AOV is checked against the CPU classification (model/trim.h) at that pixel's (id, u, v).
 #include "model/cad/cadimport.h"
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -52,7 +52,7 @@ private Q_SLOTS:
         opt.trims = true;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer trimmed = m_renderer->aov();
-        const GpuScene& masks = m_renderer->renderer().internals().scene;
+        const GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         const auto texelOf = [&](SurfaceId id) {
             const TrimMask* m = masks.mask(id);
             return m ? std::max((m->rect.y - m->rect.x) / m->width,

@@ -10,6 +10,22 @@
 
 using namespace kw;
 
+namespace {
+
+/// The options every frame here starts from: the defaults, with the per-cell gather forced on
+/// or off when KW_GATHER_MIN_CELL_PX is set (tests/render.cmake runs this test once with
+/// each, as tst_render_exact_gather and tst_render_exact_fetch).
+RenderOptions baseOptions() {
+    RenderOptions o;
+    bool ok = false;
+    const double threshold = qEnvironmentVariable("KW_GATHER_MIN_CELL_PX").toDouble(&ok);
+    if (ok)
+        o.gatherMinCellPixels = threshold;
+    return o;
+}
+
+} // namespace
+
 class TestRenderExact : public QObject {
     Q_OBJECT
     std::unique_ptr<OffscreenRenderer> m_renderer;
@@ -115,7 +131,7 @@ private Q_SLOTS:
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(s, &error), qPrintable(error));
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         opt.pixelTolerance = 2.0;
         // Per surface id: covered pixels and the farthest ray offset in pixels. Pixels showing
@@ -188,7 +204,7 @@ private Q_SLOTS:
         QVERIFY(m.nearPlane < 2e-3); // the case: the eye inside the bounds
         for (const RenderOptions::Shading shading :
              {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth}) {
-            RenderOptions opt;
+            RenderOptions opt = baseOptions();
             opt.shading = shading;
             QVERIFY2(m_renderer->render(doc, s.camera, opt, &error), qPrintable(error));
             const AovBuffer aov = m_renderer->aov();
@@ -225,7 +241,7 @@ private Q_SLOTS:
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer aov = m_renderer->aov();
         QCOMPARE(aov.width, 512);
@@ -263,7 +279,7 @@ private Q_SLOTS:
         QVERIFY2(doc.resetScene(*s, &error), qPrintable(error));
         Camera cam = fitCamera(doc.scene(), 1.0);
         cam.eye = cam.target + (cam.eye - cam.target) / zoom;
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         opt.pixelTolerance = 0.5;
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
@@ -303,7 +319,7 @@ private Q_SLOTS:
         Document doc;
         QVERIFY(doc.resetScene(*s, &error));
         const Camera cam = fitCamera(doc.scene(), 1.0);
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer prepass = m_renderer->aov();
         opt.shading = RenderOptions::Shading(shading);
@@ -353,10 +369,7 @@ private Q_SLOTS:
         QVERIFY2(s, qPrintable(error));
         const bool plane = sample == QLatin1String("plane+torus");
         // The plane's one cell covers thousands of pixels: it would be drawn the forward way
-        // (ExactSurfacePass::kDeferMaxCellPixels) unless every surface is deferred.
-        if (plane)
-            qputenv("KW_DEFER_MAX_CELL_PX", "1e30");
-        const auto restore = qScopeGuard([] { qunsetenv("KW_DEFER_MAX_CELL_PX"); });
+        // (RenderOptions::deferMaxCellPixels) unless every surface is deferred.
         if (plane) {
             s->surfaces.insert(
                 s->surfaces.begin(),
@@ -369,9 +382,11 @@ private Q_SLOTS:
         QVERIFY(doc.resetScene(*s, &error));
         Camera cam = fitCamera(doc.scene(), 1.0);
         cam.eye = cam.target + (cam.eye - cam.target) / zoom;
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         opt.samples = samples;
+        if (plane)
+            opt.deferMaxCellPixels = 1e30;
         const auto compare = [&](const char* when) {
             opt.deferredPass = true;
             QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
@@ -435,7 +450,7 @@ private Q_SLOTS:
         Document doc;
         QVERIFY(doc.resetScene(*s, &error));
         const Camera cam = fitCamera(doc.scene(), 1.0);
-        RenderOptions opt;
+        RenderOptions opt = baseOptions();
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
         const AovBuffer plain = m_renderer->aov();
         const QImage plainColor = m_renderer->colorImage();
@@ -448,7 +463,7 @@ private Q_SLOTS:
     void backgroundIsMinusOne() {
         Document doc;
         QString error;
-        QVERIFY2(m_renderer->render(doc, Camera{}, RenderOptions{}, &error), qPrintable(error));
+        QVERIFY2(m_renderer->render(doc, Camera{}, baseOptions(), &error), qPrintable(error));
         const AovBuffer aov = m_renderer->aov();
         QCOMPARE(aov.pixel(0, 0)[0], -1.0f);
         QCOMPARE(aov.pixel(511, 511)[0], -1.0f);

@@ -3,7 +3,7 @@
 // (FrameReport::recordsSynced), and every frame drawn that way equals the frame a fresh
 // renderer draws of the same document: moved points, trim edits, hidden and removed surfaces,
 // another view, adaptive partitions.
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 

@@ -2,7 +2,7 @@
 // polygon cells lie in one knot span each, partial vertex updates equal a rebuild,
 // the pixels-per-cell estimate behind the per-cell gather choice.
 #include "model/nurbs_shapes.h"
-#include "render/exact_surface_pass.h"
+#include "render/exact_planner.h"
 #include "render/gpu_layout.h"
 #include "render/gpu_pool.h"
 #include "render_test_util.h"
@@ -326,19 +326,19 @@ private Q_SLOTS:
                                        glm::translate(glm::dmat4(1.0), -centre));
         const double expected =
             (size.x * scale * 200.0) * (size.y * scale * 150.0) / double(g.polygon.cellCount());
-        const double got = ExactSurfacePass::projectedPixelsPerCell(g, cam);
+        const double got = ExactPlanner::projectedPixelsPerCell(g, cam);
         QVERIFY2(std::abs(got - expected) < 1e-3 * expected, qPrintable(QString::number(got)));
         // Eight times the scale: the box is clamped to the viewport (4 NDC units squared).
         cam.viewProjection = glm::mat4(glm::scale(glm::dmat4(1.0), glm::dvec3(8.0 * scale)) *
                                        glm::translate(glm::dmat4(1.0), -centre));
-        QVERIFY(ExactSurfacePass::projectedPixelsPerCell(g, cam) <=
+        QVERIFY(ExactPlanner::projectedPixelsPerCell(g, cam) <=
                 400.0 * 300.0 / double(g.polygon.cellCount()) * (1.0 + 1e-6));
         // A corner behind the eye (clip w <= 0): treated as large.
         cam.viewProjection = glm::mat4(1.0f);
         cam.viewProjection[3][3] = -1.0f;
-        QVERIFY(std::isinf(ExactSurfacePass::projectedPixelsPerCell(g, cam)));
+        QVERIFY(std::isinf(ExactPlanner::projectedPixelsPerCell(g, cam)));
         // Nothing uploaded: no estimate.
-        QCOMPARE(ExactSurfacePass::projectedPixelsPerCell(SurfaceGpu{}, cam), 0.0);
+        QCOMPARE(ExactPlanner::projectedPixelsPerCell(SurfaceGpu{}, cam), 0.0);
     }
 
     // The shared scene buffers' ranges: first fit, neighbours merged, the end lowered when the

@@ -3,7 +3,7 @@
 // loops, messy input, one mask redrawn per trim edit, and the trim-edge error against mask
 // resolution.
 #include "model/trim.h"
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -104,7 +104,7 @@ class TestRenderTrims : public QObject {
     }
 
     double texelOf(SurfaceId id) const {
-        const TrimMask* m = m_renderer->renderer().internals().scene.mask(id);
+        const TrimMask* m = RendererTestHook::scene(m_renderer->renderer()).mask(id);
         if (!m)
             return 1e300; // no mask: every disagreement is "far"... of nothing
         return std::max((m->rect.y - m->rect.x) / m->width, (m->rect.w - m->rect.z) / m->height);
@@ -193,7 +193,7 @@ private Q_SLOTS:
         QVERIFY2(a.fraction() >= 0.999, qPrintable(QString::number(a.fraction())));
         QCOMPARE(a.far, 0L);
         if (sample.isEmpty()) // messy input is reported, once per problem: 2 loops with no area
-            QCOMPARE(m_renderer->renderer().internals().scene.maskWarnings().size(), 2);
+            QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).maskWarnings().size(), 2);
     }
 
     void starAndIslandRenderCorrectly() {
@@ -219,10 +219,10 @@ private Q_SLOTS:
         QVERIFY(coveredNear(whole, id, at(90.0, 0.15), 0.012) > 10);
         QVERIFY(coveredNear(trimmed, id, at(120.0, 0.15), 0.012) > 10);
         // The mask texels themselves: parity fill against the CPU at every texel centre.
-        const TrimMask* m = m_renderer->renderer().internals().scene.mask(id);
+        const TrimMask* m = RendererTestHook::scene(m_renderer->renderer()).mask(id);
         QVERIFY(m);
         const std::vector<unsigned char> texels =
-            m_renderer->renderer().internals().scene.readMask(id);
+            RendererTestHook::scene(m_renderer->renderer()).readMask(id);
         QCOMPARE(texels.size(), size_t(m->width) * size_t(m->height));
         const TrimRegion region = makeTrimRegion(scene->surfaces[0].trims, 1e-6);
         const double texel = texelOf(id);
@@ -258,7 +258,7 @@ private Q_SLOTS:
         const Camera cam = fitCamera(scene, 1.0);
         RenderOptions opt = maskMode();
         QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
-        GpuScene& masks = m_renderer->renderer().internals().scene;
+        GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         QVERIFY(masks.mask(SurfaceId{1}) && masks.mask(SurfaceId{20}));
         QVERIFY(!masks.mask(SurfaceId{30})); // untrimmed surfaces get no mask
         const std::vector<unsigned char> before = masks.readMask(SurfaceId{20});
@@ -309,7 +309,7 @@ private Q_SLOTS:
         Document doc;
         QString error;
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
-        GpuScene& masks = m_renderer->renderer().internals().scene;
+        GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, maskMode(), trimmed, whole));
         const TrimMaskStats st = masks.totalMaskStats();
@@ -363,7 +363,7 @@ private Q_SLOTS:
             opt.trimMaskCap = cap;
             AovBuffer trimmed, whole;
             QVERIFY(renderPair(doc, opt, trimmed, whole));
-            const TrimMask* m = m_renderer->renderer().internals().scene.mask(s.id);
+            const TrimMask* m = RendererTestHook::scene(m_renderer->renderer()).mask(s.id);
             QVERIFY(m);
             // A wrongly classified pixel is off by its distance to the curve, in pixels:
             // the (u, v) distance over the pixel's (u, v) size sqrt|det J|.

@@ -6,7 +6,7 @@
 #include "model/trim_arcs.h"
 #include "model/visible_bounds.h"
 #include "render/accumulate_target.h"
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -458,7 +458,7 @@ private Q_SLOTS:
         QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
         GLint most = 1;
         m_renderer->makeCurrent();
-        m_renderer->renderer().internals().gl->glGetIntegerv(GL_MAX_SAMPLES, &most);
+        RendererTestHook::gl(m_renderer->renderer())->glGetIntegerv(GL_MAX_SAMPLES, &most);
         QImage image;
         QVERIFY(renderImage(doc, aaOptions(kMaxSamples, RenderOptions::TrimMode::Exact), image));
         const FrameReport r = m_renderer->lastReport();

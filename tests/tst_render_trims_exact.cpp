@@ -5,7 +5,7 @@
 #include "model/trim.h"
 #include "model/trim_arcs.h"
 #include "model/visible_bounds.h"
-#include "render/renderer_impl.h"
+#include "render/renderer_test_hook.h"
 #include "render/trim_grid_store.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
@@ -140,7 +140,7 @@ class TestRenderTrimsExact : public QObject {
         return true;
     }
 
-    GpuScene& gpu() { return m_renderer->renderer().internals().scene; }
+    GpuScene& gpu() { return RendererTestHook::scene(m_renderer->renderer()); }
     const TrimMaskPass& masks() { return gpu().trimMasks(); }
     /// Trimmed surfaces holding a grid block, and the words they hold.
     int blockCount() {

@@ -1,5 +1,6 @@
 // GL test: the renderer uploads only what the document's revisions say is stale.
-#include "render/renderer_impl.h"
+#include "render/gl_context.h"
+#include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
 #include <QScopeGuard>
@@ -20,13 +21,14 @@ class TestRenderUploads : public QObject {
 
     // The surface's control texels as stored in the scene's shared control buffer.
     std::vector<glm::vec4> gpuTexels(SurfaceId id) {
-        const GpuScene& scene = m_renderer->renderer().internals().scene;
+        const GpuScene& scene = RendererTestHook::scene(m_renderer->renderer());
         const SurfaceGpu* g = scene.surfaceGpu(id);
         std::vector<glm::vec4> out(size_t(g->countU * g->countV));
         m_renderer->makeCurrent();
-        m_renderer->renderer().internals().gl->glGetNamedBufferSubData(
-            scene.pools().control.buffer(), GLintptr(g->controlOffset * 16),
-            GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
+        RendererTestHook::gl(m_renderer->renderer())
+            ->glGetNamedBufferSubData(scene.pools().control.buffer(),
+                                      GLintptr(g->controlOffset * 16),
+                                      GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
         return out;
     }
 
@@ -46,18 +48,19 @@ private Q_SLOTS:
     }
 
     void glDebugPrintsDriverMessages() {
-        // KW_GL_DEBUG=1 (a development switch, docs/PERFORMANCE.md "On a GPU"): a debug
-        // context whose driver messages reach stderr, here a GL error on purpose.
-        qputenv("KW_GL_DEBUG", "1");
-        auto unset = qScopeGuard([] { qunsetenv("KW_GL_DEBUG"); });
+        // kw::setGlDebug (KW_GL_DEBUG=1 in the executables, docs/PERFORMANCE.md "On a GPU"): a
+        // debug context whose driver messages reach stderr, here a GL error on purpose.
+        setGlDebug(true);
+        auto unset = qScopeGuard([] { setGlDebug(false); });
         QString error;
         std::unique_ptr<OffscreenRenderer> r =
             kwtest::offscreenRenderer(QSize(8, 8), false, &error);
         QVERIFY2(r, qPrintable(error));
         QVERIFY(r->makeCurrent());
         QTest::ignoreMessage(QtWarningMsg, QRegularExpression(QStringLiteral("^GL debug: .+")));
-        r->renderer().internals().gl->glBindBuffer(GL_ARRAY_BUFFER, 987654321u); // never created
-        QVERIFY(r->renderer().internals().gl->glGetError() != GL_NO_ERROR);
+        RendererTestHook::gl(r->renderer())
+            ->glBindBuffer(GL_ARRAY_BUFFER, 987654321u); // never created
+        QVERIFY(RendererTestHook::gl(r->renderer())->glGetError() != GL_NO_ERROR);
     }
 
     void poolGrowthKeepsEveryRange() {
@@ -66,7 +69,7 @@ private Q_SLOTS:
         // right after glCopyNamedBufferSubData (docs/PERFORMANCE.md "On a GPU"); llvmpipe does
         // not, so this guards the copy itself, and the GPU run the wait.
         QVERIFY(m_renderer->makeCurrent());
-        QOpenGLFunctions_4_5_Core* gl = m_renderer->renderer().internals().gl;
+        QOpenGLFunctions_4_5_Core* gl = RendererTestHook::gl(m_renderer->renderer());
         GpuPool pool;
         pool.initialize(gl, 4, std::int64_t(1) << 30);
         auto release = qScopeGuard([&] { pool.release(); });
@@ -101,7 +104,7 @@ private Q_SLOTS:
         QString error;
         QVERIFY2(renderOnce(&error), qPrintable(error));
         for (SurfaceId id : {m_bicubic, m_sphere}) {
-            const UploadStats s = m_renderer->renderer().internals().scene.stats(id);
+            const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(id);
             const Surface* surf = m_doc.surface(id);
             QCOMPARE(s.fullUploads, 1);
             QCOMPARE(s.texels, std::int64_t(surf->geometry.countU) * surf->geometry.countV);
@@ -109,14 +112,14 @@ private Q_SLOTS:
             QCOMPARE(s.basePolygonBuilds, 1);
         }
         // Nothing changed: a second frame uploads nothing.
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        QCOMPARE(m_renderer->renderer().internals().scene.totalStats(), UploadStats{});
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).totalStats(), UploadStats{});
     }
 
     void movedPointIsOneTexel() {
         QString error;
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         const Surface* s = m_doc.surface(m_bicubic);
         // Point (1, 0) acts on u in [0, 0.35] and v in [0, 0.3] only (local support).
         const int index = s->geometry.index(1, 0);
@@ -124,17 +127,17 @@ private Q_SLOTS:
         QVERIFY(m_doc.setControlPoints(m_bicubic, {index}, {moved}));
         QVERIFY2(renderOnce(&error), qPrintable(error));
 
-        const UploadStats b = m_renderer->renderer().internals().scene.stats(m_bicubic);
+        const UploadStats b = RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic);
         QCOMPARE(b.fullUploads, 0);
         QCOMPARE(b.subImageUploads, 1);
         QCOMPARE(b.texels, 1);
         QCOMPARE(b.spanTableUploads, 0);
         QCOMPARE(b.basePolygonBuilds, 0);
         QCOMPARE(b.vertexUpdates, 1);
-        const SurfaceGpu* g = m_renderer->renderer().internals().scene.surfaceGpu(m_bicubic);
+        const SurfaceGpu* g = RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_bicubic);
         QVERIFY(b.vertexBytes > 0);
         QVERIFY(size_t(b.vertexBytes) < g->polygon.vertices.size() * sizeof(BaseVertex));
-        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_sphere), UploadStats{});
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere), UploadStats{});
 
         // The GPU texel holds the new point, and the frame matches the kernel.
         const std::vector<glm::vec4> texels = gpuTexels(m_bicubic);
@@ -152,52 +155,53 @@ private Q_SLOTS:
 
     void weightChangeIsOneTexel() {
         QString error;
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY(m_doc.setWeight(m_sphere, 7, 2.5));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_sphere);
+        const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere);
         QCOMPARE(s.subImageUploads, 1);
         QCOMPARE(s.texels, 1);
         QCOMPARE(s.fullUploads, 0);
-        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_bicubic), UploadStats{});
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic), UploadStats{});
     }
 
     void partitionsRebuildOnlyThatPolygon() {
         QString error;
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY(m_doc.setPartitions(m_sphere, 17, 5));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_sphere);
+        const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere);
         QCOMPARE(s.basePolygonBuilds, 1);
         QCOMPARE(s.texels, 0);
         QCOMPARE(s.fullUploads, 0);
         QCOMPARE(s.spanTableUploads, 0);
-        QCOMPARE(m_renderer->renderer().internals().scene.surfaceGpu(m_sphere)->polygon.cellsU(),
-                 17 + 3); // + 3 interior knots
-        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_bicubic), UploadStats{});
+        QCOMPARE(
+            RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_sphere)->polygon.cellsU(),
+            17 + 3); // + 3 interior knots
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic), UploadStats{});
     }
 
     void knotChangeIsFullUploadOfThatSurface() {
         QString error;
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         // Same counts, a moved interior knot: only the Knots revision tells the cache.
         NurbsSurface refined = m_doc.surface(m_bicubic)->geometry;
         QCOMPARE(refined.knotsV[4], 0.3);
         refined.knotsV[4] = 0.45;
         QVERIFY(m_doc.setGeometry(m_bicubic, refined));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        const UploadStats s = m_renderer->renderer().internals().scene.stats(m_bicubic);
+        const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic);
         QCOMPARE(s.fullUploads, 1);
         QCOMPARE(s.texels, std::int64_t(refined.countU) * refined.countV);
-        QCOMPARE(m_renderer->renderer().internals().scene.stats(m_sphere), UploadStats{});
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere), UploadStats{});
     }
 
     void removedSurfaceIsDropped() {
         QString error;
         QVERIFY(m_doc.removeSurface(m_sphere));
         QVERIFY2(renderOnce(&error), qPrintable(error));
-        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(m_sphere) == nullptr);
-        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(m_bicubic) != nullptr);
+        QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_sphere) == nullptr);
+        QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_bicubic) != nullptr);
     }
 
     void anotherDocumentIsNotMistakenForThisOne() {
@@ -233,8 +237,8 @@ private Q_SLOTS:
     void oversizedNetIsReportedNotDrawn() {
         // A degree-1 strip with one more control point than the shared control buffer may
         // hold, under a buffer limit lowered to 1 MiB (llvmpipe's real one is 128 MiB).
-        qputenv("KW_GPU_BUFFER_LIMIT", "1048576");
-        const auto restore = qScopeGuard([] { qunsetenv("KW_GPU_BUFFER_LIMIT"); });
+        GpuScene::setBufferLimitForTests(1048576);
+        const auto restore = qScopeGuard([] { GpuScene::setBufferLimitForTests(0); });
         const int maxSize = 1048576;
         NurbsSurface g;
         g.countU = maxSize / 16 / 2 + 1;
@@ -259,8 +263,10 @@ private Q_SLOTS:
                      error.contains(QString::number(maxSize)),
                  qPrintable(error));
         // The other surface is drawn; the oversized one is not.
-        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(SurfaceId{3}) == nullptr);
-        QVERIFY(m_renderer->renderer().internals().scene.surfaceGpu(SurfaceId{4}) != nullptr);
+        QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(SurfaceId{3}) ==
+                nullptr);
+        QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(SurfaceId{4}) !=
+                nullptr);
         const AovBuffer aov = m_renderer->aov();
         int sphere = 0;
         for (int k = 0; k < aov.width * aov.height; ++k) {
@@ -280,7 +286,7 @@ private Q_SLOTS:
         QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
         const SurfaceId id = doc.scene().surfaces.at(0).id;
         const Camera camera = fitCamera(doc.scene(), 1.0);
-        const GpuScene& gpu = m_renderer->renderer().internals().scene;
+        const GpuScene& gpu = RendererTestHook::scene(m_renderer->renderer());
         QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
         QCOMPARE(gpu.surfaceGpu(id)->skirtVertexOffset, std::int64_t(-1)); // uniform: none
         RenderOptions adaptive;
@@ -291,10 +297,11 @@ private Q_SLOTS:
             const SurfaceGpu* g = gpu.surfaceGpu(id);
             std::vector<SkirtVertex> out(size_t(g->skirtVertexCount));
             m_renderer->makeCurrent();
-            m_renderer->renderer().internals().gl->glGetNamedBufferSubData(
-                gpu.pools().skirtVertices.buffer(),
-                GLintptr(g->skirtVertexOffset * std::int64_t(sizeof(SkirtVertex))),
-                GLsizeiptr(out.size() * sizeof(SkirtVertex)), out.data());
+            RendererTestHook::gl(m_renderer->renderer())
+                ->glGetNamedBufferSubData(
+                    gpu.pools().skirtVertices.buffer(),
+                    GLintptr(g->skirtVertexOffset * std::int64_t(sizeof(SkirtVertex))),
+                    GLsizeiptr(out.size() * sizeof(SkirtVertex)), out.data());
             return out;
         };
         const std::vector<SkirtVertex> before = gpuSkirt();
@@ -304,7 +311,7 @@ private Q_SLOTS:
         const Surface* s = doc.surface(id);
         const glm::dvec3 lo = s->geometry.points.front(), hi = s->geometry.points.back();
         QVERIFY(doc.setControlPoints(id, {0}, {lo + 1e-3 * (hi - lo)}));
-        m_renderer->renderer().internals().scene.resetStats();
+        RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY2(m_renderer->render(doc, camera, adaptive, &error), qPrintable(error));
         const UploadStats st = gpu.stats(id);
         QCOMPARE(st.basePolygonBuilds, 0);

@@ -1,0 +1,179 @@
+// The exact pass's contract with its shaders, declared once: the constants C++ and GLSL share
+// (ShaderLibrary writes each into every program as a #define, so no GLSL file repeats a
+// literal) and the program variant as a typed bit set with one GLSL define per bit.
+#pragma once
+
+#include "model/scene.h"
+#include "render/analysis.h"
+
+#include <QFlags>
+#include <QStringList>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace kw {
+
+/// Texture units and buffer bindings. The GLSL name of each is in kShaderConstants.
+/// The analysis-free passes' own units (their programs bind nothing else):
+constexpr int kCompositeColourUnit = 0;  ///< aa_composite.frag: the multisampled colour
+constexpr int kCompositeAccumUnit = 1;   ///< aa_composite.frag: the edge pass's accumulation
+constexpr int kCompositeDepthUnit = 2;   ///< aa_composite.frag: the multisampled depth
+constexpr int kAccumulateSampleUnit = 0; ///< accumulate_add.frag / accumulate_resolve.frag
+constexpr int kAccumulateDepthUnit = 1;  ///< accumulate_resolve.frag
+/// The exact pass's:
+constexpr int kTrimMaskUnit = 3;      ///< trim_sample.glsl's uTrimMask (TrimMaskPass::bindArray)
+constexpr int kEnvironmentUnit = 4;   ///< analysis.glsl's uEnvironment
+constexpr int kSurfaceTableUnit = 5;  ///< surface_data.glsl kwSurfaceTable (RGBA32F rows)
+constexpr int kSurfaceIntsUnit = 6;   ///< the same rows as RGBA32I (kwSurfaceInts)
+constexpr int kControlUnit = 7;       ///< the control texel pool (kwControl)
+constexpr int kSpanUnit = 8;          ///< the span-table pool (kwSpans)
+constexpr int kTrimGridUnit = 9;      ///< trim_exact.glsl kwTrimGrid (R32UI words)
+constexpr int kTrimGridQuadUnit = 10; ///< the same words 4 at a time (kwTrimQuads)
+constexpr int kPrepassUnit = 11;      ///< the deferred pass's input (exact_surface.frag kwPrepass)
+constexpr int kVertexStorageBinding = 1; ///< the deferred pass's vertex pool (KwVertices SSBO)
+/// GpuScene's four surface-data views, bound in this order from kSurfaceTableUnit.
+constexpr int kSurfaceDataViews = 4;
+static_assert(kSurfaceIntsUnit == kSurfaceTableUnit + 1 && kControlUnit == kSurfaceTableUnit + 2 &&
+              kSpanUnit == kSurfaceTableUnit + 3);
+
+/// Texel layouts. The surface table: RGBA texels per surface row (kw::SurfaceTableEntry), and
+/// the integer texels among them (read through the RGBA32I view).
+constexpr int kSurfaceTableTexels = 8;
+constexpr int kSurfaceTableDomainTexel = 0;   ///< u first, u last, v first, v last
+constexpr int kSurfaceTableOriginTexel = 1;   ///< the control texels' origin
+constexpr int kSurfaceTableColourTexel = 2;   ///< material colour
+constexpr int kSurfaceTableMaterialTexel = 3; ///< ka, kd, ks, shininess
+constexpr int kSurfaceTableTrimRectTexel = 4; ///< the trims' (u, v) rectangle
+constexpr int kSurfaceTableTrimSizeTexel = 5; ///< the trims' size and layer
+constexpr int kSurfaceTableDataTexel = 6;     ///< control offset, countU, span-table offsets
+constexpr int kSurfaceTableIdsTexel = 7;      ///< surface id, exact trim grid's first word
+/// kw::BaseVertex as 32-bit words (the deferred pass reads the pool as words): its size and
+/// where its knot span and span scale start.
+constexpr int kBaseVertexWords = 8;
+constexpr int kBaseVertexSpanWord = 5;
+constexpr int kBaseVertexSpanScaleWord = 7;
+
+/// A constant as the shaders see it.
+struct ShaderConstant {
+    const char* name;
+    int value;
+};
+
+/// Every constant above that a shader reads, and the light count and analysis modes, under
+/// their GLSL names. The span-table width depends on the degree, so it is a per-variant
+/// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels).
+inline constexpr std::array kShaderConstants{
+    ShaderConstant{"KW_MAX_LIGHTS", kMaxLights},
+    ShaderConstant{"KW_COMPOSITE_COLOUR_UNIT", kCompositeColourUnit},
+    ShaderConstant{"KW_COMPOSITE_ACCUM_UNIT", kCompositeAccumUnit},
+    ShaderConstant{"KW_COMPOSITE_DEPTH_UNIT", kCompositeDepthUnit},
+    ShaderConstant{"KW_ACCUMULATE_SAMPLE_UNIT", kAccumulateSampleUnit},
+    ShaderConstant{"KW_ACCUMULATE_DEPTH_UNIT", kAccumulateDepthUnit},
+    ShaderConstant{"KW_TRIM_MASK_UNIT", kTrimMaskUnit},
+    ShaderConstant{"KW_ENVIRONMENT_UNIT", kEnvironmentUnit},
+    ShaderConstant{"KW_SURFACE_TABLE_UNIT", kSurfaceTableUnit},
+    ShaderConstant{"KW_SURFACE_INTS_UNIT", kSurfaceIntsUnit},
+    ShaderConstant{"KW_CONTROL_UNIT", kControlUnit},
+    ShaderConstant{"KW_SPAN_UNIT", kSpanUnit},
+    ShaderConstant{"KW_TRIM_GRID_UNIT", kTrimGridUnit},
+    ShaderConstant{"KW_TRIM_QUAD_UNIT", kTrimGridQuadUnit},
+    ShaderConstant{"KW_PREPASS_UNIT", kPrepassUnit},
+    ShaderConstant{"KW_VERTEX_STORAGE_BINDING", kVertexStorageBinding},
+    ShaderConstant{"KW_TABLE_TEXELS", kSurfaceTableTexels},
+    ShaderConstant{"KW_TABLE_DOMAIN_TEXEL", kSurfaceTableDomainTexel},
+    ShaderConstant{"KW_TABLE_ORIGIN_TEXEL", kSurfaceTableOriginTexel},
+    ShaderConstant{"KW_TABLE_COLOUR_TEXEL", kSurfaceTableColourTexel},
+    ShaderConstant{"KW_TABLE_MATERIAL_TEXEL", kSurfaceTableMaterialTexel},
+    ShaderConstant{"KW_TABLE_TRIM_RECT_TEXEL", kSurfaceTableTrimRectTexel},
+    ShaderConstant{"KW_TABLE_TRIM_SIZE_TEXEL", kSurfaceTableTrimSizeTexel},
+    ShaderConstant{"KW_TABLE_DATA_TEXEL", kSurfaceTableDataTexel},
+    ShaderConstant{"KW_TABLE_IDS_TEXEL", kSurfaceTableIdsTexel},
+    ShaderConstant{"KW_VERTEX_WORDS", kBaseVertexWords},
+    ShaderConstant{"KW_VERTEX_SPAN_WORD", kBaseVertexSpanWord},
+    ShaderConstant{"KW_VERTEX_SPAN_SCALE_WORD", kBaseVertexSpanScaleWord},
+    ShaderConstant{"KW_ANALYSIS_PHONG", int(AnalysisMode::Phong)},
+    ShaderConstant{"KW_ANALYSIS_GAUSSIAN", int(AnalysisMode::Gaussian)},
+    ShaderConstant{"KW_ANALYSIS_MEAN", int(AnalysisMode::Mean)},
+    ShaderConstant{"KW_ANALYSIS_MAX_CURVATURE", int(AnalysisMode::MaxCurvature)},
+    ShaderConstant{"KW_ANALYSIS_MIN_RADIUS", int(AnalysisMode::MinRadius)},
+    ShaderConstant{"KW_ANALYSIS_ZEBRA", int(AnalysisMode::Zebra)},
+    ShaderConstant{"KW_ANALYSIS_ISOPHOTES", int(AnalysisMode::Isophotes)},
+    ShaderConstant{"KW_ANALYSIS_ENVIRONMENT", int(AnalysisMode::Environment)},
+    ShaderConstant{"KW_ANALYSIS_DRAFT", int(AnalysisMode::Draft)},
+    ShaderConstant{"KW_SCALE_LINEAR", int(ColourScale::Linear)},
+    ShaderConstant{"KW_SCALE_SYMMETRIC", int(ColourScale::Symmetric)},
+    ShaderConstant{"KW_SCALE_LOG", int(ColourScale::Log)},
+};
+
+/// One feature of an exact-pass program: a bit of ExactFeatures and one #define of
+/// exact_surface.frag (and of depth_only.frag for the trim and output bits), named in
+/// kExactFeatureDefines. The shaders' header comments say what each does.
+enum class ExactFeature : std::uint32_t {
+    Aov = 1u << 0,           ///< KW_AOV: write the AOV targets
+    CellGather = 1u << 1,    ///< KW_CELL_GATHER: per-cell data as flat inputs (cell_data.glsl)
+    RayNewton = 1u << 2,     ///< KW_RAY_NEWTON: adaptive partitions, the point under the pixel
+    ExactDepth = 1u << 3,    ///< KW_EXACT_DEPTH: one pass writing gl_FragDepth, no pre-pass
+    Skirt = 1u << 4,         ///< KW_SKIRT: the edge skirts' program
+    Trim = 1u << 5,          ///< KW_TRIM: discard trimmed fragments
+    TrimExact = 1u << 6,     ///< KW_TRIM_EXACT: by the exact trim grid instead of the mask
+    TrimAa = 1u << 7,        ///< KW_TRIM_AA: keep only wholly covered fragments
+    TrimEdge = 1u << 8,      ///< KW_TRIM_EDGE: the anti-aliased frame's edge pass
+    DepthOnly = 1u << 9,     ///< KW_DEPTH_ONLY: the pre-pass at the point under the pixel
+    GBuffer = 1u << 10,      ///< KW_GBUFFER: the pre-pass writes the deferred pass's input
+    Deferred = 1u << 11,     ///< KW_DEFERRED: the deferred pass, one triangle per route
+    Isocurves = 1u << 12,    ///< KW_ISOCURVES: knot and iso-parameter lines
+    Directions = 1u << 13,   ///< KW_DIRECTIONS: principal-direction marks
+    SecondOrder = 1u << 14,  ///< KW_SECOND_ORDER: second derivatives and curvature
+    AovCurvature = 1u << 15, ///< KW_AOV_CURVATURE: the curvature AOV targets
+};
+using ExactFeatures = QFlags<ExactFeature>;
+
+struct ExactFeatureDefine {
+    ExactFeature feature;
+    const char* define;
+};
+/// Each feature's GLSL define, in the order programs list them.
+inline constexpr std::array kExactFeatureDefines{
+    ExactFeatureDefine{ExactFeature::CellGather, "KW_CELL_GATHER"},
+    ExactFeatureDefine{ExactFeature::Aov, "KW_AOV"},
+    ExactFeatureDefine{ExactFeature::Skirt, "KW_SKIRT"},
+    ExactFeatureDefine{ExactFeature::ExactDepth, "KW_EXACT_DEPTH"},
+    ExactFeatureDefine{ExactFeature::RayNewton, "KW_RAY_NEWTON"},
+    ExactFeatureDefine{ExactFeature::DepthOnly, "KW_DEPTH_ONLY"},
+    ExactFeatureDefine{ExactFeature::Trim, "KW_TRIM"},
+    ExactFeatureDefine{ExactFeature::TrimExact, "KW_TRIM_EXACT"},
+    ExactFeatureDefine{ExactFeature::TrimAa, "KW_TRIM_AA"},
+    ExactFeatureDefine{ExactFeature::TrimEdge, "KW_TRIM_EDGE"},
+    ExactFeatureDefine{ExactFeature::GBuffer, "KW_GBUFFER"},
+    ExactFeatureDefine{ExactFeature::Deferred, "KW_DEFERRED"},
+    ExactFeatureDefine{ExactFeature::Isocurves, "KW_ISOCURVES"},
+    ExactFeatureDefine{ExactFeature::Directions, "KW_DIRECTIONS"},
+    ExactFeatureDefine{ExactFeature::SecondOrder, "KW_SECOND_ORDER"},
+    ExactFeatureDefine{ExactFeature::AovCurvature, "KW_AOV_CURVATURE"},
+};
+
+/// The defines of `features`, one per bit, in kExactFeatureDefines' order.
+QStringList featureDefines(ExactFeatures features);
+/// The analysis bits a frame with `options` needs (curvatureAov: the curvature AOV targets).
+ExactFeatures analysisFeatures(const AnalysisOptions& options, bool curvatureAov);
+
+/// One program of exact_surface.frag: what it is specialised for, turned into its defines in
+/// one place (defines()). degreeU == 0: a program without a surface's degrees (the pre-pass's
+/// depth_only.frag), whose defines are only the features'.
+struct ExactVariant {
+    int degreeU = 0, degreeV = 0; ///< 1..15 (DEGREE_U, DEGREE_V)
+    int lightCount = 1;           ///< LIGHT_COUNT, 1..kMaxLights
+    AnalysisMode analysis = AnalysisMode::Phong;
+    ExactFeatures features;
+    bool operator==(const ExactVariant&) const = default;
+    /// DEGREE_U/V, the span-table widths KW_SPAN_TEXELS_U/V (kw::spanTableTexels) and
+    /// LIGHT_COUNT (with degrees), then one define per feature, then KW_ANALYSIS and, for a
+    /// colour map, its ramp (KW_RAMP_STOPS, KW_RAMP).
+    QStringList defines() const;
+};
+
+// In the namespace, so that argument-dependent lookup finds the operators.
+Q_DECLARE_OPERATORS_FOR_FLAGS(ExactFeatures)
+
+} // namespace kw

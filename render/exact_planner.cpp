@@ -1,0 +1,417 @@
+// The exact pass's planner: variants, culling and batches from the records, no GL.
+#include "render/exact_planner.h"
+
+#include "model/surface_bound.h"
+#include "render/gpu_scene.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace kw {
+
+namespace {
+const TrimMask* maskOf(const SurfaceRecord& r) {
+    return r.mask.usable() ? &r.mask : nullptr;
+}
+} // namespace
+
+bool ExactPlanner::outsideView(const glm::vec3& lo, const glm::vec3& hi,
+                               const glm::mat4& viewProjection) {
+    // Grown a little so that rounding in the transform never culls a surface whose edge
+    // touches the view.
+    const glm::vec3 margin(1e-4f * (glm::length(hi - lo) + glm::length(hi) + glm::length(lo)));
+    return boxOutsideFrustum(glm::dmat4(viewProjection), glm::dvec3(lo - margin),
+                             glm::dvec3(hi + margin));
+}
+
+double ExactPlanner::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
+    glm::vec3 lo, hi;
+    if (!kw::controlBounds(g, lo, hi))
+        return 0.0;
+    return pixelsPerCell(screenBox(lo, hi, camera.viewProjection), g.polygon.cellCount(),
+                         camera.viewport, true);
+}
+
+ExactPlanner::ScreenBox ExactPlanner::screenBox(const glm::vec3& lo, const glm::vec3& hi,
+                                                const glm::mat4& viewProjection) {
+    ScreenBox box{glm::vec2(std::numeric_limits<float>::max()),
+                  glm::vec2(-std::numeric_limits<float>::max()), false};
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        const glm::vec4 clip = viewProjection * glm::vec4(c, 1.0f);
+        if (!(clip.w > 0.0f)) {
+            box.behind = true;
+            return box;
+        }
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        box.lo = glm::min(box.lo, ndc);
+        box.hi = glm::max(box.hi, ndc);
+    }
+    return box;
+}
+
+double ExactPlanner::pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,
+                                   bool clampToView) {
+    if (cells <= 0)
+        return 0.0;
+    if (box.behind) // a corner behind the eye: treat the surface as large
+        return std::numeric_limits<double>::infinity();
+    glm::vec2 lo = box.lo, hi = box.hi;
+    if (clampToView) {
+        lo = glm::clamp(lo, glm::vec2(-1.0f), glm::vec2(1.0f));
+        hi = glm::clamp(hi, glm::vec2(-1.0f), glm::vec2(1.0f));
+    }
+    const glm::vec2 extent = glm::max(hi - lo, glm::vec2(0.0f)) * 0.5f * glm::vec2(viewport);
+    return double(extent.x) * double(extent.y) / double(cells);
+}
+
+ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera& camera,
+                                  const RenderOptions& options, bool trims, bool antialiased,
+                                  bool deferred) {
+    const bool adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive;
+    PlanFlags f;
+    f.setFlag(PlanFlag::Trims, trims);
+    f.setFlag(PlanFlag::Prepass, options.shading == RenderOptions::Shading::DepthPrepass);
+    f.setFlag(PlanFlag::Cull, options.cullOutsideView);
+    f.setFlag(PlanFlag::Antialiased, antialiased);
+    // Skirts close the gap between an adaptive polygon's edge chords and the true edges; the
+    // paper's uniform mode stays as it was. Not in anti-aliased frames: their trimmed
+    // surfaces' partly covered pixels belong to the edge pass (docs/RENDERING.md, "Skirts").
+    f.setFlag(PlanFlag::Skirts, options.edgeSkirts && !antialiased && adaptive);
+    f.setFlag(PlanFlag::SkipBackFaces, options.skipBackFaces);
+    f.setFlag(PlanFlag::Adaptive, adaptive);
+    f.setFlag(PlanFlag::AffineNoNewton, options.affineWithoutNewton);
+    f.setFlag(PlanFlag::Deferred, deferred);
+    return ExactPlanKey{scene.identity,
+                        scene.layout,
+                        scene.marks,
+                        camera.viewProjection,
+                        camera.viewport,
+                        f,
+                        options.gatherMinCellPixels,
+                        options.deferMaxCellPixels};
+}
+
+void ExactPlanner::clear() {
+    m_have = false;
+    m_places.clear();
+    m_commands.clear();
+}
+
+const ExactPlace* ExactPlanner::place(const SurfaceRecord* r) const {
+    const auto it = m_places.find(r);
+    return it == m_places.end() ? nullptr : &it->second;
+}
+
+int ExactPlanner::stencilOf(const ExactBatch& b) const {
+    return b.route >= 0 ? m_routes.at(b.route).stencil : 0;
+}
+
+std::int64_t ExactPlanner::trimTestedCells() const {
+    std::int64_t cells = 0;
+    for (const auto& [k, b] : m_trimmedPre)
+        for (const IndirectCommand& c : b.commands)
+            cells += c.count / 6;
+    return cells;
+}
+
+int ExactPlanner::affineSurfaces() const {
+    int n = 0; // each drawn record has one command in m_variants
+    for (const auto& [k, b] : m_variants)
+        n += b.affine ? int(b.commands.size()) : 0;
+    return n;
+}
+
+int ExactPlanner::deferredSurfaces() const {
+    int n = 0;
+    for (const auto& [k, b] : m_variants)
+        n += (k >> 13) & 1 ? 0 : int(b.commands.size());
+    return n;
+}
+
+bool ExactPlanner::update(const ExactPlanScene& scene, const ExactPlanKey& key,
+                          const FrameCamera& camera, std::vector<CommandWrite>& writes) {
+    writes.clear();
+    if (m_have && key == m_key && patch(scene, key, camera, writes))
+        return false;
+    writes.clear();
+    build(scene, key, camera);
+    return true;
+}
+
+ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& key,
+                                  const FrameCamera& camera, Commands& commands) const {
+    ExactPlace p;
+    const SurfaceGpu* g = r.exact.get();
+    if (!g || r.slot < 0)
+        return p;
+    p.drawn = true;
+    // Wholly outside the view (its control bounds hold it): no triangle of it is sent, so a
+    // close-up costs what is visible, not the whole scene. The bounds are kept with the record
+    // (GpuScene), not taken from its points per frame.
+    if (key.has(PlanFlag::Cull) && r.bounded &&
+        outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
+        p.culled = true;
+        return p;
+    }
+    commands.all =
+        IndirectCommand{std::uint32_t(g->triangleIndexCount), 1, std::uint32_t(g->triangleOffset),
+                        std::int32_t(g->vertexOffset), std::uint32_t(r.slot)};
+    const bool prepass = key.has(PlanFlag::Prepass);
+    const TrimMask* mask = key.has(PlanFlag::Trims) ? maskOf(r) : nullptr;
+    // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
+    const int degrees = g->degreeU | g->degreeV << 4;
+    p.prepassTrimmed = mask != nullptr;
+    // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
+    // costs llvmpipe its early depth test), and no pass draws the cells they remove.
+    p.split = mask && prepass && !key.has(PlanFlag::Antialiased) && g->insideIndexCount >= 0 &&
+              g->splitClasses == mask->classSerial;
+    if (p.split) {
+        const auto inside = std::uint32_t(g->insideIndexCount);
+        const auto edge = std::uint32_t(g->edgeIndexCount);
+        p.awayCells = (g->triangleIndexCount - std::int64_t(inside) - std::int64_t(edge)) / 6;
+        commands.inside = commands.all;
+        commands.inside.count = inside;
+        commands.edge = commands.all;
+        commands.edge.count = edge;
+        commands.edge.firstIndex += inside;
+        commands.all.count = inside + edge;
+    }
+    // With the depth pre-pass, a trimmed fragment left no depth there, so GL_EQUAL rejects it
+    // before shading and early-z stays on: no lookup needed here. A discard in this shader
+    // costs llvmpipe 5x (docs/PERFORMANCE.md, ## Trims), so only the exact-depth way, which
+    // has no pre-pass, looks the mask up.
+    const bool lookUp = mask && !prepass;
+    // The gather pays only where a cell covers many fragments: on small cells its flat
+    // varyings cost llvmpipe's triangle setup more than the fetches it saves.
+    ScreenBox box;
+    box.behind = true;
+    if (r.bounded)
+        box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+    const int cells = g->polygon.cellCount();
+    const bool gather =
+        r.bounded && pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
+    // Large cells the forward way (RenderOptions::deferMaxCellPixels). The cells' size on
+    // screen, not clamped to the view: in a close-up most of them lie outside it, and those
+    // inside are the large ones.
+    const bool deferred = key.has(PlanFlag::Deferred);
+    const bool forward =
+        deferred && pixelsPerCell(box, cells, camera.viewport, false) >= key.deferMaxCellPixels;
+    if (deferred && !box.behind)
+        p.window = glm::vec4(glm::clamp(box.lo, -1.0f, 1.0f), glm::clamp(box.hi, -1.0f, 1.0f));
+    // A closed solid seen from outside: the triangles facing away from the eye are hidden by
+    // its faces in front (chooseBackCulled).
+    const int solid = r.surface ? r.surface->solid : -1;
+    if (solid >= 0 && m_backCulled.count(solid))
+        p.face = r.surface->outsideAlongNormal ? 1 : 2;
+    // The polygon is the surface (planes): in adaptive mode its (u, v) is already the point
+    // under the pixel, and the Newton step would only evaluate the surface once more.
+    const bool affine =
+        key.has(PlanFlag::Adaptive) && key.has(PlanFlag::AffineNoNewton) && g->affine;
+    p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
+                int(forward) << 13;
+    if (mask)
+        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12;
+    if (key.has(PlanFlag::Skirts) && g->skirtIndexOffset >= 0) {
+        commands.skirt = IndirectCommand{std::uint32_t(g->skirtIndexCount), 1,
+                                         std::uint32_t(g->skirtIndexOffset),
+                                         std::int32_t(g->skirtVertexOffset), std::uint32_t(r.slot)};
+        p.skirtVariant = degrees | int(mask != nullptr) << 8;
+    }
+    return p;
+}
+
+void ExactPlanner::chooseBackCulled(const ExactPlanScene& scene, const ExactPlanKey& key,
+                                    const FrameCamera& camera) {
+    m_backCulled.clear();
+    if (!key.has(PlanFlag::SkipBackFaces))
+        return;
+    struct Solid {
+        int drawn = 0;
+        bool complete = true;
+        glm::vec3 lo{0.0f}, hi{0.0f};
+    };
+    std::map<int, Solid> solids;
+    for (const SurfaceRecord* r : *scene.records) {
+        const int k = r->surface ? r->surface->solid : -1;
+        if (k < 0)
+            continue;
+        Solid& s = solids[k];
+        if (!r->exact || r->slot < 0 || !r->bounded) {
+            s.complete = false; // a member not drawn: a hole
+            continue;
+        }
+        s.lo = s.drawn ? glm::min(s.lo, r->boundsLo) : r->boundsLo;
+        s.hi = s.drawn ? glm::max(s.hi, r->boundsHi) : r->boundsHi;
+        ++s.drawn;
+    }
+    const glm::dmat4 view(camera.view);
+    // A little past the near plane: the bounds hold the polygon, rounding aside.
+    const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
+    for (const auto& [k, s] : solids) {
+        if (!s.complete || s.drawn != scene.solidMembers(k))
+            continue;
+        bool beyond = true;
+        for (int c = 0; c < 8 && beyond; ++c) {
+            const glm::dvec3 p(c & 1 ? s.hi.x : s.lo.x, c & 2 ? s.hi.y : s.lo.y,
+                               c & 4 ? s.hi.z : s.lo.z);
+            beyond = -(view * glm::dvec4(p, 1.0)).z > nearest;
+        }
+        if (beyond)
+            m_backCulled.insert(k);
+    }
+}
+
+void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Commands& cs,
+                                const ExactPlanKey& key) {
+    const IndirectCommand& c = cs.all;
+    const bool deferred = key.has(PlanFlag::Deferred);
+    if (key.has(PlanFlag::Prepass)) {
+        const auto plain = [&]() -> ExactBatch& {
+            ExactBatch& b = m_plain[p.plainKey(deferred)];
+            b.face = p.face;
+            b.route = p.route();
+            return b;
+        };
+        ExactBatch& pre = p.prepassTrimmed ? m_trimmedPre[p.trimmedPreKey(deferred)] : plain();
+        if (p.prepassTrimmed && pre.commands.empty()) {
+            pre.trimmed = true;
+            pre.face = p.face;
+            pre.degreeU = r.exact->degreeU;
+            pre.degreeV = r.exact->degreeV;
+            pre.affine = (p.variant >> 12) & 1;
+            pre.route = p.route();
+        }
+        p.prepassIndex = int(pre.commands.size());
+        pre.commands.push_back(p.split ? cs.edge : c);
+        if (p.split) {
+            ExactBatch& inside = plain();
+            p.insideIndex = int(inside.commands.size());
+            inside.commands.push_back(cs.inside);
+        }
+        if (deferred && p.route() >= 0)
+            addToRoute(p);
+    }
+    ExactBatch& b = m_variants[p.variant];
+    if (b.commands.empty()) {
+        b.degreeU = r.exact->degreeU;
+        b.degreeV = r.exact->degreeV;
+        b.trimmed = (p.variant >> 8) & 1;
+        b.gather = (p.variant >> 9) & 1;
+        b.affine = (p.variant >> 12) & 1;
+        b.face = p.face;
+    }
+    p.index = int(b.commands.size());
+    b.commands.push_back(c);
+    if (p.edgeVariant >= 0) {
+        ExactBatch& e = m_edges[p.edgeVariant];
+        if (e.commands.empty()) {
+            e = b;
+            e.commands.clear();
+            e.trimmed = true;
+        }
+        p.edgeIndex = int(e.commands.size());
+        e.commands.push_back(c); // with anti-aliasing: never split
+    }
+    if (p.skirtVariant >= 0) {
+        ExactBatch& k = m_skirts[p.skirtVariant];
+        if (k.commands.empty()) {
+            k.degreeU = b.degreeU;
+            k.degreeV = b.degreeV;
+            k.trimmed = (p.skirtVariant >> 8) & 1;
+        }
+        p.skirtIndex = int(k.commands.size());
+        k.commands.push_back(cs.skirt);
+    }
+}
+
+void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
+                         const FrameCamera& camera) {
+    // Group the surfaces by variant (document order within a group).
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+        batches->clear();
+    m_routes.clear();
+    chooseBackCulled(scene, key, camera);
+    m_places.clear();
+    m_places.reserve(scene.records->size());
+    m_culled = 0;
+    m_trimmedAway = 0;
+    for (const SurfaceRecord* r : *scene.records) {
+        Commands cs;
+        ExactPlace p = classify(*r, key, camera, cs);
+        if (p.drawn && !p.culled)
+            addToBatches(*r, p, cs, key);
+        m_culled += p.culled ? 1 : 0;
+        m_trimmedAway += p.awayCells;
+        m_places[r] = p;
+    }
+    int stencil = 0;
+    for (auto& [k, route] : m_routes)
+        route.stencil = ++stencil;
+    m_commands.clear();
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+        for (auto& [k, b] : *batches) {
+            b.first = std::int64_t(m_commands.size());
+            m_commands.insert(m_commands.end(), b.commands.begin(), b.commands.end());
+        }
+    m_key = key;
+    m_have = true;
+}
+
+bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
+                         const FrameCamera& camera, std::vector<CommandWrite>& writes) {
+    const bool deferred = key.has(PlanFlag::Deferred);
+    for (const SurfaceRecord* r : *scene.touched) {
+        const auto it = m_places.find(r);
+        if (it == m_places.end())
+            return false;
+        const ExactPlace& was = it->second;
+        Commands cs;
+        const ExactPlace now = classify(*r, key, camera, cs);
+        const IndirectCommand& c = cs.all;
+        if (now.drawn != was.drawn || now.culled != was.culled)
+            return false;
+        if (!now.drawn || now.culled)
+            continue;
+        if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
+            now.edgeVariant != was.edgeVariant || now.split != was.split ||
+            now.skirtVariant != was.skirtVariant)
+            return false;
+        const auto patchOne = [&](ExactBatch& b, int index, const IndirectCommand& command) {
+            IndirectCommand& old = b.commands[size_t(index)];
+            if (!(old == command)) {
+                old = command;
+                m_commands[size_t(b.first + index)] = command;
+                writes.push_back({b.first + index, command});
+            }
+        };
+        patchOne(m_variants.at(now.variant), was.index, c);
+        if (key.has(PlanFlag::Prepass))
+            patchOne(was.prepassTrimmed ? m_trimmedPre.at(was.trimmedPreKey(deferred))
+                                        : m_plain.at(was.plainKey(deferred)),
+                     was.prepassIndex, was.split ? cs.edge : c);
+        if (was.split)
+            patchOne(m_plain.at(was.plainKey(deferred)), was.insideIndex, cs.inside);
+        if (was.edgeVariant >= 0)
+            patchOne(m_edges.at(was.edgeVariant), was.edgeIndex, c);
+        if (was.skirtVariant >= 0)
+            patchOne(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
+        if (deferred && now.route() >= 0) {
+            it->second.window = now.window;
+            addToRoute(now); // grown only: it may have moved
+        }
+        m_trimmedAway += now.awayCells - was.awayCells;
+        it->second.awayCells = now.awayCells;
+    }
+    return true;
+}
+
+void ExactPlanner::addToRoute(const ExactPlace& p) {
+    const auto [it, added] = m_routes.try_emplace(p.route(), Route{0, p.window});
+    glm::vec4& w = it->second.window;
+    if (!added)
+        w = glm::vec4(glm::min(glm::vec2(w), glm::vec2(p.window)),
+                      glm::max(glm::vec2(w.z, w.w), glm::vec2(p.window.z, p.window.w)));
+}
+
+} // namespace kw
