@@ -85,14 +85,16 @@ private Q_SLOTS:
             QCOMPARE(scene().surfaces.size(), before + 1);
             QCOMPARE(stack->undoText(), QLatin1String(step.text));
             const Surface& made = scene().surfaces.back();
-            // Selected, and placed at the view's target (the sphere's centre is its centre).
+            // Selected; the first one placed at the view's target, the next beside it (the
+            // plane's and the sphere's centres are their nets' centres).
             QCOMPARE(m_window->selection()->selectedSurfaces(), std::vector<SurfaceId>{made.id});
             QCOMPARE(m_window->selection()->currentSurface(), made.id);
-            if (QLatin1String(step.action) == QLatin1String("actionCreateSphere")) {
-                glm::dvec3 lo, hi;
-                surfaceControlBounds(made.geometry, lo, hi);
+            glm::dvec3 lo, hi;
+            surfaceControlBounds(made.geometry, lo, hi);
+            if (before == 0)
                 QVERIFY(glm::length(0.5 * (lo + hi) - target) < 1e-9);
-            }
+            else if (QLatin1String(step.action) == QLatin1String("actionCreateSphere"))
+                QVERIFY(glm::length(0.5 * (lo + hi) - target) > 0.5 * glm::length(hi - lo));
         }
         const NurbsSurface& patch = scene().surfaces.back().geometry;
         QCOMPARE(patch.degreeU, 3);
