@@ -94,7 +94,8 @@ bool isEditorInvocation(int argc, char** argv) {
         return true;
     if (first.startsWith(QLatin1Char('-')))
         return false;
-    if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb))
+    if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb) ||
+        first == QLatin1String(kw::kWriteCadVerb))
         return false;
     return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
 }
@@ -140,6 +141,10 @@ int main(int argc, char** argv) {
     if (first == QLatin1String(kw::kReadCadVerb)) { // hidden: the CAD reader's child process
         rest.prepend(QStringLiteral("knotwork ") + first);
         return runReadCad(rest);
+    }
+    if (first == QLatin1String(kw::kWriteCadVerb)) { // hidden: the CAD writer's child process
+        rest.prepend(QStringLiteral("knotwork ") + first);
+        return runWriteCad(rest);
     }
     if (const Command* command = findCommand(first)) {
         rest.prepend(QStringLiteral("knotwork ") + command->name);

@@ -1,0 +1,9 @@
+# CAD export (docs/EXCHANGE.md): round trips through STEP and IGES, closed solids, open seams,
+# bad destinations; the exported files checked in process with OpenCASCADE.
+if(TARGET knotwork_occt_write)
+  kw_add_test(tst_exchange LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_exchange.cpp
+              ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h LIBS knotwork_occt_write)
+  target_compile_definitions(tst_exchange PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+  kw_use_cad_reader(tst_exchange)
+  set_tests_properties(tst_exchange PROPERTIES TIMEOUT 900)
+endif()
