@@ -1,9 +1,11 @@
 // The topology a B-rep import keeps (model/topology.h) without OpenCASCADE: .knot round trip
 // with every field and old files, the reader's errors for inconsistent references, the CAD
-// hand-over, Document's edits and their exact undo, the gap closing's renumbering.
+// hand-over, Document's edits and their exact undo, the gap closing's renumbering, and the seam
+// gaps of edited faces (model/seamgaps.h) on a cube of six faces.
 #include "model/cad/handover.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/seamgaps.h"
 #include "model/trim.h"
 #include "model/validation.h"
 #include "topology_fixtures.h"
@@ -71,6 +73,16 @@ QByteArray withValue(const Scene& scene, const QString& path, const QJsonValue& 
     return QJsonDocument(root).toJson();
 }
 
+// The edges with a side at the corner S(0, 0) of `surface` (curves 0 and 3 of its loop).
+std::vector<EdgeId> cornerEdges(const Scene& scene, SurfaceId surface) {
+    std::vector<EdgeId> out;
+    for (const SharedEdge& e : scene.topology.edges)
+        for (const EdgeUse& side : e.sides)
+            if (side.surface == surface && (side.curve == 0 || side.curve == 3))
+                out.push_back(e.id);
+    return out;
+}
+
 } // namespace
 
 class TestTopology : public QObject {
@@ -86,6 +98,10 @@ private Q_SLOTS:
     void removeTrimLoopKeepsRecordConsistent();
     void replaceTrimLoopKeepsItsEdges();
     void bridgedGapRenumbersSides();
+    void unEditedCubeIsClosed();
+    void movedCornerOpensItsTwoEdges_data();
+    void movedCornerOpensItsTwoEdges();
+    void movedTrimCurveOpensItsEdge();
 };
 
 void TestTopology::cubeFixtureIsValid() {
@@ -339,6 +355,97 @@ void TestTopology::bridgedGapRenumbersSides() {
                 ++k;
             }
     QCOMPARE(k, size_t(4));
+}
+
+void TestTopology::unEditedCubeIsClosed() {
+    const Scene scene = cubeScene(2.5);
+    const std::vector<SeamGap> gaps = seamGaps(scene);
+    QCOMPARE(gaps.size(), size_t(12));
+    for (const SeamGap& g : gaps) {
+        QVERIFY2(g.gap <= 1e-12, qPrintable(QString::number(g.gap)));
+        QVERIFY(!g.open());
+    }
+    const std::vector<ShellState> shells = closedShells(scene, gaps);
+    QCOMPARE(shells.size(), size_t(1));
+    QVERIFY(shells.front().closed);
+    QCOMPARE(shells.front().openEdges, 0);
+    QCOMPARE(shells.front().faces, 6);
+    QCOMPARE(shells.front().solid, 0);
+}
+
+void TestTopology::movedCornerOpensItsTwoEdges_data() {
+    QTest::addColumn<int>("face");
+    QTest::addColumn<glm::dvec3>("direction");
+    QTest::addColumn<double>("d");
+    // The top face's corner S(0, 0) = (0, 0, 2) of a cube of side 2: out of the face, and
+    // along each of its two edges (a boundary moved along itself).
+    QTest::newRow("normal") << 1 << glm::dvec3(0, 0, 1) << 1e-3;
+    QTest::newRow("along u") << 1 << glm::dvec3(1, 0, 0) << 0.05;
+    QTest::newRow("along v, inwards") << 1 << glm::dvec3(0, 1, 0) << 2e-4;
+    QTest::newRow("slanted") << 4 << glm::normalize(glm::dvec3(-1, 0, 1)) << 3e-3;
+}
+
+// A control point on a shared boundary moved by d: the two edges through it are d apart (the
+// point is the corner S(0, 0), which a clamped surface interpolates), the others stay closed,
+// and the shell is open; moved back, it is closed again.
+void TestTopology::movedCornerOpensItsTwoEdges() {
+    QFETCH(int, face);
+    QFETCH(glm::dvec3, direction);
+    QFETCH(double, d);
+    Document doc;
+    QVERIFY(doc.resetScene(cubeScene(2.0)));
+    const SurfaceId id{std::uint32_t(face + 1)};
+    const glm::dvec3 corner = doc.surface(id)->geometry.points[0];
+    QVERIFY(doc.setControlPoints(id, {0}, {corner + d * direction}));
+    const std::vector<SeamGap> gaps = seamGaps(doc.scene());
+    const std::vector<EdgeId> moved = cornerEdges(doc.scene(), id);
+    QCOMPARE(moved.size(), size_t(2));
+    for (const SeamGap& g : gaps) {
+        if (std::find(moved.begin(), moved.end(), g.edge) != moved.end()) {
+            QVERIFY2(std::abs(g.gap - d) <= 0.01 * d,
+                     qPrintable(QStringLiteral("edge %1: gap %2, moved %3")
+                                    .arg(g.edge.value)
+                                    .arg(g.gap)
+                                    .arg(d)));
+            QVERIFY(g.open());
+            QVERIFY(glm::length(g.where - (corner + d * direction)) <= 1e-9 ||
+                    glm::length(g.where - corner) <= 1e-9);
+        } else {
+            QVERIFY2(g.gap <= 1e-12, qPrintable(QString::number(g.gap)));
+        }
+    }
+    std::vector<ShellState> shells = closedShells(doc.scene(), gaps);
+    QVERIFY(!shells.front().closed);
+    QCOMPARE(shells.front().openEdges, 2);
+    QVERIFY(std::abs(shells.front().largestGap - d) <= 0.01 * d);
+    QVERIFY(doc.setControlPoints(id, {0}, {corner}));
+    shells = closedShells(doc.scene(), seamGaps(doc.scene()));
+    QVERIFY(shells.front().closed);
+}
+
+// A trim curve's end moved inside its face by d (in a face of scale 1 in (u, v) and 3D) opens
+// the edges that curve and its neighbour are, by d.
+void TestTopology::movedTrimCurveOpensItsEdge() {
+    Document doc;
+    QVERIFY(doc.resetScene(cubeScene()));
+    const double d = 0.01;
+    // Curve 1 (u = 1) of face 6 moved to u = 1 - d: its whole edge, and the ends of its
+    // neighbours' edges.
+    const SurfaceId id{6};
+    const TrimLoopId loop{16};
+    QVERIFY(
+        doc.setTrimPoints({{id, loop, 0, 1}, {id, loop, 1, 0}, {id, loop, 1, 1}, {id, loop, 2, 0}},
+                          {{1 - d, 0}, {1 - d, 0}, {1 - d, 1}, {1 - d, 1}}));
+    const std::vector<SeamGap> gaps = seamGaps(doc.scene());
+    int open = 0;
+    for (const SeamGap& g : gaps) {
+        if (!g.open())
+            continue;
+        ++open;
+        QVERIFY2(std::abs(g.gap - d) <= 0.01 * d, qPrintable(QString::number(g.gap)));
+    }
+    QCOMPARE(open, 3);
+    QVERIFY(!closedShells(doc.scene(), gaps).front().closed);
 }
 
 QTEST_GUILESS_MAIN(TestTopology)
