@@ -125,7 +125,10 @@ double boundaryLength(const Surface& s) {
 double sewingTolerance(const Scene& s) {
     glm::dvec3 lo, hi;
     sceneBounds(s, lo, hi);
-    return std::max(1e-5 * glm::length(hi - lo), 1e-7);
+    double t = std::max(1e-5 * glm::length(hi - lo), 1e-7);
+    for (const SharedEdge& e : s.topology.edges)
+        t = std::max(t, e.tolerance);
+    return t;
 }
 
 Scene original(const QString& source) {

@@ -19,7 +19,8 @@ struct ExportOptions {
     bool igesFaces = false;
     /// Refuse to write (an error, no file) when any face does not end in a closed solid.
     bool requireClosed = false;
-    /// Sewing tolerance in model units; 0: 1e-5 of the scene's diagonal (at least 1e-7).
+    /// Sewing tolerance in model units; 0: the largest edge tolerance the import recorded
+    /// (Scene::topology), at least 1e-5 of the scene's diagonal (and 1e-7).
     double tolerance = 0.0;
 };
 

@@ -395,8 +395,13 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
     glm::dvec3 lo, hi;
     sceneBounds(scene, lo, hi);
     const double diagonal = std::max(glm::length(hi - lo), 1e-9);
-    const double tolerance =
-        options.tolerance > 0 ? options.tolerance : std::max(1e-5 * diagonal, 1e-7);
+    // The source's edge tolerances where the import recorded them: its shared edges were one
+    // edge within those, so sewing at the largest closes every seam the source had closed.
+    double tolerance = std::max(1e-5 * diagonal, 1e-7);
+    for (const SharedEdge& e : scene.topology.edges)
+        tolerance = std::max(tolerance, e.tolerance);
+    if (options.tolerance > 0)
+        tolerance = options.tolerance;
     QStringList names;
     for (const Surface& s : scene.surfaces)
         names << s.name;

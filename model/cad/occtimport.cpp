@@ -355,6 +355,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
     }
 
     Scene& scene = result.scene;
+    std::vector<occt::FaceEdges> faceEdges; // parallel to scene.surfaces
     for (int k = 1; k <= faces.Extent(); ++k) {
         if (progress &&
             !progress(kTransferSteps + (kSteps - kTransferSteps) * (k - 1) / faces.Extent(),
@@ -367,6 +368,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         QString why;
         QStringList warnings;
         QString name;
+        occt::FaceEdges edges;
         bool ok = false;
         try {
             OCC_CATCH_SIGNALS
@@ -377,7 +379,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             const bool untrimmedInFile =
                 format == CadFormat::Iges && (type == 0 || (type != 144 && type != 143));
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
-            ok = occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
+            ok = occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings, &edges);
             if (ok) {
                 surface.id = SurfaceId{scene.nextId};
                 scene.nextId = ids;
@@ -396,6 +398,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         }
         surface.name = label;
         scene.surfaces.push_back(std::move(surface));
+        faceEdges.push_back(std::move(edges));
         result.sourceFaces.push_back(k);
         ++result.report.facesImported;
     }
@@ -427,6 +430,18 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         for (Surface& s : scene.surfaces)
             s.solid = -1;
         result.report.warnings << QStringLiteral("the check for closed solids failed: %1")
+                                      .arg(QString::fromUtf8(e.GetMessageString()));
+    }
+    // Which trim curves are one edge, which faces one shell: kept for the writers and for
+    // the seam check after edits (model/topology.h, model/seamgaps.h).
+    try {
+        OCC_CATCH_SIGNALS
+        recordTopology(read.shape, faces, result.sourceFaces, faceEdges, scene,
+                       result.report.warnings);
+    } catch (const Standard_Failure& e) {
+        scene.topology = Topology{};
+        result.report.warnings << QStringLiteral("the record of shared edges and shells failed: "
+                                                 "%1; the faces are kept as loose faces")
                                       .arg(QString::fromUtf8(e.GetMessageString()));
     }
     if (after && !after(read.shape, faces, result, error))
