@@ -222,6 +222,7 @@ private Q_SLOTS:
     void solidsStaySolids();
     void buildFaceKeepsGeometry();
     void editedSolidReportsSeam();
+    void editedImportedSolidUsesRecord();
     void requireClosedLeavesFileUntouched();
     void convertWritesSchemasAndModes();
     void badInputExitsOne_data();
@@ -481,6 +482,47 @@ void TestExchange::editedSolidReportsSeam() {
     QVERIFY2(exportCadFile(cube(), path, {}, report, error), qPrintable(error));
     QCOMPARE(report.solids, 1);
     QVERIFY2(report.warnings.isEmpty(), qPrintable(report.warnings.join(QLatin1Char('\n'))));
+}
+
+// The same edit on a cube read back from STEP, whose import recorded its shared edges: the
+// seams come from kw::seamGaps on the exact surfaces, the shell is not written as a solid.
+void TestExchange::editedImportedSolidUsesRecord() {
+    const QString cubeStep = out(QStringLiteral("record_cube.step"));
+    ExportReport report;
+    QString error;
+    QVERIFY2(exportCadFile(cube(), cubeStep, {}, report, error), qPrintable(error));
+    auto imported = importFile(cubeStep, error);
+    QVERIFY2(imported, qPrintable(error));
+    Scene scene = imported->scene;
+    QVERIFY(!scene.topology.edges.empty());
+    // Below the sewing tolerance (1e-5 of the size), above the edges' own (1e-7): sewing alone
+    // would close the shell again.
+    const double d = 5e-6;
+    bool moved = false;
+    for (Surface& s : scene.surfaces)
+        for (glm::dvec3& p : s.geometry.points)
+            if (s.name == QLatin1String("top") && p == glm::dvec3(1, 1, 1)) {
+                p.z += d;
+                moved = true;
+            }
+    QVERIFY(moved);
+    const QString path = out(QStringLiteral("record_edited.iges"));
+    QVERIFY2(exportCadFile(scene, path, {}, report, error), qPrintable(error));
+    QCOMPARE(report.solids, 0);
+    int seams = 0;
+    for (const QString& w : report.warnings) {
+        const QRegularExpressionMatch m =
+            QRegularExpression(QStringLiteral("seam between face '(\\w+)' and face '(\\w+)' is "
+                                              "open: largest gap ([0-9.eE+-]+)"))
+                .match(w);
+        if (!m.hasMatch())
+            continue;
+        ++seams;
+        QVERIFY2(m.captured(1) == QLatin1String("top") || m.captured(2) == QLatin1String("top"),
+                 qPrintable(w));
+        QVERIFY2(std::abs(m.captured(3).toDouble() - d) <= 0.01 * d, qPrintable(w));
+    }
+    QCOMPARE(seams, 2);
 }
 
 void TestExchange::requireClosedLeavesFileUntouched() {

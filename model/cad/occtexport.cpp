@@ -4,6 +4,7 @@
 
 #include "model/cad/occtbuild.h"
 #include "model/savefile.h"
+#include "model/seamgaps.h"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepAdaptor_Curve.hxx>
@@ -31,6 +32,7 @@
 #include <Precision.hxx>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QHash>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeFix_Solid.hxx>
@@ -142,6 +144,14 @@ bool twoDigitExponents(Scene& scene, int& flushed, QString& why) {
     return true;
 }
 
+// The report's line for an open seam.
+QString seamLine(const QString& a, const QString& b, double gap) {
+    return QStringLiteral("seam between face '%1' and face '%2' is open: largest gap %3 (model "
+                          "units)")
+        .arg(a, b)
+        .arg(gap, 0, 'g', 6);
+}
+
 // A free edge sampled for the seam report.
 struct FreeEdge {
     TopoDS_Edge edge;
@@ -242,10 +252,7 @@ void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& name
             ++more;
             continue;
         }
-        report.warnings << QStringLiteral("seam between face '%1' and face '%2' is open: largest "
-                                          "gap %3 (model units)")
-                               .arg(name(edges[i].face), name(edges[size_t(j)].face))
-                               .arg(gap[i], 0, 'g', 6);
+        report.warnings << seamLine(name(edges[i].face), name(edges[size_t(j)].face), gap[i]);
     }
     if (more > 0)
         report.warnings << QStringLiteral("%1 more open seam(s)").arg(more);
@@ -461,8 +468,37 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
             else
                 loose.push_back(TopoDS::Face(e.Current()));
         }
+        // With the import's record, the seams are measured on the exact surfaces against each
+        // edge's own tolerance (kw::seamGaps): a shell with an open seam is never a solid, even
+        // where sewing's larger tolerance closed it.
+        std::vector<bool> onOpenSeam(size_t(n), false);
+        QStringList seamLines;
+        if (!scene.topology.edges.empty()) {
+            QHash<std::uint32_t, int> index;
+            for (int k = 0; k < n; ++k)
+                index.insert(scene.surfaces[size_t(k)].id.value, k);
+            for (const SeamGap& g : seamGaps(scene)) {
+                if (!g.open())
+                    continue;
+                const int a = index.value(g.faceA.value, -1), c = index.value(g.faceB.value, -1);
+                if (a < 0 || c < 0)
+                    continue;
+                onOpenSeam[size_t(a)] = onOpenSeam[size_t(c)] = true;
+                seamLines << seamLine(names[a], names[c], g.gap);
+            }
+        }
+        const auto hasOpenSeam = [&](const TopoDS_Shell& shell) {
+            for (TopExp_Explorer f(shell, TopAbs_FACE); f.More(); f.Next())
+                if (ids.IsBound(f.Current()) && onOpenSeam[size_t(ids.Find(f.Current()))])
+                    return true;
+            return false;
+        };
         for (const TopoDS_Shell& shell : shells) {
-            if (BRep_Tool::IsClosed(shell)) {
+            if (BRep_Tool::IsClosed(shell) && hasOpenSeam(shell)) {
+                report.warnings << QStringLiteral("a shell closed within the sewing tolerance "
+                                                  "has seams opened beyond their own tolerance: "
+                                                  "written as a shell");
+            } else if (BRep_Tool::IsClosed(shell)) {
                 ShapeFix_Solid fix;
                 const TopoDS_Solid solid = fix.SolidFromShell(shell);
                 GProp_GProps props;
@@ -494,7 +530,18 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
                                    .arg(report.faces);
         const std::vector<FreeEdge> free = freeEdges(result, ids);
         report.freeEdges = int(free.size());
-        reportFreeEdges(free, names, diagonal, report);
+        if (scene.topology.edges.empty()) {
+            reportFreeEdges(free, names, diagonal, report);
+        } else {
+            // The record names the open seams; free edges beyond them are open boundaries.
+            report.warnings << seamLines.mid(0, kMaxSeamLines);
+            if (seamLines.size() > kMaxSeamLines)
+                report.warnings
+                    << QStringLiteral("%1 more open seam(s)").arg(seamLines.size() - kMaxSeamLines);
+            if (!free.empty())
+                report.warnings
+                    << QStringLiteral("%1 edge(s) bound no other face").arg(free.size());
+        }
         if (options.requireClosed && (report.openShells > 0 || report.looseFaces > 0)) {
             error = QStringLiteral("%1: not written: %2 face(s) do not form closed solids "
                                    "(--require-closed)%3")
