@@ -3,6 +3,7 @@
 // the editor, render and bench to knotwork-gl / knotwork-bench (app/launch.h).
 #include "app/commands.h"
 #include "app/launch.h"
+#include "model/cad/cadimport.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
 
@@ -97,7 +98,8 @@ bool isEditorInvocation(int argc, char** argv) {
     if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb) ||
         first == QLatin1String(kw::kWriteCadVerb))
         return false;
-    return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
+    // A model file by its name (the editor then says when it is missing).
+    return QFileInfo::exists(first) || kw::cadFormatFromPath(first) != kw::CadFormat::Unknown;
 }
 
 /// Replaces this process with `program`; returns the exit code only when that fails.

@@ -7,3 +7,8 @@ if(TARGET knotwork_occt_write)
   kw_use_cad_reader(tst_exchange)
   set_tests_properties(tst_exchange PROPERTIES TIMEOUT 900)
 endif()
+# The editor's File ▸ Export… and Save As with a CAD name (label gui, Xvfb).
+kw_add_test(tst_editor_export LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_export.cpp
+            LIBS knotwork_ui)
+kw_use_cad_reader(tst_editor_export)
+target_compile_definitions(tst_editor_export PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
