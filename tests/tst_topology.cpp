@@ -102,6 +102,7 @@ private Q_SLOTS:
     void movedCornerOpensItsTwoEdges_data();
     void movedCornerOpensItsTwoEdges();
     void movedTrimCurveOpensItsEdge();
+    void manyEdgesSharedOverThreads();
 };
 
 void TestTopology::cubeFixtureIsValid() {
@@ -446,6 +447,34 @@ void TestTopology::movedTrimCurveOpensItsEdge() {
     }
     QCOMPARE(open, 3);
     QVERIFY(!closedShells(doc.scene(), gaps).front().closed);
+}
+
+// Enough edges to share them out over threads: the same gaps as cube by cube, in order.
+void TestTopology::manyEdgesSharedOverThreads() {
+    Document doc;
+    QVERIFY(doc.resetScene(cubesScene(30)));
+    const SurfaceId moved{16 * 29 + 2}; // the top face of the last cube
+    const glm::dvec3 corner = doc.surface(moved)->geometry.points[0];
+    QVERIFY(doc.setControlPoints(moved, {0}, {corner + glm::dvec3(0, 0, 0.01)}));
+    const std::vector<SeamGap> gaps = seamGaps(doc.scene());
+    QCOMPARE(gaps.size(), size_t(360));
+    Scene last = cubeScene();
+    for (Surface& s : last.surfaces)
+        for (glm::dvec3& p : s.geometry.points)
+            p.x += 58.0;
+    last.surfaces[1].geometry.points[0] += glm::dvec3(0, 0, 0.01);
+    const std::vector<SeamGap> alone = seamGaps(last);
+    for (size_t k = 0; k < gaps.size(); ++k) {
+        QCOMPARE(gaps[k].edge, doc.scene().topology.edges[k].id);
+        if (k < 348)
+            QVERIFY(!gaps[k].open());
+        else
+            QCOMPARE(gaps[k].gap, alone[k - 348].gap);
+    }
+    const std::vector<ShellState> shells = closedShells(doc.scene(), gaps);
+    QCOMPARE(shells.size(), size_t(30));
+    for (size_t c = 0; c < 30; ++c)
+        QCOMPARE(shells[c].closed, c != 29);
 }
 
 QTEST_GUILESS_MAIN(TestTopology)
