@@ -5,6 +5,7 @@
 #include "model/cad/handover.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/objfile.h"
 #include "model/seamgaps.h"
 #include "model/trim.h"
 #include "model/validation.h"
@@ -94,6 +95,7 @@ private Q_SLOTS:
     void readerRejectsInconsistentReferences_data();
     void readerRejectsInconsistentReferences();
     void handoverKeepsTopology();
+    void objKeepsTopology();
     void removeSurfaceKeepsRecordConsistent();
     void removeTrimLoopKeepsRecordConsistent();
     void replaceTrimLoopKeepsItsEdges();
@@ -245,6 +247,40 @@ void TestTopology::handoverKeepsTopology() {
     // Cut anywhere inside the topology, the block is refused as truncated.
     const qsizetype cut = block.size() - 200;
     QVERIFY(!decodeImportHandover(block.left(cut), why));
+}
+
+// The OBJ writer keeps the record in '# knotwork' lines, so .knot -> OBJ -> .knot is exact; a
+// file cut among those lines, or naming what it does not have, is refused with the line.
+void TestTopology::objKeepsTopology() {
+    const Scene scene = richCube();
+    const QByteArray obj = writeObj(scene);
+    Scene back;
+    ImportReport report;
+    QString error;
+    QVERIFY2(parseObj(obj, QStringLiteral("t.obj"), back, report, error), qPrintable(error));
+    QVERIFY(back.topology == scene.topology);
+    QVERIFY(back == scene);
+
+    QByteArray cut = obj.left(obj.lastIndexOf("# knotwork shell"));
+    QVERIFY(!parseObj(cut, QStringLiteral("t.obj"), back, report, error));
+    QVERIFY2(error.contains(QLatin1String("'# knotwork topology 12 2' but the file holds 12 "
+                                          "edge(s) and 1 shell(s)")),
+             qPrintable(error));
+
+    // Edge 3's first side names surface 99.
+    QList<QByteArray> lines = obj.split('\n');
+    int line = 0;
+    for (int k = 0; k < lines.size(); ++k)
+        if (lines[k].startsWith("# knotwork edge 3 ")) {
+            QList<QByteArray> t = lines[k].split(' ');
+            t[5] = "99";
+            lines[k] = t.join(' ');
+            line = k + 1;
+        }
+    QVERIFY(line > 0);
+    QVERIFY(!parseObj(lines.join('\n'), QStringLiteral("t.obj"), back, report, error));
+    QVERIFY2(error.startsWith(QStringLiteral("t.obj:%1: knotwork topology: edges[2]").arg(line)),
+             qPrintable(error));
 }
 
 // Removing a face takes its edges and its place in the shell, and opens the shell; undo and

@@ -6,6 +6,7 @@
 #include "model/cad/cadimport.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/objfile.h"
 #include "model/seamgaps.h"
 #include "model/validation.h"
 
@@ -200,6 +201,12 @@ void TestTopologyImport::closedSolidsImportClosed() {
     const std::optional<Scene> back = readKnotFile(path, &error);
     QVERIFY2(back, qPrintable(error));
     QVERIFY(back->topology == scene.topology);
+    // And through OBJ's '# knotwork' lines.
+    Scene fromObj;
+    ImportReport report;
+    QVERIFY2(parseObj(writeObj(scene), QStringLiteral("part.obj"), fromObj, report, error),
+             qPrintable(error));
+    QVERIFY(fromObj.topology == scene.topology);
 }
 
 // A control point on a shared boundary (a corner of the net, which the surface interpolates,
