@@ -100,23 +100,32 @@ constexpr size_t kEdgesPerThread = 64;
 
 SeamGap seamGap(const SharedEdge& edge, const QHash<SurfaceId, const Surface*>& surfaces,
                 int samples) {
+    SeamGap gap;
+    gap.edge = edge.id;
+    gap.faceA = edge.sides[0].surface;
+    gap.faceB = edge.sides[1].surface;
+    gap.tolerance = edge.tolerance;
     SideEdge sides[2];
     for (size_t k = 0; k < 2; ++k) {
         const EdgeUse& use = edge.sides[k];
         const Surface* s = surfaces.value(use.surface);
-        const auto loop = std::find_if(s->trims.begin(), s->trims.end(),
-                                       [&](const TrimLoop& l) { return l.id == use.loop; });
+        const auto loop = s ? std::find_if(s->trims.begin(), s->trims.end(),
+                                           [&](const TrimLoop& l) { return l.id == use.loop; })
+                            : std::vector<TrimLoop>::const_iterator{};
+        // Outside the precondition (a side the scene does not have): open, not a crash, so
+        // that no export calls such a seam closed.
+        if (!s || loop == s->trims.end() || use.curve < 0 ||
+            size_t(use.curve) >= loop->curves.size()) {
+            gap.gap = std::numeric_limits<double>::infinity();
+            gap.whereOn = use.surface;
+            return gap;
+        }
         sides[k].surface = &s->geometry;
         sides[k].curve = &loop->curves[size_t(use.curve)];
         sides[k].id = use.surface;
         sides[k].domain = curveDomain(*sides[k].curve);
         sample(sides[k], samples);
     }
-    SeamGap gap;
-    gap.edge = edge.id;
-    gap.faceA = edge.sides[0].surface;
-    gap.faceB = edge.sides[1].surface;
-    gap.tolerance = edge.tolerance;
     farthest(sides[0], sides[1], gap);
     farthest(sides[1], sides[0], gap);
     return gap;

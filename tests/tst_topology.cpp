@@ -509,6 +509,14 @@ void TestTopology::manyEdgesSharedOverThreads() {
     }
     const std::vector<ShellState> shells = closedShells(doc.scene(), gaps);
     QCOMPARE(shells.size(), size_t(30));
+    // Outside the precondition: a side the scene lacks is an open seam, not a crash.
+    Scene broken = doc.scene();
+    broken.topology.edges[5].sides[1].curve = 9;
+    broken.topology.edges[6].sides[0].surface = SurfaceId{9999};
+    const std::vector<SeamGap> lacking = seamGaps(broken);
+    QVERIFY(std::isinf(lacking[5].gap) && lacking[5].open());
+    QVERIFY(std::isinf(lacking[6].gap) && lacking[6].open());
+    QVERIFY(!closedShells(broken, lacking)[0].closed);
     for (size_t c = 0; c < 30; ++c)
         QCOMPARE(shells[c].closed, c != 29);
 }
