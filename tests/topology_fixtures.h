@@ -97,4 +97,39 @@ inline Scene cubeScene(double size = 1.0) {
     return scene;
 }
 
+/// `count` cubes of side 1 (cubeScene) in a row along x, 2 apart, each its own shell
+/// (ids 1..count, solid 0..count-1): surface k of cube c has id 16 c + k + 1, its loop
+/// 16 c + k + 7, edge e of cube c id 12 c + e.
+inline Scene cubesScene(int count) {
+    Scene out;
+    for (int c = 0; c < count; ++c) {
+        const Scene cube = cubeScene();
+        const std::uint32_t base = std::uint32_t(16 * c);
+        for (Surface s : cube.surfaces) {
+            s.id.value = base + s.id.value;
+            s.trims[0].id.value = s.id.value + 6;
+            for (glm::dvec3& p : s.geometry.points)
+                p.x += 2.0 * c;
+            s.solid = c;
+            out.surfaces.push_back(s);
+        }
+        for (SharedEdge e : cube.topology.edges) {
+            e.id.value += std::uint32_t(12 * c);
+            for (EdgeUse& side : e.sides) {
+                side.surface.value += base;
+                side.loop.value = side.surface.value + 6;
+            }
+            out.topology.edges.push_back(e);
+        }
+        Shell shell = cube.topology.shells.front();
+        shell.id.value = std::uint32_t(c + 1);
+        shell.solid = c;
+        for (SurfaceId& f : shell.faces)
+            f.value += base;
+        out.topology.shells.push_back(shell);
+    }
+    out.nextId = std::uint32_t(16 * count + 1);
+    return out;
+}
+
 } // namespace kw::test

@@ -5,6 +5,7 @@
 #include "model/cad/handover.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/objfile.h"
 #include "model/seamgaps.h"
 #include "model/trim.h"
 #include "model/validation.h"
@@ -94,6 +95,7 @@ private Q_SLOTS:
     void readerRejectsInconsistentReferences_data();
     void readerRejectsInconsistentReferences();
     void handoverKeepsTopology();
+    void objKeepsTopology();
     void removeSurfaceKeepsRecordConsistent();
     void removeTrimLoopKeepsRecordConsistent();
     void replaceTrimLoopKeepsItsEdges();
@@ -102,6 +104,7 @@ private Q_SLOTS:
     void movedCornerOpensItsTwoEdges_data();
     void movedCornerOpensItsTwoEdges();
     void movedTrimCurveOpensItsEdge();
+    void manyEdgesSharedOverThreads();
 };
 
 void TestTopology::cubeFixtureIsValid() {
@@ -244,6 +247,40 @@ void TestTopology::handoverKeepsTopology() {
     // Cut anywhere inside the topology, the block is refused as truncated.
     const qsizetype cut = block.size() - 200;
     QVERIFY(!decodeImportHandover(block.left(cut), why));
+}
+
+// The OBJ writer keeps the record in '# knotwork' lines, so .knot -> OBJ -> .knot is exact; a
+// file cut among those lines, or naming what it does not have, is refused with the line.
+void TestTopology::objKeepsTopology() {
+    const Scene scene = richCube();
+    const QByteArray obj = writeObj(scene);
+    Scene back;
+    ImportReport report;
+    QString error;
+    QVERIFY2(parseObj(obj, QStringLiteral("t.obj"), back, report, error), qPrintable(error));
+    QVERIFY(back.topology == scene.topology);
+    QVERIFY(back == scene);
+
+    QByteArray cut = obj.left(obj.lastIndexOf("# knotwork shell"));
+    QVERIFY(!parseObj(cut, QStringLiteral("t.obj"), back, report, error));
+    QVERIFY2(error.contains(QLatin1String("'# knotwork topology 12 2' but the file holds 12 "
+                                          "edge(s) and 1 shell(s)")),
+             qPrintable(error));
+
+    // Edge 3's first side names surface 99.
+    QList<QByteArray> lines = obj.split('\n');
+    int line = 0;
+    for (int k = 0; k < lines.size(); ++k)
+        if (lines[k].startsWith("# knotwork edge 3 ")) {
+            QList<QByteArray> t = lines[k].split(' ');
+            t[5] = "99";
+            lines[k] = t.join(' ');
+            line = k + 1;
+        }
+    QVERIFY(line > 0);
+    QVERIFY(!parseObj(lines.join('\n'), QStringLiteral("t.obj"), back, report, error));
+    QVERIFY2(error.startsWith(QStringLiteral("t.obj:%1: knotwork topology: edges[2]").arg(line)),
+             qPrintable(error));
 }
 
 // Removing a face takes its edges and its place in the shell, and opens the shell; undo and
@@ -446,6 +483,42 @@ void TestTopology::movedTrimCurveOpensItsEdge() {
     }
     QCOMPARE(open, 3);
     QVERIFY(!closedShells(doc.scene(), gaps).front().closed);
+}
+
+// Enough edges to share them out over threads: the same gaps as cube by cube, in order.
+void TestTopology::manyEdgesSharedOverThreads() {
+    Document doc;
+    QVERIFY(doc.resetScene(cubesScene(30)));
+    const SurfaceId moved{16 * 29 + 2}; // the top face of the last cube
+    const glm::dvec3 corner = doc.surface(moved)->geometry.points[0];
+    QVERIFY(doc.setControlPoints(moved, {0}, {corner + glm::dvec3(0, 0, 0.01)}));
+    const std::vector<SeamGap> gaps = seamGaps(doc.scene());
+    QCOMPARE(gaps.size(), size_t(360));
+    Scene last = cubeScene();
+    for (Surface& s : last.surfaces)
+        for (glm::dvec3& p : s.geometry.points)
+            p.x += 58.0;
+    last.surfaces[1].geometry.points[0] += glm::dvec3(0, 0, 0.01);
+    const std::vector<SeamGap> alone = seamGaps(last);
+    for (size_t k = 0; k < gaps.size(); ++k) {
+        QCOMPARE(gaps[k].edge, doc.scene().topology.edges[k].id);
+        if (k < 348)
+            QVERIFY(!gaps[k].open());
+        else
+            QCOMPARE(gaps[k].gap, alone[k - 348].gap);
+    }
+    const std::vector<ShellState> shells = closedShells(doc.scene(), gaps);
+    QCOMPARE(shells.size(), size_t(30));
+    // Outside the precondition: a side the scene lacks is an open seam, not a crash.
+    Scene broken = doc.scene();
+    broken.topology.edges[5].sides[1].curve = 9;
+    broken.topology.edges[6].sides[0].surface = SurfaceId{9999};
+    const std::vector<SeamGap> lacking = seamGaps(broken);
+    QVERIFY(std::isinf(lacking[5].gap) && lacking[5].open());
+    QVERIFY(std::isinf(lacking[6].gap) && lacking[6].open());
+    QVERIFY(!closedShells(broken, lacking)[0].closed);
+    for (size_t c = 0; c < 30; ++c)
+        QCOMPARE(shells[c].closed, c != 29);
 }
 
 QTEST_GUILESS_MAIN(TestTopology)

@@ -6,9 +6,11 @@
 #include "model/cad/cadimport.h"
 #include "model/document.h"
 #include "model/knotfile.h"
+#include "model/objfile.h"
 #include "model/seamgaps.h"
 #include "model/validation.h"
 
+#include <QElapsedTimer>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -36,6 +38,33 @@ double modelSize(const Scene& scene) {
     glm::dvec3 lo, hi;
     return sceneBounds(scene, lo, hi) ? glm::length(hi - lo) : 1.0;
 }
+
+/// One side's edge S(c(t)) on its surface.
+struct EdgeCurve {
+    const NurbsSurface* surface = nullptr;
+    const NurbsCurve2* curve = nullptr;
+    Interval domain;
+    EdgeCurve(const Scene& scene, const EdgeUse& side) {
+        for (const Surface& s : scene.surfaces)
+            if (s.id == side.surface)
+                for (const TrimLoop& l : s.trims)
+                    if (l.id == side.loop) {
+                        surface = &s.geometry;
+                        curve = &l.curves[size_t(side.curve)];
+                    }
+        domain = curveDomain(*curve);
+    }
+    glm::dvec3 point(double t) const {
+        const glm::dvec2 uv = curvePoint(*curve, t);
+        return surfacePoint(*surface, uv.x, uv.y);
+    }
+    /// The edge's direction at t, in the direction of increasing t, by a small step inwards
+    /// from an end (`inwards` +1 at the start, -1 at the end).
+    glm::dvec3 tangent(double t, double inwards) const {
+        const double h = 1e-5 * (domain.last - domain.first) * inwards;
+        return (point(t + h) - point(t)) * inwards;
+    }
+};
 
 /// A control point that a clamped surface interpolates (a corner of its net) where a side of
 /// a shared edge starts or ends, with the edge's direction there.
@@ -123,7 +152,10 @@ void TestTopologyImport::closedSolidsImportClosed() {
     }
     QCOMPARE(int(solidNumbers.size()), solids);
     QCOMPARE(faces, scene.surfaces.size());
+    QElapsedTimer clock;
+    clock.start();
     const std::vector<SeamGap> gaps = seamGaps(scene);
+    const qint64 ms = clock.elapsed();
     QCOMPARE(gaps.size(), scene.topology.edges.size());
     double worst = 0.0;
     for (const SeamGap& g : gaps) {
@@ -136,8 +168,30 @@ void TestTopologyImport::closedSolidsImportClosed() {
                                            .arg(g.tolerance)));
         worst = std::max(worst, g.gap);
     }
-    qInfo("%s: %zu shared edges, %zu shells, largest gap %.3g (model size %.3g)", qPrintable(file),
-          gaps.size(), scene.topology.shells.size(), worst, modelSize(scene));
+    qInfo("%s: %zu shared edges, %zu shells, largest gap %.3g (model size %.3g), seamGaps %lld "
+          "ms",
+          qPrintable(file), gaps.size(), scene.topology.shells.size(), worst, modelSize(scene), ms);
+    // `reversed` says which way each side runs along the edge: where side A starts, side B
+    // starts too (same flags) or ends (different flags), running the same way as A there.
+    const double size = modelSize(scene);
+    for (const SharedEdge& e : scene.topology.edges) {
+        const EdgeCurve a(scene, e.sides[0]), b(scene, e.sides[1]);
+        const bool same = e.sides[0].reversed == e.sides[1].reversed;
+        const glm::dvec3 pa = a.point(a.domain.first), ta = a.tangent(a.domain.first, 1.0);
+        const glm::dvec3 pb = b.point(same ? b.domain.first : b.domain.last);
+        // B's direction along the edge: against increasing t where it runs the other way.
+        const glm::dvec3 tb =
+            same ? b.tangent(b.domain.first, 1.0) : -b.tangent(b.domain.last, -1.0);
+        QVERIFY2(glm::length(pa - pb) <= e.tolerance + 1e-9 * size &&
+                     glm::dot(ta, tb) > 0.9 * glm::length(ta) * glm::length(tb),
+                 qPrintable(QStringLiteral("edge %1: sides %2 and %3 run %4")
+                                .arg(e.id.value)
+                                .arg(e.sides[0].reversed)
+                                .arg(e.sides[1].reversed)
+                                .arg(glm::dot(ta, tb))));
+        // In a consistently oriented closed shell the two sides of an edge run opposite ways.
+        QVERIFY(!same);
+    }
     for (const ShellState& s : closedShells(scene, gaps))
         QVERIFY(s.closed);
     QTemporaryDir dir;
@@ -147,6 +201,12 @@ void TestTopologyImport::closedSolidsImportClosed() {
     const std::optional<Scene> back = readKnotFile(path, &error);
     QVERIFY2(back, qPrintable(error));
     QVERIFY(back->topology == scene.topology);
+    // And through OBJ's '# knotwork' lines.
+    Scene fromObj;
+    ImportReport report;
+    QVERIFY2(parseObj(writeObj(scene), QStringLiteral("part.obj"), fromObj, report, error),
+             qPrintable(error));
+    QVERIFY(fromObj.topology == scene.topology);
 }
 
 // A control point on a shared boundary (a corner of the net, which the surface interpolates,
