@@ -19,6 +19,7 @@
 #include <GProp_GProps.hxx>
 #include <IGESControl_Reader.hxx>
 #include <QFileInfo>
+#include <QHash>
 #include <QProcess>
 #include <QStandardPaths>
 #include <QtTest>
@@ -133,14 +134,22 @@ double sewingTolerance(const Scene& s) {
     return t;
 }
 
+// The scene a source gives: a created sample, or a file of tests/data imported (once per run:
+// the import is deterministic and the rows of several tests start from the same files).
 Scene original(const QString& source) {
     if (!source.contains(QLatin1Char('.')))
         return source == QLatin1String("cube") ? cube() : created(source);
+    static QHash<QString, Scene> imported;
+    if (const auto it = imported.constFind(source); it != imported.constEnd())
+        return *it;
     QString error;
     const auto r = importFile(data(source), error);
-    if (!r)
+    if (!r) {
         qWarning("%s", qPrintable(error));
-    return r ? r->scene : Scene{};
+        return Scene{};
+    }
+    imported.insert(source, r->scene);
+    return r->scene;
 }
 
 // Largest difference relative to the largest magnitude (0 when equal bit for bit).
