@@ -12,3 +12,9 @@ kw_add_test(tst_editor_export LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_ed
             LIBS knotwork_ui)
 kw_use_cad_reader(tst_editor_export)
 target_compile_definitions(tst_editor_export PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+# The AOV of a part read back from STEP against the original's (label gl, Xvfb).
+if(TARGET knotwork_occt_write)
+  kw_add_test(tst_render_exchange LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_exchange.cpp
+              ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render knotwork_cad)
+  kw_use_cad_reader(tst_render_exchange)
+endif()
