@@ -551,21 +551,21 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
                     << QStringLiteral("%1 edge(s) bound no other face").arg(free.size());
         }
         if (options.requireClosed && (report.openShells > 0 || report.looseFaces > 0)) {
-            error = QStringLiteral("%1: not written: %2 face(s) do not form closed solids "
-                                   "(--require-closed)%3")
+            int outside = 0; // loose faces and faces of open shells
+            for (TopExp_Explorer f(result, TopAbs_FACE, TopAbs_SHELL); f.More(); f.Next())
+                ++outside;
+            for (TopExp_Explorer sh(result, TopAbs_SHELL, TopAbs_SOLID); sh.More(); sh.Next())
+                for (TopExp_Explorer f(sh.Current(), TopAbs_FACE); f.More(); f.Next())
+                    ++outside;
+            const QString first = report.warnings.isEmpty()
+                                      ? QString()
+                                      : QStringLiteral("; ") + report.warnings.front();
+            error = QStringLiteral("%1: not written: %2 of %3 face(s) do not end in a closed "
+                                   "solid (--require-closed)%4")
                         .arg(path)
-                        .arg(report.faces -
-                             [&] {
-                                 int inSolids = 0;
-                                 for (TopExp_Explorer s(result, TopAbs_SOLID); s.More(); s.Next())
-                                     for (TopExp_Explorer f(s.Current(), TopAbs_FACE); f.More();
-                                          f.Next())
-                                         ++inSolids;
-                                 return inSolids;
-                             }())
-                        .arg(report.warnings.isEmpty()
-                                 ? QString()
-                                 : QStringLiteral("; ") + report.warnings.front());
+                        .arg(outside)
+                        .arg(report.faces)
+                        .arg(first);
             return std::nullopt;
         }
 
