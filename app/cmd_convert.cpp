@@ -1,5 +1,7 @@
-// knotwork convert IN OUT: IGES/STEP/BREP/OBJ/.knot in, .knot or OBJ (free-form or mesh) out.
+// knotwork convert IN OUT: IGES/STEP/BREP/OBJ/.knot in; .knot, OBJ (free-form or mesh), STEP or
+// IGES (B-rep, written by OpenCASCADE in a child process) out.
 #include "app/commands.h"
+#include "model/cad/cadexport.h"
 #include "model/cad/cadimport.h"
 #include "model/knotfile.h"
 #include "model/objfile.h"
@@ -12,9 +14,11 @@ namespace kw::cli {
 int runConvert(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(QStringLiteral(
-        "Convert IN (.igs/.iges, .stp/.step, .brep, .obj or .knot) to OUT (.knot, or .obj:\n"
-        "free-form surfaces with trims, or a triangle mesh with --mesh). Faces that cannot be\n"
-        "imported are counted on stderr; --report lists each one and every warning."));
+        "Convert IN (.igs/.iges, .stp/.step, .brep, .obj or .knot) to OUT (.knot; .obj: free-form\n"
+        "surfaces with trims, or a triangle mesh with --mesh; .step/.stp or .iges/.igs: a B-rep\n"
+        "of the exact surfaces, closed shells as solids, docs/EXCHANGE.md). Faces that cannot be\n"
+        "imported are counted on stderr; --report lists each one and every warning. A STEP or\n"
+        "IGES export warns on stderr about every open seam (the two faces, the largest gap)."));
     parser.addPositionalArgument(QStringLiteral("IN"), QStringLiteral("File to import."));
     parser.addPositionalArgument(QStringLiteral("OUT"), QStringLiteral("File to write."));
     const QCommandLineOption report(QStringLiteral("report"),
@@ -30,7 +34,23 @@ int runConvert(const QStringList& args) {
         QStringLiteral("With --mesh: refuse to write more than N MB (default %1).")
             .arg(kDefaultMaxMeshBytes >> 20),
         QStringLiteral("N"), QString::number(kDefaultMaxMeshBytes >> 20));
+    const QCommandLineOption stepSchema(
+        QStringLiteral("step-schema"),
+        QStringLiteral("STEP application protocol: ap203, ap214 (default) or ap242."),
+        QStringLiteral("SCHEMA"), QStringLiteral("ap214"));
+    const QCommandLineOption igesMode(
+        QStringLiteral("iges-mode"),
+        QStringLiteral("IGES: brep (default; MSBO solids, type 186) or faces (trimmed surfaces, "
+                       "type 144)."),
+        QStringLiteral("MODE"), QStringLiteral("brep"));
+    const QCommandLineOption requireClosed(
+        QStringLiteral("require-closed"),
+        QStringLiteral("STEP/IGES: write nothing and exit 1 unless every face ends in a closed "
+                       "solid."));
     parser.addOption(report);
+    parser.addOption(stepSchema);
+    parser.addOption(igesMode);
+    parser.addOption(requireClosed);
     parser.addOption(mesh);
     parser.addOption(subdivisions);
     parser.addOption(maxMesh);
@@ -44,8 +64,35 @@ int runConvert(const QStringList& args) {
     }
     const QString in = pos[0], out = pos[1];
     const CadFormat outFormat = cadFormatFromPath(out);
-    if (outFormat != CadFormat::Knot && outFormat != CadFormat::Obj) {
-        printError(QStringLiteral("%1: OUT must end in .knot or .obj: %2").arg(command, out));
+    const bool cadOut = outFormat == CadFormat::Step || outFormat == CadFormat::Iges;
+    if (outFormat != CadFormat::Knot && outFormat != CadFormat::Obj && !cadOut) {
+        // A bad name is bad input like a bad file: it names the file, exit 1.
+        printError(
+            QStringLiteral("%1: cannot tell what to write from %2 (expected .knot, .obj, "
+                           ".step, .stp, .iges or .igs)")
+                .arg(out, QFileInfo(out).suffix().isEmpty()
+                              ? QStringLiteral("a name without an extension")
+                              : QStringLiteral("the extension .") + QFileInfo(out).suffix()));
+        return kExitBadInput;
+    }
+    ExportOptions exportOptions;
+    exportOptions.stepSchema = parser.value(stepSchema).toLower();
+    exportOptions.requireClosed = parser.isSet(requireClosed);
+    const QString mode = parser.value(igesMode).toLower();
+    if (mode != QLatin1String("brep") && mode != QLatin1String("faces")) {
+        printError(QStringLiteral("%1: --iges-mode must be brep or faces").arg(command));
+        return kExitUsage;
+    }
+    exportOptions.igesFaces = mode == QLatin1String("faces");
+    if (const QString bad = exportOptionsError(exportOptions); !bad.isEmpty()) {
+        printError(QStringLiteral("%1: --step-schema: %2").arg(command, bad));
+        return kExitUsage;
+    }
+    if (!cadOut &&
+        (parser.isSet(stepSchema) || parser.isSet(igesMode) || parser.isSet(requireClosed))) {
+        printError(QStringLiteral("%1: --step-schema, --iges-mode and --require-closed need a "
+                                  "STEP or IGES OUT")
+                       .arg(command));
         return kExitUsage;
     }
     bool ok = false;
@@ -81,7 +128,14 @@ int runConvert(const QStringList& args) {
                        .arg(result->report.facesImported));
 
     bool written = false;
-    if (outFormat == CadFormat::Knot)
+    if (cadOut) {
+        ExportReport exported;
+        written = exportCadFile(result->scene, out, exportOptions, exported, error);
+        for (const QString& w : exported.warnings)
+            printError(QStringLiteral("%1: warning: %2").arg(out, w));
+        if (written && parser.isSet(report))
+            printOut(QStringLiteral("%1: %2").arg(out, exported.summary()));
+    } else if (outFormat == CadFormat::Knot)
         written = writeKnotFile(out, result->scene, &error);
     else if (parser.isSet(mesh))
         written = writeObjMeshFile(out, result->scene, meshOptions, error);

@@ -1,12 +1,15 @@
-// knotwork info FILE [--json]: a summary of a .knot project's surfaces, lights and camera.
+// knotwork info FILE [--json]: a summary of a .knot project's surfaces, topology, lights and
+// camera.
 #include "app/commands.h"
 #include "model/cad/cadimport.h"
+#include "model/seamgaps.h"
 #include "model/trim.h"
 
 #include <QCommandLineParser>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <algorithm>
 #include <set>
 
 namespace kw::cli {
@@ -66,6 +69,98 @@ QString lightKind(const Light& l) {
     return l.kind == Light::Kind::Point ? QStringLiteral("point") : QStringLiteral("directional");
 }
 
+// The topology kept from a B-rep import and what edits did to it: the shared edges, how many
+// are open (seamGaps: their sides lie farther apart than the edge's tolerance), and each shell,
+// closed or not.
+struct TopologySummary {
+    std::vector<SeamGap> gaps;
+    std::vector<ShellState> shells;
+    int open = 0;
+};
+
+TopologySummary summariseTopology(const Scene& scene) {
+    TopologySummary t;
+    t.gaps = seamGaps(scene);
+    t.shells = closedShells(scene, t.gaps);
+    t.open =
+        int(std::count_if(t.gaps.begin(), t.gaps.end(), [](const SeamGap& g) { return g.open(); }));
+    return t;
+}
+
+QJsonObject topologyJson(const Scene& scene) {
+    const TopologySummary t = summariseTopology(scene);
+    QJsonArray shells;
+    for (size_t k = 0; k < t.shells.size(); ++k) {
+        const ShellState& s = t.shells[k];
+        QJsonObject o{{QStringLiteral("id"), qint64(s.shell.value)},
+                      {QStringLiteral("faces"), s.faces},
+                      {QStringLiteral("recordedClosed"), scene.topology.shells[k].closed},
+                      {QStringLiteral("closed"), s.closed},
+                      {QStringLiteral("openEdges"), s.openEdges},
+                      {QStringLiteral("largestGap"), s.largestGap}};
+        if (s.solid >= 0)
+            o.insert(QStringLiteral("solid"), s.solid);
+        shells.append(o);
+    }
+    QJsonArray open;
+    for (const SeamGap& g : t.gaps)
+        if (g.open())
+            open.append(QJsonObject{{QStringLiteral("edge"), qint64(g.edge.value)},
+                                    {QStringLiteral("faceA"), qint64(g.faceA.value)},
+                                    {QStringLiteral("faceB"), qint64(g.faceB.value)},
+                                    {QStringLiteral("gap"), g.gap},
+                                    {QStringLiteral("tolerance"), g.tolerance},
+                                    {QStringLiteral("where"), vec(g.where)}});
+    double largest = 0.0;
+    for (const SeamGap& g : t.gaps)
+        largest = std::max(largest, g.gap);
+    return QJsonObject{{QStringLiteral("sharedEdges"), int(t.gaps.size())},
+                       {QStringLiteral("openEdges"), open},
+                       {QStringLiteral("largestGap"), largest},
+                       {QStringLiteral("shells"), shells}};
+}
+
+QString topologyText(const Scene& scene) {
+    if (scene.topology.empty())
+        return QStringLiteral("topology: none (loose faces)\n");
+    const TopologySummary t = summariseTopology(scene);
+    QString out = QStringLiteral("topology: %1 shared edge(s), %2 open; %3 shell(s)\n")
+                      .arg(t.gaps.size())
+                      .arg(t.open)
+                      .arg(t.shells.size());
+    const auto name = [&scene](SurfaceId id) {
+        for (const Surface& s : scene.surfaces)
+            if (s.id == id)
+                return QStringLiteral("%1 \"%2\"").arg(id.value).arg(s.name);
+        return QString::number(id.value);
+    };
+    for (size_t k = 0; k < t.shells.size(); ++k) {
+        const ShellState& s = t.shells[k];
+        QString state = s.closed ? QStringLiteral("closed") : QStringLiteral("open");
+        if (!scene.topology.shells[k].closed)
+            state += QStringLiteral(" (not closed as recorded)");
+        else if (s.openEdges > 0)
+            state += QStringLiteral(" (%1 seam(s) apart, largest gap %2)")
+                         .arg(s.openEdges)
+                         .arg(s.largestGap, 0, 'g', 3);
+        out += QStringLiteral("  shell %1: %2 face(s)%3, %4\n")
+                   .arg(s.shell.value)
+                   .arg(s.faces)
+                   .arg(s.solid >= 0 ? QStringLiteral(", solid %1").arg(s.solid) : QString())
+                   .arg(state);
+    }
+    for (const SeamGap& g : t.gaps)
+        if (g.open())
+            out += QStringLiteral("  edge %1 between surfaces %2 and %3 open: gap %4 (tolerance "
+                                  "%5) at %6\n")
+                       .arg(g.edge.value)
+                       .arg(name(g.faceA), name(g.faceB))
+                       .arg(g.gap, 0, 'g', 4)
+                       .arg(g.tolerance, 0, 'g', 3)
+                       .arg(text(g.where));
+    return out;
+}
+
 QJsonObject toJson(const QString& file, const Scene& scene) {
     QJsonArray surfaces;
     for (const Surface& s : scene.surfaces) {
@@ -105,6 +200,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
     QJsonObject root{{QStringLiteral("file"), file},
                      {QStringLiteral("surfaces"), surfaces},
                      {QStringLiteral("lights"), lights},
+                     {QStringLiteral("topology"), topologyJson(scene)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"),
@@ -153,6 +249,7 @@ QString toText(const QString& file, const Scene& scene) {
                        .arg(s.outsideAlongNormal ? QStringLiteral("along Su x Sv")
                                                  : QStringLiteral("against Su x Sv"));
     }
+    out += topologyText(scene);
     for (size_t k = 0; k < scene.lights.size(); ++k)
         out += QStringLiteral("light %1: %2 %3\n")
                    .arg(k + 1)
@@ -173,7 +270,8 @@ int runInfo(const QStringList& args) {
     parser.setApplicationDescription(
         QStringLiteral("Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
                        "degrees, control-point "
-                       "counts, knot ranges, trim loops, partitions), lights and camera."));
+                       "counts, knot ranges, trim loops, partitions), the shared edges and shells "
+                       "kept from a B-rep import (which seams are open), lights and camera."));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
     parser.addOption(json);
     parser.addPositionalArgument(

@@ -48,6 +48,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui);
 int runBench(const QStringList& args, const std::function<bool()>& startGui);
 /// knotwork, hidden: the child process model/cad/cadprocess.h runs (kw::kReadCadVerb).
 int runReadCad(const QStringList& args);
+/// knotwork, hidden: the CAD writer's child process (kw::kWriteCadVerb).
+int runWriteCad(const QStringList& args);
 
 // ---- Helpers shared by subcommands (cli_util.cpp, in every executable).
 

@@ -18,6 +18,7 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QMessageBox>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
@@ -171,24 +172,29 @@ int runEditor(int argc, char** argv) {
         return cli::kExitBadInput;
     }
     const QString file = parser.positionalArguments().value(0);
+    bool importAtStart = false;
     if (!file.isEmpty()) {
         // Fail before any window (or Qt platform) appears, with the loader's one-line message.
-        // A CAD file is not a project: say where it is read instead of "not valid JSON".
-        // (Importing it here would need the import's progress dialog and message boxes before
-        // the window exists; `render` and `info` read it directly.)
+        // A CAD file is read as File > Import reads it, once the window is up (its progress
+        // dialog and report need the window); here only what needs no reading is checked.
         if (const CadFormat f = cadFormatFromPath(file);
             f != CadFormat::Knot && f != CadFormat::Unknown) {
-            cli::printError(QStringLiteral("%1: a %2 file, not a .knot project: open the editor "
-                                           "and use File > Import..., or convert it with "
-                                           "'knotwork convert %1 OUT.knot' (render and info "
-                                           "read it as it is)")
-                                .arg(file, cadFormatName(f)));
-            return cli::kExitBadInput;
-        }
-        QString error;
-        if (!readKnotFile(file, &error)) {
-            cli::printError(error);
-            return cli::kExitBadInput;
+            if (!QFileInfo(file).isFile()) {
+                cli::printError(QStringLiteral("%1: no such file").arg(file));
+                return cli::kExitBadInput;
+            }
+            if (f != CadFormat::Obj && !occtAvailable()) {
+                cli::printError(QStringLiteral("%1: cannot read %2: %3")
+                                    .arg(file, cadFormatName(f), occtUnavailableMessage()));
+                return cli::kExitBadInput;
+            }
+            importAtStart = true;
+        } else {
+            QString error;
+            if (!readKnotFile(file, &error)) {
+                cli::printError(error);
+                return cli::kExitBadInput;
+            }
         }
     }
     if (parser.isSet(shot) && file.isEmpty() && !parser.isSet(demo)) {
@@ -217,7 +223,11 @@ int runEditor(int argc, char** argv) {
     MainWindow window;
     if (windowSize.isValid())
         window.resize(windowSize);
-    if (!file.isEmpty() && !window.openFile(file))
+    // A CAD file is imported before a screenshot (which needs its scene), else once the window
+    // shows, with Import's progress and report; a failed import leaves an empty editor open.
+    if (!file.isEmpty() && importAtStart && parser.isSet(shot) && !window.importFile(file))
+        return cli::kExitBadInput;
+    if (!file.isEmpty() && !importAtStart && !window.openFile(file))
         return cli::kExitBadInput;
     if (parser.isSet(demo))
         buildDemo(window);
@@ -234,6 +244,8 @@ int runEditor(int argc, char** argv) {
     window.show();
     // After a crash: offer the autosaved edits once the window is up (the question is its child).
     QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });
+    if (importAtStart)
+        QTimer::singleShot(0, &window, [&window, file] { window.importFile(file); });
     return QApplication::exec();
 }
 

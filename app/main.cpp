@@ -3,6 +3,7 @@
 // the editor, render and bench to knotwork-gl / knotwork-bench (app/launch.h).
 #include "app/commands.h"
 #include "app/launch.h"
+#include "model/cad/cadimport.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
 #include "model/inputcheck.h"
@@ -95,9 +96,11 @@ bool isEditorInvocation(int argc, char** argv) {
         return true;
     if (first.startsWith(QLatin1Char('-')))
         return false;
-    if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb))
+    if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb) ||
+        first == QLatin1String(kw::kWriteCadVerb))
         return false;
-    return QFileInfo::exists(first) || first.endsWith(QLatin1String(".knot"), Qt::CaseInsensitive);
+    // A model file by its name (the editor then says when it is missing).
+    return QFileInfo::exists(first) || kw::cadFormatFromPath(first) != kw::CadFormat::Unknown;
 }
 
 /// Replaces this process with `program`; returns the exit code only when that fails.
@@ -147,6 +150,10 @@ int main(int argc, char** argv) {
     if (first == QLatin1String(kw::kReadCadVerb)) { // hidden: the CAD reader's child process
         rest.prepend(QStringLiteral("knotwork ") + first);
         return runReadCad(rest);
+    }
+    if (first == QLatin1String(kw::kWriteCadVerb)) { // hidden: the CAD writer's child process
+        rest.prepend(QStringLiteral("knotwork ") + first);
+        return runWriteCad(rest);
     }
     if (const Command* command = findCommand(first)) {
         rest.prepend(QStringLiteral("knotwork ") + command->name);

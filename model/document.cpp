@@ -149,6 +149,8 @@ bool Document::resetScene(Scene scene, QString* error) {
     Q_EMIT sceneAboutToBeReset();
     m_scene = std::move(scene);
     m_markedFaces.clear();
+    m_takenWithSurface.clear();
+    m_takenWithLoop.clear();
     for (const Surface& s : m_scene.surfaces)
         if (s.solid >= 0)
             m_markedFaces.insert(s.id, MarkedFace{s.solid, shapeDigest(s)});
@@ -181,6 +183,10 @@ bool Document::insertSurface(int index, Surface surface) {
     const std::uint64_t rev = nextRevision();
     m_revisions.insert(m_revisions.begin() + index, Revisions{rev, rev, rev, rev});
     m_scene.nextId = std::max(m_scene.nextId, maxId + 1);
+    if (const auto taken = m_takenWithSurface.constFind(id); taken != m_takenWithSurface.cend()) {
+        restoreTopology(m_scene, *taken); // the undo of the surface's removal
+        m_takenWithSurface.erase(taken);
+    }
     Q_EMIT surfaceInserted(id, index);
     closeSolid(id); // the undo of a face's removal
     return true;
@@ -192,6 +198,8 @@ bool Document::removeSurface(SurfaceId id) {
         return false;
     const int solid = m_scene.surfaces[size_t(index)].solid;
     Q_EMIT surfaceAboutToBeRemoved(id, index);
+    if (TopologyPiece taken = takeSurfaceTopology(m_scene.topology, id); !taken.empty())
+        m_takenWithSurface.insert(id, std::move(taken));
     m_scene.surfaces.erase(m_scene.surfaces.begin() + index);
     m_revisions.erase(m_revisions.begin() + index);
     nextRevision(); // the scene changed, though no surface's revisions did
@@ -308,9 +316,15 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
         idUsed(m_scene, loop.id.value) || s->trims.size() >= size_t(kMaxTrimLoops))
         return false;
     Q_EMIT trimLoopAboutToBeInserted(id, index);
-    const std::uint32_t loopId = loop.id.value;
+    const TrimLoopId loopId = loop.id;
+    const int curves = int(loop.curves.size());
     s->trims.insert(s->trims.begin() + index, std::move(loop));
-    m_scene.nextId = std::max(m_scene.nextId, loopId + 1);
+    if (const auto taken = m_takenWithLoop.constFind(loopId);
+        taken != m_takenWithLoop.cend() && taken->loopCurves == curves) {
+        restoreTopology(m_scene, *taken);
+        m_takenWithLoop.erase(taken);
+    }
+    m_scene.nextId = std::max(m_scene.nextId, loopId.value + 1);
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
     const int solid = std::exchange(s->solid, -1);
     Q_EMIT trimLoopInserted(id, index);
@@ -326,6 +340,13 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     if (index < 0)
         return false;
     Q_EMIT trimLoopAboutToBeRemoved(id, index);
+    // A removal that takes no edge keeps what an earlier one took: ReplaceTrimLoop's undo
+    // removes the edited loop (no edges, when its curve count differed) before it inserts the
+    // original, which gets its edges back.
+    if (TopologyPiece taken = takeLoopTopology(m_scene.topology, id, loop,
+                                               int(s->trims[size_t(index)].curves.size()));
+        !taken.edges.empty())
+        m_takenWithLoop.insert(loop, std::move(taken));
     s->trims.erase(s->trims.begin() + index);
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
     const int solid = std::exchange(s->solid, -1);

@@ -73,6 +73,8 @@ public:
 
     /// index in [0, size]; surface.id valid and unused; geometry valid.
     bool insertSurface(int index, Surface surface);
+    /// Also takes the surface out of the scene's topology (its edges, its place in its shell);
+    /// inserting it again (the undo) puts the record back as it was.
     bool removeSurface(SurfaceId id);
     bool setName(SurfaceId id, const QString& name);
     /// Moves the listed control points (NurbsSurface::index) to new positions.
@@ -88,6 +90,8 @@ public:
     bool setHidden(SurfaceId id, bool hidden);
     /// index in [0, loop count]; loop.id valid and unused; every curve valid.
     bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
+    /// Also takes the edges with a side on the loop out of the scene's topology; inserting the
+    /// loop again with as many curves (an undo, an edit of its curves) puts them back.
     bool removeTrimLoop(SurfaceId id, TrimLoopId loop);
     /// Moves one trim control point; refused when its loop would no longer be closed.
     bool setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
@@ -137,6 +141,15 @@ private:
         size_t shape = 0;
     };
     QHash<SurfaceId, MarkedFace> m_markedFaces;
+    /// What the removal of a surface or a trim loop took out of the scene's topology (edges
+    /// with a side on it, its place in its shell, the shells' `closed`), by the id of what was
+    /// removed: ids are never reused, so only the undo of that removal brings the same id back,
+    /// and then restoreTopology puts the record back exactly. A loop is put back with its edges
+    /// when it has as many curves as the removed one (ReplaceTrimLoop edits a loop by removing
+    /// and inserting it: its curves stay the same edges, and kw::seamGaps measures how far
+    /// an edit moved them).
+    QHash<SurfaceId, TopologyPiece> m_takenWithSurface;
+    QHash<TrimLoopId, TopologyPiece> m_takenWithLoop;
     /// A fresh value of the process-wide revision counter, kept as the document's revision().
     std::uint64_t nextRevision();
 

@@ -90,6 +90,39 @@ QJsonObject surfaceToJson(const Surface& s) {
     return o;
 }
 
+QJsonObject edgeToJson(const SharedEdge& e) {
+    QJsonArray sides;
+    for (const EdgeUse& side : e.sides)
+        sides.append(QJsonObject{{QStringLiteral("surface"), qint64(side.surface.value)},
+                                 {QStringLiteral("loop"), qint64(side.loop.value)},
+                                 {QStringLiteral("curve"), side.curve},
+                                 {QStringLiteral("reversed"), side.reversed}});
+    return QJsonObject{{QStringLiteral("id"), qint64(e.id.value)},
+                       {QStringLiteral("tolerance"), e.tolerance},
+                       {QStringLiteral("sides"), sides}};
+}
+
+QJsonObject shellToJson(const Shell& shell) {
+    QJsonArray faces;
+    for (SurfaceId f : shell.faces)
+        faces.append(qint64(f.value));
+    QJsonObject o{{QStringLiteral("id"), qint64(shell.id.value)},
+                  {QStringLiteral("closed"), shell.closed},
+                  {QStringLiteral("faces"), faces}};
+    if (shell.solid >= 0)
+        o.insert(QStringLiteral("solid"), shell.solid);
+    return o;
+}
+
+QJsonObject topologyToJson(const Topology& t) {
+    QJsonArray edges, shells;
+    for (const SharedEdge& e : t.edges)
+        edges.append(edgeToJson(e));
+    for (const Shell& shell : t.shells)
+        shells.append(shellToJson(shell));
+    return QJsonObject{{QStringLiteral("edges"), edges}, {QStringLiteral("shells"), shells}};
+}
+
 QJsonObject lightToJson(const Light& l) {
     QJsonObject o;
     o.insert(QStringLiteral("kind"), l.kind == Light::Kind::Point ? QStringLiteral("point")
@@ -128,6 +161,8 @@ QByteArray sceneToJson(const Scene& scene) {
     root.insert(QStringLiteral("lights"), lights);
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
+    if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
+        root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
     if (!scene.display.partitionMode.isEmpty())
         root.insert(QStringLiteral("display"),
                     QJsonObject{{QStringLiteral("partitionMode"), scene.display.partitionMode},

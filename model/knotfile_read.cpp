@@ -417,6 +417,78 @@ Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) 
     return s;
 }
 
+bool asBool(const QJsonValue& v, const QString& path) {
+    if (!v.isBool())
+        fail(path, QStringLiteral("expected true or false, found ") + describe(v));
+    return v.toBool();
+}
+
+std::uint32_t asId(const QJsonValue& v, const QString& path) {
+    return std::uint32_t(asInteger(v, path, 1, 0xFFFFFFFEll));
+}
+
+SharedEdge readEdge(const QJsonObject& o, const QString& path) {
+    SharedEdge e;
+    e.id = EdgeId{asId(required(o, path, "id"), member(path, "id"))};
+    e.tolerance =
+        asNumberIn(required(o, path, "tolerance"), member(path, "tolerance"), 0.0, HUGE_VAL);
+    const QString sidesPath = member(path, "sides");
+    const QJsonArray sides = asArrayOfSize(required(o, path, "sides"), sidesPath, 2,
+                                           QStringLiteral("2 sides, one per face"));
+    for (qsizetype k = 0; k < 2; ++k) {
+        const QString p = element(sidesPath, k);
+        const QJsonObject side = asObject(sides[k], p);
+        EdgeUse& use = e.sides[size_t(k)];
+        use.surface = SurfaceId{asId(required(side, p, "surface"), member(p, "surface"))};
+        use.loop = TrimLoopId{asId(required(side, p, "loop"), member(p, "loop"))};
+        use.curve =
+            int(asInteger(required(side, p, "curve"), member(p, "curve"), 0, kMaxLoopCurves - 1));
+        use.reversed = asBool(required(side, p, "reversed"), member(p, "reversed"));
+    }
+    return e;
+}
+
+Shell readShell(const QJsonObject& o, const QString& path) {
+    Shell shell;
+    shell.id = ShellId{asId(required(o, path, "id"), member(path, "id"))};
+    shell.closed = asBool(required(o, path, "closed"), member(path, "closed"));
+    if (o.contains(QLatin1String("solid")))
+        shell.solid = int(
+            asInteger(o.value(QLatin1String("solid")), member(path, "solid"), 0, kMaxKnotSurfaces));
+    const QString facesPath = member(path, "faces");
+    const QJsonArray faces = asArray(required(o, path, "faces"), facesPath);
+    for (qsizetype k = 0; k < faces.size(); ++k)
+        shell.faces.push_back(SurfaceId{asId(faces[k], element(facesPath, k))});
+    return shell;
+}
+
+// Read after the surfaces, whose ids and loops it names: each reference is checked with
+// kw::topologyProblem, the rule Document and the importers use, and a bad one named by its path.
+Topology readTopology(const QJsonObject& o, const QString& path) {
+    Topology t;
+    const QString edgesPath = member(path, "edges");
+    const QJsonArray edges = asArray(required(o, path, "edges"), edgesPath);
+    if (edges.size() > kMaxSharedEdges)
+        fail(edgesPath, QStringLiteral("%1 shared edges, more than the limit %2")
+                            .arg(edges.size())
+                            .arg(kMaxSharedEdges));
+    for (qsizetype k = 0; k < edges.size(); ++k) {
+        const QString p = element(edgesPath, k);
+        t.edges.push_back(readEdge(asObject(edges[k], p), p));
+    }
+    const QString shellsPath = member(path, "shells");
+    const QJsonArray shells = asArray(required(o, path, "shells"), shellsPath);
+    if (shells.size() > kMaxShells)
+        fail(
+            shellsPath,
+            QStringLiteral("%1 shells, more than the limit %2").arg(shells.size()).arg(kMaxShells));
+    for (qsizetype k = 0; k < shells.size(); ++k) {
+        const QString p = element(shellsPath, k);
+        t.shells.push_back(readShell(asObject(shells[k], p), p));
+    }
+    return t;
+}
+
 Light readLight(const QJsonObject& o, const QString& path) {
     Light l;
     const QString kindPath = member(path, "kind");
@@ -542,6 +614,12 @@ Scene readScene(const QJsonObject& root) {
         scene.nextId = std::uint32_t(asInteger(root.value(QLatin1String("nextId")),
                                                QStringLiteral("$.nextId"), 1, 0xFFFFFFFFll));
     scene.nextId = std::max(scene.nextId, ids.maxId() + 1);
+    if (root.contains(QLatin1String("topology"))) {
+        const QString path = QStringLiteral("$.topology");
+        scene.topology = readTopology(asObject(root.value(QLatin1String("topology")), path), path);
+        if (const auto bad = topologyProblem(scene))
+            fail(path + QLatin1Char('.') + bad->place, bad->reason);
+    }
     // The member checks above name the exact place; this is the same rule Document, the
     // importers and the writers apply, so what reads here also opens, edits and saves.
     if (const QString why = sceneError(scene); !why.isEmpty())

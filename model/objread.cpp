@@ -7,6 +7,7 @@
 
 #include <QFile>
 #include <QFileInfo>
+#include <QRegularExpression>
 #include <QUrl>
 #include <algorithm>
 #include <cmath>
@@ -137,6 +138,9 @@ class ObjParser {
 public:
     ObjParser(const QString& fileName, ImportReport& report) : m_file(fileName), m_report(report) {}
     Scene parse(const QByteArray& text);
+    /// The line of the '# knotwork edge' or 'shell' line a topology problem's place names
+    /// ("edges[3]...", "shells[0]..."), 0 when none.
+    int topologyLine(const QString& place) const;
 
 private:
     void statement(const QList<QByteArray>& t, const QByteArray& rest, int line);
@@ -170,7 +174,20 @@ private:
     int m_polygons = 0, m_ignored = 0, m_surfaceNumber = 0;
     std::optional<std::uint32_t> m_nextId;
     int m_announced = -1, m_announcedLine = 0;
+    int m_edgesAnnounced = -1, m_shellsAnnounced = -1, m_topologyLine = 0;
+    std::vector<int> m_edgeLines, m_shellLines;
 };
+
+int ObjParser::topologyLine(const QString& place) const {
+    static const QRegularExpression re(QStringLiteral("^(edges|shells)\\[(\\d+)\\]"));
+    const QRegularExpressionMatch m = re.match(place);
+    if (!m.hasMatch())
+        return m_topologyLine;
+    const std::vector<int>& lines =
+        m.captured(1) == QLatin1String("edges") ? m_edgeLines : m_shellLines;
+    const size_t k = m.captured(2).toULongLong();
+    return k < lines.size() ? lines[k] : m_topologyLine;
+}
 
 Scene ObjParser::parse(const QByteArray& text) {
     const QList<QByteArray> lines = text.split('\n');
@@ -210,6 +227,14 @@ Scene ObjParser::parse(const QByteArray& text) {
                                              "surface(s): is it cut short?")
                                   .arg(m_announced)
                                   .arg(m_surfaceNumber));
+    if (m_edgesAnnounced >= 0 && (m_scene.topology.edges.size() != size_t(m_edgesAnnounced) ||
+                                  m_scene.topology.shells.size() != size_t(m_shellsAnnounced)))
+        fail(m_topologyLine, QStringLiteral("'# knotwork topology %1 %2' but the file holds %3 "
+                                            "edge(s) and %4 shell(s): is it cut short?")
+                                 .arg(m_edgesAnnounced)
+                                 .arg(m_shellsAnnounced)
+                                 .arg(m_scene.topology.edges.size())
+                                 .arg(m_scene.topology.shells.size()));
     if (m_polygons > 0)
         m_report.warnings << QStringLiteral("%1: %2 polygon statement(s) (f, l, p) ignored: "
                                             "Knotwork imports free-form surfaces only")
@@ -315,6 +340,45 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
             fail(line, QStringLiteral("knotwork solid: expected normal or reversed, found '%1'")
                            .arg(quoteInput(side)));
         m_meta.outsideAlongNormal = side == "normal";
+    } else if (key == "topology") {
+        m_edgesAnnounced = static_cast<int>(integer(3, 0, kMaxSharedEdges));
+        m_shellsAnnounced = static_cast<int>(integer(4, 0, kMaxShells));
+        m_topologyLine = line;
+    } else if (key == "edge") {
+        SharedEdge e;
+        e.id = EdgeId{static_cast<std::uint32_t>(integer(3, 1, 4294967294.0))};
+        e.tolerance = num(4);
+        if (!(e.tolerance >= 0.0))
+            fail(line, QStringLiteral("knotwork edge: tolerance %1 is below 0")
+                           .arg(QString::fromUtf8(t[4])));
+        for (int k = 0; k < 2; ++k) {
+            EdgeUse& side = e.sides[size_t(k)];
+            const int at = 5 + 4 * k;
+            side.surface = SurfaceId{static_cast<std::uint32_t>(integer(at, 1, 4294967294.0))};
+            side.loop = TrimLoopId{static_cast<std::uint32_t>(integer(at + 1, 1, 4294967294.0))};
+            side.curve = static_cast<int>(integer(at + 2, 0, kMaxLoopCurves - 1));
+            const QByteArray way = t.value(at + 3);
+            if (way != "forward" && way != "reversed")
+                fail(line, QStringLiteral("knotwork edge: expected forward or reversed, found '%1'")
+                               .arg(QString::fromUtf8(way)));
+            side.reversed = way == "reversed";
+        }
+        m_scene.topology.edges.push_back(e);
+        m_edgeLines.push_back(line);
+    } else if (key == "shell") {
+        Shell shell;
+        shell.id = ShellId{static_cast<std::uint32_t>(integer(3, 1, 4294967294.0))};
+        const QByteArray closed = t.value(4);
+        if (closed != "closed" && closed != "open")
+            fail(line, QStringLiteral("knotwork shell: expected closed or open, found '%1'")
+                           .arg(QString::fromUtf8(closed)));
+        shell.closed = closed == "closed";
+        shell.solid = static_cast<int>(integer(5, -1, kMaxSurfaces));
+        for (int i = 6; i < t.size(); ++i)
+            shell.faces.push_back(
+                SurfaceId{static_cast<std::uint32_t>(integer(i, 1, 4294967294.0))});
+        m_scene.topology.shells.push_back(std::move(shell));
+        m_shellLines.push_back(line);
     } else if (key == "loops") {
         for (int i = 3; i < t.size(); ++i)
             m_meta.loopIds.push_back(static_cast<std::uint32_t>(integer(i, 1, 4294967294.0)));
@@ -637,6 +701,14 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
     // valid scene (model/validation.h), so an accepted file always saves and reopens.
     for (const QString& line : closeSceneTrimLoops(out))
         local.warnings << QStringLiteral("%1: %2").arg(fileName, line);
+    // The topology's references, named by the line that makes them.
+    if (const auto bad = topologyProblem(out)) {
+        error = QStringLiteral("%1:%2: knotwork topology: %3: %4")
+                    .arg(fileName)
+                    .arg(parser.topologyLine(bad->place))
+                    .arg(bad->place, bad->reason);
+        return false;
+    }
     if (const QString why = sceneError(out); !why.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(fileName, why);
         return false;

@@ -78,8 +78,8 @@ void writeCurve2(QByteArray& out, const NurbsCurve2& c, int& vpCount) {
 QByteArray writeObj(const Scene& scene) {
     QByteArray out;
     out += "# Knotwork free-form OBJ (OBJ 3.0: cstype, deg, surf, parm, curv2, trim, hole).\n";
-    out += "# Lines '# knotwork ...' keep Knotwork's ids, names, partitions, materials, lights\n";
-    out += "# and camera; other readers ignore them as comments.\n";
+    out += "# Lines '# knotwork ...' keep Knotwork's ids, names, partitions, materials, lights,\n";
+    out += "# camera and topology; other readers ignore them as comments.\n";
     out += "# knotwork nextid " + QByteArray::number(scene.nextId) + '\n';
     // The count lets the reader tell a file cut at an element boundary from a complete one.
     out += "# knotwork surfaces " + QByteArray::number(scene.surfaces.size()) + '\n';
@@ -163,6 +163,28 @@ QByteArray writeObj(const Scene& scene) {
             out += '\n';
         }
         out += "end\n";
+    }
+    // The topology a CAD import kept (docs/FILE_FORMAT.md, Topology), after the surfaces it
+    // names; the counts first, so that a file cut among these lines is refused.
+    const Topology& t = scene.topology;
+    if (!t.empty()) {
+        out += "\n# knotwork topology " + QByteArray::number(qsizetype(t.edges.size())) + ' ' +
+               QByteArray::number(qsizetype(t.shells.size())) + '\n';
+        for (const SharedEdge& e : t.edges) {
+            out += "# knotwork edge " + QByteArray::number(e.id.value) + ' ' + num(e.tolerance);
+            for (const EdgeUse& side : e.sides)
+                out += ' ' + QByteArray::number(side.surface.value) + ' ' +
+                       QByteArray::number(side.loop.value) + ' ' + QByteArray::number(side.curve) +
+                       (side.reversed ? " reversed" : " forward");
+            out += '\n';
+        }
+        for (const Shell& shell : t.shells) {
+            out += "# knotwork shell " + QByteArray::number(shell.id.value) +
+                   (shell.closed ? " closed " : " open ") + QByteArray::number(shell.solid);
+            for (SurfaceId f : shell.faces)
+                out += ' ' + QByteArray::number(f.value);
+            out += '\n';
+        }
     }
     return out;
 }

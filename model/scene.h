@@ -1,9 +1,10 @@
 // Scene: the authored data of a Knotwork document as plain values (no derived data, no Qt objects).
 #pragma once
 
+#include "model/ids.h"
 #include "model/nurbs.h"
+#include "model/topology.h"
 
-#include <QHashFunctions>
 #include <QString>
 #include <compare>
 #include <cstdint>
@@ -11,27 +12,6 @@
 #include <vector>
 
 namespace kw {
-
-/// Typed handle of a surface, unique within a document and stable across undo/redo.
-struct SurfaceId {
-    std::uint32_t value = 0;
-    bool isValid() const { return value != 0; }
-    auto operator<=>(const SurfaceId&) const = default;
-};
-
-/// Typed handle of a trim loop, unique within a document.
-struct TrimLoopId {
-    std::uint32_t value = 0;
-    bool isValid() const { return value != 0; }
-    auto operator<=>(const TrimLoopId&) const = default;
-};
-
-inline size_t qHash(SurfaceId id, size_t seed = 0) noexcept {
-    return ::qHash(id.value, seed);
-}
-inline size_t qHash(TrimLoopId id, size_t seed = 0) noexcept {
-    return ::qHash(id.value, seed);
-}
 
 /// One control point of one surface: (i, j) as in NurbsSurface::index.
 struct ControlPointRef {
@@ -143,6 +123,9 @@ struct Camera {
 /// The whole authored document. Ids are unique; nextId is above every id in use.
 struct Scene {
     std::vector<Surface> surfaces;
+    /// Which trim curves are one B-rep edge and which faces one shell, as a CAD import found
+    /// them (model/topology.h); empty for anything else.
+    Topology topology;
     std::vector<Light> lights = defaultLights();
     Camera camera;
     DisplaySettings display;

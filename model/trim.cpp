@@ -212,7 +212,12 @@ QStringList closeSceneTrimLoops(Scene& scene) {
                             [](const NurbsCurve2& c) { return curveValidationError(c).empty(); });
             if (!valid)
                 continue;
-            for (const QString& line : closeTrimLoop(loop, trimTolerance(s.geometry)))
+            std::vector<int> newIndex;
+            const QStringList closed = closeTrimLoop(loop, trimTolerance(s.geometry), &newIndex);
+            // A bridge inserted before curve k renumbers it and those after it; the topology's
+            // sides must keep naming the same curves.
+            renumberLoopCurves(scene.topology, s.id, loop.id, newIndex);
+            for (const QString& line : closed)
                 lines << QStringLiteral("surface '%1', trim loop %2: %3")
                              .arg(s.name)
                              .arg(loop.id.value)
@@ -249,8 +254,10 @@ std::vector<TrimPointRef> trimPointWithCoincidentEnds(const Surface& surface,
     return refs;
 }
 
-QStringList closeTrimLoop(TrimLoop& loop, double snap) {
+QStringList closeTrimLoop(TrimLoop& loop, double snap, std::vector<int>* newIndex) {
     QStringList done;
+    if (newIndex)
+        newIndex->clear();
     if (loop.curves.empty())
         return done;
     const double tolerance = trimLoopClosureTolerance(loop);
@@ -285,6 +292,8 @@ QStringList closeTrimLoop(TrimLoop& loop, double snap) {
             join(out.back(), cur, bridge, k + 1);
             out.insert(out.end(), bridge.begin(), bridge.end());
         }
+        if (newIndex)
+            newIndex->push_back(int(out.size()));
         out.push_back(std::move(cur));
     }
     std::vector<NurbsCurve2> bridge;

@@ -58,10 +58,13 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
 /// control point onto the earlier curve's end (its start, for a curve with a clamped start);
 /// any other gap gets a straight degree-1 curve across it. Returns one line per gap closed
 /// ("gap of G before curve K snapped" / "... bridged by a straight segment"), empty when the
-/// loop was already closed. Precondition: every curve valid (curveValidationError).
-QStringList closeTrimLoop(TrimLoop& loop, double snap);
+/// loop was already closed. `newIndex`, when given, gets the index each curve has after the
+/// bridges were inserted (curve k is now curve (*newIndex)[k]). Precondition: every curve valid
+/// (curveValidationError).
+QStringList closeTrimLoop(TrimLoop& loop, double snap, std::vector<int>* newIndex = nullptr);
 
-/// closeTrimLoop for every loop of `scene` at trimTolerance of its surface, as an import ends
+/// closeTrimLoop for every loop of `scene` at trimTolerance of its surface (the topology's sides
+/// renumbered with the curves they name), as an import ends
 /// (CAD and OBJ readers): returns one line per gap closed, "surface 'NAME', trim loop ID:
 /// <closeTrimLoop's line>". A loop with an invalid curve (curveValidationError) is left as it
 /// is, for kw::sceneError to name.

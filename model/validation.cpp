@@ -216,6 +216,8 @@ QString sceneError(const Scene& scene) {
             .arg(maxId);
     QString e = lightsError(scene.lights);
     if (e.isEmpty())
+        e = topologyError(scene);
+    if (e.isEmpty())
         e = cameraError(scene.camera);
     if (e.isEmpty())
         e = displayError(scene.display);

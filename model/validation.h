@@ -55,7 +55,8 @@ QString trimLoopError(const TrimLoop& loop);
 /// loop ids unique within the surface. Ids against other surfaces are the scene's business.
 QString surfaceError(const Surface& surface);
 /// A whole scene: at most kMaxSurfaces surfaces, each valid; surface and loop ids unique
-/// across the scene (one counter) and below nextId; lights and camera valid.
+/// across the scene (one counter) and below nextId; lights valid; the topology's references
+/// valid (kw::topologyError); camera and display settings valid.
 QString sceneError(const Scene& scene);
 
 } // namespace kw

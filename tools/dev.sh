@@ -24,6 +24,7 @@ packages=(
   fonts-dejavu-core
   libocct-data-exchange-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libtbb-dev
+  occt-draw
   clang libclang-rt-14-dev
 )
 

@@ -309,6 +309,10 @@ void MainWindow::buildFileMenu() {
     // Explicit: QKeySequence::SaveAs is empty on some X11 desktops.
     addAction(file, QStringLiteral("actionSaveAs"), tr("Save &As…"),
               QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), [this] { saveAs(); });
+    addAction(file, QStringLiteral("actionExport"), tr("E&xport…"), QKeySequence(),
+              [this] { exportDialog(false); });
+    addAction(file, QStringLiteral("actionExportSelected"), tr("Export Se&lected…"),
+              QKeySequence(), [this] { exportDialog(true); });
     addAction(file, QStringLiteral("actionExportImage"), tr("&Export Image…"),
               QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportImage(); });
     file->addSeparator();

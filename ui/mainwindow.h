@@ -83,7 +83,15 @@ public:
     /// and return false. Does not ask about unsaved changes; false while another import runs.
     bool importFile(const QString& path);
     bool isImporting() const { return m_importProgress != nullptr; }
+    /// File ▸ Export… (`selectedOnly`: Export Selected…): writes the document, or its selected
+    /// surfaces, as STEP or IGES (kw::exportCadFile, in the CAD child process, on a worker thread
+    /// behind a progress dialog whose Cancel stops it) or OBJ. The document keeps its path and
+    /// its modified state. Open seams and other remarks are shown in a report when done. On
+    /// failure shows the message (nothing is written); on cancel says so in the status bar.
+    bool exportModel(const QString& path, bool selectedOnly = false);
     /// Writes the document to `path` (atomic); on failure shows the message and returns false.
+    /// A STEP, IGES or OBJ name is exported instead (exportModel), a BREP name refused: a
+    /// project is never written under another format's name.
     bool saveFile(const QString& path);
     /// Offers the recovery files of editors that crashed (Autosave::orphans, newest first)
     /// through Dialogs::askRecover. Restoring replaces the document with the autosaved scene,
@@ -131,6 +139,7 @@ private:
     void newDocument();
     void openDialog();
     void importDialog();
+    void exportDialog(bool selectedOnly);
     bool save();
     bool saveAs();
     void exportImage();

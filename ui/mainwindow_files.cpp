@@ -1,5 +1,6 @@
 // MainWindow: file handling — New, Open, Save, Save As (also of imported scenes), recent files,
 // export, drops, title.
+#include "model/cad/cadimport.h"
 #include "model/knotfile.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
@@ -63,7 +64,27 @@ bool MainWindow::openFile(const QString& path) {
     return true;
 }
 
+bool isExportPath(const QString& path); // mainwindow_export.cpp
+
 bool MainWindow::saveFile(const QString& path) {
+    // A project is JSON: never under a CAD or mesh name, which other programs would misread.
+    if (isExportPath(path)) {
+        if (!exportModel(path))
+            return false;
+        statusBar()->showMessage(tr("Exported %1 (Save As with a %2 name exports); the document "
+                                    "is still the project %3")
+                                     .arg(QFileInfo(path).fileName(),
+                                          cadFormatName(cadFormatFromPath(path)), displayName()),
+                                 10000);
+        return true;
+    }
+    if (const CadFormat f = cadFormatFromPath(path); f != CadFormat::Knot && f != CadFormat::Unknown) {
+        showError(tr("Cannot save file"),
+                  tr("%1: Knotwork does not write %2 files; save the project as .knot, or "
+                     "export STEP, IGES or OBJ")
+                      .arg(path, cadFormatName(f)));
+        return false;
+    }
     // The view's camera goes into the file; it is not an edit (no undo step, not "modified"),
     // as in other editors, so it is copied into the document only here.
     Camera camera = m_viewport->cameraController().camera();

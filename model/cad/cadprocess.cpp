@@ -2,6 +2,7 @@
 // (progress, time limit, Cancel) and reads back the scene; the child side writes it.
 #include "model/cad/cadprocess.h"
 
+#include "model/cad/cadexport.h"
 #include "model/cad/cadprecheck.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadtempdir.h"
@@ -165,25 +166,11 @@ QString outOfTime(const QString& path, const QString& reader, double seconds) {
 
 // Runs the child with QProcess and watches it: progress every kPollMs, Cancel, time limit.
 // False with `error` when it was stopped.
-bool watchQProcess(const QString& path, const QString& reader, const QString& dir, long long memory,
-                   const MeshDeflection* deflection, TaggedMeshSet* mesh,
-                   const ImportProgress& progress, ChildEnd& end, QString& error) {
-    const double seconds = cadTimeLimitSeconds(QFileInfo(path).size(), deflection && mesh);
+bool watchQProcess(const QString& path, const QString& reader, const QStringList& childArgs,
+                   double seconds, const ImportProgress& progress, ChildEnd& end, QString& error,
+                   const QString& cancelText) {
     QProcess child;
     child.setProgram(cadReaderExecutable());
-    // The child's own deadline (a second after ours) holds should this process stop watching.
-    QStringList childArgs{QString::fromLatin1(kReadCadVerb),
-                          path,
-                          dir,
-                          QStringLiteral("--max-memory-mb"),
-                          QString::number(memory >> 20),
-                          QStringLiteral("--parent-pid"),
-                          QString::number(::getpid()),
-                          QStringLiteral("--deadline-s"),
-                          QString::number(int(std::ceil(seconds)) + 1)};
-    if (deflection && mesh)
-        childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
-                  << QString::number(deflection->angularDegrees, 'g', 17);
     child.setArguments(childArgs);
     // Between fork and exec: the child dies with this process (SIGKILL when it ends, even by
     // kill -9), and if this process already ended before the request, the child does not run.
@@ -221,7 +208,7 @@ bool watchQProcess(const QString& path, const QString& reader, const QString& di
         keepTail(end.err);
         // Called every poll, not only on news: the editor's Cancel must not wait for OCCT.
         if (progress && !progress(lines.done, lines.total))
-            return stop(cancelled(path));
+            return stop(cancelText);
         if (clock.elapsed() > seconds * 1000.0)
             return stop(outOfTime(path, reader, seconds));
     }
@@ -360,7 +347,22 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
             return std::nullopt;
         }
         adoptedDir.emplace(dirPath);
-        if (!watchQProcess(path, reader, dirPath, memory, deflection, mesh, progress, end, error))
+        const double seconds = cadTimeLimitSeconds(QFileInfo(path).size(), deflection && mesh);
+        // The child's own deadline (a second after ours) holds should this process stop
+        // watching.
+        QStringList childArgs{QString::fromLatin1(kReadCadVerb),
+                              path,
+                              dirPath,
+                              QStringLiteral("--max-memory-mb"),
+                              QString::number(memory >> 20),
+                              QStringLiteral("--parent-pid"),
+                              QString::number(::getpid()),
+                              QStringLiteral("--deadline-s"),
+                              QString::number(int(std::ceil(seconds)) + 1)};
+        if (deflection && mesh)
+            childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
+                      << QString::number(deflection->angularDegrees, 'g', 17);
+        if (!watchQProcess(path, reader, childArgs, seconds, progress, end, error, cancelled(path)))
             return std::nullopt;
     }
     if (end.crashed) {
@@ -402,6 +404,116 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
         return std::nullopt;
     }
     return result;
+#endif
+}
+
+bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                   ExportReport& report, QString& error, const ImportProgress& progress) {
+    report = ExportReport{};
+    const CadFormat format = cadFormatFromPath(path);
+    if (format != CadFormat::Step && format != CadFormat::Iges) {
+        error = QStringLiteral("%1: not a STEP or IGES name (expected .step, .stp, .iges or .igs)")
+                    .arg(path);
+        return false;
+    }
+    if (const QString bad = exportOptionsError(options); !bad.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, bad);
+        return false;
+    }
+    if (scene.surfaces.empty()) {
+        error = QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path);
+        return false;
+    }
+    const QFileInfo folder(QFileInfo(path).absolutePath());
+    if (!folder.isDir() || !folder.isWritable()) {
+        error = QStringLiteral("%1: cannot write there: the folder %2")
+                    .arg(path, folder.isDir() ? QStringLiteral("is not writable")
+                                              : QStringLiteral("does not exist"));
+        return false;
+    }
+#ifndef KW_HAVE_OCCT
+    Q_UNUSED(progress);
+    error = QStringLiteral("%1: cannot write %2: Knotwork was built without OpenCASCADE")
+                .arg(path, cadFormatName(format));
+    return false;
+#else
+    const QString writer = QStringLiteral("the %1 writer").arg(cadFormatName(format));
+    QTemporaryDir dir;
+    if (!dir.isValid()) {
+        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                    .arg(path, writer, dir.errorString());
+        return false;
+    }
+    // The scene goes over bit for bit (handover.h), as imports come back.
+    ImportResult handover;
+    handover.scene = scene;
+    for (int k = 0; k < int(scene.surfaces.size()); ++k)
+        handover.sourceFaces.push_back(k + 1);
+    const QByteArray block = encodeImportHandover(handover);
+    const QString scenePath = dir.filePath(QStringLiteral("scene.kwi"));
+    QString why;
+    if (!saveBytesAtomically(scenePath, block, &why)) {
+        error = QStringLiteral("%1: cannot hand the scene to %2: %3").arg(path, writer, why);
+        return false;
+    }
+    const long long memory = cadMemoryLimitBytes();
+    QStringList args{QString::fromLatin1(kWriteCadVerb),
+                     scenePath,
+                     path,
+                     dir.path(),
+                     QStringLiteral("--max-memory-mb"),
+                     QString::number(memory >> 20),
+                     QStringLiteral("--step-schema"),
+                     options.stepSchema,
+                     QStringLiteral("--tolerance"),
+                     QString::number(options.tolerance, 'g', 17)};
+    if (options.igesFaces)
+        args << QStringLiteral("--iges-faces");
+    if (options.requireClosed)
+        args << QStringLiteral("--require-closed");
+    ChildEnd end;
+    if (!watchQProcess(path, writer, args, cadTimeLimitSeconds(block.size(), true), progress, end,
+                       error, QStringLiteral("%1: export cancelled").arg(path)))
+        return false;
+    if (end.crashed) {
+        error = QStringLiteral("%1 crashed on %2 (%3); nothing was written (its memory limit was "
+                               "%4 MB; KNOTWORK_CAD_MEMORY_MB sets another)")
+                    .arg(writer, path, signalText(end.signal))
+                    .arg(memory >> 20);
+        return false;
+    }
+    QFile text(dir.filePath(QStringLiteral("export.txt")));
+    const bool reported = text.open(QIODevice::ReadOnly) && report.fromText(text.readAll());
+    if (end.exitCode != 0) {
+        const QList<QByteArray> lines = end.err.trimmed().split('\n');
+        error = lines.isEmpty() || lines.back().trimmed().isEmpty()
+                    ? QStringLiteral("%1: %2 failed with exit code %3")
+                          .arg(path, writer)
+                          .arg(end.exitCode)
+                    : QString::fromLocal8Bit(lines.back().trimmed());
+        return false;
+    }
+    if (!reported) {
+        error = QStringLiteral("%1: %2 gave no readable report").arg(path, writer);
+        return false;
+    }
+    // The destination is written here, not by the child: a child killed half-way leaves
+    // nothing beside it.
+    QFile bytes(dir.filePath(QStringLiteral("export.out")));
+    if (!bytes.open(QIODevice::ReadOnly)) {
+        error = QStringLiteral("%1: %2 gave no file: %3").arg(path, writer, bytes.errorString());
+        return false;
+    }
+    return saveFileAtomically(
+        path,
+        [&](QIODevice& out) {
+            QByteArray chunk;
+            while (!(chunk = bytes.read(1 << 20)).isEmpty())
+                if (out.write(chunk) != chunk.size())
+                    return false;
+            return bytes.error() == QFileDevice::NoError;
+        },
+        &error);
 #endif
 }
 

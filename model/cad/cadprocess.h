@@ -14,6 +14,12 @@ namespace kw {
 
 /// The verb of the knotwork executable that reads a CAD file for a parent (not in --help).
 constexpr const char* kReadCadVerb = "__read-cad";
+/// The verb that writes a STEP or IGES file for a parent (exportCadFile, cadexport.h):
+/// `knotwork __write-cad SCENE.kwi OUT DIR [--step-schema S] [--iges-faces] [--require-closed]
+/// [--tolerance T] [--max-memory-mb N]` reads the scene hand-over SCENE.kwi (handover.h) and
+/// leaves the file's bytes in DIR/export.out and its report in DIR/export.txt; OUT names the
+/// destination (format, messages, STEP header), which the parent writes.
+constexpr const char* kWriteCadVerb = "__write-cad";
 
 /// The time a file of `bytes` may take: 10 s plus 10 s per MB to read it, twice that when it is
 /// also meshed (`mesh`: BRepMesh takes about as long as the read), or the value of the

@@ -12,7 +12,7 @@ namespace {
 // "KWIMPORT", then the version: bump it with any change below. The end mark catches a block
 // cut at a field boundary.
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
-constexpr std::uint32_t kVersion = 2;           // 2: Surface::solid, outsideAlongNormal
+constexpr std::uint32_t kVersion = 3; // 2: Surface::solid, outsideAlongNormal; 3: Scene::topology
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -24,7 +24,11 @@ static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
 static_assert(sizeof(Light) == 104, "update the CAD hand-over");
 static_assert(sizeof(Camera) == 88, "update the CAD hand-over");
 static_assert(sizeof(DisplaySettings) == 32, "update the CAD hand-over");
-static_assert(sizeof(Scene) == 176, "update the CAD hand-over");
+static_assert(sizeof(Scene) == 224, "update the CAD hand-over");
+static_assert(sizeof(EdgeUse) == 16, "update the CAD hand-over");
+static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
+static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
+static_assert(sizeof(Topology) == 48, "update the CAD hand-over");
 static_assert(sizeof(Material) == 56, "update the CAD hand-over");
 
 class Writer {
@@ -194,6 +198,59 @@ Surface readSurface(Reader& r) {
     return s;
 }
 
+void writeTopology(Writer& w, const Topology& t) {
+    w.value(std::uint32_t(t.edges.size()));
+    for (const SharedEdge& e : t.edges) {
+        w.value(e.id.value);
+        w.value(e.tolerance);
+        for (const EdgeUse& side : e.sides) {
+            w.value(side.surface.value);
+            w.value(side.loop.value);
+            w.value(std::int32_t(side.curve));
+            w.value(std::uint8_t(side.reversed));
+        }
+    }
+    w.value(std::uint32_t(t.shells.size()));
+    for (const Shell& shell : t.shells) {
+        w.value(shell.id.value);
+        w.value(std::uint8_t(shell.closed));
+        w.value(std::int32_t(shell.solid));
+        std::vector<std::uint32_t> faces;
+        for (SurfaceId f : shell.faces)
+            faces.push_back(f.value);
+        w.array(faces);
+    }
+}
+
+Topology readTopology(Reader& r) {
+    Topology t;
+    // An edge is 38 bytes (id, tolerance, two sides of 13), a shell at least 13.
+    t.edges.resize(r.count(38, "shared edge count"));
+    for (SharedEdge& e : t.edges) {
+        e.id.value = r.value<std::uint32_t>("shared edge id");
+        e.tolerance = r.value<double>("shared edge tolerance");
+        for (EdgeUse& side : e.sides) {
+            side.surface.value = r.value<std::uint32_t>("shared edge surface");
+            side.loop.value = r.value<std::uint32_t>("shared edge loop");
+            side.curve = r.value<std::int32_t>("shared edge curve");
+            side.reversed = r.flag("shared edge reversed flag");
+        }
+        if (r.failed())
+            break;
+    }
+    t.shells.resize(r.count(13, "shell count"));
+    for (Shell& shell : t.shells) {
+        shell.id.value = r.value<std::uint32_t>("shell id");
+        shell.closed = r.flag("shell closed flag");
+        shell.solid = r.value<std::int32_t>("shell solid");
+        for (std::uint32_t f : r.array<std::uint32_t>("shell faces"))
+            shell.faces.push_back(SurfaceId{f});
+        if (r.failed())
+            break;
+    }
+    return t;
+}
+
 } // namespace
 
 QByteArray encodeImportHandover(const ImportResult& result) {
@@ -205,6 +262,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.value(std::uint32_t(scene.surfaces.size()));
     for (const Surface& s : scene.surfaces)
         writeSurface(w, s);
+    writeTopology(w, scene.topology);
     w.value(std::uint32_t(scene.lights.size()));
     for (const Light& l : scene.lights) {
         w.value(std::uint8_t(l.kind == Light::Kind::Point));
@@ -251,6 +309,7 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
         if (r.failed())
             break;
     }
+    scene.topology = readTopology(r);
     scene.lights.resize(r.count(1 + 4 * sizeof(glm::dvec3), "light count"));
     for (Light& l : scene.lights) {
         l.kind = r.flag("light kind") ? Light::Kind::Point : Light::Kind::Directional;

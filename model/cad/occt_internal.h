@@ -11,6 +11,7 @@
 #include <Standard_Handle.hxx>
 #include <Standard_Transient.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <XSControl_Reader.hxx>
@@ -48,17 +49,43 @@ using AfterImport =
 std::optional<ImportResult> importShape(const QString& path, CadFormat format, QString& error,
                                         const ImportProgress& progress, const AfterImport& after);
 
+/// The B-rep edge one trim curve was made from: the edge of the file's face (not of a converted
+/// copy), whether the curve runs against the edge's direction (the wire uses it REVERSED), and
+/// the larger of its tolerance and that of the converted copy the curve was taken from.
+struct CurveEdge {
+    TopoDS_Edge edge;
+    bool reversed = false;
+    double tolerance = 0.0;
+};
+/// Per trim loop of a converted face, per curve of the loop.
+using FaceEdges = std::vector<std::vector<CurveEdge>>;
+
 /// Converts a face: its surface to a kw::NurbsSurface in OCCT's own (u, v) parameterisation
 /// (B-spline surfaces as they are, made non-periodic; Bezier and analytic surfaces converted
 /// exactly by GeomConvert / BRepBuilderAPI_NurbsConvert) and its wires (outer first) to trim
 /// loops of 2D B-spline p-curves, edges reversed as the wire uses them. When
 /// `dropNaturalBoundary` (the file gave the surface no boundary of its own) and the face's only
 /// wire runs along its surface's natural boundary, the face gets no loop; otherwise every wire
-/// is kept as the file states it. Loop ids are taken from `nextId`.
+/// is kept as the file states it. Loop ids are taken from `nextId`. `edges`, when given, gets
+/// the edge of each trim curve, parallel to out.trims.
 /// Returns false with `why` set when the face cannot be represented (degree above kMaxDegree,
 /// no p-curve, conversion failure); OCCT exceptions are the caller's to catch.
 bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
-                 bool dropNaturalBoundary, QString& why, QStringList& warnings);
+                 bool dropNaturalBoundary, QString& why, QStringList& warnings,
+                 FaceEdges* edges = nullptr);
+
+/// Records in scene.topology what the imported faces share (model/topology.h): every edge of
+/// `shape` of which exactly two trim curves were made (`faceEdges[k]` is convertFace's `edges`
+/// for scene.surfaces[k]), with its number in TopExp::MapShapes(shape, TopAbs_EDGE) as id and
+/// the largest tolerance of the edge and its converted copies; and every shell of `shape` with
+/// an imported face (id: its number in TopExp::MapShapes(shape, TopAbs_SHELL)), closed when
+/// BRepCheck finds it closed, all its faces were imported and each of its edges is recorded,
+/// with the solid number markClosedSolids gave its faces (so it runs after that). A face in two
+/// shells is kept in the first; an edge of more than two curves (non-manifold) is not recorded
+/// and a line in `warnings` counts such edges. OCCT exceptions are the caller's to catch.
+void recordTopology(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                    const std::vector<int>& sourceFaces, const std::vector<FaceEdges>& faceEdges,
+                    Scene& scene, QStringList& warnings);
 
 /// Up to `count` parameter points (u, v) inside `face`'s wires (`inside` is the face's
 /// BRepTopAdaptor_FClass2d): an odd stride over a 5 x 5 grid of its (u, v) bounds, which spreads

@@ -17,6 +17,7 @@
 #include <Standard_Version.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Wire.hxx>
 #include <cmath>
@@ -207,8 +208,10 @@ std::vector<gp_Pnt2d> parametersInside(const TopoDS_Face& face,
 }
 
 bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextId,
-                 bool dropNaturalBoundary, QString& why, QStringList& warnings) {
+                 bool dropNaturalBoundary, QString& why, QStringList& warnings, FaceEdges* edges) {
     TopoDS_Face face = original;
+    // The converted copy's edges by the file's: the topology names the file's edges.
+    TopTools_DataMapOfShapeShape fileEdge;
     const Handle(Geom_Surface) geom = BRep_Tool::Surface(face);
     if (geom.IsNull()) {
         why = QStringLiteral("face has no surface");
@@ -224,6 +227,11 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
             return false;
         }
         face = TopoDS::Face(convert.Shape());
+        for (TopExp_Explorer e(original, TopAbs_EDGE); e.More(); e.Next()) {
+            const TopoDS_Shape& copy = convert.ModifiedShape(e.Current());
+            if (!copy.IsNull() && !fileEdge.IsBound(copy))
+                fileEdge.Bind(copy, e.Current());
+        }
         bs = asBSpline(BRep_Tool::Surface(face));
         if (bs.IsNull()) {
             why = QStringLiteral("a %1 did not convert to a B-spline surface").arg(typeName(geom));
@@ -258,8 +266,10 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
     const Interval du = surfaceDomainU(out.geometry), dv = surfaceDomainV(out.geometry);
     const double uvSize = std::hypot(du.last - du.first, dv.last - dv.first);
     std::vector<TrimLoop> loops;
+    FaceEdges loopEdges;
     for (const TopoDS_Wire& wire : wires) {
         TrimLoop loop;
+        std::vector<CurveEdge> curveEdges;
         int edges = 0;
         for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next())
             ++edges;
@@ -279,6 +289,11 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
                 return false;
             }
             loop.curves.push_back(toNurbs(bc));
+            const TopoDS_Shape* file = fileEdge.Seek(edge);
+            curveEdges.push_back(
+                CurveEdge{file ? TopoDS::Edge(*file) : edge, edge.Orientation() == TopAbs_REVERSED,
+                          std::max(BRep_Tool::Tolerance(edge),
+                                   file ? BRep_Tool::Tolerance(TopoDS::Edge(*file)) : 0.0)});
         }
         if (explored != edges)
             warnings << QStringLiteral("a wire of %1 edges could only be followed over %2")
@@ -308,9 +323,13 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
             }
         }
         loops.push_back(std::move(loop));
+        loopEdges.push_back(std::move(curveEdges));
     }
-    if (dropNaturalBoundary && loops.size() == 1 && isNaturalBoundary(loops.front(), out.geometry))
+    if (dropNaturalBoundary && loops.size() == 1 &&
+        isNaturalBoundary(loops.front(), out.geometry)) {
         loops.clear(); // the whole domain: an untrimmed surface
+        loopEdges.clear();
+    }
     // The p-curves must lie in the surface's domain (files overshoot by tolerances, ~1e-5 of
     // it); a loop well outside means the parameterisations disagree: report it.
     const TrimRegion region = makeTrimRegion(loops, 1e-4 * uvSize);
@@ -328,6 +347,8 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
     for (TrimLoop& l : loops)
         l.id = TrimLoopId{nextId++};
     out.trims = std::move(loops);
+    if (edges)
+        *edges = std::move(loopEdges);
     return true;
 }
 

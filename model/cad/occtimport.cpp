@@ -341,6 +341,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
     }
 
     Scene& scene = result.scene;
+    std::vector<occt::FaceEdges> faceEdges; // parallel to scene.surfaces
     for (int k = 1; k <= faces.Extent(); ++k) {
         if (progress &&
             !progress(kTransferSteps + (kSteps - kTransferSteps) * (k - 1) / faces.Extent(),
@@ -353,6 +354,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         QString why;
         QStringList warnings;
         QString name;
+        occt::FaceEdges edges;
         bool ok = false;
         try {
             OCC_CATCH_SIGNALS
@@ -367,7 +369,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             // minute of approximation: such a face is skipped before they see it.
             why = occt::edgeRangeProblem(face);
             ok = why.isEmpty() &&
-                 occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings);
+                 occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings, &edges);
             if (ok) {
                 surface.id = SurfaceId{scene.nextId};
                 scene.nextId = ids;
@@ -386,6 +388,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         }
         surface.name = label;
         scene.surfaces.push_back(std::move(surface));
+        faceEdges.push_back(std::move(edges));
         result.sourceFaces.push_back(k);
         ++result.report.facesImported;
     }
@@ -418,6 +421,18 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             s.solid = -1;
         result.report.warnings << QStringLiteral("the check for closed solids failed: %1")
                                       .arg(occtMessageText(e.GetMessageString()));
+    }
+    // Which trim curves are one edge, which faces one shell: kept for the writers and for
+    // the seam check after edits (model/topology.h, model/seamgaps.h).
+    try {
+        OCC_CATCH_SIGNALS
+        recordTopology(read.shape, faces, result.sourceFaces, faceEdges, scene,
+                       result.report.warnings);
+    } catch (const Standard_Failure& e) {
+        scene.topology = Topology{};
+        result.report.warnings << QStringLiteral("the record of shared edges and shells failed: "
+                                                 "%1; the faces are kept as loose faces")
+                                      .arg(QString::fromUtf8(e.GetMessageString()));
     }
     if (after && !after(read.shape, faces, result, error))
         return std::nullopt;

@@ -1,0 +1,113 @@
+// knotwork __write-cad SCENE.kwi OUT DIR [options]: the child process that writes a STEP or IGES
+// file for a parent (model/cad/cadprocess.h, kWriteCadVerb), with OpenCASCADE loaded only here,
+// from libknotwork_occt_write.so. It leaves the bytes in DIR/export.out and the report in
+// DIR/export.txt; the parent writes OUT. Hidden from --help.
+#include "app/commands.h"
+#include "app/plugin.h"
+#include "model/cad/cadprocess.h"
+#include "model/cad/handover.h"
+#include "model/cad/occtexport.h"
+#include "model/savefile.h"
+
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFile>
+#include <cstdio>
+#include <sys/resource.h>
+
+namespace kw::cli {
+
+int runWriteCad(const QStringList& args) {
+    // args[0] is "knotwork __write-cad"; the parent builds the line.
+    bool usage = args.size() < 4;
+    long long memoryMb = 0;
+    ExportOptions options;
+    for (qsizetype k = 4; k < args.size() && !usage;) {
+        bool ok = true;
+        if (args[k] == QLatin1String("--max-memory-mb") && k + 1 < args.size()) {
+            memoryMb = args[k + 1].toLongLong(&ok);
+            k += 2;
+        } else if (args[k] == QLatin1String("--step-schema") && k + 1 < args.size()) {
+            options.stepSchema = args[k + 1];
+            k += 2;
+        } else if (args[k] == QLatin1String("--tolerance") && k + 1 < args.size()) {
+            options.tolerance = args[k + 1].toDouble(&ok);
+            k += 2;
+        } else if (args[k] == QLatin1String("--iges-faces")) {
+            options.igesFaces = true;
+            ++k;
+        } else if (args[k] == QLatin1String("--require-closed")) {
+            options.requireClosed = true;
+            ++k;
+        } else {
+            ok = false;
+        }
+        usage = !ok;
+    }
+    if (usage) {
+        printError(QStringLiteral("%1: expected SCENE.kwi OUT DIR [--step-schema S] [--iges-faces] "
+                                  "[--require-closed] [--tolerance T] [--max-memory-mb N] (used "
+                                  "by knotwork itself to write CAD files in a child process)")
+                       .arg(args.value(0)));
+        return kExitUsage;
+    }
+    const QString scenePath = args[1], out = args[2], dir = args[3];
+    if (memoryMb > 0) {
+        const rlim_t bytes = rlim_t(memoryMb) << 20;
+        const rlimit limit{bytes, bytes};
+        if (::setrlimit(RLIMIT_AS, &limit) != 0)
+            printError(QStringLiteral("%1: cannot set the memory limit").arg(args.value(0)));
+    }
+    QFile in(scenePath);
+    QString why;
+    std::optional<ImportResult> scene;
+    if (in.open(QIODevice::ReadOnly))
+        scene = decodeImportHandover(in.readAll(), why);
+    else
+        why = in.errorString();
+    if (!scene) {
+        printError(QStringLiteral("%1: cannot read the scene to write: %2").arg(out, why));
+        return kExitBadInput;
+    }
+    QString error;
+    const auto write = reinterpret_cast<OcctExportFunction>(app::resolveModuleSymbol(
+        QString::fromLatin1(kOcctWriteModuleName), kOcctExportSymbol, &error));
+    if (!write) {
+        printError(QStringLiteral("%1: cannot write %2: %3")
+                       .arg(out, cadFormatName(cadFormatFromPath(out)), error));
+        return kExitBadInput;
+    }
+    QElapsedTimer sinceLine;
+    int lastDone = -1;
+    const ImportProgress progress = [&](int done, int total) {
+        if (done == lastDone || (done < total && sinceLine.isValid() && sinceLine.elapsed() < 20))
+            return true;
+        lastDone = done;
+        sinceLine.start();
+        const QByteArray line = progressLine(done, total);
+        std::fwrite(line.constData(), 1, size_t(line.size()), stdout);
+        std::fflush(stdout);
+        return true; // the parent cancels by killing this process
+    };
+    QByteArray bytes;
+    ExportReport report;
+    const bool ok = write(&scene->scene, out, &options, &bytes, &report, &error, &progress);
+    // The report goes back also when the export is refused (--require-closed lists the seams).
+    // A failure to leave the results for the parent (a full disk) still names OUT.
+    why.clear();
+    const bool left =
+        saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.txt")), report.toText(),
+                            &why) &&
+        (!ok || saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.out")), bytes, &why));
+    if (ok && !left)
+        error = QStringLiteral("%1: not written: the writer could not keep the file in the "
+                               "temporary folder (%2)")
+                    .arg(out, why);
+    if (!ok || !left) {
+        printError(error);
+        return kExitBadInput;
+    }
+    return kExitOk;
+}
+
+} // namespace kw::cli

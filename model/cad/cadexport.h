@@ -1,0 +1,61 @@
+// CAD export: a scene written as STEP or IGES by OpenCASCADE in a child process
+// (`knotwork __write-cad`, docs/EXCHANGE.md), the same way IGES/STEP/BREP are read.
+#pragma once
+
+#include "model/cad/cadimport.h"
+#include "model/scene.h"
+
+#include <QString>
+#include <QStringList>
+
+namespace kw {
+
+/// How a scene is written.
+struct ExportOptions {
+    /// STEP application protocol: "ap203", "ap214" (default) or "ap242".
+    QString stepSchema = QStringLiteral("ap214");
+    /// IGES: false writes a B-rep (MSBO, type 186, with shells and faces 514/510), true writes
+    /// every face as a trimmed surface (type 144).
+    bool igesFaces = false;
+    /// Refuse to write (an error, no file) when any face does not end in a closed solid.
+    bool requireClosed = false;
+    /// Sewing tolerance in model units; 0: the largest edge tolerance the import recorded
+    /// (Scene::topology), at least 1e-5 of the scene's diagonal (and 1e-7).
+    double tolerance = 0.0;
+};
+
+/// What an export wrote and found.
+struct ExportReport {
+    int faces = 0;      ///< faces written
+    int solids = 0;     ///< closed shells written as solids
+    int openShells = 0; ///< shells written open
+    int looseFaces = 0; ///< faces sewn to no other face
+    int freeEdges = 0;  ///< edges used by one face only (0 for a model of closed solids)
+    /// One line per open seam: "seam between face 'A' and face 'B' is open: largest gap G
+    /// (model units)", then other remarks (faces written as loose faces, ...).
+    QStringList warnings;
+    double seconds = 0.0;
+    /// Multi-line summary: counts, then every warning.
+    QString summary() const;
+    /// The report as lines for the child's hand-over, and back. fromText returns false on a
+    /// malformed block.
+    QByteArray toText() const;
+    bool fromText(const QByteArray& text);
+};
+
+/// Checks `options` (schema name); empty when valid, else the reason.
+QString exportOptionsError(const ExportOptions& options);
+
+/// Writes `scene` to `path` (.step/.stp or .iges/.igs) through OpenCASCADE in a child process
+/// (the parent hands the scene over as a binary block in a temporary folder; a crash, the time
+/// limit or Cancel in OCCT never reaches the caller). Every surface becomes a face with its
+/// exact B-spline surface and trims (occtbuild.h); faces are sewn so that an edge two faces
+/// share is written once; closed shells become solids, the rest open shells or loose faces.
+/// The file is written under a temporary name and renamed: on any failure `path` is untouched.
+/// Returns false with `error` "<path>: <reason>" when the scene is empty, a surface is refused,
+/// options.requireClosed and a face is not in a closed solid, the writer fails, crashes, runs out
+/// of time or is cancelled ("<path>: export cancelled").
+bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                   ExportReport& report, QString& error, const ImportProgress& progress = {});
+
+} // namespace kw

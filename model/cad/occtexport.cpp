@@ -1,0 +1,596 @@
+// STEP and IGES through OpenCASCADE: faces built exactly, sewn, closed shells made solids,
+// written with reals at full precision under a temporary name.
+#include "model/cad/occtexport.h"
+
+#include "model/cad/occtbuild.h"
+#include "model/savefile.h"
+#include "model/seamgaps.h"
+
+#include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepGProp.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <IGESBasic_Name.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <IGESData_IGESEntity.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <IGESData_IGESWriter.hxx>
+#include <IGESSelect_WorkLibrary.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <OSD.hxx>
+#include <Precision.hxx>
+#include <QElapsedTimer>
+#include <QFileInfo>
+#include <QHash>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <StepData_Protocol.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
+#include <StepShape_AdvancedFace.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeInteger.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TransferBRep.hxx>
+#include <TransferBRep_ShapeMapper.hxx>
+#include <Transfer_FinderProcess.hxx>
+#include <XSControl_TransferWriter.hxx>
+#include <XSControl_WorkSession.hxx>
+#include <algorithm>
+#include <mutex>
+#include <sstream>
+
+namespace kw {
+namespace {
+
+// Progress in 1000 steps: faces 0..600, sewing 600..800, writing 800..1000.
+constexpr int kSteps = 1000;
+// Free edges of two faces closer than this share of the scene's diagonal are reported as one
+// open seam; farther ones are boundaries of an open shell.
+constexpr double kSeamPairing = 0.05;
+constexpr int kMaxSeamLines = 50;
+
+void setUpOcctOnce() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+        Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+        STEPControl_Controller::Init();
+        IGESControl_Controller::Init();
+    });
+}
+
+QString failure(const Standard_Failure& e) {
+    return QStringLiteral("%1 (%2)").arg(QString::fromUtf8(e.GetMessageString()),
+                                         QString::fromLatin1(e.DynamicType()->Name()));
+}
+
+const char* stepSchemaValue(const QString& schema) {
+    if (schema == QLatin1String("ap203"))
+        return "AP203";
+    if (schema == QLatin1String("ap242"))
+        return "AP242DIS";
+    return "AP214IS";
+}
+
+// Reals as 17 significant digits (enough for any double to read back as itself): OCCT's default
+// (12 digits) would round every pole. Not with OCCT's zero suppression, which looks for the
+// exponent in the first 16 characters only and mangles longer numbers; the writers' buffers
+// (24 characters) hold "-d.dddddddddddddddE-dd", which is why two-digit exponents are kept
+// (twoDigitExponents).
+void exactReals(Interface_FloatWriter& w) {
+    w.SetFormat("%.16E");
+}
+
+// The scene with every magnitude below 1e-99 written as 0 (there is no room for a three-digit
+// exponent; a length of 1e-99 model units is zero for any CAD system), counted in `flushed`.
+// False with `why` for a magnitude of 1e100 or more, which no writer here can hold.
+bool twoDigitExponents(Scene& scene, int& flushed, QString& why) {
+    bool ok = true;
+    const auto fix = [&](double& x) {
+        const double a = std::abs(x);
+        if (a > 0 && a < 1e-99) {
+            x = 0.0;
+            ++flushed;
+        } else if (a >= 1e100) {
+            ok = false;
+        }
+    };
+    for (Surface& s : scene.surfaces) {
+        for (glm::dvec3& p : s.geometry.points)
+            fix(p.x), fix(p.y), fix(p.z);
+        for (double& w : s.geometry.weights)
+            fix(w);
+        for (double& k : s.geometry.knotsU)
+            fix(k);
+        for (double& k : s.geometry.knotsV)
+            fix(k);
+        for (TrimLoop& l : s.trims)
+            for (NurbsCurve2& c : l.curves) {
+                for (glm::dvec2& p : c.points)
+                    fix(p.x), fix(p.y);
+                for (double& w : c.weights)
+                    fix(w);
+                for (double& k : c.knots)
+                    fix(k);
+            }
+        if (!ok) {
+            why = QStringLiteral("surface '%1' has a coordinate, weight or knot of magnitude "
+                                 "1e100 or more, which STEP and IGES writers cannot hold")
+                      .arg(s.name);
+            return false;
+        }
+    }
+    return true;
+}
+
+// The report's line for an open seam.
+QString seamLine(const QString& a, const QString& b, double gap) {
+    return QStringLiteral("seam between face '%1' and face '%2' is open: largest gap %3 (model "
+                          "units)")
+        .arg(a, b)
+        .arg(gap, 0, 'g', 6);
+}
+
+// A free edge sampled for the seam report.
+struct FreeEdge {
+    TopoDS_Edge edge;
+    int face = 0; // index into the names
+    std::vector<gp_Pnt> samples;
+    Bnd_Box box;
+    double length = 0.0;
+};
+
+// Largest distance from a's samples to edge b (its 3D curve over its range; the ends when a
+// sample projects outside it).
+double oneSidedGap(const FreeEdge& a, const FreeEdge& b) {
+    double first = 0.0, last = 0.0;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(b.edge, first, last);
+    double worst = 0.0;
+    for (const gp_Pnt& p : a.samples) {
+        double d = std::min(p.Distance(b.samples.front()), p.Distance(b.samples.back()));
+        if (!c.IsNull()) {
+            GeomAPI_ProjectPointOnCurve proj(p, c, first, last);
+            if (proj.NbPoints() > 0)
+                d = std::min(d, proj.LowerDistance());
+        } else {
+            for (const gp_Pnt& q : b.samples)
+                d = std::min(d, p.Distance(q));
+        }
+        worst = std::max(worst, d);
+    }
+    return worst;
+}
+
+// Free edges of `shape` (used by one face, not degenerated, not a seam of its face).
+std::vector<FreeEdge> freeEdges(const TopoDS_Shape& shape,
+                                const TopTools_DataMapOfShapeInteger& ids) {
+    TopTools_IndexedDataMapOfShapeListOfShape edgeFaces;
+    TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edgeFaces);
+    std::vector<FreeEdge> out;
+    for (int k = 1; k <= edgeFaces.Extent(); ++k) {
+        const TopoDS_Edge& e = TopoDS::Edge(edgeFaces.FindKey(k));
+        const TopTools_ListOfShape& faces = edgeFaces(k);
+        if (faces.Extent() != 1 || BRep_Tool::Degenerated(e))
+            continue;
+        const TopoDS_Face& f = TopoDS::Face(faces.First());
+        if (BRep_Tool::IsClosed(e, f))
+            continue;
+        FreeEdge fe;
+        fe.edge = e;
+        fe.face = ids.IsBound(f) ? ids.Find(f) : -1;
+        BRepAdaptor_Curve curve(e);
+        const double a = curve.FirstParameter(), b = curve.LastParameter();
+        for (int s = 0; s <= 24; ++s)
+            fe.samples.push_back(curve.Value(a + (b - a) * s / 24));
+        for (size_t s = 1; s < fe.samples.size(); ++s)
+            fe.length += fe.samples[s].Distance(fe.samples[s - 1]);
+        BRepBndLib::Add(e, fe.box);
+        out.push_back(std::move(fe));
+    }
+    return out;
+}
+
+// One line per pair of free edges of two faces that lie close together (an open seam, with its
+// largest gap); a count of the other free edges (boundaries of open shells).
+void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& names, double diagonal,
+                     ExportReport& report) {
+    std::vector<int> partner(edges.size(), -1);
+    std::vector<double> gap(edges.size(), 0.0);
+    const double reach = kSeamPairing * diagonal;
+    for (size_t i = 0; i < edges.size(); ++i) {
+        Bnd_Box box = edges[i].box;
+        box.Enlarge(reach);
+        double best = reach;
+        for (size_t j = 0; j < edges.size(); ++j) {
+            if (j == i || edges[j].face == edges[i].face || box.IsOut(edges[j].box))
+                continue;
+            const double g =
+                std::max(oneSidedGap(edges[i], edges[j]), oneSidedGap(edges[j], edges[i]));
+            // A gap as wide as a quarter of the shorter edge is not one seam pulled apart.
+            if (g < best && g < 0.25 * std::min(edges[i].length, edges[j].length)) {
+                best = g;
+                partner[i] = int(j);
+                gap[i] = g;
+            }
+        }
+    }
+    const auto name = [&](int face) {
+        return face >= 0 && face < names.size() ? names[face] : QStringLiteral("?");
+    };
+    int lines = 0, more = 0, boundary = 0;
+    for (size_t i = 0; i < edges.size(); ++i) {
+        const int j = partner[i];
+        if (j < 0) {
+            ++boundary;
+            continue;
+        }
+        // Each pair once: from the edge whose partner names it back, lower index first.
+        if (partner[size_t(j)] == int(i) && size_t(j) < i)
+            continue;
+        if (lines++ >= kMaxSeamLines) {
+            ++more;
+            continue;
+        }
+        report.warnings << seamLine(name(edges[i].face), name(edges[size_t(j)].face), gap[i]);
+    }
+    if (more > 0)
+        report.warnings << QStringLiteral("%1 more open seam(s)").arg(more);
+    if (boundary > 0)
+        report.warnings << QStringLiteral("%1 edge(s) bound an open shell (no face lies across "
+                                          "them)")
+                               .arg(boundary);
+}
+
+// Names the entities the writer made of each face.
+template <class EntityType>
+void nameEntities(const Handle(Transfer_FinderProcess) & fp, const TopoDS_Shape& shape,
+                  const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
+                  const std::function<void(const Handle(EntityType) &, const QString&)>& set) {
+    if (fp.IsNull())
+        return;
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(shape, TopAbs_FACE, faces);
+    for (int k = 1; k <= faces.Extent(); ++k) {
+        if (!ids.IsBound(faces(k)))
+            continue;
+        const QString& name = names[ids.Find(faces(k))];
+        if (name.isEmpty())
+            continue;
+        Handle(Standard_Transient) entity;
+        const Handle(TransferBRep_ShapeMapper) mapper = TransferBRep::ShapeMapper(fp, faces(k));
+        if (fp->FindTypedTransient(mapper, STANDARD_TYPE(EntityType), entity))
+            set(Handle(EntityType)::DownCast(entity), name);
+    }
+}
+
+QByteArray writeStep(const TopoDS_Shape& shape, const QString& path, const ExportOptions& options,
+                     const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
+                     QString& why) {
+    Interface_Static::SetCVal("write.step.schema", stepSchemaValue(options.stepSchema));
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    STEPControl_Writer writer;
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
+        why = QStringLiteral("OpenCASCADE's STEP writer could not transfer the shape");
+        return {};
+    }
+    nameEntities<StepShape_AdvancedFace>(
+        writer.WS()->TransferWriter()->FinderProcess(), shape, ids, names,
+        [](const Handle(StepShape_AdvancedFace) & f, const QString& name) {
+            f->SetName(new TCollection_HAsciiString(name.toUtf8().constData()));
+        });
+    const Handle(StepData_StepModel) model = writer.Model();
+    APIHeaderSection_MakeHeader header(model);
+    header.SetName(new TCollection_HAsciiString(QFileInfo(path).fileName().toUtf8().constData()));
+    header.SetOriginatingSystem(new TCollection_HAsciiString("Knotwork"));
+    const auto protocol = Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol());
+    StepData_StepWriter sw(model);
+    exactReals(sw.FloatWriter());
+    sw.SendModel(protocol);
+    std::ostringstream out;
+    if (!sw.Print(out)) {
+        why = QStringLiteral("OpenCASCADE's STEP writer failed");
+        return {};
+    }
+    return QByteArray::fromStdString(out.str());
+}
+
+QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options,
+                     const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
+                     QString& why) {
+    Interface_Static::SetCVal("write.iges.unit", "MM");
+    IGESControl_Writer writer("MM", options.igesFaces ? 0 : 1);
+    // A trimmed surface (144) has no orientation of its own: OCCT writes a reversed face's
+    // surface reversed. Every face goes as its surface runs, so the surfaces stay exact.
+    TopoDS_Shape toWrite = shape;
+    if (options.igesFaces) {
+        TopoDS_Compound faces;
+        BRep_Builder b;
+        b.MakeCompound(faces);
+        for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next())
+            b.Add(faces, e.Current().Oriented(TopAbs_FORWARD));
+        toWrite = faces;
+    }
+    if (!writer.AddShape(toWrite)) {
+        why = QStringLiteral("OpenCASCADE's IGES writer could not transfer the shape");
+        return {};
+    }
+    const Handle(IGESData_IGESModel) model = writer.Model();
+    // Short labels hold 8 characters: the whole name goes in a Name property (406 form 15),
+    // which readers prefer.
+    nameEntities<IGESData_IGESEntity>(
+        writer.TransferProcess(), toWrite, ids, names,
+        [&](const Handle(IGESData_IGESEntity) & e, const QString& name) {
+            const QByteArray utf8 = name.toUtf8();
+            e->SetLabel(new TCollection_HAsciiString(utf8.left(8).constData()));
+            Handle(IGESBasic_Name) property = new IGESBasic_Name;
+            property->Init(1, new TCollection_HAsciiString(utf8.constData()));
+            model->AddEntity(property);
+            e->AddProperty(property);
+        });
+    writer.ComputeModel();
+    IGESData_IGESWriter iw(model);
+    exactReals(iw.FloatWriter());
+    iw.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
+    std::ostringstream out;
+    if (!iw.Print(out)) {
+        why = QStringLiteral("OpenCASCADE's IGES writer failed");
+        return {};
+    }
+    return QByteArray::fromStdString(out.str());
+}
+
+} // namespace
+
+std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& path,
+                                          const ExportOptions& options, ExportReport& report,
+                                          QString& error, const ImportProgress& progress) {
+    QElapsedTimer timer;
+    timer.start();
+    const CadFormat format = cadFormatFromPath(path);
+    if (format != CadFormat::Step && format != CadFormat::Iges) {
+        error = QStringLiteral("%1: not a STEP (.step, .stp) or IGES (.iges, .igs) name").arg(path);
+        return std::nullopt;
+    }
+    if (const QString bad = exportOptionsError(options); !bad.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(path, bad);
+        return std::nullopt;
+    }
+    if (original.surfaces.empty()) {
+        error = QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path);
+        return std::nullopt;
+    }
+    Scene scene = original;
+    int flushed = 0;
+    if (QString why; !twoDigitExponents(scene, flushed, why)) {
+        error = QStringLiteral("%1: %2").arg(path, why);
+        return std::nullopt;
+    }
+    if (flushed > 0)
+        report.warnings
+            << QStringLiteral("%1 value(s) of magnitude below 1e-99 written as 0").arg(flushed);
+    setUpOcctOnce();
+    OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
+    const auto step = [&](int done) {
+        return !progress || progress(done, kSteps);
+    };
+    const auto cancelled = [&]() -> std::optional<QByteArray> {
+        error = QStringLiteral("%1: export cancelled").arg(path);
+        return std::nullopt;
+    };
+
+    glm::dvec3 lo, hi;
+    sceneBounds(scene, lo, hi);
+    const double diagonal = std::max(glm::length(hi - lo), 1e-9);
+    // The source's edge tolerances where the import recorded them: its shared edges were one
+    // edge within those, so sewing at the largest closes every seam the source had closed.
+    double tolerance = std::max(1e-5 * diagonal, 1e-7);
+    for (const SharedEdge& e : scene.topology.edges)
+        tolerance = std::max(tolerance, e.tolerance);
+    if (options.tolerance > 0)
+        tolerance = options.tolerance;
+    QStringList names;
+    for (const Surface& s : scene.surfaces)
+        names << s.name;
+    try {
+        OCC_CATCH_SIGNALS
+        std::vector<TopoDS_Face> faces;
+        const int n = int(scene.surfaces.size());
+        for (int k = 0; k < n; ++k) {
+            if (!step(600 * k / n))
+                return cancelled();
+            QString why;
+            TopoDS_Face face = occt::buildFace(scene.surfaces[size_t(k)], tolerance, why);
+            if (face.IsNull()) {
+                error = QStringLiteral("%1: surface '%2' cannot be written: %3")
+                            .arg(path, names[k], why);
+                return std::nullopt;
+            }
+            faces.push_back(face);
+        }
+        if (!step(600))
+            return cancelled();
+        // Sewing makes the edges two faces share one edge, written once and used by both.
+        BRepBuilderAPI_Sewing sewing(tolerance);
+        for (const TopoDS_Face& f : faces)
+            sewing.Add(f);
+        sewing.Perform();
+        const TopoDS_Shape sewn = sewing.SewedShape();
+        TopTools_DataMapOfShapeInteger ids;
+        for (int k = 0; k < n; ++k) {
+            const TopoDS_Face& f = faces[size_t(k)];
+            ids.Bind(sewing.IsModified(f) ? sewing.Modified(f) : f, k);
+        }
+        if (!step(800))
+            return cancelled();
+
+        // Closed shells become solids facing outward; the rest stay shells or loose faces.
+        TopoDS_Compound result;
+        BRep_Builder b;
+        b.MakeCompound(result);
+        // Shells of the sewn shape, and faces sewn to no other face each as a shell of its own
+        // (a sphere or a torus is one face that closes on itself).
+        std::vector<TopoDS_Shell> shells;
+        TopTools_IndexedMapOfShape inShells;
+        for (TopExp_Explorer e(sewn, TopAbs_SHELL); e.More(); e.Next()) {
+            shells.push_back(TopoDS::Shell(e.Current()));
+            TopExp::MapShapes(e.Current(), TopAbs_FACE, inShells);
+        }
+        std::vector<TopoDS_Face> loose;
+        for (TopExp_Explorer e(sewn, TopAbs_FACE, TopAbs_SHELL); e.More(); e.Next()) {
+            if (inShells.Contains(e.Current()))
+                continue;
+            TopoDS_Shell shell;
+            b.MakeShell(shell);
+            b.Add(shell, e.Current());
+            if (BRep_Tool::IsClosed(shell))
+                shells.push_back(shell);
+            else
+                loose.push_back(TopoDS::Face(e.Current()));
+        }
+        // With the import's record, the seams are measured on the exact surfaces against each
+        // edge's own tolerance (kw::seamGaps): a shell with an open seam is never a solid, even
+        // where sewing's larger tolerance closed it.
+        std::vector<bool> onOpenSeam(size_t(n), false);
+        QStringList seamLines;
+        if (!scene.topology.edges.empty()) {
+            QHash<std::uint32_t, int> index;
+            for (int k = 0; k < n; ++k)
+                index.insert(scene.surfaces[size_t(k)].id.value, k);
+            for (const SeamGap& g : seamGaps(scene)) {
+                if (!g.open())
+                    continue;
+                const int a = index.value(g.faceA.value, -1), c = index.value(g.faceB.value, -1);
+                if (a < 0 || c < 0)
+                    continue;
+                onOpenSeam[size_t(a)] = onOpenSeam[size_t(c)] = true;
+                seamLines << seamLine(names[a], names[c], g.gap);
+            }
+        }
+        const auto hasOpenSeam = [&](const TopoDS_Shell& shell) {
+            for (TopExp_Explorer f(shell, TopAbs_FACE); f.More(); f.Next())
+                if (ids.IsBound(f.Current()) && onOpenSeam[size_t(ids.Find(f.Current()))])
+                    return true;
+            return false;
+        };
+        for (const TopoDS_Shell& shell : shells) {
+            if (BRep_Tool::IsClosed(shell) && hasOpenSeam(shell)) {
+                report.warnings << QStringLiteral("a shell closed within the sewing tolerance "
+                                                  "has seams opened beyond their own tolerance: "
+                                                  "written as a shell");
+            } else if (BRep_Tool::IsClosed(shell)) {
+                // Sewing orients a closed shell's faces consistently, so the sign of the volume
+                // it encloses says whether it faces outward (ShapeFix_Solid's point
+                // classification found the same, at a third of the export's time).
+                TopoDS_Solid solid;
+                b.MakeSolid(solid);
+                b.Add(solid, shell);
+                GProp_GProps props;
+                BRepGProp::VolumeProperties(solid, props);
+                if (props.Mass() < 0) {
+                    TopoDS_Solid outward;
+                    b.MakeSolid(outward);
+                    b.Add(outward, shell.Reversed());
+                    solid = outward;
+                }
+                if (std::abs(props.Mass()) > 0) {
+                    b.Add(result, solid);
+                    ++report.solids;
+                    continue;
+                }
+                TopTools_IndexedMapOfShape shellFaces;
+                TopExp::MapShapes(shell, TopAbs_FACE, shellFaces);
+                report.warnings << QStringLiteral("a closed shell of %1 face(s) does not bound a "
+                                                  "valid solid: written as a shell")
+                                       .arg(shellFaces.Extent());
+            }
+            b.Add(result, shell);
+            ++report.openShells;
+        }
+        for (const TopoDS_Face& f : loose) {
+            b.Add(result, f);
+            ++report.looseFaces;
+        }
+        TopTools_IndexedMapOfShape written;
+        TopExp::MapShapes(result, TopAbs_FACE, written);
+        report.faces = written.Extent();
+        if (report.faces != n)
+            report.warnings << QStringLiteral("%1 surface(s) became %2 face(s) when sewn")
+                                   .arg(n)
+                                   .arg(report.faces);
+        const std::vector<FreeEdge> free = freeEdges(result, ids);
+        report.freeEdges = int(free.size());
+        if (scene.topology.edges.empty()) {
+            reportFreeEdges(free, names, diagonal, report);
+        } else {
+            // The record names the open seams; free edges beyond them are open boundaries.
+            report.warnings << seamLines.mid(0, kMaxSeamLines);
+            if (seamLines.size() > kMaxSeamLines)
+                report.warnings
+                    << QStringLiteral("%1 more open seam(s)").arg(seamLines.size() - kMaxSeamLines);
+            if (!free.empty())
+                report.warnings
+                    << QStringLiteral("%1 edge(s) bound no other face").arg(free.size());
+        }
+        if (options.requireClosed && (report.openShells > 0 || report.looseFaces > 0)) {
+            int outside = 0; // loose faces and faces of open shells
+            for (TopExp_Explorer f(result, TopAbs_FACE, TopAbs_SHELL); f.More(); f.Next())
+                ++outside;
+            for (TopExp_Explorer sh(result, TopAbs_SHELL, TopAbs_SOLID); sh.More(); sh.Next())
+                for (TopExp_Explorer f(sh.Current(), TopAbs_FACE); f.More(); f.Next())
+                    ++outside;
+            const QString first = report.warnings.isEmpty()
+                                      ? QString()
+                                      : QStringLiteral("; ") + report.warnings.front();
+            error = QStringLiteral("%1: not written: %2 of %3 face(s) do not end in a closed "
+                                   "solid (--require-closed)%4")
+                        .arg(path)
+                        .arg(outside)
+                        .arg(report.faces)
+                        .arg(first);
+            return std::nullopt;
+        }
+
+        QString why;
+        const QByteArray bytes = format == CadFormat::Step
+                                     ? writeStep(result, path, options, ids, names, why)
+                                     : writeIges(result, options, ids, names, why);
+        if (bytes.isEmpty()) {
+            error = QStringLiteral("%1: %2").arg(path, why);
+            return std::nullopt;
+        }
+        step(kSteps);
+        report.seconds = timer.elapsed() / 1000.0;
+        return bytes;
+    } catch (const Standard_Failure& e) {
+        error = QStringLiteral("%1: OpenCASCADE failed writing the file: %2").arg(path, failure(e));
+        return std::nullopt;
+    }
+}
+
+bool exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                    ExportReport& report, QString& error, const ImportProgress& progress) {
+    const std::optional<QByteArray> bytes =
+        exportOcctBytes(scene, path, options, report, error, progress);
+    return bytes && saveBytesAtomically(path, *bytes, &error);
+}
+
+} // namespace kw

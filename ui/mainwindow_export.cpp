@@ -1,0 +1,195 @@
+// MainWindow: File ▸ Export… and Export Selected… — STEP and IGES written by OpenCASCADE in the
+// CAD child process on a worker thread behind a progress dialog (Cancel kills the child), OBJ
+// written here; the open-seam report shown when it is done. The document stays what it is.
+#include "model/cad/cadexport.h"
+#include "model/objfile.h"
+#include "ui/mainwindow.h"
+
+#include <QEventLoop>
+#include <QFileInfo>
+#include <QProgressDialog>
+#include <QStatusBar>
+#include <QThread>
+#include <QTimer>
+#include <algorithm>
+#include <atomic>
+#include <memory>
+#include <set>
+
+namespace kw {
+
+namespace {
+
+struct ExportJob {
+    std::atomic<int> done{0};
+    std::atomic<int> total{0};
+    std::atomic<bool> cancel{false};
+    bool ok = false;
+    ExportReport report;
+    QString error;
+};
+
+constexpr int kTickMs = 30;
+
+// The scene with only `keep`'s surfaces, and the part of the import's record among them: edges
+// with both sides kept, shells with their kept faces (no longer closed when a face is left out).
+Scene sceneOf(const Scene& all, const std::vector<SurfaceId>& keep) {
+    const std::set<SurfaceId> kept(keep.begin(), keep.end());
+    Scene s = all;
+    s.surfaces.clear();
+    for (const Surface& x : all.surfaces)
+        if (kept.count(x.id))
+            s.surfaces.push_back(x);
+    s.topology.edges.clear();
+    for (const SharedEdge& e : all.topology.edges)
+        if (kept.count(e.sides[0].surface) && kept.count(e.sides[1].surface))
+            s.topology.edges.push_back(e);
+    s.topology.shells.clear();
+    for (const Shell& shell : all.topology.shells) {
+        Shell part = shell;
+        part.faces.clear();
+        for (SurfaceId f : shell.faces)
+            if (kept.count(f))
+                part.faces.push_back(f);
+        if (part.faces.empty())
+            continue;
+        part.closed = shell.closed && part.faces.size() == shell.faces.size();
+        s.topology.shells.push_back(part);
+    }
+    return s;
+}
+
+} // namespace
+
+QString exportFileFilter(bool occt) {
+    QStringList filters;
+    if (occt)
+        filters << QObject::tr("STEP (*.step *.stp)") << QObject::tr("IGES (*.iges *.igs)");
+    filters << QObject::tr("OBJ, free-form surfaces (*.obj)");
+    return filters.join(QStringLiteral(";;"));
+}
+
+bool isExportPath(const QString& path) {
+    const CadFormat f = cadFormatFromPath(path);
+    return f == CadFormat::Step || f == CadFormat::Iges || f == CadFormat::Obj;
+}
+
+void MainWindow::exportDialog(bool selectedOnly) {
+    if (m_importProgress)
+        return;
+    if (selectedOnly && m_selection->selectedSurfaces().empty()) {
+        showError(tr("Cannot export"), tr("No surface is selected."));
+        return;
+    }
+    const QString named = m_path.isEmpty() ? m_importedPath : m_path;
+    const QString suggested =
+        (named.isEmpty() ? tr("untitled") : QFileInfo(named).completeBaseName()) +
+        QStringLiteral(".step");
+    const QString path =
+        m_dialogs.saveFile(this, selectedOnly ? tr("Export selected surfaces") : tr("Export"),
+                           exportFileFilter(occtAvailable()), suggested);
+    if (!path.isEmpty())
+        exportModel(path, selectedOnly);
+}
+
+bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
+    if (m_importProgress)
+        return false;
+    const CadFormat format = cadFormatFromPath(path);
+    const QString name = QFileInfo(path).fileName();
+    if (!isExportPath(path)) {
+        showError(tr("Cannot export"),
+                  tr("%1: Knotwork exports STEP (.step, .stp), IGES (.iges, .igs) and OBJ (.obj)")
+                      .arg(path));
+        return false;
+    }
+    const Scene scene =
+        selectedOnly ? sceneOf(m_doc->scene(), m_selection->selectedSurfaces()) : m_doc->scene();
+    if (format == CadFormat::Obj) {
+        QString error;
+        if (scene.surfaces.empty() || !writeObjFile(path, scene, error)) {
+            showError(tr("Cannot export"),
+                      scene.surfaces.empty()
+                          ? tr("%1: nothing to export: the document has no surfaces").arg(path)
+                          : error);
+            return false;
+        }
+        statusBar()->showMessage(
+            tr("Exported %1; the document is still %2").arg(name, displayName()), 10000);
+        return true;
+    }
+
+    auto job = std::make_shared<ExportJob>();
+    std::unique_ptr<QThread> worker(QThread::create([job, scene, path] {
+        job->ok = exportCadFile(scene, path, ExportOptions{}, job->report, job->error,
+                                [job](int done, int total) {
+                                    job->done = done;
+                                    job->total = total;
+                                    return !job->cancel.load();
+                                });
+    }));
+    auto progressOwner =
+        std::make_unique<QProgressDialog>(tr("Exporting %1…").arg(name), tr("Cancel"), 0, 0, this);
+    QProgressDialog& progress = *progressOwner;
+    progress.setWindowTitle(tr("Export"));
+    progress.setWindowModality(Qt::WindowModal);
+    progress.setMinimumDuration(300);
+    progress.setAutoReset(false);
+    progress.setAutoClose(false);
+    m_importProgress = &progress; // one exchange at a time: Import and Export both wait
+    connect(&progress, &QProgressDialog::canceled, this, [job] { job->cancel = true; });
+    QEventLoop loop;
+    QTimer tick;
+    tick.setInterval(kTickMs);
+    const auto update = [&] {
+        if (progress.wasCanceled())
+            job->cancel = true;
+        const int total = job->total;
+        if (total > 0 && !progress.wasCanceled()) {
+            progress.setMaximum(total);
+            progress.setValue(std::clamp(job->done.load(), 0, total));
+        }
+        if (m_dialogs.importProgress)
+            m_dialogs.importProgress(&progress);
+        if (worker->isFinished())
+            loop.quit();
+    };
+    connect(&tick, &QTimer::timeout, &loop, update);
+    connect(worker.get(), &QThread::finished, &loop, &QEventLoop::quit);
+    worker->start();
+    tick.start();
+    update();
+    while (!worker->isFinished())
+        loop.exec();
+    worker->wait();
+    tick.stop();
+    m_importProgress = nullptr;
+    progress.hide();
+    progressOwner.reset();
+
+    if (!job->ok) {
+        if (job->cancel)
+            statusBar()->showMessage(tr("Export of %1 cancelled; nothing was written").arg(name),
+                                     10000);
+        else
+            showError(tr("Cannot export"),
+                      job->report.warnings.isEmpty()
+                          ? job->error
+                          : job->error + QStringLiteral("\n\n") + job->report.summary());
+        return false;
+    }
+    const QString summary = tr("Exported %1: %2 face(s), %3 solid(s); the document is still %4")
+                                .arg(name)
+                                .arg(job->report.faces)
+                                .arg(job->report.solids)
+                                .arg(displayName());
+    // The open seams an edit made, by face and gap, as `convert` prints them.
+    if (!job->report.warnings.isEmpty() && m_dialogs.information)
+        m_dialogs.information(
+            this, tr("Export report"),
+            tr("%1 was written with remarks:\n\n%2").arg(name, job->report.summary()));
+    statusBar()->showMessage(summary, 10000);
+    return true;
+}
+
+} // namespace kw
