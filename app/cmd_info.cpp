@@ -149,8 +149,11 @@ QString topologyText(const Scene& scene) {
                    .arg(s.solid >= 0 ? QStringLiteral(", solid %1").arg(s.solid) : QString())
                    .arg(state);
     }
+    // All of them are in --json; the text names the first few.
+    constexpr int kListed = 20;
+    int listed = 0;
     for (const SeamGap& g : t.gaps)
-        if (g.open())
+        if (g.open() && listed++ < kListed)
             out += QStringLiteral("  edge %1 between surfaces %2 and %3 open: gap %4 (tolerance "
                                   "%5) at %6\n")
                        .arg(g.edge.value)
@@ -158,6 +161,9 @@ QString topologyText(const Scene& scene) {
                        .arg(g.gap, 0, 'g', 4)
                        .arg(g.tolerance, 0, 'g', 3)
                        .arg(text(g.where));
+    if (listed > kListed)
+        out += QStringLiteral("  %1 more open edge(s) (--json lists them all)\n")
+                   .arg(listed - kListed);
     return out;
 }
 

@@ -178,6 +178,25 @@ bool edgeTouches(const SharedEdge& edge, SurfaceId surface) {
     return edge.sides[0].surface == surface || edge.sides[1].surface == surface;
 }
 
+Topology topologyOfFaces(const Topology& topology, const std::vector<SurfaceId>& faces) {
+    const auto kept = [&faces](SurfaceId id) {
+        return std::binary_search(faces.begin(), faces.end(), id);
+    };
+    Topology out;
+    for (const SharedEdge& e : topology.edges)
+        if (kept(e.sides[0].surface) && kept(e.sides[1].surface))
+            out.edges.push_back(e);
+    for (const Shell& shell : topology.shells) {
+        Shell part = shell;
+        std::erase_if(part.faces, [&](SurfaceId f) { return !kept(f); });
+        if (part.faces.empty())
+            continue;
+        part.closed = shell.closed && part.faces.size() == shell.faces.size();
+        out.shells.push_back(std::move(part));
+    }
+    return out;
+}
+
 TopologyPiece takeSurfaceTopology(Topology& topology, SurfaceId surface) {
     TopologyPiece piece;
     openShellOf(topology, surface, piece);

@@ -86,6 +86,11 @@ const Shell* shellOfSurface(const Topology& topology, SurfaceId surface);
 /// True when a side of `edge` is a curve of `surface`.
 bool edgeTouches(const SharedEdge& edge, SurfaceId surface);
 
+/// The record of a part of the scene (Export Selected): the edges both of whose sides lie on
+/// `faces` (ascending ids), and every shell with a face among them, holding only those; a
+/// shell that lost a face is not closed.
+Topology topologyOfFaces(const Topology& topology, const std::vector<SurfaceId>& faces);
+
 /// What the removal of a surface or of a trim loop takes out of the topology, kept by Document
 /// so that the undo which brings the part back restores the record exactly.
 struct TopologyPiece {

@@ -100,6 +100,7 @@ private Q_SLOTS:
     void removeTrimLoopKeepsRecordConsistent();
     void replaceTrimLoopKeepsItsEdges();
     void bridgedGapRenumbersSides();
+    void topologyOfSelectedFaces();
     void unEditedCubeIsClosed();
     void movedCornerOpensItsTwoEdges_data();
     void movedCornerOpensItsTwoEdges();
@@ -392,6 +393,32 @@ void TestTopology::bridgedGapRenumbersSides() {
                 ++k;
             }
     QCOMPARE(k, size_t(4));
+}
+
+// Export Selected's record: the edges among the selected faces, their shells cut down.
+void TestTopology::topologyOfSelectedFaces() {
+    const Scene two = cubesScene(2);
+    std::vector<SurfaceId> faces;
+    for (std::uint32_t k = 17; k <= 22; ++k)
+        faces.push_back(SurfaceId{k}); // the second cube
+    Topology part = topologyOfFaces(two.topology, faces);
+    QCOMPARE(part.edges.size(), size_t(12));
+    QCOMPARE(part.shells.size(), size_t(1));
+    QVERIFY(part.shells[0] == two.topology.shells[1]);
+    faces.pop_back();
+    faces.push_back(SurfaceId{1}); // and one face of the first
+    std::sort(faces.begin(), faces.end());
+    part = topologyOfFaces(two.topology, faces);
+    QCOMPARE(part.edges.size(), size_t(8));
+    QCOMPARE(part.shells.size(), size_t(2));
+    QVERIFY(!part.shells[0].closed && !part.shells[1].closed);
+    QCOMPARE(part.shells[0].faces, std::vector<SurfaceId>{SurfaceId{1}});
+    Scene selected = two;
+    std::erase_if(selected.surfaces, [&](const Surface& s) {
+        return !std::binary_search(faces.begin(), faces.end(), s.id);
+    });
+    selected.topology = part;
+    QVERIFY2(sceneError(selected).isEmpty(), qPrintable(sceneError(selected)));
 }
 
 void TestTopology::unEditedCubeIsClosed() {
