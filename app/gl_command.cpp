@@ -2,6 +2,7 @@
 #include "app/gl_command.h"
 
 #include "app/commands.h"
+#include "app/version.h"
 #include "render/offscreen_renderer.h"
 
 #include <QGuiApplication>
@@ -14,7 +15,7 @@ int runGlCommand(int argc, char** argv,
                  int (*run)(const QStringList& args, const GuiStarter& startGui)) {
     const QString name = QString::fromLocal8Bit(argc > 1 ? argv[1] : "");
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
-    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
+    QCoreApplication::setApplicationVersion(kw::versionString());
     QStringList rest{QStringLiteral("knotwork ") + name};
     for (int i = 2; i < argc; ++i)
         rest << QString::fromLocal8Bit(argv[i]);

@@ -311,9 +311,11 @@ void TestCli::badInputExitsOne_data() {
     f.close();
     QTest::newRow("info not IGES")
         << QStringList{QStringLiteral("info"), notIges} << notIges << QString();
-    // The editor opens projects; a CAD file on its command line says where it is read.
-    const QString step = QStringLiteral(KW_TEST_DATA_DIR "/screw.step");
-    QTest::newRow("CAD file alone") << QStringList{step} << step << QStringLiteral("File > Import");
+    // The editor imports a CAD file named on its command line; one that cannot be opened is
+    // refused before any window, naming the file.
+    const QString step = QStringLiteral(KW_TEST_OUTPUT_DIR "/no such part.step");
+    QTest::newRow("missing CAD file alone")
+        << QStringList{step} << step << QStringLiteral("cannot open the STEP file");
     const QString missing = QStringLiteral(KW_TEST_OUTPUT_DIR "/no such file.knot");
     QTest::newRow("missing file") << QStringList{QStringLiteral("info"), missing} << missing
                                   << QStringLiteral("cannot open");

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Knotwork's one entry point for a fresh Debian 12 machine: install, build, then run or test.
-#   tools/dev.sh run    install dependencies, build, open the editor on the teapot sample
-#                       (with no display: render it headless to build/teapot.png)
-#   tools/dev.sh test   install dependencies, build, run every test through CTest, then fuzz each
-#                       libFuzzer harness for 60 s (tests/fuzz, a separate clang build)
+#   tools/dev.sh run    install dependencies, build what the editor needs (knotwork, knotwork-gl,
+#                       the modules; not the tests), open it on the teapot sample (with no
+#                       display: render it headless to build/teapot.png)
+#   tools/dev.sh test   install dependencies, build everything, run every test through CTest,
+#                       then fuzz each libFuzzer harness for 60 s (tests/fuzz, a separate clang
+#                       build)
 #   tools/dev.sh fuzz [SECONDS]   build the libFuzzer harnesses and run each for SECONDS (60)
 #   tools/dev.sh deps | build
 # Idempotent: packages already installed and an up-to-date build cost a few seconds.
@@ -25,6 +27,7 @@ packages=(
   libocct-data-exchange-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libtbb-dev
   clang libclang-rt-14-dev
+  desktop-file-utils appstream
 )
 
 as_root() {
@@ -43,12 +46,18 @@ deps() {
   fi
 }
 
+# build [TARGET...]: every target (the tests included), or only those named.
 build() {
   if [ ! -f "$build/build.ninja" ]; then
     cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
   fi
-  cmake --build "$build" -j "$(nproc)"
+  if [ $# -gt 0 ]; then
+    cmake --build "$build" -j "$(nproc)" --target "$@"
+  else
+    cmake --build "$build" -j "$(nproc)"
+  fi
 }
+
 
 runtime_dir() {
   export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d /tmp/knotwork-runtime.XXXXXX)}
@@ -106,7 +115,8 @@ fuzz_run() {
 case "${1:-}" in
   deps) deps ;;
   build) deps; build ;;
-  run) deps; build; run ;;
+  # knotwork builds what it starts (knotwork-gl, the OpenImageIO and OCCT modules) and no test.
+  run) deps; build knotwork; run ;;
   # The 60 s fuzz smoke run gates like the tests: a finding fails CI (its input is kept in
   # build-fuzz/artifacts); fixed reproducers are replayed by ctest above.
   test) deps; build; test_all; fuzz_build; fuzz_run 60 ;;

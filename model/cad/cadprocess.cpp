@@ -4,9 +4,9 @@
 
 #include "model/cad/cadprestart.h"
 #include "model/cad/handover.h"
+#include "model/install_layout.h"
 #include "model/savefile.h"
 
-#include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileInfo>
@@ -64,7 +64,7 @@ QString cadReaderExecutable() {
     }
     if (const QString env = qEnvironmentVariable("KNOTWORK_CAD_READER"); !env.isEmpty())
         return env;
-    return QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral("knotwork"));
+    return programPath("knotwork");
 }
 
 void setCadReaderExecutable(const QString& path) {
