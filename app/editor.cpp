@@ -120,12 +120,14 @@ void quitOnceShown(MainWindow& window, const QString& report, bool loaded) {
                 .arg(window.document()->scene().surfaces.size())
                 .arg(window.windowTitle());
         QString error;
-        if (!saveBytesAtomically(report, text.toUtf8(), &error)) {
+        const bool written = saveBytesAtomically(report, text.toUtf8(), &error);
+        if (!written)
             cli::printError(error);
-            QCoreApplication::exit(cli::kExitBadInput);
-            return;
-        }
-        QCoreApplication::exit(cli::kExitOk);
+        // Queued: the first frame can be drawn before QApplication::exec() runs, and exit()
+        // does nothing while no event loop does.
+        QTimer::singleShot(0, qApp, [written] {
+            QCoreApplication::exit(written ? cli::kExitOk : cli::kExitBadInput);
+        });
     });
 }
 
