@@ -6,6 +6,8 @@
 #   tools/dev.sh test   install dependencies, build everything, run every test through CTest,
 #                       then fuzz each libFuzzer harness for 60 s (tests/fuzz, a separate clang
 #                       build)
+#   tools/dev.sh package   build everything and the Debian package build/package/knotwork_*.deb
+#                       (docs/INSTALL.md)
 #   tools/dev.sh fuzz [SECONDS]   build the libFuzzer harnesses and run each for SECONDS (60)
 #   tools/dev.sh deps | build
 # Idempotent: packages already installed and an up-to-date build cost a few seconds.
@@ -27,7 +29,7 @@ packages=(
   libocct-data-exchange-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libtbb-dev
   clang libclang-rt-14-dev
-  desktop-file-utils appstream
+  dpkg-dev file desktop-file-utils appstream libgtk-3-bin libglib2.0-bin shared-mime-info
 )
 
 as_root() {
@@ -58,6 +60,12 @@ build() {
   fi
 }
 
+# The .deb from the built tree (CPack installs it into build/_CPack_Packages, strips it, and
+# asks dpkg-shlibdeps for the Depends).
+package() {
+  (cd "$build" && cpack -G DEB)
+  ls "$build"/package/knotwork_*.deb
+}
 
 runtime_dir() {
   export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d /tmp/knotwork-runtime.XXXXXX)}
@@ -121,5 +129,6 @@ case "${1:-}" in
   # build-fuzz/artifacts); fixed reproducers are replayed by ctest above.
   test) deps; build; test_all; fuzz_build; fuzz_run 60 ;;
   fuzz) deps; fuzz_build; fuzz_run "${2:-60}" ;;
-  *) echo "usage: tools/dev.sh run|test|fuzz [SECONDS]|deps|build" >&2; exit 2 ;;
+  package) deps; build; package ;;
+  *) echo "usage: tools/dev.sh run|test|package|fuzz [SECONDS]|deps|build" >&2; exit 2 ;;
 esac
