@@ -16,3 +16,7 @@ add_test(NAME app_package COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/package_deb.sh
 # tests running beside it.
 set_tests_properties(app_package PROPERTIES LABELS "app;package" TIMEOUT 900 SKIP_RETURN_CODE 77
                      RUN_SERIAL TRUE)
+
+# File > Open Sample finds the samples in the data folder, as the installed editor does.
+kw_add_test(tst_samples_menu LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_samples_menu.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)
