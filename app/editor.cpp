@@ -2,9 +2,12 @@
 #include "app/editor.h"
 
 #include "app/commands.h"
+#include "app/version.h"
 #include "model/cad/cadimport.h"
+#include "model/inputcheck.h"
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
+#include "model/savefile.h"
 #include "render/analysis.h"
 #include "render/gl_context.h"
 #include "render/image_save.h"
@@ -19,6 +22,7 @@
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QIcon>
 #include <QMessageBox>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
@@ -79,6 +83,53 @@ void buildDemo(MainWindow& window) {
     window.viewport()->setCamera(c);
     window.viewport()->fitToView();
     QTimer::singleShot(0, window.viewport(), [&window] { window.viewport()->fitToView(); });
+}
+
+/// Message boxes of a run no one watches (--screenshot, KNOTWORK_QUIT_AFTER_OPEN): errors and
+/// reports on stderr, no questions (a file is never left unsaved there).
+MainWindow::Dialogs scriptedDialogs() {
+    MainWindow::Dialogs d = MainWindow::Dialogs::standard();
+    d.error = [](QWidget*, const QString& title, const QString& text) {
+        cli::printError(QStringLiteral("knotwork: %1: %2").arg(title, text));
+    };
+    d.information = [](QWidget*, const QString&, const QString& text) {
+        cli::printError(QStringLiteral("knotwork: ") + text);
+    };
+    d.askRecover = [](QWidget*, const QString&) {
+        return QMessageBox::Cancel;
+    };
+    return d;
+}
+
+/// Set on the window once the file it was started with is in the document.
+constexpr const char* kLoadedProperty = "knotworkStartFileLoaded";
+
+/// KNOTWORK_QUIT_AFTER_OPEN=REPORT: once the viewport has drawn the file the editor was started
+/// with, writes "file PATH" and "surfaces N" lines to REPORT and quits with 0. For scripted
+/// checks that a launcher (a desktop entry, a file manager) started the editor on a file.
+void quitOnceShown(MainWindow& window, const QString& report, bool loaded) {
+    window.setProperty(kLoadedProperty, loaded);
+    QObject::connect(window.viewport(), &Viewport::frameDrawn, &window, [&window, report] {
+        if (!window.property(kLoadedProperty).toBool())
+            return;
+        window.setProperty(kLoadedProperty, false); // once
+        const QString source =
+            window.filePath().isEmpty() ? window.importedFrom() : window.filePath();
+        const QString text =
+            QStringLiteral("file\t%1\nsurfaces\t%2\ntitle\t%3\n")
+                .arg(source.isEmpty() ? QString() : QFileInfo(source).absoluteFilePath())
+                .arg(window.document()->scene().surfaces.size())
+                .arg(window.windowTitle());
+        QString error;
+        const bool written = saveBytesAtomically(report, text.toUtf8(), &error);
+        if (!written)
+            cli::printError(error);
+        // Queued: the first frame can be drawn before QApplication::exec() runs, and exit()
+        // does nothing while no event loop does.
+        QTimer::singleShot(0, qApp, [written] {
+            QCoreApplication::exit(written ? cli::kExitOk : cli::kExitBadInput);
+        });
+    });
 }
 
 /// Shows the window, waits until the viewport has drawn a few frames, saves a grab.
@@ -172,29 +223,26 @@ int runEditor(int argc, char** argv) {
         return cli::kExitBadInput;
     }
     const QString file = parser.positionalArguments().value(0);
-    bool importAtStart = false;
-    if (!file.isEmpty()) {
+    // An IGES, STEP, BREP or OBJ file (a file manager opens those with Knotwork) is imported
+    // into a new project once the window is up, as File > Import does, behind its progress
+    // dialog; here only that it can be opened is checked.
+    const CadFormat format = file.isEmpty() ? CadFormat::Unknown : cadFormatFromPath(file);
+    const bool import = format != CadFormat::Knot && format != CadFormat::Unknown;
+    if (const QString why = import ? regularFileProblem(file) : QString(); !why.isEmpty()) {
+        cli::printError(QStringLiteral("%1: %2").arg(file, why));
+        return cli::kExitBadInput;
+    }
+    if (import && format != CadFormat::Obj && !occtAvailable()) {
+        cli::printError(QStringLiteral("%1: cannot read %2: %3")
+                            .arg(file, cadFormatName(format), occtUnavailableMessage()));
+        return cli::kExitBadInput;
+    }
+    if (!file.isEmpty() && !import) {
         // Fail before any window (or Qt platform) appears, with the loader's one-line message.
-        // A CAD file is read as File > Import reads it, once the window is up (its progress
-        // dialog and report need the window); here only what needs no reading is checked.
-        if (const CadFormat f = cadFormatFromPath(file);
-            f != CadFormat::Knot && f != CadFormat::Unknown) {
-            if (!QFileInfo(file).isFile()) {
-                cli::printError(QStringLiteral("%1: no such file").arg(file));
-                return cli::kExitBadInput;
-            }
-            if (f != CadFormat::Obj && !occtAvailable()) {
-                cli::printError(QStringLiteral("%1: cannot read %2: %3")
-                                    .arg(file, cadFormatName(f), occtUnavailableMessage()));
-                return cli::kExitBadInput;
-            }
-            importAtStart = true;
-        } else {
-            QString error;
-            if (!readKnotFile(file, &error)) {
-                cli::printError(error);
-                return cli::kExitBadInput;
-            }
+        QString error;
+        if (!readKnotFile(file, &error)) {
+            cli::printError(error);
+            return cli::kExitBadInput;
         }
     }
     if (parser.isSet(shot) && file.isEmpty() && !parser.isSet(demo)) {
@@ -206,7 +254,7 @@ int runEditor(int argc, char** argv) {
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("Knotwork"));
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
-    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
+    QCoreApplication::setApplicationVersion(kw::versionString());
 
     if (const QString why = probeOpenGL(); !why.isEmpty()) {
         const QString text =
@@ -220,14 +268,18 @@ int runEditor(int argc, char** argv) {
         return cli::kExitBadInput;
     }
 
+    // Lets the desktop match the window to its launcher entry (Wayland app id, icon).
+    QGuiApplication::setDesktopFileName(QStringLiteral("org.knotwork.Knotwork"));
+    QApplication::setWindowIcon(QIcon::fromTheme(QStringLiteral("org.knotwork.Knotwork")));
+
+    const QString quitReport = qEnvironmentVariable("KNOTWORK_QUIT_AFTER_OPEN");
+    const bool scripted = parser.isSet(shot) || !quitReport.isEmpty();
     MainWindow window;
+    if (scripted) // nobody to click a message box away: messages go to stderr, errors exit 1
+        window.setDialogs(scriptedDialogs());
     if (windowSize.isValid())
         window.resize(windowSize);
-    // A CAD file is imported before a screenshot (which needs its scene), else once the window
-    // shows, with Import's progress and report; a failed import leaves an empty editor open.
-    if (!file.isEmpty() && importAtStart && parser.isSet(shot) && !window.importFile(file))
-        return cli::kExitBadInput;
-    if (!file.isEmpty() && !importAtStart && !window.openFile(file))
+    if (!file.isEmpty() && !import && !window.openFile(file))
         return cli::kExitBadInput;
     if (parser.isSet(demo))
         buildDemo(window);
@@ -239,13 +291,26 @@ int runEditor(int argc, char** argv) {
         if (QAction* a = window.action(QStringLiteral("actionAnalysis") + camel))
             a->trigger();
     }
-    if (parser.isSet(shot))
+    if (parser.isSet(shot)) {
+        if (import && !window.importFile(file))
+            return cli::kExitBadInput;
         return screenshot(window, parser.value(shot), parser.isSet(demo));
+    }
+    if (!quitReport.isEmpty())
+        quitOnceShown(window, quitReport, /*loaded=*/!import);
     window.show();
-    // After a crash: offer the autosaved edits once the window is up (the question is its child).
-    QTimer::singleShot(0, &window, [&window] { window.offerRecovery(); });
-    if (importAtStart)
-        QTimer::singleShot(0, &window, [&window, file] { window.importFile(file); });
+    QTimer::singleShot(0, &window, [&window, file, import, scripted] {
+        if (import && !window.importFile(file) && scripted) {
+            QCoreApplication::exit(cli::kExitBadInput);
+            return;
+        }
+        if (import)
+            window.setProperty(kLoadedProperty, true);
+        // After a crash: offer the autosaved edits once the window is up (the question is its
+        // child); not to a scripted run, which must not wait for an answer.
+        if (!scripted)
+            window.offerRecovery();
+    });
     return QApplication::exec();
 }
 

@@ -2,6 +2,7 @@
 #include "app/gl_command.h"
 
 #include "app/commands.h"
+#include "app/version.h"
 #include "render/gl_context.h"
 #include "render/offscreen_renderer.h"
 #include "render/shader_library.h"
@@ -23,7 +24,7 @@ int runGlCommand(int argc, char** argv,
     applyDevelopmentSwitches();
     const QString name = QString::fromLocal8Bit(argc > 1 ? argv[1] : "");
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
-    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
+    QCoreApplication::setApplicationVersion(kw::versionString());
     QStringList rest{QStringLiteral("knotwork ") + name};
     for (int i = 2; i < argc; ++i)
         rest << QString::fromLocal8Bit(argv[i]);

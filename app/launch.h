@@ -1,11 +1,13 @@
-// Starting the executables that sit next to `knotwork` in build/bin (knotwork-gl, knotwork-bench).
+// Starting Knotwork's other executables (knotwork-gl, knotwork-bench): next to `knotwork` in
+// build/bin, in lib/knotwork/ of an installed prefix.
 #pragma once
 
 #include <QString>
 
 namespace kw::app {
 
-/// The absolute path of `program` in the folder of the running executable (/proc/self/exe).
+/// The absolute path of `program`: next to the running executable in the build tree, in
+/// lib/knotwork/ (bin/ for knotwork) of an installed prefix (kw::programPath).
 QString siblingPath(const char* program);
 
 /// Replaces this process with `program` from siblingPath(), passing argv unchanged (argv[0]

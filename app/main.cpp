@@ -3,6 +3,7 @@
 // the editor, render and bench to knotwork-gl / knotwork-bench (app/launch.h).
 #include "app/commands.h"
 #include "app/launch.h"
+#include "app/version.h"
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
@@ -49,7 +50,7 @@ using namespace kw::cli;
 QString globalHelp() {
     QString text =
         QStringLiteral("Usage: knotwork <subcommand> [options] [arguments]\n"
-                       "       knotwork FILE.knot      (the editor; FILE is optional)\n"
+                       "       knotwork FILE           (the editor; FILE is optional)\n"
                        "       knotwork --screenshot OUT [--size WxH] [--demo] [--shading MODE] "
                        "[FILE.knot]\n"
                        "\n"
@@ -60,8 +61,9 @@ QString globalHelp() {
         text += QStringLiteral("  %1  %2\n").arg(c.name.leftJustified(8), c.summary);
     text += QStringLiteral(
         "\n"
-        "knotwork [FILE] opens the editor (it needs a display and OpenGL 4.5 core); a FILE\n"
-        "that cannot be read is reported on stderr with exit code 1 before any window opens.\n"
+        "knotwork [FILE] opens the editor (it needs a display and OpenGL 4.5 core) on a .knot\n"
+        "project, or imports an IGES, STEP, BREP or OBJ FILE into a new one; a FILE that\n"
+        "cannot be read is reported on stderr with exit code 1 before any window opens.\n"
         "--screenshot OUT opens FILE with its first surface selected, saves a picture of the\n"
         "window to OUT and exits; --size WxH sets the window size. --demo starts with a scene\n"
         "made by the editor's Create and trim tools; --shading MODE starts with that View ›\n"
@@ -134,7 +136,7 @@ int main(int argc, char** argv) {
     }
     QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("knotwork"));
-    QCoreApplication::setApplicationVersion(QStringLiteral(KW_VERSION));
+    QCoreApplication::setApplicationVersion(kw::versionString());
     const QStringList args = QCoreApplication::arguments();
 
     const QString first = args[1];
@@ -143,7 +145,7 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     if (first == QLatin1String("-v") || first == QLatin1String("--version")) {
-        printOut(QStringLiteral("knotwork %1\n").arg(QStringLiteral(KW_VERSION)));
+        printOut(QStringLiteral("knotwork %1\n").arg(kw::versionString()));
         return kExitOk;
     }
     QStringList rest = args.mid(2);

@@ -1,14 +1,12 @@
-// Loading Knotwork's modules from the executable's folder with QLibrary.
+// Loading Knotwork's modules (build/bin, or lib/knotwork/ when installed) with QLibrary.
 #include "app/plugin.h"
 
-#include <QCoreApplication>
-#include <QDir>
+#include "model/install_layout.h"
 
 namespace kw::app {
 
 QFunctionPointer resolveModuleSymbol(const QString& name, const char* symbol, QString* error) {
-    const QString file =
-        QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral("lib%1.so").arg(name));
+    const QString file = modulePath(QStringLiteral("lib%1.so").arg(name));
     // Never unloaded: OCCT registers handlers and singletons that must outlive the call.
     auto* library = new QLibrary(file);
     library->setLoadHints(QLibrary::ResolveAllSymbolsHint);

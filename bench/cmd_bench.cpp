@@ -4,6 +4,7 @@
 #include "app/render_args.h"
 #include "bench/bench_report.h"
 #include "bench/scale_report.h"
+#include "model/install_layout.h"
 #include "model/savefile.h"
 
 #include <QCommandLineParser>
@@ -12,16 +13,15 @@
 #include <QFileInfo>
 #include <QJsonDocument>
 
-#ifndef KW_BENCH_SAMPLES_DIR
-#define KW_BENCH_SAMPLES_DIR "resources/samples"
-#endif
-#ifndef KW_BENCH_SCALE_MODEL
-#define KW_BENCH_SCALE_MODEL "tests/data/hammer.iges"
-#endif
-
 namespace kw::cli {
 
 namespace {
+
+/// The samples folder of this build tree or installed prefix (share/knotwork/samples).
+QString samplesDir() {
+    const QString data = dataDir();
+    return data.isEmpty() ? QStringLiteral("resources/samples") : data + QStringLiteral("/samples");
+}
 
 constexpr int kMaxSide = 4096;
 
@@ -116,8 +116,8 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     const QCommandLineOption scaleModel(
         QStringLiteral("scale-model"),
         QStringLiteral("Scale table: the part to tile, .knot or IGES/STEP/BREP (default: the "
-                       "source tree's tests/data/hammer.iges)."),
-        QStringLiteral("FILE"), QStringLiteral(KW_BENCH_SCALE_MODEL));
+                       "hammer.iges of the samples)."),
+        QStringLiteral("FILE"), samplesDir() + QStringLiteral("/hammer.iges"));
     const QCommandLineOption scaleFaces(
         QStringLiteral("scale-faces"),
         QStringLiteral("Scale table: face counts to reach, each 1..1000000 (default "
@@ -147,9 +147,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                     QStringLiteral("Table 2 image size (default 780x400)."),
                                     QStringLiteral("WxH"), QStringLiteral("780x400"));
     const QCommandLineOption samples(QStringLiteral("samples"),
-                                     QStringLiteral("Folder of the samples (default: the "
-                                                    "source tree's resources/samples)."),
-                                     QStringLiteral("DIR"), QStringLiteral(KW_BENCH_SAMPLES_DIR));
+                                     QStringLiteral("Folder of the samples (default: "
+                                                    "share/knotwork/samples)."),
+                                     QStringLiteral("DIR"), samplesDir());
     const QCommandLineOption mode(QStringLiteral("mode"),
                                   QStringLiteral("Table 1 mode: exact (default) or tessellated."),
                                   QStringLiteral("MODE"), QStringLiteral("exact"));

@@ -61,7 +61,7 @@ struct AnalysisOptions {
     bool principalDirections = false;
     double directionSpacingPixels = 24.0; ///< principal directions: grid spacing
     /// Environment: an image file read through OpenImageIO (equirectangular, z up; EXR, HDR,
-    /// PNG, JPEG, ...); empty for the bundled default (resources/environment/studio.png, made
+    /// PNG, JPEG, ...); empty for the default (share/knotwork/environment/studio.png, made
     /// by tools/make_environment.py).
     QString environmentMap;
     /// Keep the last automatic range instead of recomputing it (the editor sets it during

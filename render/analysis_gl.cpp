@@ -1,7 +1,8 @@
-// Environment map loading (OpenImageIO for files, QImage for the bundled resource) and the
+// Environment map loading (OpenImageIO for a chosen file, QImage for the default one) and the
 // analysis uniforms.
 #include "render/analysis_gl.h"
 
+#include "model/install_layout.h"
 #include "render/image_reader.h"
 #include "render/shader_library.h"
 
@@ -15,7 +16,8 @@ namespace kw {
 
 namespace {
 
-/// The bundled resource (":/..."), which OpenImageIO cannot open, through Qt's PNG reader.
+/// A Qt resource (":/...", which OpenImageIO cannot open) or the default PNG, through Qt's PNG
+/// reader: the default environment does not load OpenImageIO's libraries.
 bool loadQtImage(const QString& path, EnvironmentImage& out, QString* error) {
     const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
     if (img.isNull()) {
@@ -34,6 +36,11 @@ bool loadQtImage(const QString& path, EnvironmentImage& out, QString* error) {
 }
 
 } // namespace
+
+QString defaultEnvironmentPath() {
+    const QString data = dataDir();
+    return data.isEmpty() ? QString() : data + QStringLiteral("/environment/studio.png");
+}
 
 bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
     out = {};
@@ -63,14 +70,21 @@ bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* e
 }
 
 bool EnvironmentMap::bind(const QString& requested, int unit, QString* error) {
-    const QString path = requested.isEmpty() ? QString::fromLatin1(kDefaultEnvironment) : requested;
+    const bool standard = requested.isEmpty();
+    const QString path = standard ? defaultEnvironmentPath() : requested;
+    if (path.isEmpty()) {
+        *error = QStringLiteral("no default environment image: share/knotwork/environment/"
+                                "studio.png is not in the prefix of %1")
+                     .arg(executableDir());
+        return false;
+    }
     if (!m_texture || path != m_path) {
         if (path == m_failedPath) { // do not retry a bad file every frame
             *error = m_failedError;
             return false;
         }
         EnvironmentImage img;
-        if (!loadEnvironmentImage(path, img, error)) {
+        if (!(standard ? loadQtImage(path, img, error) : loadEnvironmentImage(path, img, error))) {
             m_failedPath = path;
             m_failedError = *error;
             return false;

@@ -19,8 +19,9 @@ struct EnvironmentImage {
     std::vector<float> rgb;
 };
 
-/// The bundled default environment (Qt resource, made by tools/make_environment.py).
-inline const char* const kDefaultEnvironment = ":/environment/studio.png";
+/// The default environment: environment/studio.png of the data folder (kw::dataDir(): the
+/// installed share/knotwork, or build/share/knotwork), made by tools/make_environment.py.
+QString defaultEnvironmentPath();
 
 /// Reads `path`: a file through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF, ...: render/image_reader.h;
 /// float values above 1 are kept), or a Qt resource path ":/..." (the bundled default) through

@@ -2,15 +2,11 @@
 // that fails early or the editor should not pay for.
 #include "render/oiio_loader.h"
 
-#include <QCoreApplication>
+#include "model/install_layout.h"
+
 #include <QFileInfo>
 #include <QLibrary>
 #include <QMutex>
-#include <QStringList>
-
-#ifndef KW_MODULE_DIR
-#define KW_MODULE_DIR ""
-#endif
 
 namespace kw {
 
@@ -22,24 +18,15 @@ void* oiioModuleSymbol(const char* symbol, QString* why) {
     QMutexLocker lock(&mutex);
     if (!searched) {
         searched = true;
-        QStringList dirs;
-        if (QCoreApplication::instance())
-            dirs << QCoreApplication::applicationDirPath();
-        dirs << QStringLiteral(KW_MODULE_DIR);
-        for (const QString& dir : dirs) {
-            const QString candidate = dir + QStringLiteral("/libknotwork_oiio.so");
-            if (dir.isEmpty() || !QFileInfo::exists(candidate))
-                continue;
-            QLibrary lib(candidate);
-            if (lib.load()) { // stays loaded: QLibrary does not unload on destruction
-                file = candidate;
-                break;
-            }
+        // Next to the program, in the installed lib/knotwork/, or a test's build/bin.
+        const QString candidate = modulePath(QStringLiteral("libknotwork_oiio.so"));
+        QLibrary lib(candidate);
+        if (!QFileInfo::exists(candidate))
+            failure = QStringLiteral("%1 does not exist").arg(candidate);
+        else if (lib.load()) // stays loaded: QLibrary does not unload on destruction
+            file = candidate;
+        else
             failure = lib.errorString();
-        }
-        if (file.isEmpty() && failure.isEmpty())
-            failure = QStringLiteral("libknotwork_oiio.so is not in %1")
-                          .arg(dirs.join(QStringLiteral(" or ")));
     }
     if (file.isEmpty()) {
         *why = failure;

@@ -5,4 +5,4 @@ kw_add_test(tst_launcher LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_launc
 target_compile_definitions(tst_launcher PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>"
                            KW_GL_BIN="$<TARGET_FILE:knotwork_gl>"
                            KW_BENCH_BIN="$<TARGET_FILE:knotwork_bench>")
-add_dependencies(tst_launcher knotwork)
+add_dependencies(tst_launcher knotwork knotwork_bench)

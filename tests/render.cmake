@@ -9,7 +9,7 @@ kw_add_test(tst_render_uploads LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_re
             ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h LIBS knotwork_render)
 kw_add_test(tst_cmd_render LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_cmd_render.cpp LIBS PkgConfig::OIIO)
 target_compile_definitions(tst_cmd_render PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
-add_dependencies(tst_cmd_render knotwork)
+add_dependencies(tst_cmd_render knotwork knotwork_bench)
 
 # The exact pass picks the per-cell gather or per-fragment fetches per surface from its cells'
 # size on screen; run the AOV-vs-kernel test once more with each variant forced, so both stay

@@ -311,8 +311,8 @@ void TestCli::badInputExitsOne_data() {
     f.close();
     QTest::newRow("info not IGES")
         << QStringList{QStringLiteral("info"), notIges} << notIges << QString();
-    // The editor opens a CAD file as File > Import does (tst_editor_export); a missing one is
-    // reported before any window.
+    // The editor imports a CAD file named on its command line; one that cannot be opened is
+    // refused before any window, naming the file.
     const QString step = QStringLiteral(KW_TEST_OUTPUT_DIR "/no such part.step");
     QTest::newRow("missing CAD file alone")
         << QStringList{step} << step << QStringLiteral("no such file");

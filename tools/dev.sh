@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Knotwork's one entry point for a fresh Debian 12 machine: install, build, then run or test.
-#   tools/dev.sh run    install dependencies, build, open the editor on the teapot sample
-#                       (with no display: render it headless to build/teapot.png)
-#   tools/dev.sh test   install dependencies, build, run every test through CTest, then fuzz each
-#                       libFuzzer harness for 60 s (tests/fuzz, a separate clang build)
+#   tools/dev.sh run    install dependencies, build what the editor needs (knotwork, knotwork-gl,
+#                       the modules; not the tests), open it on the teapot sample (with no
+#                       display: render it headless to build/teapot.png)
+#   tools/dev.sh test   install dependencies, build everything, run every test through CTest,
+#                       then fuzz each libFuzzer harness for 60 s (tests/fuzz, a separate clang
+#                       build)
+#   tools/dev.sh package   build everything and the Debian package build/package/knotwork_*.deb
+#                       (docs/INSTALL.md)
 #   tools/dev.sh fuzz [SECONDS]   build the libFuzzer harnesses and run each for SECONDS (60)
 #   tools/dev.sh deps | build
 # Idempotent: packages already installed and an up-to-date build cost a few seconds.
@@ -26,6 +30,7 @@ packages=(
   libocct-foundation-dev libtbb-dev
   occt-draw
   clang libclang-rt-14-dev
+  dpkg-dev file desktop-file-utils appstream libgtk-3-bin libglib2.0-bin shared-mime-info
 )
 
 as_root() {
@@ -44,11 +49,23 @@ deps() {
   fi
 }
 
+# build [TARGET...]: every target (the tests included), or only those named.
 build() {
   if [ ! -f "$build/build.ninja" ]; then
     cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
   fi
-  cmake --build "$build" -j "$(nproc)"
+  if [ $# -gt 0 ]; then
+    cmake --build "$build" -j "$(nproc)" --target "$@"
+  else
+    cmake --build "$build" -j "$(nproc)"
+  fi
+}
+
+# The .deb from the built tree (CPack installs it into build/_CPack_Packages, strips it, and
+# asks dpkg-shlibdeps for the Depends).
+package() {
+  (cd "$build" && cpack -G DEB)
+  ls "$build"/package/knotwork_*.deb
 }
 
 runtime_dir() {
@@ -107,10 +124,12 @@ fuzz_run() {
 case "${1:-}" in
   deps) deps ;;
   build) deps; build ;;
-  run) deps; build; run ;;
+  # knotwork builds what it starts (knotwork-gl, the OpenImageIO and OCCT modules) and no test.
+  run) deps; build knotwork; run ;;
   # The 60 s fuzz smoke run gates like the tests: a finding fails CI (its input is kept in
   # build-fuzz/artifacts); fixed reproducers are replayed by ctest above.
   test) deps; build; test_all; fuzz_build; fuzz_run 60 ;;
   fuzz) deps; fuzz_build; fuzz_run "${2:-60}" ;;
-  *) echo "usage: tools/dev.sh run|test|fuzz [SECONDS]|deps|build" >&2; exit 2 ;;
+  package) deps; build; package ;;
+  *) echo "usage: tools/dev.sh run|test|package|fuzz [SECONDS]|deps|build" >&2; exit 2 ;;
 esac

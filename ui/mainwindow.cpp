@@ -301,6 +301,7 @@ void MainWindow::buildFileMenu() {
               [this] { openDialog(); });
     m_recentMenu = file->addMenu(tr("Open &Recent"));
     m_recentMenu->setObjectName(QStringLiteral("menuRecent"));
+    addSamplesMenu(file);
     addAction(file, QStringLiteral("actionImport"), tr("&Import…"), QKeySequence(),
               [this] { importDialog(); });
     file->addSeparator();

@@ -29,6 +29,9 @@ class Viewport;
 /// The file dialog filter of File ▸ Import…; without OpenCASCADE (`occt` false) the IGES,
 /// STEP and BREP entries say they are unavailable.
 QString importFileFilter(bool occt);
+/// The samples folder, share/knotwork/samples of the running program's prefix (kw::dataDir);
+/// empty when there is none.
+QString samplesDir();
 /// Labels for File ▸ Open Recent: each file's name, followed by as many of its parent folders
 /// as it takes to tell it from the other paths ("model.knot — a/b").
 QStringList recentLabels(const QStringList& paths);
@@ -82,6 +85,10 @@ public:
     /// importer's message, on cancel says so in the status bar; both keep the current document
     /// and return false. Does not ask about unsaved changes; false while another import runs.
     bool importFile(const QString& path);
+    /// File ▸ Open Sample: asks about unsaved changes, then opens the sample `path` (a file of
+    /// samplesDir()) as an unsaved copy with no .knot path (Save asks where), or imports a CAD
+    /// sample as importFile does. False when declined or on failure (the message is shown).
+    bool openSample(const QString& path);
     bool isImporting() const { return m_importProgress != nullptr; }
     /// File ▸ Export… (`selectedOnly`: Export Selected…): writes the document, or its selected
     /// surfaces, as STEP or IGES (kw::exportCadFile, in the CAD child process, on a worker thread
@@ -150,6 +157,7 @@ private:
     void setFilePath(const QString& path);
     void addRecent(const QString& path);
     void rebuildRecentMenu();
+    void addSamplesMenu(QMenu* file);
     void updateTitle();
     /// The document's file name for titles and questions ("Untitled" when it has none).
     QString displayName() const;

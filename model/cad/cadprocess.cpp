@@ -8,10 +8,10 @@
 #include "model/cad/cadtempdir.h"
 #include "model/cad/handover.h"
 #include "model/inputcheck.h"
+#include "model/install_layout.h"
 #include "model/safetext.h"
 #include "model/savefile.h"
 
-#include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileInfo>
@@ -76,7 +76,7 @@ QString cadReaderExecutable() {
     }
     if (const QString env = qEnvironmentVariable("KNOTWORK_CAD_READER"); !env.isEmpty())
         return env;
-    return QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral("knotwork"));
+    return programPath("knotwork");
 }
 
 void setCadReaderExecutable(const QString& path) {

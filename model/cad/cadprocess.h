@@ -31,8 +31,8 @@ double cadTimeLimitSeconds(qint64 bytes, bool mesh = false);
 long long cadMemoryLimitBytes(qint64 bytes = 0);
 
 /// The knotwork executable that runs the child: the one set with setCadReaderExecutable, else
-/// the environment variable KNOTWORK_CAD_READER (the tests set it), else `knotwork` in the
-/// folder of the running executable.
+/// the environment variable KNOTWORK_CAD_READER (the tests set it), else kw::programPath
+/// ("knotwork"): next to the running executable, or bin/knotwork of an installed prefix.
 QString cadReaderExecutable();
 /// Sets the executable for this process (tests, which are not knotwork themselves).
 void setCadReaderExecutable(const QString& path);

@@ -1,0 +1,58 @@
+# The manual page describes every subcommand and option of `knotwork --help`, and carries the
+# version --version prints (ctest app_manpage).
+#   cmake -DKNOTWORK=<bin/knotwork> -DMANPAGE=<knotwork.1> -P tools/check_manpage.cmake
+execute_process(COMMAND ${KNOTWORK} --help OUTPUT_VARIABLE help RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "knotwork --help exited ${rc}")
+endif()
+execute_process(COMMAND ${KNOTWORK} --version OUTPUT_VARIABLE version RESULT_VARIABLE rc)
+string(REGEX MATCH "^knotwork ([0-9.]+)" _ "${version}")
+set(version ${CMAKE_MATCH_1})
+if(NOT rc EQUAL 0 OR NOT version)
+  message(FATAL_ERROR "knotwork --version exited ${rc}: ${version}")
+endif()
+
+# The page as a reader sees it: groff's \- is a dash, font changes vanish.
+file(READ ${MANPAGE} page)
+string(REPLACE "\\-" "-" page "${page}")
+string(REGEX REPLACE "\\\\f[BIRP]" "" page "${page}")
+string(REGEX REPLACE "\\\\e" "\\\\" page "${page}")
+
+# Subcommands: the rows under "Subcommands:" ("  name  summary") up to the blank line.
+string(REGEX MATCH "Subcommands:\n(([ ]+[a-z-]+ [^\n]*\n)+)" _ "${help}")
+set(rows "${CMAKE_MATCH_1}")
+string(REGEX MATCHALL "\n  [a-z-]+" verbs "\n${rows}")
+if(NOT verbs)
+  message(FATAL_ERROR "no subcommands found in knotwork --help:\n${help}")
+endif()
+# Options: every -x and --long-option the help names.
+# (Brackets become spaces first: an unbalanced [ in a CMake list item would join the items.)
+string(REGEX REPLACE "[][(),]" " " flat " ${help}")
+string(REGEX MATCHALL "[ \t\n]--?[a-zA-Z][a-zA-Z-]*" options "${flat}")
+
+set(missing)
+foreach(v ${verbs})
+  string(STRIP "${v}" v)
+  # Described as an item of the SUBCOMMANDS section: a line starting with the verb.
+  if(NOT page MATCHES "\n\\.B[IR]? \"?${v}[ \"\n]")
+    list(APPEND missing "subcommand ${v}")
+  endif()
+endforeach()
+foreach(o ${options})
+  string(STRIP "${o}" o)
+  string(FIND "${page}" "${o}" at)
+  if(at EQUAL -1)
+    list(APPEND missing "option ${o}")
+  endif()
+endforeach()
+if(missing)
+  list(REMOVE_DUPLICATES missing)
+  string(REPLACE ";" "\n  " missing "${missing}")
+  message(FATAL_ERROR "${MANPAGE} does not describe what knotwork --help lists:\n  ${missing}")
+endif()
+if(NOT page MATCHES "\"Knotwork ${version}\"")
+  message(FATAL_ERROR "${MANPAGE} is not for version ${version}")
+endif()
+list(LENGTH verbs nv)
+list(LENGTH options no)
+message(STATUS "knotwork.1 describes the ${nv} subcommands and ${no} option mentions of --help")
