@@ -28,7 +28,7 @@ packages=(
   fonts-dejavu-core
   libocct-data-exchange-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libtbb-dev
-  occt-draw
+  occt-draw libocct-draw-dev
   clang libclang-rt-14-dev
   dpkg-dev file desktop-file-utils appstream libgtk-3-bin libglib2.0-bin shared-mime-info
 )
