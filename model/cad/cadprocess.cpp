@@ -438,12 +438,17 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
     return false;
 #else
     const QString writer = QStringLiteral("the %1 writer").arg(cadFormatName(format));
-    QTemporaryDir dir;
-    if (!dir.isValid()) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, writer, dir.errorString());
+    // A folder of the registry (cadtempdir.h): removed on every exit path, SIGTERM included,
+    // or swept by a later run if this one is killed.
+    QString why;
+    const QString dirPath = makeCadTempDir(&why);
+    if (dirPath.isEmpty()) {
+        error =
+            QStringLiteral("%1: cannot make a temporary folder for %2: %3").arg(path, writer, why);
         return false;
     }
+    const FolderRemover removeDir(dirPath);
+    const QDir dir(dirPath);
     // The scene goes over bit for bit (handover.h), as imports come back.
     ImportResult handover;
     handover.scene = scene;
@@ -451,7 +456,6 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
         handover.sourceFaces.push_back(k + 1);
     const QByteArray block = encodeImportHandover(handover);
     const QString scenePath = dir.filePath(QStringLiteral("scene.kwi"));
-    QString why;
     if (!saveBytesAtomically(scenePath, block, &why)) {
         error = QStringLiteral("%1: cannot hand the scene to %2: %3").arg(path, writer, why);
         return false;
@@ -460,7 +464,7 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
     QStringList args{QString::fromLatin1(kWriteCadVerb),
                      scenePath,
                      path,
-                     dir.path(),
+                     dirPath,
                      QStringLiteral("--max-memory-mb"),
                      QString::number(memory >> 20),
                      QStringLiteral("--step-schema"),
