@@ -29,7 +29,8 @@ for f in bin/knotwork lib/knotwork/knotwork-gl lib/knotwork/knotwork-bench \
          share/mime/packages/org.knotwork.Knotwork.xml share/metainfo/org.knotwork.Knotwork.metainfo.xml \
          share/icons/hicolor/scalable/apps/org.knotwork.Knotwork.svg \
          share/icons/hicolor/48x48/apps/org.knotwork.Knotwork.png share/man/man1/knotwork.1 \
-         share/doc/knotwork/README.md share/doc/knotwork/INSTALL.md; do
+         share/doc/knotwork/README.md share/doc/knotwork/INSTALL.md \
+         share/doc/knotwork/USER_GUIDE.md share/doc/knotwork/CLI.md; do
   [ -e "$prefix/$f" ] || fail "$f is not installed"
 done
 

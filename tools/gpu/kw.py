@@ -24,8 +24,8 @@ CAD = {"hammer": "tests/data/hammer.iges", "teapot": "tests/data/teapot.igs",
        "Axis_of_bearing": "tests/data/Axis_of_bearing.brep", "Motor-c": K + "/data/Motor-c.brep"}
 SIDE = {"hammer": 155.63 / 0.004, "teapot": 0.0261 / 0.004, "screw": 0.265927 / 0.004,
         "Pump_Nut": 0.24 / 0.004, "Axis_of_bearing": 0.52 / 0.004, "Motor-c": 0.836003 / 0.004}
-# The peer meshes found by tools/peer_search.py on the 2-core machine (PERFORMANCE.md, "The peer
-# at the issue's quality bar"): (fraction of the side, angular degrees), and their triangles.
+# The peer meshes found by tools/peer_search.py on the 2-core machine (docs/PERFORMANCE.md, "The
+# OpenCASCADE mesh peer"): (fraction of the side, angular degrees), and their triangles.
 FIT = {"hammer": (0.000125, 2.5, 138729), "teapot": (6.25e-05, 2.5, 692876),
        "screw": (0.001, 5.0, 3224), "Pump_Nut": (0.001, 3.5355339, 43954),
        "Axis_of_bearing": (0.0005, 7.0710678, 92636), "Motor-c": (0.0005, 5.0, 137070)}
