@@ -301,9 +301,10 @@ void MainWindow::buildFileMenu() {
               [this] { openDialog(); });
     m_recentMenu = file->addMenu(tr("Open &Recent"));
     m_recentMenu->setObjectName(QStringLiteral("menuRecent"));
-    addSamplesMenu(file);
+    // Import right after the recent files, as the other CAD tools place it; then the samples.
     addAction(file, QStringLiteral("actionImport"), tr("&Import…"), QKeySequence(),
               [this] { importDialog(); });
+    addSamplesMenu(file);
     file->addSeparator();
     addAction(file, QStringLiteral("actionSave"), tr("&Save"), QKeySequence::Save,
               [this] { save(); });
@@ -312,8 +313,8 @@ void MainWindow::buildFileMenu() {
               QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), [this] { saveAs(); });
     addAction(file, QStringLiteral("actionExport"), tr("E&xport…"), QKeySequence(),
               [this] { exportDialog(false); });
-    addAction(file, QStringLiteral("actionExportSelected"), tr("Export Se&lected…"),
-              QKeySequence(), [this] { exportDialog(true); });
+    addAction(file, QStringLiteral("actionExportSelected"), tr("Export Se&lected…"), QKeySequence(),
+              [this] { exportDialog(true); });
     addAction(file, QStringLiteral("actionExportImage"), tr("&Export Image…"),
               QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportImage(); });
     file->addSeparator();
