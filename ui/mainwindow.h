@@ -7,12 +7,15 @@
 
 #include <QMainWindow>
 #include <QMessageBox>
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 
 class QLabel;
 class QMenu;
 class QProgressDialog;
+class QThread;
 class QTreeView;
 class QUndoStack;
 
@@ -25,6 +28,13 @@ class ModelingTools;
 class PropertyPanel;
 class UvPanel;
 class Viewport;
+
+/// What an import or export on a worker thread shares with the progress dialog.
+struct ExchangeJob {
+    std::atomic<int> done{0};
+    std::atomic<int> total{0};
+    std::atomic<bool> cancel{false};
+};
 
 /// The file dialog filter of File ▸ Import…; without OpenCASCADE (`occt` false) the IGES,
 /// STEP and BREP entries say they are unavailable.
@@ -147,6 +157,10 @@ private:
     void openDialog();
     void importDialog();
     void exportDialog(bool selectedOnly);
+    /// Runs `worker` behind a window-modal progress dialog showing job.done of job.total, until
+    /// it has finished; Cancel sets job.cancel. The bar ends full when `succeeded` says so.
+    void runWithProgress(const QString& title, const QString& label, ExchangeJob& job,
+                         std::unique_ptr<QThread> worker, const std::function<bool()>& succeeded);
     bool save();
     bool saveAs();
     void exportImage();

@@ -20,42 +20,22 @@ namespace kw {
 
 namespace {
 
-struct ExportJob {
-    std::atomic<int> done{0};
-    std::atomic<int> total{0};
-    std::atomic<bool> cancel{false};
+struct ExportJob : ExchangeJob {
     bool ok = false;
     ExportReport report;
     QString error;
 };
 
-constexpr int kTickMs = 30;
-
 // The scene with only `keep`'s surfaces, and the part of the import's record among them: edges
 // with both sides kept, shells with their kept faces (no longer closed when a face is left out).
-Scene sceneOf(const Scene& all, const std::vector<SurfaceId>& keep) {
-    const std::set<SurfaceId> kept(keep.begin(), keep.end());
+Scene sceneOf(const Scene& all, std::vector<SurfaceId> keep) {
+    std::sort(keep.begin(), keep.end());
     Scene s = all;
     s.surfaces.clear();
     for (const Surface& x : all.surfaces)
-        if (kept.count(x.id))
+        if (std::binary_search(keep.begin(), keep.end(), x.id))
             s.surfaces.push_back(x);
-    s.topology.edges.clear();
-    for (const SharedEdge& e : all.topology.edges)
-        if (kept.count(e.sides[0].surface) && kept.count(e.sides[1].surface))
-            s.topology.edges.push_back(e);
-    s.topology.shells.clear();
-    for (const Shell& shell : all.topology.shells) {
-        Shell part = shell;
-        part.faces.clear();
-        for (SurfaceId f : shell.faces)
-            if (kept.count(f))
-                part.faces.push_back(f);
-        if (part.faces.empty())
-            continue;
-        part.closed = shell.closed && part.faces.size() == shell.faces.size();
-        s.topology.shells.push_back(part);
-    }
+    s.topology = topologyOfFaces(all.topology, keep);
     return s;
 }
 
@@ -128,44 +108,8 @@ bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
                                     return !job->cancel.load();
                                 });
     }));
-    auto progressOwner =
-        std::make_unique<QProgressDialog>(tr("Exporting %1…").arg(name), tr("Cancel"), 0, 0, this);
-    QProgressDialog& progress = *progressOwner;
-    progress.setWindowTitle(tr("Export"));
-    progress.setWindowModality(Qt::WindowModal);
-    progress.setMinimumDuration(300);
-    progress.setAutoReset(false);
-    progress.setAutoClose(false);
-    m_importProgress = &progress; // one exchange at a time: Import and Export both wait
-    connect(&progress, &QProgressDialog::canceled, this, [job] { job->cancel = true; });
-    QEventLoop loop;
-    QTimer tick;
-    tick.setInterval(kTickMs);
-    const auto update = [&] {
-        if (progress.wasCanceled())
-            job->cancel = true;
-        const int total = job->total;
-        if (total > 0 && !progress.wasCanceled()) {
-            progress.setMaximum(total);
-            progress.setValue(std::clamp(job->done.load(), 0, total));
-        }
-        if (m_dialogs.importProgress)
-            m_dialogs.importProgress(&progress);
-        if (worker->isFinished())
-            loop.quit();
-    };
-    connect(&tick, &QTimer::timeout, &loop, update);
-    connect(worker.get(), &QThread::finished, &loop, &QEventLoop::quit);
-    worker->start();
-    tick.start();
-    update();
-    while (!worker->isFinished())
-        loop.exec();
-    worker->wait();
-    tick.stop();
-    m_importProgress = nullptr;
-    progress.hide();
-    progressOwner.reset();
+    runWithProgress(tr("Export"), tr("Exporting %1…").arg(name), *job, std::move(worker),
+                    [job] { return job->ok; });
 
     if (!job->ok) {
         if (job->cancel)

@@ -21,10 +21,7 @@ namespace {
 
 // Shared by the UI thread and the worker: the worker writes progress and the outcome, the UI
 // thread writes `cancel`; the outcome is read only after the thread has finished.
-struct ImportJob {
-    std::atomic<int> done{0};
-    std::atomic<int> total{0};
-    std::atomic<bool> cancel{false};
+struct ImportJob : ExchangeJob {
     std::optional<ImportResult> result;
     QString error;
 };
@@ -57,43 +54,31 @@ void MainWindow::importDialog() {
         importFile(path);
 }
 
-bool MainWindow::importFile(const QString& path) {
-    if (m_importProgress)
-        return false;
-    const QString name = QFileInfo(path).fileName();
-    auto job = std::make_shared<ImportJob>();
-    // importFile is reentrant (plain data out; OCCT sets up its signal handling per thread).
-    std::unique_ptr<QThread> worker(QThread::create([job, path] {
-        job->result = kw::importFile(path, job->error, [job](int done, int total) {
-            job->done = done;
-            job->total = total;
-            return !job->cancel.load();
-        });
-    }));
-
+void MainWindow::runWithProgress(const QString& title, const QString& label, ExchangeJob& job,
+                                 std::unique_ptr<QThread> worker,
+                                 const std::function<bool()>& succeeded) {
     // Owned so it can be destroyed before any message: its minimum-duration timer could
-    // otherwise show it, window-modal, over the error box of a fast failed import.
-    auto progressOwner =
-        std::make_unique<QProgressDialog>(tr("Importing %1…").arg(name), tr("Cancel"), 0, 0, this);
+    // otherwise show it, window-modal, over the error box of a fast failed exchange.
+    auto progressOwner = std::make_unique<QProgressDialog>(label, tr("Cancel"), 0, 0, this);
     QProgressDialog& progress = *progressOwner;
-    progress.setWindowTitle(tr("Import"));
+    progress.setWindowTitle(title);
     progress.setWindowModality(Qt::WindowModal);
     progress.setMinimumDuration(300);
     progress.setAutoReset(false);
     progress.setAutoClose(false);
-    m_importProgress = &progress;
-    connect(&progress, &QProgressDialog::canceled, this, [job] { job->cancel = true; });
+    m_importProgress = &progress; // one exchange at a time: Import and Export both wait
+    connect(&progress, &QProgressDialog::canceled, this, [&job] { job.cancel = true; });
 
     QEventLoop loop;
     QTimer tick;
     tick.setInterval(kTickMs);
     const auto update = [&] {
         if (progress.wasCanceled())
-            job->cancel = true; // also a programmatic cancel(), which emits no canceled()
-        const int total = job->total;
+            job.cancel = true; // also a programmatic cancel(), which emits no canceled()
+        const int total = job.total;
         if (total > 0 && !progress.wasCanceled()) {
             progress.setMaximum(total);
-            progress.setValue(std::clamp(job->done.load(), 0, total));
+            progress.setValue(std::clamp(job.done.load(), 0, total));
         }
         if (m_dialogs.importProgress)
             m_dialogs.importProgress(&progress);
@@ -111,8 +96,8 @@ bool MainWindow::importFile(const QString& path) {
     worker->wait();
     tick.stop();
     if (progress.wasCanceled())
-        job->cancel = true;
-    if (!job->cancel && job->result) { // done: a full bar (OBJ and .knot report no progress)
+        job.cancel = true;
+    if (!job.cancel && succeeded()) { // done: a full bar (OBJ and .knot report no progress)
         progress.setRange(0, 1);
         progress.setValue(1);
         if (m_dialogs.importProgress)
@@ -120,7 +105,24 @@ bool MainWindow::importFile(const QString& path) {
     }
     m_importProgress = nullptr;
     progress.hide();
-    progressOwner.reset();
+}
+
+bool MainWindow::importFile(const QString& path) {
+    if (m_importProgress)
+        return false;
+    const QString name = QFileInfo(path).fileName();
+    auto job = std::make_shared<ImportJob>();
+    // importFile is reentrant (plain data out; OCCT sets up its signal handling per thread).
+    std::unique_ptr<QThread> worker(QThread::create([job, path] {
+        job->result = kw::importFile(path, job->error, [job](int done, int total) {
+            job->done = done;
+            job->total = total;
+            return !job->cancel.load();
+        });
+    }));
+
+    runWithProgress(tr("Import"), tr("Importing %1…").arg(name), *job, std::move(worker),
+                    [job] { return job->result.has_value(); });
 
     if (job->cancel) {
         // The importer's own message when it stopped; otherwise it had finished first.
