@@ -8,10 +8,8 @@
 #include "model/cad/cadprocess.h"
 #include "model/cad/occtimport.h"
 
-#include <QElapsedTimer>
 #include <QFile>
 #include <csignal>
-#include <cstdio>
 #include <optional>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -96,21 +94,7 @@ int runReadCad(const QStringList& args) {
         printError(QStringLiteral("%1: cannot read %2: %3").arg(in, cadFormatName(format), error));
         return kExitBadInput;
     }
-    // One line per change of `done`, at most one per 20 ms but always the last: the parent
-    // reads them every 50 ms, and OCCT reports hundreds of steps for a small file (391 lines,
-    // each a write and a wake-up of the parent, for hammer.iges).
-    QElapsedTimer sinceLine;
-    int lastDone = -1;
-    const ImportProgress progress = [&](int done, int total) {
-        if (done == lastDone || (done < total && sinceLine.isValid() && sinceLine.elapsed() < 20))
-            return true;
-        lastDone = done;
-        sinceLine.start();
-        const QByteArray line = progressLine(done, total);
-        std::fwrite(line.constData(), 1, size_t(line.size()), stdout);
-        std::fflush(stdout);
-        return true; // the parent cancels by killing this process
-    };
+    const ImportProgress progress = progressToParent();
     ImportResult result;
     TaggedMeshSet triangles;
     const bool ok = deflection

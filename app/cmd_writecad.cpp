@@ -10,9 +10,7 @@
 #include "model/savefile.h"
 
 #include <QDir>
-#include <QElapsedTimer>
 #include <QFile>
-#include <cstdio>
 #include <sys/resource.h>
 
 namespace kw::cli {
@@ -77,18 +75,7 @@ int runWriteCad(const QStringList& args) {
                        .arg(out, cadFormatName(cadFormatFromPath(out)), error));
         return kExitBadInput;
     }
-    QElapsedTimer sinceLine;
-    int lastDone = -1;
-    const ImportProgress progress = [&](int done, int total) {
-        if (done == lastDone || (done < total && sinceLine.isValid() && sinceLine.elapsed() < 20))
-            return true;
-        lastDone = done;
-        sinceLine.start();
-        const QByteArray line = progressLine(done, total);
-        std::fwrite(line.constData(), 1, size_t(line.size()), stdout);
-        std::fflush(stdout);
-        return true; // the parent cancels by killing this process
-    };
+    const ImportProgress progress = progressToParent();
     QByteArray bytes;
     ExportReport report;
     const bool ok = write(&scene->scene, out, &options, &bytes, &report, &error, &progress);

@@ -20,7 +20,9 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
+#include <memory>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <sys/syscall.h>
@@ -86,6 +88,25 @@ void setCadReaderExecutable(const QString& path) {
 
 QByteArray progressLine(int done, int total) {
     return "progress " + QByteArray::number(done) + ' ' + QByteArray::number(total) + '\n';
+}
+
+ImportProgress progressToParent() {
+    struct State {
+        QElapsedTimer sinceLine;
+        int lastDone = -1;
+    };
+    auto state = std::make_shared<State>();
+    return [state](int done, int total) {
+        if (done == state->lastDone ||
+            (done < total && state->sinceLine.isValid() && state->sinceLine.elapsed() < 20))
+            return true;
+        state->lastDone = done;
+        state->sinceLine.start();
+        const QByteArray line = progressLine(done, total);
+        std::fwrite(line.constData(), 1, size_t(line.size()), stdout);
+        std::fflush(stdout);
+        return true;
+    };
 }
 
 bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error) {

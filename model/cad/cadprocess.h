@@ -62,4 +62,11 @@ bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& 
 /// "progress DONE TOTAL\n", the line the child prints for the parent's progress bar.
 QByteArray progressLine(int done, int total);
 
+/// Child side: a progress callback that prints progressLine to stdout for the parent. One
+/// line per change of `done`, at most one per 20 ms but always the last: the parent reads
+/// them every 50 ms, and OCCT reports hundreds of steps for a small file (391 for
+/// hammer.iges, each a write and a wake-up of the parent). It never cancels: the parent
+/// cancels by killing the child.
+ImportProgress progressToParent();
+
 } // namespace kw
