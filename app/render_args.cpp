@@ -232,8 +232,8 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "mean, linear otherwise."),
                            QStringLiteral("SCALE")),
         QCommandLineOption(QStringLiteral("stripes"),
-                           QStringLiteral("Zebra: stripe pairs per 180 degrees of reflection "
-                                          "(default 8)."),
+                           QStringLiteral("Zebra: stripe pairs per 180 degrees of reflection, "
+                                          "drawn to the nearest 0.5 (default 8)."),
                            QStringLiteral("N"), QStringLiteral("8")),
         QCommandLineOption(QStringLiteral("stripe-angle"),
                            QStringLiteral("Zebra: stripe direction in the view plane in degrees "

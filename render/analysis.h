@@ -49,7 +49,9 @@ struct AnalysisOptions {
     std::optional<ValueRange> range;
     /// Colour maps: the scale, or none for the mode's default (defaultScale).
     std::optional<ColourScale> scale;
-    double stripeCount = 8.0;       ///< zebra: stripe pairs per 180 degrees of reflection
+    /// Zebra: stripe pairs per 180 degrees of reflection, drawn to the nearest 0.5 (the tubes
+    /// must close around the axis).
+    double stripeCount = 8.0;
     double stripeAngleDegrees = 90; ///< zebra: stripe direction in the view plane (90: vertical)
     double isophoteCount = 10.0;    ///< isophotes: bands across N.L in [-1, 1]
     glm::dvec3 pullDirection{0.0, 0.0, 1.0}; ///< draft: world direction (normalised when used)
