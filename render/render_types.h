@@ -296,6 +296,20 @@ FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect)
 CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
 FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
 
+/// The viewer's own fill, added to the scene's lights in every view (phong.glsl's uFill,
+/// kw::shadeReference): a diffuse term kd (base + facing |N.V|) colour. Lights authored for
+/// one side leave the other side of a part black (a connecting rod's lower faces, the inside
+/// of a lofted cone); CAD viewers give every visible face a readable grey with a headlight and
+/// ambient, and this is that: never below kd base colour, brighter as a face turns to the eye,
+/// the same for either orientation of the B-rep (N is turned to the eye first). With the
+/// default material and light (ka 0.15 of ambient 0.2, kd 0.75, colour luminance 0.82) the
+/// darkest visible pixel is 0.20, 0.17 without the light's ambient (tst_render_lighting).
+struct ViewerFill {
+    double base = 0.0;
+    double facing = 0.0;
+};
+inline constexpr ViewerFill kViewerFill{0.28, 0.12};
+
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,
 /// then copies of them rotated about the camera's up axis, so `--lights 8` works on any file.
 /// With `headlight`, every light is turned with the camera: the lights as authored light the

@@ -88,6 +88,7 @@ public:
                                                       {&u.forward, "uForward"},
                                                       {&u.viewport, "uViewport"},
                                                       {&u.ambient, "uAmbient"},
+                                                      {&u.fill, "uFill"},
                                                       {&u.lightVector, "uLightVector"},
                                                       {&u.lightDiffuse, "uLightDiffuse"},
                                                       {&u.lightSpecular, "uLightSpecular"},
