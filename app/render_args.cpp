@@ -223,8 +223,8 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "(default 8): at i/(N+1) of each domain."),
                            QStringLiteral("N|NxM"), QStringLiteral("8")),
         QCommandLineOption(QStringLiteral("range"),
-                           QStringLiteral("Colour maps: value range LOW,HIGH (default: the 2nd "
-                                          "to 98th percentile of kernel samples)."),
+                           QStringLiteral("Colour maps: value range LOW,HIGH (default: the "
+                                          "10th to 90th percentile of the area)."),
                            QStringLiteral("LOW,HIGH")),
         QCommandLineOption(QStringLiteral("scale"),
                            QStringLiteral("Colour maps: linear, symmetric (0 in the middle) or "

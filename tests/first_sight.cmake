@@ -12,3 +12,6 @@ kw_add_test(tst_render_lighting LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_r
             ${CMAKE_CURRENT_LIST_DIR}/cad_test_util.h ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h
             LIBS ${KW_LIGHTING_LIBS})
 kw_use_cad_reader(tst_render_lighting)
+# The automatic colour range: area-weighted percentiles (no GL).
+kw_add_test(tst_analysis_range LABEL render SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_analysis_range.cpp
+            LIBS knotwork_render)
