@@ -114,9 +114,10 @@ double analysisValue(AnalysisMode mode, const SurfaceCurvature& c);
 /// with kw::surfaceCurvature (trimmed-away samples count too: the mask is a GPU-side raster).
 /// Area-weighted percentiles, not extremes nor sample counts, so small sharp regions (fillets,
 /// a rim, a knob) saturate at the scale's ends instead of washing out the large faces; 10th
-/// to 90th: the teapot's body shows 5 of 10 legend bands of mean curvature. Empty scene or non-colour-map mode: {0, 1}. A range narrower than 10% of
-/// its middle's magnitude is widened to +-5% of it (at least +-1e-12), so a constant quantity
-/// shows one colour instead of its rounding noise.
+/// to 90th: the teapot's body shows 5 of 10 legend bands of mean curvature.
+/// Empty scene or non-colour-map mode: {0, 1}. A range narrower than 10% of its middle's
+/// magnitude is widened to +-5% of it (at least +-1e-12), so a constant quantity shows one
+/// colour instead of its rounding noise.
 ValueRange autoRange(const Scene& scene, AnalysisMode mode, int samples = 16,
                      double lowPercentile = 0.10, double highPercentile = 0.90);
 
