@@ -209,6 +209,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "samples, trim edges covered by their exact distance; "
                                           "at most what the GPU allows)."),
                            QStringLiteral("METHOD"), QStringLiteral("accumulate")),
+        QCommandLineOption(QStringLiteral("background"),
+                           QStringLiteral("dark (default: flat dark grey) or light (a light "
+                                          "grey-blue gradient, brighter at the top, as CAD "
+                                          "viewers offer)."),
+                           QStringLiteral("NAME"), QStringLiteral("dark")),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
                                           "max-curvature, min-radius, zebra, isophotes, "
@@ -260,6 +265,7 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                        o.samples, o.aaMethod,   o.shading,       o.isocurves,      o.isoLines,
                        o.range,   o.scale,      o.stripes,       o.stripeAngle,    o.isophoteBands,
                        o.pull,    o.draftAngle, o.envMap,        o.directions});
+    parser.addOption(o.background);
     return o;
 }
 
@@ -324,6 +330,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!aaMethod)
         return fail(o.aaMethod, QStringLiteral("accumulate or coverage"));
     options.antialiasing = *aaMethod;
+    if (!backgroundNamed(parser.value(o.background), options))
+        return fail(o.background, QStringLiteral("dark or light"));
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return readDevelopmentSwitches(cmd, options);
 }

@@ -185,11 +185,32 @@ struct RenderOptions {
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
+    /// With a value, the background is a vertical gradient from `background` at the view's
+    /// bottom to this at its top (kw::backgroundNamed's "light", as CAD viewers offer);
+    /// AOVs and picks still see no surface there.
+    std::optional<glm::vec4> backgroundTop;
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;
 
     bool operator==(const RenderOptions&) const = default;
 };
+
+/// The backgrounds by name, the command line's and the project's spelling: "dark" (the
+/// default, a flat dark grey) and "light" (a light grey-blue gradient, brighter at the top).
+/// Sets options.background and options.backgroundTop; false for any other name.
+inline bool backgroundNamed(const QString& name, RenderOptions& options) {
+    if (name == QLatin1String("dark")) {
+        options.background = RenderOptions{}.background;
+        options.backgroundTop.reset();
+        return true;
+    }
+    if (name == QLatin1String("light")) {
+        options.background = glm::vec4(0.62f, 0.66f, 0.72f, 1.0f);
+        options.backgroundTop = glm::vec4(0.93f, 0.94f, 0.96f, 1.0f);
+        return true;
+    }
+    return false;
+}
 
 /// The trim mode named "exact" or "mask" (the command line's and the settings' spelling), or
 /// nothing for any other name.

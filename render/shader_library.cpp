@@ -89,6 +89,8 @@ public:
                                                       {&u.viewport, "uViewport"},
                                                       {&u.ambient, "uAmbient"},
                                                       {&u.fill, "uFill"},
+                                                      {&u.backgroundBottom, "uBackgroundBottom"},
+                                                      {&u.backgroundTop, "uBackgroundTop"},
                                                       {&u.lightVector, "uLightVector"},
                                                       {&u.lightDiffuse, "uLightDiffuse"},
                                                       {&u.lightSpecular, "uLightSpecular"},

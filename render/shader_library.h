@@ -27,6 +27,7 @@ struct UniformLocations {
     int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;
     int draftAngle = -1, dirSpacing = -1, isoCount = -1, isoWidth = -1;
     int isoColour = -1, knotColour = -1;
+    int backgroundBottom = -1, backgroundTop = -1; // background.frag
 };
 
 class ShaderLibrary {

@@ -137,6 +137,89 @@ private Q_SLOTS:
                                 .arg(where)));
     }
 
+    /// The light background: a vertical gradient from the bottom colour to the top one behind
+    /// the part, in aliased, accumulated and coverage-AA frames; the part's pixels and the
+    /// AOVs are those of the dark background's frame (the AOVs still say "no surface").
+    void lightBackgroundGradient_data() {
+        QTest::addColumn<int>("samples");
+        QTest::addColumn<bool>("coverage");
+        QTest::newRow("aliased") << 1 << false;
+        QTest::newRow("accumulated") << 4 << false;
+        QTest::newRow("coverage") << 4 << true;
+    }
+
+    void lightBackgroundGradient() {
+        QFETCH(int, samples);
+        QFETCH(bool, coverage);
+        QString error;
+        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("sphere"), &error);
+        QVERIFY2(scene, qPrintable(error));
+        Document doc;
+        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const Camera cam = fitCamera(*scene, 1.0);
+        RenderOptions opt;
+        opt.samples = samples;
+        opt.antialiasing = coverage ? RenderOptions::Antialiasing::Coverage
+                                    : RenderOptions::Antialiasing::Accumulate;
+        QVERIFY(backgroundNamed(QStringLiteral("dark"), opt));
+        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        const QImage dark = m_renderer->colorImage();
+        RenderOptions light = opt;
+        QVERIFY(backgroundNamed(QStringLiteral("light"), light));
+        QVERIFY(light.backgroundTop && !opt.backgroundTop);
+        QVERIFY(!backgroundNamed(QStringLiteral("purple"), light));
+        QVERIFY2(m_renderer->render(doc, cam, light, &error), qPrintable(error));
+        const QImage img = m_renderer->colorImage();
+        QVERIFY2(writeColorImage(img,
+                                 kwtest::outputDir().filePath(
+                                     QStringLiteral("background_light_%1.png")
+                                         .arg(QString::fromLatin1(QTest::currentDataTag()))),
+                                 &error),
+                 qPrintable(error));
+        // The corner columns hold no part: bottom colour at the bottom row, top at the top,
+        // brightening monotonically (row 0 of the image is the top).
+        const auto channel = [](QRgb c) {
+            return qGreen(c) / 255.0;
+        };
+        const double top = channel(img.pixel(0, 0)), bottom = channel(img.pixel(0, kSide - 1));
+        const double halfPixel = 0.5 / kSide;
+        QVERIFY2(std::abs(top - (light.backgroundTop->g -
+                                 halfPixel * (light.backgroundTop->g - light.background.g))) <
+                     1.5 / 255.0,
+                 qPrintable(QStringLiteral("top %1").arg(top)));
+        QVERIFY2(std::abs(bottom - (light.background.g +
+                                    halfPixel * (light.backgroundTop->g - light.background.g))) <
+                     1.5 / 255.0,
+                 qPrintable(QStringLiteral("bottom %1").arg(bottom)));
+        for (int y = 1; y < kSide; ++y)
+            QVERIFY(channel(img.pixel(0, y)) <= channel(img.pixel(0, y - 1)));
+        // The part is drawn as on the dark background wherever the dark frame shows no
+        // background (edge pixels of anti-aliased frames mix the two).
+        const QRgb darkBg = dark.pixel(0, 0);
+        int part = 0, differing = 0;
+        for (int y = 1; y + 1 < kSide; ++y)
+            for (int x = 1; x + 1 < kSide; ++x) {
+                bool inside = true;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx)
+                        inside = inside && dark.pixel(x + dx, y + dy) != darkBg;
+                if (!inside)
+                    continue;
+                ++part;
+                differing += dark.pixel(x, y) != img.pixel(x, y);
+            }
+        QVERIFY(part > 1000);
+        QCOMPARE(differing, 0);
+        if (samples == 1) {
+            // AOV frames: the background is still "no surface".
+            RenderOptions aovLight = light;
+            QVERIFY2(m_renderer->render(doc, cam, aovLight, &error), qPrintable(error));
+            const AovBuffer aov = m_renderer->aov();
+            QCOMPARE(aov.pixel(0, 0)[0], -1.0f);
+            QCOMPARE(aov.pixel(0, kSide - 1)[0], -1.0f);
+        }
+    }
+
     void cleanupTestCase() { m_renderer.reset(); }
 };
 
