@@ -209,6 +209,11 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "samples, trim edges covered by their exact distance; "
                                           "at most what the GPU allows)."),
                            QStringLiteral("METHOD"), QStringLiteral("accumulate")),
+        QCommandLineOption(QStringLiteral("background"),
+                           QStringLiteral("dark (default: flat dark grey) or light (a light "
+                                          "grey-blue gradient, brighter at the top, as CAD "
+                                          "viewers offer)."),
+                           QStringLiteral("NAME"), QStringLiteral("dark")),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
                                           "max-curvature, min-radius, zebra, isophotes, "
@@ -223,8 +228,8 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "(default 8): at i/(N+1) of each domain."),
                            QStringLiteral("N|NxM"), QStringLiteral("8")),
         QCommandLineOption(QStringLiteral("range"),
-                           QStringLiteral("Colour maps: value range LOW,HIGH (default: the 2nd "
-                                          "to 98th percentile of kernel samples)."),
+                           QStringLiteral("Colour maps: value range LOW,HIGH (default: the "
+                                          "10th to 90th percentile of the area)."),
                            QStringLiteral("LOW,HIGH")),
         QCommandLineOption(QStringLiteral("scale"),
                            QStringLiteral("Colour maps: linear, symmetric (0 in the middle) or "
@@ -232,8 +237,8 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "mean, linear otherwise."),
                            QStringLiteral("SCALE")),
         QCommandLineOption(QStringLiteral("stripes"),
-                           QStringLiteral("Zebra: stripe pairs per 180 degrees of reflection "
-                                          "(default 8)."),
+                           QStringLiteral("Zebra: stripe pairs per 180 degrees of reflection, "
+                                          "drawn to the nearest 0.5 (default 8)."),
                            QStringLiteral("N"), QStringLiteral("8")),
         QCommandLineOption(QStringLiteral("stripe-angle"),
                            QStringLiteral("Zebra: stripe direction in the view plane in degrees "
@@ -260,6 +265,7 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                        o.samples, o.aaMethod,   o.shading,       o.isocurves,      o.isoLines,
                        o.range,   o.scale,      o.stripes,       o.stripeAngle,    o.isophoteBands,
                        o.pull,    o.draftAngle, o.envMap,        o.directions});
+    parser.addOption(o.background);
     return o;
 }
 
@@ -324,6 +330,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     if (!aaMethod)
         return fail(o.aaMethod, QStringLiteral("accumulate or coverage"));
     options.antialiasing = *aaMethod;
+    if (!backgroundNamed(parser.value(o.background), options))
+        return fail(o.background, QStringLiteral("dark or light"));
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return readDevelopmentSwitches(cmd, options);
 }

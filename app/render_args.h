@@ -24,12 +24,13 @@ QString modeName(RenderMode mode);
 QString shadingName(RenderOptions::Shading shading);
 
 /// --mode, --partitions, --partition-mode, --pixel-tolerance, --lights, --depth, --no-trims,
-/// --trim-mask-cap, --trim-mode, --trim-budget, --samples, --aa-method and the analysis options
+/// --trim-mask-cap, --trim-mode, --trim-budget, --samples, --aa-method, --background and the
+/// analysis options
 /// (--shading MODE, --isocurves, --iso-lines, --range, --scale, --stripes, --stripe-angle,
 /// --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
     QCommandLineOption mode, partitions, partitionMode, pixelTolerance, lights, depth, noTrims,
-        trimMaskCap, trimMode, trimBudget, samples, aaMethod;
+        trimMaskCap, trimMode, trimBudget, samples, aaMethod, background;
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
         isophoteBands, pull, draftAngle, envMap, directions;
 };

@@ -163,28 +163,49 @@ ValueRange autoRange(const Scene& scene, AnalysisMode mode, int samples, double 
                      double highPercentile) {
     if (!isColourMap(mode) || samples < 1)
         return {};
-    std::vector<double> values;
+    // (value, area) of each sample: its cell's area |Su x Sv| du dv. Counted per sample, a
+    // small sharp patch (the teapot's rim, spout tip, lid knob: 16 x 16 samples each, like the
+    // body's much larger patches) held most of the samples and set the range to +-21.55 of
+    // mean curvature, where the body's 0.3 to 1.1 was one colour.
+    std::vector<std::pair<double, double>> values;
     values.reserve(scene.surfaces.size() * size_t(samples) * size_t(samples));
     for (const Surface& s : scene.surfaces) {
         if (s.hidden) // the range follows what is drawn (Isolate shows one surface's range)
             continue;
         const Interval du = surfaceDomainU(s.geometry), dv = surfaceDomainV(s.geometry);
+        const double cell =
+            (du.last - du.first) * (dv.last - dv.first) / (double(samples) * double(samples));
         for (int j = 0; j < samples; ++j)
             for (int i = 0; i < samples; ++i) {
                 // Cell centres: no sample sits on a collapsed edge.
                 const double u = du.first + (du.last - du.first) * (i + 0.5) / samples;
                 const double v = dv.first + (dv.last - dv.first) * (j + 0.5) / samples;
-                const double x = analysisValue(mode, surfaceCurvature(s.geometry, u, v));
-                if (std::isfinite(x))
-                    values.push_back(x);
+                const SurfaceCurvature c = surfaceCurvature(s.geometry, u, v);
+                const double x = analysisValue(mode, c);
+                const double area = std::sqrt(std::max(c.E * c.G - c.F * c.F, 0.0)) * cell;
+                if (std::isfinite(x) && std::isfinite(area))
+                    values.emplace_back(x, area);
             }
     }
     if (values.empty())
         return {};
     std::sort(values.begin(), values.end());
+    double total = 0.0;
+    for (const auto& v : values)
+        total += v.second;
+    // The value below which fraction p of the area lies; by count where no sample has area
+    // (every surface degenerate).
     const auto at = [&](double p) {
-        const double k = std::clamp(p, 0.0, 1.0) * double(values.size() - 1);
-        return values[size_t(std::lround(k))];
+        p = std::clamp(p, 0.0, 1.0);
+        if (!(total > 0.0))
+            return values[size_t(std::lround(p * double(values.size() - 1)))].first;
+        double below = 0.0;
+        for (const auto& [x, area] : values) {
+            below += area;
+            if (below >= p * total)
+                return x;
+        }
+        return values.back().first;
     };
     ValueRange r{at(lowPercentile), at(highPercentile)};
     // A (nearly) constant quantity, e.g. max |k| = 1/r on a torus: rounding noise must not span

@@ -138,7 +138,11 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
         const glm::vec3 right = rot[0], up = rot[1];
         const float a = float(o.stripeAngleDegrees) * toRad;
         const glm::vec3 axis = glm::normalize(std::cos(a) * right + std::sin(a) * up);
-        gl->glUniform1f(u.stripeCount, float(o.stripeCount));
+        // The tubes go all the way round the axis: 2 count bands per turn must be whole, or
+        // the pattern breaks where the reflected angle wraps (behind the viewer, on every
+        // silhouette's rim). A count is drawn as the nearest whole number of halves.
+        const double count = std::max(0.5, std::round(2.0 * o.stripeCount) / 2.0);
+        gl->glUniform1f(u.stripeCount, float(count));
         gl->glUniform3fv(u.stripeAxis, 1, glm::value_ptr(axis));
         break;
     }

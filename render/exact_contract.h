@@ -31,7 +31,9 @@ constexpr int kSpanUnit = 8;          ///< the span-table pool (kwSpans)
 constexpr int kTrimGridUnit = 9;      ///< trim_exact.glsl kwTrimGrid (R32UI words)
 constexpr int kTrimGridQuadUnit = 10; ///< the same words 4 at a time (kwTrimQuads)
 constexpr int kPrepassUnit = 11;      ///< the deferred pass's input (exact_surface.frag kwPrepass)
-constexpr int kVertexStorageBinding = 1; ///< the deferred pass's vertex pool (KwVertices SSBO)
+/// The deferred pass's vertex pool as RGBA32UI texels (exact_surface.frag kwVertexPool): a
+/// texture buffer, not a storage buffer, as the surface data (surface_data.glsl).
+constexpr int kVertexPoolUnit = 12;
 /// GpuScene's four surface-data views, bound in this order from kSurfaceTableUnit.
 constexpr int kSurfaceDataViews = 4;
 static_assert(kSurfaceIntsUnit == kSurfaceTableUnit + 1 && kControlUnit == kSurfaceTableUnit + 2 &&
@@ -79,7 +81,7 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_TRIM_GRID_UNIT", kTrimGridUnit},
     ShaderConstant{"KW_TRIM_QUAD_UNIT", kTrimGridQuadUnit},
     ShaderConstant{"KW_PREPASS_UNIT", kPrepassUnit},
-    ShaderConstant{"KW_VERTEX_STORAGE_BINDING", kVertexStorageBinding},
+    ShaderConstant{"KW_VERTEX_POOL_UNIT", kVertexPoolUnit},
     ShaderConstant{"KW_TABLE_TEXELS", kSurfaceTableTexels},
     ShaderConstant{"KW_TABLE_DOMAIN_TEXEL", kSurfaceTableDomainTexel},
     ShaderConstant{"KW_TABLE_ORIGIN_TEXEL", kSurfaceTableOriginTexel},

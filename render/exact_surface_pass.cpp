@@ -398,8 +398,10 @@ void ExactSurfacePass::releaseDeferred() {
             m_gl->glDeleteTextures(1, &m_prepassTexture);
         if (m_emptyVao)
             m_gl->glDeleteVertexArrays(1, &m_emptyVao);
+        if (m_vertexPoolView)
+            m_gl->glDeleteTextures(1, &m_vertexPoolView);
     }
-    m_prepassTexture = m_emptyVao = 0;
+    m_prepassTexture = m_emptyVao = m_vertexPoolView = 0;
     m_prepassSize = glm::ivec2(0);
 }
 
@@ -425,8 +427,11 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
         gl->glCreateVertexArrays(1, &m_emptyVao);
     gl->glBindVertexArray(m_emptyVao);
     gl->glBindTextureUnit(kPrepassUnit, m_prepassTexture);
-    gl->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexStorageBinding,
-                         scene.pools().vertices.buffer());
+    if (!m_vertexPoolView)
+        gl->glCreateTextures(GL_TEXTURE_BUFFER, 1, &m_vertexPoolView);
+    // Every frame: the pool's buffer is renamed when it grows (as GpuScene's views).
+    gl->glTextureBuffer(m_vertexPoolView, GL_RGBA32UI, scene.pools().vertices.buffer());
+    gl->glBindTextureUnit(kVertexPoolUnit, m_vertexPoolView);
     bool ok = true;
     const GLboolean scissored = gl->glIsEnabled(GL_SCISSOR_TEST);
     GLint scissor[4] = {0, 0, 0, 0};
@@ -463,7 +468,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
     gl->glScissor(scissor[0], scissor[1], scissor[2], scissor[3]);
     if (!scissored)
         gl->glDisable(GL_SCISSOR_TEST);
-    gl->glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertexStorageBinding, 0);
+    gl->glBindTextureUnit(kVertexPoolUnit, 0);
     gl->glBindTextureUnit(kPrepassUnit, 0);
     gl->glEnable(GL_DEPTH_TEST);
     return ok;

@@ -190,6 +190,7 @@ private:
     /// The pre-pass's output for the deferred pass (RGBA32UI: the polygon's (u, v), the
     /// surface row and facing, the provoking vertex), its size, and an empty vertex array.
     GLuint m_prepassTexture = 0, m_emptyVao = 0;
+    GLuint m_vertexPoolView = 0; ///< the vertex pool as RGBA32UI texels (kVertexPoolUnit)
     glm::ivec2 m_prepassSize{0};
     /// One record's fins and what they were built for.
     struct Fins {

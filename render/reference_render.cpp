@@ -362,6 +362,7 @@ QImage shadeReference(const Scene& scene, const Camera& camera, const AovBuffer&
                 if (ln > 0.0)
                     specular += std::pow(rv, std::max(mat.shininess, 1e-3)) * l.specular;
             }
+            diffuse += glm::dvec3(kViewerFill.base + kViewerFill.facing * nv);
             const glm::dvec3 c =
                 (mat.ka * ambient + mat.kd * diffuse) * mat.color + mat.ks * specular;
             img.setPixel(x, y, qRgba(toByte(c.r), toByte(c.g), toByte(c.b), 255));

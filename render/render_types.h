@@ -185,11 +185,32 @@ struct RenderOptions {
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
+    /// With a value, the background is a vertical gradient from `background` at the view's
+    /// bottom to this at its top (kw::backgroundNamed's "light", as CAD viewers offer);
+    /// AOVs and picks still see no surface there.
+    std::optional<glm::vec4> backgroundTop;
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;
 
     bool operator==(const RenderOptions&) const = default;
 };
+
+/// The backgrounds by name, the command line's and the project's spelling: "dark" (the
+/// default, a flat dark grey) and "light" (a light grey-blue gradient, brighter at the top).
+/// Sets options.background and options.backgroundTop; false for any other name.
+inline bool backgroundNamed(const QString& name, RenderOptions& options) {
+    if (name == QLatin1String("dark")) {
+        options.background = RenderOptions{}.background;
+        options.backgroundTop.reset();
+        return true;
+    }
+    if (name == QLatin1String("light")) {
+        options.background = glm::vec4(0.62f, 0.66f, 0.72f, 1.0f);
+        options.backgroundTop = glm::vec4(0.93f, 0.94f, 0.96f, 1.0f);
+        return true;
+    }
+    return false;
+}
 
 /// The trim mode named "exact" or "mask" (the command line's and the settings' spelling), or
 /// nothing for any other name.
@@ -295,6 +316,20 @@ FrameCamera frameCamera(const Camera& camera, const Scene& scene, double aspect)
 /// points), as the renderer keeps them per surface instead of walking every point per frame.
 CameraMatrices cameraMatrices(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
 FrameCamera frameCamera(const Camera& camera, const glm::dvec3 (*bounds)[2], double aspect);
+
+/// The viewer's own fill, added to the scene's lights in every view (phong.glsl's uFill,
+/// kw::shadeReference): a diffuse term kd (base + facing |N.V|) colour. Lights authored for
+/// one side leave the other side of a part black (a connecting rod's lower faces, the inside
+/// of a lofted cone); CAD viewers give every visible face a readable grey with a headlight and
+/// ambient, and this is that: never below kd base colour, brighter as a face turns to the eye,
+/// the same for either orientation of the B-rep (N is turned to the eye first). With the
+/// default material and light (ka 0.15 of ambient 0.2, kd 0.75, colour luminance 0.82) the
+/// darkest visible pixel is 0.20, 0.17 without the light's ambient (tst_render_lighting).
+struct ViewerFill {
+    double base = 0.0;
+    double facing = 0.0;
+};
+inline constexpr ViewerFill kViewerFill{0.28, 0.12};
 
 /// The `count` lights (clamped to 1..kMaxLights) used to shade `scene`: its own lights first,
 /// then copies of them rotated about the camera's up axis, so `--lights 8` works on any file.

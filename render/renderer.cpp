@@ -7,6 +7,7 @@
 
 #include <QElapsedTimer>
 #include <QOpenGLContext>
+#include <QOpenGLShaderProgram>
 #include <QOpenGLVersionFunctionsFactory>
 #include <algorithm>
 #include <cmath>
@@ -190,8 +191,11 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     for (size_t i = firstSample; ok && i < endSample; ++i) {
         fc.jitter = offsets[i];
         beginTarget(sampleTarget, options, pickPixel);
-        if (aa)
+        if (aa) {
             aa->begin(&options.background.x);
+            if (options.backgroundTop)
+                drawBackground(options); // into the multisampled colour, as beginTarget did
+        }
         ok = options.mode == RenderMode::Exact
                  ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
                               &error)
@@ -327,6 +331,41 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
         }
     }
     gl->glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
+    if (options.backgroundTop)
+        drawBackground(options);
+}
+
+void Renderer::Impl::drawBackground(const RenderOptions& options) {
+    QOpenGLShaderProgram* prog =
+        shaders.program(QStringLiteral("aa_composite.vert"), QStringLiteral("background.frag"));
+    if (!prog) {
+        qWarning("%s", qPrintable(shaders.lastError())); // the flat background stays
+        return;
+    }
+    if (!backgroundVao)
+        gl->glCreateVertexArrays(1, &backgroundVao);
+    GLint view[4] = {0, 0, 0, 0};
+    gl->glGetIntegerv(GL_VIEWPORT, view);
+    prog->bind();
+    const UniformLocations& u = ShaderLibrary::uniforms(prog);
+    gl->glUniform4f(u.viewport, float(view[0]), float(view[1]), float(view[2]), float(view[3]));
+    gl->glUniform4fv(u.backgroundBottom, 1, &options.background.x);
+    gl->glUniform4fv(u.backgroundTop, 1, &options.backgroundTop->x);
+    // Colour only: the AOV targets keep "no surface", the depth its far clear.
+    GLint drawBuffers = 1;
+    gl->glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    for (GLint k = 1; k < drawBuffers; ++k)
+        gl->glColorMaski(GLuint(k), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDepthMask(GL_FALSE);
+    gl->glBindVertexArray(backgroundVao);
+    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl->glBindVertexArray(0);
+    gl->glDepthMask(GL_TRUE);
+    gl->glEnable(GL_DEPTH_TEST);
+    for (GLint k = 1; k < drawBuffers; ++k)
+        gl->glColorMaski(GLuint(k), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    prog->release();
 }
 
 std::int64_t Renderer::setMesh(int slot, const TriangleMesh& mesh) {
@@ -493,6 +532,9 @@ void Renderer::release() {
     d->accumulate.release();
     d->floatDepth.release();
     d->rangeKey = {};
+    if (d->backgroundVao)
+        d->gl->glDeleteVertexArrays(1, &d->backgroundVao);
+    d->backgroundVao = 0;
     d->shaders.clear();
     d->gl = nullptr;
 }

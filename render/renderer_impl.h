@@ -33,6 +33,8 @@ struct Renderer::Impl {
     /// The samples a frame is drawn with: options.samples within the GPU's GL_MAX_SAMPLES
     /// (a warning in `report` when it is cut), 1 for AOV frames and picks.
     int frameSamples(const RenderOptions& options, bool aov, bool pick, FrameReport& report);
+    /// The gradient of options.backgroundTop over the cleared colour target (not the AOVs).
+    void drawBackground(const RenderOptions& options);
     bool ensurePickTarget(QSize size);
     void releasePickTarget();
 
@@ -80,6 +82,7 @@ struct Renderer::Impl {
 
     /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
     /// so the surface shaders' outputs keep their locations).
+    GLuint backgroundVao = 0; ///< attribute-less, for drawBackground's one triangle
     GLuint pickFbo = 0;
     GLuint pickTextures[5] = {0, 0, 0, 0, 0}; ///< colour, AOV 1..3, depth
     QSize pickSize;

@@ -16,6 +16,7 @@ namespace kw {
 struct UniformLocations {
     int viewProjection = -1, eye = -1, forward = -1, viewport = -1;            // camera
     int ambient = -1, lightVector = -1, lightDiffuse = -1, lightSpecular = -1; // phong.glsl
+    int fill = -1;                                                             // phong.glsl
     int color = -1, material = -1, surfaceId = -1;                             // per surface
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
     int trimBlock = -1;
@@ -26,6 +27,7 @@ struct UniformLocations {
     int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;
     int draftAngle = -1, dirSpacing = -1, isoCount = -1, isoWidth = -1;
     int isoColour = -1, knotColour = -1;
+    int backgroundBottom = -1, backgroundTop = -1; // background.frag
 };
 
 class ShaderLibrary {

@@ -39,6 +39,8 @@ void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* progr
     for (int k = 0; k < n; ++k)
         ambient += amb[k];
     gl->glUniform3fv(ShaderLibrary::uniforms(program).ambient, 1, glm::value_ptr(ambient));
+    gl->glUniform2f(ShaderLibrary::uniforms(program).fill, float(kViewerFill.base),
+                    float(kViewerFill.facing));
     if (n > 0) {
         gl->glUniform4fv(ShaderLibrary::uniforms(program).lightVector, n, glm::value_ptr(vec[0]));
         gl->glUniform3fv(ShaderLibrary::uniforms(program).lightDiffuse, n, glm::value_ptr(dif[0]));

@@ -66,9 +66,8 @@ uniform float uDraftAngle;   // threshold in radians
 #endif
 
 // Black and white bands of the periodic coordinate `phase` (a band per 0.5), anti-aliased over
-// one pixel using the phase's screen derivative; unresolvable bands fade to grey.
-float bands(float phase) {
-    float w = fwidth(phase);
+// one pixel of width w (the phase's screen derivative, fwidth); unresolvable bands fade to grey.
+float bands(float phase, float w) {
     float f = fract(phase);
     float edge = min(abs(f - 0.5), min(f, 1.0 - f)); // distance to the nearest band edge
     float cover = clamp(edge / max(w, 1e-12) + 0.5, 0.0, 1.0);
@@ -98,9 +97,18 @@ vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
     vec3 C = -uForward;
     vec3 B = normalize(cross(uStripeAxis, C));
     float phi = atan(dot(R, B), dot(R, C));
-    return vec3(bands(phi / 3.14159265358979 * uStripeCount));
+    // phi jumps by 2 pi where R, turned away from the viewer, crosses the plane of A and C
+    // (atan's branch cut). The bands are continuous there (uStripeCount is a whole number of
+    // halves: kw::setAnalysisUniforms), but fwidth(phi) is not: it saw the 2 pi jump, widened
+    // the filter past half a band and drew a grey line along the cut. The screen derivatives
+    // of the angle itself, wrapped into (-pi, pi], have no cut.
+    vec2 d = vec2(dFdx(phi), dFdy(phi));
+    d -= 6.28318530717959 * round(d / 6.28318530717959);
+    float k = uStripeCount / 3.14159265358979;
+    return vec3(bands(phi * k, (abs(d.x) + abs(d.y)) * k));
 #elif KW_ANALYSIS == KW_ANALYSIS_ISOPHOTES
-    return vec3(bands(0.5 * (dot(N, uIsophoteLight) + 1.0) * uIsophoteCount));
+    float phase = 0.5 * (dot(N, uIsophoteLight) + 1.0) * uIsophoteCount;
+    return vec3(bands(phase, fwidth(phase)));
 #elif KW_ANALYSIS == KW_ANALYSIS_ENVIRONMENT
     vec3 R = reflect(-V, N);
     vec2 uvEnv = vec2(atan(R.y, R.x) / 6.28318530717959 + 0.5,

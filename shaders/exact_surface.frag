@@ -26,9 +26,16 @@
 // variant, routed by the stencil the pre-pass wrote; what the base polygon's fragment would
 // have carried comes from the pre-pass's buffer (kwReadPrepass, at the top of main).
 layout(binding = KW_PREPASS_UNIT) uniform usampler2D kwPrepass;
-layout(std430, binding = KW_VERTEX_STORAGE_BINDING) readonly buffer KwVertices {
-    uint kwVertexWords[]; // kw::BaseVertex: position 0-2, uv 3-4, span 5-6, span scale 7
-};
+// The vertex pool (kw::BaseVertex: position 0-2, uv 3-4, span 5-6, span scale 7) four words a
+// texel. A texture buffer, not a storage buffer: llvmpipe returns 0 from a storage-buffer load
+// in a helper invocation, and llvmpipe clips this triangle to the view as two triangles, so the
+// 2 x 2 quads along the view's diagonal got a helper with span 0 and a wrong point; every
+// screen derivative there (the zebra's and isophotes' band filters, isocurve widths) drew a
+// straight grey line across the image (surface_data.glsl says the same of the surface data).
+layout(binding = KW_VERTEX_POOL_UNIT) uniform usamplerBuffer kwVertexPool;
+uint kwVertexWord(uint word) {
+    return texelFetch(kwVertexPool, int(word >> 2u))[word & 3u];
+}
 vec2 vUv;
 ivec2 vSpan;
 float vSpanScale;
@@ -41,8 +48,8 @@ void kwReadPrepass() {
     kwFrontFacing = (g.z >> 31) != 0u;
     uint at = g.w * uint(KW_VERTEX_WORDS);
     uint span = at + uint(KW_VERTEX_SPAN_WORD);
-    vSpan = ivec2(kwVertexWords[span], kwVertexWords[span + 1u]);
-    vSpanScale = uintBitsToFloat(kwVertexWords[at + uint(KW_VERTEX_SPAN_SCALE_WORD)]);
+    vSpan = ivec2(kwVertexWord(span), kwVertexWord(span + 1u));
+    vSpanScale = uintBitsToFloat(kwVertexWord(at + uint(KW_VERTEX_SPAN_SCALE_WORD)));
 }
 #define KW_FRONT_FACING kwFrontFacing
 #else

@@ -1,5 +1,6 @@
 // Phong shading (paper eq. 3.8), two-sided: the normal is turned towards the viewer.
-// I = (ka * sum ia + sum kd max(L.N, 0) id) * colour + sum ks max(R.V, 0)^alpha is.
+// I = (ka * sum ia + kd (sum max(L.N, 0) id + fill)) * colour + sum ks max(R.V, 0)^alpha is,
+// fill = uFill.x + uFill.y N.V: the viewer's fill (kw::kViewerFill), so no visible face is black.
 // LIGHT_COUNT (1..KW_MAX_LIGHTS) is a compile-time constant so the light loop unrolls: on llvmpipe a
 // uniform-bounded loop cost as much as the whole NURBS evaluation (docs/PERFORMANCE.md).
 
@@ -7,6 +8,7 @@ uniform vec4 uLightVector[KW_MAX_LIGHTS];   // xyz: unit direction towards the l
 uniform vec3 uLightDiffuse[KW_MAX_LIGHTS];
 uniform vec3 uLightSpecular[KW_MAX_LIGHTS];
 uniform vec3 uAmbient;  // sum of the lights' ambient intensities
+uniform vec2 uFill;     // the viewer's fill (kw::kViewerFill): kd (x + y |N.V|) colour
 #ifndef KW_SURFACE_DATA // else the surface's row of the surface table (surface_data.glsl)
 uniform vec3 uColor;
 uniform vec4 uMaterial; // ka, kd, ks, shininess
@@ -30,5 +32,6 @@ vec3 phong(vec3 point, vec3 normal) {
         diffuse += max(ln, 0.0) * uLightDiffuse[k];
         specular += spec * uLightSpecular[k];
     }
+    diffuse += uFill.x + uFill.y * nv;
     return (uMaterial.x * uAmbient + uMaterial.y * diffuse) * uColor + uMaterial.z * specular;
 }

@@ -165,7 +165,7 @@ void TestEditorAnalysis::legendAndRangeDialogDriveThePixels() {
     mean->trigger();
     QCOMPARE(vp()->renderOptions().analysis.mode, AnalysisMode::Mean);
 
-    // 1. Automatic range: the frame used the kernel's 2nd-98th percentile range, symmetric
+    // 1. Automatic range: the frame used the kernel's area-weighted 10th-90th percentile range, symmetric
     //    scale (the mean curvature's default); the legend appeared; the pixels follow.
     const QImage autoFrame = vp()->grabFramebuffer();
     autoFrame.save(QStringLiteral(KW_TEST_OUTPUT_DIR "/editor_analysis_auto.png"));

@@ -30,7 +30,7 @@ QStringList literalViolations(const QString& source) {
         QRegularExpression(QStringLiteral("kwSurface\\s*\\*\\s*\\d")),
         QRegularExpression(QStringLiteral("KW_ROW\\(\\s*\\d")),
         QRegularExpression(QStringLiteral("KW_SPAN_TEXELS\\s*\\(")),
-        QRegularExpression(QStringLiteral("kwVertexWords\\[\\s*at\\s*\\+\\s*\\d")),
+        QRegularExpression(QStringLiteral("kwVertexWord\\(\\s*at\\s*\\+\\s*\\d")),
         QRegularExpression(QStringLiteral("\\bg\\.w\\s*\\*\\s*\\d")),
     };
     QStringList out;

@@ -105,7 +105,7 @@ void AnalysisControls::editRange() {
     QDialog dialog(m_window);
     dialog.setWindowTitle(tr("Colour Range"));
     auto* form = new QFormLayout(&dialog);
-    auto* automatic = new QCheckBox(tr("Automatic (2nd to 98th percentile)"));
+    auto* automatic = new QCheckBox(tr("Automatic (10th to 90th percentile of the area)"));
     automatic->setChecked(!o.range);
     auto spin = [](double value) {
         auto* s = new QDoubleSpinBox;

@@ -17,6 +17,7 @@
 #include <QFileInfo>
 #include <QMutex>
 #include <QProcess>
+#include <QTemporaryDir>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
