@@ -17,7 +17,6 @@
 #include <QFileInfo>
 #include <QMutex>
 #include <QProcess>
-#include <QTemporaryDir>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
