@@ -245,6 +245,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         options.partitioning = partitioningNamed(scene.display.partitionMode);
     if (!scene.display.partitionMode.isEmpty() && !parser.isSet(shared.pixelTolerance))
         options.pixelTolerance = scene.display.pixelTolerance;
+    if (!scene.display.background.isEmpty() && !parser.isSet(shared.background))
+        backgroundNamed(scene.display.background, options); // validated with the file
     Camera camera = model->camera;
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);

@@ -212,7 +212,7 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
         QCommandLineOption(QStringLiteral("background"),
                            QStringLiteral("dark (default: flat dark grey) or light (a light "
                                           "grey-blue gradient, brighter at the top, as CAD "
-                                          "viewers offer)."),
+                                          "viewers offer); default the project's."),
                            QStringLiteral("NAME"), QStringLiteral("dark")),
         QCommandLineOption(QStringLiteral("shading"),
                            QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "

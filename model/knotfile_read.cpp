@@ -539,6 +539,13 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
         fail(member(path, "partitionMode"),
              QStringLiteral("expected \"adaptive\" or \"uniform\", found ") +
                  describe(QJsonValue(d.partitionMode)));
+    if (o.contains(QLatin1String("background"))) {
+        d.background = asString(o.value(QLatin1String("background")), member(path, "background"));
+        if (d.background != QLatin1String("dark") && d.background != QLatin1String("light"))
+            fail(member(path, "background"),
+                 QStringLiteral("expected \"dark\" or \"light\", found ") +
+                     describe(QJsonValue(d.background)));
+    }
     if (o.contains(QLatin1String("pixelTolerance"))) {
         d.pixelTolerance =
             asNumber(o.value(QLatin1String("pixelTolerance")), member(path, "pixelTolerance"));

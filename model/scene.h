@@ -106,6 +106,7 @@ constexpr double kMaxPixelTolerance = 16.0;
 struct DisplaySettings {
     QString partitionMode;       ///< "", "adaptive" or "uniform"
     double pixelTolerance = 0.5; ///< adaptive mode's, kMinPixelTolerance..kMaxPixelTolerance
+    QString background;          ///< "", "dark" or "light" (kw::backgroundNamed)
     bool operator==(const DisplaySettings&) const = default;
 };
 

@@ -181,6 +181,10 @@ QString displayError(const DisplaySettings& d) {
         d.partitionMode != QLatin1String("uniform"))
         return QStringLiteral("partition mode \"%1\" is neither \"adaptive\" nor \"uniform\"")
             .arg(d.partitionMode);
+    if (!d.background.isEmpty() && d.background != QLatin1String("dark") &&
+        d.background != QLatin1String("light"))
+        return QStringLiteral("background \"%1\" is neither \"dark\" nor \"light\"")
+            .arg(d.background);
     if (!(d.pixelTolerance >= kMinPixelTolerance && d.pixelTolerance <= kMaxPixelTolerance))
         return QStringLiteral("pixel tolerance %1 is outside %2..%3")
             .arg(d.pixelTolerance)

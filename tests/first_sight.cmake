@@ -15,3 +15,9 @@ kw_use_cad_reader(tst_render_lighting)
 # The automatic colour range: area-weighted percentiles (no GL).
 kw_add_test(tst_analysis_range LABEL render SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_analysis_range.cpp
             LIBS knotwork_render)
+# The background saved with the project (no GL).
+kw_add_test(tst_background_setting LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_background_setting.cpp
+            LIBS knotwork_render)
+# View › Light Background in the editor, saved with the project (label gui).
+kw_add_test(tst_editor_background LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_background.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)

@@ -63,6 +63,13 @@ void DesktopActions::applyDisplay(const DisplaySettings& display) {
     applyPreferences();
     if (!display.partitionMode.isEmpty())
         showPartitions(display.partitionMode, display.pixelTolerance);
+    // The project's background, or the dark default (a project saved without one).
+    const bool light = display.background == QLatin1String("light");
+    m_viewport->setLightBackground(light);
+    if (m_lightBackground) {
+        const QSignalBlocker quiet(m_lightBackground);
+        m_lightBackground->setChecked(light);
+    }
 }
 
 void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) {
@@ -79,6 +86,7 @@ DisplaySettings DesktopActions::currentDisplay() const {
                           ? QStringLiteral("uniform")
                           : QStringLiteral("adaptive");
     d.pixelTolerance = m_viewport->pixelTolerance();
+    d.background = m_viewport->lightBackground() ? QStringLiteral("light") : QStringLiteral("dark");
     return d;
 }
 
@@ -136,6 +144,12 @@ void DesktopActions::addViewEntries(QMenu* view) {
         p.save();
         applyPreferences();
     });
+    // The light gradient CAD viewers offer; saved with the project, as the partition mode.
+    m_lightBackground = view->addAction(tr("&Light Background (gradient)"));
+    m_lightBackground->setObjectName(QStringLiteral("actionLightBackground"));
+    m_lightBackground->setCheckable(true);
+    m_lightBackground->setChecked(m_viewport->lightBackground());
+    connect(m_lightBackground, &QAction::toggled, m_viewport, &Viewport::setLightBackground);
     QAction* head = view->addAction(tr("&Headlight (lights follow the camera)"));
     head->setObjectName(QStringLiteral("actionHeadlight"));
     head->setCheckable(true);

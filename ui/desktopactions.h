@@ -56,7 +56,8 @@ private:
 
     QMainWindow* m_window;
     Viewport* m_viewport;
-    QAction* m_adaptive = nullptr; ///< View › Adaptive Partitions
+    QAction* m_adaptive = nullptr;        ///< View › Adaptive Partitions
+    QAction* m_lightBackground = nullptr; ///< View › Light Background
     Prompts m_prompts;
 };
 

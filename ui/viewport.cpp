@@ -154,7 +154,18 @@ void Viewport::setAxisIndicator(bool on) {
 }
 
 void Viewport::setBackground(const QColor& c) {
-    m_options.background = glm::vec4(float(c.redF()), float(c.greenF()), float(c.blueF()), 1.0f);
+    m_flatBackground = glm::vec4(float(c.redF()), float(c.greenF()), float(c.blueF()), 1.0f);
+    setLightBackground(m_lightBackground);
+}
+
+void Viewport::setLightBackground(bool on) {
+    m_lightBackground = on;
+    if (on) {
+        backgroundNamed(QStringLiteral("light"), m_options);
+    } else {
+        m_options.background = m_flatBackground;
+        m_options.backgroundTop.reset();
+    }
     update();
 }
 

@@ -79,6 +79,9 @@ public:
     bool axisIndicator() const { return m_axes; }
     void setAxisIndicator(bool on);
     void setBackground(const QColor& color);
+    /// The light gradient (kw::backgroundNamed "light") instead of the flat colour above.
+    void setLightBackground(bool on);
+    bool lightBackground() const { return m_lightBackground; }
     void setHeadlight(bool on);
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
@@ -246,6 +249,8 @@ private:
     bool m_netForAll = false;
     bool m_grid = false;
     bool m_axes = true;
+    bool m_lightBackground = false;
+    glm::vec4 m_flatBackground = RenderOptions{}.background; ///< setBackground's colour
     bool m_autoFit = true; ///< refit on resize until the user moves the camera
     QPointer<QRubberBand> m_band;
 
