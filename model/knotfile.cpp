@@ -163,9 +163,10 @@ QByteArray sceneToJson(const Scene& scene) {
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
     if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
-    if (!scene.display.partitionMode.isEmpty()) {
-        QJsonObject display{{QStringLiteral("partitionMode"), scene.display.partitionMode},
-                            {QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}};
+    if (!scene.display.partitionMode.isEmpty() || !scene.display.background.isEmpty()) {
+        QJsonObject display{{QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}};
+        if (!scene.display.partitionMode.isEmpty())
+            display.insert(QStringLiteral("partitionMode"), scene.display.partitionMode);
         if (!scene.display.background.isEmpty())
             display.insert(QStringLiteral("background"), scene.display.background);
         root.insert(QStringLiteral("display"), display);

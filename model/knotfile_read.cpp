@@ -534,11 +534,16 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
 
 DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
     DisplaySettings d;
-    d.partitionMode = asString(required(o, path, "partitionMode"), member(path, "partitionMode"));
-    if (d.partitionMode != QLatin1String("adaptive") && d.partitionMode != QLatin1String("uniform"))
-        fail(member(path, "partitionMode"),
-             QStringLiteral("expected \"adaptive\" or \"uniform\", found ") +
-                 describe(QJsonValue(d.partitionMode)));
+    // partitionMode may be absent since the background (1.3) can be set alone.
+    if (o.contains(QLatin1String("partitionMode")) || !o.contains(QLatin1String("background"))) {
+        d.partitionMode =
+            asString(required(o, path, "partitionMode"), member(path, "partitionMode"));
+        if (d.partitionMode != QLatin1String("adaptive") &&
+            d.partitionMode != QLatin1String("uniform"))
+            fail(member(path, "partitionMode"),
+                 QStringLiteral("expected \"adaptive\" or \"uniform\", found ") +
+                     describe(QJsonValue(d.partitionMode)));
+    }
     if (o.contains(QLatin1String("background"))) {
         d.background = asString(o.value(QLatin1String("background")), member(path, "background"));
         if (d.background != QLatin1String("dark") && d.background != QLatin1String("light"))

@@ -312,8 +312,10 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         c.authored = true;
         check(cameraError(c));
     } else if (key == "display") {
-        m_scene.display.partitionMode = QString::fromLatin1(t.value(3));
+        const QString mode = QString::fromLatin1(t.value(3));
+        m_scene.display.partitionMode = mode == QLatin1String("-") ? QString() : mode;
         m_scene.display.pixelTolerance = num(4);
+        m_scene.display.background = QString::fromLatin1(t.value(5));
         check(displayError(m_scene.display));
     } else if (key == "surface") {
         m_meta = Metadata{};

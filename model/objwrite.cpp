@@ -95,9 +95,15 @@ QByteArray writeObj(const Scene& scene) {
         out += "# knotwork camera " + vec(c.eye) + ' ' + vec(c.target) + ' ' + vec(c.up) + ' ' +
                num(c.fovYDegrees) + '\n';
     }
-    if (!scene.display.partitionMode.isEmpty())
-        out += "# knotwork display " + scene.display.partitionMode.toLatin1() + ' ' +
-               num(scene.display.pixelTolerance) + '\n';
+    // "-" for no partition mode; the background, when set, last.
+    if (!scene.display.partitionMode.isEmpty() || !scene.display.background.isEmpty())
+        out += "# knotwork display " +
+               (scene.display.partitionMode.isEmpty() ? QByteArray("-")
+                                                      : scene.display.partitionMode.toLatin1()) +
+               ' ' + num(scene.display.pixelTolerance) +
+               (scene.display.background.isEmpty() ? QByteArray()
+                                                   : ' ' + scene.display.background.toLatin1()) +
+               '\n';
     int vCount = 0, vpCount = 0, curv2Count = 0;
     for (const Surface& s : scene.surfaces) {
         const NurbsSurface& g = s.geometry;

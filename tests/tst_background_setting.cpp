@@ -3,6 +3,7 @@
 // to the renderer's options by kw::backgroundNamed. No GL.
 #include "model/knotfile.h"
 #include "model/nurbs_shapes.h"
+#include "model/objfile.h"
 #include "model/validation.h"
 #include "render/render_types.h"
 
@@ -45,6 +46,20 @@ private Q_SLOTS:
         scene.display.background = QStringLiteral("purple");
         QVERIFY(!displayError(scene.display).isEmpty());
         QVERIFY(!sceneError(scene).isEmpty());
+
+        // A background without a partition mode is kept too, in .knot and in OBJ.
+        scene.display = DisplaySettings{};
+        scene.display.background = QStringLiteral("light");
+        const std::optional<Scene> alone =
+            sceneFromJson(sceneToJson(scene), QStringLiteral("b.knot"), &error);
+        QVERIFY2(alone, qPrintable(error));
+        QCOMPARE(alone->display, scene.display);
+        const QString obj = QStringLiteral(KW_TEST_OUTPUT_DIR "/background_alone.obj");
+        QVERIFY2(writeObjFile(obj, scene, error), qPrintable(error));
+        Scene fromObj;
+        ImportReport report;
+        QVERIFY2(readObjFile(obj, fromObj, report, error), qPrintable(error));
+        QCOMPARE(fromObj.display, scene.display);
     }
 };
 
