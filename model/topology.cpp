@@ -38,6 +38,25 @@ void openShellOf(Topology& topology, SurfaceId surface, TopologyPiece& piece) {
     }
 }
 
+// The id of list[i] (edges or shells, named `noun`): not 0, and above the one before, so that
+// each is listed once, in ascending order.
+template <typename List>
+std::optional<TopologyProblem> idOrderProblem(const List& list, size_t i, const QString& place,
+                                              const char* noun) {
+    const auto id = list[i].id;
+    if (!id.isValid())
+        return TopologyProblem{place + QStringLiteral(".id"),
+                               QStringLiteral("%1 id is 0").arg(QLatin1String(noun))};
+    if (i > 0 && !(list[i - 1].id < id))
+        return TopologyProblem{place + QStringLiteral(".id"),
+                               QStringLiteral("%1 id %2 does not follow %3 (%1s are listed once "
+                                              "each, in ascending id order)")
+                                   .arg(QLatin1String(noun))
+                                   .arg(id.value)
+                                   .arg(list[i - 1].id.value)};
+    return std::nullopt;
+}
+
 } // namespace
 
 std::optional<TopologyProblem> topologyProblem(const Scene& scene) {
@@ -67,14 +86,8 @@ std::optional<TopologyProblem> topologyProblem(const Scene& scene) {
     for (size_t e = 0; e < t.edges.size(); ++e) {
         const SharedEdge& edge = t.edges[e];
         const QString place = at("edges", e);
-        if (!edge.id.isValid())
-            return TopologyProblem{place + QStringLiteral(".id"), QStringLiteral("edge id is 0")};
-        if (e > 0 && !(t.edges[e - 1].id < edge.id))
-            return TopologyProblem{place + QStringLiteral(".id"),
-                                   QStringLiteral("edge id %1 does not follow %2 (edges are listed "
-                                                  "once each, in ascending id order)")
-                                       .arg(edge.id.value)
-                                       .arg(t.edges[e - 1].id.value)};
+        if (auto problem = idOrderProblem(t.edges, e, place, "edge"))
+            return problem;
         if (!(std::isfinite(edge.tolerance) && edge.tolerance >= 0.0))
             return TopologyProblem{place + QStringLiteral(".tolerance"),
                                    QStringLiteral("edge %1's tolerance %2 is not a finite number "
@@ -120,14 +133,8 @@ std::optional<TopologyProblem> topologyProblem(const Scene& scene) {
     for (size_t s = 0; s < t.shells.size(); ++s) {
         const Shell& shell = t.shells[s];
         const QString place = at("shells", s);
-        if (!shell.id.isValid())
-            return TopologyProblem{place + QStringLiteral(".id"), QStringLiteral("shell id is 0")};
-        if (s > 0 && !(t.shells[s - 1].id < shell.id))
-            return TopologyProblem{place + QStringLiteral(".id"),
-                                   QStringLiteral("shell id %1 does not follow %2 (shells are "
-                                                  "listed once each, in ascending id order)")
-                                       .arg(shell.id.value)
-                                       .arg(t.shells[s - 1].id.value)};
+        if (auto problem = idOrderProblem(t.shells, s, place, "shell"))
+            return problem;
         if (shell.solid < -1)
             return TopologyProblem{place + QStringLiteral(".solid"),
                                    QStringLiteral("solid %1 is below -1").arg(shell.solid)};
