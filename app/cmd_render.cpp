@@ -4,6 +4,7 @@
 #include "app/model_loader.h"
 #include "app/render_args.h"
 #include "app/render_reference.h"
+#include "model/inputcheck.h"
 #include "model/meshobj.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
@@ -210,6 +211,11 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (parser.isSet(reference) && parser.isSet(edgeReport)) {
         printError(QStringLiteral("%1: --reference and --edge-report exclude each other").arg(cmd));
         return kExitUsage;
+    }
+    // The input before the display: a missing file is the error to report, not the display.
+    if (const QString why = regularFileProblem(files[0]); !why.isEmpty()) {
+        printError(QStringLiteral("%1: %2").arg(files[0], why));
+        return kExitBadInput;
     }
     if (!startGui())
         return kExitBadInput;

@@ -7,7 +7,6 @@
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
-#include "model/inputcheck.h"
 
 #include <QCoreApplication>
 #include <QFileInfo>
@@ -122,12 +121,6 @@ int main(int argc, char** argv) {
         // starts; knotwork-gl takes it over (model/cad/cadprestart.h). Only for FILE right after
         // the verb, the form --help shows; any other form reads the file as usual.
         if (c->name == QLatin1String("render") && argc > 2 && argv[2][0] != '-') {
-            // The input first: a missing file is the error to report, not a missing display.
-            const QString input = QString::fromLocal8Bit(argv[2]);
-            if (const QString why = kw::regularFileProblem(input); !why.isEmpty()) {
-                printError(QStringLiteral("%1: %2").arg(input, why));
-                return kExitBadInput;
-            }
             const QString reader = qEnvironmentVariable("KNOTWORK_CAD_READER");
             kw::prestartCadRead(reader.isEmpty() ? kw::app::siblingPath("knotwork") : reader,
                                 QString::fromLocal8Bit(argv[2]));
