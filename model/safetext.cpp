@@ -62,7 +62,9 @@ QString occtMessageText(QByteArrayView message) {
     static const QRegularExpression placeholder(
         QStringLiteral("%[-+ #0]*[0-9*]*(\\.[0-9*]+)?"
                        "(hh|h|ll|l|L|z|j|t)?[diouxXeEfgGcsp]"));
-    text.remove(placeholder);
+    // Until none is left: removing "%e" from "%%e" leaves a new "%" before what follows.
+    while (text.contains(placeholder))
+        text.remove(placeholder);
     text = safeMessageText(text.simplified());
     text.replace(QStringLiteral(" ."), QStringLiteral("."));
     return text;
