@@ -1,6 +1,6 @@
 // Helpers shared by every subcommand of the knotwork executables (see app/commands.h).
 #include "app/commands.h"
-#include "model/safetext.h"
+#include "model/io/safetext.h"
 
 #include <QCommandLineParser>
 #include <cstdio>

@@ -3,8 +3,8 @@
 #include "app/commands.h"
 #include "model/cad/cadexport.h"
 #include "model/cad/cadimport.h"
-#include "model/knotfile.h"
-#include "model/objfile.h"
+#include "model/io/knotfile.h"
+#include "model/io/objfile.h"
 
 #include <QCommandLineParser>
 #include <QFileInfo>

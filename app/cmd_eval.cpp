@@ -1,6 +1,6 @@
 // knotwork eval FILE --surface ID --uv U,V [--json]: point, partials and unit normal at (u, v).
 #include "app/commands.h"
-#include "model/knotfile.h"
+#include "model/io/knotfile.h"
 
 #include <QCommandLineParser>
 #include <QJsonArray>

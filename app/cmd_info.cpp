@@ -2,8 +2,8 @@
 // camera.
 #include "app/commands.h"
 #include "model/cad/cadimport.h"
-#include "model/seamgaps.h"
-#include "model/trim.h"
+#include "model/document/seamgaps.h"
+#include "model/nurbs/trim.h"
 
 #include <QCommandLineParser>
 #include <QJsonArray>

@@ -1,11 +1,11 @@
 // knotwork mesh IN -o OUT.obj: a CAD file triangulated by OpenCASCADE's BRepMesh, the mesh an
-// OCCT-based viewer draws (issue 10's peer column), tagged with the surface ids `knotwork
+// OCCT-based viewer draws (the mesh peer), tagged with the surface ids `knotwork
 // convert` gives the same file, so `knotwork render MODEL.knot --peer-mesh OUT.obj` can draw it
 // and compare it with the exact surfaces pixel by pixel.
 #include "app/commands.h"
 #include "model/cad/cadprocess.h"
-#include "model/knotfile.h"
-#include "model/savefile.h"
+#include "model/io/knotfile.h"
+#include "model/io/savefile.h"
 
 #include <QCommandLineParser>
 #include <cmath>

@@ -4,8 +4,8 @@
 #include "app/model_loader.h"
 #include "app/render_args.h"
 #include "app/render_reference.h"
-#include "model/inputcheck.h"
-#include "model/meshobj.h"
+#include "model/io/inputcheck.h"
+#include "model/io/meshobj.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 
@@ -21,7 +21,7 @@ namespace kw::cli {
 
 namespace {
 
-/// Reads a tagged mesh (model/meshobj.h) for `scene` into the renderer's form. False with
+/// Reads a tagged mesh (model/io/meshobj.h) for `scene` into the renderer's form. False with
 /// *error naming the file when it cannot be read or tags a surface `scene` does not have (a
 /// mesh of another file would compare nonsense).
 bool loadPeerMesh(const QString& path, const QString& knotPath, const Scene& scene,

@@ -7,7 +7,7 @@
 #include "model/cad/cadprocess.h"
 #include "model/cad/handover.h"
 #include "model/cad/occtexport.h"
-#include "model/savefile.h"
+#include "model/io/savefile.h"
 
 #include <QDir>
 #include <QFile>

@@ -4,7 +4,7 @@
 // that do not never load Qt's GUI, OpenGL or OpenImageIO libraries.
 #pragma once
 
-#include "model/importreport.h"
+#include "model/io/importreport.h"
 
 #include <QString>
 #include <QStringList>

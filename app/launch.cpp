@@ -2,7 +2,7 @@
 // process's id, stdio and exit code, and the launcher's own libraries are unmapped.
 #include "app/launch.h"
 
-#include "model/install_layout.h"
+#include "model/io/install_layout.h"
 
 #include <QByteArray>
 #include <cerrno>

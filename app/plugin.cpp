@@ -1,7 +1,7 @@
 // Loading Knotwork's modules (build/bin, or lib/knotwork/ when installed) with QLibrary.
 #include "app/plugin.h"
 
-#include "model/install_layout.h"
+#include "model/io/install_layout.h"
 
 namespace kw::app {
 

@@ -2,7 +2,7 @@
 #include "app/render_args.h"
 
 #include "app/commands.h"
-#include "model/trim_grid.h"
+#include "render/trim_grid.h"
 
 #include <QCommandLineParser>
 #include <QStringList>

@@ -1,7 +1,7 @@
 // Options and loading shared by 'knotwork render' and 'knotwork bench'.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/render_types.h"
 
 #include <QCommandLineOption>

@@ -1,7 +1,7 @@
 // knotwork render --reference / --edge-report: the CPU reference frame and the edge metrics.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/aov_buffer.h"
 
 #include <QSize>

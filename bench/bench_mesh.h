@@ -1,7 +1,7 @@
 // Triangle meshes built on the CPU for the benchmark's comparison passes (GLU, fine mesh).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/triangle_mesh.h"
 
 #include <glm/glm.hpp>

@@ -1,7 +1,7 @@
 // Normal-angle error against kw::surfaceFrame and coverage-mask (silhouette) error.
 #include "bench/bench_quality.h"
 
-#include "model/nurbs.h"
+#include "model/nurbs/nurbs.h"
 
 #include <algorithm>
 #include <cmath>

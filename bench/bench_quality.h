@@ -2,7 +2,7 @@
 // the CPU kernel and silhouette error against a reference frame.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/offscreen_renderer.h"
 
 namespace kw::bench {

@@ -5,8 +5,8 @@
 #include "app/commands.h"
 #include "bench/glu_tessellator.h"
 #include "model/cad/cadimport.h"
-#include "model/document.h"
-#include "model/trim.h"
+#include "model/document/document.h"
+#include "model/nurbs/trim.h"
 
 #include <QElapsedTimer>
 #include <QFile>

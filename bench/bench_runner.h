@@ -1,5 +1,5 @@
 // knotwork bench: the measurements behind the paper's Tables 1 and 2, speed and quality side by
-// side in one run (issue 6). Plain result structs; report.h turns them into JSON, markdown, PNG.
+// side in one run. Plain result structs; report.h turns them into JSON, markdown, PNG.
 #pragma once
 
 #include "bench/bench_quality.h"

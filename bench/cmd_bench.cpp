@@ -1,11 +1,11 @@
 // knotwork bench [FILES...]: the paper's Tables 1 and 2 off-screen, speed and quality side by side
-// (issue 6). Measurement in bench/bench_runner, outputs in bench/bench_report.
+//. Measurement in bench/bench_runner, outputs in bench/bench_report.
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "bench/bench_report.h"
 #include "bench/scale_report.h"
-#include "model/install_layout.h"
-#include "model/savefile.h"
+#include "model/io/install_layout.h"
+#include "model/io/savefile.h"
 
 #include <QCommandLineParser>
 #include <QDir>

@@ -2,7 +2,7 @@
 // plain triangle list per surface.
 #include "bench/glu_tessellator.h"
 
-#include "model/nurbs.h"
+#include "model/nurbs/nurbs.h"
 
 #include <GL/glu.h>
 #include <glm/gtc/type_ptr.hpp>

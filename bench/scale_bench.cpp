@@ -5,8 +5,8 @@
 #include "app/commands.h"
 #include "bench/scale_scene.h"
 #include "model/cad/cadimport.h"
-#include "model/document.h"
-#include "model/knotfile.h"
+#include "model/document/document.h"
+#include "model/io/knotfile.h"
 #include "render/offscreen_renderer.h"
 #include "render/thread_clock.h"
 

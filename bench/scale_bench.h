@@ -1,9 +1,9 @@
 // knotwork bench --tables scale: one real trimmed part tiled from 1 copy up to >= 10,000 faces
-// (issue 15, docs/PERFORMANCE.md ## Scale). Plain result structs; bench_report writes them.
+// (docs/PERFORMANCE.md ## Scale). Plain result structs; bench_report writes them.
 #pragma once
 
 #include "bench/bench_runner.h"
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QString>
 #include <functional>

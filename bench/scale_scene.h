@@ -1,7 +1,7 @@
 // The scale table's models (docs/PERFORMANCE.md ## Scale): one real part tiled in a grid.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 namespace kw::bench {
 

@@ -1,13 +1,13 @@
-// View-adaptive partitions (issue 10 item 2): per surface and view, the fewest uniform
+// View-adaptive partitions: per surface and view, the fewest uniform
 // partitions at or above the sliders' for which the base polygon lies within a pixel tolerance
-// of the exact surface on screen, by the guaranteed bound of model/surface_bound.h.
+// of the exact surface on screen, by the guaranteed bound of render/surface_bound.h.
 #pragma once
 
-#include "model/document.h"
-#include "model/surface_bound.h"
-#include "model/visible_bounds.h"
+#include "model/document/document.h"
+#include "model/nurbs/visible_bounds.h"
 #include "render/gpu_layout.h"
 #include "render/render_types.h"
+#include "render/surface_bound.h"
 
 #include <cstdint>
 #include <vector>

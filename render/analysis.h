@@ -4,8 +4,8 @@
 // render/analysis_uniforms.cpp).
 #pragma once
 
-#include "model/nurbs_curvature.h"
-#include "model/scene.h"
+#include "model/document/scene.h"
+#include "model/nurbs/nurbs_curvature.h"
 
 #include <QString>
 #include <QStringList>

@@ -2,7 +2,7 @@
 // analysis uniforms.
 #include "render/analysis_gl.h"
 
-#include "model/install_layout.h"
+#include "model/io/install_layout.h"
 #include "render/image_reader.h"
 #include "render/shader_library.h"
 

@@ -1,4 +1,4 @@
-// The anti-aliased frame (issue 11 item 4): a private multisampled framebuffer the renderer
+// The anti-aliased frame: a private multisampled framebuffer the renderer
 // draws into when RenderOptions::samples > 1, resolved into the host's framebuffer at the end.
 // Silhouettes and the edges of base polygons are anti-aliased by MSAA (shading stays once per
 // pixel); trim edges by coverage from the exact distance to the curve (shaders/trim_sample.glsl),

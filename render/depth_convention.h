@@ -1,7 +1,7 @@
 // The GPU's depth convention (internal to render/): reversed depth. frameCamera's projection
 // maps the near plane to depth 1 and infinity towards 0 in glClipControl's zero-to-one clip
 // range, so a 32-bit float depth buffer resolves about 1e-7 of the distance at any distance
-// (issue 10, exact visibility: with GL's -1..1 range and near = 1e-5 far, which close-ups with
+// (exact visibility: with GL's -1..1 range and near = 1e-5 far, which close-ups with
 // the eye inside the scene's bounds get, 24 bits resolve only 1e-3 and a trimmed-away
 // fragment's depth can equal the face behind it). Nearer is greater; the buffers clear to 0.
 #pragma once

@@ -3,7 +3,7 @@
 // literal) and the program variant as a typed bit set with one GLSL define per bit.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/analysis.h"
 
 #include <QFlags>

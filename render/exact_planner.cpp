@@ -1,8 +1,8 @@
 // The exact pass's planner: variants, culling and batches from the records, no GL.
 #include "render/exact_planner.h"
 
-#include "model/surface_bound.h"
 #include "render/gpu_scene.h"
+#include "render/surface_bound.h"
 
 #include <algorithm>
 #include <limits>

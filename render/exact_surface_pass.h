@@ -87,7 +87,7 @@ public:
     /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
     int deferredSurfaces = 0;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
-    /// conservative overlap where faces meet (issue 10 item 4). B-rep faces meet within the
+    /// conservative overlap where faces meet. B-rep faces meet within the
     /// model's tolerance, not exactly; Axis_of_bearing's faces miss each other by 0.1-0.15 px
     /// at 256^2, which showed as a pinhole with 0.05 px here (tst_render_motion).
     static constexpr float kSkirtReachPixels = 0.25f;

@@ -2,7 +2,7 @@
 // render target and the pick query's answer. Plain data, no GL.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/render_types.h"
 
 #include <QSize>

@@ -2,8 +2,8 @@
 // tables and the base polygon (paper 3.1, 3.4). No GL here, so the layouts are testable alone.
 #pragma once
 
-#include "model/nurbs.h"
-#include "model/visible_bounds.h"
+#include "model/nurbs/nurbs.h"
+#include "model/nurbs/visible_bounds.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -76,7 +76,7 @@ std::vector<double> cellBreaks(const std::vector<double>& knots, int n, Interval
 /// Builds the base polygon. Preconditions: valid surface, nu and nv >= 1.
 BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv);
 /// The base polygon over `box` (a rectangle of the domain, e.g. trimParameterBox: a trimmed
-/// face's partitions go where its trims keep the surface, issue 10 item 1).
+/// face's partitions go where its trims keep the surface).
 BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, int nu, int nv);
 
 /// Where a base polygon's cells go: the paper's nu x nv uniform partitions of the box merged
@@ -103,7 +103,7 @@ std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly);
 /// Indices of the four outline edges per cell (GL_LINES).
 std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly);
 
-/// One vertex of a base polygon's skirt (issue 10 item 4, docs/RENDERING.md "Skirts"): a node
+/// One vertex of a base polygon's skirt (docs/RENDERING.md "Skirts"): a node
 /// of the polygon's outline and the outward (u, v) direction across its edge, (0, 0) on the
 /// strip's inner side. Attributes 0-3 as BaseVertex; location 5 of shaders/surface.vert
 /// (KW_SKIRT) is `outward`.

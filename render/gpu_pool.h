@@ -1,4 +1,4 @@
-// Shared GPU buffers for the per-surface data of the whole scene (issue 15 item 3): every
+// Shared GPU buffers for the per-surface data of the whole scene: every
 // surface's control points, span tables, base polygon vertices and indices live at an offset in
 // one buffer per kind, so the exact pass binds them once and draws many surfaces per call.
 #pragma once

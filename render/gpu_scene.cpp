@@ -2,7 +2,7 @@
 // stale parts the frame needs) and the per-record bookkeeping.
 #include "render/gpu_scene.h"
 
-#include "model/visible_bounds.h"
+#include "model/nurbs/visible_bounds.h"
 #include "render/gpu_layout.h"
 
 #include <QElapsedTimer>

@@ -4,7 +4,7 @@
 // once and drops removed surfaces once; the passes only draw what the records hold.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/adaptive_partitions.h"
 #include "render/exact_contract.h"
 #include "render/frame_report.h"

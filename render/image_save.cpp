@@ -1,7 +1,7 @@
 // Atomic QImage saving through QSaveFile.
 #include "render/image_save.h"
 
-#include "model/savefile.h"
+#include "model/io/savefile.h"
 
 #include <QFileDevice>
 #include <QFileInfo>

@@ -3,7 +3,7 @@
 // shared libraries, which a render that fails early or the editor should not pay for.
 #include "render/image_writer.h"
 
-#include "model/savefile.h"
+#include "model/io/savefile.h"
 #include "render/image_save.h"
 #include "render/oiio/image_module.h"
 #include "render/oiio_loader.h"

@@ -2,7 +2,7 @@
 // that fails early or the editor should not pay for.
 #include "render/oiio_loader.h"
 
-#include "model/install_layout.h"
+#include "model/io/install_layout.h"
 
 #include <QFileInfo>
 #include <QLibrary>

@@ -2,7 +2,7 @@
 // net (points and net lines). Both use shaders/lines.{vert,frag}.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/gpu_scene.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"

@@ -2,9 +2,9 @@
 // classification finds each pixel's surface, then Newton's method puts it on the exact ray hit.
 #include "render/reference_render.h"
 
-#include "model/surface_bound.h"
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 #include "render/render_types.h"
+#include "render/surface_bound.h"
 
 #include <QElapsedTimer>
 #include <algorithm>

@@ -2,7 +2,7 @@
 // the kernel (no GL), as AOVs and a Phong-shaded image, to measure what the GPU shows against.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/aov_buffer.h"
 
 #include <QImage>
@@ -11,12 +11,12 @@ namespace kw {
 
 struct ReferenceOptions {
     /// Guaranteed screen distance (pixels) between the fine tessellation that finds each
-    /// pixel's candidate surface and the exact surface (model/surface_bound.h). Coverage can
+    /// pixel's candidate surface and the exact surface (render/surface_bound.h). Coverage can
     /// differ from the exact surface's only for pixel centres this close to a silhouette.
     double pixelTolerance = 0.1;
     /// Largest cells per knot span and direction (bounds the work on huge close-ups).
     int maxCellsPerSpan = 256;
-    bool trims = true; ///< cut surfaces by their trim loops (model/trim.h, even-odd)
+    bool trims = true; ///< cut surfaces by their trim loops (model/nurbs/trim.h, even-odd)
     int lightCount = 2;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
 };

@@ -1,7 +1,7 @@
 // Render options, upload statistics and per-frame camera matrices shared by the render passes.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/analysis.h"
 
 #include <cstdint>
@@ -18,7 +18,7 @@ enum class RenderMode {
 /// Trim mask side limits in texels (RenderOptions::trimMaskCap).
 constexpr int kMinTrimMaskSize = 32;
 constexpr int kDefaultTrimMaskCap = 1024;
-/// Largest exact trim grid side in texels (model/trim_grid.h's trimGridResolution cap).
+/// Largest exact trim grid side in texels (render/trim_grid.h's trimGridResolution cap).
 constexpr int kMaxTrimGridSide = 1024;
 /// Default GPU memory budget of the exact trim grids (RenderOptions::trimBudgetBytes), and the
 /// range a user may set. 512 MiB: at most what one R32UI texture buffer holds on llvmpipe, and
@@ -41,13 +41,13 @@ struct RenderOptions {
     /// mode these (or the surface's own) are the minimum.
     int partitionsU = 0;
     int partitionsV = 0;
-    /// How each surface's base polygon is partitioned (issue 10 item 2).
+    /// How each surface's base polygon is partitioned.
     enum class Partitioning {
         /// The paper's: nu x nv from the surface's sliders (or the override above).
         Uniform,
         /// Per surface and view, the fewest uniform partitions at or above the sliders' for
         /// which the base polygon provably lies within `pixelTolerance` pixels of the exact
-        /// surface on screen (model/surface_bound.h: Filip-Magedson-Markot bounds on the
+        /// surface on screen (render/surface_bound.h: Filip-Magedson-Markot bounds on the
         /// homogeneous Bezier nets, projected with the nearest depth). Recomputed only when
         /// the view or the surface changes; the polygon is rebuilt only when the choice does.
         Adaptive,
@@ -81,8 +81,8 @@ struct RenderOptions {
     /// checks against the CPU classification, and to see what a trim removes).
     bool trims = true;
     /// The base polygon of a trimmed surface spans its trims' (u, v) box (trimParameterBox,
-    /// model/visible_bounds.h), still split at knots, so a small face on a large domain gets
-    /// its partitions where it is (issue 10 item 1). False spans the whole domain, as the
+    /// model/nurbs/visible_bounds.h), still split at knots, so a small face on a large domain gets
+    /// its partitions where it is. False spans the whole domain, as the
     /// paper does: `knotwork render --no-trims` clears both this and `trims` to show whole
     /// surfaces; with only `trims` false the same fragments as the cut frame are drawn, less
     /// the mask's discards (what the trim tests compare).
@@ -96,7 +96,7 @@ struct RenderOptions {
     /// a skirt, a strip pushed a little past its edge on screen whose fragments are kept
     /// only where Newton's method puts the pixel's ray on the exact surface inside its domain
     /// and trims (docs/RENDERING.md, "Skirts"). It fills the pixels between a polygon's edge
-    /// chord and the surface's true edge, which no face covered (cracks, issue 10 item 4).
+    /// chord and the surface's true edge, which no face covered (cracks).
     /// Off only to measure the difference.
     bool edgeSkirts = true;
     /// Adaptive exact frames with the depth pre-pass, aliased (each sample of accumulated
@@ -135,7 +135,7 @@ struct RenderOptions {
     /// trimMaskCap]. The array holding all masks has layers of the largest side in use, so the
     /// cap also bounds memory: cap^2 bytes per trimmed surface (1 MiB at the default 1024).
     int trimMaskCap = kDefaultTrimMaskCap;
-    /// How trims cut (issue 11). Exact (default): by the hybrid trim grid of model/trim_grid.h,
+    /// How trims cut. Exact (default): by the hybrid trim grid of render/trim_grid.h,
     /// trim edges exact at any zoom. Mask: by the paper's FBO mask alone, accurate to its texels
     /// (kept for comparison, docs/PERFORMANCE.md ## Trims).
     enum class TrimMode { Exact, Mask };
@@ -151,7 +151,7 @@ struct RenderOptions {
     /// sets it from the image size with --samples 1 (docs/PERFORMANCE.md ## Start-up); the
     /// editor keeps this.
     int trimGridCap = kMaxTrimGridSide;
-    /// Anti-aliasing (issue 11 item 4): 1 draws aliased, as the paper does; N > 1 draws into a
+    /// Anti-aliasing: 1 draws aliased, as the paper does; N > 1 draws into a
     /// private framebuffer with N MSAA samples (silhouettes and base-polygon edges; shading
     /// stays once per pixel) and covers trim-edge pixels by the exact distance to the curve
     /// (kw::AntialiasTarget). Clamped to the GPU's limit with a warning. Frames with AOVs and
@@ -166,7 +166,7 @@ struct RenderOptions {
         /// `samples` levels. The default (docs/RENDERING.md, "Anti-aliasing").
         Accumulate,
         /// One frame into `samples` MSAA samples, trim edges covered by the exact distance to
-        /// the curve (issue 11; kw::AntialiasTarget): smooth trim edges at any sample count,
+        /// the curve (kw::AntialiasTarget): smooth trim edges at any sample count,
         /// but no skirts or fins, so seams of B-reps can show the far side.
         Coverage,
     };

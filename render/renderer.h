@@ -3,7 +3,7 @@
 // private implementation, so this header needs no GL types (hosts pass framebuffer names).
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/frame_report.h"
 #include "render/render_types.h"
 #include "render/triangle_mesh.h"

@@ -1,10 +1,10 @@
 // What changed in a document since the renderer's last frame, as its signals said: the surfaces
 // whose data changed, and whether the list itself did (insert, remove, reset). GpuScene syncs
-// those records only, so a drag step costs what it changed, not the scene's size (issue 15).
+// those records only, so a drag step costs what it changed, not the scene's size.
 // Also the scene's control bounds (the camera's near and far planes), kept per surface.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 
 #include <QMetaObject>
 #include <glm/glm.hpp>

@@ -1,7 +1,7 @@
 // Uniforms shared by the shaded passes: camera, lights (phong.glsl) and one surface's material.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "render/render_types.h"
 
 #include <QOpenGLFunctions_4_5_Core>

@@ -1,7 +1,7 @@
 // Uploads of one surface's exact-mode data into its ranges of the shared scene buffers.
 #include "render/surface_upload.h"
 
-#include "model/surface_bound.h"
+#include "render/surface_bound.h"
 #include "render/trim_mask_pass.h"
 
 #include <algorithm>

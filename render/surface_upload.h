@@ -3,7 +3,7 @@
 // decides which one is due.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/frame_report.h"
 #include "render/gpu_layout.h"
 #include "render/gpu_pool.h"
@@ -71,7 +71,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Pol
 void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
 /// The base polygon cut as `cut` over `box` (a rectangle of the domain: GpuScene
 /// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
-/// cells go where its trims keep the surface, issue 10 item 1) from the current points;
+/// cells go where its trims keep the surface) from the current points;
 /// control data untouched. Returns false (the polygon's ranges freed) when a pool would
 /// exceed its limit. With `skirt`, the polygon's skirt too (kw::buildSkirt; adaptive frames
 /// draw it), else none.

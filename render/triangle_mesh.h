@@ -3,7 +3,7 @@
 // baseline's shading. Plain data, no GL.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <glm/glm.hpp>
 #include <vector>

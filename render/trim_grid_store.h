@@ -3,7 +3,7 @@
 // budget. No GL here: TrimMaskPass uploads the words.
 #pragma once
 
-#include "model/trim_grid.h"
+#include "render/trim_grid.h"
 
 #include <QStringList>
 #include <cstdint>
@@ -18,7 +18,7 @@ namespace kw {
 ///   texels: width * height + 1 words from word 4, texel k = first entry << 2 | near bit << 1 |
 ///           base bit (the next word's first entry ends the list; near: an edge texel is among
 ///           the 3 x 3 about it);
-///   entries: piece << 2 | left bit << 1 | right bit (model/trim_grid.h);
+///   entries: piece << 2 | left bit << 1 | right bit (render/trim_grid.h);
 ///   pieces: 8 words each from a multiple of 4: p0.x p0.y p1.x p1.y t0 t1 (floats), arc, 0;
 ///   arcs: 2 words each: first control point (index into points), degree;
 ///   points: 4 words each from a multiple of 4: w u, w v, w (floats), 0.

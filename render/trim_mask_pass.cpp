@@ -2,7 +2,7 @@
 // Exact mode's grids are in trim_mask_pass_exact.cpp.
 #include "render/trim_mask_pass.h"
 
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 #include "render/gpu_scene.h"
 
 #include <QElapsedTimer>

@@ -1,12 +1,12 @@
 // Trims on the GPU, in one of two modes (RenderOptions::TrimMode):
-//  - exact (issue 11): each trimmed surface's hybrid trim grid (model/trim_grid.h) in a block of
+//  - exact: each trimmed surface's hybrid trim grid (render/trim_grid.h) in a block of
 //    one texture buffer, sized by the surface's own need under a memory budget; the surface
 //    passes classify each fragment's exact (u, v) against it (shaders/trim_exact.glsl);
 //  - mask (paper 3.4.2): each trimmed surface's loops drawn in (u, v) into one layer of a
 //    GL_TEXTURE_2D_ARRAY by triangle fans with XOR parity; the surface passes sample it.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/exact_contract.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"

@@ -1,6 +1,6 @@
-// TrimMaskPass in exact mode (issue 11): the hybrid trim grids of every trimmed surface in one
+// TrimMaskPass in exact mode: the hybrid trim grids of every trimmed surface in one
 // texture buffer, each rebuilt and re-sent only when its surface's trims or knots change.
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 #include "render/gpu_scene.h"
 #include "render/trim_mask_pass.h"
 
@@ -28,7 +28,7 @@ void TrimMaskPass::freeGrids() {
 }
 
 /// A surface's arcs: loops repaired as makeTrimRegion repairs them, at the same tolerance as
-/// the CPU classification (model/trim_arcs.h).
+/// the CPU classification (render/trim_arcs.h).
 struct TrimSurfaceArcs {
     TrimArcs arcs;
     QStringList warnings;

@@ -139,7 +139,7 @@ vec3 anyPerpendicular(vec3 n) {
 }
 
 // K, H, k1 >= k2 and k1's unit direction from the fundamental forms, as kw::surfaceCurvature
-// (model/nurbs_curvature.cpp, Do Carmo 3.3): positive where the surface bends away from the unit
+// (model/nurbs/nurbs_curvature.cpp, Do Carmo 3.3): positive where the surface bends away from the unit
 // normal n, which must be Su x Sv or its opposite. The shape operator is the symmetric 2x2
 // matrix [[a, b], [b, c]] in the orthonormal tangent basis e1 = Su/|Su|, e2 = n x e1: with
 // Sv = alpha e1 + beta e2, (u, v) = J (x, y), J = [[1/|Su|, -alpha/(|Su| beta)], [0, 1/beta]],
@@ -189,7 +189,7 @@ bool plainNormal(SurfacePartials d, float tinyLen, out vec3 n, out bool tinyU, o
     return true;
 }
 
-// The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs_surface.cpp);
+// The normal rule of kw::surfaceFrame, steps 1-4 (comment above it in model/nurbs/nurbs_surface.cpp);
 // thresholds are scaled for float arithmetic (KW_TINY_REL, KW_PARALLEL_REL). It takes one or two
 // rounds: round 0 with the partials at uv, round 1 (where that gives no plain normal, or with
 // KW_SECOND_ORDER no curvature) with those of a nearby interior point. beginSurfaceSample sets

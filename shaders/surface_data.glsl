@@ -1,4 +1,4 @@
-// The scene's shared per-surface data (issue 15 item 3; kw::GpuScene, kw::ScenePools): one
+// The scene's shared per-surface data (kw::GpuScene, kw::ScenePools): one
 // table row per surface and pools of control texels and span-table rows, addressed by the
 // draw's surface index (surface.vert's aSurface, fed by the draw's base instance), so surfaces
 // of one shader variant are drawn by one multi-draw with no per-surface uniforms.

@@ -1,4 +1,4 @@
-// Exact trim classification on the GPU (issue 11): the hybrid trim grid of model/trim_grid.h,
+// Exact trim classification on the GPU: the hybrid trim grid of render/trim_grid.h,
 // packed by kw::packTrimGrid (render/trim_grid_store.h) into one R32UI texture buffer. A
 // fragment in a texel without pieces takes the texel's parity bit; one in an edge texel adds
 // the crossings of the texel's few monotone arc pieces (Schollmeyer & Froehlich 2009), each
@@ -146,7 +146,7 @@ bool kwTrimmedAwayExact(vec2 uv, vec2 unit) {
 
 #ifdef KW_TRIM_AA
 #define KW_TRIM_AA_MAX_TEXELS 4
-// Anti-aliasing (issue 11 item 4): the fraction of the fragment's pixel that lies inside the
+// Anti-aliasing: the fraction of the fragment's pixel that lies inside the
 // trimmed surface, from the exact distance to the nearest trim curve in screen pixels (after
 // Schollmeyer & Froehlich 2019); see kwTrimCoverageExact.
 

@@ -1,7 +1,7 @@
 // Trim classification for the surface passes. With KW_TRIM the fragment's (u, v) is classified
 // and the fragment discarded where trimmed; without it KW_DISCARD_TRIMMED is empty, so
 // untrimmed surfaces pay nothing. KW_TRIM_EXACT (RenderOptions::TrimMode::Exact, the default):
-// exactly, by the surface's hybrid trim grid (trim_exact.glsl, issue 11); else by the paper's
+// exactly, by the surface's hybrid trim grid (trim_exact.glsl); else by the paper's
 // FBO mask (3.4.2): a lookup in the surface's layer of the mask array.
 // Uniforms match kw::TrimMaskPass::setUniforms; the exact pass's shaders (surface_data.glsl
 // included first) read the per-surface values from the surface's table row instead.
@@ -93,7 +93,7 @@ float kwDomainCoverage(vec2 uv, mat2 jacobian) {
     return best > 1.0 ? 1.0 : kwEdgeCoverage(best, normal);
 }
 
-// The fraction of the fragment's pixel kept by the trims (issue 11 item 4), or KW_WHOLLY, for
+// The fraction of the fragment's pixel kept by the trims, or KW_WHOLLY, for
 // the anti-aliased passes (kw::ExactSurfacePass): opaque passes keep only fragments covered
 // wholly, the edge pass sums the rest by this coverage. Call it from main() before any
 // discard: it takes screen derivatives.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mutation run of IGES/STEP/BREP files through `knotwork convert` (issue 14, not in CI).
+"""Mutation run of IGES/STEP/BREP files through `knotwork convert` (not in CI).
 
 Each case is a seed file (IGES, STEP or BREP) with one to four random mutations (bytes
 flipped, inserted or deleted, chunks repeated or cut, the file truncated, numbers or entity

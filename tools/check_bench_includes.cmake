@@ -1,5 +1,5 @@
 cmake_minimum_required(VERSION 3.16)
-# The benchmark draws only through render's public interface (issue 15 item 4). Fails when a
+# The benchmark draws only through render's public interface. Fails when a
 # bench source includes a render header outside the public list below, an OpenGL header other
 # than libGLU's (its NURBS tessellator runs on the CPU and returns triangles), or reaches into
 # the renderer's private implementation (the test hook); and when a public header itself includes a private

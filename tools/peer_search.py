@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The OpenCASCADE mesh peer of issue 10 item 5 (docs/PERFORMANCE.md ## Edges).
+"""The OpenCASCADE mesh peer (docs/PERFORMANCE.md ## Edges).
 
 For each CAD file: convert it, render Knotwork (adaptive, the default) with --edge-report, then
 mesh the file with BRepMesh (`knotwork mesh`) at decreasing deflections until the mesh drawn

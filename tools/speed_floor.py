@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Lower bounds on an adaptive frame's time (issue 10's speed targets; docs/PERFORMANCE.md
+"""Lower bounds on an adaptive frame's time (docs/PERFORMANCE.md
 ## Edges, "How fast an adaptive frame can be").
 
-Any renderer that meets issue 10's other requirements must at least (1) rasterise the adaptive
+Any renderer that meets the exact renderer's other requirements must at least (1) rasterise the adaptive
 base polygon (item 2: within 0.5 px of the surface on screen) once and (2) evaluate and shade
 every covered pixel once. This times, interleaved in one run (ROUNDS rounds, median of each
 variant's medians of `knotwork render --time-frames`):

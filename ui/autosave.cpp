@@ -1,8 +1,8 @@
 // Autosave: recovery files for unsaved edits and .bak copies on save.
 #include "ui/autosave.h"
 
-#include "model/document.h"
-#include "model/knotfile.h"
+#include "model/document/document.h"
+#include "model/io/knotfile.h"
 
 #include <QCoreApplication>
 #include <QDir>

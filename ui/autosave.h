@@ -1,8 +1,8 @@
 // Autosave: recovery files for unsaved edits, offered again after a crash, and the .bak copy
-// kept on each save (issue 14 item 5).
+// kept on each save.
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QDateTime>
 #include <QObject>

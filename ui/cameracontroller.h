@@ -2,7 +2,7 @@
 // ViewProjection, the pixel <-> world mapping the viewport and the pickers share (no GL).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QPointF>
 #include <QSize>

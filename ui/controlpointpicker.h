@@ -2,7 +2,7 @@
 // few pixels of a click, or all inside a rubber band.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "ui/cameracontroller.h"
 
 #include <QPointF>

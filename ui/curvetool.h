@@ -5,7 +5,7 @@
 // one curve; loft collects curves until Enter is pressed with no new point.
 #pragma once
 
-#include "model/nurbs_construct.h"
+#include "model/nurbs/nurbs_construct.h"
 #include "ui/viewport.h"
 
 #include <QObject>

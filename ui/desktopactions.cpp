@@ -128,7 +128,7 @@ void DesktopActions::addViewEntries(QMenu* view) {
            &Viewport::setGroundGrid);
     toggle("actionAxisIndicator", tr("A&xis Indicator"), "view/axisIndicator", true,
            &Viewport::setAxisIndicator);
-    // The paper's uniform grid or view-adaptive partitions (issue 10): a preference, so it
+    // The paper's uniform grid or view-adaptive partitions: a preference, so it
     // holds for every document and the next start.
     m_adaptive = view->addAction(tr("Ada&ptive Partitions (within the pixel tolerance)"));
     m_adaptive->setObjectName(QStringLiteral("actionAdaptivePartitions"));

@@ -2,7 +2,7 @@
 // modeling editor (nets of all surfaces, ground grid, axis indicator, headlight).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 #include "ui/preferences.h"
 
 #include <QObject>

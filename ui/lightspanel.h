@@ -2,7 +2,7 @@
 // through SetLights commands.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 
 #include <QWidget>
 

@@ -2,7 +2,7 @@
 // Edit / View menus, undo stack, file state, recent files and window layout.
 #pragma once
 
-#include "model/selection.h"
+#include "model/document/selection.h"
 #include "ui/cameracontroller.h"
 
 #include <QMainWindow>

@@ -2,7 +2,7 @@
 // CAD child process on a worker thread behind a progress dialog (Cancel kills the child), OBJ
 // written here; the open-seam report shown when it is done. The document stays what it is.
 #include "model/cad/cadexport.h"
-#include "model/objfile.h"
+#include "model/io/objfile.h"
 #include "ui/mainwindow.h"
 
 #include <QEventLoop>

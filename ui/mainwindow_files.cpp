@@ -1,7 +1,7 @@
 // MainWindow: file handling — New, Open, Save, Save As (also of imported scenes), recent files,
 // export, drops, title.
 #include "model/cad/cadimport.h"
-#include "model/knotfile.h"
+#include "model/io/knotfile.h"
 #include "render/image_writer.h"
 #include "render/offscreen_renderer.h"
 #include "ui/autosave.h"
@@ -78,7 +78,8 @@ bool MainWindow::saveFile(const QString& path) {
                                  10000);
         return true;
     }
-    if (const CadFormat f = cadFormatFromPath(path); f != CadFormat::Knot && f != CadFormat::Unknown) {
+    if (const CadFormat f = cadFormatFromPath(path);
+        f != CadFormat::Knot && f != CadFormat::Unknown) {
         showError(tr("Cannot save file"),
                   tr("%1: Knotwork does not write %2 files; save the project as .knot, or "
                      "export STEP, IGES or OBJ")

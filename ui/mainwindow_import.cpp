@@ -1,7 +1,7 @@
 // MainWindow: File ▸ Import… — IGES, STEP, BREP and OBJ read on a worker thread behind a
 // progress dialog whose Cancel stops the importer through its progress callback.
 #include "model/cad/cadimport.h"
-#include "model/naming.h"
+#include "model/document/naming.h"
 #include "ui/mainwindow.h"
 
 #include <QEventLoop>

@@ -1,8 +1,8 @@
 // MainWindow: File ▸ Open Sample — the projects and CAD part in share/knotwork/samples (of the
 // installed prefix, or build/share/knotwork in the build tree), opened as copies to start from.
 #include "model/cad/cadimport.h"
-#include "model/install_layout.h"
-#include "model/knotfile.h"
+#include "model/io/install_layout.h"
+#include "model/io/knotfile.h"
 #include "ui/desktopactions.h"
 #include "ui/mainwindow.h"
 

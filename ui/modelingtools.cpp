@@ -1,8 +1,8 @@
 // ModelingTools: Create / Modify actions and the commands they push.
 #include "ui/modelingtools.h"
 
-#include "model/nurbs_construct.h"
-#include "model/nurbs_shapes.h"
+#include "model/nurbs/nurbs_construct.h"
+#include "model/nurbs/nurbs_shapes.h"
 #include "ui/curvetool.h"
 #include "ui/edit/modelcommands.h"
 #include "ui/viewport.h"

@@ -14,7 +14,7 @@ class QPushButton;
 namespace kw {
 
 /// Every key, default and meaning in one place. Autosave and backup are read by the document
-/// recovery code (issue 14); the view keys by the viewport (applyTo).
+/// recovery code; the view keys by the viewport (applyTo).
 struct Preferences {
     int autosaveSeconds = 60; ///< "autosave/intervalSeconds", 0 = off
     bool keepBackup = true;   ///< "save/keepBackup": keep NAME.knot.bak on save
@@ -36,7 +36,7 @@ struct Preferences {
     static Preferences load();
     void save() const;
     bool operator==(const Preferences&) const = default;
-    /// The partition modes this build implements (adaptive arrives with issue 10); a stored
+    /// The partition modes this build implements (adaptive came later); a stored
     /// mode that does not exist selects uniform.
     static QStringList availablePartitionModes();
 };

@@ -2,7 +2,7 @@
 // the picked control point's position and weight, partitions and material; edits are commands.
 #pragma once
 
-#include "model/selection.h"
+#include "model/document/selection.h"
 
 #include <QWidget>
 #include <memory>

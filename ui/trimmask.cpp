@@ -1,8 +1,8 @@
 // Trim polylines and the parity classification image of a surface's domain, both from
-// model/trim.h (one flattening and one point-in-loop rule for the whole program).
+// model/nurbs/trim.h (one flattening and one point-in-loop rule for the whole program).
 #include "ui/trimmask.h"
 
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,7 @@ double panelTolerance(const Surface& surface) {
 } // namespace
 
 std::vector<std::vector<glm::dvec2>> trimPolylines(const Surface& surface, int samplesPerSpan) {
-    // model/trim.h flattens adaptively; samplesPerSpan sets a tolerance finer than that many
+    // model/nurbs/trim.h flattens adaptively; samplesPerSpan sets a tolerance finer than that many
     // chords per span of the domain would give.
     const double tolerance =
         panelTolerance(surface) * 24.0 / double(std::clamp(samplesPerSpan, 2, 512));
@@ -39,8 +39,8 @@ QImage trimMaskImage(const Surface& surface, QSize size) {
     image.fill(0);
     const Interval du = surfaceDomainU(surface.geometry), dv = surfaceDomainV(surface.geometry);
     const int w = size.width(), h = size.height();
-    // Column by column: the kept v intervals of u = column centre (model/trim.h's parity rule),
-    // then the rows whose centres fall inside them. Row 0 is v = last.
+    // Column by column: the kept v intervals of u = column centre (model/nurbs/trim.h's parity
+    // rule), then the rows whose centres fall inside them. Row 0 is v = last.
     for (int x = 0; x < w; ++x) {
         const double u = du.first + (x + 0.5) / w * (du.last - du.first);
         for (const Interval& span : trimRegionSpans(region, u, dv.first, dv.last)) {

@@ -1,8 +1,9 @@
 // Trim loops on the CPU for the UV panel: polylines of the trim curves and a parity
-// classification image of the domain, drawn with model/trim.h (the 3D view uses the GPU mask).
+// classification image of the domain, drawn with model/nurbs/trim.h (the 3D view uses the GPU
+// mask).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QImage>
 #include <QSize>
@@ -17,9 +18,9 @@ namespace kw {
 std::vector<std::vector<glm::dvec2>> trimPolylines(const Surface& surface, int samplesPerSpan = 24);
 
 /// Classification of the surface's parameter domain into kept (inside an odd number of loops)
-/// and removed pixels by model/trim.h's parity rule (trimRegionSpans per column). Pixel (x, y)
-/// samples the centre of its cell; row 0 is the top of the domain (v = last), column 0 its left (u
-/// = first). A surface without trims is kept everywhere. Returns a Format_Grayscale8 image: 255
+/// and removed pixels by model/nurbs/trim.h's parity rule (trimRegionSpans per column). Pixel (x,
+/// y) samples the centre of its cell; row 0 is the top of the domain (v = last), column 0 its left
+/// (u = first). A surface without trims is kept everywhere. Returns a Format_Grayscale8 image: 255
 /// kept, 0 removed; a null image for an empty size.
 QImage trimMaskImage(const Surface& surface, QSize size);
 

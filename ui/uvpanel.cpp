@@ -1,7 +1,7 @@
 // UvPanel: domain, trim loops, mask and trim control point dragging.
 #include "ui/uvpanel.h"
 
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 #include "ui/edit/commands.h"
 
 #include <QFontMetricsF>

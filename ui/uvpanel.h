@@ -2,7 +2,7 @@
 // the CPU trim mask; trim control points are dragged here as undoable edits.
 #pragma once
 
-#include "model/selection.h"
+#include "model/document/selection.h"
 #include "ui/trimmask.h"
 
 #include <QImage>

@@ -1,8 +1,8 @@
 // UvPanel's drawing tools (rectangle, circle, polygon, spline loops), loop deletion, trim point
 // insertion / deletion / exact placement, zoom and pan.
-#include "model/nurbs_construct.h"
-#include "model/nurbs_shapes.h"
-#include "model/trim.h"
+#include "model/nurbs/nurbs_construct.h"
+#include "model/nurbs/nurbs_shapes.h"
+#include "model/nurbs/trim.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/modelcommands.h"
 #include "ui/uvpanel.h"

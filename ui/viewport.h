@@ -2,7 +2,7 @@
 // zoom, standard views, and control-point picking and dragging as undoable edits.
 #pragma once
 
-#include "model/selection.h"
+#include "model/document/selection.h"
 #include "render/renderer.h"
 #include "ui/cameracontroller.h"
 #include "ui/controlpointpicker.h"

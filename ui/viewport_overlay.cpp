@@ -1,7 +1,7 @@
 // Viewport overlays drawn with QPainter over the rendered frame (selection highlight, control
 // nets of the selected surfaces, ground grid, axis indicator) and the whole-surface and weight
 // drags.
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 #include "ui/edit/commands.h"
 #include "ui/viewport.h"
 

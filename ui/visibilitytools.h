@@ -3,7 +3,7 @@
 // in Rhino and Blender; the renderer leaves hidden surfaces out of frames and picks.
 #pragma once
 
-#include "model/selection.h"
+#include "model/document/selection.h"
 
 #include <QObject>
 #include <vector>

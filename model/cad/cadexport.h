@@ -3,7 +3,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QString>
 #include <QStringList>

@@ -2,11 +2,11 @@
 #include "model/cad/cadimport.h"
 
 #include "model/cad/cadprocess.h"
-#include "model/inputcheck.h"
-#include "model/knotfile.h"
-#include "model/objfile.h"
-#include "model/trim.h"
-#include "model/validation.h"
+#include "model/document/validation.h"
+#include "model/io/inputcheck.h"
+#include "model/io/knotfile.h"
+#include "model/io/objfile.h"
+#include "model/nurbs/trim.h"
 
 #include <QElapsedTimer>
 #include <QFileInfo>

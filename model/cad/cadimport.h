@@ -1,8 +1,8 @@
 // CAD import and export entry points: IGES, STEP and BREP (OpenCASCADE), OBJ and .knot files.
 #pragma once
 
-#include "model/importreport.h"
-#include "model/scene.h"
+#include "model/document/scene.h"
+#include "model/io/importreport.h"
 
 #include <QString>
 #include <optional>

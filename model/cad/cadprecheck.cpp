@@ -1,8 +1,8 @@
 // Byte scans of IGES, STEP and BREP files before OpenCASCADE reads them (cadprecheck.h).
 #include "model/cad/cadprecheck.h"
 
-#include "model/inputcheck.h"
-#include "model/safetext.h"
+#include "model/io/inputcheck.h"
+#include "model/io/safetext.h"
 
 #include <QFile>
 #include <cmath>

@@ -7,10 +7,10 @@
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadtempdir.h"
 #include "model/cad/handover.h"
-#include "model/inputcheck.h"
-#include "model/install_layout.h"
-#include "model/safetext.h"
-#include "model/savefile.h"
+#include "model/io/inputcheck.h"
+#include "model/io/install_layout.h"
+#include "model/io/safetext.h"
+#include "model/io/savefile.h"
 
 #include <QDir>
 #include <QElapsedTimer>

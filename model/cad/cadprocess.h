@@ -5,7 +5,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
-#include "model/meshobj.h"
+#include "model/io/meshobj.h"
 
 #include <QString>
 #include <QStringList>

@@ -1,7 +1,7 @@
 // The CAD child's binary hand-over (see handover.h).
 #include "model/cad/handover.h"
 
-#include "model/validation.h"
+#include "model/document/validation.h"
 
 #include <cstring>
 #include <type_traits>

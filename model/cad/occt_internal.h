@@ -2,8 +2,8 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
-#include "model/meshobj.h"
-#include "model/scene.h"
+#include "model/document/scene.h"
+#include "model/io/meshobj.h"
 
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <QString>
@@ -74,8 +74,8 @@ bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings,
                  FaceEdges* edges = nullptr);
 
-/// Records in scene.topology what the imported faces share (model/topology.h): every edge of
-/// `shape` of which exactly two trim curves were made (`faceEdges[k]` is convertFace's `edges`
+/// Records in scene.topology what the imported faces share (model/document/topology.h): every edge
+/// of `shape` of which exactly two trim curves were made (`faceEdges[k]` is convertFace's `edges`
 /// for scene.surfaces[k]), with its number in TopExp::MapShapes(shape, TopAbs_EDGE) as id and
 /// the largest tolerance of the edge and its converted copies; and every shell of `shape` with
 /// an imported face (id: its number in TopExp::MapShapes(shape, TopAbs_SHELL)), closed when

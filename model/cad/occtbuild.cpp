@@ -1,8 +1,8 @@
 // One Knotwork surface to one OpenCASCADE face: exact geometry, p-curve trims, built 3D edges.
 #include "model/cad/occtbuild.h"
 
-#include "model/nurbs.h"
-#include "model/trim.h"
+#include "model/nurbs/nurbs.h"
+#include "model/nurbs/trim.h"
 
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepCheck_Analyzer.hxx>

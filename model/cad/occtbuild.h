@@ -3,7 +3,7 @@
 // use it; so can anything else that needs a B-rep of a surface (re-meshing, checks).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>

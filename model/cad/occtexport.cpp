@@ -3,8 +3,8 @@
 #include "model/cad/occtexport.h"
 
 #include "model/cad/occtbuild.h"
-#include "model/savefile.h"
-#include "model/seamgaps.h"
+#include "model/document/seamgaps.h"
+#include "model/io/savefile.h"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepAdaptor_Curve.hxx>

@@ -1,6 +1,6 @@
 // One OpenCASCADE face to one Knotwork surface: exact NURBS geometry and p-curve trim loops.
 #include "model/cad/occt_internal.h"
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>

@@ -5,7 +5,7 @@
 #include "model/cad/igesrepair.h"
 #include "model/cad/occt_internal.h"
 #include "model/cad/occtranges.h"
-#include "model/safetext.h"
+#include "model/io/safetext.h"
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -423,7 +423,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
                                       .arg(occtMessageText(e.GetMessageString()));
     }
     // Which trim curves are one edge, which faces one shell: kept for the writers and for
-    // the seam check after edits (model/topology.h, model/seamgaps.h).
+    // the seam check after edits (model/document/topology.h, model/document/seamgaps.h).
     try {
         OCC_CATCH_SIGNALS
         recordTopology(read.shape, faces, result.sourceFaces, faceEdges, scene,

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
-#include "model/meshobj.h"
+#include "model/io/meshobj.h"
 
 namespace kw {
 

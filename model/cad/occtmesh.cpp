@@ -1,4 +1,4 @@
-// The OpenCASCADE mesh peer (issue 10 item 5): the faces of a CAD file triangulated the way
+// The OpenCASCADE mesh peer: the faces of a CAD file triangulated the way
 // OCCT-based viewers (FreeCAD, Mayo, f3d, AIS_Shape) display them.
 #include "model/cad/occt_internal.h"
 #include "model/cad/occtimport.h"

@@ -1,11 +1,11 @@
 // Shared by fuzz_step.cpp and fuzz_iges.cpp: the checks a CAD file passes in the reader's child
 // process before OpenCASCADE sees it (model/cad/cadprecheck.h), and the message helpers every
-// refusal goes through (model/safetext.h), on arbitrary bytes.
+// refusal goes through (model/io/safetext.h), on arbitrary bytes.
 #pragma once
 
 #include "fuzz_util.h"
 #include "model/cad/cadprecheck.h"
-#include "model/safetext.h"
+#include "model/io/safetext.h"
 
 namespace kw::fuzz {
 

@@ -10,7 +10,7 @@
 //  - the item signals balance: inserted/removed surfaces and loops match the scene's counts.
 // At the end, what Save writes (.knot) reopens as the same scene.
 #include "fuzz_roundtrip.h"
-#include "model/nurbs_shapes.h"
+#include "model/nurbs/nurbs_shapes.h"
 
 #include <map>
 #include <set>

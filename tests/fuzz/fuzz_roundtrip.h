@@ -3,9 +3,9 @@
 #pragma once
 
 #include "fuzz_util.h"
-#include "model/document.h"
-#include "model/knotfile.h"
-#include "model/objfile.h"
+#include "model/document/document.h"
+#include "model/io/knotfile.h"
+#include "model/io/objfile.h"
 
 namespace kw::fuzz {
 
@@ -59,8 +59,8 @@ inline void checkAcceptedScene(const Scene& given) {
 
     const QByteArray json = sceneToJson(scene);
     const std::optional<Scene> back = sceneFromJson(json, QStringLiteral("roundtrip.knot"), &error);
-    // One validation (model/validation.h): every scene Knotwork accepts is written so that it
-    // reopens; no refusal of a written file is tolerated.
+    // One validation (model/document/validation.h): every scene Knotwork accepts is written so that
+    // it reopens; no refusal of a written file is tolerated.
     KW_FUZZ_CHECK(back.has_value(), QStringLiteral("the .knot written does not reopen: ") + error);
     KW_FUZZ_CHECK(*back == scene,
                   QStringLiteral("the .knot written reopens as a different scene: ") +

@@ -1,11 +1,11 @@
-// libFuzzer harness: trim-loop repair and flattening (model/trim.h) on loops built from the
+// libFuzzer harness: trim-loop repair and flattening (model/nurbs/trim.h) on loops built from the
 // input: curves of any degree with valid, unsorted or miscounted knots, any weights, points
 // anywhere (NaN and infinities included), loops that close, have gaps or are empty. Checks:
 // makeTrimRegion only keeps finite closed polygons inside their boxes; spans are sorted,
 // disjoint and agree with point classification; curve splitting and reversal keep the shape;
 // the trimmed area of a unit square lies in [0, 1].
 #include "fuzz_util.h"
-#include "model/trim.h"
+#include "model/nurbs/trim.h"
 
 #include <algorithm>
 #include <numeric>

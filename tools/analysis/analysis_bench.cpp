@@ -10,10 +10,10 @@
 // A trim curve end moves with the curve ends at the same (u, v) (kw::trimPointWithCoincidentEnds)
 // and a move the document refuses stops the benchmark: a frame must time a real edit.
 // Needs OpenGL 4.5 (Xvfb).
-#include "model/document.h"
-#include "model/knotfile.h"
-#include "model/nurbs.h"
-#include "model/trim.h"
+#include "model/document/document.h"
+#include "model/io/knotfile.h"
+#include "model/nurbs/nurbs.h"
+#include "model/nurbs/trim.h"
 #include "render/offscreen_renderer.h"
 
 #include <QElapsedTimer>

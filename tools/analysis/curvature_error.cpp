@@ -8,8 +8,8 @@
 // relative to the model's curvature scale: the 98th percentile of |H| over all its vertices.
 // Prints a Markdown table row per file and N; --image writes a side-by-side picture of one
 // surface's domain: exact H, then H from each mesh, on the same colour scale.
-#include "model/knotfile.h"
-#include "model/nurbs_curvature.h"
+#include "model/io/knotfile.h"
+#include "model/nurbs/nurbs_curvature.h"
 #include "render/analysis.h"
 #include "render/image_save.h"
 

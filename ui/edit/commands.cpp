@@ -1,7 +1,7 @@
 // Edit commands for points, weights, partitions, trim points, material, lights and camera.
 #include "ui/edit/commands.h"
 
-#include "model/validation.h"
+#include "model/document/validation.h"
 #include "ui/edit/commandsupport.h"
 
 #include <QLoggingCategory>

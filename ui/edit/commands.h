@@ -1,7 +1,7 @@
 // Edit commands: one QUndoCommand per user intent, changing the Document only through its API.
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 
 #include <QUndoCommand>
 #include <memory>

@@ -1,7 +1,7 @@
 // Small helpers shared by the edit command sources (not part of the public API).
 #pragma once
 
-#include "model/document.h"
+#include "model/document/document.h"
 
 #include <QString>
 #include <cstddef>

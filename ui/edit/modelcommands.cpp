@@ -2,8 +2,8 @@
 // replacement.
 #include "ui/edit/modelcommands.h"
 
-#include "model/nurbs_construct.h"
-#include "model/validation.h"
+#include "model/document/validation.h"
+#include "model/nurbs/nurbs_construct.h"
 #include "ui/edit/commandsupport.h"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Modeling commands (issue 13): place surfaces by an affine map, hide and show surfaces, remove
+// Modeling commands: place surfaces by an affine map, hide and show surfaces, remove
 // knots within a tolerance, and replace a trim loop's curves (trim point insertion and deletion).
 #pragma once
 

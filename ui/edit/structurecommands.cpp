@@ -1,5 +1,5 @@
 // Edit commands that add, remove and rename surfaces and add or remove trim loops.
-#include "model/validation.h"
+#include "model/document/validation.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/commandsupport.h"
 

@@ -1,0 +1,167 @@
+// Document: owns the Scene, applies validated mutations, counts revisions and signals changes.
+#pragma once
+
+#include "model/document/scene.h"
+
+#include <QFlags>
+#include <QHash>
+#include <QObject>
+#include <QString>
+#include <cstdint>
+#include <vector>
+
+namespace kw {
+
+/// What part of a surface changed; the renderer re-uploads only stale aspects.
+enum class Aspect : unsigned {
+    Points = 1 << 0,  ///< control point positions or weights (same counts)
+    Knots = 1 << 1,   ///< degrees, knot vectors, or control-net size
+    Trims = 1 << 2,   ///< trim loops
+    Display = 1 << 3, ///< partitions, material, hidden, the solid mark
+    Name = 1 << 4,
+};
+Q_DECLARE_FLAGS(Aspects, Aspect)
+Q_DECLARE_OPERATORS_FOR_FLAGS(Aspects)
+
+/// Per-surface revision of each aspect. Values come from one counter shared by every document
+/// (Document::revision), so every change (undo included) yields a value never seen before.
+struct Revisions {
+    std::uint64_t points = 0;
+    std::uint64_t knots = 0;
+    std::uint64_t trims = 0;
+    std::uint64_t display = 0;
+    bool operator==(const Revisions&) const = default;
+};
+
+/// The one place the scene changes. Every mutator validates its input and returns false
+/// (changing nothing, emitting nothing) when it is invalid or names an unknown id; on success
+/// it bumps the revisions and emits the matching signals. Undo commands (ui/edit) call these;
+/// views and the renderer only read and listen.
+class Document : public QObject {
+    Q_OBJECT
+public:
+    explicit Document(QObject* parent = nullptr);
+
+    const Scene& scene() const { return m_scene; }
+    /// nullptr when no surface has this id.
+    const Surface* surface(SurfaceId id) const;
+    /// Position in scene().surfaces, or -1.
+    int indexOf(SurfaceId id) const;
+    /// Zero revisions for an unknown id.
+    Revisions revisions(SurfaceId id) const;
+    /// The revisions of scene().surfaces[index] (0 <= index < surface count), without the id
+    /// search: for passes over every surface (the renderer's per-frame sync).
+    Revisions revisionsAt(int index) const { return m_revisions[size_t(index)]; }
+    std::uint64_t lightsRevision() const { return m_lightsRevision; }
+    /// Changes with every change of the scene (a surface inserted, removed or edited, the
+    /// lights, the camera, a reset) and never takes a value twice, in any document of the
+    /// process: "nothing changed" is `revision()` unchanged (the renderer's progressive
+    /// anti-aliasing keys its sum by it).
+    std::uint64_t revision() const { return m_counter; }
+    std::uint64_t cameraRevision() const { return m_cameraRevision; }
+    /// Changes whenever some surface's Surface::solid mark is set or cleared (a reset, an edit
+    /// that opens a solid, an undo that closes it again), and only then.
+    std::uint64_t marksRevision() const { return m_marksRevision; }
+
+    /// Fresh ids that no surface or loop of this document uses (never reused in a session).
+    SurfaceId allocateSurfaceId();
+    TrimLoopId allocateTrimLoopId();
+
+    /// Replaces the whole scene (New, Open, Import). Ids are kept; nextId is raised above them.
+    /// Returns false with *error set if the scene is invalid (the document is then unchanged).
+    bool resetScene(Scene scene, QString* error = nullptr);
+
+    /// index in [0, size]; surface.id valid and unused; geometry valid.
+    bool insertSurface(int index, Surface surface);
+    /// Also takes the surface out of the scene's topology (its edges, its place in its shell);
+    /// inserting it again (the undo) puts the record back as it was.
+    bool removeSurface(SurfaceId id);
+    bool setName(SurfaceId id, const QString& name);
+    /// Moves the listed control points (NurbsSurface::index) to new positions.
+    bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                          const std::vector<glm::dvec3>& positions);
+    bool setWeight(SurfaceId id, int index, double weight);
+    /// Degrees, knots and control net at once (knot edit, knot insertion, degree elevation).
+    bool setGeometry(SurfaceId id, const NurbsSurface& geometry);
+    /// Both in [kMinPartitions, kMaxPartitions].
+    bool setPartitions(SurfaceId id, int nu, int nv);
+    bool setMaterial(SurfaceId id, const Material& material);
+    /// Hides or shows a surface (Aspect::Display).
+    bool setHidden(SurfaceId id, bool hidden);
+    /// index in [0, loop count]; loop.id valid and unused; every curve valid.
+    bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
+    /// Also takes the edges with a side on the loop out of the scene's topology; inserting the
+    /// loop again with as many curves (an undo, an edit of its curves) puts them back.
+    bool removeTrimLoop(SurfaceId id, TrimLoopId loop);
+    /// Moves one trim control point; refused when its loop would no longer be closed.
+    bool setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
+    /// Moves several trim control points of one surface at once (a curve end together with
+    /// the coinciding end of its neighbour); refused, changing nothing, when a ref is unknown
+    /// or repeated, a position is not finite or a touched loop would no longer be closed.
+    bool setTrimPoints(const std::vector<TrimPointRef>& refs,
+                       const std::vector<glm::dvec2>& positions);
+    /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
+    bool setLights(std::vector<Light> lights);
+    bool setCamera(const Camera& camera);
+    /// The display settings saved with the project (as the camera: not an edit, no signal
+    /// the views react to); false when invalid (validation.h displayError).
+    bool setDisplay(const DisplaySettings& display);
+
+    /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
+    /// Returns an empty string when valid.
+    static QString validate(const Scene& scene);
+
+Q_SIGNALS:
+    void sceneAboutToBeReset();
+    void sceneReset();
+    void surfaceAboutToBeInserted(int index);
+    void surfaceInserted(kw::SurfaceId id, int index);
+    void surfaceAboutToBeRemoved(kw::SurfaceId id, int index);
+    void surfaceRemoved(kw::SurfaceId id);
+    void surfaceChanged(kw::SurfaceId id, kw::Aspects aspects);
+    void trimLoopAboutToBeInserted(kw::SurfaceId id, int index);
+    void trimLoopInserted(kw::SurfaceId id, int index);
+    void trimLoopAboutToBeRemoved(kw::SurfaceId id, int index);
+    void trimLoopRemoved(kw::SurfaceId id, int index);
+    void lightsChanged();
+    void cameraChanged();
+
+private:
+    Surface* mutableSurface(SurfaceId id);
+    void bump(SurfaceId id, Aspects aspects);
+    void openSolid(int solid);
+    void closeSolid(SurfaceId id);
+
+    /// A face of a closed solid as the last reset marked it (Surface::solid): its solid and a
+    /// digest of its shape (shapeDigest: geometry and trims). An edit opens the solid
+    /// (openSolid; its side, Surface::outsideAlongNormal, stays); once every one of its faces
+    /// has its marked shape again (undo, or a point moved back), closeSolid marks them again.
+    struct MarkedFace {
+        int solid = -1;
+        size_t shape = 0;
+    };
+    QHash<SurfaceId, MarkedFace> m_markedFaces;
+    /// What the removal of a surface or a trim loop took out of the scene's topology (edges
+    /// with a side on it, its place in its shell, the shells' `closed`), by the id of what was
+    /// removed: ids are never reused, so only the undo of that removal brings the same id back,
+    /// and then restoreTopology puts the record back exactly. A loop is put back with its edges
+    /// when it has as many curves as the removed one (ReplaceTrimLoop edits a loop by removing
+    /// and inserting it: its curves stay the same edges, and kw::seamGaps measures how far
+    /// an edit moved them).
+    QHash<SurfaceId, TopologyPiece> m_takenWithSurface;
+    QHash<TrimLoopId, TopologyPiece> m_takenWithLoop;
+    /// A fresh value of the process-wide revision counter, kept as the document's revision().
+    std::uint64_t nextRevision();
+
+    Scene m_scene;
+    std::vector<Revisions> m_revisions; // parallel to m_scene.surfaces
+    std::uint64_t m_counter = 0;        ///< revision(): the newest value this document handed out
+    std::uint64_t m_lightsRevision = 0;
+    std::uint64_t m_cameraRevision = 0;
+    std::uint64_t m_marksRevision = 0;
+};
+
+} // namespace kw
+
+Q_DECLARE_METATYPE(kw::SurfaceId)
+Q_DECLARE_METATYPE(kw::Aspects)

@@ -1,0 +1,231 @@
+// Validation of authored data: plain-English reasons shared by Document, the .knot reader, the
+// importers and the writers (one notion of a valid scene).
+#include "model/document/validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace kw {
+
+namespace {
+
+bool finite(double x) {
+    return std::isfinite(x);
+}
+bool finite(const glm::dvec3& v) {
+    return finite(v.x) && finite(v.y) && finite(v.z);
+}
+bool in(double x, double lo, double hi) {
+    return finite(x) && x >= lo && x <= hi;
+}
+bool in(const glm::dvec3& v, double lo, double hi) {
+    return in(v.x, lo, hi) && in(v.y, lo, hi) && in(v.z, lo, hi);
+}
+
+} // namespace
+
+QString partitionsError(int nu, int nv) {
+    if (nu < kMinPartitions || nu > kMaxPartitions || nv < kMinPartitions || nv > kMaxPartitions)
+        return QStringLiteral("partitions %1 x %2 outside [%3, %4]")
+            .arg(nu)
+            .arg(nv)
+            .arg(kMinPartitions)
+            .arg(kMaxPartitions);
+    return {};
+}
+
+QString materialError(const Material& m) {
+    if (!in(m.color, 0.0, 1.0))
+        return QStringLiteral("material colour components must be in [0, 1]");
+    if (!in(m.ka, 0.0, 1.0) || !in(m.kd, 0.0, 1.0) || !in(m.ks, 0.0, 1.0))
+        return QStringLiteral("material coefficients ka, kd, ks must be in [0, 1]");
+    if (!in(m.shininess, 0.0, kMaxShininess))
+        return QStringLiteral("material shininess must be in [0, %1]").arg(kMaxShininess);
+    return {};
+}
+
+QString lightError(const Light& l) {
+    if (l.kind != Light::Kind::Directional && l.kind != Light::Kind::Point)
+        return QStringLiteral("unknown light kind");
+    if (!finite(l.vector))
+        return QStringLiteral("light direction or position must be finite");
+    if (l.kind == Light::Kind::Directional && glm::length(l.vector) == 0.0)
+        return QStringLiteral("directional light needs a non-zero direction");
+    if (!in(l.ambient, 0.0, kMaxLightIntensity) || !in(l.diffuse, 0.0, kMaxLightIntensity) ||
+        !in(l.specular, 0.0, kMaxLightIntensity))
+        return QStringLiteral("light intensities must be in [0, %1]").arg(kMaxLightIntensity);
+    return {};
+}
+
+QString lightsError(const std::vector<Light>& lights) {
+    if (lights.size() > size_t(kMaxLights))
+        return QStringLiteral("%1 lights, more than the limit %2")
+            .arg(lights.size())
+            .arg(kMaxLights);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const QString e = lightError(lights[i]);
+        if (!e.isEmpty())
+            return QStringLiteral("light %1: %2").arg(i + 1).arg(e);
+    }
+    return {};
+}
+
+QString cameraError(const Camera& c) {
+    if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
+        return QStringLiteral("camera vectors must be finite");
+    const glm::dvec3 view = c.target - c.eye;
+    if (glm::length(view) == 0.0)
+        return QStringLiteral("camera eye and target coincide");
+    if (glm::length(glm::cross(view, c.up)) <= 1e-12 * glm::length(view) * glm::length(c.up))
+        return QStringLiteral("camera up vector is zero or parallel to the view direction");
+    if (!(finite(c.fovYDegrees) && c.fovYDegrees > 0 && c.fovYDegrees < 180))
+        return QStringLiteral("camera field of view must be in (0, 180) degrees");
+    return {};
+}
+
+double trimLoopClosureTolerance(const TrimLoop& loop) {
+    double extent = 1.0;
+    for (const NurbsCurve2& c : loop.curves)
+        for (const glm::dvec2& p : c.points)
+            extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    return 1e-9 * extent;
+}
+
+int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start, glm::dvec2* end) {
+    const double tolerance = trimLoopClosureTolerance(loop);
+    const size_t n = loop.curves.size();
+    for (size_t k = 0; k < n; ++k) {
+        const NurbsCurve2& prev = loop.curves[(k + n - 1) % n];
+        const NurbsCurve2& cur = loop.curves[k];
+        const glm::dvec2 e = curvePoint(prev, curveDomain(prev).last);
+        const glm::dvec2 s = curvePoint(cur, curveDomain(cur).first);
+        if (!(glm::length(e - s) <= tolerance)) {
+            if (start)
+                *start = s;
+            if (end)
+                *end = e;
+            return int(k);
+        }
+    }
+    return -1;
+}
+
+QString trimLoopError(const TrimLoop& loop) {
+    if (!loop.id.isValid())
+        return QStringLiteral("trim loop has no id");
+    if (loop.curves.empty())
+        return QStringLiteral("trim loop %1 has no curves").arg(loop.id.value);
+    if (loop.curves.size() > size_t(kMaxLoopCurves))
+        return QStringLiteral("trim loop %1 has %2 curves, more than the limit %3")
+            .arg(loop.id.value)
+            .arg(loop.curves.size())
+            .arg(kMaxLoopCurves);
+    for (size_t i = 0; i < loop.curves.size(); ++i) {
+        std::string e = curveValidationError(loop.curves[i]);
+        if (e.empty() && loop.curves[i].points.size() > size_t(kMaxCurvePoints))
+            e = "more than " + std::to_string(kMaxCurvePoints) + " control points";
+        if (!e.empty())
+            return QStringLiteral("trim loop %1, curve %2: %3")
+                .arg(loop.id.value)
+                .arg(i + 1)
+                .arg(QString::fromStdString(e));
+    }
+    glm::dvec2 start, end;
+    if (const int k = trimLoopOpenAt(loop, &start, &end); k >= 0)
+        return QStringLiteral("trim loop %1 is not closed: curve %2 starts at (%3, %4) but the "
+                              "previous curve ends at (%5, %6)")
+            .arg(loop.id.value)
+            .arg(k + 1)
+            .arg(start.x, 0, 'g', 17)
+            .arg(start.y, 0, 'g', 17)
+            .arg(end.x, 0, 'g', 17)
+            .arg(end.y, 0, 'g', 17);
+    return {};
+}
+
+QString surfaceError(const Surface& s) {
+    if (!s.id.isValid())
+        return QStringLiteral("surface has no id");
+    const QString who = QStringLiteral("surface %1").arg(s.id.value);
+    const std::string g = surfaceValidationError(s.geometry);
+    if (!g.empty())
+        return who + QStringLiteral(": ") + QString::fromStdString(g);
+    QString e;
+    if ((long long)s.geometry.countU * s.geometry.countV > kMaxControlPoints)
+        e = QStringLiteral("%1 x %2 control points, more than the limit %3")
+                .arg(s.geometry.countU)
+                .arg(s.geometry.countV)
+                .arg(kMaxControlPoints);
+    if (e.isEmpty())
+        e = partitionsError(s.partitionsU, s.partitionsV);
+    if (e.isEmpty())
+        e = materialError(s.material);
+    if (e.isEmpty() && s.solid < -1)
+        e = QStringLiteral("solid number %1 is negative").arg(s.solid);
+    if (e.isEmpty() && s.trims.size() > size_t(kMaxTrimLoops))
+        e = QStringLiteral("%1 trim loops, more than the limit %2")
+                .arg(s.trims.size())
+                .arg(kMaxTrimLoops);
+    std::set<std::uint32_t> loops;
+    for (size_t i = 0; e.isEmpty() && i < s.trims.size(); ++i) {
+        e = trimLoopError(s.trims[i]);
+        if (e.isEmpty() && !loops.insert(s.trims[i].id.value).second)
+            e = QStringLiteral("trim loop id %1 used twice").arg(s.trims[i].id.value);
+    }
+    return e.isEmpty() ? QString() : who + QStringLiteral(": ") + e;
+}
+
+QString displayError(const DisplaySettings& d) {
+    if (!d.partitionMode.isEmpty() && d.partitionMode != QLatin1String("adaptive") &&
+        d.partitionMode != QLatin1String("uniform"))
+        return QStringLiteral("partition mode \"%1\" is neither \"adaptive\" nor \"uniform\"")
+            .arg(d.partitionMode);
+    if (!d.background.isEmpty() && d.background != QLatin1String("dark") &&
+        d.background != QLatin1String("light"))
+        return QStringLiteral("background \"%1\" is neither \"dark\" nor \"light\"")
+            .arg(d.background);
+    if (!(d.pixelTolerance >= kMinPixelTolerance && d.pixelTolerance <= kMaxPixelTolerance))
+        return QStringLiteral("pixel tolerance %1 is outside %2..%3")
+            .arg(d.pixelTolerance)
+            .arg(kMinPixelTolerance)
+            .arg(kMaxPixelTolerance);
+    return QString();
+}
+
+QString sceneError(const Scene& scene) {
+    if (scene.surfaces.size() > size_t(kMaxSurfaces))
+        return QStringLiteral("%1 surfaces, more than the limit %2")
+            .arg(scene.surfaces.size())
+            .arg(kMaxSurfaces);
+    std::set<std::uint32_t> ids;
+    std::uint32_t maxId = 0;
+    for (const Surface& s : scene.surfaces) {
+        const QString e = surfaceError(s);
+        if (!e.isEmpty())
+            return e;
+        // Surface and loop ids come from one counter, so all of them differ.
+        if (!ids.insert(s.id.value).second)
+            return QStringLiteral("surface id %1 used twice").arg(s.id.value);
+        maxId = std::max(maxId, s.id.value);
+        for (const TrimLoop& l : s.trims) {
+            if (!ids.insert(l.id.value).second)
+                return QStringLiteral("trim loop id %1 used twice").arg(l.id.value);
+            maxId = std::max(maxId, l.id.value);
+        }
+    }
+    if (scene.nextId <= maxId)
+        return QStringLiteral("nextId %1 is not above the largest id %2")
+            .arg(scene.nextId)
+            .arg(maxId);
+    QString e = lightsError(scene.lights);
+    if (e.isEmpty())
+        e = topologyError(scene);
+    if (e.isEmpty())
+        e = cameraError(scene.camera);
+    if (e.isEmpty())
+        e = displayError(scene.display);
+    return e;
+}
+
+} // namespace kw

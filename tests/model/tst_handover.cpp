@@ -1,0 +1,167 @@
+// The CAD child's binary hand-over (model/cad/handover.h): everything written reads back equal,
+// and a truncated, corrupt or foreign block is an error naming where, never a crash or an
+// invalid scene; through importFile, a child that writes a bad block gives an error naming the
+// file.
+#include "model/cad/cadprocess.h"
+#include "model/cad/handover.h"
+#include "model/document/validation.h"
+#include "model/io/knotfile.h"
+
+#include <QFile>
+#include <QRandomGenerator>
+#include <QTemporaryDir>
+#include <QTest>
+
+namespace {
+
+kw::ImportResult sample(const char* name) {
+    QString error;
+    auto scene = kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name), &error);
+    if (!scene)
+        qFatal("%s", qPrintable(error));
+    kw::ImportResult r;
+    r.scene = std::move(*scene);
+    for (size_t k = 0; k < r.scene.surfaces.size(); ++k)
+        r.sourceFaces.push_back(int(3 * k + 1));
+    r.report.facesImported = int(r.scene.surfaces.size());
+    r.report.skipped = {QStringLiteral("face 2 (Fläche ∂Ω): degree 17 above 15")};
+    r.report.warnings = {QStringLiteral("face 1: gap closed"), QString()};
+    r.report.seconds = 0.125;
+    return r;
+}
+
+void verifySame(const kw::ImportResult& a, const kw::ImportResult& b) {
+    QVERIFY(a.scene == b.scene);
+    QCOMPARE(a.sourceFaces, b.sourceFaces);
+    QCOMPARE(a.report.facesImported, b.report.facesImported);
+    QCOMPARE(a.report.skipped, b.report.skipped);
+    QCOMPARE(a.report.warnings, b.report.warnings);
+    QCOMPARE(a.report.seconds, b.report.seconds);
+}
+
+void put(QByteArray& block, qsizetype at, std::uint32_t v) {
+    std::memcpy(block.data() + at, &v, sizeof(v));
+}
+
+} // namespace
+
+class TestHandover : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void everyFieldReadsBackEqual_data() {
+        QTest::addColumn<QString>("name");
+        for (const char* n : {"bicubic.knot", "teapot.knot", "trimmed_plate.knot",
+                              "star_island.knot", "sphere.knot", "torus.knot"})
+            QTest::newRow(n) << QString::fromLatin1(n);
+    }
+    void everyFieldReadsBackEqual() {
+        QFETCH(QString, name);
+        kw::ImportResult r = sample(qPrintable(name));
+        QVERIFY(!r.scene.surfaces.empty());
+        // Every field away from its default, and doubles that text would round.
+        kw::Surface& s = r.scene.surfaces.front();
+        s.hidden = true;
+        s.partitionsU = 7;
+        s.partitionsV = 3;
+        s.material = kw::Material{{0.1, 0.2, 1.0 / 3.0}, 0.01, 0.5, 0.9, 12.5};
+        s.name = QStringLiteral("Ünïcode ∑ name");
+        s.geometry.points.front().x = 0.1 + 0.2;
+        r.scene.lights.push_back(kw::Light{kw::Light::Kind::Point,
+                                           {1, 2, 3},
+                                           {0.1, 0.1, 0.1},
+                                           {0.3, 0.2, 0.1},
+                                           {1e-300, 0, 999.75}});
+        r.scene.camera = kw::Camera{{1, 2, 3}, {0, 0.5, 0}, {0, 1, 0}, 42.0, true};
+        r.scene.display =
+            kw::DisplaySettings{QStringLiteral("uniform"), 2.25, QStringLiteral("light")};
+        QVERIFY2(kw::sceneError(r.scene).isEmpty(), qPrintable(kw::sceneError(r.scene)));
+        QString why;
+        const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r), why);
+        QVERIFY2(back, qPrintable(why));
+        verifySame(r, *back);
+    }
+
+    void everyTruncationIsAnError() {
+        const QByteArray block = kw::encodeImportHandover(sample("trimmed_plate.knot"));
+        for (qsizetype n = 0; n < block.size(); ++n) {
+            QString why;
+            QVERIFY2(!kw::decodeImportHandover(block.left(n), why), qPrintable(QString::number(n)));
+            QVERIFY2(why.contains(QLatin1String(" at byte ")) && why.contains(QLatin1String(": ")),
+                     qPrintable(why));
+        }
+    }
+
+    void corruptBlocksAreErrorsOrValidScenes() {
+        // Any byte changed: decoding stops with a reason, or gives a scene the rule accepts.
+        const QByteArray block = kw::encodeImportHandover(sample("star_island.knot"));
+        QRandomGenerator random(15);
+        int refused = 0;
+        for (int trial = 0; trial < 3000; ++trial) {
+            QByteArray bad = block;
+            for (int k = 0, n = 1 + trial % 4; k < n; ++k)
+                bad[random.bounded(int(bad.size()))] = char(random.bounded(256));
+            QString why;
+            const auto r = kw::decodeImportHandover(bad, why);
+            if (r)
+                QVERIFY(kw::sceneError(r->scene).isEmpty());
+            else
+                QVERIFY(!why.isEmpty());
+            refused += r ? 0 : 1;
+        }
+        QVERIFY(refused > 0);
+    }
+
+    void namedFaults() {
+        const QByteArray good = kw::encodeImportHandover(sample("bicubic.knot"));
+        QString why;
+        QByteArray bad = good;
+        bad[0] = 'X';
+        QVERIFY(!kw::decodeImportHandover(bad, why));
+        QCOMPARE(why, QStringLiteral("header at byte 8: not a Knotwork import hand-over"));
+        bad = good;
+        put(bad, 8, 99);
+        QVERIFY(!kw::decodeImportHandover(bad, why));
+        QVERIFY2(why.contains(QLatin1String("version 99")), qPrintable(why));
+        bad = good;
+        put(bad, 16, 0xffffffffu); // the surface count
+        QVERIFY(!kw::decodeImportHandover(bad, why));
+        QVERIFY2(why.startsWith(QLatin1String("surface count at byte 20: a count of 4294967295")),
+                 qPrintable(why));
+        QVERIFY(!kw::decodeImportHandover(good + "x", why));
+        QVERIFY2(why.contains(QLatin1String("1 bytes follow it")), qPrintable(why));
+        // Well-formed, but not a valid scene: the rule of every reader refuses it.
+        kw::ImportResult invalid = sample("bicubic.knot");
+        invalid.scene.surfaces.front().geometry.degreeU = 40;
+        QVERIFY(!kw::decodeImportHandover(kw::encodeImportHandover(invalid), why));
+        QVERIFY2(why.startsWith(QLatin1String("the scene is not valid: ")), qPrintable(why));
+        kw::ImportResult faces = sample("bicubic.knot");
+        faces.sourceFaces.pop_back();
+        QVERIFY(!kw::decodeImportHandover(kw::encodeImportHandover(faces), why));
+        QVERIFY2(why.contains(QLatin1String("source faces for")), qPrintable(why));
+    }
+
+    void badBlockFromTheChildNamesTheFile() {
+        // A "reader" that exits 0 after writing a corrupt hand-over into its folder ($3).
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const QString script = dir.filePath(QStringLiteral("reader.sh"));
+        QFile f(script);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("#!/bin/sh\nprintf 'KWIMPORT' > \"$3/import.kwi\"\n");
+        f.close();
+        QVERIFY(f.setPermissions(f.permissions() | QFileDevice::ExeOwner));
+        kw::setCadReaderExecutable(script);
+        const QString part = QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges");
+        QString error;
+        const auto r = kw::importFile(part, error);
+        kw::setCadReaderExecutable({});
+        QVERIFY(!r);
+#ifdef KW_HAVE_OCCT
+        QCOMPARE(error, part + QStringLiteral(": the IGES reader gave no readable result: header "
+                                              "at byte 8: the block is truncated"));
+#endif
+    }
+};
+
+QTEST_GUILESS_MAIN(TestHandover)
+#include "tst_handover.moc"
