@@ -65,9 +65,3 @@ kw_use_cad_reader(tst_topology_import)
 # CPU classification (gl), and the CAD importer's faces against OCCT's trims (gl).
 kw_add_test(tst_trim_messy SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_messy.cpp
             ${KW_TEST_SUPPORT_DIR}/trim_test_util.h LIBS knotwork_model)
-
-kw_add_test(tst_trim_exact SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_exact.cpp
-            ${KW_TEST_SUPPORT_DIR}/trim_test_util.h LIBS ${KW_TRIM_EXACT_LIBS})
-set_tests_properties(tst_trim_exact PROPERTIES TIMEOUT 600)
-# It imports hammer.iges, which is read by the knotwork binary in a child process.
-kw_use_cad_reader(tst_trim_exact)

@@ -116,3 +116,10 @@ kw_use_cad_reader(tst_render_trims_exact)
 kw_add_test(tst_render_trims_aa NEEDS gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_trims_aa.cpp
             ${KW_TEST_SUPPORT_DIR}/trim_test_util.h ${KW_TEST_SUPPORT_DIR}/render_test_util.h
             LIBS knotwork_render)
+
+# The hybrid trim grid on the CPU (render/trim_grid.h): arcs, turning points, classification.
+kw_add_test(tst_trim_exact SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_exact.cpp
+            ${KW_TEST_SUPPORT_DIR}/trim_test_util.h NEEDS occt LIBS knotwork_render ${KW_TRIM_EXACT_LIBS})
+set_tests_properties(tst_trim_exact PROPERTIES TIMEOUT 600)
+# It imports hammer.iges, which is read by the knotwork binary in a child process.
+kw_use_cad_reader(tst_trim_exact)
