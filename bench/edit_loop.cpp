@@ -308,8 +308,15 @@ bool ModelLoop::search(EditLoopRow& row, QString* error) {
     if (!at(0, 0, t))
         return false;
     while (!good(t.q) && step + 1 < kSteps && t.triangles < config.maxTriangles) {
-        if (!at(step + 1, step + 1, t))
-            return false;
+        // A finer mesh can pass the CAD child's time or memory limit: the search stops there,
+        // with the finest mesh made (peer_search.py does the same).
+        Tried finer;
+        if (!at(step + 1, step + 1, finer)) {
+            progress(
+                QStringLiteral("%1: stopped refining: %2").arg(QFileInfo(path).fileName(), *error));
+            break;
+        }
+        t = finer;
         ++step;
     }
     int li = step, ai = step;
