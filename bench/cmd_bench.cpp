@@ -39,6 +39,20 @@ bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
     return !out.empty();
 }
 
+/// --scale-size: N (square) or WxH, each side in 1..kMaxSide.
+bool parseScaleSize(const QString& text, bench::ScaleConfig& config) {
+    if (!text.contains(QLatin1Char('x'))) {
+        config.height = 0;
+        return parseIntIn(text, 1, kMaxSide, config.side);
+    }
+    QSize size;
+    if (!parseImageSize(text, size) || size.width() > kMaxSide || size.height() > kMaxSide)
+        return false;
+    config.side = size.width();
+    config.height = size.height();
+    return true;
+}
+
 /// `text` is modeName(m) for a mode m (render_args keeps the names).
 bool parseModeName(const QString& text, RenderMode& mode) {
     for (RenderMode m : {RenderMode::Exact, RenderMode::Tessellated})
@@ -128,8 +142,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         QStringLiteral("LIST"), QStringLiteral("1,100,300,1000,3000,10000"));
     const QCommandLineOption scaleSize(
         QStringLiteral("scale-size"),
-        QStringLiteral("Scale table: square image side, 1..4096 (default 1024)."),
-        QStringLiteral("N"), QStringLiteral("1024"));
+        QStringLiteral("Scale table: image size, N (square) or WxH, each side 1..4096 "
+                       "(default 1024)."),
+        QStringLiteral("SIZE"), QStringLiteral("1024"));
     const QCommandLineOption scalePartitionMode(
         QStringLiteral("scale-partition-mode"),
         QStringLiteral("Scale table: uniform (default, the paper's grid) or adaptive (the "
@@ -261,7 +276,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
         !parseList(tableNames.join(QLatin1Char(',')), scale ? 0 : 1, 2, tableList) ||
         !parseList(parser.value(scaleFaces), 1, 1000000, scaleConfig.faces) ||
-        !parseIntIn(parser.value(scaleSize), 1, kMaxSide, scaleConfig.side) ||
+        !parseScaleSize(parser.value(scaleSize), scaleConfig) ||
         !parseModeName(parser.value(mode), config.table1Mode) ||
         !parseShadingName(parser.value(shading), config.shading)) {
         printError(
