@@ -456,9 +456,15 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         }
         return true;
     };
-    // Warm-up, untimed: shaders, first uploads, the child's first face.
+    // Warm-up, untimed: shaders, first uploads, the child's first face. The exact pass picks
+    // its shader variant per surface from its cells' size on screen, and a variant is compiled
+    // on first use (seconds on llvmpipe): both frames are drawn at the drag's farthest point
+    // too, so that no timed step compiles one.
     const glm::dvec3 warm = drag.home + drag.direction * (1e-3 * drag.amplitude);
-    if (!knotworkStep(1, warm, nullptr, nullptr) ||
+    const glm::dvec3 peak = drag.home + drag.direction * drag.amplitude;
+    if (!knotworkStep(1, peak, nullptr, nullptr) ||
+        !knotworkStep(config.stillSamples, peak, nullptr, nullptr) ||
+        !knotworkStep(1, warm, nullptr, nullptr) ||
         !knotworkStep(config.stillSamples, drag.home, nullptr, nullptr) ||
         !peerStep(peers[0], warm, false) || !peerStep(peers[1], drag.home, false))
         return false;
