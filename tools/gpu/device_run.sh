@@ -76,7 +76,7 @@ for ph in "$@"; do
             > /dev/null 2> /tmp/kwlogs/bench.err
         echo "bench rc $?" ;;
     editloop | scale)
-        KW_DATA=$K/data timeout "$(left)" tools/gpu/phases.sh "$ph"
+        KW_DATA=$K/data timeout "$(left)" bash tools/gpu/phases.sh "$ph"
         echo "$ph rc $?" ;;
     debug)
         for m in tests/data/hammer.iges tests/data/Pump_Nut.brep; do
