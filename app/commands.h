@@ -50,6 +50,8 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui);
 int runReadCad(const QStringList& args);
 /// knotwork, hidden: the CAD writer's child process (kw::kWriteCadVerb).
 int runWriteCad(const QStringList& args);
+/// The hidden `knotwork __mesh-faces` child (model/cad/facemesher.h).
+int runMeshFaces(const QStringList& args);
 
 // ---- Helpers shared by subcommands (cli_util.cpp, in every executable).
 

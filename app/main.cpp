@@ -7,6 +7,7 @@
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprestart.h"
 #include "model/cad/cadprocess.h"
+#include "model/cad/facemesher.h"
 
 #include <QCoreApplication>
 #include <QFileInfo>
@@ -98,7 +99,7 @@ bool isEditorInvocation(int argc, char** argv) {
     if (first.startsWith(QLatin1Char('-')))
         return false;
     if (findCommand(first) || first == QLatin1String(kw::kReadCadVerb) ||
-        first == QLatin1String(kw::kWriteCadVerb))
+        first == QLatin1String(kw::kWriteCadVerb) || first == QLatin1String(kw::kMeshFacesVerb))
         return false;
     // A model file by its name (the editor then says when it is missing).
     return QFileInfo::exists(first) || kw::cadFormatFromPath(first) != kw::CadFormat::Unknown;
@@ -149,6 +150,10 @@ int main(int argc, char** argv) {
     if (first == QLatin1String(kw::kWriteCadVerb)) { // hidden: the CAD writer's child process
         rest.prepend(QStringLiteral("knotwork ") + first);
         return runWriteCad(rest);
+    }
+    if (first == QLatin1String(kw::kMeshFacesVerb)) { // hidden: the face mesher's child process
+        rest.prepend(QStringLiteral("knotwork ") + first);
+        return runMeshFaces(rest);
     }
     if (const Command* command = findCommand(first)) {
         rest.prepend(QStringLiteral("knotwork ") + command->name);

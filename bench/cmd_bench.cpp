@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "bench/bench_report.h"
+#include "bench/edit_loop.h"
 #include "bench/scale_report.h"
 #include "model/io/install_layout.h"
 #include "model/io/savefile.h"
@@ -11,7 +12,9 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QJsonArray>
 #include <QJsonDocument>
+#include <cmath>
 
 namespace kw::cli {
 
@@ -34,6 +37,20 @@ bool parseList(const QString& text, int lo, int hi, std::vector<int>& out) {
         out.push_back(v);
     }
     return !out.empty();
+}
+
+/// --scale-size: N (square) or WxH, each side in 1..kMaxSide.
+bool parseScaleSize(const QString& text, bench::ScaleConfig& config) {
+    if (!text.contains(QLatin1Char('x'))) {
+        config.height = 0;
+        return parseIntIn(text, 1, kMaxSide, config.side);
+    }
+    QSize size;
+    if (!parseImageSize(text, size) || size.width() > kMaxSide || size.height() > kMaxSide)
+        return false;
+    config.side = size.width();
+    config.height = size.height();
+    return true;
 }
 
 /// `text` is modeName(m) for a mode m (render_args keeps the names).
@@ -125,8 +142,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         QStringLiteral("LIST"), QStringLiteral("1,100,300,1000,3000,10000"));
     const QCommandLineOption scaleSize(
         QStringLiteral("scale-size"),
-        QStringLiteral("Scale table: square image side, 1..4096 (default 1024)."),
-        QStringLiteral("N"), QStringLiteral("1024"));
+        QStringLiteral("Scale table: image size, N (square) or WxH, each side 1..4096 "
+                       "(default 1024)."),
+        QStringLiteral("SIZE"), QStringLiteral("1024"));
     const QCommandLineOption scalePartitionMode(
         QStringLiteral("scale-partition-mode"),
         QStringLiteral("Scale table: uniform (default, the paper's grid) or adaptive (the "
@@ -206,6 +224,31 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "--aa-method)."),
         QStringLiteral("METHOD"), QStringLiteral("accumulate"));
     parser.addOption(aaMethod);
+    const QCommandLineOption editLoop(
+        QStringLiteral("edit-loop"),
+        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): drag one control "
+                       "point of each FILE's largest free-form face (else its largest face, "
+                       "which the drag turns free-form) through --edit-steps steps and time, "
+                       "alternated step by step, Knotwork's edit to the aliased frame and to the "
+                       "editor's still frame (4 samples), against OpenCASCADE's mesh peer: the "
+                       "face rebuilt as an OCCT face, re-meshed by BRepMesh at equal quality "
+                       "(searched as tools/peer_search.py does, or --peer-deflections), re-sent "
+                       "and drawn; and the peer at OCCT viewers' default deflections. JSON "
+                       "rows under \"editLoop\" (docs/PERFORMANCE.md ## Editing)."));
+    const QCommandLineOption peerDeflections(
+        QStringLiteral("peer-deflections"),
+        QStringLiteral("--edit-loop: the peer's linear (model units) and angular (degrees) "
+                       "deflections instead of the equal-quality search."),
+        QStringLiteral("LIN,ANG"));
+    const QCommandLineOption editSteps(QStringLiteral("edit-steps"),
+                                       QStringLiteral("--edit-loop: drag steps, 1..10000 "
+                                                      "(default 50)."),
+                                       QStringLiteral("N"), QStringLiteral("50"));
+    const QCommandLineOption editSize(QStringLiteral("edit-size"),
+                                      QStringLiteral("--edit-loop: square frame side, 1..4096 "
+                                                     "(default 1024)."),
+                                      QStringLiteral("N"), QStringLiteral("1024"));
+    parser.addOptions({editLoop, peerDeflections, editSteps, editSize});
     parser.addPositionalArgument(QStringLiteral("FILES"),
                                  QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
                                                 "(read as render reads them)."),
@@ -233,7 +276,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         !parseIntIn(parser.value(lights), 1, kMaxLights, config.lights) ||
         !parseList(tableNames.join(QLatin1Char(',')), scale ? 0 : 1, 2, tableList) ||
         !parseList(parser.value(scaleFaces), 1, 1000000, scaleConfig.faces) ||
-        !parseIntIn(parser.value(scaleSize), 1, kMaxSide, scaleConfig.side) ||
+        !parseScaleSize(parser.value(scaleSize), scaleConfig) ||
         !parseModeName(parser.value(mode), config.table1Mode) ||
         !parseShadingName(parser.value(shading), config.shading)) {
         printError(
@@ -338,7 +381,37 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     scaleConfig.base = config.base;
     scaleConfig.frames = config.frames;
     scaleConfig.trims = config.trims;
+    bench::EditLoopConfig editConfig;
+    const bool edit = parser.isSet(editLoop);
+    if (!parseIntIn(parser.value(editSteps), 1, 10000, editConfig.steps) ||
+        !parseIntIn(parser.value(editSize), 1, kMaxSide, editConfig.side)) {
+        printError(
+            QStringLiteral("%1: bad --edit-steps (1..10000) or --edit-size (1..4096)").arg(cmd));
+        return kExitUsage;
+    }
+    if (parser.isSet(peerDeflections)) {
+        const QStringList pair = parser.value(peerDeflections).split(QLatin1Char(','));
+        bool okLin = false, okAng = false;
+        const double lin = pair.value(0).toDouble(&okLin);
+        const double ang = pair.value(1).toDouble(&okAng);
+        if (pair.size() != 2 || !okLin || !okAng || !std::isfinite(lin) || !(lin > 0.0) ||
+            !(ang > 0.0) || ang > 180.0) {
+            printError(QStringLiteral("%1: --peer-deflections '%2' is not LIN,ANG (a positive "
+                                      "distance, an angle in (0, 180] degrees)")
+                           .arg(cmd, parser.value(peerDeflections)));
+            return kExitUsage;
+        }
+        editConfig.peerDeflections = std::pair{lin, ang};
+    }
+    editConfig.files = files1;
+    editConfig.lights = config.lights;
+    editConfig.base = config.base;
+    if (edit && !parser.isSet(tables)) { // the edit loop alone
+        config.table1Files.clear();
+        config.table2Files.clear();
+    }
     if (parser.isSet(smoke)) {
+        editConfig.steps = std::min(editConfig.steps, 2);
         config.frames = 2;
         config.warmup = 1;
         scaleConfig.frames = 2;
@@ -364,6 +437,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: scale table: %2").arg(cmd, error));
         return kExitBadInput;
     }
+    bench::EditLoopReport editReport;
+    if (edit && !bench::runEditLoop(editConfig, editReport, progress, &error)) {
+        printError(QStringLiteral("%1: edit loop: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
     QStringList argv = args.mid(1);
     const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
     QString plotDir = parser.value(plots);
@@ -383,12 +461,15 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     QString md = bench::reportMarkdown(report, command, relative);
     if (scale)
         md += bench::scaleMarkdown(scaleReport);
+    if (edit)
+        md += bench::editLoopMarkdown(editReport, command);
     printOut(md);
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
-    if (parser.isSet(json) &&
-        !writeFile(parser.value(json),
-                   QJsonDocument(benchJson(report, scale, scaleReport, command)).toJson()))
+    QJsonObject root = benchJson(report, scale, scaleReport, command);
+    if (edit)
+        root.insert(QStringLiteral("editLoop"), bench::editLoopJson(editReport));
+    if (parser.isSet(json) && !writeFile(parser.value(json), QJsonDocument(root).toJson()))
         return kExitBadInput;
     return kExitOk;
 }

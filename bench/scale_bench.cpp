@@ -175,7 +175,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     report.config = config;
 
     OffscreenRenderer renderer;
-    if (!renderer.create(error) || !renderer.setSize(QSize(config.side, config.side), false, error))
+    if (!renderer.create(error) ||
+        !renderer.setSize(QSize(config.side, config.frameHeight()), false, error))
         return false;
     Frames frames{renderer, config, config.base, QString()};
     frames.options.trims = config.trims;
@@ -202,7 +203,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         }
         QFile::remove(file);
         row.faces = int(doc.scene().surfaces.size());
-        const Camera fitted = fitCamera(doc.scene(), 1.0);
+        const Camera fitted =
+            fitCamera(doc.scene(), double(config.side) / double(config.frameHeight()));
         QElapsedTimer first;
         first.start();
         if (!frames.draw(doc, fitted, nullptr, error))

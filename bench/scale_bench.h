@@ -17,7 +17,9 @@ struct ScaleConfig {
     QString model;
     /// Face counts to reach; row k tiles copiesForFaces(unit faces, faces[k]) copies.
     std::vector<int> faces;
-    int side = 1024;    ///< square image side
+    int side = 1024; ///< image width
+    int height = 0;  ///< image height; 0: side (square)
+    int frameHeight() const { return height > 0 ? height : side; }
     int frames = 20;    ///< timed frames per view (medians)
     int warmup = 3;     ///< untimed frames first
     int dragSteps = 20; ///< control-point moves timed per row

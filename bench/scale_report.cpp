@@ -64,7 +64,7 @@ QJsonObject scaleJson(const ScaleReport& report) {
                        {QStringLiteral("unitFaces"), report.unitFaces},
                        {QStringLiteral("unitTrimmed"), report.unitTrimmed},
                        {QStringLiteral("width"), c.side},
-                       {QStringLiteral("height"), c.side},
+                       {QStringLiteral("height"), c.frameHeight()},
                        {QStringLiteral("frames"), c.frames},
                        {QStringLiteral("warmup"), c.warmup},
                        {QStringLiteral("dragSteps"), c.dragSteps},
@@ -76,7 +76,7 @@ QJsonObject scaleJson(const ScaleReport& report) {
 QString scaleMarkdown(const ScaleReport& report) {
     const ScaleConfig& c = report.config;
     QString md = QStringLiteral(
-                     "### Scale: %1 (%2 faces, %3 trimmed) tiled N times, %4 × %4, %5\n\n"
+                     "### Scale: %1 (%2 faces, %3 trimmed) tiled N times, %4 × %6, %5\n\n"
                      "| copies | faces | load (s) | first frame (s) | resident (MiB) | GPU (MiB) | "
                      "draw calls | fitted FPS | fitted CPU ms/frame | fitted render call (ms) | "
                      "close-up FPS | close-up CPU ms/frame | close-up render call (ms) | drag "
@@ -86,7 +86,8 @@ QString scaleMarkdown(const ScaleReport& report) {
                      .arg(report.unitFaces)
                      .arg(report.unitTrimmed)
                      .arg(c.side)
-                     .arg(partitioningLabel(c));
+                     .arg(partitioningLabel(c))
+                     .arg(c.frameHeight());
     for (const ScaleRow& r : report.rows)
         md +=
             QStringLiteral("| %1 | %2 | %3 | %4 | %5 | %6 | %7 | %8 | %9 | %10 | %11 | %12 | "
@@ -157,8 +158,10 @@ bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& 
         first.y.push_back(r.firstFrameSeconds);
         rss.y.push_back(r.residentMiB / 1024.0);
     }
-    const QString title =
-        QStringLiteral("Scale: %1 tiled, %2x%2").arg(report.model).arg(report.config.side);
+    const QString title = QStringLiteral("Scale: %1 tiled, %2x%3")
+                              .arg(report.model)
+                              .arg(report.config.side)
+                              .arg(report.config.frameHeight());
     const QImage top = linePlot(title, QStringLiteral("faces"), QStringLiteral("CPU ms"), faces,
                                 {fitted, close, call, drag, toDraw}, true);
     const QImage bottom =

@@ -64,7 +64,10 @@ struct GpuScene::Pass {
     ScreenScale scale;
     std::int64_t limit = 0;
     UploadStats frame;
-    QStringList tooLarge;
+    /// Surfaces whose data did not fit, and the first of them described (the error names the
+    /// count and that one: a scene of thousands must not get a line per surface).
+    int tooLarge = 0;
+    QString firstTooLarge;
     int examined = 0;
     int choicesEvaluated = 0;
 };
@@ -168,13 +171,13 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
         // on the next frame, since other surfaces may have been removed meanwhile.
         dropExact(r);
         m_tooLarge.insert(index);
-        pass.tooLarge << QStringLiteral("surface %1 (\"%2\") with %3 x %4 control points does "
-                                        "not fit the GPU's buffer limit of %5 bytes")
-                             .arg(s.id.value)
-                             .arg(s.name)
-                             .arg(geo.countU)
-                             .arg(geo.countV)
-                             .arg(pass.limit);
+        if (pass.tooLarge++ == 0)
+            pass.firstTooLarge =
+                QStringLiteral("surface %1 (\"%2\") with %3 x %4 control points")
+                    .arg(s.id.value)
+                    .arg(s.name.size() > 40 ? s.name.left(39) + QChar(0x2026) : s.name)
+                    .arg(geo.countU)
+                    .arg(geo.countV);
     }
     r.cells = g ? std::int64_t(g->triangleIndexCount / 6) : 0;
     if (options.mode == RenderMode::Tessellated)
@@ -372,10 +375,23 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                                .arg(kMaxPartitions);
     }
 
-    bool ok = pass.tooLarge.isEmpty();
+    bool ok = pass.tooLarge == 0;
     if (!ok) {
-        *error = pass.tooLarge.join(QStringLiteral("; "));
-        report.warnings << pass.tooLarge;
+        // One line with the totals, however many surfaces it is about.
+        std::int64_t resident = 0;
+        for (const GpuPool* p :
+             {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
+              &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
+            resident += p->residentBytes();
+        *error = QStringLiteral("%1 of %2 surfaces do not fit the GPU's buffer limit of %3 bytes "
+                                "(%4 MiB of surface data resident; the first: %5) and are not "
+                                "drawn")
+                     .arg(m_tooLarge.size())
+                     .arg(scene.surfaces.size())
+                     .arg(pass.limit)
+                     .arg(double(resident) / double(1 << 20), 0, 'f', 1)
+                     .arg(pass.firstTooLarge);
+        report.warnings << *error;
     }
     bool masksRan = false;
     if (options.trims) {

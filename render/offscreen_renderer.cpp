@@ -168,12 +168,18 @@ std::int64_t OffscreenRenderer::setMesh(int slot, const TriangleMesh& mesh) {
 
 bool OffscreenRenderer::renderMesh(const Document& doc, int slot, const Camera& camera,
                                    const RenderOptions& options, QString* error) {
+    return renderMeshes(doc, {slot}, camera, options, error);
+}
+
+bool OffscreenRenderer::renderMeshes(const Document& doc, const std::vector<int>& slots,
+                                     const Camera& camera, const RenderOptions& options,
+                                     QString* error) {
     if (!d->fbo || !makeCurrent()) {
         *error = QStringLiteral("OffscreenRenderer::renderMesh needs create() and setSize() first");
         return false;
     }
-    d->report = d->renderer.renderMesh(doc, slot, camera,
-                                       {d->fbo, d->size, d->withAov, d->withCurvature}, options);
+    d->report = d->renderer.renderMeshes(doc, slots, camera,
+                                         {d->fbo, d->size, d->withAov, d->withCurvature}, options);
     if (!d->report.ok)
         *error = d->report.error;
     return d->report.ok;

@@ -44,6 +44,9 @@ public:
     /// Renderer::renderMesh into the FBO; returns and reports as render().
     bool renderMesh(const Document& doc, int slot, const Camera& camera,
                     const RenderOptions& options, QString* error);
+    /// Renderer::renderMeshes into the FBO; returns and reports as render().
+    bool renderMeshes(const Document& doc, const std::vector<int>& slots, const Camera& camera,
+                      const RenderOptions& options, QString* error);
     /// Renderer::pick at `pixel` of a frame of size() with this context current.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QPointF pixel,
                                 const RenderOptions& options = {});

@@ -381,17 +381,32 @@ std::int64_t Renderer::setMesh(int slot, const TriangleMesh& mesh) {
 
 FrameReport Renderer::renderMesh(const Document& doc, int slot, const Camera& camera,
                                  const RenderTarget& target, const RenderOptions& options) {
+    return renderMeshes(doc, {slot}, camera, target, options);
+}
+
+FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& slots,
+                                   const Camera& camera, const RenderTarget& target,
+                                   const RenderOptions& options) {
     QElapsedTimer total;
     total.start();
     FrameReport report;
-    TriangleMeshPass* pass =
-        d->gl && slot >= 0 && slot < kMeshSlots ? d->meshes[slot].get() : nullptr;
+    std::vector<TriangleMeshPass*> passes;
+    int missing = slots.empty() ? -1 : 0;
+    for (int slot : slots) {
+        TriangleMeshPass* pass =
+            d->gl && slot >= 0 && slot < kMeshSlots ? d->meshes[slot].get() : nullptr;
+        if (!pass) {
+            missing = slot;
+            break;
+        }
+        passes.push_back(pass);
+    }
     const QSize size = target.size;
-    if (!pass || size.isEmpty()) {
+    if (passes.size() != slots.size() || slots.empty() || size.isEmpty()) {
         report.ok = false;
         report.error =
-            !pass
-                ? QStringLiteral("Renderer::renderMesh: no mesh in slot %1").arg(slot)
+            passes.size() != slots.size() || slots.empty()
+                ? QStringLiteral("Renderer::renderMesh: no mesh in slot %1").arg(missing)
                 : QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height());
         d->error = report.error;
         return report;
@@ -404,12 +419,15 @@ FrameReport Renderer::renderMesh(const Document& doc, int slot, const Camera& ca
     const std::vector<Light> lights = lightsFor(doc.scene(), camera, o.lightCount, o.headlight);
     d->beginTarget(target, o, nullptr);
     QString error;
-    report.ok = pass->draw(doc.scene(), fc, lights, o, &error);
+    report.ok = true;
+    for (TriangleMeshPass* pass : passes) {
+        report.ok = report.ok && pass->draw(doc.scene(), fc, lights, o, &error);
+        report.drawCalls += pass->drawCalls;
+        report.surfaces += pass->surfaces;
+    }
     endReversedDepth(d->gl);
     if (!report.ok)
         d->error = report.error = error;
-    report.drawCalls = pass->drawCalls;
-    report.surfaces = pass->surfaces;
     report.cpuMs.surfaces = msSince(total);
     d->scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += d->exact.residentBytes();

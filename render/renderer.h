@@ -64,6 +64,12 @@ public:
     /// not build.
     FrameReport renderMesh(const Document& doc, int slot, const Camera& camera,
                            const RenderTarget& target, const RenderOptions& options);
+    /// renderMesh drawing several slots into one frame (cleared once), in the order given: a
+    /// mesh kept in one slot and the part that changes in another (the bench's edit loop
+    /// re-sends only the edited face). ok false for an empty list or an empty slot.
+    FrameReport renderMeshes(const Document& doc, const std::vector<int>& slots,
+                             const Camera& camera, const RenderTarget& target,
+                             const RenderOptions& options);
 
     /// The next RenderOptions::progressive frame starts its image again at the first sample,
     /// though nothing changed (what changes a frame's pixels restarts it by itself).

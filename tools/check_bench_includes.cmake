@@ -11,7 +11,10 @@ set(public
     # AnalysisOptions (RenderOptions' analysis modes) and the CPU colour maps: no GL.
     analysis.h
     # kw::tessellate, the CPU grid tessellation of the fine mesh: plain data, no GL.
-    gpu_layout.h)
+    gpu_layout.h
+    # The CPU reference frame and the edge metrics the edit loop's equal-quality search uses
+    # (as `render --edge-report`): ray casting through the kernel, no GL.
+    reference_render.h edge_metrics.h)
 set(failures 0)
 function(check_file file bench_source)
   file(STRINGS ${file} lines REGEX "^[ \t]*#[ \t]*include|RendererTestHook")

@@ -132,4 +132,12 @@ bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& face
                const ImportResult& imported, double linear, double angularDegrees,
                TaggedMeshSet& out, QStringList& warnings, QString& error);
 
+/// Each surface of `scene` built alone as a face (buildFace at `tolerance`) and triangulated
+/// alone by BRepMesh_IncrementalMesh(face, linear, absolute, angular, sequential): what a
+/// viewer pays to show a face again after an edit. One TaggedMesh per surface, in order, with
+/// its id. False with `error` naming the surface when a face cannot be built or gets no
+/// triangle; OCCT exceptions are the caller's to catch.
+bool meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
+                    TaggedMeshSet& out, QString& error);
+
 } // namespace kw::occt

@@ -34,7 +34,12 @@ using OcctMeshFunction = bool (*)(const QString& path, CadFormat format,
                                   TaggedMeshSet* mesh, QString* error,
                                   const ImportProgress* progress);
 constexpr const char* kOcctMeshSymbol = "knotwork_occt_mesh";
-/// The module with every format and the mesher (both entry points): `knotwork mesh`.
+/// The module's third entry point: each surface of a scene built as a face and meshed alone
+/// (occt::meshBuiltFaces), for `knotwork __mesh-faces`.
+using OcctMeshFacesFunction = bool (*)(const Scene* scene, double tolerance, double linear,
+                                       double angularDegrees, TaggedMeshSet* mesh, QString* error);
+constexpr const char* kOcctMeshFacesSymbol = "knotwork_occt_mesh_faces";
+/// The module with every format and the mesher (all entry points): `knotwork mesh`.
 constexpr const char* kOcctModuleName = "knotwork_occt";
 
 /// The module a child process loads to read `format` without meshing: knotwork_occt_iges,

@@ -1,6 +1,7 @@
 // The OpenCASCADE mesh peer: the faces of a CAD file triangulated the way
 // OCCT-based viewers (FreeCAD, Mayo, f3d, AIS_Shape) display them.
 #include "model/cad/occt_internal.h"
+#include "model/cad/occtbuild.h"
 #include "model/cad/occtimport.h"
 
 #include <BRepBndLib.hxx>
@@ -58,6 +59,34 @@ std::vector<gp_Dir> nodeNormals(const TopoDS_Face& face, const Handle(Poly_Trian
     return normals;
 }
 
+// One face's triangulation as a TaggedMesh (id and source face left for the caller), moved by
+// the face's location, with OCCT viewers' nodal normals.
+TaggedMesh taggedMesh(const TopoDS_Face& face, const Handle(Poly_Triangulation) & tris,
+                      const TopLoc_Location& loc) {
+    const gp_Trsf trsf = loc.Transformation();
+    const std::vector<gp_Dir> normals = nodeNormals(face, tris);
+    TaggedMesh m;
+    m.positions.reserve(size_t(tris->NbNodes()));
+    for (int i = 1; i <= tris->NbNodes(); ++i) {
+        const gp_Pnt p = tris->Node(i).Transformed(trsf);
+        m.positions.emplace_back(p.X(), p.Y(), p.Z());
+        // The surface's own orientation, as the .knot surface and the CPU reference have
+        // it: AIS reverses the normals (and the winding) of a REVERSED face, which two-sided
+        // lighting does not show, but the edge report compares normals with their sign.
+        const gp_Dir n = normals[size_t(i - 1)].Transformed(trsf);
+        m.normals.emplace_back(n.X(), n.Y(), n.Z());
+        const gp_Pnt2d uv = tris->HasUVNodes() ? tris->UVNode(i) : gp_Pnt2d(0.0, 0.0);
+        m.uvs.emplace_back(uv.X(), uv.Y());
+    }
+    m.indices.reserve(size_t(tris->NbTriangles()) * 3);
+    for (int t = 1; t <= tris->NbTriangles(); ++t) {
+        int a, b, c;
+        tris->Triangle(t).Get(a, b, c);
+        m.indices.insert(m.indices.end(), {unsigned(a - 1), unsigned(b - 1), unsigned(c - 1)});
+    }
+    return m;
+}
+
 } // namespace
 
 double defaultLinearDeflection(const TopoDS_Shape& shape) {
@@ -102,34 +131,49 @@ bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& face
             warnings << QStringLiteral("face %1: BRepMesh made no triangles").arg(index);
             continue;
         }
-        const gp_Trsf trsf = loc.Transformation();
-        const std::vector<gp_Dir> normals = nodeNormals(face, tris);
-        TaggedMesh m;
+        TaggedMesh m = taggedMesh(face, tris, loc);
         m.id = imported.scene.surfaces[k].id;
         m.sourceFace = index;
-        m.positions.reserve(size_t(tris->NbNodes()));
-        for (int i = 1; i <= tris->NbNodes(); ++i) {
-            const gp_Pnt p = tris->Node(i).Transformed(trsf);
-            m.positions.emplace_back(p.X(), p.Y(), p.Z());
-            // The surface's own orientation, as the .knot surface and the CPU reference have
-            // it: AIS reverses the normals (and the winding) of a REVERSED face, which two-sided
-            // lighting does not show, but the edge report compares normals with their sign.
-            const gp_Dir n = normals[size_t(i - 1)].Transformed(trsf);
-            m.normals.emplace_back(n.X(), n.Y(), n.Z());
-            const gp_Pnt2d uv = tris->HasUVNodes() ? tris->UVNode(i) : gp_Pnt2d(0.0, 0.0);
-            m.uvs.emplace_back(uv.X(), uv.Y());
-        }
-        m.indices.reserve(size_t(tris->NbTriangles()) * 3);
-        for (int t = 1; t <= tris->NbTriangles(); ++t) {
-            int a, b, c;
-            tris->Triangle(t).Get(a, b, c);
-            m.indices.insert(m.indices.end(), {unsigned(a - 1), unsigned(b - 1), unsigned(c - 1)});
-        }
         out.faces.push_back(std::move(m));
     }
     if (out.faces.empty()) {
         error = QStringLiteral("BRepMesh made no triangles on any face");
         return false;
+    }
+    return true;
+}
+
+bool meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
+                    TaggedMeshSet& out, QString& error) {
+    out = TaggedMeshSet{};
+    out.linearDeflection = linear;
+    out.angularDeflectionDegrees = angularDegrees;
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Surface& surface = scene.surfaces[k];
+        QString why;
+        const TopoDS_Face face = buildFace(surface, tolerance, why);
+        if (face.IsNull()) {
+            error = QStringLiteral("surface %1 (\"%2\"): %3")
+                        .arg(surface.id.value)
+                        .arg(surface.name, why);
+            return false;
+        }
+        // One face alone, as a viewer re-meshes the face an edit changed: absolute linear
+        // deflection, angular in radians, not in parallel.
+        BRepMesh_IncrementalMesh mesher(face, linear, Standard_False, angularDegrees * M_PI / 180.0,
+                                        Standard_False);
+        TopLoc_Location loc;
+        const Handle(Poly_Triangulation) tris = BRep_Tool::Triangulation(face, loc);
+        if (!mesher.IsDone() || tris.IsNull() || tris->NbTriangles() == 0) {
+            error = QStringLiteral("surface %1 (\"%2\"): BRepMesh made no triangles")
+                        .arg(surface.id.value)
+                        .arg(surface.name);
+            return false;
+        }
+        TaggedMesh m = taggedMesh(face, tris, loc);
+        m.id = surface.id;
+        m.sourceFace = int(k) + 1;
+        out.faces.push_back(std::move(m));
     }
     return true;
 }

@@ -6,6 +6,8 @@
 #   peer1024 peer4k zoom8  Knotwork against the OCCT mesh peer (tools/gpu/kw.py)
 #   modes                  adaptive against uniform partitions and 4x anti-aliasing
 #   bench                  knotwork bench (paper Tables 1 and 2) on the bundled samples
+#   editloop scale         knotwork bench --edit-loop per model and the scale table at 10,000
+#                          and 100,000 faces, 1920 x 1080 (tools/gpu/phases.sh)
 #   debug                  KW_GL_DEBUG=1 renders of two CAD parts: the driver's messages
 # LIMIT (seconds, default 570) bounds the whole run; a phase that would start past it is skipped.
 # $OUT keeps at most 6 files (the device returns 8): res/go.log, res/results.txt, res/bench.json,
@@ -73,6 +75,9 @@ for ph in "$@"; do
             --json "$OUT/res/bench.json" --markdown "$OUT/res/bench.md" --plots /tmp/kwwork \
             > /dev/null 2> /tmp/kwlogs/bench.err
         echo "bench rc $?" ;;
+    editloop | scale)
+        KW_DATA=$K/data timeout "$(left)" bash tools/gpu/phases.sh "$ph"
+        echo "$ph rc $?" ;;
     debug)
         for m in tests/data/hammer.iges tests/data/Pump_Nut.brep; do
             echo "=== $m" >> /tmp/kwlogs/debug.txt
@@ -86,6 +91,8 @@ for ph in "$@"; do
     echo "after $ph: $(($(date +%s) - T0)) s"
 done
 cp /tmp/kwlogs/* "$OUT/res/" 2>/dev/null
-tar -C "$OUT" -czf /tmp/results.tgz res && rm -f "$OUT"/res/{xvfb.log,bench.err,debug.txt} &&
-    mv /tmp/results.tgz "$OUT/"
+# Everything goes into results.tgz; res/ keeps only the four files named above.
+tar -C "$OUT" -czf /tmp/results.tgz res &&
+    find "$OUT/res" -type f ! -name go.log ! -name results.txt ! -name bench.json \
+        ! -name bench.md -delete && mv /tmp/results.tgz "$OUT/"
 (cd /tmp/kwwork && ls *.png > /dev/null 2>&1 && tar -czf "$OUT/images.tgz" *.png)

@@ -28,8 +28,11 @@ cp $Q/xcbglintegrations/*.so "$B/plugins/xcbglintegrations/"
 cp /usr/bin/Xvfb /usr/bin/xkbcomp "$B/bin/"
 cp /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so "$B/dri/"
 cp -r /usr/share/X11/xkb/. "$B/xkb/"
-# Motor-c is not in tests/data (2.6 MB); the others are.
-[ -f "$ROOT/../shared/data/Motor-c.brep" ] && cp "$ROOT/../shared/data/Motor-c.brep" "$B/data/"
+# Motor-c (2.6 MB), fuselage and tube_surf (the edit loop's free-form parts) are not in
+# tests/data; the others are.
+for f in Motor-c.brep fuselage.stp tube_surf.igs; do
+    [ -f "${SHARED_DATA:-$ROOT/../shared/data}/$f" ] && cp "${SHARED_DATA:-$ROOT/../shared/data}/$f" "$B/data/"
+done
 
 skip='^(linux-vdso|libc\.so|libm\.so|libdl\.so|libpthread\.so|librt\.so|ld-linux|libstdc\+\+|libgcc_s|libLLVM|libz3)'
 for e in "$B"/bin/* "$B"/plugins/*/*.so "$B"/dri/*.so; do

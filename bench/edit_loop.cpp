@@ -1,0 +1,611 @@
+// The edit loop (edit_loop.h): the dragged face, the peer's equal-quality search, the
+// alternated timed steps, and the report.
+#include "bench/edit_loop.h"
+
+#include "app/commands.h"
+#include "model/cad/cadimport.h"
+#include "model/cad/cadprocess.h"
+#include "model/cad/facemesher.h"
+#include "model/document.h"
+#include "render/edge_metrics.h"
+#include "render/gpu_layout.h"
+#include "render/offscreen_renderer.h"
+#include "render/reference_render.h"
+
+#include <QElapsedTimer>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonObject>
+#include <QThread>
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+
+namespace kw::bench {
+
+namespace {
+
+double processCpuMs() {
+    timespec t{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+QString cpuModel() {
+    QFile f(QStringLiteral("/proc/cpuinfo"));
+    if (f.open(QIODevice::ReadOnly))
+        for (const QByteArray& line : f.readAll().split('\n'))
+            if (line.startsWith("model name"))
+                return QString::fromUtf8(line.mid(line.indexOf(':') + 1)).trimmed();
+    return QStringLiteral("unknown CPU");
+}
+
+// The peer's deflection steps (tools/peer_search.py): from OCCT viewers' default (0.004 of the
+// largest side, 20 degrees) down by 2x in distance and about 1.4x in angle per step.
+constexpr int kSteps = 16;
+double linearStep(int k) {
+    return 4e-3 / std::pow(2.0, k);
+}
+double angularStep(int k) {
+    return std::round(20.0 / std::pow(2.0, k / 2.0) * 1000.0) / 1000.0;
+}
+
+// Free-form: a polynomial (all weights equal) surface curved in some direction. Rational
+// surfaces are the conics and quadrics of imported analytic faces, degree 1 x 1 the planes.
+bool isFreeForm(const NurbsSurface& g) {
+    const bool polynomial = std::all_of(g.weights.begin(), g.weights.end(),
+                                        [&](double w) { return w == g.weights.front(); });
+    return polynomial && std::max(g.degreeU, g.degreeV) >= 2;
+}
+
+double untrimmedArea(const NurbsSurface& g) {
+    const TessellatedMesh t = tessellate(g, 8, 8);
+    double area = 0.0;
+    for (size_t k = 0; k + 2 < t.indices.size(); k += 3) {
+        const glm::dvec3 a(t.positions[t.indices[k]]), b(t.positions[t.indices[k + 1]]),
+            c(t.positions[t.indices[k + 2]]);
+        area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    return area;
+}
+
+// Greville abscissa of control point i: where it pulls the surface most.
+double greville(const std::vector<double>& knots, int degree, int i) {
+    double sum = 0.0;
+    for (int k = 1; k <= degree; ++k)
+        sum += knots[size_t(i + k)];
+    return degree > 0 ? sum / degree : knots[size_t(i)];
+}
+
+/// The dragged point: the middle control point of the largest free-form face (or, when there is
+/// none, of the largest face), moved along the surface normal there.
+struct Drag {
+    SurfaceId id;
+    int index = 0;
+    glm::dvec3 home{0.0}, direction{0.0};
+    double amplitude = 0.0;
+    bool freeForm = true;
+    QString name;
+};
+
+Drag chooseDrag(const Scene& scene) {
+    Drag d;
+    double best = -1.0;
+    bool bestFree = false;
+    for (const Surface& s : scene.surfaces) {
+        const bool free = isFreeForm(s.geometry);
+        const double area = untrimmedArea(s.geometry);
+        if ((free && !bestFree) || (free == bestFree && area > best)) {
+            best = area;
+            bestFree = free;
+            d.id = s.id;
+            d.freeForm = free;
+            d.name = QStringLiteral("%1 (id %2)").arg(s.name).arg(s.id.value);
+        }
+    }
+    const NurbsSurface& g =
+        std::find_if(scene.surfaces.begin(), scene.surfaces.end(), [&](const Surface& s) {
+            return s.id == d.id;
+        })->geometry;
+    const int i = g.countU / 2, j = g.countV / 2;
+    d.index = g.index(i, j);
+    d.home = g.points[size_t(d.index)];
+    const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
+    const double u = std::clamp(greville(g.knotsU, g.degreeU, i), du.first, du.last);
+    const double v = std::clamp(greville(g.knotsV, g.degreeV, j), dv.first, dv.last);
+    d.direction = surfaceFrame(g, u, v).normal;
+    glm::dvec3 lo, hi;
+    surfaceControlBounds(g, lo, hi);
+    d.amplitude = 0.1 * glm::length(hi - lo); // a visible drag: a tenth of the face's size
+    return d;
+}
+
+/// Position of drag event `e` of `count`: out along the normal and back (a triangle wave).
+glm::dvec3 dragPosition(const Drag& d, int e, int count) {
+    const double x = double(e + 1) / double(count);
+    return d.home + d.direction * (d.amplitude * (1.0 - std::abs(1.0 - 2.0 * x)));
+}
+
+TriangleMesh toTriangleMesh(const TaggedMeshSet& set, SurfaceId only, bool except) {
+    TriangleMesh out;
+    for (const TaggedMesh& f : set.faces) {
+        if ((f.id == only) == except)
+            continue;
+        SurfaceMesh m;
+        m.id = f.id;
+        m.positions.assign(f.positions.begin(), f.positions.end());
+        m.normals.assign(f.normals.begin(), f.normals.end());
+        m.uvs.assign(f.uvs.begin(), f.uvs.end());
+        m.indices = f.indices;
+        out.surfaces.push_back(std::move(m));
+    }
+    return out;
+}
+
+struct Quality {
+    double normalP99 = 0.0, silhouetteMax = 0.0;
+};
+
+/// One model's loop: everything it needs in one place.
+class ModelLoop {
+public:
+    ModelLoop(const EditLoopConfig& c, OffscreenRenderer& r, FaceMesher& m,
+              const std::function<void(const QString&)>& p)
+        : config(c), renderer(r), mesher(m), progress(p) {}
+
+    bool run(const QString& file, EditLoopRow& row, QString* error);
+
+private:
+    bool load(const QString& file, QString* error);
+    bool knotworkFrame(int samples, QString* error);
+    bool compare(Quality& q, QString* error);
+    bool staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error);
+    bool meshQuality(double linear, double angular, Quality& q, long long& triangles,
+                     QString* error);
+    bool search(EditLoopRow& row, QString* error);
+    bool good(const Quality& q) const {
+        return q.normalP99 <= std::max(kw.normalP99, config.normalP99Floor) &&
+               q.silhouetteMax <= std::max(kw.silhouetteMax, 1.0);
+    }
+
+    const EditLoopConfig& config;
+    OffscreenRenderer& renderer;
+    FaceMesher& mesher;
+    const std::function<void(const QString&)>& progress;
+    QString path;
+    Document doc;
+    Camera camera;
+    double side = 1.0, tolerance = 1e-7;
+    AovBuffer reference;
+    Quality kw;
+};
+
+bool ModelLoop::load(const QString& file, QString* error) {
+    path = file;
+    std::optional<ImportResult> read = openModelFile(file, *error);
+    if (!read)
+        return false;
+    cli::printImportRemarks(file, read->report);
+    if (!doc.resetScene(read->scene, error)) {
+        *error = QStringLiteral("%1: %2").arg(file, *error);
+        return false;
+    }
+    const Scene& scene = doc.scene();
+    if (scene.surfaces.empty()) {
+        *error = QStringLiteral("%1: the scene has no surfaces to edit").arg(file);
+        return false;
+    }
+    camera = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
+    // The largest side of the surfaces' bounds, as OCCT's viewers scale their default linear
+    // deflection (0.004 of it) from the shape's bounding box.
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const Surface& s : scene.surfaces) {
+        const TessellatedMesh t = tessellate(s.geometry, 16, 16);
+        for (const glm::vec3& p : t.positions) {
+            lo = glm::min(lo, glm::dvec3(p));
+            hi = glm::max(hi, glm::dvec3(p));
+        }
+    }
+    side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9});
+    // The faces' tolerance as the STEP/IGES writer builds them (occtexport.cpp).
+    tolerance = std::max(1e-5 * glm::length(hi - lo), 1e-7);
+    for (const SharedEdge& e : scene.topology.edges)
+        tolerance = std::max(tolerance, e.tolerance);
+    return true;
+}
+
+bool ModelLoop::knotworkFrame(int samples, QString* error) {
+    RenderOptions o = config.base;
+    o.mode = RenderMode::Exact;
+    o.partitioning = RenderOptions::Partitioning::Adaptive; // the editor's and render's default
+    o.lightCount = config.lights;
+    o.samples = samples;
+    o.antialiasing = RenderOptions::Antialiasing::Accumulate;
+    o.progressive = false;
+    return renderer.render(doc, camera, o, error);
+}
+
+bool ModelLoop::compare(Quality& q, QString* error) {
+    const AovBuffer aov = renderer.aov();
+    glm::dvec3 lo(0.0), hi(0.0);
+    sceneBounds(doc.scene(), lo, hi);
+    const double pixelAngle =
+        2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
+        double(aov.height);
+    EdgeMetrics m;
+    if (!compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle,
+                              &camera.eye))
+        return false;
+    q.normalP99 = m.normalP99Degrees;
+    q.silhouetteMax = m.silhouetteMaxPixels;
+    return true;
+}
+
+// The peer's mesh of the whole model: a CAD file meshed as its B-rep (shared edges, as a
+// viewer that opened it meshes it), a project's surfaces built and meshed face by face.
+bool ModelLoop::staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error) {
+    const CadFormat format = cadFormatFromPath(path);
+    if (format == CadFormat::Iges || format == CadFormat::Step || format == CadFormat::Brep) {
+        MeshDeflection deflection;
+        deflection.linear = linear;
+        deflection.angularDegrees = angular;
+        return importInChildProcess(path, format, *error, {}, &deflection, &out).has_value();
+    }
+    FaceMeshCost cost;
+    if (!mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost, *error)) {
+        *error = QStringLiteral("%1: %2").arg(path, *error);
+        return false;
+    }
+    return true;
+}
+
+bool ModelLoop::meshQuality(double linear, double angular, Quality& q, long long& triangles,
+                            QString* error) {
+    TaggedMeshSet set;
+    if (!staticMesh(linear, angular, set, error))
+        return false;
+    triangles = set.triangleCount();
+    RenderOptions o;
+    o.lightCount = config.lights;
+    return renderer.setMesh(0, toTriangleMesh(set, SurfaceId{}, true)) >= 0 &&
+           renderer.renderMesh(doc, 0, camera, o, error) && compare(q, error);
+}
+
+bool ModelLoop::search(EditLoopRow& row, QString* error) {
+    struct Tried {
+        Quality q;
+        long long triangles = 0;
+    };
+    std::map<std::pair<int, int>, Tried> tried;
+    const auto at = [&](int li, int ai, Tried& t) {
+        if (auto it = tried.find({li, ai}); it != tried.end()) {
+            t = it->second;
+            return true;
+        }
+        if (!meshQuality(linearStep(li) * side, angularStep(ai), t.q, t.triangles, error))
+            return false;
+        tried[{li, ai}] = t;
+        progress(QStringLiteral("%1: peer linear %2 angular %3 deg: %4 triangles, silhouette max "
+                                "%5 px, normal p99 %6 deg")
+                     .arg(QFileInfo(path).fileName())
+                     .arg(linearStep(li) * side, 0, 'g', 3)
+                     .arg(angularStep(ai))
+                     .arg(t.triangles)
+                     .arg(t.q.silhouetteMax, 0, 'f', 2)
+                     .arg(t.q.normalP99, 0, 'f', 4));
+        return true;
+    };
+    Tried t;
+    int step = 0;
+    if (!at(0, 0, t))
+        return false;
+    while (!good(t.q) && step + 1 < kSteps && t.triangles < config.maxTriangles) {
+        // A finer mesh can pass the CAD child's time or memory limit: the search stops there,
+        // with the finest mesh made (peer_search.py does the same).
+        Tried finer;
+        if (!at(step + 1, step + 1, finer)) {
+            progress(
+                QStringLiteral("%1: stopped refining: %2").arg(QFileInfo(path).fileName(), *error));
+            break;
+        }
+        t = finer;
+        ++step;
+    }
+    int li = step, ai = step;
+    // Relax one deflection at a time while the quality holds and the triangles drop.
+    for (bool improved = good(t.q); improved;) {
+        improved = false;
+        for (auto [l, a] : {std::pair{li - 1, ai}, std::pair{li, ai - 1}}) {
+            Tried r;
+            if (l < 0 || a < 0 || !at(l, a, r))
+                continue;
+            if (good(r.q) && r.triangles < t.triangles) {
+                t = r;
+                li = l;
+                ai = a;
+                improved = true;
+                break;
+            }
+        }
+    }
+    row.matched = good(t.q);
+    row.peerLinear = linearStep(li) * side;
+    row.peerAngular = angularStep(ai);
+    row.peerNormalP99 = t.q.normalP99;
+    row.peerSilhouetteMax = t.q.silhouetteMax;
+    return true;
+}
+
+bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
+    if (!load(file, error))
+        return false;
+    const QString name = QFileInfo(file).fileName();
+    row.model = name;
+    row.surfaces = int(doc.scene().surfaces.size());
+    row.defaultLinear = 0.004 * side;
+    if (config.peerDeflections) {
+        row.deflectionsGiven = true;
+        row.peerLinear = config.peerDeflections->first;
+        row.peerAngular = config.peerDeflections->second;
+    } else {
+        // Knotwork's quality and the peer's search, against the CPU reference frame.
+        reference = renderReference(doc.scene(), camera, config.side, config.side);
+        if (!renderer.setSize(QSize(config.side, config.side), true, error) ||
+            !knotworkFrame(1, error) || !compare(kw, error))
+            return false;
+        row.knotworkNormalP99 = kw.normalP99;
+        row.knotworkSilhouetteMax = kw.silhouetteMax;
+        if (!search(row, error))
+            return false;
+    }
+    if (!renderer.setSize(QSize(config.side, config.side), false, error))
+        return false;
+
+    const Drag drag = chooseDrag(doc.scene());
+    row.face = drag.name;
+    row.freeForm = drag.freeForm;
+    // The rest of the model stays in one slot; the edited face goes to the next, re-sent every
+    // step (equal quality: slots 0 and 1; OCCT's defaults: 2 and 3).
+    struct Peer {
+        double linear = 0.0, angular = 0.0;
+        int rest = 0, face = 1;
+        long long triangles = 0;
+        std::vector<double> ms, cpu, mesh;
+        std::vector<long long> faceTriangles;
+    };
+    Peer peers[2];
+    peers[0].linear = row.peerLinear;
+    peers[0].angular = row.peerAngular;
+    peers[1].linear = row.defaultLinear;
+    peers[1].angular = 20.0;
+    peers[1].rest = 2;
+    peers[1].face = 3;
+    for (Peer& p : peers) {
+        TaggedMeshSet set;
+        if (!staticMesh(p.linear, p.angular, set, error))
+            return false;
+        p.triangles = set.triangleCount();
+        if (renderer.setMesh(p.rest, toTriangleMesh(set, drag.id, true)) < 0 ||
+            renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0) {
+            *error = QStringLiteral("lost the OpenGL context");
+            return false;
+        }
+    }
+    row.peerTriangles = peers[0].triangles;
+    row.peerDefaultTriangles = peers[1].triangles;
+
+    bool refused = false;
+    const auto moveTo = [&](const glm::dvec3& p) {
+        refused = !doc.setControlPoints(drag.id, {drag.index}, {p}) || refused;
+    };
+    RenderOptions meshOptions;
+    meshOptions.lightCount = config.lights;
+    // One peer step: the edit, the face rebuilt and re-meshed in the child (its own time),
+    // the triangles re-sent and the frame drawn. The hand-over to the child and back is not
+    // counted: a viewer with OCCT in process has none.
+    const auto peerStep = [&](Peer& p, const glm::dvec3& to, bool timed) {
+        QElapsedTimer wall;
+        const double cpu0 = processCpuMs();
+        wall.start();
+        moveTo(to);
+        const double handoverCpu0 = processCpuMs();
+        QElapsedTimer handover;
+        handover.start();
+        TaggedMeshSet set;
+        FaceMeshCost cost;
+        if (!mesher.mesh({*doc.surface(drag.id)}, tolerance, p.linear, p.angular, set, cost,
+                         *error)) {
+            *error = QStringLiteral("%1: %2").arg(name, *error);
+            return false;
+        }
+        const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
+        const double handoverCpu = processCpuMs() - handoverCpu0;
+        if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0 ||
+            !renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions, error))
+            return false;
+        renderer.finish();
+        if (timed) {
+            p.ms.push_back(double(wall.nsecsElapsed()) * 1e-6 - handoverMs + cost.wallMs);
+            p.cpu.push_back(processCpuMs() - cpu0 - handoverCpu + cost.cpuMs);
+            p.mesh.push_back(cost.wallMs);
+            p.faceTriangles.push_back(set.triangleCount());
+        }
+        return true;
+    };
+    std::vector<double> kwMs, kwCpu, stillMs, stillCpu;
+    const auto knotworkStep = [&](int samples, const glm::dvec3& to, std::vector<double>* ms,
+                                  std::vector<double>* cpu) {
+        QElapsedTimer wall;
+        const double cpu0 = processCpuMs();
+        wall.start();
+        moveTo(to);
+        if (!knotworkFrame(samples, error))
+            return false;
+        renderer.finish();
+        if (ms) {
+            ms->push_back(double(wall.nsecsElapsed()) * 1e-6);
+            cpu->push_back(processCpuMs() - cpu0);
+        }
+        return true;
+    };
+    // Warm-up, untimed: shaders, first uploads, the child's first face. The exact pass picks
+    // its shader variant per surface from its cells' size on screen, and a variant is compiled
+    // on first use (seconds on llvmpipe): both frames are drawn at the drag's farthest point
+    // too, so that no timed step compiles one.
+    const glm::dvec3 warm = drag.home + drag.direction * (1e-3 * drag.amplitude);
+    const glm::dvec3 peak = drag.home + drag.direction * drag.amplitude;
+    if (!knotworkStep(1, peak, nullptr, nullptr) ||
+        !knotworkStep(config.stillSamples, peak, nullptr, nullptr) ||
+        !knotworkStep(1, warm, nullptr, nullptr) ||
+        !knotworkStep(config.stillSamples, drag.home, nullptr, nullptr) ||
+        !peerStep(peers[0], warm, false) || !peerStep(peers[1], drag.home, false))
+        return false;
+    // The four methods alternate step by step, each at its own point of one drag path.
+    const int events = 4 * config.steps;
+    for (int k = 0; k < config.steps; ++k) {
+        if (!knotworkStep(1, dragPosition(drag, 4 * k, events), &kwMs, &kwCpu) ||
+            !knotworkStep(config.stillSamples, dragPosition(drag, 4 * k + 1, events), &stillMs,
+                          &stillCpu) ||
+            !peerStep(peers[0], dragPosition(drag, 4 * k + 2, events), true) ||
+            !peerStep(peers[1], dragPosition(drag, 4 * k + 3, events), true))
+            return false;
+    }
+    moveTo(drag.home);
+    if (refused) {
+        *error = QStringLiteral("%1: the drag's control point move was refused").arg(name);
+        return false;
+    }
+    row.knotworkMs = median(kwMs);
+    row.knotworkCpuMs = median(kwCpu);
+    row.knotworkStillMs = median(stillMs);
+    row.knotworkStillCpuMs = median(stillCpu);
+    row.peerMs = median(peers[0].ms);
+    row.peerCpuMs = median(peers[0].cpu);
+    row.peerMeshMs = median(peers[0].mesh);
+    row.peerDefaultMs = median(peers[1].ms);
+    row.peerDefaultCpuMs = median(peers[1].cpu);
+    row.peerDefaultMeshMs = median(peers[1].mesh);
+    std::vector<double> faceTris(peers[0].faceTriangles.begin(), peers[0].faceTriangles.end());
+    row.peerFaceTriangles = (long long)median(faceTris);
+    progress(QStringLiteral("%1: edit loop on %2: Knotwork %3 ms (still %4 ms), peer %5 ms "
+                            "(mesh %6 ms, %7 triangles), peer at OCCT's defaults %8 ms")
+                 .arg(name, drag.name)
+                 .arg(row.knotworkMs, 0, 'f', 1)
+                 .arg(row.knotworkStillMs, 0, 'f', 1)
+                 .arg(row.peerMs, 0, 'f', 1)
+                 .arg(row.peerMeshMs, 0, 'f', 1)
+                 .arg(row.peerTriangles)
+                 .arg(row.peerDefaultMs, 0, 'f', 1));
+    return true;
+}
+
+} // namespace
+
+bool runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
+                 const std::function<void(const QString&)>& progress, QString* error) {
+    report = EditLoopReport{};
+    report.config = config;
+    report.cpu = cpuModel();
+    report.threads = QThread::idealThreadCount();
+    OffscreenRenderer renderer;
+    if (!renderer.create(error))
+        return false;
+    report.gl = renderer.renderer().glDescription();
+    FaceMesher mesher;
+    for (const QString& file : config.files) {
+        ModelLoop loop(config, renderer, mesher, progress);
+        EditLoopRow row;
+        if (!loop.run(file, row, error))
+            return false;
+        report.rows.push_back(row);
+    }
+    return true;
+}
+
+QJsonArray editLoopJson(const EditLoopReport& report) {
+    QJsonArray rows;
+    for (const EditLoopRow& r : report.rows) {
+        QJsonObject o{{QStringLiteral("model"), r.model},
+                      {QStringLiteral("surfaces"), r.surfaces},
+                      {QStringLiteral("face"), r.face},
+                      {QStringLiteral("freeForm"), r.freeForm},
+                      {QStringLiteral("steps"), report.config.steps},
+                      {QStringLiteral("side"), report.config.side},
+                      {QStringLiteral("knotworkMs"), r.knotworkMs},
+                      {QStringLiteral("knotworkCpuMs"), r.knotworkCpuMs},
+                      {QStringLiteral("knotworkStillMs"), r.knotworkStillMs},
+                      {QStringLiteral("knotworkStillCpuMs"), r.knotworkStillCpuMs},
+                      {QStringLiteral("peerMs"), r.peerMs},
+                      {QStringLiteral("peerCpuMs"), r.peerCpuMs},
+                      {QStringLiteral("peerMeshMs"), r.peerMeshMs},
+                      {QStringLiteral("peerDefaultMs"), r.peerDefaultMs},
+                      {QStringLiteral("peerDefaultCpuMs"), r.peerDefaultCpuMs},
+                      {QStringLiteral("peerDefaultMeshMs"), r.peerDefaultMeshMs},
+                      {QStringLiteral("peerTriangles"), double(r.peerTriangles)},
+                      {QStringLiteral("peerFaceTriangles"), double(r.peerFaceTriangles)},
+                      {QStringLiteral("peerDefaultTriangles"), double(r.peerDefaultTriangles)},
+                      {QStringLiteral("peerLinearDeflection"), r.peerLinear},
+                      {QStringLiteral("peerAngularDeflection"), r.peerAngular},
+                      {QStringLiteral("defaultLinearDeflection"), r.defaultLinear},
+                      {QStringLiteral("deflectionsGiven"), r.deflectionsGiven},
+                      {QStringLiteral("ratio"), r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0}};
+        if (!r.deflectionsGiven) {
+            o.insert(QStringLiteral("equalQuality"), r.matched);
+            o.insert(QStringLiteral("knotworkNormalP99"), r.knotworkNormalP99);
+            o.insert(QStringLiteral("knotworkSilhouetteMax"), r.knotworkSilhouetteMax);
+            o.insert(QStringLiteral("peerNormalP99"), r.peerNormalP99);
+            o.insert(QStringLiteral("peerSilhouetteMax"), r.peerSilhouetteMax);
+        }
+        rows.append(o);
+    }
+    return rows;
+}
+
+QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
+    QString md = QStringLiteral("### Edit loop: %1 drag steps at %2 x %2\n\n`%3`\n\n%4, %5 (%6 "
+                                "threads)\n\n")
+                     .arg(report.config.steps)
+                     .arg(report.config.side)
+                     .arg(command, report.gl, report.cpu)
+                     .arg(report.threads);
+    md += QStringLiteral(
+        "| model | dragged face | Knotwork edit → frame ms (CPU) | edit → still frame ms (CPU) | "
+        "peer deflection linear / angular | peer triangles (face) | peer edit → frame ms (CPU; "
+        "re-mesh) | Knotwork / peer | peer at OCCT defaults ms (re-mesh; triangles) |\n"
+        "|---|---|---|---|---|---|---|---|---|\n");
+    for (const EditLoopRow& r : report.rows)
+        md +=
+            QStringLiteral("| %1 | %2%3 | %4 (%5) | %6 (%7) | %8 / %9°%10 | %11 (%12) | %13 (%14; "
+                           "%15) | %16× | %17 (%18; %19) |\n")
+                .arg(r.model, r.face,
+                     r.freeForm ? QString() : QStringLiteral(", analytic, turned free-form"))
+                .arg(r.knotworkMs, 0, 'f', 1)
+                .arg(r.knotworkCpuMs, 0, 'f', 1)
+                .arg(r.knotworkStillMs, 0, 'f', 1)
+                .arg(r.knotworkStillCpuMs, 0, 'f', 1)
+                .arg(r.peerLinear, 0, 'g', 3)
+                .arg(r.peerAngular)
+                .arg(r.deflectionsGiven ? QStringLiteral(" (given)")
+                     : r.matched        ? QString()
+                                        : QStringLiteral(" (equal quality not reached)"))
+                .arg(r.peerTriangles)
+                .arg(r.peerFaceTriangles)
+                .arg(r.peerMs, 0, 'f', 1)
+                .arg(r.peerCpuMs, 0, 'f', 1)
+                .arg(r.peerMeshMs, 0, 'f', 1)
+                .arg(r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0, 0, 'f', 2)
+                .arg(r.peerDefaultMs, 0, 'f', 1)
+                .arg(r.peerDefaultMeshMs, 0, 'f', 1)
+                .arg(r.peerDefaultTriangles);
+    return md + QLatin1Char('\n');
+}
+
+} // namespace kw::bench

@@ -1,0 +1,153 @@
+// FaceMesher: the parent side of `knotwork __mesh-faces` (facemesher.h).
+#include "model/cad/facemesher.h"
+
+#include "model/cad/cadprocess.h"
+#include "model/cad/cadtempdir.h"
+#include "model/cad/handover.h"
+#include "model/savefile.h"
+
+#include <QDir>
+#include <QElapsedTimer>
+#include <QProcess>
+#include <csignal>
+#include <sys/prctl.h>
+#include <unistd.h>
+
+namespace kw {
+
+struct FaceMesher::Impl {
+    QProcess child;
+    QString dir;
+    int requests = 0;
+    pid_t pid = 0;
+
+    void stop() {
+        if (child.state() != QProcess::NotRunning) {
+            child.closeWriteChannel();
+            if (!child.waitForFinished(2000)) {
+                child.kill();
+                child.waitForFinished(-1);
+            }
+        }
+        if (pid)
+            unregisterCadChild(pid);
+        pid = 0;
+        if (!dir.isEmpty())
+            removeCadTempDir(dir);
+        dir.clear();
+    }
+};
+
+FaceMesher::FaceMesher() : d(std::make_unique<Impl>()) {}
+
+FaceMesher::~FaceMesher() {
+    d->stop();
+}
+
+bool FaceMesher::start(QString& error) {
+    if (d->child.state() == QProcess::Running)
+        return true;
+    d->stop();
+    QString why;
+    d->dir = makeCadTempDir(&why);
+    if (d->dir.isEmpty()) {
+        error = QStringLiteral("cannot make a temporary folder for the face mesher: %1").arg(why);
+        return false;
+    }
+    d->child.setProgram(cadReaderExecutable());
+    d->child.setArguments({QString::fromLatin1(kMeshFacesVerb), d->dir,
+                           QStringLiteral("--max-memory-mb"),
+                           QString::number(cadMemoryLimitBytes() >> 20)});
+    // The child dies with this process, as the CAD reader's does (cadprocess.cpp).
+    const pid_t parent = ::getpid();
+    d->child.setChildProcessModifier([parent] {
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent)
+            ::_exit(127);
+    });
+    d->child.start(QIODevice::ReadWrite);
+    if (!d->child.waitForStarted(30000)) {
+        error = QStringLiteral("cannot start the face mesher (%1): %2")
+                    .arg(d->child.program(), d->child.errorString());
+        d->stop();
+        return false;
+    }
+    d->pid = pid_t(d->child.processId());
+    registerCadChild(d->pid);
+    return true;
+}
+
+bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, double linear,
+                      double angularDegrees, TaggedMeshSet& out, FaceMeshCost& cost, QString& error,
+                      double seconds) {
+    if (!start(error))
+        return false;
+    ImportResult request;
+    request.scene.surfaces = surfaces;
+    std::uint32_t next = 1;
+    for (const Surface& s : surfaces) {
+        next = std::max(next, s.id.value + 1);
+        for (const TrimLoop& l : s.trims)
+            next = std::max(next, l.id.value + 1);
+    }
+    request.scene.nextId = next;
+    for (int k = 0; k < int(surfaces.size()); ++k)
+        request.sourceFaces.push_back(k + 1);
+    const QString name = QStringLiteral("request%1.kwi").arg(++d->requests);
+    const QString path = QDir(d->dir).filePath(name);
+    QString why;
+    if (!saveBytesAtomically(path, encodeImportHandover(request), &why)) {
+        error = QStringLiteral("cannot hand the faces to the face mesher: %1").arg(why);
+        return false;
+    }
+    const QByteArray line = "mesh " + name.toUtf8() + ' ' + QByteArray::number(tolerance, 'g', 17) +
+                            ' ' + QByteArray::number(linear, 'g', 17) + ' ' +
+                            QByteArray::number(angularDegrees, 'g', 17) + '\n';
+    d->child.write(line);
+    d->child.waitForBytesWritten(5000);
+    QElapsedTimer clock;
+    clock.start();
+    QByteArray answer;
+    while (!d->child.canReadLine()) {
+        if (d->child.state() != QProcess::Running) {
+            const QList<QByteArray> err = d->child.readAllStandardError().trimmed().split('\n');
+            error = QStringLiteral("the face mesher ended (%1)%2")
+                        .arg(d->child.exitStatus() == QProcess::CrashExit
+                                 ? QStringLiteral("crashed")
+                                 : QStringLiteral("exit code %1").arg(d->child.exitCode()),
+                             err.back().isEmpty()
+                                 ? QString()
+                                 : QStringLiteral(": ") + QString::fromLocal8Bit(err.back()));
+            d->stop();
+            return false;
+        }
+        if (clock.elapsed() > seconds * 1000.0) {
+            error = QStringLiteral("the face mesher did not answer within %1 s").arg(seconds);
+            d->child.kill();
+            d->stop();
+            return false;
+        }
+        d->child.waitForReadyRead(50);
+    }
+    answer = d->child.readLine().trimmed();
+    QFile::remove(path);
+    const QList<QByteArray> t = answer.split(' ');
+    if (t.value(0) != "ok" || t.size() != 3) {
+        error = answer.startsWith("error ") ? QString::fromUtf8(answer.mid(6))
+                                            : QStringLiteral("the face mesher answered '%1'")
+                                                  .arg(QString::fromUtf8(answer.left(200)));
+        return false;
+    }
+    cost.wallMs = t[1].toDouble();
+    cost.cpuMs = t[2].toDouble();
+    const QString obj = path + QStringLiteral(".obj");
+    const bool read = readTaggedMeshObjFile(obj, out, why);
+    QFile::remove(obj);
+    if (!read) {
+        error = QStringLiteral("the face mesher's triangles are unreadable: %1").arg(why);
+        return false;
+    }
+    return true;
+}
+
+} // namespace kw
