@@ -311,58 +311,70 @@ EdgeContinuity measureEdge(const QHash<SurfaceId, const Surface*>& surfaces,
     }
     const double flat = kFlatCurvature / std::max(glm::length(hi - lo), 1e-300);
     bool first = true;
-    for (size_t k = 0; k < 2; ++k) {
-        if (!edge.covers[k])
-            continue;
-        const SeamSide& from = *sides[k];
-        const SeamSide& to = *sides[1 - k];
-        const NurbsSurface& gFrom = *from.surface;
-        const NurbsSurface& gTo = *to.surface;
-        for (size_t i = 0; i < from.t.size(); ++i) {
-            const glm::dvec3& p = from.at[i];
-            const SeamFoot foot = nearestOnSeamSide(to, p);
-            ++r.samples;
-            if (foot.distance > r.g0 || first) {
-                r.g0 = std::max(r.g0, foot.distance);
-                r.g0At = p;
-            }
-            const CurveDerivatives2 c = curveDerivatives(from.curve, from.t[i]);
-            const SurfaceDerivatives a = surfaceDerivatives(gFrom, c.point.x, c.point.y);
-            const glm::dvec2 uvTo = curvePoint(to.curve, foot.t);
-            const SurfaceDerivatives b = surfaceDerivatives(gTo, uvTo.x, uvTo.y);
-            bool regularA = false, regularB = false;
-            const glm::dvec3 na = normalAt(gFrom, a, c.point, regularA);
-            const glm::dvec3 nb = normalAt(gTo, b, uvTo, regularB);
-            const double angle =
-                std::atan2(glm::length(glm::cross(na, nb)), std::abs(glm::dot(na, nb))) * 180.0 /
-                kPi;
-            if (angle > r.g1Degrees || first) {
-                r.g1Degrees = std::max(r.g1Degrees, angle);
-                r.g1At = p;
-            }
-            first = false;
-            const glm::dvec3 tangent = a.su * c.d1.x + a.sv * c.d1.y;
-            if (!regularA || !regularB || !(glm::length(tangent) > 0.0))
-                continue;
-            const glm::dvec3 acrossA = glm::cross(na, tangent), acrossB = glm::cross(nb, tangent);
-            if (!(glm::length(acrossA) > 0.0) || !(glm::length(acrossB) > 0.0))
-                continue;
-            const std::optional<double> ka = normalCurvature(a, na, glm::normalize(acrossA));
-            std::optional<double> kb = normalCurvature(b, nb, glm::normalize(acrossB));
-            if (!ka || !kb)
-                continue;
-            // Against the same normal: a face whose normal points the other way bends the
-            // same way with the opposite sign.
-            if (glm::dot(na, nb) < 0.0)
-                *kb = -*kb;
-            ++r.g2Samples;
-            const double scale = std::max({std::abs(*ka), std::abs(*kb), flat});
-            const double jump = 100.0 * std::abs(*ka - *kb) / scale;
-            if (jump > r.g2Percent) {
-                r.g2Percent = jump;
-                r.g2At = p;
-            }
+    // One sample of side `from`: its foot on `to`, the gap, the angle and the curvature jump.
+    const auto measureAt = [&](const SeamSide& from, const SeamSide& to, size_t i) {
+        const glm::dvec3& p = from.at[i];
+        const SeamFoot foot = nearestOnSeamSide(to, p);
+        ++r.samples;
+        if (foot.distance > r.g0 || first) {
+            r.g0 = std::max(r.g0, foot.distance);
+            r.g0At = p;
         }
+        const CurveDerivatives2 c = curveDerivatives(from.curve, from.t[i]);
+        const SurfaceDerivatives a = surfaceDerivatives(*from.surface, c.point.x, c.point.y);
+        const SurfaceDerivatives& b = foot.derivatives;
+        bool regularA = false, regularB = false;
+        const glm::dvec3 na = normalAt(*from.surface, a, c.point, regularA);
+        const glm::dvec3 nb = normalAt(*to.surface, b, foot.uv, regularB);
+        const double angle =
+            std::atan2(glm::length(glm::cross(na, nb)), std::abs(glm::dot(na, nb))) * 180.0 / kPi;
+        if (angle > r.g1Degrees || first) {
+            r.g1Degrees = std::max(r.g1Degrees, angle);
+            r.g1At = p;
+        }
+        first = false;
+        const glm::dvec3 tangent = a.su * c.d1.x + a.sv * c.d1.y;
+        if (!regularA || !regularB || !(glm::length(tangent) > 0.0))
+            return foot.t;
+        const glm::dvec3 acrossA = glm::cross(na, tangent), acrossB = glm::cross(nb, tangent);
+        if (!(glm::length(acrossA) > 0.0) || !(glm::length(acrossB) > 0.0))
+            return foot.t;
+        const std::optional<double> ka = normalCurvature(a, na, glm::normalize(acrossA));
+        std::optional<double> kb = normalCurvature(b, nb, glm::normalize(acrossB));
+        if (!ka || !kb)
+            return foot.t;
+        // Against the same normal: a face whose normal points the other way bends the same
+        // way with the opposite sign.
+        if (glm::dot(na, nb) < 0.0)
+            *kb = -*kb;
+        ++r.g2Samples;
+        const double scale = std::max({std::abs(*ka), std::abs(*kb), flat});
+        const double jump = 100.0 * std::abs(*ka - *kb) / scale;
+        if (jump > r.g2Percent) {
+            r.g2Percent = jump;
+            r.g2At = p;
+        }
+        return foot.t;
+    };
+    // Every sample of the first covering side; of the other (when it covers too), the samples
+    // beyond the stretch the first side's feet reached (where it is longer, or was pulled
+    // along itself), its ends and every eighth: seen from close curves the largest distance is
+    // nearly the same both ways, and this halves the cost of a drag step.
+    const size_t k0 = edge.covers[0] ? 0 : 1;
+    const SeamSide& a = *sides[k0];
+    const SeamSide& b = *sides[1 - k0];
+    double reachedFirst = b.domain.last, reachedLast = b.domain.first;
+    for (size_t i = 0; i < a.t.size(); ++i) {
+        const double t = measureAt(a, b, i);
+        reachedFirst = std::min(reachedFirst, t);
+        reachedLast = std::max(reachedLast, t);
+    }
+    if (edge.covers[0] && edge.covers[1]) {
+        const double margin = 1e-9 * (b.domain.last - b.domain.first);
+        for (size_t i = 0; i < b.t.size(); ++i)
+            if (i % 8 == 0 || i + 1 == b.t.size() || b.t[i] < reachedFirst - margin ||
+                b.t[i] > reachedLast + margin)
+                measureAt(b, a, i);
     }
     r.continuity = classifyContinuity(r, tol);
     return r;

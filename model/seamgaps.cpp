@@ -40,25 +40,47 @@ SeamSide makeSeamSide(const NurbsSurface& surface, const NurbsCurve2& curve, int
 
 SeamFoot nearestOnSeamSide(const SeamSide& e, const glm::dvec3& p) {
     size_t nearest = 0;
-    double best = std::numeric_limits<double>::infinity();
+    double nearestD2 = std::numeric_limits<double>::infinity();
     for (size_t j = 0; j < e.at.size(); ++j) {
         const glm::dvec3 d = e.at[j] - p;
         const double d2 = glm::dot(d, d);
-        if (d2 < best) {
-            best = d2;
+        if (d2 < nearestD2) {
+            nearestD2 = d2;
             nearest = j;
         }
     }
+    // Newton's start: the foot on the chords to the nearest sample's neighbours, so that a side
+    // passing close to p converges in one or two steps.
     double s = e.t[nearest];
-    double bestT = s;
+    double chordD2 = std::numeric_limits<double>::infinity();
+    for (const size_t other : {nearest - 1, nearest + 1}) {
+        if (other >= e.at.size()) // also nearest - 1 wrapped below 0
+            continue;
+        const glm::dvec3 chord = e.at[other] - e.at[nearest];
+        const double c2 = glm::dot(chord, chord);
+        if (!(c2 > 0.0))
+            continue;
+        const double lambda = std::clamp(glm::dot(p - e.at[nearest], chord) / c2, 0.0, 1.0);
+        const glm::dvec3 r = e.at[nearest] + lambda * chord - p;
+        if (glm::dot(r, r) < chordD2) {
+            chordD2 = glm::dot(r, r);
+            s = e.t[nearest] + lambda * (e.t[other] - e.t[nearest]);
+        }
+    }
+    SeamFoot foot;
+    double best = std::numeric_limits<double>::infinity();
     const double length = e.domain.last - e.domain.first;
+    bool evaluated = false;
     for (int iteration = 0; iteration < 12; ++iteration) {
         const CurveDerivatives2 c = curveDerivatives(e.curve, s);
         const SurfaceDerivatives sd = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
         const glm::dvec3 r = sd.s - p;
+        evaluated = true;
         if (glm::dot(r, r) < best) {
             best = glm::dot(r, r);
-            bestT = s;
+            foot.t = s;
+            foot.uv = c.point;
+            foot.derivatives = sd;
         }
         const glm::dvec3 c1 = sd.su * c.d1.x + sd.sv * c.d1.y;
         const glm::dvec3 c2 = sd.suu * (c.d1.x * c.d1.x) + 2.0 * sd.suv * (c.d1.x * c.d1.y) +
@@ -68,18 +90,33 @@ SeamFoot nearestOnSeamSide(const SeamSide& e, const glm::dvec3& p) {
         if (!(df > 0.0) || !std::isfinite(f / df))
             break;
         const double next = std::clamp(s - f / df, e.domain.first, e.domain.last);
-        if (std::abs(next - s) <= 1e-15 * length) {
-            s = next;
+        // Converged: the step left is below what the distance can notice.
+        if (std::abs(next - s) <= 1e-12 * length)
             break;
-        }
         s = next;
+        evaluated = false;
     }
-    const glm::dvec3 r = seamSidePoint(e, s) - p;
-    if (glm::dot(r, r) < best) {
-        best = glm::dot(r, r);
-        bestT = s;
+    if (!evaluated) {
+        const CurveDerivatives2 c = curveDerivatives(e.curve, s);
+        const SurfaceDerivatives sd = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
+        const glm::dvec3 r = sd.s - p;
+        if (glm::dot(r, r) < best) {
+            best = glm::dot(r, r);
+            foot.t = s;
+            foot.uv = c.point;
+            foot.derivatives = sd;
+        }
     }
-    return SeamFoot{bestT, std::sqrt(best)};
+    // The nearest sample itself may be nearer still (Newton left towards another branch).
+    if (nearestD2 < best) {
+        best = nearestD2;
+        foot.t = e.t[nearest];
+        const CurveDerivatives2 c = curveDerivatives(e.curve, foot.t);
+        foot.uv = c.point;
+        foot.derivatives = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
+    }
+    foot.distance = std::sqrt(best);
+    return foot;
 }
 
 namespace {

@@ -63,6 +63,7 @@ class TestContinuityImport : public QObject {
 private Q_SLOTS:
     void closedSolids_data();
     void closedSolids();
+    void dragStepCost();
     void infoContinuity();
     void infoRejectsBadTolerances();
 };
@@ -103,6 +104,40 @@ void TestContinuityImport::closedSolids() {
 #else
     QSKIP("built without OpenCASCADE: the count is not compared");
 #endif
+}
+
+// What a drag step costs the live overlay: updateContinuity for the edges of one face, for each
+// face of hammer.iges (docs/PERFORMANCE.md); the median of 15 runs per face. Printed, and held
+// to a bound loose enough for a loaded machine.
+void TestContinuityImport::dragStepCost() {
+    QString error;
+    const std::optional<ImportResult> r = importFile(data(QStringLiteral("hammer.iges")), error);
+    QVERIFY2(r, qPrintable(error));
+    const Scene& scene = r->scene;
+    ContinuityReport report = continuityReport(scene, {});
+    std::vector<double> perFace;
+    int worstEdges = 0;
+    for (const Surface& s : scene.surfaces) {
+        std::vector<double> runs;
+        int measured = 0;
+        for (int k = 0; k < 15; ++k) {
+            QElapsedTimer clock;
+            clock.start();
+            measured = updateContinuity(report, scene, {s.id});
+            runs.push_back(double(clock.nsecsElapsed()) * 1e-6);
+        }
+        std::sort(runs.begin(), runs.end());
+        perFace.push_back(runs[runs.size() / 2]);
+        if (perFace.back() >= *std::max_element(perFace.begin(), perFace.end()))
+            worstEdges = measured;
+    }
+    std::vector<double> sorted = perFace;
+    std::sort(sorted.begin(), sorted.end());
+    qInfo("hammer.iges: %zu faces, %zu edges; drag step (one face's edges): median %.3f ms, "
+          "worst face %.3f ms (%d edges)",
+          scene.surfaces.size(), report.edges.size(), sorted[sorted.size() / 2], sorted.back(),
+          worstEdges);
+    QVERIFY(sorted.back() < 50.0);
 }
 
 // `knotwork info --continuity --json`: exactly the keys the issue names, and the kernel's values;
