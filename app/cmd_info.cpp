@@ -1,6 +1,7 @@
-// knotwork info FILE [--json]: a summary of a .knot project's surfaces, topology, lights and
-// camera.
+// knotwork info FILE [--json] [--continuity]: a summary of a .knot project's surfaces, topology,
+// lights and camera, or the continuity of its edges.
 #include "app/commands.h"
+#include "app/info_continuity.h"
 #include "model/cad/cadimport.h"
 #include "model/document/seamgaps.h"
 #include "model/nurbs/trim.h"
@@ -280,6 +281,33 @@ int runInfo(const QStringList& args) {
                        "kept from a B-rep import (which seams are open), lights and camera."));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
     parser.addOption(json);
+    const QCommandLineOption continuity(
+        QStringLiteral("continuity"),
+        QStringLiteral("Instead, report the continuity of every edge where faces meet (G0 gap, "
+                       "G1 angle, G2 curvature jump; recorded by the import or found by matching "
+                       "boundaries), the free edges and the tolerances; with --json as "
+                       "{\"edges\", \"freeEdges\", \"tolerances\"}."));
+    parser.addOption(continuity);
+    const ContinuityTolerances defaults;
+    const QCommandLineOption g0(
+        QStringLiteral("g0"),
+        QStringLiteral("G0 tolerance in model units (default %1).").arg(defaults.g0),
+        QStringLiteral("GAP"));
+    const QCommandLineOption g1(
+        QStringLiteral("g1"),
+        QStringLiteral("G1 tolerance in degrees (default %1).").arg(defaults.g1Degrees),
+        QStringLiteral("DEGREES"));
+    const QCommandLineOption g2(
+        QStringLiteral("g2"),
+        QStringLiteral("G2 tolerance in percent (default %1).").arg(defaults.g2Percent),
+        QStringLiteral("PERCENT"));
+    const QCommandLineOption match(
+        QStringLiteral("match"),
+        QStringLiteral("How close boundaries of faces without a shared-edge record must lie to "
+                       "be one edge, in model units (default %1).")
+            .arg(defaults.match),
+        QStringLiteral("DISTANCE"));
+    parser.addOptions({g0, g1, g2, match});
     parser.addPositionalArgument(
         QStringLiteral("FILE"),
         QStringLiteral("A .knot project, or .igs/.iges, .stp/.step, .brep/.brp or .obj (imported "
@@ -293,6 +321,28 @@ int runInfo(const QStringList& args) {
                        .arg(files.size()));
         return kExitUsage;
     }
+    ContinuityTolerances tolerances;
+    for (const auto& [option, value] : {std::pair{&g0, &tolerances.g0},
+                                        {&g1, &tolerances.g1Degrees},
+                                        {&g2, &tolerances.g2Percent},
+                                        {&match, &tolerances.match}}) {
+        if (!parser.isSet(*option))
+            continue;
+        bool ok = false;
+        *value = parser.value(*option).toDouble(&ok);
+        if (!ok) {
+            printError(QStringLiteral("%1: --%2: not a number: '%3'")
+                           .arg(args.value(0), option->names().front(), parser.value(*option)));
+            return kExitUsage;
+        }
+    }
+    // A G0 tolerance above the default match distance takes the match distance with it.
+    if (!parser.isSet(match))
+        tolerances.match = std::max(tolerances.match, tolerances.g0);
+    if (const QString why = continuityTolerancesError(tolerances); !why.isEmpty()) {
+        printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
+        return kExitUsage;
+    }
     QString error;
     const std::optional<ImportResult> imported = openModelFile(files[0], error);
     if (!imported) {
@@ -301,6 +351,17 @@ int runInfo(const QStringList& args) {
     }
     printImportRemarks(files[0], imported->report);
     const Scene& scene = imported->scene;
+    if (parser.isSet(continuity)) {
+        const ContinuityReport report = continuityReport(scene, tolerances);
+        if (parser.isSet(json)) {
+            printOut(QString::fromUtf8(QJsonDocument(continuityJson(report)).toJson()));
+            // What the JSON's keys do not hold (degenerate sides, faces without a record).
+            printError(QStringLiteral("%1: %2").arg(files[0], continuitySummary(report)));
+        } else {
+            printOut(continuityText(files[0], report));
+        }
+        return kExitOk;
+    }
     if (parser.isSet(json))
         printOut(QString::fromUtf8(QJsonDocument(toJson(files[0], scene)).toJson()));
     else

@@ -9,61 +9,79 @@
 
 namespace kw {
 
-namespace {
-
-/// One side's edge: the curve C(t) = S(c(t)) of trim curve c on surface S.
-struct SideEdge {
-    const NurbsSurface* surface = nullptr;
-    const NurbsCurve2* curve = nullptr;
-    SurfaceId id;
-    Interval domain;
-    std::vector<double> t;      ///< sample parameters, ascending
-    std::vector<glm::dvec3> at; ///< C(t) at each
-};
-
-glm::dvec3 edgePoint(const SideEdge& e, double t) {
-    const glm::dvec2 uv = curvePoint(*e.curve, t);
+glm::dvec3 seamSidePoint(const SeamSide& e, double t) {
+    const glm::dvec2 uv = curvePoint(e.curve, t);
     return surfacePoint(*e.surface, uv.x, uv.y);
 }
 
 // `samples` parameters evenly over the domain, and every distinct knot inside it: the edge
 // may bend sharply at a knot, where a gap also tends to be largest after a control point moved.
-void sample(SideEdge& e, int samples) {
+SeamSide makeSeamSide(const NurbsSurface& surface, const NurbsCurve2& curve, int samples,
+                      const std::vector<double>& extra) {
+    SeamSide e;
+    e.surface = &surface;
+    e.curve = curve;
+    e.domain = curveDomain(curve);
     const Interval d = e.domain;
+    samples = std::max(samples, 2);
     for (int i = 0; i < samples; ++i)
         e.t.push_back(d.first + (d.last - d.first) * double(i) / double(samples - 1));
-    for (double k : e.curve->knots)
-        if (k > d.first && k < d.last)
-            e.t.push_back(k);
+    for (const std::vector<double>* knots : {&curve.knots, &extra})
+        for (double k : *knots)
+            if (k > d.first && k < d.last)
+                e.t.push_back(k);
     std::sort(e.t.begin(), e.t.end());
     e.t.erase(std::unique(e.t.begin(), e.t.end()), e.t.end());
     e.at.reserve(e.t.size());
     for (double t : e.t)
-        e.at.push_back(edgePoint(e, t));
+        e.at.push_back(seamSidePoint(e, t));
+    return e;
 }
 
-/// The distance from p to the edge: its nearest sample, then Newton's iteration for the foot
-/// of the perpendicular (The NURBS Book, 6.1, eq. 6.3) from that sample's parameter, clamped to
-/// the domain. Every point the iteration visits is a point of the edge, so the smallest
-/// distance seen is never below the true one and never above the nearest sample's.
-double distanceToEdge(const SideEdge& e, const glm::dvec3& p) {
+SeamFoot nearestOnSeamSide(const SeamSide& e, const glm::dvec3& p) {
     size_t nearest = 0;
-    double best = std::numeric_limits<double>::infinity();
+    double nearestD2 = std::numeric_limits<double>::infinity();
     for (size_t j = 0; j < e.at.size(); ++j) {
         const glm::dvec3 d = e.at[j] - p;
         const double d2 = glm::dot(d, d);
-        if (d2 < best) {
-            best = d2;
+        if (d2 < nearestD2) {
+            nearestD2 = d2;
             nearest = j;
         }
     }
+    // Newton's start: the foot on the chords to the nearest sample's neighbours, so that a side
+    // passing close to p converges in one or two steps.
     double s = e.t[nearest];
+    double chordD2 = std::numeric_limits<double>::infinity();
+    for (const size_t other : {nearest - 1, nearest + 1}) {
+        if (other >= e.at.size()) // also nearest - 1 wrapped below 0
+            continue;
+        const glm::dvec3 chord = e.at[other] - e.at[nearest];
+        const double c2 = glm::dot(chord, chord);
+        if (!(c2 > 0.0))
+            continue;
+        const double lambda = std::clamp(glm::dot(p - e.at[nearest], chord) / c2, 0.0, 1.0);
+        const glm::dvec3 r = e.at[nearest] + lambda * chord - p;
+        if (glm::dot(r, r) < chordD2) {
+            chordD2 = glm::dot(r, r);
+            s = e.t[nearest] + lambda * (e.t[other] - e.t[nearest]);
+        }
+    }
+    SeamFoot foot;
+    double best = std::numeric_limits<double>::infinity();
     const double length = e.domain.last - e.domain.first;
+    bool evaluated = false;
     for (int iteration = 0; iteration < 12; ++iteration) {
-        const CurveDerivatives2 c = curveDerivatives(*e.curve, s);
+        const CurveDerivatives2 c = curveDerivatives(e.curve, s);
         const SurfaceDerivatives sd = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
         const glm::dvec3 r = sd.s - p;
-        best = std::min(best, glm::dot(r, r));
+        evaluated = true;
+        if (glm::dot(r, r) < best) {
+            best = glm::dot(r, r);
+            foot.t = s;
+            foot.uv = c.point;
+            foot.derivatives = sd;
+        }
         const glm::dvec3 c1 = sd.su * c.d1.x + sd.sv * c.d1.y;
         const glm::dvec3 c2 = sd.suu * (c.d1.x * c.d1.x) + 2.0 * sd.suv * (c.d1.x * c.d1.y) +
                               sd.svv * (c.d1.y * c.d1.y) + sd.su * c.d2.x + sd.sv * c.d2.y;
@@ -72,25 +90,45 @@ double distanceToEdge(const SideEdge& e, const glm::dvec3& p) {
         if (!(df > 0.0) || !std::isfinite(f / df))
             break;
         const double next = std::clamp(s - f / df, e.domain.first, e.domain.last);
-        if (std::abs(next - s) <= 1e-15 * length) {
-            s = next;
+        // Converged: the step left is below what the distance can notice.
+        if (std::abs(next - s) <= 1e-12 * length)
             break;
-        }
         s = next;
+        evaluated = false;
     }
-    const glm::dvec3 r = edgePoint(e, s) - p;
-    best = std::min(best, glm::dot(r, r));
-    return std::sqrt(best);
+    if (!evaluated) {
+        const CurveDerivatives2 c = curveDerivatives(e.curve, s);
+        const SurfaceDerivatives sd = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
+        const glm::dvec3 r = sd.s - p;
+        if (glm::dot(r, r) < best) {
+            best = glm::dot(r, r);
+            foot.t = s;
+            foot.uv = c.point;
+            foot.derivatives = sd;
+        }
+    }
+    // The nearest sample itself may be nearer still (Newton left towards another branch).
+    if (nearestD2 < best) {
+        best = nearestD2;
+        foot.t = e.t[nearest];
+        const CurveDerivatives2 c = curveDerivatives(e.curve, foot.t);
+        foot.uv = c.point;
+        foot.derivatives = surfaceDerivatives(*e.surface, c.point.x, c.point.y);
+    }
+    foot.distance = std::sqrt(best);
+    return foot;
 }
 
+namespace {
+
 /// The largest distance from a sample of `from` to the edge `to`, and where.
-void farthest(const SideEdge& from, const SideEdge& to, SeamGap& gap) {
+void farthest(const SeamSide& from, SurfaceId fromId, const SeamSide& to, SeamGap& gap) {
     for (const glm::dvec3& p : from.at) {
-        const double d = distanceToEdge(to, p);
+        const double d = nearestOnSeamSide(to, p).distance;
         if (d > gap.gap || !gap.whereOn.isValid()) {
             gap.gap = std::max(d, gap.gap);
             gap.where = p;
-            gap.whereOn = from.id;
+            gap.whereOn = fromId;
         }
     }
 }
@@ -105,7 +143,7 @@ SeamGap seamGap(const SharedEdge& edge, const QHash<SurfaceId, const Surface*>& 
     gap.faceA = edge.sides[0].surface;
     gap.faceB = edge.sides[1].surface;
     gap.tolerance = edge.tolerance;
-    SideEdge sides[2];
+    SeamSide sides[2];
     for (size_t k = 0; k < 2; ++k) {
         const EdgeUse& use = edge.sides[k];
         const Surface* s = surfaces.value(use.surface);
@@ -120,14 +158,10 @@ SeamGap seamGap(const SharedEdge& edge, const QHash<SurfaceId, const Surface*>& 
             gap.whereOn = use.surface;
             return gap;
         }
-        sides[k].surface = &s->geometry;
-        sides[k].curve = &loop->curves[size_t(use.curve)];
-        sides[k].id = use.surface;
-        sides[k].domain = curveDomain(*sides[k].curve);
-        sample(sides[k], samples);
+        sides[k] = makeSeamSide(s->geometry, loop->curves[size_t(use.curve)], samples);
     }
-    farthest(sides[0], sides[1], gap);
-    farthest(sides[1], sides[0], gap);
+    farthest(sides[0], edge.sides[0].surface, sides[1], gap);
+    farthest(sides[1], edge.sides[1].surface, sides[0], gap);
     return gap;
 }
 

@@ -26,6 +26,42 @@ struct SeamGap {
 /// Least number of points seamGaps samples each side's edge at, besides the trim curve's knots.
 constexpr int kMinSeamSamples = 64;
 
+/// One side of a seam: the curve C(t) = S(c(t)) of a 2D curve c in the (u, v) space of surface
+/// S (a trim curve, or a straight line along an edge of the domain), with samples of it. The
+/// continuity kernel (model/continuity.h) measures on the same sides.
+struct SeamSide {
+    const NurbsSurface* surface = nullptr; ///< not owned; must outlive the side
+    NurbsCurve2 curve;
+    Interval domain;
+    std::vector<double> t;      ///< sample parameters, ascending
+    std::vector<glm::dvec3> at; ///< C(t) at each
+};
+
+/// The side of `curve` on `surface`, sampled at `samples` (>= 2) parameters evenly spread over
+/// the curve's domain, at each of its distinct interior knots and at each value of `extra`
+/// inside the domain (e.g. a surface's knots along a boundary line). Preconditions: a valid
+/// surface and curve.
+SeamSide makeSeamSide(const NurbsSurface& surface, const NurbsCurve2& curve, int samples,
+                      const std::vector<double>& extra = {});
+/// C(t) of a side.
+glm::dvec3 seamSidePoint(const SeamSide& side, double t);
+
+/// The foot of the perpendicular from a point to a side: its parameter, its distance, and the
+/// surface's point and derivatives there (so that a caller measuring more there need not
+/// evaluate again).
+struct SeamFoot {
+    double t = 0.0;
+    double distance = 0.0;
+    glm::dvec2 uv{0.0};
+    SurfaceDerivatives derivatives;
+};
+/// The point of `side` nearest to p: the nearest sample, refined on the chords next to it, then
+/// Newton's iteration for the foot of the perpendicular (The NURBS Book, 6.1, eq. 6.3), clamped
+/// to the domain. Every point visited lies on the side, so the distance is never below the true
+/// one and never above the nearest sample's; the foot is the nearest point visited. About two
+/// or three surface evaluations where the side passes close to p.
+SeamFoot nearestOnSeamSide(const SeamSide& side, const glm::dvec3& p);
+
 /// For every shared edge of scene.topology, in its order: a side's edge is the curve
 /// S(c(t)) of its trim curve c on its surface S, in double precision (no tessellation). Each
 /// side is sampled at `samples` (at least kMinSeamSamples) parameters evenly spread over its
