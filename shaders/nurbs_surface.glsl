@@ -78,6 +78,40 @@ struct SurfacePartials {
 #endif
 };
 
+#ifdef KW_SECOND_ORDER
+// A collapsed edge of the cell (a sphere's pole, a cone's apex): an outer row or column of its
+// control texels whose points coincide, to a few float ulps of their size. Near it |Su| (or
+// |Sv|) shrinks like the parameter distance h to the edge, while the sums of surfacePartials
+// add O(1) homogeneous terms that cancel: float leaves O(1e-7) absolute noise in Su, Suu and
+// L = Suu.n (itself O(h^2)), so K and H drifted by 1e-7 / h^2 (2e-3 at the pixel next to a
+// pole). Summed about the collapsed point instead, that row's terms are exactly 0 and every
+// other term carries a basis factor O(h): the rounding shrinks with the derivatives. Returns
+// false when no outer row or column is collapsed; `which` tells which one (x: 0 column, 1 row;
+// y: its index in the cell).
+bool collapsedPoint(ivec2 first, out vec3 p, out ivec2 which) {
+    p = vec3(0.0);
+    which = ivec2(-1);
+    for (int side = 0; side < 4; ++side) {
+        bool isRow = side >= 2;
+        int at = (side & 1) == 0 ? 0 : (isRow ? DEGREE_V : DEGREE_U);
+        int count = isRow ? DEGREE_U : DEGREE_V;
+        vec4 c0 = isRow ? CONTROL_TEXEL(first, 0, at) : CONTROL_TEXEL(first, at, 0);
+        vec3 q = c0.xyz / c0.w;
+        bool same = true;
+        for (int k = 1; k <= count; ++k) {
+            vec4 c = isRow ? CONTROL_TEXEL(first, k, at) : CONTROL_TEXEL(first, at, k);
+            same = same && length(c.xyz - c.w * q) <= 1e-6 * (length(c.xyz) + abs(c.w) * length(q));
+        }
+        if (same) {
+            p = q;
+            which = ivec2(isRow ? 1 : 0, at);
+            return true;
+        }
+    }
+    return false;
+}
+#endif
+
 SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     float Nu[DEGREE_U + 1], dNu[DEGREE_U + 1];
     float Nv[DEGREE_V + 1], dNv[DEGREE_V + 1];
@@ -92,6 +126,12 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
 #endif
     vec4 A = vec4(0.0), Au = vec4(0.0), Av = vec4(0.0), Auv = vec4(0.0);
     ivec2 first = span - ivec2(DEGREE_U, DEGREE_V);
+#ifdef KW_SECOND_ORDER
+    // The sums run about `base`: a collapsed edge's point, else the surface's origin (0).
+    vec3 base;
+    ivec2 which;
+    collapsedPoint(first, base, which);
+#endif
     for (int j = 0; j <= DEGREE_V; ++j) {
         vec4 row = vec4(0.0), rowU = vec4(0.0);
 #ifdef KW_SECOND_ORDER
@@ -99,6 +139,10 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
 #endif
         for (int i = 0; i <= DEGREE_U; ++i) {
             vec4 c = CONTROL_TEXEL(first, i, j);
+#ifdef KW_SECOND_ORDER
+            bool onEdge = which.x == 1 ? j == which.y : (which.x == 0 && i == which.y);
+            c.xyz = onEdge ? vec3(0.0) : c.xyz - c.w * base;
+#endif
             row += Nu[i] * c;
             rowU += dNu[i] * c;
 #ifdef KW_SECOND_ORDER
@@ -117,7 +161,7 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     // A4.4 to first order: S = A/w, Su = (Au - wu S)/w, Suv = (Auv - wu Sv - wv Su - wuv S)/w.
     float invW = 1.0 / A.w;
     SurfacePartials d;
-    d.s = A.xyz * invW;
+    d.s = A.xyz * invW; // relative to base while the derivatives are formed
     d.su = (Au.xyz - Au.w * d.s) * invW;
     d.sv = (Av.xyz - Av.w * d.s) * invW;
     d.suv = (Auv.xyz - Au.w * d.sv - Av.w * d.su - Auv.w * d.s) * invW;
@@ -125,6 +169,7 @@ SurfacePartials surfacePartials(vec2 uv, ivec2 span) {
     // A4.4 to second order: Suu = (Auu - 2 wu Su - wuu S)/w, likewise Svv.
     d.suu = (Auu.xyz - 2.0 * Au.w * d.su - Auu.w * d.s) * invW;
     d.svv = (Avv.xyz - 2.0 * Av.w * d.sv - Avv.w * d.s) * invW;
+    d.s += base;
 #endif
     return d;
 }
