@@ -1,8 +1,10 @@
-// The 3D view's tools under Xvfb: Esc cancels a drag and restores the document, every drag is
-// one undo step, and a step the document refuses shows its reason in the status bar.
+// The 3D view's and the UV panel's tools under Xvfb: Esc cancels a drag and restores the
+// document, every drag is one undo step, and a step the document refuses shows its reason in
+// the status bar.
 #include "editor_test_util.h"
 #include "render/offscreen_renderer.h"
 #include "ui/edit/commands.h"
+#include "ui/uvpanel.h"
 
 #include <QSettings>
 #include <QStatusBar>
@@ -160,6 +162,50 @@ private Q_SLOTS:
         QVERIFY(geometry() == undone);
         QCOMPARE(stack->index(), 0); // the release recorded nothing on top
         QVERIFY(!vp->isDragging());
+    }
+
+    void trimDragInTheUvPanelFollowsTheSameProtocol() {
+        openWindow("trimmed_plate");
+        UvPanel* uv = m_window->uvPanel();
+        QUndoStack* stack = m_window->undoStack();
+        auto trims = [this] {
+            return m_window->document()->scene().surfaces[0].trims;
+        };
+        const Surface& s = m_window->document()->scene().surfaces[0];
+        const SurfaceId id = s.id;
+        const TrimLoop star = s.trims.back();
+        const std::vector<TrimLoop> before = trims();
+        const QPoint press = uv->toWidget(star.curves[0].points.front()).toPoint();
+        QVERIFY(uv->trimPointAt(press));
+        // Esc restores.
+        QTest::mousePress(uv, Qt::LeftButton, Qt::NoModifier, press);
+        QTest::mouseMove(uv, press + QPoint(-20, 10));
+        QVERIFY(trims() != before);
+        QTest::keyClick(uv, Qt::Key_Escape);
+        QVERIFY(trims() == before);
+        QTest::mouseRelease(uv, Qt::LeftButton, Qt::NoModifier, press + QPoint(-20, 10));
+        QVERIFY(trims() == before);
+        QCOMPARE(stack->count(), 0);
+        // A drag is one step.
+        QTest::mousePress(uv, Qt::LeftButton, Qt::NoModifier, press);
+        QTest::mouseMove(uv, press + QPoint(-5, 5));
+        QTest::mouseMove(uv, press + QPoint(-10, 10));
+        QTest::mouseRelease(uv, Qt::LeftButton, Qt::NoModifier, press + QPoint(-10, 10));
+        QCOMPARE(stack->count(), 1);
+        QCOMPARE(stack->undoText(), QStringLiteral("Move 2 trim points")); // first = last
+        stack->undo();
+        QVERIFY(trims() == before);
+        // The loop removed under a drag: the next step is refused, and says why.
+        QTest::mousePress(uv, Qt::LeftButton, Qt::NoModifier, press);
+        QTest::mouseMove(uv, press + QPoint(-5, 5));
+        QVERIFY(pushCommand(stack, RemoveTrimLoop::create(m_window->document(), id, star.id)));
+        const int steps = stack->count();
+        QTest::mouseMove(uv, press + QPoint(-10, 10));
+        const QString shown = m_window->statusBar()->currentMessage();
+        QVERIFY2(shown.startsWith(QStringLiteral("Drag step refused: no trim point")),
+                 qPrintable(shown));
+        QTest::mouseRelease(uv, Qt::LeftButton, Qt::NoModifier, press + QPoint(-10, 10));
+        QCOMPARE(stack->count(), steps);
     }
 };
 

@@ -8,7 +8,6 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <algorithm>
-#include <glm/gtc/matrix_transform.hpp>
 
 namespace kw {
 
@@ -44,7 +43,6 @@ public:
         m_last = event->position();
         step();
         m_live.commit();
-        m_points.clear();
         m_view->update();
     }
 
@@ -53,7 +51,6 @@ public:
 
     void cancel() override {
         m_live.cancel();
-        m_points.clear();
         m_view->update();
     }
 
@@ -108,22 +105,23 @@ private:
     }
 
     void begin(const ControlPointRef& pressed, QPointF pixel) {
-        m_points.clear();
+        m_refs = m_view->selection()->controlPoints();
+        m_from.clear();
         const Document* doc = m_view->document();
-        for (const ControlPointRef& r : m_view->selection()->controlPoints()) {
+        for (const ControlPointRef& r : m_refs) {
             const NurbsSurface& g = doc->surface(r.surface)->geometry;
-            const glm::dvec3 p = g.points[size_t(g.index(r.i, r.j))];
-            m_points.add(r, p);
+            m_from.push_back(g.points[size_t(g.index(r.i, r.j))]);
             if (r == pressed)
-                m_anchor = p;
+                m_anchor = m_from.back();
         }
         m_press = m_last = pixel;
-        if (!m_points.empty())
+        if (!m_refs.empty())
             m_live.begin();
     }
 
     /// Moves every point by the cursor's travel on the view plane through the pressed point,
-    /// or along the held axis through it: exactly press-time position + delta.
+    /// or along the held axis through it: exactly press-time position + delta, one checked
+    /// step for all surfaces.
     void step() {
         if (!dragging())
             return;
@@ -137,7 +135,10 @@ private:
         } else {
             delta = view.onViewPlane(m_last, m_anchor) - view.onViewPlane(m_press, m_anchor);
         }
-        m_points.step(m_live, glm::translate(glm::dmat4(1.0), delta));
+        std::vector<glm::dvec3> to;
+        for (const glm::dvec3& from : m_from)
+            to.push_back(from + delta);
+        m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
     }
 
     bool axisKey(QKeyEvent* event) {
@@ -150,7 +151,8 @@ private:
 
     Viewport* m_view;
     LiveEdit m_live;
-    DraggedPoints m_points;
+    std::vector<ControlPointRef> m_refs; ///< the picked points at the press
+    std::vector<glm::dvec3> m_from;      ///< and their positions then
     glm::dvec3 m_anchor{0.0};
     QPointF m_press, m_last;
 };

@@ -37,20 +37,23 @@ bool SurfaceDragTool::press(QMouseEvent* event) {
     if (event->button() != Qt::LeftButton || !(event->modifiers() & Qt::ControlModifier) ||
         (event->modifiers() & Qt::AltModifier))
         return false;
-    m_points.clear();
+    m_refs.clear();
+    m_from.clear();
+    m_surfaces = m_view->shownSurfaces(true);
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (SurfaceId id : m_view->shownSurfaces(true)) { // hidden ones stay where they are
+    for (SurfaceId id : m_surfaces) { // hidden ones stay where they are
         const NurbsSurface& g = m_view->document()->surface(id)->geometry;
         for (int j = 0; j < g.countV; ++j)
             for (int i = 0; i < g.countU; ++i) {
                 const glm::dvec3 x = g.points[size_t(g.index(i, j))];
-                m_points.add(ControlPointRef{id, i, j}, x);
+                m_refs.push_back(ControlPointRef{id, i, j});
+                m_from.push_back(x);
                 lo = glm::min(lo, x);
                 hi = glm::max(hi, x);
             }
     }
     // Ctrl is this tool's even with nothing to drag: no band starts under it.
-    if (m_points.empty())
+    if (m_refs.empty())
         return true;
     m_pivot = 0.5 * (lo + hi);
     m_press = m_last = event->position();
@@ -77,7 +80,7 @@ void SurfaceDragTool::release(QMouseEvent* event) {
         double amount = 0.0;
         const glm::dmat4 m = matrix(&amount);
         std::vector<SurfaceId> ids;
-        for (SurfaceId id : m_points.surfaces())
+        for (SurfaceId id : m_surfaces)
             if (m_view->document()->surface(id)) // not removed under the drag
                 ids.push_back(id);
         const QString name = text(amount);
@@ -92,7 +95,6 @@ void SurfaceDragTool::release(QMouseEvent* event) {
             return command;
         });
     }
-    m_points.clear();
     m_view->update();
 }
 
@@ -110,7 +112,6 @@ bool SurfaceDragTool::keyRelease(QKeyEvent* event) {
 
 void SurfaceDragTool::cancel() {
     m_live.cancel();
-    m_points.clear();
     m_view->update();
 }
 
@@ -127,7 +128,11 @@ void SurfaceDragTool::step() {
                       : view.onViewPlane(m_last, m_pivot) - view.onViewPlane(m_press, m_pivot);
         map = glm::translate(glm::dmat4(1.0), delta);
     }
-    m_points.step(m_live, map);
+    std::vector<glm::dvec3> to;
+    to.reserve(m_from.size());
+    for (const glm::dvec3& p : m_from)
+        to.push_back(glm::dvec3(map * glm::dvec4(p, 1.0)));
+    m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
     m_view->update();
 }
 
@@ -189,7 +194,7 @@ glm::dmat4 SurfaceDragTool::matrix(double* amount) const {
 }
 
 QString SurfaceDragTool::text(double amount) const {
-    const int surfaces = int(m_points.surfaces().size());
+    const int surfaces = int(m_surfaces.size());
     const QString noun =
         surfaces == 1 ? QObject::tr("surface") : QObject::tr("%1 surfaces").arg(surfaces);
     static const char* const names[3] = {"x", "y", "z"};

@@ -1,9 +1,7 @@
-// The 3D view's tool registry and DraggedPoints, the point set the point and surface drags move.
+// The 3D view's tool registry, and the status bar for refused drag steps.
 #include "ui/tools/viewtools.h"
 
 #include "ui/viewport.h"
-
-#include <set>
 
 namespace kw {
 
@@ -35,28 +33,6 @@ void showRefusals(LiveEdit& live, Viewport* view) {
     QObject::connect(&live, &LiveEdit::refused, view, [view](const QString& why) {
         view->showMessage(QObject::tr("Drag step refused: %1").arg(why));
     });
-}
-
-void DraggedPoints::add(const ControlPointRef& ref, const glm::dvec3& from) {
-    m_refs.push_back(ref);
-    m_from.push_back(from);
-}
-
-std::vector<SurfaceId> DraggedPoints::surfaces() const {
-    std::vector<SurfaceId> ids;
-    std::set<SurfaceId> seen;
-    for (const ControlPointRef& r : m_refs)
-        if (seen.insert(r.surface).second)
-            ids.push_back(r.surface);
-    return ids;
-}
-
-QString DraggedPoints::step(LiveEdit& live, const glm::dmat4& map) const {
-    std::vector<glm::dvec3> to;
-    to.reserve(m_from.size());
-    for (const glm::dvec3& p : m_from)
-        to.push_back(glm::dvec3(map * glm::dvec4(p, 1.0)));
-    return live.moveControlPoints(m_refs, to);
 }
 
 } // namespace kw

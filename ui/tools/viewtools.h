@@ -1,5 +1,5 @@
-// The 3D view's tools: the registry (viewtools.cpp), the drag of a set of control points the
-// point and surface drags share, and the surface drag whose map the view reports.
+// The 3D view's tools: the registry (viewtools.cpp), and the surface drag whose map the view
+// reports.
 #pragma once
 
 #include "model/selection.h"
@@ -21,23 +21,6 @@ std::vector<std::unique_ptr<Tool>> makeViewTools(Viewport* view);
 
 /// Shows each step `live` refuses in the view's status bar ("Drag step refused: why").
 void showRefusals(LiveEdit& live, Viewport* view);
-
-/// Control points dragged together, each with its press-time position.
-class DraggedPoints {
-public:
-    void clear() { m_refs.clear(), m_from.clear(); }
-    void add(const ControlPointRef& ref, const glm::dvec3& from);
-    bool empty() const { return m_refs.empty(); }
-    /// The surfaces among the points, in the order they first appear.
-    std::vector<SurfaceId> surfaces() const;
-    /// One live step: every point at `map` applied to its press-time position, one document
-    /// call per surface. The refusal reason, or empty.
-    QString step(LiveEdit& live, const glm::dmat4& map) const;
-
-private:
-    std::vector<ControlPointRef> m_refs;
-    std::vector<glm::dvec3> m_from;
-};
 
 /// Ctrl + drag on the selected surfaces (Viewport::SurfaceDrag): every control point follows
 /// the move, rotation or scale (viewport.h tells how each is measured). A move is one step of
@@ -65,7 +48,9 @@ private:
 
     Viewport* m_view;
     LiveEdit m_live;
-    DraggedPoints m_points;
+    std::vector<ControlPointRef> m_refs; ///< every point of the dragged surfaces
+    std::vector<glm::dvec3> m_from;      ///< and their positions at the press
+    std::vector<SurfaceId> m_surfaces;
     glm::dvec3 m_pivot{0.0};
     QPointF m_press, m_last;
     bool m_snap = false;
