@@ -7,7 +7,7 @@
 #include "model/cad/facemesher.h"
 #include "model/cad/handover.h"
 #include "model/cad/occtimport.h"
-#include "model/savefile.h"
+#include "model/io/savefile.h"
 
 #include <QDir>
 #include <QElapsedTimer>

@@ -6,7 +6,7 @@
 #include "model/cad/cadimport.h"
 #include "model/cad/cadprocess.h"
 #include "model/cad/facemesher.h"
-#include "model/document.h"
+#include "model/document/document.h"
 #include "render/edge_metrics.h"
 #include "render/gpu_layout.h"
 #include "render/offscreen_renderer.h"

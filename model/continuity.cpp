@@ -1,7 +1,7 @@
 // The continuity kernel: which boundaries meet (record or matching) and G0/G1/G2 along them.
 #include "model/continuity.h"
 
-#include "model/nurbs_curvature.h"
+#include "model/nurbs/nurbs_curvature.h"
 
 #include <QHash>
 #include <algorithm>

@@ -3,8 +3,8 @@
 // matching boundaries (CATIA's Connect Checker, Rhino's EdgeContinuity).
 #pragma once
 
-#include "model/scene.h"
-#include "model/seamgaps.h"
+#include "model/document/scene.h"
+#include "model/document/seamgaps.h"
 
 #include <QString>
 #include <array>
@@ -102,7 +102,7 @@ constexpr int kContinuitySamples = 101;
 constexpr double kFlatCurvature = 1e-4;
 
 /// Measures `edge` of `scene`. At every sample of a covering side: the foot of the perpendicular
-/// on the other side's edge (model/seamgaps.h, nearestOnSeamSide) gives the gap; the unit
+/// on the other side's edge (model/document/seamgaps.h, nearestOnSeamSide) gives the gap; the unit
 /// normals there give the angle; the normal curvatures of both faces in the direction normal to
 /// the edge within each tangent plane (kn = II(d) / I(d), Do Carmo 3.2), the other's signed
 /// against this side's normal, give the jump. Points where a surface has no plain normal (a

@@ -2,8 +2,8 @@
 // loft cut at an inner knot, a crease of known angle, a boundary point moved by d, the recorded
 // cube, and bad input (poles, collapsed and missing sides).
 #include "model/continuity.h"
-#include "model/nurbs_construct.h"
-#include "model/nurbs_shapes.h"
+#include "model/nurbs/nurbs_construct.h"
+#include "model/nurbs/nurbs_shapes.h"
 #include "topology_fixtures.h"
 
 #include <QTest>

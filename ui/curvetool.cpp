@@ -75,9 +75,10 @@ const NurbsCurve3& CurveTool::preview() {
     return m_preview;
 }
 
-bool CurveTool::mousePress(QMouseEvent* event, const ViewProjection& view) {
+bool CurveTool::press(QMouseEvent* event) {
     if (!m_active || event->button() != Qt::LeftButton)
         return false;
+    const ViewProjection view = m_viewport->viewProjection();
     if (m_points.empty() && m_curves.empty()) {
         // The plane of this drawing: through the view's target, facing the viewer.
         m_planePoint = m_viewport->cameraController().camera().target;
@@ -114,7 +115,7 @@ bool CurveTool::endCurve() {
     return true;
 }
 
-bool CurveTool::keyPress(QKeyEvent* event) {
+bool CurveTool::key(QKeyEvent* event) {
     if (!m_active)
         return false;
     switch (event->key()) {
@@ -150,9 +151,10 @@ bool CurveTool::keyPress(QKeyEvent* event) {
     }
 }
 
-void CurveTool::paint(QPainter& p, const ViewProjection& view) {
+void CurveTool::paint(QPainter& p) {
     if (!m_active)
         return;
+    const ViewProjection view = m_viewport->viewProjection();
     auto drawCurve = [&](const NurbsCurve3& c, const QColor& colour) {
         if (c.points.empty())
             return;

@@ -13,7 +13,7 @@
 
 namespace kw {
 
-class CurveTool : public QObject, public ViewTool {
+class CurveTool : public QObject, public Tool {
     Q_OBJECT
 public:
     /// `viewport` must outlive the tool.
@@ -40,9 +40,10 @@ public:
     /// interpolating(), not on every repaint (a camera drag repaints many times a second).
     const NurbsCurve3& preview();
 
-    bool mousePress(QMouseEvent* event, const ViewProjection& view) override;
-    bool keyPress(QKeyEvent* event) override;
-    void paint(QPainter& painter, const ViewProjection& view) override;
+    /// A left click adds a point on the drawing's plane.
+    bool press(QMouseEvent* event) override;
+    bool key(QKeyEvent* event) override;
+    void paint(QPainter& painter) override;
 
 Q_SIGNALS:
     /// The drawing is complete: the curves to build from (the tool is already uninstalled).

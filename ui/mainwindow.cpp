@@ -137,6 +137,8 @@ MainWindow::MainWindow(QWidget* parent)
     });
     connect(m_viewport, &Viewport::renderError, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
+    connect(m_viewport, &Viewport::message, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 5000); });
     connect(m_properties, &PropertyPanel::editRejected, this,
             [this](const QString& m) { statusBar()->showMessage(m, 5000); });
     connect(m_lights, &LightsPanel::editRejected, this,

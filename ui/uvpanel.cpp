@@ -2,7 +2,7 @@
 #include "ui/uvpanel.h"
 
 #include "model/nurbs/trim.h"
-#include "ui/edit/commands.h"
+#include "ui/tools/uvpaneltools.h"
 
 #include <QFontMetricsF>
 #include <QKeyEvent>
@@ -62,9 +62,13 @@ UvPanel::UvPanel(Document* document, Selection* selection, QUndoStack* stack, QW
     connect(m_doc, &Document::trimLoopInserted, this, repaint);
     connect(m_doc, &Document::trimLoopRemoved, this, repaint);
     connect(m_doc, &Document::surfaceRemoved, this, repaint);
+    m_tools.add(makeTrimDragTool(this));
+    for (UvTool shape : {UvTool::Rectangle, UvTool::Circle})
+        m_drawing[shape] = makeUvShapeTool(this, shape);
+    for (UvTool shape : {UvTool::Polygon, UvTool::Spline})
+        m_drawing[shape] = makeUvClickTool(this, shape);
     connect(m_doc, &Document::sceneReset, this, [this] {
-        m_drag.clear();
-        m_dragging = false;
+        m_tools.cancel(); // the live edit has already let go of the old scene's points
         update();
     });
     connect(m_selection, &Selection::changed, this, repaint);
@@ -241,7 +245,7 @@ void UvPanel::paintEvent(QPaintEvent*) {
             }
             p.setBrush(Qt::NoBrush);
         }
-    paintDrawing(p);
+    m_tools.paint(p);
     if (!m_crossing.isEmpty()) {
         p.setPen(QColor(220, 40, 40));
         p.drawText(rect().adjusted(4, 2, -4, -2), Qt::AlignTop | Qt::AlignLeft | Qt::TextWordWrap,
@@ -255,29 +259,10 @@ void UvPanel::mousePressEvent(QMouseEvent* event) {
         m_panLast = event->position();
         return;
     }
-    if (event->button() != Qt::LeftButton || m_dragging)
-        return;
-    if (toolPress(event))
-        return;
-    const std::optional<TrimPointRef> hit = trimPointAt(event->position());
-    if (!hit) {
-        m_selection->setTrimPoints({});
-        return;
-    }
-    m_drag.clear();
-    for (const TrimPointRef& ref : trimPointWithCoincidentEnds(*m_doc->surface(hit->surface), *hit))
-        m_drag.push_back({ref, trimPointPosition(*m_doc, ref)});
-    std::vector<TrimPointRef> refs;
-    for (const Dragged& d : m_drag)
-        refs.push_back(d.ref);
-    std::sort(refs.begin(), refs.end());
-    m_selection->setTrimPoints(refs);
-    m_pressPixel = event->position();
-    m_dragging = true;
+    m_tools.press(event);
 }
 
 void UvPanel::mouseMoveEvent(QMouseEvent* event) {
-    m_hover = event->position();
     if (m_panning) {
         const QRectF r = domainRect();
         const QPointF d = event->position() - m_panLast;
@@ -285,24 +270,7 @@ void UvPanel::mouseMoveEvent(QMouseEvent* event) {
         setView(m_zoom, m_centre - glm::dvec2(d.x() / r.width(), -d.y() / r.height()));
         return;
     }
-    if (m_shaping) {
-        m_shapeEnd = event->position();
-        update();
-        return;
-    }
-    if (!m_clicked.empty())
-        update();
-    if (!m_dragging)
-        return;
-    const glm::dvec2 delta = toUv(event->position()) - toUv(m_pressPixel);
-    std::vector<TrimPointRef> refs;
-    std::vector<glm::dvec2> to;
-    for (const Dragged& d : m_drag) {
-        refs.push_back(d.ref);
-        to.push_back(d.from + delta);
-    }
-    if (!refs.empty())
-        m_doc->setTrimPoints(refs, to); // coinciding ends together: the loop stays closed
+    m_tools.move(event);
 }
 
 void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
@@ -310,68 +278,21 @@ void UvPanel::mouseReleaseEvent(QMouseEvent* event) {
         m_panning = false;
         return;
     }
-    if (m_shaping && event->button() == Qt::LeftButton) {
-        finishShape(event->position());
+    m_tools.release(event);
+}
+
+void UvPanel::mouseDoubleClickEvent(QMouseEvent* event) {
+    if (m_tools.doubleClick(event)) {
+        event->accept();
         return;
     }
-    if (!m_dragging || event->button() != Qt::LeftButton)
-        return;
-    mouseMoveEvent(event);
-    finishDrag(false);
+    QWidget::mouseDoubleClickEvent(event);
 }
 
 void UvPanel::keyPressEvent(QKeyEvent* event) {
-    if (event->key() == Qt::Key_Escape && m_dragging) {
-        finishDrag(true);
+    if (m_tools.key(event))
         return;
-    }
-    if (event->key() == Qt::Key_Escape && (m_shaping || !m_clicked.empty())) {
-        m_shaping = false;
-        m_clicked.clear();
-        update();
-        return;
-    }
-    if ((event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) && !m_clicked.empty()) {
-        finishClicked();
-        return;
-    }
-    if (event->key() == Qt::Key_Backspace && !m_clicked.empty()) {
-        m_clicked.pop_back();
-        update();
-        return;
-    }
     QWidget::keyPressEvent(event);
-}
-
-void UvPanel::finishDrag(bool cancel) {
-    m_dragging = false;
-    std::vector<TrimPointRef> refs;
-    std::vector<glm::dvec2> from, to;
-    for (const Dragged& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s)
-            continue;
-        for (const TrimLoop& l : s->trims)
-            if (l.id == d.ref.loop && size_t(d.ref.curve) < l.curves.size() &&
-                size_t(d.ref.index) < l.curves[size_t(d.ref.curve)].points.size()) {
-                refs.push_back(d.ref);
-                from.push_back(d.from);
-                to.push_back(l.curves[size_t(d.ref.curve)].points[size_t(d.ref.index)]);
-            }
-    }
-    m_drag.clear();
-    if (refs.empty())
-        return;
-    if (cancel) {
-        m_doc->setTrimPoints(refs, from);
-        return;
-    }
-    if (from == to)
-        return;
-    QString error;
-    if (!pushCommand(m_stack,
-                     MoveTrimPoints::create(m_doc, refs, from, to, MoveKind::Drag, &error)))
-        qWarning("knotwork: trim drag not recorded: %s", qPrintable(error));
 }
 
 } // namespace kw

@@ -3,10 +3,13 @@
 #pragma once
 
 #include "model/document/selection.h"
+#include "ui/tools/tool.h"
 #include "ui/trimmask.h"
 
 #include <QImage>
 #include <QWidget>
+#include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -23,6 +26,12 @@ inline glm::dvec2 trimPointPosition(const Document& doc, const TrimPointRef& ref
     return glm::dvec2(0.0);
 }
 
+/// A closed polyline as one degree-1 curve (the first point repeated at the end), and a
+/// closed clamped B-spline (cubic when there are enough points) whose control polygon is
+/// `pts`: the loops the panel's drawing tools make.
+NurbsCurve2 closedPolylineCurve(const std::vector<glm::dvec2>& pts);
+NurbsCurve2 closedSplineCurve(const std::vector<glm::dvec2>& pts);
+
 class UvPanel;
 /// The UV dock's content: a toolbar with the panel's tools, fields for the picked trim
 /// point's exact (u, v) (named "uvPointU" / "uvPointV"; disabled and empty when none is
@@ -38,10 +47,11 @@ QString domainLabel(double value, double span);
 enum class UvTool { Select, Rectangle, Circle, Polygon, Spline };
 
 /// Shows the current surface's domain (u to the right, v up) filled with the trim mask (light:
-/// kept, dark: removed), the trim loops and the trim curves' control polygons. Left click picks
+/// kept, dark: removed), the trim loops and the trim curves' control polygons. Presses go to
+/// tools (ui/tools/uvpaneltools.h) through a ToolRouter, as in the 3D view. Left click picks
 /// the nearest trim control point within a few pixels; dragging moves it (and any curve end
-/// that coincides with it, so loops stay closed), live in the document; the release pushes one
-/// MoveTrimPoints command. Esc cancels a drag.
+/// that coincides with it, so loops stay closed), live in the document through a LiveEdit; the
+/// release pushes one MoveTrimPoints command. Esc cancels a drag; a refused step says why.
 ///
 /// Drawing tools add a trim loop (one undo step): Rectangle and Circle (exact rational) by a
 /// press-drag-release (corner to corner, centre to radius); Polygon and Spline by clicks, ended
@@ -57,6 +67,13 @@ public:
     static constexpr double kMaxZoom = 64.0;
 
     UvPanel(Document* document, Selection* selection, QUndoStack* stack, QWidget* parent = nullptr);
+
+    // For the tools.
+    Document* document() const { return m_doc; }
+    Selection* selection() const { return m_selection; }
+    QUndoStack* undoStack() const { return m_stack; }
+    /// Emits message(text).
+    void showMessage(const QString& text) { Q_EMIT message(text); }
 
     /// The surface shown (the selection's current surface), or invalid.
     SurfaceId surface() const;
@@ -108,18 +125,9 @@ protected:
     void mouseDoubleClickEvent(QMouseEvent* event) override;
 
 private:
-    struct Dragged {
-        TrimPointRef ref;
-        glm::dvec2 from;
-    };
     QRectF domainRect() const;
     void refreshMask();
-    void finishDrag(bool cancel);
     void buildActions();
-    bool toolPress(QMouseEvent* event);
-    void finishShape(QPointF pixel);
-    void finishClicked();
-    void paintDrawing(class QPainter& p) const;
 
     Document* m_doc;
     Selection* m_selection;
@@ -130,16 +138,12 @@ private:
     SurfaceId m_maskSurface;
     std::uint64_t m_maskRevision = 0;
     std::uint64_t m_maskGeometry = 0;
-    std::vector<Dragged> m_drag;
-    QPointF m_pressPixel;
-    bool m_dragging = false;
+    ToolRouter m_tools;
+    /// The drawing tool of each UvTool but Select, installed by setTool.
+    std::map<UvTool, std::unique_ptr<Tool>> m_drawing;
 
     UvTool m_tool = UvTool::Select;
     bool m_drawHoles = true;
-    bool m_shaping = false;            ///< a rectangle or circle is being dragged out
-    QPointF m_shapeEnd;                ///< its current corner / radius point
-    std::vector<glm::dvec2> m_clicked; ///< polygon / spline points so far
-    QPointF m_hover;                   ///< the cursor, for the rubber segment
     double m_zoom = 1.0;
     glm::dvec2 m_centre{0.5, 0.5};
     bool m_panning = false;

@@ -24,11 +24,7 @@
 
 namespace kw {
 
-namespace {
-
-/// A closed polyline as one degree-1 curve (the first point repeated at the end), uniform
-/// knots on [0, 1].
-NurbsCurve2 closedPolyline(const std::vector<glm::dvec2>& pts) {
+NurbsCurve2 closedPolylineCurve(const std::vector<glm::dvec2>& pts) {
     NurbsCurve2 c;
     c.degree = 1;
     c.points = pts;
@@ -38,9 +34,8 @@ NurbsCurve2 closedPolyline(const std::vector<glm::dvec2>& pts) {
     return c;
 }
 
-/// A closed B-spline loop whose control polygon is the clicked points (first repeated at the
-/// end): clamped, cubic when there are enough points, so it starts and ends on the first one.
-NurbsCurve2 closedSpline(const std::vector<glm::dvec2>& pts) {
+// Clamped, so it starts and ends on the first point.
+NurbsCurve2 closedSplineCurve(const std::vector<glm::dvec2>& pts) {
     NurbsCurve2 c;
     c.points = pts;
     c.points.push_back(pts.front());
@@ -49,6 +44,8 @@ NurbsCurve2 closedSpline(const std::vector<glm::dvec2>& pts) {
     c.knots = clampedUniformKnots(c.degree, int(c.points.size()));
     return c;
 }
+
+namespace {
 
 /// Greville abscissa of control point k: where it pulls hardest on the curve.
 double greville(const NurbsCurve2& c, int k) {
@@ -110,8 +107,9 @@ void UvPanel::buildActions() {
 
 void UvPanel::setTool(UvTool tool) {
     m_tool = tool;
-    m_shaping = false;
-    m_clicked.clear();
+    if (Tool* drawing = m_tools.installed())
+        drawing->cancel(); // drops a half-drawn loop
+    m_tools.install(tool == UvTool::Select ? nullptr : m_drawing[tool].get());
     setCursor(tool == UvTool::Select ? Qt::ArrowCursor : Qt::CrossCursor);
     for (QAction* a : m_actions)
         if (a->isCheckable() && a->actionGroup())
@@ -149,62 +147,6 @@ QString UvPanel::crossingWarning() {
     return m_crossing;
 }
 
-bool UvPanel::toolPress(QMouseEvent* event) {
-    if (m_tool == UvTool::Select || !surface().isValid())
-        return false;
-    const QPointF at = event->position();
-    if (m_tool == UvTool::Rectangle || m_tool == UvTool::Circle) {
-        m_shaping = true;
-        m_pressPixel = m_shapeEnd = at;
-    } else {
-        m_clicked.push_back(toUv(at));
-    }
-    update();
-    return true;
-}
-
-void UvPanel::mouseDoubleClickEvent(QMouseEvent* event) {
-    if ((m_tool == UvTool::Polygon || m_tool == UvTool::Spline) && !m_clicked.empty()) {
-        // The double click's first press already added this point; its second adds nothing.
-        finishClicked();
-        event->accept();
-        return;
-    }
-    QWidget::mouseDoubleClickEvent(event);
-}
-
-void UvPanel::finishShape(QPointF pixel) {
-    m_shaping = false;
-    update();
-    const glm::dvec2 a = toUv(m_pressPixel), b = toUv(pixel);
-    if (std::hypot(pixel.x() - m_pressPixel.x(), pixel.y() - m_pressPixel.y()) < 3.0)
-        return; // a click, not a shape
-    if (m_tool == UvTool::Rectangle) {
-        const glm::dvec2 lo = glm::min(a, b), hi = glm::max(a, b);
-        addLoop({closedPolyline({lo, {hi.x, lo.y}, hi, {lo.x, hi.y}})}, tr("rectangular"));
-    } else {
-        addLoop({makeCircle2(a, glm::length(b - a))}, tr("circular"));
-    }
-}
-
-void UvPanel::finishClicked() {
-    std::vector<glm::dvec2> pts = m_clicked;
-    m_clicked.clear();
-    // A double click can leave its point twice; drop consecutive duplicates.
-    pts.erase(std::unique(pts.begin(), pts.end(),
-                          [](glm::dvec2 x, glm::dvec2 y) { return glm::length(x - y) < 1e-12; }),
-              pts.end());
-    update();
-    if (pts.size() < 3) {
-        Q_EMIT message(tr("A loop needs at least three points."));
-        return;
-    }
-    if (m_tool == UvTool::Polygon)
-        addLoop({closedPolyline(pts)}, tr("polygonal"));
-    else
-        addLoop({closedSpline(pts)}, tr("spline"));
-}
-
 bool UvPanel::addLoop(const std::vector<NurbsCurve2>& curves, const QString& what) {
     const Surface* s = m_doc->surface(surface());
     if (!s) {
@@ -227,7 +169,7 @@ bool UvPanel::addLoop(const std::vector<NurbsCurve2>& curves, const QString& wha
         // The domain boundary as outer loop first, so parity makes the new loop a hole.
         const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
         TrimLoop outer;
-        outer.curves = {closedPolyline(
+        outer.curves = {closedPolylineCurve(
             {{du.first, dv.first}, {du.last, dv.first}, {du.last, dv.last}, {du.first, dv.last}})};
         auto boundary = AddTrimLoop::create(m_doc, s->id, outer, 0);
         m_stack->beginMacro(tr("Add %1 hole").arg(what));
@@ -338,27 +280,6 @@ bool UvPanel::setTrimPointPosition(glm::dvec2 uv) {
     c->setText(tr("Set trim point to (%1, %2)").arg(uv.x).arg(uv.y));
     pushCommand(m_stack, std::move(c));
     return true;
-}
-
-void UvPanel::paintDrawing(QPainter& p) const {
-    p.setPen(QPen(QColor(40, 160, 60), 1.5, Qt::DashLine));
-    p.setBrush(Qt::NoBrush);
-    if (m_shaping && m_tool == UvTool::Rectangle)
-        p.drawRect(QRectF(m_pressPixel, m_shapeEnd).normalized());
-    if (m_shaping && m_tool == UvTool::Circle) {
-        const double r =
-            std::hypot(m_shapeEnd.x() - m_pressPixel.x(), m_shapeEnd.y() - m_pressPixel.y());
-        p.drawEllipse(m_pressPixel, r, r);
-    }
-    if (!m_clicked.empty()) {
-        QPolygonF poly;
-        for (const glm::dvec2& uv : m_clicked)
-            poly << toWidget(uv);
-        poly << m_hover;
-        p.drawPolyline(poly);
-        for (const QPointF& q : poly)
-            p.drawEllipse(q, 2.5, 2.5);
-    }
 }
 
 QWidget* makeUvEditor(UvPanel* panel, Selection* selection, Document* document) {

@@ -3,20 +3,17 @@
 
 #include "render/gl_context.h"
 #include "ui/analysiscontrols.h"
-#include "ui/edit/commands.h"
+#include "ui/tools/viewtools.h"
 
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
-#include <QRubberBand>
 #include <QTimer>
 #include <QUndoStack>
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
-#include <map>
 
 namespace kw {
 
@@ -44,9 +41,10 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     connect(m_doc, &Document::surfaceInserted, this, repaint);
     connect(m_doc, &Document::surfaceRemoved, this, repaint);
     connect(m_doc, &Document::lightsChanged, this, repaint);
+    for (auto& tool : makeViewTools(this))
+        m_tools.add(std::move(tool));
     connect(m_doc, &Document::sceneReset, this, [this] {
-        if (m_gesture == Gesture::DragPoints)
-            m_drag.clear();
+        m_tools.cancel(); // the live edit has already let go of the old scene's points
         m_gesture = Gesture::None;
         resetCamera();
     });
@@ -133,9 +131,38 @@ void Viewport::setControlNet(bool on) {
     update();
 }
 
-void Viewport::setTool(ViewTool* tool) {
-    m_tool = tool;
+void Viewport::setTool(Tool* tool) {
+    m_tools.install(tool);
+    setMouseTracking(tool != nullptr); // hover moves for the installed tool
     update();
+}
+
+bool Viewport::isDragging() const {
+    return m_tools.active() && m_tools.active()->editing();
+}
+
+void Viewport::showMessage(const QString& text) {
+    Q_EMIT message(text);
+}
+
+glm::dmat4 Viewport::surfaceDragMatrix(double* amount) const {
+    return m_tools.find<SurfaceDragTool>()->matrix(amount);
+}
+
+std::optional<ControlPointRef> Viewport::controlPointAt(QPointF pixel) {
+    const std::vector<SurfaceId> nets = netSurfaces();
+    if (nets.empty())
+        return std::nullopt;
+    m_picker.update(*m_doc, viewProjection(), &nets);
+    return m_picker.nearest(pixel);
+}
+
+std::vector<ControlPointRef> Viewport::controlPointsIn(const QRectF& rect) {
+    const std::vector<SurfaceId> nets = netSurfaces();
+    if (nets.empty())
+        return {};
+    m_picker.update(*m_doc, viewProjection(), &nets);
+    return m_picker.inRect(rect);
 }
 
 void Viewport::setControlNetForAll(bool on) {
@@ -270,8 +297,8 @@ void Viewport::paintGL() {
         return;
     }
     RenderOptions options = m_options;
-    const bool moving =
-        m_gesture != Gesture::None || (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
+    const bool moving = m_gesture != Gesture::None || m_tools.active() ||
+                        (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
     if (options.samples > 1 && aliasedWhileMoving()) {
         if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
             // A sample per frame: a moving view draws its first, a still one adds the rest.
@@ -355,218 +382,6 @@ std::optional<PickHit> Viewport::pickSurface(QPointF position) {
     return hit;
 }
 
-// ---- Mouse and keys
-
-void Viewport::mousePressEvent(QMouseEvent* event) {
-    setFocus(Qt::MouseFocusReason);
-    if (m_gesture != Gesture::None)
-        return;
-    const QPointF pixel = event->position();
-    m_pressPixel = m_lastPixel = pixel;
-    const Qt::KeyboardModifiers mods = event->modifiers();
-    if (event->button() == Qt::MiddleButton && (mods & Qt::ShiftModifier)) {
-        m_gesture = Gesture::Pan;
-    } else if (event->button() == Qt::MiddleButton ||
-               (event->button() == Qt::LeftButton && (mods & Qt::AltModifier))) {
-        m_gesture = Gesture::Orbit;
-    } else if (event->button() == Qt::RightButton) {
-        m_gesture = Gesture::Pan;
-    } else if (event->button() == Qt::LeftButton && m_tool &&
-               !(mods & (Qt::ControlModifier | Qt::AltModifier)) &&
-               m_tool->mousePress(event, viewProjection())) {
-        update();
-    } else if (event->button() == Qt::LeftButton) {
-        std::optional<ControlPointRef> hit;
-        const std::vector<SurfaceId> nets = netSurfaces();
-        if (!nets.empty()) {
-            m_picker.update(*m_doc, viewProjection(), &nets);
-            hit = m_picker.nearest(pixel);
-        }
-        const bool ctrl = mods & Qt::ControlModifier;
-        if (hit && ctrl && (mods & Qt::ShiftModifier)) {
-            // Ctrl + Shift drag on a point: its weight, up to raise.
-            const Surface* s = m_doc->surface(hit->surface);
-            m_weightRef = *hit;
-            m_weightFrom = s->geometry.weights[size_t(s->geometry.index(hit->i, hit->j))];
-            m_selection->setControlPoints({*hit});
-            m_gesture = Gesture::DragWeight;
-        } else if (ctrl) {
-            pressOnSurfaces(pixel);
-        } else if (hit) {
-            pressOnPoint(*hit, mods & Qt::ShiftModifier, pixel);
-        } else {
-            m_gesture = Gesture::RubberBand;
-            if (!m_band)
-                m_band = new QRubberBand(QRubberBand::Rectangle, this);
-            m_band->setGeometry(QRect(pixel.toPoint(), QSize()));
-            m_band->show();
-        }
-    }
-    event->accept();
-}
-
-void Viewport::pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel) {
-    std::vector<ControlPointRef> sel = m_selection->controlPoints();
-    const bool selected = std::binary_search(sel.begin(), sel.end(), ref);
-    if (additive && selected) {
-        // Shift-click on a picked point removes it; no drag.
-        sel.erase(std::lower_bound(sel.begin(), sel.end(), ref));
-        m_selection->setControlPoints(sel);
-        return;
-    }
-    if (additive)
-        sel.push_back(ref);
-    else if (!selected)
-        sel = {ref};
-    std::sort(sel.begin(), sel.end());
-    m_selection->setControlPoints(sel);
-    // Show the picked point's surface in the tree and panels.
-    if (m_selection->currentSurface() != ref.surface) {
-        const QModelIndex row = m_model->surfaceIndex(ref.surface);
-        m_selection->itemSelection()->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect |
-                                                               QItemSelectionModel::Rows);
-        // Changing the current row must not drop the picked points.
-        m_selection->setControlPoints(sel);
-    }
-    m_drag.clear();
-    for (const ControlPointRef& r : m_selection->controlPoints()) {
-        const Surface* s = m_doc->surface(r.surface);
-        const glm::dvec3 p = s->geometry.points[size_t(s->geometry.index(r.i, r.j))];
-        m_drag.push_back({r, p});
-        if (r == ref)
-            m_anchor = p;
-    }
-    m_pressPixel = pixel;
-    m_gesture = m_drag.empty() ? Gesture::None : Gesture::DragPoints;
-}
-
-void Viewport::mouseMoveEvent(QMouseEvent* event) {
-    const QPointF pixel = event->position();
-    const QPointF delta = pixel - m_lastPixel;
-    switch (m_gesture) {
-    case Gesture::None:
-        return;
-    case Gesture::Orbit:
-        m_autoFit = false;
-        m_camera.orbit(delta.x(), delta.y());
-        update();
-        break;
-    case Gesture::Pan:
-        m_autoFit = false;
-        m_camera.pan(delta.x(), delta.y(), size());
-        update();
-        break;
-    case Gesture::RubberBand:
-        if (m_band)
-            m_band->setGeometry(QRectF(m_pressPixel, pixel).normalized().toRect());
-        break;
-    case Gesture::DragWeight: {
-        // Doubling per 100 pixels up; the document follows live, the release records one step.
-        const double w = m_weightFrom * std::pow(2.0, (m_pressPixel.y() - pixel.y()) / 100.0);
-        if (const Surface* s = m_doc->surface(m_weightRef.surface))
-            m_doc->setWeight(m_weightRef.surface, s->geometry.index(m_weightRef.i, m_weightRef.j),
-                             std::clamp(w, 1e-6, 1e6));
-        update();
-        break;
-    }
-    case Gesture::DragPoints:
-        m_snap = event->modifiers() & Qt::ShiftModifier;
-        m_moveClock.start();
-        m_moveTimed = true;
-        dragTo(pixel);
-        m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
-        break;
-    }
-    m_lastPixel = pixel;
-    event->accept();
-}
-
-void Viewport::dragTo(QPointF pixel) {
-    m_lastPixel = pixel;
-    applyDrag();
-}
-
-Viewport::PointsBySurface Viewport::dragPointsBySurface(const glm::dmat4& map) const {
-    PointsBySurface bySurface;
-    for (const DragPoint& d : m_drag) {
-        const Surface* s = m_doc->surface(d.ref.surface);
-        if (!s || d.ref.i >= s->geometry.countU || d.ref.j >= s->geometry.countV)
-            continue;
-        auto& [indices, points] = bySurface[d.ref.surface];
-        indices.push_back(s->geometry.index(d.ref.i, d.ref.j));
-        points.push_back(glm::dvec3(map * glm::dvec4(d.from, 1.0)));
-    }
-    return bySurface;
-}
-
-void Viewport::applyDrag() {
-    if (m_movingSurfaces && m_surfaceDrag != SurfaceDrag::Move) {
-        applyTransformDrag();
-        return;
-    }
-    const ViewProjection view = viewProjection();
-    glm::dvec3 delta(0.0);
-    if (m_axis >= 0) {
-        glm::dvec3 axis(0.0);
-        axis[m_axis] = 1.0;
-        delta =
-            view.onAxis(m_lastPixel, m_anchor, axis) - view.onAxis(m_pressPixel, m_anchor, axis);
-    } else {
-        delta = view.onViewPlane(m_lastPixel, m_anchor) - view.onViewPlane(m_pressPixel, m_anchor);
-    }
-    // A translation: exactly d.from + delta.
-    const PointsBySurface bySurface = dragPointsBySurface(glm::translate(glm::dmat4(1.0), delta));
-    for (const auto& [id, change] : bySurface)
-        m_doc->setControlPoints(id, change.first, change.second);
-}
-
-void Viewport::finishDrag(bool cancel) {
-    if (m_movingSurfaces && m_surfaceDrag != SurfaceDrag::Move) {
-        finishTransformDrag(cancel);
-        return;
-    }
-    m_gesture = Gesture::None;
-    const PointsBySurface bySurface = dragPointsBySurface(glm::dmat4(1.0));
-    m_drag.clear();
-    std::vector<std::unique_ptr<QUndoCommand>> commands;
-    for (const auto& [id, change] : bySurface) {
-        const auto& [indices, from] = change;
-        const Surface* s = m_doc->surface(id);
-        std::vector<glm::dvec3> to;
-        for (int index : indices)
-            to.push_back(s->geometry.points[size_t(index)]);
-        if (cancel) {
-            m_doc->setControlPoints(id, indices, from);
-            continue;
-        }
-        if (from == to)
-            continue;
-        QString error;
-        if (auto c =
-                MoveControlPoints::create(m_doc, id, indices, from, to, MoveKind::Drag, &error))
-            commands.push_back(std::move(c));
-        else
-            qWarning("knotwork: drag not recorded: %s", qPrintable(error));
-    }
-    const bool surfaces = m_movingSurfaces;
-    m_movingSurfaces = false;
-    if (commands.size() == 1) {
-        if (surfaces)
-            commands.front()->setText(QStringLiteral("Move surface"));
-        pushCommand(m_stack, std::move(commands.front()));
-    } else if (commands.size() > 1) {
-        int points = 0;
-        for (const auto& [id, change] : bySurface)
-            points += int(change.first.size());
-        m_stack->beginMacro(surfaces ? QStringLiteral("Move %1 surfaces").arg(commands.size())
-                                     : QStringLiteral("Move %1 control points").arg(points));
-        for (auto& c : commands)
-            pushCommand(m_stack, std::move(c));
-        m_stack->endMacro();
-    }
-    update();
-}
-
 void Viewport::selectClickedSurface(SurfaceId id, bool additive) {
     const QModelIndex row = m_model->surfaceIndex(id);
     if (!row.isValid())
@@ -582,66 +397,65 @@ void Viewport::selectClickedSurface(SurfaceId id, bool additive) {
     items->setCurrentIndex(row, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
 }
 
-void Viewport::finishRubberBand(QPointF pixel, bool additive) {
-    m_gesture = Gesture::None;
-    if (m_band)
-        m_band->hide();
-    const QRectF rect = QRectF(m_pressPixel, pixel).normalized();
-    std::vector<ControlPointRef> picked;
-    if (rect.width() < 3 && rect.height() < 3) {
-        // A click, not a band: select the surface drawn at that pixel (the renderer's own id
-        // buffer, so what is picked is what is seen, trims included).
-        if (const std::optional<PickHit> hit = pickSurface(pixel)) {
-            selectClickedSurface(hit->surface, additive);
-            return;
-        }
+// ---- Mouse and keys: navigation here, every other gesture to the tools
+
+void Viewport::mousePressEvent(QMouseEvent* event) {
+    setFocus(Qt::MouseFocusReason);
+    event->accept();
+    if (m_gesture != Gesture::None || m_tools.active())
+        return;
+    m_lastPixel = event->position();
+    const Qt::KeyboardModifiers mods = event->modifiers();
+    if (event->button() == Qt::MiddleButton && (mods & Qt::ShiftModifier))
+        m_gesture = Gesture::Pan;
+    else if (event->button() == Qt::MiddleButton ||
+             (event->button() == Qt::LeftButton && (mods & Qt::AltModifier)))
+        m_gesture = Gesture::Orbit;
+    else if (event->button() == Qt::RightButton)
+        m_gesture = Gesture::Pan;
+    else if (event->button() == Qt::LeftButton &&
+             m_tools.press(event, !(mods & (Qt::ControlModifier | Qt::AltModifier))))
+        update();
+}
+
+void Viewport::mouseMoveEvent(QMouseEvent* event) {
+    const QPointF pixel = event->position();
+    const QPointF delta = pixel - m_lastPixel;
+    m_lastPixel = pixel;
+    event->accept();
+    if (m_gesture == Gesture::Orbit || m_gesture == Gesture::Pan) {
+        m_autoFit = false;
+        if (m_gesture == Gesture::Orbit)
+            m_camera.orbit(delta.x(), delta.y());
+        else
+            m_camera.pan(delta.x(), delta.y(), size());
+        update();
+        return;
     }
-    if (rect.width() >= 3 || rect.height() >= 3) {
-        const std::vector<SurfaceId> nets = netSurfaces();
-        if (!nets.empty()) {
-            m_picker.update(*m_doc, viewProjection(), &nets);
-            picked = m_picker.inRect(rect);
-        }
+    // A drag step's time from this event to the frame that shows it (dragMetrics).
+    m_moveClock.start();
+    const bool drag = m_tools.move(event);
+    if (drag && isDragging()) {
+        m_moveTimed = true;
+        m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
     }
-    if (additive) {
-        std::vector<ControlPointRef> sel = m_selection->controlPoints();
-        sel.insert(sel.end(), picked.begin(), picked.end());
-        std::sort(sel.begin(), sel.end());
-        sel.erase(std::unique(sel.begin(), sel.end()), sel.end());
-        picked = std::move(sel);
-    }
-    m_selection->setControlPoints(picked);
+    if (m_tools.installed() && !drag)
+        update(); // the installed tool's hover feedback
 }
 
 void Viewport::mouseReleaseEvent(QMouseEvent* event) {
-    const QPointF pixel = event->position();
-    switch (m_gesture) {
-    case Gesture::DragWeight:
-        if (event->button() != Qt::LeftButton)
-            return;
-        finishWeightDrag(false);
-        break;
-    case Gesture::DragPoints:
-        if (event->button() != Qt::LeftButton)
-            return;
-        m_lastPixel = pixel;
-        m_snap = event->modifiers() & Qt::ShiftModifier;
-        applyDrag();
-        finishDrag(false);
-        break;
-    case Gesture::RubberBand:
-        if (event->button() != Qt::LeftButton)
-            return;
-        finishRubberBand(pixel, event->modifiers() & Qt::ShiftModifier);
-        break;
-    case Gesture::Orbit:
-    case Gesture::Pan:
-        m_gesture = Gesture::None;
-        break;
-    case Gesture::None:
-        break;
-    }
     event->accept();
+    if (m_gesture != Gesture::None) {
+        m_gesture = Gesture::None;
+        return;
+    }
+    if (m_tools.release(event))
+        update();
+}
+
+void Viewport::mouseDoubleClickEvent(QMouseEvent* event) {
+    if (!m_tools.doubleClick(event))
+        QOpenGLWidget::mouseDoubleClickEvent(event);
 }
 
 void Viewport::wheelEvent(QWheelEvent* event) {
@@ -667,28 +481,12 @@ void Viewport::wheelEvent(QWheelEvent* event) {
 
 void Viewport::keyPressEvent(QKeyEvent* event) {
     const int key = event->key();
-    if (m_tool && m_gesture == Gesture::None && m_tool->keyPress(event)) {
+    const bool axisKey = key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z;
+    // Held X, Y or Z constrains a drag to that world axis; the drag's tool then steps again.
+    if (axisKey && !event->isAutoRepeat())
+        m_axis = key - Qt::Key_X;
+    if (m_tools.key(event) || axisKey) {
         update();
-        event->accept();
-        return;
-    }
-    if (key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) {
-        if (!event->isAutoRepeat()) {
-            m_axis = key - Qt::Key_X;
-            if (m_gesture == Gesture::DragPoints)
-                applyDrag();
-            update();
-        }
-        event->accept();
-        return;
-    }
-    if (key == Qt::Key_Escape && m_gesture == Gesture::DragPoints) {
-        finishDrag(true);
-        event->accept();
-        return;
-    }
-    if (key == Qt::Key_Escape && m_gesture == Gesture::DragWeight) {
-        finishWeightDrag(true);
         event->accept();
         return;
     }
@@ -700,10 +498,13 @@ void Viewport::keyReleaseEvent(QKeyEvent* event) {
     if ((key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) && !event->isAutoRepeat()) {
         if (m_axis == key - Qt::Key_X) {
             m_axis = -1;
-            if (m_gesture == Gesture::DragPoints)
-                applyDrag();
+            m_tools.keyRelease(event);
             update();
         }
+        event->accept();
+        return;
+    }
+    if (m_tools.keyRelease(event)) {
         event->accept();
         return;
     }

@@ -6,11 +6,11 @@
 #include "render/renderer.h"
 #include "ui/cameracontroller.h"
 #include "ui/controlpointpicker.h"
+#include "ui/tools/tool.h"
 
 #include <QElapsedTimer>
 #include <QOpenGLDebugLogger>
 #include <QOpenGLWidget>
-#include <QPointer>
 #include <map>
 #include <memory>
 #include <vector>
@@ -18,32 +18,20 @@
 class QKeyEvent;
 class QMouseEvent;
 class QPainter;
-class QRubberBand;
 class QUndoStack;
 
 class QTimer;
 
 namespace kw {
 
-/// A tool that takes the view's plain left clicks and keys first (the curve tool) and draws
-/// over the frame. Viewport::setTool installs one; navigation keeps working under it.
-class ViewTool {
-public:
-    virtual ~ViewTool() = default;
-    /// A left press without Ctrl or Alt; true when the tool used it (no gesture starts).
-    virtual bool mousePress(QMouseEvent* event, const ViewProjection& view) = 0;
-    /// True when the tool used the key.
-    virtual bool keyPress(QKeyEvent* event) = 0;
-    virtual void paint(QPainter& painter, const ViewProjection& view) = 0;
-};
-
-/// Mouse: left click picks the nearest control point within a few pixels (Shift adds or
-/// removes), left drag on a point moves the selected points in the view plane (hold X, Y or Z
-/// to move along that world axis; Esc cancels), left drag elsewhere draws a rubber band; middle
-/// drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel zooms.
-/// During a drag the document is changed directly so the surface follows; the release pushes
-/// one MoveControlPoints command (a macro when points of several surfaces move), whose first
-/// redo() finds the document already there and changes nothing.
+/// Mouse: middle drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel
+/// zooms; every other press goes to the tools (ui/tools/tool.h), the installed one first, then
+/// those of ui/tools/viewtools.cpp in order: Ctrl+Shift drag on a point sets its weight, Ctrl
+/// drag moves, rotates or scales the selected surfaces, a left click picks the nearest control
+/// point within a few pixels (Shift adds or removes) and a drag from it moves the picked
+/// points in the view plane (hold X, Y or Z to move along that world axis), a left drag
+/// elsewhere draws a rubber band. Esc cancels a drag. A drag edits the document live through
+/// a LiveEdit and its release is one undo step; a refused step's reason goes to message().
 class Viewport : public QOpenGLWidget {
     Q_OBJECT
 public:
@@ -128,13 +116,33 @@ public:
     /// The map the running rotate or scale drag applies (identity otherwise), and its angle in
     /// radians or its factor through `amount`.
     glm::dmat4 surfaceDragMatrix(double* amount = nullptr) const;
-    /// Installs a tool (nullptr removes it); the tool must outlive its installation.
-    void setTool(ViewTool* tool);
-    ViewTool* tool() const { return m_tool; }
+    /// Installs a tool (a mode such as the curve tool; nullptr removes it): it sees plain
+    /// left presses, hover moves and keys first, and draws over the frame. The tool must
+    /// outlive its installation; navigation keeps working under it.
+    void setTool(Tool* tool);
+    Tool* tool() const { return m_tools.installed(); }
+
+    // For the tools: the document and what they pick in this view.
+    Document* document() const { return m_doc; }
+    SceneModel* sceneModel() const { return m_model; }
+    Selection* selection() const { return m_selection; }
+    QUndoStack* undoStack() const { return m_stack; }
+    /// The nearest pickable control point within a few pixels of `pixel`, if any.
+    std::optional<ControlPointRef> controlPointAt(QPointF pixel);
+    /// The pickable control points inside `rect` (widget pixels).
+    std::vector<ControlPointRef> controlPointsIn(const QRectF& rect);
+    /// Click selection: the surface alone, or toggled in the selection with `additive`.
+    void selectClickedSurface(SurfaceId id, bool additive);
+    /// The surfaces that are not hidden, in document order: the selected ones only, or all.
+    /// Hidden surfaces show no outline or net, and neither their points nor they can be dragged.
+    std::vector<SurfaceId> shownSurfaces(bool selectedOnly) const;
+    /// Emits message(text): a tool's word for the status bar.
+    void showMessage(const QString& text);
 
     /// Empty when the renderer is ready; else why it is not (shown in the view).
     QString glError() const { return m_glError; }
-    bool isDragging() const { return m_gesture == Gesture::DragPoints; }
+    /// A tool's drag is editing the document (points, surfaces or a weight).
+    bool isDragging() const;
     /// World axis a drag is constrained to (0 x, 1 y, 2 z) or -1.
     int axisConstraint() const { return m_axis; }
 
@@ -165,6 +173,8 @@ Q_SIGNALS:
     void frameDrawn(const kw::FrameReport& frame);
     /// The renderer could not be set up or a frame failed (message for the status bar).
     void renderError(const QString& message);
+    /// A tool's message for the status bar, such as why a drag step was refused.
+    void message(const QString& text);
 
 protected:
     void initializeGL() override;
@@ -173,48 +183,22 @@ protected:
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
+    void mouseDoubleClickEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
     void keyReleaseEvent(QKeyEvent* event) override;
     void focusOutEvent(QFocusEvent* event) override;
 
 private:
-    enum class Gesture { None, DragPoints, DragWeight, RubberBand, Orbit, Pan };
-    struct DragPoint {
-        ControlPointRef ref;
-        glm::dvec3 from;
-    };
-    /// Net indices and new positions of control points, by surface.
-    using PointsBySurface =
-        std::map<SurfaceId, std::pair<std::vector<int>, std::vector<glm::dvec3>>>;
-    /// The dragged points still in their nets (an undo by key may re-size a net under a drag:
-    /// lost points are skipped), grouped by surface, each at `map` applied to its press-time
-    /// position (identity: back where the drag began).
-    PointsBySurface dragPointsBySurface(const glm::dmat4& map) const;
+    /// Navigation; every other gesture is a tool's.
+    enum class Gesture { None, Orbit, Pan };
     void releaseGl();
     /// Draws again kStillMs from now (restarted by every call): the still frame after a move.
     void drawAgainWhenStill();
-    void pressOnPoint(const ControlPointRef& ref, bool additive, QPointF pixel);
-    void dragTo(QPointF pixel);
-    void applyDrag();
-    void finishDrag(bool cancel);
-    void finishRubberBand(QPointF pixel, bool additive);
-    /// Click selection: the surface alone, or toggled in the selection with Shift.
-    void selectClickedSurface(SurfaceId id, bool additive);
     void drawSelection();
     void drawLegend();
     /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
     void drawOverlays(class QPainter& p, const ViewProjection& view);
-    /// Ctrl + drag: every control point of the selected surfaces follows the drag.
-    bool pressOnSurfaces(QPointF pixel);
-    /// The surfaces that are not hidden, in document order: the selected ones only, or all.
-    /// Hidden surfaces show no outline or net, and neither their points nor they can be dragged.
-    std::vector<SurfaceId> shownSurfaces(bool selectedOnly) const;
-    void finishWeightDrag(bool cancel);
-    /// Rotate and scale drags (viewport_transform.cpp).
-    void applyTransformDrag();
-    void finishTransformDrag(bool cancel);
-    QString surfaceDragText(double amount) const;
     double aspect() const;
 
     Document* m_doc;
@@ -236,23 +220,16 @@ private:
     FrameReport m_lastReport;
 
     Gesture m_gesture = Gesture::None;
-    QPointF m_pressPixel, m_lastPixel;
-    glm::dvec3 m_anchor{0.0};
-    std::vector<DragPoint> m_drag;
+    QPointF m_lastPixel;
     int m_axis = -1;
-    bool m_movingSurfaces = false; ///< the DragPoints gesture moves whole surfaces
     SurfaceDrag m_surfaceDrag = SurfaceDrag::Move;
-    bool m_snap = false; ///< Shift held during a rotate or scale drag
-    ViewTool* m_tool = nullptr;
-    ControlPointRef m_weightRef; ///< DragWeight: the point and its weight at press time
-    double m_weightFrom = 1.0;
+    ToolRouter m_tools;
     bool m_netForAll = false;
     bool m_grid = false;
     bool m_axes = true;
     bool m_lightBackground = false;
     glm::vec4 m_flatBackground = RenderOptions{}.background; ///< setBackground's colour
     bool m_autoFit = true; ///< refit on resize until the user moves the camera
-    QPointer<QRubberBand> m_band;
 
     QElapsedTimer m_moveClock; ///< started by a drag's mouse move, read by the next paintGL
     bool m_moveTimed = false;

@@ -1,13 +1,9 @@
 // Viewport overlays drawn with QPainter over the rendered frame (selection highlight, control
-// nets of the selected surfaces, ground grid, axis indicator) and the whole-surface and weight
-// drags.
+// nets of the selected surfaces, ground grid, axis indicator, the tools' overlays).
 #include "model/nurbs/trim.h"
-#include "ui/edit/commands.h"
 #include "ui/viewport.h"
 
-#include <QMouseEvent>
 #include <QPainter>
-#include <QUndoStack>
 #include <algorithm>
 #include <cmath>
 
@@ -74,8 +70,6 @@ void Viewport::drawSelection() {
     p.setRenderHint(QPainter::Antialiasing);
     const ViewProjection view = viewProjection();
     drawOverlays(p, view);
-    if (m_tool)
-        m_tool->paint(p, view);
     p.setPen(QPen(QColor(255, 80, 40), 2.0));
     p.setBrush(Qt::NoBrush);
     for (const ControlPointRef& r : refs) {
@@ -85,35 +79,7 @@ void Viewport::drawSelection() {
         if (const auto px = view.project(s->geometry.points[size_t(s->geometry.index(r.i, r.j))]))
             p.drawRect(QRectF(*px - QPointF(5, 5), QSizeF(10, 10)));
     }
-    if (m_gesture == Gesture::DragWeight) {
-        if (const Surface* s = m_doc->surface(m_weightRef.surface))
-            p.drawText(
-                QPointF(10, height() - 10),
-                QStringLiteral("Weight %1")
-                    .arg(s->geometry
-                             .weights[size_t(s->geometry.index(m_weightRef.i, m_weightRef.j))],
-                         0, 'g', 5));
-    }
-    if (m_axis >= 0 && m_gesture == Gesture::DragPoints) {
-        static const char* const names[3] = {"X", "Y", "Z"};
-        static const QColor colors[3] = {QColor(230, 70, 70), QColor(90, 200, 90),
-                                         QColor(90, 130, 240)};
-        glm::dvec3 dir(0.0);
-        dir[m_axis] = 1.0;
-        const auto a = view.project(m_anchor - dir * 1e3), b = view.project(m_anchor + dir * 1e3);
-        p.setPen(QPen(colors[m_axis], 1.0, Qt::DashLine));
-        if (a && b)
-            p.drawLine(*a, *b);
-        p.drawText(QPointF(10, height() - 10),
-                   QStringLiteral("Constrained to %1").arg(QLatin1String(names[m_axis])));
-    }
-    if (m_gesture == Gesture::DragPoints && m_movingSurfaces &&
-        m_surfaceDrag != SurfaceDrag::Move) {
-        double amount = 0.0;
-        surfaceDragMatrix(&amount);
-        p.setPen(Qt::white);
-        p.drawText(QPointF(10, height() - 28), surfaceDragText(amount));
-    }
+    m_tools.paint(p);
 }
 
 void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
@@ -190,42 +156,6 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
             p.drawText(tip + QPointF(3, 4), QLatin1String(names[k]));
         }
     }
-}
-
-bool Viewport::pressOnSurfaces(QPointF pixel) {
-    m_drag.clear();
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (SurfaceId id : shownSurfaces(true)) { // hidden ones stay where they are
-        const Surface* s = m_doc->surface(id);
-        for (int j = 0; j < s->geometry.countV; ++j)
-            for (int i = 0; i < s->geometry.countU; ++i) {
-                const glm::dvec3 x = s->geometry.points[size_t(s->geometry.index(i, j))];
-                m_drag.push_back({ControlPointRef{id, i, j}, x});
-                lo = glm::min(lo, x);
-                hi = glm::max(hi, x);
-            }
-    }
-    if (m_drag.empty())
-        return false;
-    m_anchor = 0.5 * (lo + hi);
-    m_pressPixel = m_lastPixel = pixel;
-    m_movingSurfaces = true;
-    m_gesture = Gesture::DragPoints;
-    return true;
-}
-
-void Viewport::finishWeightDrag(bool cancel) {
-    m_gesture = Gesture::None;
-    const Surface* s = m_doc->surface(m_weightRef.surface);
-    if (!s || m_weightRef.i >= s->geometry.countU || m_weightRef.j >= s->geometry.countV)
-        return;
-    const int index = s->geometry.index(m_weightRef.i, m_weightRef.j);
-    const double to = s->geometry.weights[size_t(index)];
-    // Back to the press-time weight, then one SetWeight step to the final one.
-    m_doc->setWeight(m_weightRef.surface, index, m_weightFrom);
-    if (!cancel && to != m_weightFrom)
-        pushCommand(m_stack, SetWeight::create(m_doc, m_weightRef.surface, index, to));
-    update();
 }
 
 } // namespace kw

@@ -4,7 +4,7 @@
 #include "model/cad/cadprocess.h"
 #include "model/cad/cadtempdir.h"
 #include "model/cad/handover.h"
-#include "model/savefile.h"
+#include "model/io/savefile.h"
 
 #include <QDir>
 #include <QElapsedTimer>

@@ -4,8 +4,8 @@
 // and the child's start and module load are paid once, not per edit.
 #pragma once
 
-#include "model/meshobj.h"
-#include "model/scene.h"
+#include "model/io/meshobj.h"
+#include "model/document/scene.h"
 
 #include <QString>
 #include <memory>

@@ -219,18 +219,31 @@ bool Document::setName(SurfaceId id, const QString& name) {
     return true;
 }
 
-bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
-                                const std::vector<glm::dvec3>& positions) {
-    Surface* s = mutableSurface(id);
-    if (!s || indices.empty() || indices.size() != positions.size())
-        return false;
+QString Document::controlPointsError(SurfaceId id, const std::vector<int>& indices,
+                                     const std::vector<glm::dvec3>& positions) const {
+    const Surface* s = surface(id);
+    if (!s)
+        return QStringLiteral("no surface with id %1").arg(id.value);
+    if (indices.empty() || indices.size() != positions.size())
+        return QStringLiteral("need one position per control point");
     std::set<int> seen;
     for (size_t k = 0; k < indices.size(); ++k) {
         const int i = indices[k];
-        if (i < 0 || size_t(i) >= s->geometry.points.size() || !seen.insert(i).second ||
-            !finite(positions[k]))
-            return false;
+        if (i < 0 || size_t(i) >= s->geometry.points.size())
+            return QStringLiteral("control point index %1 out of range").arg(i);
+        if (!seen.insert(i).second)
+            return QStringLiteral("control point %1 listed twice").arg(i);
+        if (!finite(positions[k]))
+            return QStringLiteral("control point positions must be finite");
     }
+    return {};
+}
+
+bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                const std::vector<glm::dvec3>& positions) {
+    if (!controlPointsError(id, indices, positions).isEmpty())
+        return false;
+    Surface* s = mutableSurface(id);
     bool changed = false;
     for (size_t k = 0; k < indices.size(); ++k) {
         glm::dvec3& p = s->geometry.points[size_t(indices[k])];
@@ -242,12 +255,21 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
     return true;
 }
 
+QString Document::weightError(SurfaceId id, int index, double weight) const {
+    const Surface* s = surface(id);
+    if (!s)
+        return QStringLiteral("no surface with id %1").arg(id.value);
+    if (index < 0 || size_t(index) >= s->geometry.weights.size())
+        return QStringLiteral("control point index %1 out of range").arg(index);
+    if (!std::isfinite(weight) || weight <= 0)
+        return QStringLiteral("weight %1 must be finite and > 0").arg(weight);
+    return {};
+}
+
 bool Document::setWeight(SurfaceId id, int index, double weight) {
-    Surface* s = mutableSurface(id);
-    if (!s || index < 0 || size_t(index) >= s->geometry.weights.size() || !std::isfinite(weight) ||
-        weight <= 0)
+    if (!weightError(id, index, weight).isEmpty())
         return false;
-    double& w = s->geometry.weights[size_t(index)];
+    double& w = mutableSurface(id)->geometry.weights[size_t(index)];
     if (w == weight)
         return true;
     w = weight;
@@ -363,39 +385,61 @@ bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
 
 // All points move first, then each touched loop must still be closed (trimLoopError): a curve
 // end moves together with the coinciding end of its neighbour in one call.
-bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
-                             const std::vector<glm::dvec2>& positions) {
+QString Document::movedTrims(const std::vector<TrimPointRef>& refs,
+                             const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
+                             std::set<int>& touched) const {
     if (refs.empty() || refs.size() != positions.size())
-        return false;
+        return QStringLiteral("need one position per trim point");
     const SurfaceId id = refs.front().surface;
-    Surface* s = mutableSurface(id);
+    const Surface* s = surface(id);
     if (!s)
-        return false;
-    std::vector<TrimLoop> trims = s->trims;
-    std::set<int> touched;
+        return QStringLiteral("no surface with id %1").arg(id.value);
+    trims = s->trims;
     std::set<TrimPointRef> seen;
     for (size_t k = 0; k < refs.size(); ++k) {
         const TrimPointRef& ref = refs[k];
-        const int li = loopIndex(*s, ref.loop);
-        if (ref.surface != id || li < 0 || !std::isfinite(positions[k].x) ||
-            !std::isfinite(positions[k].y) || !seen.insert(ref).second)
-            return false;
-        std::vector<NurbsCurve2>& curves = trims[size_t(li)].curves;
-        if (ref.curve < 0 || size_t(ref.curve) >= curves.size())
-            return false;
-        std::vector<glm::dvec2>& points = curves[size_t(ref.curve)].points;
-        if (ref.index < 0 || size_t(ref.index) >= points.size())
-            return false;
-        points[size_t(ref.index)] = positions[k];
+        const int li = ref.surface == id ? loopIndex(*s, ref.loop) : -1;
+        const std::vector<NurbsCurve2>* curves = li >= 0 ? &trims[size_t(li)].curves : nullptr;
+        if (ref.surface != id)
+            return QStringLiteral("trim points of one surface at a time");
+        if (!curves || ref.curve < 0 || size_t(ref.curve) >= curves->size() || ref.index < 0 ||
+            size_t(ref.index) >= (*curves)[size_t(ref.curve)].points.size())
+            return QStringLiteral("no trim point %1 of curve %2 in loop %3 of surface %4")
+                .arg(ref.index)
+                .arg(ref.curve)
+                .arg(ref.loop.value)
+                .arg(ref.surface.value);
+        if (!seen.insert(ref).second)
+            return QStringLiteral("trim point listed twice");
+        if (!std::isfinite(positions[k].x) || !std::isfinite(positions[k].y))
+            return QStringLiteral("trim point positions must be finite");
+        trims[size_t(li)].curves[size_t(ref.curve)].points[size_t(ref.index)] = positions[k];
         touched.insert(li);
     }
+    for (int li : touched)
+        if (const QString why = trimLoopError(trims[size_t(li)]); !why.isEmpty())
+            return why;
+    return {};
+}
+
+QString Document::trimPointsError(const std::vector<TrimPointRef>& refs,
+                                  const std::vector<glm::dvec2>& positions) const {
+    std::vector<TrimLoop> trims;
+    std::set<int> touched;
+    return movedTrims(refs, positions, trims, touched);
+}
+
+bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
+                             const std::vector<glm::dvec2>& positions) {
+    std::vector<TrimLoop> trims;
+    std::set<int> touched;
+    if (!movedTrims(refs, positions, trims, touched).isEmpty())
+        return false;
+    Surface* s = mutableSurface(refs.front().surface);
     if (trims == s->trims)
         return true;
-    for (int li : touched)
-        if (!trimLoopError(trims[size_t(li)]).isEmpty())
-            return false;
     s->trims = std::move(trims);
-    bump(id, Aspect::Trims);
+    bump(s->id, Aspect::Trims);
     return true;
 }
 

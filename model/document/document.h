@@ -8,6 +8,7 @@
 #include <QObject>
 #include <QString>
 #include <cstdint>
+#include <set>
 #include <vector>
 
 namespace kw {
@@ -100,6 +101,17 @@ public:
     /// or repeated, a position is not finite or a touched loop would no longer be closed.
     bool setTrimPoints(const std::vector<TrimPointRef>& refs,
                        const std::vector<glm::dvec2>& positions);
+    /// The one rule for the point edits above (the mutators, the undo commands and the live
+    /// drags all ask it): why the edit would be refused, or an empty string when it would be
+    /// applied. Control points: a known surface, at least one index, one finite position per
+    /// index, every index in the net and listed once. Weights: a known point, finite and > 0.
+    /// Trim points: known and listed once, all of one surface, finite, and every touched loop
+    /// still closed (kw::trimLoopError).
+    QString controlPointsError(SurfaceId id, const std::vector<int>& indices,
+                               const std::vector<glm::dvec3>& positions) const;
+    QString weightError(SurfaceId id, int index, double weight) const;
+    QString trimPointsError(const std::vector<TrimPointRef>& refs,
+                            const std::vector<glm::dvec2>& positions) const;
     /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
     bool setLights(std::vector<Light> lights);
     bool setCamera(const Camera& camera);
@@ -128,6 +140,11 @@ Q_SIGNALS:
 
 private:
     Surface* mutableSurface(SurfaceId id);
+    /// The surface's trims with the moved trim points, and the indices of the touched loops;
+    /// the reason when trimPointsError refuses.
+    QString movedTrims(const std::vector<TrimPointRef>& refs,
+                       const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
+                       std::set<int>& touched) const;
     void bump(SurfaceId id, Aspects aspects);
     void openSolid(int solid);
     void closeSolid(SurfaceId id);

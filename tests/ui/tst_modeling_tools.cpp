@@ -338,7 +338,7 @@ private Q_SLOTS:
 
         // Extrude: five clicks, Enter. The curve passes through the clicked points.
         act("actionDrawExtrude")->trigger();
-        QCOMPARE(vp->tool(), static_cast<ViewTool*>(tools->curveTool()));
+        QCOMPARE(vp->tool(), static_cast<Tool*>(tools->curveTool()));
         const QPoint c(vp->width() / 2, vp->height() / 2);
         const QPoint clicks[] = {c + QPoint(-200, 40), c + QPoint(-110, -60), c + QPoint(-10, 10),
                                  c + QPoint(90, -80), c + QPoint(190, 30)};

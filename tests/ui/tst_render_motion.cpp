@@ -18,8 +18,8 @@
 // Axis_of_bearing; docs/PERFORMANCE.md ## Edges). The camera moves through
 // CameraController::orbit and the wheel's zoom towards the cursor (Viewport::wheelEvent's
 // arithmetic); the drag goes through Document::setControlPoints with the editor's view-plane
-// delta (Viewport::applyDrag) and ends with the MoveControlPoints command it pushes on release,
-// then undo and redo.
+// delta (ui/tools/pointdragtool.cpp) and ends with the MoveControlPoints command its LiveEdit
+// pushes on release, then undo and redo.
 //
 // What is held:
 // - no crack the reference covers. Where a face's trim loop runs along its polygon's edge (the
@@ -595,7 +595,7 @@ private Q_SLOTS:
         QVERIFY(paper.silhouetteMax > 1.0);
     }
 
-    // A drag (Viewport::pressOnPoint, applyDrag, finishDrag): one control point of the face the
+    // A drag (PointDragTool through LiveEdit): one control point of the face the
     // fitted view shows most, the one projected nearest that face's pixels' centre, dragged in
     // the view plane 5 px right and 3 px up per mouse move through Document::setControlPoints,
     // then released (the MoveControlPoints command, pushed), undone and redone. Every frame is

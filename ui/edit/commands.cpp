@@ -16,17 +16,6 @@ namespace kw {
 
 using namespace edit_detail;
 
-namespace {
-
-bool finite(const glm::dvec3& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-bool finite(const glm::dvec2& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y);
-}
-
-} // namespace
-
 DocumentCommand::DocumentCommand(Document* document, const QString& text)
     : QUndoCommand(text), m_doc(document) {}
 
@@ -52,21 +41,15 @@ std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document,
                                                              std::vector<glm::dvec3> from,
                                                              std::vector<glm::dvec3> to,
                                                              MoveKind kind, QString* error) {
-    const Surface* s = surfaceIn(document, surface);
-    if (!s)
-        return fail(error, noSurface(document, surface));
+    if (!document)
+        return fail(error, noDocument());
     if (indices.empty() || indices.size() != from.size() || indices.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per point"));
-    std::set<int> seen;
-    for (size_t k = 0; k < indices.size(); ++k) {
-        const int i = indices[k];
-        if (i < 0 || size_t(i) >= s->geometry.points.size())
-            return fail(error, QStringLiteral("control point index %1 out of range").arg(i));
-        if (!seen.insert(i).second)
-            return fail(error, QStringLiteral("control point %1 listed twice").arg(i));
-        if (!finite(from[k]) || !finite(to[k]))
-            return fail(error, QStringLiteral("control point positions must be finite"));
-    }
+    // The document's own rule, for both ends: undo writes `from` as redo writes `to`.
+    for (const auto* positions : {&from, &to})
+        if (const QString why = document->controlPointsError(surface, indices, *positions);
+            !why.isEmpty())
+            return fail(error, why);
     const QString text = indices.size() == 1
                              ? QStringLiteral("Move control point")
                              : QStringLiteral("Move %1 control points").arg(indices.size());
@@ -100,13 +83,11 @@ bool MoveControlPoints::mergeWith(const QUndoCommand* other) {
 
 std::unique_ptr<SetWeight> SetWeight::create(Document* document, SurfaceId surface, int index,
                                              double weight, QString* error) {
-    const Surface* s = surfaceIn(document, surface);
-    if (!s)
-        return fail(error, noSurface(document, surface));
-    if (index < 0 || size_t(index) >= s->geometry.weights.size())
-        return fail(error, QStringLiteral("control point index %1 out of range").arg(index));
-    if (!std::isfinite(weight) || weight <= 0)
-        return fail(error, QStringLiteral("weight %1 must be finite and > 0").arg(weight));
+    if (!document)
+        return fail(error, noDocument());
+    if (const QString why = document->weightError(surface, index, weight); !why.isEmpty())
+        return fail(error, why);
+    const Surface* s = document->surface(surface);
     std::unique_ptr<SetWeight> c(
         new SetWeight(document, QStringLiteral("Set weight to %1").arg(weight)));
     c->m_surface = surface;
@@ -182,24 +163,20 @@ std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
         return fail(error, noDocument());
     if (refs.empty() || refs.size() != from.size() || refs.size() != to.size())
         return fail(error, QStringLiteral("need one old and one new position per trim point"));
-    std::set<TrimPointRef> seen;
+    // The document's own rule, per surface and for both ends (undo writes `from`).
+    std::map<SurfaceId, std::pair<std::vector<TrimPointRef>, std::vector<size_t>>> bySurface;
     for (size_t k = 0; k < refs.size(); ++k) {
-        const TrimPointRef& r = refs[k];
-        const Surface* s = document->surface(r.surface);
-        const TrimLoop* loop = findLoop(s, r.loop);
-        if (!loop || r.curve < 0 || size_t(r.curve) >= loop->curves.size() || r.index < 0 ||
-            size_t(r.index) >= loop->curves[size_t(r.curve)].points.size())
-            return fail(error, QStringLiteral("no trim point %1 of curve %2 in loop %3 of "
-                                              "surface %4")
-                                   .arg(r.index)
-                                   .arg(r.curve)
-                                   .arg(r.loop.value)
-                                   .arg(r.surface.value));
-        if (!seen.insert(r).second)
-            return fail(error, QStringLiteral("trim point listed twice"));
-        if (!finite(from[k]) || !finite(to[k]))
-            return fail(error, QStringLiteral("trim point positions must be finite"));
+        bySurface[refs[k].surface].first.push_back(refs[k]);
+        bySurface[refs[k].surface].second.push_back(k);
     }
+    for (const auto& [surface, group] : bySurface)
+        for (const auto* positions : {&from, &to}) {
+            std::vector<glm::dvec2> at;
+            for (size_t k : group.second)
+                at.push_back((*positions)[k]);
+            if (const QString why = document->trimPointsError(group.first, at); !why.isEmpty())
+                return fail(error, why);
+        }
     const QString text = refs.size() == 1 ? QStringLiteral("Move trim point")
                                           : QStringLiteral("Move %1 trim points").arg(refs.size());
     std::unique_ptr<MoveTrimPoints> c(new MoveTrimPoints(document, text));

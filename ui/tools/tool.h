@@ -1,0 +1,180 @@
+// Tool: one gesture of a view (a drag, a rubber band, a drawing) behind one interface, and
+// ToolRouter, which hands a view's events to its tools and lets them draw (the 3D view and the
+// UV panel both use it; inline, so an event's way to its tool is read in this one file).
+#pragma once
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <memory>
+#include <vector>
+
+class QPainter;
+
+namespace kw {
+
+/// A gesture. The host view keeps navigation (orbit, pan, zoom) and routes everything else
+/// through a ToolRouter: a press goes to the installed tool, then to the registered ones in
+/// order, and the first that takes it owns the gesture (move / release / keys) until it stops
+/// dragging(). A tool that edits the document does so through a LiveEdit, so that Esc
+/// (cancel()) puts the document back and the release is one undo step.
+class Tool {
+public:
+    virtual ~Tool() = default;
+    /// A press the host did not use for navigation; true when the tool took it.
+    virtual bool press(QMouseEvent* event) = 0;
+    /// A move or release during the tool's own gesture (dragging() after press()).
+    virtual void move(QMouseEvent*) {}
+    virtual void release(QMouseEvent*) {}
+    /// A move with no gesture running, for the installed tool (the host tracks the mouse
+    /// while one is installed).
+    virtual void hover(QMouseEvent*) {}
+    virtual bool doubleClick(QMouseEvent*) { return false; }
+    /// Keys while the tool's gesture runs, or for the installed tool; true when used.
+    virtual bool key(QKeyEvent*) { return false; }
+    virtual bool keyRelease(QKeyEvent*) { return false; }
+    /// Esc during the gesture, or the host dropping it: the gesture ends and the document is
+    /// as it was at the press.
+    virtual void cancel() {}
+    /// A press-move-release gesture of this tool is running.
+    virtual bool dragging() const { return false; }
+    /// A live edit of the document is running (the renderer holds its colour range).
+    virtual bool editing() const { return false; }
+    /// Draws over the view, in widget pixels.
+    virtual void paint(QPainter&) {}
+};
+
+/// Routes one host widget's events to its tools: the installed tool (a mode the user picked,
+/// such as the curve tool; not owned) first, then the registered tools (owned) in order.
+class ToolRouter {
+public:
+    void add(std::unique_ptr<Tool> tool);
+    /// Installs a tool (nullptr removes it), cancelling the gesture of the one it replaces.
+    void install(Tool* tool);
+    Tool* installed() const { return m_installed; }
+    /// The tool whose gesture runs, or nullptr.
+    Tool* active() const { return m_active; }
+    /// The registered tool of type T, or nullptr.
+    template <class T> T* find() const {
+        for (const auto& t : m_tools)
+            if (auto* found = dynamic_cast<T*>(t.get()))
+                return found;
+        return nullptr;
+    }
+
+    /// A press: to the installed tool when `toInstalled`, then to the registered ones. True
+    /// when a tool took it.
+    bool press(QMouseEvent* event, bool toInstalled = true);
+    /// To the gesture's tool, else as hover to the installed one; true when a gesture took it.
+    bool move(QMouseEvent* event);
+    bool release(QMouseEvent* event);
+    bool doubleClick(QMouseEvent* event);
+    /// Esc cancels a running gesture; other keys go to it, else to the installed tool.
+    bool key(QKeyEvent* event);
+    bool keyRelease(QKeyEvent* event);
+    /// Cancels the running gesture, if any.
+    void cancel();
+    /// The installed tool, then the registered ones.
+    void paint(QPainter& painter);
+
+private:
+    void settle();
+
+    std::vector<std::unique_ptr<Tool>> m_tools;
+    Tool* m_installed = nullptr;
+    Tool* m_active = nullptr;
+};
+
+// ---- ToolRouter
+
+inline void ToolRouter::add(std::unique_ptr<Tool> tool) {
+    if (tool)
+        m_tools.push_back(std::move(tool));
+}
+
+inline void ToolRouter::install(Tool* tool) {
+    if (m_active && m_active == m_installed && tool != m_installed)
+        cancel();
+    m_installed = tool;
+}
+
+inline void ToolRouter::settle() {
+    if (m_active && !m_active->dragging())
+        m_active = nullptr;
+}
+
+inline bool ToolRouter::press(QMouseEvent* event, bool toInstalled) {
+    if (m_active)
+        return true; // a second button during a gesture: the gesture keeps the mouse
+    if (toInstalled && m_installed && m_installed->press(event)) {
+        m_active = m_installed;
+        settle();
+        return true;
+    }
+    for (const auto& t : m_tools)
+        if (t->press(event)) {
+            m_active = t.get();
+            settle();
+            return true;
+        }
+    return false;
+}
+
+inline bool ToolRouter::move(QMouseEvent* event) {
+    if (m_active) {
+        m_active->move(event);
+        settle();
+        return true;
+    }
+    if (m_installed)
+        m_installed->hover(event);
+    return false;
+}
+
+inline bool ToolRouter::release(QMouseEvent* event) {
+    if (!m_active)
+        return false;
+    m_active->release(event);
+    settle();
+    return true;
+}
+
+inline bool ToolRouter::doubleClick(QMouseEvent* event) {
+    Tool* t = m_active ? m_active : m_installed;
+    return t && t->doubleClick(event);
+}
+
+inline bool ToolRouter::key(QKeyEvent* event) {
+    if (m_active) {
+        if (event->key() == Qt::Key_Escape) {
+            cancel();
+            return true;
+        }
+        const bool used = m_active->key(event);
+        settle();
+        return used;
+    }
+    return m_installed && m_installed->key(event);
+}
+
+inline bool ToolRouter::keyRelease(QKeyEvent* event) {
+    Tool* t = m_active ? m_active : m_installed;
+    const bool used = t && t->keyRelease(event);
+    settle();
+    return used;
+}
+
+inline void ToolRouter::cancel() {
+    if (Tool* t = m_active) {
+        m_active = nullptr;
+        t->cancel();
+    }
+}
+
+inline void ToolRouter::paint(QPainter& painter) {
+    if (m_installed)
+        m_installed->paint(painter);
+    for (const auto& t : m_tools)
+        t->paint(painter);
+}
+
+} // namespace kw
