@@ -2,6 +2,7 @@
 // camera.
 #include "app/commands.h"
 #include "model/cad/cadimport.h"
+#include "model/mass_properties.h"
 #include "model/seamgaps.h"
 #include "model/trim.h"
 
@@ -44,6 +45,10 @@ bool isRational(const NurbsSurface& g) {
 
 QJsonArray vec(const glm::dvec3& v) {
     return QJsonArray{v.x, v.y, v.z};
+}
+
+QJsonValue bboxJson(const glm::dvec3& lo, const glm::dvec3& hi) {
+    return QJsonObject{{QStringLiteral("min"), vec(lo)}, {QStringLiteral("max"), vec(hi)}};
 }
 
 QString text(const glm::dvec3& v) {
@@ -191,6 +196,11 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
             {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
             {QStringLiteral("color"), vec(s.material.color)},
         };
+        const FaceProperties props = faceProperties(s);
+        o.insert(QStringLiteral("type"), surfaceTypeName(props.type));
+        o.insert(QStringLiteral("area"), props.area);
+        o.insert(QStringLiteral("bbox"),
+                 props.hasBounds ? bboxJson(props.lo, props.hi) : QJsonValue(QJsonValue::Null));
         if (s.solid >= 0) // as the .knot file writes it (docs/FILE_FORMAT.md, "Solid")
             o.insert(QStringLiteral("solid"),
                      QJsonObject{{QStringLiteral("index"), s.solid},
@@ -208,6 +218,12 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
                      {QStringLiteral("lights"), lights},
                      {QStringLiteral("topology"), topologyJson(scene)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
+    const ModelProperties model = modelProperties(scene);
+    root.insert(QStringLiteral("area"), model.area);
+    root.insert(QStringLiteral("volume"),
+                model.volume ? QJsonValue(*model.volume) : QJsonValue(QJsonValue::Null));
+    root.insert(QStringLiteral("bbox"),
+                model.hasBounds ? bboxJson(model.lo, model.hi) : QJsonValue(QJsonValue::Null));
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"),
                     QJsonObject{{QStringLiteral("eye"), vec(scene.camera.eye)},
@@ -234,6 +250,13 @@ QString toText(const QString& file, const Scene& scene) {
                    .arg(g.countU)
                    .arg(g.countV)
                    .arg(isRational(g) ? QStringLiteral(", rational") : QString());
+        const FaceProperties props = faceProperties(s);
+        out += QStringLiteral("  type %1, area %2%3\n")
+                   .arg(surfaceTypeName(props.type))
+                   .arg(props.area, 0, 'g', 12)
+                   .arg(props.hasBounds
+                            ? QStringLiteral(", bbox %1 .. %2").arg(text(props.lo), text(props.hi))
+                            : QString());
         out += QStringLiteral("  knots u: %1\n").arg(knotText(summarise(g.knotsU, g.degreeU)));
         out += QStringLiteral("  knots v: %1\n").arg(knotText(summarise(g.knotsV, g.degreeV)));
         QStringList loops;
@@ -256,6 +279,13 @@ QString toText(const QString& file, const Scene& scene) {
                                                  : QStringLiteral("against Su x Sv"));
     }
     out += topologyText(scene);
+    const ModelProperties model = modelProperties(scene);
+    out += QStringLiteral("area: %1\nvolume: %2\n")
+               .arg(model.area, 0, 'g', 12)
+               .arg(model.volume ? QString::number(*model.volume, 'g', 12)
+                                 : QStringLiteral("none (no closed solid)"));
+    if (model.hasBounds)
+        out += QStringLiteral("bbox: %1 .. %2\n").arg(text(model.lo), text(model.hi));
     for (size_t k = 0; k < scene.lights.size(); ++k)
         out += QStringLiteral("light %1: %2 %3\n")
                    .arg(k + 1)
@@ -273,11 +303,12 @@ QString toText(const QString& file, const Scene& scene) {
 
 int runInfo(const QStringList& args) {
     QCommandLineParser parser;
-    parser.setApplicationDescription(
-        QStringLiteral("Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
-                       "degrees, control-point "
-                       "counts, knot ranges, trim loops, partitions), the shared edges and shells "
-                       "kept from a B-rep import (which seams are open), lights and camera."));
+    parser.setApplicationDescription(QStringLiteral(
+        "Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
+        "degrees, control-point "
+        "counts, knot ranges, trim loops, partitions, type, trimmed area, bounds), the "
+        "shared edges and shells kept from a B-rep import (which seams are open), "
+        "the model's area, closed-solid volume and bounds, lights and camera."));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
     parser.addOption(json);
     parser.addPositionalArgument(

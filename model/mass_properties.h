@@ -1,0 +1,82 @@
+// Exact properties of trimmed faces and of a model: surface type, area, enclosed volume and
+// bounding box, in double precision from the NURBS surfaces and their exact trim curves.
+#pragma once
+
+#include "model/scene.h"
+
+#include <QString>
+#include <glm/glm.hpp>
+#include <optional>
+#include <vector>
+
+namespace kw {
+
+/// What a face's geometry is, found by a test on the sampled exact surface (surfaceType).
+enum class SurfaceType { Plane, Cylinder, Cone, Sphere, Torus, FreeForm };
+
+/// "plane", "cylinder", "cone", "sphere", "torus" or "free-form".
+QString surfaceTypeName(SurfaceType type);
+
+/// The type of the part of `surface` its trims keep (the whole domain without trims): the
+/// surface is sampled on a 9 x 9 grid of the trims' parameter box (kw::trimParameterBox) and
+/// each sample's curvature (surfaceCurvature) is tested, with `relative` times the samples'
+/// bounding-box diagonal as the length tolerance:
+/// - plane: every sample on the plane of the first, with its normal;
+/// - sphere: k1 = k2 != 0 and every centre of curvature (P - N / k1) at one point;
+/// - cylinder / cone: one principal curvature 0 and the centres of the other on one line (the
+///   axis), the normal at a constant angle to it (a right angle for a cylinder);
+/// - torus: one principal curvature constant (the tube) with its centres on one circle;
+/// - anything else free-form. Singular samples (a sphere's pole) are left out.
+SurfaceType surfaceType(const Surface& surface, double relative = 1e-6);
+
+/// Integrals over the trimmed part of one face.
+struct FaceIntegrals {
+    double area = 0.0;
+    /// (1/3) of the flux of (P - origin) through the face along Su x Sv: summed over a closed
+    /// shell with every face's Su x Sv outwards, the volume enclosed (divergence theorem).
+    double volume = 0.0;
+};
+
+/// Area and volume flux of the part of `surface` its trims keep (even-odd, as the trim mask),
+/// by Green's theorem in (u, v): the double integral of f over the region is the sum over the
+/// loops of the line integral of -F du, F(u, v) the integral of f along v from the loop's lowest
+/// v. Both integrals are adaptive Gauss-Legendre (8 points, halved until two levels agree to
+/// `relative`), the outer one along the exact trim curves (split at their knots), the inner one
+/// split at the surface's v knots, so no flattening error enters. Loops are signed by their
+/// orientation and their nesting depth. Without trims the domain's boundary is the loop.
+/// Invalid trim curves are left out and gaps bridged straight, as makeTrimRegion does.
+/// Precondition: a valid surface.
+FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin = glm::dvec3(0.0),
+                            double relative = 1e-11);
+
+/// Axis-aligned bounds of the trimmed face: the surface sampled on a grid of the trims'
+/// parameter box (points the trims keep) and along every trim curve, then each extreme refined
+/// (Newton on the coordinate inside, golden section along a curve). False when the trims keep
+/// no sample.
+bool faceBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi);
+
+/// What the properties panel and `knotwork info` show for one face.
+struct FaceProperties {
+    SurfaceType type = SurfaceType::FreeForm;
+    int degreeU = 0, degreeV = 0;
+    double area = 0.0;
+    bool hasBounds = false;
+    glm::dvec3 lo{0.0}, hi{0.0};
+};
+FaceProperties faceProperties(const Surface& surface);
+
+/// The model's totals.
+struct ModelProperties {
+    double area = 0.0; ///< every face, hidden or not
+    /// Sum of the volumes of the closed shells (kw::closedShells: recorded closed and every seam
+    /// within tolerance), each face oriented by Surface::outsideAlongNormal; nullopt when no shell
+    /// is closed. The shells of one solid (Shell::solid: an outer shell and its cavities) are
+    /// summed with their orientation, then taken positive; a shell of no solid on its own.
+    std::optional<double> volume;
+    int closedShells = 0;
+    bool hasBounds = false;
+    glm::dvec3 lo{0.0}, hi{0.0};
+};
+ModelProperties modelProperties(const Scene& scene);
+
+} // namespace kw
