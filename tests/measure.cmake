@@ -15,3 +15,7 @@ target_compile_definitions(tst_info_properties PRIVATE KW_KNOTWORK_BIN="$<TARGET
 add_dependencies(tst_info_properties knotwork)
 # The probe's refinement onto the ray, curvature and measurement values (label model).
 kw_add_test(tst_probe LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_probe.cpp LIBS knotwork_model)
+# The Measure menu in the editor: probe, measure distance, angle and radius, and the Properties
+# panel's measured values (label gui, Xvfb).
+kw_add_test(tst_measure_gui LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_measure_gui.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)
