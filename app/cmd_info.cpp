@@ -173,8 +173,10 @@ QString topologyText(const Scene& scene) {
 }
 
 QJsonObject toJson(const QString& file, const Scene& scene) {
+    const ModelProperties model = modelProperties(scene);
     QJsonArray surfaces;
-    for (const Surface& s : scene.surfaces) {
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Surface& s = scene.surfaces[k];
         const NurbsSurface& g = s.geometry;
         QJsonArray loops;
         const QStringList warnings = trimWarnings(s);
@@ -196,7 +198,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
             {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
             {QStringLiteral("color"), vec(s.material.color)},
         };
-        const FaceProperties props = faceProperties(s);
+        const FaceProperties& props = model.faces[k];
         o.insert(QStringLiteral("type"), surfaceTypeName(props.type));
         o.insert(QStringLiteral("area"), props.area);
         o.insert(QStringLiteral("bbox"),
@@ -218,7 +220,6 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
                      {QStringLiteral("lights"), lights},
                      {QStringLiteral("topology"), topologyJson(scene)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
-    const ModelProperties model = modelProperties(scene);
     root.insert(QStringLiteral("area"), model.area);
     root.insert(QStringLiteral("volume"),
                 model.volume ? QJsonValue(*model.volume) : QJsonValue(QJsonValue::Null));
@@ -236,11 +237,13 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
 }
 
 QString toText(const QString& file, const Scene& scene) {
+    const ModelProperties model = modelProperties(scene);
     QString out = QStringLiteral("%1: %2 surface(s), %3 light(s)\n")
                       .arg(file)
                       .arg(scene.surfaces.size())
                       .arg(scene.lights.size());
-    for (const Surface& s : scene.surfaces) {
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Surface& s = scene.surfaces[k];
         const NurbsSurface& g = s.geometry;
         out += QStringLiteral("surface %1 \"%2\": degree %3 x %4, %5 x %6 control points%7\n")
                    .arg(s.id.value)
@@ -250,7 +253,7 @@ QString toText(const QString& file, const Scene& scene) {
                    .arg(g.countU)
                    .arg(g.countV)
                    .arg(isRational(g) ? QStringLiteral(", rational") : QString());
-        const FaceProperties props = faceProperties(s);
+        const FaceProperties& props = model.faces[k];
         out += QStringLiteral("  type %1, area %2%3\n")
                    .arg(surfaceTypeName(props.type))
                    .arg(props.area, 0, 'g', 12)
@@ -279,7 +282,6 @@ QString toText(const QString& file, const Scene& scene) {
                                                  : QStringLiteral("against Su x Sv"));
     }
     out += topologyText(scene);
-    const ModelProperties model = modelProperties(scene);
     out += QStringLiteral("area: %1\nvolume: %2\n")
                .arg(model.area, 0, 'g', 12)
                .arg(model.volume ? QString::number(*model.volume, 'g', 12)

@@ -76,7 +76,10 @@ struct ModelProperties {
     int closedShells = 0;
     bool hasBounds = false;
     glm::dvec3 lo{0.0}, hi{0.0};
+    std::vector<FaceProperties> faces; ///< faceProperties of each surface, in scene order
 };
+/// Every face measured (faces shared out over the machine's cores), summed; the volume from
+/// each face's flux about the centre of the control points' bounds.
 ModelProperties modelProperties(const Scene& scene);
 
 } // namespace kw
