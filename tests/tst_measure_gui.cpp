@@ -80,12 +80,25 @@ void TestMeasureGui::probe() {
     }
     QVERIFY(tool()->copyProbe());
     QCOMPARE(QApplication::clipboard()->text(), tool()->panelText());
+    // Ctrl+C over the view copies it too.
+    QApplication::clipboard()->clear();
+    activate();
+    m_window->viewport()->setFocus();
+    QTest::keyClick(m_window->viewport(), Qt::Key_C, Qt::ControlModifier);
+    QTRY_COMPARE(QApplication::clipboard()->text(), tool()->panelText());
     // Background: a corner of the view.
     QTest::mouseMove(m_window->viewport(), QPoint(3, 3));
     QTRY_VERIFY(!tool()->lastProbe().has_value());
     QVERIFY(!tool()->panel()->isVisible());
     QVERIFY(tool()->panelText().isEmpty());
     QVERIFY(!tool()->copyProbe());
+    // Opening a document drops the probe and the dimensions.
+    act("actionMeasureRadius")->trigger();
+    QTest::mouseClick(m_window->viewport(), Qt::LeftButton, Qt::NoModifier, onSphere({0, 0}));
+    QCOMPARE(tool()->measureTool()->measurements().size(), size_t(1));
+    QVERIFY(m_window->openFile(kwtest::samplePath("torus")));
+    QVERIFY(tool()->measureTool()->measurements().empty());
+    act("actionProbe")->trigger();
     act("actionProbe")->trigger();
     QCOMPARE(tool()->mode(), ProbeTool::Mode::Off);
 }

@@ -43,6 +43,12 @@ ProbeTool::ProbeTool(Document* document, Viewport* viewport)
     connect(copy, &QToolButton::clicked, this, [this] { copyProbe(); });
     m_panel->hide();
     viewport->installEventFilter(this);
+    // Dimensions and the probe belong to the geometry they were taken on: a new or opened
+    // document starts without them.
+    connect(document, &Document::sceneReset, this, [this] {
+        m_measure->clear();
+        hideProbe();
+    });
 }
 
 void ProbeTool::buildMenu(QMenuBar* bar) {
@@ -216,6 +222,16 @@ bool ProbeTool::eventFilter(QObject* watched, QEvent* event) {
     if (watched != m_view)
         return false;
     switch (event->type()) {
+    case QEvent::ShortcutOverride: {
+        // Ctrl+C over the view copies the probe, ahead of any window-wide Copy; P is ours too.
+        auto* k = static_cast<QKeyEvent*>(event);
+        if ((k->matches(QKeySequence::Copy) && probing() && m_probe) ||
+            (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier)) {
+            event->accept();
+            return true;
+        }
+        return false;
+    }
     case QEvent::KeyPress: {
         auto* k = static_cast<QKeyEvent*>(event);
         if (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier) {
