@@ -131,7 +131,9 @@ QString measurementText(const Measurement& m, int digits) {
             .arg(num(value, digits), num(d.x, digits), num(d.y, digits), num(d.z, digits));
     }
     case Measurement::Kind::Angle:
-        return QStringLiteral("angle %1° between normals").arg(num(value, digits));
+        return m.betweenPlanes
+                   ? QStringLiteral("angle %1° between plane faces").arg(num(value, digits))
+                   : QStringLiteral("angle %1° between normals").arg(num(value, digits));
     case Measurement::Kind::Radius:
         return QStringLiteral("radius %1 (principal radii %2, %3)")
             .arg(num(value, digits), num(curvatureRadius(m.a.k1), digits),

@@ -50,13 +50,17 @@ struct Measurement {
     Kind kind = Kind::Distance;
     ProbePoint a;
     ProbePoint b; ///< unused for Radius
+    /// Angle only: both points lie on plane faces (kw::surfaceType), so the angle between the
+    /// normals is the angle between the faces themselves.
+    bool betweenPlanes = false;
 };
 
 /// Distance |b - a|; the angle in degrees between the normals at a and b, in [0, 180]; or the
 /// smallest radius of curvature at a (1 / max(|k1|, |k2|), +infinity on a plane).
 double measurementValue(const Measurement& m);
 
-/// One line: "distance 12.5 (dx 3, dy 4, dz 12)", "angle 90° between normals",
+/// One line: "distance 12.5 (dx 3, dy 4, dz 12)", "angle 90° between normals" (or "between
+/// plane faces"),
 /// "radius 5 (principal radii 5, ∞)"; numbers to `digits` significant digits.
 QString measurementText(const Measurement& m, int digits = 8);
 

@@ -2,6 +2,7 @@
 // cursor and held P, distance, angle and radius dimensions against the exact ray hits, and the
 // Properties panel's measured face and model.
 #include "editor_test_util.h"
+#include "model/nurbs_shapes.h"
 #include "model/selection.h"
 #include "render/offscreen_renderer.h"
 #include "ui/measure_properties.h"
@@ -28,6 +29,7 @@ private Q_SLOTS:
     void probeWhileHoldingP();
     void measureDistance();
     void measureAngle();
+    void measureAngleBetweenPlanes();
     void measureRadius();
     void propertiesPanel();
 
@@ -206,6 +208,46 @@ void TestMeasureGui::measureAngle() {
              qPrintable(QStringLiteral("%1 vs %2").arg(measurementValue(m)).arg(expected)));
     QVERIFY(expected > 20.0);
     QVERIFY(tool()->measureTool()->labels().value(0).contains(QStringLiteral("° between normals")));
+}
+
+// Two plane faces meeting at 60 degrees (a roof seen from the front): the angle between their
+// normals is the angle between the faces, and the label says so.
+void TestMeasureGui::measureAngleBetweenPlanes() {
+    openWindow();
+    Scene roof;
+    const double c = std::cos(std::numbers::pi / 3), s = std::sin(std::numbers::pi / 3);
+    for (int k = 0; k < 2; ++k) {
+        Surface f;
+        f.id = SurfaceId{std::uint32_t(k + 1)};
+        f.name = k == 0 ? QStringLiteral("left") : QStringLiteral("right");
+        // Both planes leave the ridge line x = 0, z = 1 downwards, one to -x, one to +x.
+        const double side = k == 0 ? -1.0 : 1.0;
+        f.geometry =
+            makePlane(glm::dvec3(0, -1, 1), glm::dvec3(0, 2, 0), glm::dvec3(side * s, 0, -c));
+        roof.surfaces.push_back(f);
+    }
+    roof.nextId = 3;
+    QVERIFY(m_window->document()->resetScene(roof));
+    m_window->viewport()->resetCamera();
+    m_window->viewport()->setStandardView(StandardView::Front);
+    QTest::qWait(50);
+    const ViewProjection view = m_window->viewport()->viewProjection();
+    const QPoint a = view.project(glm::dvec3(-0.5 * s, 0, 1 - 0.5 * c))->toPoint();
+    const QPoint b = view.project(glm::dvec3(0.5 * s, 0, 1 - 0.5 * c))->toPoint();
+    act("actionMeasureAngle")->trigger();
+    QTest::mouseClick(m_window->viewport(), Qt::LeftButton, Qt::NoModifier, a);
+    QTest::mouseClick(m_window->viewport(), Qt::LeftButton, Qt::NoModifier, b);
+    QCOMPARE(tool()->measureTool()->measurements().size(), size_t(1));
+    const Measurement m = tool()->measureTool()->measurements()[0];
+    QVERIFY(m.a.surface != m.b.surface);
+    // Su x Sv is (-cos 60, 0, sin 60) on the left face and (-cos 60, 0, -sin 60) on the right:
+    // 120 degrees apart, the faces' angle measured across the ridge's outside.
+    const double angle = measurementValue(m);
+    QVERIFY2(std::abs(angle - 120.0) < 1e-9, qPrintable(QString::number(angle, 'g', 17)));
+    QVERIFY(m.betweenPlanes);
+    QVERIFY2(
+        tool()->measureTool()->labels().value(0).contains(QStringLiteral("between plane faces")),
+        qPrintable(tool()->measureTool()->labels().value(0)));
 }
 
 void TestMeasureGui::measureRadius() {

@@ -48,7 +48,9 @@ void MeasureTool::setKind(Measurement::Kind kind) {
     update();
 }
 
-std::optional<Measurement> MeasureTool::addPoint(const ProbePoint& p) {
+std::optional<Measurement>
+MeasureTool::addPoint(const ProbePoint& p,
+                      const std::function<bool(const ProbePoint&, const ProbePoint&)>& planes) {
     Measurement m;
     m.kind = m_kind;
     if (m_kind == Measurement::Kind::Radius) {
@@ -61,6 +63,7 @@ std::optional<Measurement> MeasureTool::addPoint(const ProbePoint& p) {
         m.a = *m_pending;
         m.b = p;
         m_pending.reset();
+        m.betweenPlanes = m_kind == Measurement::Kind::Angle && planes && planes(m.a, m.b);
     }
     m_done.push_back(m);
     update();

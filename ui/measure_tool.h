@@ -6,6 +6,7 @@
 #include "model/probe.h"
 
 #include <QWidget>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -24,8 +25,11 @@ public:
     /// The kind the next clicks measure; changing it drops a half-made measurement.
     void setKind(Measurement::Kind kind);
     Measurement::Kind kind() const { return m_kind; }
-    /// A probed point clicked: completes a measurement (returned) or starts one.
-    std::optional<Measurement> addPoint(const ProbePoint& p);
+    /// A probed point clicked: completes a measurement (returned) or starts one. `planes`
+    /// (Angle): tells whether two points lie on plane faces (Measurement::betweenPlanes).
+    std::optional<Measurement>
+    addPoint(const ProbePoint& p,
+             const std::function<bool(const ProbePoint&, const ProbePoint&)>& planes = {});
     /// Drops the half-made measurement; false when there was none.
     bool cancelPending();
     bool hasPending() const { return m_pending.has_value(); }

@@ -3,6 +3,7 @@
 #include "ui/probe_tool.h"
 
 #include "model/document.h"
+#include "model/mass_properties.h"
 #include "ui/viewport.h"
 
 #include <QAction>
@@ -197,7 +198,13 @@ bool ProbeTool::measureAt(QPointF position) {
         Q_EMIT message(tr("Nothing to measure there: click a surface"));
         return false;
     }
-    if (const std::optional<Measurement> m = m_measure->addPoint(*p)) {
+    const auto planes = [this](const ProbePoint& a, const ProbePoint& b) {
+        const Surface* sa = m_doc->surface(a.surface);
+        const Surface* sb = m_doc->surface(b.surface);
+        return sa && sb && surfaceType(*sa) == SurfaceType::Plane &&
+               surfaceType(*sb) == SurfaceType::Plane;
+    };
+    if (const std::optional<Measurement> m = m_measure->addPoint(*p, planes)) {
         Q_EMIT message(measurementText(*m));
         Q_EMIT measured(*m);
     } else {
