@@ -24,6 +24,27 @@ constexpr std::array<double, 4> kGaussW = {0.3626837833783620, 0.313706645877887
                                            0.2223810344533745, 0.1012285362903763};
 constexpr int kMaxDepth = 30;
 
+/// A fixed number of integrals computed together (the quadrature's value type).
+template <int N> struct Sums {
+    std::array<double, N> v{};
+    Sums() = default;
+    explicit Sums(double x) { v.fill(x); }
+    static constexpr int length() { return N; }
+    double& operator[](int k) { return v[size_t(k)]; }
+    double operator[](int k) const { return v[size_t(k)]; }
+    Sums& operator+=(const Sums& o) {
+        for (int k = 0; k < N; ++k)
+            v[size_t(k)] += o.v[size_t(k)];
+        return *this;
+    }
+    friend Sums operator+(Sums a, const Sums& b) { return a += b; }
+    friend Sums operator*(double s, Sums a) {
+        for (double& x : a.v)
+            x *= s;
+        return a;
+    }
+};
+
 template <class V, class F> V gauss8(const F& f, double a, double b) {
     const double h = 0.5 * (b - a), m = 0.5 * (a + b);
     V sum(0.0);
@@ -318,8 +339,15 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
     surfaceControlBounds(g, lo, hi);
     const double size = diagonal(g);
     const double reach = size + glm::length(0.5 * (lo + hi) - origin);
-    const glm::dvec2 floor2(relative * size * size, relative * size * size * reach);
-    const glm::dvec3 floor3(floor2, relative);
+    // Inner: area, flux, the vector area's x y z; outer: the same and the loop's (u, v) area.
+    using Inner = Sums<5>;
+    using Outer = Sums<6>;
+    Inner floorIn(relative * size * size);
+    floorIn[1] *= reach;
+    Outer floorOut;
+    for (int k = 0; k < 5; ++k)
+        floorOut[k] = floorIn[k];
+    floorOut[5] = relative;
 
     std::vector<double> vKnots;
     const Interval dv = surfaceDomainV(g);
@@ -327,45 +355,51 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
         if (k > dv.first && k < dv.last && (vKnots.empty() || k != vKnots.back()))
             vKnots.push_back(k);
 
-    // (|Su x Sv|, (P - origin) . (Su x Sv) / 3) at (u, v), clamped to the domain.
+    // |Su x Sv|, (P - origin) . (Su x Sv) / 3 and Su x Sv at (u, v), clamped to the domain.
     const Interval du = surfaceDomainU(g);
     const auto density = [&](double u, double v) {
         const FirstOrder d =
             firstOrder(g, std::clamp(u, du.first, du.last), std::clamp(v, dv.first, dv.last));
         const glm::dvec3 n = glm::cross(d.su, d.sv);
-        return glm::dvec2(glm::length(n), glm::dot(d.s - origin, n) / 3.0);
+        Inner r;
+        r.v = {glm::length(n), glm::dot(d.s - origin, n) / 3.0, n.x, n.y, n.z};
+        return r;
     };
     // F(u, v): the integral of the density along v from v0 to v, cut at the v knots.
     const auto strip = [&](double u, double v0, double v) {
         const double sign = v >= v0 ? 1.0 : -1.0;
         const double a = std::min(v0, v), b = std::max(v0, v);
-        glm::dvec2 sum(0.0);
+        Inner sum(0.0);
         double from = a;
         const auto f = [&](double t) {
             return density(u, t);
         };
         for (double k : vKnots)
             if (k > from && k < b) {
-                sum += integrate<glm::dvec2>(f, from, k, floor2, relative);
+                sum += integrate<Inner>(f, from, k, floorIn, relative);
                 from = k;
             }
-        sum += integrate<glm::dvec2>(f, from, b, floor2, relative);
+        sum += integrate<Inner>(f, from, b, floorIn, relative);
         return sign * sum;
     };
 
-    std::vector<glm::dvec3> loopSums;
+    std::vector<Outer> loopSums;
     for (const LoopPieces& lp : loops) {
-        glm::dvec3 sum(0.0);
+        Outer sum(0.0);
         for (const Piece& piece : lp.pieces) {
             const auto h = [&](double t) {
                 glm::dvec2 uv, d1;
                 pointAndTangent(piece, t, uv, d1);
+                Outer r(0.0);
                 if (d1.x == 0.0)
-                    return glm::dvec3(0.0);
-                const glm::dvec2 F = strip(uv.x, lp.vLow, uv.y);
-                return glm::dvec3(-F.x * d1.x, -F.y * d1.x, -(uv.y - lp.vLow) * d1.x);
+                    return r;
+                const Inner F = strip(uv.x, lp.vLow, uv.y);
+                for (int k = 0; k < 5; ++k)
+                    r[k] = -F[k] * d1.x;
+                r[5] = -(uv.y - lp.vLow) * d1.x;
+                return r;
             };
-            sum += integrate<glm::dvec3>(h, piece.t0, piece.t1, floor3, relative);
+            sum += integrate<Outer>(h, piece.t0, piece.t1, floorOut, relative);
         }
         loopSums.push_back(sum);
     }
@@ -377,9 +411,10 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
         for (size_t j = 0; j < loops.size(); ++j)
             if (j != k && polygonContains(loops[j].polygon, loops[k].polygon.front()))
                 ++depth;
-        const double sign = (loopSums[k].z >= 0.0 ? 1.0 : -1.0) * (depth % 2 == 0 ? 1.0 : -1.0);
-        out.area += sign * loopSums[k].x;
-        out.volume += sign * loopSums[k].y;
+        const double sign = (loopSums[k][5] >= 0.0 ? 1.0 : -1.0) * (depth % 2 == 0 ? 1.0 : -1.0);
+        out.area += sign * loopSums[k][0];
+        out.volume += sign * loopSums[k][1];
+        out.vectorArea += sign * glm::dvec3(loopSums[k][2], loopSums[k][3], loopSums[k][4]);
     }
     return out;
 }
@@ -564,31 +599,33 @@ FaceProperties faceProperties(const Surface& surface) {
     return p;
 }
 
-ModelProperties modelProperties(const Scene& scene) {
-    ModelProperties m;
-    glm::dvec3 clo, chi;
-    const glm::dvec3 origin = sceneBounds(scene, clo, chi) ? 0.5 * (clo + chi) : glm::dvec3(0.0);
-    const std::vector<ShellState> shells = scene.topology.shells.empty()
-                                               ? std::vector<ShellState>{}
-                                               : closedShells(scene, seamGaps(scene));
-    const size_t n = scene.surfaces.size();
-    m.faces.resize(n);
-    std::vector<double> flux(n, 0.0);
-    // Faces are independent and cost from microseconds to a second: the cores take the next
-    // face as they finish one; each writes only its own entries.
+FaceMeasure measureFace(const Surface& surface) {
+    FaceMeasure m;
+    glm::dvec3 lo, hi;
+    surfaceControlBounds(surface.geometry, lo, hi);
+    m.centre = 0.5 * (lo + hi);
+    m.props.type = surfaceType(surface);
+    m.props.degreeU = surface.geometry.degreeU;
+    m.props.degreeV = surface.geometry.degreeV;
+    const FaceIntegrals f = faceIntegrals(surface, m.centre);
+    m.props.area = f.area;
+    m.flux = f.volume;
+    m.vectorArea = f.vectorArea;
+    m.props.hasBounds = faceBounds(surface, m.props.lo, m.props.hi);
+    return m;
+}
+
+std::vector<FaceMeasure> measureFaces(const Scene& scene, const std::vector<size_t>& indices) {
+    std::vector<size_t> which = indices;
+    if (which.empty())
+        for (size_t k = 0; k < scene.surfaces.size(); ++k)
+            which.push_back(k);
+    const size_t n = which.size();
+    std::vector<FaceMeasure> out(n);
     std::atomic<size_t> next{0};
     const auto work = [&] {
-        for (size_t k; (k = next++) < n;) {
-            const Surface& s = scene.surfaces[k];
-            FaceProperties& p = m.faces[k];
-            p.type = surfaceType(s);
-            p.degreeU = s.geometry.degreeU;
-            p.degreeV = s.geometry.degreeV;
-            const FaceIntegrals f = faceIntegrals(s, origin);
-            p.area = f.area;
-            flux[k] = s.outsideAlongNormal ? f.volume : -f.volume;
-            p.hasBounds = faceBounds(s, p.lo, p.hi);
-        }
+        for (size_t k; (k = next++) < n;)
+            out[k] = measureFace(scene.surfaces[which[k]]);
     };
     const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), n);
     std::vector<std::thread> pool;
@@ -597,11 +634,31 @@ ModelProperties modelProperties(const Scene& scene) {
     work();
     for (std::thread& t : pool)
         t.join();
-    for (const FaceProperties& p : m.faces) {
-        m.area += p.area;
-        if (p.hasBounds) {
-            m.lo = m.hasBounds ? glm::min(m.lo, p.lo) : p.lo;
-            m.hi = m.hasBounds ? glm::max(m.hi, p.hi) : p.hi;
+    return out;
+}
+
+ModelProperties modelProperties(const Scene& scene) {
+    return modelProperties(scene, measureFaces(scene));
+}
+
+ModelProperties modelProperties(const Scene& scene, const std::vector<FaceMeasure>& faces) {
+    ModelProperties m;
+    glm::dvec3 clo, chi;
+    const glm::dvec3 origin = sceneBounds(scene, clo, chi) ? 0.5 * (clo + chi) : glm::dvec3(0.0);
+    const std::vector<ShellState> shells = scene.topology.shells.empty()
+                                               ? std::vector<ShellState>{}
+                                               : closedShells(scene, seamGaps(scene));
+    const size_t n = std::min(scene.surfaces.size(), faces.size());
+    std::vector<double> flux(n, 0.0);
+    for (size_t k = 0; k < n; ++k) {
+        const FaceMeasure& f = faces[k];
+        const double about = f.flux + glm::dot(f.centre - origin, f.vectorArea) / 3.0;
+        flux[k] = scene.surfaces[k].outsideAlongNormal ? about : -about;
+        m.faces.push_back(f.props);
+        m.area += f.props.area;
+        if (f.props.hasBounds) {
+            m.lo = m.hasBounds ? glm::min(m.lo, f.props.lo) : f.props.lo;
+            m.hi = m.hasBounds ? glm::max(m.hi, f.props.hi) : f.props.hi;
             m.hasBounds = true;
         }
     }
@@ -613,7 +670,7 @@ ModelProperties modelProperties(const Scene& scene) {
         double volume = 0.0;
         for (SurfaceId id : scene.topology.shells[k].faces)
             for (size_t j = 0; j < scene.surfaces.size(); ++j)
-                if (scene.surfaces[j].id == id)
+                if (j < n && scene.surfaces[j].id == id)
                     volume += flux[j];
         const int solid = shells[k].solid;
         auto it = std::find_if(solids.begin(), solids.end(),

@@ -35,6 +35,9 @@ struct FaceIntegrals {
     /// (1/3) of the flux of (P - origin) through the face along Su x Sv: summed over a closed
     /// shell with every face's Su x Sv outwards, the volume enclosed (divergence theorem).
     double volume = 0.0;
+    /// The integral of Su x Sv (the normal times dA): the flux about another origin o' is
+    /// volume + (origin - o') . vectorArea / 3.
+    glm::dvec3 vectorArea{0.0};
 };
 
 /// Area and volume flux of the part of `surface` its trims keep (even-odd, as the trim mask),
@@ -65,6 +68,22 @@ struct FaceProperties {
 };
 FaceProperties faceProperties(const Surface& surface);
 
+/// What the model's totals need of one face: its properties, and its flux about its own centre
+/// with its vector area, from which the flux about any origin follows (FaceIntegrals), so that
+/// a face measured once serves every later total while it keeps its shape and trims.
+struct FaceMeasure {
+    FaceProperties props;
+    glm::dvec3 centre{0.0}; ///< the centre of the control points' bounds: the flux's origin
+    double flux = 0.0;      ///< FaceIntegrals::volume about `centre`, along Su x Sv
+    glm::dvec3 vectorArea{0.0};
+};
+FaceMeasure measureFace(const Surface& surface);
+
+/// measureFace of the surfaces at `indices` of scene.surfaces (every one when empty), shared out
+/// over the machine's cores (a work queue: face costs differ a thousandfold); the result is in
+/// the order of `indices` (or of the surfaces).
+std::vector<FaceMeasure> measureFaces(const Scene& scene, const std::vector<size_t>& indices = {});
+
 /// The model's totals.
 struct ModelProperties {
     double area = 0.0; ///< every face, hidden or not
@@ -78,8 +97,10 @@ struct ModelProperties {
     glm::dvec3 lo{0.0}, hi{0.0};
     std::vector<FaceProperties> faces; ///< faceProperties of each surface, in scene order
 };
-/// Every face measured (faces shared out over the machine's cores), summed; the volume from
-/// each face's flux about the centre of the control points' bounds.
+/// The totals from measures already taken: faces[k] is measureFace(scene.surfaces[k]). The
+/// volume sums each face's flux moved to one origin, the centre of the control points' bounds.
+ModelProperties modelProperties(const Scene& scene, const std::vector<FaceMeasure>& faces);
+/// modelProperties(scene, measureFaces(scene)).
 ModelProperties modelProperties(const Scene& scene);
 
 } // namespace kw

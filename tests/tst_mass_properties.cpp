@@ -65,6 +65,7 @@ private Q_SLOTS:
     void cylinderWithHole();
     void closedBoxVolume();
     void sphereVolumeNeedsClosedShell();
+    void fluxMovesWithVectorArea();
     void types();
     void boundsOfTrimmedFace();
 };
@@ -155,6 +156,16 @@ void TestMassProperties::closedBoxVolume() {
     QVERIFY2(relNear(*m.volume, 6.0, 1e-12), qPrintable(QString::number(*m.volume, 'g', 17)));
     QVERIFY(m.hasBounds);
     QVERIFY(glm::length(m.lo) < 1e-12 && glm::length(m.hi - glm::dvec3(1, 2, 3)) < 1e-12);
+    // Measured once, the faces give the same totals again (what the Properties panel caches).
+    const std::vector<FaceMeasure> faces = measureFaces(scene);
+    QCOMPARE(faces.size(), scene.surfaces.size());
+    const ModelProperties again = modelProperties(scene, faces);
+    QCOMPARE(again.area, m.area);
+    QVERIFY(again.volume && std::abs(*again.volume - *m.volume) < 1e-15);
+    // A face turned inside out (its outside mark flipped) no longer closes the volume.
+    scene.surfaces[0].outsideAlongNormal = !scene.surfaces[0].outsideAlongNormal;
+    QVERIFY(std::abs(*modelProperties(scene, faces).volume - 6.0) > 0.1);
+    scene.surfaces[0].outsideAlongNormal = !scene.surfaces[0].outsideAlongNormal;
     scene.topology.shells[0].closed = false;
     QVERIFY(!modelProperties(scene).volume.has_value());
 }
@@ -167,6 +178,23 @@ void TestMassProperties::sphereVolumeNeedsClosedShell() {
     QVERIFY(relNear(m.area, 4 * kPi, 1e-7));
     QVERIFY(glm::length(m.lo + glm::dvec3(1.0)) < 1e-9 &&
             glm::length(m.hi - glm::dvec3(1.0)) < 1e-9);
+}
+
+// The flux about one origin follows from the flux about another and the vector area, which for
+// a closed surface is zero; a box measured face by face once gives the same totals later.
+void TestMassProperties::fluxMovesWithVectorArea() {
+    Surface c = face(makeCylinder(glm::dvec3(1, 2, 3), 2.0, 3.0));
+    c.trims.push_back(square(0.1, 0.8, 1));
+    const glm::dvec3 o1(0.0), o2(7, -4, 2);
+    const FaceIntegrals a = faceIntegrals(c, o1), b = faceIntegrals(c, o2);
+    QVERIFY(glm::length(a.vectorArea) > 1.0);
+    QVERIFY(glm::length(a.vectorArea - b.vectorArea) < 1e-12 * glm::length(a.vectorArea));
+    const double moved = b.volume + glm::dot(o2 - o1, b.vectorArea) / 3.0;
+    QVERIFY2(
+        std::abs(moved - a.volume) < 1e-11 * std::abs(a.volume),
+        qPrintable(QStringLiteral("%1 vs %2").arg(moved, 0, 'g', 17).arg(a.volume, 0, 'g', 17)));
+    const FaceIntegrals sphere = faceIntegrals(face(makeSphere(glm::dvec3(1.0), 2.0)));
+    QVERIFY(glm::length(sphere.vectorArea) < 1e-11);
 }
 
 void TestMassProperties::types() {

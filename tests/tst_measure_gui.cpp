@@ -277,6 +277,23 @@ void TestMeasureGui::propertiesPanel() {
     m_window->selection()->itemSelection()->clear();
     QTRY_VERIFY(!props->pending());
     QVERIFY(props->faceText().contains(QStringLiteral("no surface selected")));
+    QCOMPARE(props->facesMeasured(), 1); // the selection changes measured nothing again
+
+    // An edit measures again only the face it changed: the teapot's 32 faces, then one.
+    QVERIFY(m_window->openFile(kwtest::samplePath("teapot")));
+    QTRY_VERIFY(!props->pending());
+    QCOMPARE(props->facesMeasured(), 1 + 32);
+    const QString before = props->modelText();
+    const Surface& s = scene().surfaces[3];
+    const glm::dvec3 moved = s.geometry.points[5] + glm::dvec3(0, 0, 0.25);
+    QVERIFY(m_window->document()->setControlPoints(s.id, {5}, {moved}));
+    QTRY_VERIFY(!props->pending());
+    QCOMPARE(props->facesMeasured(), 1 + 32 + 1);
+    QVERIFY2(props->modelText() != before, qPrintable(props->modelText()));
+    // The totals are those of the whole edited model measured afresh.
+    const ModelProperties fresh = modelProperties(scene());
+    QVERIFY2(props->modelText().contains(QStringLiteral("area %1").arg(fresh.area, 0, 'g', 10)),
+             qPrintable(props->modelText()));
 }
 
 QTEST_MAIN(TestMeasureGui)

@@ -35,6 +35,13 @@ QString boxText(bool has, const glm::dvec3& lo, const glm::dvec3& hi) {
         .arg(point(lo), point(hi), num(d.x), num(d.y), num(d.z));
 }
 
+std::vector<SurfaceId> surfaceIds(const Scene& scene) {
+    std::vector<SurfaceId> ids;
+    for (const Surface& s : scene.surfaces)
+        ids.push_back(s.id);
+    return ids;
+}
+
 QLabel* valueLabel(const char* name) {
     auto* l = new QLabel;
     l->setObjectName(QLatin1String(name));
@@ -92,24 +99,61 @@ void MeasuredProperties::start() {
     struct Result {
         std::optional<FaceProperties> face;
         ModelProperties model;
+        std::vector<std::pair<size_t, FaceMeasure>> measured; ///< the stale faces, by index
     };
     const std::uint64_t generation = m_generation;
     const SurfaceId id = m_selection->currentSurface();
-    const Surface* current = m_doc->surface(id);
+    const Scene& scene = m_doc->scene();
+    // Faces whose shape and trims are as cached keep their measure; the rest go to the worker.
+    std::vector<FaceMeasure> known(scene.surfaces.size());
+    std::vector<size_t> stale;
+    std::vector<Cached> keys(scene.surfaces.size());
+    std::optional<size_t> current;
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Revisions r = m_doc->revisionsAt(int(k));
+        keys[k] = {r.points, r.knots, r.trims, {}};
+        const auto it = m_cache.constFind(scene.surfaces[k].id);
+        if (it != m_cache.cend() && it->points == r.points && it->knots == r.knots &&
+            it->trims == r.trims)
+            known[k] = it->measure;
+        else
+            stale.push_back(k);
+        if (scene.surfaces[k].id == id)
+            current = k;
+    }
     auto result = std::make_shared<Result>();
     // Copies: the document may change while the worker runs.
     QThread* worker =
-        QThread::create([scene = m_doc->scene(),
-                         face = current ? std::optional<Surface>(*current) : std::nullopt, result] {
-            if (face)
-                result->face = faceProperties(*face);
-            result->model = modelProperties(scene);
+        QThread::create([scene, known = std::move(known), stale, current, result]() mutable {
+            if (!stale.empty()) {
+                const std::vector<FaceMeasure> fresh = measureFaces(scene, stale);
+                for (size_t k = 0; k < stale.size(); ++k) {
+                    known[stale[k]] = fresh[k];
+                    result->measured.push_back({stale[k], fresh[k]});
+                }
+            }
+            result->model = modelProperties(scene, known);
+            if (current)
+                result->face = known[*current].props;
         });
     worker->setParent(this);
-    connect(worker, &QThread::finished, this, [this, worker, generation, id, result] {
-        show(generation, id, result->face, result->model);
-        worker->deleteLater();
-    });
+    connect(worker, &QThread::finished, this,
+            [this, worker, generation, id, result, keys, ids = surfaceIds(scene)] {
+                // The measures hold for the revisions they were taken at, whatever came since.
+                QHash<SurfaceId, Cached> cache;
+                for (size_t k = 0; k < ids.size(); ++k)
+                    if (const auto it = m_cache.constFind(ids[k]); it != m_cache.cend())
+                        cache.insert(ids[k], *it);
+                for (const auto& [index, measure] : result->measured) {
+                    Cached c = keys[index];
+                    c.measure = measure;
+                    cache.insert(ids[index], c);
+                }
+                m_cache = std::move(cache);
+                m_measured += int(result->measured.size());
+                show(generation, id, result->face, result->model);
+                worker->deleteLater();
+            });
     worker->start(QThread::LowPriority);
 }
 

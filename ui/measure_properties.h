@@ -5,6 +5,7 @@
 
 #include "model/mass_properties.h"
 
+#include <QHash>
 #include <QWidget>
 #include <cstdint>
 
@@ -28,6 +29,8 @@ public:
     /// The texts shown (for tests and copying): the face's and the model's, "" when none.
     QString faceText() const;
     QString modelText() const;
+    /// Faces measured since construction (a face the cache still holds is not measured again).
+    int facesMeasured() const { return m_measured; }
 
 Q_SIGNALS:
     /// The values of the current state are shown.
@@ -40,6 +43,15 @@ private:
     void start();
     void show(std::uint64_t generation, SurfaceId face, const std::optional<FaceProperties>& f,
               const ModelProperties& m);
+
+    /// A face's measure while its shape and trims keep the revisions it was taken at: after an
+    /// edit only the faces it changed are measured again.
+    struct Cached {
+        std::uint64_t points = 0, knots = 0, trims = 0;
+        FaceMeasure measure;
+    };
+    QHash<SurfaceId, Cached> m_cache;
+    int m_measured = 0;
 
     Document* m_doc;
     Selection* m_selection;
