@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/info_continuity.h"
 #include "model/cad/cadimport.h"
+#include "model/mass_properties.h"
 #include "model/document/seamgaps.h"
 #include "model/nurbs/trim.h"
 
@@ -45,6 +46,10 @@ bool isRational(const NurbsSurface& g) {
 
 QJsonArray vec(const glm::dvec3& v) {
     return QJsonArray{v.x, v.y, v.z};
+}
+
+QJsonValue bboxJson(const glm::dvec3& lo, const glm::dvec3& hi) {
+    return QJsonObject{{QStringLiteral("min"), vec(lo)}, {QStringLiteral("max"), vec(hi)}};
 }
 
 QString text(const glm::dvec3& v) {
@@ -169,8 +174,10 @@ QString topologyText(const Scene& scene) {
 }
 
 QJsonObject toJson(const QString& file, const Scene& scene) {
+    const ModelProperties model = modelProperties(scene);
     QJsonArray surfaces;
-    for (const Surface& s : scene.surfaces) {
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Surface& s = scene.surfaces[k];
         const NurbsSurface& g = s.geometry;
         QJsonArray loops;
         const QStringList warnings = trimWarnings(s);
@@ -192,6 +199,11 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
             {QStringLiteral("partitions"), QJsonArray{s.partitionsU, s.partitionsV}},
             {QStringLiteral("color"), vec(s.material.color)},
         };
+        const FaceProperties& props = model.faces[k];
+        o.insert(QStringLiteral("type"), surfaceTypeName(props.type));
+        o.insert(QStringLiteral("area"), props.area);
+        o.insert(QStringLiteral("bbox"),
+                 props.hasBounds ? bboxJson(props.lo, props.hi) : QJsonValue(QJsonValue::Null));
         if (s.solid >= 0) // as the .knot file writes it (docs/FILE_FORMAT.md, "Solid")
             o.insert(QStringLiteral("solid"),
                      QJsonObject{{QStringLiteral("index"), s.solid},
@@ -209,6 +221,11 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
                      {QStringLiteral("lights"), lights},
                      {QStringLiteral("topology"), topologyJson(scene)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
+    root.insert(QStringLiteral("area"), model.area);
+    root.insert(QStringLiteral("volume"),
+                model.volume ? QJsonValue(*model.volume) : QJsonValue(QJsonValue::Null));
+    root.insert(QStringLiteral("bbox"),
+                model.hasBounds ? bboxJson(model.lo, model.hi) : QJsonValue(QJsonValue::Null));
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"),
                     QJsonObject{{QStringLiteral("eye"), vec(scene.camera.eye)},
@@ -221,11 +238,13 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
 }
 
 QString toText(const QString& file, const Scene& scene) {
+    const ModelProperties model = modelProperties(scene);
     QString out = QStringLiteral("%1: %2 surface(s), %3 light(s)\n")
                       .arg(file)
                       .arg(scene.surfaces.size())
                       .arg(scene.lights.size());
-    for (const Surface& s : scene.surfaces) {
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+        const Surface& s = scene.surfaces[k];
         const NurbsSurface& g = s.geometry;
         out += QStringLiteral("surface %1 \"%2\": degree %3 x %4, %5 x %6 control points%7\n")
                    .arg(s.id.value)
@@ -235,6 +254,13 @@ QString toText(const QString& file, const Scene& scene) {
                    .arg(g.countU)
                    .arg(g.countV)
                    .arg(isRational(g) ? QStringLiteral(", rational") : QString());
+        const FaceProperties& props = model.faces[k];
+        out += QStringLiteral("  type %1, area %2%3\n")
+                   .arg(surfaceTypeName(props.type))
+                   .arg(props.area, 0, 'g', 12)
+                   .arg(props.hasBounds
+                            ? QStringLiteral(", bbox %1 .. %2").arg(text(props.lo), text(props.hi))
+                            : QString());
         out += QStringLiteral("  knots u: %1\n").arg(knotText(summarise(g.knotsU, g.degreeU)));
         out += QStringLiteral("  knots v: %1\n").arg(knotText(summarise(g.knotsV, g.degreeV)));
         QStringList loops;
@@ -257,6 +283,12 @@ QString toText(const QString& file, const Scene& scene) {
                                                  : QStringLiteral("against Su x Sv"));
     }
     out += topologyText(scene);
+    out += QStringLiteral("area: %1\nvolume: %2\n")
+               .arg(model.area, 0, 'g', 12)
+               .arg(model.volume ? QString::number(*model.volume, 'g', 12)
+                                 : QStringLiteral("none (no closed solid)"));
+    if (model.hasBounds)
+        out += QStringLiteral("bbox: %1 .. %2\n").arg(text(model.lo), text(model.hi));
     for (size_t k = 0; k < scene.lights.size(); ++k)
         out += QStringLiteral("light %1: %2 %3\n")
                    .arg(k + 1)
@@ -274,11 +306,12 @@ QString toText(const QString& file, const Scene& scene) {
 
 int runInfo(const QStringList& args) {
     QCommandLineParser parser;
-    parser.setApplicationDescription(
-        QStringLiteral("Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
-                       "degrees, control-point "
-                       "counts, knot ranges, trim loops, partitions), the shared edges and shells "
-                       "kept from a B-rep import (which seams are open), lights and camera."));
+    parser.setApplicationDescription(QStringLiteral(
+        "Summarise a .knot project (or a CAD file, imported): surfaces (id, name, "
+        "degrees, control-point "
+        "counts, knot ranges, trim loops, partitions, type, trimmed area, bounds), the "
+        "shared edges and shells kept from a B-rep import (which seams are open), "
+        "the model's area, closed-solid volume and bounds, lights and camera."));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Print JSON."));
     parser.addOption(json);
     const QCommandLineOption continuity(

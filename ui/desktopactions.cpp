@@ -189,7 +189,9 @@ QString DesktopActions::shortcutsHtml() const {
            "raises)</td></tr>"
            "<tr><td><b>Middle drag, Alt + left drag</b></td><td>orbit</td></tr>"
            "<tr><td><b>Right drag, Shift + middle drag</b></td><td>pan</td></tr>"
-           "<tr><td><b>Wheel</b></td><td>zoom toward the cursor</td></tr>");
+           "<tr><td><b>Wheel</b></td><td>zoom toward the cursor</td></tr>"
+           "<tr><td><b>Hold P</b></td><td>probe the exact point under the cursor (Measure "
+           "menu: probe, distance, angle, radius)</td></tr>");
     return tr("<h3>Keys</h3><table cellspacing=4>%1</table><h3>Mouse in the 3D view</h3>"
               "<table cellspacing=4>%2</table>")
         .arg(rows, mouse);

@@ -7,6 +7,7 @@
 #include "ui/edit/commands.h"
 #include "ui/lightspanel.h"
 #include "ui/modelingtools.h"
+#include "ui/probe_tool.h"
 #include "ui/propertypanel.h"
 #include "ui/uvpanel.h"
 #include "ui/viewport.h"
@@ -282,6 +283,10 @@ void MainWindow::buildMenus() {
     toolbar->setObjectName(QStringLiteral("toolbarCreate")); // saveState() keys by name
     toolbar->setToolButtonStyle(Qt::ToolButtonTextOnly);
     m_tools->buildMenus(menuBar(), toolbar);
+    auto* probe = new ProbeTool(m_doc, m_viewport); // Measure menu: probe and measurements
+    probe->buildMenu(menuBar());
+    connect(probe, &ProbeTool::message, this,
+            [this](const QString& m) { statusBar()->showMessage(m, 8000); });
     m_desktop = new DesktopActions(this, m_viewport);
     m_desktop->addEditEntries(findChild<QMenu*>(QStringLiteral("menuEdit")));
     m_desktop->addViewEntries(findChild<QMenu*>(QStringLiteral("menuView")));

@@ -2,6 +2,7 @@
 #include "ui/propertypanel.h"
 
 #include "ui/edit/commands.h"
+#include "ui/measure_properties.h"
 
 #include <QColorDialog>
 #include <QComboBox>
@@ -70,6 +71,7 @@ PropertyPanel::PropertyPanel(Document* document, Selection* selection, QUndoStac
     layout->addWidget(m_surfaceBox = buildSurfaceBox());
     layout->addWidget(m_pointBox = buildPointBox());
     layout->addWidget(m_displayBox = buildDisplayBox());
+    layout->addWidget(new MeasuredProperties(m_doc, m_selection));
     layout->addStretch(1);
 
     connect(m_selection, &Selection::changed, this, &PropertyPanel::refresh);

@@ -1,0 +1,316 @@
+// ProbeTool: probe values under the cursor and measure clicks, through an event filter on the
+// viewport.
+#include "ui/probe_tool.h"
+
+#include "model/document/document.h"
+#include "model/mass_properties.h"
+#include "ui/viewport.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QClipboard>
+#include <QElapsedTimer>
+#include <QFrame>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMouseEvent>
+#include <QToolButton>
+#include <QVBoxLayout>
+#include <cmath>
+
+namespace kw {
+
+ProbeTool::ProbeTool(Document* document, Viewport* viewport)
+    : QObject(viewport), m_doc(document), m_view(viewport), m_measure(new MeasureTool(viewport)) {
+    m_panel = new QFrame(viewport);
+    m_panel->setObjectName(QStringLiteral("probePanel"));
+    m_panel->setFrameShape(QFrame::StyledPanel);
+    m_panel->setAutoFillBackground(true);
+    auto* layout = new QVBoxLayout(m_panel);
+    layout->setContentsMargins(6, 4, 6, 4);
+    m_text = new QLabel;
+    m_text->setObjectName(QStringLiteral("probeText"));
+    m_text->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_text->setTextFormat(Qt::PlainText);
+    layout->addWidget(m_text);
+    auto* copy = new QToolButton;
+    copy->setObjectName(QStringLiteral("probeCopy"));
+    copy->setText(tr("Copy"));
+    copy->setToolTip(tr("Copy the probe values as text"));
+    layout->addWidget(copy, 0, Qt::AlignRight);
+    connect(copy, &QToolButton::clicked, this, [this] { copyProbe(); });
+    m_panel->hide();
+    viewport->installEventFilter(this);
+    // Dimensions and the probe belong to the geometry they were taken on: a new or opened
+    // document starts without them.
+    connect(document, &Document::sceneReset, this, [this] {
+        m_measure->clear();
+        hideProbe();
+    });
+}
+
+void ProbeTool::buildMenu(QMenuBar* bar) {
+    QMenu* menu = bar->addMenu(tr("&Measure"));
+    menu->setObjectName(QStringLiteral("menuMeasure"));
+    auto* group = new QActionGroup(this);
+    group->setExclusionPolicy(QActionGroup::ExclusionPolicy::ExclusiveOptional);
+    const struct {
+        const char* name;
+        QString text;
+        QString tip;
+        Mode mode;
+    } entries[] = {
+        {"actionProbe", tr("&Probe"),
+         tr("Show the exact point under the cursor: surface, (u, v), x y z, normal and curvature "
+            "(or hold P over the view)"),
+         Mode::Probe},
+        {"actionMeasureDistance", tr("&Distance"),
+         tr("Click two points: their distance with dx, dy, dz"), Mode::Distance},
+        {"actionMeasureAngle", tr("&Angle"),
+         tr("Click two points: the angle between their normals"), Mode::Angle},
+        {"actionMeasureRadius", tr("&Radius"),
+         tr("Click a point: its smallest radius of curvature"), Mode::Radius},
+    };
+    int k = 0;
+    for (const auto& e : entries) {
+        QAction* a = menu->addAction(e.text);
+        a->setObjectName(QLatin1String(e.name));
+        a->setStatusTip(e.tip);
+        a->setCheckable(true);
+        group->addAction(a);
+        const Mode mode = e.mode;
+        connect(a, &QAction::toggled, this, [this, mode](bool on) {
+            if (on)
+                setMode(mode);
+            else if (m_mode == mode)
+                setMode(Mode::Off);
+        });
+        m_actions[k++] = a;
+    }
+    menu->addSeparator();
+    QAction* copy = menu->addAction(tr("&Copy Probe Values"));
+    copy->setObjectName(QStringLiteral("actionCopyProbe"));
+    connect(copy, &QAction::triggered, this, [this] { copyProbe(); });
+    QAction* clear = menu->addAction(tr("C&lear Measurements"));
+    clear->setObjectName(QStringLiteral("actionClearMeasurements"));
+    connect(clear, &QAction::triggered, this, [this] { m_measure->clear(); });
+}
+
+void ProbeTool::setMode(Mode mode) {
+    if (mode == m_mode)
+        return;
+    m_mode = mode;
+    switch (mode) {
+    case Mode::Distance:
+        m_measure->setKind(Measurement::Kind::Distance);
+        break;
+    case Mode::Angle:
+        m_measure->setKind(Measurement::Kind::Angle);
+        break;
+    case Mode::Radius:
+        m_measure->setKind(Measurement::Kind::Radius);
+        break;
+    case Mode::Off:
+    case Mode::Probe:
+        m_measure->cancelPending();
+        break;
+    }
+    for (int k = 0; k < 4; ++k)
+        if (m_actions[k]) {
+            const QSignalBlocker b(m_actions[k]);
+            m_actions[k]->setChecked(int(mode) == k + 1);
+        }
+    updateTracking();
+    if (!probing())
+        hideProbe();
+    static const char* const hints[] = {
+        "", "Probe: move over a surface; Copy puts the values on the clipboard",
+        "Distance: click two points", "Angle: click two points", "Radius: click a point"};
+    if (mode != Mode::Off)
+        Q_EMIT message(tr(hints[int(mode)]));
+}
+
+void ProbeTool::updateTracking() {
+    // Hover moves reach the view only with tracking; the view itself needs none.
+    m_view->setMouseTracking(probing() || m_mode != Mode::Off);
+}
+
+void ProbeTool::hideProbe() {
+    m_probe.reset();
+    m_text->clear();
+    m_panel->hide();
+    m_measure->setProbeMarker(std::nullopt);
+}
+
+std::optional<ProbePoint> ProbeTool::refine(const PickHit& hit, QPointF position) const {
+    const Surface* s = m_doc->surface(hit.surface);
+    if (!s)
+        return std::nullopt;
+    // The pick's (u, v) is the fragment at the centre of the device pixel under the cursor:
+    // refine it onto the ray through that centre.
+    const qreal dpr = m_view->devicePixelRatioF();
+    const QPointF centre((std::floor(position.x() * dpr) + 0.5) / dpr,
+                         (std::floor(position.y() * dpr) + 0.5) / dpr);
+    glm::dvec3 origin, direction;
+    m_view->viewProjection().ray(centre, origin, direction);
+    return probeOnRay(*s, hit.uv, origin, direction);
+}
+
+std::optional<ProbePoint> ProbeTool::probePoint(QPointF position) {
+    const std::optional<PickHit> hit = m_view->pickSurface(position);
+    return hit ? refine(*hit, position) : std::nullopt;
+}
+
+std::optional<ProbePoint> ProbeTool::probeAt(QPointF position) {
+    QElapsedTimer clock;
+    clock.start();
+    const std::optional<PickHit> hit = m_view->pickSurface(position);
+    const qint64 picked = clock.nsecsElapsed();
+    m_probe = hit ? refine(*hit, position) : std::nullopt;
+    if (!m_probe) {
+        hideProbe();
+        m_updateMs = clock.nsecsElapsed() * 1e-6;
+        m_refineMs = 0.0;
+        Q_EMIT probed();
+        return std::nullopt;
+    }
+    m_text->setText(probeText(*m_probe));
+    m_refineMs = (clock.nsecsElapsed() - picked) * 1e-6;
+    m_panel->adjustSize();
+    // In the corner away from the cursor, so it never hides the point being probed.
+    const int margin = 8;
+    const bool right = position.x() < m_view->width() / 2.0;
+    m_panel->move(right ? m_view->width() - m_panel->width() - margin : margin, margin);
+    m_panel->show();
+    m_panel->raise();
+    m_measure->setProbeMarker(m_probe->point);
+    m_updateMs = clock.nsecsElapsed() * 1e-6;
+    Q_EMIT probed();
+    return m_probe;
+}
+
+bool ProbeTool::measureAt(QPointF position) {
+    const std::optional<ProbePoint> p = probePoint(position);
+    if (!p) {
+        Q_EMIT message(tr("Nothing to measure there: click a surface"));
+        return false;
+    }
+    const auto planes = [this](const ProbePoint& a, const ProbePoint& b) {
+        const Surface* sa = m_doc->surface(a.surface);
+        const Surface* sb = m_doc->surface(b.surface);
+        return sa && sb && surfaceType(*sa) == SurfaceType::Plane &&
+               surfaceType(*sb) == SurfaceType::Plane;
+    };
+    if (const std::optional<Measurement> m = m_measure->addPoint(*p, planes)) {
+        Q_EMIT message(measurementText(*m));
+        Q_EMIT measured(*m);
+    } else {
+        Q_EMIT message(tr("First point on %1; click the second").arg(p->name));
+    }
+    return true;
+}
+
+QString ProbeTool::panelText() const {
+    return m_probe ? m_text->text() : QString();
+}
+
+bool ProbeTool::copyProbe() {
+    if (!m_probe)
+        return false;
+    QApplication::clipboard()->setText(m_text->text());
+    Q_EMIT message(tr("Probe values copied"));
+    return true;
+}
+
+bool ProbeTool::eventFilter(QObject* watched, QEvent* event) {
+    if (watched != m_view)
+        return false;
+    switch (event->type()) {
+    case QEvent::ShortcutOverride: {
+        // Ctrl+C over the view copies the probe, ahead of any window-wide Copy; P is ours too.
+        auto* k = static_cast<QKeyEvent*>(event);
+        if ((k->matches(QKeySequence::Copy) && probing() && m_probe) ||
+            (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier)) {
+            event->accept();
+            return true;
+        }
+        return false;
+    }
+    case QEvent::KeyPress: {
+        auto* k = static_cast<QKeyEvent*>(event);
+        if (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier) {
+            if (!k->isAutoRepeat() && !m_held) {
+                m_held = true;
+                updateTracking();
+                probeAt(m_view->mapFromGlobal(QCursor::pos()));
+            }
+            return true;
+        }
+        if (k->key() == Qt::Key_Escape && m_mode != Mode::Off) {
+            if (!m_measure->cancelPending())
+                setMode(Mode::Off);
+            return true;
+        }
+        if (k->matches(QKeySequence::Copy) && probing() && m_probe)
+            return copyProbe();
+        return false;
+    }
+    case QEvent::KeyRelease: {
+        auto* k = static_cast<QKeyEvent*>(event);
+        if (k->key() == Qt::Key_P && !k->isAutoRepeat() && m_held) {
+            m_held = false;
+            updateTracking();
+            if (!probing())
+                hideProbe();
+            return true;
+        }
+        return false;
+    }
+    case QEvent::FocusOut:
+        if (m_held) { // the release will not come to the view
+            m_held = false;
+            updateTracking();
+            if (!probing())
+                hideProbe();
+        }
+        return false;
+    case QEvent::MouseMove: {
+        auto* m = static_cast<QMouseEvent*>(event);
+        if (probing() && m->buttons() == Qt::NoButton)
+            probeAt(m->position());
+        return false;
+    }
+    case QEvent::MouseButtonPress: {
+        auto* m = static_cast<QMouseEvent*>(event);
+        const bool measuring =
+            m_mode == Mode::Distance || m_mode == Mode::Angle || m_mode == Mode::Radius;
+        if (measuring && m->button() == Qt::LeftButton && m->modifiers() == Qt::NoModifier) {
+            m_view->setFocus(Qt::MouseFocusReason);
+            measureAt(m->position());
+            m_swallowRelease = true;
+            return true;
+        }
+        return false;
+    }
+    case QEvent::MouseButtonRelease:
+        if (m_swallowRelease && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
+            m_swallowRelease = false;
+            return true;
+        }
+        return false;
+    case QEvent::Leave:
+        if (probing())
+            hideProbe();
+        return false;
+    case QEvent::Resize:
+        m_measure->setGeometry(m_view->rect());
+        return false;
+    default:
+        return false;
+    }
+}
+
+} // namespace kw
