@@ -253,6 +253,11 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         options.pixelTolerance = scene.display.pixelTolerance;
     if (!scene.display.background.isEmpty() && !parser.isSet(shared.background))
         backgroundNamed(scene.display.background, options); // validated with the file
+    // The project's sections (validated with the file) unless --section gives others.
+    if (!parser.isSet(shared.section)) {
+        options.sections = scene.display.sections;
+        options.sectionCaps = scene.display.sectionCaps && !parser.isSet(shared.noCaps);
+    }
     Camera camera = model->camera;
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);

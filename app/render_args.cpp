@@ -124,6 +124,21 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
 
 } // namespace
 
+bool parseSectionPlane(const QString& text, SectionPlane& plane, QString& why) {
+    double v[6];
+    if (!parseNumbers(text, 6, v)) {
+        why = QStringLiteral("six numbers X,Y,Z,NX,NY,NZ");
+        return false;
+    }
+    plane = SectionPlane{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), false};
+    why = sectionPlaneError(plane);
+    if (!why.isEmpty()) {
+        why = QStringLiteral("a plane: ") + why.section(QStringLiteral("section plane's "), -1);
+        return false;
+    }
+    return true;
+}
+
 int trimGridCapForImage(QSize size, double zoom) {
     const double side = double(std::max(size.width(), size.height())) * std::max(zoom, 1.0) /
                         kImagePixelsPerTrimTexel;
@@ -265,7 +280,18 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                        o.samples, o.aaMethod,   o.shading,       o.isocurves,      o.isoLines,
                        o.range,   o.scale,      o.stripes,       o.stripeAngle,    o.isophoteBands,
                        o.pull,    o.draftAngle, o.envMap,        o.directions});
+    o.section = QCommandLineOption(
+        QStringLiteral("section"),
+        QStringLiteral("A section plane through X,Y,Z removing the side its normal NX,NY,NZ "
+                       "points to, cut at each pixel's exact point; up to %1 (repeat the "
+                       "option). Default the project's.")
+            .arg(kMaxSectionPlanes),
+        QStringLiteral("X,Y,Z,NX,NY,NZ"));
+    o.noCaps = QCommandLineOption(QStringLiteral("no-caps"),
+                                  QStringLiteral("With sections: no caps on cut closed solids."));
     parser.addOption(o.background);
+    parser.addOption(o.section);
+    parser.addOption(o.noCaps);
     return o;
 }
 
@@ -332,6 +358,25 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     options.antialiasing = *aaMethod;
     if (!backgroundNamed(parser.value(o.background), options))
         return fail(o.background, QStringLiteral("dark or light"));
+    const QStringList sections = parser.values(o.section);
+    if (sections.size() > kMaxSectionPlanes) {
+        printError(QStringLiteral("%1: --section given %2 times, at most %3")
+                       .arg(cmd)
+                       .arg(sections.size())
+                       .arg(kMaxSectionPlanes));
+        return false;
+    }
+    options.sections.clear();
+    for (const QString& text : sections) {
+        SectionPlane plane;
+        QString why;
+        if (!parseSectionPlane(text, plane, why)) {
+            printError(QStringLiteral("%1: --section '%2' is not %3").arg(cmd, text, why));
+            return false;
+        }
+        options.sections.push_back(plane);
+    }
+    options.sectionCaps = !parser.isSet(o.noCaps);
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return readDevelopmentSwitches(cmd, options);
 }

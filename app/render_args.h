@@ -12,6 +12,9 @@ class QCommandLineParser;
 
 namespace kw::cli {
 
+/// A section plane "X,Y,Z,NX,NY,NZ" (a point of it and the normal of the side it removes).
+/// False with `why` set when malformed or the normal has zero length.
+bool parseSectionPlane(const QString& text, SectionPlane& plane, QString& why);
 /// "WxH" with both in 1..16384; false when malformed.
 bool parseImageSize(const QString& text, QSize& size);
 /// "N" or "NxM" with values in [kMinPartitions, kMaxPartitions]; false when malformed.
@@ -24,8 +27,8 @@ QString modeName(RenderMode mode);
 QString shadingName(RenderOptions::Shading shading);
 
 /// --mode, --partitions, --partition-mode, --pixel-tolerance, --lights, --depth, --no-trims,
-/// --trim-mask-cap, --trim-mode, --trim-budget, --samples, --aa-method, --background and the
-/// analysis options
+/// --trim-mask-cap, --trim-mode, --trim-budget, --samples, --aa-method, --background,
+/// --section (repeatable), --no-caps and the analysis options
 /// (--shading MODE, --isocurves, --iso-lines, --range, --scale, --stripes, --stripe-angle,
 /// --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
@@ -33,6 +36,7 @@ struct RenderCliOptions {
         trimMaskCap, trimMode, trimBudget, samples, aaMethod, background;
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
         isophoteBands, pull, draftAngle, envMap, directions;
+    QCommandLineOption section{QStringLiteral("section")}, noCaps{QStringLiteral("no-caps")};
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
 /// `defaultPartitioning`: "adaptive" (render) or "uniform" (bench: the paper's tables).

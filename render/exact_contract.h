@@ -56,6 +56,9 @@ constexpr int kBaseVertexWords = 8;
 constexpr int kBaseVertexSpanWord = 5;
 constexpr int kBaseVertexSpanScaleWord = 7;
 
+/// The AOV id of a section cap's pixels (surface ids are positive, the background -1).
+constexpr int kSectionCapId = -2;
+
 /// A constant as the shaders see it.
 struct ShaderConstant {
     const char* name;
@@ -67,6 +70,8 @@ struct ShaderConstant {
 /// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels).
 inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_MAX_LIGHTS", kMaxLights},
+    ShaderConstant{"KW_MAX_SECTIONS", kMaxSectionPlanes},
+    ShaderConstant{"KW_SECTION_CAP_ID", kSectionCapId},
     ShaderConstant{"KW_COMPOSITE_COLOUR_UNIT", kCompositeColourUnit},
     ShaderConstant{"KW_COMPOSITE_ACCUM_UNIT", kCompositeAccumUnit},
     ShaderConstant{"KW_COMPOSITE_DEPTH_UNIT", kCompositeDepthUnit},
@@ -128,6 +133,7 @@ enum class ExactFeature : std::uint32_t {
     Directions = 1u << 13,   ///< KW_DIRECTIONS: principal-direction marks
     SecondOrder = 1u << 14,  ///< KW_SECOND_ORDER: second derivatives and curvature
     AovCurvature = 1u << 15, ///< KW_AOV_CURVATURE: the curvature AOV targets
+    Section = 1u << 16,      ///< KW_SECTION: section planes cut at the exact point, caps
 };
 using ExactFeatures = QFlags<ExactFeature>;
 
@@ -153,6 +159,7 @@ inline constexpr std::array kExactFeatureDefines{
     ExactFeatureDefine{ExactFeature::Directions, "KW_DIRECTIONS"},
     ExactFeatureDefine{ExactFeature::SecondOrder, "KW_SECOND_ORDER"},
     ExactFeatureDefine{ExactFeature::AovCurvature, "KW_AOV_CURVATURE"},
+    ExactFeatureDefine{ExactFeature::Section, "KW_SECTION"},
 };
 
 /// The defines of `features`, one per bit, in kExactFeatureDefines' order.

@@ -51,6 +51,7 @@ ExactVariant ExactSurfacePass::variant(int p, int q, int lightCount, const Rende
               trimmed && options.trimMode == RenderOptions::TrimMode::Exact);
     f.setFlag(ExactFeature::TrimAa, trimmed && trimAa != TrimAa::Off);
     f.setFlag(ExactFeature::TrimEdge, trimmed && trimAa == TrimAa::Edge);
+    f.setFlag(ExactFeature::Section, !options.sections.empty());
     return v;
 }
 
@@ -313,6 +314,7 @@ bool ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, Tri
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        setSectionUniforms(gl, prog, options);
         if (b.trimmed)
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
@@ -459,6 +461,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        setSectionUniforms(gl, prog, options);
         gl->glStencilFunc(GL_EQUAL, r.stencil, 0xff);
         // The route's rectangle only: llvmpipe bins nothing outside the scissor.
         gl->glScissor(lo.x, lo.y, hi.x - lo.x, hi.y - lo.y);
@@ -519,6 +522,7 @@ bool ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& scene
     prog->bind();
     setFrameUniforms(gl, prog, camera, lights);
     setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+    setSectionUniforms(gl, prog, options);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtPixels,
                     float(options.pixelTolerance) + kSkirtMarginPixels);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);

@@ -53,7 +53,7 @@ struct SurfaceTableEntry {
     glm::vec4 trimRect{0.0f}; ///< the trim mask's or grid's (u, v) rectangle (TrimMask::rect)
     glm::vec4 trimSize{0.0f}; ///< mask or grid width, height (texels), array layer, unused
     glm::ivec4 data{0};       ///< control offset, countU, u span-table offset, v's (texels)
-    glm::ivec4 ids{0};        ///< surface id, exact trim grid's first word, unused x2
+    glm::ivec4 ids{0};        ///< surface id, trim grid's first word, solid side, unused
     bool operator==(const SurfaceTableEntry&) const = default;
 };
 static_assert(sizeof(SurfaceTableEntry) == kSurfaceTableTexels * sizeof(glm::vec4));

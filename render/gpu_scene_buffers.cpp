@@ -44,7 +44,10 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
             }
             e.data = glm::ivec4(int(g.controlOffset), g.countU, int(g.spanOffset),
                                 int(g.spanOffset + g.spanTexelsU));
-            e.ids = glm::ivec4(int(r->id.value), trimBlock, 0, 0);
+            // Which side of the face is a closed solid's outside: the section caps' test.
+            const int solidSide =
+                r->surface->solid < 0 ? 0 : (r->surface->outsideAlongNormal ? 1 : -1);
+            e.ids = glm::ivec4(int(r->id.value), trimBlock, solidSide, 0);
             SurfaceTableEntry& row = t.rows[size_t(r->slot)];
             if (!(row == e)) {
                 row = e;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
+#include <vector>
 
 namespace kw {
 
@@ -191,6 +192,17 @@ struct RenderOptions {
     std::optional<glm::vec4> backgroundTop;
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;
+    /// Section planes (kw::SectionPlane, at most kMaxSectionPlanes, each valid by
+    /// sectionPlaneError; Renderer::render refuses others): every pixel whose exact point lies
+    /// on a plane's removed side is discarded, in both modes and every shading, and the
+    /// section curve is drawn as a line. A frame with planes draws exact mode with
+    /// Shading::ExactDepth and without skipping back faces: the pre-pass's depth is the base
+    /// polygon's, which cannot tell the exact point's side, and the back faces of closed solids
+    /// are where the caps go (docs/RENDERING.md, "Section planes").
+    std::vector<SectionPlane> sections;
+    /// With sections: where the first kept surface under a pixel is the inside of a closed
+    /// solid (Surface::solid), a hatched cap at the plane, AOV id kSectionCapId.
+    bool sectionCaps = true;
 
     bool operator==(const RenderOptions&) const = default;
 };

@@ -100,6 +100,20 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
+    if (options.sections.size() > size_t(kMaxSectionPlanes))
+        return fail(QStringLiteral("%1 section planes, at most %2")
+                        .arg(options.sections.size())
+                        .arg(kMaxSectionPlanes));
+    for (const SectionPlane& p : options.sections)
+        if (const QString why = sectionPlaneError(p); !why.isEmpty())
+            return fail(why);
+    if (!options.sections.empty()) {
+        // The pre-pass's depth is the base polygon's, which cannot tell on which side of a
+        // plane a pixel's exact point lies; and the back faces of closed solids are where
+        // the caps are drawn.
+        options.shading = RenderOptions::Shading::ExactDepth;
+        options.skipBackFaces = false;
+    }
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
     scene.prepare(doc);

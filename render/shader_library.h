@@ -21,6 +21,8 @@ struct UniformLocations {
     int trimMask = -1, trimRect = -1, trimSize = -1, trimLayerScale = -1, trimLayer = -1;
     int trimBlock = -1;
     int skirtPixels = -1, skirtReach = -1, skirtDepthScale = -1; // the edge skirts' (KW_SKIRT)
+    int sectionPlanes = -1, sectionCount = -1, sectionCaps = -1; // section.glsl (KW_SECTION)
+    int solidSide = -1; // tessellated.frag's (the exact pass reads the surface table's)
     int depthBias = -1, pointSize = -1, lineColor = -1;          // lines.vert/.frag
     // analysis.glsl (render/analysis_gl.cpp), by mode
     int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;

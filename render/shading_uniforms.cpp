@@ -48,6 +48,26 @@ void setFrameUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* progr
     }
 }
 
+void setSectionUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
+                        const RenderOptions& options) {
+    const UniformLocations& u = ShaderLibrary::uniforms(program);
+    if (u.sectionCount < 0)
+        return;
+    glm::vec4 planes[kMaxSectionPlanes];
+    int n = 0;
+    for (const SectionPlane& p : options.sections) {
+        const glm::dvec3 normal = p.removedSide();
+        if (n == kMaxSectionPlanes || normal == glm::dvec3(0.0))
+            continue; // the renderer refuses such frames; never cut by a plane without normal
+        // The offset in double: a plane far from the origin keeps its place in float.
+        planes[n++] = glm::vec4(glm::vec3(normal), float(-glm::dot(normal, p.position)));
+    }
+    if (n > 0)
+        gl->glUniform4fv(u.sectionPlanes, n, glm::value_ptr(planes[0]));
+    gl->glUniform1i(u.sectionCount, n);
+    gl->glUniform1i(u.sectionCaps, options.sectionCaps ? 1 : 0);
+}
+
 void setSurfaceUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* program,
                         const Surface& surface) {
     const Material& m = surface.material;

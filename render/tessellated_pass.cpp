@@ -2,6 +2,8 @@
 #include "render/tessellated_pass.h"
 
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
+#include "render/shader_library.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
@@ -21,6 +23,8 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
+    if (!options.sections.empty())
+        defines << featureDefines(ExactFeature::Section); // section.glsl's, as the exact pass's
     QOpenGLShaderProgram* plain = m_shaders->program(QStringLiteral("tessellated.vert"),
                                                      QStringLiteral("tessellated.frag"), defines);
     QOpenGLShaderProgram* trimmed =
@@ -44,8 +48,13 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
             prog->bind();
             bound = prog;
             setFrameUniforms(gl, prog, camera, lights);
+            setSectionUniforms(gl, prog, options);
         }
         setSurfaceUniforms(gl, prog, *r->surface);
+        if (const int side = ShaderLibrary::uniforms(prog).solidSide; side >= 0)
+            gl->glUniform1i(side, r->surface->solid < 0            ? 0
+                                  : r->surface->outsideAlongNormal ? 1
+                                                                   : -1);
         if (mask)
             masks.setUniforms(prog, *mask, 0);
         gl->glBindVertexArray(m.vao);

@@ -13,10 +13,14 @@
 // point truly under the pixel, kwOntoRay), KW_SKIRT (the edge skirts: keep a fragment only
 // where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint),
 // KW_DEPTH_ONLY (with KW_RAY_NEWTON and KW_TRIM: the depth pre-pass of cells near a trim curve,
-// which tests the trims at the point under the pixel and shades nothing).
+// which tests the trims at the point under the pixel and shades nothing), KW_SECTION (section
+// planes cut the exact point; caps where a closed solid is seen from inside; section.glsl).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
+#ifdef KW_SECTION
+#include "section.glsl"
+#endif
 #ifndef KW_ANALYSIS
 #define KW_ANALYSIS KW_ANALYSIS_PHONG
 #endif
@@ -476,6 +480,20 @@ void main() {
     vec4 clip = uViewProjection * vec4(s.point, 1.0);
     gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // zero-to-one clip range, reversed
 #endif
+#ifdef KW_SECTION
+    // Cut by the exact point; a kept face of a closed solid seen from inside shows the cap in
+    // front of it instead: the plane's point and normal. The depth stays the face's, so that a
+    // kept surface in front of the face (outside the solid's cut) still hides the cap.
+    float sectionLine = kwSectionLine(s.point);
+    if (kwSectionCut(s.point))
+        discard;
+    vec3 capPoint;
+    int capPlane = uSolidSide == 0 ? -1 : kwSectionCap(s.point, s.normal * float(uSolidSide), capPoint);
+    if (capPlane >= 0) {
+        s.point = capPoint;
+        s.normal = uSectionPlanes[capPlane].xyz;
+    }
+#endif
 #ifdef KW_SECOND_ORDER
     vec4 curvature = s.curvature;
 #else
@@ -486,11 +504,21 @@ void main() {
 #else
     vec3 colour = phong(s.point, s.normal);
 #endif
+#ifdef KW_SECTION
+    if (capPlane >= 0) {
+        colour = kwCapColour(phong(s.point, s.normal));
+        curvature = vec4(0.0); // a plane
+    } else {
+#endif
 #ifdef KW_ISOCURVES
     colour = overlayIsocurves(colour, uv, spanKnotsU(span), spanKnotsV(span));
 #endif
 #ifdef KW_DIRECTIONS
     colour = overlayDirections(colour, s.normal, vUv, span);
+#endif
+#ifdef KW_SECTION
+        colour = kwSectionLineColour(colour, sectionLine);
+    }
 #endif
 #ifdef KW_TRIM_EDGE
     fragColor = vec4(colour * coverage, coverage); // premultiplied, summed by the blend
@@ -499,6 +527,10 @@ void main() {
 #endif
 #ifdef KW_AOV
     aovIdUvDepth = vec4(uSurfaceId, uv, dot(s.point - uEye, uForward));
+#ifdef KW_SECTION
+    if (capPlane >= 0)
+        aovIdUvDepth = vec4(float(KW_SECTION_CAP_ID), 0.0, 0.0, dot(s.point - uEye, uForward));
+#endif
     aovPosition = vec4(s.point, 1.0);
     aovNormal = vec4(s.normal, 0.0);
 #endif

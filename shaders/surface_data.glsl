@@ -15,7 +15,7 @@
 // The table: KW_TABLE_TEXELS RGBA32F texels per surface (kw::SurfaceTableEntry), read as floats for texels
 // 0-5 (domain; origin; colour; ka, kd, ks, shininess; trim rectangle; trim size and layer) and
 // through an RGBA32I view for texels 6-7 (control offset, countU, u and v span-table offsets;
-// surface id, exact trim grid's first word).
+// surface id, exact trim grid's first word, closed solid's side).
 layout(binding = KW_SURFACE_TABLE_UNIT) uniform samplerBuffer kwSurfaceTable;
 layout(binding = KW_SURFACE_INTS_UNIT) uniform isamplerBuffer kwSurfaceInts;
 layout(binding = KW_CONTROL_UNIT) uniform samplerBuffer kwControl; // RGBA32F (w (P - origin), w)
@@ -35,6 +35,8 @@ int kwSurface = 0;
 #define uTrimSize (KW_ROW(KW_TABLE_TRIM_SIZE_TEXEL).xy)
 #define uTrimLayer (KW_ROW(KW_TABLE_TRIM_SIZE_TEXEL).z)
 #define uTrimBlock uint(texelFetch(kwSurfaceInts, kwSurface * KW_TABLE_TEXELS + KW_TABLE_IDS_TEXEL).y)
+// 1: a face of a closed solid whose outside is along S_u x S_v, -1: against it, 0: no solid.
+#define uSolidSide texelFetch(kwSurfaceInts, kwSurface * KW_TABLE_TEXELS + KW_TABLE_IDS_TEXEL).z
 
 // Control texel (i, j) and texel x of span-table row `row` of the current surface.
 #define KW_CONTROL(ij) texelFetch(kwControl, KW_DATA.x + (ij).y * KW_DATA.y + (ij).x)

@@ -1,6 +1,14 @@
 // Baseline pass: Gouraud colour; AOVs are the interpolated tessellation values. KW_TRIM: discard
-// where the trim mask says trimmed, at the interpolated (u, v).
+// where the trim mask says trimmed, at the interpolated (u, v). KW_SECTION: section planes cut
+// at the interpolated point (the mesh's), caps where a closed solid is seen from inside
+// (section.glsl; the depth stays the face's, as in exact_surface.frag).
 #include "trim_sample.glsl"
+#ifdef KW_SECTION
+#include "phong.glsl"
+#include "section.glsl"
+uniform vec3 uForward;
+uniform int uSolidSide; // 1: a closed solid's outside is along the normal, -1: against, 0: none
+#endif
 
 in vec3 vColor;
 in vec2 vUv;
@@ -20,9 +28,28 @@ layout(location = 3) out vec4 aovNormal;
 void main() {
     KW_DISCARD_TRIMMED(vUv);
     fragColor = vec4(vColor, 1.0);
+    vec3 point = vPosition, normal = normalize(vNormal);
+    float id = uSurfaceId, depth = vDepth;
+    int capPlane = -1;
+#ifdef KW_SECTION
+    float line = kwSectionLine(point);
+    if (kwSectionCut(point))
+        discard;
+    vec3 capPoint;
+    capPlane = uSolidSide == 0 ? -1 : kwSectionCap(point, normal * float(uSolidSide), capPoint);
+    if (capPlane >= 0) {
+        point = capPoint;
+        normal = uSectionPlanes[capPlane].xyz;
+        id = float(KW_SECTION_CAP_ID);
+        depth = dot(point - uEye, uForward);
+        fragColor = vec4(kwCapColour(phong(point, normal)), 1.0);
+    } else {
+        fragColor.rgb = kwSectionLineColour(fragColor.rgb, line);
+    }
+#endif
 #ifdef KW_AOV
-    aovIdUvDepth = vec4(uSurfaceId, vUv, vDepth);
-    aovPosition = vec4(vPosition, 1.0);
-    aovNormal = vec4(normalize(vNormal), 0.0);
+    aovIdUvDepth = vec4(id, capPlane >= 0 ? vec2(0.0) : vUv, depth);
+    aovPosition = vec4(point, 1.0);
+    aovNormal = vec4(normal, 0.0);
 #endif
 }

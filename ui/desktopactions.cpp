@@ -1,6 +1,8 @@
 // DesktopActions: preferences, help pages and view toggles.
 #include "ui/desktopactions.h"
 
+#include "model/document.h"
+#include "ui/sectiondialog.h"
 #include "ui/viewport.h"
 
 #include <QAction>
@@ -70,6 +72,10 @@ void DesktopActions::applyDisplay(const DisplaySettings& display) {
         const QSignalBlocker quiet(m_lightBackground);
         m_lightBackground->setChecked(light);
     }
+    // The project's sections, or none (a project saved without them).
+    m_viewport->setSections(display.sections, display.sectionCaps);
+    if (m_sections)
+        m_sections->setSections(m_viewport->sections(), m_viewport->sectionCaps());
 }
 
 void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) {
@@ -80,6 +86,23 @@ void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) 
     }
 }
 
+void DesktopActions::showSections() {
+    if (!m_sections) {
+        m_sections = new SectionDialog(
+            [this] {
+                glm::dvec3 lo(0.0), hi(0.0);
+                sceneBounds(m_viewport->document()->scene(), lo, hi, true);
+                return 0.5 * (lo + hi);
+            },
+            m_window);
+        connect(m_sections, &SectionDialog::sectionsChanged, m_viewport, &Viewport::setSections);
+    }
+    m_sections->setSections(m_viewport->sections(), m_viewport->sectionCaps());
+    m_sections->show();
+    m_sections->raise();
+    m_sections->activateWindow();
+}
+
 DisplaySettings DesktopActions::currentDisplay() const {
     DisplaySettings d;
     d.partitionMode = m_viewport->partitioning() == RenderOptions::Partitioning::Uniform
@@ -87,6 +110,8 @@ DisplaySettings DesktopActions::currentDisplay() const {
                           : QStringLiteral("adaptive");
     d.pixelTolerance = m_viewport->pixelTolerance();
     d.background = m_viewport->lightBackground() ? QStringLiteral("light") : QStringLiteral("dark");
+    d.sections = m_viewport->sections();
+    d.sectionCaps = m_viewport->sectionCaps();
     return d;
 }
 
@@ -150,6 +175,12 @@ void DesktopActions::addViewEntries(QMenu* view) {
     m_lightBackground->setCheckable(true);
     m_lightBackground->setChecked(m_viewport->lightBackground());
     connect(m_lightBackground, &QAction::toggled, m_viewport, &Viewport::setLightBackground);
+    // Section planes: view state saved with the project, as the background.
+    QAction* section = view->addAction(tr("&Section…"));
+    section->setObjectName(QStringLiteral("actionSection"));
+    section->setToolTip(tr("Up to three planes that cut the view at the exact surface, with "
+                           "caps on closed solids"));
+    connect(section, &QAction::triggered, this, [this] { showSections(); });
     QAction* head = view->addAction(tr("&Headlight (lights follow the camera)"));
     head->setObjectName(QStringLiteral("actionHeadlight"));
     head->setCheckable(true);

@@ -8,6 +8,10 @@
 #include <QObject>
 
 class QAction;
+
+namespace kw {
+class SectionDialog;
+}
 #include <functional>
 #include <optional>
 
@@ -46,6 +50,9 @@ public:
     DisplaySettings currentDisplay() const;
     /// Opens the Preferences dialog; on OK saves and applies.
     void editPreferences();
+    /// View › Section…: the section dialog, modeless, made on first use; it shows and sets
+    /// the view's planes.
+    void showSections();
     /// Every action of the window with a shortcut, and the mouse gestures, as an HTML table.
     QString shortcutsHtml() const;
 
@@ -58,6 +65,7 @@ private:
     Viewport* m_viewport;
     QAction* m_adaptive = nullptr;        ///< View › Adaptive Partitions
     QAction* m_lightBackground = nullptr; ///< View › Light Background
+    SectionDialog* m_sections = nullptr;  ///< View › Section…, made when first asked for
     Prompts m_prompts;
 };
 

@@ -201,6 +201,18 @@ void Viewport::setHeadlight(bool on) {
     update();
 }
 
+void Viewport::setSections(const std::vector<SectionPlane>& planes, bool caps) {
+    std::vector<SectionPlane> kept;
+    for (const SectionPlane& p : planes)
+        if (int(kept.size()) < kMaxSectionPlanes && sectionPlaneError(p).isEmpty())
+            kept.push_back(p);
+    if (kept == m_options.sections && caps == m_options.sectionCaps)
+        return;
+    m_options.sections = std::move(kept);
+    m_options.sectionCaps = caps;
+    update();
+}
+
 void Viewport::setTrimMaskCap(int texels) {
     m_options.trimMaskCap = std::clamp(texels, kMinTrimMaskSize, 16384);
     update();

@@ -71,6 +71,12 @@ public:
     void setLightBackground(bool on);
     bool lightBackground() const { return m_lightBackground; }
     void setHeadlight(bool on);
+    /// Section planes (at most kMaxSectionPlanes; invalid ones, a zero normal, are left out)
+    /// and caps: view state saved with the project (DisplaySettings), not an edit.
+    void setSections(const std::vector<SectionPlane>& planes, bool caps);
+    const std::vector<SectionPlane>& sections() const { return m_options.sections; }
+    const Document* document() const { return m_doc; }
+    bool sectionCaps() const { return m_options.sectionCaps; }
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
     /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.

@@ -12,8 +12,9 @@ namespace {
 // "KWIMPORT", then the version: bump it with any change below. The end mark catches a block
 // cut at a field boundary.
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
-// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background
-constexpr std::uint32_t kVersion = 4;
+// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background;
+// 5: DisplaySettings::sections, sectionCaps
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -24,8 +25,9 @@ static_assert(sizeof(NurbsCurve2) == 80, "update the CAD hand-over");
 static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
 static_assert(sizeof(Light) == 104, "update the CAD hand-over");
 static_assert(sizeof(Camera) == 88, "update the CAD hand-over");
-static_assert(sizeof(DisplaySettings) == 56, "update the CAD hand-over");
-static_assert(sizeof(Scene) == 248, "update the CAD hand-over");
+static_assert(sizeof(DisplaySettings) == 88, "update the CAD hand-over");
+static_assert(sizeof(SectionPlane) == 56, "update the CAD hand-over");
+static_assert(sizeof(Scene) == 280, "update the CAD hand-over");
 static_assert(sizeof(EdgeUse) == 16, "update the CAD hand-over");
 static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
 static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
@@ -278,6 +280,13 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.string(scene.display.partitionMode);
     w.value(scene.display.pixelTolerance);
     w.string(scene.display.background);
+    w.value(std::uint32_t(scene.display.sections.size()));
+    for (const SectionPlane& p : scene.display.sections) {
+        w.value(p.position);
+        w.value(p.normal);
+        w.value(std::uint8_t(p.flip));
+    }
+    w.value(std::uint8_t(scene.display.sectionCaps));
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -326,6 +335,14 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     scene.display.partitionMode = r.string("display partition mode");
     scene.display.pixelTolerance = r.value<double>("display pixel tolerance");
     scene.display.background = r.string("display background");
+    // A plane is 49 bytes: a point, a normal and the flip flag.
+    scene.display.sections.resize(r.count(49, "section plane count"));
+    for (SectionPlane& p : scene.display.sections) {
+        p.position = r.value<glm::dvec3>("section plane position");
+        p.normal = r.value<glm::dvec3>("section plane normal");
+        p.flip = r.flag("section plane flip flag");
+    }
+    scene.display.sectionCaps = r.flag("section caps flag");
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");

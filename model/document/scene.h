@@ -101,12 +101,35 @@ std::vector<Light> defaultLights();
 constexpr double kMinPixelTolerance = 0.05;
 constexpr double kMaxPixelTolerance = 16.0;
 
+/// A section plane: it removes the half-space its normal points into, so that what is left
+/// faces the eye with the plane's normal as its outward normal (the cap's). `flip` keeps the
+/// other half instead. The normal need not be unit length but must not be zero
+/// (sectionPlaneError).
+struct SectionPlane {
+    glm::dvec3 position{0.0};
+    glm::dvec3 normal{1.0, 0.0, 0.0};
+    bool flip = false;
+    /// The unit normal of the removed side (flip applied); zero for a zero normal.
+    glm::dvec3 removedSide() const {
+        const double l = glm::length(normal);
+        return l > 0.0 ? (flip ? -normal : normal) / l : glm::dvec3(0.0);
+    }
+    bool operator==(const SectionPlane&) const = default;
+};
+/// At most this many section planes cut a view at once (the exact pass's uniform array).
+constexpr int kMaxSectionPlanes = 3;
+/// Why `plane` cannot cut (a zero or non-finite normal, a non-finite position), or empty.
+QString sectionPlaneError(const SectionPlane& plane);
+
 /// How the project asks to be drawn, saved with it like the camera (not an edit). An empty
 /// mode leaves it to the viewer (the editor's preference, render's --partition-mode).
 struct DisplaySettings {
     QString partitionMode;       ///< "", "adaptive" or "uniform"
     double pixelTolerance = 0.5; ///< adaptive mode's, kMinPixelTolerance..kMaxPixelTolerance
     QString background;          ///< "", "dark" or "light" (kw::backgroundNamed)
+    /// Section planes (at most kMaxSectionPlanes) and whether closed solids get caps.
+    std::vector<SectionPlane> sections;
+    bool sectionCaps = true;
     bool operator==(const DisplaySettings&) const = default;
 };
 

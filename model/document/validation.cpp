@@ -190,6 +190,13 @@ QString displayError(const DisplaySettings& d) {
             .arg(d.pixelTolerance)
             .arg(kMinPixelTolerance)
             .arg(kMaxPixelTolerance);
+    if (d.sections.size() > size_t(kMaxSectionPlanes))
+        return QStringLiteral("%1 section planes, at most %2")
+            .arg(d.sections.size())
+            .arg(kMaxSectionPlanes);
+    for (size_t k = 0; k < d.sections.size(); ++k)
+        if (const QString why = sectionPlaneError(d.sections[k]); !why.isEmpty())
+            return QStringLiteral("section %1: %2").arg(k + 1).arg(why);
     return QString();
 }
 

@@ -163,12 +163,24 @@ QByteArray sceneToJson(const Scene& scene) {
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
     if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
-    if (!scene.display.partitionMode.isEmpty() || !scene.display.background.isEmpty()) {
+    const DisplaySettings& d = scene.display;
+    if (!d.partitionMode.isEmpty() || !d.background.isEmpty() || !d.sections.empty() ||
+        !d.sectionCaps) {
         QJsonObject display{{QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}};
         if (!scene.display.partitionMode.isEmpty())
             display.insert(QStringLiteral("partitionMode"), scene.display.partitionMode);
         if (!scene.display.background.isEmpty())
             display.insert(QStringLiteral("background"), scene.display.background);
+        if (!d.sections.empty()) { // optional (1.4)
+            QJsonArray planes;
+            for (const SectionPlane& p : d.sections)
+                planes.append(QJsonObject{{QStringLiteral("position"), toJson(p.position)},
+                                          {QStringLiteral("normal"), toJson(p.normal)},
+                                          {QStringLiteral("flip"), p.flip}});
+            display.insert(QStringLiteral("sections"), planes);
+        }
+        if (!d.sectionCaps) // optional (1.4): caps are on unless turned off
+            display.insert(QStringLiteral("sectionCaps"), false);
         root.insert(QStringLiteral("display"), display);
     }
     return QJsonDocument(root).toJson(QJsonDocument::Indented);

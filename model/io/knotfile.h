@@ -13,8 +13,9 @@ namespace kw {
 /// Format written by this build. Readers accept any file with the same major version (unknown
 /// members of a newer minor version are ignored) and reject a newer major version.
 constexpr int kKnotFormatMajor = 1;
-/// 1.1 added the optional "display", 1.2 "solid", 1.3 "topology"
-constexpr int kKnotFormatMinor = 3;
+/// 1.1 added the optional "display", 1.2 "solid", 1.3 "topology", 1.4 the display's
+/// "sections" and "sectionCaps"
+constexpr int kKnotFormatMinor = 4;
 
 /// Limits a file must respect (those of a valid scene, model/document/validation.h); larger values
 /// are rejected as corrupt, not attempted.

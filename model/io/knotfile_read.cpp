@@ -534,8 +534,11 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
 
 DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
     DisplaySettings d;
-    // partitionMode may be absent since the background (1.3) can be set alone.
-    if (o.contains(QLatin1String("partitionMode")) || !o.contains(QLatin1String("background"))) {
+    // partitionMode may be absent since the background (1.3) and the sections (1.4) can be set
+    // alone.
+    if (o.contains(QLatin1String("partitionMode")) ||
+        !(o.contains(QLatin1String("background")) || o.contains(QLatin1String("sections")) ||
+          o.contains(QLatin1String("sectionCaps")))) {
         d.partitionMode =
             asString(required(o, path, "partitionMode"), member(path, "partitionMode"));
         if (d.partitionMode != QLatin1String("adaptive") &&
@@ -551,6 +554,28 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
                  QStringLiteral("expected \"dark\" or \"light\", found ") +
                      describe(QJsonValue(d.background)));
     }
+    if (o.contains(QLatin1String("sections"))) {
+        const QString sp = member(path, "sections");
+        const QJsonArray planes = asArray(o.value(QLatin1String("sections")), sp);
+        if (planes.size() > kMaxSectionPlanes)
+            fail(sp, QStringLiteral("%1 section planes, more than the limit %2")
+                         .arg(planes.size())
+                         .arg(kMaxSectionPlanes));
+        for (qsizetype k = 0; k < planes.size(); ++k) {
+            const QString p = element(sp, k);
+            const QJsonObject po = asObject(planes[k], p);
+            SectionPlane plane;
+            plane.position = asVec3(required(po, p, "position"), member(p, "position"));
+            plane.normal = asVec3(required(po, p, "normal"), member(p, "normal"));
+            if (po.contains(QLatin1String("flip")))
+                plane.flip = asBool(po.value(QLatin1String("flip")), member(p, "flip"));
+            if (const QString why = sectionPlaneError(plane); !why.isEmpty())
+                fail(member(p, "normal"), why);
+            d.sections.push_back(plane);
+        }
+    }
+    if (o.contains(QLatin1String("sectionCaps")))
+        d.sectionCaps = asBool(o.value(QLatin1String("sectionCaps")), member(path, "sectionCaps"));
     if (o.contains(QLatin1String("pixelTolerance"))) {
         d.pixelTolerance =
             asNumber(o.value(QLatin1String("pixelTolerance")), member(path, "pixelTolerance"));

@@ -73,7 +73,12 @@ private Q_SLOTS:
                                            {1e-300, 0, 999.75}});
         r.scene.camera = kw::Camera{{1, 2, 3}, {0, 0.5, 0}, {0, 1, 0}, 42.0, true};
         r.scene.display =
-            kw::DisplaySettings{QStringLiteral("uniform"), 2.25, QStringLiteral("light")};
+            kw::DisplaySettings{QStringLiteral("uniform"),
+                                2.25,
+                                QStringLiteral("light"),
+                                {kw::SectionPlane{{0.1, 0.2, 0.3}, {0, 1, 1e-9}, true},
+                                 kw::SectionPlane{{-1, 0, 0}, {1, 0, 0}, false}},
+                                false};
         QVERIFY2(kw::sceneError(r.scene).isEmpty(), qPrintable(kw::sceneError(r.scene)));
         QString why;
         const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r), why);

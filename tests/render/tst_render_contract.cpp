@@ -87,6 +87,12 @@ private Q_SLOTS:
             QStringLiteral("#define KW_SPAN_UNIT %1\n").arg(kSurfaceTableUnit + 3)));
         QVERIFY(
             preamble.contains(QStringLiteral("#define KW_TRIM_GRID_UNIT %1\n").arg(kTrimGridUnit)));
+        // The section planes' array size and the caps' AOV id.
+        QVERIFY(preamble.contains(
+            QStringLiteral("#define KW_MAX_SECTIONS %1\n").arg(kMaxSectionPlanes)));
+        QVERIFY(
+            preamble.contains(QStringLiteral("#define KW_SECTION_CAP_ID %1\n").arg(kSectionCapId)));
+        QCOMPARE(featureDefines(ExactFeature::Section), QStringList{QStringLiteral("KW_SECTION")});
     }
 
     void degreeDefinesCarrySpanTableWidths() {
@@ -111,7 +117,7 @@ private Q_SLOTS:
             all |= f.feature;
             QCOMPARE(featureDefines(f.feature), QStringList{QLatin1String(f.define)});
         }
-        QCOMPARE(int(names.size()), 16);
+        QCOMPARE(int(names.size()), 17);
         const ExactVariant none{2, 3, 1, AnalysisMode::Phong, {}};
         QCOMPARE(none.defines().size(), 5); // degrees, span widths, lights
         ExactVariant v = none;

@@ -1,0 +1,140 @@
+// The editor's View › Section…: a plane added, moved and flipped in the dialog cuts the view at
+// once, pushes no undo step (view state), is saved with the project and comes back with it; a
+// zero normal says so and cuts nothing; a project without sections opens uncut.
+#include "editor_test_util.h"
+#include "model/knotfile.h"
+#include "render/offscreen_renderer.h"
+#include "ui/sectiondialog.h"
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+
+using namespace kw;
+
+namespace {
+
+/// Pixels that differ from the top left one (the background).
+int covered(const QImage& image) {
+    const QRgb background = image.pixel(0, 0);
+    int n = 0;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x)
+            n += image.pixel(x, y) != background;
+    return n;
+}
+
+} // namespace
+
+class TestEditorSections : public kwtest::EditorTestBase {
+    Q_OBJECT
+public:
+    static void initMain() {
+        QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat());
+    }
+
+    template <typename T> T* child(const QString& name) const {
+        auto* d = m_window->findChild<SectionDialog*>(QStringLiteral("sectionDialog"));
+        return d ? d->findChild<T*>(name) : nullptr;
+    }
+
+private Q_SLOTS:
+    void cleanup() { closeWindow(); }
+
+    // "section plane (add, move, flip)", undo-free.
+    void sectionPlaneAddMoveFlip() {
+        openWindow("sphere");
+        Viewport* view = m_window->viewport();
+        // What the view shows without the surface (its control net and outline: overlays,
+        // which no plane cuts), for the empty view below.
+        QAction* hide = act("actionHide");
+        QVERIFY(hide);
+        hide->trigger();
+        QVERIFY(scene().surfaces.front().hidden);
+        const int overlays = covered(view->grabFramebuffer());
+        m_window->undoStack()->undo();
+        QVERIFY(!scene().surfaces.front().hidden);
+        const int undoSteps = m_window->undoStack()->count();
+        const int undoIndex = m_window->undoStack()->index();
+        const int whole = covered(view->grabFramebuffer());
+        QVERIFY(whole > 1000);
+        QAction* section = act("actionSection");
+        QVERIFY(section);
+        section->trigger();
+        auto* enabled = child<QCheckBox>(QStringLiteral("sectionEnabled0"));
+        QVERIFY(enabled);
+
+        // Add: through the model's middle, normal +x: half the sphere goes, a cap shows.
+        enabled->setChecked(true);
+        QCOMPARE(int(view->sections().size()), 1);
+        glm::dvec3 lo, hi;
+        sceneBounds(scene(), lo, hi);
+        const glm::dvec3 mid = 0.5 * (lo + hi);
+        QVERIFY(glm::length(view->sections()[0].position - mid) < 1e-9);
+        const int half = covered(view->grabFramebuffer());
+        QVERIFY2(half < whole && half > whole / 5,
+                 qPrintable(QStringLiteral("%1 of %2").arg(half).arg(whole)));
+
+        // Move: past the sphere's far side along +x nothing is removed.
+        auto* x = child<QDoubleSpinBox>(QStringLiteral("sectionPosition0X"));
+        QVERIFY(x);
+        x->setValue(hi.x + 1.0);
+        QCOMPARE(view->sections()[0].position.x, hi.x + 1.0);
+        // The same pixels, up to the outline's (the view refines its anti-aliasing by frames).
+        const int moved = covered(view->grabFramebuffer());
+        QVERIFY2(std::abs(moved - whole) <= whole / 100,
+                 qPrintable(QStringLiteral("%1 of %2").arg(moved).arg(whole)));
+
+        // Flip: now everything is on the removed side: an empty view (but for the overlays),
+        // not a failure.
+        auto* flip = child<QCheckBox>(QStringLiteral("sectionFlip0"));
+        QVERIFY(flip);
+        flip->setChecked(true);
+        QVERIFY(view->sections()[0].flip);
+        const int empty = covered(view->grabFramebuffer());
+        QVERIFY2(std::abs(empty - overlays) <= whole / 100,
+                 qPrintable(QStringLiteral("%1, overlays %2").arg(empty).arg(overlays)));
+        QVERIFY(view->glError().isEmpty());
+
+        // A zero normal: said in the dialog, no plane.
+        x->setValue(mid.x);
+        for (const char* axis : {"X", "Y", "Z"})
+            child<QDoubleSpinBox>(QStringLiteral("sectionNormal0%1").arg(QLatin1String(axis)))
+                ->setValue(0.0);
+        QVERIFY(view->sections().empty());
+        QVERIFY(child<QLabel>(QStringLiteral("sectionStatus0"))
+                    ->text()
+                    .contains(QStringLiteral("zero length")));
+        const int restored = covered(view->grabFramebuffer());
+        QVERIFY2(std::abs(restored - whole) <= whole / 100,
+                 qPrintable(QStringLiteral("%1 of %2").arg(restored).arg(whole)));
+        child<QDoubleSpinBox>(QStringLiteral("sectionNormal0Z"))->setValue(1.0);
+        QCOMPARE(int(view->sections().size()), 1);
+
+        // View state: no undo step, and saved with the project.
+        QCOMPARE(m_window->undoStack()->count(), undoSteps);
+        QCOMPARE(m_window->undoStack()->index(), undoIndex);
+        QTemporaryDir dir;
+        const QString path = dir.filePath(QStringLiteral("cut.knot"));
+        QVERIFY(m_window->saveFile(path));
+        QString error;
+        const std::optional<Scene> saved = readKnotFile(path, &error);
+        QVERIFY2(saved, qPrintable(error));
+        QCOMPARE(int(saved->display.sections.size()), 1);
+        QCOMPARE(saved->display.sections[0], view->sections()[0]);
+
+        // Another project: uncut; this one again: cut, and the dialog shows it.
+        QVERIFY(m_window->openFile(kwtest::samplePath("torus")));
+        QVERIFY(view->sections().empty());
+        QVERIFY(!enabled->isChecked());
+        QVERIFY(m_window->openFile(path));
+        QCOMPARE(int(view->sections().size()), 1);
+        QVERIFY(enabled->isChecked());
+        QVERIFY(child<QCheckBox>(QStringLiteral("sectionFlip0"))->isChecked());
+    }
+};
+
+QTEST_MAIN(TestEditorSections)
+#include "tst_editor_sections.moc"

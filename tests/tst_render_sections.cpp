@@ -1,0 +1,342 @@
+// Section planes (RenderOptions::sections): every covered pixel's exact point lies on the kept
+// side of every plane, in exact mode (uniform and adaptive partitions, every shading) and the
+// tessellated mode; a closed solid cut through its middle shows its cap with no background
+// pixel inside the cap's outline at 1x and 64x zoom; caps carry id kSectionCapId, P on the
+// plane and N the plane's normal; bad planes are refused and a plane that hides everything
+// draws an empty view; `knotwork render --section` and its errors.
+#include "knotwork_process.h"
+#include "model/document.h"
+#include "model/nurbs_shapes.h"
+#include "render/exact_contract.h"
+#include "render/offscreen_renderer.h"
+#include "render_test_util.h"
+
+#include <QFile>
+#include <QtTest>
+#include <cmath>
+#include <memory>
+
+using namespace kw;
+
+namespace {
+
+constexpr int kSide = 256;
+
+/// The teapot sample with a closed sphere (one solid, outside along S_u x S_v) beside it.
+Scene teapotAndSphere() {
+    QString error;
+    std::optional<Scene> teapot = kwtest::loadSample(QStringLiteral("teapot"), &error);
+    if (!teapot)
+        qFatal("%s", qPrintable(error));
+    Scene scene = *teapot;
+    glm::dvec3 lo, hi;
+    sceneBounds(scene, lo, hi);
+    Surface sphere =
+        kwtest::makeSurface(scene.nextId++, makeSphere(glm::dvec3(hi.x + 1.2, 0.0, 0.8), 1.0));
+    sphere.solid = 0;
+    sphere.outsideAlongNormal = true;
+    scene.surfaces.push_back(sphere);
+    return scene;
+}
+
+/// A lone closed sphere of radius 1 about the origin.
+Scene sphereSolid() {
+    Scene scene;
+    Surface s = kwtest::makeSurface(1, makeSphere(glm::dvec3(0.0), 1.0), 12);
+    // The side S_u x S_v points to, as the importer's mark says it: out of the sphere.
+    const SurfaceDerivatives d = surfaceDerivatives(s.geometry, 0.3, 0.4);
+    s.solid = 0;
+    s.outsideAlongNormal = glm::dot(glm::cross(d.su, d.sv), d.s) > 0.0;
+    scene.surfaces.push_back(s);
+    scene.nextId = 2;
+    return scene;
+}
+
+double diagonal(const Scene& scene) {
+    glm::dvec3 lo, hi;
+    sceneBounds(scene, lo, hi);
+    return glm::length(hi - lo);
+}
+
+/// The unit direction of the ray through the centre of pixel (x, y) (row 0 at the top).
+glm::dvec3 pixelRay(const Camera& c, int x, int y, int width, int height) {
+    const glm::dvec3 f = glm::normalize(c.target - c.eye);
+    const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
+    const glm::dvec3 u = glm::cross(r, f);
+    const double t = std::tan(glm::radians(c.fovYDegrees) * 0.5);
+    const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
+    return glm::normalize(f + r * (nx * t * width / height) + u * (ny * t));
+}
+
+struct Counts {
+    int surface = 0, caps = 0, background = 0;
+};
+
+} // namespace
+
+class TestRenderSections : public QObject {
+    Q_OBJECT
+
+    std::unique_ptr<OffscreenRenderer> m_gl;
+
+    AovBuffer render(const Scene& scene, const Camera& camera, const RenderOptions& options,
+                     QString* error = nullptr) {
+        Document doc;
+        QString why;
+        if (!doc.resetScene(scene, &why))
+            qFatal("%s", qPrintable(why));
+        if (!m_gl->render(doc, camera, options, &why)) {
+            if (error)
+                *error = why;
+            else
+                qWarning("%s", qPrintable(why));
+            return {};
+        }
+        return m_gl->aov();
+    }
+
+    /// Checks every pixel: surfaces kept by every plane, caps on a plane with its normal.
+    /// Returns the counts; a failure is reported through QTest and `ok`.
+    static Counts checkKept(const AovBuffer& aov, const std::vector<SectionPlane>& planes,
+                            double tolerance, bool& ok) {
+        Counts c;
+        ok = false;
+        for (int y = 0; y < aov.height; ++y)
+            for (int x = 0; x < aov.width; ++x) {
+                const float* px = aov.pixel(x, y);
+                if (px[0] == -1.0f) {
+                    ++c.background;
+                    continue;
+                }
+                const glm::dvec3 p(px[3], px[4], px[5]), n(px[6], px[7], px[8]);
+                for (const SectionPlane& s : planes) {
+                    const double beyond = glm::dot(p - s.position, s.removedSide());
+                    if (!(beyond <= tolerance)) {
+                        qWarning("pixel (%d, %d) id %g: %g beyond a plane", x, y, double(px[0]),
+                                 beyond);
+                        return c;
+                    }
+                }
+                if (px[0] > 0.0f) {
+                    ++c.surface;
+                    continue;
+                }
+                if (px[0] != float(kSectionCapId)) {
+                    qWarning("pixel (%d, %d): id %g", x, y, double(px[0]));
+                    return c;
+                }
+                ++c.caps;
+                bool onOne = false;
+                for (const SectionPlane& s : planes)
+                    onOne = onOne ||
+                            (std::abs(glm::dot(p - s.position, s.removedSide())) <= tolerance &&
+                             glm::length(n - s.removedSide()) < 1e-5);
+                if (!onOne) {
+                    qWarning("cap pixel (%d, %d) is on no plane with its normal", x, y);
+                    return c;
+                }
+            }
+        ok = true;
+        return c;
+    }
+
+private Q_SLOTS:
+    void initTestCase() {
+        QString error;
+        m_gl = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
+        QVERIFY2(m_gl, qPrintable(error));
+    }
+
+    void keptSideOnEveryCoveredPixel_data() {
+        QTest::addColumn<int>("mode"); // 0 exact adaptive, 1 exact uniform, 2 tessellated
+        QTest::addColumn<int>("shading");
+        QTest::addColumn<int>("planes");
+        const char* modes[] = {"adaptive", "uniform", "tessellated"};
+        for (int m = 0; m < 3; ++m)
+            for (int planes = 1; planes <= kMaxSectionPlanes; ++planes)
+                QTest::addRow("%s, %d plane(s)", modes[m], planes)
+                    << m << int(AnalysisMode::Phong) << planes;
+        QTest::addRow("adaptive, zebra") << 0 << int(AnalysisMode::Zebra) << 2;
+        QTest::addRow("uniform, gaussian") << 1 << int(AnalysisMode::Gaussian) << 2;
+    }
+    void keptSideOnEveryCoveredPixel() {
+        QFETCH(int, mode);
+        QFETCH(int, shading);
+        QFETCH(int, planes);
+        const Scene scene = teapotAndSphere();
+        glm::dvec3 lo, hi;
+        sceneBounds(scene, lo, hi);
+        const glm::dvec3 mid = 0.5 * (lo + hi);
+        const std::vector<SectionPlane> all{
+            SectionPlane{mid, glm::dvec3(0.3, -1.0, 0.2), false},
+            SectionPlane{mid + glm::dvec3(0.0, 0.0, 0.3), glm::dvec3(0.0, 0.2, 1.0), false},
+            SectionPlane{mid - glm::dvec3(0.5, 0.0, 0.0), glm::dvec3(1.0, 0.0, 0.1), true}};
+        RenderOptions options;
+        options.mode = mode == 2 ? RenderMode::Tessellated : RenderMode::Exact;
+        options.partitioning = mode == 0 ? RenderOptions::Partitioning::Adaptive
+                                         : RenderOptions::Partitioning::Uniform;
+        // Coarse uniform partitions: the base polygon lies far from the surface, so a cut by
+        // the polygon's point instead of the exact one would show.
+        options.partitionsU = options.partitionsV = mode == 1 ? 3 : 0;
+        options.analysis.mode = AnalysisMode(shading);
+        options.sections.assign(all.begin(), all.begin() + planes);
+        const Camera camera = fitCamera(scene, 1.0);
+        const AovBuffer aov = render(scene, camera, options);
+        QVERIFY(!aov.data.empty());
+        bool ok = false;
+        const Counts c = checkKept(aov, options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QVERIFY2(c.surface > 300, qPrintable(QString::number(c.surface)));
+        // Without the planes more of the scene shows: they did cut.
+        RenderOptions whole = options;
+        whole.sections.clear();
+        bool wholeOk = false;
+        const Counts w = checkKept(render(scene, camera, whole), {}, 0.0, wholeOk);
+        QVERIFY(wholeOk);
+        QVERIFY2(w.surface > c.surface + c.caps, qPrintable(QString::number(w.surface)));
+        QCOMPARE(w.caps, 0);
+    }
+
+    /// The sphere cut through its centre by a plane facing the eye shows a disk of cap; every
+    /// pixel whose ray meets the plane inside the sphere (by more than the pixel's footprint)
+    /// is a cap pixel, at 1x and at 64x zoom on the cap's rim (adaptive partitions: the exact
+    /// outline), and at 1x inside the chords in uniform and tessellated mode.
+    void capCoversItsOutline_data() {
+        QTest::addColumn<double>("zoom");
+        QTest::addColumn<int>("mode");
+        QTest::addRow("1x adaptive") << 1.0 << 0;
+        QTest::addRow("64x adaptive") << 64.0 << 0;
+        // The base polygon's and the mesh's outlines are their chords', as their silhouettes
+        // are: there the cap is checked inside the chords' (kChordMargin).
+        QTest::addRow("1x uniform") << 1.0 << 1;
+        QTest::addRow("1x tessellated") << 1.0 << 2;
+    }
+    void capCoversItsOutline() {
+        QFETCH(double, zoom);
+        QFETCH(int, mode);
+        const Scene scene = sphereSolid();
+        const SectionPlane plane{glm::dvec3(0.0), glm::dvec3(0.6, -1.0, 0.5), false};
+        const glm::dvec3 n = plane.removedSide();
+        Camera camera;
+        camera.authored = true;
+        camera.up = glm::dvec3(0.0, 0.0, 1.0);
+        camera.fovYDegrees = 35.0;
+        if (zoom == 1.0) {
+            camera.target = glm::dvec3(0.0);
+            camera.eye = glm::dvec3(2.0, -4.5, 2.5);
+        } else {
+            // On the cap's rim: a point of the section circle, seen from the same side.
+            const glm::dvec3 t = glm::normalize(glm::cross(n, glm::dvec3(0.0, 0.0, 1.0)));
+            camera.target = t;
+            camera.eye = t + glm::dvec3(2.0, -4.5, 2.5);
+            camera.fovYDegrees =
+                glm::degrees(2.0 * std::atan(std::tan(glm::radians(35.0) * 0.5) / zoom));
+        }
+        RenderOptions options;
+        options.mode = mode == 2 ? RenderMode::Tessellated : RenderMode::Exact;
+        options.partitioning = mode == 0 ? RenderOptions::Partitioning::Adaptive
+                                         : RenderOptions::Partitioning::Uniform;
+        options.sections = {plane};
+        const AovBuffer aov = render(scene, camera, options);
+        QVERIFY(!aov.data.empty());
+        bool ok = false;
+        const Counts c = checkKept(aov, options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QVERIFY2(c.caps > 100, qPrintable(QString::number(c.caps)));
+        // A pixel's footprint on the plane, in model units (generous: the view's height at the
+        // target's distance over its pixels, times 2).
+        double footprint = 2.0 * 2.0 * glm::length(camera.eye - camera.target) *
+                           std::tan(glm::radians(camera.fovYDegrees) * 0.5) / kSide;
+        // Uniform and tessellated: the 12 x 12 cells' chords lie up to 1 - cos(15 degrees) =
+        // 0.034 inside the sphere; 0.05 with the rational parametrisation's uneven spacing.
+        if (mode != 0)
+            footprint += 0.05;
+        int inside = 0;
+        for (int y = 0; y < kSide; ++y)
+            for (int x = 0; x < kSide; ++x) {
+                const glm::dvec3 d = pixelRay(camera, x, y, kSide, kSide);
+                const double along = glm::dot(d, n);
+                if (along == 0.0)
+                    continue;
+                const double t = glm::dot(plane.position - camera.eye, n) / along;
+                const glm::dvec3 at = camera.eye + t * d;
+                if (!(t > 0.0) || glm::length(at) > 1.0 - footprint)
+                    continue;
+                ++inside;
+                const float id = aov.pixel(x, y)[0];
+                QVERIFY2(id == float(kSectionCapId),
+                         qPrintable(QStringLiteral("pixel (%1, %2) inside the cap: id %3")
+                                        .arg(x)
+                                        .arg(y)
+                                        .arg(id)));
+            }
+        QVERIFY(inside > 100);
+        if (zoom > 1.0) // the rim crosses the view: more than the cap shows
+            QVERIFY2(c.surface + c.background > 100,
+                     qPrintable(QStringLiteral("%1 + %2").arg(c.surface).arg(c.background)));
+        // --no-caps: the same view shows the sphere's inside instead.
+        options.sectionCaps = false;
+        const Counts open =
+            checkKept(render(scene, camera, options), options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QCOMPARE(open.caps, 0);
+    }
+
+    /// A plane that removes everything draws an empty view; bad planes are refused.
+    void emptyViewAndBadPlanes() {
+        const Scene scene = sphereSolid();
+        Camera camera = fitCamera(scene, 1.0);
+        RenderOptions options;
+        options.sections = {SectionPlane{glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0, 0, -1), true}};
+        QString error;
+        const AovBuffer empty = render(scene, camera, options, &error);
+        QVERIFY2(!empty.data.empty(), qPrintable(error));
+        bool ok = false;
+        const Counts c = checkKept(empty, options.sections, 1e-6, ok);
+        QVERIFY(ok);
+        QCOMPARE(c.background, kSide * kSide);
+        options.sections = {SectionPlane{glm::dvec3(0.0), glm::dvec3(0.0), false}};
+        QVERIFY(render(scene, camera, options, &error).data.empty());
+        QVERIFY2(error.contains(QStringLiteral("zero length")), qPrintable(error));
+        options.sections.assign(kMaxSectionPlanes + 1, SectionPlane{});
+        QVERIFY(render(scene, camera, options, &error).data.empty());
+        QVERIFY2(error.contains(QStringLiteral("at most")), qPrintable(error));
+    }
+
+    /// `knotwork render --section`: an image; a zero normal is one line of error, exit 2 and
+    /// no image; a plane that hides everything still writes the (empty) image.
+    void commandLine() {
+        const QString png = kwtest::outputDir().filePath(QStringLiteral("sections_cli.png"));
+        const QString sample = QStringLiteral(KW_SAMPLES_DIR "/teapot.knot");
+        QFile::remove(png);
+        Run r = knotwork({QStringLiteral("render"), sample, QStringLiteral("-o"), png,
+                          QStringLiteral("--size"), QStringLiteral("96x96"),
+                          QStringLiteral("--section"), QStringLiteral("0,0,0,0,0,0")});
+        QVERIFY(r.code != 0);
+        QVERIFY2(r.err.trimmed().count(QLatin1Char('\n')) == 0 &&
+                     r.err.contains(QStringLiteral("--section")) &&
+                     r.err.contains(QStringLiteral("zero length")),
+                 qPrintable(r.err));
+        QVERIFY(!QFile::exists(png));
+        r = knotwork({QStringLiteral("render"), sample, QStringLiteral("-o"), png,
+                      QStringLiteral("--size"), QStringLiteral("96x96"),
+                      QStringLiteral("--section"), QStringLiteral("0,0,0,1,0")});
+        QVERIFY(r.code != 0);
+        QVERIFY2(r.err.contains(QStringLiteral("six numbers")), qPrintable(r.err));
+        r = knotwork({QStringLiteral("render"), sample, QStringLiteral("-o"), png,
+                      QStringLiteral("--size"), QStringLiteral("96x96"),
+                      QStringLiteral("--section"), QStringLiteral("0,0,-100,0,0,1"),
+                      QStringLiteral("--section"), QStringLiteral("0,0,0,0,1,0"),
+                      QStringLiteral("--no-caps")});
+        QVERIFY2(r.code == 0, qPrintable(r.err));
+        QImage image(png);
+        QVERIFY(!image.isNull());
+        const QRgb background = image.pixel(0, 0);
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                QCOMPARE(image.pixel(x, y), background);
+    }
+};
+
+QTEST_MAIN(TestRenderSections)
+#include "tst_render_sections.moc"
