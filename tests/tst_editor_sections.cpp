@@ -2,7 +2,7 @@
 // once, pushes no undo step (view state), is saved with the project and comes back with it; a
 // zero normal says so and cuts nothing; a project without sections opens uncut.
 #include "editor_test_util.h"
-#include "model/knotfile.h"
+#include "model/io/knotfile.h"
 #include "render/offscreen_renderer.h"
 #include "ui/sectiondialog.h"
 

@@ -5,8 +5,8 @@
 // plane and N the plane's normal; bad planes are refused and a plane that hides everything
 // draws an empty view; `knotwork render --section` and its errors.
 #include "knotwork_process.h"
-#include "model/document.h"
-#include "model/nurbs_shapes.h"
+#include "model/document/document.h"
+#include "model/nurbs/nurbs_shapes.h"
 #include "render/exact_contract.h"
 #include "render/offscreen_renderer.h"
 #include "render_test_util.h"

@@ -1,8 +1,8 @@
 // Section planes in the project file and the scene's validation: every field reads back, a file
 // of an older minor version (no sections) reads with none, a zero normal or too many planes are
 // refused with the JSON path, and validation names the plane.
-#include "model/knotfile.h"
-#include "model/validation.h"
+#include "model/io/knotfile.h"
+#include "model/document/validation.h"
 #include "model_fixtures.h"
 
 #include <QJsonArray>

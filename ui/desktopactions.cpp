@@ -1,7 +1,7 @@
 // DesktopActions: preferences, help pages and view toggles.
 #include "ui/desktopactions.h"
 
-#include "model/document.h"
+#include "model/document/document.h"
 #include "ui/sectiondialog.h"
 #include "ui/viewport.h"
 

@@ -3,7 +3,7 @@
 // orbited and edited while it is open).
 #pragma once
 
-#include "model/scene.h"
+#include "model/document/scene.h"
 
 #include <QDialog>
 #include <array>
