@@ -1,6 +1,6 @@
 # Continuity of shared edges (model/continuity.h): the kernel on known cases (label model).
 kw_add_test(tst_continuity LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_continuity.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/topology_fixtures.h LIBS knotwork_model)
+            ${KW_TEST_SUPPORT_DIR}/topology_fixtures.h LIBS knotwork_model)
 # The closed solids of tests/data, imported through the CAD child, against OpenCASCADE's own
 # count of edges between two faces (where OCCT is built), and `knotwork info --continuity`.
 set(KW_CONTINUITY_IMPORT_LIBS knotwork_cad)
@@ -9,7 +9,7 @@ if(TARGET knotwork_occt)
 endif()
 kw_add_test(tst_continuity_import LABEL model
             SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_continuity_import.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h LIBS ${KW_CONTINUITY_IMPORT_LIBS})
+            ${KW_TEST_SUPPORT_DIR}/knotwork_process.h LIBS ${KW_CONTINUITY_IMPORT_LIBS})
 if(TARGET knotwork_occt)
   target_compile_definitions(tst_continuity_import PRIVATE KW_HAVE_OCCT_TOOLKITS)
 endif()

@@ -1,13 +1,13 @@
 # Section planes in the project file and validation (no GL).
 kw_add_test(tst_section_file LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_section_file.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/model_fixtures.h LIBS knotwork_model)
+            ${KW_TEST_SUPPORT_DIR}/model_fixtures.h LIBS knotwork_model)
 # Section planes: the exact cut on every pixel, caps without holes at 1x and 64x, bad planes, and
 # `knotwork render --section` (needs X: run under xvfb-run like the other gl tests).
 kw_add_test(tst_render_sections LABEL gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_render_sections.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/render_test_util.h ${CMAKE_CURRENT_LIST_DIR}/knotwork_process.h
+            ${KW_TEST_SUPPORT_DIR}/render_test_util.h ${KW_TEST_SUPPORT_DIR}/knotwork_process.h
             LIBS knotwork_render Qt6::Gui)
 target_compile_definitions(tst_render_sections PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_render_sections knotwork)
 # The editor's View › Section…: add, move, flip, no undo step, saved with the project.
 kw_add_test(tst_editor_sections LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_sections.cpp
-            ${CMAKE_CURRENT_LIST_DIR}/editor_test_util.h LIBS knotwork_ui)
+            ${KW_TEST_SUPPORT_DIR}/editor_test_util.h LIBS knotwork_ui)
