@@ -253,6 +253,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         options.pixelTolerance = scene.display.pixelTolerance;
     if (!scene.display.background.isEmpty() && !parser.isSet(shared.background))
         backgroundNamed(scene.display.background, options); // validated with the file
+    if (!parser.isSet(shared.pull))
+        options.analysis.pullDirection = scene.display.pullDirection;
+    if (!parser.isSet(shared.draftAngle))
+        options.analysis.draftAngleDegrees = scene.display.draftAngleDegrees;
     Camera camera = model->camera;
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);

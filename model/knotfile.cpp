@@ -163,12 +163,17 @@ QByteArray sceneToJson(const Scene& scene) {
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
     if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
-    if (!scene.display.partitionMode.isEmpty() || !scene.display.background.isEmpty()) {
+    if (!scene.display.partitionMode.isEmpty() || !scene.display.background.isEmpty() ||
+        scene.display.customDraft()) {
         QJsonObject display{{QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}};
         if (!scene.display.partitionMode.isEmpty())
             display.insert(QStringLiteral("partitionMode"), scene.display.partitionMode);
         if (!scene.display.background.isEmpty())
             display.insert(QStringLiteral("background"), scene.display.background);
+        if (scene.display.customDraft()) {
+            display.insert(QStringLiteral("pullDirection"), toJson(scene.display.pullDirection));
+            display.insert(QStringLiteral("draftAngle"), scene.display.draftAngleDegrees);
+        }
         root.insert(QStringLiteral("display"), display);
     }
     return QJsonDocument(root).toJson(QJsonDocument::Indented);

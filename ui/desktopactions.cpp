@@ -70,6 +70,11 @@ void DesktopActions::applyDisplay(const DisplaySettings& display) {
         const QSignalBlocker quiet(m_lightBackground);
         m_lightBackground->setChecked(light);
     }
+    // The project's draft settings (the defaults for a project saved without them).
+    AnalysisOptions a = m_viewport->renderOptions().analysis;
+    a.pullDirection = display.pullDirection;
+    a.draftAngleDegrees = display.draftAngleDegrees;
+    m_viewport->setAnalysis(a);
 }
 
 void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) {
@@ -87,6 +92,8 @@ DisplaySettings DesktopActions::currentDisplay() const {
                           : QStringLiteral("adaptive");
     d.pixelTolerance = m_viewport->pixelTolerance();
     d.background = m_viewport->lightBackground() ? QStringLiteral("light") : QStringLiteral("dark");
+    d.pullDirection = m_viewport->renderOptions().analysis.pullDirection;
+    d.draftAngleDegrees = m_viewport->renderOptions().analysis.draftAngleDegrees;
     return d;
 }
 
