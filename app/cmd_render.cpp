@@ -258,6 +258,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         options.sections = scene.display.sections;
         options.sectionCaps = scene.display.sectionCaps && !parser.isSet(shared.noCaps);
     }
+    if (!parser.isSet(shared.pull))
+        options.analysis.pullDirection = scene.display.pullDirection;
+    if (!parser.isSet(shared.draftAngle))
+        options.analysis.draftAngleDegrees = scene.display.draftAngleDegrees;
     Camera camera = model->camera;
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);

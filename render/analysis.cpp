@@ -105,6 +105,12 @@ const std::vector<glm::vec3>& colourRamp() {
     return ramp;
 }
 
+const DraftColours& draftColours() {
+    static const DraftColours colours{
+        {0.15f, 0.75f, 0.25f}, {0.95f, 0.85f, 0.20f}, {0.85f, 0.20f, 0.15f}};
+    return colours;
+}
+
 double colourScalePosition(double x, const ValueRange& range, ColourScale scale) {
     double t = 0.0;
     if (scale == ColourScale::Symmetric) {

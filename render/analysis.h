@@ -94,6 +94,15 @@ std::optional<ColourScale> parseColourScale(const QString& name);
 /// The colour scale's stops, low to high (a blue-cyan-green-yellow-red rainbow, as CAD
 /// curvature maps use); the shader gets them as KW_RAMP through analysisDefines.
 const std::vector<glm::vec3>& colourRamp();
+/// Draft's three colours, before the headlight's shading: draft of at least the angle along
+/// the pull direction, less than the angle either way (insufficient), and at least the angle
+/// against it (an undercut). The shader gets them as KW_DRAFT_* through analysisDefines, and
+/// the editor's legend shows the same.
+struct DraftColours {
+    glm::vec3 draft, insufficient, undercut;
+};
+const DraftColours& draftColours();
+
 /// Position t in [0, 1] of value x on the scale (analysis.glsl's scalePosition).
 double colourScalePosition(double x, const ValueRange& range, ColourScale scale);
 /// The value at position t (the inverse of colourScalePosition, for legend labels).

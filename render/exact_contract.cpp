@@ -43,6 +43,15 @@ QStringList ExactVariant::defines() const {
         d << QStringLiteral("KW_RAMP_STOPS %1").arg(r.size())
           << QStringLiteral("KW_RAMP vec3[](%1)").arg(stops.join(QStringLiteral(", ")));
     }
+    if (analysis == AnalysisMode::Draft) {
+        const auto vec = [](const glm::vec3& c) {
+            return QStringLiteral("vec3(%1, %2, %3)").arg(c.x).arg(c.y).arg(c.z);
+        };
+        const DraftColours& c = draftColours();
+        d << QStringLiteral("KW_DRAFT_OK ") + vec(c.draft)
+          << QStringLiteral("KW_DRAFT_INSUFFICIENT ") + vec(c.insufficient)
+          << QStringLiteral("KW_DRAFT_UNDERCUT ") + vec(c.undercut);
+    }
     return d;
 }
 

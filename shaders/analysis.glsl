@@ -116,10 +116,11 @@ vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
     return texture(uEnvironment, uvEnv).rgb;
 #elif KW_ANALYSIS == KW_ANALYSIS_DRAFT
     // Draft angle of the oriented normal (Su x Sv side) against the pull direction: green at
-    // or beyond +threshold, red at or beyond -threshold, yellow in between (insufficient).
+    // or beyond +threshold, red at or beyond -threshold, yellow in between (insufficient);
+    // the colours are kw::draftColours(), which the editor's legend shows.
     float a = asin(clamp(dot(normal, uPullDirection), -1.0, 1.0));
-    vec3 c = a >= uDraftAngle ? vec3(0.15, 0.75, 0.25)
-                              : (a <= -uDraftAngle ? vec3(0.85, 0.2, 0.15) : vec3(0.95, 0.85, 0.2));
+    vec3 c = a >= uDraftAngle ? KW_DRAFT_OK
+                              : (a <= -uDraftAngle ? KW_DRAFT_UNDERCUT : KW_DRAFT_INSUFFICIENT);
     return c * headlight(normal, V);
 #else
     return vec3(0.0);

@@ -10,6 +10,8 @@
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
 #include <QMainWindow>
 #include <QMenu>
 #include <QPainter>
@@ -97,6 +99,73 @@ AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewpor
     range->setObjectName(QStringLiteral("actionAnalysisRange"));
     bar->addAction(range);
     connect(range, &QAction::triggered, this, &AnalysisControls::editRange);
+    QAction* draft = menu->addAction(tr("Draft &Settings…"));
+    draft->setObjectName(QStringLiteral("actionDraftSettings"));
+    draft->setToolTip(tr("Pull direction and minimum draft angle of the Draft analysis"));
+    bar->addAction(draft);
+    connect(draft, &QAction::triggered, this, &AnalysisControls::editDraft);
+}
+
+void AnalysisControls::editDraft() {
+    AnalysisOptions o = m_viewport->renderOptions().analysis;
+    QDialog dialog(m_window);
+    dialog.setWindowTitle(tr("Draft Settings"));
+    dialog.setObjectName(QStringLiteral("draftSettingsDialog"));
+    auto* form = new QFormLayout(&dialog);
+    auto spin = [](double value, double lo, double hi, const char* name) {
+        auto* s = new QDoubleSpinBox;
+        s->setObjectName(QString::fromLatin1(name));
+        s->setDecimals(4);
+        s->setRange(lo, hi);
+        s->setValue(value);
+        return s;
+    };
+    QDoubleSpinBox* x = spin(o.pullDirection.x, -1e6, 1e6, "draftPullX");
+    QDoubleSpinBox* y = spin(o.pullDirection.y, -1e6, 1e6, "draftPullY");
+    QDoubleSpinBox* z = spin(o.pullDirection.z, -1e6, 1e6, "draftPullZ");
+    QDoubleSpinBox* angle = spin(o.draftAngleDegrees, 0.0, 90.0, "draftAngle");
+    angle->setSuffix(QStringLiteral("°"));
+    // The usual pulls in one click: along an axis of the model, either way.
+    auto* axes = new QComboBox;
+    axes->setObjectName(QStringLiteral("draftPullAxis"));
+    axes->addItem(tr("Custom"));
+    const glm::dvec3 axisVectors[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                      {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    for (const char* name : {"+X", "−X", "+Y", "−Y", "+Z", "−Z"})
+        axes->addItem(QString::fromUtf8(name));
+    connect(axes, &QComboBox::activated, &dialog, [=](int index) {
+        if (index < 1)
+            return;
+        const glm::dvec3 v = axisVectors[index - 1];
+        x->setValue(v.x);
+        y->setValue(v.y);
+        z->setValue(v.z);
+    });
+    auto* row = new QHBoxLayout;
+    row->addWidget(x);
+    row->addWidget(y);
+    row->addWidget(z);
+    form->addRow(tr("Pull direction"), row);
+    form->addRow(tr("Axis"), axes);
+    form->addRow(tr("Minimum draft"), angle);
+    auto* why = new QLabel;
+    why->setObjectName(QStringLiteral("draftError"));
+    form->addRow(why);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    form->addRow(buttons);
+    // A zero direction has no draft: refused in the dialog, with the reason.
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, [&] {
+        if (glm::length(glm::dvec3(x->value(), y->value(), z->value())) > 0.0)
+            dialog.accept();
+        else
+            why->setText(tr("The pull direction must not be zero."));
+    });
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    o.pullDirection = glm::dvec3(x->value(), y->value(), z->value());
+    o.draftAngleDegrees = angle->value();
+    m_viewport->setAnalysis(o);
 }
 
 void AnalysisControls::editRange() {
@@ -184,6 +253,35 @@ void drawColourLegend(QPainter& p, const QRect& area, AnalysisMode mode, const V
         const double value = colourScaleValue(t, range, scale);
         p.drawText(QRect(bar.right() + 8, y - 8, area.width() - barWidth - 8, 16),
                    Qt::AlignLeft | Qt::AlignVCenter, QString::number(value, 'g', 4));
+    }
+    p.restore();
+}
+
+void drawDraftLegend(QPainter& p, const QRect& area, const glm::dvec3& pull, double angleDegrees) {
+    p.save();
+    p.setRenderHint(QPainter::Antialiasing, false);
+    p.fillRect(area.adjusted(-6, -4, 6, 4), QColor(30, 32, 36, 190));
+    p.setPen(Qt::white);
+    p.drawText(QRect(area.left(), area.top(), area.width() + 6, 16), Qt::AlignLeft,
+               analysisModeTitle(AnalysisMode::Draft));
+    const glm::dvec3 d = glm::length(pull) > 0.0 ? glm::normalize(pull) : glm::dvec3(0, 0, 1);
+    p.drawText(QRect(area.left(), area.top() + 16, area.width() + 6, 16), Qt::AlignLeft,
+               QStringLiteral("pull (%1, %2, %3)")
+                   .arg(d.x, 0, 'g', 3)
+                   .arg(d.y, 0, 'g', 3)
+                   .arg(d.z, 0, 'g', 3));
+    const QString a = QString::number(angleDegrees, 'g', 4) + QStringLiteral("°");
+    const DraftColours& c = draftColours();
+    const std::pair<glm::vec3, QString> rows[] = {
+        {c.draft, QStringLiteral("≥ +") + a},
+        {c.insufficient, QStringLiteral("< ") + a + QStringLiteral(" either way")},
+        {c.undercut, QStringLiteral("≤ −") + a + QStringLiteral(" (undercut)")}};
+    int y = area.top() + 38;
+    for (const auto& [colour, text] : rows) {
+        p.fillRect(QRect(area.left(), y, 18, 16), QColor::fromRgbF(colour.x, colour.y, colour.z));
+        p.drawText(QRect(area.left() + 26, y, area.width() - 26, 16),
+                   Qt::AlignLeft | Qt::AlignVCenter, text);
+        y += 22;
     }
     p.restore();
 }

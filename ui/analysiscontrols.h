@@ -18,7 +18,8 @@ class Viewport;
 
 /// Builds the Analysis submenu in `viewMenu` and an "Analysis" toolbar on `window`, wired to
 /// `viewport` (objects named actionAnalysis<Mode> with the mode's name in CamelCase,
-/// actionIsocurves, actionAnalysisRange, for tests). All pointers must outlive the controls.
+/// actionIsocurves, actionAnalysisRange, actionDraftSettings, for tests). All pointers must outlive
+/// the controls.
 class AnalysisControls : public QObject {
     Q_OBJECT
 public:
@@ -26,6 +27,9 @@ public:
 
     /// Opens the colour range dialog (automatic or LOW..HIGH, scale).
     void editRange();
+    /// Opens the draft settings dialog (pull direction X, Y, Z and the minimum draft angle);
+    /// saved with the project's display settings.
+    void editDraft();
 
 private:
     QMainWindow* m_window;
@@ -36,5 +40,10 @@ private:
 /// the mode's title and the scale): what the shader's colour scale means for `range`.
 void drawColourLegend(QPainter& painter, const QRect& area, AnalysisMode mode,
                       const ValueRange& range, ColourScale scale, bool automatic);
+
+/// Draws the draft legend in `area`: the three colours of kw::draftColours() with what each
+/// means for `angleDegrees`, and the pull direction.
+void drawDraftLegend(QPainter& painter, const QRect& area, const glm::dvec3& pull,
+                     double angleDegrees);
 
 } // namespace kw

@@ -76,6 +76,11 @@ void DesktopActions::applyDisplay(const DisplaySettings& display) {
     m_viewport->setSections(display.sections, display.sectionCaps);
     if (m_sections)
         m_sections->setSections(m_viewport->sections(), m_viewport->sectionCaps());
+    // The project's draft settings (the defaults for a project saved without them).
+    AnalysisOptions a = m_viewport->renderOptions().analysis;
+    a.pullDirection = display.pullDirection;
+    a.draftAngleDegrees = display.draftAngleDegrees;
+    m_viewport->setAnalysis(a);
 }
 
 void DesktopActions::showPartitions(const QString& mode, double pixelTolerance) {
@@ -112,6 +117,8 @@ DisplaySettings DesktopActions::currentDisplay() const {
     d.background = m_viewport->lightBackground() ? QStringLiteral("light") : QStringLiteral("dark");
     d.sections = m_viewport->sections();
     d.sectionCaps = m_viewport->sectionCaps();
+    d.pullDirection = m_viewport->renderOptions().analysis.pullDirection;
+    d.draftAngleDegrees = m_viewport->renderOptions().analysis.draftAngleDegrees;
     return d;
 }
 

@@ -118,6 +118,12 @@ void Viewport::setAnalysis(const AnalysisOptions& analysis) {
 
 void Viewport::drawLegend() {
     const AnalysisOptions& a = m_options.analysis;
+    if (m_options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
+        QPainter p(this);
+        drawDraftLegend(p, QRect(width() - 190, 16, 170, 100), a.pullDirection,
+                        a.draftAngleDegrees);
+        return;
+    }
     if (m_options.mode != RenderMode::Exact || !isColourMap(a.mode))
         return;
     QPainter p(this);

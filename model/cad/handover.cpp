@@ -14,7 +14,8 @@ namespace {
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
 // 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background;
 // 5: DisplaySettings::sections, sectionCaps
-constexpr std::uint32_t kVersion = 5;
+// 6: DisplaySettings::pullDirection, draftAngleDegrees
+constexpr std::uint32_t kVersion = 6;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -25,9 +26,9 @@ static_assert(sizeof(NurbsCurve2) == 80, "update the CAD hand-over");
 static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
 static_assert(sizeof(Light) == 104, "update the CAD hand-over");
 static_assert(sizeof(Camera) == 88, "update the CAD hand-over");
-static_assert(sizeof(DisplaySettings) == 88, "update the CAD hand-over");
+static_assert(sizeof(DisplaySettings) == 120, "update the CAD hand-over");
 static_assert(sizeof(SectionPlane) == 56, "update the CAD hand-over");
-static_assert(sizeof(Scene) == 280, "update the CAD hand-over");
+static_assert(sizeof(Scene) == 312, "update the CAD hand-over");
 static_assert(sizeof(EdgeUse) == 16, "update the CAD hand-over");
 static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
 static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
@@ -287,6 +288,8 @@ QByteArray encodeImportHandover(const ImportResult& result) {
         w.value(std::uint8_t(p.flip));
     }
     w.value(std::uint8_t(scene.display.sectionCaps));
+    w.value(scene.display.pullDirection);
+    w.value(scene.display.draftAngleDegrees);
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -343,6 +346,8 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
         p.flip = r.flag("section plane flip flag");
     }
     scene.display.sectionCaps = r.flag("section caps flag");
+    scene.display.pullDirection = r.value<glm::dvec3>("display pull direction");
+    scene.display.draftAngleDegrees = r.value<double>("display draft angle");
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");

@@ -130,6 +130,14 @@ struct DisplaySettings {
     /// Section planes (at most kMaxSectionPlanes) and whether closed solids get caps.
     std::vector<SectionPlane> sections;
     bool sectionCaps = true;
+    /// Draft analysis: the pull direction (world, non-zero; normalised when used) and the
+    /// minimum draft angle in degrees (0..90), as View > Analysis > Draft Settings sets them.
+    glm::dvec3 pullDirection{0.0, 0.0, 1.0};
+    double draftAngleDegrees = 3.0;
+    /// True when the draft members differ from their defaults (files then write them).
+    bool customDraft() const {
+        return pullDirection != glm::dvec3(0.0, 0.0, 1.0) || draftAngleDegrees != 3.0;
+    }
     bool operator==(const DisplaySettings&) const = default;
 };
 

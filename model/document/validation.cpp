@@ -185,6 +185,10 @@ QString displayError(const DisplaySettings& d) {
         d.background != QLatin1String("light"))
         return QStringLiteral("background \"%1\" is neither \"dark\" nor \"light\"")
             .arg(d.background);
+    if (!(glm::length(d.pullDirection) > 0.0) || !std::isfinite(glm::length(d.pullDirection)))
+        return QStringLiteral("the draft pull direction is zero or not finite");
+    if (!(d.draftAngleDegrees >= 0.0 && d.draftAngleDegrees <= 90.0))
+        return QStringLiteral("draft angle %1 is outside 0..90").arg(d.draftAngleDegrees);
     if (!(d.pixelTolerance >= kMinPixelTolerance && d.pixelTolerance <= kMaxPixelTolerance))
         return QStringLiteral("pixel tolerance %1 is outside %2..%3")
             .arg(d.pixelTolerance)

@@ -165,7 +165,7 @@ QByteArray sceneToJson(const Scene& scene) {
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
     const DisplaySettings& d = scene.display;
     if (!d.partitionMode.isEmpty() || !d.background.isEmpty() || !d.sections.empty() ||
-        !d.sectionCaps) {
+        !d.sectionCaps || d.customDraft()) {
         QJsonObject display{{QStringLiteral("pixelTolerance"), scene.display.pixelTolerance}};
         if (!scene.display.partitionMode.isEmpty())
             display.insert(QStringLiteral("partitionMode"), scene.display.partitionMode);
@@ -181,6 +181,10 @@ QByteArray sceneToJson(const Scene& scene) {
         }
         if (!d.sectionCaps) // optional (1.4): caps are on unless turned off
             display.insert(QStringLiteral("sectionCaps"), false);
+        if (scene.display.customDraft()) {
+            display.insert(QStringLiteral("pullDirection"), toJson(scene.display.pullDirection));
+            display.insert(QStringLiteral("draftAngle"), scene.display.draftAngleDegrees);
+        }
         root.insert(QStringLiteral("display"), display);
     }
     return QJsonDocument(root).toJson(QJsonDocument::Indented);

@@ -534,11 +534,12 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
 
 DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
     DisplaySettings d;
-    // partitionMode may be absent since the background (1.3) and the sections (1.4) can be set
-    // alone.
+    // partitionMode may be absent since the background, the draft settings (1.3) and the
+    // sections (1.4) can be set alone.
     if (o.contains(QLatin1String("partitionMode")) ||
         !(o.contains(QLatin1String("background")) || o.contains(QLatin1String("sections")) ||
-          o.contains(QLatin1String("sectionCaps")))) {
+          o.contains(QLatin1String("sectionCaps")) || o.contains(QLatin1String("pullDirection")) ||
+          o.contains(QLatin1String("draftAngle")))) {
         d.partitionMode =
             asString(required(o, path, "partitionMode"), member(path, "partitionMode"));
         if (d.partitionMode != QLatin1String("adaptive") &&
@@ -576,6 +577,19 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
     }
     if (o.contains(QLatin1String("sectionCaps")))
         d.sectionCaps = asBool(o.value(QLatin1String("sectionCaps")), member(path, "sectionCaps"));
+    if (o.contains(QLatin1String("pullDirection"))) {
+        d.pullDirection =
+            asVec3(o.value(QLatin1String("pullDirection")), member(path, "pullDirection"));
+        if (!(glm::length(d.pullDirection) > 0.0))
+            fail(member(path, "pullDirection"), QStringLiteral("the pull direction is zero"));
+    }
+    if (o.contains(QLatin1String("draftAngle"))) {
+        d.draftAngleDegrees =
+            asNumber(o.value(QLatin1String("draftAngle")), member(path, "draftAngle"));
+        if (!(d.draftAngleDegrees >= 0.0 && d.draftAngleDegrees <= 90.0))
+            fail(member(path, "draftAngle"),
+                 QStringLiteral("%1 is outside 0..90").arg(num(d.draftAngleDegrees)));
+    }
     if (o.contains(QLatin1String("pixelTolerance"))) {
         d.pixelTolerance =
             asNumber(o.value(QLatin1String("pixelTolerance")), member(path, "pixelTolerance"));

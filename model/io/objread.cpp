@@ -317,6 +317,10 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         m_scene.display.pixelTolerance = num(4);
         m_scene.display.background = QString::fromLatin1(t.value(5));
         check(displayError(m_scene.display));
+    } else if (key == "draft") {
+        m_scene.display.pullDirection = {num(3), num(4), num(5)};
+        m_scene.display.draftAngleDegrees = num(6);
+        check(displayError(m_scene.display));
     } else if (key == "surface") {
         m_meta = Metadata{};
         m_metaPending = true;

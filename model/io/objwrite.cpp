@@ -104,6 +104,9 @@ QByteArray writeObj(const Scene& scene) {
                (scene.display.background.isEmpty() ? QByteArray()
                                                    : ' ' + scene.display.background.toLatin1()) +
                '\n';
+    if (scene.display.customDraft())
+        out += "# knotwork draft " + vec(scene.display.pullDirection) + ' ' +
+               num(scene.display.draftAngleDegrees) + '\n';
     int vCount = 0, vpCount = 0, curv2Count = 0;
     for (const Surface& s : scene.surfaces) {
         const NurbsSurface& g = s.geometry;

@@ -72,13 +72,15 @@ private Q_SLOTS:
                                            {0.3, 0.2, 0.1},
                                            {1e-300, 0, 999.75}});
         r.scene.camera = kw::Camera{{1, 2, 3}, {0, 0.5, 0}, {0, 1, 0}, 42.0, true};
-        r.scene.display =
-            kw::DisplaySettings{QStringLiteral("uniform"),
-                                2.25,
-                                QStringLiteral("light"),
-                                {kw::SectionPlane{{0.1, 0.2, 0.3}, {0, 1, 1e-9}, true},
-                                 kw::SectionPlane{{-1, 0, 0}, {1, 0, 0}, false}},
-                                false};
+        r.scene.display = kw::DisplaySettings{};
+        r.scene.display.partitionMode = QStringLiteral("uniform");
+        r.scene.display.pixelTolerance = 2.25;
+        r.scene.display.background = QStringLiteral("light");
+        r.scene.display.sections = {kw::SectionPlane{{0.1, 0.2, 0.3}, {0, 1, 1e-9}, true},
+                                    kw::SectionPlane{{-1, 0, 0}, {1, 0, 0}, false}};
+        r.scene.display.sectionCaps = false;
+        r.scene.display.pullDirection = {0.25, -1.0, 0.5};
+        r.scene.display.draftAngleDegrees = 7.5;
         QVERIFY2(kw::sceneError(r.scene).isEmpty(), qPrintable(kw::sceneError(r.scene)));
         QString why;
         const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r), why);

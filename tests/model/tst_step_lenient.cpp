@@ -1,5 +1,6 @@
 // STEP files whose names are `$` (unset), as Rhino 8 writes them, import with a warning as
-// OpenCASCADE reads them; a file whose geometry is damaged is still refused.
+// OpenCASCADE reads them; a file whose geometry is damaged is still refused, and a file that is
+// not STEP at all says so instead of calling itself truncated.
 #include "model/cad/cadimport.h"
 
 #include <QFile>
@@ -75,6 +76,36 @@ private Q_SLOTS:
         QVERIFY2(result, qPrintable(error));
         for (const QString& w : result->report.warnings)
             QVERIFY2(!w.contains(QStringLiteral("not a string")), qPrintable(w));
+    }
+
+    // Garbage named .step: the error says it is not STEP and what the first line holds, never
+    // "truncated" (what a file without its last line is told).
+    void garbageSaysWhatIsWrong_data() {
+        QTest::addColumn<QByteArray>("bytes");
+        QTest::newRow("text") << QByteArray("hello, this is not a model\nat all\n");
+        QTest::newRow("binary") << QByteArray("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+        QTest::newRow("json") << QByteArray("{\"format\": \"knotwork\"}\n");
+    }
+    void garbageSaysWhatIsWrong() {
+        QFETCH(QByteArray, bytes);
+        const QString path =
+            writeCopy(bytes, QStringLiteral("garbage_%1.step").arg(QTest::currentDataTag()));
+        QString error;
+        QVERIFY(!importFile(path, error));
+        QVERIFY2(error.startsWith(path + QStringLiteral(": ")), qPrintable(error));
+        QVERIFY2(error.contains(QStringLiteral("not a STEP file")), qPrintable(error));
+        QVERIFY2(error.contains(QStringLiteral("ISO-10303-21;")), qPrintable(error));
+        QVERIFY2(!error.contains(QStringLiteral("truncated")), qPrintable(error));
+        QVERIFY2(!error.contains(QLatin1Char('\n')), qPrintable(error));
+    }
+
+    // A STEP file cut short is the one told it is truncated.
+    void truncatedStepSaysTruncated() {
+        QByteArray bytes = readAll(kRhino);
+        bytes.truncate(bytes.size() / 2);
+        QString error;
+        QVERIFY(!importFile(writeCopy(bytes, QStringLiteral("half.step")), error));
+        QVERIFY2(error.contains(QStringLiteral("truncated STEP file")), qPrintable(error));
     }
 };
 

@@ -7,6 +7,9 @@
 #include "model/nurbs/nurbs_shapes.h"
 #include "render/render_types.h"
 
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QTest>
 
 using namespace kw;
@@ -60,6 +63,47 @@ private Q_SLOTS:
         ImportReport report;
         QVERIFY2(readObjFile(obj, fromObj, report, error), qPrintable(error));
         QCOMPARE(fromObj.display, scene.display);
+    }
+
+    // The draft analysis's pull direction and angle (View > Analysis > Draft Settings): kept
+    // alone in .knot and OBJ, defaults written as nothing, zero pull and > 90 degrees refused.
+    void draftSettingsRoundTripAndRefuseOthers() {
+        Scene scene;
+        Surface s;
+        s.id = SurfaceId{1};
+        s.geometry = makeSphere(glm::dvec3(0.0), 1.0);
+        scene.surfaces.push_back(s);
+        scene.nextId = 2;
+        QVERIFY(!sceneToJson(scene).contains("\"pullDirection\""));
+        scene.display.pullDirection = glm::dvec3(1.0, -2.0, 0.5);
+        scene.display.draftAngleDegrees = 7.25;
+        QString error;
+        const QByteArray json = sceneToJson(scene);
+        QVERIFY(json.contains("\"pullDirection\"") && json.contains("\"draftAngle\""));
+        const std::optional<Scene> back = sceneFromJson(json, QStringLiteral("d.knot"), &error);
+        QVERIFY2(back, qPrintable(error));
+        QCOMPARE(back->display, scene.display);
+        const QString obj = QStringLiteral(KW_TEST_OUTPUT_DIR "/draft_alone.obj");
+        QVERIFY2(writeObjFile(obj, scene, error), qPrintable(error));
+        Scene fromObj;
+        ImportReport report;
+        QVERIFY2(readObjFile(obj, fromObj, report, error), qPrintable(error));
+        QCOMPARE(fromObj.display, scene.display);
+
+        QJsonObject root = QJsonDocument::fromJson(json).object();
+        QJsonObject display = root[QStringLiteral("display")].toObject();
+        display[QStringLiteral("pullDirection")] = QJsonArray{0, 0, 0};
+        root[QStringLiteral("display")] = display;
+        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("d.knot"), &error));
+        QVERIFY2(error.startsWith(QStringLiteral("d.knot: $.display.pullDirection: ")),
+                 qPrintable(error));
+        QByteArray steep = json;
+        steep.replace("\"draftAngle\": 7.25", "\"draftAngle\": 95");
+        QVERIFY(!sceneFromJson(steep, QStringLiteral("d.knot"), &error));
+        QVERIFY2(error.startsWith(QStringLiteral("d.knot: $.display.draftAngle: ")),
+                 qPrintable(error));
+        scene.display.pullDirection = glm::dvec3(0.0);
+        QVERIFY(!displayError(scene.display).isEmpty());
     }
 };
 

@@ -1,7 +1,7 @@
 // GL test of the default light rig: every visible face of a default-material part is lit. The
 // samples and the CAD parts of tests/data (imported as the editor imports them), with every
 // surface given the default material and the scene's own lights, from the seven standard
-// views and a few random ones, exact and tessellated, headlight on and off: no covered pixel
+// views and 20 random ones, exact and tessellated, headlight on and off: no covered pixel
 // (the AOV's id) is darker than 15 % grey. Lights authored for one side left the other black
 // (a connecting rod's lower faces); the viewer's fill (kw::kViewerFill) is what keeps them
 // readable, for faces of either B-rep orientation.
@@ -17,6 +17,8 @@ namespace {
 
 constexpr int kSide = 192;
 constexpr double kDarkest = 0.15;
+/// Random views besides the seven standard ones (the count).
+constexpr int kRandomViews = 20;
 
 double luminance(QRgb c) {
     return (0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c)) / 255.0;
@@ -46,7 +48,7 @@ std::vector<std::pair<QString, Camera>> views(const Scene& scene) {
     };
     std::mt19937 rng(43);
     std::normal_distribution<double> g;
-    for (int k = 0; k < 5; ++k) {
+    for (int k = 0; k < kRandomViews; ++k) {
         glm::dvec3 d(g(rng), g(rng), g(rng));
         glm::dvec3 up = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
         if (glm::length(glm::cross(glm::normalize(d), up)) < 0.2)

@@ -12,8 +12,14 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDialog>
+#include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLabel>
+#include <QPushButton>
 #include <QSettings>
 #include <QTimer>
 #include <glm/glm.hpp>
@@ -79,6 +85,82 @@ private:
         });
         action("actionAnalysisRange")->trigger();
         return seen;
+    }
+
+    /// Triggers View > Analysis > Draft Settings… and answers it with `pull` and `angle`; a
+    /// zero pull must be refused with a reason, after which the dialog is cancelled.
+    /// Returns false when the dialog did not show or behaved otherwise.
+    bool answerDraftDialog(const glm::dvec3& pull, double angle) {
+        bool ok = false;
+        QTimer::singleShot(0, this, [&] {
+            auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget());
+            if (!dialog || dialog->objectName() != QLatin1String("draftSettingsDialog"))
+                return;
+            const auto set = [&](const char* name, double v) {
+                auto* s = dialog->findChild<QDoubleSpinBox*>(QString::fromLatin1(name));
+                if (s)
+                    s->setValue(v);
+                return s != nullptr;
+            };
+            if (!set("draftPullX", pull.x) || !set("draftPullY", pull.y) ||
+                !set("draftPullZ", pull.z) || !set("draftAngle", angle))
+                return;
+            auto* buttons = dialog->findChild<QDialogButtonBox*>();
+            buttons->button(QDialogButtonBox::Ok)->click();
+            if (glm::length(pull) > 0.0) {
+                ok = dialog->result() == QDialog::Accepted;
+                return;
+            }
+            // Refused: still open, the reason shown.
+            auto* why = dialog->findChild<QLabel*>(QStringLiteral("draftError"));
+            ok = dialog->isVisible() && why && !why->text().isEmpty();
+            dialog->reject();
+        });
+        action("actionDraftSettings")->trigger();
+        return ok;
+    }
+
+    /// The draft colour of each surface pixel on a grid against the kernel's normal at the
+    /// picked (u, v) (analysis.glsl: kw::draftColours() by the angle to the pull direction,
+    /// times the headlight factor), within 3 of 255; pixels within 0.5 degrees of a threshold
+    /// are skipped. Returns the number checked, -1 on a mismatch.
+    int checkDraftPixels(const QImage& frame, const glm::dvec3& pull, double angle) {
+        const QRect legend(vp()->width() - 196, 12, 182, 108);
+        const glm::dvec3 eye = vp()->cameraController().camera().eye;
+        const DraftColours& colours = draftColours();
+        int checked = 0;
+        for (int y = 40; y < vp()->height() - 40; y += 23)
+            for (int x = 40; x < vp()->width() - 40; x += 23) {
+                if (legend.contains(x, y))
+                    continue;
+                const auto hit = vp()->pickSurface(QPointF(x + 0.5, y + 0.5));
+                const Surface* s = hit ? m_window->document()->surface(hit->surface) : nullptr;
+                if (!s)
+                    continue;
+                const SurfaceCurvature c = surfaceCurvature(s->geometry, hit->uv.x, hit->uv.y);
+                const double a = glm::degrees(
+                    std::asin(std::clamp(glm::dot(c.normal, glm::normalize(pull)), -1.0, 1.0)));
+                if (std::abs(std::abs(a) - angle) < 0.5)
+                    continue;
+                const glm::vec3 base =
+                    a >= angle ? colours.draft
+                               : (a <= -angle ? colours.undercut : colours.insufficient);
+                const double light =
+                    0.35 + 0.65 * std::abs(glm::dot(c.normal, glm::normalize(eye - c.point)));
+                const QRgb got = frame.pixel(x, y);
+                const int rgb[3] = {qRed(got), qGreen(got), qBlue(got)};
+                for (int k = 0; k < 3; ++k) {
+                    const int want =
+                        int(std::lround(std::clamp(base[k] * light, 0.0, 1.0) * 255.0));
+                    if (std::abs(rgb[k] - want) > 3) {
+                        qWarning("pixel (%d, %d): channel %d is %d, expected %d (draft %g deg)", x,
+                                 y, k, rgb[k], want, a);
+                        return -1;
+                    }
+                }
+                ++checked;
+            }
+        return checked;
     }
 
     /// Checks the surface's pixels at a grid of view positions: each must have the colour of
@@ -155,6 +237,7 @@ private Q_SLOTS:
     }
 
     void legendAndRangeDialogDriveThePixels();
+    void draftLegendAndSettings();
 };
 
 void TestEditorAnalysis::legendAndRangeDialogDriveThePixels() {
@@ -243,6 +326,64 @@ void TestEditorAnalysis::legendAndRangeDialogDriveThePixels() {
     // Phong again: the legend goes away.
     action("actionAnalysisPhong")->trigger();
     QCOMPARE(differingPixels(phong, vp()->grabFramebuffer()), 0);
+}
+
+// Draft: its legend shows the shader's three colours and the settings; View > Analysis > Draft
+// Settings… sets the pull direction and angle (a zero pull refused), the pixels follow, and
+// Save keeps them with the project's display settings while another project shows the defaults.
+void TestEditorAnalysis::draftLegendAndSettings() {
+    const QImage phong = vp()->grabFramebuffer();
+    QAction* draft = action("actionAnalysisDraft");
+    QVERIFY(draft && action("actionDraftSettings"));
+    draft->trigger();
+    QCOMPARE(vp()->renderOptions().analysis.pullDirection, glm::dvec3(0.0, 0.0, 1.0));
+    const QImage before = vp()->grabFramebuffer();
+    // The legend (Viewport::drawLegend): a swatch per colour, 22 px apart.
+    const QRect legend(vp()->width() - 196, 12, 182, 108);
+    QVERIFY2(differingPixels(phong.copy(legend), before.copy(legend)) > 500, "no draft legend");
+    const DraftColours& colours = draftColours();
+    const glm::vec3 swatches[] = {colours.draft, colours.insufficient, colours.undercut};
+    for (int k = 0; k < 3; ++k) {
+        const QRgb got = before.pixel(vp()->width() - 190 + 9, 16 + 38 + 8 + 22 * k);
+        const glm::vec3 want = swatches[k];
+        QVERIFY2(
+            std::abs(qRed(got) - int(want.x * 255.0f + 0.5f)) <= 2 &&
+                std::abs(qGreen(got) - int(want.y * 255.0f + 0.5f)) <= 2 &&
+                std::abs(qBlue(got) - int(want.z * 255.0f + 0.5f)) <= 2,
+            qPrintable(QStringLiteral("legend swatch %1 is %2").arg(k).arg(QColor(got).name())));
+    }
+    int n = checkDraftPixels(before, {0.0, 0.0, 1.0}, 3.0);
+    QVERIFY2(n >= 100, qPrintable(QStringLiteral("%1 draft pixels matched").arg(n)));
+
+    // A zero pull is refused; a pull along x at 10 degrees recolours the surface and the legend.
+    QVERIFY(answerDraftDialog(glm::dvec3(0.0), 5.0));
+    QCOMPARE(vp()->renderOptions().analysis.pullDirection, glm::dvec3(0.0, 0.0, 1.0));
+    const glm::dvec3 pull(1.0, 0.0, 0.0);
+    QVERIFY(answerDraftDialog(pull, 10.0));
+    QCOMPARE(vp()->renderOptions().analysis.pullDirection, pull);
+    QCOMPARE(vp()->renderOptions().analysis.draftAngleDegrees, 10.0);
+    const QImage after = vp()->grabFramebuffer();
+    QVERIFY(differingPixels(before.copy(legend), after.copy(legend)) > 20);
+    QVERIFY(differingPixels(before, after) > 1000);
+    n = checkDraftPixels(after, pull, 10.0);
+    QVERIFY2(n >= 100, qPrintable(QStringLiteral("%1 draft pixels matched").arg(n)));
+    qInfo("draft along x at 10 degrees: %d surface pixels match the kernel's classes", n);
+
+    // Saved with the project; another project shows the defaults; the saved one comes back.
+    const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/editor_draft.knot");
+    QVERIFY(m_window->saveFile(path));
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    const QJsonObject display = QJsonDocument::fromJson(file.readAll())["display"].toObject();
+    QCOMPARE(display["draftAngle"].toDouble(), 10.0);
+    QCOMPARE(display["pullDirection"].toArray(), QJsonArray({1.0, 0.0, 0.0}));
+    QVERIFY(m_window->openFile(samplePath("sphere")));
+    QCOMPARE(vp()->renderOptions().analysis.pullDirection, glm::dvec3(0.0, 0.0, 1.0));
+    QCOMPARE(vp()->renderOptions().analysis.draftAngleDegrees, 3.0);
+    QVERIFY(m_window->openFile(path));
+    QCOMPARE(vp()->renderOptions().analysis.pullDirection, pull);
+    QCOMPARE(vp()->renderOptions().analysis.draftAngleDegrees, 10.0);
+    action("actionAnalysisPhong")->trigger();
 }
 
 QTEST_MAIN(TestEditorAnalysis)
