@@ -103,7 +103,7 @@ Scene richScene() {
     scene.lights = defaultLights();
     scene.lights.push_back(point);
     scene.camera = Camera{{1.0, -7.25, 2.0}, {0.1, 0.2, 0.3}, {0.0, 0.0, 1.0}, 47.5, true};
-    scene.display = DisplaySettings{QStringLiteral("uniform"), 1.25, QStringLiteral("light"), {}, true};
+    scene.display = DisplaySettings{QStringLiteral("uniform"), 1.25, QStringLiteral("light")};
     scene.nextId = 12;
     return scene;
 }
@@ -227,7 +227,7 @@ void TestKnotFile::displayOptionalAndChecked() {
                 QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("adaptive")}});
     back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
     QVERIFY(back);
-    QCOMPARE(back->display, (DisplaySettings{QStringLiteral("adaptive"), 0.5, QString(), {}, true}));
+    QCOMPARE(back->display, (DisplaySettings{QStringLiteral("adaptive"), 0.5, QString()}));
     const struct {
         QJsonObject display;
         const char* path;
@@ -250,7 +250,7 @@ void TestKnotFile::displayOptionalAndChecked() {
         QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
     }
     // The one validation refuses it too (Document, writers).
-    scene.display = DisplaySettings{QStringLiteral("adaptive"), 100.0, QString(), {}, true};
+    scene.display = DisplaySettings{QStringLiteral("adaptive"), 100.0, QString()};
     QVERIFY(!sceneError(scene).isEmpty());
 }
 
