@@ -103,8 +103,9 @@ Scene richScene() {
     scene.lights = defaultLights();
     scene.lights.push_back(point);
     scene.camera = Camera{{1.0, -7.25, 2.0}, {0.1, 0.2, 0.3}, {0.0, 0.0, 1.0}, 47.5, true};
-    scene.display = DisplaySettings{
-        QStringLiteral("uniform"), 1.25, QStringLiteral("light"), {0.0, -1.0, 0.25}, 12.5};
+    scene.display =
+        DisplaySettings{QStringLiteral("uniform"), 1.25, QStringLiteral("light"), {}, true,
+                        {0.0, -1.0, 0.25},         12.5};
     scene.nextId = 12;
     return scene;
 }
@@ -229,7 +230,8 @@ void TestKnotFile::displayOptionalAndChecked() {
     back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
     QVERIFY(back);
     QCOMPARE(back->display,
-             (DisplaySettings{QStringLiteral("adaptive"), 0.5, QString(), {0.0, 0.0, 1.0}, 3.0}));
+             (DisplaySettings{
+                 QStringLiteral("adaptive"), 0.5, QString(), {}, true, {0.0, 0.0, 1.0}, 3.0}));
     const struct {
         QJsonObject display;
         const char* path;
@@ -252,8 +254,8 @@ void TestKnotFile::displayOptionalAndChecked() {
         QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
     }
     // The one validation refuses it too (Document, writers).
-    scene.display =
-        DisplaySettings{QStringLiteral("adaptive"), 100.0, QString(), {0.0, 0.0, 1.0}, 3.0};
+    scene.display = DisplaySettings{
+        QStringLiteral("adaptive"), 100.0, QString(), {}, true, {0.0, 0.0, 1.0}, 3.0};
     QVERIFY(!sceneError(scene).isEmpty());
 }
 
