@@ -1,4 +1,4 @@
-// Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
+// Viewport: GL lifetime, frame drawing with timing, camera gestures and routing to the tools.
 #include "ui/viewport.h"
 
 #include "render/gl_context.h"
