@@ -13,6 +13,22 @@
 using namespace kw;
 using namespace kwtest;
 
+/// A mode as a probe or measure tool would be: counts what the view routes to it, and takes
+/// plain left presses as clicks.
+struct RecordingTool : Tool {
+    int presses = 0, hovers = 0, keys = 0, paints = 0;
+    bool press(QMouseEvent* event) override {
+        presses += event->button() == Qt::LeftButton;
+        return event->button() == Qt::LeftButton;
+    }
+    void hover(QMouseEvent*) override { ++hovers; }
+    bool key(QKeyEvent* event) override {
+        keys += event->key() == Qt::Key_Escape;
+        return event->key() == Qt::Key_Escape;
+    }
+    void paint(QPainter&) override { ++paints; }
+};
+
 class TestTools : public EditorTestBase {
     Q_OBJECT
 public:
@@ -206,6 +222,35 @@ private Q_SLOTS:
                  qPrintable(shown));
         QTest::mouseRelease(uv, Qt::LeftButton, Qt::NoModifier, press + QPoint(-10, 10));
         QCOMPARE(stack->count(), steps);
+    }
+
+    void installedToolSeesClicksHoverKeysAndDraws() {
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        RecordingTool tool;
+        vp->setTool(&tool);
+        const auto [ref, press] = pickablePoint();
+        const NurbsSurface before = geometry();
+        QTest::mouseMove(vp, press + QPoint(3, 3));
+        QVERIFY(tool.hovers > 0);
+        // A plain press on a control point is the tool's: no drag, no pick.
+        QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
+        QCOMPARE(tool.presses, 1);
+        QVERIFY(!vp->isDragging());
+        QTest::mouseMove(vp, press + QPoint(30, 30));
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(30, 30));
+        QVERIFY(geometry() == before);
+        QVERIFY(m_window->selection()->controlPoints().empty());
+        // Ctrl + drag still reaches the registered tools under it.
+        drag(press, press + QPoint(30, 0), Qt::ControlModifier);
+        QCOMPARE(tool.presses, 1);
+        QCOMPARE(m_window->undoStack()->count(), 1);
+        QTest::keyClick(vp, Qt::Key_Escape);
+        QCOMPARE(tool.keys, 1);
+        vp->grabFramebuffer();
+        QVERIFY(tool.paints > 0);
+        vp->setTool(nullptr);
+        QVERIFY(!vp->tool());
     }
 };
 

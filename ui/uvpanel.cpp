@@ -1,4 +1,4 @@
-// UvPanel: domain, trim loops, mask and trim control point dragging.
+// UvPanel: domain, trim loops, mask, and its events routed to the tools.
 #include "ui/uvpanel.h"
 
 #include "model/nurbs/trim.h"

@@ -1,4 +1,4 @@
-// UvPanel's drawing tools (rectangle, circle, polygon, spline loops), loop deletion, trim point
+// UvPanel's tool actions and the loops its drawing tools make, loop deletion, trim point
 // insertion / deletion / exact placement, zoom and pan.
 #include "model/nurbs/nurbs_construct.h"
 #include "model/nurbs/nurbs_shapes.h"

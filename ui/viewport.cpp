@@ -1,4 +1,4 @@
-// Viewport: GL lifetime, frame drawing with timing, camera gestures and control-point dragging.
+// Viewport: GL lifetime, frame drawing with timing, camera gestures and routing to the tools.
 #include "ui/viewport.h"
 
 #include "render/gl_context.h"
@@ -22,7 +22,7 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     : QOpenGLWidget(parent), m_doc(document), m_model(model), m_selection(selection),
       m_stack(stack) {
     setFocusPolicy(Qt::StrongFocus);
-    setMouseTracking(false);
+    setMouseTracking(true); // hover moves for the tools
     // KW_GL_DEBUG=1: a debug context whatever the application's default format (initializeGL
     // starts its log).
     if (glDebugRequested()) {
@@ -139,7 +139,6 @@ void Viewport::setControlNet(bool on) {
 
 void Viewport::setTool(Tool* tool) {
     m_tools.install(tool);
-    setMouseTracking(tool != nullptr); // hover moves for the installed tool
     update();
 }
 
@@ -457,8 +456,6 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
         m_moveTimed = true;
         m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
     }
-    if (m_tools.installed() && !drag)
-        update(); // the installed tool's hover feedback
 }
 
 void Viewport::mouseReleaseEvent(QMouseEvent* event) {

@@ -1,5 +1,5 @@
 // Viewport: the 3D view (QOpenGLWidget) drawing the document with the render module; orbit, pan,
-// zoom, standard views, and control-point picking and dragging as undoable edits.
+// zoom, standard views, and picking; every other gesture is a tool's (ui/tools/).
 #pragma once
 
 #include "model/document/selection.h"

@@ -25,8 +25,8 @@ public:
     /// A move or release during the tool's own gesture (dragging() after press()).
     virtual void move(QMouseEvent*) {}
     virtual void release(QMouseEvent*) {}
-    /// A move with no gesture running, for the installed tool (the host tracks the mouse
-    /// while one is installed).
+    /// A move with no gesture running (every tool gets it, the installed one first; the
+    /// host tracks the mouse). A tool that shows something on hover calls its host's update().
     virtual void hover(QMouseEvent*) {}
     virtual bool doubleClick(QMouseEvent*) { return false; }
     /// Keys while the tool's gesture runs, or for the installed tool; true when used.
@@ -64,7 +64,7 @@ public:
     /// A press: to the installed tool when `toInstalled`, then to the registered ones. True
     /// when a tool took it.
     bool press(QMouseEvent* event, bool toInstalled = true);
-    /// To the gesture's tool, else as hover to the installed one; true when a gesture took it.
+    /// To the gesture's tool, else as hover to every tool; true when a gesture took it.
     bool move(QMouseEvent* event);
     bool release(QMouseEvent* event);
     bool doubleClick(QMouseEvent* event);
@@ -127,6 +127,8 @@ inline bool ToolRouter::move(QMouseEvent* event) {
     }
     if (m_installed)
         m_installed->hover(event);
+    for (const auto& t : m_tools)
+        t->hover(event);
     return false;
 }
 
