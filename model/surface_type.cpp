@@ -12,19 +12,22 @@
 namespace kw {
 namespace {
 
-/// The points of a (grid + 1)^2 grid over the trims' parameter box that the trims keep.
-std::vector<glm::dvec2> keptSamples(const Surface& surface, int grid) {
+/// The points of a (grid + 1)^2 grid over the trims' parameter box that the trims keep; all of
+/// them when the trims keep fewer than `least` (a sliver of a face: the surface's type is that of
+/// the surface around it).
+std::vector<glm::dvec2> keptSamples(const Surface& surface, int grid, size_t least) {
     const TrimArcs arcs = makeTrimArcs(surface.trims, trimTolerance(surface.geometry));
     const ParameterBox box = trimParameterBox(surface);
-    std::vector<glm::dvec2> out;
+    std::vector<glm::dvec2> all, kept;
     for (int j = 0; j <= grid; ++j)
         for (int i = 0; i <= grid; ++i) {
             const glm::dvec2 uv(box.u.first + (box.u.last - box.u.first) * i / grid,
                                 box.v.first + (box.v.last - box.v.first) * j / grid);
+            all.push_back(uv);
             if (arcs.empty() || trimArcsContain(arcs, uv))
-                out.push_back(uv);
+                kept.push_back(uv);
         }
-    return out;
+    return kept.size() >= least ? kept : all;
 }
 
 } // namespace
@@ -52,7 +55,7 @@ SurfaceType surfaceType(const Surface& surface, double relative) {
     if (!surfaceValidationError(g).empty())
         return SurfaceType::FreeForm;
     std::vector<SurfaceCurvature> c;
-    for (const glm::dvec2& uv : keptSamples(surface, 8)) {
+    for (const glm::dvec2& uv : keptSamples(surface, 8, 12)) {
         const SurfaceCurvature k = surfaceCurvature(g, uv.x, uv.y);
         if (k.regular)
             c.push_back(k);

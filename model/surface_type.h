@@ -16,7 +16,8 @@ QString surfaceTypeName(SurfaceType type);
 
 /// The type of the part of `surface` its trims keep (the whole domain without trims): the
 /// surface is sampled on a 9 x 9 grid of the trims' parameter box (kw::trimParameterBox) and
-/// each sample's curvature (surfaceCurvature) is tested, with `relative` times the samples'
+/// each sample the trims keep (every sample, when they keep fewer than 12: a sliver) has its
+/// curvature (surfaceCurvature) tested, with `relative` times the samples'
 /// bounding-box diagonal as the length tolerance:
 /// - plane: every sample on the plane of the first, with its normal;
 /// - sphere: k1 = k2 != 0 and every centre of curvature (P - N / k1) at one point;

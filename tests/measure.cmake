@@ -13,6 +13,9 @@ kw_add_test(tst_info_properties LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/ts
             ${KW_TEST_SUPPORT_DIR}/knotwork_process.h LIBS Qt6::Core)
 target_compile_definitions(tst_info_properties PRIVATE KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 add_dependencies(tst_info_properties knotwork)
+if(TARGET knotwork_occt_read) # the B-rep case reads a .brep through OpenCASCADE
+  target_compile_definitions(tst_info_properties PRIVATE KW_TEST_HAVE_OCCT)
+endif()
 # The probe's refinement onto the ray, curvature and measurement values (label model).
 kw_add_test(tst_probe LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_probe.cpp LIBS knotwork_model)
 # The Measure menu in the editor: probe, measure distance, angle and radius, and the Properties

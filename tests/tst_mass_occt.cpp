@@ -4,6 +4,7 @@
 #include "model/cad/igesrepair.h"
 #include "model/mass_properties.h"
 
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
@@ -17,8 +18,10 @@
 #include <QTest>
 #include <STEPControl_Reader.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
 #include <cmath>
+#include <map>
 
 using namespace kw;
 
@@ -104,6 +107,44 @@ void TestMassOcct::againstBRepGProp() {
           boxError);
     QVERIFY(m.hasBounds);
     QVERIFY2(boxError < 1e-6, qPrintable(QString::number(boxError)));
+    // Surface types: as many planes, cylinders, cones, spheres and tori as OCCT records. Where
+    // the source also has free-form faces (B-splines, which may be analytic in truth), at least
+    // as many of each.
+    std::map<QString, int> occtTypes, ourTypes;
+    int occtFreeForm = 0;
+    for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
+        switch (BRepAdaptor_Surface(TopoDS::Face(e.Current()), false).GetType()) {
+        case GeomAbs_Plane:
+            ++occtTypes[QStringLiteral("plane")];
+            break;
+        case GeomAbs_Cylinder:
+            ++occtTypes[QStringLiteral("cylinder")];
+            break;
+        case GeomAbs_Cone:
+            ++occtTypes[QStringLiteral("cone")];
+            break;
+        case GeomAbs_Sphere:
+            ++occtTypes[QStringLiteral("sphere")];
+            break;
+        case GeomAbs_Torus:
+            ++occtTypes[QStringLiteral("torus")];
+            break;
+        default:
+            ++occtFreeForm;
+            break;
+        }
+    }
+    for (const FaceProperties& f : m.faces)
+        if (f.type != SurfaceType::FreeForm)
+            ++ourTypes[surfaceTypeName(f.type)];
+    QString tally;
+    for (const auto& [type, count] : occtTypes)
+        tally += QStringLiteral(" %1 %2/%3").arg(type).arg(ourTypes[type]).arg(count);
+    qInfo("%s: types (ours/OCCT)%s, OCCT free-form %d", qPrintable(file), qPrintable(tally),
+          occtFreeForm);
+    for (const auto& [type, count] : occtTypes)
+        QVERIFY2(occtFreeForm > 0 ? ourTypes[type] >= count : ourTypes[type] == count,
+                 qPrintable(tally));
     int solids = 0;
     for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next())
         ++solids;

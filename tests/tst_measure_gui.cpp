@@ -80,6 +80,14 @@ void TestMeasureGui::probe() {
               tool()->lastUpdateMs(), tool()->lastRefineMs());
         QVERIFY2(tool()->lastRefineMs() < 1.0, qPrintable(QString::number(tool()->lastRefineMs())));
     }
+    // The panel stays where it is, and keeps its values while the cursor goes to its Copy.
+    const QPoint panelAt = tool()->panel()->pos();
+    const QString shown = tool()->panelText();
+    QTest::mouseMove(tool()->panel(), tool()->panel()->rect().center());
+    QTest::qWait(20);
+    QCOMPARE(tool()->panel()->pos(), panelAt);
+    QCOMPARE(tool()->panelText(), shown);
+    QVERIFY(tool()->panel()->isVisible());
     QVERIFY(tool()->copyProbe());
     QCOMPARE(QApplication::clipboard()->text(), tool()->panelText());
     // Ctrl+C over the view copies it too.

@@ -180,10 +180,11 @@ std::optional<ProbePoint> ProbeTool::probeAt(QPointF position) {
     m_text->setText(probeText(*m_probe));
     m_refineMs = (clock.nsecsElapsed() - picked) * 1e-6;
     m_panel->adjustSize();
-    // In the corner away from the cursor, so it never hides the point being probed.
-    const int margin = 8;
-    const bool right = position.x() < m_view->width() / 2.0;
-    m_panel->move(right ? m_view->width() - m_panel->width() - margin : margin, margin);
+    // A fixed place in the top left corner (the colour legend takes the top right): a panel that
+    // followed or fled the cursor could not be reached for Copy. Over the panel the view gets no
+    // moves, so the values stay while the cursor goes to its button.
+    constexpr int kMargin = 8;
+    m_panel->move(kMargin, kMargin);
     m_panel->show();
     m_panel->raise();
     m_measure->setProbeMarker(m_probe->point);
