@@ -75,7 +75,6 @@ public:
     /// and caps: view state saved with the project (DisplaySettings), not an edit.
     void setSections(const std::vector<SectionPlane>& planes, bool caps);
     const std::vector<SectionPlane>& sections() const { return m_options.sections; }
-    const Document* document() const { return m_doc; }
     bool sectionCaps() const { return m_options.sectionCaps; }
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
