@@ -16,3 +16,9 @@ endif()
 target_compile_definitions(tst_continuity_import PRIVATE
                            KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
 kw_use_cad_reader(tst_continuity_import)
+# Match Surface on created patches (model/matchsurface.h).
+kw_add_test(tst_matchsurface LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_matchsurface.cpp
+            LIBS knotwork_model)
+# Keep Seams Closed in the document and its undo step (model/seamkeeper.h, MoveControlPoints).
+kw_add_test(tst_seamkeeper LABEL model SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_seamkeeper.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/topology_fixtures.h LIBS knotwork_edit)

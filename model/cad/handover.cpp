@@ -12,8 +12,9 @@ namespace {
 // "KWIMPORT", then the version: bump it with any change below. The end mark catches a block
 // cut at a field boundary.
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
-// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background
-constexpr std::uint32_t kVersion = 4;
+// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background;
+// 5: Scene::continuity
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -25,7 +26,8 @@ static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
 static_assert(sizeof(Light) == 104, "update the CAD hand-over");
 static_assert(sizeof(Camera) == 88, "update the CAD hand-over");
 static_assert(sizeof(DisplaySettings) == 56, "update the CAD hand-over");
-static_assert(sizeof(Scene) == 248, "update the CAD hand-over");
+static_assert(sizeof(Scene) == 280, "update the CAD hand-over");
+static_assert(sizeof(ContinuityTolerances) == 32, "update the CAD hand-over");
 static_assert(sizeof(EdgeUse) == 16, "update the CAD hand-over");
 static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
 static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
@@ -278,6 +280,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.string(scene.display.partitionMode);
     w.value(scene.display.pixelTolerance);
     w.string(scene.display.background);
+    w.value(scene.continuity);
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -326,6 +329,7 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     scene.display.partitionMode = r.string("display partition mode");
     scene.display.pixelTolerance = r.value<double>("display pixel tolerance");
     scene.display.background = r.string("display background");
+    scene.continuity = r.value<ContinuityTolerances>("continuity tolerances");
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");
