@@ -26,8 +26,11 @@ public:
 
     /// Opens the colour range dialog (automatic or LOW..HIGH, scale).
     void editRange();
+    /// The View > Analysis submenu (for the overlays other parts add to it).
+    QMenu* menu() const { return m_menu; }
 
 private:
+    QMenu* m_menu = nullptr;
     QMainWindow* m_window;
     Viewport* m_viewport;
 };
