@@ -354,25 +354,34 @@ int runInfo(const QStringList& args) {
                        .arg(files.size()));
         return kExitUsage;
     }
-    ContinuityTolerances tolerances;
-    for (const auto& [option, value] : {std::pair{&g0, &tolerances.g0},
-                                        {&g1, &tolerances.g1Degrees},
-                                        {&g2, &tolerances.g2Percent},
-                                        {&match, &tolerances.match}}) {
-        if (!parser.isSet(*option))
+    // The tolerances: the project's own (saved with it; the defaults for other files), each
+    // replaced by its option when given. Checked once before reading the file (a usage error
+    // should not wait for an import) and again with the project's values.
+    std::optional<double> given[4];
+    const QCommandLineOption* options[4] = {&g0, &g1, &g2, &match};
+    for (int k = 0; k < 4; ++k) {
+        if (!parser.isSet(*options[k]))
             continue;
         bool ok = false;
-        *value = parser.value(*option).toDouble(&ok);
+        given[k] = parser.value(*options[k]).toDouble(&ok);
         if (!ok) {
-            printError(QStringLiteral("%1: --%2: not a number: '%3'")
-                           .arg(args.value(0), option->names().front(), parser.value(*option)));
+            printError(
+                QStringLiteral("%1: --%2: not a number: '%3'")
+                    .arg(args.value(0), options[k]->names().front(), parser.value(*options[k])));
             return kExitUsage;
         }
     }
-    // A G0 tolerance above the default match distance takes the match distance with it.
-    if (!parser.isSet(match))
-        tolerances.match = std::max(tolerances.match, tolerances.g0);
-    if (const QString why = continuityTolerancesError(tolerances); !why.isEmpty()) {
+    const auto withOptions = [&](ContinuityTolerances t) {
+        double* values[4] = {&t.g0, &t.g1Degrees, &t.g2Percent, &t.match};
+        for (int k = 0; k < 4; ++k)
+            if (given[k])
+                *values[k] = *given[k];
+        // A G0 tolerance above the match distance takes the match distance with it.
+        if (!given[3])
+            t.match = std::max(t.match, t.g0);
+        return t;
+    };
+    if (const QString why = continuityTolerancesError(withOptions({})); !why.isEmpty()) {
         printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
         return kExitUsage;
     }
@@ -385,6 +394,11 @@ int runInfo(const QStringList& args) {
     printImportRemarks(files[0], imported->report);
     const Scene& scene = imported->scene;
     if (parser.isSet(continuity)) {
+        const ContinuityTolerances tolerances = withOptions(continuityTolerances(scene));
+        if (const QString why = continuityTolerancesError(tolerances); !why.isEmpty()) {
+            printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
+            return kExitUsage;
+        }
         const ContinuityReport report = continuityReport(scene, tolerances);
         if (parser.isSet(json)) {
             printOut(QString::fromUtf8(QJsonDocument(continuityJson(report)).toJson()));

@@ -162,20 +162,6 @@ std::optional<Piece> makePiece(const Surface& s, const ContinuitySide& side) {
     return p;
 }
 
-/// The boundaries of a face: its trim curves, or the edges of its domain when untrimmed.
-std::vector<ContinuitySide> boundariesOf(const Surface& s) {
-    std::vector<ContinuitySide> out;
-    if (s.trims.empty()) {
-        for (DomainEdge e : {DomainEdge::U0, DomainEdge::U1, DomainEdge::V0, DomainEdge::V1})
-            out.push_back(ContinuitySide{s.id, TrimLoopId{}, -1, e});
-        return out;
-    }
-    for (const TrimLoop& loop : s.trims)
-        for (int c = 0; c < int(loop.curves.size()); ++c)
-            out.push_back(ContinuitySide{s.id, loop.id, c, DomainEdge::None});
-    return out;
-}
-
 } // namespace
 
 QString continuityTolerancesError(const ContinuityTolerances& t) {
@@ -225,6 +211,19 @@ std::optional<SeamSide> continuitySideCurve(const Surface& surface, const Contin
     return std::nullopt;
 }
 
+std::vector<ContinuitySide> continuityBoundaries(const Surface& s) {
+    std::vector<ContinuitySide> out;
+    if (s.trims.empty()) {
+        for (DomainEdge e : {DomainEdge::U0, DomainEdge::U1, DomainEdge::V0, DomainEdge::V1})
+            out.push_back(ContinuitySide{s.id, TrimLoopId{}, -1, e});
+        return out;
+    }
+    for (const TrimLoop& loop : s.trims)
+        for (int c = 0; c < int(loop.curves.size()); ++c)
+            out.push_back(ContinuitySide{s.id, loop.id, c, DomainEdge::None});
+    return out;
+}
+
 ContinuityTopology continuityTopology(const Scene& scene, const ContinuityTolerances& tol) {
     ContinuityTopology out;
     const QHash<SurfaceId, const Surface*> surfaces = surfaceIndex(scene);
@@ -263,7 +262,7 @@ ContinuityTopology continuityTopology(const Scene& scene, const ContinuityTolera
         const bool recorded = recordedFaces.count(s.id) > 0;
         if (!recorded)
             ++out.matchedFaces;
-        for (const ContinuitySide& side : boundariesOf(s)) {
+        for (const ContinuitySide& side : continuityBoundaries(s)) {
             if (recorded && recordedSides.count(side))
                 continue;
             std::optional<Piece> piece = makePiece(s, side);
@@ -431,6 +430,29 @@ ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances
     for (std::thread& t : pool)
         t.join();
     return report;
+}
+
+SeamOpening seamsOpenAt(const ContinuityReport& report, const std::vector<SurfaceId>& faces) {
+    SeamOpening out;
+    for (const EdgeContinuity& e : report.edges) {
+        if (e.continuity != ContinuityClass::Open)
+            continue;
+        if (!std::binary_search(faces.begin(), faces.end(), e.edge.sides[0].surface) &&
+            !std::binary_search(faces.begin(), faces.end(), e.edge.sides[1].surface))
+            continue;
+        ++out.open;
+        out.largestGap = std::max(out.largestGap, e.g0);
+    }
+    return out;
+}
+
+QString seamOpeningText(const SeamOpening& o) {
+    if (o.open == 0)
+        return {};
+    return QStringLiteral("opens %1 seam%2, max gap %3")
+        .arg(o.open)
+        .arg(o.open == 1 ? QString() : QStringLiteral("s"))
+        .arg(o.largestGap, 0, 'g', 3);
 }
 
 std::vector<size_t> edgesOfFace(const ContinuityTopology& topology, SurfaceId surface) {

@@ -13,18 +13,10 @@
 
 namespace kw {
 
-/// Thresholds of the classes, in the units CATIA's checker uses. An edge is G0 when its gap is
-/// within g0 (or within its own recorded tolerance, when larger), G1 when moreover its normals
-/// agree within g1Degrees, G2 when moreover the normal curvatures across it agree within
-/// g2Percent of the larger. `match`: how close the boundaries of faces without a record must
-/// lie to be found as one edge (model units, >= g0); farther apart they are two free edges.
-struct ContinuityTolerances {
-    double g0 = 0.001;
-    double g1Degrees = 0.5;
-    double g2Percent = 5.0;
-    double match = 0.01;
-    bool operator==(const ContinuityTolerances&) const = default;
-};
+/// The tolerances a scene is judged by (Scene::continuity, saved with the project).
+inline const ContinuityTolerances& continuityTolerances(const Scene& scene) {
+    return scene.continuity;
+}
 
 /// Empty when every value is finite and > 0 and match >= g0, else the reason.
 QString continuityTolerancesError(const ContinuityTolerances& t);
@@ -134,8 +126,23 @@ ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances
 int updateContinuity(ContinuityReport& report, const Scene& scene,
                      const std::vector<SurfaceId>& faces);
 
+/// What an edit did to the seams of the faces it moved (for a status bar during a drag of a
+/// point on a trimmed face, whose neighbours' edges no control point shares).
+struct SeamOpening {
+    int open = 0;            ///< edges touching the faces whose gap is above tolerance
+    double largestGap = 0.0; ///< the largest of their gaps (model units)
+};
+/// Counts the open edges of `report` (re-measured: updateContinuity) that touch `faces`
+/// (ascending ids).
+SeamOpening seamsOpenAt(const ContinuityReport& report, const std::vector<SurfaceId>& faces);
+/// "opens 2 seams, max gap 0.8", or empty when none is open.
+QString seamOpeningText(const SeamOpening& opening);
+
 /// Every edge with a side on `surface`, as indices into `topology.edges`.
 std::vector<size_t> edgesOfFace(const ContinuityTopology& topology, SurfaceId surface);
+
+/// The boundaries of a face: its trim curves, or the four edges of its domain when untrimmed.
+std::vector<ContinuitySide> continuityBoundaries(const Surface& surface);
 
 /// The edge curve of a side (trim curve or domain edge) on its surface, sampled as
 /// makeSeamSide does; nullopt when the scene lacks it. `surface` must outlive the result.

@@ -6,10 +6,13 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace kw {
+
+struct EdgeBands; // render/edge_bands.h
 
 enum class RenderMode {
     Exact,       ///< per-fragment exact NURBS evaluation on the base polygon (paper 3.4)
@@ -57,6 +60,9 @@ struct RenderOptions {
     double pixelTolerance = 0.5; ///< adaptive mode's screen bound, kMin..kMaxPixelTolerance
     bool wireframe = false;      ///< outline of the base polygon cells
     bool controlNet = false;     ///< control points and net lines
+    /// View > Analysis > Edge Continuity: bands along the edges coloured by class
+    /// (render/edge_bands.h); null draws none. Shared so that a frame copies no vertices.
+    std::shared_ptr<const EdgeBands> edgeBands;
     /// How exact mode shades each pixel once (docs/PERFORMANCE.md measures both, and a
     /// deferred variant that was slower on llvmpipe and removed).
     enum class Shading {

@@ -65,6 +65,7 @@ bool Renderer::initialize() {
     d->tessellated.initialize(gl, &d->shaders);
     d->wireframe.initialize(gl, &d->shaders);
     d->controlNet.initialize(gl, &d->shaders);
+    d->edgeBands.initialize(gl, &d->shaders);
     // No programs are built here: each pass asks the ShaderLibrary for the variant a frame
     // needs when it first draws it (a one-surface render builds 2 programs, not 6), and a
     // shader that does not build fails that frame with the compiler's message.
@@ -127,6 +128,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
+    edgeBands.drawCalls = 0;
     exact.culled = exact.solidsBackCulled = 0;
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.affineSurfaces = 0;
@@ -238,7 +240,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
     report.cpuMs.beforeDraws = (firstDraw >= 0.0 ? firstDraw : threadCpuMs()) - cpuStart;
     phase.restart();
-    if (ok && (options.wireframe || options.controlNet)) {
+    if (ok && (options.wireframe || options.controlNet || options.edgeBands)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
         if (options.writeAov) {
             const GLenum only0 = GL_COLOR_ATTACHMENT0;
@@ -248,6 +250,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             ok = wireframe.draw(scene, fc, &error);
         if (ok && options.controlNet)
             ok = controlNet.draw(scene, fc, &error);
+        if (ok && options.edgeBands)
+            ok = edgeBands.draw(*options.edgeBands, fc, &error);
         if (options.writeAov) {
             const GLenum all[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                    GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
@@ -265,8 +269,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         gl->glDisable(GL_SCISSOR_TEST);
     endReversedDepth(gl);
 
-    report.drawCalls +=
-        exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls + controlNet.drawCalls;
+    report.drawCalls += exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls +
+                        controlNet.drawCalls + edgeBands.drawCalls;
     if (!ok)
         progressKey.reset(); // a sum with a failed sample in it is not kept
     if (accumulated) {
@@ -563,6 +567,7 @@ void Renderer::release() {
     d->antialias.release();
     d->accumulate.release();
     d->floatDepth.release();
+    d->edgeBands.release();
     d->rangeKey = {};
     if (d->backgroundVao)
         d->gl->glDeleteVertexArrays(1, &d->backgroundVao);

@@ -4,6 +4,7 @@
 
 #include "render/accumulate_target.h"
 #include "render/antialias_target.h"
+#include "render/edge_bands_pass.h"
 #include "render/exact_surface_pass.h"
 #include "render/float_depth_target.h"
 #include "render/gpu_scene.h"
@@ -49,6 +50,7 @@ struct Renderer::Impl {
     TessellatedPass tessellated;
     WireframePass wireframe;
     ControlNetPass controlNet;
+    EdgeBandsPass edgeBands;
     /// Renderer::setMesh's meshes, created on first use.
     std::unique_ptr<TriangleMeshPass> meshes[Renderer::kMeshSlots];
     QString error;

@@ -3,11 +3,13 @@
 #include "knotwork_process.h"
 #include "model/cad/cadimport.h"
 #include "model/continuity.h"
+#include "model/io/knotfile.h"
 
 #include <QElapsedTimer>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QTemporaryDir>
 #include <QTest>
 
 #ifdef KW_HAVE_OCCT_TOOLKITS
@@ -65,6 +67,7 @@ private Q_SLOTS:
     void closedSolids();
     void dragStepCost();
     void infoContinuity();
+    void infoUsesTheProjectsTolerances();
     void infoRejectsBadTolerances();
 };
 
@@ -194,6 +197,28 @@ void TestContinuityImport::infoContinuity() {
                  QStringLiteral(" %1 G2, 0 G1, ")
                      .arg(report.count(ContinuityClass::G2) + report.count(ContinuityClass::G1))),
              qPrintable(run.out.right(200)));
+}
+
+// A project's own tolerances (saved with it) are the ones `info` judges by; options override.
+void TestContinuityImport::infoUsesTheProjectsTolerances() {
+    QString error;
+    std::optional<ImportResult> r = importFile(data(QStringLiteral("Pump_Nut.brep")), error);
+    QVERIFY2(r, qPrintable(error));
+    r->scene.continuity.g2Percent = 1000.0;
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("nut.knot"));
+    QVERIFY2(writeKnotFile(path, r->scene, &error), qPrintable(error));
+    Run run = knotwork(
+        {QStringLiteral("info"), path, QStringLiteral("--continuity"), QStringLiteral("--json")});
+    QCOMPARE(run.code, 0);
+    QJsonObject root = QJsonDocument::fromJson(run.out.toUtf8()).object();
+    QCOMPARE(root[QStringLiteral("tolerances")][QStringLiteral("g2Percent")].toDouble(), 1000.0);
+    for (const QJsonValue& e : root[QStringLiteral("edges")].toArray())
+        QVERIFY(e[QStringLiteral("continuity")].toString() != QStringLiteral("G1"));
+    run = knotwork({QStringLiteral("info"), path, QStringLiteral("--continuity"),
+                    QStringLiteral("--json"), QStringLiteral("--g2"), QStringLiteral("5")});
+    root = QJsonDocument::fromJson(run.out.toUtf8()).object();
+    QCOMPARE(root[QStringLiteral("tolerances")][QStringLiteral("g2Percent")].toDouble(), 5.0);
 }
 
 void TestContinuityImport::infoRejectsBadTolerances() {

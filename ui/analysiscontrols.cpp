@@ -38,6 +38,7 @@ QString camelName(AnalysisMode mode) {
 AnalysisControls::AnalysisControls(QMainWindow* window, QMenu* viewMenu, Viewport* viewport)
     : QObject(window), m_window(window), m_viewport(viewport) {
     QMenu* menu = viewMenu->addMenu(tr("&Analysis"));
+    m_menu = menu;
     QToolBar* bar = window->addToolBar(tr("Analysis"));
     bar->setObjectName(QStringLiteral("analysisToolBar"));
     // One combo box for the modes, not a button each: a row of ten text buttons overflowed the

@@ -30,8 +30,11 @@ public:
     /// Opens the draft settings dialog (pull direction X, Y, Z and the minimum draft angle);
     /// saved with the project's display settings.
     void editDraft();
+    /// The View > Analysis submenu (for the overlays other parts add to it).
+    QMenu* menu() const { return m_menu; }
 
 private:
+    QMenu* m_menu = nullptr;
     QMainWindow* m_window;
     Viewport* m_viewport;
 };

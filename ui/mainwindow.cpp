@@ -4,6 +4,7 @@
 #include "ui/analysiscontrols.h"
 #include "ui/autosave.h"
 #include "ui/desktopactions.h"
+#include "ui/edgecontinuity.h"
 #include "ui/edit/commands.h"
 #include "ui/lightspanel.h"
 #include "ui/modelingtools.h"
@@ -349,6 +350,35 @@ void MainWindow::buildEditMenu() {
               [this] { selectAll(); });
     addAction(edit, QStringLiteral("actionDelete"), tr("&Delete"), QKeySequence::Delete,
               [this] { deleteSelection(); });
+    edit->addSeparator();
+    // A control point dragged on a boundary another untrimmed face shares carries that face's
+    // coincident point (and, keeping tangency, the next rows on both sides): the document
+    // applies it to every move, live drags and undo alike (model/seamkeeper.h).
+    QSettings settings;
+    QAction* seams = addAction(edit, QStringLiteral("actionKeepSeamsClosed"),
+                               tr("Keep Seams &Closed"), QKeySequence(), [] {});
+    seams->setCheckable(true);
+    seams->setChecked(settings.value(QStringLiteral("edit/keepSeamsClosed"), true).toBool());
+    seams->setStatusTip(tr("Moving a control point on a shared boundary moves the neighbouring "
+                           "face's coincident point too"));
+    QAction* tangency = addAction(edit, QStringLiteral("actionKeepTangency"), tr("Keep &Tangency"),
+                                  QKeySequence(), [] {});
+    tangency->setCheckable(true);
+    tangency->setChecked(settings.value(QStringLiteral("edit/keepTangency"), false).toBool());
+    tangency->setStatusTip(tr("With Keep Seams Closed: the rows next to a shared boundary move "
+                              "with it on both sides, so a tangent seam stays tangent"));
+    const auto apply = [this, seams, tangency] {
+        tangency->setEnabled(seams->isChecked());
+        m_doc->setSeamLink(!seams->isChecked()     ? Document::SeamLink::Off
+                           : tangency->isChecked() ? Document::SeamLink::Tangency
+                                                   : Document::SeamLink::Position);
+        QSettings s;
+        s.setValue(QStringLiteral("edit/keepSeamsClosed"), seams->isChecked());
+        s.setValue(QStringLiteral("edit/keepTangency"), tangency->isChecked());
+    };
+    connect(seams, &QAction::toggled, this, apply);
+    connect(tangency, &QAction::toggled, this, apply);
+    apply();
 }
 
 void MainWindow::buildViewMenu() {
@@ -397,7 +427,30 @@ void MainWindow::buildViewMenu() {
     net->setCheckable(true);
     net->setChecked(m_viewport->renderOptions().controlNet);
     connect(net, &QAction::toggled, m_viewport, &Viewport::setControlNet);
-    new AnalysisControls(this, view, m_viewport); // View ▸ Analysis and its toolbar
+    auto* analysis = new AnalysisControls(this, view, m_viewport); // View ▸ Analysis, toolbar
+    // An overlay over any shading mode (zebra across a seam is the classic G1/G2 check).
+    analysis->menu()->addSeparator();
+    m_edgeContinuity = new EdgeContinuityOverlay(m_doc, m_viewport, this);
+    QAction* edges = analysis->menu()->addAction(tr("Edge &Continuity"));
+    edges->setObjectName(QStringLiteral("actionEdgeContinuity"));
+    edges->setCheckable(true);
+    edges->setStatusTip(tr("Colour every edge where faces meet by its continuity (G2, G1, G0, "
+                           "open) and mark free edges; tolerances in Preferences"));
+    connect(edges, &QAction::toggled, m_edgeContinuity, &EdgeContinuityOverlay::setEnabled);
+    QAction* tolerances = analysis->menu()->addAction(tr("Continuity &Tolerances…"));
+    tolerances->setObjectName(QStringLiteral("actionContinuityTolerances"));
+    tolerances->setStatusTip(tr("The G0, G1 and G2 thresholds of Edge Continuity, Match Surface "
+                                "and 'knotwork info --continuity', saved with the project"));
+    connect(tolerances, &QAction::triggered, this, [this] {
+        if (const auto t = editContinuityTolerances(this, m_doc->scene().continuity)) {
+            m_doc->setContinuityTolerances(*t);
+            setWindowModified(true);
+        }
+    });
+    connect(m_edgeContinuity, &EdgeContinuityOverlay::seamMessage, this, [this](const QString& m) {
+        if (!m.isEmpty())
+            statusBar()->showMessage(tr("This edit %1").arg(m), 4000);
+    });
     view->addSeparator();
     QMenu* panels = view->addMenu(tr("&Panels"));
     for (QDockWidget* d : findChildren<QDockWidget*>())

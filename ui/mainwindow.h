@@ -121,6 +121,10 @@ public:
     void selectSurface(SurfaceId id);
 
     Document* document() const { return m_doc; }
+    /// View > Analysis > Edge Continuity's state (report, bands).
+    class EdgeContinuityOverlay* edgeContinuity() const {
+        return m_edgeContinuity;
+    }
     Selection* selection() const { return m_selection; }
     QUndoStack* undoStack() const { return m_stack; }
     Viewport* viewport() const { return m_viewport; }
@@ -178,6 +182,7 @@ private:
     void showError(const QString& title, const QString& text);
 
     Document* m_doc;
+    class EdgeContinuityOverlay* m_edgeContinuity = nullptr;
     SceneModel* m_model;
     Selection* m_selection;
     QUndoStack* m_stack;

@@ -152,6 +152,92 @@ ModelingTools::Prompts ModelingTools::Prompts::standard() {
             return std::nullopt;
         return std::make_pair(direction->currentIndex(), tol->value());
     };
+    p.matchSurface = [](QWidget* parent, const Scene& scene,
+                        SurfaceId surface) -> std::optional<MatchRequest> {
+        QDialog d(parent);
+        d.setWindowTitle(QObject::tr("Match surface"));
+        auto* form = new QFormLayout(&d);
+        auto* edge = new QComboBox;
+        const DomainEdge edges[] = {DomainEdge::U0, DomainEdge::U1, DomainEdge::V0, DomainEdge::V1};
+        edge->addItems({QObject::tr("u = start"), QObject::tr("u = end"), QObject::tr("v = start"),
+                        QObject::tr("v = end")});
+        auto* target = new QComboBox;
+        std::vector<SurfaceId> targets;
+        for (const Surface& s : scene.surfaces)
+            if (s.id != surface) {
+                targets.push_back(s.id);
+                target->addItem(s.name);
+            }
+        auto* side = new QComboBox;
+        std::vector<ContinuitySide> sides;
+        auto* continuity = new QComboBox;
+        continuity->addItems({QStringLiteral("G0 (position)"), QStringLiteral("G1 (tangency)"),
+                              QStringLiteral("G2 (curvature)")});
+        continuity->setCurrentIndex(1);
+        // The target's boundaries, the one nearest the chosen edge first selected.
+        const auto fillSides = [&] {
+            side->clear();
+            sides.clear();
+            const size_t t = size_t(std::max(0, target->currentIndex()));
+            if (t >= targets.size())
+                return;
+            const Surface* s = nullptr;
+            for (const Surface& x : scene.surfaces)
+                s = x.id == targets[t] ? &x : s;
+            for (const ContinuitySide& b : continuityBoundaries(*s)) {
+                sides.push_back(b);
+                side->addItem(
+                    b.domainEdge != DomainEdge::None
+                        ? QObject::tr("edge %1").arg(domainEdgeName(b.domainEdge))
+                        : QObject::tr("trim loop %1, curve %2").arg(b.loop.value).arg(b.curve + 1));
+            }
+            const std::optional<ContinuitySide> nearest =
+                nearestSide(scene, surface, edges[std::max(0, edge->currentIndex())], targets[t]);
+            for (size_t k = 0; k < sides.size(); ++k)
+                if (nearest && sides[k] == *nearest)
+                    side->setCurrentIndex(int(k));
+        };
+        // The surface's edge nearest to any other surface, as a start.
+        double best = -1.0;
+        for (int e = 0; e < 4; ++e)
+            for (size_t t = 0; t < targets.size(); ++t)
+                if (const auto n = nearestSide(scene, surface, edges[e], targets[t])) {
+                    const Surface* a = nullptr;
+                    const Surface* b = nullptr;
+                    for (const Surface& x : scene.surfaces) {
+                        a = x.id == surface ? &x : a;
+                        b = x.id == targets[t] ? &x : b;
+                    }
+                    const auto mine = continuitySideCurve(
+                        *a, ContinuitySide{surface, TrimLoopId{}, -1, edges[e]}, 8);
+                    const auto theirs = continuitySideCurve(*b, *n, 8);
+                    if (!mine || !theirs)
+                        continue;
+                    double dist = 0.0;
+                    for (const glm::dvec3& q : mine->at)
+                        dist += nearestOnSeamSide(*theirs, q).distance;
+                    if (best < 0.0 || dist < best) {
+                        best = dist;
+                        edge->setCurrentIndex(e);
+                        target->setCurrentIndex(int(t));
+                    }
+                }
+        fillSides();
+        QObject::connect(edge, &QComboBox::currentIndexChanged, &d, fillSides);
+        QObject::connect(target, &QComboBox::currentIndexChanged, &d, fillSides);
+        form->addRow(QObject::tr("Edge to move"), edge);
+        form->addRow(QObject::tr("Match to surface"), target);
+        form->addRow(QObject::tr("Its edge"), side);
+        form->addRow(QObject::tr("Continuity"), continuity);
+        if (!run(d, form) || side->currentIndex() < 0)
+            return std::nullopt;
+        MatchRequest r;
+        r.surface = surface;
+        r.edge = edges[edge->currentIndex()];
+        r.target = sides[size_t(side->currentIndex())];
+        r.continuity = MatchContinuity(continuity->currentIndex());
+        return r;
+    };
     return p;
 }
 

@@ -336,6 +336,19 @@ bool ModelingTools::removeKnots(Direction direction, double tolerance) {
     return true;
 }
 
+bool ModelingTools::matchSurface(const MatchRequest& request) {
+    QString error;
+    auto c =
+        MatchSurfaceCommand::create(m_doc, request, continuityTolerances(m_doc->scene()), &error);
+    if (!c) {
+        Q_EMIT message(tr("Match Surface: %1").arg(error));
+        return false;
+    }
+    Q_EMIT message(c->result().summary);
+    pushCommand(m_stack, std::move(c));
+    return true;
+}
+
 void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
     auto make = [this](QMenu* menu, const char* name, const QString& text, const QKeySequence& key,
                        std::function<void()> slot) {
@@ -454,6 +467,18 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
         if (auto r = m_prompts.knotRemoval(m_window, 1e-4 * glm::length(hi - lo)))
             removeKnots(r->first == 0 ? Direction::U : Direction::V, r->second);
     });
+    QAction* match =
+        make(modify, "actionMatchSurface", tr("Match &Surface…"), QKeySequence(), [this] {
+            const SurfaceId id = m_selection->currentSurface();
+            if (!m_doc->surface(id) || m_doc->scene().surfaces.size() < 2) {
+                Q_EMIT message(tr("Select the surface to change, next to another one."));
+                return;
+            }
+            if (auto r = m_prompts.matchSurface(m_window, m_doc->scene(), id))
+                matchSurface(*r);
+        });
+    match->setStatusTip(tr("Move the selected surface's edge rows so that it meets a "
+                           "neighbour's edge with G0, G1 or G2 continuity"));
 
     // Short labels on the toolbar (the menus keep the full ones, shown as tool tips), so that
     // the row fits a first window.

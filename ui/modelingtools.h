@@ -5,6 +5,7 @@
 #pragma once
 
 #include "model/document/selection.h"
+#include "model/matchsurface.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "ui/edit/commands.h"
 
@@ -73,6 +74,10 @@ public:
         /// Direction (0 u, 1 v) and tolerance for knot removal.
         std::function<std::optional<std::pair<int, double>>(QWidget*, double suggested)>
             knotRemoval;
+        /// Modify > Match Surface: the edge of `surface` to match, the target side and the
+        /// continuity.
+        std::function<std::optional<MatchRequest>(QWidget*, const Scene&, SurfaceId surface)>
+            matchSurface;
         static Prompts standard();
     };
 
@@ -101,6 +106,9 @@ public:
     bool duplicateSelected();
     bool deleteSelected();
     bool removeKnots(Direction direction, double tolerance);
+    /// Modify > Match Surface (one undo step); message() gives the kernel's measure of the
+    /// result, or why it was refused.
+    bool matchSurface(const MatchRequest& request);
 
     /// The curve `spec` of a surface (kernel iso-curve, exact).
     static NurbsCurve3 surfaceCurve(const NurbsSurface& s, const CurveSpec& spec);

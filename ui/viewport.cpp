@@ -1,6 +1,7 @@
 // Viewport: GL lifetime, frame drawing with timing, camera gestures and routing to the tools.
 #include "ui/viewport.h"
 
+#include "render/edge_bands.h"
 #include "render/gl_context.h"
 #include "ui/analysiscontrols.h"
 #include "ui/tools/viewtools.h"
@@ -117,6 +118,27 @@ void Viewport::setAnalysis(const AnalysisOptions& analysis) {
 }
 
 void Viewport::drawLegend() {
+    if (m_options.edgeBands) {
+        // The Edge Continuity overlay's classes, bottom right.
+        QPainter p(this);
+        const std::pair<glm::vec4, QString> rows[] = {
+            {continuityColor(ContinuityClass::G2), tr("G2")},
+            {continuityColor(ContinuityClass::G1), tr("G1")},
+            {continuityColor(ContinuityClass::G0), tr("G0")},
+            {continuityColor(ContinuityClass::Open), tr("open")},
+            {freeEdgeColor(), tr("free")}};
+        const int rowHeight = 18;
+        QRect box(width() - 90, height() - 16 - 5 * rowHeight - 8, 76, 5 * rowHeight + 8);
+        p.fillRect(box, QColor(0, 0, 0, 140));
+        for (int k = 0; k < 5; ++k) {
+            const glm::vec4 c = rows[k].first;
+            const QRect swatch(box.left() + 6, box.top() + 4 + k * rowHeight + 4, 20, 8);
+            p.fillRect(swatch, QColor::fromRgbF(c.r, c.g, c.b));
+            p.setPen(Qt::white);
+            p.drawText(QRect(swatch.right() + 8, box.top() + 4 + k * rowHeight, 40, rowHeight),
+                       Qt::AlignVCenter | Qt::AlignLeft, rows[k].second);
+        }
+    }
     const AnalysisOptions& a = m_options.analysis;
     if (m_options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
         QPainter p(this);
@@ -130,6 +152,11 @@ void Viewport::drawLegend() {
     const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
     drawColourLegend(p, area, a.mode, m_lastReport.analysisRange,
                      a.scale.value_or(defaultScale(a.mode)), !a.range);
+}
+
+void Viewport::setEdgeBands(std::shared_ptr<const EdgeBands> bands) {
+    m_options.edgeBands = std::move(bands);
+    update();
 }
 
 void Viewport::setControlNet(bool on) {

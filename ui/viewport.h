@@ -57,6 +57,8 @@ public:
     /// Control nets on or off; while on, only the selected surfaces' nets are drawn and
     /// pickable unless setControlNetForAll(true).
     void setControlNet(bool on);
+    /// The Edge Continuity overlay's bands (null: none) and its legend.
+    void setEdgeBands(std::shared_ptr<const EdgeBands> bands);
     /// Analysis colouring (View ▸ Analysis). While a drag runs the automatic colour range is
     /// held (AnalysisOptions::holdRange), so colours do not swim; it follows on release.
     void setAnalysis(const AnalysisOptions& analysis);

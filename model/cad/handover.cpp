@@ -15,7 +15,8 @@ constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
 // 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background;
 // 5: DisplaySettings::sections, sectionCaps
 // 6: DisplaySettings::pullDirection, draftAngleDegrees
-constexpr std::uint32_t kVersion = 6;
+// 7: Scene::continuity
+constexpr std::uint32_t kVersion = 7;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -28,7 +29,8 @@ static_assert(sizeof(Light) == 104, "update the CAD hand-over");
 static_assert(sizeof(Camera) == 88, "update the CAD hand-over");
 static_assert(sizeof(DisplaySettings) == 120, "update the CAD hand-over");
 static_assert(sizeof(SectionPlane) == 56, "update the CAD hand-over");
-static_assert(sizeof(Scene) == 312, "update the CAD hand-over");
+static_assert(sizeof(Scene) == 344, "update the CAD hand-over");
+static_assert(sizeof(ContinuityTolerances) == 32, "update the CAD hand-over");
 static_assert(sizeof(EdgeUse) == 16, "update the CAD hand-over");
 static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
 static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
@@ -290,6 +292,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.value(std::uint8_t(scene.display.sectionCaps));
     w.value(scene.display.pullDirection);
     w.value(scene.display.draftAngleDegrees);
+    w.value(scene.continuity);
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -348,6 +351,7 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     scene.display.sectionCaps = r.flag("section caps flag");
     scene.display.pullDirection = r.value<glm::dvec3>("display pull direction");
     scene.display.draftAngleDegrees = r.value<double>("display draft angle");
+    scene.continuity = r.value<ContinuityTolerances>("continuity tolerances");
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");

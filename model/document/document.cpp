@@ -1,7 +1,9 @@
 // Document: the one place the scene changes; validates, counts revisions and signals.
 #include "model/document/document.h"
 
+#include "model/continuity.h"
 #include "model/document/validation.h"
+#include "model/seamkeeper.h"
 
 #include <QHashFunctions>
 #include <algorithm>
@@ -241,17 +243,41 @@ QString Document::controlPointsError(SurfaceId id, const std::vector<int>& indic
 
 bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
                                 const std::vector<glm::dvec3>& positions) {
+    return setControlPoints(id, indices, positions, m_seamLink);
+}
+
+bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                const std::vector<glm::dvec3>& positions, SeamLink link) {
     if (!controlPointsError(id, indices, positions).isEmpty())
         return false;
     Surface* s = mutableSurface(id);
+    // The neighbours' points that move with these, from the positions before the move.
+    const std::vector<LinkedMove> linked =
+        link == SeamLink::Off
+            ? std::vector<LinkedMove>{}
+            : linkedMoves(m_scene, id, indices, positions, link == SeamLink::Tangency);
     bool changed = false;
     for (size_t k = 0; k < indices.size(); ++k) {
         glm::dvec3& p = s->geometry.points[size_t(indices[k])];
         changed = changed || p != positions[k];
         p = positions[k];
     }
+    std::vector<SurfaceId> others;
+    for (const LinkedMove& m : linked) {
+        Surface* o = mutableSurface(m.surface);
+        glm::dvec3& p = o->geometry.points[size_t(m.index)];
+        if (p == m.position)
+            continue;
+        p = m.position;
+        if (m.surface == id)
+            changed = true;
+        else if (std::find(others.begin(), others.end(), m.surface) == others.end())
+            others.push_back(m.surface);
+    }
     if (changed)
         bump(id, Aspect::Points);
+    for (SurfaceId o : others)
+        bump(o, Aspect::Points);
     return true;
 }
 
@@ -472,6 +498,17 @@ bool Document::setDisplay(const DisplaySettings& display) {
         return true;
     m_scene.display = display;
     nextRevision(); // no surface or signal: the scene's content changed all the same
+    return true;
+}
+
+bool Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
+    if (!continuityTolerancesError(tolerances).isEmpty())
+        return false;
+    if (m_scene.continuity == tolerances)
+        return true;
+    m_scene.continuity = tolerances;
+    nextRevision();
+    Q_EMIT continuityTolerancesChanged();
     return true;
 }
 

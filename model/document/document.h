@@ -43,6 +43,10 @@ class Document : public QObject {
 public:
     explicit Document(QObject* parent = nullptr);
 
+    /// Edit > Keep Seams Closed: how a control point move carries the coincident points of
+    /// neighbouring untrimmed faces with it (model/seamkeeper.h). Off: alone.
+    enum class SeamLink { Off, Position, Tangency };
+
     const Scene& scene() const { return m_scene; }
     /// nullptr when no surface has this id.
     const Surface* surface(SurfaceId id) const;
@@ -81,6 +85,11 @@ public:
     /// Moves the listed control points (NurbsSurface::index) to new positions.
     bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
                           const std::vector<glm::dvec3>& positions);
+    /// The same with the seam link given (an undo step replays the link it was made with);
+    /// the plain form uses seamLink(). With a link, the points of neighbouring untrimmed faces
+    /// that kw::linkedMoves names move too (each such surface bumped and signalled).
+    bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                          const std::vector<glm::dvec3>& positions, SeamLink link);
     bool setWeight(SurfaceId id, int index, double weight);
     /// Degrees, knots and control net at once (knot edit, knot insertion, degree elevation).
     bool setGeometry(SurfaceId id, const NurbsSurface& geometry);
@@ -118,6 +127,12 @@ public:
     /// The display settings saved with the project (as the camera: not an edit, no signal
     /// the views react to); false when invalid (validation.h displayError).
     bool setDisplay(const DisplaySettings& display);
+    /// The continuity tolerances saved with the project (not an edit); emits
+    /// continuityTolerancesChanged; false when invalid (continuityTolerancesError).
+    bool setContinuityTolerances(const ContinuityTolerances& tolerances);
+
+    SeamLink seamLink() const { return m_seamLink; }
+    void setSeamLink(SeamLink link) { m_seamLink = link; }
 
     /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
     /// Returns an empty string when valid.
@@ -137,6 +152,7 @@ Q_SIGNALS:
     void trimLoopRemoved(kw::SurfaceId id, int index);
     void lightsChanged();
     void cameraChanged();
+    void continuityTolerancesChanged();
 
 private:
     Surface* mutableSurface(SurfaceId id);
@@ -172,6 +188,7 @@ private:
 
     Scene m_scene;
     std::vector<Revisions> m_revisions; // parallel to m_scene.surfaces
+    SeamLink m_seamLink = SeamLink::Off; // the editor turns it on (Edit > Keep Seams Closed)
     std::uint64_t m_counter = 0;        ///< revision(): the newest value this document handed out
     std::uint64_t m_lightsRevision = 0;
     std::uint64_t m_cameraRevision = 0;

@@ -141,6 +141,19 @@ struct DisplaySettings {
     bool operator==(const DisplaySettings&) const = default;
 };
 
+/// Thresholds of the classes, in the units CATIA's checker uses. An edge is G0 when its gap is
+/// within g0 (or within its own recorded tolerance, when larger), G1 when moreover its normals
+/// agree within g1Degrees, G2 when moreover the normal curvatures across it agree within
+/// g2Percent of the larger. `match`: how close the boundaries of faces without a record must
+/// lie to be found as one edge (model units, >= g0); farther apart they are two free edges.
+struct ContinuityTolerances {
+    double g0 = 0.001;
+    double g1Degrees = 0.5;
+    double g2Percent = 5.0;
+    double match = 0.01;
+    bool operator==(const ContinuityTolerances&) const = default;
+};
+
 /// Perspective camera. `authored` false means none was set by the user or file: views fit one
 /// to the scene (fitCamera) and files omit it.
 struct Camera {
@@ -161,6 +174,9 @@ struct Scene {
     std::vector<Light> lights = defaultLights();
     Camera camera;
     DisplaySettings display;
+    /// The edge continuity classes' thresholds (model/continuity.h), saved with the project
+    /// like the display settings (not an edit).
+    ContinuityTolerances continuity;
     std::uint32_t nextId = 1;
     bool operator==(const Scene&) const = default;
 };

@@ -2,6 +2,8 @@
 // importers and the writers (one notion of a valid scene).
 #include "model/document/validation.h"
 
+#include "model/continuity.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -236,6 +238,9 @@ QString sceneError(const Scene& scene) {
         e = cameraError(scene.camera);
     if (e.isEmpty())
         e = displayError(scene.display);
+    if (e.isEmpty())
+        if (const QString why = continuityTolerancesError(scene.continuity); !why.isEmpty())
+            e = QStringLiteral("continuity: ") + why;
     return e;
 }
 

@@ -163,6 +163,12 @@ QByteArray sceneToJson(const Scene& scene) {
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
     if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
+    if (scene.continuity != ContinuityTolerances{}) // optional (1.4)
+        root.insert(QStringLiteral("continuity"),
+                    QJsonObject{{QStringLiteral("g0"), scene.continuity.g0},
+                                {QStringLiteral("g1Degrees"), scene.continuity.g1Degrees},
+                                {QStringLiteral("g2Percent"), scene.continuity.g2Percent},
+                                {QStringLiteral("match"), scene.continuity.match}});
     const DisplaySettings& d = scene.display;
     if (!d.partitionMode.isEmpty() || !d.background.isEmpty() || !d.sections.empty() ||
         !d.sectionCaps || d.customDraft()) {

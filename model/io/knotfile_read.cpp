@@ -1,4 +1,5 @@
 // Reading .knot project files: JSON -> validated Scene, with one-line errors naming the JSON path.
+#include "model/continuity.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 #include "model/io/knotfile_prescan.h"
@@ -602,6 +603,17 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
     return d;
 }
 
+ContinuityTolerances readContinuity(const QJsonObject& o, const QString& path) {
+    ContinuityTolerances t;
+    t.g0 = asNumber(required(o, path, "g0"), member(path, "g0"));
+    t.g1Degrees = asNumber(required(o, path, "g1Degrees"), member(path, "g1Degrees"));
+    t.g2Percent = asNumber(required(o, path, "g2Percent"), member(path, "g2Percent"));
+    t.match = asNumber(required(o, path, "match"), member(path, "match"));
+    if (const QString why = continuityTolerancesError(t); !why.isEmpty())
+        fail(path, why);
+    return t;
+}
+
 void checkVersion(const QJsonObject& root) {
     const QString path = QStringLiteral("$.version");
     const QString version = asString(required(root, QStringLiteral("$"), "version"), path);
@@ -657,6 +669,10 @@ Scene readScene(const QJsonObject& root) {
         scene.camera =
             readCamera(asObject(root.value(QLatin1String("camera")), QStringLiteral("$.camera")),
                        QStringLiteral("$.camera"));
+    if (root.contains(QLatin1String("continuity")))
+        scene.continuity = readContinuity(
+            asObject(root.value(QLatin1String("continuity")), QStringLiteral("$.continuity")),
+            QStringLiteral("$.continuity"));
     if (root.contains(QLatin1String("display")))
         scene.display =
             readDisplay(asObject(root.value(QLatin1String("display")), QStringLiteral("$.display")),

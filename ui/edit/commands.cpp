@@ -59,15 +59,16 @@ std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document,
     c->m_from = std::move(from);
     c->m_to = std::move(to);
     c->m_kind = kind;
+    c->m_link = document->seamLink();
     return c;
 }
 
 void MoveControlPoints::redo() {
-    check(document()->setControlPoints(m_surface, m_indices, m_to), "redo");
+    check(document()->setControlPoints(m_surface, m_indices, m_to, m_link), "redo");
 }
 
 void MoveControlPoints::undo() {
-    check(document()->setControlPoints(m_surface, m_indices, m_from), "undo");
+    check(document()->setControlPoints(m_surface, m_indices, m_from, m_link), "undo");
 }
 
 bool MoveControlPoints::mergeWith(const QUndoCommand* other) {

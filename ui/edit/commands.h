@@ -52,7 +52,9 @@ bool pushCommand(QUndoStack* stack, std::unique_ptr<QUndoCommand> command);
 class MoveControlPoints : public DocumentCommand {
 public:
     /// `indices` are NurbsSurface::index values, unique and in range; `from` are the positions
-    /// at press time, `to` the positions at release (both finite, one per index).
+    /// at press time, `to` the positions at release (both finite, one per index). The points
+    /// of neighbouring faces that the document's seam link carries along (Keep Seams Closed)
+    /// move with them in redo and back in undo: one step.
     static std::unique_ptr<MoveControlPoints>
     create(Document* document, SurfaceId surface, std::vector<int> indices,
            std::vector<glm::dvec3> from, std::vector<glm::dvec3> to, MoveKind kind = MoveKind::Drag,
@@ -68,6 +70,9 @@ private:
     std::vector<int> m_indices;
     std::vector<glm::dvec3> m_from, m_to;
     MoveKind m_kind = MoveKind::Drag;
+    /// The document's seam link when the move was made: undo and redo carry the same
+    /// neighbours' points (Keep Seams Closed), whatever the setting is then.
+    Document::SeamLink m_link = Document::SeamLink::Off;
 };
 
 class SetWeight : public DocumentCommand {

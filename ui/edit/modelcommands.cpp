@@ -113,6 +113,25 @@ void SetSurfacesHidden::undo() {
 
 // ---- RemoveKnots
 
+std::unique_ptr<MatchSurfaceCommand>
+MatchSurfaceCommand::create(Document* document, const MatchRequest& request,
+                            const ContinuityTolerances& tolerances, QString* error) {
+    const Surface* s = surfaceIn(document, request.surface);
+    if (!s)
+        return fail(error, noSurface(document, request.surface));
+    QString why;
+    std::optional<MatchResult> r = matchSurface(document->scene(), request, tolerances, &why);
+    if (!r)
+        return fail(error, why);
+    static const char* const names[] = {"G0", "G1", "G2"};
+    const QString text =
+        QStringLiteral("Match surface (%1)").arg(QLatin1String(names[int(request.continuity)]));
+    std::unique_ptr<MatchSurfaceCommand> c(
+        new MatchSurfaceCommand(document, text, request.surface, s->geometry, r->geometry));
+    c->m_result = std::move(*r);
+    return c;
+}
+
 std::unique_ptr<RemoveKnots> RemoveKnots::create(Document* document, SurfaceId surface,
                                                  Direction direction, double tolerance,
                                                  QString* error) {

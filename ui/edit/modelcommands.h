@@ -2,6 +2,7 @@
 // knots within a tolerance, and replace a trim loop's curves (trim point insertion and deletion).
 #pragma once
 
+#include "model/matchsurface.h"
 #include "ui/edit/commands.h"
 
 #include <glm/glm.hpp>
@@ -59,6 +60,23 @@ public:
 private:
     using GeometryCommand::GeometryCommand;
     int m_removed = 0;
+};
+
+class MatchSurfaceCommand : public GeometryCommand {
+public:
+    /// Modify > Match Surface: the surface's new geometry from kw::matchSurface (its boundary
+    /// rows moved, knots inserted as needed), one undo step. Rejected when matchSurface refuses
+    /// the request; a match that does not reach the tolerance is still a step, and result()
+    /// says so with the deviation.
+    static std::unique_ptr<MatchSurfaceCommand> create(Document* document,
+                                                       const MatchRequest& request,
+                                                       const ContinuityTolerances& tolerances,
+                                                       QString* error = nullptr);
+    const MatchResult& result() const { return m_result; }
+
+private:
+    using GeometryCommand::GeometryCommand;
+    MatchResult m_result;
 };
 
 class ReplaceTrimLoop : public DocumentCommand {

@@ -1,0 +1,44 @@
+// The Edge Continuity overlay's geometry, built on the CPU from the continuity kernel's report
+// (no GL): coloured line segments along every measured edge and every free edge.
+#pragma once
+
+#include "model/continuity.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+namespace kw {
+
+/// One end of a band segment. Matches shaders/edge_bands.vert (location 0 position, 1 colour).
+struct EdgeBandVertex {
+    glm::vec3 position;
+    glm::vec4 color;
+};
+static_assert(sizeof(EdgeBandVertex) == 7 * sizeof(float), "tightly packed for the VBO");
+
+/// Line segments (pairs of vertices, GL_LINES) to draw as bands `widthPixels` wide over the
+/// surfaces. `revision` changes whenever the vertices do, so the pass uploads only then.
+struct EdgeBands {
+    std::vector<EdgeBandVertex> vertices;
+    std::uint64_t revision = 0;
+    float widthPixels = 4.0f;
+};
+
+/// The overlay's colours: G2 green, G1 blue, G0 (within tolerance, at an angle) orange, open
+/// red; free edges magenta. The legend and the gl test read them from here.
+glm::vec4 continuityColor(ContinuityClass c);
+glm::vec4 freeEdgeColor();
+
+/// The segments (vertex pairs) of a polyline of `segments` pieces along `side` of `surface`;
+/// empty when the surface lacks it.
+std::vector<EdgeBandVertex> edgeBandLine(const Surface& surface, const ContinuitySide& side,
+                                         const glm::vec4& color, int segments = 48);
+
+/// Polylines of `segments` pieces along each edge of `report` (its first side's curve),
+/// coloured by class, and along each free side. `revision` is stored as is.
+EdgeBands makeEdgeBands(const Scene& scene, const ContinuityReport& report, std::uint64_t revision,
+                        int segments = 48);
+
+} // namespace kw

@@ -1,0 +1,80 @@
+// The Edge Continuity overlay's GL pass.
+#include "render/edge_bands_pass.h"
+
+#include "render/depth_convention.h"
+
+#include <QOpenGLShaderProgram>
+#include <cmath>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace kw {
+
+void EdgeBandsPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
+    m_gl = gl;
+    m_shaders = shaders;
+}
+
+void EdgeBandsPass::release() {
+    if (m_gl && m_vao) {
+        m_gl->glDeleteVertexArrays(1, &m_vao);
+        m_gl->glDeleteBuffers(1, &m_vbo);
+    }
+    m_vao = m_vbo = 0;
+    m_uploaded = false;
+    m_count = 0;
+}
+
+bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    if (!m_vao) {
+        gl->glCreateVertexArrays(1, &m_vao);
+        gl->glCreateBuffers(1, &m_vbo);
+        gl->glVertexArrayVertexBuffer(m_vao, 0, m_vbo, 0, sizeof(EdgeBandVertex));
+        gl->glEnableVertexArrayAttrib(m_vao, 0);
+        gl->glVertexArrayAttribFormat(m_vao, 0, 3, GL_FLOAT, GL_FALSE,
+                                      offsetof(EdgeBandVertex, position));
+        gl->glVertexArrayAttribBinding(m_vao, 0, 0);
+        gl->glEnableVertexArrayAttrib(m_vao, 1);
+        gl->glVertexArrayAttribFormat(m_vao, 1, 4, GL_FLOAT, GL_FALSE,
+                                      offsetof(EdgeBandVertex, color));
+        gl->glVertexArrayAttribBinding(m_vao, 1, 0);
+    }
+    if (!m_uploaded || m_revision != bands.revision) {
+        // A new buffer store each time: an edit changes a few edges, but the list is small.
+        gl->glNamedBufferData(m_vbo, GLsizeiptr(bands.vertices.size() * sizeof(EdgeBandVertex)),
+                              bands.vertices.data(), GL_DYNAMIC_DRAW);
+        m_count = GLsizei(bands.vertices.size());
+        m_revision = bands.revision;
+        m_uploaded = true;
+    }
+    if (m_count == 0)
+        return true;
+    QOpenGLShaderProgram* prog =
+        m_shaders->program(QStringLiteral("edge_bands.vert"), QStringLiteral("edge_bands.frag"));
+    if (!prog) {
+        *error = m_shaders->lastError();
+        return false;
+    }
+    prog->bind();
+    gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(drawnViewProjection(camera)));
+    gl->glUniform1f(prog->uniformLocation("uDepthBias"), 2e-3f);
+    const GLint offset = prog->uniformLocation("uOffset");
+    gl->glDepthFunc(kDepthNearerOrEqual);
+    gl->glDepthMask(GL_FALSE);
+    gl->glBindVertexArray(m_vao);
+    // A square of offsets one pixel apart, widthPixels across (clip units: 2 / viewport).
+    const int half = std::max(0, int(std::lround(bands.widthPixels * 0.5f)) - 1);
+    for (int dy = -half; dy <= half + 1; ++dy)
+        for (int dx = -half; dx <= half + 1; ++dx) {
+            gl->glUniform2f(offset, 2.0f * (float(dx) - 0.5f) / float(camera.viewport.x),
+                            2.0f * (float(dy) - 0.5f) / float(camera.viewport.y));
+            gl->glDrawArrays(GL_LINES, 0, m_count);
+            ++drawCalls;
+        }
+    gl->glDepthFunc(kDepthNearer);
+    gl->glDepthMask(GL_TRUE);
+    return true;
+}
+
+} // namespace kw

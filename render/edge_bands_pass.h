@@ -1,0 +1,31 @@
+// Draws the Edge Continuity overlay (render/edge_bands.h) over the surfaces.
+#pragma once
+
+#include "render/edge_bands.h"
+#include "render/render_types.h"
+#include "render/shader_library.h"
+
+#include <QOpenGLFunctions_4_5_Core>
+#include <QString>
+
+namespace kw {
+
+/// Owns the bands' VBO, re-uploaded only when EdgeBands::revision changes; draws the segments
+/// in a square of pixel offsets so that each is a band about widthPixels wide.
+class EdgeBandsPass {
+public:
+    void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
+    bool draw(const EdgeBands& bands, const FrameCamera& camera, QString* error);
+    void release();
+    int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
+
+private:
+    QOpenGLFunctions_4_5_Core* m_gl = nullptr;
+    ShaderLibrary* m_shaders = nullptr;
+    GLuint m_vao = 0, m_vbo = 0;
+    std::uint64_t m_revision = 0;
+    bool m_uploaded = false;
+    GLsizei m_count = 0;
+};
+
+} // namespace kw
