@@ -55,7 +55,8 @@ LIST
 scale() {
     local start
     start=$(date +%s)
-    if "$K/bin/knotwork" bench --tables scale --scale-model tests/data/hammer.iges \
+    if "$K/bin/knotwork" bench --tables scale --samples resources/samples \
+        --scale-model tests/data/hammer.iges \
         --scale-faces "${KW_SCALE_FACES:-10000,100000}" --scale-size "${KW_SCALE_SIZE:-1920x1080}" \
         --scale-partition-mode adaptive --scale-partitions 1 --json "$LOGS/scale.json" \
         --markdown "$LOGS/scale.md" > /dev/null 2> "$LOGS/scale.err"; then
