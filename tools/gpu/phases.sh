@@ -5,14 +5,15 @@
 #             the equal-quality deflections tools/peer_search.py found (docs/PERFORMANCE.md,
 #             "The OpenCASCADE mesh peer"), fuselage and tube_surf searched by the bench
 #   scale     `knotwork bench --tables scale`: hammer.iges tiled to KW_SCALE_FACES faces at
-#             KW_SCALE_SIZE, adaptive partitions, with the drag step
+#             KW_SCALE_SIZE, adaptive partitions, with the drag step; then tube_surf.igs
+#             (degree 10 x 5) tiled to KW_SCALE_HIGH_FACES (10000) at uniform 30 x 30
 # Environment: KW (prefix holding bin/knotwork; default /opt/kw), KW_DATA (Motor-c.brep,
 # fuselage.stp, tube_surf.igs; default $KW/data), OUT (results: $OUT/res/results.txt gets the
 # markdown rows; JSON and markdown go to KW_LOGS, default /tmp/kwlogs), KW_EDIT_STEPS (50),
 # KW_EDIT_SIZE (1024), KW_SCALE_FACES (10000,100000), KW_SCALE_SIZE (1920x1080).
 # Local check, about two minutes:
 #   KW=build KW_DATA=../shared/data OUT=/tmp/ph KW_LOGS=/tmp/ph/logs KW_EDIT_STEPS=2 \
-#     KW_EDIT_SIZE=64 KW_SCALE_FACES=1,90 KW_SCALE_SIZE=192x108 \
+#     KW_EDIT_SIZE=64 KW_SCALE_FACES=1,90 KW_SCALE_HIGH_FACES=20 KW_SCALE_SIZE=192x108 \
 #     xvfb-run -a -s "-screen 0 1280x1024x24" tools/gpu/phases.sh editloop scale
 set -u
 K=${KW:-/opt/kw}
@@ -55,7 +56,8 @@ LIST
 scale() {
     local start
     start=$(date +%s)
-    if "$K/bin/knotwork" bench --tables scale --scale-model tests/data/hammer.iges \
+    if "$K/bin/knotwork" bench --tables scale --samples resources/samples \
+        --scale-model tests/data/hammer.iges \
         --scale-faces "${KW_SCALE_FACES:-10000,100000}" --scale-size "${KW_SCALE_SIZE:-1920x1080}" \
         --scale-partition-mode adaptive --scale-partitions 1 --json "$LOGS/scale.json" \
         --markdown "$LOGS/scale.md" > /dev/null 2> "$LOGS/scale.err"; then
@@ -66,6 +68,23 @@ scale() {
     else
         rc=1
         note scale "failed: $(tail -1 "$LOGS/scale.err")"
+    fi
+    # High degree in the paper's uniform mode: tube_surf (degree 10 x 5) tiled to 10,000 faces
+    # at 30 x 30, the case that once refused the frame for the buffer limit.
+    [ -f "$DATA/tube_surf.igs" ] || { note scale "no $DATA/tube_surf.igs, high degree skipped"; return; }
+    start=$(date +%s)
+    if "$K/bin/knotwork" bench --tables scale --samples resources/samples \
+        --scale-model "$DATA/tube_surf.igs" --scale-faces "${KW_SCALE_HIGH_FACES:-10000}" \
+        --scale-size "${KW_SCALE_SIZE:-1920x1080}" --scale-partitions 30 \
+        --json "$LOGS/scale_degree10.json" --markdown "$LOGS/scale_degree10.md" \
+        > /dev/null 2> "$LOGS/scale_degree10.err"; then
+        grep -E '^### Scale|^\| [0-9]' "$LOGS/scale_degree10.md" | while read -r line; do
+            note scale "$line"
+        done
+        note scale "degree 10 x 5 at 30 x 30: $(($(date +%s) - start)) s"
+    else
+        rc=1
+        note scale "degree 10 x 5 failed: $(tail -1 "$LOGS/scale_degree10.err")"
     fi
 }
 
