@@ -4,6 +4,7 @@
 #include "model/ids.h"
 #include "model/nurbs.h"
 #include "model/topology.h"
+#include "model/units.h"
 
 #include <QString>
 #include <compare>
@@ -131,6 +132,9 @@ struct Scene {
     Camera camera;
     DisplaySettings display;
     std::uint32_t nextId = 1;
+    /// The unit of every length: coordinates, tolerances, gaps (model/units.h). An import keeps
+    /// the source file's; everything else starts in millimetres.
+    LengthUnit unit = LengthUnit::Millimetre;
     bool operator==(const Scene&) const = default;
 };
 

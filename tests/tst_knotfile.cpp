@@ -212,7 +212,7 @@ void TestKnotFile::displayOptionalAndChecked() {
     Scene scene = richScene();
     QCOMPARE(
         QJsonDocument::fromJson(sceneToJson(scene)).object()[QStringLiteral("version")].toString(),
-        QStringLiteral("1.3"));
+        QStringLiteral("1.4"));
     scene.display = DisplaySettings{};
     QJsonObject root = QJsonDocument::fromJson(sceneToJson(scene)).object();
     QVERIFY(!root.contains(QStringLiteral("display")));

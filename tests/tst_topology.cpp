@@ -130,7 +130,7 @@ void TestTopology::knotFileKeepsEveryField() {
     QVERIFY2(back, qPrintable(error));
     QVERIFY(back->topology == scene.topology);
     QVERIFY(*back == scene);
-    QCOMPARE(asJson(scene).value(QStringLiteral("version")).toString(), QStringLiteral("1.3"));
+    QCOMPARE(asJson(scene).value(QStringLiteral("version")).toString(), QStringLiteral("1.4"));
     const QJsonObject shell =
         asJson(scene)[QStringLiteral("topology")][QStringLiteral("shells")][1].toObject();
     QVERIFY(!shell.contains(QStringLiteral("solid"))); // -1 is left out

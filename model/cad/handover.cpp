@@ -12,8 +12,9 @@ namespace {
 // "KWIMPORT", then the version: bump it with any change below. The end mark catches a block
 // cut at a field boundary.
 constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
-// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background
-constexpr std::uint32_t kVersion = 4;
+// 2: Surface::solid, outsideAlongNormal; 3: Scene::topology; 4: DisplaySettings::background;
+// 5: Scene::unit (Scene's size did not change: it took the padding after nextId)
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -278,6 +279,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.string(scene.display.partitionMode);
     w.value(scene.display.pixelTolerance);
     w.string(scene.display.background);
+    w.string(lengthUnitKey(scene.unit));
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -326,6 +328,11 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     scene.display.partitionMode = r.string("display partition mode");
     scene.display.pixelTolerance = r.value<double>("display pixel tolerance");
     scene.display.background = r.string("display background");
+    const QString unit = r.string("length unit");
+    if (const auto u = lengthUnitFromKey(unit))
+        scene.unit = *u;
+    else if (!r.failed())
+        r.fail(QStringLiteral("length unit"), QStringLiteral("unknown unit '%1'").arg(unit));
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");
