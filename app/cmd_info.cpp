@@ -146,9 +146,10 @@ QString topologyText(const Scene& scene) {
         if (!scene.topology.shells[k].closed)
             state += QStringLiteral(" (not closed as recorded)");
         else if (s.openEdges > 0)
-            state += QStringLiteral(" (%1 seam(s) apart, largest gap %2)")
+            state += QStringLiteral(" (%1 seam(s) apart, largest gap %2 %3)")
                          .arg(s.openEdges)
-                         .arg(s.largestGap, 0, 'g', 3);
+                         .arg(s.largestGap, 0, 'g', 3)
+                         .arg(lengthUnitKey(scene.unit));
         out += QStringLiteral("  shell %1: %2 face(s)%3, %4\n")
                    .arg(s.shell.value)
                    .arg(s.faces)
@@ -160,13 +161,14 @@ QString topologyText(const Scene& scene) {
     int listed = 0;
     for (const SeamGap& g : t.gaps)
         if (g.open() && listed++ < kListed)
-            out += QStringLiteral("  edge %1 between surfaces %2 and %3 open: gap %4 (tolerance "
-                                  "%5) at %6\n")
+            out += QStringLiteral("  edge %1 between surfaces %2 and %3 open: gap %4 %7 "
+                                  "(tolerance %5) at %6\n")
                        .arg(g.edge.value)
                        .arg(name(g.faceA), name(g.faceB))
                        .arg(g.gap, 0, 'g', 4)
                        .arg(g.tolerance, 0, 'g', 3)
-                       .arg(text(g.where));
+                       .arg(text(g.where))
+                       .arg(lengthUnitKey(scene.unit));
     if (listed > kListed)
         out += QStringLiteral("  %1 more open edge(s) (--json lists them all)\n")
                    .arg(listed - kListed);
@@ -220,6 +222,7 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
                      {QStringLiteral("surfaces"), surfaces},
                      {QStringLiteral("lights"), lights},
                      {QStringLiteral("topology"), topologyJson(scene)},
+                     {QStringLiteral("unit"), lengthUnitKey(scene.unit)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
     root.insert(QStringLiteral("area"), model.area);
     root.insert(QStringLiteral("volume"),
@@ -243,6 +246,7 @@ QString toText(const QString& file, const Scene& scene) {
                       .arg(file)
                       .arg(scene.surfaces.size())
                       .arg(scene.lights.size());
+    out += QStringLiteral("unit: %1 (lengths below are in it)\n").arg(lengthUnitName(scene.unit));
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
         const Surface& s = scene.surfaces[k];
         const NurbsSurface& g = s.geometry;

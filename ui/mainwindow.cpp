@@ -40,6 +40,10 @@
 
 namespace kw {
 
+// Edit ▸ Units… (mainwindow_units.cpp).
+std::optional<MainWindow::Dialogs::UnitsChoice> unitsDialogStandard(QWidget* parent,
+                                                                    LengthUnit current);
+
 MainWindow::Dialogs MainWindow::Dialogs::standard() {
     Dialogs d;
     d.openFile = [](QWidget* parent, const QString& title, const QString& filter) {
@@ -86,6 +90,7 @@ MainWindow::Dialogs MainWindow::Dialogs::standard() {
     d.information = [](QWidget* parent, const QString& title, const QString& text) {
         QMessageBox::information(parent, title, text);
     };
+    d.units = unitsDialogStandard;
     d.askRecover = [](QWidget* parent, const QString& text) {
         QMessageBox box(QMessageBox::Question, QObject::tr("Recover unsaved changes"), text,
                         QMessageBox::Yes | QMessageBox::Discard | QMessageBox::Cancel, parent);
@@ -118,6 +123,13 @@ MainWindow::MainWindow(QWidget* parent)
     m_fpsLabel = new QLabel;
     m_fpsLabel->setMinimumWidth(170);
     statusBar()->addPermanentWidget(m_fpsLabel);
+    m_unitLabel = new QLabel;
+    m_unitLabel->setObjectName(QStringLiteral("unitLabel"));
+    m_unitLabel->setToolTip(tr("The document's length unit (Edit ▸ Units…)"));
+    statusBar()->addPermanentWidget(m_unitLabel);
+    connect(m_doc, &Document::unitChanged, this, &MainWindow::showUnit);
+    connect(m_doc, &Document::sceneReset, this, &MainWindow::showUnit);
+    showUnit();
     // While frames come, frames per second and the last frame's report; a second after the
     // last frame, "idle" with that frame's time, rather than a stale rate.
     auto* idle = new QTimer(this);
@@ -379,6 +391,7 @@ void MainWindow::buildEditMenu() {
     connect(seams, &QAction::toggled, this, apply);
     connect(tangency, &QAction::toggled, this, apply);
     apply();
+    addAction(edit, QStringLiteral("actionUnits"), tr("&Units…"), {}, [this] { unitsDialog(); });
 }
 
 void MainWindow::buildViewMenu() {

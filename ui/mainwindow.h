@@ -77,6 +77,13 @@ public:
             bool aov = false;
         };
         std::function<std::optional<ExportOptions>(QWidget*, const ExportOptions&)> exportOptions;
+        /// Edit ▸ Units…: the unit to set, and whether to convert (scale every length so the
+        /// part keeps its size) or only relabel the numbers. nullopt when cancelled.
+        struct UnitsChoice {
+            LengthUnit unit = LengthUnit::Millimetre;
+            bool convert = true;
+        };
+        std::function<std::optional<UnitsChoice>(QWidget*, LengthUnit current)> units;
         static Dialogs standard();
     };
 
@@ -170,6 +177,10 @@ private:
     void exportImage();
     void selectAll();
     void deleteSelection();
+    /// Edit ▸ Units…: asks Dialogs::units, then pushes one SetUnits command.
+    void unitsDialog();
+    /// The status bar's unit label and the Properties' suffixes, after the unit changed.
+    void showUnit();
     /// True when it is fine to discard the document (saved, discarded or unmodified).
     bool maybeSave();
     void setFilePath(const QString& path);
@@ -196,6 +207,7 @@ private:
     DesktopActions* m_desktop = nullptr;
     QMenu* m_recentMenu = nullptr;
     QLabel* m_fpsLabel = nullptr;
+    QLabel* m_unitLabel = nullptr; ///< the document's length unit, in the status bar
     double m_lastFrameMs = 0.0;
     QString m_path;
     QString m_importedPath;

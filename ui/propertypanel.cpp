@@ -159,6 +159,11 @@ QWidget* PropertyPanel::buildPointBox() {
     return box;
 }
 
+void PropertyPanel::setLengthUnit(LengthUnit unit) {
+    for (QDoubleSpinBox* box : m_xyz)
+        box->setSuffix(QLatin1Char(' ') + lengthUnitKey(unit));
+}
+
 QWidget* PropertyPanel::buildDisplayBox() {
     auto* box = new QGroupBox(tr("Display"));
     auto* form = new QFormLayout(box);

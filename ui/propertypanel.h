@@ -28,6 +28,8 @@ public:
     QSlider* partitionSliderU() const { return m_sliderU; }
     QSlider* partitionSliderV() const { return m_sliderV; }
     QSpinBox* partitionSpinU() const { return m_spinU; }
+    /// Shows the control point's x, y, z with this unit ("12.5 mm").
+    void setLengthUnit(LengthUnit unit);
 
 Q_SIGNALS:
     /// A command was rejected; the text says why (for the status bar).

@@ -16,7 +16,8 @@ constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
 // 5: DisplaySettings::sections, sectionCaps
 // 6: DisplaySettings::pullDirection, draftAngleDegrees
 // 7: Scene::continuity
-constexpr std::uint32_t kVersion = 7;
+// 8: Scene::unit (Scene's size did not change: it took the padding after nextId)
+constexpr std::uint32_t kVersion = 8;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
@@ -293,6 +294,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     w.value(scene.display.pullDirection);
     w.value(scene.display.draftAngleDegrees);
     w.value(scene.continuity);
+    w.string(lengthUnitKey(scene.unit));
     w.value(std::int32_t(result.report.facesImported));
     w.strings(result.report.skipped);
     w.strings(result.report.warnings);
@@ -352,6 +354,11 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     scene.display.pullDirection = r.value<glm::dvec3>("display pull direction");
     scene.display.draftAngleDegrees = r.value<double>("display draft angle");
     scene.continuity = r.value<ContinuityTolerances>("continuity tolerances");
+    const QString unit = r.string("length unit");
+    if (const auto u = lengthUnitFromKey(unit))
+        scene.unit = *u;
+    else if (!r.failed())
+        r.fail(QStringLiteral("length unit"), QStringLiteral("unknown unit '%1'").arg(unit));
     result.report.facesImported = r.value<std::int32_t>("report face count");
     result.report.skipped = r.strings("report skipped faces");
     result.report.warnings = r.strings("report warnings");

@@ -2,7 +2,10 @@
 #include "model/cad/occt_internal.h"
 
 #include <IGESControl_Reader.hxx>
+#include <IGESData_BasicEditor.hxx>
+#include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESEntity.hxx>
+#include <IGESData_IGESModel.hxx>
 #include <TCollection_HAsciiString.hxx>
 
 namespace kw::occt {
@@ -27,12 +30,24 @@ QString igesEntityName(const Handle(Standard_Transient) & entity, int* igesType)
     return {};
 }
 
+// The global section's unit flag, or for flag 3 its unit name.
+std::optional<LengthUnit> igesFileUnit(XSControl_Reader& reader) {
+    const auto model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
+    if (model.IsNull())
+        return std::nullopt;
+    const IGESData_GlobalSection& g = model->GlobalSection();
+    int flag = g.UnitFlag();
+    if (flag == 3 && !g.UnitName().IsNull())
+        flag = IGESData_BasicEditor::UnitNameFlag(g.UnitName()->ToCString());
+    return lengthUnitFromIgesFlag(flag);
+}
+
 } // namespace
 
 const ExchangeFormat& igesFormat() {
     static const ExchangeFormat format{
         [] { return std::unique_ptr<XSControl_Reader>(std::make_unique<IGESControl_Reader>()); },
-        igesEntityName};
+        igesEntityName, igesFileUnit};
     return format;
 }
 

@@ -4,6 +4,7 @@
 #include "model/cad/cadimport.h"
 #include "model/document/scene.h"
 #include "model/io/meshobj.h"
+#include "model/units.h"
 
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <QString>
@@ -18,6 +19,7 @@
 #include <functional>
 #include <gp_Pnt2d.hxx>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace kw::occt {
@@ -31,6 +33,9 @@ struct ExchangeFormat {
     /// The name the file gives `entity` (empty when none); *igesType gets its IGES entity type
     /// number (0 for other formats' entities).
     QString (*entityName)(const Handle(Standard_Transient) & entity, int* igesType);
+    /// The length unit the loaded file states (STEP's length unit, IGES's global unit flag or
+    /// name); nullopt when it states none Knotwork knows.
+    std::optional<LengthUnit> (*fileUnit)(XSControl_Reader& reader);
 };
 const ExchangeFormat& igesFormat(); // occt_iges.cpp
 const ExchangeFormat& stepFormat(); // occt_step.cpp

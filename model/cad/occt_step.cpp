@@ -4,6 +4,7 @@
 
 #include <STEPControl_Reader.hxx>
 #include <StepRepr_RepresentationItem.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
 #include <TCollection_HAsciiString.hxx>
 
 namespace kw::occt {
@@ -17,12 +18,48 @@ QString stepEntityName(const Handle(Standard_Transient) & entity, int* igesType)
     return QString::fromUtf8(step->Name()->ToCString()).trimmed();
 }
 
+// The first length unit of the file's contexts, by the name OCCT gives it ("MM", "INCH", ...).
+std::optional<LengthUnit> stepFileUnit(XSControl_Reader& reader) {
+    auto* step = dynamic_cast<STEPControl_Reader*>(&reader);
+    if (!step)
+        return std::nullopt;
+    TColStd_SequenceOfAsciiString lengths, angles, solidAngles;
+    step->FileUnits(lengths, angles, solidAngles);
+    if (lengths.IsEmpty())
+        return std::nullopt;
+    const QString name = QString::fromLatin1(lengths.First().ToCString()).trimmed().toUpper();
+    static const std::pair<const char*, LengthUnit> names[] = {
+        {"MM", LengthUnit::Millimetre},
+        {"MILLIMETRE", LengthUnit::Millimetre},
+        {"CM", LengthUnit::Centimetre},
+        {"CENTIMETRE", LengthUnit::Centimetre},
+        {"M", LengthUnit::Metre},
+        {"METRE", LengthUnit::Metre},
+        {"KM", LengthUnit::Kilometre},
+        {"KILOMETRE", LengthUnit::Kilometre},
+        {"UM", LengthUnit::Micrometre},
+        {"MICROMETRE", LengthUnit::Micrometre},
+        {"INCH", LengthUnit::Inch},
+        {"IN", LengthUnit::Inch},
+        {"FT", LengthUnit::Foot},
+        {"FOOT", LengthUnit::Foot},
+        {"MI", LengthUnit::Mile},
+        {"MILE", LengthUnit::Mile},
+        {"MIL", LengthUnit::Mil},
+        {"UIN", LengthUnit::Microinch},
+        {"MICROINCH", LengthUnit::Microinch}};
+    for (const auto& [n, unit] : names)
+        if (name == QLatin1String(n))
+            return unit;
+    return std::nullopt;
+}
+
 } // namespace
 
 const ExchangeFormat& stepFormat() {
     static const ExchangeFormat format{
         [] { return std::unique_ptr<XSControl_Reader>(std::make_unique<STEPControl_Reader>()); },
-        stepEntityName};
+        stepEntityName, stepFileUnit};
     return format;
 }
 

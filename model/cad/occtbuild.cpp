@@ -88,14 +88,14 @@ TrimLoop reversedLoop(const TrimLoop& loop) {
     return r;
 }
 
-// Each loop oriented as OCCT reads a face's wires: material on the left, so loops at even
-// nesting depth counter-clockwise, holes (odd depth) clockwise.
-std::vector<TrimLoop> orientedLoops(const Surface& surface) {
+} // namespace
+
+std::vector<int> loopDirections(const Surface& surface) {
     const double tol = trimTolerance(surface.geometry);
     std::vector<TrimPolygon> polys;
     for (const TrimLoop& l : surface.trims)
         polys.push_back(tessellateTrimLoop(l, tol));
-    std::vector<TrimLoop> out;
+    std::vector<int> out(surface.trims.size(), 0);
     for (size_t k = 0; k < surface.trims.size(); ++k) {
         if (polys[k].size() < 3)
             continue;
@@ -114,7 +114,20 @@ std::vector<TrimLoop> orientedLoops(const Surface& surface) {
         }
         const bool ccw = signedArea(polys[k]) > 0.0;
         const bool wantCcw = depth % 2 == 0;
-        out.push_back(ccw == wantCcw ? surface.trims[k] : reversedLoop(surface.trims[k]));
+        out[k] = ccw == wantCcw ? 1 : -1;
+    }
+    return out;
+}
+
+namespace {
+
+// Each loop oriented as OCCT reads a face's wires (loopDirections), degenerate loops left out.
+std::vector<TrimLoop> orientedLoops(const Surface& surface) {
+    const std::vector<int> dirs = loopDirections(surface);
+    std::vector<TrimLoop> out;
+    for (size_t k = 0; k < surface.trims.size(); ++k) {
+        if (dirs[k] != 0)
+            out.push_back(dirs[k] > 0 ? surface.trims[k] : reversedLoop(surface.trims[k]));
     }
     return out;
 }

@@ -9,6 +9,7 @@
 #include <Geom_BSplineSurface.hxx>
 #include <QString>
 #include <TopoDS_Face.hxx>
+#include <vector>
 
 namespace kw::occt {
 
@@ -31,5 +32,35 @@ Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why);
 /// BRepCheck finds invalid, ShapeFix_Face repairs its wires (never its surface). Null face with
 /// `why` when OCCT rejects the surface or a curve, or the result is still invalid.
 TopoDS_Face buildFace(const Surface& surface, double tolerance, QString& why);
+
+/// How each trim loop of `surface` must run for OCCT, which reads a face's wires with the
+/// material on the left (Knotwork's loops are even-odd): 1 as stored, -1 reversed, 0 left out
+/// (its polygon has fewer than 3 points). Loops inside an even number of others run
+/// counter-clockwise in (u, v), the others clockwise.
+std::vector<int> loopDirections(const Surface& surface);
+
+/// Faces built with the import's record (scene.topology): every recorded shared edge is one
+/// TopoDS_Edge carrying both sides' own p-curves (the second side's reparameterised linearly
+/// onto the first's range), its 3D curve built from the first side and SameParameter'd, its
+/// end vertices shared by every edge that meets there. No face's trims are replaced, so the
+/// trimmed areas stay as they are, and no search for neighbours (sewing) is needed.
+struct RecordedFaces {
+    /// One per scene surface (same order); null for surfaces the record does not cover (no
+    /// recorded edge or shell), which the caller sews.
+    std::vector<TopoDS_Face> faces;
+    /// Per recorded shell (scene.topology.shells order), its built faces.
+    std::vector<std::vector<int>> shells;
+    int sharedEdges = 0; ///< recorded edges built as one edge
+};
+
+/// Builds the faces of `scene` the record covers. `openEdges`: ids of recorded edges whose two
+/// sides no longer meet (kw::seamGaps): each side keeps an edge of its own, so the file shows
+/// the seam open. `tolerance` (model units, > 0): the least tolerance of every vertex and edge;
+/// a shared edge's tolerance is at least its recorded one. A face is turned REVERSED when its
+/// loops had to be reversed for OCCT (the source's face was reversed), so the two uses of a
+/// shared edge run opposite ways as in the source's shell. False with `why` when OCCT refuses a
+/// curve or a face is invalid (BRepCheck): the caller then builds every face alone and sews.
+bool buildRecordedFaces(const Scene& scene, const std::vector<std::uint32_t>& openEdges,
+                        double tolerance, RecordedFaces& out, QString& why);
 
 } // namespace kw::occt

@@ -52,6 +52,7 @@
 #include <TransferBRep.hxx>
 #include <TransferBRep_ShapeMapper.hxx>
 #include <Transfer_FinderProcess.hxx>
+#include <UnitsMethods.hxx>
 #include <XSControl_TransferWriter.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <algorithm>
@@ -142,12 +143,39 @@ bool twoDigitExponents(Scene& scene, int& flushed, QString& why) {
     return true;
 }
 
+// The unit name IGES's global section holds for `unit` (IGESData_BasicEditor's names).
+QByteArray igesUnitName(LengthUnit unit) {
+    switch (unit) {
+    case LengthUnit::Inch:
+        return "IN";
+    case LengthUnit::Foot:
+        return "FT";
+    case LengthUnit::Mile:
+        return "MI";
+    case LengthUnit::Metre:
+        return "M";
+    case LengthUnit::Kilometre:
+        return "KM";
+    case LengthUnit::Mil:
+        return "MIL";
+    case LengthUnit::Micrometre:
+        return "UM";
+    case LengthUnit::Centimetre:
+        return "CM";
+    case LengthUnit::Microinch:
+        return "UIN";
+    case LengthUnit::Millimetre:
+        break;
+    }
+    return "MM";
+}
+
 // The report's line for an open seam.
-QString seamLine(const QString& a, const QString& b, double gap) {
-    return QStringLiteral("seam between face '%1' and face '%2' is open: largest gap %3 (model "
-                          "units)")
+QString seamLine(const QString& a, const QString& b, double gap, LengthUnit unit) {
+    return QStringLiteral("seam between face '%1' and face '%2' is open: largest gap %3 %4")
         .arg(a, b)
-        .arg(gap, 0, 'g', 6);
+        .arg(gap, 0, 'g', 6)
+        .arg(lengthUnitKey(unit));
 }
 
 // A free edge sampled for the seam report.
@@ -212,7 +240,7 @@ std::vector<FreeEdge> freeEdges(const TopoDS_Shape& shape,
 // One line per pair of free edges of two faces that lie close together (an open seam, with its
 // largest gap); a count of the other free edges (boundaries of open shells).
 void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& names, double diagonal,
-                     ExportReport& report) {
+                     LengthUnit unit, ExportReport& report) {
     std::vector<int> partner(edges.size(), -1);
     std::vector<double> gap(edges.size(), 0.0);
     const double reach = kSeamPairing * diagonal;
@@ -250,7 +278,7 @@ void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& name
             ++more;
             continue;
         }
-        report.warnings << seamLine(name(edges[i].face), name(edges[size_t(j)].face), gap[i]);
+        report.warnings << seamLine(name(edges[i].face), name(edges[size_t(j)].face), gap[i], unit);
     }
     if (more > 0)
         report.warnings << QStringLiteral("%1 more open seam(s)").arg(more);
@@ -283,10 +311,10 @@ void nameEntities(const Handle(Transfer_FinderProcess) & fp, const TopoDS_Shape&
 }
 
 QByteArray writeStep(const TopoDS_Shape& shape, const QString& path, const ExportOptions& options,
-                     const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
-                     QString& why) {
+                     LengthUnit unit, const TopTools_DataMapOfShapeInteger& ids,
+                     const QStringList& names, QString& why) {
     Interface_Static::SetCVal("write.step.schema", stepSchemaValue(options.stepSchema));
-    Interface_Static::SetCVal("write.step.unit", "MM");
+    Interface_Static::SetIVal("write.step.unit", igesUnitFlag(unit));
     STEPControl_Writer writer;
     if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
         why = QStringLiteral("OpenCASCADE's STEP writer could not transfer the shape");
@@ -313,11 +341,12 @@ QByteArray writeStep(const TopoDS_Shape& shape, const QString& path, const Expor
     return QByteArray::fromStdString(out.str());
 }
 
-QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options,
+QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options, LengthUnit unit,
                      const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
                      QString& why) {
-    Interface_Static::SetCVal("write.iges.unit", "MM");
-    IGESControl_Writer writer("MM", options.igesFaces ? 0 : 1);
+    const QByteArray unitName = igesUnitName(unit);
+    Interface_Static::SetCVal("write.iges.unit", unitName.constData());
+    IGESControl_Writer writer(unitName.constData(), options.igesFaces ? 0 : 1);
     // A trimmed surface (144) has no orientation of its own: OCCT writes a reversed face's
     // surface reversed. Every face goes as its surface runs, so the surfaces stay exact.
     TopoDS_Shape toWrite = shape;
@@ -389,6 +418,10 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
             << QStringLiteral("%1 value(s) of magnitude below 1e-99 written as 0").arg(flushed);
     setUpOcctOnce();
     OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
+    // The shape is in the document's unit, and so is the file: OCCT scales from its "cascade"
+    // unit to the file's, so both are the document's and nothing is scaled.
+    Interface_Static::SetIVal("xstep.cascade.unit", igesUnitFlag(scene.unit));
+    UnitsMethods::SetCasCadeLengthUnit(igesUnitFlag(scene.unit));
     const auto step = [&](int done) {
         return !progress || progress(done, kSteps);
     };
@@ -412,11 +445,51 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
         names << s.name;
     try {
         OCC_CATCH_SIGNALS
-        std::vector<TopoDS_Face> faces;
         const int n = int(scene.surfaces.size());
+        // With the import's record, the seams are measured on the exact surfaces against each
+        // edge's own tolerance (kw::seamGaps): an open seam is built as two edges, and a shell
+        // with one is never a solid.
+        std::vector<bool> onOpenSeam(size_t(n), false);
+        std::vector<std::uint32_t> openIds;
+        QStringList seamLines;
+        if (!scene.topology.edges.empty()) {
+            QHash<std::uint32_t, int> index;
+            for (int k = 0; k < n; ++k)
+                index.insert(scene.surfaces[size_t(k)].id.value, k);
+            for (const SeamGap& g : seamGaps(scene)) {
+                if (!g.open())
+                    continue;
+                openIds.push_back(g.edge.value);
+                const int a = index.value(g.faceA.value, -1), c = index.value(g.faceB.value, -1);
+                if (a < 0 || c < 0)
+                    continue;
+                onOpenSeam[size_t(a)] = onOpenSeam[size_t(c)] = true;
+                seamLines << seamLine(names[a], names[c], g.gap, scene.unit);
+            }
+        }
+        // Faces the record covers get its shared edges as they are (no face's trims move);
+        // the others are built alone and sewn.
+        occt::RecordedFaces recorded;
+        if (!scene.topology.empty()) {
+            QString why;
+            const double least = std::max(1e-7, 1e-9 * diagonal);
+            if (!occt::buildRecordedFaces(scene, openIds, least, recorded, why)) {
+                report.warnings << QStringLiteral("the import's shared edges could not be built "
+                                                  "(%1): the faces are sewn instead")
+                                       .arg(why);
+                recorded = {};
+            }
+        }
+        std::vector<TopoDS_Face> faces(static_cast<size_t>(n), TopoDS_Face());
+        if (!recorded.faces.empty())
+            faces = recorded.faces;
+        BRepBuilderAPI_Sewing sewing(tolerance);
+        int toSew = 0;
         for (int k = 0; k < n; ++k) {
             if (!step(600 * k / n))
                 return cancelled();
+            if (!faces[size_t(k)].IsNull())
+                continue;
             QString why;
             TopoDS_Face face = occt::buildFace(scene.surfaces[size_t(k)], tolerance, why);
             if (face.IsNull()) {
@@ -424,20 +497,23 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
                             .arg(path, names[k], why);
                 return std::nullopt;
             }
-            faces.push_back(face);
+            faces[size_t(k)] = face;
+            sewing.Add(face);
+            ++toSew;
         }
         if (!step(600))
             return cancelled();
-        // Sewing makes the edges two faces share one edge, written once and used by both.
-        BRepBuilderAPI_Sewing sewing(tolerance);
-        for (const TopoDS_Face& f : faces)
-            sewing.Add(f);
-        sewing.Perform();
-        const TopoDS_Shape sewn = sewing.SewedShape();
         TopTools_DataMapOfShapeInteger ids;
+        TopoDS_Shape sewn;
+        if (toSew > 0) {
+            // Sewing makes the edges two faces share one edge, written once and used by both.
+            sewing.Perform();
+            sewn = sewing.SewedShape();
+        }
         for (int k = 0; k < n; ++k) {
             const TopoDS_Face& f = faces[size_t(k)];
-            ids.Bind(sewing.IsModified(f) ? sewing.Modified(f) : f, k);
+            const bool sewnFace = recorded.faces.empty() || recorded.faces[size_t(k)].IsNull();
+            ids.Bind(sewnFace && sewing.IsModified(f) ? sewing.Modified(f) : f, k);
         }
         if (!step(800))
             return cancelled();
@@ -446,16 +522,46 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
         TopoDS_Compound result;
         BRep_Builder b;
         b.MakeCompound(result);
+        std::vector<TopoDS_Shell> shells;
+        std::vector<TopoDS_Face> loose;
+        // The record's shells, and its faces in none each on its own (or loose).
+        std::vector<bool> placed(size_t(n), false);
+        for (const std::vector<int>& members : recorded.shells) {
+            TopoDS_Shell shell;
+            b.MakeShell(shell);
+            int count = 0;
+            for (int k : members) {
+                if (placed[size_t(k)] || recorded.faces[size_t(k)].IsNull())
+                    continue;
+                b.Add(shell, recorded.faces[size_t(k)]);
+                placed[size_t(k)] = true;
+                ++count;
+            }
+            if (count == 0)
+                continue;
+            shell.Closed(BRep_Tool::IsClosed(shell));
+            shells.push_back(shell);
+        }
+        for (size_t k = 0; k < recorded.faces.size(); ++k) {
+            if (placed[k] || recorded.faces[k].IsNull())
+                continue;
+            TopoDS_Shell shell;
+            b.MakeShell(shell);
+            b.Add(shell, recorded.faces[k]);
+            if (BRep_Tool::IsClosed(shell))
+                shells.push_back(shell);
+            else
+                loose.push_back(recorded.faces[k]);
+        }
         // Shells of the sewn shape, and faces sewn to no other face each as a shell of its own
         // (a sphere or a torus is one face that closes on itself).
-        std::vector<TopoDS_Shell> shells;
         TopTools_IndexedMapOfShape inShells;
-        for (TopExp_Explorer e(sewn, TopAbs_SHELL); e.More(); e.Next()) {
+        for (TopExp_Explorer e(sewn, TopAbs_SHELL); !sewn.IsNull() && e.More(); e.Next()) {
             shells.push_back(TopoDS::Shell(e.Current()));
             TopExp::MapShapes(e.Current(), TopAbs_FACE, inShells);
         }
-        std::vector<TopoDS_Face> loose;
-        for (TopExp_Explorer e(sewn, TopAbs_FACE, TopAbs_SHELL); e.More(); e.Next()) {
+        for (TopExp_Explorer e(sewn, TopAbs_FACE, TopAbs_SHELL); !sewn.IsNull() && e.More();
+             e.Next()) {
             if (inShells.Contains(e.Current()))
                 continue;
             TopoDS_Shell shell;
@@ -465,25 +571,6 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
                 shells.push_back(shell);
             else
                 loose.push_back(TopoDS::Face(e.Current()));
-        }
-        // With the import's record, the seams are measured on the exact surfaces against each
-        // edge's own tolerance (kw::seamGaps): a shell with an open seam is never a solid, even
-        // where sewing's larger tolerance closed it.
-        std::vector<bool> onOpenSeam(size_t(n), false);
-        QStringList seamLines;
-        if (!scene.topology.edges.empty()) {
-            QHash<std::uint32_t, int> index;
-            for (int k = 0; k < n; ++k)
-                index.insert(scene.surfaces[size_t(k)].id.value, k);
-            for (const SeamGap& g : seamGaps(scene)) {
-                if (!g.open())
-                    continue;
-                const int a = index.value(g.faceA.value, -1), c = index.value(g.faceB.value, -1);
-                if (a < 0 || c < 0)
-                    continue;
-                onOpenSeam[size_t(a)] = onOpenSeam[size_t(c)] = true;
-                seamLines << seamLine(names[a], names[c], g.gap);
-            }
         }
         const auto hasOpenSeam = [&](const TopoDS_Shell& shell) {
             for (TopExp_Explorer f(shell, TopAbs_FACE); f.More(); f.Next())
@@ -539,7 +626,7 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
         const std::vector<FreeEdge> free = freeEdges(result, ids);
         report.freeEdges = int(free.size());
         if (scene.topology.edges.empty()) {
-            reportFreeEdges(free, names, diagonal, report);
+            reportFreeEdges(free, names, diagonal, scene.unit, report);
         } else {
             // The record names the open seams; free edges beyond them are open boundaries.
             report.warnings << seamLines.mid(0, kMaxSeamLines);
@@ -571,8 +658,8 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
 
         QString why;
         const QByteArray bytes = format == CadFormat::Step
-                                     ? writeStep(result, path, options, ids, names, why)
-                                     : writeIges(result, options, ids, names, why);
+                                     ? writeStep(result, path, options, scene.unit, ids, names, why)
+                                     : writeIges(result, options, scene.unit, ids, names, why);
         if (bytes.isEmpty()) {
             error = QStringLiteral("%1: %2").arg(path, why);
             return std::nullopt;

@@ -21,6 +21,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Wire.hxx>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace kw::occt {
@@ -67,6 +68,51 @@ void shiftKnots(Handle(Geom_BSplineSurface) & bs, bool u, double delta) {
         bs->SetVKnots(k);
 }
 
+// Puts back knot values that period arithmetic (Segment, shiftKnots) left a few ulps off: each
+// knot within 8 ulps of a knot of the periodic surface, or of one moved by whole periods, takes
+// that exact value. The file held those values; a round trip then gives them back bit for bit.
+void snapKnots(Handle(Geom_BSplineSurface) & bs, bool u, const std::vector<double>& exact,
+               double period) {
+    TColStd_Array1OfReal k(1, u ? bs->NbUKnots() : bs->NbVKnots());
+    if (u)
+        bs->UKnots(k);
+    else
+        bs->VKnots(k);
+    bool changed = false;
+    for (double& x : k) {
+        for (double e : exact) {
+            const double shifts = std::round((x - e) / period);
+            const double candidate = e + shifts * period;
+            const double ulps = 8.0 * std::numeric_limits<double>::epsilon() *
+                                std::max({1.0, std::abs(x), std::abs(candidate)});
+            if (candidate != x && std::abs(candidate - x) <= ulps) {
+                x = candidate;
+                changed = true;
+                break;
+            }
+        }
+    }
+    // Knots must stay strictly increasing; a snap that would break that is not made.
+    for (int i = k.Lower() + 1; changed && i <= k.Upper(); ++i)
+        if (!(k(i) > k(i - 1)))
+            return;
+    if (changed) {
+        if (u)
+            bs->SetUKnots(k);
+        else
+            bs->SetVKnots(k);
+    }
+}
+
+std::vector<double> distinctKnots(const Handle(Geom_BSplineSurface) & bs, bool u) {
+    TColStd_Array1OfReal k(1, u ? bs->NbUKnots() : bs->NbVKnots());
+    if (u)
+        bs->UKnots(k);
+    else
+        bs->VKnots(k);
+    return std::vector<double>(k.begin(), k.end());
+}
+
 // Periodic B-splines become non-periodic over the face's own (u, v) range, without changing
 // any parameter value, so the p-curves keep applying unchanged. (Segment may return the range
 // a period away, e.g. [2 pi, 4 pi] for a request of [0, 2 pi]; the knots are moved back.)
@@ -80,6 +126,7 @@ void makeNonPeriodic(Handle(Geom_BSplineSurface) & bs, const TopoDS_Face& face) 
     bs->Bounds(u1, u2, v1, v2);
     const double periodU = periodicU ? bs->UPeriod() : 0.0;
     const double periodV = periodicV ? bs->VPeriod() : 0.0;
+    const std::vector<double> knotsU = distinctKnots(bs, true), knotsV = distinctKnots(bs, false);
     if (periodicU) {
         u1 = fu1;
         u2 = std::min(fu2, fu1 + periodU);
@@ -99,6 +146,10 @@ void makeNonPeriodic(Handle(Geom_BSplineSurface) & bs, const TopoDS_Face& face) 
         shiftKnots(bs, true, std::round((u1 - a1) / periodU) * periodU);
     if (periodicV && std::abs(b1 - v1) > Precision::PConfusion())
         shiftKnots(bs, false, std::round((v1 - b1) / periodV) * periodV);
+    if (periodicU)
+        snapKnots(bs, true, knotsU, periodU);
+    if (periodicV)
+        snapKnots(bs, false, knotsV, periodV);
 }
 
 std::vector<double> knotSequence(const Handle(Geom_BSplineSurface) & bs, bool u) {
@@ -158,7 +209,15 @@ Handle(Geom2d_BSplineCurve) pcurve(const TopoDS_Edge& edge, const TopoDS_Face& f
         std::abs(existing->FirstParameter() - a) <= Precision::PConfusion() &&
         std::abs(existing->LastParameter() - b) <= Precision::PConfusion())
         bc = Handle(Geom2d_BSplineCurve)::DownCast(existing->Copy()); // as in the file
-    else
+    else if (!existing.IsNull() && existing->IsPeriodic() &&
+             std::abs(existing->FirstParameter() - a) <= Precision::PConfusion() &&
+             std::abs(existing->LastParameter() - b) <= Precision::PConfusion()) {
+        // A closed curve the reader made periodic, used whole: clamped at its own ends, with
+        // its parameters kept. (Trimming a periodic curve over one whole period and converting
+        // it gave non-finite poles.)
+        bc = Handle(Geom2d_BSplineCurve)::DownCast(existing->Copy());
+        bc->SetNotPeriodic();
+    } else
         bc = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(c, a, b));
     if (bc->IsPeriodic())
         bc->SetNotPeriodic();

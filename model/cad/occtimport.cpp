@@ -30,6 +30,7 @@
 #include <TransferBRep.hxx>
 #include <Transfer_Binder.hxx>
 #include <Transfer_TransientProcess.hxx>
+#include <UnitsMethods.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <fstream>
@@ -168,6 +169,7 @@ struct ReadShape {
     const occt::ExchangeFormat* format = nullptr; // null for BREP
     QStringList notes;                            // for the report's warnings
     QStringList skipped;                          // root entities that gave no shape
+    LengthUnit unit = LengthUnit::Millimetre;     // the file's, which the shape is in
 };
 
 // Reads and transfers the file; false with `error` set on any fault.
@@ -267,6 +269,13 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                     .arg(loadFailures(reader->WS()));
         return false;
     }
+    // The shape is made in the file's own unit (OCCT's "cascade" unit set to it), so every
+    // coordinate stays the number the file holds; a file that names no unit Knotwork knows is
+    // read in millimetres, OCCT's default.
+    if (const std::optional<LengthUnit> unit = out.format->fileUnit(*reader))
+        out.unit = *unit;
+    Interface_Static::SetIVal("xstep.cascade.unit", igesUnitFlag(out.unit));
+    UnitsMethods::SetCasCadeLengthUnit(igesUnitFlag(out.unit));
     const int roots = reader->NbRootsForTransfer();
     reader->TransferRoots(bridge.Start());
     if (bridge.cancelled())
@@ -341,6 +350,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
     }
 
     Scene& scene = result.scene;
+    scene.unit = read.unit;
     std::vector<occt::FaceEdges> faceEdges; // parallel to scene.surfaces
     for (int k = 1; k <= faces.Extent(); ++k) {
         if (progress &&

@@ -512,6 +512,76 @@ bool Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
     return true;
 }
 
+Document::Lengths Document::lengths() const {
+    Lengths out;
+    out.unit = m_scene.unit;
+    for (const Surface& s : m_scene.surfaces)
+        out.points.insert(out.points.end(), s.geometry.points.begin(), s.geometry.points.end());
+    for (const SharedEdge& e : m_scene.topology.edges)
+        out.tolerances.push_back(e.tolerance);
+    out.camera = m_scene.camera;
+    out.lights = m_scene.lights;
+    return out;
+}
+
+Document::Lengths Document::scaledLengths(const Lengths& from, LengthUnit unit, double factor) {
+    Lengths out = from;
+    out.unit = unit;
+    if (factor == 1.0)
+        return out;
+    for (glm::dvec3& p : out.points)
+        p *= factor;
+    for (double& t : out.tolerances)
+        t *= factor;
+    // The view keeps its direction and framing: eye and target scale about the origin.
+    out.camera.eye *= factor;
+    out.camera.target *= factor;
+    for (Light& l : out.lights)
+        if (l.kind == Light::Kind::Point)
+            l.vector *= factor;
+    return out;
+}
+
+bool Document::setLengths(const Lengths& lengths) {
+    size_t points = 0;
+    for (const Surface& s : m_scene.surfaces)
+        points += s.geometry.points.size();
+    if (lengths.points.size() != points ||
+        lengths.tolerances.size() != m_scene.topology.edges.size())
+        return false;
+    for (const glm::dvec3& p : lengths.points)
+        if (!finite(p))
+            return false;
+    for (double t : lengths.tolerances)
+        if (!std::isfinite(t) || t < 0)
+            return false;
+    if (!cameraError(lengths.camera).isEmpty() || !lightsError(lengths.lights).isEmpty())
+        return false;
+    size_t at = 0;
+    std::vector<SurfaceId> moved;
+    for (Surface& s : m_scene.surfaces) {
+        bool changed = false;
+        for (glm::dvec3& p : s.geometry.points) {
+            changed = changed || p != lengths.points[at];
+            p = lengths.points[at++];
+        }
+        if (changed)
+            moved.push_back(s.id);
+    }
+    for (size_t k = 0; k < lengths.tolerances.size(); ++k)
+        m_scene.topology.edges[k].tolerance = lengths.tolerances[k];
+    for (SurfaceId id : moved)
+        bump(id, Aspect::Points);
+    setCamera(lengths.camera);
+    setLights(lengths.lights);
+    if (m_scene.unit != lengths.unit) {
+        m_scene.unit = lengths.unit;
+        nextRevision();
+        Q_EMIT unitChanged();
+    }
+    return true;
+}
+
 QString Document::validate(const Scene& scene) {
     return sceneError(scene);
 }

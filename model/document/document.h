@@ -134,6 +134,26 @@ public:
     SeamLink seamLink() const { return m_seamLink; }
     void setSeamLink(SeamLink link) { m_seamLink = link; }
 
+    /// Every number the document holds in its length unit, and the unit: what Edit › Units…
+    /// changes in one step (relabelled, or converted by scaling).
+    struct Lengths {
+        LengthUnit unit = LengthUnit::Millimetre;
+        std::vector<glm::dvec3> points; ///< every surface's control points, surfaces in order
+        std::vector<double> tolerances; ///< the topology's edge tolerances, edges in order
+        Camera camera;
+        std::vector<Light> lights; ///< point lights' positions are lengths
+        bool operator==(const Lengths&) const = default;
+    };
+    Lengths lengths() const;
+    /// `from` with every length multiplied by `factor` (> 0, finite) and the unit `unit`:
+    /// factor 1 relabels, millimetresPer(old) / millimetresPer(unit) converts.
+    static Lengths scaledLengths(const Lengths& from, LengthUnit unit, double factor);
+    /// Sets what lengths() returns, for the scene as it is (as many points and tolerances);
+    /// false, changing nothing, when the counts differ or a value is not finite or valid.
+    /// Emits surfaceChanged (Points) for each surface that moved, cameraChanged, lightsChanged
+    /// and unitChanged for what changed.
+    bool setLengths(const Lengths& lengths);
+
     /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
     /// Returns an empty string when valid.
     static QString validate(const Scene& scene);
@@ -153,6 +173,8 @@ Q_SIGNALS:
     void lightsChanged();
     void cameraChanged();
     void continuityTolerancesChanged();
+    /// The document's length unit changed (Units…; a reset emits sceneReset instead).
+    void unitChanged();
 
 private:
     Surface* mutableSurface(SurfaceId id);

@@ -4,6 +4,7 @@
 #include "model/document/ids.h"
 #include "model/document/topology.h"
 #include "model/nurbs/nurbs.h"
+#include "model/units.h"
 
 #include <QString>
 #include <compare>
@@ -178,6 +179,9 @@ struct Scene {
     /// like the display settings (not an edit).
     ContinuityTolerances continuity;
     std::uint32_t nextId = 1;
+    /// The unit of every length: coordinates, tolerances, gaps (model/units.h). An import keeps
+    /// the source file's; everything else starts in millimetres.
+    LengthUnit unit = LengthUnit::Millimetre;
     bool operator==(const Scene&) const = default;
 };
 

@@ -161,6 +161,8 @@ QByteArray sceneToJson(const Scene& scene) {
     root.insert(QStringLiteral("lights"), lights);
     if (scene.camera.authored)
         root.insert(QStringLiteral("camera"), cameraToJson(scene.camera));
+    if (scene.unit != LengthUnit::Millimetre) // optional (1.4): millimetres when absent
+        root.insert(QStringLiteral("unit"), lengthUnitKey(scene.unit));
     if (!scene.topology.empty()) // optional (1.3): what a B-rep import kept
         root.insert(QStringLiteral("topology"), topologyToJson(scene.topology));
     if (scene.continuity != ContinuityTolerances{}) // optional (1.4)

@@ -681,6 +681,17 @@ Scene readScene(const QJsonObject& root) {
         scene.nextId = std::uint32_t(asInteger(root.value(QLatin1String("nextId")),
                                                QStringLiteral("$.nextId"), 1, 0xFFFFFFFFll));
     scene.nextId = std::max(scene.nextId, ids.maxId() + 1);
+    // Optional (1.4): the document's length unit; older files are in millimetres.
+    if (root.contains(QLatin1String("unit"))) {
+        const QString path = QStringLiteral("$.unit");
+        const QString key = asString(root.value(QLatin1String("unit")), path);
+        if (const auto unit = lengthUnitFromKey(key); unit && key == lengthUnitKey(*unit))
+            scene.unit = *unit;
+        else
+            fail(path, QStringLiteral("expected a length unit (mm, cm, m, km, um, in, ft, mi, "
+                                      "mil, uin), found ") +
+                           describe(QJsonValue(key)));
+    }
     if (root.contains(QLatin1String("topology"))) {
         const QString path = QStringLiteral("$.topology");
         scene.topology = readTopology(asObject(root.value(QLatin1String("topology")), path), path);

@@ -229,6 +229,8 @@ class TestExchange : public QObject {
 private Q_SLOTS:
     void roundTrip_data();
     void roundTrip();
+    void unitsKept_data();
+    void unitsKept();
     void solidsStaySolids_data();
     void solidsStaySolids();
     void buildFaceKeepsGeometry();
@@ -323,13 +325,10 @@ void TestExchange::roundTrip() {
         QCOMPARE(h.countU, g.countU);
         QCOMPARE(h.countV, g.countV);
         if (exact) {
-            // Knots within one unit in the last place: OCCT's STEP reader makes a closed
-            // B-spline periodic, and the importer's way back to a clamped one recomputes its
-            // knots (docs/EXCHANGE.md, Limits). The file holds them bit for bit.
-            const double ulp = std::numeric_limits<double>::epsilon();
-            QVERIFY2(h.points == g.points && h.weights == g.weights &&
-                         relativeDifference(g.knotsU, h.knotsU) <= ulp &&
-                         relativeDifference(g.knotsV, h.knotsV) <= ulp,
+            // Bit for bit, knots too: OCCT's STEP reader makes a closed B-spline periodic, and
+            // the importer's way back to a clamped one puts the file's knot values back.
+            QVERIFY2(h.points == g.points && h.weights == g.weights && h.knotsU == g.knotsU &&
+                         h.knotsV == g.knotsV,
                      qPrintable(QStringLiteral("%1: points %2, weights %3, knots %4 %5")
                                     .arg(a.name)
                                     .arg(relativeDifference(coordinates(g), coordinates(h)))
@@ -346,16 +345,22 @@ void TestExchange::roundTrip() {
                 worstGeometryFace = a.name;
             }
         }
-        // Sewing merges the edges of neighbouring faces that lie within the tolerance and gives
-        // each face the merged edge's p-curve: a face's boundary may move by up to the sewing
-        // tolerance where the file left a gap (docs/EXCHANGE.md). Where no gap was closed
-        // (created samples) the area must be the same to 1e-6.
+        // Faces the import's record covers keep their own trims: one edge per recorded shared
+        // edge, carrying both faces' p-curves, so the area is the same to 1e-6. Two exceptions,
+        // measured and explained in docs/EXCHANGE.md: files without a record are sewn, and
+        // sewing gives each face the merged edge's p-curve (its boundary may move by up to the
+        // sewing tolerance); screw.step's two sides of some edges lie up to 3e-4 apart with
+        // p-curves out of step, which SameParameter and OCCT's readers bring in step again
+        // (6.6e-6 measured through STEP, 1.5e-5 through IGES).
         const double areaA = trimmedSurfaceArea(g, a.trims),
                      areaB = trimmedSurfaceArea(h, b->trims);
-        const double allowed =
-            std::max(1e-6, imported ? sewingTolerance(before) *
-                                          std::max(boundaryLength(a), boundaryLength(*b)) / areaA
-                                    : 0.0);
+        double allowed = 1e-6;
+        if (imported && before.topology.empty())
+            allowed =
+                std::max(allowed, sewingTolerance(before) *
+                                      std::max(boundaryLength(a), boundaryLength(*b)) / areaA);
+        else if (source == QLatin1String("screw.step"))
+            allowed = 2e-5;
         const double d = std::abs(areaA - areaB) / std::max(areaA, 1e-300) / allowed * 1e-6;
         if (d > worstArea) {
             worstArea = d;
@@ -373,6 +378,53 @@ void TestExchange::roundTrip() {
     QVERIFY2(worstGeometry <= 1e-9, qPrintable(QString::number(worstGeometry)));
     // worstArea is scaled so that 1e-6 is the allowance (1e-6 relative, or the sewing bound).
     QVERIFY2(worstArea <= 1e-6, qPrintable(QString::number(worstArea)));
+}
+
+void TestExchange::unitsKept_data() {
+    QTest::addColumn<QString>("ext");
+    QTest::addColumn<int>("unit");
+    QTest::newRow("step inch") << QStringLiteral("step") << int(LengthUnit::Inch);
+    QTest::newRow("iges inch") << QStringLiteral("iges") << int(LengthUnit::Inch);
+    QTest::newRow("step metre") << QStringLiteral("step") << int(LengthUnit::Metre);
+    QTest::newRow("iges foot") << QStringLiteral("iges") << int(LengthUnit::Foot);
+    QTest::newRow("step mm") << QStringLiteral("step") << int(LengthUnit::Millimetre);
+}
+
+// A document's unit is the file's, and the coordinates stay the numbers they were: written in
+// that unit, read back in it, with nothing scaled either way.
+void TestExchange::unitsKept() {
+    QFETCH(QString, ext);
+    QFETCH(int, unit);
+    Scene before = original(QStringLiteral("Pump_Nut.brep"));
+    QCOMPARE(before.unit, LengthUnit::Millimetre); // BREP has no unit
+    before.unit = LengthUnit(unit);
+    const QString path = out(QStringLiteral("unit_%1.%2").arg(lengthUnitKey(before.unit), ext));
+    ExportOptions options;
+    ExportReport report;
+    QString error;
+    QVERIFY2(exportCadFile(before, path, options, report, error), qPrintable(error));
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray text = f.readAll();
+    if (ext == QLatin1String("step")) {
+        const QByteArray expected = before.unit == LengthUnit::Inch    ? "'INCH'"
+                                    : before.unit == LengthUnit::Metre ? "SI_UNIT($,.METRE.)"
+                                                                       : ".MILLI.,.METRE.";
+        QVERIFY2(text.contains(expected), expected.constData());
+    }
+    const auto after = importFile(path, error);
+    QVERIFY2(after, qPrintable(error));
+    QCOMPARE(after->scene.unit, before.unit);
+    QCOMPARE(after->scene.surfaces.size(), before.surfaces.size());
+    const double allowed = ext == QLatin1String("step") ? 0.0 : 1e-9;
+    // Each face against the closest one read back (the reader may order them otherwise); a
+    // scaled file would be 25.4 times off for every face.
+    for (const Surface& a : before.surfaces) {
+        double d = INFINITY;
+        for (const Surface& b : after->scene.surfaces)
+            d = std::min(d, relativeDifference(coordinates(a.geometry), coordinates(b.geometry)));
+        QVERIFY2(d <= allowed, qPrintable(QStringLiteral("%1: %2").arg(a.name).arg(d)));
+    }
 }
 
 void TestExchange::solidsStaySolids_data() {

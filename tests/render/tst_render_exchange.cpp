@@ -129,12 +129,15 @@ private Q_SLOTS:
         // Pixels whose centre lies on a trim's edge may fall either side: the trims are the same
         // curves, read back through the file's p-curves (docs/EXCHANGE.md, Limits).
         QVERIFY2(differ <= covered / 200, qPrintable(QString::number(differ)));
-        // The same point to 1e-6 of the diagonal on almost every pixel. screw.step has 3 % of its
-        // pixels up to 2.1e-5 off although its surfaces come back bit for bit: only its trims
-        // differ (sewing moved them within the tolerance), and the exact pass's result depends
-        // on them there (docs/EXCHANGE.md, Limits; not traced further).
-        QVERIFY2(far <= covered / 20, qPrintable(QString::number(far)));
-        QVERIFY2(worst <= 1e-4 * diagonal, qPrintable(QString::number(worst / diagonal)));
+        // The same point to 1e-6 of the diagonal on every pixel, except on screw.step: one of
+        // its edges has sides 3e-4 apart with p-curves out of step, and SameParameter gives
+        // one face an approximated trim there; the exact pass starts from the trimmed base
+        // polygon and stops within its own tolerance, so 1.5 % of its pixels land up to 2e-6
+        // of the diagonal away (docs/EXCHANGE.md, Limits).
+        const bool screw = source == QLatin1String("screw.step");
+        QVERIFY2(far <= (screw ? covered / 40 : 0), qPrintable(QString::number(far)));
+        QVERIFY2(worst <= (screw ? 5e-6 : 1e-6) * diagonal,
+                 qPrintable(QString::number(worst / diagonal)));
     }
 };
 

@@ -74,6 +74,35 @@ void TransformSurfaces::undo() {
     apply(false, "undo");
 }
 
+// ---- SetUnits
+
+std::unique_ptr<SetUnits> SetUnits::create(Document* document, LengthUnit unit, bool convert,
+                                           QString* error) {
+    if (!document)
+        return fail(error, noDocument());
+    const LengthUnit from = document->scene().unit;
+    const double factor = convert ? millimetresPer(from) / millimetresPer(unit) : 1.0;
+    std::unique_ptr<SetUnits> c(
+        new SetUnits(document, convert ? QObject::tr("Convert to %1").arg(lengthUnitKey(unit))
+                                       : QObject::tr("Set unit to %1").arg(lengthUnitKey(unit))));
+    c->m_from = document->lengths();
+    c->m_to = Document::scaledLengths(c->m_from, unit, factor);
+    if (c->m_to == c->m_from)
+        return fail(error,
+                    QStringLiteral("the document is already in %1").arg(lengthUnitKey(unit)));
+    for (const glm::dvec3& p : c->m_to.points)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return fail(error, QStringLiteral("a converted control point is not finite"));
+    return c;
+}
+
+void SetUnits::redo() {
+    check(document()->setLengths(m_to), "redo");
+}
+void SetUnits::undo() {
+    check(document()->setLengths(m_from), "undo");
+}
+
 // ---- SetSurfacesHidden
 
 std::unique_ptr<SetSurfacesHidden>

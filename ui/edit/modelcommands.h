@@ -29,6 +29,23 @@ private:
     std::vector<std::vector<glm::dvec3>> m_from, m_to;
 };
 
+class SetUnits : public DocumentCommand {
+public:
+    /// Gives the document the length unit `unit`. With `convert` every length is scaled so the
+    /// part keeps its size (25.4 mm per inch: control points, edge tolerances, camera, point
+    /// lights); without, the numbers stay and only their unit changes (a file read with the
+    /// wrong unit). Rejected when nothing would change or a scaled value is not finite. Undo
+    /// puts back the values as they were, bit for bit.
+    static std::unique_ptr<SetUnits> create(Document* document, LengthUnit unit, bool convert,
+                                            QString* error = nullptr);
+    void redo() override;
+    void undo() override;
+
+private:
+    SetUnits(Document* d, const QString& text) : DocumentCommand(d, text) {}
+    Document::Lengths m_from, m_to;
+};
+
 class SetSurfacesHidden : public DocumentCommand {
 public:
     /// Gives each listed surface (unique, existing) its `hidden` value: hide, show, isolate and
