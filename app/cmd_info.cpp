@@ -2,8 +2,8 @@
 // lights and camera, or the continuity of its edges.
 #include "app/commands.h"
 #include "app/info_continuity.h"
+#include "model/analysis/mass_properties.h"
 #include "model/cad/cadimport.h"
-#include "model/mass_properties.h"
 #include "model/document/seamgaps.h"
 #include "model/nurbs/trim.h"
 

@@ -1,7 +1,8 @@
-// `knotwork info FILE --continuity [--json]`: the continuity of every edge (model/continuity.h).
+// `knotwork info FILE --continuity [--json]`: the continuity of every edge
+// (model/analysis/continuity.h).
 #pragma once
 
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
 
 #include <QJsonObject>
 #include <QString>

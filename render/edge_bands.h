@@ -2,7 +2,7 @@
 // (no GL): coloured line segments along every measured edge and every free edge.
 #pragma once
 
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>

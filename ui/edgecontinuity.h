@@ -3,7 +3,7 @@
 // change signal (so it is live during a drag without knowing about gestures).
 #pragma once
 
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
 #include "model/document/document.h"
 #include "render/edge_bands.h"
 

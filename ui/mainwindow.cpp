@@ -365,7 +365,7 @@ void MainWindow::buildEditMenu() {
     edit->addSeparator();
     // A control point dragged on a boundary another untrimmed face shares carries that face's
     // coincident point (and, keeping tangency, the next rows on both sides): the document
-    // applies it to every move, live drags and undo alike (model/seamkeeper.h).
+    // applies it to every move, live drags and undo alike (model/document/seamkeeper.h).
     QSettings settings;
     QAction* seams = addAction(edit, QStringLiteral("actionKeepSeamsClosed"),
                                tr("Keep Seams &Closed"), QKeySequence(), [] {});

@@ -1,9 +1,9 @@
 // The Properties panel's measured values: the current face's surface type, degrees, trimmed
 // area and bounding box, and the model's total area, closed-solid volume and bounding box,
-// computed off the GUI thread from the exact geometry (model/mass_properties.h).
+// computed off the GUI thread from the exact geometry (model/analysis/mass_properties.h).
 #pragma once
 
-#include "model/mass_properties.h"
+#include "model/analysis/mass_properties.h"
 
 #include <QHash>
 #include <QWidget>

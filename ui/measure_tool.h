@@ -3,7 +3,7 @@
 // here touches the document or the undo stack.
 #pragma once
 
-#include "model/probe.h"
+#include "model/analysis/probe.h"
 
 #include <QWidget>
 #include <functional>

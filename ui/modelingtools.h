@@ -4,8 +4,8 @@
 // step on the window's stack.
 #pragma once
 
+#include "model/document/matchsurface.h"
 #include "model/document/selection.h"
-#include "model/matchsurface.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "ui/edit/commands.h"
 

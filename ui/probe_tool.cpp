@@ -2,8 +2,8 @@
 // viewport.
 #include "ui/probe_tool.h"
 
+#include "model/analysis/mass_properties.h"
 #include "model/document/document.h"
-#include "model/mass_properties.h"
 #include "ui/viewport.h"
 
 #include <QAction>

@@ -3,7 +3,7 @@
 // clicks that place measurements (ui/measure_tool.h).
 #pragma once
 
-#include "model/probe.h"
+#include "model/analysis/probe.h"
 #include "render/frame_report.h"
 #include "ui/measure_tool.h"
 

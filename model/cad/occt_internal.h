@@ -3,8 +3,8 @@
 
 #include "model/cad/cadimport.h"
 #include "model/document/scene.h"
+#include "model/document/units.h"
 #include "model/io/meshobj.h"
-#include "model/units.h"
 
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <QString>

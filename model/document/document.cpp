@@ -1,9 +1,9 @@
 // Document: the one place the scene changes; validates, counts revisions and signals.
 #include "model/document/document.h"
 
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
+#include "model/document/seamkeeper.h"
 #include "model/document/validation.h"
-#include "model/seamkeeper.h"
 
 #include <QHashFunctions>
 #include <algorithm>

@@ -44,7 +44,7 @@ public:
     explicit Document(QObject* parent = nullptr);
 
     /// Edit > Keep Seams Closed: how a control point move carries the coincident points of
-    /// neighbouring untrimmed faces with it (model/seamkeeper.h). Off: alone.
+    /// neighbouring untrimmed faces with it (model/document/seamkeeper.h). Off: alone.
     enum class SeamLink { Off, Position, Tangency };
 
     const Scene& scene() const { return m_scene; }
@@ -209,9 +209,9 @@ private:
     std::uint64_t nextRevision();
 
     Scene m_scene;
-    std::vector<Revisions> m_revisions; // parallel to m_scene.surfaces
+    std::vector<Revisions> m_revisions;  // parallel to m_scene.surfaces
     SeamLink m_seamLink = SeamLink::Off; // the editor turns it on (Edit > Keep Seams Closed)
-    std::uint64_t m_counter = 0;        ///< revision(): the newest value this document handed out
+    std::uint64_t m_counter = 0;         ///< revision(): the newest value this document handed out
     std::uint64_t m_lightsRevision = 0;
     std::uint64_t m_cameraRevision = 0;
     std::uint64_t m_marksRevision = 0;

@@ -3,8 +3,8 @@
 
 #include "model/document/ids.h"
 #include "model/document/topology.h"
+#include "model/document/units.h"
 #include "model/nurbs/nurbs.h"
-#include "model/units.h"
 
 #include <QString>
 #include <compare>
@@ -175,12 +175,12 @@ struct Scene {
     std::vector<Light> lights = defaultLights();
     Camera camera;
     DisplaySettings display;
-    /// The edge continuity classes' thresholds (model/continuity.h), saved with the project
-    /// like the display settings (not an edit).
+    /// The edge continuity classes' thresholds (model/analysis/continuity.h), saved with the
+    /// project like the display settings (not an edit).
     ContinuityTolerances continuity;
     std::uint32_t nextId = 1;
-    /// The unit of every length: coordinates, tolerances, gaps (model/units.h). An import keeps
-    /// the source file's; everything else starts in millimetres.
+    /// The unit of every length: coordinates, tolerances, gaps (model/document/units.h). An import
+    /// keeps the source file's; everything else starts in millimetres.
     LengthUnit unit = LengthUnit::Millimetre;
     bool operator==(const Scene&) const = default;
 };

@@ -28,7 +28,7 @@ constexpr int kMinSeamSamples = 64;
 
 /// One side of a seam: the curve C(t) = S(c(t)) of a 2D curve c in the (u, v) space of surface
 /// S (a trim curve, or a straight line along an edge of the domain), with samples of it. The
-/// continuity kernel (model/continuity.h) measures on the same sides.
+/// continuity kernel (model/analysis/continuity.h) measures on the same sides.
 struct SeamSide {
     const NurbsSurface* surface = nullptr; ///< not owned; must outlive the side
     NurbsCurve2 curve;

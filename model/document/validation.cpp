@@ -2,7 +2,7 @@
 // importers and the writers (one notion of a valid scene).
 #include "model/document/validation.h"
 
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
 
 #include <algorithm>
 #include <cmath>

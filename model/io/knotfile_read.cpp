@@ -1,5 +1,5 @@
 // Reading .knot project files: JSON -> validated Scene, with one-line errors naming the JSON path.
-#include "model/continuity.h"
+#include "model/analysis/continuity.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 #include "model/io/knotfile_prescan.h"

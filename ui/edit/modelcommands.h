@@ -2,7 +2,7 @@
 // knots within a tolerance, and replace a trim loop's curves (trim point insertion and deletion).
 #pragma once
 
-#include "model/matchsurface.h"
+#include "model/document/matchsurface.h"
 #include "ui/edit/commands.h"
 
 #include <glm/glm.hpp>

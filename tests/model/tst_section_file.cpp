@@ -1,0 +1,106 @@
+// Section planes in the project file and the scene's validation: every field reads back, a file
+// of an older minor version (no sections) reads with none, a zero normal or too many planes are
+// refused with the JSON path, and validation names the plane.
+#include "model/document/validation.h"
+#include "model/io/knotfile.h"
+#include "model_fixtures.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QtTest>
+
+using namespace kw;
+using kw::test::threeSurfaceScene;
+
+class TestSectionFile : public QObject {
+    Q_OBJECT
+
+    static Scene withSections() {
+        Scene scene = threeSurfaceScene();
+        scene.display.sections = {
+            SectionPlane{glm::dvec3(0.1, -0.25, 1.0 / 3.0), glm::dvec3(0.0, 0.6, 0.8), false},
+            SectionPlane{glm::dvec3(2.0, 0.0, 0.0), glm::dvec3(-1.0, 1e-7, 0.0), true}};
+        scene.display.sectionCaps = false;
+        return scene;
+    }
+
+private Q_SLOTS:
+    void roundTrip() {
+        const Scene scene = withSections();
+        QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+        QString error;
+        const std::optional<Scene> back =
+            sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), &error);
+        QVERIFY2(back, qPrintable(error));
+        QVERIFY(back->display == scene.display);
+        QCOMPARE(QJsonDocument::fromJson(sceneToJson(scene))
+                     .object()[QStringLiteral("version")]
+                     .toString(),
+                 QStringLiteral("%1.%2").arg(kKnotFormatMajor).arg(kKnotFormatMinor));
+        // Sections alone (no partition mode) are enough for a display object.
+        Scene alone = threeSurfaceScene();
+        alone.display.sections = {SectionPlane{}};
+        const std::optional<Scene> aloneBack =
+            sceneFromJson(sceneToJson(alone), QStringLiteral("mem"), &error);
+        QVERIFY2(aloneBack, qPrintable(error));
+        QVERIFY(aloneBack->display == alone.display);
+        QVERIFY(aloneBack->display.sectionCaps);
+    }
+
+    void olderFileReadsWithNone() {
+        QJsonObject root = QJsonDocument::fromJson(sceneToJson(threeSurfaceScene())).object();
+        root.insert(QStringLiteral("version"), QStringLiteral("1.3"));
+        root.insert(QStringLiteral("display"),
+                    QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("uniform")}});
+        QString error;
+        const std::optional<Scene> back =
+            sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("old.knot"), &error);
+        QVERIFY2(back, qPrintable(error));
+        QVERIFY(back->display.sections.empty());
+        QVERIFY(back->display.sectionCaps);
+    }
+
+    void badPlanesRefused() {
+        QJsonObject root = QJsonDocument::fromJson(sceneToJson(withSections())).object();
+        QJsonObject display = root[QStringLiteral("display")].toObject();
+        QJsonArray planes = display[QStringLiteral("sections")].toArray();
+        QJsonObject zero = planes[1].toObject();
+        zero.insert(QStringLiteral("normal"), QJsonArray{0.0, 0.0, 0.0});
+        planes[1] = zero;
+        display.insert(QStringLiteral("sections"), planes);
+        root.insert(QStringLiteral("display"), display);
+        QString error;
+        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"), &error));
+        QVERIFY2(error.startsWith(QStringLiteral("bad.knot: $.display.sections[1].normal: ")) &&
+                     error.contains(QStringLiteral("zero length")) && !error.contains('\n'),
+                 qPrintable(error));
+        planes[1] = planes[0];
+        planes.append(planes[0]);
+        planes.append(planes[0]);
+        display.insert(QStringLiteral("sections"), planes);
+        root.insert(QStringLiteral("display"), display);
+        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"), &error));
+        QVERIFY2(error.contains(QStringLiteral("$.display.sections")) &&
+                     error.contains(QStringLiteral("4 section planes")),
+                 qPrintable(error));
+
+        Scene scene = withSections();
+        scene.display.sections[1].normal = glm::dvec3(0.0);
+        QVERIFY2(sceneError(scene).contains(QStringLiteral("section 2")),
+                 qPrintable(sceneError(scene)));
+        scene.display.sections[1].normal = glm::dvec3(std::nan(""), 0.0, 1.0);
+        QVERIFY(!sceneError(scene).isEmpty());
+    }
+
+    void removedSide() {
+        const SectionPlane p{glm::dvec3(1.0), glm::dvec3(0.0, 0.0, 2.0), false};
+        QCOMPARE(p.removedSide(), glm::dvec3(0.0, 0.0, 1.0));
+        SectionPlane f = p;
+        f.flip = true;
+        QCOMPARE(f.removedSide(), glm::dvec3(0.0, 0.0, -1.0));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestSectionFile)
+#include "tst_section_file.moc"

@@ -1,5 +1,0 @@
-# Gestures as tools: the live-edit protocol without widgets, and the 3D view's tool routing.
-kw_add_test(tst_live_edit LABEL ui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_live_edit.cpp
-            ${KW_TEST_SUPPORT_DIR}/model_fixtures.h LIBS knotwork_edit)
-kw_add_test(tst_tools LABEL gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_tools.cpp
-            ${KW_TEST_SUPPORT_DIR}/editor_test_util.h LIBS knotwork_ui)
