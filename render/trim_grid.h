@@ -3,7 +3,7 @@
 // of any (u, v) from a texel's parity bit plus crossings counted inside that texel.
 #pragma once
 
-#include "render/trim_arcs.h"
+#include "model/nurbs/trim_arcs.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -28,7 +28,7 @@ void TrimMaskPass::freeGrids() {
 }
 
 /// A surface's arcs: loops repaired as makeTrimRegion repairs them, at the same tolerance as
-/// the CPU classification (render/trim_arcs.h).
+/// the CPU classification (model/nurbs/trim_arcs.h).
 struct TrimSurfaceArcs {
     TrimArcs arcs;
     QStringList warnings;

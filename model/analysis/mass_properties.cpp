@@ -4,7 +4,7 @@
 #include "model/document/seamgaps.h"
 #include "model/nurbs/trim.h"
 #include "model/nurbs/visible_bounds.h"
-#include "render/trim_arcs.h"
+#include "model/nurbs/trim_arcs.h"
 
 #include <algorithm>
 #include <array>

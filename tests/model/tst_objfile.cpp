@@ -91,7 +91,8 @@ void TestObjFile::roundTripEveryField() {
     s.surfaces[2].geometry.weights[5] = 0.3; // rational
     s.surfaces[0].trims[1].curves[2].weights[1] = 1.0 / 3.0;
     s.camera = {{1e-300, -5, 3}, {0.1, 0.2, 0.3}, {0, 0, 1}, 42.5, true};
-    s.display = {QStringLiteral("uniform"), 0.3, QStringLiteral("light"), {1.0, 0.0, -0.5}, 2.5};
+    s.display = {QStringLiteral("uniform"), 0.3, QStringLiteral("light"), {}, true,
+                 {1.0, 0.0, -0.5},          2.5};
     s.surfaces[0].solid = s.surfaces[2].solid = 6; // a face of a closed solid (.knot 1.2)
     s.surfaces[2].outsideAlongNormal = false;
     Light point;

@@ -6,7 +6,7 @@
 #include "model/nurbs/visible_bounds.h"
 #include "render/accumulate_target.h"
 #include "render/renderer_test_hook.h"
-#include "render/trim_arcs.h"
+#include "model/nurbs/trim_arcs.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 

@@ -5,7 +5,7 @@
 #include "model/nurbs/trim.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/renderer_test_hook.h"
-#include "render/trim_arcs.h"
+#include "model/nurbs/trim_arcs.h"
 #include "render/trim_grid_store.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
@@ -19,7 +19,7 @@ namespace {
 
 constexpr int kSide = 1024;
 
-/// Per-pixel check of a trimmed render against trimArcsContain (render/trim_arcs.h, which
+/// Per-pixel check of a trimmed render against trimArcsContain (model/nurbs/trim_arcs.h, which
 /// tst_trim_exact holds to model/nurbs/trim.h). A disagreement counts as "near" when the CPU
 /// classification changes within half a pixel of the pixel's centre (its (u, v) moved by half
 /// a pixel along x, y and the diagonals, through the AOV's (u, v) derivatives), else "far".

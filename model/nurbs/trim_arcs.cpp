@@ -1,5 +1,5 @@
 // Monotone rational Bezier arcs from trim curves, and exact even-odd classification against them.
-#include "render/trim_arcs.h"
+#include "model/nurbs/trim_arcs.h"
 
 #include "model/nurbs/trim.h"
 
