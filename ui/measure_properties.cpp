@@ -3,6 +3,7 @@
 
 #include "model/document/document.h"
 #include "model/document/selection.h"
+#include "model/document/units.h"
 
 #include <QFormLayout>
 #include <QGroupBox>
@@ -27,12 +28,12 @@ QString point(const glm::dvec3& p) {
     return QStringLiteral("(%1, %2, %3)").arg(num(p.x), num(p.y), num(p.z));
 }
 
-QString boxText(bool has, const glm::dvec3& lo, const glm::dvec3& hi) {
+QString boxText(bool has, const glm::dvec3& lo, const glm::dvec3& hi, const QString& unit) {
     if (!has)
         return QObject::tr("none");
     const glm::dvec3 d = hi - lo;
-    return QObject::tr("min %1\nmax %2\nsize %3 × %4 × %5")
-        .arg(point(lo), point(hi), num(d.x), num(d.y), num(d.z));
+    return QObject::tr("min %1 %6\nmax %2 %6\nsize %3 × %4 × %5 %6")
+        .arg(point(lo), point(hi), num(d.x), num(d.y), num(d.z), unit);
 }
 
 std::vector<SurfaceId> surfaceIds(const Scene& scene) {
@@ -161,23 +162,25 @@ void MeasuredProperties::show(std::uint64_t generation, SurfaceId face,
                               const std::optional<FaceProperties>& f, const ModelProperties& m) {
     if (generation != m_generation)
         return; // a newer state is on its way
+    const QString unit = lengthUnitKey(m_doc->scene().unit);
     if (f) {
         const Surface* s = m_doc->surface(face);
-        m_face->setText(tr("%1\ntype %2, degree %3 × %4\narea %5\n%6")
+        m_face->setText(tr("%1\ntype %2, degree %3 × %4\narea %5 %6²\n%7")
                             .arg(s ? s->name : QString(), surfaceTypeName(f->type))
                             .arg(f->degreeU)
                             .arg(f->degreeV)
-                            .arg(num(f->area), boxText(f->hasBounds, f->lo, f->hi)));
+                            .arg(num(f->area), unit, boxText(f->hasBounds, f->lo, f->hi, unit)));
     } else {
         m_face->setText(tr("no surface selected"));
     }
-    m_model->setText(
-        tr("%1 surface(s)\narea %2\nvolume %3\n%4")
-            .arg(m_doc->scene().surfaces.size())
-            .arg(num(m.area),
-                 m.volume ? tr("%1 (%2 closed shell(s))").arg(num(*m.volume)).arg(m.closedShells)
-                          : tr("none (no closed solid)"),
-                 boxText(m.hasBounds, m.lo, m.hi)));
+    m_model->setText(tr("%1 surface(s)\narea %2 %5²\nvolume %3\n%4")
+                         .arg(m_doc->scene().surfaces.size())
+                         .arg(num(m.area),
+                              m.volume ? tr("%1 %2³ (%3 closed shell(s))")
+                                             .arg(num(*m.volume), unit)
+                                             .arg(m.closedShells)
+                                       : tr("none (no closed solid)"),
+                              boxText(m.hasBounds, m.lo, m.hi, unit), unit));
     m_shown = generation;
     Q_EMIT updated();
 }

@@ -1,6 +1,8 @@
 // MeasureTool: measurements from probed points, painted as dimensions over the 3D view.
 #include "ui/measure_tool.h"
 
+#include "model/document/document.h"
+#include "model/document/units.h"
 #include "ui/viewport.h"
 
 #include <QPainter>
@@ -90,10 +92,15 @@ void MeasureTool::setProbeMarker(std::optional<glm::dvec3> point) {
     update();
 }
 
+QString MeasureTool::unitKey() const {
+    const Document* doc = m_view->document();
+    return doc ? lengthUnitKey(doc->scene().unit) : QString();
+}
+
 QStringList MeasureTool::labels() const {
     QStringList out;
     for (const Measurement& m : m_done)
-        out << measurementText(m);
+        out << measurementText(m, 8, unitKey());
     return out;
 }
 
@@ -122,7 +129,7 @@ void MeasureTool::paintEvent(QPaintEvent*) {
         const std::optional<QPointF> a = view.project(m.a.point);
         if (!a)
             continue;
-        const QString text = measurementText(m, 6);
+        const QString text = measurementText(m, 6, unitKey());
         if (m.kind == Measurement::Kind::Distance) {
             const std::optional<QPointF> b = view.project(m.b.point);
             if (!b)

@@ -39,6 +39,8 @@ public:
     void setProbeMarker(std::optional<glm::dvec3> point);
 
     /// The label of each dimension as drawn, in order (for the status bar and tests).
+    /// The document's length unit ("mm"), shown after every length.
+    QString unitKey() const;
     QStringList labels() const;
 
 protected:

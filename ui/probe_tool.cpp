@@ -4,6 +4,7 @@
 
 #include "model/analysis/mass_properties.h"
 #include "model/document/document.h"
+#include "model/document/units.h"
 #include "ui/viewport.h"
 
 #include <QAction>
@@ -177,7 +178,7 @@ std::optional<ProbePoint> ProbeTool::probeAt(QPointF position) {
         Q_EMIT probed();
         return std::nullopt;
     }
-    m_text->setText(probeText(*m_probe));
+    m_text->setText(probeText(*m_probe, lengthUnitKey(m_doc->scene().unit)));
     m_refineMs = (clock.nsecsElapsed() - picked) * 1e-6;
     m_panel->adjustSize();
     // A fixed place in the top left corner (the colour legend takes the top right): a panel that
@@ -206,7 +207,7 @@ bool ProbeTool::measureAt(QPointF position) {
                surfaceType(*sb) == SurfaceType::Plane;
     };
     if (const std::optional<Measurement> m = m_measure->addPoint(*p, planes)) {
-        Q_EMIT message(measurementText(*m));
+        Q_EMIT message(measurementText(*m, 8, lengthUnitKey(m_doc->scene().unit)));
         Q_EMIT measured(*m);
     } else {
         Q_EMIT message(tr("First point on %1; click the second").arg(p->name));

@@ -93,18 +93,30 @@ std::optional<ProbePoint> probeOnRay(const Surface& surface, glm::dvec2 uvGuess,
     return p;
 }
 
-QString probeText(const ProbePoint& p) {
+namespace {
+
+/// " mm", or nothing without a unit.
+QString after(const QString& unit, const char* power = "") {
+    return unit.isEmpty() ? QString() : QStringLiteral(" %1%2").arg(unit, QString::fromUtf8(power));
+}
+
+} // namespace
+
+QString probeText(const ProbePoint& p, const QString& unit) {
     constexpr int d = 10;
+    const QString length = after(unit);
+    const QString perLength = unit.isEmpty() ? QString() : QStringLiteral(" 1/%1").arg(unit);
+    const QString perArea = unit.isEmpty() ? QString() : QStringLiteral(" 1/%1²").arg(unit);
     QStringList lines;
     lines << QStringLiteral("surface: %1 (id %2)").arg(p.name).arg(p.surface.value)
           << QStringLiteral("u, v: %1, %2").arg(num(p.uv.x, 12), num(p.uv.y, 12))
-          << QStringLiteral("x, y, z: %1").arg(vecText(p.point, d))
+          << QStringLiteral("x, y, z: %1%2").arg(vecText(p.point, d), length)
           << QStringLiteral("normal: %1").arg(vecText(p.normal, d))
-          << QStringLiteral("K: %1").arg(num(p.gaussian, d))
-          << QStringLiteral("H: %1").arg(num(p.mean, d))
-          << QStringLiteral("k1, k2: %1, %2").arg(num(p.k1, d), num(p.k2, d))
-          << QStringLiteral("radii: %1, %2")
-                 .arg(num(curvatureRadius(p.k1), d), num(curvatureRadius(p.k2), d));
+          << QStringLiteral("K: %1%2").arg(num(p.gaussian, d), perArea)
+          << QStringLiteral("H: %1%2").arg(num(p.mean, d), perLength)
+          << QStringLiteral("k1, k2: %1, %2%3").arg(num(p.k1, d), num(p.k2, d), perLength)
+          << QStringLiteral("radii: %1, %2%3")
+                 .arg(num(curvatureRadius(p.k1), d), num(curvatureRadius(p.k2), d), length);
     return lines.join(QLatin1Char('\n'));
 }
 
@@ -122,22 +134,23 @@ double measurementValue(const Measurement& m) {
     return 0.0;
 }
 
-QString measurementText(const Measurement& m, int digits) {
+QString measurementText(const Measurement& m, int digits, const QString& unit) {
     const double value = measurementValue(m);
+    const QString u = after(unit);
     switch (m.kind) {
     case Measurement::Kind::Distance: {
         const glm::dvec3 d = m.b.point - m.a.point;
-        return QStringLiteral("distance %1 (dx %2, dy %3, dz %4)")
-            .arg(num(value, digits), num(d.x, digits), num(d.y, digits), num(d.z, digits));
+        return QStringLiteral("distance %1%5 (dx %2%5, dy %3%5, dz %4%5)")
+            .arg(num(value, digits), num(d.x, digits), num(d.y, digits), num(d.z, digits), u);
     }
     case Measurement::Kind::Angle:
         return m.betweenPlanes
                    ? QStringLiteral("angle %1° between plane faces").arg(num(value, digits))
                    : QStringLiteral("angle %1° between normals").arg(num(value, digits));
     case Measurement::Kind::Radius:
-        return QStringLiteral("radius %1 (principal radii %2, %3)")
+        return QStringLiteral("radius %1%4 (principal radii %2, %3%4)")
             .arg(num(value, digits), num(curvatureRadius(m.a.k1), digits),
-                 num(curvatureRadius(m.a.k2), digits));
+                 num(curvatureRadius(m.a.k2), digits), u);
     }
     return QString();
 }

@@ -42,7 +42,8 @@ std::optional<ProbePoint> probeOnRay(const Surface& surface, glm::dvec2 uvGuess,
 
 /// The values as lines of "name: value" text, for the probe panel and the clipboard: surface,
 /// (u, v), x y z, normal, K, H, k1, k2 and the two radii (“∞” for a straight direction).
-QString probeText(const ProbePoint& p);
+/// `unit` (a length unit's key, "mm") follows every length, and 1/unit every curvature.
+QString probeText(const ProbePoint& p, const QString& unit = QString());
 
 /// A measurement between probed points, shown as a dimension in the view.
 struct Measurement {
@@ -61,7 +62,8 @@ double measurementValue(const Measurement& m);
 
 /// One line: "distance 12.5 (dx 3, dy 4, dz 12)", "angle 90° between normals" (or "between
 /// plane faces"),
-/// "radius 5 (principal radii 5, ∞)"; numbers to `digits` significant digits.
-QString measurementText(const Measurement& m, int digits = 8);
+/// "radius 5 (principal radii 5, ∞)"; numbers to `digits` significant digits, each length
+/// followed by `unit` when one is given ("distance 12.5 mm (dx 3 mm, …)").
+QString measurementText(const Measurement& m, int digits = 8, const QString& unit = QString());
 
 } // namespace kw

@@ -157,6 +157,24 @@ void TestProbe::distanceAndAngle() {
     QVERIFY2(std::abs(measurementValue(angle) - expected) < 1e-9,
              qPrintable(measurementText(angle)));
     QVERIFY(measurementText(angle).endsWith(QStringLiteral("° between normals")));
+
+    // With the document's unit, every length carries it; angles do not.
+    const QString inInches = measurementText(dist, 8, QStringLiteral("in"));
+    QVERIFY2(inInches.startsWith(QStringLiteral("distance %1 in (dx %2 in,")
+                                     .arg(glm::length(delta), 0, 'g', 8)
+                                     .arg(delta.x, 0, 'g', 8)),
+             qPrintable(inInches));
+    QVERIFY2(inInches.endsWith(QStringLiteral(" in)")), qPrintable(inInches));
+    QVERIFY(!measurementText(angle, 8, QStringLiteral("in")).contains(QStringLiteral(" in")));
+    const QString probe = probeText(*a, QStringLiteral("mm"));
+    const QStringList lines = probe.split(QLatin1Char('\n'));
+    QVERIFY2(lines.filter(QStringLiteral("x, y, z: ")).value(0).endsWith(QStringLiteral(" mm")),
+             qPrintable(probe));
+    QVERIFY2(lines.filter(QStringLiteral("K: ")).value(0).endsWith(QStringLiteral(" 1/mm²")),
+             qPrintable(probe));
+    QVERIFY2(lines.filter(QStringLiteral("radii: ")).value(0).endsWith(QStringLiteral(" mm")),
+             qPrintable(probe));
+    QVERIFY(!probeText(*a).contains(QStringLiteral("mm")));
 }
 
 // A ray that misses the surface (past its silhouette) ends at the nearest point it found, not

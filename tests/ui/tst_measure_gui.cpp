@@ -10,6 +10,7 @@
 
 #include <QClipboard>
 #include <QFrame>
+#include <QRegularExpression>
 #include <QSignalSpy>
 #include <cmath>
 #include <numbers>
@@ -76,6 +77,10 @@ void TestMeasureGui::probe() {
         QVERIFY(tool()->panel()->isVisible());
         QVERIFY(tool()->panelText().contains(QStringLiteral("K: 1")));
         QVERIFY(tool()->panelText().contains(QStringLiteral("surface: Unit sphere")));
+        // The document's unit (mm unless the file said otherwise) follows every length.
+        QVERIFY2(tool()->panelText().contains(
+                     QRegularExpression(QStringLiteral("x, y, z: [^\n]* mm\n"))),
+                 qPrintable(tool()->panelText()));
         qInfo("probe update %.3f ms (pick and panel), %.4f ms after the pick",
               tool()->lastUpdateMs(), tool()->lastRefineMs());
         QVERIFY2(tool()->lastRefineMs() < 1.0, qPrintable(QString::number(tool()->lastRefineMs())));
@@ -276,6 +281,7 @@ void TestMeasureGui::propertiesPanel() {
     QTRY_VERIFY(!props->pending());
     QVERIFY2(props->faceText().contains(QStringLiteral("type sphere, degree 2 × 2")),
              qPrintable(props->faceText()));
+    QVERIFY2(props->faceText().contains(QStringLiteral(" mm²")), qPrintable(props->faceText()));
     QVERIFY2(props->faceText().contains(QStringLiteral("area 12.56637061")),
              qPrintable(props->faceText()));
     QVERIFY(props->faceText().contains(QStringLiteral("size 2 × 2 × 2")));
