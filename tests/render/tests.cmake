@@ -10,7 +10,7 @@ kw_add_test(tst_render_directions NEEDS gl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst
             ${KW_TEST_SUPPORT_DIR}/render_test_util.h LIBS knotwork_render)
 
 # Issue 10 (the true surface at the edges): guaranteed base-polygon bounds (kernel).
-kw_add_test(tst_surface_bound SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_surface_bound.cpp LIBS knotwork_model)
+kw_add_test(tst_surface_bound SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_surface_bound.cpp LIBS knotwork_render)
 # The CPU reference frame against analytic ray casting, and the edge metrics (no GL).
 kw_add_test(tst_reference_render SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_reference_render.cpp LIBS knotwork_render)
 # knotwork render --reference / --edge-report end to end (label gl: the GPU frame is compared).
