@@ -165,22 +165,24 @@ void MeasuredProperties::show(std::uint64_t generation, SurfaceId face,
     const QString unit = lengthUnitKey(m_doc->scene().unit);
     if (f) {
         const Surface* s = m_doc->surface(face);
-        m_face->setText(tr("%1\ntype %2, degree %3 × %4\narea %5 %6²\n%7")
-                            .arg(s ? s->name : QString(), surfaceTypeName(f->type))
-                            .arg(f->degreeU)
-                            .arg(f->degreeV)
-                            .arg(num(f->area), unit, boxText(f->hasBounds, f->lo, f->hi, unit)));
+        // The unit's powers are concatenated: arg() would read "%6²" as a two-digit placeholder.
+        m_face->setText(
+            tr("%1\ntype %2, degree %3 × %4\narea %5 %6\n%7")
+                .arg(s ? s->name : QString(), surfaceTypeName(f->type))
+                .arg(f->degreeU)
+                .arg(f->degreeV)
+                .arg(num(f->area), unit + u'²', boxText(f->hasBounds, f->lo, f->hi, unit)));
     } else {
         m_face->setText(tr("no surface selected"));
     }
-    m_model->setText(tr("%1 surface(s)\narea %2 %5²\nvolume %3\n%4")
+    m_model->setText(tr("%1 surface(s)\narea %2 %5\nvolume %3\n%4")
                          .arg(m_doc->scene().surfaces.size())
                          .arg(num(m.area),
-                              m.volume ? tr("%1 %2³ (%3 closed shell(s))")
-                                             .arg(num(*m.volume), unit)
+                              m.volume ? tr("%1 %2 (%3 closed shell(s))")
+                                             .arg(num(*m.volume), unit + u'³')
                                              .arg(m.closedShells)
                                        : tr("none (no closed solid)"),
-                              boxText(m.hasBounds, m.lo, m.hi, unit), unit));
+                              boxText(m.hasBounds, m.lo, m.hi, unit), unit + u'²'));
     m_shown = generation;
     Q_EMIT updated();
 }

@@ -106,7 +106,8 @@ QString probeText(const ProbePoint& p, const QString& unit) {
     constexpr int d = 10;
     const QString length = after(unit);
     const QString perLength = unit.isEmpty() ? QString() : QStringLiteral(" 1/%1").arg(unit);
-    const QString perArea = unit.isEmpty() ? QString() : QStringLiteral(" 1/%1²").arg(unit);
+    // Concatenated: arg() would read "%1²" as a two-digit placeholder.
+    const QString perArea = unit.isEmpty() ? QString() : QStringLiteral(" 1/") + unit + u'²';
     QStringList lines;
     lines << QStringLiteral("surface: %1 (id %2)").arg(p.name).arg(p.surface.value)
           << QStringLiteral("u, v: %1, %2").arg(num(p.uv.x, 12), num(p.uv.y, 12))

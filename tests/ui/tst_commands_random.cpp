@@ -284,6 +284,9 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
         const int c = pick(0, int(l.curves.size()) - 1);
         const int i = pick(0, int(l.curves[size_t(c)].points.size()) - 1);
         const glm::dvec2 p = l.curves[size_t(c)].points[size_t(i)];
+        // A curve's end point is shared with the next curve (or its own start): moving it alone
+        // opens the loop, which the document's rule refuses.
+        expectReject = i == 0 || i == int(l.curves[size_t(c)].points.size()) - 1;
         return MoveTrimPoints::create(&m_doc, {{id, l.id, c, i}}, {p},
                                       {p + glm::dvec2(uniform(-0.05, 0.05), uniform(-0.05, 0.05))},
                                       coin() ? MoveKind::Nudge : MoveKind::Drag);

@@ -9,6 +9,7 @@
 #include "ui/probe_tool.h"
 
 #include <QClipboard>
+#include <QCursor>
 #include <QFrame>
 #include <QRegularExpression>
 #include <QSignalSpy>
@@ -55,6 +56,13 @@ private:
     }
 };
 
+// A hover at `at`: the X pointer is put there too, so that the display's own pointer (left
+// wherever an earlier window had it) sends no Leave that ends the hover.
+static void hover(QWidget* widget, QPoint at) {
+    QCursor::setPos(widget->mapToGlobal(at));
+    QTest::mouseMove(widget, at);
+}
+
 // Probe over the sphere: K = k1 = k2 = 1 within 1e-9, the point on the pixel's ray and on the
 // sphere, the panel shown with its text, Copy puts it on the clipboard; over background nothing.
 void TestMeasureGui::probe() {
@@ -65,7 +73,7 @@ void TestMeasureGui::probe() {
     QVERIFY(m_window->viewport()->hasMouseTracking());
     for (QPointF offset : {QPointF(0, 0), QPointF(0.4, -0.3), QPointF(-0.6, 0.5)}) {
         const QPoint at = onSphere(offset);
-        QTest::mouseMove(m_window->viewport(), at);
+        hover(m_window->viewport(), at);
         QTRY_VERIFY(tool()->lastProbe().has_value());
         const ProbePoint p = *tool()->lastProbe();
         const glm::dvec3 exact = exactHit(at);
@@ -88,7 +96,7 @@ void TestMeasureGui::probe() {
     // The panel stays where it is, and keeps its values while the cursor goes to its Copy.
     const QPoint panelAt = tool()->panel()->pos();
     const QString shown = tool()->panelText();
-    QTest::mouseMove(tool()->panel(), tool()->panel()->rect().center());
+    hover(tool()->panel(), tool()->panel()->rect().center());
     QTest::qWait(20);
     QCOMPARE(tool()->panel()->pos(), panelAt);
     QCOMPARE(tool()->panelText(), shown);
@@ -102,7 +110,7 @@ void TestMeasureGui::probe() {
     QTest::keyClick(m_window->viewport(), Qt::Key_C, Qt::ControlModifier);
     QTRY_COMPARE(QApplication::clipboard()->text(), tool()->panelText());
     // Background: a corner of the view.
-    QTest::mouseMove(m_window->viewport(), QPoint(3, 3));
+    hover(m_window->viewport(), QPoint(3, 3));
     QTRY_VERIFY(!tool()->lastProbe().has_value());
     QVERIFY(!tool()->panel()->isVisible());
     QVERIFY(tool()->panelText().isEmpty());
