@@ -9,7 +9,6 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <thread>
 
 namespace kw {
 
@@ -415,20 +414,7 @@ ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances
     // Edges are independent, ~1 ms each: thousands are shared out over the cores, each thread
     // writing its own range.
     constexpr size_t kEdgesPerThread = 32;
-    const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
-                                            edges.size() / kEdgesPerThread);
-    if (threads <= 1) {
-        measure(0, edges.size());
-        return report;
-    }
-    std::vector<std::thread> pool;
-    const size_t chunk = (edges.size() + threads - 1) / threads;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back(measure, std::min(t * chunk, edges.size()),
-                          std::min((t + 1) * chunk, edges.size()));
-    measure(0, std::min(chunk, edges.size()));
-    for (std::thread& t : pool)
-        t.join();
+    forEachRange(edges.size(), kEdgesPerThread, measure);
     return report;
 }
 

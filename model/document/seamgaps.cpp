@@ -4,6 +4,7 @@
 #include <QHash>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -167,6 +168,23 @@ SeamGap seamGap(const SharedEdge& edge, const QHash<SurfaceId, const Surface*>& 
 
 } // namespace
 
+void forEachRange(size_t count, size_t perThread,
+                  const std::function<void(size_t from, size_t to)>& run) {
+    const size_t threads =
+        std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), count / perThread);
+    if (threads <= 1) {
+        run(0, count);
+        return;
+    }
+    std::vector<std::thread> pool;
+    const size_t chunk = (count + threads - 1) / threads;
+    for (size_t t = 1; t < threads; ++t)
+        pool.emplace_back(run, std::min(t * chunk, count), std::min((t + 1) * chunk, count));
+    run(0, std::min(chunk, count));
+    for (std::thread& t : pool)
+        t.join();
+}
+
 std::vector<SeamGap> seamGaps(const Scene& scene, int samples) {
     samples = std::max(samples, kMinSeamSamples);
     QHash<SurfaceId, const Surface*> surfaces;
@@ -180,20 +198,7 @@ std::vector<SeamGap> seamGaps(const Scene& scene, int samples) {
     };
     // Edges are independent and each costs ~0.3 ms: a model of thousands of edges is split
     // over the cores, each thread writing its own range of `out`.
-    const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
-                                            edges.size() / kEdgesPerThread);
-    if (threads <= 1) {
-        measure(0, edges.size());
-        return out;
-    }
-    std::vector<std::thread> pool;
-    const size_t chunk = (edges.size() + threads - 1) / threads;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back(measure, std::min(t * chunk, edges.size()),
-                          std::min((t + 1) * chunk, edges.size()));
-    measure(0, std::min(chunk, edges.size()));
-    for (std::thread& t : pool)
-        t.join();
+    forEachRange(edges.size(), kEdgesPerThread, measure);
     return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include "model/document/scene.h"
 
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -61,6 +62,12 @@ struct SeamFoot {
 /// one and never above the nearest sample's; the foot is the nearest point visited. About two
 /// or three surface evaluations where the side passes close to p.
 SeamFoot nearestOnSeamSide(const SeamSide& side, const glm::dvec3& p);
+
+/// Runs `run(from, to)` over [0, count) in contiguous ranges, one per core, when there are at
+/// least `perThread` items per range; else once on the calling thread. Each range is written
+/// by one thread only, so results stored by index need no lock.
+void forEachRange(size_t count, size_t perThread,
+                  const std::function<void(size_t from, size_t to)>& run);
 
 /// For every shared edge of scene.topology, in its order: a side's edge is the curve
 /// S(c(t)) of its trim curve c on its surface S, in double precision (no tessellation). Each
