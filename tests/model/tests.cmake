@@ -65,3 +65,6 @@ kw_use_cad_reader(tst_topology_import)
 # CPU classification (gl), and the CAD importer's faces against OCCT's trims (gl).
 kw_add_test(tst_trim_messy SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_trim_messy.cpp
             ${KW_TEST_SUPPORT_DIR}/trim_test_util.h LIBS knotwork_model)
+
+# kw::Error and kw::Expected, the one error type every module returns.
+kw_add_test(tst_error SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_error.cpp LIBS knotwork_model)
