@@ -5,6 +5,7 @@
 #include "bench/bench_report.h"
 #include "bench/edit_loop.h"
 #include "bench/scale_report.h"
+#include "bench/zoom_loop.h"
 #include "model/io/install_layout.h"
 #include "model/io/savefile.h"
 
@@ -244,11 +245,30 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                        QStringLiteral("--edit-loop: drag steps, 1..10000 "
                                                       "(default 50)."),
                                        QStringLiteral("N"), QStringLiteral("50"));
-    const QCommandLineOption editSize(QStringLiteral("edit-size"),
-                                      QStringLiteral("--edit-loop: square frame side, 1..4096 "
-                                                     "(default 1024)."),
-                                      QStringLiteral("N"), QStringLiteral("1024"));
-    parser.addOptions({editLoop, peerDeflections, editSteps, editSize});
+    const QCommandLineOption editSize(
+        QStringLiteral("edit-size"),
+        QStringLiteral("--edit-loop, --zoom-loop: square frame side, 1..4096 "
+                       "(default 1024)."),
+        QStringLiteral("N"), QStringLiteral("1024"));
+    const QCommandLineOption zoomLoop(
+        QStringLiteral("zoom-loop"),
+        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): the close-up. For "
+                       "each FILE, from the fitted view to --zoom-levels times closer on a "
+                       "contour: the time to the first correct frame, Knotwork's against "
+                       "OpenCASCADE's mesh peer, which re-meshes the faces in view at the "
+                       "deflections that give equal quality at that zoom (searched), re-sends "
+                       "and draws them; and the memory each holds for the view. JSON rows under "
+                       "\"zoomLoop\" (docs/PERFORMANCE.md ## Close-up)."));
+    const QCommandLineOption zoomLevels(QStringLiteral("zoom-levels"),
+                                        QStringLiteral("--zoom-loop: zoom factors, each in "
+                                                       "2..4096 (default 8,64)."),
+                                        QStringLiteral("LIST"), QStringLiteral("8,64"));
+    const QCommandLineOption zoomRepeats(QStringLiteral("zoom-repeats"),
+                                         QStringLiteral("--zoom-loop: timed transitions per "
+                                                        "method and zoom, 1..1000 (default 5)."),
+                                         QStringLiteral("N"), QStringLiteral("5"));
+    parser.addOptions(
+        {editLoop, peerDeflections, editSteps, editSize, zoomLoop, zoomLevels, zoomRepeats});
     parser.addPositionalArgument(QStringLiteral("FILES"),
                                  QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
                                                 "(read as render reads them)."),
@@ -406,12 +426,28 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     editConfig.files = files1;
     editConfig.lights = config.lights;
     editConfig.base = config.base;
-    if (edit && !parser.isSet(tables)) { // the edit loop alone
+    bench::ZoomLoopConfig zoomConfig;
+    const bool zoom = parser.isSet(zoomLoop);
+    std::vector<int> levels;
+    if (!parseList(parser.value(zoomLevels), 2, 4096, levels) ||
+        !parseIntIn(parser.value(zoomRepeats), 1, 1000, zoomConfig.repeats)) {
+        printError(QStringLiteral("%1: bad --zoom-levels (each 2..4096) or --zoom-repeats "
+                                  "(1..1000)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
+    zoomConfig.zooms.assign(levels.begin(), levels.end());
+    zoomConfig.files = files1;
+    zoomConfig.side = editConfig.side;
+    zoomConfig.lights = config.lights;
+    zoomConfig.base = config.base;
+    if ((edit || zoom) && !parser.isSet(tables)) { // the loops alone
         config.table1Files.clear();
         config.table2Files.clear();
     }
     if (parser.isSet(smoke)) {
         editConfig.steps = std::min(editConfig.steps, 2);
+        zoomConfig.repeats = 1;
         config.frames = 2;
         config.warmup = 1;
         scaleConfig.frames = 2;
@@ -442,6 +478,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: edit loop: %2").arg(cmd, error));
         return kExitBadInput;
     }
+    bench::ZoomLoopReport zoomReport;
+    if (zoom && !bench::runZoomLoop(zoomConfig, zoomReport, progress, &error)) {
+        printError(QStringLiteral("%1: zoom loop: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
     QStringList argv = args.mid(1);
     const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
     QString plotDir = parser.value(plots);
@@ -463,12 +504,16 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         md += bench::scaleMarkdown(scaleReport);
     if (edit)
         md += bench::editLoopMarkdown(editReport, command);
+    if (zoom)
+        md += bench::zoomLoopMarkdown(zoomReport, command);
     printOut(md);
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
     QJsonObject root = benchJson(report, scale, scaleReport, command);
     if (edit)
         root.insert(QStringLiteral("editLoop"), bench::editLoopJson(editReport));
+    if (zoom)
+        root.insert(QStringLiteral("zoomLoop"), bench::zoomLoopJson(zoomReport));
     if (parser.isSet(json) && !writeFile(parser.value(json), QJsonDocument(root).toJson()))
         return kExitBadInput;
     return kExitOk;
