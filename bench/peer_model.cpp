@@ -118,7 +118,7 @@ bool PeerModel::measureKnotwork(int sidePx, const RenderOptions& options, QStrin
            renderer.render(doc, camera, options, error) && compare(knotwork, error);
 }
 
-bool PeerModel::compare(Quality& q, QString* error) {
+bool PeerModel::compare(ScreenQuality& q, QString* error) {
     const AovBuffer aov = renderer.aov();
     glm::dvec3 lo(0.0), hi(0.0);
     sceneBounds(doc.scene(), lo, hi);
@@ -152,7 +152,7 @@ bool PeerModel::staticMesh(double linear, double angular, TaggedMeshSet& out, QS
 
 bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, QString* error) {
     struct Tried {
-        Quality q;
+        ScreenQuality q;
         long long triangles = 0;
     };
     std::map<std::pair<int, int>, Tried> tried;

@@ -32,7 +32,7 @@ TriangleMesh toTriangleMesh(const TaggedMeshSet& set, SurfaceId only, bool excep
 
 /// How far a frame is from the CPU reference: normal error p99 (degrees) and the silhouette's
 /// largest distance (pixels).
-struct Quality {
+struct ScreenQuality {
     double normalP99 = 0.0, silhouetteMax = 0.0;
 };
 
@@ -47,7 +47,7 @@ struct PeerChoice {
     int linearIndex = 0, angularIndex = 0;
     double linear = 0.0, angular = 0.0; ///< model units, degrees
     bool matched = false;               ///< equal quality was reached
-    Quality quality;
+    ScreenQuality quality;
     long long triangles = 0;
 };
 
@@ -72,8 +72,8 @@ public:
     /// `options`, and measures Knotwork's quality, the bar the peer must reach.
     bool measureKnotwork(int side, const RenderOptions& options, QString* error);
     /// The last frame drawn (any method) against the reference.
-    bool compare(Quality& q, QString* error);
-    bool good(const Quality& q) const {
+    bool compare(ScreenQuality& q, QString* error);
+    bool good(const ScreenQuality& q) const {
         return q.normalP99 <= std::max(knotwork.normalP99, limits.normalP99Floor) &&
                q.silhouetteMax <= std::max(knotwork.silhouetteMax, 1.0);
     }
@@ -102,7 +102,7 @@ public:
     double side = 1.0;       ///< the model's largest side (model units)
     double tolerance = 1e-7; ///< the faces' tolerance (model units)
     AovBuffer reference;
-    Quality knotwork;
+    ScreenQuality knotwork;
 };
 
 } // namespace kw::bench

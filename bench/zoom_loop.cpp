@@ -209,7 +209,7 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
         {
             RenderOptions o;
             o.lightCount = config.lights;
-            Quality q;
+            ScreenQuality q;
             if (renderer.setMesh(0, toTriangleMesh(fittedSet, SurfaceId{}, true)) < 0 ||
                 !renderer.renderMesh(peer.doc, 0, near, o, error) || !peer.compare(q, error))
                 return false;
