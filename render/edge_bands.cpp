@@ -2,6 +2,7 @@
 #include "render/edge_bands.h"
 
 #include <QHash>
+#include <algorithm>
 
 namespace kw {
 
@@ -62,6 +63,60 @@ EdgeBands makeEdgeBands(const Scene& scene, const ContinuityReport& report, std:
     for (const ContinuitySide& side : report.topology.freeSides)
         addSide(surfaces, side, freeEdgeColor(), segments, bands.vertices);
     return bands;
+}
+
+std::shared_ptr<const EdgeBands> EdgeBandCache::update(const Scene& scene,
+                                                       const ContinuityReport& report,
+                                                       const std::vector<SurfaceId>& faces) {
+    const bool all = faces.empty() || m_edgeLines.size() != report.edges.size() ||
+                     m_freeLines.size() != report.topology.freeSides.size();
+    const auto touched = [&](const ContinuitySide& side) {
+        return all || std::find(faces.begin(), faces.end(), side.surface) != faces.end();
+    };
+    // Every surface once when all lines are made; a drag step looks up only its edges' faces.
+    QHash<SurfaceId, const Surface*> index;
+    if (all)
+        for (const Surface& s : scene.surfaces)
+            index.insert(s.id, &s);
+    const auto surface = [&](SurfaceId id) -> const Surface* {
+        if (all)
+            return index.value(id, nullptr);
+        const auto it = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
+                                     [&](const Surface& s) { return s.id == id; });
+        return it == scene.surfaces.end() ? nullptr : &*it;
+    };
+    const auto line = [&](const ContinuitySide& side, const glm::vec4& color) {
+        const Surface* s = surface(side.surface);
+        return s && !s->hidden ? edgeBandLine(*s, side, color) : std::vector<EdgeBandVertex>{};
+    };
+    m_edgeLines.resize(report.edges.size());
+    m_freeLines.resize(report.topology.freeSides.size());
+    for (size_t k = 0; k < report.edges.size(); ++k) {
+        const EdgeContinuity& e = report.edges[k];
+        // A class may change with the other side's edit: every edge of the faces is re-made.
+        if (touched(e.edge.sides[0]) || touched(e.edge.sides[1]))
+            m_edgeLines[k] = line(e.edge.covers[0] ? e.edge.sides[0] : e.edge.sides[1],
+                                  continuityColor(e.continuity));
+    }
+    for (size_t k = 0; k < report.topology.freeSides.size(); ++k)
+        if (touched(report.topology.freeSides[k]))
+            m_freeLines[k] = line(report.topology.freeSides[k], freeEdgeColor());
+    auto bands = std::make_shared<EdgeBands>();
+    bands->revision = ++m_revision;
+    size_t count = 0;
+    for (const auto* lines : {&m_edgeLines, &m_freeLines})
+        for (const std::vector<EdgeBandVertex>& l : *lines)
+            count += l.size();
+    bands->vertices.reserve(count);
+    for (const auto* lines : {&m_edgeLines, &m_freeLines})
+        for (const std::vector<EdgeBandVertex>& l : *lines)
+            bands->vertices.insert(bands->vertices.end(), l.begin(), l.end());
+    return bands;
+}
+
+void EdgeBandCache::clear() {
+    m_edgeLines.clear();
+    m_freeLines.clear();
 }
 
 } // namespace kw

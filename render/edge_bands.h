@@ -36,6 +36,26 @@ glm::vec4 freeEdgeColor();
 std::vector<EdgeBandVertex> edgeBandLine(const Surface& surface, const ContinuitySide& side,
                                          const glm::vec4& color, int segments = 48);
 
+/// The overlay's band lines kept per edge and per free side of a report, so that an edit
+/// re-makes only the lines of the faces it changed (a drag step: the dragged face's edges)
+/// and the rest are copied. The editor's overlay and the bench's drag step both use it.
+class EdgeBandCache {
+public:
+    /// Re-makes the lines of the edges and free sides of `report` with a side on one of `faces`
+    /// (every line when `faces` is empty or the report's edges changed in number): an edge's
+    /// colour follows its class, its curve the side that covers it. Hidden surfaces (and
+    /// surfaces `scene` lacks) get no line. Returns all lines as bands with a new revision.
+    std::shared_ptr<const EdgeBands> update(const Scene& scene, const ContinuityReport& report,
+                                            const std::vector<SurfaceId>& faces = {});
+    void clear();
+    /// The lines of report.edges, in order (empty ones for hidden faces).
+    const std::vector<std::vector<EdgeBandVertex>>& edgeLines() const { return m_edgeLines; }
+
+private:
+    std::vector<std::vector<EdgeBandVertex>> m_edgeLines, m_freeLines;
+    std::uint64_t m_revision = 0;
+};
+
 /// Polylines of `segments` pieces along each edge of `report` (its first side's curve),
 /// coloured by class, and along each free side. `revision` is stored as is.
 EdgeBands makeEdgeBands(const Scene& scene, const ContinuityReport& report, std::uint64_t revision,
