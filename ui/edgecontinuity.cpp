@@ -5,8 +5,10 @@
 #include "render/render_types.h"
 #include "ui/viewport.h"
 
+#include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QHelpEvent>
+#include <QThreadPool>
 #include <QTimer>
 #include <QToolTip>
 #include <algorithm>
@@ -15,7 +17,8 @@ namespace kw {
 
 EdgeContinuityOverlay::EdgeContinuityOverlay(Document* document, Viewport* viewport,
                                              QObject* parent)
-    : QObject(parent), m_doc(document), m_viewport(viewport) {
+    : QObject(parent), m_doc(document), m_viewport(viewport),
+      m_alive(std::make_shared<EdgeContinuityOverlay*>(this)) {
     const auto whole = [this] {
         if (m_enabled)
             rebuild();
@@ -121,6 +124,7 @@ void EdgeContinuityOverlay::rebuild() {
 void EdgeContinuityOverlay::forget() {
     m_report = {};
     m_haveTopology = false;
+    ++m_generation; // a pairing under way is of a scene that has changed since
     // The edges must be paired before the first edit moves a face off its neighbours (a
     // dragged boundary would match nothing): once the event loop turns after the change, so
     // a burst of structural changes pairs once.
@@ -129,13 +133,37 @@ void EdgeContinuityOverlay::forget() {
         QTimer::singleShot(0, this, [this] {
             m_pairingScheduled = false;
             if (!m_enabled && !m_haveTopology)
-                pair();
+                pairInBackground();
         });
     }
 }
 
-void EdgeContinuityOverlay::pair() {
-    m_report = continuityWatch(m_doc->scene(), continuityTolerances(m_doc->scene()));
+void EdgeContinuityOverlay::pairInBackground() {
+    // Pairing a large model takes seconds (10,000 faces: docs/PERFORMANCE.md ## Editing), so
+    // it runs on a pool thread over a copy of the scene as it is now, before any edit, and
+    // the view stays live; until it is in, edits say nothing.
+    auto scene = std::make_shared<const Scene>(m_doc->scene());
+    const std::uint64_t generation = m_generation;
+    const std::weak_ptr<EdgeContinuityOverlay*> alive = m_alive;
+    QThreadPool::globalInstance()->start([scene, generation, alive] {
+        auto report = std::make_shared<ContinuityReport>(
+            continuityWatch(*scene, continuityTolerances(*scene)));
+        if (QCoreApplication* app = QCoreApplication::instance())
+            QMetaObject::invokeMethod(
+                app,
+                [report, generation, alive] {
+                    // On the GUI thread, as the overlay's destructor: lock() is safe there.
+                    if (const std::shared_ptr<EdgeContinuityOverlay*> self = alive.lock())
+                        (*self)->paired(std::move(*report), generation);
+                },
+                Qt::QueuedConnection);
+    });
+}
+
+void EdgeContinuityOverlay::paired(ContinuityReport&& report, std::uint64_t generation) {
+    if (generation != m_generation || m_enabled || m_haveTopology)
+        return;
+    m_report = std::move(report);
     m_haveTopology = true;
 }
 
@@ -157,7 +185,7 @@ void EdgeContinuityOverlay::faceChanged(SurfaceId id, Aspects aspects) {
     QElapsedTimer clock;
     clock.start();
     if (!m_haveTopology)
-        pair(); // an edit before the event loop turned: paired as the scene is now
+        return; // off, and the pairing of the scene's faces is not in yet
     updateContinuity(m_report, m_doc->scene(), {id});
     if (m_enabled)
         publish({id});

@@ -27,8 +27,8 @@ public:
     bool enabled() const { return m_enabled; }
     /// On: measures every edge and shows the bands and the legend; off: drops them.
     void setEnabled(bool on);
-    /// On: every edge measured. Off: the edges paired (after the last change of the scene's
-    /// faces, once the event loop turned), only those of faces changed since measured.
+    /// On: every edge measured. Off: the edges paired (in the background after the last change
+    /// of the scene's faces), only those of faces changed since measured; empty until then.
     const ContinuityReport& report() const { return m_report; }
     /// The bands last handed to the viewport (null when off).
     std::shared_ptr<const EdgeBands> bands() const { return m_bands; }
@@ -50,11 +50,14 @@ protected:
 
 private:
     void rebuild(); ///< topology and every edge
-    /// Off: forgets the topology and pairs the edges again (pair) once the event loop turns.
+    /// Off: forgets the topology and pairs the edges again once the event loop turns.
     void forget();
-    /// Off: the edges paired (continuityWatch), none measured; each change of a face then
-    /// measures its edges only.
-    void pair();
+    /// Off: the edges paired (continuityWatch, none measured) on a pool thread; each change of
+    /// a face then measures its edges only.
+    void pairInBackground();
+    /// The pairing's result, kept unless the scene's faces changed since (`generation`) or
+    /// the overlay was turned on.
+    void paired(ContinuityReport&& report, std::uint64_t generation);
     void faceChanged(SurfaceId id, Aspects aspects);
     /// The bands again from the cached lines, after re-making those of the edges and free
     /// sides of `faces` (all of them when empty).
@@ -66,6 +69,9 @@ private:
     ContinuityReport m_report;
     bool m_haveTopology = false; ///< m_report's topology is the document's
     bool m_pairingScheduled = false;
+    std::uint64_t m_generation = 0; ///< counts the changes of the scene's faces
+    /// Expires with the overlay: a pairing that ends after it is dropped.
+    std::shared_ptr<EdgeContinuityOverlay*> m_alive;
     /// Faces changed since the event loop last turned, and how many of them the status bar's
     /// check (overlay off) measures.
     int m_facesThisTurn = 0;
