@@ -373,11 +373,10 @@ QString dragStepMarkdown(const DragStepReport& report, const QString& command) {
                      .arg(report.config.side)
                      .arg(command, report.gl, report.cpu)
                      .arg(report.threads);
-    md +=
-        QStringLiteral("| model | faces | shared edges (dragged face's) | overlay on: step ms "
-                       "(CPU; edges, bands CPU ms) | overlay off: step ms (CPU; edges CPU ms) "
-                       "| on / off | turning it on ms | off: pairing on a drag's first step ms |\n"
-                       "|---|---|---|---|---|---|---|---|\n");
+    md += QStringLiteral("| model | faces | shared edges (dragged face's) | overlay on: step ms "
+                         "(CPU; edges, bands CPU ms) | overlay off: step ms (CPU; edges CPU ms) "
+                         "| on / off | turning it on ms | off: pairing (pool thread) ms |\n"
+                         "|---|---|---|---|---|---|---|---|\n");
     const auto cell = [](const DragStepTiming& t, bool bands) {
         if (!t.measured)
             return QStringLiteral("-");

@@ -44,7 +44,9 @@ struct DragStepRow {
     int faceEdges = 0;    ///< shared edges of the dragged face (re-measured per step)
     int edges = 0;        ///< shared edges of the model
     double setupMs = 0;   ///< turning the overlay on: every edge measured and its bands made
-    double pairingMs = 0; ///< overlay off: the edges paired, once, on a drag's first step
+    /// Overlay off: the edges paired (continuityWatch), which the editor does on a pool thread
+    /// after each change of the faces, never in a drag step.
+    double pairingMs = 0;
     QString opens;        ///< the status bar's text at the drag's farthest point
     DragStepTiming on, off;
 };
