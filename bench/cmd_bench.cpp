@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "bench/bench_report.h"
+#include "bench/drag_step.h"
 #include "bench/edit_loop.h"
 #include "bench/scale_report.h"
 #include "bench/zoom_loop.h"
@@ -269,6 +270,34 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                          QStringLiteral("N"), QStringLiteral("5"));
     parser.addOptions(
         {editLoop, peerDeflections, editSteps, editSize, zoomLoop, zoomLevels, zoomRepeats});
+    const QCommandLineOption dragStep(
+        QStringLiteral("drag-step"),
+        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): time one "
+                       "control-point drag step with the Edge Continuity overlay on against off, "
+                       "alternated step by step, on each FILE (default: --scale-model) as read "
+                       "and tiled to each --drag-faces: edit, the dragged face's shared edges "
+                       "re-measured (on: their bands re-made and uploaded; off: for the status "
+                       "bar's 'opens N seams'), frame to glFinish. Medians of wall and CPU ms; "
+                       "JSON rows under \"dragStep\" (docs/PERFORMANCE.md ## Editing)."));
+    const QCommandLineOption continuityOverlay(
+        QStringLiteral("continuity-overlay"),
+        QStringLiteral("--drag-step: on, off or both (default)."), QStringLiteral("STATE"),
+        QStringLiteral("both"));
+    const QCommandLineOption dragFaces(
+        QStringLiteral("drag-faces"),
+        QStringLiteral("--drag-step: models per FILE, 0 = the file as read, N = tiled as the "
+                       "scale table tiles it (its shared-edge record copied) to >= N faces, "
+                       "each 0..1000000 (default 0,10000)."),
+        QStringLiteral("LIST"), QStringLiteral("0,10000"));
+    const QCommandLineOption dragSteps(
+        QStringLiteral("drag-steps"),
+        QStringLiteral("--drag-step: timed steps per overlay state, 1..10000 (default 30)."),
+        QStringLiteral("N"), QStringLiteral("30"));
+    const QCommandLineOption dragSize(
+        QStringLiteral("drag-size"),
+        QStringLiteral("--drag-step: square frame side, 1..4096 (default 1024)."),
+        QStringLiteral("N"), QStringLiteral("1024"));
+    parser.addOptions({dragStep, continuityOverlay, dragFaces, dragSteps, dragSize});
     parser.addPositionalArgument(QStringLiteral("FILES"),
                                  QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
                                                 "(read as render reads them)."),
@@ -441,13 +470,34 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     zoomConfig.side = editConfig.side;
     zoomConfig.lights = config.lights;
     zoomConfig.base = config.base;
-    if ((edit || zoom) && !parser.isSet(tables)) { // the loops alone
+    bench::DragStepConfig dragConfig;
+    const bool drag = parser.isSet(dragStep);
+    const QString overlayState = parser.value(continuityOverlay);
+    if (!parseList(parser.value(dragFaces), 0, 1000000, dragConfig.faces) ||
+        !parseIntIn(parser.value(dragSteps), 1, 10000, dragConfig.steps) ||
+        !parseIntIn(parser.value(dragSize), 1, kMaxSide, dragConfig.side) ||
+        (overlayState != QLatin1String("on") && overlayState != QLatin1String("off") &&
+         overlayState != QLatin1String("both"))) {
+        printError(QStringLiteral("%1: bad --drag-faces (0..1000000), --drag-steps (1..10000), "
+                                  "--drag-size (1..4096) or --continuity-overlay (on, off, both)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
+    dragConfig.overlayOn = overlayState != QLatin1String("off");
+    dragConfig.overlayOff = overlayState != QLatin1String("on");
+    dragConfig.files = parser.positionalArguments();
+    if (dragConfig.files.isEmpty())
+        dragConfig.files << parser.value(scaleModel);
+    dragConfig.lights = config.lights;
+    dragConfig.base = config.base;
+    if ((edit || zoom || drag) && !parser.isSet(tables)) { // the loops alone
         config.table1Files.clear();
         config.table2Files.clear();
     }
     if (parser.isSet(smoke)) {
         editConfig.steps = std::min(editConfig.steps, 2);
         zoomConfig.repeats = 1;
+        dragConfig.steps = std::min(dragConfig.steps, 2);
         config.frames = 2;
         config.warmup = 1;
         scaleConfig.frames = 2;
@@ -483,6 +533,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: zoom loop: %2").arg(cmd, error));
         return kExitBadInput;
     }
+    bench::DragStepReport dragReport;
+    if (drag && !bench::runDragStep(dragConfig, dragReport, progress, &error)) {
+        printError(QStringLiteral("%1: drag step: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
     QStringList argv = args.mid(1);
     const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
     QString plotDir = parser.value(plots);
@@ -506,6 +561,8 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         md += bench::editLoopMarkdown(editReport, command);
     if (zoom)
         md += bench::zoomLoopMarkdown(zoomReport, command);
+    if (drag)
+        md += bench::dragStepMarkdown(dragReport, command);
     printOut(md);
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
@@ -514,6 +571,8 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         root.insert(QStringLiteral("editLoop"), bench::editLoopJson(editReport));
     if (zoom)
         root.insert(QStringLiteral("zoomLoop"), bench::zoomLoopJson(zoomReport));
+    if (drag)
+        root.insert(QStringLiteral("dragStep"), bench::dragStepJson(dragReport));
     if (parser.isSet(json) && !writeFile(parser.value(json), QJsonDocument(root).toJson()))
         return kExitBadInput;
     return kExitOk;

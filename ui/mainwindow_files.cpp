@@ -157,7 +157,9 @@ bool MainWindow::offerRecovery() {
 void MainWindow::newDocument() {
     if (!maybeSave())
         return;
-    m_doc->resetScene(Scene{});
+    Scene scene;
+    scene.continuity = Preferences::load().continuity; // the user's defaults for new projects
+    m_doc->resetScene(std::move(scene));
     m_stack->clear();
     m_stack->setClean();
     setFilePath(QString());
