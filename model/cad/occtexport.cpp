@@ -668,6 +668,8 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
         }
 
         QString why;
+        QElapsedTimer writer;
+        writer.start();
         const QByteArray bytes = format == CadFormat::Step
                                      ? writeStep(result, path, options, scene.unit, ids, names, why)
                                      : writeIges(result, options, scene.unit, ids, names, why);
@@ -675,8 +677,9 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
             error = QStringLiteral("%1: %2").arg(path, why);
             return std::nullopt;
         }
+        report.writerSeconds = writer.nsecsElapsed() * 1e-9;
         step(kSteps);
-        report.seconds = timer.elapsed() / 1000.0;
+        report.seconds = timer.nsecsElapsed() * 1e-9;
         return bytes;
     } catch (const Standard_Failure& e) {
         error = QStringLiteral("%1: OpenCASCADE failed writing the file: %2").arg(path, failure(e));
