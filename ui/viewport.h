@@ -128,6 +128,10 @@ public:
     /// outlive its installation; navigation keeps working under it.
     void setTool(Tool* tool);
     Tool* tool() const { return m_tools.installed(); }
+    /// Adds a listening tool (ToolRouter::listen): hover moves, keys no other tool used, and
+    /// presses once it is installed with setTool. It must outlive the view's events (a child
+    /// QObject of the view does).
+    void listen(Tool* tool) { m_tools.listen(tool); }
 
     // For the tools: the document and what they pick in this view.
     Document* document() const { return m_doc; }
@@ -187,6 +191,7 @@ protected:
     void initializeGL() override;
     void resizeGL(int w, int h) override;
     void paintGL() override;
+    void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
@@ -195,6 +200,8 @@ protected:
     void keyPressEvent(QKeyEvent* event) override;
     void keyReleaseEvent(QKeyEvent* event) override;
     void focusOutEvent(QFocusEvent* event) override;
+    void leaveEvent(QEvent* event) override;
+    bool event(QEvent* event) override;
 
 private:
     /// Navigation; every other gesture is a tool's.
