@@ -246,6 +246,11 @@ void Viewport::setSections(const std::vector<SectionPlane>& planes, bool caps) {
     update();
 }
 
+void Viewport::moveSections(const std::vector<SectionPlane>& planes) {
+    setSections(planes, m_options.sectionCaps);
+    Q_EMIT sectionsMoved(m_options.sections, m_options.sectionCaps);
+}
+
 void Viewport::setTrimMaskCap(int texels) {
     m_options.trimMaskCap = std::clamp(texels, kMinTrimMaskSize, 16384);
     update();
