@@ -246,9 +246,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = wireframe.draw(scene, fc, &error);
+            ok = wireframe.draw(scene, fc, options, &error);
         if (ok && options.controlNet)
-            ok = controlNet.draw(scene, fc, &error);
+            ok = controlNet.draw(scene, fc, options, &error);
         if (ok && options.edgeBands)
             ok = edgeBands.draw(*options.edgeBands, fc, &error);
         if (options.writeAov) {

@@ -323,6 +323,34 @@ private Q_SLOTS:
         QVERIFY(c.caps > 0);
     }
 
+    /// The wireframe and the control net are cut as the surfaces are: a plane that removes
+    /// everything leaves the background alone, lines included.
+    void linesAreCut() {
+        const Scene scene = sphereSolid();
+        const Camera camera = fitCamera(scene, 1.0);
+        RenderOptions options;
+        options.wireframe = options.controlNet = true;
+        options.sections = {SectionPlane{glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0, 0, -1), true}};
+        QString error;
+        QVERIFY2(!render(scene, camera, options, &error).data.empty(), qPrintable(error));
+        const QImage image = m_gl->colorImage();
+        const QRgb background = image.pixel(0, 0);
+        int lines = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                lines += image.pixel(x, y) != background;
+        QCOMPARE(lines, 0);
+        // Uncut, the same lines show.
+        options.sections.clear();
+        QVERIFY2(!render(scene, camera, options, &error).data.empty(), qPrintable(error));
+        const QImage whole = m_gl->colorImage();
+        int shown = 0;
+        for (int y = 0; y < whole.height(); ++y)
+            for (int x = 0; x < whole.width(); ++x)
+                shown += whole.pixel(x, y) != background;
+        QVERIFY(shown > 1000);
+    }
+
     void emptyViewAndBadPlanes() {
         const Scene scene = sphereSolid();
         Camera camera = fitCamera(scene, 1.0);

@@ -198,6 +198,28 @@ private Q_SLOTS:
         QCOMPARE(view->sections()[0].position, after.position);
         QCOMPARE(m_window->undoStack()->count(), undoSteps);
     }
+
+    // The selected surface's outline and control net (drawn over the frame) are cut as the
+    // surface is: with a plane that removes everything, selecting it adds nothing to the view.
+    void overlaysAreCut() {
+        openWindow("sphere");
+        Viewport* view = m_window->viewport();
+        glm::dvec3 lo, hi;
+        sceneBounds(scene(), lo, hi);
+        view->setSections({SectionPlane{hi + glm::dvec3(1.0), glm::dvec3(-1, -1, -1), false}},
+                          true);
+        view->selectClickedSurface(scene().surfaces.front().id, false);
+        const int selected = covered(view->grabFramebuffer());
+        view->selection()->itemSelection()->clearSelection();
+        const int none = covered(view->grabFramebuffer());
+        QVERIFY2(std::abs(selected - none) <= 20,
+                 qPrintable(QStringLiteral("%1 selected, %2 not").arg(selected).arg(none)));
+        // Uncut, the selection shows its outline and net.
+        view->setSections({}, true);
+        const int bare = covered(view->grabFramebuffer());
+        view->selectClickedSurface(scene().surfaces.front().id, false);
+        QVERIFY(covered(view->grabFramebuffer()) > bare + 200);
+    }
 };
 
 QTEST_MAIN(TestEditorSections)
