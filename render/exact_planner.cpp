@@ -24,6 +24,33 @@ bool ExactPlanner::outsideView(const glm::vec3& lo, const glm::vec3& hi,
                              glm::dvec3(hi + margin));
 }
 
+ExactPlanner::SectionSide ExactPlanner::sectionSide(const glm::vec3& lo, const glm::vec3& hi,
+                                                    const std::vector<SectionPlane>& planes) {
+    bool crossed = false;
+    for (const SectionPlane& plane : planes) {
+        const glm::dvec3 n = plane.removedSide();
+        if (n == glm::dvec3(0.0))
+            continue; // refused before drawing (sectionPlaneError)
+        // The shader compares a float distance: a margin of the float resolution of the
+        // coordinates involved keeps a point the shader might keep out of Removed.
+        const double margin =
+            1e-5 * (glm::length(glm::dvec3(hi - lo)) + glm::length(glm::dvec3(hi)) +
+                    glm::length(glm::dvec3(lo)) + glm::length(plane.position));
+        double nearest = std::numeric_limits<double>::infinity();
+        double farthest = -nearest;
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 p(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+            const double d = glm::dot(n, p - plane.position);
+            nearest = std::min(nearest, d);
+            farthest = std::max(farthest, d);
+        }
+        if (nearest > margin)
+            return SectionSide::Removed;
+        crossed = crossed || farthest > -margin;
+    }
+    return crossed ? SectionSide::Crossed : SectionSide::Kept;
+}
+
 double ExactPlanner::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
     glm::vec3 lo, hi;
     if (!kw::controlBounds(g, lo, hi))
@@ -89,7 +116,8 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
                         camera.viewport,
                         f,
                         options.gatherMinCellPixels,
-                        options.deferMaxCellPixels};
+                        options.deferMaxCellPixels,
+                        options.sections};
 }
 
 void ExactPlanner::clear() {
@@ -151,6 +179,13 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     // (GpuScene), not taken from its points per frame.
     if (key.has(PlanFlag::Cull) && r.bounded &&
         outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
+        p.culled = true;
+        return p;
+    }
+    // Wholly on a section plane's removed side: every fragment would be evaluated (a cut frame
+    // has no early depth test) and then discarded.
+    if (!key.sections.empty() && r.bounded &&
+        sectionSide(r.boundsLo, r.boundsHi, key.sections) == SectionSide::Removed) {
         p.culled = true;
         return p;
     }
@@ -249,7 +284,8 @@ void ExactPlanner::chooseBackCulled(const ExactPlanScene& scene, const ExactPlan
     // A little past the near plane: the bounds hold the polygon, rounding aside.
     const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
     for (const auto& [k, s] : solids) {
-        if (!s.complete || s.drawn != scene.solidMembers(k))
+        if (!s.complete || s.drawn != scene.solidMembers(k) ||
+            sectionSide(s.lo, s.hi, key.sections) != SectionSide::Kept)
             continue;
         bool beyond = true;
         for (int c = 0; c < 8 && beyond; ++c) {

@@ -104,13 +104,15 @@ struct ExactPlanKey {
     glm::mat4 viewProjection{0.0f};
     glm::ivec2 viewport{0};
     PlanFlags flags;
-    double minCellPixels = 0.0;      ///< RenderOptions::gatherMinCellPixels
-    double deferMaxCellPixels = 0.0; ///< RenderOptions::deferMaxCellPixels
+    double minCellPixels = 0.0;         ///< RenderOptions::gatherMinCellPixels
+    double deferMaxCellPixels = 0.0;    ///< RenderOptions::deferMaxCellPixels
+    std::vector<SectionPlane> sections; ///< RenderOptions::sections
     bool has(PlanFlag f) const { return flags.testFlag(f); }
     bool operator==(const ExactPlanKey& o) const {
         return scene == o.scene && layout == o.layout && marks == o.marks &&
                viewProjection == o.viewProjection && viewport == o.viewport && flags == o.flags &&
-               minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels;
+               minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels &&
+               sections == o.sections;
     }
 };
 
@@ -173,7 +175,9 @@ public:
     const ExactPlace* place(const SurfaceRecord* r) const;
     /// The closed solids (Surface::solid) whose back faces the plan skips.
     const std::set<int>& backCulled() const { return m_backCulled; }
-    int culled() const { return m_culled; } ///< surfaces left out as outside the view
+    /// Surfaces left out as outside the view, or as wholly on a section plane's removed side
+    /// (their control bounds hold them: the exact shader would discard every fragment).
+    int culled() const { return m_culled; }
     /// The cells the split pre-pass tests the trims on, and those it leaves out.
     std::int64_t trimTestedCells() const;
     std::int64_t trimmedAwayCells() const { return m_trimmedAway; }
@@ -200,6 +204,12 @@ public:
     /// True when the box lies wholly outside one plane of the clip volume (slightly grown).
     static bool outsideView(const glm::vec3& lo, const glm::vec3& hi,
                             const glm::mat4& viewProjection);
+    /// Where a box lies for section planes: Removed when it lies wholly on one plane's removed
+    /// side (with a margin for the shader's float test: every point of it is cut), Kept when
+    /// wholly on every plane's kept side, else Crossed. No planes: Kept.
+    enum class SectionSide { Kept, Crossed, Removed };
+    static SectionSide sectionSide(const glm::vec3& lo, const glm::vec3& hi,
+                                   const std::vector<SectionPlane>& planes);
 
 private:
     /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
@@ -214,7 +224,8 @@ private:
     /// m_backCulled for this frame: the closed solids all of whose members are records with
     /// exact data (none hidden, none too large) and whose members' control bounds lie wholly
     /// beyond the near plane, so the eye sees them from outside and nothing of them is
-    /// clipped. Empty without PlanFlag::SkipBackFaces.
+    /// clipped, and on the kept side of every section plane (a cut solid's back faces carry
+    /// its caps). Empty without PlanFlag::SkipBackFaces.
     void chooseBackCulled(const ExactPlanScene& scene, const ExactPlanKey& key,
                           const FrameCamera& camera);
     void build(const ExactPlanScene& scene, const ExactPlanKey& key, const FrameCamera& camera);

@@ -2,6 +2,7 @@
 #include "render/overlay_passes.h"
 
 #include "render/depth_convention.h"
+#include "render/shading_uniforms.h"
 
 #include <QOpenGLShaderProgram>
 #include <glm/gtc/type_ptr.hpp>
@@ -11,14 +12,20 @@ namespace kw {
 namespace {
 
 QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
-                                  const FrameCamera& camera, QString* error) {
+                                  const FrameCamera& camera, const RenderOptions& options,
+                                  QString* error) {
+    // Section planes cut the lines too: a cut view shows no wire of what it removed.
+    const bool cut = !options.sections.empty();
     QOpenGLShaderProgram* prog =
-        shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"));
+        shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"),
+                         cut ? QStringList{QStringLiteral("KW_SECTION")} : QStringList{});
     if (!prog) {
         *error = shaders->lastError();
         return nullptr;
     }
     prog->bind();
+    if (cut)
+        setSectionUniforms(gl, prog, options);
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(drawnViewProjection(camera)));
     gl->glDepthFunc(kDepthNearerOrEqual);
@@ -33,8 +40,9 @@ void WireframePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sha
     m_shaders = shaders;
 }
 
-bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QString* error) {
-    QOpenGLShaderProgram* prog = lineProgram(m_gl, m_shaders, camera, error);
+bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera,
+                         const RenderOptions& options, QString* error) {
+    QOpenGLShaderProgram* prog = lineProgram(m_gl, m_shaders, camera, options, error);
     if (!prog)
         return false;
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 2e-4f);
@@ -59,9 +67,10 @@ void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sh
     m_shaders = shaders;
 }
 
-bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera, QString* error) {
+bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera,
+                          const RenderOptions& options, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = lineProgram(gl, m_shaders, camera, error);
+    QOpenGLShaderProgram* prog = lineProgram(gl, m_shaders, camera, options, error);
     if (!prog)
         return false;
     gl->glEnable(GL_PROGRAM_POINT_SIZE);

@@ -110,10 +110,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             return fail(why);
     if (!options.sections.empty()) {
         // The pre-pass's depth is the base polygon's, which cannot tell on which side of a
-        // plane a pixel's exact point lies; and the back faces of closed solids are where
-        // the caps are drawn.
+        // plane a pixel's exact point lies. The back faces of closed solids a plane crosses are
+        // where the caps are drawn: the planner keeps them (ExactPlanner::backCulled).
         options.shading = RenderOptions::Shading::ExactDepth;
-        options.skipBackFaces = false;
     }
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
@@ -247,9 +246,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = wireframe.draw(scene, fc, &error);
+            ok = wireframe.draw(scene, fc, options, &error);
         if (ok && options.controlNet)
-            ok = controlNet.draw(scene, fc, &error);
+            ok = controlNet.draw(scene, fc, options, &error);
         if (ok && options.edgeBands)
             ok = edgeBands.draw(*options.edgeBands, fc, &error);
         if (options.writeAov) {

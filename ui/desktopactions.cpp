@@ -108,6 +108,8 @@ void DesktopActions::showSections() {
             },
             m_window);
         connect(m_sections, &SectionDialog::sectionsChanged, m_viewport, &Viewport::setSections);
+        // A plane's handle dragged in the view: the fields follow (setSections emits nothing).
+        connect(m_viewport, &Viewport::sectionsMoved, m_sections, &SectionDialog::setSections);
     }
     m_sections->setSections(m_viewport->sections(), m_viewport->sectionCaps());
     m_sections->show();
