@@ -253,6 +253,11 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
                                          std::int32_t(g->skirtVertexOffset), std::uint32_t(r.slot)};
         p.skirtVariant = degrees | int(mask != nullptr) << 8;
     }
+    // The skipped side again, drawn last where nothing nearer covered a pixel (seams' sub-pixel
+    // gaps): no pre-pass tests these triangles' trims, so their programs do.
+    if (p.face != 0 && !key.has(PlanFlag::Antialiased))
+        p.backVariant = degrees | int(mask != nullptr) << 8 | int(gather) << 9 | p.face << 10 |
+                        int(affine) << 12;
     return p;
 }
 
@@ -359,12 +364,22 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         p.skirtIndex = int(k.commands.size());
         k.commands.push_back(cs.skirt);
     }
+    if (p.backVariant >= 0) {
+        ExactBatch& k = m_backFaces[p.backVariant];
+        if (k.commands.empty()) {
+            k = b;
+            k.commands.clear();
+            k.trimmed = (p.backVariant >> 8) & 1;
+        }
+        p.backIndex = int(k.commands.size());
+        k.commands.push_back(c);
+    }
 }
 
 void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
                          const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group).
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
         batches->clear();
     m_routes.clear();
     chooseBackCulled(scene, key, camera);
@@ -385,7 +400,7 @@ void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
     for (auto& [k, route] : m_routes)
         route.stencil = ++stencil;
     m_commands.clear();
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
         for (auto& [k, b] : *batches) {
             b.first = std::int64_t(m_commands.size());
             m_commands.insert(m_commands.end(), b.commands.begin(), b.commands.end());
@@ -411,7 +426,7 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             continue;
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
             now.edgeVariant != was.edgeVariant || now.split != was.split ||
-            now.skirtVariant != was.skirtVariant)
+            now.skirtVariant != was.skirtVariant || now.backVariant != was.backVariant)
             return false;
         const auto patchOne = [&](ExactBatch& b, int index, const IndirectCommand& command) {
             IndirectCommand& old = b.commands[size_t(index)];
@@ -432,6 +447,8 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             patchOne(m_edges.at(was.edgeVariant), was.edgeIndex, c);
         if (was.skirtVariant >= 0)
             patchOne(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
+        if (was.backVariant >= 0)
+            patchOne(m_backFaces.at(was.backVariant), was.backIndex, c);
         if (deferred && now.route() >= 0) {
             it->second.window = now.window;
             addToRoute(now); // grown only: it may have moved

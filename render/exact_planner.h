@@ -76,6 +76,10 @@ struct ExactPlace {
     int edgeIndex = -1;         ///< its command there
     int skirtVariant = -1;      ///< with skirts: key into skirts() (degrees and trimmed)
     int skirtIndex = -1;        ///< its command there
+    /// Its triangles skipped (face != 0), in aliased frames: key into backFaces() (degrees,
+    /// trimmed, gather, face, affine), and its command there.
+    int backVariant = -1;
+    int backIndex = -1;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
@@ -150,7 +154,7 @@ public:
     void clear();
 
     /// Every batch's commands in upload order (plain, trimmed pre-pass, variants, edges,
-    /// skirts), each batch's `first` pointing into it.
+    /// skirts, back faces), each batch's `first` pointing into it.
     const std::vector<IndirectCommand>& commands() const { return m_commands; }
     /// The pre-pass's untrimmed ranges, by ExactPlace::plainKey.
     const std::map<int, ExactBatch>& plain() const { return m_plain; }
@@ -162,6 +166,11 @@ public:
     const std::map<int, ExactBatch>& edges() const { return m_edges; }
     /// The skirts, by degrees and trimmed (they test the trims themselves: no pre-pass).
     const std::map<int, ExactBatch>& skirts() const { return m_skirts; }
+    /// The back-culled solids' faces again, by ExactPlace::backVariant, for the pass that
+    /// draws their skipped side where nothing nearer covered a pixel (ExactBatch::face says
+    /// which side the other passes skip; this pass skips the other one). Trimmed ones test
+    /// their trims in the shader. Empty in anti-aliased (coverage) frames.
+    const std::map<int, ExactBatch>& backFaces() const { return m_backFaces; }
     /// The deferred pass's routes (ExactPlace::route): their stencil values, 1, 2, ..., and
     /// the union of their surfaces' ExactPlace::window.
     struct Route {
@@ -239,7 +248,7 @@ private:
 
     bool m_have = false;
     ExactPlanKey m_key;
-    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts;
+    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts, m_backFaces;
     std::map<int, Route> m_routes;
     std::set<int> m_backCulled;
     std::unordered_map<const SurfaceRecord*, ExactPlace> m_places;

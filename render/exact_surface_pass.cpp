@@ -90,11 +90,11 @@ void ExactSurfacePass::releaseCommands() {
     m_commandBytes = 0;
 }
 
-void ExactSurfacePass::drawBatch(const ExactBatch& batch) {
+void ExactSurfacePass::drawBatch(const ExactBatch& batch, bool otherSide) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (const GLenum cull = cullFaceOf(batch.face); cull != 0) {
         gl->glEnable(GL_CULL_FACE);
-        gl->glCullFace(cull);
+        gl->glCullFace(otherSide ? (cull == GL_BACK ? GL_FRONT : GL_BACK) : cull);
     } else {
         gl->glDisable(GL_CULL_FACE);
     }
@@ -284,6 +284,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     finTriangles = 0;
     if (ok && !m_plan.skirts().empty())
         ok = skirtPass(scene, camera, lights, options, range, error);
+    if (ok && !m_plan.backFaces().empty())
+        ok = backFacePass(scene, camera, lights, options, range, error);
     if (ok && aa && !m_plan.edges().empty())
         ok = edgePass(scene, camera, lights, options, range, *aa, error);
     gl->glDisable(GL_CULL_FACE);
@@ -318,6 +320,38 @@ bool ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, Tri
         if (b.trimmed)
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
+    }
+    return true;
+}
+
+bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,
+                                    const std::vector<Light>& lights, const RenderOptions& options,
+                                    const ValueRange& range, QString* error) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Last, nearer than what is there and written: the solid's faces in front (and their
+    // skirts) reject nearly every fragment before the shader, so what is shaded is the seam
+    // slivers only, where two faces' exact trims miss each other by a fraction of a pixel
+    // and nothing else covered the pixel centre. The forward programs test the trims
+    // themselves (no pre-pass for these triangles).
+    gl->glDepthFunc(kDepthNearer);
+    gl->glDepthMask(GL_TRUE);
+    for (const auto& [key, b] : m_plan.backFaces()) {
+        QOpenGLShaderProgram* prog =
+            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
+                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                       b.gather, TrimAa::Off, false, b.affine)
+                                   .defines());
+        if (!prog) {
+            *error = m_shaders->lastError();
+            return false;
+        }
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        setSectionUniforms(gl, prog, options);
+        if (b.trimmed)
+            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(b, true);
     }
     return true;
 }
