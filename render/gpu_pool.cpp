@@ -52,17 +52,27 @@ void RangeAllocator::free(std::int64_t offset, std::int64_t count) {
         m_free.emplace(offset, count);
 }
 
+std::int64_t GpuPool::grownCapacity(std::int64_t capacity, std::int64_t need,
+                                    std::int64_t elementBytes, std::int64_t maxBytes) {
+    const std::int64_t limit = maxBytes / elementBytes;
+    std::int64_t grown = std::max<std::int64_t>(capacity, kMinElements);
+    while (grown < need) {
+        // Doubling keeps the copies few while the pool is small; past kDoublingBytes a quarter
+        // more each time, so a scene of thousands of surfaces does not hold up to twice its
+        // data (the slack is at most a quarter; the copies stay linear in the total).
+        const bool small = grown * elementBytes < kDoublingBytes;
+        grown = small ? grown * 2 : grown + std::max<std::int64_t>(grown / 4, 1);
+    }
+    return std::min(grown, limit);
+}
+
 std::int64_t GpuPool::allocate(std::int64_t count) {
     if (count <= 0)
         return 0;
     const std::int64_t offset = m_ranges.allocate(count);
     const std::int64_t need = m_ranges.end();
     if (need > m_capacity) {
-        std::int64_t capacity = std::max<std::int64_t>(m_capacity * 2, 1024);
-        while (capacity < need)
-            capacity *= 2;
-        const std::int64_t limit = m_maxBytes / m_elementBytes;
-        capacity = std::min(capacity, limit);
+        const std::int64_t capacity = grownCapacity(m_capacity, need, m_elementBytes, m_maxBytes);
         if (capacity < need) {
             m_ranges.free(offset, count);
             return -1;
@@ -78,7 +88,7 @@ std::int64_t GpuPool::allocate(std::int64_t count) {
             // glNamedBufferSubData into the new one. GL orders them, but NVIDIA 580.159 (H100,
             // GLX) did not: ranges copied here read as zeros in the draws (vertices at the
             // origin, stray triangles on every CAD part; docs/PERFORMANCE.md "On a GPU").
-            // A pool grows only when it doubles, so the wait is rare.
+            // A pool grows by at least a quarter of itself, so the wait is rare.
             m_gl->glFinish();
             m_gl->glDeleteBuffers(1, &m_buffer);
         }
@@ -136,7 +146,7 @@ void freeControl(ScenePools& pools, SurfaceGpu& g) {
 } // namespace
 
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
-                   const ParameterBox& box, bool skirt, UploadStats& stats) {
+                   const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats) {
     const NurbsSurface& geo = s.geometry;
     freeControl(pools, g);
     g.degreeU = geo.degreeU;
@@ -173,7 +183,7 @@ bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Pol
     pools.spans.write(g.spanOffset + g.spanTexelsU, g.spanTexelsV, sv.data());
     stats.spanTableUploads += 2;
     stats.bytes += std::int64_t((su.size() + sv.size()) * sizeof(glm::vec4));
-    if (!rebuildPolygon(pools, g, s, cut, box, skirt, stats)) {
+    if (!rebuildPolygon(pools, g, s, cut, box, skirt, outlines, stats)) {
         freeControl(pools, g);
         return false;
     }
@@ -245,61 +255,91 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     }
 }
 
+std::int64_t PolygonUpload::bytes() const {
+    return std::int64_t(
+        polygon.vertices.size() * sizeof(BaseVertex) + skirt.size() * sizeof(SkirtVertex) +
+        (triangles.size() + outlines.size() + skirtIndices.size()) * sizeof(unsigned));
+}
+
+PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& box,
+                                 const PolygonCut& cut, bool withSkirt, bool withOutlines) {
+    PolygonUpload u;
+    u.polygon = buildBasePolygon(geo, box, cut);
+    u.triangles = basePolygonTriangles(u.polygon);
+    if (withOutlines)
+        u.outlines = basePolygonOutlines(u.polygon);
+    if (withSkirt)
+        buildSkirt(u.polygon, u.skirt, u.skirtIndices);
+    return u;
+}
+
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
-                    const ParameterBox& box, bool withSkirt, UploadStats& stats) {
+                    const ParameterBox& box, bool withSkirt, bool withOutlines,
+                    UploadStats& stats) {
     freePolygon(pools, g);
     g.cut = cut;
     g.polygonBox = box;
-    g.polygon = buildBasePolygon(s.geometry, box, cut);
-    const std::vector<unsigned> tri = basePolygonTriangles(g.polygon);
-    const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
-    const std::int64_t vertices = std::int64_t(g.polygon.vertices.size());
+    PolygonUpload u = buildPolygonUpload(s.geometry, box, cut, withSkirt, withOutlines);
+    const std::int64_t vertices = std::int64_t(u.polygon.vertices.size());
+    const std::int64_t triangles = std::int64_t(u.triangles.size());
+    const std::int64_t lines = std::int64_t(u.outlines.size());
+    const std::int64_t skirtVertices = std::int64_t(u.skirt.size());
+    const std::int64_t skirtIndices = std::int64_t(u.skirtIndices.size());
     const std::int64_t v = pools.vertices.allocate(vertices);
-    const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(std::int64_t(tri.size()));
-    const std::int64_t o = t < 0 ? -1 : pools.outlines.allocate(std::int64_t(lines.size()));
-    std::vector<SkirtVertex> skirt;
-    std::vector<unsigned> skirtIdx;
-    if (withSkirt)
-        buildSkirt(g.polygon, skirt, skirtIdx);
+    const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(triangles);
+    const std::int64_t o = t < 0 || !withOutlines ? -1 : pools.outlines.allocate(lines);
     std::int64_t sv = -1, si = -1; // -1: no skirt
-    bool fits = o >= 0;
+    bool fits = t >= 0 && (!withOutlines || o >= 0);
     if (fits && withSkirt) {
-        sv = pools.skirtVertices.allocate(std::int64_t(skirt.size()));
-        si = sv < 0 ? -1 : pools.skirtIndices.allocate(std::int64_t(skirtIdx.size()));
+        sv = pools.skirtVertices.allocate(skirtVertices);
+        si = sv < 0 ? -1 : pools.skirtIndices.allocate(skirtIndices);
         fits = si >= 0;
     }
     if (!fits) {
         if (v >= 0)
             pools.vertices.free(v, vertices);
         if (t >= 0)
-            pools.triangles.free(t, std::int64_t(tri.size()));
+            pools.triangles.free(t, triangles);
         if (o >= 0)
-            pools.outlines.free(o, std::int64_t(lines.size()));
+            pools.outlines.free(o, lines);
         if (sv >= 0)
-            pools.skirtVertices.free(sv, std::int64_t(skirt.size()));
+            pools.skirtVertices.free(sv, skirtVertices);
         return false;
     }
+    g.polygon = std::move(u.polygon);
     g.vertexOffset = v, g.vertexCount = vertices;
-    g.triangleOffset = t, g.triangleIndexCount = int(tri.size());
-    g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
-    g.skirtVertexOffset = sv, g.skirtVertexCount = std::int64_t(skirt.size());
-    g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIdx.size());
+    g.triangleOffset = t, g.triangleIndexCount = int(triangles);
+    g.outlineOffset = o, g.outlineIndexCount = int(lines);
+    g.skirtVertexOffset = sv, g.skirtVertexCount = skirtVertices;
+    g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIndices);
     static std::uint64_t serial = 0;
     g.polygonSerial = ++serial;
     g.insideIndexCount = -1;
     g.edgeIndexCount = 0;
     g.splitPolygon = g.splitClasses = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
-    pools.triangles.write(t, std::int64_t(tri.size()), tri.data());
-    pools.outlines.write(o, std::int64_t(lines.size()), lines.data());
+    pools.triangles.write(t, triangles, u.triangles.data());
+    if (withOutlines)
+        pools.outlines.write(o, lines, u.outlines.data());
     if (withSkirt) {
-        pools.skirtVertices.write(sv, std::int64_t(skirt.size()), skirt.data());
-        pools.skirtIndices.write(si, std::int64_t(skirtIdx.size()), skirtIdx.data());
+        pools.skirtVertices.write(sv, skirtVertices, u.skirt.data());
+        pools.skirtIndices.write(si, skirtIndices, u.skirtIndices.data());
     }
     stats.basePolygonBuilds += 1;
-    stats.bytes += vertices * std::int64_t(sizeof(BaseVertex)) +
-                   std::int64_t(skirt.size() * sizeof(SkirtVertex)) +
-                   std::int64_t((tri.size() + lines.size() + skirtIdx.size()) * sizeof(unsigned));
+    stats.bytes += u.bytes();
+    return true;
+}
+
+bool addOutlines(ScenePools& pools, SurfaceGpu& g, UploadStats& stats) {
+    if (g.outlineOffset >= 0 || g.vertexOffset < 0)
+        return true;
+    const std::vector<unsigned> lines = basePolygonOutlines(g.polygon);
+    const std::int64_t o = pools.outlines.allocate(std::int64_t(lines.size()));
+    if (o < 0)
+        return false;
+    g.outlineOffset = o, g.outlineIndexCount = int(lines.size());
+    pools.outlines.write(o, std::int64_t(lines.size()), lines.data());
+    stats.bytes += std::int64_t(lines.size() * sizeof(unsigned));
     return true;
 }
 

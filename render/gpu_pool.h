@@ -37,7 +37,7 @@ private:
 };
 
 /// One GL buffer holding elements of `elementBytes` each, sub-allocated by a RangeAllocator.
-/// It grows by doubling (the old contents copied on the GPU, waited for: see allocate) and is
+/// It grows (grownCapacity; the old contents copied on the GPU, waited for: see allocate) and is
 /// deleted when its last range is freed, so an empty scene holds no pool memory. Growth replaces
 /// the buffer name: users re-bind buffer() after every allocate (GpuScene does, once per sync).
 class GpuPool {
@@ -58,6 +58,14 @@ public:
     std::int64_t maxBytes() const { return m_maxBytes; }
     /// Frees the GL buffer and every range.
     void release();
+
+    /// The capacity (elements) a pool of `capacity` grows to for `need` elements: at least
+    /// kMinElements, doubled while under kDoublingBytes, then a quarter more at a time, capped
+    /// at maxBytes (then below `need` when it does not fit). No GL: the growth is testable alone.
+    static std::int64_t grownCapacity(std::int64_t capacity, std::int64_t need,
+                                      std::int64_t elementBytes, std::int64_t maxBytes);
+    static constexpr std::int64_t kMinElements = 1024;
+    static constexpr std::int64_t kDoublingBytes = std::int64_t(64) << 20;
 
 private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
@@ -118,21 +126,39 @@ struct SurfaceGpu {
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
 /// (re)allocated and filled, base polygon rebuilt cut as `cut` over `box`. Counts into
 /// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
+/// `skirt` and `outlines` as rebuildPolygon's.
 bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
-                   const ParameterBox& box, bool skirt, UploadStats& stats);
+                   const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
 /// After a Points revision change: the texels of the bounding rectangle of those that differ
 /// (one sub-range write per row of it, counted as one sub-image upload), and only the base
 /// polygon vertices in the support of those points (and the polygon's skirt vertices, a few
 /// per boundary node).
 void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
+/// What rebuildPolygon writes to the pools for one surface, built on the CPU (no GL): the base
+/// polygon, its triangle indices, and its outline indices and skirt when asked for.
+struct PolygonUpload {
+    BasePolygon polygon;
+    std::vector<unsigned> triangles, outlines;
+    std::vector<SkirtVertex> skirt;
+    std::vector<unsigned> skirtIndices;
+    /// Bytes of all of it in the pools.
+    std::int64_t bytes() const;
+};
+PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& box,
+                                 const PolygonCut& cut, bool skirt, bool outlines);
 /// The base polygon cut as `cut` over `box` (a rectangle of the domain: GpuScene
 /// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
 /// cells go where its trims keep the surface) from the current points;
 /// control data untouched. Returns false (the polygon's ranges freed) when a pool would
 /// exceed its limit. With `skirt`, the polygon's skirt too (kw::buildSkirt; adaptive frames
-/// draw it), else none.
+/// draw it), else none. With `outlines`, the cells' outline indices too (the wireframe's),
+/// else none: at 8 indices a cell they would be a third of the polygon's bytes, for an
+/// overlay most frames do not draw (addOutlines brings them when one does).
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
-                    const ParameterBox& box, bool skirt, UploadStats& stats);
+                    const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
+/// The outline indices of the polygon on the GPU, when it has none yet (a frame that draws the
+/// wireframe). Returns false when the outline pool would exceed its limit (nothing changed).
+bool addOutlines(ScenePools& pools, SurfaceGpu& g, UploadStats& stats);
 struct TrimMask;
 /// Orders the polygon's triangles by how the trims cut their cells (SurfaceGpu's
 /// insideIndexCount and edgeIndexCount), from the mask's texel classes: a cell is inside (or

@@ -268,6 +268,7 @@ private:
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
         bool splitCellsByTrims = false, edgeSkirts = false;
+        bool wireframe = false; ///< outlines are uploaded once a frame draws them
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;
