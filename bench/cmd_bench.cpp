@@ -9,6 +9,7 @@
 #include "bench/zoom_loop.h"
 #include "model/io/install_layout.h"
 #include "model/io/savefile.h"
+#include "render/analysis.h"
 
 #include <QCommandLineParser>
 #include <QDir>
@@ -159,6 +160,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "surface's own; in adaptive mode the minimum).")
             .arg(kMaxPartitions),
         QStringLiteral("N"));
+    const QCommandLineOption scaleShading(
+        QStringLiteral("scale-shading"),
+        QStringLiteral("Scale table: phong (default) or an analysis mode (gaussian, mean, "
+                       "zebra, ...), as render --shading."),
+        QStringLiteral("MODE"), QStringLiteral("phong"));
     const QCommandLineOption smoke(
         QStringLiteral("smoke"),
         QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
@@ -203,10 +209,10 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "redrawn every frame) and report their median, the CPU ms per mask "
                        "redraw and the mask side ('-' for files without trims)."));
     parser.addOptions(
-        {sizes,          partitions, t1Partitions, frames, lights,  tables,   scaleModel,
-         scaleFaces,     scaleSize,  smoke,        t2Size, samples, mode,     shading,
-         floor,          json,       markdown,     plots,  noTrims, trimDrag, scalePartitionMode,
-         scalePartitions});
+        {sizes,           partitions,  t1Partitions, frames, lights,  tables,   scaleModel,
+         scaleFaces,      scaleSize,   smoke,        t2Size, samples, mode,     shading,
+         floor,           json,        markdown,     plots,  noTrims, trimDrag, scalePartitionMode,
+         scalePartitions, scaleShading});
     const QCommandLineOption trimMode(
         QStringLiteral("trim-mode"),
         QStringLiteral("exact (default: exact trim edges) or mask (the paper's trim mask alone, "
@@ -428,6 +434,15 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     if (!readDevelopmentSwitches(cmd, config.base))
         return kExitUsage;
     scaleConfig.base = config.base;
+    if (const std::optional<AnalysisMode> m = parseAnalysisMode(parser.value(scaleShading))) {
+        scaleConfig.base.analysis.mode = *m;
+    } else {
+        printError(QStringLiteral("%1: --scale-shading '%2' is not phong or an analysis mode "
+                                  "(gaussian, mean, max-curvature, min-radius, zebra, isophotes, "
+                                  "environment, draft)")
+                       .arg(cmd, parser.value(scaleShading)));
+        return kExitUsage;
+    }
     scaleConfig.frames = config.frames;
     scaleConfig.trims = config.trims;
     bench::EditLoopConfig editConfig;

@@ -4,8 +4,8 @@
 // issues the draws), so the plans are testable without a display.
 #pragma once
 
+#include "render/gpu_pool.h"
 #include "render/render_types.h"
-#include "render/surface_upload.h"
 
 #include <QFlags>
 #include <cstdint>

@@ -99,10 +99,6 @@ void Viewport::setStandardView(StandardView view) {
     update();
 }
 
-ViewProjection Viewport::viewProjection() const {
-    return ViewProjection(m_camera.camera(), m_doc->scene(), size());
-}
-
 void Viewport::setRenderMode(RenderMode mode) {
     m_options.mode = mode;
     update();

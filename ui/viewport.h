@@ -47,8 +47,11 @@ public:
     void resetCamera();
     void fitToView();
     void setStandardView(StandardView view);
-    /// The mapping the picker uses for the current camera and size.
-    ViewProjection viewProjection() const;
+    /// The mapping the picker and the tools use for the current camera and size (here, so that
+    /// a drag step reads it without a trip back into the view's code).
+    ViewProjection viewProjection() const {
+        return ViewProjection(m_camera.camera(), m_doc->scene(), size());
+    }
 
     /// The view's options, samples resolved (automatic: kAutoSamplesCount); what a frame
     /// changes while the view moves (fewer samples, progressive) is not in them.
