@@ -12,6 +12,14 @@
 namespace kw {
 namespace {
 
+// Sewing at a tolerance joins edges its own coarse measure finds within it: hammer.iges's
+// seams, all sewn at 0.41 mm, lie up to 2.46 mm apart on the exact surfaces. Pairs are looked
+// for within this many tolerances, each then gets its measured gap as its own tolerance.
+constexpr double kMatchFactor = 4.0;
+// Lengths below this share of the tolerance are points (a collapsed curve, a closed curve's
+// ends).
+constexpr double kPointFraction = 1e-4;
+
 // The trim curve a side names; nullptr for a domain edge or a side the surface lacks.
 const NurbsCurve2* trimCurve(const Surface& s, const ContinuitySide& side) {
     if (side.domainEdge != DomainEdge::None || side.curve < 0)
@@ -75,18 +83,25 @@ MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
         recorded[size_t(k)] = !taken[size_t(k)];
 
     ContinuityTolerances tol;
-    tol.g0 = tolerance;
-    tol.match = 4 * tolerance;
+    // Curves shorter than the tolerance are edges too (the kernel would call them degenerate at
+    // g0 = tolerance): on a scene whose diagonal is large next to its parts (a 10,000-face tiling)
+    // the sewing tolerance exceeds a small face's curves.
+    const double point = kPointFraction * tolerance;
+    tol.g0 = point;
+    tol.match = kMatchFactor * tolerance;
     const ContinuityTopology topo = continuityTopology(scene, tol);
 
+    // Every candidate pairing the kernel found, with whether it can be one edge (two whole trim
+    // curves whose ends meet) and how far apart its ends lie.
     struct Pair {
         int face[2];
         const NurbsCurve2* curve[2];
+        ContinuitySide side[2];
         EdgeUse use[2];
+        bool usable = false;
+        double endGap = 0.0;
     };
     std::vector<Pair> pairs;
-    Groups groups(n);
-    std::map<ContinuitySide, int> usesOf;
     for (const ContinuityEdge& e : topo.edges) {
         if (e.recorded.isValid())
             continue;
@@ -94,45 +109,67 @@ MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
                    ib = index.constFind(e.sides[1].surface);
         if (ia == index.cend() || ib == index.cend())
             continue;
-        const int a = *ia, b = *ib;
-        groups.join(a, b);
-        ++usesOf[e.sides[0]];
-        ++usesOf[e.sides[1]];
-        const Surface& sa = scene.surfaces[size_t(a)];
-        const Surface& sb = scene.surfaces[size_t(b)];
-        const NurbsCurve2* ca = trimCurve(sa, e.sides[0]);
-        const NurbsCurve2* cb = trimCurve(sb, e.sides[1]);
-        // One edge per pair of whole trim curves whose ends meet: anything else is sewn.
-        bool usable =
-            !recorded[size_t(a)] && !recorded[size_t(b)] && ca && cb && e.covers[0] && e.covers[1];
-        bool reversed = false;
-        if (usable) {
-            const glm::dvec3 a0 = curveEnd(sa, *ca, false), a1 = curveEnd(sa, *ca, true);
-            const glm::dvec3 b0 = curveEnd(sb, *cb, false), b1 = curveEnd(sb, *cb, true);
-            reversed = glm::distance(b0, a0) > glm::distance(b0, a1);
-            const bool closed = glm::distance(a0, a1) <= tolerance;
-            const double endGap = reversed ? std::max(glm::distance(b0, a1), glm::distance(b1, a0))
-                                           : std::max(glm::distance(b0, a0), glm::distance(b1, a1));
-            usable = !closed && endGap <= tolerance;
-        }
-        if (!usable) {
-            taken[size_t(a)] = taken[size_t(b)] = false;
-            continue;
-        }
         Pair p;
-        p.face[0] = a;
-        p.face[1] = b;
-        p.curve[0] = ca;
-        p.curve[1] = cb;
+        p.face[0] = *ia;
+        p.face[1] = *ib;
+        const Surface& sa = scene.surfaces[size_t(p.face[0])];
+        const Surface& sb = scene.surfaces[size_t(p.face[1])];
+        p.side[0] = e.sides[0];
+        p.side[1] = e.sides[1];
+        p.curve[0] = trimCurve(sa, e.sides[0]);
+        p.curve[1] = trimCurve(sb, e.sides[1]);
+        bool reversed = false;
+        p.usable = !recorded[size_t(p.face[0])] && !recorded[size_t(p.face[1])] && p.curve[0] &&
+                   p.curve[1] && e.covers[0] && e.covers[1];
+        if (p.usable) {
+            const glm::dvec3 a0 = curveEnd(sa, *p.curve[0], false),
+                             a1 = curveEnd(sa, *p.curve[0], true);
+            const glm::dvec3 b0 = curveEnd(sb, *p.curve[1], false),
+                             b1 = curveEnd(sb, *p.curve[1], true);
+            reversed = glm::distance(b0, a0) > glm::distance(b0, a1);
+            const bool closed = glm::distance(a0, a1) <= point;
+            p.endGap = reversed ? std::max(glm::distance(b0, a1), glm::distance(b1, a0))
+                                : std::max(glm::distance(b0, a0), glm::distance(b1, a1));
+            p.usable = !closed && p.endGap <= tolerance;
+        }
         p.use[0] = EdgeUse{sa.id, e.sides[0].loop, e.sides[0].curve, false};
         p.use[1] = EdgeUse{sb.id, e.sides[1].loop, e.sides[1].curve, reversed};
         pairs.push_back(p);
     }
-    // A curve paired twice (three faces along one edge) is no edge of two faces.
-    for (const auto& [side, uses] : usesOf)
-        if (uses > 1)
-            if (const auto it = index.constFind(side.surface); it != index.cend())
-                taken[size_t(*it)] = false;
+    // At a loose tolerance a short curve may lie near two others: each curve keeps the usable
+    // pairing whose ends meet best, and a pairing is kept when it is the best of both its
+    // curves. One not kept is harmless where both its curves have a kept one; otherwise it is a
+    // T-junction, a pairing with an untrimmed face's edge or a closed curve, and its faces (and
+    // their groups) are left to sewing.
+    std::map<ContinuitySide, size_t> best;
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        if (!pairs[k].usable)
+            continue;
+        for (const ContinuitySide& side : pairs[k].side) {
+            const auto it = best.find(side);
+            if (it == best.end() || pairs[k].endGap < pairs[it->second].endGap)
+                best[side] = k;
+        }
+    }
+    const auto isBest = [&](const ContinuitySide& side, size_t k) {
+        const auto it = best.find(side);
+        return it != best.end() && it->second == k;
+    };
+    Groups groups(n);
+    std::vector<bool> kept(pairs.size(), false);
+    for (size_t k = 0; k < pairs.size(); ++k)
+        kept[k] = pairs[k].usable && isBest(pairs[k].side[0], k) && isBest(pairs[k].side[1], k);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const Pair& p = pairs[k];
+        const bool covered = best.count(p.side[0]) && best.count(p.side[1]) &&
+                             kept[best.at(p.side[0])] && kept[best.at(p.side[1])];
+        if (kept[k]) {
+            groups.join(p.face[0], p.face[1]);
+        } else if (!covered) {
+            groups.join(p.face[0], p.face[1]);
+            taken[size_t(p.face[0])] = taken[size_t(p.face[1])] = false;
+        }
+    }
     // Untrimmed faces are bounded by their domain, which the recorded path does not build.
     for (int k = 0; k < n; ++k)
         if (scene.surfaces[size_t(k)].trims.empty())
@@ -150,21 +187,21 @@ MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
         nextEdge = std::max(nextEdge, e.id.value + 1);
     for (const Shell& s : scene.topology.shells)
         nextShell = std::max(nextShell, s.id.value + 1);
-    std::vector<const Pair*> kept;
-    for (const Pair& p : pairs)
-        if (taken[size_t(p.face[0])])
-            kept.push_back(&p);
-    out.edges.resize(kept.size());
+    std::vector<const Pair*> chosen;
+    for (size_t k = 0; k < pairs.size(); ++k)
+        if (kept[k] && taken[size_t(pairs[k].face[0])])
+            chosen.push_back(&pairs[k]);
+    out.edges.resize(chosen.size());
     const auto measure = [&](size_t from, size_t to) {
         for (size_t k = from; k < to; ++k) {
-            const Pair& p = *kept[k];
+            const Pair& p = *chosen[k];
             SharedEdge& e = out.edges[k];
             e.sides = {p.use[0], p.use[1]};
             e.tolerance = pairGap(scene.surfaces[size_t(p.face[0])], *p.curve[0],
                                   scene.surfaces[size_t(p.face[1])], *p.curve[1]);
         }
     };
-    forEachRange(kept.size(), 64, measure);
+    forEachRange(chosen.size(), 64, measure);
     for (SharedEdge& e : out.edges)
         e.id = EdgeId{nextEdge++};
 
@@ -175,7 +212,7 @@ MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
         if (taken[size_t(k)])
             members[groups.find(k)].push_back(k);
     std::map<int, int> sidesUsed;
-    for (const Pair* p : kept)
+    for (const Pair* p : chosen)
         sidesUsed[groups.find(p->face[0])] += 2;
     std::map<int, int> degenerate;
     for (const ContinuitySide& side : topo.degenerateSides)

@@ -9,7 +9,7 @@ namespace kw {
 
 /// Edges and shells found for the faces scene.topology does not touch.
 struct MatchedTopology {
-    /// One per pair of trim curves that lie on one another within the tolerance end to end,
+    /// One per pair of trim curves that lie on one another end to end,
     /// ids above every recorded one; `tolerance` the measured largest gap of the pair
     /// (kw::seamGaps), sides[0] not reversed, sides[1] reversed when it runs the other way.
     std::vector<SharedEdge> edges;
@@ -24,10 +24,11 @@ struct MatchedTopology {
 };
 
 /// The boundaries of the faces no recorded edge or shell touches, paired where every sample of
-/// each lies within `tolerance` (model units, > 0) of the other (kw::continuityTopology with
-/// g0 = match = tolerance). A group of faces joined by pairings is taken whole or not at all,
-/// so that no taken face borders one left to sewing. Cost: the continuity kernel's matching
-/// plus kw::seamGaps on the pairs found (shared out over the cores).
+/// each lies within 4 × `tolerance` (model units, > 0) of the other (kw::continuityTopology;
+/// curves shorter than 1e-4 × `tolerance` are points). Where a curve lies near several, it
+/// keeps the pairing whose ends meet best. A group of faces joined by pairings is taken whole
+/// or not at all, so that no taken face borders one left to sewing. Cost: the continuity
+/// kernel's matching plus kw::seamGaps' measure on the pairs found (shared out over the cores).
 MatchedTopology matchedTopology(const Scene& scene, double tolerance);
 
 } // namespace kw

@@ -41,6 +41,7 @@ class TestMatchedTopology : public QObject {
 private Q_SLOTS:
     void closedCubeIsOneClosedShell();
     void gapIsMeasured();
+    void looseToleranceKeepsBestPairs();
     void tJunctionLeavesGroupToSewing();
     void recordedFacesAreLeftAlone();
 };
@@ -91,6 +92,19 @@ void TestMatchedTopology::gapIsMeasured() {
     const MatchedTopology far = matchedTopology(s, 1e-5);
     QCOMPARE(int(far.edges.size()), 10);
     QVERIFY(!far.shells[0].closed);
+}
+
+// A tolerance as large as the faces (the sewing tolerance of a scene whose diagonal is large
+// next to its parts): every curve lies within reach of several, none is taken for a point, and
+// each keeps the partner whose ends meet it.
+void TestMatchedTopology::looseToleranceKeepsBestPairs() {
+    const MatchedTopology m = matchedTopology(trimmedCube(), 2.0);
+    QCOMPARE(int(m.edges.size()), 12);
+    QCOMPARE(int(m.shells.size()), 1);
+    QVERIFY(m.shells[0].closed);
+    QCOMPARE(m.leftToSewing, 0);
+    for (const SharedEdge& e : m.edges)
+        QVERIFY2(e.tolerance <= 1e-12, qPrintable(QString::number(e.tolerance)));
 }
 
 // One face's curve along part of a neighbour's (its trim halved): no edge can have both sides
