@@ -117,7 +117,8 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
                         f,
                         options.gatherMinCellPixels,
                         options.deferMaxCellPixels,
-                        options.sections};
+                        options.sections,
+                        camera.pickPixel};
 }
 
 void ExactPlanner::clear() {
@@ -181,6 +182,19 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
         outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
         p.culled = true;
         return p;
+    }
+    // A pick draws one pixel: a surface whose projected bounds (two pixels wider, for rounding
+    // and the skirts' reach) miss it sends no triangle (a probe's hover costs what is under
+    // the cursor, not the scene).
+    if (key.pickPixel.x >= 0 && r.bounded) {
+        const ScreenBox box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+        const glm::vec2 pixel = (glm::vec2(key.pickPixel) + 0.5f) / glm::vec2(camera.viewport);
+        const glm::vec2 at = pixel * 2.0f - 1.0f, margin = 4.0f / glm::vec2(camera.viewport);
+        if (!box.behind && (glm::any(glm::lessThan(at, box.lo - margin)) ||
+                            glm::any(glm::greaterThan(at, box.hi + margin)))) {
+            p.culled = true;
+            return p;
+        }
     }
     // Wholly on a section plane's removed side: every fragment would be evaluated (a cut frame
     // has no early depth test) and then discarded.

@@ -111,12 +111,13 @@ struct ExactPlanKey {
     double minCellPixels = 0.0;         ///< RenderOptions::gatherMinCellPixels
     double deferMaxCellPixels = 0.0;    ///< RenderOptions::deferMaxCellPixels
     std::vector<SectionPlane> sections; ///< RenderOptions::sections
+    glm::ivec2 pickPixel{-1, -1};       ///< FrameCamera::pickPixel
     bool has(PlanFlag f) const { return flags.testFlag(f); }
     bool operator==(const ExactPlanKey& o) const {
         return scene == o.scene && layout == o.layout && marks == o.marks &&
                viewProjection == o.viewProjection && viewport == o.viewport && flags == o.flags &&
                minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels &&
-               sections == o.sections;
+               sections == o.sections && pickPixel == o.pickPixel;
     }
 };
 

@@ -121,8 +121,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
                                  double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    if (pickPixel) // beginTarget's shifted viewport
+    if (pickPixel) { // beginTarget's shifted viewport
         fc.viewportOrigin = glm::ivec2(-pickPixel->x(), -pickPixel->y());
+        fc.pickPixel = glm::ivec2(pickPixel->x(), pickPixel->y());
+    }
     const std::vector<Light> lights =
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
