@@ -268,10 +268,12 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
         p.skirtVariant = degrees | int(mask != nullptr) << 8;
     }
     // The skipped side again, drawn last where nothing nearer covered a pixel (seams' sub-pixel
-    // gaps): no pre-pass tests these triangles' trims, so their programs do.
+    // gaps): no pre-pass tests these triangles' trims, so their programs do, but only on the
+    // cells near a curve when split (a trimmed program costs every fragment of its triangles,
+    // rejected ones too: 1.15x Pump_Nut's frame unsplit). Never the gather: its vertex fetches
+    // and flat inputs cost every triangle, and few fragments are shaded.
     if (p.face != 0 && !key.has(PlanFlag::Antialiased))
-        p.backVariant = degrees | int(mask != nullptr) << 8 | int(gather) << 9 | p.face << 10 |
-                        int(affine) << 12;
+        p.backVariant = degrees | int(mask != nullptr) << 8 | p.face << 10 | int(affine) << 12;
     return p;
 }
 
@@ -378,16 +380,21 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         p.skirtIndex = int(k.commands.size());
         k.commands.push_back(cs.skirt);
     }
-    if (p.backVariant >= 0) {
-        ExactBatch& k = m_backFaces[p.backVariant];
+    const auto addBack = [&](int key, const IndirectCommand& command) {
+        ExactBatch& k = m_backFaces[key];
         if (k.commands.empty()) {
             k = b;
             k.commands.clear();
-            k.trimmed = (p.backVariant >> 8) & 1;
+            k.trimmed = (key >> 8) & 1;
+            k.gather = false;
         }
-        p.backIndex = int(k.commands.size());
-        k.commands.push_back(c);
-    }
+        k.commands.push_back(command);
+        return int(k.commands.size()) - 1;
+    };
+    if (p.backVariant >= 0)
+        p.backIndex = addBack(p.backVariant, p.split ? cs.edge : c);
+    if (p.backVariant >= 0 && p.split)
+        p.backInsideIndex = addBack(p.backVariant & ~(1 << 8), cs.inside);
 }
 
 void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
@@ -462,7 +469,9 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
         if (was.skirtVariant >= 0)
             patchOne(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
         if (was.backVariant >= 0)
-            patchOne(m_backFaces.at(was.backVariant), was.backIndex, c);
+            patchOne(m_backFaces.at(was.backVariant), was.backIndex, was.split ? cs.edge : c);
+        if (was.backVariant >= 0 && was.split)
+            patchOne(m_backFaces.at(was.backVariant & ~(1 << 8)), was.backInsideIndex, cs.inside);
         if (deferred && now.route() >= 0) {
             it->second.window = now.window;
             addToRoute(now); // grown only: it may have moved

@@ -77,9 +77,11 @@ struct ExactPlace {
     int skirtVariant = -1;      ///< with skirts: key into skirts() (degrees and trimmed)
     int skirtIndex = -1;        ///< its command there
     /// Its triangles skipped (face != 0), in aliased frames: key into backFaces() (degrees,
-    /// trimmed, gather, face, affine), and its command there.
+    /// trimmed, face, affine), and its command there; split, that is the cells near a curve,
+    /// and those inside the trims are in the untrimmed batch (backVariant less bit 8).
     int backVariant = -1;
     int backIndex = -1;
+    int backInsideIndex = -1;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};

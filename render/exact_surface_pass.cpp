@@ -328,22 +328,26 @@ bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& ca
                                     const std::vector<Light>& lights, const RenderOptions& options,
                                     const ValueRange& range, QString* error) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    // Last, nearer than what is there and written: the solid's faces in front (and their
-    // skirts) reject nearly every fragment before the shader, so what is shaded is the seam
-    // slivers only, where two faces' exact trims miss each other by a fraction of a pixel
-    // and nothing else covered the pixel centre. The forward programs test the trims
-    // themselves (no pre-pass for these triangles).
+    // Last, tested nearer before the shader (KW_BACK_FILL) and writing no depth: the solid's
+    // faces in front (and their skirts) reject nearly every fragment unshaded, so what is
+    // shaded is the seams' slivers, where two faces' exact trims miss each other by a
+    // fraction of a pixel and nothing else covered the pixel centre. Of two back faces in one
+    // sliver the later shows (both are the solid's inside). The forward programs test the
+    // trims themselves (no pre-pass covers these triangles); the polygon's depth is tested.
     gl->glDepthFunc(kDepthNearer);
-    gl->glDepthMask(GL_TRUE);
+    gl->glDepthMask(GL_FALSE);
+    bool ok = true;
     for (const auto& [key, b] : m_plan.backFaces()) {
-        QOpenGLShaderProgram* prog =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                       b.gather, TrimAa::Off, false, b.affine)
-                                   .defines());
+        ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                 false, TrimAa::Off, false, b.affine);
+        v.features.setFlag(ExactFeature::ExactDepth, false);
+        v.features |= ExactFeature::BackFill;
+        QOpenGLShaderProgram* prog = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), v.defines());
         if (!prog) {
             *error = m_shaders->lastError();
-            return false;
+            ok = false;
+            break;
         }
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
@@ -353,7 +357,8 @@ bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& ca
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b, true);
     }
-    return true;
+    gl->glDepthMask(GL_TRUE);
+    return ok;
 }
 
 glm::ivec2 ExactSurfacePass::deferredTargetSize() const {

@@ -168,10 +168,11 @@ private Q_SLOTS:
               "differ, %d now background",
               qPrintable(file), orbit, zoom, skipped.solidsBackCulled, n, covered(all), background);
         QVERIFY(covered(all) > 2000);
+        if (turnLargest) {
+            QVERIFY2(n > 1000, qPrintable(QStringLiteral("%1 pixels differ").arg(n)));
+            return;
+        }
         // Measured 0 and 0 at 384 x 384 (25 and 2 before the skipped side filled the seams).
-        // The control too: its turned face, skipped by the opaque passes where it faces the
-        // eye, is drawn whole by the pass of the skipped side (without that pass, over 1000
-        // pixels differ).
         QVERIFY2(n <= 8, qPrintable(QStringLiteral("%1 pixels differ").arg(n)));
         QCOMPARE(background, 0);
     }
