@@ -337,7 +337,7 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     // view moves; without a skirt only a later point change reads it (uploadChangedPoints
     // brings it back then). Not kept: at 30 x 30 it is 30 KB a surface, 300 MB over 10,000.
     if (!withSkirt)
-        g.polygon.vertices = {};
+        std::vector<BaseVertex>().swap(g.polygon.vertices); // `= {}` would keep the capacity
     return true;
 }
 
