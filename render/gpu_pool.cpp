@@ -215,6 +215,12 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     stats.texels += std::int64_t(w) * h;
     stats.bytes += std::int64_t(w) * h * std::int64_t(sizeof(glm::vec4));
 
+    // The vertices' CPU copy went after the upload (rebuildPolygon): the first change of the
+    // surface's points brings it back whole, from the new points. The nodes outside the moved
+    // points' support come out as they are on the GPU (the same points, the same sums), so
+    // only the support's range is written, as with the copy kept.
+    if (g.polygon.vertices.empty() && g.vertexCount > 0)
+        g.polygon.vertices = buildBasePolygon(s.geometry, g.polygonBox, g.cut).vertices;
     int first = 0, last = -1;
     if (updateBasePolygon(g.polygon, s.geometry, i0, i1, j0, j1, first, last)) {
         const std::int64_t count = last - first + 1;
@@ -327,6 +333,11 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     }
     stats.basePolygonBuilds += 1;
     stats.bytes += u.bytes();
+    // The vertices' CPU copy serves a skirted polygon's fins and skirt, rebuilt from it as the
+    // view moves; without a skirt only a later point change reads it (uploadChangedPoints
+    // brings it back then). Not kept: at 30 x 30 it is 30 KB a surface, 300 MB over 10,000.
+    if (!withSkirt)
+        std::vector<BaseVertex>().swap(g.polygon.vertices); // `= {}` would keep the capacity
     return true;
 }
 

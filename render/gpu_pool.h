@@ -108,8 +108,10 @@ struct SurfaceGpu {
     std::int64_t skirtVertexOffset = -1, skirtVertexCount = 0;
     std::int64_t skirtIndexOffset = -1;
     int skirtIndexCount = 0;
-    std::vector<glm::vec4> control;  ///< the texels now on the GPU
-    BasePolygon polygon;             ///< the vertices now on the GPU
+    std::vector<glm::vec4> control; ///< the texels now on the GPU
+    /// The polygon on the GPU: its breaks and spans always; its vertices while the polygon has
+    /// a skirt or since its points changed (rebuildPolygon, uploadChangedPoints), else none.
+    BasePolygon polygon;
     ParameterBox polygonBox;         ///< the (u, v) box the polygon spans
     bool polygonTrimmed = false;     ///< polygonBox is trimParameterBox, not the domain
     std::uint64_t polygonSerial = 0; ///< changes whenever the polygon is rebuilt
