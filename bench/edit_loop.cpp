@@ -26,6 +26,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 double processCpuMs() {
     timespec t{};
     ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -195,8 +202,8 @@ bool ModelLoop::load(const QString& file, QString* error) {
     if (!read)
         return false;
     cli::printImportRemarks(file, read->report);
-    if (!doc.resetScene(read->scene, error)) {
-        *error = QStringLiteral("%1: %2").arg(file, *error);
+    if (const Status reset = doc.resetScene(read->scene); !reset) {
+        *error = QStringLiteral("%1: %2").arg(file, reset.message());
         return false;
     }
     const Scene& scene = doc.scene();
@@ -231,7 +238,7 @@ bool ModelLoop::knotworkFrame(int samples, QString* error) {
     o.samples = samples;
     o.antialiasing = RenderOptions::Antialiasing::Accumulate;
     o.progressive = false;
-    return renderer.render(doc, camera, o, error);
+    return kept(renderer.render(doc, camera, o), error);
 }
 
 bool ModelLoop::compare(Quality& q, QString* error) {
@@ -242,8 +249,9 @@ bool ModelLoop::compare(Quality& q, QString* error) {
         2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
         double(aov.height);
     EdgeMetrics m;
-    if (!compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle,
-                              &camera.eye))
+    if (!kept(compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, pixelAngle,
+                                   &camera.eye),
+              error))
         return false;
     q.normalP99 = m.normalP99Degrees;
     q.silhouetteMax = m.silhouetteMaxPixels;
@@ -277,7 +285,7 @@ bool ModelLoop::meshQuality(double linear, double angular, Quality& q, long long
     RenderOptions o;
     o.lightCount = config.lights;
     return renderer.setMesh(0, toTriangleMesh(set, SurfaceId{}, true)) >= 0 &&
-           renderer.renderMesh(doc, 0, camera, o, error) && compare(q, error);
+           kept(renderer.renderMesh(doc, 0, camera, o), error) && compare(q, error);
 }
 
 bool ModelLoop::search(EditLoopRow& row, QString* error) {
@@ -359,7 +367,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     } else {
         // Knotwork's quality and the peer's search, against the CPU reference frame.
         reference = renderReference(doc.scene(), camera, config.side, config.side);
-        if (!renderer.setSize(QSize(config.side, config.side), true, error) ||
+        if (!kept(renderer.setSize(QSize(config.side, config.side), true), error) ||
             !knotworkFrame(1, error) || !compare(kw, error))
             return false;
         row.knotworkNormalP99 = kw.normalP99;
@@ -367,7 +375,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         if (!search(row, error))
             return false;
     }
-    if (!renderer.setSize(QSize(config.side, config.side), false, error))
+    if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
         return false;
 
     const Drag drag = chooseDrag(doc.scene());
@@ -430,7 +438,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
         const double handoverCpu = processCpuMs() - handoverCpu0;
         if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0 ||
-            !renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions, error))
+            !kept(renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions), error))
             return false;
         renderer.finish();
         if (timed) {
@@ -517,7 +525,7 @@ bool runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     OffscreenRenderer renderer;
-    if (!renderer.create(error))
+    if (!kept(renderer.create(), error))
         return false;
     report.gl = renderer.renderer().glDescription();
     FaceMesher mesher;

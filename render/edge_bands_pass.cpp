@@ -24,7 +24,7 @@ void EdgeBandsPass::release() {
     m_count = 0;
 }
 
-bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QString* error) {
+Status EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (!m_vao) {
         gl->glCreateVertexArrays(1, &m_vao);
@@ -48,13 +48,12 @@ bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QStr
         m_uploaded = true;
     }
     if (m_count == 0)
-        return true;
-    QOpenGLShaderProgram* prog =
+        return ok();
+    const Expected<QOpenGLShaderProgram*> built =
         m_shaders->program(QStringLiteral("edge_bands.vert"), QStringLiteral("edge_bands.frag"));
-    if (!prog) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     prog->bind();
     gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
                            glm::value_ptr(drawnViewProjection(camera)));
@@ -74,7 +73,7 @@ bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QStr
         }
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 } // namespace kw

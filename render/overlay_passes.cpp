@@ -10,14 +10,13 @@ namespace kw {
 
 namespace {
 
-QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
-                                  const FrameCamera& camera, QString* error) {
-    QOpenGLShaderProgram* prog =
+Expected<QOpenGLShaderProgram*> lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
+                                            const FrameCamera& camera) {
+    const Expected<QOpenGLShaderProgram*> built =
         shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"));
-    if (!prog) {
-        *error = shaders->lastError();
-        return nullptr;
-    }
+    if (!built)
+        return built;
+    QOpenGLShaderProgram* prog = *built;
     prog->bind();
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(drawnViewProjection(camera)));
@@ -33,10 +32,11 @@ void WireframePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sha
     m_shaders = shaders;
 }
 
-bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QString* error) {
-    QOpenGLShaderProgram* prog = lineProgram(m_gl, m_shaders, camera, error);
-    if (!prog)
-        return false;
+Status WireframePass::draw(const GpuScene& scene, const FrameCamera& camera) {
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(m_gl, m_shaders, camera);
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 2e-4f);
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, 1.0f);
     m_gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(color));
@@ -51,7 +51,7 @@ bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera, QStri
         }
     m_gl->glDepthFunc(kDepthNearer);
     m_gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
@@ -59,11 +59,12 @@ void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sh
     m_shaders = shaders;
 }
 
-bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera, QString* error) {
+Status ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = lineProgram(gl, m_shaders, camera, error);
-    if (!prog)
-        return false;
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(gl, m_shaders, camera);
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     gl->glEnable(GL_PROGRAM_POINT_SIZE);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 1e-3f);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, pointSize);
@@ -81,7 +82,7 @@ bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera, QStr
     gl->glDisable(GL_PROGRAM_POINT_SIZE);
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 } // namespace kw

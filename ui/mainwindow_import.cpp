@@ -135,7 +135,9 @@ bool MainWindow::importFile(const QString& path) {
     QString error = job->error;
     if (job->result) // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree
         makeSurfaceNamesDistinct(job->result->scene, QFileInfo(path).completeBaseName());
-    if (!job->result || !m_doc->resetScene(std::move(job->result->scene), &error)) {
+    if (job->result)
+        error = m_doc->resetScene(std::move(job->result->scene)).message();
+    if (!job->result || !error.isEmpty()) {
         showError(tr("Cannot import file"), error);
         return false;
     }

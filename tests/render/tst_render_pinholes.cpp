@@ -11,6 +11,7 @@
 // (docs/PERFORMANCE.md ## Pinholes); they are counted. A failure names the view and each hole's
 // pixel, the reference's face and (u, v) there, and the faces of its 8 neighbours.
 #include "cad_test_util.h"
+#include "expected_test_util.h"
 #include "render/edge_metrics.h"
 #include "render/reference_render.h"
 #include "render_test_util.h"
@@ -112,8 +113,9 @@ class TestRenderPinholes : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
     void noPinholes_data();
     void noPinholes();
@@ -132,7 +134,7 @@ void TestRenderPinholes::noPinholes() {
     QVERIFY(part);
     Document doc;
     QString error;
-    QVERIFY2(doc.resetScene(*part, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(*part));
     std::mt19937 rng(43u + std::uint32_t(qHash(file)));
     RenderOptions opt;
     opt.partitioning = RenderOptions::Partitioning::Adaptive;
@@ -149,14 +151,13 @@ void TestRenderPinholes::noPinholes() {
         const AovBuffer ref = renderReference(doc.scene(), camera, kSide, kSide);
         for (const bool skip : {false, true}) {
             opt.skipBackFaces = skip;
-            QVERIFY2(m_renderer->render(doc, camera, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, camera, opt));
             const AovBuffer gpu = m_renderer->aov();
             EdgeMetrics m;
             const double pixelAngle =
                 2.0 * std::tan(glm::radians(camera.fovYDegrees) * 0.5) / double(kSide);
-            QVERIFY2(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, &error,
-                                          pixelAngle, &camera.eye),
-                     qPrintable(error));
+            KW_VERIFY_OK(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, pixelAngle,
+                                              &camera.eye));
             const std::vector<QPoint> holes = pinholes(gpu, ref);
             QCOMPARE((long long)holes.size(), m.crackPixelsCoveredInReference);
             if (!skip) {

@@ -2,6 +2,7 @@
 // across the G0 tolerance live, the tolerances change its classes, Keep Seams Closed keeps a
 // dragged corner's seam shut as one undo step.
 #include "editor_test_util.h"
+#include "expected_test_util.h"
 #include "model/analysis/continuity.h"
 #include "model/io/knotfile.h"
 #include "model/nurbs/nurbs_construct.h"
@@ -54,7 +55,7 @@ private Q_SLOTS:
         }
         m_path = m_dir.filePath(QStringLiteral("patches.knot"));
         QString error;
-        QVERIFY2(writeKnotFile(m_path, scene, &error), qPrintable(error));
+        KW_VERIFY_OK(writeKnotFile(m_path, scene));
         openWindow();
         QVERIFY(m_window->openFile(m_path));
         act("actionEdgeContinuity")->setChecked(true);
