@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "bench/glu_tessellator.h"
+#include "bench/peer_model.h"
 #include "model/cad/cadimport.h"
 #include "model/document/document.h"
 #include "model/nurbs/trim.h"
@@ -25,24 +26,6 @@ bool kept(const Status& step, QString* error) {
     if (!step && error)
         *error = step.message();
     return bool(step);
-}
-
-/// CPU time of the whole process (llvmpipe rasterises on its own threads), ms.
-double processCpuMs() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
-           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
-}
-
-QString cpuModel() {
-    QFile f(QStringLiteral("/proc/cpuinfo"));
-    if (!f.open(QIODevice::ReadOnly))
-        return QStringLiteral("unknown CPU");
-    for (const QByteArray& line : f.readAll().split('\n'))
-        if (line.startsWith("model name"))
-            return QString::fromUtf8(line.mid(line.indexOf(':') + 1)).trimmed();
-    return QStringLiteral("unknown CPU");
 }
 
 using Frame = std::function<bool(QString*)>;

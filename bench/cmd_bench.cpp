@@ -3,10 +3,13 @@
 #include "app/commands.h"
 #include "app/render_args.h"
 #include "bench/bench_report.h"
+#include "bench/drag_step.h"
 #include "bench/edit_loop.h"
 #include "bench/scale_report.h"
+#include "bench/zoom_loop.h"
 #include "model/io/install_layout.h"
 #include "model/io/savefile.h"
+#include "render/analysis.h"
 
 #include <QCommandLineParser>
 #include <QDir>
@@ -157,6 +160,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "surface's own; in adaptive mode the minimum).")
             .arg(kMaxPartitions),
         QStringLiteral("N"));
+    const QCommandLineOption scaleShading(
+        QStringLiteral("scale-shading"),
+        QStringLiteral("Scale table: phong (default) or an analysis mode (gaussian, mean, "
+                       "zebra, ...), as render --shading."),
+        QStringLiteral("MODE"), QStringLiteral("phong"));
     const QCommandLineOption smoke(
         QStringLiteral("smoke"),
         QStringLiteral("2 timed frames after 1 warm-up per measurement instead of --frames: "
@@ -201,10 +209,10 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "redrawn every frame) and report their median, the CPU ms per mask "
                        "redraw and the mask side ('-' for files without trims)."));
     parser.addOptions(
-        {sizes,          partitions, t1Partitions, frames, lights,  tables,   scaleModel,
-         scaleFaces,     scaleSize,  smoke,        t2Size, samples, mode,     shading,
-         floor,          json,       markdown,     plots,  noTrims, trimDrag, scalePartitionMode,
-         scalePartitions});
+        {sizes,           partitions,  t1Partitions, frames, lights,  tables,   scaleModel,
+         scaleFaces,      scaleSize,   smoke,        t2Size, samples, mode,     shading,
+         floor,           json,        markdown,     plots,  noTrims, trimDrag, scalePartitionMode,
+         scalePartitions, scaleShading});
     const QCommandLineOption trimMode(
         QStringLiteral("trim-mode"),
         QStringLiteral("exact (default: exact trim edges) or mask (the paper's trim mask alone, "
@@ -244,11 +252,58 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                        QStringLiteral("--edit-loop: drag steps, 1..10000 "
                                                       "(default 50)."),
                                        QStringLiteral("N"), QStringLiteral("50"));
-    const QCommandLineOption editSize(QStringLiteral("edit-size"),
-                                      QStringLiteral("--edit-loop: square frame side, 1..4096 "
-                                                     "(default 1024)."),
-                                      QStringLiteral("N"), QStringLiteral("1024"));
-    parser.addOptions({editLoop, peerDeflections, editSteps, editSize});
+    const QCommandLineOption editSize(
+        QStringLiteral("edit-size"),
+        QStringLiteral("--edit-loop, --zoom-loop: square frame side, 1..4096 "
+                       "(default 1024)."),
+        QStringLiteral("N"), QStringLiteral("1024"));
+    const QCommandLineOption zoomLoop(
+        QStringLiteral("zoom-loop"),
+        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): the close-up. For "
+                       "each FILE, from the fitted view to --zoom-levels times closer on a "
+                       "contour: the time to the first correct frame, Knotwork's against "
+                       "OpenCASCADE's mesh peer, which re-meshes the faces in view at the "
+                       "deflections that give equal quality at that zoom (searched), re-sends "
+                       "and draws them; and the memory each holds for the view. JSON rows under "
+                       "\"zoomLoop\" (docs/PERFORMANCE.md ## Close-up)."));
+    const QCommandLineOption zoomLevels(QStringLiteral("zoom-levels"),
+                                        QStringLiteral("--zoom-loop: zoom factors, each in "
+                                                       "2..4096 (default 8,64)."),
+                                        QStringLiteral("LIST"), QStringLiteral("8,64"));
+    const QCommandLineOption zoomRepeats(QStringLiteral("zoom-repeats"),
+                                         QStringLiteral("--zoom-loop: timed transitions per "
+                                                        "method and zoom, 1..1000 (default 5)."),
+                                         QStringLiteral("N"), QStringLiteral("5"));
+    parser.addOptions(
+        {editLoop, peerDeflections, editSteps, editSize, zoomLoop, zoomLevels, zoomRepeats});
+    const QCommandLineOption dragStep(
+        QStringLiteral("drag-step"),
+        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): time one "
+                       "control-point drag step with the Edge Continuity overlay on against off, "
+                       "alternated step by step, on each FILE (default: --scale-model) as read "
+                       "and tiled to each --drag-faces: edit, the dragged face's shared edges "
+                       "re-measured (on: their bands re-made and uploaded; off: for the status "
+                       "bar's 'opens N seams'), frame to glFinish. Medians of wall and CPU ms; "
+                       "JSON rows under \"dragStep\" (docs/PERFORMANCE.md ## Editing)."));
+    const QCommandLineOption continuityOverlay(
+        QStringLiteral("continuity-overlay"),
+        QStringLiteral("--drag-step: on, off or both (default)."), QStringLiteral("STATE"),
+        QStringLiteral("both"));
+    const QCommandLineOption dragFaces(
+        QStringLiteral("drag-faces"),
+        QStringLiteral("--drag-step: models per FILE, 0 = the file as read, N = tiled as the "
+                       "scale table tiles it (its shared-edge record copied) to >= N faces, "
+                       "each 0..1000000 (default 0,10000)."),
+        QStringLiteral("LIST"), QStringLiteral("0,10000"));
+    const QCommandLineOption dragSteps(
+        QStringLiteral("drag-steps"),
+        QStringLiteral("--drag-step: timed steps per overlay state, 1..10000 (default 30)."),
+        QStringLiteral("N"), QStringLiteral("30"));
+    const QCommandLineOption dragSize(
+        QStringLiteral("drag-size"),
+        QStringLiteral("--drag-step: square frame side, 1..4096 (default 1024)."),
+        QStringLiteral("N"), QStringLiteral("1024"));
+    parser.addOptions({dragStep, continuityOverlay, dragFaces, dragSteps, dragSize});
     parser.addPositionalArgument(QStringLiteral("FILES"),
                                  QStringLiteral(".knot projects or IGES/STEP/BREP/OBJ files "
                                                 "(read as render reads them)."),
@@ -379,6 +434,15 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     if (!readDevelopmentSwitches(cmd, config.base))
         return kExitUsage;
     scaleConfig.base = config.base;
+    if (const std::optional<AnalysisMode> m = parseAnalysisMode(parser.value(scaleShading))) {
+        scaleConfig.base.analysis.mode = *m;
+    } else {
+        printError(QStringLiteral("%1: --scale-shading '%2' is not phong or an analysis mode "
+                                  "(gaussian, mean, max-curvature, min-radius, zebra, isophotes, "
+                                  "environment, draft)")
+                       .arg(cmd, parser.value(scaleShading)));
+        return kExitUsage;
+    }
     scaleConfig.frames = config.frames;
     scaleConfig.trims = config.trims;
     bench::EditLoopConfig editConfig;
@@ -406,12 +470,49 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     editConfig.files = files1;
     editConfig.lights = config.lights;
     editConfig.base = config.base;
-    if (edit && !parser.isSet(tables)) { // the edit loop alone
+    bench::ZoomLoopConfig zoomConfig;
+    const bool zoom = parser.isSet(zoomLoop);
+    std::vector<int> levels;
+    if (!parseList(parser.value(zoomLevels), 2, 4096, levels) ||
+        !parseIntIn(parser.value(zoomRepeats), 1, 1000, zoomConfig.repeats)) {
+        printError(QStringLiteral("%1: bad --zoom-levels (each 2..4096) or --zoom-repeats "
+                                  "(1..1000)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
+    zoomConfig.zooms.assign(levels.begin(), levels.end());
+    zoomConfig.files = files1;
+    zoomConfig.side = editConfig.side;
+    zoomConfig.lights = config.lights;
+    zoomConfig.base = config.base;
+    bench::DragStepConfig dragConfig;
+    const bool drag = parser.isSet(dragStep);
+    const QString overlayState = parser.value(continuityOverlay);
+    if (!parseList(parser.value(dragFaces), 0, 1000000, dragConfig.faces) ||
+        !parseIntIn(parser.value(dragSteps), 1, 10000, dragConfig.steps) ||
+        !parseIntIn(parser.value(dragSize), 1, kMaxSide, dragConfig.side) ||
+        (overlayState != QLatin1String("on") && overlayState != QLatin1String("off") &&
+         overlayState != QLatin1String("both"))) {
+        printError(QStringLiteral("%1: bad --drag-faces (0..1000000), --drag-steps (1..10000), "
+                                  "--drag-size (1..4096) or --continuity-overlay (on, off, both)")
+                       .arg(cmd));
+        return kExitUsage;
+    }
+    dragConfig.overlayOn = overlayState != QLatin1String("off");
+    dragConfig.overlayOff = overlayState != QLatin1String("on");
+    dragConfig.files = parser.positionalArguments();
+    if (dragConfig.files.isEmpty())
+        dragConfig.files << parser.value(scaleModel);
+    dragConfig.lights = config.lights;
+    dragConfig.base = config.base;
+    if ((edit || zoom || drag) && !parser.isSet(tables)) { // the loops alone
         config.table1Files.clear();
         config.table2Files.clear();
     }
     if (parser.isSet(smoke)) {
         editConfig.steps = std::min(editConfig.steps, 2);
+        zoomConfig.repeats = 1;
+        dragConfig.steps = std::min(dragConfig.steps, 2);
         config.frames = 2;
         config.warmup = 1;
         scaleConfig.frames = 2;
@@ -442,6 +543,16 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         printError(QStringLiteral("%1: edit loop: %2").arg(cmd, error));
         return kExitBadInput;
     }
+    bench::ZoomLoopReport zoomReport;
+    if (zoom && !bench::runZoomLoop(zoomConfig, zoomReport, progress, &error)) {
+        printError(QStringLiteral("%1: zoom loop: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
+    bench::DragStepReport dragReport;
+    if (drag && !bench::runDragStep(dragConfig, dragReport, progress, &error)) {
+        printError(QStringLiteral("%1: drag step: %2").arg(cmd, error));
+        return kExitBadInput;
+    }
     QStringList argv = args.mid(1);
     const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
     QString plotDir = parser.value(plots);
@@ -463,12 +574,20 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         md += bench::scaleMarkdown(scaleReport);
     if (edit)
         md += bench::editLoopMarkdown(editReport, command);
+    if (zoom)
+        md += bench::zoomLoopMarkdown(zoomReport, command);
+    if (drag)
+        md += bench::dragStepMarkdown(dragReport, command);
     printOut(md);
     if (parser.isSet(markdown) && !writeFile(parser.value(markdown), md.toUtf8()))
         return kExitBadInput;
     QJsonObject root = benchJson(report, scale, scaleReport, command);
     if (edit)
         root.insert(QStringLiteral("editLoop"), bench::editLoopJson(editReport));
+    if (zoom)
+        root.insert(QStringLiteral("zoomLoop"), bench::zoomLoopJson(zoomReport));
+    if (drag)
+        root.insert(QStringLiteral("dragStep"), bench::dragStepJson(dragReport));
     if (parser.isSet(json) && !writeFile(parser.value(json), QJsonDocument(root).toJson()))
         return kExitBadInput;
     return kExitOk;

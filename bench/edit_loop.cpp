@@ -2,25 +2,18 @@
 // alternated timed steps, and the report.
 #include "bench/edit_loop.h"
 
-#include "app/commands.h"
-#include "model/cad/cadimport.h"
-#include "model/cad/cadprocess.h"
+#include "bench/peer_model.h"
 #include "model/cad/facemesher.h"
 #include "model/document/document.h"
-#include "render/edge_metrics.h"
 #include "render/gpu_layout.h"
 #include "render/offscreen_renderer.h"
-#include "render/reference_render.h"
 
 #include <QElapsedTimer>
-#include <QFile>
 #include <QFileInfo>
 #include <QJsonObject>
 #include <QThread>
 #include <algorithm>
 #include <cmath>
-#include <ctime>
-#include <map>
 
 namespace kw::bench {
 
@@ -32,40 +25,6 @@ bool kept(const Status& step, QString* error) {
         *error = step.message();
     return bool(step);
 }
-
-double processCpuMs() {
-    timespec t{};
-    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-QString cpuModel() {
-    QFile f(QStringLiteral("/proc/cpuinfo"));
-    if (f.open(QIODevice::ReadOnly))
-        for (const QByteArray& line : f.readAll().split('\n'))
-            if (line.startsWith("model name"))
-                return QString::fromUtf8(line.mid(line.indexOf(':') + 1)).trimmed();
-    return QStringLiteral("unknown CPU");
-}
-
-// The peer's deflection steps (tools/peer_search.py): from OCCT viewers' default (0.004 of the
-// largest side, 20 degrees) down by 2x in distance and about 1.4x in angle per step.
-constexpr int kSteps = 16;
-double linearStep(int k) {
-    return 4e-3 / std::pow(2.0, k);
-}
-double angularStep(int k) {
-    return std::round(20.0 / std::pow(2.0, k / 2.0) * 1000.0) / 1000.0;
-}
-
 // Free-form: a polynomial (all weights equal) surface curved in some direction. Rational
 // surfaces are the conics and quadrics of imported analytic faces, degree 1 x 1 the planes.
 bool isFreeForm(const NurbsSurface& g) {
@@ -142,95 +101,32 @@ glm::dvec3 dragPosition(const Drag& d, int e, int count) {
     return d.home + d.direction * (d.amplitude * (1.0 - std::abs(1.0 - 2.0 * x)));
 }
 
-TriangleMesh toTriangleMesh(const TaggedMeshSet& set, SurfaceId only, bool except) {
-    TriangleMesh out;
-    for (const TaggedMesh& f : set.faces) {
-        if ((f.id == only) == except)
-            continue;
-        SurfaceMesh m;
-        m.id = f.id;
-        m.positions.assign(f.positions.begin(), f.positions.end());
-        m.normals.assign(f.normals.begin(), f.normals.end());
-        m.uvs.assign(f.uvs.begin(), f.uvs.end());
-        m.indices = f.indices;
-        out.surfaces.push_back(std::move(m));
-    }
-    return out;
-}
-
-struct Quality {
-    double normalP99 = 0.0, silhouetteMax = 0.0;
-};
-
 /// One model's loop: everything it needs in one place.
 class ModelLoop {
 public:
     ModelLoop(const EditLoopConfig& c, OffscreenRenderer& r, FaceMesher& m,
               const std::function<void(const QString&)>& p)
-        : config(c), renderer(r), mesher(m), progress(p) {}
+        : config(c), renderer(r), mesher(m), progress(p),
+          peer(r, m, {c.lights, c.normalP99Floor, c.maxTriangles}, p) {}
 
     bool run(const QString& file, EditLoopRow& row, QString* error);
 
 private:
-    bool load(const QString& file, QString* error);
-    bool knotworkFrame(int samples, QString* error);
-    bool compare(Quality& q, QString* error);
-    bool staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error);
-    bool meshQuality(double linear, double angular, Quality& q, long long& triangles,
-                     QString* error);
-    bool search(EditLoopRow& row, QString* error);
-    bool good(const Quality& q) const {
-        return q.normalP99 <= std::max(kw.normalP99, config.normalP99Floor) &&
-               q.silhouetteMax <= std::max(kw.silhouetteMax, 1.0);
+    RenderOptions frameOptions(int samples) const;
+    bool knotworkFrame(int samples, QString* error) {
+        return kept(renderer.render(doc, camera, frameOptions(samples)), error);
     }
 
     const EditLoopConfig& config;
     OffscreenRenderer& renderer;
     FaceMesher& mesher;
     const std::function<void(const QString&)>& progress;
-    QString path;
-    Document doc;
-    Camera camera;
-    double side = 1.0, tolerance = 1e-7;
-    AovBuffer reference;
-    Quality kw;
+    PeerModel peer;
+    Document& doc = peer.doc;
+    Camera& camera = peer.camera;
 };
 
-bool ModelLoop::load(const QString& file, QString* error) {
-    path = file;
-    std::optional<ImportResult> read = openModelFile(file, *error);
-    if (!read)
-        return false;
-    cli::printImportRemarks(file, read->report);
-    if (const Status reset = doc.resetScene(read->scene); !reset) {
-        *error = QStringLiteral("%1: %2").arg(file, reset.message());
-        return false;
-    }
-    const Scene& scene = doc.scene();
-    if (scene.surfaces.empty()) {
-        *error = QStringLiteral("%1: the scene has no surfaces to edit").arg(file);
-        return false;
-    }
-    camera = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
-    // The largest side of the surfaces' bounds, as OCCT's viewers scale their default linear
-    // deflection (0.004 of it) from the shape's bounding box.
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const Surface& s : scene.surfaces) {
-        const TessellatedMesh t = tessellate(s.geometry, 16, 16);
-        for (const glm::vec3& p : t.positions) {
-            lo = glm::min(lo, glm::dvec3(p));
-            hi = glm::max(hi, glm::dvec3(p));
-        }
-    }
-    side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9});
-    // The faces' tolerance as the STEP/IGES writer builds them (occtexport.cpp).
-    tolerance = std::max(1e-5 * glm::length(hi - lo), 1e-7);
-    for (const SharedEdge& e : scene.topology.edges)
-        tolerance = std::max(tolerance, e.tolerance);
-    return true;
-}
-
-bool ModelLoop::knotworkFrame(int samples, QString* error) {
+RenderOptions ModelLoop::frameOptions(int samples) const {
     RenderOptions o = config.base;
     o.mode = RenderMode::Exact;
     o.partitioning = RenderOptions::Partitioning::Adaptive; // the editor's and render's default
@@ -238,142 +134,33 @@ bool ModelLoop::knotworkFrame(int samples, QString* error) {
     o.samples = samples;
     o.antialiasing = RenderOptions::Antialiasing::Accumulate;
     o.progressive = false;
-    return kept(renderer.render(doc, camera, o), error);
-}
-
-bool ModelLoop::compare(Quality& q, QString* error) {
-    const AovBuffer aov = renderer.aov();
-    glm::dvec3 lo(0.0), hi(0.0);
-    sceneBounds(doc.scene(), lo, hi);
-    const double pixelAngle =
-        2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
-        double(aov.height);
-    EdgeMetrics m;
-    if (!kept(compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, pixelAngle,
-                                   &camera.eye),
-              error))
-        return false;
-    q.normalP99 = m.normalP99Degrees;
-    q.silhouetteMax = m.silhouetteMaxPixels;
-    return true;
-}
-
-// The peer's mesh of the whole model: a CAD file meshed as its B-rep (shared edges, as a
-// viewer that opened it meshes it), a project's surfaces built and meshed face by face.
-bool ModelLoop::staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error) {
-    const CadFormat format = cadFormatFromPath(path);
-    if (format == CadFormat::Iges || format == CadFormat::Step || format == CadFormat::Brep) {
-        MeshDeflection deflection;
-        deflection.linear = linear;
-        deflection.angularDegrees = angular;
-        return importInChildProcess(path, format, *error, {}, &deflection, &out).has_value();
-    }
-    FaceMeshCost cost;
-    if (!mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost, *error)) {
-        *error = QStringLiteral("%1: %2").arg(path, *error);
-        return false;
-    }
-    return true;
-}
-
-bool ModelLoop::meshQuality(double linear, double angular, Quality& q, long long& triangles,
-                            QString* error) {
-    TaggedMeshSet set;
-    if (!staticMesh(linear, angular, set, error))
-        return false;
-    triangles = set.triangleCount();
-    RenderOptions o;
-    o.lightCount = config.lights;
-    return renderer.setMesh(0, toTriangleMesh(set, SurfaceId{}, true)) >= 0 &&
-           kept(renderer.renderMesh(doc, 0, camera, o), error) && compare(q, error);
-}
-
-bool ModelLoop::search(EditLoopRow& row, QString* error) {
-    struct Tried {
-        Quality q;
-        long long triangles = 0;
-    };
-    std::map<std::pair<int, int>, Tried> tried;
-    const auto at = [&](int li, int ai, Tried& t) {
-        if (auto it = tried.find({li, ai}); it != tried.end()) {
-            t = it->second;
-            return true;
-        }
-        if (!meshQuality(linearStep(li) * side, angularStep(ai), t.q, t.triangles, error))
-            return false;
-        tried[{li, ai}] = t;
-        progress(QStringLiteral("%1: peer linear %2 angular %3 deg: %4 triangles, silhouette max "
-                                "%5 px, normal p99 %6 deg")
-                     .arg(QFileInfo(path).fileName())
-                     .arg(linearStep(li) * side, 0, 'g', 3)
-                     .arg(angularStep(ai))
-                     .arg(t.triangles)
-                     .arg(t.q.silhouetteMax, 0, 'f', 2)
-                     .arg(t.q.normalP99, 0, 'f', 4));
-        return true;
-    };
-    Tried t;
-    int step = 0;
-    if (!at(0, 0, t))
-        return false;
-    while (!good(t.q) && step + 1 < kSteps && t.triangles < config.maxTriangles) {
-        // A finer mesh can pass the CAD child's time or memory limit: the search stops there,
-        // with the finest mesh made (peer_search.py does the same).
-        Tried finer;
-        if (!at(step + 1, step + 1, finer)) {
-            progress(
-                QStringLiteral("%1: stopped refining: %2").arg(QFileInfo(path).fileName(), *error));
-            break;
-        }
-        t = finer;
-        ++step;
-    }
-    int li = step, ai = step;
-    // Relax one deflection at a time while the quality holds and the triangles drop.
-    for (bool improved = good(t.q); improved;) {
-        improved = false;
-        for (auto [l, a] : {std::pair{li - 1, ai}, std::pair{li, ai - 1}}) {
-            Tried r;
-            if (l < 0 || a < 0 || !at(l, a, r))
-                continue;
-            if (good(r.q) && r.triangles < t.triangles) {
-                t = r;
-                li = l;
-                ai = a;
-                improved = true;
-                break;
-            }
-        }
-    }
-    row.matched = good(t.q);
-    row.peerLinear = linearStep(li) * side;
-    row.peerAngular = angularStep(ai);
-    row.peerNormalP99 = t.q.normalP99;
-    row.peerSilhouetteMax = t.q.silhouetteMax;
-    return true;
+    return o;
 }
 
 bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
-    if (!load(file, error))
+    if (!peer.load(file, error))
         return false;
     const QString name = QFileInfo(file).fileName();
     row.model = name;
     row.surfaces = int(doc.scene().surfaces.size());
-    row.defaultLinear = 0.004 * side;
+    row.defaultLinear = 0.004 * peer.side;
     if (config.peerDeflections) {
         row.deflectionsGiven = true;
         row.peerLinear = config.peerDeflections->first;
         row.peerAngular = config.peerDeflections->second;
     } else {
         // Knotwork's quality and the peer's search, against the CPU reference frame.
-        reference = renderReference(doc.scene(), camera, config.side, config.side);
-        if (!kept(renderer.setSize(QSize(config.side, config.side), true), error) ||
-            !knotworkFrame(1, error) || !compare(kw, error))
+        PeerChoice choice;
+        if (!peer.measureKnotwork(config.side, frameOptions(1), error) ||
+            !peer.searchStatic(choice, error))
             return false;
-        row.knotworkNormalP99 = kw.normalP99;
-        row.knotworkSilhouetteMax = kw.silhouetteMax;
-        if (!search(row, error))
-            return false;
+        row.knotworkNormalP99 = peer.knotwork.normalP99;
+        row.knotworkSilhouetteMax = peer.knotwork.silhouetteMax;
+        row.matched = choice.matched;
+        row.peerLinear = choice.linear;
+        row.peerAngular = choice.angular;
+        row.peerNormalP99 = choice.quality.normalP99;
+        row.peerSilhouetteMax = choice.quality.silhouetteMax;
     }
     if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
         return false;
@@ -399,7 +186,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     peers[1].face = 3;
     for (Peer& p : peers) {
         TaggedMeshSet set;
-        if (!staticMesh(p.linear, p.angular, set, error))
+        if (!peer.staticMesh(p.linear, p.angular, set, error))
             return false;
         p.triangles = set.triangleCount();
         if (renderer.setMesh(p.rest, toTriangleMesh(set, drag.id, true)) < 0 ||
@@ -430,7 +217,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         handover.start();
         TaggedMeshSet set;
         FaceMeshCost cost;
-        if (!mesher.mesh({*doc.surface(drag.id)}, tolerance, p.linear, p.angular, set, cost,
+        if (!mesher.mesh({*doc.surface(drag.id)}, peer.tolerance, p.linear, p.angular, set, cost,
                          *error)) {
             *error = QStringLiteral("%1: %2").arg(name, *error);
             return false;

@@ -3,6 +3,7 @@
 #include "bench/scale_bench.h"
 
 #include "app/commands.h"
+#include "bench/peer_model.h"
 #include "bench/scale_scene.h"
 #include "model/cad/cadimport.h"
 #include "model/document/document.h"
@@ -28,33 +29,6 @@ bool kept(const Status& step, QString* error) {
         *error = step.message();
     return bool(step);
 }
-
-double processCpuMs() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return (double(u.ru_utime.tv_sec) + double(u.ru_stime.tv_sec)) * 1e3 +
-           (double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_usec)) * 1e-3;
-}
-
-/// VmRSS of this process in MiB (0 when /proc is unreadable).
-double residentMiB() {
-    QFile f(QStringLiteral("/proc/self/status"));
-    if (!f.open(QIODevice::ReadOnly))
-        return 0.0;
-    for (const QByteArray& line : f.readAll().split('\n'))
-        if (line.startsWith("VmRSS:"))
-            return line.mid(6).trimmed().split(' ').value(0).toDouble() / 1024.0;
-    return 0.0;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /// The part as a Scene, read as `knotwork render` reads it (kw::openModelFile: a .knot as saved,
 /// IGES, STEP and BREP in the CAD reader's child process, OBJ), its import remarks on stderr.
 std::optional<Scene> loadUnit(const QString& model, QString* error) {

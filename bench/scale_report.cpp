@@ -2,6 +2,7 @@
 #include "bench/scale_report.h"
 
 #include "bench/line_plot.h"
+#include "render/analysis.h"
 #include "render/image_save.h"
 
 #include <QDir>
@@ -27,6 +28,15 @@ QString partitioningLabel(const ScaleConfig& c) {
                                          : QStringLiteral("each surface's own");
     return adaptive ? QStringLiteral("adaptive partitions from %1").arg(own)
                     : QStringLiteral("uniform partitions, %1").arg(own);
+}
+
+/// The partitioning, then the shading when it is an analysis mode ("..., mean shading").
+QString setupLabel(const ScaleConfig& c) {
+    const AnalysisMode shading = c.base.analysis.mode;
+    return shading == AnalysisMode::Phong
+               ? partitioningLabel(c)
+               : QStringLiteral("%1, %2 shading")
+                     .arg(partitioningLabel(c), analysisModeName(shading));
 }
 
 QJsonObject viewJson(const ScaleView& v) {
@@ -77,6 +87,7 @@ QJsonObject scaleJson(const ScaleReport& report) {
                        {QStringLiteral("dragSteps"), c.dragSteps},
                        {QStringLiteral("trims"), c.trims},
                        {QStringLiteral("partitioning"), partitioningLabel(c)},
+                       {QStringLiteral("shading"), analysisModeName(c.base.analysis.mode)},
                        {QStringLiteral("rows"), rows}};
 }
 
@@ -93,7 +104,7 @@ QString scaleMarkdown(const ScaleReport& report) {
                      .arg(report.unitFaces)
                      .arg(report.unitTrimmed)
                      .arg(c.side)
-                     .arg(partitioningLabel(c))
+                     .arg(setupLabel(c))
                      .arg(c.frameHeight());
     for (const ScaleRow& r : report.rows)
         md +=

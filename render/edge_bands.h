@@ -18,10 +18,19 @@ struct EdgeBandVertex {
 };
 static_assert(sizeof(EdgeBandVertex) == 7 * sizeof(float), "tightly packed for the VBO");
 
+/// One edge's (or free side's) band within EdgeBands::vertices, with its bounds, so that the
+/// pass can leave out the bands wholly off screen (a close-up of a large model).
+struct EdgeBandRange {
+    std::uint32_t first = 0, count = 0; ///< vertices [first, first + count)
+    glm::vec3 lo{0.0f}, hi{0.0f};       ///< bounds of those vertices' positions
+};
+
 /// Line segments (pairs of vertices, GL_LINES) to draw as bands `widthPixels` wide over the
 /// surfaces. `revision` changes whenever the vertices do, so the pass uploads only then.
+/// `ranges`, when not empty, cover every vertex in order, one per band.
 struct EdgeBands {
     std::vector<EdgeBandVertex> vertices;
+    std::vector<EdgeBandRange> ranges;
     std::uint64_t revision = 0;
     float widthPixels = 4.0f;
 };
@@ -35,6 +44,40 @@ glm::vec4 freeEdgeColor();
 /// empty when the surface lacks it.
 std::vector<EdgeBandVertex> edgeBandLine(const Surface& surface, const ContinuitySide& side,
                                          const glm::vec4& color, int segments = 48);
+
+/// Runs of EdgeBands::vertices to draw (GL_LINES first / count), adjacent bands merged.
+struct EdgeBandRuns {
+    std::vector<std::int32_t> first, count;
+};
+
+/// The bands of `bands` not wholly outside one side plane of the frustum of `viewProjection`
+/// (an OpenGL clip transform), its sides pushed out by `margin` (a fraction of the half-size,
+/// for the band's pixels beside its line): a conservative test on each range's bounds, so a
+/// band that shows is never left out. Every vertex as one run when `bands.ranges` is empty.
+EdgeBandRuns visibleEdgeBands(const EdgeBands& bands, const glm::mat4& viewProjection,
+                              float margin);
+
+/// The overlay's band lines kept per edge and per free side of a report, so that an edit
+/// re-makes only the lines of the faces it changed (a drag step: the dragged face's edges)
+/// and the rest are copied. The editor's overlay and the bench's drag step both use it.
+class EdgeBandCache {
+public:
+    /// Re-makes the lines of the edges and free sides of `report` with a side on one of `faces`
+    /// (every line when `faces` is empty or the report's edges changed in number): an edge's
+    /// colour follows its class, its curve the side that covers it. Hidden surfaces (and
+    /// surfaces `scene` lacks) get no line. Returns all lines as bands with a new revision.
+    std::shared_ptr<const EdgeBands> update(const Scene& scene, const ContinuityReport& report,
+                                            const std::vector<SurfaceId>& faces = {});
+    void clear();
+    /// The lines of report.edges, in order (empty ones for hidden faces).
+    const std::vector<std::vector<EdgeBandVertex>>& edgeLines() const { return m_edgeLines; }
+
+private:
+    std::vector<std::vector<EdgeBandVertex>> m_edgeLines, m_freeLines;
+    /// Bounds of each line ({lo, hi}), kept with it.
+    std::vector<std::pair<glm::vec3, glm::vec3>> m_edgeBounds, m_freeBounds;
+    std::uint64_t m_revision = 0;
+};
 
 /// Polylines of `segments` pieces along each edge of `report` (its first side's curve),
 /// coloured by class, and along each free side. `revision` is stored as is.

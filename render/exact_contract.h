@@ -134,6 +134,7 @@ enum class ExactFeature : std::uint32_t {
     SecondOrder = 1u << 14,  ///< KW_SECOND_ORDER: second derivatives and curvature
     AovCurvature = 1u << 15, ///< KW_AOV_CURVATURE: the curvature AOV targets
     Section = 1u << 16,      ///< KW_SECTION: section planes cut at the exact point, caps
+    BackFill = 1u << 17,     ///< KW_BACK_FILL: a solid's skipped side, where nothing covered
 };
 using ExactFeatures = QFlags<ExactFeature>;
 
@@ -160,6 +161,7 @@ inline constexpr std::array kExactFeatureDefines{
     ExactFeatureDefine{ExactFeature::SecondOrder, "KW_SECOND_ORDER"},
     ExactFeatureDefine{ExactFeature::AovCurvature, "KW_AOV_CURVATURE"},
     ExactFeatureDefine{ExactFeature::Section, "KW_SECTION"},
+    ExactFeatureDefine{ExactFeature::BackFill, "KW_BACK_FILL"},
 };
 
 /// The defines of `features`, one per bit, in kExactFeatureDefines' order.

@@ -24,6 +24,33 @@ bool ExactPlanner::outsideView(const glm::vec3& lo, const glm::vec3& hi,
                              glm::dvec3(hi + margin));
 }
 
+ExactPlanner::SectionSide ExactPlanner::sectionSide(const glm::vec3& lo, const glm::vec3& hi,
+                                                    const std::vector<SectionPlane>& planes) {
+    bool crossed = false;
+    for (const SectionPlane& plane : planes) {
+        const glm::dvec3 n = plane.removedSide();
+        if (n == glm::dvec3(0.0))
+            continue; // refused before drawing (sectionPlaneError)
+        // The shader compares a float distance: a margin of the float resolution of the
+        // coordinates involved keeps a point the shader might keep out of Removed.
+        const double margin =
+            1e-5 * (glm::length(glm::dvec3(hi - lo)) + glm::length(glm::dvec3(hi)) +
+                    glm::length(glm::dvec3(lo)) + glm::length(plane.position));
+        double nearest = std::numeric_limits<double>::infinity();
+        double farthest = -nearest;
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 p(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+            const double d = glm::dot(n, p - plane.position);
+            nearest = std::min(nearest, d);
+            farthest = std::max(farthest, d);
+        }
+        if (nearest > margin)
+            return SectionSide::Removed;
+        crossed = crossed || farthest > -margin;
+    }
+    return crossed ? SectionSide::Crossed : SectionSide::Kept;
+}
+
 double ExactPlanner::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
     glm::vec3 lo, hi;
     if (!kw::controlBounds(g, lo, hi))
@@ -89,7 +116,9 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
                         camera.viewport,
                         f,
                         options.gatherMinCellPixels,
-                        options.deferMaxCellPixels};
+                        options.deferMaxCellPixels,
+                        options.sections,
+                        camera.pickPixel};
 }
 
 void ExactPlanner::clear() {
@@ -151,6 +180,26 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     // (GpuScene), not taken from its points per frame.
     if (key.has(PlanFlag::Cull) && r.bounded &&
         outsideView(r.boundsLo, r.boundsHi, camera.viewProjection)) {
+        p.culled = true;
+        return p;
+    }
+    // A pick draws one pixel: a surface whose projected bounds (two pixels wider, for rounding
+    // and the skirts' reach) miss it sends no triangle (a probe's hover costs what is under
+    // the cursor, not the scene).
+    if (key.pickPixel.x >= 0 && r.bounded) {
+        const ScreenBox box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+        const glm::vec2 pixel = (glm::vec2(key.pickPixel) + 0.5f) / glm::vec2(camera.viewport);
+        const glm::vec2 at = pixel * 2.0f - 1.0f, margin = 4.0f / glm::vec2(camera.viewport);
+        if (!box.behind && (glm::any(glm::lessThan(at, box.lo - margin)) ||
+                            glm::any(glm::greaterThan(at, box.hi + margin)))) {
+            p.culled = true;
+            return p;
+        }
+    }
+    // Wholly on a section plane's removed side: every fragment would be evaluated (a cut frame
+    // has no early depth test) and then discarded.
+    if (!key.sections.empty() && r.bounded &&
+        sectionSide(r.boundsLo, r.boundsHi, key.sections) == SectionSide::Removed) {
         p.culled = true;
         return p;
     }
@@ -218,6 +267,13 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
                                          std::int32_t(g->skirtVertexOffset), std::uint32_t(r.slot)};
         p.skirtVariant = degrees | int(mask != nullptr) << 8;
     }
+    // The skipped side again, drawn last where nothing nearer covered a pixel (seams' sub-pixel
+    // gaps): no pre-pass tests these triangles' trims, so their programs do, but only on the
+    // cells near a curve when split (a trimmed program costs every fragment of its triangles,
+    // rejected ones too: 1.15x Pump_Nut's frame unsplit). Never the gather: its vertex fetches
+    // and flat inputs cost every triangle, and few fragments are shaded.
+    if (p.face != 0 && !key.has(PlanFlag::Antialiased))
+        p.backVariant = degrees | int(mask != nullptr) << 8 | p.face << 10 | int(affine) << 12;
     return p;
 }
 
@@ -249,7 +305,8 @@ void ExactPlanner::chooseBackCulled(const ExactPlanScene& scene, const ExactPlan
     // A little past the near plane: the bounds hold the polygon, rounding aside.
     const double nearest = double(camera.nearPlane) * (1.0 + 1e-3);
     for (const auto& [k, s] : solids) {
-        if (!s.complete || s.drawn != scene.solidMembers(k))
+        if (!s.complete || s.drawn != scene.solidMembers(k) ||
+            sectionSide(s.lo, s.hi, key.sections) != SectionSide::Kept)
             continue;
         bool beyond = true;
         for (int c = 0; c < 8 && beyond; ++c) {
@@ -323,12 +380,27 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         p.skirtIndex = int(k.commands.size());
         k.commands.push_back(cs.skirt);
     }
+    const auto addBack = [&](int key, const IndirectCommand& command) {
+        ExactBatch& k = m_backFaces[key];
+        if (k.commands.empty()) {
+            k = b;
+            k.commands.clear();
+            k.trimmed = (key >> 8) & 1;
+            k.gather = false;
+        }
+        k.commands.push_back(command);
+        return int(k.commands.size()) - 1;
+    };
+    if (p.backVariant >= 0)
+        p.backIndex = addBack(p.backVariant, p.split ? cs.edge : c);
+    if (p.backVariant >= 0 && p.split)
+        p.backInsideIndex = addBack(p.backVariant & ~(1 << 8), cs.inside);
 }
 
 void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
                          const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group).
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
         batches->clear();
     m_routes.clear();
     chooseBackCulled(scene, key, camera);
@@ -349,7 +421,7 @@ void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
     for (auto& [k, route] : m_routes)
         route.stencil = ++stencil;
     m_commands.clear();
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts})
+    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
         for (auto& [k, b] : *batches) {
             b.first = std::int64_t(m_commands.size());
             m_commands.insert(m_commands.end(), b.commands.begin(), b.commands.end());
@@ -375,7 +447,7 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             continue;
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
             now.edgeVariant != was.edgeVariant || now.split != was.split ||
-            now.skirtVariant != was.skirtVariant)
+            now.skirtVariant != was.skirtVariant || now.backVariant != was.backVariant)
             return false;
         const auto patchOne = [&](ExactBatch& b, int index, const IndirectCommand& command) {
             IndirectCommand& old = b.commands[size_t(index)];
@@ -396,6 +468,10 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             patchOne(m_edges.at(was.edgeVariant), was.edgeIndex, c);
         if (was.skirtVariant >= 0)
             patchOne(m_skirts.at(was.skirtVariant), was.skirtIndex, cs.skirt);
+        if (was.backVariant >= 0)
+            patchOne(m_backFaces.at(was.backVariant), was.backIndex, was.split ? cs.edge : c);
+        if (was.backVariant >= 0 && was.split)
+            patchOne(m_backFaces.at(was.backVariant & ~(1 << 8)), was.backInsideIndex, cs.inside);
         if (deferred && now.route() >= 0) {
             it->second.window = now.window;
             addToRoute(now); // grown only: it may have moved

@@ -4,8 +4,8 @@
 // issues the draws), so the plans are testable without a display.
 #pragma once
 
+#include "render/gpu_pool.h"
 #include "render/render_types.h"
-#include "render/surface_upload.h"
 
 #include <QFlags>
 #include <cstdint>
@@ -76,6 +76,12 @@ struct ExactPlace {
     int edgeIndex = -1;         ///< its command there
     int skirtVariant = -1;      ///< with skirts: key into skirts() (degrees and trimmed)
     int skirtIndex = -1;        ///< its command there
+    /// Its triangles skipped (face != 0), in aliased frames: key into backFaces() (degrees,
+    /// trimmed, face, affine), and its command there; split, that is the cells near a curve,
+    /// and those inside the trims are in the untrimmed batch (backVariant less bit 8).
+    int backVariant = -1;
+    int backIndex = -1;
+    int backInsideIndex = -1;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
@@ -104,13 +110,16 @@ struct ExactPlanKey {
     glm::mat4 viewProjection{0.0f};
     glm::ivec2 viewport{0};
     PlanFlags flags;
-    double minCellPixels = 0.0;      ///< RenderOptions::gatherMinCellPixels
-    double deferMaxCellPixels = 0.0; ///< RenderOptions::deferMaxCellPixels
+    double minCellPixels = 0.0;         ///< RenderOptions::gatherMinCellPixels
+    double deferMaxCellPixels = 0.0;    ///< RenderOptions::deferMaxCellPixels
+    std::vector<SectionPlane> sections; ///< RenderOptions::sections
+    glm::ivec2 pickPixel{-1, -1};       ///< FrameCamera::pickPixel
     bool has(PlanFlag f) const { return flags.testFlag(f); }
     bool operator==(const ExactPlanKey& o) const {
         return scene == o.scene && layout == o.layout && marks == o.marks &&
                viewProjection == o.viewProjection && viewport == o.viewport && flags == o.flags &&
-               minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels;
+               minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels &&
+               sections == o.sections && pickPixel == o.pickPixel;
     }
 };
 
@@ -148,7 +157,7 @@ public:
     void clear();
 
     /// Every batch's commands in upload order (plain, trimmed pre-pass, variants, edges,
-    /// skirts), each batch's `first` pointing into it.
+    /// skirts, back faces), each batch's `first` pointing into it.
     const std::vector<IndirectCommand>& commands() const { return m_commands; }
     /// The pre-pass's untrimmed ranges, by ExactPlace::plainKey.
     const std::map<int, ExactBatch>& plain() const { return m_plain; }
@@ -160,6 +169,11 @@ public:
     const std::map<int, ExactBatch>& edges() const { return m_edges; }
     /// The skirts, by degrees and trimmed (they test the trims themselves: no pre-pass).
     const std::map<int, ExactBatch>& skirts() const { return m_skirts; }
+    /// The back-culled solids' faces again, by ExactPlace::backVariant, for the pass that
+    /// draws their skipped side where nothing nearer covered a pixel (ExactBatch::face says
+    /// which side the other passes skip; this pass skips the other one). Trimmed ones test
+    /// their trims in the shader. Empty in anti-aliased (coverage) frames.
+    const std::map<int, ExactBatch>& backFaces() const { return m_backFaces; }
     /// The deferred pass's routes (ExactPlace::route): their stencil values, 1, 2, ..., and
     /// the union of their surfaces' ExactPlace::window.
     struct Route {
@@ -173,7 +187,9 @@ public:
     const ExactPlace* place(const SurfaceRecord* r) const;
     /// The closed solids (Surface::solid) whose back faces the plan skips.
     const std::set<int>& backCulled() const { return m_backCulled; }
-    int culled() const { return m_culled; } ///< surfaces left out as outside the view
+    /// Surfaces left out as outside the view, or as wholly on a section plane's removed side
+    /// (their control bounds hold them: the exact shader would discard every fragment).
+    int culled() const { return m_culled; }
     /// The cells the split pre-pass tests the trims on, and those it leaves out.
     std::int64_t trimTestedCells() const;
     std::int64_t trimmedAwayCells() const { return m_trimmedAway; }
@@ -200,6 +216,12 @@ public:
     /// True when the box lies wholly outside one plane of the clip volume (slightly grown).
     static bool outsideView(const glm::vec3& lo, const glm::vec3& hi,
                             const glm::mat4& viewProjection);
+    /// Where a box lies for section planes: Removed when it lies wholly on one plane's removed
+    /// side (with a margin for the shader's float test: every point of it is cut), Kept when
+    /// wholly on every plane's kept side, else Crossed. No planes: Kept.
+    enum class SectionSide { Kept, Crossed, Removed };
+    static SectionSide sectionSide(const glm::vec3& lo, const glm::vec3& hi,
+                                   const std::vector<SectionPlane>& planes);
 
 private:
     /// A record's commands: its whole triangle range (the shading pass, and the pre-pass when
@@ -214,7 +236,8 @@ private:
     /// m_backCulled for this frame: the closed solids all of whose members are records with
     /// exact data (none hidden, none too large) and whose members' control bounds lie wholly
     /// beyond the near plane, so the eye sees them from outside and nothing of them is
-    /// clipped. Empty without PlanFlag::SkipBackFaces.
+    /// clipped, and on the kept side of every section plane (a cut solid's back faces carry
+    /// its caps). Empty without PlanFlag::SkipBackFaces.
     void chooseBackCulled(const ExactPlanScene& scene, const ExactPlanKey& key,
                           const FrameCamera& camera);
     void build(const ExactPlanScene& scene, const ExactPlanKey& key, const FrameCamera& camera);
@@ -228,7 +251,7 @@ private:
 
     bool m_have = false;
     ExactPlanKey m_key;
-    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts;
+    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts, m_backFaces;
     std::map<int, Route> m_routes;
     std::set<int> m_backCulled;
     std::unordered_map<const SurfaceRecord*, ExactPlace> m_places;

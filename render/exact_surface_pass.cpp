@@ -90,11 +90,11 @@ void ExactSurfacePass::releaseCommands() {
     m_commandBytes = 0;
 }
 
-void ExactSurfacePass::drawBatch(const ExactBatch& batch) {
+void ExactSurfacePass::drawBatch(const ExactBatch& batch, bool otherSide) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (const GLenum cull = cullFaceOf(batch.face); cull != 0) {
         gl->glEnable(GL_CULL_FACE);
-        gl->glCullFace(cull);
+        gl->glCullFace(otherSide ? (cull == GL_BACK ? GL_FRONT : GL_BACK) : cull);
     } else {
         gl->glDisable(GL_CULL_FACE);
     }
@@ -285,6 +285,8 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     finTriangles = 0;
     if (drawn && !m_plan.skirts().empty())
         drawn = skirtPass(scene, camera, lights, options, range);
+    if (drawn && !m_plan.backFaces().empty())
+        drawn = backFacePass(scene, camera, lights, options, range);
     if (drawn && aa && !m_plan.edges().empty())
         drawn = edgePass(scene, camera, lights, options, range, *aa);
     gl->glDisable(GL_CULL_FACE);
@@ -320,6 +322,43 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
         drawBatch(b);
     }
     return ok();
+}
+
+Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,
+                                      const std::vector<Light>& lights,
+                                      const RenderOptions& options, const ValueRange& range) {
+    QOpenGLFunctions_4_5_Core* gl = m_gl;
+    // Last, tested nearer before the shader (KW_BACK_FILL) and writing no depth: the solid's
+    // faces in front (and their skirts) reject nearly every fragment unshaded, so what is
+    // shaded is the seams' slivers, where two faces' exact trims miss each other by a
+    // fraction of a pixel and nothing else covered the pixel centre. Of two back faces in one
+    // sliver the later shows (both are the solid's inside). The forward programs test the
+    // trims themselves (no pre-pass covers these triangles); the polygon's depth is tested.
+    gl->glDepthFunc(kDepthNearer);
+    gl->glDepthMask(GL_FALSE);
+    Status drawn;
+    for (const auto& [key, b] : m_plan.backFaces()) {
+        ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                 false, TrimAa::Off, false, b.affine);
+        v.features.setFlag(ExactFeature::ExactDepth, false);
+        v.features |= ExactFeature::BackFill;
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), v.defines());
+        if (!built) {
+            drawn = built.error();
+            break;
+        }
+        QOpenGLShaderProgram* prog = *built;
+        prog->bind();
+        setFrameUniforms(gl, prog, camera, lights);
+        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+        setSectionUniforms(gl, prog, options);
+        if (b.trimmed)
+            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+        drawBatch(b, true);
+    }
+    gl->glDepthMask(GL_TRUE);
+    return drawn;
 }
 
 glm::ivec2 ExactSurfacePass::deferredTargetSize() const {

@@ -115,7 +115,9 @@ private:
     /// Writes the plan's commands into the command buffer (whole after a rebuild, else the
     /// patched ones) and binds it.
     void uploadCommands(bool rebuilt, const std::vector<ExactPlanner::CommandWrite>& writes);
-    void drawBatch(const ExactBatch& batch);
+    /// Draws `batch`'s commands, culling its ExactBatch::face, or with `otherSide` the
+    /// opposite side (the back-face pass).
+    void drawBatch(const ExactBatch& batch, bool otherSide = false);
     void releaseCommands();
     /// The depth pre-pass: `plain` with the empty fragment shader, the trimmed surfaces' cells
     /// near a curve by degrees, tested on the trims. `atRay` (adaptive, aliased frames) tests
@@ -171,6 +173,14 @@ private:
     Status drawSkirtBatch(const ExactBatch& b, const GpuScene& scene, const FrameCamera& camera,
                           const std::vector<Light>& lights, const RenderOptions& options,
                           const ValueRange& range, std::int64_t& triangles);
+    /// After the skirts, in aliased frames: the back faces of the closed solids whose back
+    /// faces the opaque passes skipped (ExactPlanner::backCulled), drawn with the forward
+    /// programs on the pixels that nothing nearer covered: the seams' sub-pixel gaps between
+    /// two faces' exact trims, where the solid's inside shows, as it does to a ray, instead of
+    /// the background (docs/RENDERING.md, "Back faces of closed solids").
+    Status backFacePass(const GpuScene& scene, const FrameCamera& camera,
+                        const std::vector<Light>& lights, const RenderOptions& options,
+                        const ValueRange& range);
     /// The anti-aliased frame's edge pass over the plan's edges() (see draw).
     Status edgePass(const GpuScene& scene, const FrameCamera& camera,
                     const std::vector<Light>& lights, const RenderOptions& options,

@@ -1,9 +1,16 @@
-// Shared GPU buffers for the per-surface data of the whole scene: every
-// surface's control points, span tables, base polygon vertices and indices live at an offset in
-// one buffer per kind, so the exact pass binds them once and draws many surfaces per call.
+// The GPU side of every surface's exact data, and how an edit reaches it: shared buffers (one
+// per kind: control points, span tables, base polygon vertices and indices), each surface's ranges
+// in them (SurfaceGpu), and the uploads that fill those ranges, down to the one write per row of
+// a moved point's texels. GpuScene::sync decides per surface which upload is due.
 #pragma once
 
+#include "model/document/document.h"
+#include "render/frame_report.h"
+#include "render/gpu_layout.h"
+#include "render/render_types.h"
+
 #include <QOpenGLFunctions_4_5_Core>
+#include <QString>
 #include <cstdint>
 #include <map>
 
@@ -30,7 +37,7 @@ private:
 };
 
 /// One GL buffer holding elements of `elementBytes` each, sub-allocated by a RangeAllocator.
-/// It grows by doubling (the old contents copied on the GPU, waited for: see allocate) and is
+/// It grows (grownCapacity; the old contents copied on the GPU, waited for: see allocate) and is
 /// deleted when its last range is freed, so an empty scene holds no pool memory. Growth replaces
 /// the buffer name: users re-bind buffer() after every allocate (GpuScene does, once per sync).
 class GpuPool {
@@ -52,6 +59,14 @@ public:
     /// Frees the GL buffer and every range.
     void release();
 
+    /// The capacity (elements) a pool of `capacity` grows to for `need` elements: at least
+    /// kMinElements, doubled while under kDoublingBytes, then a quarter more at a time, capped
+    /// at maxBytes (then below `need` when it does not fit). No GL: the growth is testable alone.
+    static std::int64_t grownCapacity(std::int64_t capacity, std::int64_t need,
+                                      std::int64_t elementBytes, std::int64_t maxBytes);
+    static constexpr std::int64_t kMinElements = 1024;
+    static constexpr std::int64_t kDoublingBytes = std::int64_t(64) << 20;
+
 private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     std::int64_t m_elementBytes = 1;
@@ -60,5 +75,108 @@ private:
     GLuint m_buffer = 0;
     RangeAllocator m_ranges;
 };
+
+// ---- One surface's ranges in the pools, and its uploads
+
+/// The shared buffers of every surface's exact data (shaders/surface_data.glsl reads them):
+/// control texels (w (P - origin), w) row by row (v outer), span-table rows
+/// (kw::packSpanTable; a surface's u table then its v table), base polygon vertices
+/// (kw::BaseVertex) and its triangle and outline indices, relative to the surface's first
+/// vertex (drawn with a base vertex), and its skirt's vertices (kw::SkirtVertex) and triangle
+/// indices, relative to the skirt's first vertex.
+struct ScenePools {
+    GpuPool control, spans, vertices, triangles, outlines, skirtVertices, skirtIndices;
+};
+
+/// Where one surface's data lies in the pools, and the CPU copies the partial updates compare
+/// against. Offsets are in elements of each pool; -1 while not allocated.
+struct SurfaceGpu {
+    SurfaceId id;
+    Revisions revisions; ///< what is on the GPU
+    PolygonCut cut;      ///< how the polygon now on the GPU was cut
+    int degreeU = 1, degreeV = 1, countU = 0, countV = 0;
+    glm::vec4 domain{0.0f, 1.0f, 0.0f, 1.0f};
+    glm::dvec3 origin{0.0};          ///< control texels are relative to it (packControlPoints)
+    std::int64_t controlOffset = -1; ///< countU x countV texels
+    std::int64_t spanOffset = -1;    ///< spanTexelsU texels of the u table, then the v table's
+    std::int64_t spanTexelsU = 0, spanTexelsV = 0;
+    std::int64_t vertexOffset = -1, vertexCount = 0;
+    std::int64_t triangleOffset = -1, outlineOffset = -1;
+    int triangleIndexCount = 0, outlineIndexCount = 0;
+    /// The polygon's skirt (kw::buildSkirt): built and freed with the polygon; offset -1 when
+    /// the polygon has none (rebuildPolygon's `skirt`).
+    std::int64_t skirtVertexOffset = -1, skirtVertexCount = 0;
+    std::int64_t skirtIndexOffset = -1;
+    int skirtIndexCount = 0;
+    std::vector<glm::vec4> control; ///< the texels now on the GPU
+    /// The polygon on the GPU: its breaks and spans always; its vertices while the polygon has
+    /// a skirt or since its points changed (rebuildPolygon, uploadChangedPoints), else none.
+    BasePolygon polygon;
+    ParameterBox polygonBox;         ///< the (u, v) box the polygon spans
+    bool polygonTrimmed = false;     ///< polygonBox is trimParameterBox, not the domain
+    std::uint64_t polygonSerial = 0; ///< changes whenever the polygon is rebuilt
+    /// splitByTrims: the triangle range holds the cells wholly inside the trims first
+    /// (insideIndexCount indices), then those near a trim curve (edgeIndexCount), then those
+    /// wholly trimmed away. insideIndexCount < 0: not split (one range, every cell).
+    int insideIndexCount = -1, edgeIndexCount = 0;
+    std::uint64_t splitPolygon = 0, splitClasses = 0; ///< what the split was made for
+    /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
+    /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
+    bool affine = false;
+};
+
+/// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
+/// (re)allocated and filled, base polygon rebuilt cut as `cut` over `box`. Counts into
+/// `stats`. Returns false (and holds no ranges) when a pool would exceed its GPU limit.
+/// `skirt` and `outlines` as rebuildPolygon's.
+bool uploadSurface(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
+                   const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
+/// After a Points revision change: the texels of the bounding rectangle of those that differ
+/// (one sub-range write per row of it, counted as one sub-image upload), and only the base
+/// polygon vertices in the support of those points (and the polygon's skirt vertices, a few
+/// per boundary node).
+void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, UploadStats& stats);
+/// What rebuildPolygon writes to the pools for one surface, built on the CPU (no GL): the base
+/// polygon, its triangle indices, and its outline indices and skirt when asked for.
+struct PolygonUpload {
+    BasePolygon polygon;
+    std::vector<unsigned> triangles, outlines;
+    std::vector<SkirtVertex> skirt;
+    std::vector<unsigned> skirtIndices;
+    /// Bytes of all of it in the pools.
+    std::int64_t bytes() const;
+};
+PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& box,
+                                 const PolygonCut& cut, bool skirt, bool outlines);
+/// The base polygon cut as `cut` over `box` (a rectangle of the domain: GpuScene
+/// passes trimParameterBox unless RenderOptions::polygonOverTrims is off, so a trimmed face's
+/// cells go where its trims keep the surface) from the current points;
+/// control data untouched. Returns false (the polygon's ranges freed) when a pool would
+/// exceed its limit. With `skirt`, the polygon's skirt too (kw::buildSkirt; adaptive frames
+/// draw it), else none. With `outlines`, the cells' outline indices too (the wireframe's),
+/// else none: at 8 indices a cell they would be a third of the polygon's bytes, for an
+/// overlay most frames do not draw (addOutlines brings them when one does).
+bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
+                    const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
+/// The outline indices of the polygon on the GPU, when it has none yet (a frame that draws the
+/// wireframe). Returns false when the outline pool would exceed its limit (nothing changed).
+bool addOutlines(ScenePools& pools, SurfaceGpu& g, UploadStats& stats);
+struct TrimMask;
+/// Orders the polygon's triangles by how the trims cut their cells (SurfaceGpu's
+/// insideIndexCount and edgeIndexCount), from the mask's texel classes: a cell is inside (or
+/// trimmed away) when every grid texel it overlaps, and every texel next to those, is inside
+/// (outside) with no curve; else it is near an edge. The one-texel ring keeps a margin for
+/// float (u, v) rounding at cell borders. Without classes (mask mode, untrimmed) the polygon
+/// is left one range. Rewrites the triangle indices in place (same count); a cell's two
+/// triangles stay together, starting at its provoking vertex. Returns true when the split
+/// changed. Why: the depth pre-pass then tests the trims only on cells near a curve and draws
+/// no cell the trims remove (docs/PERFORMANCE.md ## Trims).
+bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask);
+
+/// World-space bounds of the control points of `g` as on the GPU (texels plus origin; they
+/// hold the surface and its base polygon); false without a point of positive weight.
+bool controlBounds(const SurfaceGpu& g, glm::vec3& lo, glm::vec3& hi);
+/// Returns the surface's ranges to the pools.
+void destroySurfaceGpu(ScenePools& pools, SurfaceGpu& g);
 
 } // namespace kw

@@ -115,6 +115,8 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     // Skirts are drawn only in adaptive exact frames (ExactSurfacePass::skirtPass): built only
     // then, so the paper's mode uploads what it did.
     const bool skirt = pass.adaptive && options.edgeSkirts;
+    // Outlines once a frame drew the wireframe, and from then on with every polygon rebuilt.
+    const bool outlines = options.wireframe || (g && g->outlineOffset >= 0);
     // Adaptive mode: the cached choice's breaks (AdaptivePartitions::cut), not copied.
     const PolygonCut uniformCut{sliderU, sliderV, {}, {}};
     const PolygonCut* chosenCut = &uniformCut;
@@ -137,17 +139,19 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
             g = std::make_unique<SurfaceGpu>();
             g->id = s.id;
         }
-        fits = uploadSurface(m_pools, *g, s, cut, box, skirt, up);
+        fits = uploadSurface(m_pools, *g, s, cut, box, skirt, outlines, up);
     } else {
         if (g->cut != cut || box != g->polygonBox || (g->skirtVertexOffset >= 0) != skirt) {
             // The polygon is rebuilt from the current points; pick up a point change.
             if (g->revisions.points != rev.points)
                 uploadChangedPoints(m_pools, *g, s, up);
-            fits = rebuildPolygon(m_pools, *g, s, cut, box, skirt, up);
+            fits = rebuildPolygon(m_pools, *g, s, cut, box, skirt, outlines, up);
         } else if (g->revisions.points != rev.points) {
             uploadChangedPoints(m_pools, *g, s, up);
         }
     }
+    if (fits && options.wireframe)
+        fits = addOutlines(m_pools, *g, up);
     g->polygonTrimmed = options.polygonOverTrims;
     m_tooLarge.erase(index);
     if (fits) {
@@ -237,7 +241,7 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
                        options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
                        options.controlNet,      options.trims,          options.trimMode,
                        options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
-                       options.edgeSkirts};
+                       options.edgeSkirts,      options.wireframe};
     bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;

@@ -9,9 +9,9 @@
 #include "render/adaptive_partitions.h"
 #include "render/exact_contract.h"
 #include "render/frame_report.h"
+#include "render/gpu_pool.h"
 #include "render/render_types.h"
 #include "render/scene_changes.h"
-#include "render/surface_upload.h"
 #include "render/trim_mask_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
@@ -269,6 +269,7 @@ private:
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
         bool splitCellsByTrims = false, edgeSkirts = false;
+        bool wireframe = false; ///< outlines are uploaded once a frame draws them
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

@@ -2,6 +2,7 @@
 #include "render/overlay_passes.h"
 
 #include "render/depth_convention.h"
+#include "render/shading_uniforms.h"
 
 #include <QOpenGLShaderProgram>
 #include <glm/gtc/type_ptr.hpp>
@@ -11,13 +12,19 @@ namespace kw {
 namespace {
 
 Expected<QOpenGLShaderProgram*> lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
-                                            const FrameCamera& camera) {
+                                            const FrameCamera& camera,
+                                            const RenderOptions& options) {
+    // Section planes cut the lines too: a cut view shows no wire of what it removed.
+    const bool cut = !options.sections.empty();
     const Expected<QOpenGLShaderProgram*> built =
-        shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"));
+        shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"),
+                         cut ? QStringList{QStringLiteral("KW_SECTION")} : QStringList{});
     if (!built)
         return built;
     QOpenGLShaderProgram* prog = *built;
     prog->bind();
+    if (cut)
+        setSectionUniforms(gl, prog, options);
     gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                            glm::value_ptr(drawnViewProjection(camera)));
     gl->glDepthFunc(kDepthNearerOrEqual);
@@ -32,8 +39,9 @@ void WireframePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sha
     m_shaders = shaders;
 }
 
-Status WireframePass::draw(const GpuScene& scene, const FrameCamera& camera) {
-    const Expected<QOpenGLShaderProgram*> built = lineProgram(m_gl, m_shaders, camera);
+Status WireframePass::draw(const GpuScene& scene, const FrameCamera& camera,
+                           const RenderOptions& options) {
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(m_gl, m_shaders, camera, options);
     if (!built)
         return built.error();
     QOpenGLShaderProgram* prog = *built;
@@ -59,9 +67,10 @@ void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sh
     m_shaders = shaders;
 }
 
-Status ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera) {
+Status ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera,
+                            const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    const Expected<QOpenGLShaderProgram*> built = lineProgram(gl, m_shaders, camera);
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(gl, m_shaders, camera, options);
     if (!built)
         return built.error();
     QOpenGLShaderProgram* prog = *built;

@@ -12,11 +12,12 @@
 
 namespace kw {
 
-/// Outlines of the base polygon cells, from the records' base polygon buffers.
+/// Outlines of the base polygon cells, from the records' base polygon buffers. Both passes are
+/// cut by options.sections (each line point by its position, as the surfaces are).
 class WireframePass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
-    Status draw(const GpuScene& scene, const FrameCamera& camera);
+    Status draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options);
     glm::vec4 color{0.05f, 0.05f, 0.08f, 1.0f};
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
 
@@ -30,7 +31,7 @@ private:
 class ControlNetPass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
-    Status draw(const GpuScene& scene, const FrameCamera& camera);
+    Status draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options);
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     glm::vec4 lineColor{0.85f, 0.75f, 0.20f, 1.0f};
     glm::vec4 pointColor{1.0f, 0.90f, 0.10f, 1.0f};

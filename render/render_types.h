@@ -302,6 +302,9 @@ struct FrameCamera {
     /// Window position of the viewport's lower left corner (glViewport's x, y): non-zero when
     /// a pick draws one pixel of the frame into a 1 x 1 target.
     glm::ivec2 viewportOrigin{0, 0};
+    /// A pick's one pixel (GL rows, bottom-up), or (-1, -1): the whole view is drawn. The exact
+    /// pass then leaves out the surfaces whose bounds do not reach that pixel.
+    glm::ivec2 pickPixel{-1, -1};
     /// Sub-pixel shift of the whole image, in pixels (RenderOptions::Antialiasing::Accumulate's
     /// samples): applied to what the shaders get (drawnViewProjection), not to viewProjection,
     /// which the passes' caches and the CPU's choices keep, so a frame's samples share them.

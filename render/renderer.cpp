@@ -97,10 +97,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             return fail(why);
     if (!options.sections.empty()) {
         // The pre-pass's depth is the base polygon's, which cannot tell on which side of a
-        // plane a pixel's exact point lies; and the back faces of closed solids are where
-        // the caps are drawn.
+        // plane a pixel's exact point lies. The back faces of closed solids a plane crosses are
+        // where the caps are drawn: the planner keeps them (ExactPlanner::backCulled).
         options.shading = RenderOptions::Shading::ExactDepth;
-        options.skipBackFaces = false;
     }
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
@@ -109,8 +108,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
                                  double(size.width()) / size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
-    if (pickPixel) // beginTarget's shifted viewport
+    if (pickPixel) { // beginTarget's shifted viewport
         fc.viewportOrigin = glm::ivec2(-pickPixel->x(), -pickPixel->y());
+        fc.pickPixel = glm::ivec2(pickPixel->x(), pickPixel->y());
+    }
     const std::vector<Light> lights =
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
@@ -237,9 +238,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = step(wireframe.draw(scene, fc));
+            ok = step(wireframe.draw(scene, fc, options));
         if (ok && options.controlNet)
-            ok = step(controlNet.draw(scene, fc));
+            ok = step(controlNet.draw(scene, fc, options));
         if (ok && options.edgeBands)
             ok = step(edgeBands.draw(*options.edgeBands, fc));
         if (options.writeAov) {

@@ -42,7 +42,8 @@ public:
     /// The surface visible at `pixel` (x right, y down, in pixels of a `viewport`-sized frame
     /// drawn with `camera` and `options`), or nullopt for background, a trimmed-away spot or a
     /// pixel outside the viewport; hidden surfaces are never hit. Draws the exact pass with AOVs
-    /// into a private framebuffer, scissored to that one pixel, and reads it back; the masks and
+    /// into a private framebuffer, scissored to that one pixel, of only the surfaces whose
+    /// projected bounds reach it (FrameCamera::pickPixel), and reads it back; the masks and
     /// uploads it needs are the frame's own, so a pick after a frame uploads nothing. Overlays are
     /// ignored. Needs the renderer's context current; leaves the framebuffer binding at 0. A pick
     /// that cannot be made (before initialize(), no pick framebuffer) finds nothing.

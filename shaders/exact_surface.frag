@@ -14,7 +14,9 @@
 // where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint),
 // KW_DEPTH_ONLY (with KW_RAY_NEWTON and KW_TRIM: the depth pre-pass of cells near a trim curve,
 // which tests the trims at the point under the pixel and shades nothing), KW_SECTION (section
-// planes cut the exact point; caps where a closed solid is seen from inside; section.glsl).
+// planes cut the exact point; caps where a closed solid is seen from inside; section.glsl),
+// KW_BACK_FILL (a closed solid's skipped side, drawn last where nothing nearer covered a pixel:
+// kw::ExactSurfacePass::backFacePass).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -71,10 +73,12 @@ uniform vec3 uForward;
 #include "analysis.glsl"
 #endif
 
-#if defined(KW_TRIM_EDGE) && !defined(KW_EXACT_DEPTH)
+#if (defined(KW_TRIM_EDGE) && !defined(KW_EXACT_DEPTH)) || defined(KW_BACK_FILL)
 // The edge pass writes no depth: test it before shading, so fragments behind what the opaque
 // passes drew (the surface's own inside among them: equal depth fails the strict nearer
-// test) cost nothing.
+// test) cost nothing. The back-face fill writes none either (a fragment its trims discard
+// would write it all the same): with a discard in the shader llvmpipe tested the depth after
+// it, so every fragment of the hidden side was shaded, 1.2x the frame.
 layout(early_fragment_tests) in;
 #endif
 

@@ -14,7 +14,10 @@ set(public
     gpu_layout.h
     # The CPU reference frame and the edge metrics the edit loop's equal-quality search uses
     # (as `render --edge-report`): ray casting through the kernel, no GL.
-    reference_render.h edge_metrics.h)
+    reference_render.h edge_metrics.h
+    # The Edge Continuity overlay's bands (what RenderOptions::edgeBands points to) and their
+    # per-edge cache, which the drag step re-makes as the editor does: CPU geometry, no GL.
+    edge_bands.h)
 set(failures 0)
 function(check_file file bench_source)
   file(STRINGS ${file} lines REGEX "^[ \t]*#[ \t]*include|RendererTestHook")

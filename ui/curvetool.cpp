@@ -11,6 +11,7 @@ namespace kw {
 CurveTool::CurveTool(Viewport* viewport, QObject* parent) : QObject(parent), m_viewport(viewport) {}
 
 CurveTool::~CurveTool() {
+    m_active = false; // nothing to cancel or report when uninstalled below
     if (m_viewport && m_viewport->tool() == this)
         m_viewport->setTool(nullptr);
 }

@@ -9,6 +9,7 @@
 #include "ui/viewport.h"
 
 #include <QObject>
+#include <QPointer>
 #include <vector>
 
 namespace kw {
@@ -43,6 +44,8 @@ public:
     /// A left click adds a point on the drawing's plane.
     bool press(QMouseEvent* event) override;
     bool key(QKeyEvent* event) override;
+    /// Another tool took the view (a Measure mode): the drawing ends as with Esc.
+    void uninstalled() override { cancel(); }
     void paint(QPainter& painter) override;
 
 Q_SIGNALS:
@@ -55,7 +58,7 @@ private:
     void stop();
     QString hint() const;
 
-    Viewport* m_viewport;
+    QPointer<Viewport> m_viewport; ///< the window may destroy the view first
     bool m_active = false;
     bool m_interpolating = true;
     int m_wanted = 1;

@@ -2,6 +2,7 @@
 #include "ui/desktopactions.h"
 
 #include "model/document/document.h"
+#include "ui/edit/modelcommands.h"
 #include "ui/sectiondialog.h"
 #include "ui/viewport.h"
 
@@ -14,7 +15,9 @@
 #include <QMenuBar>
 #include <QSettings>
 #include <QSignalBlocker>
+#include <QStatusBar>
 #include <QTextBrowser>
+#include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
 
@@ -22,11 +25,14 @@ namespace kw {
 
 DesktopActions::Prompts DesktopActions::Prompts::standard() {
     Prompts p;
-    p.preferences = [](QWidget* parent, const Preferences& init) -> std::optional<Preferences> {
+    p.preferences = [](QWidget* parent, const PreferencesEdit& init,
+                       bool focusContinuity) -> std::optional<PreferencesEdit> {
         PreferencesDialog d(init, parent);
+        if (focusContinuity)
+            d.focusContinuity();
         if (d.exec() != QDialog::Accepted)
             return std::nullopt;
-        return d.value();
+        return d.edit();
     };
     p.show = [](QWidget* parent, const QString& title, const QString& html) {
         QDialog d(parent);
@@ -45,8 +51,9 @@ DesktopActions::Prompts DesktopActions::Prompts::standard() {
     return p;
 }
 
-DesktopActions::DesktopActions(QMainWindow* window, Viewport* viewport)
-    : QObject(window), m_window(window), m_viewport(viewport), m_prompts(Prompts::standard()) {}
+DesktopActions::DesktopActions(QMainWindow* window, Viewport* viewport, QUndoStack* stack)
+    : QObject(window), m_window(window), m_viewport(viewport), m_stack(stack),
+      m_prompts(Prompts::standard()) {}
 
 void DesktopActions::applyPreferences() {
     const Preferences p = Preferences::load();
@@ -101,6 +108,8 @@ void DesktopActions::showSections() {
             },
             m_window);
         connect(m_sections, &SectionDialog::sectionsChanged, m_viewport, &Viewport::setSections);
+        // A plane's handle dragged in the view: the fields follow (setSections emits nothing).
+        connect(m_viewport, &Viewport::sectionsMoved, m_sections, &SectionDialog::setSections);
     }
     m_sections->setSections(m_viewport->sections(), m_viewport->sectionCaps());
     m_sections->show();
@@ -122,11 +131,24 @@ DisplaySettings DesktopActions::currentDisplay() const {
     return d;
 }
 
-void DesktopActions::editPreferences() {
-    if (auto p = m_prompts.preferences(m_window, Preferences::load())) {
-        p->save();
-        applyPreferences();
-    }
+void DesktopActions::editPreferences(bool focusContinuity) {
+    Document* doc = m_viewport->document();
+    const PreferencesEdit initial{Preferences::load(), doc->scene().continuity};
+    const std::optional<PreferencesEdit> e =
+        m_prompts.preferences(m_window, initial, focusContinuity);
+    if (!e)
+        return;
+    e->preferences.save();
+    applyPreferences();
+    if (!e->project || *e->project == doc->scene().continuity)
+        return;
+    // The project's tolerances are authored data saved with it: an edit like any other.
+    auto command = SetContinuityTolerances::create(doc, *e->project);
+    if (!command)
+        m_window->statusBar()->showMessage(
+            tr("Continuity tolerances not set: %1").arg(command.message()), 8000);
+    else
+        m_stack->push(command->release());
 }
 
 void DesktopActions::addEditEntries(QMenu* edit) {

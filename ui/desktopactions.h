@@ -8,6 +8,7 @@
 #include <QObject>
 
 class QAction;
+class QUndoStack;
 
 namespace kw {
 class SectionDialog;
@@ -26,15 +27,19 @@ class Viewport;
 class DesktopActions : public QObject {
     Q_OBJECT
 public:
-    /// Dialogs, replaceable by tests. `preferences` returns the edited values or nullopt;
+    /// Dialogs, replaceable by tests. `preferences` returns the edited values (the preferences
+    /// and the open project's continuity tolerances) or nullopt;
     /// `show` presents a page of rich text (shortcuts, about).
     struct Prompts {
-        std::function<std::optional<Preferences>(QWidget*, const Preferences&)> preferences;
+        std::function<std::optional<PreferencesEdit>(QWidget*, const PreferencesEdit&,
+                                                     bool focusContinuity)>
+            preferences;
         std::function<void(QWidget*, const QString& title, const QString& html)> show;
         static Prompts standard();
     };
 
-    DesktopActions(QMainWindow* window, Viewport* viewport);
+    /// A change of the project's continuity tolerances is pushed on `stack` (one undo step).
+    DesktopActions(QMainWindow* window, Viewport* viewport, QUndoStack* stack);
     void setPrompts(Prompts p) { m_prompts = std::move(p); }
 
     void addEditEntries(QMenu* edit);
@@ -48,8 +53,11 @@ public:
     void applyDisplay(const DisplaySettings& display);
     /// What the view shows now, for the project file.
     DisplaySettings currentDisplay() const;
-    /// Opens the Preferences dialog; on OK saves and applies.
-    void editPreferences();
+    /// Opens the Preferences dialog; on OK saves and applies the preferences, and sets the
+    /// project's continuity tolerances (an undoable edit) when they changed. With
+    /// `focusContinuity` the dialog opens on the project's tolerances (View > Analysis >
+    /// Continuity Tolerances).
+    void editPreferences(bool focusContinuity = false);
     /// View › Section…: the section dialog, modeless, made on first use; it shows and sets
     /// the view's planes.
     void showSections();
@@ -63,6 +71,7 @@ private:
 
     QMainWindow* m_window;
     Viewport* m_viewport;
+    QUndoStack* m_stack;
     QAction* m_adaptive = nullptr;        ///< View › Adaptive Partitions
     QAction* m_lightBackground = nullptr; ///< View › Light Background
     SectionDialog* m_sections = nullptr;  ///< View › Section…, made when first asked for

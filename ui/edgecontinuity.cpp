@@ -5,13 +5,11 @@
 #include "render/render_types.h"
 #include "ui/viewport.h"
 
-#include <QDialog>
-#include <QDialogButtonBox>
-#include <QDoubleSpinBox>
+#include <QCoreApplication>
 #include <QElapsedTimer>
-#include <QFormLayout>
 #include <QHelpEvent>
-#include <QLabel>
+#include <QThreadPool>
+#include <QTimer>
 #include <QToolTip>
 #include <algorithm>
 
@@ -19,10 +17,13 @@ namespace kw {
 
 EdgeContinuityOverlay::EdgeContinuityOverlay(Document* document, Viewport* viewport,
                                              QObject* parent)
-    : QObject(parent), m_doc(document), m_viewport(viewport) {
+    : QObject(parent), m_doc(document), m_viewport(viewport),
+      m_alive(std::make_shared<EdgeContinuityOverlay*>(this)) {
     const auto whole = [this] {
         if (m_enabled)
             rebuild();
+        else
+            forget();
     };
     connect(m_doc, &Document::sceneReset, this, whole);
     connect(m_doc, &Document::surfaceInserted, this, whole);
@@ -33,10 +34,12 @@ EdgeContinuityOverlay::EdgeContinuityOverlay(Document* document, Viewport* viewp
     connect(m_doc, &Document::surfaceChanged, this,
             [this](SurfaceId id, Aspects aspects) { faceChanged(id, aspects); });
     m_viewport->installEventFilter(this);
+    forget(); // off: the status bar's check pairs the document's edges
 }
 
 std::optional<size_t> EdgeContinuityOverlay::edgeAt(QPoint pos) const {
-    if (!m_enabled || m_edgeLines.size() != m_report.edges.size() || m_viewport->width() <= 0 ||
+    const std::vector<std::vector<EdgeBandVertex>>& lines = m_lines.edgeLines();
+    if (!m_enabled || lines.size() != m_report.edges.size() || m_viewport->width() <= 0 ||
         m_viewport->height() <= 0)
         return std::nullopt;
     const double w = m_viewport->width(), h = m_viewport->height();
@@ -46,13 +49,13 @@ std::optional<size_t> EdgeContinuityOverlay::edgeAt(QPoint pos) const {
     const glm::dvec2 at(pos.x(), pos.y());
     std::optional<size_t> best;
     double bestDistance = 8.0;
-    for (size_t k = 0; k < m_edgeLines.size(); ++k)
-        for (size_t v = 0; v + 1 < m_edgeLines[k].size(); v += 2) {
+    for (size_t k = 0; k < lines.size(); ++k)
+        for (size_t v = 0; v + 1 < lines[k].size(); v += 2) {
             glm::dvec2 ends[2];
             bool visible = true;
             for (int e = 0; e < 2; ++e) {
                 const glm::dvec4 c =
-                    vp * glm::dvec4(glm::dvec3(m_edgeLines[k][v + size_t(e)].position), 1.0);
+                    vp * glm::dvec4(glm::dvec3(lines[k][v + size_t(e)].position), 1.0);
                 visible = visible && c.w > 0.0;
                 ends[e] = glm::dvec2((c.x / c.w * 0.5 + 0.5) * w, (0.5 - c.y / c.w * 0.5) * h);
             }
@@ -101,10 +104,9 @@ void EdgeContinuityOverlay::setEnabled(bool on) {
     if (on) {
         rebuild();
     } else {
-        m_report = {};
+        forget();
         m_bands.reset();
-        m_edgeLines.clear();
-        m_freeLines.clear();
+        m_lines.clear();
         m_viewport->setEdgeBands(nullptr);
     }
 }
@@ -113,97 +115,89 @@ void EdgeContinuityOverlay::rebuild() {
     QElapsedTimer clock;
     clock.start();
     m_report = continuityReport(m_doc->scene(), continuityTolerances(m_doc->scene()));
-    m_edgeLines.clear();
-    m_freeLines.clear();
+    m_haveTopology = true;
+    m_lines.clear();
     publish();
     m_lastMs = double(clock.nsecsElapsed()) * 1e-6;
 }
 
+void EdgeContinuityOverlay::forget() {
+    m_report = {};
+    m_haveTopology = false;
+    ++m_generation; // a pairing under way is of a scene that has changed since
+    // The edges must be paired before the first edit moves a face off its neighbours (a
+    // dragged boundary would match nothing): once the event loop turns after the change, so
+    // a burst of structural changes pairs once.
+    if (!m_pairingScheduled) {
+        m_pairingScheduled = true;
+        QTimer::singleShot(0, this, [this] {
+            m_pairingScheduled = false;
+            if (!m_enabled && !m_haveTopology)
+                pairInBackground();
+        });
+    }
+}
+
+void EdgeContinuityOverlay::pairInBackground() {
+    // Pairing a large model takes seconds (10,000 faces: docs/PERFORMANCE.md ## Editing), so
+    // it runs on a pool thread over a copy of the scene as it is now, before any edit, and
+    // the view stays live; until it is in, edits say nothing.
+    auto scene = std::make_shared<const Scene>(m_doc->scene());
+    const std::uint64_t generation = m_generation;
+    const std::weak_ptr<EdgeContinuityOverlay*> alive = m_alive;
+    QThreadPool::globalInstance()->start([scene, generation, alive] {
+        auto report = std::make_shared<ContinuityReport>(
+            continuityWatch(*scene, continuityTolerances(*scene)));
+        if (QCoreApplication* app = QCoreApplication::instance())
+            QMetaObject::invokeMethod(
+                app,
+                [report, generation, alive] {
+                    // On the GUI thread, as the overlay's destructor: lock() is safe there.
+                    if (const std::shared_ptr<EdgeContinuityOverlay*> self = alive.lock())
+                        (*self)->paired(std::move(*report), generation);
+                },
+                Qt::QueuedConnection);
+    });
+}
+
+void EdgeContinuityOverlay::paired(ContinuityReport&& report, std::uint64_t generation) {
+    if (generation != m_generation || m_enabled || m_haveTopology)
+        return;
+    m_report = std::move(report);
+    m_haveTopology = true;
+}
+
 void EdgeContinuityOverlay::faceChanged(SurfaceId id, Aspects aspects) {
-    if (!m_enabled)
+    // Shape and trims move edges; hiding changes what is drawn (with the overlay on); a rename
+    // changes nothing.
+    const bool shape = (aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)) != Aspects();
+    if (!shape && !(m_enabled && aspects.testFlag(Aspect::Display)))
         return;
-    // Shape and trims move edges; hiding changes what is drawn; a rename changes nothing.
-    if (!(aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims | Aspect::Display)))
-        return;
+    if (!m_enabled) {
+        // Off, the check is for drags, which change one face or a few per event: an edit of
+        // many faces at once (a whole part moved) is not measured past the first few, so
+        // it costs the user nothing they did not ask for.
+        if (m_facesThisTurn == 0)
+            QTimer::singleShot(0, this, [this] { m_facesThisTurn = 0; });
+        if (++m_facesThisTurn > kMaxFacesPerTurnOff)
+            return;
+    }
     QElapsedTimer clock;
     clock.start();
+    if (!m_haveTopology)
+        return; // off, and the pairing of the scene's faces is not in yet
     updateContinuity(m_report, m_doc->scene(), {id});
-    publish({id});
+    if (m_enabled)
+        publish({id});
     m_lastMs = double(clock.nsecsElapsed()) * 1e-6;
-    Q_EMIT seamMessage(seamOpeningText(seamsOpenAt(m_report, {id})));
+    if (shape)
+        Q_EMIT seamMessage(
+            seamOpeningText(seamsOpenAt(m_report, {id}), lengthUnitKey(m_doc->scene().unit)));
 }
 
 void EdgeContinuityOverlay::publish(const std::vector<SurfaceId>& faces) {
-    const bool all = faces.empty() || m_edgeLines.size() != m_report.edges.size() ||
-                     m_freeLines.size() != m_report.topology.freeSides.size();
-    const auto touched = [&](const ContinuitySide& side) {
-        return all || std::find(faces.begin(), faces.end(), side.surface) != faces.end();
-    };
-    const auto line = [&](const ContinuitySide& side, const glm::vec4& color) {
-        const Surface* s = m_doc->surface(side.surface);
-        return s && !s->hidden ? edgeBandLine(*s, side, color) : std::vector<EdgeBandVertex>{};
-    };
-    m_edgeLines.resize(m_report.edges.size());
-    m_freeLines.resize(m_report.topology.freeSides.size());
-    for (size_t k = 0; k < m_report.edges.size(); ++k) {
-        const EdgeContinuity& e = m_report.edges[k];
-        const ContinuitySide& side = e.edge.covers[0] ? e.edge.sides[0] : e.edge.sides[1];
-        // A class may change with the other side's edit: colours are re-made for every edge
-        // of the faces, the curve only where the side's own face changed.
-        if (touched(e.edge.sides[0]) || touched(e.edge.sides[1]))
-            m_edgeLines[k] = line(side, continuityColor(e.continuity));
-    }
-    for (size_t k = 0; k < m_report.topology.freeSides.size(); ++k)
-        if (touched(m_report.topology.freeSides[k]))
-            m_freeLines[k] = line(m_report.topology.freeSides[k], freeEdgeColor());
-    auto bands = std::make_shared<EdgeBands>();
-    bands->revision = ++m_revision;
-    for (const auto* lines : {&m_edgeLines, &m_freeLines})
-        for (const std::vector<EdgeBandVertex>& l : *lines)
-            bands->vertices.insert(bands->vertices.end(), l.begin(), l.end());
-    m_bands = bands;
+    m_bands = m_lines.update(m_doc->scene(), m_report, faces);
     m_viewport->setEdgeBands(m_bands);
-}
-
-std::optional<ContinuityTolerances> editContinuityTolerances(QWidget* parent,
-                                                             const ContinuityTolerances& initial) {
-    QDialog d(parent);
-    d.setWindowTitle(QObject::tr("Continuity tolerances"));
-    auto* form = new QFormLayout(&d);
-    const auto spin = [](double value, const char* name, const QString& suffix) {
-        auto* s = new QDoubleSpinBox;
-        s->setObjectName(QLatin1String(name));
-        s->setDecimals(6);
-        s->setRange(1e-6, 1e6);
-        s->setValue(value);
-        s->setSuffix(suffix);
-        return s;
-    };
-    QDoubleSpinBox* g0 = spin(initial.g0, "toleranceG0", QString());
-    QDoubleSpinBox* g1 = spin(initial.g1Degrees, "toleranceG1", QObject::tr(" deg"));
-    QDoubleSpinBox* g2 = spin(initial.g2Percent, "toleranceG2", QObject::tr(" %"));
-    QDoubleSpinBox* match = spin(initial.match, "toleranceMatch", QString());
-    form->addRow(QObject::tr("G0 gap (model units)"), g0);
-    form->addRow(QObject::tr("G1 angle"), g1);
-    form->addRow(QObject::tr("G2 curvature jump"), g2);
-    form->addRow(QObject::tr("Edges of faces without a record: match within"), match);
-    auto* why = new QLabel;
-    form->addRow(why);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    QObject::connect(buttons, &QDialogButtonBox::rejected, &d, &QDialog::reject);
-    ContinuityTolerances result;
-    QObject::connect(buttons, &QDialogButtonBox::accepted, &d, [&] {
-        result = {g0->value(), g1->value(), g2->value(), match->value()};
-        const QString error = continuityTolerancesError(result);
-        if (error.isEmpty())
-            d.accept();
-        else
-            why->setText(error);
-    });
-    form->addRow(buttons);
-    if (d.exec() != QDialog::Accepted)
-        return std::nullopt;
-    return result;
 }
 
 } // namespace kw

@@ -107,6 +107,8 @@ MainWindow::MainWindow(QWidget* parent)
       m_selection(new Selection(*m_model, this)), m_stack(new QUndoStack(this)),
       m_dialogs(Dialogs::standard()) {
     setObjectName(QStringLiteral("KnotworkMainWindow"));
+    // The untitled project the window starts with is a new one: the user's default tolerances.
+    m_doc->setContinuityTolerances(Preferences::load().continuity);
     setAcceptDrops(true);
     setDockNestingEnabled(true);
     m_model->setRenameHandler([this](SurfaceId id, const QString& name) {
@@ -300,7 +302,7 @@ void MainWindow::buildMenus() {
     probe->buildMenu(menuBar());
     connect(probe, &ProbeTool::message, this,
             [this](const QString& m) { statusBar()->showMessage(m, 8000); });
-    m_desktop = new DesktopActions(this, m_viewport);
+    m_desktop = new DesktopActions(this, m_viewport, m_stack);
     m_desktop->addEditEntries(findChild<QMenu*>(QStringLiteral("menuEdit")));
     m_desktop->addViewEntries(findChild<QMenu*>(QStringLiteral("menuView")));
     m_desktop->addHelpMenu(menuBar());
@@ -453,13 +455,10 @@ void MainWindow::buildViewMenu() {
     QAction* tolerances = analysis->menu()->addAction(tr("Continuity &Tolerances…"));
     tolerances->setObjectName(QStringLiteral("actionContinuityTolerances"));
     tolerances->setStatusTip(tr("The G0, G1 and G2 thresholds of Edge Continuity, Match Surface "
-                                "and 'knotwork info --continuity', saved with the project"));
-    connect(tolerances, &QAction::triggered, this, [this] {
-        if (const auto t = editContinuityTolerances(this, m_doc->scene().continuity)) {
-            m_doc->setContinuityTolerances(*t);
-            setWindowModified(true);
-        }
-    });
+                                "and 'knotwork info --continuity': the project's (saved with it) "
+                                "and the defaults for new projects, in Preferences"));
+    // One place edits them: Preferences, opened on the project's tolerances.
+    connect(tolerances, &QAction::triggered, this, [this] { m_desktop->editPreferences(true); });
     connect(m_edgeContinuity, &EdgeContinuityOverlay::seamMessage, this, [this](const QString& m) {
         if (!m.isEmpty())
             statusBar()->showMessage(tr("This edit %1").arg(m), 4000);

@@ -158,8 +158,10 @@ bool MainWindow::offerRecovery() {
 void MainWindow::newDocument() {
     if (!maybeSave())
         return;
-    const Status reset = m_doc->resetScene(Scene{});
-    Q_ASSERT(reset); // an empty scene is always valid
+    Scene scene;
+    scene.continuity = Preferences::load().continuity; // the user's defaults for new projects
+    const Status reset = m_doc->resetScene(std::move(scene));
+    Q_ASSERT(reset); // an empty scene with validated tolerances (Preferences::load) is valid
     m_stack->clear();
     m_stack->setClean();
     setFilePath(QString());

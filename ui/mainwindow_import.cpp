@@ -3,6 +3,7 @@
 #include "model/cad/cadimport.h"
 #include "model/document/naming.h"
 #include "ui/mainwindow.h"
+#include "ui/preferences.h"
 
 #include <QEventLoop>
 #include <QFileInfo>
@@ -133,8 +134,11 @@ bool MainWindow::importFile(const QString& path) {
         return false;
     }
     QString error = job->error;
-    if (job->result) // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree
+    if (job->result) { // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree
         makeSurfaceNamesDistinct(job->result->scene, QFileInfo(path).completeBaseName());
+        // A CAD or mesh file carries no continuity tolerances: the user's defaults apply.
+        job->result->scene.continuity = Preferences::load().continuity;
+    }
     if (job->result)
         error = m_doc->resetScene(std::move(job->result->scene)).message();
     if (!job->result || !error.isEmpty()) {

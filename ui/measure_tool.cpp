@@ -12,6 +12,10 @@ namespace kw {
 
 namespace {
 
+/// The probe marker's half-size on screen, and what its repaint covers (with the pen).
+constexpr int kMarkerArm = 6;
+constexpr int kMarkerReach = kMarkerArm + 2;
+
 /// A label in a rounded box at `at`, readable on any background.
 void drawLabel(QPainter& p, QPointF at, const QString& text) {
     const QFontMetricsF fm(p.font());
@@ -88,8 +92,22 @@ void MeasureTool::clear() {
 void MeasureTool::setProbeMarker(std::optional<glm::dvec3> point) {
     if (point == m_marker)
         return;
+    // Only the old and the new cross are repainted: a repaint of the whole overlay would make
+    // the view under it draw its frame again (Viewport::paintEvent), at every hover.
+    const ViewProjection view = m_view->viewProjection();
+    QRegion dirty;
+    for (const std::optional<glm::dvec3>& at : {m_marker, point})
+        if (at) {
+            const std::optional<QPointF> px = view.project(*at);
+            if (!px) {
+                dirty = rect();
+                break;
+            }
+            dirty += QRect(px->toPoint() - QPoint(kMarkerReach, kMarkerReach),
+                           QSize(2 * kMarkerReach + 1, 2 * kMarkerReach + 1));
+        }
     m_marker = point;
-    update();
+    update(dirty);
 }
 
 QString MeasureTool::unitKey() const {
@@ -163,8 +181,8 @@ void MeasureTool::paintEvent(QPaintEvent*) {
     if (m_marker)
         if (const auto a = view.project(*m_marker)) {
             p.setPen(QPen(QColor(255, 255, 255), 1.5));
-            p.drawLine(*a + QPointF(-6, 0), *a + QPointF(6, 0));
-            p.drawLine(*a + QPointF(0, -6), *a + QPointF(0, 6));
+            p.drawLine(*a + QPointF(-kMarkerArm, 0), *a + QPointF(kMarkerArm, 0));
+            p.drawLine(*a + QPointF(0, -kMarkerArm), *a + QPointF(0, kMarkerArm));
         }
 }
 

@@ -1,6 +1,7 @@
 // Preferences: QSettings keys with defaults, and a form dialog for them.
 #include "ui/preferences.h"
 
+#include "model/analysis/continuity.h"
 #include "render/render_types.h"
 
 #include <QCheckBox>
@@ -9,6 +10,9 @@
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QLabel>
 #include <QPushButton>
 #include <QSettings>
 #include <QSpinBox>
@@ -46,6 +50,15 @@ Preferences Preferences::load() {
     p.headlight = s.value(QStringLiteral("view/headlight"), d.headlight).toBool();
     const QColor c(s.value(QStringLiteral("view/background"), d.background.name()).toString());
     p.background = c.isValid() ? c : d.background;
+    ContinuityTolerances t;
+    t.g0 = s.value(QStringLiteral("continuity/g0"), d.continuity.g0).toDouble();
+    t.g1Degrees =
+        s.value(QStringLiteral("continuity/g1Degrees"), d.continuity.g1Degrees).toDouble();
+    t.g2Percent =
+        s.value(QStringLiteral("continuity/g2Percent"), d.continuity.g2Percent).toDouble();
+    t.match = s.value(QStringLiteral("continuity/match"), d.continuity.match).toDouble();
+    if (continuityTolerancesError(t).isEmpty())
+        p.continuity = t;
     return p;
 }
 
@@ -62,10 +75,97 @@ void Preferences::save() const {
     s.setValue(QStringLiteral("view/aaMethod"), aaMethod);
     s.setValue(QStringLiteral("view/headlight"), headlight);
     s.setValue(QStringLiteral("view/background"), background.name());
+    s.setValue(QStringLiteral("continuity/g0"), continuity.g0);
+    s.setValue(QStringLiteral("continuity/g1Degrees"), continuity.g1Degrees);
+    s.setValue(QStringLiteral("continuity/g2Percent"), continuity.g2Percent);
+    s.setValue(QStringLiteral("continuity/match"), continuity.match);
 }
 
-PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
-    : QDialog(parent), m_color(p.background) {
+namespace {
+
+std::array<double, 4> toArray(const ContinuityTolerances& t) {
+    return {t.g0, t.g1Degrees, t.g2Percent, t.match};
+}
+
+ContinuityTolerances fromSpins(const std::array<QDoubleSpinBox*, 4>& s) {
+    return {s[0]->value(), s[1]->value(), s[2]->value(), s[3]->value()};
+}
+
+} // namespace
+
+/// The Continuity group: the open project's tolerances beside the defaults for new ones, so
+/// that which one a value sets is never in doubt.
+QGroupBox* PreferencesDialog::continuityGroup(const PreferencesEdit& e) {
+    auto* box = new QGroupBox(tr("Continuity tolerances (Edge Continuity, Match Surface)"));
+    box->setObjectName(QStringLiteral("prefContinuity"));
+    auto* grid = new QGridLayout(box);
+    grid->addWidget(new QLabel(tr("This project")), 0, 1);
+    grid->addWidget(new QLabel(tr("New projects")), 0, 2);
+    const QString rows[4] = {tr("G0 gap (model units)"), tr("G1 angle"), tr("G2 curvature jump"),
+                             tr("Edges without a record match within")};
+    const QString suffixes[4] = {QString(), tr(" deg"), tr(" %"), QString()};
+    const char* keys[4] = {"G0", "G1", "G2", "Match"};
+    for (int r = 0; r < 4; ++r)
+        grid->addWidget(new QLabel(rows[r]), r + 1, 0);
+    for (int column = 0; column < 2; ++column) {
+        const std::optional<ContinuityTolerances> t =
+            column == 0 ? e.project : std::optional(e.preferences.continuity);
+        if (!t) {
+            grid->addWidget(new QLabel(tr("(no project)")), 1, 1);
+            continue;
+        }
+        const std::array<double, 4> values = toArray(*t);
+        for (int r = 0; r < 4; ++r) {
+            auto* spin = new QDoubleSpinBox;
+            spin->setObjectName(
+                QStringLiteral("pref%1%2")
+                    .arg(column == 0 ? QStringLiteral("Project") : QStringLiteral("Default"),
+                         QLatin1String(keys[r])));
+            spin->setDecimals(6);
+            spin->setRange(1e-6, 1e6);
+            spin->setValue(values[size_t(r)]);
+            spin->setSuffix(suffixes[r]);
+            grid->addWidget(spin, r + 1, column + 1);
+            m_continuity[size_t(column)][size_t(r)] = spin;
+        }
+    }
+    m_continuityError = new QLabel;
+    m_continuityError->setObjectName(QStringLiteral("prefContinuityError"));
+    m_continuityError->setWordWrap(true);
+    grid->addWidget(m_continuityError, 5, 0, 1, 3);
+    return box;
+}
+
+void PreferencesDialog::focusContinuity() {
+    QDoubleSpinBox* g0 = m_continuity[0][0] ? m_continuity[0][0] : m_continuity[1][0];
+    g0->setFocus();
+    g0->selectAll();
+}
+
+void PreferencesDialog::acceptIfValid() {
+    for (size_t column = 0; column < 2; ++column) {
+        if (!m_continuity[column][0])
+            continue;
+        const QString why = continuityTolerancesError(fromSpins(m_continuity[column]));
+        if (!why.isEmpty()) {
+            m_continuityError->setText(
+                (column == 0 ? tr("This project: %1") : tr("New projects: %1")).arg(why));
+            return;
+        }
+    }
+    accept();
+}
+
+PreferencesEdit PreferencesDialog::edit() const {
+    PreferencesEdit e{value(), std::nullopt};
+    if (m_continuity[0][0])
+        e.project = fromSpins(m_continuity[0]);
+    return e;
+}
+
+PreferencesDialog::PreferencesDialog(const PreferencesEdit& e, QWidget* parent)
+    : QDialog(parent), m_color(e.preferences.background) {
+    const Preferences& p = e.preferences;
     setWindowTitle(tr("Preferences"));
     auto* form = new QFormLayout(this);
     m_autosave = new QSpinBox;
@@ -169,8 +269,9 @@ PreferencesDialog::PreferencesDialog(const Preferences& p, QWidget* parent)
     form->addRow(tr("Anti-aliasing method"), m_aaMethod);
     form->addRow(tr("Light rig"), m_headlight);
     form->addRow(tr("Background"), m_background);
+    form->addRow(continuityGroup(e));
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::accepted, this, &PreferencesDialog::acceptIfValid);
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
     form->addRow(buttons);
 }
@@ -188,6 +289,7 @@ Preferences PreferencesDialog::value() const {
     p.aaMethod = m_aaMethod->currentText();
     p.headlight = m_headlight->isChecked();
     p.background = m_color;
+    p.continuity = fromSpins(m_continuity[1]);
     return p;
 }
 

@@ -1,13 +1,19 @@
 // Preferences: the editor's defaults kept with QSettings, and the dialog that edits them.
 #pragma once
 
+#include "model/document/scene.h"
+
 #include <QColor>
 #include <QDialog>
 #include <QString>
+#include <array>
+#include <optional>
 
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QGroupBox;
+class QLabel;
 class QSpinBox;
 class QPushButton;
 
@@ -32,6 +38,10 @@ struct Preferences {
     QString aaMethod = QStringLiteral("accumulate");
     bool headlight = true;         ///< "view/headlight": lights follow the camera
     QColor background{46, 48, 54}; ///< "view/background"
+    /// "continuity/g0", "continuity/g1Degrees", "continuity/g2Percent", "continuity/match": the
+    /// tolerances new projects and imports start with (a project keeps its own, saved in it);
+    /// stored values that are not valid together load as the built-in ones (CATIA's).
+    ContinuityTolerances continuity;
 
     static Preferences load();
     void save() const;
@@ -41,13 +51,32 @@ struct Preferences {
     static QStringList availablePartitionModes();
 };
 
+/// What the Preferences dialog edits: the application's preferences and, when a project is
+/// open, that project's continuity tolerances (saved in it; a change is an undoable edit).
+struct PreferencesEdit {
+    Preferences preferences;
+    std::optional<ContinuityTolerances> project;
+    bool operator==(const PreferencesEdit&) const = default;
+};
+
 class PreferencesDialog : public QDialog {
     Q_OBJECT
 public:
-    explicit PreferencesDialog(const Preferences& initial, QWidget* parent = nullptr);
+    explicit PreferencesDialog(const Preferences& initial, QWidget* parent = nullptr)
+        : PreferencesDialog(PreferencesEdit{initial, std::nullopt}, parent) {}
+    explicit PreferencesDialog(const PreferencesEdit& initial, QWidget* parent = nullptr);
     Preferences value() const;
+    /// value() and the project's tolerances as shown (nullopt when the dialog had none).
+    PreferencesEdit edit() const;
+    /// Gives the keyboard focus to the project's G0 tolerance (else the defaults'): the dialog
+    /// as View > Analysis > Continuity Tolerances opens it.
+    void focusContinuity();
 
 private:
+    QGroupBox* continuityGroup(const PreferencesEdit& e);
+    /// OK: accepts when both columns of tolerances are valid, else says why in the dialog.
+    void acceptIfValid();
+
     QSpinBox* m_autosave;
     QCheckBox* m_backup;
     QComboBox* m_partitionMode;
@@ -60,6 +89,10 @@ private:
     QCheckBox* m_headlight;
     QPushButton* m_background;
     QColor m_color;
+    /// G0, G1, G2 and match spin boxes: [0] the open project's (null without one), [1] the
+    /// defaults for new projects.
+    std::array<std::array<QDoubleSpinBox*, 4>, 2> m_continuity{};
+    QLabel* m_continuityError = nullptr;
 };
 
 } // namespace kw

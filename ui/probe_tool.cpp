@@ -1,10 +1,10 @@
-// ProbeTool: probe values under the cursor and measure clicks, through an event filter on the
-// viewport.
+// ProbeTool: probe values under the cursor and measure clicks, a tool of the viewport.
 #include "ui/probe_tool.h"
 
 #include "model/analysis/mass_properties.h"
 #include "model/document/document.h"
 #include "model/document/units.h"
+#include "render/thread_clock.h"
 #include "ui/viewport.h"
 
 #include <QAction>
@@ -44,7 +44,7 @@ ProbeTool::ProbeTool(Document* document, Viewport* viewport)
     layout->addWidget(copy, 0, Qt::AlignRight);
     connect(copy, &QToolButton::clicked, this, [this] { copyProbe(); });
     m_panel->hide();
-    viewport->installEventFilter(this);
+    viewport->listen(this);
     // Dimensions and the probe belong to the geometry they were taken on: a new or opened
     // document starts without them.
     connect(document, &Document::sceneReset, this, [this] {
@@ -124,7 +124,12 @@ void ProbeTool::setMode(Mode mode) {
             const QSignalBlocker b(m_actions[k]);
             m_actions[k]->setChecked(int(mode) == k + 1);
         }
-    updateTracking();
+    // A mode is the view's installed tool (it sees plain clicks before selection does);
+    // Off gives the view back, unless another tool took it already (uninstalled()).
+    if (mode != Mode::Off)
+        m_view->setTool(this);
+    else if (m_view->tool() == this)
+        m_view->setTool(nullptr);
     if (!probing())
         hideProbe();
     static const char* const hints[] = {
@@ -132,11 +137,6 @@ void ProbeTool::setMode(Mode mode) {
         "Distance: click two points", "Angle: click two points", "Radius: click a point"};
     if (mode != Mode::Off)
         Q_EMIT message(tr(hints[int(mode)]));
-}
-
-void ProbeTool::updateTracking() {
-    // Hover moves reach the view only with tracking; the view itself needs none.
-    m_view->setMouseTracking(probing() || m_mode != Mode::Off);
 }
 
 void ProbeTool::hideProbe() {
@@ -168,19 +168,26 @@ std::optional<ProbePoint> ProbeTool::probePoint(QPointF position) {
 std::optional<ProbePoint> ProbeTool::probeAt(QPointF position) {
     QElapsedTimer clock;
     clock.start();
+    const double cpuStart = threadCpuMs();
     const std::optional<PickHit> hit = m_view->pickSurface(position);
     const qint64 picked = clock.nsecsElapsed();
     m_probe = hit ? refine(*hit, position) : std::nullopt;
     if (!m_probe) {
         hideProbe();
         m_updateMs = clock.nsecsElapsed() * 1e-6;
+        m_updateCpuMs = threadCpuMs() - cpuStart;
         m_refineMs = 0.0;
         Q_EMIT probed();
         return std::nullopt;
     }
     m_text->setText(probeText(*m_probe, lengthUnitKey(m_doc->scene().unit)));
     m_refineMs = (clock.nsecsElapsed() - picked) * 1e-6;
-    m_panel->adjustSize();
+    // Grown only, from a width most values fit: a panel that changed size at every move would
+    // make the view under it draw its frame again (Viewport::paintEvent), at every hover.
+    const int wide = m_panel->fontMetrics().horizontalAdvance(QLatin1Char('0')) * 44;
+    const QSize want = m_panel->sizeHint().expandedTo(QSize(wide, 0));
+    if (want.width() > m_panel->width() || want.height() > m_panel->height())
+        m_panel->resize(m_panel->size().expandedTo(want));
     // A fixed place in the top left corner (the colour legend takes the top right): a panel that
     // followed or fled the cursor could not be reached for Copy. Over the panel the view gets no
     // moves, so the values stay while the cursor goes to its button.
@@ -190,6 +197,7 @@ std::optional<ProbePoint> ProbeTool::probeAt(QPointF position) {
     m_panel->raise();
     m_measure->setProbeMarker(m_probe->point);
     m_updateMs = clock.nsecsElapsed() * 1e-6;
+    m_updateCpuMs = threadCpuMs() - cpuStart;
     Q_EMIT probed();
     return m_probe;
 }
@@ -227,92 +235,70 @@ bool ProbeTool::copyProbe() {
     return true;
 }
 
-bool ProbeTool::eventFilter(QObject* watched, QEvent* event) {
-    if (watched != m_view)
-        return false;
-    switch (event->type()) {
-    case QEvent::ShortcutOverride: {
-        // Ctrl+C over the view copies the probe, ahead of any window-wide Copy; P is ours too.
-        auto* k = static_cast<QKeyEvent*>(event);
-        if ((k->matches(QKeySequence::Copy) && probing() && m_probe) ||
-            (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier)) {
-            event->accept();
-            return true;
+bool ProbeTool::overridesShortcut(const QKeyEvent* k) const {
+    // Ctrl+C over the view copies the probe, ahead of any window-wide Copy; P is ours too.
+    return (k->matches(QKeySequence::Copy) && probing() && m_probe) ||
+           (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier);
+}
+
+bool ProbeTool::key(QKeyEvent* k) {
+    if (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier) {
+        if (k->isAutoRepeat())
+            return false; // held: nothing new (and no frame for the host to draw)
+        if (!m_held) {
+            m_held = true;
+            probeAt(m_view->mapFromGlobal(QCursor::pos()));
         }
-        return false;
+        return true;
     }
-    case QEvent::KeyPress: {
-        auto* k = static_cast<QKeyEvent*>(event);
-        if (k->key() == Qt::Key_P && k->modifiers() == Qt::NoModifier) {
-            if (!k->isAutoRepeat() && !m_held) {
-                m_held = true;
-                updateTracking();
-                probeAt(m_view->mapFromGlobal(QCursor::pos()));
-            }
-            return true;
-        }
-        if (k->key() == Qt::Key_Escape && m_mode != Mode::Off) {
-            if (!m_measure->cancelPending())
-                setMode(Mode::Off);
-            return true;
-        }
-        if (k->matches(QKeySequence::Copy) && probing() && m_probe)
-            return copyProbe();
-        return false;
+    if (k->key() == Qt::Key_Escape && m_mode != Mode::Off) {
+        if (!m_measure->cancelPending())
+            setMode(Mode::Off);
+        return true;
     }
-    case QEvent::KeyRelease: {
-        auto* k = static_cast<QKeyEvent*>(event);
-        if (k->key() == Qt::Key_P && !k->isAutoRepeat() && m_held) {
-            m_held = false;
-            updateTracking();
-            if (!probing())
-                hideProbe();
-            return true;
-        }
+    if (k->matches(QKeySequence::Copy) && probing() && m_probe)
+        return copyProbe();
+    return false;
+}
+
+bool ProbeTool::keyRelease(QKeyEvent* k) {
+    if (k->key() != Qt::Key_P || k->isAutoRepeat() || !m_held)
         return false;
-    }
-    case QEvent::FocusOut:
-        if (m_held) { // the release will not come to the view
-            m_held = false;
-            updateTracking();
-            if (!probing())
-                hideProbe();
-        }
-        return false;
-    case QEvent::MouseMove: {
-        auto* m = static_cast<QMouseEvent*>(event);
-        if (probing() && m->buttons() == Qt::NoButton)
-            probeAt(m->position());
-        return false;
-    }
-    case QEvent::MouseButtonPress: {
-        auto* m = static_cast<QMouseEvent*>(event);
-        const bool measuring =
-            m_mode == Mode::Distance || m_mode == Mode::Angle || m_mode == Mode::Radius;
-        if (measuring && m->button() == Qt::LeftButton && m->modifiers() == Qt::NoModifier) {
-            m_view->setFocus(Qt::MouseFocusReason);
-            measureAt(m->position());
-            m_swallowRelease = true;
-            return true;
-        }
-        return false;
-    }
-    case QEvent::MouseButtonRelease:
-        if (m_swallowRelease && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
-            m_swallowRelease = false;
-            return true;
-        }
-        return false;
-    case QEvent::Leave:
-        if (probing())
+    m_held = false;
+    if (!probing())
+        hideProbe();
+    return true;
+}
+
+void ProbeTool::focusOut() {
+    if (m_held) { // the release will not come to the view
+        m_held = false;
+        if (!probing())
             hideProbe();
-        return false;
-    case QEvent::Resize:
-        m_measure->setGeometry(m_view->rect());
-        return false;
-    default:
-        return false;
     }
+}
+
+void ProbeTool::leave() {
+    if (probing())
+        hideProbe();
+}
+
+void ProbeTool::hover(QMouseEvent* m) {
+    if (probing() && m->buttons() == Qt::NoButton)
+        probeAt(m->position());
+}
+
+bool ProbeTool::press(QMouseEvent* m) {
+    const bool measuring =
+        m_mode == Mode::Distance || m_mode == Mode::Angle || m_mode == Mode::Radius;
+    if (!measuring || m->button() != Qt::LeftButton || m->modifiers() != Qt::NoModifier)
+        return false; // Probe: clicks select as usual
+    measureAt(m->position());
+    return true; // no drag: the release goes nowhere
+}
+
+void ProbeTool::uninstalled() {
+    setMode(Mode::Off);
 }
 
 } // namespace kw

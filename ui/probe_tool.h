@@ -6,6 +6,7 @@
 #include "model/analysis/probe.h"
 #include "render/frame_report.h"
 #include "ui/measure_tool.h"
+#include "ui/tools/tool.h"
 
 #include <QObject>
 #include <optional>
@@ -20,13 +21,15 @@ namespace kw {
 class Document;
 class Viewport;
 
-/// Watches the viewport's events (an event filter, so the view's own gestures stay as they
-/// are): while Probe is on, or P is held over the view, each mouse move without buttons picks
-/// the surface under the cursor (Renderer::pick), refines the pick onto the pixel's ray
-/// (probeOnRay) and shows the values; over background the panel hides. In a Measure mode a
-/// plain left click probes the point and hands it to the MeasureTool (the click does not select);
-/// Esc drops a half-made measurement, then leaves the mode.
-class ProbeTool : public QObject {
+/// A tool of the view (ui/tools/tool.h): it listens to the view (Viewport::listen), and a
+/// Probe or Measure mode installs it (Viewport::setTool). While Probe is on, or P is held over
+/// the view, each hover move picks the surface under the cursor (Renderer::pick, one pixel),
+/// refines the pick onto the pixel's ray (probeOnRay) and shows the values in a panel and a
+/// marker, both child widgets of the view: a hover draws no frame of the view. Over background
+/// the panel hides. In a Measure mode a plain left click probes the point and hands it to the
+/// MeasureTool (the click does not select); Esc drops a half-made measurement, then leaves the
+/// mode. Installing another tool (the curve tool) turns the mode off.
+class ProbeTool : public QObject, public Tool {
     Q_OBJECT
 public:
     enum class Mode { Off, Probe, Distance, Angle, Radius };
@@ -56,10 +59,21 @@ public:
 
     MeasureTool* measureTool() const { return m_measure; }
     QFrame* panel() const { return m_panel; }
-    /// Wall time of the last probe update (pick, refinement, panel), and of its CPU part after
-    /// the pick (refinement, curvature and text), in ms.
+    /// Wall time of the last probe update (pick, refinement, panel), its calling thread's CPU
+    /// time, and the CPU part after the pick (refinement, curvature and text), in ms.
     double lastUpdateMs() const { return m_updateMs; }
+    double lastUpdateCpuMs() const { return m_updateCpuMs; }
     double lastRefineMs() const { return m_refineMs; }
+
+    // Tool
+    bool press(QMouseEvent* event) override;
+    void hover(QMouseEvent* event) override;
+    bool key(QKeyEvent* event) override;
+    bool keyRelease(QKeyEvent* event) override;
+    bool overridesShortcut(const QKeyEvent* event) const override;
+    void leave() override;
+    void focusOut() override;
+    void uninstalled() override;
 
 Q_SIGNALS:
     /// For the status bar.
@@ -67,12 +81,8 @@ Q_SIGNALS:
     void probed();
     void measured(const kw::Measurement& m);
 
-protected:
-    bool eventFilter(QObject* watched, QEvent* event) override;
-
 private:
     bool probing() const { return m_mode == Mode::Probe || m_held; }
-    void updateTracking();
     void hideProbe();
     /// The probe point at a position: pick, then refinement onto the ray through the centre of
     /// the picked device pixel.
@@ -86,9 +96,8 @@ private:
     QLabel* m_text;
     Mode m_mode = Mode::Off;
     bool m_held = false;
-    bool m_swallowRelease = false;
     std::optional<ProbePoint> m_probe;
-    double m_updateMs = 0.0, m_refineMs = 0.0;
+    double m_updateMs = 0.0, m_updateCpuMs = 0.0, m_refineMs = 0.0;
     QAction* m_actions[4] = {nullptr, nullptr, nullptr, nullptr}; ///< Probe .. Radius
 };
 

@@ -9,6 +9,7 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
+#include <QPaintEvent>
 #include <QPainter>
 #include <QTimer>
 #include <QUndoStack>
@@ -96,10 +97,6 @@ void Viewport::setStandardView(StandardView view) {
     m_autoFit = false;
     m_camera.setStandardView(view, m_doc->scene(), aspect());
     update();
-}
-
-ViewProjection Viewport::viewProjection() const {
-    return ViewProjection(m_camera.camera(), m_doc->scene(), size());
 }
 
 void Viewport::setRenderMode(RenderMode mode) {
@@ -243,6 +240,11 @@ void Viewport::setSections(const std::vector<SectionPlane>& planes, bool caps) {
     m_options.sections = std::move(kept);
     m_options.sectionCaps = caps;
     update();
+}
+
+void Viewport::moveSections(const std::vector<SectionPlane>& planes) {
+    setSections(planes, m_options.sectionCaps);
+    Q_EMIT sectionsMoved(m_options.sections, m_options.sectionCaps);
 }
 
 void Viewport::setTrimMaskCap(int texels) {
@@ -403,6 +405,16 @@ void Viewport::paintGL() {
     }
 }
 
+void Viewport::paintEvent(QPaintEvent* event) {
+    // QOpenGLWidget draws its frame again at every paint event, and a child overlay's repaint
+    // (the probe's marker, at every hover) sends one for the part under it. What the frame
+    // shows changes only through update() of the whole view; a part of it is the last frame
+    // composited again, as it is: no new frame.
+    if (m_framesDrawn > 0 && !event->region().contains(rect()))
+        return;
+    QOpenGLWidget::paintEvent(event);
+}
+
 void Viewport::drawAgainWhenStill() {
     if (!m_stillTimer) {
         m_stillTimer = new QTimer(this);
@@ -532,6 +544,11 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
         event->accept();
         return;
     }
+    // A listening tool repaints what it shows itself (the probe's panel): no frame here.
+    if (m_tools.listenKey(event)) {
+        event->accept();
+        return;
+    }
     QOpenGLWidget::keyPressEvent(event);
 }
 
@@ -546,7 +563,7 @@ void Viewport::keyReleaseEvent(QKeyEvent* event) {
         event->accept();
         return;
     }
-    if (m_tools.keyRelease(event)) {
+    if (m_tools.keyRelease(event) || m_tools.listenKeyRelease(event)) {
         event->accept();
         return;
     }
@@ -555,7 +572,23 @@ void Viewport::keyReleaseEvent(QKeyEvent* event) {
 
 void Viewport::focusOutEvent(QFocusEvent* event) {
     m_axis = -1;
+    m_tools.focusOut();
     QOpenGLWidget::focusOutEvent(event);
+}
+
+void Viewport::leaveEvent(QEvent* event) {
+    m_tools.leave();
+    QOpenGLWidget::leaveEvent(event);
+}
+
+bool Viewport::event(QEvent* event) {
+    // A key a tool wants over the view comes to keyPressEvent, not to a window shortcut.
+    if (event->type() == QEvent::ShortcutOverride &&
+        m_tools.overridesShortcut(static_cast<QKeyEvent*>(event))) {
+        event->accept();
+        return true;
+    }
+    return QOpenGLWidget::event(event);
 }
 
 } // namespace kw

@@ -26,7 +26,8 @@ namespace kw {
 
 /// Mouse: middle drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel
 /// zooms; every other press goes to the tools (ui/tools/tool.h), the installed one first, then
-/// those of ui/tools/viewtools.cpp in order: Ctrl+Shift drag on a point sets its weight, Ctrl
+/// those of ui/tools/viewtools.cpp in order: a left drag on a section plane's handle (an arrow
+/// along its normal) moves the plane along it, Ctrl+Shift drag on a point sets its weight, Ctrl
 /// drag moves, rotates or scales the selected surfaces, a left click picks the nearest control
 /// point within a few pixels (Shift adds or removes) and a drag from it moves the picked
 /// points in the view plane (hold X, Y or Z to move along that world axis), a left drag
@@ -46,8 +47,11 @@ public:
     void resetCamera();
     void fitToView();
     void setStandardView(StandardView view);
-    /// The mapping the picker uses for the current camera and size.
-    ViewProjection viewProjection() const;
+    /// The mapping the picker and the tools use for the current camera and size (here, so that
+    /// a drag step reads it without a trip back into the view's code).
+    ViewProjection viewProjection() const {
+        return ViewProjection(m_camera.camera(), m_doc->scene(), size());
+    }
 
     /// The view's options, samples resolved (automatic: kAutoSamplesCount); what a frame
     /// changes while the view moves (fewer samples, progressive) is not in them.
@@ -77,6 +81,9 @@ public:
     /// and caps: view state saved with the project (DisplaySettings), not an edit.
     void setSections(const std::vector<SectionPlane>& planes, bool caps);
     const std::vector<SectionPlane>& sections() const { return m_options.sections; }
+    /// setSections from the view itself (a plane's handle dragged): the caps stay, and
+    /// sectionsMoved() tells the Section dialog.
+    void moveSections(const std::vector<SectionPlane>& planes);
     bool sectionCaps() const { return m_options.sectionCaps; }
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
@@ -128,6 +135,10 @@ public:
     /// outlive its installation; navigation keeps working under it.
     void setTool(Tool* tool);
     Tool* tool() const { return m_tools.installed(); }
+    /// Adds a listening tool (ToolRouter::listen): hover moves, keys no other tool used, and
+    /// presses once it is installed with setTool. It must outlive the view's events (a child
+    /// QObject of the view does).
+    void listen(Tool* tool) { m_tools.listen(tool); }
 
     // For the tools: the document and what they pick in this view.
     Document* document() const { return m_doc; }
@@ -182,11 +193,14 @@ Q_SIGNALS:
     void renderError(const QString& message);
     /// A tool's message for the status bar, such as why a drag step was refused.
     void message(const QString& text);
+    /// The section planes moved in the view (moveSections), as now drawn.
+    void sectionsMoved(const std::vector<kw::SectionPlane>& planes, bool caps);
 
 protected:
     void initializeGL() override;
     void resizeGL(int w, int h) override;
     void paintGL() override;
+    void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
@@ -195,6 +209,8 @@ protected:
     void keyPressEvent(QKeyEvent* event) override;
     void keyReleaseEvent(QKeyEvent* event) override;
     void focusOutEvent(QFocusEvent* event) override;
+    void leaveEvent(QEvent* event) override;
+    bool event(QEvent* event) override;
 
 private:
     /// Navigation; every other gesture is a tool's.

@@ -61,6 +61,59 @@ void drawPolyline3(QPainter& p, const ViewProjection& view, const std::vector<gl
         p.drawPolyline(poly);
 }
 
+/// The parts of a polyline on the kept side of every section plane (as the renderer cuts the
+/// surfaces and its lines): each segment clipped to the kept half-spaces (Liang-Barsky on
+/// one parameter), consecutive kept parts joined.
+std::vector<std::vector<glm::dvec3>> keptPieces(const std::vector<glm::dvec3>& line,
+                                                const std::vector<SectionPlane>& planes) {
+    if (planes.empty())
+        return {line};
+    std::vector<std::vector<glm::dvec3>> pieces;
+    std::vector<glm::dvec3> piece;
+    const auto flush = [&] {
+        if (piece.size() > 1)
+            pieces.push_back(std::move(piece));
+        piece.clear();
+    };
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+        const glm::dvec3 a = line[k], b = line[k + 1];
+        double t0 = 0.0, t1 = 1.0;
+        for (const SectionPlane& plane : planes) {
+            const glm::dvec3 n = plane.removedSide();
+            const double da = glm::dot(n, a - plane.position), db = glm::dot(n, b - plane.position);
+            if (da > 0.0 && db > 0.0) {
+                t0 = 1.0, t1 = 0.0; // wholly removed
+                break;
+            }
+            if (da > 0.0)
+                t0 = std::max(t0, da / (da - db));
+            else if (db > 0.0)
+                t1 = std::min(t1, da / (da - db));
+        }
+        if (t0 >= t1) {
+            flush();
+            continue;
+        }
+        const glm::dvec3 from = a + t0 * (b - a), to = a + t1 * (b - a);
+        if (piece.empty() || t0 > 0.0) {
+            flush();
+            piece.push_back(from);
+        }
+        piece.push_back(to);
+        if (t1 < 1.0)
+            flush();
+    }
+    flush();
+    return pieces;
+}
+
+bool kept(const glm::dvec3& x, const std::vector<SectionPlane>& planes) {
+    for (const SectionPlane& plane : planes)
+        if (glm::dot(plane.removedSide(), x - plane.position) > 0.0)
+            return false;
+    return true;
+}
+
 } // namespace
 
 void Viewport::drawSelection() {
@@ -102,12 +155,18 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
         }
     }
     // Selected surfaces: outlined.
+    // Like the surfaces, they are cut by the section planes.
+    const std::vector<SectionPlane>& planes = m_options.sections;
+    const auto drawCut = [&](const std::vector<glm::dvec3>& line) {
+        for (const std::vector<glm::dvec3>& piece : keptPieces(line, planes))
+            drawPolyline3(p, view, piece);
+    };
     const std::vector<SurfaceId> selected = shownSurfaces(true);
     p.setPen(QPen(QColor(255, 170, 40), 2.0));
     for (SurfaceId id : selected)
         if (const Surface* s = m_doc->surface(id))
             for (const auto& line : outline(*s))
-                drawPolyline3(p, view, line);
+                drawCut(line);
     // Control nets of the selected surfaces (the renderer draws them all when asked to).
     if (m_options.controlNet && !m_netForAll) {
         for (SurfaceId id : selected) {
@@ -120,18 +179,18 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
                 std::vector<glm::dvec3> row;
                 for (int i = 0; i < g.countU; ++i)
                     row.push_back(g.points[size_t(g.index(i, j))]);
-                drawPolyline3(p, view, row);
+                drawCut(row);
             }
             for (int i = 0; i < g.countU; ++i) {
                 std::vector<glm::dvec3> col;
                 for (int j = 0; j < g.countV; ++j)
                     col.push_back(g.points[size_t(g.index(i, j))]);
-                drawPolyline3(p, view, col);
+                drawCut(col);
             }
             p.setPen(Qt::NoPen);
             p.setBrush(QColor(250, 250, 255));
             for (const glm::dvec3& x : g.points)
-                if (const auto px = view.project(x))
+                if (const auto px = view.project(x); px && kept(x, planes))
                     p.drawEllipse(*px, 2.5, 2.5);
             p.setBrush(Qt::NoBrush);
         }

@@ -418,6 +418,16 @@ ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances
     return report;
 }
 
+ContinuityReport continuityWatch(const Scene& scene, const ContinuityTolerances& tol) {
+    ContinuityReport report;
+    report.tolerances = tol;
+    report.topology = continuityTopology(scene, tol);
+    report.edges.resize(report.topology.edges.size());
+    for (size_t k = 0; k < report.edges.size(); ++k)
+        report.edges[k].edge = report.topology.edges[k];
+    return report;
+}
+
 SeamOpening seamsOpenAt(const ContinuityReport& report, const std::vector<SurfaceId>& faces) {
     SeamOpening out;
     for (const EdgeContinuity& e : report.edges) {
@@ -432,13 +442,14 @@ SeamOpening seamsOpenAt(const ContinuityReport& report, const std::vector<Surfac
     return out;
 }
 
-QString seamOpeningText(const SeamOpening& o) {
+QString seamOpeningText(const SeamOpening& o, const QString& unit) {
     if (o.open == 0)
         return {};
-    return QStringLiteral("opens %1 seam%2, max gap %3")
+    return QStringLiteral("opens %1 seam%2, max gap %3%4")
         .arg(o.open)
         .arg(o.open == 1 ? QString() : QStringLiteral("s"))
-        .arg(o.largestGap, 0, 'g', 3);
+        .arg(o.largestGap, 0, 'g', 3)
+        .arg(unit.isEmpty() ? QString() : QLatin1Char(' ') + unit);
 }
 
 std::vector<size_t> edgesOfFace(const ContinuityTopology& topology, SurfaceId surface) {

@@ -119,6 +119,12 @@ struct ContinuityReport {
 /// there are many). Precondition: valid tolerances (continuityTolerancesError).
 ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances& tolerances);
 
+/// The topology of `scene` with no edge measured yet (each edge's values zero, class G2): for
+/// updateContinuity to measure only the edges of faces as they change, without the cost of
+/// measuring every edge first (the status bar's check of a drag while the overlay is off).
+/// Precondition: valid tolerances.
+ContinuityReport continuityWatch(const Scene& scene, const ContinuityTolerances& tolerances);
+
 /// Re-measures, in `report`, the edges that touch one of `faces` (ascending ids), after their
 /// shape changed; the topology (which boundaries pair) stays as found, so an edge dragged apart
 /// shows as open rather than as two free sides. Returns how many edges were measured. A drag
@@ -135,8 +141,9 @@ struct SeamOpening {
 /// Counts the open edges of `report` (re-measured: updateContinuity) that touch `faces`
 /// (ascending ids).
 SeamOpening seamsOpenAt(const ContinuityReport& report, const std::vector<SurfaceId>& faces);
-/// "opens 2 seams, max gap 0.8", or empty when none is open.
-QString seamOpeningText(const SeamOpening& opening);
+/// "opens 2 seams, max gap 0.8", or empty when none is open; `unit` ("mm"), when given, follows
+/// the gap.
+QString seamOpeningText(const SeamOpening& opening, const QString& unit = {});
 
 /// Every edge with a side on `surface`, as indices into `topology.edges`.
 std::vector<size_t> edgesOfFace(const ContinuityTopology& topology, SurfaceId surface);

@@ -34,7 +34,11 @@ struct ExportReport {
     /// One line per open seam: "seam between face 'A' and face 'B' is open: largest gap G
     /// (model units)", then other remarks (faces written as loose faces, ...).
     QStringList warnings;
-    double seconds = 0.0;
+    double seconds = 0.0; ///< in the writer's child, from the scene to the file's bytes
+    /// Of `seconds`, the time in OpenCASCADE's writer alone (STEPControl_Writer /
+    /// IGESControl_Writer: transfer of the built shape, then the text): the floor an export
+    /// cannot go below whatever it does before.
+    double writerSeconds = 0.0;
     /// Multi-line summary: counts, then every warning.
     QString summary() const;
     /// The report as lines for the child's hand-over, and back. fromText returns false on a

@@ -47,7 +47,7 @@ std::optional<LengthUnit> igesFileUnit(XSControl_Reader& reader) {
 const ExchangeFormat& igesFormat() {
     static const ExchangeFormat format{
         [] { return std::unique_ptr<XSControl_Reader>(std::make_unique<IGESControl_Reader>()); },
-        igesEntityName, igesFileUnit};
+        igesEntityName, igesFileUnit, nullptr};
     return format;
 }
 

@@ -36,6 +36,10 @@ struct ExchangeFormat {
     /// The length unit the loaded file states (STEP's length unit, IGES's global unit flag or
     /// name); nullopt when it states none Knotwork knows.
     std::optional<LengthUnit> (*fileUnit)(XSControl_Reader& reader);
+    /// The name of the product `entity` defines (a STEP PRODUCT_DEFINITION: its PRODUCT's
+    /// name, else its id), empty for any other entity and for a product named by OCCT's
+    /// writer default; null for formats without products (IGES).
+    QString (*productName)(const Handle(Standard_Transient) & entity);
 };
 const ExchangeFormat& igesFormat(); // occt_iges.cpp
 const ExchangeFormat& stepFormat(); // occt_step.cpp

@@ -3,6 +3,9 @@
 #include "model/cad/occt_internal.h"
 
 #include <STEPControl_Reader.hxx>
+#include <StepBasic_Product.hxx>
+#include <StepBasic_ProductDefinition.hxx>
+#include <StepBasic_ProductDefinitionFormation.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TCollection_HAsciiString.hxx>
@@ -16,6 +19,26 @@ QString stepEntityName(const Handle(Standard_Transient) & entity, int* igesType)
     if (step.IsNull() || step->Name().IsNull())
         return {};
     return QString::fromUtf8(step->Name()->ToCString()).trimmed();
+}
+
+QString stepProductName(const Handle(Standard_Transient) & entity) {
+    const auto definition = Handle(StepBasic_ProductDefinition)::DownCast(entity);
+    if (definition.IsNull() || definition->Formation().IsNull())
+        return {};
+    const Handle(StepBasic_Product) product = definition->Formation()->OfProduct();
+    if (product.IsNull())
+        return {};
+    const auto text = [](const Handle(TCollection_HAsciiString) & s) {
+        return s.IsNull() ? QString() : QString::fromUtf8(s->ToCString()).trimmed();
+    };
+    QString name = text(product->Name());
+    if (name.isEmpty())
+        name = text(product->Id());
+    // OCCT's writer names a product it was given no name for "Open CASCADE STEP translator
+    // <version> <n>": not a name anybody chose.
+    if (name.startsWith(QLatin1String("Open CASCADE STEP translator")))
+        return {};
+    return name;
 }
 
 // The first length unit of the file's contexts, by the name OCCT gives it ("MM", "INCH", ...).
@@ -59,7 +82,7 @@ std::optional<LengthUnit> stepFileUnit(XSControl_Reader& reader) {
 const ExchangeFormat& stepFormat() {
     static const ExchangeFormat format{
         [] { return std::unique_ptr<XSControl_Reader>(std::make_unique<STEPControl_Reader>()); },
-        stepEntityName, stepFileUnit};
+        stepEntityName, stepFileUnit, stepProductName};
     return format;
 }
 

@@ -19,6 +19,7 @@
 #include <Message_ProgressScope.hxx>
 #include <OSD.hxx>
 #include <QFile>
+#include <QHash>
 #include <QTemporaryFile>
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
@@ -119,11 +120,15 @@ QString truncation(const QString& path, CadFormat format) {
 }
 
 // Where a face came from in the file: the name of its entity and, for IGES, the entity type
-// (144/143 are trimmed/bounded surfaces; any other type is an untrimmed surface).
+// (144/143 are trimmed/bounded surfaces; any other type is an untrimmed surface); for STEP the
+// name of the innermost product holding it (the one with the fewest faces), which names the
+// faces the file leaves unnamed.
 struct FaceOrigin {
     QString name;
     int igesType = 0;
     bool fromFaceEntity = false;
+    QString product;
+    int productFaces = 0; ///< faces of that product's shape (0: none)
 };
 
 // Walks the transfer's entity -> shape records and assigns each face of `faces` the entity
@@ -141,6 +146,17 @@ std::vector<FaceOrigin> faceOrigins(const Handle(XSControl_TransferReader) & rea
             continue;
         TopTools_IndexedMapOfShape inside;
         TopExp::MapShapes(shape, TopAbs_FACE, inside);
+        if (const QString product =
+                format->productName ? format->productName(tp->Mapped(i)) : QString();
+            !product.isEmpty())
+            for (int f = 1; f <= inside.Extent(); ++f)
+                if (const int index = faces.FindIndex(inside(f)); index != 0) {
+                    FaceOrigin& o = origins[size_t(index)];
+                    if (o.productFaces == 0 || inside.Extent() < o.productFaces) {
+                        o.product = product;
+                        o.productFaces = inside.Extent();
+                    }
+                }
         if (inside.Extent() != 1)
             continue;
         const int index = faces.FindIndex(inside(1));
@@ -352,6 +368,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
     Scene& scene = result.scene;
     scene.unit = read.unit;
     std::vector<occt::FaceEdges> faceEdges; // parallel to scene.surfaces
+    QHash<QString, int> productFaces;       // unnamed faces numbered within their product
     for (int k = 1; k <= faces.Extent(); ++k) {
         if (progress &&
             !progress(kTransferSteps + (kSteps - kTransferSteps) * (k - 1) / faces.Extent(),
@@ -389,7 +406,12 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
                       .arg(occtMessageText(e.GetMessageString()),
                            QString::fromLatin1(e.DynamicType()->Name()));
         }
-        const QString label = name.isEmpty() ? QStringLiteral("Face %1").arg(k) : name;
+        const QString& product = origins[k].product;
+        const QString label =
+            !name.isEmpty() ? name
+            : product.isEmpty()
+                ? QStringLiteral("Face %1").arg(k)
+                : QStringLiteral("%1 face %2").arg(product).arg(++productFaces[product]);
         for (const QString& w : warnings)
             result.report.warnings << QStringLiteral("face %1 (%2): %3").arg(k).arg(label, w);
         if (!ok) {

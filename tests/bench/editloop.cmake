@@ -9,3 +9,12 @@ if(TARGET knotwork_occt_plugin)
                              KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
   add_dependencies(tst_bench_edit_loop knotwork knotwork_bench knotwork_occt_plugin)
 endif()
+
+# knotwork bench --zoom-loop (label gl, needs the CAD child and its OCCT module): a 4x close-up
+# of screw.step at 64 x 64 writes the "zoomLoop" rows.
+if(TARGET knotwork_occt_plugin)
+  kw_add_test(tst_bench_zoom_loop NEEDS gl occt SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_bench_zoom_loop.cpp LIBS Qt6::Gui)
+  target_compile_definitions(tst_bench_zoom_loop PRIVATE
+                             KW_KNOTWORK_BIN="$<TARGET_FILE:knotwork>")
+  add_dependencies(tst_bench_zoom_loop knotwork knotwork_bench knotwork_occt_plugin)
+endif()

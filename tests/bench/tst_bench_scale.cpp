@@ -146,24 +146,29 @@ void TestBenchScale::smokeRunWritesWellFormedReport() {
     const QImage plot(dir + QStringLiteral("/scale.png"));
     QVERIFY(!plot.isNull() && plot.width() > 100);
 
-    // The editor's adaptive mode from a 1 x 1 minimum, as the report says; a bad mode is a
-    // usage error.
+    // The editor's adaptive mode from a 1 x 1 minimum, in an analysis shading, as the report
+    // says; a bad mode or shading is a usage error.
     const Run a =
         knotwork({QStringLiteral("bench"), QStringLiteral("--tables"), QStringLiteral("scale"),
                   QStringLiteral("--smoke"), QStringLiteral("--scale-faces"), QStringLiteral("1"),
                   QStringLiteral("--scale-size"), QStringLiteral("64"), QStringLiteral("--json"),
                   json, QStringLiteral("--scale-partition-mode"), QStringLiteral("adaptive"),
-                  QStringLiteral("--scale-partitions"), QStringLiteral("1")});
+                  QStringLiteral("--scale-partitions"), QStringLiteral("1"),
+                  QStringLiteral("--scale-shading"), QStringLiteral("mean")});
     QVERIFY2(a.code == 0, qPrintable(a.err));
     QFile f2(json);
     QVERIFY(f2.open(QIODevice::ReadOnly));
-    QCOMPARE(QJsonDocument::fromJson(f2.readAll())
-                 .object()
-                 .value(QStringLiteral("scale"))
-                 .toObject()
-                 .value(QStringLiteral("partitioning"))
-                 .toString(),
+    const QJsonObject adaptive =
+        QJsonDocument::fromJson(f2.readAll()).object().value(QStringLiteral("scale")).toObject();
+    QCOMPARE(adaptive.value(QStringLiteral("partitioning")).toString(),
              QStringLiteral("adaptive partitions from 1 x 1"));
+    QCOMPARE(adaptive.value(QStringLiteral("shading")).toString(), QStringLiteral("mean"));
+    const Run badShading =
+        knotwork({QStringLiteral("bench"), QStringLiteral("--tables"), QStringLiteral("scale"),
+                  QStringLiteral("--scale-shading"), QStringLiteral("shiny")});
+    QCOMPARE(badShading.code, 2);
+    QVERIFY2(badShading.err.contains(QStringLiteral("--scale-shading 'shiny'")),
+             qPrintable(badShading.err));
     const Run bad =
         knotwork({QStringLiteral("bench"), QStringLiteral("--tables"), QStringLiteral("scale"),
                   QStringLiteral("--scale-partition-mode"), QStringLiteral("fine")});

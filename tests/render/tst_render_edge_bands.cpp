@@ -95,6 +95,7 @@ private Q_SLOTS:
         m_renderer = std::move(made).value();
     }
     void bandColoursAreTheKernelsClasses();
+    void bandsOffScreenAreLeftOut();
 
 private:
     std::unique_ptr<OffscreenRenderer> m_renderer;
@@ -148,4 +149,38 @@ void TestRenderEdgeBands::bandColoursAreTheKernelsClasses() {
 }
 
 QTEST_MAIN(TestRenderEdgeBands)
+// The culling of the band pass (CPU): a band beside the view is left out, one in it or just past
+// its edge (within the band's margin) is kept, adjacent kept bands are one run.
+void TestRenderEdgeBands::bandsOffScreenAreLeftOut() {
+    Camera c;
+    c.eye = {0.0, 0.0, 10.0};
+    c.target = {0.0, 0.0, 0.0};
+    c.up = {0.0, 1.0, 0.0};
+    c.authored = true;
+    Scene empty;
+    const CameraMatrices m = cameraMatrices(c, empty, 1.0);
+    const glm::mat4 vp = glm::mat4(m.projection * m.view);
+    // The view's half-width at depth 10, from the projection.
+    const double half = 10.0 / m.projection[0][0];
+    EdgeBands bands;
+    bands.vertices.resize(8);
+    const auto range = [&](std::uint32_t first, glm::vec3 lo, glm::vec3 hi) {
+        bands.ranges.push_back({first, 2, lo, hi});
+    };
+    range(0, {-1, -1, 0}, {1, -1, 0});                                  // in view
+    range(2, {-1, 1, 0}, {1, 1, 0});                                    // in view, adjacent
+    range(4, {float(3 * half), 0, 0}, {float(4 * half), 0, 0});         // far right: out
+    range(6, {float(half * 1.001), 0, 0}, {float(half * 1.001), 1, 0}); // just past: margin
+    EdgeBandRuns runs = visibleEdgeBands(bands, vp, 0.01f);
+    QCOMPARE(runs.first, (std::vector<std::int32_t>{0, 6}));
+    QCOMPARE(runs.count, (std::vector<std::int32_t>{4, 2}));
+    runs = visibleEdgeBands(bands, vp, 0.0f);
+    QCOMPARE(runs.first, (std::vector<std::int32_t>{0}));
+    // Without ranges every vertex is one run.
+    bands.ranges.clear();
+    runs = visibleEdgeBands(bands, vp, 0.0f);
+    QCOMPARE(runs.first, (std::vector<std::int32_t>{0}));
+    QCOMPARE(runs.count, (std::vector<std::int32_t>{8}));
+}
+
 #include "tst_render_edge_bands.moc"

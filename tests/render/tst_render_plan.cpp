@@ -75,8 +75,8 @@ int commandsIn(const std::map<int, ExactBatch>& batches) {
 
 /// Every batch's commands are where its `first` says in the plan's buffer.
 bool laidOut(const ExactPlanner& plan) {
-    for (const auto* batches :
-         {&plan.plain(), &plan.trimmedPrepass(), &plan.variants(), &plan.edges(), &plan.skirts()})
+    for (const auto* batches : {&plan.plain(), &plan.trimmedPrepass(), &plan.variants(),
+                                &plan.edges(), &plan.skirts(), &plan.backFaces()})
         for (const auto& [k, b] : *batches)
             for (size_t i = 0; i < b.commands.size(); ++i)
                 if (!(plan.commands().at(size_t(b.first) + i) == b.commands[i]))
@@ -237,6 +237,46 @@ private Q_SLOTS:
                     writes);
         QVERIFY(plan.backCulled().empty());
         QCOMPARE(plan.place(rs.order[0])->face, 0);
+        QVERIFY(plan.backFaces().empty());
+    }
+
+    // The skipped side is drawn once more, last, where nothing nearer covered a pixel (a seam's
+    // sub-pixel gap between two faces' trims): each culled face in a batch of its own side, a
+    // trimmed one with the trim lookup (no pre-pass tests its trims), none in coverage frames.
+    void skippedSideFillsTheSeams() {
+        Records rs;
+        rs.add(2, 2, glm::vec3(0.0f), 7);
+        SurfaceRecord& trimmed = rs.add(2, 2, glm::vec3(0.5f, 0.0f, 0.0f), 7);
+        trimmed.mask.active = true;
+        trimmed.mask.layer = 0;
+        rs.add(2, 2, glm::vec3(-0.5f, 0.0f, 0.0f)); // no solid: both sides drawn already
+        RenderOptions o;
+        const FrameCamera cam = camera();
+        ExactPlanner plan;
+        std::vector<ExactPlanner::CommandWrite> writes;
+        plan.update(rs.scene(), ExactPlanner::keyFor(rs.scene(), cam, o, true, false, false), cam,
+                    writes);
+        QVERIFY(plan.backCulled() == std::set<int>{7});
+        QCOMPARE(commandsIn(plan.backFaces()), 2);
+        const ExactPlace* t = plan.place(&trimmed);
+        QVERIFY(t->backVariant >= 0 && plan.place(rs.order[2])->backVariant < 0);
+        const ExactBatch& b = plan.backFaces().at(t->backVariant);
+        QVERIFY(b.trimmed);
+        QCOMPARE(b.face, 1);
+        QVERIFY(!plan.variants().at(t->variant).trimmed); // the pre-pass tests the others'
+        QVERIFY(!plan.backFaces().at(plan.place(rs.order[0])->backVariant).trimmed);
+        QVERIFY(laidOut(plan));
+        // A moved face's command is patched there too.
+        trimmed.exact->triangleIndexCount = 24;
+        rs.touched = {&trimmed};
+        QVERIFY(!plan.update(
+            rs.scene(), ExactPlanner::keyFor(rs.scene(), cam, o, true, false, false), cam, writes));
+        QCOMPARE(plan.backFaces().at(t->backVariant).commands.at(size_t(t->backIndex)).count, 24u);
+        QVERIFY(laidOut(plan));
+        // Anti-aliased by coverage: no skirts and no fill (the edge pass blends what is there).
+        plan.update(rs.scene(), ExactPlanner::keyFor(rs.scene(), cam, o, true, true, false), cam,
+                    writes);
+        QVERIFY(plan.backFaces().empty());
     }
 
     void movedRecordIsPatchedInPlace() {

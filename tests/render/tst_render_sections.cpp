@@ -283,6 +283,74 @@ private Q_SLOTS:
     }
 
     /// A plane that removes everything draws an empty view; bad planes are refused.
+    /// The planner leaves out what a plane removes whole (its control bounds on the removed
+    /// side), and keeps skipping the back faces of a closed solid no plane crosses: the
+    /// teapot and the sphere beside it, cut across the teapot only, then across the sphere.
+    /// The cut stays exact on every pixel either way.
+    void planLeavesOutRemovedSurfacesAndUncutSolidsBackFaces() {
+        const Scene scene = teapotAndSphere();
+        const Camera camera = fitCamera(scene, 1.0);
+        glm::dvec3 lo, hi; // the sphere's centre: (hi.x - 1, 0, 0.8)
+        sceneBounds(scene, lo, hi);
+        RenderOptions options;
+        // x = 0 through the teapot, removing x > 0: the sphere (x >= hi.x + 0.2) goes whole.
+        options.sections = {SectionPlane{glm::dvec3(0.0), glm::dvec3(1, 0, 0), false}};
+        QString error;
+        AovBuffer aov = render(scene, camera, options, &error);
+        QVERIFY2(!aov.data.empty(), qPrintable(error));
+        const FrameReport cut = m_gl->lastReport();
+        bool ok = false;
+        checkKept(aov, options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QVERIFY2(cut.culled >= 2, qPrintable(QString::number(cut.culled))); // sphere + spout
+        QCOMPARE(cut.solidsBackCulled, 0);                                  // removed: not drawn
+        // Flipped: the sphere is kept whole, uncut: its back faces are skipped again.
+        options.sections[0].flip = true;
+        aov = render(scene, camera, options, &error);
+        QVERIFY2(!aov.data.empty(), qPrintable(error));
+        checkKept(aov, options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QCOMPARE(m_gl->lastReport().solidsBackCulled, 1);
+        // Through the sphere's centre, removing the half that faces the eye: its back faces
+        // carry the cap.
+        const glm::dvec3 centre(hi.x - 1.0, 0.0, 0.8);
+        options.sections = {SectionPlane{centre, glm::normalize(camera.eye - centre), false}};
+        aov = render(scene, camera, options, &error);
+        QVERIFY2(!aov.data.empty(), qPrintable(error));
+        const Counts c = checkKept(aov, options.sections, 1e-6 * diagonal(scene), ok);
+        QVERIFY(ok);
+        QCOMPARE(m_gl->lastReport().solidsBackCulled, 0);
+        QVERIFY(c.caps > 0);
+    }
+
+    /// The wireframe and the control net are cut as the surfaces are: a plane that removes
+    /// everything leaves the background alone, lines included.
+    void linesAreCut() {
+        const Scene scene = sphereSolid();
+        const Camera camera = fitCamera(scene, 1.0);
+        RenderOptions options;
+        options.wireframe = options.controlNet = true;
+        options.sections = {SectionPlane{glm::dvec3(0.0, 0.0, -5.0), glm::dvec3(0, 0, -1), true}};
+        QString error;
+        QVERIFY2(!render(scene, camera, options, &error).data.empty(), qPrintable(error));
+        const QImage image = m_gl->colorImage();
+        const QRgb background = image.pixel(0, 0);
+        int lines = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x)
+                lines += image.pixel(x, y) != background;
+        QCOMPARE(lines, 0);
+        // Uncut, the same lines show.
+        options.sections.clear();
+        QVERIFY2(!render(scene, camera, options, &error).data.empty(), qPrintable(error));
+        const QImage whole = m_gl->colorImage();
+        int shown = 0;
+        for (int y = 0; y < whole.height(); ++y)
+            for (int x = 0; x < whole.width(); ++x)
+                shown += whole.pixel(x, y) != background;
+        QVERIFY(shown > 1000);
+    }
+
     void emptyViewAndBadPlanes() {
         const Scene scene = sphereSolid();
         Camera camera = fitCamera(scene, 1.0);

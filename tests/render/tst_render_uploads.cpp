@@ -125,6 +125,12 @@ private Q_SLOTS:
         // Point (1, 0) acts on u in [0, 0.35] and v in [0, 0.3] only (local support).
         const int index = s->geometry.index(1, 0);
         const glm::dvec3 moved = s->geometry.points[size_t(index)] + glm::dvec3(0.1, -0.05, 0.6);
+        // Uniform, no skirt: the vertices' CPU copy is not kept (nor its memory) until the
+        // points change.
+        QCOMPARE(RendererTestHook::scene(m_renderer->renderer())
+                     .surfaceGpu(m_bicubic)
+                     ->polygon.vertices.capacity(),
+                 size_t(0));
         QVERIFY(m_doc.setControlPoints(m_bicubic, {index}, {moved}));
         KW_VERIFY_OK(renderOnce());
 

@@ -1,6 +1,7 @@
-// The editor's continuity tools (gui): the Edge Continuity overlay follows edits of a point
-// across the G0 tolerance live, the tolerances change its classes, Keep Seams Closed keeps a
-// dragged corner's seam shut as one undo step.
+// The editor's continuity tools (gui): the Edge Continuity overlay follows a control point
+// dragged with the mouse across the G0 tolerance live, the status bar says what a drag opens
+// with the overlay on or off, the tolerances (set in Preferences) change its classes, Keep Seams
+// Closed keeps a dragged corner's seam shut as one undo step.
 #include "editor_test_util.h"
 #include "expected_test_util.h"
 #include "model/analysis/continuity.h"
@@ -8,10 +9,13 @@
 #include "model/nurbs/nurbs_construct.h"
 #include "render/offscreen_renderer.h"
 #include "render/render_types.h"
+#include "ui/desktopactions.h"
 #include "ui/edgecontinuity.h"
 #include "ui/edit/commands.h"
+#include "ui/preferences.h"
 
 #include <QAction>
+#include <QDoubleSpinBox>
 #include <QHelpEvent>
 #include <QSettings>
 #include <QStatusBar>
@@ -27,6 +31,24 @@ bool hasColour(const EdgeBands& bands, const glm::vec4& c) {
     return std::any_of(bands.vertices.begin(), bands.vertices.end(),
                        [&](const EdgeBandVertex& v) { return v.color == c; });
 }
+
+/// Two flat bicubic patches, 2 x 2, side by side along x (the shared edge at x = 1), and with
+/// `far` two more far away along y sharing an edge of their own.
+Scene patches(bool far) {
+    Scene scene;
+    for (double y : far ? std::vector<double>{0.0, 20.0} : std::vector<double>{0.0})
+        for (double x : {0.0, 2.0}) {
+            Surface s;
+            s.id = SurfaceId{scene.nextId++};
+            s.name = QStringLiteral("Patch %1").arg(s.id.value);
+            s.geometry = makePatch({x, y, 0}, 3, 3, 5, 5, 2, 2);
+            scene.surfaces.push_back(s);
+        }
+    return scene;
+}
+
+/// Patch 2's control point (0, 2), on the shared edge's middle.
+constexpr int kEdgePoint = 10;
 
 } // namespace
 
@@ -45,32 +67,65 @@ private Q_SLOTS:
         QSettings().clear();
     }
     void init() {
-        Scene scene;
-        for (double x : {0.0, 2.0}) {
-            Surface s;
-            s.id = SurfaceId{scene.nextId++};
-            s.name = QStringLiteral("Patch %1").arg(s.id.value);
-            s.geometry = makePatch({x, 0, 0}, 3, 3, 5, 5, 2, 2);
-            scene.surfaces.push_back(s);
-        }
         m_path = m_dir.filePath(QStringLiteral("patches.knot"));
         QString error;
-        KW_VERIFY_OK(writeKnotFile(m_path, scene));
+        KW_VERIFY_OK(writeKnotFile(m_path, patches(false)));
         openWindow();
         QVERIFY(m_window->openFile(m_path));
         act("actionEdgeContinuity")->setChecked(true);
     }
     void cleanup() { closeWindow(); }
     void keepSeamsClosedIsOnByDefault();
-    void overlayFollowsAPointAcrossTheTolerance();
+    void overlayFollowsAMouseDragAcrossTheTolerance();
+    void statusBarSaysWhatADragOpensWithTheOverlayOff();
     void tolerancesChangeTheClasses();
+    void preferencesChangeTheClasses();
     void keepSeamsClosedIsOneUndoStep();
     void hoveringAnEdgeShowsItsValues();
 
 private:
+    /// The view's pixel of model point `p`.
+    QPoint pixelOf(const glm::dvec3& p) const;
+    /// Model length of one pixel at `p` in the plane facing the camera (where a drag moves a
+    /// point).
+    double pixelSize(const glm::dvec3& p) const;
+    /// Presses on patch 2's edge point (its net alone shown, so no twin can be picked).
+    QPoint pressOnEdgePoint();
+
     QTemporaryDir m_dir;
     QString m_path;
 };
+
+QPoint TestEditorContinuity::pixelOf(const glm::dvec3& p) const {
+    Viewport* vp = m_window->viewport();
+    const CameraMatrices m = cameraMatrices(vp->cameraController().camera(), scene(),
+                                            double(vp->width()) / vp->height());
+    const glm::dvec4 c = m.projection * m.view * glm::dvec4(p, 1.0);
+    return QPoint(int(std::lround((c.x / c.w * 0.5 + 0.5) * vp->width())),
+                  int(std::lround((0.5 - c.y / c.w * 0.5) * vp->height())));
+}
+
+double TestEditorContinuity::pixelSize(const glm::dvec3& p) const {
+    Viewport* vp = m_window->viewport();
+    const Camera& c = vp->cameraController().camera();
+    const double depth = glm::dot(p - c.eye, glm::normalize(c.target - c.eye));
+    return 2.0 * depth * std::tan(glm::radians(c.fovYDegrees) * 0.5) / vp->height();
+}
+
+QPoint TestEditorContinuity::pressOnEdgePoint() {
+    act("actionKeepSeamsClosed")->setChecked(false);
+    act("actionControlNet")->setChecked(true);
+    m_window->selectSurface(SurfaceId{2});
+    Viewport* vp = m_window->viewport();
+    const glm::dvec3 home =
+        m_window->document()->surface(SurfaceId{2})->geometry.points[kEdgePoint];
+    const QPoint press = pixelOf(home);
+    const std::optional<ControlPointRef> picked = vp->controlPointAt(press);
+    if (!picked || picked->surface != SurfaceId{2} || picked->i != 0 || picked->j != 2)
+        return {};
+    QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
+    return vp->isDragging() ? press : QPoint();
+}
 
 void TestEditorContinuity::keepSeamsClosedIsOnByDefault() {
     QVERIFY(act("actionKeepSeamsClosed")->isChecked());
@@ -78,35 +133,93 @@ void TestEditorContinuity::keepSeamsClosedIsOnByDefault() {
     QCOMPARE(m_window->document()->seamLink(), Document::SeamLink::Position);
 }
 
-// Point moves as a drag applies them (Document::setControlPoints per step): the band turns red
-// past the G0 tolerance and the status bar says what opened; back, it is G2 again.
-void TestEditorContinuity::overlayFollowsAPointAcrossTheTolerance() {
-    act("actionKeepSeamsClosed")->setChecked(false);
+// A control point on the shared edge dragged with the mouse: within the G0 tolerance (a few
+// pixels) the band keeps a closed class, past it it turns red and the status bar says what
+// opened; dragged back to where it was pressed it is G2 again, and the drag is one undo step.
+void TestEditorContinuity::overlayFollowsAMouseDragAcrossTheTolerance() {
     EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
+    Document* doc = m_window->document();
     QVERIFY(overlay->enabled());
     QCOMPARE(int(overlay->report().edges.size()), 1);
     QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::G2);
     QVERIFY(hasColour(*overlay->bands(), continuityColor(ContinuityClass::G2)));
     QVERIFY(hasColour(*overlay->bands(), freeEdgeColor()));
-    Document* doc = m_window->document();
-    const glm::dvec3 corner = doc->scene().surfaces[1].geometry.points[0];
-    for (double d : {0.0002, 0.0006, 0.002, 0.004}) {
-        QVERIFY(doc->setControlPoints(SurfaceId{2}, {0}, {corner + glm::dvec3(0, 0, d)}));
-        const ContinuityClass c = overlay->report().edges[0].continuity;
-        // Within G0 the lifted corner tilts and bends the seam (G1 or G0), past it it opens.
-        if (d > 0.001)
-            QCOMPARE(c, ContinuityClass::Open);
-        else
-            QVERIFY(c == ContinuityClass::G1 || c == ContinuityClass::G0);
-        QVERIFY(hasColour(*overlay->bands(), continuityColor(c)));
-        QVERIFY(!hasColour(*overlay->bands(), continuityColor(ContinuityClass::G2)));
-    }
-    QVERIFY2(m_window->statusBar()->currentMessage().contains(
-                 QStringLiteral("opens 1 seam, max gap 0.004")),
-             qPrintable(m_window->statusBar()->currentMessage()));
-    QVERIFY(doc->setControlPoints(SurfaceId{2}, {0}, {corner}));
+    // G0 tolerance: six pixels' worth at the point, so a 2-pixel step stays within and a
+    // 40-pixel one (the boundary moves by more than half the point's move) does not.
+    const glm::dvec3 home = doc->surface(SurfaceId{2})->geometry.points[kEdgePoint];
+    ContinuityTolerances t = doc->scene().continuity;
+    t.g0 = 6.0 * pixelSize(home);
+    t.match = std::max(t.match, t.g0);
+    QVERIFY(doc->setContinuityTolerances(t));
+    const QPoint press = pressOnEdgePoint();
+    QVERIFY(!press.isNull());
+    Viewport* vp = m_window->viewport();
+    QTest::mouseMove(vp, press + QPoint(1, -1));
+    QTest::mouseMove(vp, press + QPoint(2, -2));
+    QVERIFY(doc->surface(SurfaceId{2})->geometry.points[kEdgePoint] != home);
+    const EdgeContinuity& near = overlay->report().edges[0];
+    QVERIFY2(near.continuity != ContinuityClass::Open && near.g0 > 0.0,
+             qPrintable(QStringLiteral("gap %1 tolerance %2").arg(near.g0).arg(t.g0)));
+    QVERIFY(hasColour(*overlay->bands(), continuityColor(near.continuity)));
+    QVERIFY(!hasColour(*overlay->bands(), continuityColor(ContinuityClass::Open)));
+    QTest::mouseMove(vp, press + QPoint(20, -20));
+    QTest::mouseMove(vp, press + QPoint(40, -40));
+    const EdgeContinuity& far = overlay->report().edges[0];
+    QVERIFY2(far.continuity == ContinuityClass::Open,
+             qPrintable(QStringLiteral("gap %1 tolerance %2").arg(far.g0).arg(t.g0)));
+    QVERIFY(hasColour(*overlay->bands(), continuityColor(ContinuityClass::Open)));
+    QVERIFY(!hasColour(*overlay->bands(), continuityColor(ContinuityClass::G2)));
+    const QString message = m_window->statusBar()->currentMessage();
+    QVERIFY2(message.contains(QStringLiteral("opens 1 seam, max gap ")) &&
+                 message.endsWith(QLatin1Char(' ') + lengthUnitKey(doc->scene().unit)),
+             qPrintable(message));
+    QTest::mouseMove(vp, press);
     QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::G2);
-    QVERIFY(overlay->lastUpdateMs() >= 0.0);
+    QTest::mouseMove(vp, press + QPoint(40, -40));
+    QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(40, -40));
+    QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::Open);
+    QCOMPARE(m_window->undoStack()->count(), 1);
+    m_window->undoStack()->undo();
+    QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::G2);
+    QVERIFY(hasColour(*overlay->bands(), continuityColor(ContinuityClass::G2)));
+}
+
+// With the overlay off the drag still says what it opens, measuring the dragged face's edges
+// only: the far pair's edge is never measured, and no bands are made.
+void TestEditorContinuity::statusBarSaysWhatADragOpensWithTheOverlayOff() {
+    const QString path = m_dir.filePath(QStringLiteral("four.knot"));
+    KW_VERIFY_OK(writeKnotFile(path, patches(true)));
+    QVERIFY(m_window->openFile(path));
+    act("actionEdgeContinuity")->setChecked(false);
+    EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
+    QVERIFY(!overlay->enabled());
+    // Paired once the event loop turns after the change, before any drag; none measured.
+    QTRY_COMPARE(int(overlay->report().topology.edges.size()), 2);
+    for (const EdgeContinuity& e : overlay->report().edges)
+        QCOMPARE(e.samples, 0);
+    m_window->statusBar()->clearMessage();
+    const QPoint press = pressOnEdgePoint();
+    QVERIFY(!press.isNull());
+    Viewport* vp = m_window->viewport();
+    QTest::mouseMove(vp, press + QPoint(20, -20));
+    QTest::mouseMove(vp, press + QPoint(40, -40));
+    const QString message = m_window->statusBar()->currentMessage();
+    QVERIFY2(message.startsWith(QStringLiteral("This edit opens 1 seam, max gap ")),
+             qPrintable(message));
+    QVERIFY(!overlay->bands());
+    const ContinuityReport& r = overlay->report();
+    QCOMPARE(int(r.edges.size()), 2);
+    int measured = 0;
+    for (const EdgeContinuity& e : r.edges) {
+        const bool dragged =
+            e.edge.sides[0].surface == SurfaceId{2} || e.edge.sides[1].surface == SurfaceId{2};
+        QCOMPARE(e.samples > 0, dragged);
+        QCOMPARE(e.continuity == ContinuityClass::Open, dragged);
+        measured += e.samples > 0;
+    }
+    QCOMPARE(measured, 1);
+    QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(40, -40));
+    QCOMPARE(m_window->undoStack()->count(), 1);
 }
 
 // The tolerances saved with the project re-classify the edges.
@@ -124,6 +237,53 @@ void TestEditorContinuity::tolerancesChangeTheClasses() {
     QVERIFY(overlay->report().edges[0].continuity != ContinuityClass::Open);
     QVERIFY(!hasColour(*overlay->bands(), continuityColor(ContinuityClass::Open)));
     QCOMPARE(doc->scene().continuity, loose);
+}
+
+// Edit > Preferences edits the open project's tolerances (one undo step, saved with it) and the
+// defaults for new projects (QSettings): loosening the project's G0 turns the open edge closed.
+void TestEditorContinuity::preferencesChangeTheClasses() {
+    act("actionKeepSeamsClosed")->setChecked(false);
+    EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
+    Document* doc = m_window->document();
+    const glm::dvec3 corner = doc->scene().surfaces[1].geometry.points[0];
+    QVERIFY(doc->setControlPoints(SurfaceId{2}, {0}, {corner + glm::dvec3(0, 0, 0.004)}));
+    QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::Open);
+    const ContinuityTolerances before = doc->scene().continuity;
+    bool focused = false;
+    DesktopActions::Prompts prompts = DesktopActions::Prompts::standard();
+    prompts.preferences = [&](QWidget*, const PreferencesEdit& current, bool focusContinuity) {
+        // The real dialog, shown the project's tolerances and the defaults, edited as a user
+        // would type into it.
+        PreferencesDialog d(current);
+        focused = focusContinuity;
+        auto* g0 = d.findChild<QDoubleSpinBox*>(QStringLiteral("prefProjectG0"));
+        auto* g1 = d.findChild<QDoubleSpinBox*>(QStringLiteral("prefProjectG1"));
+        auto* defaultG0 = d.findChild<QDoubleSpinBox*>(QStringLiteral("prefDefaultG0"));
+        if (!g0 || !g1 || !defaultG0 || g0->value() != current.project->g0)
+            return std::optional<PreferencesEdit>();
+        g0->setValue(0.005);
+        g1->setValue(1.0);
+        defaultG0->setValue(0.002);
+        return std::optional(d.edit());
+    };
+    m_window->desktopActions()->setPrompts(prompts);
+    // View > Analysis > Continuity Tolerances opens the same dialog, on the project's values.
+    act("actionContinuityTolerances")->trigger();
+    QVERIFY(focused);
+    QCOMPARE(doc->scene().continuity.g0, 0.005);
+    const ContinuityClass loose = overlay->report().edges[0].continuity;
+    QVERIFY(loose != ContinuityClass::Open);
+    QVERIFY(!hasColour(*overlay->bands(), continuityColor(ContinuityClass::Open)));
+    QVERIFY(hasColour(*overlay->bands(), continuityColor(loose)));
+    QCOMPARE(Preferences::load().continuity.g0, 0.002);
+    QCOMPARE(m_window->undoStack()->undoText(), QStringLiteral("Set continuity tolerances"));
+    m_window->undoStack()->undo();
+    QCOMPARE(doc->scene().continuity, before);
+    QCOMPARE(overlay->report().edges[0].continuity, ContinuityClass::Open);
+    // The defaults are for new projects; the open one keeps its own.
+    act("actionNew")->trigger();
+    QCOMPARE(doc->scene().continuity.g0, 0.002);
+    QSettings().remove(QStringLiteral("continuity"));
 }
 
 // With Keep Seams Closed (the default, the first test's window shows), the neighbour's coincident

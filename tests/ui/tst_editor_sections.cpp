@@ -9,6 +9,7 @@
 #include <QCheckBox>
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 
@@ -133,6 +134,91 @@ private Q_SLOTS:
         QCOMPARE(int(view->sections().size()), 1);
         QVERIFY(enabled->isChecked());
         QVERIFY(child<QCheckBox>(QStringLiteral("sectionFlip0"))->isChecked());
+    }
+
+    // "section plane (move)" by its handle in the view: a left drag on the arrow moves the
+    // plane along its normal with the cursor, live, the dialog's fields follow, no undo step;
+    // Esc during a drag puts it back.
+    void sectionPlaneDragHandle() {
+        openWindow("sphere");
+        Viewport* view = m_window->viewport();
+        act("actionSection")->trigger();
+        child<QCheckBox>(QStringLiteral("sectionEnabled0"))->setChecked(true);
+        QCOMPARE(int(view->sections().size()), 1);
+        const SectionPlane before = view->sections()[0];
+        const int undoSteps = m_window->undoStack()->count();
+        // The handle starts at the plane's point and runs along the normal's image.
+        const ViewProjection vp = view->viewProjection();
+        const QPointF base = *vp.project(before.position);
+        const QPointF ahead = *vp.project(before.position + 0.1 * before.normal);
+        const QPointF dir = (ahead - base) / std::hypot((ahead - base).x(), (ahead - base).y());
+        const QPoint press = base.toPoint();
+        const QPoint to = (base + 40.0 * dir).toPoint();
+        const auto send = [view](QEvent::Type type, QPoint at, Qt::MouseButtons buttons) {
+            QMouseEvent e(type, at, view->mapToGlobal(at), Qt::LeftButton, buttons, Qt::NoModifier);
+            QCoreApplication::sendEvent(view, &e);
+        };
+        const std::int64_t frames = view->framesDrawn();
+        send(QEvent::MouseButtonPress, press, Qt::LeftButton);
+        for (int k = 1; k <= 4; ++k) {
+            send(QEvent::MouseMove, press + (to - press) * k / 4, Qt::LeftButton);
+            QTest::qWait(20);
+        }
+        const SectionPlane during = view->sections()[0];
+        QVERIFY(view->framesDrawn() > frames); // the cut follows the drag
+        send(QEvent::MouseButtonRelease, to, Qt::NoButton);
+        const SectionPlane after = view->sections()[0];
+        QCOMPARE(after.position, during.position);
+        // Along the normal only, forward, and under the cursor.
+        QCOMPARE(after.normal, before.normal);
+        QCOMPARE(after.flip, before.flip);
+        const glm::dvec3 n = glm::normalize(before.normal);
+        const glm::dvec3 shift = after.position - before.position;
+        QVERIFY2(glm::dot(shift, n) > 0.05, qPrintable(QString::number(glm::dot(shift, n))));
+        QVERIFY(glm::length(shift - glm::dot(shift, n) * n) < 1e-9);
+        const QPointF landed = *view->viewProjection().project(after.position);
+        QVERIFY2(std::hypot(landed.x() - to.x(), landed.y() - to.y()) < 1.0,
+                 qPrintable(QStringLiteral("%1, %2 for %3, %4")
+                                .arg(landed.x())
+                                .arg(landed.y())
+                                .arg(to.x())
+                                .arg(to.y())));
+        auto* x = child<QDoubleSpinBox>(QStringLiteral("sectionPosition0X"));
+        QVERIFY(std::abs(x->value() - after.position.x) <= std::pow(10.0, -x->decimals()));
+        QCOMPARE(m_window->undoStack()->count(), undoSteps);
+        // Esc during a drag: the plane goes back to where the drag started.
+        const QPoint again = to;
+        send(QEvent::MouseButtonPress, again, Qt::LeftButton);
+        send(QEvent::MouseMove, again + QPoint(int(-30 * dir.x()), int(-30 * dir.y())),
+             Qt::LeftButton);
+        QVERIFY(view->sections()[0].position != after.position);
+        QTest::keyClick(view, Qt::Key_Escape);
+        QCOMPARE(view->sections()[0].position, after.position);
+        send(QEvent::MouseButtonRelease, again, Qt::NoButton);
+        QCOMPARE(view->sections()[0].position, after.position);
+        QCOMPARE(m_window->undoStack()->count(), undoSteps);
+    }
+
+    // The selected surface's outline and control net (drawn over the frame) are cut as the
+    // surface is: with a plane that removes everything, selecting it adds nothing to the view.
+    void overlaysAreCut() {
+        openWindow("sphere");
+        Viewport* view = m_window->viewport();
+        glm::dvec3 lo, hi;
+        sceneBounds(scene(), lo, hi);
+        view->setSections({SectionPlane{hi + glm::dvec3(1.0), glm::dvec3(-1, -1, -1), false}},
+                          true);
+        view->selectClickedSurface(scene().surfaces.front().id, false);
+        const int selected = covered(view->grabFramebuffer());
+        view->selection()->itemSelection()->clearSelection();
+        const int none = covered(view->grabFramebuffer());
+        QVERIFY2(std::abs(selected - none) <= 20,
+                 qPrintable(QStringLiteral("%1 selected, %2 not").arg(selected).arg(none)));
+        // Uncut, the selection shows its outline and net.
+        view->setSections({}, true);
+        const int bare = covered(view->grabFramebuffer());
+        view->selectClickedSurface(scene().surfaces.front().id, false);
+        QVERIFY(covered(view->grabFramebuffer()) > bare + 200);
     }
 };
 

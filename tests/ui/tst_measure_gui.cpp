@@ -13,6 +13,7 @@
 #include <QFrame>
 #include <QRegularExpression>
 #include <QSignalSpy>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -29,6 +30,8 @@ private Q_SLOTS:
     void cleanup() { closeWindow(); }
     void probe();
     void probeWhileHoldingP();
+    void probeCost();
+    void measureModeIsTheViewsTool();
     void measureDistance();
     void measureAngle();
     void measureAngleBetweenPlanes();
@@ -155,6 +158,77 @@ void TestMeasureGui::probeWhileHoldingP() {
     QVERIFY(!tool()->probeHeld());
     QVERIFY(!tool()->lastProbe().has_value());
     QVERIFY(!tool()->panel()->isVisible());
+}
+
+// A probe update picks one pixel and draws no frame of the view (its panel and marker are
+// child widgets); its CPU time is printed (median over the hovers) and the part after the pick
+// stays under 1 ms. Run: ctest -R tst_measure_gui -V | grep 'probe cost'.
+void TestMeasureGui::probeCost() {
+    openWindow("teapot");
+    Viewport* vp = m_window->viewport();
+    act("actionProbe")->trigger();
+    // Let the still frames (progressive samples) finish.
+    std::int64_t drawn = -1;
+    for (int k = 0; k < 100 && drawn != vp->framesDrawn(); ++k) {
+        drawn = vp->framesDrawn();
+        QTest::qWait(400);
+    }
+    std::vector<double> wall, cpu, refine;
+    const QRect r = vp->rect();
+    // Two walks over the middle of the view (most hovers hit the teapot): the first shows the
+    // panel and lets it grow to its values (which may draw a frame), the second is measured.
+    for (int walk = 0; walk < 2; ++walk) {
+        if (walk == 1) {
+            QTest::qWait(400);
+            drawn = vp->framesDrawn();
+        }
+        for (int k = 0; k < 40; ++k) {
+            const QPoint at(r.center().x() + (k % 8 - 4) * r.width() / 20,
+                            r.center().y() + (k / 8 - 2) * r.height() / 14);
+            QMouseEvent move(QEvent::MouseMove, at, vp->mapToGlobal(at), Qt::NoButton, Qt::NoButton,
+                             Qt::NoModifier);
+            QCoreApplication::sendEvent(vp, &move);
+            QCoreApplication::processEvents();
+            if (walk == 0 || !tool()->lastProbe())
+                continue;
+            QVERIFY2(vp->framesDrawn() == drawn, qPrintable(QStringLiteral("hover %1").arg(k)));
+            wall.push_back(tool()->lastUpdateMs());
+            cpu.push_back(tool()->lastUpdateCpuMs());
+            refine.push_back(tool()->lastRefineMs());
+        }
+    }
+    QCoreApplication::processEvents();
+    QCOMPARE(vp->framesDrawn(), drawn); // no hover drew a frame
+    QVERIFY(wall.size() >= 20);
+    const auto median = [](std::vector<double> v) {
+        std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    qInfo("probe cost (teapot, %dx%d, %zu hovers): wall %.3f ms, GUI thread CPU %.3f ms, "
+          "after the pick %.4f ms (medians)",
+          vp->width(), vp->height(), wall.size(), median(wall), median(cpu), median(refine));
+    QVERIFY2(median(refine) < 1.0, qPrintable(QString::number(median(refine))));
+}
+
+// A Measure mode is the view's installed tool (it sees plain clicks first); Off gives the view
+// back, and another installed tool (a curve drawing) turns the mode off.
+void TestMeasureGui::measureModeIsTheViewsTool() {
+    openWindow("sphere");
+    Viewport* vp = m_window->viewport();
+    QCOMPARE(vp->tool(), nullptr);
+    act("actionMeasureDistance")->trigger();
+    QCOMPARE(vp->tool(), static_cast<Tool*>(tool()));
+    act("actionMeasureDistance")->trigger();
+    QCOMPARE(tool()->mode(), ProbeTool::Mode::Off);
+    QCOMPARE(vp->tool(), nullptr);
+    act("actionMeasureAngle")->trigger();
+    act("actionDrawExtrude")->trigger();
+    QVERIFY(vp->tool() != nullptr && vp->tool() != static_cast<Tool*>(tool()));
+    QCOMPARE(tool()->mode(), ProbeTool::Mode::Off);
+    QVERIFY(!act("actionMeasureAngle")->isChecked());
+    // The curve tool has the clicks now: no measurement.
+    QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, onSphere({0, 0}));
+    QVERIFY(!tool()->measureTool()->hasPending());
 }
 
 // Two clicks give a distance equal to the exact hits' within 1e-9 of the model size, with dx,

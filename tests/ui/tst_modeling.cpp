@@ -555,10 +555,11 @@ private Q_SLOTS:
         wanted.background = QColor(10, 20, 30);
         QVERIFY(!(Preferences::load() == wanted));
         DesktopActions::Prompts prompts = DesktopActions::Prompts::standard();
-        prompts.preferences = [&](QWidget*, const Preferences& current) {
+        prompts.preferences = [&](QWidget*, const PreferencesEdit& current, bool) {
             // The dialog shows the current values and returns what it shows.
             PreferencesDialog d(current);
-            return std::optional(d.value() == current ? wanted : Preferences{});
+            return std::optional(d.edit() == current ? PreferencesEdit{wanted, current.project}
+                                                     : PreferencesEdit{});
         };
         m_window->desktopActions()->setPrompts(prompts);
         act("actionPreferences")->trigger();

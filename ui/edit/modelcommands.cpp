@@ -2,6 +2,7 @@
 // replacement.
 #include "ui/edit/modelcommands.h"
 
+#include "model/analysis/continuity.h"
 #include "model/document/validation.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "ui/edit/commandsupport.h"
@@ -101,6 +102,30 @@ void SetUnits::redo() {
 }
 void SetUnits::undo() {
     check(document()->setLengths(m_from), "undo");
+}
+
+// ---- SetContinuityTolerances
+
+Expected<std::unique_ptr<SetContinuityTolerances>>
+SetContinuityTolerances::create(Document* document, const ContinuityTolerances& to) {
+    if (!document)
+        return Error(noDocument());
+    if (const QString why = continuityTolerancesError(to); !why.isEmpty())
+        return Error(why);
+    if (document->scene().continuity == to)
+        return Error(QStringLiteral("the continuity tolerances are already these"));
+    std::unique_ptr<SetContinuityTolerances> c(
+        new SetContinuityTolerances(document, QObject::tr("Set continuity tolerances")));
+    c->m_from = document->scene().continuity;
+    c->m_to = to;
+    return c;
+}
+
+void SetContinuityTolerances::redo() {
+    check(document()->setContinuityTolerances(m_to), "redo");
+}
+void SetContinuityTolerances::undo() {
+    check(document()->setContinuityTolerances(m_from), "undo");
 }
 
 // ---- SetSurfacesHidden

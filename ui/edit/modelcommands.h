@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document/matchsurface.h"
+#include "model/error.h"
 #include "ui/edit/commands.h"
 
 #include <glm/glm.hpp>
@@ -44,6 +45,21 @@ public:
 private:
     SetUnits(Document* d, const QString& text) : DocumentCommand(d, text) {}
     Document::Lengths m_from, m_to;
+};
+
+/// The project's continuity tolerances (Scene::continuity, saved with it): authored data that
+/// re-classifies every edge, so a change is an undo step like any other edit.
+class SetContinuityTolerances : public DocumentCommand {
+public:
+    /// Refused when `to` is invalid (continuityTolerancesError) or equal to the document's.
+    static Expected<std::unique_ptr<SetContinuityTolerances>>
+    create(Document* document, const ContinuityTolerances& to);
+    void redo() override;
+    void undo() override;
+
+private:
+    SetContinuityTolerances(Document* d, const QString& text) : DocumentCommand(d, text) {}
+    ContinuityTolerances m_from, m_to;
 };
 
 class SetSurfacesHidden : public DocumentCommand {

@@ -5,6 +5,7 @@
 
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -41,13 +42,29 @@ public:
     virtual bool editing() const { return false; }
     /// Draws over the view, in widget pixels.
     virtual void paint(QPainter&) {}
+    /// A key this tool wants ahead of the window's shortcuts (the host's ShortcutOverride),
+    /// such as Ctrl+C over the view copying the tool's values rather than the selection.
+    virtual bool overridesShortcut(const QKeyEvent*) const { return false; }
+    /// The pointer left the host; the host lost the keyboard focus (a held key's release will
+    /// not come).
+    virtual void leave() {}
+    virtual void focusOut() {}
+    /// Another tool (or none) was installed in this one's place.
+    virtual void uninstalled() {}
 };
 
 /// Routes one host widget's events to its tools: the installed tool (a mode the user picked,
-/// such as the curve tool; not owned) first, then the registered tools (owned) in order.
+/// such as the curve tool; not owned) first, then the registered tools (owned) in order, then
+/// the listening ones (not owned).
 class ToolRouter {
 public:
     void add(std::unique_ptr<Tool> tool);
+    /// A tool the host does not own (a QObject of the window, say) that listens while it is
+    /// not installed: it gets hover moves, the keys listenKey offers, the pointer or focus
+    /// leaving, and paints; presses only once installed. Such a tool shows what a held key
+    /// asks for (the probe under held P) without being the view's mode. It must outlive the
+    /// host's events.
+    void listen(Tool* tool);
     /// Installs a tool (nullptr removes it), cancelling the gesture of the one it replaces.
     void install(Tool* tool);
     Tool* installed() const { return m_installed; }
@@ -71,15 +88,27 @@ public:
     /// Esc cancels a running gesture; other keys go to it, else to the installed tool.
     bool key(QKeyEvent* event);
     bool keyRelease(QKeyEvent* event);
+    /// A key (or its release) that no gesture and no installed tool used, offered to the
+    /// listening tools (they repaint what they show themselves); true when one used it.
+    bool listenKey(QKeyEvent* event);
+    bool listenKeyRelease(QKeyEvent* event);
+    /// Whether the installed or a listening tool wants `event` ahead of the shortcuts.
+    bool overridesShortcut(const QKeyEvent* event) const;
+    /// The pointer left the host / the host lost the focus: every tool is told.
+    void leave();
+    void focusOut();
     /// Cancels the running gesture, if any.
     void cancel();
-    /// The installed tool, then the registered ones.
+    /// The installed tool, then the registered ones, then the listeners.
     void paint(QPainter& painter);
 
 private:
     void settle();
+    /// Calls f on every tool once: the installed one, the registered ones, the listeners.
+    template <class F> void each(F f) const;
 
     std::vector<std::unique_ptr<Tool>> m_tools;
+    std::vector<Tool*> m_listeners;
     Tool* m_installed = nullptr;
     Tool* m_active = nullptr;
 };
@@ -91,10 +120,28 @@ inline void ToolRouter::add(std::unique_ptr<Tool> tool) {
         m_tools.push_back(std::move(tool));
 }
 
+inline void ToolRouter::listen(Tool* tool) {
+    if (tool && std::find(m_listeners.begin(), m_listeners.end(), tool) == m_listeners.end())
+        m_listeners.push_back(tool);
+}
+
+template <class F> void ToolRouter::each(F f) const {
+    if (m_installed)
+        f(m_installed);
+    for (const auto& t : m_tools)
+        f(t.get());
+    for (Tool* t : m_listeners)
+        if (t != m_installed)
+            f(t);
+}
+
 inline void ToolRouter::install(Tool* tool) {
     if (m_active && m_active == m_installed && tool != m_installed)
         cancel();
+    Tool* was = m_installed;
     m_installed = tool;
+    if (was && was != tool)
+        was->uninstalled();
 }
 
 inline void ToolRouter::settle() {
@@ -125,10 +172,7 @@ inline bool ToolRouter::move(QMouseEvent* event) {
         settle();
         return true;
     }
-    if (m_installed)
-        m_installed->hover(event);
-    for (const auto& t : m_tools)
-        t->hover(event);
+    each([event](Tool* t) { t->hover(event); });
     return false;
 }
 
@@ -165,6 +209,41 @@ inline bool ToolRouter::keyRelease(QKeyEvent* event) {
     return used;
 }
 
+inline bool ToolRouter::listenKey(QKeyEvent* event) {
+    if (m_active)
+        return false;
+    for (Tool* t : m_listeners)
+        if (t != m_installed && t->key(event))
+            return true;
+    return false;
+}
+
+inline bool ToolRouter::listenKeyRelease(QKeyEvent* event) {
+    if (m_active)
+        return false;
+    for (Tool* t : m_listeners)
+        if (t != m_installed && t->keyRelease(event))
+            return true;
+    return false;
+}
+
+inline bool ToolRouter::overridesShortcut(const QKeyEvent* event) const {
+    if (m_installed && m_installed->overridesShortcut(event))
+        return true;
+    for (Tool* t : m_listeners)
+        if (t->overridesShortcut(event))
+            return true;
+    return false;
+}
+
+inline void ToolRouter::leave() {
+    each([](Tool* t) { t->leave(); });
+}
+
+inline void ToolRouter::focusOut() {
+    each([](Tool* t) { t->focusOut(); });
+}
+
 inline void ToolRouter::cancel() {
     if (Tool* t = m_active) {
         m_active = nullptr;
@@ -173,10 +252,7 @@ inline void ToolRouter::cancel() {
 }
 
 inline void ToolRouter::paint(QPainter& painter) {
-    if (m_installed)
-        m_installed->paint(painter);
-    for (const auto& t : m_tools)
-        t->paint(painter);
+    each([&painter](Tool* t) { t->paint(painter); });
 }
 
 } // namespace kw

@@ -8,6 +8,7 @@ namespace kw {
 // One line per tool, in the order a left press is offered to them: X(Name) registers the
 // factory `std::unique_ptr<Tool> makeNameTool(Viewport*)` defined in the tool's own file.
 #define KW_VIEW_TOOLS(X)                                                                           \
+    X(SectionHandle)                                                                               \
     X(WeightDrag)                                                                                  \
     X(SurfaceDrag)                                                                                 \
     X(PointDrag)                                                                                   \
