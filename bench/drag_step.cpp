@@ -2,6 +2,8 @@
 // read, or tiled with its shared-edge record), the dragged face, the alternated timed steps.
 #include "bench/drag_step.h"
 
+#include "bench/peer_model.h"
+
 #include "app/commands.h"
 #include "bench/scale_scene.h"
 #include "model/analysis/continuity.h"
@@ -10,6 +12,7 @@
 #include "model/nurbs/nurbs.h"
 #include "render/edge_bands.h"
 #include "render/offscreen_renderer.h"
+#include "render/thread_clock.h"
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -30,35 +33,6 @@ bool kept(const Status& step, QString* error) {
     if (!step && error)
         *error = step.message();
     return bool(step);
-}
-
-double clockMs(clockid_t clock) {
-    timespec t{};
-    ::clock_gettime(clock, &t);
-    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-double processCpuMs() {
-    return clockMs(CLOCK_PROCESS_CPUTIME_ID);
-}
-double threadCpuMs() {
-    return clockMs(CLOCK_THREAD_CPUTIME_ID);
-}
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-QString cpuModel() {
-    QFile f(QStringLiteral("/proc/cpuinfo"));
-    if (f.open(QIODevice::ReadOnly))
-        for (const QByteArray& line : f.readAll().split('\n'))
-            if (line.startsWith("model name"))
-                return QString::fromUtf8(line.mid(line.indexOf(':') + 1)).trimmed();
-    return QStringLiteral("unknown CPU");
 }
 
 /// tileScene(unit, copies) with unit's shared edges copied into every copy: a tiled part is

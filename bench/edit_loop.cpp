@@ -25,6 +25,7 @@ bool kept(const Status& step, QString* error) {
         *error = step.message();
     return bool(step);
 }
+
 // Free-form: a polynomial (all weights equal) surface curved in some direction. Rational
 // surfaces are the conics and quadrics of imported analytic faces, degree 1 x 1 the planes.
 bool isFreeForm(const NurbsSurface& g) {

@@ -29,6 +29,7 @@ bool kept(const Status& step, QString* error) {
         *error = step.message();
     return bool(step);
 }
+
 /// The part as a Scene, read as `knotwork render` reads it (kw::openModelFile: a .knot as saved,
 /// IGES, STEP and BREP in the CAD reader's child process, OBJ), its import remarks on stderr.
 std::optional<Scene> loadUnit(const QString& model, QString* error) {

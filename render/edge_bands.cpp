@@ -3,6 +3,8 @@
 
 #include <QHash>
 #include <algorithm>
+#include <atomic>
+#include <optional>
 
 namespace kw {
 
@@ -18,6 +20,11 @@ glm::vec4 continuityColor(ContinuityClass c) {
         break;
     }
     return {0.95f, 0.08f, 0.08f, 1.0f};
+}
+
+std::uint64_t nextEdgeBandRevision() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
 }
 
 glm::vec4 freeEdgeColor() {
@@ -48,7 +55,7 @@ void addSide(const QHash<SurfaceId, const Surface*>& surfaces, const ContinuityS
     if (line.empty())
         return;
     EdgeBandRange r{std::uint32_t(out.vertices.size()), std::uint32_t(line.size()),
-                    line.front().position, line.front().position};
+                    line.front().position, line.front().position, out.revision};
     for (const EdgeBandVertex& v : line) {
         r.lo = glm::min(r.lo, v.position);
         r.hi = glm::max(r.hi, v.position);
@@ -66,7 +73,7 @@ EdgeBands makeEdgeBands(const Scene& scene, const ContinuityReport& report, std:
         if (!s.hidden)
             surfaces.insert(s.id, &s);
     EdgeBands bands;
-    bands.revision = revision;
+    bands.revision = bands.layoutRevision = revision;
     for (const EdgeContinuity& e : report.edges)
         addSide(surfaces, e.edge.covers[0] ? e.edge.sides[0] : e.edge.sides[1],
                 continuityColor(e.continuity), segments, bands);
@@ -116,11 +123,29 @@ EdgeBandRuns visibleEdgeBands(const EdgeBands& bands, const glm::mat4& viewProje
     return runs;
 }
 
+namespace {
+
+/// `line`'s range at `first`, its bounds, stamped `revision`.
+EdgeBandRange bandRange(const std::vector<EdgeBandVertex>& line, size_t first,
+                        std::uint64_t revision) {
+    EdgeBandRange r{std::uint32_t(first), std::uint32_t(line.size()), glm::vec3(0.0f),
+                    glm::vec3(0.0f), revision};
+    if (!line.empty())
+        r.lo = r.hi = line.front().position;
+    for (const EdgeBandVertex& v : line) {
+        r.lo = glm::min(r.lo, v.position);
+        r.hi = glm::max(r.hi, v.position);
+    }
+    return r;
+}
+
+} // namespace
+
 std::shared_ptr<const EdgeBands> EdgeBandCache::update(const Scene& scene,
                                                        const ContinuityReport& report,
                                                        const std::vector<SurfaceId>& faces) {
-    const bool all = faces.empty() || m_edgeLines.size() != report.edges.size() ||
-                     m_freeLines.size() != report.topology.freeSides.size();
+    const size_t edges = report.edges.size(), free = report.topology.freeSides.size();
+    const bool all = faces.empty() || !m_bands || m_edges != edges || m_free != free;
     const auto touched = [&](const ContinuitySide& side) {
         return all || std::find(faces.begin(), faces.end(), side.surface) != faces.end();
     };
@@ -136,66 +161,96 @@ std::shared_ptr<const EdgeBands> EdgeBandCache::update(const Scene& scene,
                                      [&](const Surface& s) { return s.id == id; });
         return it == scene.surfaces.end() ? nullptr : &*it;
     };
-    const auto line = [&](const ContinuitySide& side, const glm::vec4& color) {
+    // Line k: edge k, or free side k - edges; nullopt when untouched.
+    const auto line = [&](size_t k) -> std::optional<std::vector<EdgeBandVertex>> {
+        ContinuitySide side;
+        glm::vec4 color;
+        if (k < edges) {
+            const EdgeContinuity& e = report.edges[k];
+            // A class may change with the other side's edit: every edge of the faces is re-made.
+            if (!touched(e.edge.sides[0]) && !touched(e.edge.sides[1]))
+                return std::nullopt;
+            side = e.edge.covers[0] ? e.edge.sides[0] : e.edge.sides[1];
+            color = continuityColor(e.continuity);
+        } else {
+            side = report.topology.freeSides[k - edges];
+            if (!touched(side))
+                return std::nullopt;
+            color = freeEdgeColor();
+        }
         const Surface* s = surface(side.surface);
         return s && !s->hidden ? edgeBandLine(*s, side, color) : std::vector<EdgeBandVertex>{};
     };
-    const auto bounds = [](const std::vector<EdgeBandVertex>& l) {
-        std::pair<glm::vec3, glm::vec3> b{glm::vec3(0.0f), glm::vec3(0.0f)};
-        if (!l.empty())
-            b = {l.front().position, l.front().position};
-        for (const EdgeBandVertex& v : l) {
-            b.first = glm::min(b.first, v.position);
-            b.second = glm::max(b.second, v.position);
-        }
-        return b;
-    };
-    m_edgeLines.resize(report.edges.size());
-    m_edgeBounds.resize(report.edges.size());
-    m_freeLines.resize(report.topology.freeSides.size());
-    m_freeBounds.resize(report.topology.freeSides.size());
-    for (size_t k = 0; k < report.edges.size(); ++k) {
-        const EdgeContinuity& e = report.edges[k];
-        // A class may change with the other side's edit: every edge of the faces is re-made.
-        if (touched(e.edge.sides[0]) || touched(e.edge.sides[1])) {
-            m_edgeLines[k] = line(e.edge.covers[0] ? e.edge.sides[0] : e.edge.sides[1],
-                                  continuityColor(e.continuity));
-            m_edgeBounds[k] = bounds(m_edgeLines[k]);
+    const std::uint64_t revision = nextEdgeBandRevision();
+    std::vector<std::pair<size_t, std::vector<EdgeBandVertex>>> fresh;
+    if (!all) {
+        bool sameLengths = true;
+        for (size_t k = 0; k < edges + free; ++k)
+            if (std::optional<std::vector<EdgeBandVertex>> l = line(k)) {
+                const std::int64_t r = m_rangeOf[k];
+                sameLengths = sameLengths && l->size() == (r < 0 ? 0 : m_bands->ranges[r].count);
+                fresh.emplace_back(k, std::move(*l));
+            }
+        if (sameLengths) {
+            // A drag step: the re-made lines written over their old ones, nothing else copied.
+            for (const auto& [k, l] : fresh)
+                if (!l.empty()) {
+                    EdgeBandRange& r = m_bands->ranges[size_t(m_rangeOf[k])];
+                    std::copy(l.begin(), l.end(), m_bands->vertices.begin() + r.first);
+                    r = bandRange(l, r.first, revision);
+                }
+            m_bands->revision = revision;
+            return m_bands;
         }
     }
-    for (size_t k = 0; k < report.topology.freeSides.size(); ++k)
-        if (touched(report.topology.freeSides[k])) {
-            m_freeLines[k] = line(report.topology.freeSides[k], freeEdgeColor());
-            m_freeBounds[k] = bounds(m_freeLines[k]);
-        }
+    // New bands: every line made (all), or the old ones spliced with the re-made ones.
     auto bands = std::make_shared<EdgeBands>();
-    bands->revision = ++m_revision;
-    size_t count = 0, lines = 0;
-    for (const auto* all : {&m_edgeLines, &m_freeLines})
-        for (const std::vector<EdgeBandVertex>& l : *all) {
-            count += l.size();
-            lines += !l.empty();
+    bands->revision = bands->layoutRevision = revision;
+    std::vector<std::int64_t> rangeOf(edges + free, -1);
+    size_t next = 0;
+    for (size_t k = 0; k < edges + free; ++k) {
+        const std::vector<EdgeBandVertex>* l = nullptr;
+        std::optional<std::vector<EdgeBandVertex>> made;
+        if (all) {
+            made = line(k);
+            l = &*made;
+        } else if (next < fresh.size() && fresh[next].first == k) {
+            l = &fresh[next++].second;
         }
-    bands->vertices.reserve(count);
-    bands->ranges.reserve(lines);
-    for (const auto& [all, box] :
-         {std::pair{&m_edgeLines, &m_edgeBounds}, std::pair{&m_freeLines, &m_freeBounds}})
-        for (size_t k = 0; k < all->size(); ++k) {
-            const std::vector<EdgeBandVertex>& l = (*all)[k];
-            if (l.empty())
+        if (l) {
+            if (l->empty())
                 continue;
-            bands->ranges.push_back({std::uint32_t(bands->vertices.size()), std::uint32_t(l.size()),
-                                     (*box)[k].first, (*box)[k].second});
-            bands->vertices.insert(bands->vertices.end(), l.begin(), l.end());
+            rangeOf[k] = std::int64_t(bands->ranges.size());
+            bands->ranges.push_back(bandRange(*l, bands->vertices.size(), revision));
+            bands->vertices.insert(bands->vertices.end(), l->begin(), l->end());
+        } else if (m_rangeOf[k] >= 0) {
+            EdgeBandRange r = m_bands->ranges[size_t(m_rangeOf[k])];
+            const auto from = m_bands->vertices.begin() + r.first;
+            r.first = std::uint32_t(bands->vertices.size());
+            r.revision = revision;
+            rangeOf[k] = std::int64_t(bands->ranges.size());
+            bands->ranges.push_back(r);
+            bands->vertices.insert(bands->vertices.end(), from, from + r.count);
         }
-    return bands;
+    }
+    m_bands = std::move(bands);
+    m_rangeOf = std::move(rangeOf);
+    m_edges = edges;
+    m_free = free;
+    return m_bands;
+}
+
+std::span<const EdgeBandVertex> EdgeBandCache::edgeLine(size_t k) const {
+    if (k >= m_edges || m_rangeOf[k] < 0)
+        return {};
+    const EdgeBandRange& r = m_bands->ranges[size_t(m_rangeOf[k])];
+    return {m_bands->vertices.data() + r.first, r.count};
 }
 
 void EdgeBandCache::clear() {
-    m_edgeLines.clear();
-    m_freeLines.clear();
-    m_edgeBounds.clear();
-    m_freeBounds.clear();
+    m_bands.reset();
+    m_rangeOf.clear();
+    m_edges = m_free = 0;
 }
 
 } // namespace kw

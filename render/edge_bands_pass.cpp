@@ -40,11 +40,46 @@ Status EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera) {
         gl->glVertexArrayAttribBinding(m_vao, 1, 0);
     }
     if (!m_uploaded || m_revision != bands.revision) {
-        // A new buffer store each time: an edit changes a few edges, but the list is small.
-        gl->glNamedBufferData(m_vbo, GLsizeiptr(bands.vertices.size() * sizeof(EdgeBandVertex)),
-                              bands.vertices.data(), GL_DYNAMIC_DRAW);
-        m_count = GLsizei(bands.vertices.size());
+        // Layout revisions are process-wide and unique, so an equal one is these very bands,
+        // updated in place since the upload held.
+        const bool sameLayout = m_uploaded && m_layoutRevision == bands.layoutRevision &&
+                                m_revision < bands.revision &&
+                                m_count == GLsizei(bands.vertices.size());
+        if (sameLayout) {
+            // A drag step re-made a few edges' lines in place: only their ranges (adjacent ones
+            // merged) go up, the rest of the buffer (millions of vertices on a large model)
+            // stays.
+            uploadedVertices = 0;
+            size_t runFirst = 0, runCount = 0;
+            const auto flush = [&] {
+                if (runCount == 0)
+                    return;
+                gl->glNamedBufferSubData(m_vbo, GLintptr(runFirst * sizeof(EdgeBandVertex)),
+                                         GLsizeiptr(runCount * sizeof(EdgeBandVertex)),
+                                         bands.vertices.data() + runFirst);
+                uploadedVertices += runCount;
+                runCount = 0;
+            };
+            for (const EdgeBandRange& r : bands.ranges) {
+                if (r.revision <= m_revision)
+                    continue;
+                if (runCount > 0 && runFirst + runCount == r.first) {
+                    runCount += r.count;
+                } else {
+                    flush();
+                    runFirst = r.first;
+                    runCount = r.count;
+                }
+            }
+            flush();
+        } else {
+            gl->glNamedBufferData(m_vbo, GLsizeiptr(bands.vertices.size() * sizeof(EdgeBandVertex)),
+                                  bands.vertices.data(), GL_DYNAMIC_DRAW);
+            m_count = GLsizei(bands.vertices.size());
+            uploadedVertices = bands.vertices.size();
+        }
         m_revision = bands.revision;
+        m_layoutRevision = bands.layoutRevision;
         m_uploaded = true;
     }
     if (m_count == 0)

@@ -72,8 +72,27 @@ void main() {
             // (an edge seen end on, or collapsed, has no gap to cover).
             vec2 extent = uDomain.yw - uDomain.xz;
             float du = min(uSkirtPixels / square, 0.25 * abs(dot(extent, aOutward)));
-            vUv = aUv + aOutward * du;
-            gl_Position.xy += across * du * 2.0 / uViewport.zw * gl_Position.w;
+            // Where the surface folds (a silhouette) between the edge and du inside it, the
+            // edge is a hidden sliver's and the outward tangent's image points back under the
+            // face: the strip would lie under its own face while the pixel centres between the
+            // edge and the exact outline, outside the polygon and with no polygon silhouette
+            // edge to carry a fin, showed the background. The fold turns the tangent's image
+            // across the edge (square to the edge's image) round, and the edge's sheet is the
+            // hidden one when the surface past the fold is nearer the eye (across a fold the
+            // depth changes to first order, the screen position to second; where the edge's
+            // sheet is in front, its own outline is the face's and the strip stays outside).
+            // The strip then goes the other way on screen, its (u, v) into the domain, towards
+            // the fold.
+            vec2 inner = clamp(aUv - aOutward * du, uDomain.xz, uDomain.yw);
+            SurfacePartials e = surfacePartials(inner, aSpan);
+            vec4 innerClip = uViewProjection * vec4(e.s + uOrigin, 1.0);
+            float side = 1.0;
+            vec2 innerAcross = kwWindowTangent(innerClip, aOutward.x * e.su + aOutward.y * e.sv);
+            if (innerClip.w > 0.0 && innerClip.w < gl_Position.w &&
+                determinant(mat2(across, along)) * determinant(mat2(innerAcross, along)) < 0.0)
+                side = -1.0;
+            vUv = aUv + side * aOutward * du;
+            gl_Position.xy += side * across * du * 2.0 / uViewport.zw * gl_Position.w;
         }
     }
     // Behind its own polygon by a few pixels' worth of distance along the ray (reversed depth:

@@ -459,6 +459,16 @@ void MainWindow::buildViewMenu() {
                                 "and the defaults for new projects, in Preferences"));
     // One place edits them: Preferences, opened on the project's tolerances.
     connect(tolerances, &QAction::triggered, this, [this] { m_desktop->editPreferences(true); });
+    // The first measure of a large model runs in the background: its progress stays in the
+    // status bar until it ends, and is cleared then unless another message took its place.
+    connect(m_edgeContinuity, &EdgeContinuityOverlay::measureStatus, this,
+            [this, shown = QString()](const QString& text) mutable {
+                if (!text.isEmpty())
+                    statusBar()->showMessage(text);
+                else if (statusBar()->currentMessage() == shown)
+                    statusBar()->clearMessage();
+                shown = text;
+            });
     connect(m_edgeContinuity, &EdgeContinuityOverlay::seamMessage, this, [this](const QString& m) {
         if (!m.isEmpty())
             statusBar()->showMessage(tr("This edit %1").arg(m), 4000);

@@ -8,6 +8,7 @@
 
 #include <QString>
 #include <array>
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -118,6 +119,15 @@ struct ContinuityReport {
 /// continuityTopology and measureEdgeContinuity of every edge (shared out over the cores when
 /// there are many). Precondition: valid tolerances (continuityTolerancesError).
 ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances& tolerances);
+
+/// Measures every edge of `report.topology` into `report.edges` (resized to match), in blocks
+/// of a few hundred edges each shared out over the cores; between blocks, on the calling
+/// thread, calls `progress(done, total)` (edges measured so far, of all), which returns false to
+/// stop. Returns false when stopped (report.edges then partly measured), true when all are.
+/// For a caller on a worker thread that shows progress and may be cancelled (the editor's
+/// overlay on a large model). Precondition: report.tolerances valid.
+bool measureContinuity(ContinuityReport& report, const Scene& scene,
+                       const std::function<bool(size_t done, size_t total)>& progress);
 
 /// The topology of `scene` with no edge measured yet (each edge's values zero, class G2): for
 /// updateContinuity to measure only the edges of faces as they change, without the cost of

@@ -124,6 +124,7 @@ private Q_SLOTS:
     void tolerancesChangeTheClass();
     void badInputIsCountedApart();
     void tolerancesAreChecked();
+    void measureInBlocksReportsProgressAndStops();
 };
 
 // A sphere's u = 0 and u = 1 edges are one seam, curved alike on both sides; its v edges are
@@ -319,6 +320,36 @@ void TestContinuity::tolerancesAreChecked() {
     QVERIFY(!continuityTolerancesError({0.0, 0.5, 5.0, 0.01}).isEmpty());
     QVERIFY(!continuityTolerancesError({0.001, std::nan(""), 5.0, 0.01}).isEmpty());
     QVERIFY(!continuityTolerancesError({0.1, 0.5, 5.0, 0.01}).isEmpty());
+}
+
+// measureContinuity (the overlay's background measure) gives continuityReport's values, tells
+// its progress in edges up to the total, and stops at the first block after its callback says
+// so, with the rest unmeasured.
+void TestContinuity::measureInBlocksReportsProgressAndStops() {
+    std::vector<NurbsSurface> grid;
+    for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i)
+            grid.push_back(makePatch({2.0 * i, 2.0 * j, 0.0}, 3, 3, 4, 4, 2, 2));
+    const Scene scene = sceneOf(grid);
+    const ContinuityReport whole = continuityReport(scene, {});
+    QCOMPARE(int(whole.edges.size()), 2 * 16 * 15); // 480: two blocks
+    ContinuityReport report = continuityWatch(scene, {});
+    std::vector<size_t> seen;
+    QVERIFY(measureContinuity(report, scene, [&](size_t done, size_t total) {
+        seen.push_back(done);
+        return total == whole.edges.size();
+    }));
+    QCOMPARE(seen, (std::vector<size_t>{0, 256, 480}));
+    for (size_t k = 0; k < whole.edges.size(); ++k) {
+        QCOMPARE(report.edges[k].g0, whole.edges[k].g0);
+        QCOMPARE(report.edges[k].continuity, whole.edges[k].continuity);
+        QVERIFY(report.edges[k].samples > 0);
+    }
+    ContinuityReport stopped = continuityWatch(scene, {});
+    QVERIFY(!measureContinuity(stopped, scene, [](size_t done, size_t) { return done == 0; }));
+    QVERIFY(stopped.edges[255].samples > 0);
+    QCOMPARE(stopped.edges[256].samples, 0);
+    QCOMPARE(stopped.edges.back().samples, 0);
 }
 
 QTEST_GUILESS_MAIN(TestContinuity)

@@ -96,6 +96,7 @@ private Q_SLOTS:
     }
     void bandColoursAreTheKernelsClasses();
     void bandsOffScreenAreLeftOut();
+    void aDragStepRewritesOnlyTheDraggedFacesBands();
 
 private:
     std::unique_ptr<OffscreenRenderer> m_renderer;
@@ -181,6 +182,72 @@ void TestRenderEdgeBands::bandsOffScreenAreLeftOut() {
     runs = visibleEdgeBands(bands, vp, 0.0f);
     QCOMPARE(runs.first, (std::vector<std::int32_t>{0}));
     QCOMPARE(runs.count, (std::vector<std::int32_t>{8}));
+}
+
+// A drag step through the cache: the bands are the same object updated in place (no other
+// vertex copied, the layout kept), only the dragged face's ranges are stamped new, the vertices
+// equal a full rebuild's, and the pass's sub-range upload reaches the GPU (the band drawn changes
+// colour).
+void TestRenderEdgeBands::aDragStepRewritesOnlyTheDraggedFacesBands() {
+    Scene scene = configuration();
+    ContinuityReport report = continuityReport(scene, {});
+    Document doc;
+    KW_VERIFY_OK(doc.resetScene(scene));
+    EdgeBandCache cache;
+    const std::shared_ptr<const EdgeBands> before = cache.update(scene, report);
+    const std::uint64_t revision = before->revision, layout = before->layoutRevision;
+    QCOMPARE(layout, revision);
+    RenderOptions options;
+    options.edgeBands = before;
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
+    const CameraMatrices m = cameraMatrices(topCamera(), scene, 1.0);
+    const glm::dvec2 w =
+        kwtest::windowPixels(m.projection * m.view, {3.0 * 3 + 1.0, 0.5, 0.0}, glm::dvec2(kSide));
+    const auto pixel = [&] {
+        return m_renderer->colorImage().pixel(int(w.x), kSide - 1 - int(w.y));
+    };
+    QVERIFY(colourDistance(pixel(), continuityColor(ContinuityClass::Open)) < 0.08);
+    // Patch 8 (the open pair's right side, 0.004 up) dragged down onto its neighbour.
+    const SurfaceId dragged{8};
+    std::vector<int> indices;
+    std::vector<glm::dvec3> points;
+    for (int k = 0; k < 16; ++k) {
+        indices.push_back(k);
+        points.push_back(doc.surface(dragged)->geometry.points[size_t(k)] * glm::dvec3(1, 1, 0));
+    }
+    QVERIFY(doc.setControlPoints(dragged, indices, points));
+    scene = doc.scene();
+    QCOMPARE(updateContinuity(report, scene, {dragged}), 1);
+    QCOMPARE(report.edges[3].continuity, ContinuityClass::G2);
+    const std::shared_ptr<const EdgeBands> after = cache.update(scene, report, {dragged});
+    QCOMPARE(after.get(), before.get());
+    QVERIFY(after->revision > revision);
+    QCOMPARE(after->layoutRevision, layout);
+    // Patch 8's shared edge (drawn along patch 7's side, which covers it) and its three free
+    // sides are re-made; every other range keeps the first revision.
+    int stamped = 0;
+    for (const EdgeBandRange& r : after->ranges) {
+        QVERIFY(r.revision == revision || r.revision == after->revision);
+        stamped += r.revision == after->revision;
+    }
+    QCOMPARE(stamped, 4);
+    const EdgeBands full = makeEdgeBands(scene, report, 0);
+    QCOMPARE(after->vertices.size(), full.vertices.size());
+    for (size_t k = 0; k < full.vertices.size(); ++k) {
+        QCOMPARE(after->vertices[k].position, full.vertices[k].position);
+        QCOMPARE(after->vertices[k].color, full.vertices[k].color);
+    }
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
+    QVERIFY2(colourDistance(pixel(), continuityColor(ContinuityClass::G2)) < 0.08,
+             qPrintable(QColor(pixel()).name()));
+    // Hiding the face empties its free sides' lines (its shared edge is drawn along patch 7,
+    // which covers it): a new layout, the pass uploads it whole.
+    QVERIFY(doc.setHidden(dragged, true));
+    scene = doc.scene();
+    const std::shared_ptr<const EdgeBands> hidden = cache.update(scene, report, {dragged});
+    QVERIFY(hidden.get() != before.get());
+    QCOMPARE(hidden->layoutRevision, hidden->revision);
+    QCOMPARE(hidden->ranges.size(), before->ranges.size() - 3);
 }
 
 #include "tst_render_edge_bands.moc"

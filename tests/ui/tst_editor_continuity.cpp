@@ -16,8 +16,10 @@
 
 #include <QAction>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QHelpEvent>
 #include <QSettings>
+#include <QSignalSpy>
 #include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -42,6 +44,21 @@ Scene patches(bool far) {
             s.id = SurfaceId{scene.nextId++};
             s.name = QStringLiteral("Patch %1").arg(s.id.value);
             s.geometry = makePatch({x, y, 0}, 3, 3, 5, 5, 2, 2);
+            scene.surfaces.push_back(s);
+        }
+    return scene;
+}
+
+/// `n` x `n` flat bicubic patches, 2 x 2, edge to edge: more faces than the overlay measures at
+/// once, so turning it on measures in the background.
+Scene grid(int n) {
+    Scene scene;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            Surface s;
+            s.id = SurfaceId{scene.nextId++};
+            s.name = QStringLiteral("Patch %1").arg(s.id.value);
+            s.geometry = makePatch({2.0 * i, 2.0 * j, 0}, 3, 3, 4, 4, 2, 2);
             scene.surfaces.push_back(s);
         }
     return scene;
@@ -82,8 +99,13 @@ private Q_SLOTS:
     void preferencesChangeTheClasses();
     void keepSeamsClosedIsOneUndoStep();
     void hoveringAnEdgeShowsItsValues();
+    void aLargeModelIsMeasuredInTheBackground();
+    void turningOffCancelsTheBackgroundMeasure();
 
 private:
+    /// Opens a grid(kGrid) with the overlay off (it pairs in the background).
+    void openGrid();
+    static constexpr int kGrid = 24;
     /// The view's pixel of model point `p`.
     QPoint pixelOf(const glm::dvec3& p) const;
     /// Model length of one pixel at `p` in the plane facing the camera (where a drag moves a
@@ -323,6 +345,96 @@ void TestEditorContinuity::hoveringAnEdgeShowsItsValues() {
     QVERIFY(QToolTip::text().contains(QStringLiteral("G0 gap")));
     QVERIFY(QToolTip::text().contains(QStringLiteral("G1 angle")));
     QVERIFY(QToolTip::text().contains(QStringLiteral("G2 curvature jump")));
+}
+
+void TestEditorContinuity::openGrid() {
+    act("actionKeepSeamsClosed")->setChecked(false);
+    const QString path = m_dir.filePath(QStringLiteral("grid.knot"));
+    KW_VERIFY_OK(writeKnotFile(path, grid(kGrid)));
+    act("actionEdgeContinuity")->setChecked(false);
+    QVERIFY(m_window->openFile(path));
+    QVERIFY(int(scene().surfaces.size()) > EdgeContinuityOverlay::kForegroundFaces);
+}
+
+// Turning the overlay on for a model of hundreds of faces returns to the event loop at once,
+// with the progress in the status bar; the bands appear once every edge is measured, and a face
+// edited meanwhile (its revision newer than the copy measured) is measured as it is now.
+void TestEditorContinuity::aLargeModelIsMeasuredInTheBackground() {
+    openGrid();
+    EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
+    QSignalSpy status(overlay, &EdgeContinuityOverlay::measureStatus);
+    QElapsedTimer clock;
+    clock.start();
+    act("actionEdgeContinuity")->setChecked(true);
+    const qint64 toggleMs = clock.elapsed();
+    QVERIFY(overlay->measuring());
+    QVERIFY(!overlay->bands());
+    QVERIFY2(m_window->statusBar()->currentMessage().startsWith(
+                 QStringLiteral("Measuring edge continuity…")),
+             qPrintable(m_window->statusBar()->currentMessage()));
+    // An edit before the measure is in: patch 1's far corner (shared by patches 2, 25 and 26,
+    // whose corners stay: seams are not kept closed) lifted, so its edges with 2 and 25 open.
+    Document* doc = m_window->document();
+    const glm::dvec3 corner = doc->surface(SurfaceId{1})->geometry.points[15];
+    QVERIFY(doc->setControlPoints(SurfaceId{1}, {15}, {corner + glm::dvec3(0, 0, 0.5)}));
+    QVERIFY(!overlay->bands());
+    QTRY_VERIFY_WITH_TIMEOUT(overlay->bands() != nullptr, 120000);
+    const qint64 doneMs = clock.elapsed();
+    qInfo("%d faces: the toggle returned in %lld ms, the bands came in %lld ms", kGrid * kGrid,
+          toggleMs, doneMs);
+    QVERIFY2(
+        toggleMs * 4 < doneMs,
+        qPrintable(QStringLiteral("toggle %1 ms, bands after %2 ms").arg(toggleMs).arg(doneMs)));
+    QVERIFY(!overlay->measuring());
+    const ContinuityReport& r = overlay->report();
+    QCOMPARE(int(r.edges.size()), 2 * kGrid * (kGrid - 1));
+    QCOMPARE(int(r.topology.freeSides.size()), 4 * kGrid);
+    int open = 0;
+    for (const EdgeContinuity& e : r.edges) {
+        QVERIFY(e.samples > 0);
+        const bool lifted =
+            e.edge.sides[0].surface == SurfaceId{1} || e.edge.sides[1].surface == SurfaceId{1};
+        QVERIFY2((e.continuity == ContinuityClass::Open) == lifted,
+                 qPrintable(QStringLiteral("edge %1-%2 gap %3")
+                                .arg(e.edge.sides[0].surface.value)
+                                .arg(e.edge.sides[1].surface.value)
+                                .arg(e.g0)));
+        open += e.continuity == ContinuityClass::Open;
+    }
+    QCOMPARE(open, 2);
+    QVERIFY(hasColour(*overlay->bands(), continuityColor(ContinuityClass::Open)));
+    QCOMPARE(overlay->bands()->ranges.size(), r.edges.size() + r.topology.freeSides.size());
+    // Progress was shown in edges, and the status bar no longer says it is measuring.
+    const QString total = QStringLiteral(" of %1 edges").arg(r.edges.size());
+    QVERIFY(std::any_of(status.begin(), status.end(), [&](const QList<QVariant>& args) {
+        return args.at(0).toString().endsWith(total);
+    }));
+    QVERIFY(status.last().at(0).toString().isEmpty());
+    QVERIFY(!m_window->statusBar()->currentMessage().startsWith(
+        QStringLiteral("Measuring edge continuity…")));
+}
+
+// A second toggle while the measure runs drops it (nothing shows while off), and turning the
+// overlay on again measures the document as it is then.
+void TestEditorContinuity::turningOffCancelsTheBackgroundMeasure() {
+    openGrid();
+    EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
+    act("actionEdgeContinuity")->setChecked(true);
+    QVERIFY(overlay->measuring());
+    act("actionEdgeContinuity")->setChecked(false);
+    QVERIFY(!overlay->measuring());
+    QVERIFY(m_window->statusBar()->currentMessage().isEmpty());
+    // Off, the status bar's pairing comes in; no band and no measured edge ever does.
+    QTRY_COMPARE_WITH_TIMEOUT(int(overlay->report().topology.edges.size()), 2 * kGrid * (kGrid - 1),
+                              60000);
+    QTest::qWait(200);
+    QVERIFY(!overlay->bands());
+    for (const EdgeContinuity& e : overlay->report().edges)
+        QCOMPARE(e.samples, 0);
+    act("actionEdgeContinuity")->setChecked(true);
+    QVERIFY(overlay->measuring());
+    QTRY_VERIFY_WITH_TIMEOUT(overlay->bands() != nullptr, 120000);
+    QCOMPARE(overlay->report().count(ContinuityClass::G2), 2 * kGrid * (kGrid - 1));
 }
 
 QTEST_MAIN(TestEditorContinuity)
