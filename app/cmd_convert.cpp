@@ -127,6 +127,10 @@ int runConvert(const QStringList& args) {
                        .arg(result->report.facesSkipped())
                        .arg(result->report.facesImported));
 
+    const auto take = [&error](const Status& status) {
+        error = status.message();
+        return bool(status);
+    };
     bool written = false;
     if (cadOut) {
         ExportReport exported;
@@ -136,11 +140,11 @@ int runConvert(const QStringList& args) {
         if (written && parser.isSet(report))
             printOut(QStringLiteral("%1: %2").arg(out, exported.summary()));
     } else if (outFormat == CadFormat::Knot)
-        written = writeKnotFile(out, result->scene, &error);
+        written = take(writeKnotFile(out, result->scene));
     else if (parser.isSet(mesh))
-        written = writeObjMeshFile(out, result->scene, meshOptions, error);
+        written = take(writeObjMeshFile(out, result->scene, meshOptions));
     else
-        written = writeObjFile(out, result->scene, error);
+        written = take(writeObjFile(out, result->scene));
     if (!written) {
         printError(error);
         return kExitBadInput;

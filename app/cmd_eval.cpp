@@ -107,9 +107,9 @@ int runEval(const QStringList& args) {
 
     const QString file = files[0];
     QString error;
-    const std::optional<Scene> scene = readKnotFile(file, &error);
+    const Expected<Scene> scene = readKnotFile(file);
     if (!scene) {
-        printError(error);
+        printError(scene.message());
         return kExitBadInput;
     }
     const Surface* surface = findSurface(*scene, parser.value(surfaceOpt), &error);

@@ -90,9 +90,11 @@ int runMesh(const QStringList& args) {
     for (const QString& w : result->report.warnings)
         if (w.contains(QLatin1String("BRepMesh")))
             printError(QStringLiteral("%1: warning: %2").arg(in, w));
-    if (!saveBytesAtomically(outPath, writeTaggedMeshObj(mesh), &error) ||
-        (parser.isSet(knot) && !writeKnotFile(parser.value(knot), result->scene, &error))) {
-        printError(error);
+    Status written = saveBytesAtomically(outPath, writeTaggedMeshObj(mesh));
+    if (written && parser.isSet(knot))
+        written = writeKnotFile(parser.value(knot), result->scene);
+    if (!written) {
+        printError(written.message());
         return kExitBadInput;
     }
     printOut(QStringLiteral("%1: %2 of %3 face(s) meshed, %4 triangles, %5 vertices (BRepMesh "

@@ -67,9 +67,11 @@ QByteArray serve(const QString& dir, const QByteArray& request, OcctMeshFacesFun
     const double cpuMs = processCpuMs() - cpu0;
     if (!ok)
         return "error " + error.simplified().toUtf8();
-    if (!saveBytesAtomically(QDir(dir).filePath(name + QStringLiteral(".obj")),
-                             writeTaggedMeshObj(mesh), &why))
-        return "error cannot leave the triangles for the parent: " + why.simplified().toUtf8();
+    if (const Status left = saveBytesAtomically(QDir(dir).filePath(name + QStringLiteral(".obj")),
+                                                writeTaggedMeshObj(mesh));
+        !left)
+        return "error cannot leave the triangles for the parent: " +
+               left.message().simplified().toUtf8();
     return "ok " + QByteArray::number(wallMs, 'f', 4) + ' ' + QByteArray::number(cpuMs, 'f', 4);
 }
 
@@ -97,13 +99,13 @@ int runMeshFaces(const QStringList& args) {
         if (::setrlimit(RLIMIT_AS, &limit) != 0)
             printError(QStringLiteral("%1: cannot set the memory limit").arg(args.value(0)));
     }
-    QString error;
-    const auto meshFaces = reinterpret_cast<OcctMeshFacesFunction>(app::resolveModuleSymbol(
-        QString::fromLatin1(kOcctModuleName), kOcctMeshFacesSymbol, &error));
-    if (!meshFaces) {
-        printError(QStringLiteral("%1: %2").arg(args.value(0), error));
+    const Expected<QFunctionPointer> resolved =
+        app::resolveModuleSymbol(QString::fromLatin1(kOcctModuleName), kOcctMeshFacesSymbol);
+    if (!resolved) {
+        printError(QStringLiteral("%1: %2").arg(args.value(0), resolved.message()));
         return kExitBadInput;
     }
+    const auto meshFaces = reinterpret_cast<OcctMeshFacesFunction>(*resolved);
     for (std::string line; std::getline(std::cin, line);) {
         const QByteArray request = QByteArray::fromStdString(line).trimmed();
         if (!request.isEmpty())

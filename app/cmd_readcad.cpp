@@ -84,8 +84,12 @@ int runReadCad(const QStringList& args) {
     // A plain read loads only its format's toolkits: their symbol relocations are a large part
     // of a small file's read (docs/PERFORMANCE.md, First image of a CAD file).
     const char* module = deflection ? kOcctModuleName : occtReadModuleName(format);
-    const auto resolve = [&](const char* symbol) {
-        return app::resolveModuleSymbol(QString::fromLatin1(module), symbol, &error);
+    const auto resolve = [&](const char* symbol) -> QFunctionPointer {
+        const Expected<QFunctionPointer> f =
+            app::resolveModuleSymbol(QString::fromLatin1(module), symbol);
+        if (!f)
+            error = f.message();
+        return f.value_or(nullptr);
     };
     const auto read = reinterpret_cast<OcctImportFunction>(resolve(kOcctImportSymbol));
     const auto mesh =

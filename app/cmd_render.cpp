@@ -26,9 +26,12 @@ namespace {
 /// mesh of another file would compare nonsense).
 bool loadPeerMesh(const QString& path, const QString& knotPath, const Scene& scene,
                   TriangleMesh& mesh, QString* error) {
-    TaggedMeshSet set;
-    if (!readTaggedMeshObjFile(path, set, *error))
+    Expected<TaggedMeshSet> read = readTaggedMeshObjFile(path);
+    if (!read) {
+        *error = read.message();
         return false;
+    }
+    const TaggedMeshSet& set = *read;
     std::unordered_set<std::uint32_t> ids;
     for (const Surface& s : scene.surfaces)
         ids.insert(s.id.value);
@@ -228,21 +231,22 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     loader.start(files[0], aspect);
     const bool withAov = parser.isSet(aov) || parser.isSet(edgeReport);
     OffscreenRenderer renderer;
-    QString glError;
-    const bool glReady =
-        parser.isSet(reference) || // drawn on the CPU
-        (renderer.create(&glError) &&
-         renderer.setSize(imageSize, withAov, &glError, parser.isSet(aovCurvature)));
+    Status glReady; // the reference is drawn on the CPU
+    if (!parser.isSet(reference)) {
+        glReady = renderer.create();
+        if (glReady)
+            glReady = renderer.setSize(imageSize, withAov, parser.isSet(aovCurvature));
+    }
     QString error;
-    std::optional<LoadedModel> model = loader.wait(error);
+    Expected<LoadedModel> model = loader.wait();
     if (!model) {
-        printError(error);
+        printError(model.message());
         return kExitBadInput;
     }
     printImportRemarks(files[0], model->import.report);
     Document doc;
-    if (!doc.resetScene(std::move(model->import.scene), &error)) {
-        printError(QStringLiteral("%1: %2").arg(files[0], error));
+    if (const Status reset = doc.resetScene(std::move(model->import.scene)); !reset) {
+        printError(QStringLiteral("%1: %2").arg(files[0], reset.message()));
         return kExitBadInput;
     }
     const Scene& scene = doc.scene();
@@ -266,9 +270,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (parser.isSet(zoom))
         camera = zoomedCamera(camera, zoomFactor, zoomAt, aspect);
     if (parser.isSet(reference)) {
-        if (!writeReferenceRender(scene, camera, imageSize, options.lightCount, outPath, aovPath,
-                                  &error)) {
-            printError(error);
+        if (const Status written = writeReferenceRender(scene, camera, imageSize,
+                                                        options.lightCount, outPath, aovPath);
+            !written) {
+            printError(written.message());
             return kExitBadInput;
         }
         return kExitOk;
@@ -280,7 +285,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         return kExitBadInput;
     }
     if (!glReady) {
-        printError(QStringLiteral("%1: %2").arg(cmd, glError));
+        printError(QStringLiteral("%1: %2").arg(cmd, glReady.message()));
         return kExitBadInput;
     }
     std::int64_t meshBytes = 0;
@@ -290,13 +295,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     }
     // One frame: the document's surfaces, or the peer mesh in their place.
     const auto frame = [&] {
-        return parser.isSet(peerMesh) ? renderer.renderMesh(doc, 0, camera, options, &error)
-                                      : renderer.render(doc, camera, options, &error);
+        return parser.isSet(peerMesh) ? renderer.renderMesh(doc, 0, camera, options)
+                                      : renderer.render(doc, camera, options);
     };
     // A progressive image is drawn until all its samples are in.
     for (int k = 0; k < std::max(options.samples, 1); ++k) {
-        if (!frame()) {
-            printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
+        if (const Status drawn = frame(); !drawn) {
+            printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], drawn.message()));
             return kExitBadInput;
         }
         if (!renderer.lastReport().refining)
@@ -305,14 +310,13 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     // Messy trims were drawn as repaired; say what was repaired.
     for (const QString& w : renderer.lastReport().warnings)
         printError(QStringLiteral("%1: warning: %2").arg(files[0], w));
-    if (!writeColorImage(renderer.colorImage(), outPath, &error) ||
-        (parser.isSet(aov) && !writeAovImage(renderer.aov(), aovPath, &error))) {
-        printError(error);
-        return kExitBadInput;
-    }
-    if (parser.isSet(edgeReport) &&
-        !writeEdgeReport(scene, camera, renderer.aov(), parser.value(edgeReport), &error)) {
-        printError(error);
+    Status written = writeColorImage(renderer.colorImage(), outPath);
+    if (written && parser.isSet(aov))
+        written = writeAovImage(renderer.aov(), aovPath);
+    if (written && parser.isSet(edgeReport))
+        written = writeEdgeReport(scene, camera, renderer.aov(), parser.value(edgeReport));
+    if (!written) {
+        printError(written.message());
         return kExitBadInput;
     }
     if (timedFrames > 0) {
@@ -327,8 +331,9 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                 renderer.renderer().restartProgressive();
             QElapsedTimer t;
             t.start();
-            if (!frame()) {
-                printError(QStringLiteral("%1: rendering failed: %2").arg(files[0], error));
+            if (const Status drawn = frame(); !drawn) {
+                printError(
+                    QStringLiteral("%1: rendering failed: %2").arg(files[0], drawn.message()));
                 return kExitBadInput;
             }
             renderer.finish();

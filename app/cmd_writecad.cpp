@@ -68,28 +68,28 @@ int runWriteCad(const QStringList& args) {
         return kExitBadInput;
     }
     QString error;
-    const auto write = reinterpret_cast<OcctExportFunction>(app::resolveModuleSymbol(
-        QString::fromLatin1(kOcctWriteModuleName), kOcctExportSymbol, &error));
-    if (!write) {
+    const Expected<QFunctionPointer> resolved =
+        app::resolveModuleSymbol(QString::fromLatin1(kOcctWriteModuleName), kOcctExportSymbol);
+    if (!resolved) {
         printError(QStringLiteral("%1: cannot write %2: %3")
-                       .arg(out, cadFormatName(cadFormatFromPath(out)), error));
+                       .arg(out, cadFormatName(cadFormatFromPath(out)), resolved.message()));
         return kExitBadInput;
     }
+    const auto write = reinterpret_cast<OcctExportFunction>(*resolved);
     const ImportProgress progress = progressToParent();
     QByteArray bytes;
     ExportReport report;
     const bool ok = write(&scene->scene, out, &options, &bytes, &report, &error, &progress);
     // The report goes back also when the export is refused (--require-closed lists the seams).
     // A failure to leave the results for the parent (a full disk) still names OUT.
-    why.clear();
-    const bool left =
-        saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.txt")), report.toText(),
-                            &why) &&
-        (!ok || saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.out")), bytes, &why));
+    Status left =
+        saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.txt")), report.toText());
+    if (left && ok)
+        left = saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.out")), bytes);
     if (ok && !left)
         error = QStringLiteral("%1: not written: the writer could not keep the file in the "
                                "temporary folder (%2)")
-                    .arg(out, why);
+                    .arg(out, left.message());
     if (!ok || !left) {
         printError(error);
         return kExitBadInput;

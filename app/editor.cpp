@@ -120,10 +120,10 @@ void quitOnceShown(MainWindow& window, const QString& report, bool loaded) {
                 .arg(source.isEmpty() ? QString() : QFileInfo(source).absoluteFilePath())
                 .arg(window.document()->scene().surfaces.size())
                 .arg(window.windowTitle());
-        QString error;
-        const bool written = saveBytesAtomically(report, text.toUtf8(), &error);
-        if (!written)
-            cli::printError(error);
+        const Status saved = saveBytesAtomically(report, text.toUtf8());
+        if (!saved)
+            cli::printError(saved.message());
+        const bool written = bool(saved);
         // Queued: the first frame can be drawn before QApplication::exec() runs, and exit()
         // does nothing while no event loop does.
         QTimer::singleShot(0, qApp, [written] {
@@ -156,9 +156,8 @@ int screenshot(MainWindow& window, const QString& out, bool refit) {
         const QPoint at = window.viewport()->mapTo(&window, QPoint(0, 0));
         p.drawImage(QRect(at, window.viewport()->size()), window.viewport()->grabFramebuffer());
     }
-    QString error;
-    if (!saveImageAtomically(image, out, &error)) {
-        cli::printError(error);
+    if (const Status saved = saveImageAtomically(image, out); !saved) {
+        cli::printError(saved.message());
         return 1;
     }
     return 0;
@@ -239,9 +238,8 @@ int runEditor(int argc, char** argv) {
     }
     if (!file.isEmpty() && !import) {
         // Fail before any window (or Qt platform) appears, with the loader's one-line message.
-        QString error;
-        if (!readKnotFile(file, &error)) {
-            cli::printError(error);
+        if (const Expected<Scene> scene = readKnotFile(file); !scene) {
+            cli::printError(scene.message());
             return cli::kExitBadInput;
         }
     }

@@ -25,12 +25,12 @@ void ModelLoader::start(const QString& path, double aspect) {
     });
 }
 
-std::optional<LoadedModel> ModelLoader::wait(QString& error) {
+Expected<LoadedModel> ModelLoader::wait() {
     if (m_thread.joinable())
         m_thread.join();
     if (!m_result)
-        error = m_error;
-    return std::move(m_result);
+        return Error(m_error);
+    return std::move(*m_result);
 }
 
 } // namespace kw::cli

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
+#include "model/error.h"
 
 #include <QString>
 #include <atomic>
@@ -32,8 +33,8 @@ public:
     /// model without an authored camera, fits one (fitCamera) at `aspect` there too. Needs the
     /// Q*Application to exist (the CAD reader is found next to the executable).
     void start(const QString& path, double aspect);
-    /// Waits for the read. nullopt with `error` naming the file when it failed.
-    std::optional<LoadedModel> wait(QString& error);
+    /// Waits for the read; the error names the file when it failed.
+    Expected<LoadedModel> wait();
 
 private:
     std::thread m_thread;

@@ -5,14 +5,14 @@
 
 namespace kw::app {
 
-QFunctionPointer resolveModuleSymbol(const QString& name, const char* symbol, QString* error) {
+Expected<QFunctionPointer> resolveModuleSymbol(const QString& name, const char* symbol) {
     const QString file = modulePath(QStringLiteral("lib%1.so").arg(name));
     // Never unloaded: OCCT registers handlers and singletons that must outlive the call.
     auto* library = new QLibrary(file);
     library->setLoadHints(QLibrary::ResolveAllSymbolsHint);
     const QFunctionPointer f = library->resolve(symbol);
-    if (!f && error)
-        *error = QStringLiteral("cannot load %1: %2").arg(file, library->errorString());
+    if (!f)
+        return Error(QStringLiteral("cannot load %1: %2").arg(file, library->errorString()), file);
     return f;
 }
 

@@ -13,16 +13,19 @@
 
 namespace kw::cli {
 
-bool writeReferenceRender(const Scene& scene, const Camera& camera, QSize size, int lightCount,
-                          const QString& outPath, const QString& aovPath, QString* error) {
+Status writeReferenceRender(const Scene& scene, const Camera& camera, QSize size, int lightCount,
+                            const QString& outPath, const QString& aovPath) {
     ReferenceOptions options;
     options.lightCount = lightCount;
     ReferenceStats stats;
     const AovBuffer aov =
         renderReference(scene, camera, size.width(), size.height(), options, &stats);
-    if (!writeColorImage(shadeReference(scene, camera, aov, options), outPath, error) ||
-        (!aovPath.isEmpty() && !writeAovImage(aov, aovPath, error)))
-        return false;
+    if (Status written = writeColorImage(shadeReference(scene, camera, aov, options), outPath);
+        !written)
+        return written;
+    if (!aovPath.isEmpty())
+        if (Status written = writeAovImage(aov, aovPath); !written)
+            return written;
     printOut(QStringLiteral("reference: %1 triangles, %2 covered pixels, %3 Newton failures, "
                             "%4 spans over the cell limit, %5 ms\n")
                  .arg(stats.triangles)
@@ -30,11 +33,11 @@ bool writeReferenceRender(const Scene& scene, const Camera& camera, QSize size, 
                  .arg(stats.newtonFailures)
                  .arg(stats.unmetSpans)
                  .arg(stats.milliseconds, 0, 'f', 0));
-    return true;
+    return ok();
 }
 
-bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& gpu,
-                     const QString& jsonPath, QString* error) {
+Status writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& gpu,
+                       const QString& jsonPath) {
     const AovBuffer reference = renderReference(scene, camera, gpu.width, gpu.height);
     glm::dvec3 lo(0.0), hi(0.0);
     sceneBounds(scene, lo, hi);
@@ -42,9 +45,10 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
     const double pixelAngle =
         2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
         double(gpu.height);
-    if (!compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle,
-                              &camera.eye))
-        return false;
+    if (Status compared = compareWithReference(gpu, reference, 1e-4 * glm::length(hi - lo), m,
+                                               pixelAngle, &camera.eye);
+        !compared)
+        return compared;
     const QByteArray json = edgeMetricsJson(m).toUtf8();
     if (jsonPath == QLatin1String("-")) {
         printOut(QString::fromUtf8(json));
@@ -54,10 +58,11 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
         // Flush explicitly: Qt 6.4's QSaveFile::commit() ignores a failed final flush.
         if (!file.open(QIODevice::WriteOnly) || file.write(json) != json.size() || !file.flush() ||
             !file.commit()) {
-            *error = QStringLiteral("%1: cannot write the edge report: %2")
-                         .arg(jsonPath, file.errorString());
+            const QString reason = file.errorString();
             file.cancelWriting();
-            return false;
+            return Error(
+                QStringLiteral("%1: cannot write the edge report: %2").arg(jsonPath, reason),
+                jsonPath);
         }
     }
     printOut(QStringLiteral(
@@ -73,7 +78,7 @@ bool writeEdgeReport(const Scene& scene, const Camera& camera, const AovBuffer& 
                  .arg(m.normalP99Degrees, 0, 'g', 3)
                  .arg(m.normalMaxDegrees, 0, 'g', 3)
                  .arg(m.idCoincident));
-    return true;
+    return ok();
 }
 
 } // namespace kw::cli

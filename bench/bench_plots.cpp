@@ -14,6 +14,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 const QColor kColors[] = {QColor(31, 119, 180),  QColor(214, 39, 40),   QColor(44, 160, 44),
                           QColor(255, 127, 14),  QColor(148, 103, 189), QColor(140, 86, 75),
                           QColor(227, 119, 194), QColor(127, 127, 127)};
@@ -139,7 +146,7 @@ QImage stacked(const QImage& top, const QImage& bottom) {
 bool save(const QImage& img, const QString& dir, const QString& name, QStringList& written,
           QString* error) {
     const QString path = QDir(dir).filePath(name);
-    if (!saveImageAtomically(img, path, error))
+    if (!kept(saveImageAtomically(img, path), error))
         return false;
     written << path;
     return true;

@@ -21,6 +21,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 using Frame = std::function<bool(QString*)>;
 
 /// A loaded model: its document (for the renderer) and camera at one aspect.
@@ -38,8 +45,8 @@ bool loadModel(const QString& file, double aspect, Model& m, QString* error) {
         return false;
     cli::printImportRemarks(file, read->report);
     const std::optional<Scene> scene = std::move(read->scene);
-    if (!m.doc.resetScene(*scene, error)) {
-        *error = QStringLiteral("%1: %2").arg(file, *error);
+    if (const Status reset = m.doc.resetScene(*scene); !reset) {
+        *error = QStringLiteral("%1: %2").arg(file, reset.message());
         return false;
     }
     if (m.doc.scene().surfaces.empty()) {
@@ -61,9 +68,9 @@ public:
     Session() = default;
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
-    bool create(QString* error) { return renderer.create(error); }
+    bool create(QString* error) { return kept(renderer.create(), error); }
     bool setSize(QSize size, bool withAov, QString* error) {
-        return renderer.setSize(size, withAov, error);
+        return kept(renderer.setSize(size, withAov), error);
     }
     FrameCamera frameCamera(const Model& m) const {
         const QSize size = renderer.size();
@@ -84,14 +91,14 @@ public:
         o.trimMode = trimMode;
         o.samples = aaSamples;
         o.antialiasing = aaMethod;
-        return renderer.render(m.doc, m.camera, o, error);
+        return kept(renderer.render(m.doc, m.camera, o), error);
     }
     /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
     /// (cleared as the renderer clears, the baseline's Gouraud shading).
     bool drawMesh(int slot, const Model& m, int lights, QString* error) {
         RenderOptions o;
         o.lightCount = lights;
-        return renderer.renderMesh(m.doc, slot, m.camera, o, error);
+        return kept(renderer.renderMesh(m.doc, slot, m.camera, o), error);
     }
     /// One GLU frame: tessellate with the current camera, upload, draw.
     bool drawGlu(const Model& m, double tolerance, int lights, long long* vertices,

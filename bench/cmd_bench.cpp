@@ -77,9 +77,9 @@ bool parseShadingName(const QString& text, RenderOptions::Shading& shading) {
 }
 
 bool writeFile(const QString& path, const QByteArray& bytes) {
-    QString error;
-    if (!saveBytesAtomically(path, bytes, &error)) { // the old report stays on failure
-        printError(error);
+    // The old report stays on failure.
+    if (const Status saved = saveBytesAtomically(path, bytes); !saved) {
+        printError(saved.message());
         return false;
     }
     return true;

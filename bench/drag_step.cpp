@@ -28,6 +28,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 /// tileScene(unit, copies) with unit's shared edges copied into every copy: a tiled part is
 /// then what an imported assembly of that many faces is, edges from its record (tileScene
 /// numbers each copy's surfaces and their loops in unit's order, so the k-th copy of unit's
@@ -173,7 +180,7 @@ bool ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed, QString* e
         bandVertices = (long long)o.edgeBands->vertices.size();
     }
     const double t2 = threadCpuMs();
-    if (!renderer.render(doc, camera, o, error))
+    if (!kept(renderer.render(doc, camera, o), error))
         return false;
     renderer.finish();
     if (timed) {
@@ -196,8 +203,8 @@ bool ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStep
     else if (!scene.camera.authored)
         scene.camera = fitCamera(scene, 1.0);
     camera = scene.camera;
-    if (!doc.resetScene(std::move(scene), error)) {
-        *error = QStringLiteral("%1: %2").arg(name, *error);
+    if (const Status reset = doc.resetScene(std::move(scene)); !reset) {
+        *error = QStringLiteral("%1: %2").arg(name, reset.message());
         return false;
     }
     row.model = faces > 0 ? QStringLiteral("%1 tiled x %2").arg(name).arg(copies) : name;
@@ -291,10 +298,10 @@ bool runDragStep(const DragStepConfig& config, DragStepReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     OffscreenRenderer renderer;
-    if (!renderer.create(error))
+    if (!kept(renderer.create(), error))
         return false;
     report.gl = renderer.renderer().glDescription();
-    if (!renderer.setSize(QSize(config.side, config.side), false, error))
+    if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
         return false;
     for (const QString& file : config.files) {
         std::optional<ImportResult> read = openModelFile(file, *error);

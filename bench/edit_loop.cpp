@@ -19,6 +19,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 // Free-form: a polynomial (all weights equal) surface curved in some direction. Rational
 // surfaces are the conics and quadrics of imported analytic faces, degree 1 x 1 the planes.
 bool isFreeForm(const NurbsSurface& g) {
@@ -108,7 +115,7 @@ public:
 private:
     RenderOptions frameOptions(int samples) const;
     bool knotworkFrame(int samples, QString* error) {
-        return renderer.render(doc, camera, frameOptions(samples), error);
+        return kept(renderer.render(doc, camera, frameOptions(samples)), error);
     }
 
     const EditLoopConfig& config;
@@ -156,7 +163,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         row.peerNormalP99 = choice.quality.normalP99;
         row.peerSilhouetteMax = choice.quality.silhouetteMax;
     }
-    if (!renderer.setSize(QSize(config.side, config.side), false, error))
+    if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
         return false;
 
     const Drag drag = chooseDrag(doc.scene());
@@ -219,7 +226,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
         const double handoverCpu = processCpuMs() - handoverCpu0;
         if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0 ||
-            !renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions, error))
+            !kept(renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions), error))
             return false;
         renderer.finish();
         if (timed) {
@@ -306,7 +313,7 @@ bool runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     OffscreenRenderer renderer;
-    if (!renderer.create(error))
+    if (!kept(renderer.create(), error))
         return false;
     report.gl = renderer.renderer().glDescription();
     FaceMesher mesher;

@@ -18,6 +18,17 @@
 
 namespace kw::bench {
 
+namespace {
+
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
+} // namespace
+
 double processCpuMs() {
     timespec t{};
     ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -84,8 +95,8 @@ bool PeerModel::load(const QString& file, QString* error) {
     if (!read)
         return false;
     cli::printImportRemarks(file, read->report);
-    if (!doc.resetScene(read->scene, error)) {
-        *error = QStringLiteral("%1: %2").arg(file, *error);
+    if (const Status reset = doc.resetScene(read->scene); !reset) {
+        *error = QStringLiteral("%1: %2").arg(file, reset.message());
         return false;
     }
     const Scene& scene = doc.scene();
@@ -114,8 +125,8 @@ bool PeerModel::load(const QString& file, QString* error) {
 
 bool PeerModel::measureKnotwork(int sidePx, const RenderOptions& options, QString* error) {
     reference = renderReference(doc.scene(), camera, sidePx, sidePx);
-    return renderer.setSize(QSize(sidePx, sidePx), true, error) &&
-           renderer.render(doc, camera, options, error) && compare(knotwork, error);
+    return kept(renderer.setSize(QSize(sidePx, sidePx), true), error) &&
+           kept(renderer.render(doc, camera, options), error) && compare(knotwork, error);
 }
 
 bool PeerModel::compare(ScreenQuality& q, QString* error) {
@@ -126,8 +137,9 @@ bool PeerModel::compare(ScreenQuality& q, QString* error) {
         2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
         double(aov.height);
     EdgeMetrics m;
-    if (!compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, error, pixelAngle,
-                              &camera.eye))
+    if (!kept(compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, pixelAngle,
+                                   &camera.eye),
+              error))
         return false;
     q.normalP99 = m.normalP99Degrees;
     q.silhouetteMax = m.silhouetteMaxPixels;
@@ -165,7 +177,7 @@ bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, Q
         }
         TriangleMesh mesh;
         if (!make(linearStep(l) * side, angularStep(a), mesh, t.triangles, error) ||
-            renderer.setMesh(0, mesh) < 0 || !renderer.renderMesh(doc, 0, camera, o, error) ||
+            renderer.setMesh(0, mesh) < 0 || !kept(renderer.renderMesh(doc, 0, camera, o), error) ||
             !compare(t.q, error))
             return false;
         tried[{l, a}] = t;

@@ -23,6 +23,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 /// The part as a Scene, read as `knotwork render` reads it (kw::openModelFile: a .knot as saved,
 /// IGES, STEP and BREP in the CAD reader's child process, OBJ), its import remarks on stderr.
 std::optional<Scene> loadUnit(const QString& model, QString* error) {
@@ -48,7 +55,7 @@ struct Frames {
     /// One render call. A frame that was drawn with a warning (FrameReport: ok false, draws
     /// issued) counts as drawn and keeps its message in `warning`.
     bool render(const Document& doc, const Camera& camera, QString* error) {
-        if (renderer.render(doc, camera, options, error))
+        if (kept(renderer.render(doc, camera, options), error))
             return true;
         if (renderer.lastReport().drawCalls == 0)
             return false;
@@ -150,8 +157,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     report.config = config;
 
     OffscreenRenderer renderer;
-    if (!renderer.create(error) ||
-        !renderer.setSize(QSize(config.side, config.frameHeight()), false, error))
+    if (!kept(renderer.create(), error) ||
+        !kept(renderer.setSize(QSize(config.side, config.frameHeight()), false), error))
         return false;
     Frames frames{renderer, config, config.base, QString()};
     frames.options.trims = config.trims;
@@ -164,16 +171,23 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         ScaleRow row;
         row.copies = copiesForFaces(report.unitFaces, faces);
         const QString file = tmp.filePath(QStringLiteral("tiled-%1.knot").arg(row.copies));
-        if (!writeKnotFile(file, tileScene(*unit, row.copies), error))
+        if (const Status written = writeKnotFile(file, tileScene(*unit, row.copies)); !written) {
+            if (error)
+                *error = written.message();
             return false;
+        }
         Document doc;
         frames.warning.clear();
         {
             QElapsedTimer load;
             load.start();
-            std::optional<Scene> scene = readKnotFile(file, error);
-            if (!scene || !doc.resetScene(std::move(*scene), error))
+            Expected<Scene> scene = readKnotFile(file);
+            const Status reset = scene ? doc.resetScene(std::move(*scene)) : Status(scene.error());
+            if (!reset) {
+                if (error)
+                    *error = reset.message();
                 return false;
+            }
             row.loadSeconds = double(load.nsecsElapsed()) * 1e-9;
         }
         QFile::remove(file);

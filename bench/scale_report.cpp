@@ -14,6 +14,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 /// How the polygons were cut, for the report: "uniform partitions, each surface's own", ...
 QString partitioningLabel(const ScaleConfig& c) {
     const bool adaptive = c.partitioning == RenderOptions::Partitioning::Adaptive;
@@ -191,7 +198,7 @@ bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& 
         return false;
     }
     const QString path = QDir(dir).filePath(QStringLiteral("scale.png"));
-    if (!saveImageAtomically(img, path, error))
+    if (!kept(saveImageAtomically(img, path), error))
         return false;
     written << path;
     return true;

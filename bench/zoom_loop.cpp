@@ -17,6 +17,13 @@ namespace kw::bench {
 
 namespace {
 
+/// A step's Status in the bench's QString* reporting: false with *error set on failure.
+bool kept(const Status& step, QString* error) {
+    if (!step && error)
+        *error = step.message();
+    return bool(step);
+}
+
 constexpr double kMiB = 1024.0 * 1024.0;
 
 /// Where the close-up looks: a point of the fitted view's outline where the surface turns
@@ -212,7 +219,7 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
             o.lightCount = config.lights;
             ScreenQuality q;
             if (renderer.setMesh(0, fittedMesh) < 0 ||
-                !renderer.renderMesh(peer.doc, 0, near, o, error) || !peer.compare(q, error))
+                !kept(renderer.renderMesh(peer.doc, 0, near, o), error) || !peer.compare(q, error))
                 return false;
             row.fittedMeshNormalP99 = q.normalP99;
             row.fittedMeshSilhouetteMax = q.silhouetteMax;
@@ -252,7 +259,7 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
         row.peerAngular = choice.angular;
         row.peerNormalP99 = choice.quality.normalP99;
         row.peerSilhouetteMax = choice.quality.silhouetteMax;
-        if (!renderer.setSize(QSize(config.side, config.side), false, error))
+        if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
             return false;
 
         // Timed transitions, alternated: from the fitted view (drawn, untimed) to the close-up.
@@ -268,13 +275,13 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
         }
         for (int k = 0; k <= config.repeats; ++k) {
             const bool timed = k > 0; // the first round warms shaders and the child up
-            if (!renderer.render(peer.doc, fitted, options, error))
+            if (!kept(renderer.render(peer.doc, fitted, options), error))
                 return false;
             renderer.finish();
             QElapsedTimer wall;
             double cpu0 = processCpuMs();
             wall.start();
-            if (!renderer.render(peer.doc, near, options, error))
+            if (!kept(renderer.render(peer.doc, near, options), error))
                 return false;
             renderer.finish();
             if (timed) {
@@ -282,14 +289,14 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
                 kwCpu.push_back(processCpuMs() - cpu0);
             }
 
-            if (!renderer.renderMesh(peer.doc, 0, fitted, meshOptions, error))
+            if (!kept(renderer.renderMesh(peer.doc, 0, fitted, meshOptions), error))
                 return false;
             renderer.finish();
             cpu0 = processCpuMs();
             wall.restart();
             if (row.fittedMeshGood) {
                 // The fitted view's mesh still meets the bar: the peer only draws it.
-                if (!renderer.renderMesh(peer.doc, 0, near, meshOptions, error))
+                if (!kept(renderer.renderMesh(peer.doc, 0, near, meshOptions), error))
                     return false;
                 renderer.finish();
                 if (timed) {
@@ -312,7 +319,8 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
             const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
             const double handoverCpu = processCpuMs() - handoverCpu0;
             const std::int64_t sent = renderer.setMesh(2, faces);
-            if (sent < 0 || !renderer.renderMeshes(peer.doc, {1, 2}, near, meshOptions, error))
+            if (sent < 0 ||
+                !kept(renderer.renderMeshes(peer.doc, {1, 2}, near, meshOptions), error))
                 return false;
             renderer.finish();
             if (timed) {
@@ -359,7 +367,7 @@ bool runZoomLoop(const ZoomLoopConfig& config, ZoomLoopReport& report,
     report.cpu = cpuModel();
     report.threads = QThread::idealThreadCount();
     OffscreenRenderer renderer;
-    if (!renderer.create(error))
+    if (!kept(renderer.create(), error))
         return false;
     report.gl = renderer.renderer().glDescription();
     FaceMesher mesher;

@@ -54,42 +54,39 @@ std::vector<glm::vec2> accumulationOffsets(int samples) {
     return offsets;
 }
 
-bool AccumulateTarget::ensure(QSize size, QString* error) {
+Status AccumulateTarget::ensure(QSize size) {
     if (m_sumFbo && size == m_size)
-        return true;
+        return ok();
     release();
     // One sample's frame is the aliased frame's own float-depth framebuffer.
-    if (!m_sample.ensure(size, error))
-        return false;
+    if (Status sample = m_sample.ensure(size); !sample)
+        return sample;
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_sum);
     gl->glTextureStorage2D(m_sum, 1, GL_RGBA32F, size.width(), size.height());
     gl->glCreateFramebuffers(1, &m_sumFbo);
     gl->glNamedFramebufferTexture(m_sumFbo, GL_COLOR_ATTACHMENT0, m_sum, 0);
     if (gl->glCheckNamedFramebufferStatus(m_sumFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        *error = QStringLiteral("the accumulated anti-aliasing sum (%1x%2) is incomplete")
-                     .arg(size.width())
-                     .arg(size.height());
         release();
-        return false;
+        return Error(QStringLiteral("the accumulated anti-aliasing sum (%1x%2) is incomplete")
+                         .arg(size.width())
+                         .arg(size.height()));
     }
     gl->glCreateVertexArrays(1, &m_vao);
     m_size = size;
-    return true;
+    return ok();
 }
 
-QOpenGLShaderProgram* AccumulateTarget::program(const QString& fragment, QString* error) {
-    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("aa_composite.vert"), fragment);
-    if (!prog)
-        *error = m_shaders->lastError();
-    return prog;
+Expected<QOpenGLShaderProgram*> AccumulateTarget::program(const QString& fragment) {
+    return m_shaders->program(QStringLiteral("aa_composite.vert"), fragment);
 }
 
-bool AccumulateTarget::add(bool first, QString* error) {
+Status AccumulateTarget::add(bool first) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_add.frag"), error);
-    if (!prog)
-        return false;
+    const Expected<QOpenGLShaderProgram*> built = program(QStringLiteral("accumulate_add.frag"));
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     gl->glBindFramebuffer(GL_FRAMEBUFFER, m_sumFbo);
     gl->glViewport(0, 0, m_size.width(), m_size.height());
     gl->glDisable(GL_DEPTH_TEST);
@@ -110,27 +107,29 @@ bool AccumulateTarget::add(bool first, QString* error) {
     gl->glEnable(GL_DEPTH_TEST);
     m_added = first ? 1 : m_added + 1;
     m_firstOnly = false;
-    return true;
+    return ok();
 }
 
-bool AccumulateTarget::resolveFirst(std::uint32_t framebuffer, QString* error) {
+Status AccumulateTarget::resolveFirst(std::uint32_t framebuffer) {
     m_added = 1;
     m_firstOnly = true;
-    return resolve(framebuffer, error);
+    return resolve(framebuffer);
 }
 
-bool AccumulateTarget::keepFirst(QString* error) {
+Status AccumulateTarget::keepFirst() {
     if (!m_firstOnly)
-        return true;
+        return ok();
     m_firstOnly = false;
-    return add(true, error);
+    return add(true);
 }
 
-bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
+Status AccumulateTarget::resolve(std::uint32_t framebuffer) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = program(QStringLiteral("accumulate_resolve.frag"), error);
-    if (!prog)
-        return false;
+    const Expected<QOpenGLShaderProgram*> built =
+        program(QStringLiteral("accumulate_resolve.frag"));
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     beginResolve(gl, framebuffer, m_size);
     prog->bind();
     gl->glUniform1f(prog->uniformLocation("uScale"), 1.0f / float(std::max(m_added, 1)));
@@ -143,7 +142,7 @@ bool AccumulateTarget::resolve(std::uint32_t framebuffer, QString* error) {
     gl->glBindTextureUnit(kAccumulateSampleUnit, 0);
     gl->glBindTextureUnit(kAccumulateDepthUnit, 0);
     gl->glDepthFunc(kDepthNearer);
-    return true;
+    return ok();
 }
 
 std::int64_t AccumulateTarget::residentBytes() const {

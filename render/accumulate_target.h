@@ -34,24 +34,24 @@ public:
         m_shaders = shaders;
         m_sample.initialize(gl);
     }
-    /// (Re)allocates for `size` when it changed. False with *error set when the framebuffers
+    /// (Re)allocates for `size` when it changed. An error when the framebuffers
     /// cannot be made.
-    bool ensure(QSize size, QString* error);
+    Status ensure(QSize size);
     /// The framebuffer one sample is drawn into (RGBA8 colour, 32-bit float depth).
     GLuint sampleFramebuffer() const { return m_sample.framebuffer(); }
     /// Adds the sample just drawn into the sum (the first sample of a frame replaces it).
-    bool add(bool first, QString* error);
+    Status add(bool first);
     /// Writes the mean of the samples added since the first into `framebuffer` (colour, and the
     /// depth of the last sample for the overlays drawn afterwards) and leaves it bound; depth
     /// test on, writes on.
-    bool resolve(std::uint32_t framebuffer, QString* error);
+    Status resolve(std::uint32_t framebuffer);
     /// The first sample of a progressive image, just drawn, resolved straight from its own
     /// framebuffer (one full-screen pass where add() and resolve() take two, so a moving
     /// view's frames cost the aliased frame and one pass). It counts as added; the sum takes it
     /// in keepFirst(), which must come before the next sample is drawn over it.
-    bool resolveFirst(std::uint32_t framebuffer, QString* error);
+    Status resolveFirst(std::uint32_t framebuffer);
     /// Adds the sample resolveFirst() showed into the sum (nothing when there is none).
-    bool keepFirst(QString* error);
+    Status keepFirst();
     void release();
     /// Samples in the sum (0 before the first add and after release or a resize).
     int added() const { return m_added; }
@@ -59,7 +59,7 @@ public:
     std::int64_t residentBytes() const;
 
 private:
-    QOpenGLShaderProgram* program(const QString& fragment, QString* error);
+    Expected<QOpenGLShaderProgram*> program(const QString& fragment);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     ShaderLibrary* m_shaders = nullptr;

@@ -18,12 +18,11 @@ namespace {
 
 /// A Qt resource (":/...", which OpenImageIO cannot open) or the default PNG, through Qt's PNG
 /// reader: the default environment does not load OpenImageIO's libraries.
-bool loadQtImage(const QString& path, EnvironmentImage& out, QString* error) {
+Expected<EnvironmentImage> loadQtImage(const QString& path) {
     const QImage img = QImage(path).convertToFormat(QImage::Format_RGB888);
-    if (img.isNull()) {
-        *error = QStringLiteral("%1: cannot read the environment image").arg(path);
-        return false;
-    }
+    if (img.isNull())
+        return Error(QStringLiteral("%1: cannot read the environment image").arg(path), path);
+    EnvironmentImage out;
     out.width = img.width();
     out.height = img.height();
     out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
@@ -32,7 +31,7 @@ bool loadQtImage(const QString& path, EnvironmentImage& out, QString* error) {
         for (int k = 0; k < out.width * 3; ++k)
             out.rgb[size_t(y) * size_t(out.width) * 3 + size_t(k)] = float(line[k]) / 255.0f;
     }
-    return true;
+    return out;
 }
 
 } // namespace
@@ -42,16 +41,15 @@ QString defaultEnvironmentPath() {
     return data.isEmpty() ? QString() : data + QStringLiteral("/environment/studio.png");
 }
 
-bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error) {
-    out = {};
+Expected<EnvironmentImage> loadEnvironmentImage(const QString& path) {
     if (path.startsWith(QLatin1String(":/")))
-        return loadQtImage(path, out, error);
-    FloatImage img;
-    QString why;
-    if (!readImageFile(path, img, &why)) {
-        *error = QStringLiteral("cannot read the environment image %1").arg(why);
-        return false;
-    }
+        return loadQtImage(path);
+    const Expected<FloatImage> read = readImageFile(path);
+    if (!read)
+        return Error(QStringLiteral("cannot read the environment image %1").arg(read.message()),
+                     path);
+    const FloatImage& img = *read;
+    EnvironmentImage out;
     // RGB from 1 (grey), 2 (grey, alpha), 3 or 4 (RGBA) channels. HDR values above 1 are kept
     // (the reflection is as bright as the file says; the framebuffer clamps); NaN, infinite
     // and negative values, which a reflection cannot show, become 0.
@@ -66,29 +64,27 @@ bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* e
             out.rgb[p * 3 + size_t(c)] = std::isfinite(x) && x > 0.0f ? x : 0.0f;
         }
     }
-    return true;
+    return out;
 }
 
-bool EnvironmentMap::bind(const QString& requested, int unit, QString* error) {
+Status EnvironmentMap::bind(const QString& requested, int unit) {
     const bool standard = requested.isEmpty();
     const QString path = standard ? defaultEnvironmentPath() : requested;
-    if (path.isEmpty()) {
-        *error = QStringLiteral("no default environment image: share/knotwork/environment/"
-                                "studio.png is not in the prefix of %1")
-                     .arg(executableDir());
-        return false;
-    }
+    if (path.isEmpty())
+        return Error(QStringLiteral("no default environment image: share/knotwork/environment/"
+                                    "studio.png is not in the prefix of %1")
+                         .arg(executableDir()));
     if (!m_texture || path != m_path) {
-        if (path == m_failedPath) { // do not retry a bad file every frame
-            *error = m_failedError;
-            return false;
-        }
-        EnvironmentImage img;
-        if (!(standard ? loadQtImage(path, img, error) : loadEnvironmentImage(path, img, error))) {
+        if (path == m_failedPath) // do not retry a bad file every frame
+            return m_failedError;
+        const Expected<EnvironmentImage> loaded =
+            standard ? loadQtImage(path) : loadEnvironmentImage(path);
+        if (!loaded) {
             m_failedPath = path;
-            m_failedError = *error;
-            return false;
+            m_failedError = loaded.error();
+            return loaded.error();
         }
+        const EnvironmentImage& img = *loaded;
         release();
         m_gl->glCreateTextures(GL_TEXTURE_2D, 1, &m_texture);
         m_gl->glTextureStorage2D(m_texture, 1, GL_RGB32F, img.width, img.height);
@@ -107,7 +103,7 @@ bool EnvironmentMap::bind(const QString& requested, int unit, QString* error) {
         ++m_loads;
     }
     m_gl->glBindTextureUnit(GLuint(unit), m_texture);
-    return true;
+    return ok();
 }
 
 void EnvironmentMap::release() {

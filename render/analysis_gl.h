@@ -1,6 +1,7 @@
 // GL side of the analysis modes: the environment map texture and the uniforms of analysis.glsl.
 #pragma once
 
+#include "model/error.h"
 #include "render/analysis.h"
 #include "render/render_types.h"
 
@@ -26,17 +27,17 @@ QString defaultEnvironmentPath();
 /// Reads `path`: a file through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF, ...: render/image_reader.h;
 /// float values above 1 are kept), or a Qt resource path ":/..." (the bundled default) through
 /// Qt's PNG reader. Grey images are expanded, alpha is dropped, non-finite or negative values
-/// become 0. Returns false with *error naming the file on failure (missing, unknown format,
-/// corrupt, too large, module not loadable).
-bool loadEnvironmentImage(const QString& path, EnvironmentImage& out, QString* error);
+/// become 0. Returns the error naming the file on failure (missing, unknown format, corrupt,
+/// too large, module not loadable).
+Expected<EnvironmentImage> loadEnvironmentImage(const QString& path);
 
 /// The environment map texture, (re)loaded when the requested path changes.
 class EnvironmentMap {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl) { m_gl = gl; }
     /// Binds the texture of `path` (empty: the bundled default) to `unit`. A file that cannot
-    /// be read returns false with *error set (the previous texture, if any, stays bound).
-    bool bind(const QString& path, int unit, QString* error);
+    /// be read returns its error (the previous texture, if any, stays bound).
+    Status bind(const QString& path, int unit);
     /// Frees the texture; the initialising context must be current.
     void release();
     /// Texture (re)loads so far, for tests: switching back and forth between modes must not
@@ -48,7 +49,7 @@ private:
     GLuint m_texture = 0;
     QString m_path; ///< what m_texture holds
     QString m_failedPath;
-    QString m_failedError;
+    Error m_failedError;
     int m_loads = 0;
 };
 

@@ -16,9 +16,9 @@ void beginResolve(QOpenGLFunctions_4_5_Core* gl, std::uint32_t framebuffer, QSiz
     gl->glDepthMask(GL_TRUE);
 }
 
-bool AntialiasTarget::ensure(QSize size, int samples, QString* error) {
+Status AntialiasTarget::ensure(QSize size, int samples) {
     if (m_fbo && size == m_size && samples == m_samples)
-        return true;
+        return ok();
     release();
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     auto texture = [&](GLenum format) {
@@ -35,17 +35,17 @@ bool AntialiasTarget::ensure(QSize size, int samples, QString* error) {
     gl->glNamedFramebufferTexture(m_fbo, kAccumulation, m_accumulation, 0);
     gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_ATTACHMENT, m_depth, 0);
     if (gl->glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        *error = QStringLiteral("the anti-aliased framebuffer (%1x%2, %3 samples) is incomplete")
-                     .arg(size.width())
-                     .arg(size.height())
-                     .arg(samples);
         release();
-        return false;
+        return Error(
+            QStringLiteral("the anti-aliased framebuffer (%1x%2, %3 samples) is incomplete")
+                .arg(size.width())
+                .arg(size.height())
+                .arg(samples));
     }
     gl->glCreateVertexArrays(1, &m_vao);
     m_size = size;
     m_samples = samples;
-    return true;
+    return ok();
 }
 
 void AntialiasTarget::begin(const float background[4]) {
@@ -66,14 +66,13 @@ void AntialiasTarget::drawToAccumulation(bool on) {
     m_gl->glNamedFramebufferDrawBuffers(m_fbo, 1, &buffer);
 }
 
-bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
+Status AntialiasTarget::composite(std::uint32_t framebuffer) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("aa_composite.vert"),
-                                                    QStringLiteral("aa_composite.frag"));
-    if (!prog) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+        QStringLiteral("aa_composite.vert"), QStringLiteral("aa_composite.frag"));
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     beginResolve(gl, framebuffer, m_size);
     prog->bind();
     gl->glBindTextureUnit(kCompositeColourUnit, m_colour);
@@ -85,7 +84,7 @@ bool AntialiasTarget::composite(std::uint32_t framebuffer, QString* error) {
     for (const int unit : {kCompositeColourUnit, kCompositeAccumUnit, kCompositeDepthUnit})
         gl->glBindTextureUnit(GLuint(unit), 0);
     gl->glDepthFunc(kDepthNearer);
-    return true;
+    return ok();
 }
 
 std::int64_t AntialiasTarget::residentBytes() const {

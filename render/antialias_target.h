@@ -33,8 +33,8 @@ public:
         m_shaders = shaders;
     }
     /// (Re)allocates for `size` and `samples` (2..the GPU's limit) when either changed. False
-    /// with *error set when the framebuffer cannot be made.
-    bool ensure(QSize size, int samples, QString* error);
+    /// with the error when the framebuffer cannot be made.
+    Status ensure(QSize size, int samples);
     /// Binds the framebuffer, viewport over it, and clears colour to `background`, the sum to 0
     /// and depth to 1. Draw buffers: the colour only.
     void begin(const float background[4]);
@@ -42,7 +42,7 @@ public:
     void drawToAccumulation(bool on);
     /// Resolves into `framebuffer` (colour and depth over `size`, its whole viewport) and leaves
     /// it bound; depth test on, writes on.
-    bool composite(std::uint32_t framebuffer, QString* error);
+    Status composite(std::uint32_t framebuffer);
     void release();
 
     GLuint framebuffer() const { return m_fbo; }

@@ -24,7 +24,7 @@ void EdgeBandsPass::release() {
     m_count = 0;
 }
 
-bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QString* error) {
+Status EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (!m_vao) {
         gl->glCreateVertexArrays(1, &m_vao);
@@ -83,7 +83,7 @@ bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QStr
         m_uploaded = true;
     }
     if (m_count == 0)
-        return true;
+        return ok();
     // Bands wholly off screen are left out (a close-up of a large model draws a few of many
     // thousands); the margin covers the band's pixels beside its line.
     const glm::mat4 viewProjection = drawnViewProjection(camera);
@@ -93,13 +93,12 @@ bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QStr
                                   ? visibleEdgeBands(bands, viewProjection, margin)
                                   : EdgeBandRuns{{0}, {m_count}};
     if (runs.first.empty())
-        return true;
-    QOpenGLShaderProgram* prog =
+        return ok();
+    const Expected<QOpenGLShaderProgram*> built =
         m_shaders->program(QStringLiteral("edge_bands.vert"), QStringLiteral("edge_bands.frag"));
-    if (!prog) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     prog->bind();
     gl->glUniformMatrix4fv(prog->uniformLocation("uViewProjection"), 1, GL_FALSE,
                            glm::value_ptr(viewProjection));
@@ -127,7 +126,7 @@ bool EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera, QStr
             drawAt(0, dy);
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 } // namespace kw

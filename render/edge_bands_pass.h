@@ -16,7 +16,7 @@ namespace kw {
 class EdgeBandsPass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
-    bool draw(const EdgeBands& bands, const FrameCamera& camera, QString* error);
+    Status draw(const EdgeBands& bands, const FrameCamera& camera);
     void release();
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     /// Vertices the last upload sent (all of them, or a drag step's re-made ranges).

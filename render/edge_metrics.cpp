@@ -80,20 +80,18 @@ long long crackPixels(const AovBuffer& frame) {
     return std::count(mark.begin(), mark.end(), 1);
 }
 
-bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error, double pixelAngle,
-                          const glm::dvec3* eye) {
+Status compareWithReference(const AovBuffer& frame, const AovBuffer& reference,
+                            double depthTolerance, EdgeMetrics& out, double pixelAngle,
+                            const glm::dvec3* eye) {
     out = EdgeMetrics{};
     if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
         frame.height <= 0) {
-        if (error)
-            *error = QStringLiteral("edge metrics need two AOV frames of one non-empty size, got "
+        return Error(QStringLiteral("edge metrics need two AOV frames of one non-empty size, got "
                                     "%1x%2 and %3x%4")
                          .arg(frame.width)
                          .arg(frame.height)
                          .arg(reference.width)
-                         .arg(reference.height);
-        return false;
+                         .arg(reference.height));
     }
     const int w = frame.width, h = frame.height;
     const size_t n = size_t(w) * size_t(h);
@@ -206,7 +204,7 @@ bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, do
         std::nth_element(angles.begin(), angles.begin() + std::ptrdiff_t(at), angles.end());
         out.normalP99Degrees = angles[at];
     }
-    return true;
+    return ok();
 }
 
 QString edgeMetricsJson(const EdgeMetrics& m) {

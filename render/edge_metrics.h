@@ -2,6 +2,7 @@
 // silhouette error, crack pixels, visible id / depth disagreement and screen normal error.
 #pragma once
 
+#include "model/error.h"
 #include "render/aov_buffer.h"
 
 #include <QString>
@@ -63,14 +64,14 @@ struct EdgeMetrics {
 };
 
 /// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,
-/// camera and size). depthTolerance in model units (>= 0). Returns false with *error naming the
-/// sizes when the two buffers differ in size or are empty.
+/// camera and size). depthTolerance in model units (>= 0). Returns the error naming the sizes
+/// when the two buffers differ in size or are empty.
 /// `pixelAngle` is the angle one pixel spans at the image centre (2 tan(fovY / 2) / height), for
 /// the band's depth jumps; 0 leaves surfaces' silhouettes over themselves out of the band.
 /// `eye` (model space) enables facingDisagreements.
-bool compareWithReference(const AovBuffer& frame, const AovBuffer& reference, double depthTolerance,
-                          EdgeMetrics& out, QString* error, double pixelAngle = 0.0,
-                          const glm::dvec3* eye = nullptr);
+Status compareWithReference(const AovBuffer& frame, const AovBuffer& reference,
+                            double depthTolerance, EdgeMetrics& out, double pixelAngle = 0.0,
+                            const glm::dvec3* eye = nullptr);
 
 /// Crack pixels of one frame alone (EdgeMetrics::crackPixels).
 long long crackPixels(const AovBuffer& frame);

@@ -117,10 +117,11 @@ void ExactSurfacePass::drawBatch(const ExactBatch& batch, bool otherSide) {
     }
 }
 
-bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
-                                    const std::map<int, ExactBatch>& trimmed, const GpuScene& scene,
-                                    const FrameCamera& camera, const std::vector<Light>& lights,
-                                    bool antialiased, bool atRay, bool deferred, QString* error) {
+Status ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
+                                      const std::map<int, ExactBatch>& trimmed,
+                                      const GpuScene& scene, const FrameCamera& camera,
+                                      const std::vector<Light>& lights, bool antialiased,
+                                      bool atRay, bool deferred) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // The pre-pass's programs test the trims of the frame's mode and, with the deferred pass,
     // write its input.
@@ -136,7 +137,7 @@ bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
         batches.push_back(&b);
     for (const auto& [k, b] : trimmed)
         batches.push_back(&b);
-    bool ok = true;
+    Status drawn;
     // Untrimmed surfaces keep the empty fragment shader (early depth); trimmed ones discard.
     for (const ExactBatch* b : batches) {
         if (b->commands.empty())
@@ -147,15 +148,15 @@ bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
             onRay ? ExactVariant{b->degreeU, b->degreeV, int(lights.size()), AnalysisMode::Phong,
                                  ExactFeature::RayNewton | ExactFeature::DepthOnly | trims | output}
                   : ExactVariant{0, 0, 1, AnalysisMode::Phong, trims | output};
-        QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("surface.vert"),
-                                                        onRay ? QStringLiteral("exact_surface.frag")
-                                                              : QStringLiteral("depth_only.frag"),
-                                                        v.defines());
-        if (!prog) {
-            *error = m_shaders->lastError();
-            ok = false;
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+            QStringLiteral("surface.vert"),
+            onRay ? QStringLiteral("exact_surface.frag") : QStringLiteral("depth_only.frag"),
+            v.defines());
+        if (!built) {
+            drawn = built.error();
             break;
         }
+        QOpenGLShaderProgram* prog = *built;
         prog->bind();
         if (onRay)
             setFrameUniforms(gl, prog, camera, lights);
@@ -178,15 +179,15 @@ bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
         if (deferred && b->trimmed)
             gl->glEnable(GL_STENCIL_TEST);
     }
-    if (ok && deferred && !trimmed.empty()) {
+    if (drawn && deferred && !trimmed.empty()) {
         // The trimmed batches' stencil: drawn again without the trim test, on the pixels
         // whose depth they left (GL_EQUAL before the shader: early).
-        QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("surface.vert"),
-                                                        QStringLiteral("depth_only.frag"), {});
-        if (!prog) {
-            *error = m_shaders->lastError();
-            ok = false;
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("depth_only.frag"), {});
+        if (!built) {
+            drawn = built.error();
         } else {
+            QOpenGLShaderProgram* prog = *built;
             prog->bind();
             gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
                                    glm::value_ptr(drawnViewProjection(camera)));
@@ -204,17 +205,18 @@ bool ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
         }
     }
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    return ok;
+    return drawn;
 }
 
-bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
-                            const std::vector<Light>& lights, const RenderOptions& options,
-                            const ValueRange& range, AntialiasTarget* aa, QString* error) {
+Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+                              const std::vector<Light>& lights, const RenderOptions& options,
+                              const ValueRange& range, AntialiasTarget* aa) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_multiDraw = options.multiDraw;
-    if (options.analysis.mode == AnalysisMode::Environment &&
-        !m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit, error))
-        return false;
+    if (options.analysis.mode == AnalysisMode::Environment)
+        if (Status bound = m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit);
+            !bound)
+            return bound;
     const bool prepass = options.shading == RenderOptions::Shading::DepthPrepass;
     const bool adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive;
     // The deferred exact pass: each pixel shaded once however small the cells (docs/
@@ -243,14 +245,14 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     affineSurfaces = m_plan.affineSurfaces();
     const std::map<int, ExactBatch>& variants = m_plan.variants();
     if (variants.empty())
-        return true; // nothing to draw
+        return ok(); // nothing to draw
 
     scene.bindSurfaceData();
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
     // Set for the pre-pass too: llvmpipe orders the vertices by it when it sets up a
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
-    bool ok = true;
+    Status drawn;
     // One stencil value per route, 1..255 (0: no surface); none when every surface has large
     // cells (a close-up): then the forward way alone, without the deferred pass's set-up.
     const bool defer = deferredWanted && !m_plan.routes().empty() && m_plan.routes().size() <= 255;
@@ -259,8 +261,8 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     if (defer)
         drawBuffers = attachPrepassTexture(targetSize);
     if (prepass) {
-        ok = depthPrepass(m_plan.plain(), m_plan.trimmedPrepass(), scene, camera, lights,
-                          aa != nullptr, aa == nullptr && adaptive, defer, error);
+        drawn = depthPrepass(m_plan.plain(), m_plan.trimmedPrepass(), scene, camera, lights,
+                             aa != nullptr, aa == nullptr && adaptive, defer);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -269,50 +271,48 @@ bool ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCamera
     }
     if (defer) {
         detachPrepassTexture(drawBuffers);
-        if (ok)
-            ok = deferredPass(scene, camera, lights, options, range, error);
+        if (drawn)
+            drawn = deferredPass(scene, camera, lights, options, range);
         gl->glDisable(GL_STENCIL_TEST);
         scene.bindSurfaceData();
         // The surfaces with large cells (no route) the forward way, on the pre-pass's depth.
-        if (ok)
-            ok = drawBatches(variants, TrimAa::Off, scene, camera, lights, options, range, error,
-                             true);
-    } else if (ok) {
-        ok = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
-                         options, range, error);
+        if (drawn)
+            drawn = drawBatches(variants, TrimAa::Off, scene, camera, lights, options, range, true);
+    } else if (drawn) {
+        drawn = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
+                            options, range);
     }
     finTriangles = 0;
-    if (ok && !m_plan.skirts().empty())
-        ok = skirtPass(scene, camera, lights, options, range, error);
-    if (ok && !m_plan.backFaces().empty())
-        ok = backFacePass(scene, camera, lights, options, range, error);
-    if (ok && aa && !m_plan.edges().empty())
-        ok = edgePass(scene, camera, lights, options, range, *aa, error);
+    if (drawn && !m_plan.skirts().empty())
+        drawn = skirtPass(scene, camera, lights, options, range);
+    if (drawn && !m_plan.backFaces().empty())
+        drawn = backFacePass(scene, camera, lights, options, range);
+    if (drawn && aa && !m_plan.edges().empty())
+        drawn = edgePass(scene, camera, lights, options, range, *aa);
     gl->glDisable(GL_CULL_FACE);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
-    return ok;
+    return drawn;
 }
 
-bool ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,
-                                   const GpuScene& scene, const FrameCamera& camera,
-                                   const std::vector<Light>& lights, const RenderOptions& options,
-                                   const ValueRange& range, QString* error, bool largeCellsOnly) {
+Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,
+                                     const GpuScene& scene, const FrameCamera& camera,
+                                     const std::vector<Light>& lights, const RenderOptions& options,
+                                     const ValueRange& range, bool largeCellsOnly) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     for (const auto& [key, b] : batches) {
         if (largeCellsOnly && !((key >> 13) & 1))
             continue;
-        QOpenGLShaderProgram* prog =
+        const Expected<QOpenGLShaderProgram*> built =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
                                variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
                                        b.gather, trimAa, false, b.affine)
                                    .defines());
-        if (!prog) {
-            *error = m_shaders->lastError();
-            return false;
-        }
+        if (!built)
+            return built.error();
+        QOpenGLShaderProgram* prog = *built;
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
@@ -321,12 +321,12 @@ bool ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, Tri
             scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
     }
-    return true;
+    return ok();
 }
 
-bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,
-                                    const std::vector<Light>& lights, const RenderOptions& options,
-                                    const ValueRange& range, QString* error) {
+Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,
+                                      const std::vector<Light>& lights,
+                                      const RenderOptions& options, const ValueRange& range) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // Last, tested nearer before the shader (KW_BACK_FILL) and writing no depth: the solid's
     // faces in front (and their skirts) reject nearly every fragment unshaded, so what is
@@ -336,19 +336,19 @@ bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& ca
     // trims themselves (no pre-pass covers these triangles); the polygon's depth is tested.
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_FALSE);
-    bool ok = true;
+    Status drawn;
     for (const auto& [key, b] : m_plan.backFaces()) {
         ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
                                  false, TrimAa::Off, false, b.affine);
         v.features.setFlag(ExactFeature::ExactDepth, false);
         v.features |= ExactFeature::BackFill;
-        QOpenGLShaderProgram* prog = m_shaders->program(
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
             QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), v.defines());
-        if (!prog) {
-            *error = m_shaders->lastError();
-            ok = false;
+        if (!built) {
+            drawn = built.error();
             break;
         }
+        QOpenGLShaderProgram* prog = *built;
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
@@ -358,7 +358,7 @@ bool ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& ca
         drawBatch(b, true);
     }
     gl->glDepthMask(GL_TRUE);
-    return ok;
+    return drawn;
 }
 
 glm::ivec2 ExactSurfacePass::deferredTargetSize() const {
@@ -454,9 +454,9 @@ ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
     return v;
 }
 
-bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& camera,
-                                    const std::vector<Light>& lights, const RenderOptions& options,
-                                    const ValueRange& range, QString* error) {
+Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& camera,
+                                      const std::vector<Light>& lights,
+                                      const RenderOptions& options, const ValueRange& range) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // Each pixel's colour once: no depth test (the pre-pass left the depth), the stencil test
     // before the shader keeps the route's pixels, and llvmpipe skips a block of pixels none of
@@ -473,7 +473,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
     // Every frame: the pool's buffer is renamed when it grows (as GpuScene's views).
     gl->glTextureBuffer(m_vertexPoolView, GL_RGBA32UI, scene.pools().vertices.buffer());
     gl->glBindTextureUnit(kVertexPoolUnit, m_vertexPoolView);
-    bool ok = true;
+    Status drawn;
     const GLboolean scissored = gl->glIsEnabled(GL_SCISSOR_TEST);
     GLint scissor[4] = {0, 0, 0, 0};
     gl->glGetIntegerv(GL_SCISSOR_BOX, scissor);
@@ -489,14 +489,14 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
             glm::ceil(origin + (glm::vec2(r.window.z, r.window.w) * 0.5f + 0.5f) * size) + 1.0f);
         if (hi.x <= lo.x || hi.y <= lo.y)
             continue;
-        QOpenGLShaderProgram* prog = m_shaders->program(
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
             QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
             deferredVariant(route, int(lights.size()), options).defines());
-        if (!prog) {
-            *error = m_shaders->lastError();
-            ok = false;
+        if (!built) {
+            drawn = built.error();
             break;
         }
+        QOpenGLShaderProgram* prog = *built;
         prog->bind();
         setFrameUniforms(gl, prog, camera, lights);
         setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
@@ -513,7 +513,7 @@ bool ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& ca
     gl->glBindTextureUnit(kVertexPoolUnit, 0);
     gl->glBindTextureUnit(kPrepassUnit, 0);
     gl->glEnable(GL_DEPTH_TEST);
-    return ok;
+    return drawn;
 }
 
 float ExactSurfacePass::skirtDepthScale(const FrameCamera& camera) {
@@ -523,9 +523,9 @@ float ExactSurfacePass::skirtDepthScale(const FrameCamera& camera) {
     return focal > 0.0f ? 1.0f / (1.0f + kSkirtDepthPixels / focal) : 1.0f;
 }
 
-bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camera,
-                                 const std::vector<Light>& lights, const RenderOptions& options,
-                                 const ValueRange& range, QString* error) {
+Status ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camera,
+                                   const std::vector<Light>& lights, const RenderOptions& options,
+                                   const ValueRange& range) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // Nearer than what is there, and written: of two skirts over one gap the nearer wins. The
     // strip's depth is its polygon's, pushed back a little (surface.vert), so a face's own
@@ -534,30 +534,29 @@ bool ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& camer
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(scene.skirtVao());
-    bool ok = true;
+    Status drawn;
     for (const auto& [key, b] : m_plan.skirts())
-        if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles, error)))
+        if (!(drawn = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles)))
             break;
-    if (ok && options.silhouetteFins)
-        ok = finPass(scene, camera, lights, options, range, error);
+    if (drawn && options.silhouetteFins)
+        drawn = finPass(scene, camera, lights, options, range);
     scene.bindSurfaceData(); // the triangles' vertex array again
-    return ok;
+    return drawn;
 }
 
-bool ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& scene,
-                                      const FrameCamera& camera, const std::vector<Light>& lights,
-                                      const RenderOptions& options, const ValueRange& range,
-                                      std::int64_t& triangles, QString* error) {
+Status ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& scene,
+                                        const FrameCamera& camera, const std::vector<Light>& lights,
+                                        const RenderOptions& options, const ValueRange& range,
+                                        std::int64_t& triangles) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog =
+    const Expected<QOpenGLShaderProgram*> built =
         m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
                            variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
                                    false, TrimAa::Off, true)
                                .defines());
-    if (!prog) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     prog->bind();
     setFrameUniforms(gl, prog, camera, lights);
     setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
@@ -571,7 +570,7 @@ bool ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& scene
     drawBatch(b);
     for (const IndirectCommand& c : b.commands)
         triangles += c.count / 3;
-    return true;
+    return ok();
 }
 
 void ExactSurfacePass::releaseFins() {
@@ -585,9 +584,9 @@ void ExactSurfacePass::releaseFins() {
     m_finLayout.clear();
 }
 
-bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
-                               const std::vector<Light>& lights, const RenderOptions& options,
-                               const ValueRange& range, QString* error) {
+Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
+                                 const std::vector<Light>& lights, const RenderOptions& options,
+                                 const ValueRange& range) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // 1. The fins of every skirted record drawn, rebuilt where the view or its polygon
     // changed (a still view costs one comparison per record).
@@ -667,7 +666,7 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
                             commands.empty() ? nullptr : commands.data());
     }
     if (m_finBatches.empty())
-        return true;
+        return ok();
     // 3. Drawn as the skirts are, in skirtPass's depth state (nearer, depth written, pushed
     // back: they fill only pixels nothing nearer covered), from the fins' own buffers.
     const GLuint vao = scene.finVao();
@@ -675,18 +674,18 @@ bool ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camera,
     gl->glVertexArrayElementBuffer(vao, m_finIndexBuffer);
     gl->glBindVertexArray(vao);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_finCommandBuffer);
-    bool ok = true;
+    Status drawn;
     for (const ExactBatch& b : m_finBatches)
-        if (!(ok = drawSkirtBatch(b, scene, camera, lights, options, range, finTriangles, error)))
+        if (!(drawn = drawSkirtBatch(b, scene, camera, lights, options, range, finTriangles)))
             break;
     skirtTriangles += finTriangles;
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_commands);
-    return ok; // skirtPass binds the triangles' vertex array again
+    return drawn; // skirtPass binds the triangles' vertex array again
 }
 
-bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,
-                                const std::vector<Light>& lights, const RenderOptions& options,
-                                const ValueRange& range, AntialiasTarget& aa, QString* error) {
+Status ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera,
+                                  const std::vector<Light>& lights, const RenderOptions& options,
+                                  const ValueRange& range, AntialiasTarget& aa) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // After every opaque fragment: a partly covered one is summed where it is nearer than
     // what was drawn (the strict nearer test: its own surface's wholly covered fragments fail), and
@@ -697,11 +696,11 @@ bool ExactSurfacePass::edgePass(const GpuScene& scene, const FrameCamera& camera
     gl->glEnable(GL_BLEND);
     gl->glBlendEquation(GL_FUNC_ADD);
     gl->glBlendFunc(GL_ONE, GL_ONE);
-    const bool ok =
-        drawBatches(m_plan.edges(), TrimAa::Edge, scene, camera, lights, options, range, error);
+    const Status drawn =
+        drawBatches(m_plan.edges(), TrimAa::Edge, scene, camera, lights, options, range);
     gl->glDisable(GL_BLEND);
     aa.drawToAccumulation(false);
-    return ok;
+    return drawn;
 }
 
 } // namespace kw

@@ -30,16 +30,15 @@ public:
     /// test on), as options.shading says. With `trims`, surfaces with an active mask lose their
     /// trimmed fragments: with the depth pre-pass, its KW_TRIM variant discards
     /// them and GL_EQUAL keeps the exact shader off them; with ExactDepth the exact shader's
-    /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns false
-    /// with *error set when a shader variant cannot be built.
-    /// `range` is the resolved colour range of a colour-map analysis mode (else unused).
-    /// With `aa` (the renderer's anti-aliased frame, bound), the trimmed surfaces' opaque
-    /// passes keep only fragments their trims cover wholly, and an edge pass after every
-    /// surface sums the partly covered ones into aa's accumulation (coverage from the exact
-    /// distance to the trim curve, shaders/trim_sample.glsl).
-    bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
-              const std::vector<Light>& lights, const RenderOptions& options,
-              const ValueRange& range, AntialiasTarget* aa, QString* error);
+    /// KW_TRIM variant discards. Untrimmed surfaces use variants without the lookup. Returns the
+    /// error when a shader variant cannot be built. `range` is the resolved colour range of a
+    /// colour-map analysis mode (else unused). With `aa` (the renderer's anti-aliased frame,
+    /// bound), the trimmed surfaces' opaque passes keep only fragments their trims cover wholly,
+    /// and an edge pass after every surface sums the partly covered ones into aa's accumulation
+    /// (coverage from the exact distance to the trim curve, shaders/trim_sample.glsl).
+    Status draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+                const std::vector<Light>& lights, const RenderOptions& options,
+                const ValueRange& range, AntialiasTarget* aa);
     /// Frees the environment map texture and the command buffer; the context must be current.
     void release() {
         m_environment.release();
@@ -130,19 +129,19 @@ private:
     /// depth_only.frag.
     /// With `deferred`, each batch also writes its route's stencil value and the deferred
     /// pass's input (KW_GBUFFER) into the bound draw buffer 0.
-    bool depthPrepass(const std::map<int, ExactBatch>& plain,
-                      const std::map<int, ExactBatch>& trimmed, const GpuScene& scene,
-                      const FrameCamera& camera, const std::vector<Light>& lights, bool antialiased,
-                      bool atRay, bool deferred, QString* error);
+    Status depthPrepass(const std::map<int, ExactBatch>& plain,
+                        const std::map<int, ExactBatch>& trimmed, const GpuScene& scene,
+                        const FrameCamera& camera, const std::vector<Light>& lights,
+                        bool antialiased, bool atRay, bool deferred);
     /// The draw framebuffer's size when the deferred pass can draw into it (a framebuffer
     /// object with a stencil attachment and a texture depth attachment; a colour attachment
     /// point free for the pre-pass's buffer), else (0, 0).
     glm::ivec2 deferredTargetSize() const;
     /// The deferred exact pass (after depthPrepass with `deferred`): per route, one triangle
     /// over the view whose stencil test keeps the pixels that route's pre-pass drew.
-    bool deferredPass(const GpuScene& scene, const FrameCamera& camera,
-                      const std::vector<Light>& lights, const RenderOptions& options,
-                      const ValueRange& range, QString* error);
+    Status deferredPass(const GpuScene& scene, const FrameCamera& camera,
+                        const std::vector<Light>& lights, const RenderOptions& options,
+                        const ValueRange& range);
     /// Before the deferred frame's pre-pass: the texture (re)made for `size`, attached at
     /// kPrepassAttachment of the draw framebuffer as its only draw buffer, the stencil cleared
     /// and its test on. Returns the framebuffer's draw buffers, for detachPrepassTexture.
@@ -152,39 +151,40 @@ private:
     void releaseDeferred();
     /// Draws each batch with its variant's program (trimAa for the trimmed ones); with
     /// `largeCellsOnly`, only those the deferred pass leaves to it (variant bit 13).
-    bool drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa, const GpuScene& scene,
-                     const FrameCamera& camera, const std::vector<Light>& lights,
-                     const RenderOptions& options, const ValueRange& range, QString* error,
-                     bool largeCellsOnly = false);
+    Status drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,
+                       const GpuScene& scene, const FrameCamera& camera,
+                       const std::vector<Light>& lights, const RenderOptions& options,
+                       const ValueRange& range, bool largeCellsOnly = false);
     /// The skirts of every drawn polygon (the plan's skirts(); RenderOptions::edgeSkirts), then
     /// their silhouette fins (finPass), after the opaque passes: they fill only pixels no surface
     /// covered nearer.
-    bool skirtPass(const GpuScene& scene, const FrameCamera& camera,
-                   const std::vector<Light>& lights, const RenderOptions& options,
-                   const ValueRange& range, QString* error);
+    Status skirtPass(const GpuScene& scene, const FrameCamera& camera,
+                     const std::vector<Light>& lights, const RenderOptions& options,
+                     const ValueRange& range);
     /// The silhouette fins of the skirted records, rebuilt for those whose view or polygon
     /// changed, drawn with the skirt programs (skirtPass calls it after the skirts).
-    bool finPass(const GpuScene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
-                 const RenderOptions& options, const ValueRange& range, QString* error);
+    Status finPass(const GpuScene& scene, const FrameCamera& camera,
+                   const std::vector<Light>& lights, const RenderOptions& options,
+                   const ValueRange& range);
     void releaseFins();
     /// Draws batch `b` (skirts or fins) with the skirt pass's program for its degrees and
-    /// trims, adding its triangles to `triangles`; false (and *error set) when the program
+    /// trims, adding its triangles to `triangles`; the error when the program
     /// cannot be built.
-    bool drawSkirtBatch(const ExactBatch& b, const GpuScene& scene, const FrameCamera& camera,
-                        const std::vector<Light>& lights, const RenderOptions& options,
-                        const ValueRange& range, std::int64_t& triangles, QString* error);
+    Status drawSkirtBatch(const ExactBatch& b, const GpuScene& scene, const FrameCamera& camera,
+                          const std::vector<Light>& lights, const RenderOptions& options,
+                          const ValueRange& range, std::int64_t& triangles);
     /// After the skirts, in aliased frames: the back faces of the closed solids whose back
     /// faces the opaque passes skipped (ExactPlanner::backCulled), drawn with the forward
     /// programs on the pixels that nothing nearer covered: the seams' sub-pixel gaps between
     /// two faces' exact trims, where the solid's inside shows, as it does to a ray, instead of
     /// the background (docs/RENDERING.md, "Back faces of closed solids").
-    bool backFacePass(const GpuScene& scene, const FrameCamera& camera,
-                      const std::vector<Light>& lights, const RenderOptions& options,
-                      const ValueRange& range, QString* error);
+    Status backFacePass(const GpuScene& scene, const FrameCamera& camera,
+                        const std::vector<Light>& lights, const RenderOptions& options,
+                        const ValueRange& range);
     /// The anti-aliased frame's edge pass over the plan's edges() (see draw).
-    bool edgePass(const GpuScene& scene, const FrameCamera& camera,
-                  const std::vector<Light>& lights, const RenderOptions& options,
-                  const ValueRange& range, AntialiasTarget& aa, QString* error);
+    Status edgePass(const GpuScene& scene, const FrameCamera& camera,
+                    const std::vector<Light>& lights, const RenderOptions& options,
+                    const ValueRange& range, AntialiasTarget& aa);
 
     /// RenderOptions::multiDraw of the frame being drawn (drawBatch).
     bool m_multiDraw = true;

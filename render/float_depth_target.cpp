@@ -25,9 +25,9 @@ bool FloatDepthTarget::hostNeedsIt(std::uint32_t framebuffer) const {
     return component != GL_FLOAT;
 }
 
-bool FloatDepthTarget::ensure(QSize size, QString* error) {
+Status FloatDepthTarget::ensure(QSize size) {
     if (m_fbo && size == m_size)
-        return true;
+        return ok();
     release();
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     auto texture = [&](GLenum format) {
@@ -42,14 +42,13 @@ bool FloatDepthTarget::ensure(QSize size, QString* error) {
     gl->glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT0, m_colour, 0);
     gl->glNamedFramebufferTexture(m_fbo, GL_DEPTH_STENCIL_ATTACHMENT, m_depth, 0);
     if (gl->glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        *error = QStringLiteral("the float-depth framebuffer (%1x%2) is incomplete")
-                     .arg(size.width())
-                     .arg(size.height());
         release();
-        return false;
+        return Error(QStringLiteral("the float-depth framebuffer (%1x%2) is incomplete")
+                         .arg(size.width())
+                         .arg(size.height()));
     }
     m_size = size;
-    return true;
+    return ok();
 }
 
 void FloatDepthTarget::copyColourTo(std::uint32_t framebuffer) {

@@ -9,6 +9,8 @@
 // resolves about 1e-7 of the distance at any distance (render/depth_convention.h).
 #pragma once
 
+#include "model/error.h"
+
 #include <QOpenGLFunctions_4_5_Core>
 #include <QSize>
 #include <QString>
@@ -23,9 +25,9 @@ public:
     /// (24-bit integer, as Qt's widget framebuffers) or missing: a frame into it is better drawn
     /// here and copied. State queries only.
     bool hostNeedsIt(std::uint32_t framebuffer) const;
-    /// (Re)allocates for `size` when it changed. False with *error set when the framebuffer
+    /// (Re)allocates for `size` when it changed. An error when the framebuffer
     /// cannot be made.
-    bool ensure(QSize size, QString* error);
+    Status ensure(QSize size);
     GLuint framebuffer() const { return m_fbo; }
     GLuint colourTexture() const { return m_colour; }
     GLuint depthTexture() const { return m_depth; }

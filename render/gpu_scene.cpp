@@ -207,8 +207,8 @@ bool GpuScene::maskStale(const SurfaceRecord& r, const FrameCamera& camera,
     return TrimMaskPass::maskResolution(*r.surface, camera, cap) != glm::ivec2(m.width, m.height);
 }
 
-bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
-                    FrameReport& report, QString* error) {
+Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
+                      FrameReport& report) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QElapsedTimer timer;
     timer.start();
@@ -379,23 +379,24 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
                                .arg(kMaxPartitions);
     }
 
-    bool ok = pass.tooLarge == 0;
-    if (!ok) {
+    // The frame is drawn without what failed; the first failure is the frame's error.
+    Status status;
+    if (pass.tooLarge != 0) {
         // One line with the totals, however many surfaces it is about.
         std::int64_t resident = 0;
         for (const GpuPool* p :
              {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
               &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
             resident += p->residentBytes();
-        *error = QStringLiteral("%1 of %2 surfaces do not fit the GPU's buffer limit of %3 bytes "
-                                "(%4 MiB of surface data resident; the first: %5) and are not "
-                                "drawn")
-                     .arg(m_tooLarge.size())
-                     .arg(scene.surfaces.size())
-                     .arg(pass.limit)
-                     .arg(double(resident) / double(1 << 20), 0, 'f', 1)
-                     .arg(pass.firstTooLarge);
-        report.warnings << *error;
+        status = Error(QStringLiteral("%1 of %2 surfaces do not fit the GPU's buffer limit of %3 "
+                                      "bytes (%4 MiB of surface data resident; the first: %5) and "
+                                      "are not drawn")
+                           .arg(m_tooLarge.size())
+                           .arg(scene.surfaces.size())
+                           .arg(pass.limit)
+                           .arg(double(resident) / double(1 << 20), 0, 'f', 1)
+                           .arg(pass.firstTooLarge));
+        report.warnings << status.message();
     }
     bool masksRan = false;
     if (options.trims) {
@@ -408,18 +409,13 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
         if (stale) {
             masksRan = true;
             ++m_layoutStamp;
-            QString maskError;
-            const bool masksOk = m_masks.sync(doc, m_order, camera, options, &maskError);
-            m_maskError = masksOk ? QString() : maskError;
+            m_maskError = m_masks.sync(doc, m_order, camera, options).message();
             m_maskWarnings = maskWarnings();
             report.masks += m_masks.frameStats();
             report.drawCalls += m_masks.drawCalls;
         }
-        if (!m_maskError.isEmpty()) {
-            if (ok)
-                *error = m_maskError;
-            ok = false;
-        }
+        if (!m_maskError.isEmpty() && status)
+            status = Error(m_maskError);
         report.warnings << m_maskWarnings;
         report.cpuMs.masks += double(timer.nsecsElapsed()) * 1e-6;
     }
@@ -434,7 +430,7 @@ bool GpuScene::sync(const Document& doc, const FrameCamera& camera, const Render
     timer.restart();
     syncTable(masksRan ? m_order : m_touched);
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
-    return ok;
+    return status;
 }
 
 void GpuScene::drop(Entry& e) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "model/document/document.h"
+#include "model/error.h"
 #include "render/adaptive_partitions.h"
 #include "render/exact_contract.h"
 #include "render/frame_report.h"
@@ -112,7 +113,7 @@ public:
     /// stale parts the frame needs: the exact data always (SurfaceGpu rules: a moved point is
     /// a sub-image upload), the tessellated mesh in tessellated mode, the control net when
     /// shown, the trim mask when trims are on. Adds to `report` its uploads, mask work and
-    /// warnings. Returns false with *error set when a surface is too large for a texture or
+    /// warnings. Returns the error when a surface is too large for a texture or
     /// the masks exceed the GPU's limits (the rest is synced regardless).
     ///
     /// Which surfaces it compares: every visible one after a structural change (insert,
@@ -121,8 +122,8 @@ public:
     /// document's signals reported changed since the last sync (SceneChanges), plus those
     /// that did not fit and are retried. FrameReport::recordsSynced counts them. Call
     /// prepare() first in the frame.
-    bool sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
-              FrameReport& report, QString* error);
+    Status sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
+                FrameReport& report);
     /// Starts a frame of `doc`: follows its signals (dropping everything when it is not the
     /// document of the last frame) and brings the scene's control bounds up to date from the
     /// surfaces that changed. The frame's camera planes come from bounds().

@@ -21,35 +21,28 @@ float* allocateInto(void* context, size_t count) {
 
 } // namespace
 
-bool readImageFile(const QString& path, FloatImage& out, QString* error) {
-    out = {};
-    if (!QFileInfo(path).isFile()) {
-        *error = QStringLiteral("%1: no such file").arg(path);
-        return false;
-    }
-    QString why;
-    const auto read = reinterpret_cast<KwImageReadFn>(oiioModuleSymbol(KW_IMAGE_READ_SYMBOL, &why));
-    if (!read) {
-        *error = QStringLiteral("%1: cannot read images: the OpenImageIO module did not load (%2)")
-                     .arg(path, why);
-        return false;
-    }
+Expected<FloatImage> readImageFile(const QString& path) {
+    if (!QFileInfo(path).isFile())
+        return Error(QStringLiteral("%1: no such file").arg(path), path);
+    const Expected<void*> symbol = oiioModuleSymbol(KW_IMAGE_READ_SYMBOL);
+    if (!symbol)
+        return Error(
+            QStringLiteral("%1: cannot read images: the OpenImageIO module did not load (%2)")
+                .arg(path, symbol.message()),
+            path);
+    const auto read = reinterpret_cast<KwImageReadFn>(*symbol);
     const QByteArray file = path.toLocal8Bit();
     FloatImage img;
     const KwImageRead request{file.constData(), allocateInto, &img.pixels,
                               &img.width,       &img.height,  &img.channels};
     char message[1024] = {0};
-    if (!read(&request, message, sizeof message)) {
-        *error = QStringLiteral("%1: %2").arg(path, QString::fromLocal8Bit(message));
-        return false;
-    }
+    if (!read(&request, message, sizeof message))
+        return Error(QStringLiteral("%1: %2").arg(path, QString::fromLocal8Bit(message)), path);
     if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
-        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels)) {
-        *error = QStringLiteral("%1: the image reader returned an inconsistent size").arg(path);
-        return false;
-    }
-    out = std::move(img);
-    return true;
+        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
+        return Error(QStringLiteral("%1: the image reader returned an inconsistent size").arg(path),
+                     path);
+    return img;
 }
 
 } // namespace kw

@@ -2,6 +2,8 @@
 // EXR, HDR, PNG, JPEG, TIFF and the other formats OpenImageIO reads.
 #pragma once
 
+#include "model/error.h"
+
 #include <QString>
 #include <vector>
 
@@ -20,9 +22,9 @@ struct FloatImage {
 /// an absurd allocation.
 inline constexpr size_t kMaxImageFloats = size_t(1) << 27;
 
-/// Reads the first subimage of `path`. Returns false with *error "<path>: <reason>" when the
-/// file is missing, the OpenImageIO module does not load, the format is unknown or the data
-/// is corrupt or too large; `out` is then empty.
-bool readImageFile(const QString& path, FloatImage& out, QString* error);
+/// Reads the first subimage of `path`. Returns the error "<path>: <reason>" when the file is
+/// missing, the OpenImageIO module does not load, the format is unknown or the data is corrupt
+/// or too large.
+Expected<FloatImage> readImageFile(const QString& path);
 
 } // namespace kw

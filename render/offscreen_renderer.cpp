@@ -58,31 +58,27 @@ bool OffscreenRenderer::makeCurrent() {
     return d->context && d->surface && d->context->makeCurrent(d->surface.get());
 }
 
-bool OffscreenRenderer::create(QString* error) {
+Status OffscreenRenderer::create() {
     d->context = std::make_unique<QOpenGLContext>();
     d->context->setFormat(requiredFormat());
     if (!d->context->create()) {
-        *error = QStringLiteral("could not create an OpenGL context (an OpenGL 4.5 core context "
-                                "needs an X server: run under xvfb-run with QT_QPA_PLATFORM=xcb)");
         d->context.reset();
-        return false;
+        return Error(QStringLiteral("could not create an OpenGL context (an OpenGL 4.5 core "
+                                    "context needs an X server: run under xvfb-run with "
+                                    "QT_QPA_PLATFORM=xcb)"));
     }
     d->surface = std::make_unique<QOffscreenSurface>();
     d->surface->setFormat(d->context->format());
     d->surface->create();
-    if (!makeCurrent()) {
-        *error = QStringLiteral("could not make the OpenGL context current");
-        return false;
-    }
+    if (!makeCurrent())
+        return Error(QStringLiteral("could not make the OpenGL context current"));
     d->debugLogger = startDebugLog(); // glDebugRequested() only
     // Renderer::initialize checks the version (render/gl_context.h).
-    if (!d->renderer.initialize()) {
-        *error = d->renderer.lastError() +
-                 QStringLiteral(" (run under xvfb-run with QT_QPA_PLATFORM=xcb on Mesa)");
-        return false;
-    }
+    if (const Status initialized = d->renderer.initialize(); !initialized)
+        return Error(initialized.message() +
+                     QStringLiteral(" (run under xvfb-run with QT_QPA_PLATFORM=xcb on Mesa)"));
     d->gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(d->context.get());
-    return true;
+    return ok();
 }
 
 void OffscreenRenderer::Impl::destroyFramebuffer() {
@@ -98,20 +94,16 @@ void OffscreenRenderer::Impl::destroyFramebuffer() {
     aov[0] = aov[1] = aov[2] = aov[3] = aov[4] = 0;
 }
 
-bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool withCurvature) {
+Status OffscreenRenderer::setSize(QSize size, bool withAov, bool withCurvature) {
     withCurvature = withCurvature && withAov;
-    if (size.width() < 1 || size.height() < 1 || size.width() > 16384 || size.height() > 16384) {
-        *error = QStringLiteral("image size %1x%2 is outside 1..16384")
-                     .arg(size.width())
-                     .arg(size.height());
-        return false;
-    }
-    if (!makeCurrent() || !d->gl) {
-        *error = QStringLiteral("the off-screen renderer has no OpenGL context");
-        return false;
-    }
+    if (size.width() < 1 || size.height() < 1 || size.width() > 16384 || size.height() > 16384)
+        return Error(QStringLiteral("image size %1x%2 is outside 1..16384")
+                         .arg(size.width())
+                         .arg(size.height()));
+    if (!makeCurrent() || !d->gl)
+        return Error(QStringLiteral("the off-screen renderer has no OpenGL context"));
     if (size == d->size && withAov == d->withAov && withCurvature == d->withCurvature && d->fbo)
-        return true;
+        return ok();
     d->destroyFramebuffer();
     QOpenGLFunctions_4_5_Core* gl = d->gl;
     auto texture = [&](GLenum format) {
@@ -135,54 +127,50 @@ bool OffscreenRenderer::setSize(QSize size, bool withAov, QString* error, bool w
     gl->glNamedFramebufferDrawBuffers(d->fbo, 1 + aovTargets, buffers);
     const GLenum status = gl->glCheckNamedFramebufferStatus(d->fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        *error = QStringLiteral("framebuffer incomplete (status 0x%1)").arg(status, 0, 16);
         d->destroyFramebuffer();
-        return false;
+        return Error(QStringLiteral("framebuffer incomplete (status 0x%1)").arg(status, 0, 16));
     }
     d->size = size;
     d->withAov = withAov;
     d->withCurvature = withCurvature;
-    return true;
+    return ok();
 }
 
 QSize OffscreenRenderer::size() const {
     return d->size;
 }
 
-bool OffscreenRenderer::render(const Document& doc, const Camera& camera,
-                               const RenderOptions& options, QString* error) {
-    if (!d->fbo || !makeCurrent()) {
-        *error = QStringLiteral("OffscreenRenderer::render needs create() and setSize() first");
-        return false;
-    }
+Status OffscreenRenderer::render(const Document& doc, const Camera& camera,
+                                 const RenderOptions& options) {
+    if (!d->fbo || !makeCurrent())
+        return Error(
+            QStringLiteral("OffscreenRenderer::render needs create() and setSize() first"));
     d->report =
         d->renderer.render(doc, camera, {d->fbo, d->size, d->withAov, d->withCurvature}, options);
     if (!d->report.ok)
-        *error = d->report.error;
-    return d->report.ok;
+        return Error(d->report.error);
+    return ok();
 }
 
 std::int64_t OffscreenRenderer::setMesh(int slot, const TriangleMesh& mesh) {
     return makeCurrent() ? d->renderer.setMesh(slot, mesh) : -1;
 }
 
-bool OffscreenRenderer::renderMesh(const Document& doc, int slot, const Camera& camera,
-                                   const RenderOptions& options, QString* error) {
-    return renderMeshes(doc, {slot}, camera, options, error);
+Status OffscreenRenderer::renderMesh(const Document& doc, int slot, const Camera& camera,
+                                     const RenderOptions& options) {
+    return renderMeshes(doc, {slot}, camera, options);
 }
 
-bool OffscreenRenderer::renderMeshes(const Document& doc, const std::vector<int>& slots,
-                                     const Camera& camera, const RenderOptions& options,
-                                     QString* error) {
-    if (!d->fbo || !makeCurrent()) {
-        *error = QStringLiteral("OffscreenRenderer::renderMesh needs create() and setSize() first");
-        return false;
-    }
+Status OffscreenRenderer::renderMeshes(const Document& doc, const std::vector<int>& slots,
+                                       const Camera& camera, const RenderOptions& options) {
+    if (!d->fbo || !makeCurrent())
+        return Error(
+            QStringLiteral("OffscreenRenderer::renderMesh needs create() and setSize() first"));
     d->report = d->renderer.renderMeshes(doc, slots, camera,
                                          {d->fbo, d->size, d->withAov, d->withCurvature}, options);
     if (!d->report.ok)
-        *error = d->report.error;
-    return d->report.ok;
+        return Error(d->report.error);
+    return ok();
 }
 
 std::optional<PickHit> OffscreenRenderer::pick(const Document& doc, const Camera& camera,

@@ -26,27 +26,26 @@ public:
     static QSurfaceFormat requiredFormat();
 
     /// Creates the context and initialises the Renderer. Needs a QGuiApplication. Returns
-    /// false with *error set when no OpenGL 4.5 core context can be made (e.g. no X server
-    /// for the xcb platform, or the offscreen platform, which offers no desktop GL).
-    bool create(QString* error);
-    /// (Re)allocates the framebuffer; width and height in 1..16384. False with *error on failure.
+    /// the error when no OpenGL 4.5 core context can be made (e.g. no X server for the xcb
+    /// platform, or the offscreen platform, which offers no desktop GL).
+    Status create();
+    /// (Re)allocates the framebuffer; width and height in 1..16384. An error on failure.
     /// withCurvature adds the curvature target (attachment 4: K, H, k1, k2; only with withAov).
-    bool setSize(QSize size, bool withAov, QString* error, bool withCurvature = false);
+    Status setSize(QSize size, bool withAov, bool withCurvature = false);
     QSize size() const;
 
     /// Renders one frame into the FBO (with AOVs when the FBO has them). Returns the report's
-    /// ok, with *error set from it on failure; lastReport() holds the whole report.
-    bool render(const Document& doc, const Camera& camera, const RenderOptions& options,
-                QString* error);
+    /// error when it is not ok; lastReport() holds the whole report.
+    Status render(const Document& doc, const Camera& camera, const RenderOptions& options);
     const FrameReport& lastReport() const;
     /// Renderer::setMesh with this context current (-1 when it cannot be made current).
     std::int64_t setMesh(int slot, const TriangleMesh& mesh);
     /// Renderer::renderMesh into the FBO; returns and reports as render().
-    bool renderMesh(const Document& doc, int slot, const Camera& camera,
-                    const RenderOptions& options, QString* error);
+    Status renderMesh(const Document& doc, int slot, const Camera& camera,
+                      const RenderOptions& options);
     /// Renderer::renderMeshes into the FBO; returns and reports as render().
-    bool renderMeshes(const Document& doc, const std::vector<int>& slots, const Camera& camera,
-                      const RenderOptions& options, QString* error);
+    Status renderMeshes(const Document& doc, const std::vector<int>& slots, const Camera& camera,
+                        const RenderOptions& options);
     /// Renderer::pick at `pixel` of a frame of size() with this context current.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QPointF pixel,
                                 const RenderOptions& options = {});

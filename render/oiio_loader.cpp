@@ -10,7 +10,7 @@
 
 namespace kw {
 
-void* oiioModuleSymbol(const char* symbol, QString* why) {
+Expected<void*> oiioModuleSymbol(const char* symbol) {
     static QMutex mutex;
     static QString file;    // the module found, once
     static QString failure; // why none was found
@@ -28,14 +28,12 @@ void* oiioModuleSymbol(const char* symbol, QString* why) {
         else
             failure = lib.errorString();
     }
-    if (file.isEmpty()) {
-        *why = failure;
-        return nullptr;
-    }
+    if (file.isEmpty())
+        return Error(failure);
     QLibrary lib(file);
     void* address = reinterpret_cast<void*>(lib.resolve(symbol));
     if (!address)
-        *why = lib.errorString();
+        return Error(lib.errorString(), file);
     return address;
 }
 

@@ -11,18 +11,17 @@ namespace kw {
 
 namespace {
 
-QOpenGLShaderProgram* lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
-                                  const FrameCamera& camera, const RenderOptions& options,
-                                  QString* error) {
+Expected<QOpenGLShaderProgram*> lineProgram(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders,
+                                            const FrameCamera& camera,
+                                            const RenderOptions& options) {
     // Section planes cut the lines too: a cut view shows no wire of what it removed.
     const bool cut = !options.sections.empty();
-    QOpenGLShaderProgram* prog =
+    const Expected<QOpenGLShaderProgram*> built =
         shaders->program(QStringLiteral("lines.vert"), QStringLiteral("lines.frag"),
                          cut ? QStringList{QStringLiteral("KW_SECTION")} : QStringList{});
-    if (!prog) {
-        *error = shaders->lastError();
-        return nullptr;
-    }
+    if (!built)
+        return built;
+    QOpenGLShaderProgram* prog = *built;
     prog->bind();
     if (cut)
         setSectionUniforms(gl, prog, options);
@@ -40,11 +39,12 @@ void WireframePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sha
     m_shaders = shaders;
 }
 
-bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera,
-                         const RenderOptions& options, QString* error) {
-    QOpenGLShaderProgram* prog = lineProgram(m_gl, m_shaders, camera, options, error);
-    if (!prog)
-        return false;
+Status WireframePass::draw(const GpuScene& scene, const FrameCamera& camera,
+                           const RenderOptions& options) {
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(m_gl, m_shaders, camera, options);
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 2e-4f);
     m_gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, 1.0f);
     m_gl->glUniform4fv(ShaderLibrary::uniforms(prog).lineColor, 1, glm::value_ptr(color));
@@ -59,7 +59,7 @@ bool WireframePass::draw(const GpuScene& scene, const FrameCamera& camera,
         }
     m_gl->glDepthFunc(kDepthNearer);
     m_gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
@@ -67,12 +67,13 @@ void ControlNetPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* sh
     m_shaders = shaders;
 }
 
-bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera,
-                          const RenderOptions& options, QString* error) {
+Status ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera,
+                            const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
-    QOpenGLShaderProgram* prog = lineProgram(gl, m_shaders, camera, options, error);
-    if (!prog)
-        return false;
+    const Expected<QOpenGLShaderProgram*> built = lineProgram(gl, m_shaders, camera, options);
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     gl->glEnable(GL_PROGRAM_POINT_SIZE);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).depthBias, 1e-3f);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).pointSize, pointSize);
@@ -90,7 +91,7 @@ bool ControlNetPass::draw(const GpuScene& scene, const FrameCamera& camera,
     gl->glDisable(GL_PROGRAM_POINT_SIZE);
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
-    return true;
+    return ok();
 }
 
 } // namespace kw

@@ -17,8 +17,7 @@ namespace kw {
 class WireframePass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
-    bool draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options,
-              QString* error);
+    Status draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options);
     glm::vec4 color{0.05f, 0.05f, 0.08f, 1.0f};
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
 
@@ -32,8 +31,7 @@ private:
 class ControlNetPass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
-    bool draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options,
-              QString* error);
+    Status draw(const GpuScene& scene, const FrameCamera& camera, const RenderOptions& options);
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     glm::vec4 lineColor{0.85f, 0.75f, 0.20f, 1.0f};
     glm::vec4 pointColor{1.0f, 0.90f, 0.10f, 1.0f};

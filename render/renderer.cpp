@@ -29,29 +29,19 @@ bool Renderer::isInitialized() const {
     return d->gl != nullptr;
 }
 
-QString Renderer::lastError() const {
-    return d->error;
-}
-
 QString Renderer::glDescription() const {
     return d->glDescription;
 }
 
-bool Renderer::initialize() {
+Status Renderer::initialize() {
     QOpenGLContext* ctx = QOpenGLContext::currentContext();
-    if (!ctx) {
-        d->error = QStringLiteral("no current OpenGL context");
-        return false;
-    }
-    if (const QString got = openGlShortfall(ctx->format(), ctx->isOpenGLES()); !got.isEmpty()) {
-        d->error = QStringLiteral("OpenGL 4.5 core is required, got %1").arg(got);
-        return false;
-    }
+    if (!ctx)
+        return Error(QStringLiteral("no current OpenGL context"));
+    if (const QString got = openGlShortfall(ctx->format(), ctx->isOpenGLES()); !got.isEmpty())
+        return Error(QStringLiteral("OpenGL 4.5 core is required, got %1").arg(got));
     auto* gl = QOpenGLVersionFunctionsFactory::get<QOpenGLFunctions_4_5_Core>(ctx);
-    if (!gl || !gl->initializeOpenGLFunctions()) {
-        d->error = QStringLiteral("OpenGL 4.5 core functions are not available");
-        return false;
-    }
+    if (!gl || !gl->initializeOpenGLFunctions())
+        return Error(QStringLiteral("OpenGL 4.5 core functions are not available"));
     d->gl = gl;
     d->glDescription = currentContextReport();
     d->scene.initialize(gl, &d->shaders);
@@ -69,15 +59,12 @@ bool Renderer::initialize() {
     // No programs are built here: each pass asks the ShaderLibrary for the variant a frame
     // needs when it first draws it (a one-surface render builds 2 programs, not 6), and a
     // shader that does not build fails that frame with the compiler's message.
-    return true;
+    return ok();
 }
 
 FrameReport Renderer::render(const Document& doc, const Camera& camera, const RenderTarget& target,
                              const RenderOptions& options) {
-    FrameReport r = d->renderFrame(doc, camera, target, options, nullptr);
-    if (!r.ok)
-        d->error = r.error;
-    return r;
+    return d->renderFrame(doc, camera, target, options, nullptr);
 }
 
 FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camera,
@@ -137,25 +124,22 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
-    QString syncError;
-    const bool synced = scene.sync(doc, fc, options, report, &syncError);
+    const Status synced = scene.sync(doc, fc, options, report);
 
     const int samples = frameSamples(options, target.aov, pickPixel != nullptr, report);
     AntialiasTarget* aa = nullptr;
     AccumulateTarget* accumulated = nullptr;
     if (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
-        QString aaError;
-        if (accumulate.ensure(size, &aaError))
+        if (const Status ready = accumulate.ensure(size))
             accumulated = &accumulate;
         else
-            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(aaError);
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
         antialias.release();
     } else if (samples > 1) {
-        QString aaError;
-        if (antialias.ensure(size, samples, &aaError))
+        if (const Status ready = antialias.ensure(size, samples))
             aa = &antialias;
         else
-            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(aaError);
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
     } else if (!target.aov && !pickPixel) {
         antialias.release(); // anti-aliasing turned off: free its framebuffers
     }
@@ -167,10 +151,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     RenderTarget drawn = target;
     if (!aa && !accumulated && !target.aov && !pickPixel &&
         floatDepth.hostNeedsIt(target.framebuffer)) {
-        if (QString fdError; floatDepth.ensure(size, &fdError))
+        if (const Status ready = floatDepth.ensure(size))
             drawn.framebuffer = floatDepth.framebuffer();
         else
-            report.warnings << fdError;
+            report.warnings << ready.message();
     } else if (!aa && !accumulated && !pickPixel) {
         // Freed only when an aliased frame goes straight to its host: the editor alternates
         // aliased frames while moving with anti-aliased still ones, and would otherwise
@@ -202,9 +186,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     // The frame's depth convention, for the overlays too when no sample is drawn (beginTarget
     // sets it again per sample).
     beginReversedDepth(gl);
+    // The frame goes on while each step succeeds; the first failure is the frame's error.
+    QString error;
+    const auto step = [&error](const Status& done) {
+        if (!done)
+            error = done.message();
+        return bool(done);
+    };
     bool ok = true;
     if (accumulated && firstSample > 0 && firstSample < endSample)
-        ok = accumulated->keepFirst(&error); // before the next sample is drawn over it
+        ok = step(accumulated->keepFirst()); // before the next sample is drawn over it
     for (size_t i = firstSample; ok && i < endSample; ++i) {
         fc.jitter = offsets[i];
         beginTarget(sampleTarget, options, pickPixel);
@@ -213,28 +204,27 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             if (options.backgroundTop)
                 drawBackground(options); // into the multisampled colour, as beginTarget did
         }
-        ok = options.mode == RenderMode::Exact
-                 ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa,
-                              &error)
-                 : tessellated.draw(scene, options.trims, fc, lights, options, &error);
+        ok = step(
+            options.mode == RenderMode::Exact
+                ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa)
+                : tessellated.draw(scene, options.trims, fc, lights, options));
         // A progressive image's first sample is shown as it is, without the sum.
         if (ok && accumulated && !(options.progressive && i == 0))
-            ok = accumulated->add(i == 0, &error);
+            ok = step(accumulated->add(i == 0));
     }
     fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
-    if (QString accError; ok && accumulated &&
-                          !(options.progressive && firstSample == 0
-                                ? accumulated->resolveFirst(target.framebuffer, &accError)
-                                : accumulated->resolve(target.framebuffer, &accError))) {
-        error = accError;
-        ok = false;
-    }
+    if (ok && accumulated)
+        ok = step(options.progressive && firstSample == 0
+                      ? accumulated->resolveFirst(target.framebuffer)
+                      : accumulated->resolve(target.framebuffer));
     // Resolved before the overlays: they are drawn into the host's framebuffer over the
     // composite's colour and depth, as without anti-aliasing.
-    if (QString aaError; aa && !aa->composite(target.framebuffer, &aaError)) {
-        if (ok)
-            error = aaError;
-        ok = false;
+    if (aa) {
+        if (const Status composited = aa->composite(target.framebuffer); !composited) {
+            if (ok)
+                error = composited.message();
+            ok = false;
+        }
     }
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
@@ -248,11 +238,11 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
         }
         if (options.wireframe)
-            ok = wireframe.draw(scene, fc, options, &error);
+            ok = step(wireframe.draw(scene, fc, options));
         if (ok && options.controlNet)
-            ok = controlNet.draw(scene, fc, options, &error);
+            ok = step(controlNet.draw(scene, fc, options));
         if (ok && options.edgeBands)
-            ok = edgeBands.draw(*options.edgeBands, fc, &error);
+            ok = step(edgeBands.draw(*options.edgeBands, fc));
         if (options.writeAov) {
             const GLenum all[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
                                    GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
@@ -295,7 +285,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     if (!ok)
         report.error = error;
     else if (!synced)
-        report.error = syncError;
+        report.error = synced.message();
     report.ok = ok && synced;
     report.cpuMs.total = msSince(total);
     return report;
@@ -355,12 +345,13 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
 }
 
 void Renderer::Impl::drawBackground(const RenderOptions& options) {
-    QOpenGLShaderProgram* prog =
+    const Expected<QOpenGLShaderProgram*> built =
         shaders.program(QStringLiteral("aa_composite.vert"), QStringLiteral("background.frag"));
-    if (!prog) {
-        qWarning("%s", qPrintable(shaders.lastError())); // the flat background stays
+    if (!built) {
+        qWarning("%s", qPrintable(built.message())); // the flat background stays
         return;
     }
+    QOpenGLShaderProgram* prog = *built;
     if (!backgroundVao)
         gl->glCreateVertexArrays(1, &backgroundVao);
     GLint view[4] = {0, 0, 0, 0};
@@ -427,7 +418,6 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
             passes.size() != slots.size() || slots.empty()
                 ? QStringLiteral("Renderer::renderMesh: no mesh in slot %1").arg(missing)
                 : QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height());
-        d->error = report.error;
         return report;
     }
     RenderOptions o = options;
@@ -437,16 +427,17 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
     fc.viewport = glm::ivec2(size.width(), size.height());
     const std::vector<Light> lights = lightsFor(doc.scene(), camera, o.lightCount, o.headlight);
     d->beginTarget(target, o, nullptr);
-    QString error;
-    report.ok = true;
+    Status drawn;
     for (TriangleMeshPass* pass : passes) {
-        report.ok = report.ok && pass->draw(doc.scene(), fc, lights, o, &error);
+        if (drawn)
+            drawn = pass->draw(doc.scene(), fc, lights, o);
         report.drawCalls += pass->drawCalls;
         report.surfaces += pass->surfaces;
     }
     endReversedDepth(d->gl);
-    if (!report.ok)
-        d->error = report.error = error;
+    report.ok = bool(drawn);
+    if (!drawn)
+        report.error = drawn.message();
     report.cpuMs.surfaces = msSince(total);
     d->scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += d->exact.residentBytes();
@@ -457,9 +448,9 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
     return report;
 }
 
-bool Renderer::Impl::ensurePickTarget(QSize size) {
+Status Renderer::Impl::ensurePickTarget(QSize size) {
     if (pickFbo && pickSize == size)
-        return true;
+        return ok();
     releasePickTarget();
     // One pixel: renderFrame shifts the viewport onto it.
     auto texture = [&](GLenum format) {
@@ -480,12 +471,11 @@ bool Renderer::Impl::ensurePickTarget(QSize size) {
                                GL_COLOR_ATTACHMENT3};
     gl->glNamedFramebufferDrawBuffers(pickFbo, 4, buffers);
     if (gl->glCheckNamedFramebufferStatus(pickFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        error = QStringLiteral("the pick framebuffer is incomplete");
         releasePickTarget();
-        return false;
+        return Error(QStringLiteral("the pick framebuffer is incomplete"));
     }
     pickSize = size;
-    return true;
+    return ok();
 }
 
 void Renderer::Impl::releasePickTarget() {
@@ -500,10 +490,8 @@ void Renderer::Impl::releasePickTarget() {
 
 std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera, QSize viewport,
                                       QPointF pixel, const RenderOptions& options) {
-    if (!d->gl) {
-        d->error = QStringLiteral("Renderer::pick called before initialize()");
+    if (!d->gl)
         return std::nullopt;
-    }
     const double fx = std::floor(pixel.x()), fy = std::floor(pixel.y());
     if (viewport.isEmpty() ||
         !(fx >= 0.0 && fy >= 0.0 && fx < viewport.width() && fy < viewport.height()))
@@ -516,10 +504,8 @@ std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera,
     o.analysis = {};
     const int x = int(fx), y = viewport.height() - 1 - int(fy); // GL rows run bottom-up
     const QRect at(x, y, 1, 1);
-    const FrameReport r = d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
+    d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
     d->gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (!r.ok)
-        d->error = r.error;
     float a[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // id, u, v, Z
     d->gl->glGetTextureImage(d->pickTextures[1], 0, GL_RGBA, GL_FLOAT, sizeof(a), a);
     if (!(a[0] >= 0.0f))

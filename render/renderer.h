@@ -23,9 +23,9 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /// Needs a current OpenGL 4.5 core context (the one every later call uses). Returns false
-    /// with lastError() set when the context is not 4.5 core or the shaders do not build.
-    bool initialize();
+    /// Needs a current OpenGL 4.5 core context (the one every later call uses). Returns the
+    /// error when there is no current context or it is not 4.5 core.
+    Status initialize();
     bool isInitialized() const;
 
     /// Draws `doc` as seen by `camera` into `target`, uploading only stale surface data first.
@@ -45,7 +45,8 @@ public:
     /// into a private framebuffer, scissored to that one pixel, of only the surfaces whose
     /// projected bounds reach it (FrameCamera::pickPixel), and reads it back; the masks and
     /// uploads it needs are the frame's own, so a pick after a frame uploads nothing. Overlays are
-    /// ignored. Needs the renderer's context current; leaves the framebuffer binding at 0.
+    /// ignored. Needs the renderer's context current; leaves the framebuffer binding at 0. A pick
+    /// that cannot be made (before initialize(), no pick framebuffer) finds nothing.
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QSize viewport,
                                 QPointF pixel, const RenderOptions& options = {});
 
@@ -78,7 +79,6 @@ public:
     /// Frees all GL objects; the initialising context must be current.
     void release();
 
-    QString lastError() const;
     /// GL_RENDERER and GL_VERSION of the context, for reports.
     QString glDescription() const;
 

@@ -36,7 +36,7 @@ struct Renderer::Impl {
     int frameSamples(const RenderOptions& options, bool aov, bool pick, FrameReport& report);
     /// The gradient of options.backgroundTop over the cleared colour target (not the AOVs).
     void drawBackground(const RenderOptions& options);
-    bool ensurePickTarget(QSize size);
+    Status ensurePickTarget(QSize size);
     void releasePickTarget();
 
     QOpenGLFunctions_4_5_Core* gl = nullptr;
@@ -53,7 +53,6 @@ struct Renderer::Impl {
     EdgeBandsPass edgeBands;
     /// Renderer::setMesh's meshes, created on first use.
     std::unique_ptr<TriangleMeshPass> meshes[Renderer::kMeshSlots];
-    QString error;
     QString glDescription;
 
     /// What the automatic analysis range was computed from (revisions come from one

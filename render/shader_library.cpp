@@ -11,30 +11,26 @@ namespace kw {
 
 namespace {
 
-bool expand(const QString& file, int depth, QString& out, QString* error) {
-    if (depth > 8) {
-        *error = QStringLiteral("shader includes nested too deeply at %1").arg(file);
-        return false;
-    }
+Status expand(const QString& file, int depth, QString& out) {
+    if (depth > 8)
+        return Error(QStringLiteral("shader includes nested too deeply at %1").arg(file), file);
     const QString dir = ShaderLibrary::sourceDirectory();
     QFile f(dir + QLatin1Char('/') + file);
-    if (!f.open(QIODevice::ReadOnly | QIODevice::Text)) {
-        *error = QStringLiteral("shader file %1/%2 not found").arg(dir, file);
-        return false;
-    }
+    if (!f.open(QIODevice::ReadOnly | QIODevice::Text))
+        return Error(QStringLiteral("shader file %1/%2 not found").arg(dir, file), file);
     static const QRegularExpression include(QStringLiteral("^\\s*#include\\s+\"([^\"]+)\"\\s*$"));
     const QStringList lines = QString::fromUtf8(f.readAll()).split(QLatin1Char('\n'));
     for (const QString& line : lines) {
         const QRegularExpressionMatch m = include.match(line);
         if (m.hasMatch()) {
-            if (!expand(m.captured(1), depth + 1, out, error))
-                return false;
+            if (Status included = expand(m.captured(1), depth + 1, out); !included)
+                return included;
         } else {
             out += line;
             out += QLatin1Char('\n');
         }
     }
-    return true;
+    return ok();
 }
 
 } // namespace
@@ -65,14 +61,10 @@ QString ShaderLibrary::preamble() {
 }
 ShaderLibrary::~ShaderLibrary() = default;
 
-QString ShaderLibrary::expandedSource(const QString& file, QString* error) {
+Expected<QString> ShaderLibrary::expandedSource(const QString& file) {
     QString out;
-    QString err;
-    if (!expand(file, 0, out, &err)) {
-        if (error)
-            *error = err;
-        return {};
-    }
+    if (Status expanded = expand(file, 0, out); !expanded)
+        return std::move(expanded).error();
     return out;
 }
 
@@ -139,14 +131,14 @@ const UniformLocations& ShaderLibrary::uniforms(const QOpenGLShaderProgram* prog
     return static_cast<const Program*>(program)->locations;
 }
 
-QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QString& fragment,
-                                             const QStringList& defines) {
+Expected<QOpenGLShaderProgram*>
+ShaderLibrary::program(const QString& vertex, const QString& fragment, const QStringList& defines) {
     const QString key =
         vertex + QLatin1Char('|') + fragment + QLatin1Char('|') + defines.join(QLatin1Char(','));
     auto it = m_programs.find(key);
     if (it != m_programs.end()) {
         if (!it.value())
-            m_lastError = m_failures.value(key);
+            return m_failures.value(key);
         return it.value().get();
     }
     static const QString shared = preamble();
@@ -155,28 +147,31 @@ QOpenGLShaderProgram* ShaderLibrary::program(const QString& vertex, const QStrin
         header += QStringLiteral("#define ") + d + QLatin1Char('\n');
 
     auto prog = std::make_shared<Program>();
-    QString error;
-    const QString vs = expandedSource(vertex, &error);
-    const QString fs = vs.isEmpty() ? QString() : expandedSource(fragment, &error);
-    bool ok = !vs.isEmpty() && !fs.isEmpty();
+    QString error, file;
+    const Expected<QString> vs = expandedSource(vertex);
+    const Expected<QString> fs = vs ? expandedSource(fragment) : Expected<QString>(vs.error());
+    bool ok = vs && fs;
+    if (!ok)
+        error = fs.message(), file = fs.error().file;
     // Cacheable: link() first looks for a program binary in Qt's disk cache
     // (QStandardPaths::CacheLocation/qtshadercache-*, keyed by a SHA-1 of the full sources, so
     // of the defines too; each entry records GL_VENDOR/RENDERER/VERSION and is ignored when
     // they differ) and compiles only on a miss, then stores the binary (glGetProgramBinary)
     // where the driver offers a binary format. QT_DISABLE_SHADER_DISK_CACHE=1 turns it off.
-    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, header + vs))
-        ok = false, error = QStringLiteral("%1: %2").arg(vertex, prog->log());
-    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, header + fs))
-        ok = false, error = QStringLiteral("%1: %2").arg(fragment, prog->log());
+    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Vertex, header + *vs))
+        ok = false, error = QStringLiteral("%1: %2").arg(vertex, prog->log()), file = vertex;
+    if (ok && !prog->addCacheableShaderFromSourceCode(QOpenGLShader::Fragment, header + *fs))
+        ok = false, error = QStringLiteral("%1: %2").arg(fragment, prog->log()), file = fragment;
     if (ok && !prog->link())
         ok = false,
         error = QStringLiteral("linking %1 + %2: %3").arg(vertex, fragment, prog->log());
     if (!ok) {
-        m_lastError =
-            QStringLiteral("shader variant [%1]: %2").arg(defines.join(QLatin1Char(' ')), error);
+        const Error failed(
+            QStringLiteral("shader variant [%1]: %2").arg(defines.join(QLatin1Char(' ')), error),
+            file, defines.join(QLatin1Char(' ')));
         m_programs.insert(key, nullptr);
-        m_failures.insert(key, m_lastError);
-        return nullptr;
+        m_failures.insert(key, failed);
+        return failed;
     }
     prog->lookUpUniforms();
     m_programs.insert(key, prog);

@@ -2,6 +2,8 @@
 // and caches linked programs by (files, defines), in memory and as program binaries on disk.
 #pragma once
 
+#include "model/error.h"
+
 #include <QMap>
 #include <QString>
 #include <QStringList>
@@ -49,11 +51,12 @@ public:
     /// The program linked from the files `vertex` and `fragment` (names under
     /// sourceDirectory()) with the preamble
     /// and `defines` ("NAME" or "NAME VALUE") inserted after the #version line. Needs a current
-    /// OpenGL 4.5 core context. Returns nullptr and sets lastError() when a file is missing or
-    /// compiling/linking fails; failures are cached too (no retry storms).
-    QOpenGLShaderProgram* program(const QString& vertex, const QString& fragment,
-                                  const QStringList& defines = {});
-    QString lastError() const { return m_lastError; }
+    /// OpenGL 4.5 core context. Returns the error when a file is missing or compiling/linking
+    /// fails (Error::file the shader file, Error::location the variant's defines); failures are
+    /// cached too (no retry storms), and a cached failure returns the same error. The program
+    /// is never null on success.
+    Expected<QOpenGLShaderProgram*> program(const QString& vertex, const QString& fragment,
+                                            const QStringList& defines = {});
     /// Deletes every program; needs the context that created them to be current.
     void clear();
     /// The locations of a program returned by any ShaderLibrary's program().
@@ -64,15 +67,14 @@ public:
     static QString preamble();
 
     /// The source of `file` with #include "x" lines replaced by the files (recursively, at
-    /// most 8 deep), or an empty string with *error set.
-    static QString expandedSource(const QString& file, QString* error);
+    /// most 8 deep), or the error naming the file that is missing or nested too deeply.
+    static Expected<QString> expandedSource(const QString& file);
 
 private:
     QMap<QString, std::shared_ptr<QOpenGLShaderProgram>> m_programs;
-    QString m_lastError;
     /// The build error of each variant that failed, repeated on every later request so the
     /// message stays the compiler's (and the same each frame) rather than "failed earlier".
-    QMap<QString, QString> m_failures;
+    QMap<QString, Error> m_failures;
 };
 
 } // namespace kw

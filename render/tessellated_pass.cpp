@@ -16,24 +16,25 @@ void TessellatedPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* s
     m_shaders = shaders;
 }
 
-bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
-                           const std::vector<Light>& lights, const RenderOptions& options,
-                           QString* error) {
+Status TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+                             const std::vector<Light>& lights, const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
     if (!options.sections.empty())
         defines << featureDefines(ExactFeature::Section); // section.glsl's, as the exact pass's
-    QOpenGLShaderProgram* plain = m_shaders->program(QStringLiteral("tessellated.vert"),
-                                                     QStringLiteral("tessellated.frag"), defines);
-    QOpenGLShaderProgram* trimmed =
+    const Expected<QOpenGLShaderProgram*> plainBuilt = m_shaders->program(
+        QStringLiteral("tessellated.vert"), QStringLiteral("tessellated.frag"), defines);
+    if (!plainBuilt)
+        return plainBuilt.error();
+    const Expected<QOpenGLShaderProgram*> trimmedBuilt =
         m_shaders->program(QStringLiteral("tessellated.vert"), QStringLiteral("tessellated.frag"),
                            defines + scene.trimMasks().trimDefines());
-    if (!plain || !trimmed) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    if (!trimmedBuilt)
+        return trimmedBuilt.error();
+    QOpenGLShaderProgram* plain = *plainBuilt;
+    QOpenGLShaderProgram* trimmed = *trimmedBuilt;
     gl->glDepthFunc(kDepthNearer);
     gl->glDepthMask(GL_TRUE);
     QOpenGLShaderProgram* bound = nullptr;
@@ -63,7 +64,7 @@ bool TessellatedPass::draw(const GpuScene& scene, bool trims, const FrameCamera&
         gl->glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
         ++drawCalls;
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw

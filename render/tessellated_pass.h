@@ -15,10 +15,10 @@ class TessellatedPass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);
     /// Draws the meshes of `scene`'s records into the bound framebuffer, cutting the surfaces
-    /// that have an active mask when `trims`. Returns false with *error set when the shader
+    /// that have an active mask when `trims`. Returns the error when the shader
     /// cannot be built.
-    bool draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
-              const std::vector<Light>& lights, const RenderOptions& options, QString* error);
+    Status draw(const GpuScene& scene, bool trims, const FrameCamera& camera,
+                const std::vector<Light>& lights, const RenderOptions& options);
     int drawCalls = 0; ///< counted by draw; the renderer zeroes it per frame
     /// As ExactSurfacePass::firstDrawCpuMs.
     double firstDrawCpuMs = -1.0;

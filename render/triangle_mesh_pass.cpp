@@ -51,19 +51,17 @@ std::int64_t TriangleMeshPass::upload(const TriangleMesh& mesh) {
     return m_bytes;
 }
 
-bool TriangleMeshPass::draw(const Scene& scene, const FrameCamera& camera,
-                            const std::vector<Light>& lights, const RenderOptions& options,
-                            QString* error) {
+Status TriangleMeshPass::draw(const Scene& scene, const FrameCamera& camera,
+                              const std::vector<Light>& lights, const RenderOptions& options) {
     drawCalls = surfaces = 0;
     QStringList defines{QStringLiteral("LIGHT_COUNT %1").arg(lights.size())};
     if (options.writeAov)
         defines << QStringLiteral("KW_AOV");
-    QOpenGLShaderProgram* prog = m_shaders->program(QStringLiteral("tessellated.vert"),
-                                                    QStringLiteral("tessellated.frag"), defines);
-    if (!prog) {
-        *error = m_shaders->lastError();
-        return false;
-    }
+    const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+        QStringLiteral("tessellated.vert"), QStringLiteral("tessellated.frag"), defines);
+    if (!built)
+        return built.error();
+    QOpenGLShaderProgram* prog = *built;
     std::unordered_map<std::uint32_t, const Surface*> byId;
     for (const Surface& s : scene.surfaces)
         byId.emplace(s.id.value, &s);
@@ -86,7 +84,7 @@ bool TriangleMeshPass::draw(const Scene& scene, const FrameCamera& camera,
     }
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
-    return true;
+    return ok();
 }
 
 void TriangleMeshPass::release() {

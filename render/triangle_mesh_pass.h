@@ -24,10 +24,10 @@ public:
     std::int64_t upload(const TriangleMesh& mesh);
     /// Draws the uploaded mesh into the bound framebuffer with the nearer depth test
     /// (render/depth_convention.h), writing the AOV attachments when options.writeAov; each surface
-    /// with the material of the surface of `scene` with its id (others are skipped). Returns false
-    /// with *error set when the shader does not build.
-    bool draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
-              const RenderOptions& options, QString* error);
+    /// with the material of the surface of `scene` with its id (others are skipped). Returns the
+    /// error when the shader does not build.
+    Status draw(const Scene& scene, const FrameCamera& camera, const std::vector<Light>& lights,
+                const RenderOptions& options);
     /// Frees the GL objects.
     void release();
 

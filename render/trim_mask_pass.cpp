@@ -92,7 +92,7 @@ glm::dvec4 TrimMaskPass::maskRect(const Surface& surface) {
     return rect;
 }
 
-bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
+Status TrimMaskPass::ensureArray(int size, int layers) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     if (m_texture)
         gl->glDeleteTextures(1, &m_texture), m_texture = 0;
@@ -106,14 +106,14 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
     gl->glTextureParameteri(m_texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl->glTextureParameteri(m_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     if (const GLenum e = gl->glGetError(); e != GL_NO_ERROR) {
-        *error = QStringLiteral("trim mask array %1x%1x%2 could not be allocated (GL error 0x%3)")
-                     .arg(size)
-                     .arg(layers)
-                     .arg(e, 0, 16);
         gl->glDeleteTextures(1, &m_texture);
         m_texture = 0;
         m_size = m_layers = 0;
-        return false;
+        return Error(
+            QStringLiteral("trim mask array %1x%1x%2 could not be allocated (GL error 0x%3)")
+                .arg(size)
+                .arg(layers)
+                .arg(e, 0, 16));
     }
     m_size = size;
     m_layers = layers;
@@ -128,17 +128,17 @@ bool TrimMaskPass::ensureArray(int size, int layers, QString* error) {
         gl->glVertexArrayAttribFormat(m_vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
         gl->glVertexArrayAttribBinding(m_vao, 0, 0);
     }
-    return true;
+    return ok();
 }
 
-bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord*>& records,
-                        const FrameCamera& camera, const RenderOptions& options, QString* error) {
+Status TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord*>& records,
+                          const FrameCamera& camera, const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_frame = {};
     drawCalls = 0;
     m_exactMode = options.trimMode == RenderOptions::TrimMode::Exact;
     if (m_exactMode)
-        return syncExact(records, options, error);
+        return syncExact(records, options);
     // Mask mode: what exact mode held goes (the records' blocks, then the buffer).
     for (SurfaceRecord* r : records)
         if (r->mask.grid.words || r->mask.grid.cap)
@@ -148,7 +148,8 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
     gl->glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     gl->glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     const int cap = std::clamp(options.trimMaskCap, kMinTrimMaskSize, int(maxSize));
-    bool ok = true;
+    // Too many trimmed surfaces is reported, but the masks that fit are still drawn.
+    Status status;
 
     struct Want {
         SurfaceRecord* record;
@@ -162,19 +163,18 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
             freeLayer(r->mask); // no longer trimmed (or not drawn)
     }
     if (wants.size() > size_t(maxLayers)) {
-        *error = QStringLiteral("%1 trimmed surfaces exceed the GPU's %2 mask layers; the rest "
-                                "are drawn untrimmed")
-                     .arg(wants.size())
-                     .arg(maxLayers);
+        status = Error(QStringLiteral("%1 trimmed surfaces exceed the GPU's %2 mask layers; the "
+                                      "rest are drawn untrimmed")
+                           .arg(wants.size())
+                           .arg(maxLayers));
         for (size_t k = size_t(maxLayers); k < wants.size(); ++k)
             freeLayer(wants[k].record->mask);
         wants.resize(size_t(maxLayers));
-        ok = false;
     }
     if (wants.empty()) {
         // No trimmed surface left: free the array, so an emptied scene holds no mask memory.
         freeArray();
-        return ok;
+        return status;
     }
 
     int size = m_size;
@@ -189,8 +189,8 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
         layers = std::min(layers, int(maxLayers));
         for (const Want& w : wants)
             w.record->mask.layer = -1;
-        if (!ensureArray(size, layers, error))
-            return false;
+        if (Status allocated = ensureArray(size, layers); !allocated)
+            return allocated;
         m_freeLayers.clear();
         for (int l = layers - 1; l >= 0; --l)
             m_freeLayers.push_back(l);
@@ -215,11 +215,11 @@ bool TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceRecord
     gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl->glDisable(GL_COLOR_LOGIC_OP);
     gl->glDisable(GL_SCISSOR_TEST);
-    if (!m_shaders->program(QStringLiteral("trim_mask.vert"), QStringLiteral("trim_mask.frag"))) {
-        *error = m_shaders->lastError();
-        return false;
-    }
-    return ok;
+    if (const Expected<QOpenGLShaderProgram*> built =
+            m_shaders->program(QStringLiteral("trim_mask.vert"), QStringLiteral("trim_mask.frag"));
+        !built)
+        return built.error();
+    return status;
 }
 
 void TrimMaskPass::freeArray() {
@@ -264,8 +264,9 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     const TrimRegion region = makeTrimRegion(s.trims, tolerance, &m.warnings);
     m.active = !region.empty();
     ++d.redraws;
-    QOpenGLShaderProgram* prog =
+    const Expected<QOpenGLShaderProgram*> built =
         m_shaders->program(QStringLiteral("trim_mask.vert"), QStringLiteral("trim_mask.frag"));
+    QOpenGLShaderProgram* prog = built.value_or(nullptr);
     if (!m.active || !prog) {
         m.active = false;
         account();

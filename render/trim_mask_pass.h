@@ -66,11 +66,11 @@ public:
     /// resolution is four times the surface's control-net length on screen (pixels) along u and
     /// along v, times the share of the domain the mask rectangle spans, rounded up to a power
     /// of two, within [kMinTrimMaskSize, options.trimMaskCap]. Leaves GL_FRAMEBUFFER bound to
-    /// 0 and the logic op and scissor test disabled. Returns false with *error set when the
+    /// 0 and the logic op and scissor test disabled. Returns the error when the
     /// shaders do not build or the masks do not fit the GPU's array limits (those surfaces draw
     /// untrimmed).
-    bool sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
-              const FrameCamera& camera, const RenderOptions& options, QString* error);
+    Status sync(const Document& doc, const std::vector<SurfaceRecord*>& records,
+                const FrameCamera& camera, const RenderOptions& options);
     /// Gives the mask's layer or grid block back (a removed, hidden or untrimmed surface);
     /// keeps its statistics.
     void freeLayer(TrimMask& mask);
@@ -128,13 +128,12 @@ private:
     /// trimBudgetBytes, at most what one texture buffer holds) the cap on the grids' sides is
     /// halved for the largest until they fit: classification stays exact, more fragments walk
     /// lists; the warning says so. Errors leave the trimmed surfaces untrimmed this frame.
-    bool syncExact(const std::vector<SurfaceRecord*>& records, const RenderOptions& options,
-                   QString* error);
+    Status syncExact(const std::vector<SurfaceRecord*>& records, const RenderOptions& options);
     void buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew);
     void buildGrid(TrimMask& m, const TrimSurfaceArcs& arcs, const Revisions& rev, bool* grew);
     void freeArray();
     void freeGrids();
-    bool ensureArray(int size, int layers, QString* error);
+    Status ensureArray(int size, int layers);
     void redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution);
 
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;

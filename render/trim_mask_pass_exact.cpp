@@ -114,8 +114,8 @@ void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisi
     m_frame += d;
 }
 
-bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
-                             const RenderOptions& options, QString* error) {
+Status TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
+                               const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // What mask mode held goes: the records' layers, then the array.
     for (SurfaceRecord* r : records)
@@ -133,7 +133,7 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
     if (trimmed.empty()) {
         // No trimmed surface left: an emptied scene holds no trim memory.
         freeGrids();
-        return true;
+        return ok();
     }
     GLint maxTexels = 0;
     gl->glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
@@ -256,18 +256,18 @@ bool TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
                                          words.data() + m->grid.offset);
     }
     if (const GLenum e = gl->glGetError(); e != GL_NO_ERROR) {
-        *error = QStringLiteral("the trim grid buffer of %1 bytes could not be filled (GL error "
-                                "0x%2); trimmed surfaces are drawn untrimmed")
-                     .arg(bytes)
-                     .arg(e, 0, 16);
+        const Error failed(QStringLiteral("the trim grid buffer of %1 bytes could not be filled "
+                                          "(GL error 0x%2); trimmed surfaces are drawn untrimmed")
+                               .arg(bytes)
+                               .arg(e, 0, 16));
         // Never a wrong picture: nothing classifies by a buffer that did not arrive. Everything
         // is built again on the next frame.
         for (SurfaceRecord* r : trimmed)
             freeLayer(r->mask);
         freeGrids();
-        return false;
+        return failed;
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw

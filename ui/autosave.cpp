@@ -129,8 +129,12 @@ bool Autosave::writeNow(QString* error) {
     info.insert(QStringLiteral("savedAt"),
                 QDateTime::currentDateTimeUtc().toString(Qt::ISODateWithMs));
     // The scene first: an info file never describes a scene that is not there yet.
-    return writeKnotFile(scenePath(), m_doc->scene(), error) &&
-           writeAtomically(m_base + kInfoSuffix, QJsonDocument(info).toJson(), error);
+    if (const Status written = writeKnotFile(scenePath(), m_doc->scene()); !written) {
+        if (error)
+            *error = written.message();
+        return false;
+    }
+    return writeAtomically(m_base + kInfoSuffix, QJsonDocument(info).toJson(), error);
 }
 
 void Autosave::discardOwn() {
@@ -172,7 +176,13 @@ std::vector<Recovery> Autosave::orphans() {
 }
 
 std::optional<Scene> Autosave::load(const Recovery& recovery, QString* error) {
-    return readKnotFile(recovery.scenePath, error);
+    Expected<Scene> scene = readKnotFile(recovery.scenePath);
+    if (!scene) {
+        if (error)
+            *error = scene.message();
+        return std::nullopt;
+    }
+    return std::move(scene).value();
 }
 
 void Autosave::discard(const Recovery& recovery) {

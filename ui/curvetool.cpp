@@ -58,11 +58,13 @@ NurbsCurve3 CurveTool::curveThrough(const std::vector<glm::dvec3>& points, QStri
     }
     if (!m_interpolating)
         return controlPointCurve3(points, 3);
-    std::string why;
-    NurbsCurve3 c = interpolateCurve3(points, 3, &why);
-    if (c.points.empty() && error)
-        *error = QString::fromStdString(why);
-    return c;
+    Expected<NurbsCurve3> c = interpolateCurve3(points, 3);
+    if (!c) {
+        if (error)
+            *error = c.message();
+        return {};
+    }
+    return std::move(c).value();
 }
 
 const NurbsCurve3& CurveTool::preview() {

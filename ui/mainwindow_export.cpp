@@ -86,12 +86,13 @@ bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
     const Scene scene =
         selectedOnly ? sceneOf(m_doc->scene(), m_selection->selectedSurfaces()) : m_doc->scene();
     if (format == CadFormat::Obj) {
-        QString error;
-        if (scene.surfaces.empty() || !writeObjFile(path, scene, error)) {
+        if (scene.surfaces.empty()) {
             showError(tr("Cannot export"),
-                      scene.surfaces.empty()
-                          ? tr("%1: nothing to export: the document has no surfaces").arg(path)
-                          : error);
+                      tr("%1: nothing to export: the document has no surfaces").arg(path));
+            return false;
+        }
+        if (const Status written = writeObjFile(path, scene); !written) {
+            showError(tr("Cannot export"), written.message());
             return false;
         }
         statusBar()->showMessage(

@@ -46,10 +46,10 @@ QString knotPathNextTo(const QString& imported) {
 } // namespace
 
 bool MainWindow::openFile(const QString& path) {
-    QString error;
-    std::optional<Scene> scene = readKnotFile(path, &error);
-    if (!scene || !m_doc->resetScene(std::move(*scene), &error)) {
-        showError(tr("Cannot open file"), error);
+    Expected<Scene> scene = readKnotFile(path);
+    const Status reset = scene ? m_doc->resetScene(std::move(*scene)) : Status(scene.error());
+    if (!reset) {
+        showError(tr("Cannot open file"), reset.message());
         return false;
     }
     m_stack->clear();
@@ -94,13 +94,12 @@ bool MainWindow::saveFile(const QString& path) {
     scene.camera = camera;
     // So is the partition mode the view draws (as the camera, not an edit).
     scene.display = m_desktop->currentDisplay();
-    QString error;
     // The previous version becomes FILE.bak. A failed copy does not stop the save; it is said.
     QString backupError;
     if (QSettings().value(kKeepBackupKey, true).toBool() && !keepBackup(path, &backupError))
         statusBar()->showMessage(tr("No backup kept: %1").arg(backupError), 10000);
-    if (!writeKnotFile(path, scene, &error)) {
-        showError(tr("Cannot save file"), error);
+    if (const Status written = writeKnotFile(path, scene); !written) {
+        showError(tr("Cannot save file"), written.message());
         return false;
     }
     m_doc->setCamera(camera);
@@ -132,7 +131,9 @@ bool MainWindow::offerRecovery() {
             continue;
         QString error;
         std::optional<Scene> scene = Autosave::load(r, &error);
-        if (!scene || !m_doc->resetScene(std::move(*scene), &error)) {
+        if (scene)
+            error = m_doc->resetScene(std::move(*scene)).message();
+        if (!scene || !error.isEmpty()) {
             showError(tr("Cannot restore the unsaved changes"), error);
             continue; // kept: the file may be opened by hand
         }
@@ -159,7 +160,8 @@ void MainWindow::newDocument() {
         return;
     Scene scene;
     scene.continuity = Preferences::load().continuity; // the user's defaults for new projects
-    m_doc->resetScene(std::move(scene));
+    const Status reset = m_doc->resetScene(std::move(scene));
+    Q_ASSERT(reset); // an empty scene with validated tolerances (Preferences::load) is valid
     m_stack->clear();
     m_stack->setClean();
     setFilePath(QString());
@@ -216,20 +218,27 @@ void MainWindow::exportImage() {
     // so they are a second, aliased frame.
     const QString aovPath = QFileInfo(path).dir().filePath(QFileInfo(path).completeBaseName() +
                                                            QStringLiteral("_aov.exr"));
-    QString error;
     OffscreenRenderer renderer;
     RenderOptions render = m_viewport->renderOptions();
     render.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     render.controlNet = false; // the picture of the surfaces, not of the editing aids
     const Camera camera = m_viewport->cameraController().camera();
-    const bool ok = renderer.create(&error) && renderer.setSize(options.size, false, &error) &&
-                    renderer.render(*m_doc, camera, render, &error) &&
-                    writeColorImage(renderer.colorImage(), path, &error) &&
-                    (!options.aov || (renderer.setSize(options.size, true, &error) &&
-                                      renderer.render(*m_doc, camera, render, &error) &&
-                                      writeAovImage(renderer.aov(), aovPath, &error)));
-    if (!ok) {
-        showError(tr("Cannot export image"), error);
+    // Each step runs while the ones before succeeded; the first failure is shown.
+    Status done = renderer.create();
+    if (done)
+        done = renderer.setSize(options.size, false);
+    if (done)
+        done = renderer.render(*m_doc, camera, render);
+    if (done)
+        done = writeColorImage(renderer.colorImage(), path);
+    if (done && options.aov)
+        done = renderer.setSize(options.size, true);
+    if (done && options.aov)
+        done = renderer.render(*m_doc, camera, render);
+    if (done && options.aov)
+        done = writeAovImage(renderer.aov(), aovPath);
+    if (!done) {
+        showError(tr("Cannot export image"), done.message());
         return;
     }
     statusBar()->showMessage(

@@ -139,7 +139,9 @@ bool MainWindow::importFile(const QString& path) {
         // A CAD or mesh file carries no continuity tolerances: the user's defaults apply.
         job->result->scene.continuity = Preferences::load().continuity;
     }
-    if (!job->result || !m_doc->resetScene(std::move(job->result->scene), &error)) {
+    if (job->result)
+        error = m_doc->resetScene(std::move(job->result->scene)).message();
+    if (!job->result || !error.isEmpty()) {
         showError(tr("Cannot import file"), error);
         return false;
     }

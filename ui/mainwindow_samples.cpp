@@ -50,10 +50,10 @@ bool MainWindow::openSample(const QString& path) {
     // A CAD part is imported as File ▸ Import does (no .knot path; Save asks where).
     if (cadFormatFromPath(path) != CadFormat::Knot)
         return importFile(path);
-    QString error;
-    std::optional<Scene> scene = readKnotFile(path, &error);
-    if (!scene || !m_doc->resetScene(std::move(*scene), &error)) {
-        showError(tr("Cannot open sample"), error);
+    Expected<Scene> scene = readKnotFile(path);
+    const Status reset = scene ? m_doc->resetScene(std::move(*scene)) : Status(scene.error());
+    if (!reset) {
+        showError(tr("Cannot open sample"), reset.message());
         return false;
     }
     m_stack->clear();

@@ -219,12 +219,12 @@ SurfaceId ModelingTools::createFromCurveList(CurveOperationKind kind, const Curv
         text = tr("Create extrusion");
         break;
     case CurveOperationKind::Loft: {
-        std::string error;
-        s.geometry = makeLoft(curves, 3, &error);
-        if (s.geometry.countU == 0) {
-            Q_EMIT message(tr("Cannot loft: %1").arg(QString::fromStdString(error)));
+        Expected<NurbsSurface> loft = makeLoft(curves, 3);
+        if (!loft) {
+            Q_EMIT message(tr("Cannot loft: %1").arg(loft.message()));
             return {};
         }
+        s.geometry = std::move(loft).value();
         s.name = uniqueName(tr("Loft"));
         text = tr("Create loft through %1 curves").arg(curves.size());
         break;

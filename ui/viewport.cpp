@@ -309,8 +309,8 @@ void Viewport::initializeGL() {
     connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl,
             Qt::DirectConnection);
     m_glDebug = startDebugLog(); // KW_GL_DEBUG=1 only
-    if (!m_renderer.initialize()) {
-        m_glError = m_renderer.lastError();
+    if (const Status initialized = m_renderer.initialize(); !initialized) {
+        m_glError = initialized.message();
         Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));
         return;
     }

@@ -94,8 +94,10 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
         break;
     }
     case CadFormat::Obj:
-        if (!readObjFile(path, result.scene, result.report, error))
+        if (const Status read = readObjFile(path, result.scene, result.report); !read) {
+            error = read.message();
             return std::nullopt;
+        }
         if (result.scene.surfaces.empty()) {
             error = QStringLiteral("%1: no surface could be imported (%2)")
                         .arg(path, result.report.skipped.value(0));
@@ -103,9 +105,11 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
         }
         break;
     case CadFormat::Knot: {
-        auto scene = readKnotFile(path, &error);
-        if (!scene)
+        auto scene = readKnotFile(path);
+        if (!scene) {
+            error = scene.message();
             return std::nullopt;
+        }
         result.scene = std::move(*scene);
         result.report.facesImported = static_cast<int>(result.scene.surfaces.size());
         break;
@@ -131,9 +135,11 @@ std::optional<ImportResult> openModelFile(const QString& path, QString& error,
     if (const CadFormat f = cadFormatFromPath(path);
         f != CadFormat::Knot && f != CadFormat::Unknown)
         return importFile(path, error, progress);
-    std::optional<Scene> scene = readKnotFile(path, &error);
-    if (!scene)
+    Expected<Scene> scene = readKnotFile(path);
+    if (!scene) {
+        error = scene.message();
         return std::nullopt;
+    }
     ImportResult result;
     result.scene = std::move(*scene);
     result.report.facesImported = static_cast<int>(result.scene.surfaces.size());

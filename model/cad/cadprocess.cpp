@@ -110,23 +110,17 @@ ImportProgress progressToParent() {
 }
 
 bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error) {
-    QString why;
-    if (!saveBytesAtomically(QDir(dir).filePath(QString::fromLatin1(kHandoverFile)),
-                             encodeImportHandover(result), &why)) {
-        error = why;
-        return false;
-    }
-    return true;
+    const Status saved = saveBytesAtomically(QDir(dir).filePath(QString::fromLatin1(kHandoverFile)),
+                                             encodeImportHandover(result));
+    error = saved.message();
+    return bool(saved);
 }
 
 bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& error) {
-    QString why;
-    if (!saveBytesAtomically(QDir(dir).filePath(QStringLiteral("mesh.obj")),
-                             writeTaggedMeshObj(mesh), &why)) {
-        error = why;
-        return false;
-    }
-    return true;
+    const Status saved = saveBytesAtomically(QDir(dir).filePath(QStringLiteral("mesh.obj")),
+                                             writeTaggedMeshObj(mesh));
+    error = saved.message();
+    return bool(saved);
 }
 
 #ifdef KW_HAVE_OCCT
@@ -419,10 +413,15 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
         return std::nullopt;
     }
     ImportResult result = std::move(*read);
-    if (deflection && mesh &&
-        !readTaggedMeshObjFile(QDir(dirPath).filePath(QStringLiteral("mesh.obj")), *mesh, why)) {
-        error = QStringLiteral("%1: %2 gave no readable mesh: %3").arg(path, reader, why);
-        return std::nullopt;
+    if (deflection && mesh) {
+        Expected<TaggedMeshSet> read =
+            readTaggedMeshObjFile(QDir(dirPath).filePath(QStringLiteral("mesh.obj")));
+        if (!read) {
+            error = QStringLiteral("%1: %2 gave no readable mesh: %3")
+                        .arg(path, reader, read.message());
+            return std::nullopt;
+        }
+        *mesh = std::move(read).value();
     }
     return result;
 #endif
@@ -477,8 +476,9 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
         handover.sourceFaces.push_back(k + 1);
     const QByteArray block = encodeImportHandover(handover);
     const QString scenePath = dir.filePath(QStringLiteral("scene.kwi"));
-    if (!saveBytesAtomically(scenePath, block, &why)) {
-        error = QStringLiteral("%1: cannot hand the scene to %2: %3").arg(path, writer, why);
+    if (const Status saved = saveBytesAtomically(scenePath, block); !saved) {
+        error = QStringLiteral("%1: cannot hand the scene to %2: %3")
+                    .arg(path, writer, saved.message());
         return false;
     }
     const long long memory = cadMemoryLimitBytes();
@@ -529,16 +529,15 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
         error = QStringLiteral("%1: %2 gave no file: %3").arg(path, writer, bytes.errorString());
         return false;
     }
-    return saveFileAtomically(
-        path,
-        [&](QIODevice& out) {
-            QByteArray chunk;
-            while (!(chunk = bytes.read(1 << 20)).isEmpty())
-                if (out.write(chunk) != chunk.size())
-                    return false;
-            return bytes.error() == QFileDevice::NoError;
-        },
-        &error);
+    const Status saved = saveFileAtomically(path, [&](QIODevice& out) {
+        QByteArray chunk;
+        while (!(chunk = bytes.read(1 << 20)).isEmpty())
+            if (out.write(chunk) != chunk.size())
+                return false;
+        return bytes.error() == QFileDevice::NoError;
+    });
+    error = saved.message();
+    return bool(saved);
 #endif
 }
 

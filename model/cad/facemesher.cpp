@@ -97,9 +97,8 @@ bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, do
         request.sourceFaces.push_back(k + 1);
     const QString name = QStringLiteral("request%1.kwi").arg(++d->requests);
     const QString path = QDir(d->dir).filePath(name);
-    QString why;
-    if (!saveBytesAtomically(path, encodeImportHandover(request), &why)) {
-        error = QStringLiteral("cannot hand the faces to the face mesher: %1").arg(why);
+    if (const Status saved = saveBytesAtomically(path, encodeImportHandover(request)); !saved) {
+        error = QStringLiteral("cannot hand the faces to the face mesher: %1").arg(saved.message());
         return false;
     }
     const QByteArray line = "mesh " + name.toUtf8() + ' ' + QByteArray::number(tolerance, 'g', 17) +
@@ -143,12 +142,14 @@ bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, do
     cost.wallMs = t[1].toDouble();
     cost.cpuMs = t[2].toDouble();
     const QString obj = path + QStringLiteral(".obj");
-    const bool read = readTaggedMeshObjFile(obj, out, why);
+    Expected<TaggedMeshSet> read = readTaggedMeshObjFile(obj);
     QFile::remove(obj);
     if (!read) {
-        error = QStringLiteral("the face mesher's triangles are unreadable: %1").arg(why);
+        error =
+            QStringLiteral("the face mesher's triangles are unreadable: %1").arg(read.message());
         return false;
     }
+    out = std::move(read).value();
     return true;
 }
 

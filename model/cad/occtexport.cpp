@@ -721,7 +721,11 @@ bool exportOcctFile(const Scene& scene, const QString& path, const ExportOptions
                     ExportReport& report, QString& error, const ImportProgress& progress) {
     const std::optional<QByteArray> bytes =
         exportOcctBytes(scene, path, options, report, error, progress);
-    return bytes && saveBytesAtomically(path, *bytes, &error);
+    if (!bytes)
+        return false;
+    const Status saved = saveBytesAtomically(path, *bytes);
+    error = saved.message();
+    return bool(saved);
 }
 
 } // namespace kw

@@ -129,7 +129,7 @@ TrimLoopId Document::allocateTrimLoopId() {
     return TrimLoopId{m_scene.nextId++};
 }
 
-bool Document::resetScene(Scene scene, QString* error) {
+Status Document::resetScene(Scene scene) {
     std::uint32_t maxId = 0;
     for (const Surface& s : scene.surfaces) {
         maxId = std::max(maxId, s.id.value);
@@ -143,11 +143,8 @@ bool Document::resetScene(Scene scene, QString* error) {
         scene.nextId = std::max(scene.nextId, maxId + 1);
     if (why.isEmpty())
         why = validate(scene);
-    if (!why.isEmpty()) {
-        if (error)
-            *error = why;
-        return false;
-    }
+    if (!why.isEmpty())
+        return Error(why);
     Q_EMIT sceneAboutToBeReset();
     m_scene = std::move(scene);
     m_markedFaces.clear();
@@ -162,7 +159,7 @@ bool Document::resetScene(Scene scene, QString* error) {
     m_cameraRevision = rev;
     m_marksRevision = rev;
     Q_EMIT sceneReset();
-    return true;
+    return ok();
 }
 
 bool Document::insertSurface(int index, Surface surface) {

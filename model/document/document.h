@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QFlags>
 #include <QHash>
@@ -73,8 +74,8 @@ public:
     TrimLoopId allocateTrimLoopId();
 
     /// Replaces the whole scene (New, Open, Import). Ids are kept; nextId is raised above them.
-    /// Returns false with *error set if the scene is invalid (the document is then unchanged).
-    bool resetScene(Scene scene, QString* error = nullptr);
+    /// Returns the reason when the scene is invalid (the document is then unchanged).
+    Status resetScene(Scene scene);
 
     /// index in [0, size]; surface.id valid and unused; geometry valid.
     bool insertSurface(int index, Surface surface);

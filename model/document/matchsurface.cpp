@@ -411,12 +411,10 @@ QString domainEdgeName(DomainEdge edge) {
     return {};
 }
 
-std::optional<MatchResult> matchSurface(const Scene& scene, const MatchRequest& request,
-                                        const ContinuityTolerances& tolerances, QString* error) {
-    const auto fail = [error](const QString& why) {
-        if (error)
-            *error = why;
-        return std::nullopt;
+Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& request,
+                                   const ContinuityTolerances& tolerances) {
+    const auto fail = [](const QString& why) {
+        return Error(why);
     };
     const Surface* a = findIn(scene, request.surface);
     const Surface* b = findIn(scene, request.target.surface);

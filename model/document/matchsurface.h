@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/analysis/continuity.h"
+#include "model/error.h"
 
 #include <QString>
 #include <optional>
@@ -38,12 +39,11 @@ struct MatchResult {
 /// (knots are inserted across otherwise). For a trim-curve target (an edge inside the
 /// neighbour's domain) it fits the boundary row by least squares to the edge and turns the next
 /// row into the neighbour's tangent planes, which is approximate: the summary then says whether
-/// the tolerance was reached and with what deviation. Returns nullopt with *error set when the
-/// request names no such surface or side, the surface is trimmed, the two are the same side, or
-/// an edge is not clamped.
-std::optional<MatchResult> matchSurface(const Scene& scene, const MatchRequest& request,
-                                        const ContinuityTolerances& tolerances,
-                                        QString* error = nullptr);
+/// the tolerance was reached and with what deviation. Returns an error when the request names
+/// no such surface or side, the surface is trimmed, the two are the same side, or an edge is
+/// not clamped.
+Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& request,
+                                   const ContinuityTolerances& tolerances);
 
 /// The side of `target` nearest to edge `edge` of `surface` (by the distance between their
 /// samples' mean points), for a dialog's default; nullopt when the target has none.

@@ -198,16 +198,14 @@ QByteArray sceneToJson(const Scene& scene) {
     return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
 
-bool writeKnotFile(const QString& path, const Scene& scene, QString* error) {
-    if (const QString why = sceneError(scene); !why.isEmpty()) {
-        if (error)
-            *error = QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why);
-        return false;
-    }
-    return saveBytesAtomically(path, sceneToJson(scene), error);
+Status writeKnotFile(const QString& path, const Scene& scene) {
+    if (const QString why = sceneError(scene); !why.isEmpty())
+        return Error(QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why),
+                     path);
+    return saveBytesAtomically(path, sceneToJson(scene));
 }
 
-std::optional<Scene> readKnotFile(const QString& path, QString* error) {
+Expected<Scene> readKnotFile(const QString& path) {
     // Nothing but a regular file within the size limit is opened, and a file that does not
     // start like JSON is refused from its first bytes, whatever its size.
     // (A missing file is left to open(), which names the reason.)
@@ -216,31 +214,20 @@ std::optional<Scene> readKnotFile(const QString& path, QString* error) {
                       : QString();
     if (why.isEmpty() && QFileInfo::exists(path))
         why = knotHeadProblem(fileHead(path, kSniffBytes));
-    if (!why.isEmpty()) {
-        if (error)
-            *error = QStringLiteral("%1: %2").arg(path, why);
-        return std::nullopt;
-    }
+    if (!why.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
     QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) {
-        if (error)
-            *error = QStringLiteral("%1: cannot open: %2").arg(path, file.errorString());
-        return std::nullopt;
-    }
-    if (file.size() > kMaxKnotFileBytes) {
-        if (error)
-            *error = QStringLiteral("%1: file is %2 bytes, more than the 1 GiB limit")
+    if (!file.open(QIODevice::ReadOnly))
+        return Error(QStringLiteral("%1: cannot open: %2").arg(path, file.errorString()), path);
+    if (file.size() > kMaxKnotFileBytes)
+        return Error(QStringLiteral("%1: file is %2 bytes, more than the 1 GiB limit")
                          .arg(path)
-                         .arg(file.size());
-        return std::nullopt;
-    }
+                         .arg(file.size()),
+                     path);
     const QByteArray data = file.readAll();
-    if (file.error() != QFileDevice::NoError) {
-        if (error)
-            *error = QStringLiteral("%1: cannot read: %2").arg(path, file.errorString());
-        return std::nullopt;
-    }
-    return sceneFromJson(data, path, error);
+    if (file.error() != QFileDevice::NoError)
+        return Error(QStringLiteral("%1: cannot read: %2").arg(path, file.errorString()), path);
+    return sceneFromJson(data, path);
 }
 
 } // namespace kw

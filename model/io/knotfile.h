@@ -3,10 +3,10 @@
 
 #include "model/document/scene.h"
 #include "model/document/validation.h"
+#include "model/error.h"
 
 #include <QByteArray>
 #include <QString>
-#include <optional>
 
 namespace kw {
 
@@ -33,21 +33,20 @@ constexpr long long kMaxKnotFileBytes = 1LL << 30;
 QByteArray sceneToJson(const Scene& scene);
 
 /// Parses and validates a scene. On success ids are those of the file and nextId is raised
-/// above every surface and loop id. On any problem returns nullopt and, if error is non-null,
-/// sets it to ONE line "<sourceName>: <JSON path>: <reason>", e.g.
-/// "a.knot: $.surfaces[2].knotsU[5]: knot 0.25 is smaller than the previous knot 0.5".
+/// above every surface and loop id. On any problem returns an error whose message is ONE line
+/// "<sourceName>: <JSON path>: <reason>", e.g.
+/// "a.knot: $.surfaces[2].knotsU[5]: knot 0.25 is smaller than the previous knot 0.5",
+/// with Error::file = sourceName and Error::location = the JSON path.
 /// Never returns a partial scene; never crashes on any input.
-std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName,
-                                   QString* error);
+Expected<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName);
 
 /// Writes the scene atomically (QSaveFile, flush checked): on failure the previous file at
-/// `path` is left untouched, false is returned and *error (if non-null) names the file and the
-/// reason. An invalid scene (kw::sceneError) is refused before anything is written, so every
-/// file written reads back.
-bool writeKnotFile(const QString& path, const Scene& scene, QString* error);
+/// `path` is left untouched and the error names the file and the reason. An invalid scene
+/// (kw::sceneError) is refused before anything is written, so every file written reads back.
+Status writeKnotFile(const QString& path, const Scene& scene);
 
 /// Reads a .knot file; errors as for sceneFromJson, with the path as the source name (also
 /// for a file that cannot be opened or is larger than 1 GiB).
-std::optional<Scene> readKnotFile(const QString& path, QString* error);
+Expected<Scene> readKnotFile(const QString& path);
 
 } // namespace kw

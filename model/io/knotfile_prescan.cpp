@@ -5,6 +5,7 @@
 
 #include <QLocale>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace kw {
@@ -33,9 +34,12 @@ QString pathOf(const std::vector<Level>& stack) {
     return path;
 }
 
-} // namespace
+struct KnotPrescanError {
+    QString path;   ///< JSON path of the offending member
+    QString reason; ///< as the reader would word it
+};
 
-std::optional<KnotPrescanError> prescanKnotJson(const QByteArray& json) {
+std::optional<KnotPrescanError> firstTooLarge(const QByteArray& json) {
     std::vector<Level> stack;
     long long numbers = 0;
     const char* p = json.constData();
@@ -145,6 +149,14 @@ std::optional<KnotPrescanError> prescanKnotJson(const QByteArray& json) {
         }
     }
     return std::nullopt;
+}
+
+} // namespace
+
+Status prescanKnotJson(const QByteArray& json) {
+    if (const auto tooLarge = firstTooLarge(json))
+        return Error(tooLarge->reason, QString(), tooLarge->path);
+    return ok();
 }
 
 } // namespace kw

@@ -2,9 +2,9 @@
 // Qt's JSON tree takes many times the file's size, so absurd counts are refused first.
 #pragma once
 
+#include "model/error.h"
+
 #include <QByteArray>
-#include <QString>
-#include <optional>
 
 namespace kw {
 
@@ -13,16 +13,13 @@ namespace kw {
 /// reader take (docs/FILE_FORMAT.md, ## Limits).
 constexpr long long kMaxKnotNumbers = 40'000'000;
 
-struct KnotPrescanError {
-    QString path;   ///< JSON path of the offending member, e.g. "$.surfaces[0].countV"
-    QString reason; ///< as the reader would word it
-};
-
 /// Scans the JSON text once, keeping only a stack of open containers, and reports the first
 /// of: an array longer than any limit allows (kMaxControlPoints elements); a surface object
 /// whose countU x countV is above kMaxControlPoints; more than kMaxSurfaces surfaces; more than
 /// kMaxKnotNumbers numbers in the file; nesting deeper than 64. Malformed JSON is not judged
-/// here (the parser reports it with its position): the scan stops and returns nullopt.
-std::optional<KnotPrescanError> prescanKnotJson(const QByteArray& json);
+/// here (the parser reports it with its position): the scan stops and returns ok(). The error's
+/// message is the reason as the reader words it; its location the JSON path of the offending
+/// member, e.g. "$.surfaces[0].countV" (the caller knows the file).
+Status prescanKnotJson(const QByteArray& json);
 
 } // namespace kw

@@ -722,12 +722,11 @@ QString oneLine(QString s) {
 
 } // namespace
 
-std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName,
-                                   QString* error) {
+Expected<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName) {
     try {
         // Sizes first, on the raw bytes: the JSON tree would take many times the file's size.
-        if (const auto tooLarge = prescanKnotJson(json))
-            fail(tooLarge->path, tooLarge->reason);
+        if (const Status sizes = prescanKnotJson(json); !sizes)
+            fail(sizes.error().location, sizes.error().message);
         QJsonParseError parseError;
         const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
         if (parseError.error != QJsonParseError::NoError)
@@ -738,13 +737,12 @@ std::optional<Scene> sceneFromJson(const QByteArray& json, const QString& source
             fail(QStringLiteral("$"), QStringLiteral("expected an object at the top level"));
         return readScene(doc.object());
     } catch (const FileError& e) {
-        if (error)
-            *error = oneLine(QStringLiteral("%1: %2: %3").arg(sourceName, e.path, e.reason));
+        return Error(oneLine(QStringLiteral("%1: %2: %3").arg(sourceName, e.path, e.reason)),
+                     sourceName, e.path);
     } catch (const std::bad_alloc&) {
-        if (error)
-            *error = oneLine(QStringLiteral("%1: $: out of memory while reading").arg(sourceName));
+        return Error(oneLine(QStringLiteral("%1: $: out of memory while reading").arg(sourceName)),
+                     sourceName, QStringLiteral("$"));
     }
-    return std::nullopt;
 }
 
 } // namespace kw

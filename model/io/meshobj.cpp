@@ -94,11 +94,12 @@ namespace {
 
 struct Parser {
     const QString& file;
-    QString& error;
+    Error& error;
     long long lineNo = 0;
 
     bool fail(const QString& why) {
-        error = QStringLiteral("%1:%2: %3").arg(file).arg(lineNo).arg(why);
+        error = Error(QStringLiteral("%1:%2: %3").arg(file).arg(lineNo).arg(why), file,
+                      QStringLiteral("line %1").arg(lineNo));
         return false;
     }
 };
@@ -142,10 +143,8 @@ struct CornerHash {
     }
 };
 
-} // namespace
-
-bool parseTaggedMeshObj(const QByteArray& text, const QString& fileName, TaggedMeshSet& set,
-                        QString& error) {
+// The parse itself; false with `error` set on the first problem.
+bool parseMesh(const QByteArray& text, const QString& fileName, TaggedMeshSet& set, Error& error) {
     Parser ps{fileName, error};
     std::vector<glm::dvec3> v, vn;
     std::vector<glm::dvec2> vt;
@@ -267,25 +266,33 @@ bool parseTaggedMeshObj(const QByteArray& text, const QString& fileName, TaggedM
         }
     }
     if (result.triangleCount() == 0) {
-        error = QStringLiteral("%1: no triangles in any 'g surface_<id>' group").arg(fileName);
+        error =
+            Error(QStringLiteral("%1: no triangles in any 'g surface_<id>' group").arg(fileName),
+                  fileName);
         return false;
     }
     set = std::move(result);
     return true;
 }
 
-bool readTaggedMeshObjFile(const QString& path, TaggedMeshSet& set, QString& error) {
+} // namespace
+
+Expected<TaggedMeshSet> parseTaggedMeshObj(const QByteArray& text, const QString& fileName) {
+    TaggedMeshSet set;
+    Error error;
+    if (!parseMesh(text, fileName, set, error))
+        return error;
+    return set;
+}
+
+Expected<TaggedMeshSet> readTaggedMeshObjFile(const QString& path) {
     QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) {
-        error = QStringLiteral("%1: cannot open: %2").arg(path, f.errorString());
-        return false;
-    }
+    if (!f.open(QIODevice::ReadOnly))
+        return Error(QStringLiteral("%1: cannot open: %2").arg(path, f.errorString()), path);
     const QByteArray bytes = f.readAll();
-    if (f.error() != QFileDevice::NoError) {
-        error = QStringLiteral("%1: cannot read: %2").arg(path, f.errorString());
-        return false;
-    }
-    return parseTaggedMeshObj(bytes, path, set, error);
+    if (f.error() != QFileDevice::NoError)
+        return Error(QStringLiteral("%1: cannot read: %2").arg(path, f.errorString()), path);
+    return parseTaggedMeshObj(bytes, path);
 }
 
 } // namespace kw

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QByteArray>
 #include <QString>
@@ -42,12 +43,12 @@ QByteArray writeTaggedMeshObj(const TaggedMeshSet& set);
 /// Parses what writeTaggedMeshObj writes, and any triangle OBJ whose faces lie in groups named
 /// `surface_<id>`: v, vt, vn, g, f with v/vt/vn, v//vn or v/vt corners (negative indices count
 /// back; polygons are fanned), comments, o, s and usemtl/mtllib ignored. A corner without a
-/// normal gets the face's flat normal. Returns false with `error` "<fileName>:<line>: <reason>"
-/// for a malformed number, an index out of range, a face outside a `surface_<id>` group or a
-/// group name that is not one, and "<fileName>: <reason>" for a file with no triangle.
-bool parseTaggedMeshObj(const QByteArray& text, const QString& fileName, TaggedMeshSet& set,
-                        QString& error);
+/// normal gets the face's flat normal. Returns the error "<fileName>:<line>: <reason>"
+/// (Error::location "line N") for a malformed number, an index out of range, a face outside a
+/// `surface_<id>` group or a group name that is not one, and "<fileName>: <reason>" for a file
+/// with no triangle.
+Expected<TaggedMeshSet> parseTaggedMeshObj(const QByteArray& text, const QString& fileName);
 /// Reads a file and parses it as above; an unreadable file is an error naming the file.
-bool readTaggedMeshObjFile(const QString& path, TaggedMeshSet& set, QString& error);
+Expected<TaggedMeshSet> readTaggedMeshObjFile(const QString& path);
 
 } // namespace kw

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 #include "model/io/importreport.h"
 
 #include <QByteArray>
@@ -18,12 +19,13 @@ namespace kw {
 /// written by writeObj, restore ids, names, partitions, materials, lights and camera exactly.
 /// Gaps between the pieces of a trim loop are closed (kw::closeSceneTrimLoops) and reported in
 /// report.warnings, and the scene must pass kw::sceneError, so an accepted file saves and
-/// reopens. Returns true and sets `scene` on success; on malformed input returns false with
-/// `error` = "<fileName>:<line>: <reason>" and leaves `scene` untouched.
-bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, ImportReport& report,
-              QString& error);
+/// reopens. Sets `scene` and `report` on success; on malformed input returns the error
+/// "<fileName>:<line>: <reason>" (Error::location "line N" where there is one) and leaves
+/// `scene` and `report` untouched.
+Status parseObj(const QByteArray& text, const QString& fileName, Scene& scene,
+                ImportReport& report);
 /// Reads a file and parses it as above; an unreadable file is an error naming the file.
-bool readObjFile(const QString& path, Scene& scene, ImportReport& report, QString& error);
+Status readObjFile(const QString& path, Scene& scene, ImportReport& report);
 
 /// The whole scene as free-form OBJ: every surface as `cstype [rat] bspline` with its trims
 /// as curv2 + trim/hole (hole for loops nested inside an odd number of others), numbers in
@@ -43,17 +45,16 @@ struct ObjMeshOptions {
 /// centroid the trims remove (trim.h, even-odd) is dropped. One `o` per surface. In memory,
 /// without the size cap (for small scenes and tests).
 QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options = {});
-/// The same mesh streamed into `path` atomically, surface by surface. Refused with `error`
+/// The same mesh streamed into `path` atomically, surface by surface. Refused with the error
 /// "<path>: the mesh would be larger than the limit ..." (and the previous file untouched)
 /// as soon as it is clear the file would exceed options.maxBytes: at once when the vertex
 /// count alone cannot fit, else when a surface's lines pass the cap.
-bool writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options,
-                      QString& error);
+Status writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options);
 
 /// Writes bytes to a file atomically (kw::saveBytesAtomically: QSaveFile, flush checked);
-/// false with `error` naming the file when it cannot be written; the old file is then kept.
-bool writeFileBytes(const QString& path, const QByteArray& bytes, QString& error);
+/// an error naming the file when it cannot be written; the old file is then kept.
+Status writeFileBytes(const QString& path, const QByteArray& bytes);
 /// writeObj into `path` atomically; an invalid scene (kw::sceneError) is refused first.
-bool writeObjFile(const QString& path, const Scene& scene, QString& error);
+Status writeObjFile(const QString& path, const Scene& scene);
 
 } // namespace kw

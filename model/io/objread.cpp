@@ -667,19 +667,19 @@ void ObjParser::finishSurface() {
 
 } // namespace
 
-bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, ImportReport& report,
-              QString& error) {
+Status parseObj(const QByteArray& text, const QString& fileName, Scene& scene,
+                ImportReport& report) {
     ImportReport local;
     ObjParser parser(fileName, local);
     Scene out;
     try {
         out = parser.parse(text);
     } catch (const ParseError& e) {
-        error = QStringLiteral("%1:%2: %3").arg(fileName).arg(e.line).arg(e.reason);
-        return false;
+        return Error(QStringLiteral("%1:%2: %3").arg(fileName).arg(e.line).arg(e.reason), fileName,
+                     QStringLiteral("line %1").arg(e.line));
     } catch (const std::bad_alloc&) {
-        error = QStringLiteral("%1: too large to read (out of memory)").arg(fileName);
-        return false;
+        return Error(QStringLiteral("%1: too large to read (out of memory)").arg(fileName),
+                     fileName);
     }
     // Ids from the file must be unique; surfaces and loops without one get fresh ones.
     std::vector<std::uint32_t> used;
@@ -692,8 +692,7 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
     }
     std::sort(used.begin(), used.end());
     if (std::adjacent_find(used.begin(), used.end()) != used.end()) {
-        error = QStringLiteral("%1: knotwork metadata repeats an id").arg(fileName);
-        return false;
+        return Error(QStringLiteral("%1: knotwork metadata repeats an id").arg(fileName), fileName);
     }
     for (Surface& s : out.surfaces) {
         if (!s.id.isValid())
@@ -709,44 +708,40 @@ bool parseObj(const QByteArray& text, const QString& fileName, Scene& scene, Imp
         local.warnings << QStringLiteral("%1: %2").arg(fileName, line);
     // The topology's references, named by the line that makes them.
     if (const auto bad = topologyProblem(out)) {
-        error = QStringLiteral("%1:%2: knotwork topology: %3: %4")
-                    .arg(fileName)
-                    .arg(parser.topologyLine(bad->place))
-                    .arg(bad->place, bad->reason);
-        return false;
+        const int line = parser.topologyLine(bad->place);
+        return Error(QStringLiteral("%1:%2: knotwork topology: %3: %4")
+                         .arg(fileName)
+                         .arg(line)
+                         .arg(bad->place, bad->reason),
+                     fileName, QStringLiteral("line %1").arg(line));
     }
-    if (const QString why = sceneError(out); !why.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(fileName, why);
-        return false;
-    }
-    if (out.surfaces.empty() && local.skipped.isEmpty()) {
-        error =
-            QStringLiteral("%1: no free-form surfaces (surf ... end) in the file").arg(fileName);
-        return false;
-    }
+    if (const QString why = sceneError(out); !why.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(fileName, why), fileName);
+    if (out.surfaces.empty() && local.skipped.isEmpty())
+        return Error(
+            QStringLiteral("%1: no free-form surfaces (surf ... end) in the file").arg(fileName),
+            fileName);
     report = local;
     scene = std::move(out);
-    return true;
+    return ok();
 }
 
-bool readObjFile(const QString& path, Scene& scene, ImportReport& report, QString& error) {
+Status readObjFile(const QString& path, Scene& scene, ImportReport& report) {
     // Only a regular file within the size limit, and only text that starts like OBJ: random
     // bytes are refused from their first 4 KiB, not after reading and splitting all of them.
     QString why = regularFileProblem(path, kMaxObjFileBytes, QStringLiteral("OBJ"));
     if (why.isEmpty())
         why = objHeadProblem(fileHead(path, kSniffBytes));
     if (!why.isEmpty()) {
-        error = why.startsWith(QLatin1String("line "))
-                    ? QStringLiteral("%1:%2").arg(path, why.mid(5))
-                    : QStringLiteral("%1: %2").arg(path, why);
-        return false;
+        if (why.startsWith(QLatin1String("line ")))
+            return Error(QStringLiteral("%1:%2").arg(path, why.mid(5)), path,
+                         why.section(QLatin1Char(':'), 0, 0));
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
     }
     QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) {
-        error = QStringLiteral("%1: cannot open: %2").arg(path, f.errorString());
-        return false;
-    }
-    return parseObj(f.readAll(), path, scene, report, error);
+    if (!f.open(QIODevice::ReadOnly))
+        return Error(QStringLiteral("%1: cannot open: %2").arg(path, f.errorString()), path);
+    return parseObj(f.readAll(), path, scene, report);
 }
 
 } // namespace kw

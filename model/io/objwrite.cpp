@@ -293,26 +293,24 @@ QByteArray writeObjMesh(const Scene& scene, const ObjMeshOptions& options) {
     return buffer.data();
 }
 
-bool writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options,
-                      QString& error) {
+Status writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOptions& options) {
     QString why;
-    const bool ok = saveFileAtomically(
-        path, [&](QIODevice& d) { return streamObjMesh(d, scene, options, &why); }, &error);
-    if (!ok && !why.isEmpty())
-        error = QStringLiteral("%1: %2").arg(path, why);
-    return ok;
+    Status written = saveFileAtomically(
+        path, [&](QIODevice& d) { return streamObjMesh(d, scene, options, &why); });
+    if (!written && !why.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
+    return written;
 }
 
-bool writeFileBytes(const QString& path, const QByteArray& bytes, QString& error) {
-    return saveBytesAtomically(path, bytes, &error);
+Status writeFileBytes(const QString& path, const QByteArray& bytes) {
+    return saveBytesAtomically(path, bytes);
 }
 
-bool writeObjFile(const QString& path, const Scene& scene, QString& error) {
-    if (const QString why = sceneError(scene); !why.isEmpty()) {
-        error = QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why);
-        return false;
-    }
-    return writeFileBytes(path, writeObj(scene), error);
+Status writeObjFile(const QString& path, const Scene& scene) {
+    if (const QString why = sceneError(scene); !why.isEmpty())
+        return Error(QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why),
+                     path);
+    return writeFileBytes(path, writeObj(scene));
 }
 
 } // namespace kw

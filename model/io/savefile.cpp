@@ -50,14 +50,11 @@ struct TemporaryName {
 
 } // namespace
 
-bool saveFileAtomically(const QString& path, const std::function<bool(QIODevice&)>& write,
-                        QString* error) {
+Status saveFileAtomically(const QString& path, const std::function<bool(QIODevice&)>& write) {
     QSaveFile file(path);
     auto failed = [&](const QString& what, const QString& reason) {
-        if (error)
-            *error = QStringLiteral("%1: %2: %3").arg(path, what, reason);
         file.cancelWriting();
-        return false;
+        return Error(QStringLiteral("%1: %2: %3").arg(path, what, reason), path);
     };
     if (!file.open(QIODevice::WriteOnly))
         return failed(QStringLiteral("cannot open for writing"), file.errorString());
@@ -73,48 +70,41 @@ bool saveFileAtomically(const QString& path, const std::function<bool(QIODevice&
     }
     if (!file.commit())
         return failed(QStringLiteral("cannot save"), file.errorString());
-    return true;
+    return ok();
 }
 
-bool saveBytesAtomically(const QString& path, const QByteArray& bytes, QString* error) {
-    return saveFileAtomically(
-        path, [&](QIODevice& d) { return d.write(bytes) == bytes.size(); }, error);
+Status saveBytesAtomically(const QString& path, const QByteArray& bytes) {
+    return saveFileAtomically(path, [&](QIODevice& d) { return d.write(bytes) == bytes.size(); });
 }
 
-bool saveViaTemporaryName(const QString& path,
-                          const std::function<bool(const QString&, QString*)>& write,
-                          QString* error) {
+Status saveViaTemporaryName(const QString& path,
+                            const std::function<Status(const QString&)>& write) {
     const QFileInfo info(path);
     const QString suffix = info.suffix();
     QTemporaryFile temporary(info.dir().filePath(
         QStringLiteral(".%1.XXXXXX%2")
             .arg(info.fileName(), suffix.isEmpty() ? QString() : QStringLiteral(".") + suffix)));
-    if (!temporary.open()) {
-        if (error)
-            *error = QStringLiteral("%1: cannot write in this folder: %2")
-                         .arg(path, temporary.errorString());
-        return false;
-    }
+    if (!temporary.open())
+        return Error(QStringLiteral("%1: cannot write in this folder: %2")
+                         .arg(path, temporary.errorString()),
+                     path);
     const QString temporaryPath = temporary.fileName();
     temporary.close(); // the writer opens the name itself; QTemporaryFile still removes it
     const TemporaryName registered(temporaryPath);
-    QString why;
-    if (!write(temporaryPath, &why)) {
-        if (error)
-            *error = why.isEmpty() ? QStringLiteral("%1: cannot write").arg(path) : why;
-        return false;
+    if (Status written = write(temporaryPath); !written) {
+        if (written.message().isEmpty())
+            return Error(QStringLiteral("%1: cannot write").arg(path), path);
+        return written;
     }
     // Keep the permissions a new file would get, not QTemporaryFile's 0600.
     QFile::setPermissions(temporaryPath, QFileDevice::ReadOwner | QFileDevice::WriteOwner |
                                              QFileDevice::ReadGroup | QFileDevice::ReadOther);
     if (std::rename(QFile::encodeName(temporaryPath).constData(),
-                    QFile::encodeName(path).constData()) != 0) {
-        if (error)
-            *error = QStringLiteral("%1: cannot replace: %2").arg(path, qt_error_string(errno));
-        return false;
-    }
+                    QFile::encodeName(path).constData()) != 0)
+        return Error(QStringLiteral("%1: cannot replace: %2").arg(path, qt_error_string(errno)),
+                     path);
     temporary.setAutoRemove(false); // renamed: nothing left to remove
-    return true;
+    return ok();
 }
 
 } // namespace kw

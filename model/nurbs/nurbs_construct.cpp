@@ -212,12 +212,10 @@ NurbsSurface makeExtrusion(const NurbsCurve3& curve, const glm::dvec3& direction
     return s;
 }
 
-NurbsSurface makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV, std::string* error,
-                      std::vector<double>* sectionParameters) {
-    auto fail = [error](const std::string& why) {
-        if (error)
-            *error = why;
-        return NurbsSurface{};
+Expected<NurbsSurface> makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV,
+                                std::vector<double>* sectionParameters) {
+    auto fail = [](const std::string& why) {
+        return Error(QString::fromStdString(why));
     };
     const int K = int(sections.size());
     if (K < 2)
@@ -360,12 +358,10 @@ NurbsSurface makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV, std::st
     return s;
 }
 
-NurbsCurve3 interpolateCurve3(const std::vector<glm::dvec3>& q, int maxDegree, std::string* error,
-                              std::vector<double>* parameters) {
-    const auto fail = [&](const char* why) {
-        if (error)
-            *error = why;
-        return NurbsCurve3{};
+Expected<NurbsCurve3> interpolateCurve3(const std::vector<glm::dvec3>& q, int maxDegree,
+                                        std::vector<double>* parameters) {
+    const auto fail = [](const char* why) {
+        return Error(why);
     };
     const int n = int(q.size());
     if (n < 2)

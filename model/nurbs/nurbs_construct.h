@@ -2,6 +2,7 @@
 // (skinning) and knot removal (algorithms from Piegl & Tiller, The NURBS Book, 2nd ed.).
 #pragma once
 
+#include "model/error.h"
 #include "model/nurbs/nurbs.h"
 
 #include <string>
@@ -58,21 +59,18 @@ NurbsSurface makeExtrusion(const NurbsCurve3& curve, const glm::dvec3& direction
 /// every section unchanged as a curve. v then interpolates the sections' homogeneous control
 /// points (A9.1: averaged chord-length parameters, averaged knots, Eq. 9.8)
 /// with degree min(maxDegreeV, sections - 1), so S(u, v_k) is section k exactly.
-/// Returns an empty surface (countU == 0) and sets *error when the sections are invalid, fewer
-/// than two, coincide, or the interpolation gives non-positive weights. *sectionParameters (if
-/// given) receives the v_k.
-NurbsSurface makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV = 3,
-                      std::string* error = nullptr,
-                      std::vector<double>* sectionParameters = nullptr);
+/// Returns an error when the sections are invalid, fewer than two, coincide, or the
+/// interpolation gives non-positive weights. *sectionParameters (if given) receives the v_k.
+Expected<NurbsSurface> makeLoft(std::vector<NurbsCurve3> sections, int maxDegreeV = 3,
+                                std::vector<double>* sectionParameters = nullptr);
 
 /// Global curve interpolation (The NURBS Book A9.1): the non-rational curve of degree
 /// min(maxDegree, n - 1) through the n >= 2 points, parameters by chord length (Eq. 9.5) on
-/// [0, 1], knots by averaging (Eq. 9.8), so C(t_k) = Q_k. Returns an empty curve (no points)
-/// and sets *error when there are fewer than two points, a point is not finite or two
-/// consecutive points coincide. *parameters (if given) receives the t_k.
-NurbsCurve3 interpolateCurve3(const std::vector<glm::dvec3>& points, int maxDegree = 3,
-                              std::string* error = nullptr,
-                              std::vector<double>* parameters = nullptr);
+/// [0, 1], knots by averaging (Eq. 9.8), so C(t_k) = Q_k. Returns an error when there are
+/// fewer than two points, a point is not finite or two consecutive points coincide.
+/// *parameters (if given) receives the t_k.
+Expected<NurbsCurve3> interpolateCurve3(const std::vector<glm::dvec3>& points, int maxDegree = 3,
+                                        std::vector<double>* parameters = nullptr);
 /// The non-rational clamped uniform B-spline of degree min(maxDegree, n - 1) with the n >= 2
 /// points as its control polygon (empty for fewer points).
 NurbsCurve3 controlPointCurve3(const std::vector<glm::dvec3>& points, int maxDegree = 3);

@@ -99,7 +99,7 @@ void TestCli::helpAndVersion() {
 void TestCli::infoOnEverySample() {
     QVERIFY(samples().size() >= 5);
     for (const QString& path : samples()) {
-        const std::optional<Scene> scene = readKnotFile(path, nullptr);
+        const auto scene = readKnotFile(path);
         QVERIFY(scene);
         const Run r = knotwork({QStringLiteral("info"), path});
         QVERIFY2(r.code == 0, qPrintable(r.err));
@@ -120,7 +120,7 @@ void TestCli::infoOnEverySample() {
 
 void TestCli::infoJsonMatchesScene() {
     for (const QString& path : samples()) {
-        const std::optional<Scene> scene = readKnotFile(path, nullptr);
+        const auto scene = readKnotFile(path);
         QVERIFY(scene);
         const Run r = knotwork({QStringLiteral("info"), path, QStringLiteral("--json")});
         QCOMPARE(r.code, 0);
@@ -211,7 +211,7 @@ void TestCli::fileAloneOpensEditor() {
 
 void TestCli::evalMatchesKernel() {
     for (const QString& path : samples()) {
-        const std::optional<Scene> scene = readKnotFile(path, nullptr);
+        const auto scene = readKnotFile(path);
         QVERIFY(scene);
         // Every surface of the small samples; every fourth teapot patch (process start-up costs).
         const size_t step = scene->surfaces.size() > 4 ? 4 : 1;
@@ -248,7 +248,7 @@ void TestCli::evalMatchesKernel() {
 
 void TestCli::evalJsonMatchesKernel() {
     const QString path = QStringLiteral(KW_SAMPLES_DIR "/sphere.knot");
-    const std::optional<Scene> scene = readKnotFile(path, nullptr);
+    const auto scene = readKnotFile(path);
     QVERIFY(scene);
     const NurbsSurface& g = scene->surfaces[0].geometry;
     const Run r = knotwork({QStringLiteral("eval"), path, QStringLiteral("--surface=1"),
@@ -273,7 +273,7 @@ void TestCli::evalByName() {
         knotwork({QStringLiteral("eval"), path, QStringLiteral("--surface"),
                   QStringLiteral("spout 2"), QStringLiteral("--uv"), QStringLiteral("0.5,0.5")});
     QVERIFY2(byName.code == 0, qPrintable(byName.err));
-    const std::optional<Scene> scene = readKnotFile(path, nullptr);
+    const auto scene = readKnotFile(path);
     QVERIFY(scene);
     const Surface* spout = nullptr;
     for (const Surface& s : scene->surfaces)

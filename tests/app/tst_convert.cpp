@@ -19,9 +19,9 @@ QString data(const char* name) {
 
 Scene readScene(const QString& path) {
     QString error;
-    auto s = readKnotFile(path, &error);
+    auto s = readKnotFile(path);
     if (!s)
-        qWarning("%s", qPrintable(error));
+        qWarning("%s", qPrintable(s.message()));
     return s.value_or(Scene{});
 }
 

@@ -1,5 +1,6 @@
 // STEP and IGES export: round trips of the test files and created samples (exact geometry,
 // trimmed areas), closed solids staying closed, open seams reported, bad input refused.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/cad/cadexport.h"
 #include "model/cad/cadimport.h"
@@ -99,7 +100,7 @@ Scene created(const QString& kind) {
         for (int k = 0; k < 4; ++k)
             sections.push_back(controlPointCurve3(
                 {{0, k, 0.1 * k}, {1, k, 0.5 + 0.2 * k}, {2, k, -0.3}, {3, k, 0.2 * k}}, 3));
-        s.surfaces = {named(1, QStringLiteral("loft"), makeLoft(sections))};
+        s.surfaces = {named(1, QStringLiteral("loft"), *makeLoft(sections))};
         s.nextId = 2;
     }
     return s;
@@ -611,12 +612,12 @@ void TestExchange::requireClosedLeavesFileUntouched() {
     QVERIFY(report.warnings.size() >= 2); // the seams are still reported
     // Through convert: exit 1, one error line, the file untouched; a closed cube is written.
     const QString knot = out(QStringLiteral("edited_cube.knot"));
-    QVERIFY(writeKnotFile(knot, cube(0.01), &error));
+    KW_VERIFY_OK(writeKnotFile(knot, cube(0.01)));
     Run r = knotwork({QStringLiteral("convert"), knot, path, QStringLiteral("--require-closed")});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains(QLatin1String("seam between face")), qPrintable(r.err));
     QCOMPARE(readAll(path), QByteArray("previous contents\n"));
-    QVERIFY(writeKnotFile(knot, cube(), &error));
+    KW_VERIFY_OK(writeKnotFile(knot, cube()));
     r = knotwork({QStringLiteral("convert"), knot, path, QStringLiteral("--require-closed")});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY(readAll(path).contains("MANIFOLD_SOLID_BREP"));
@@ -683,19 +684,18 @@ void TestExchange::badInputExitsOne_data() {
     QTest::addColumn<QString>("in");
     QTest::addColumn<QString>("target");
     QTest::addColumn<QString>("expected");
-    QString error;
     Scene empty;
     const QString emptyKnot = out(QStringLiteral("empty.knot"));
-    writeKnotFile(emptyKnot, empty, &error);
+    KW_VERIFY_OK(writeKnotFile(emptyKnot, empty));
     // Two distinct knots one ulp apart: valid for Knotwork, refused by Geom_BSplineSurface.
     Scene degenerate = cube();
     degenerate.surfaces[2].geometry = test::patch(4, 4);
     degenerate.surfaces[2].geometry.degreeU = 2;
     degenerate.surfaces[2].geometry.knotsU = {0, 0, 0, 0.5, std::nextafter(0.5, 1.0), 1, 1};
     const QString degenerateKnot = out(QStringLiteral("degenerate.knot"));
-    QVERIFY2(writeKnotFile(degenerateKnot, degenerate, &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(degenerateKnot, degenerate));
     const QString cubeKnot = out(QStringLiteral("cube.knot"));
-    writeKnotFile(cubeKnot, cube(), &error);
+    KW_VERIFY_OK(writeKnotFile(cubeKnot, cube()));
     QTest::newRow("empty document")
         << emptyKnot << out(QStringLiteral("empty.step")) << QStringLiteral("no surfaces");
     QTest::newRow("degenerate surface") << degenerateKnot << out(QStringLiteral("degenerate.step"))

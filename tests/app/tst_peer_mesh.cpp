@@ -2,6 +2,7 @@
 // `knotwork mesh` (BRepMesh in the CAD child process), checked against the kernel: every vertex
 // lies on the surface its group names, at the (u, v) it carries, every triangle's centre lies
 // within the linear deflection of the surface, and the normals are the surface's.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/io/knotfile.h"
 #include "model/io/meshobj.h"
@@ -109,10 +110,10 @@ private Q_SLOTS:
             set.faces.push_back(m);
         }
         const QByteArray text = kw::writeTaggedMeshObj(set);
-        kw::TaggedMeshSet back;
-        QString error;
-        QVERIFY2(kw::parseTaggedMeshObj(text, QStringLiteral("m.obj"), back, error),
-                 qPrintable(error));
+        const kw::Expected<kw::TaggedMeshSet> parsed =
+            kw::parseTaggedMeshObj(text, QStringLiteral("m.obj"));
+        QVERIFY2(parsed, qPrintable(parsed.message()));
+        const kw::TaggedMeshSet& back = *parsed;
         QCOMPARE(back.faces.size(), size_t(2));
         QCOMPARE(back.linearDeflection, 0.25);
         QCOMPARE(back.angularDeflectionDegrees, 12.5);
@@ -131,10 +132,10 @@ private Q_SLOTS:
 
     void objFansPolygonsAndFlatNormals() {
         const QByteArray text = "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\ng surface_5\nf 1 2 3 4\n";
-        kw::TaggedMeshSet set;
-        QString error;
-        QVERIFY2(kw::parseTaggedMeshObj(text, QStringLiteral("q.obj"), set, error),
-                 qPrintable(error));
+        const kw::Expected<kw::TaggedMeshSet> parsed =
+            kw::parseTaggedMeshObj(text, QStringLiteral("q.obj"));
+        QVERIFY2(parsed, qPrintable(parsed.message()));
+        const kw::TaggedMeshSet& set = *parsed;
         QCOMPARE(set.triangleCount(), 2LL);
         QCOMPARE(set.faces[0].normals[0], glm::dvec3(0, 0, 1));
     }
@@ -156,10 +157,9 @@ private Q_SLOTS:
     void objErrorsNameFileAndLine() {
         QFETCH(QByteArray, text);
         QFETCH(QString, where);
-        kw::TaggedMeshSet set;
-        QString error;
-        QVERIFY(!kw::parseTaggedMeshObj(text, QStringLiteral("bad.obj"), set, error));
-        QVERIFY2(error.startsWith(where), qPrintable(error));
+        const auto result = kw::parseTaggedMeshObj(text, QStringLiteral("bad.obj"));
+        QVERIFY(!result);
+        QVERIFY2(result.message().startsWith(where), qPrintable(result.message()));
     }
 
 #ifdef KW_HAVE_OCCT
@@ -184,11 +184,11 @@ private Q_SLOTS:
                       QStringLiteral("--angular-deflection"), QString::number(angular)});
         QVERIFY2(r.code == 0, qPrintable(r.err));
         QVERIFY2(r.out.contains(QStringLiteral("25 of 25 face(s) meshed")), qPrintable(r.out));
-        QString error;
-        const std::optional<kw::Scene> scene = kw::readKnotFile(knot, &error);
-        QVERIFY2(scene, qPrintable(error));
-        kw::TaggedMeshSet mesh;
-        QVERIFY2(kw::readTaggedMeshObjFile(obj, mesh, error), qPrintable(error));
+        const auto scene = kw::readKnotFile(knot);
+        QVERIFY2(scene, qPrintable(scene.message()));
+        const kw::Expected<kw::TaggedMeshSet> read = kw::readTaggedMeshObjFile(obj);
+        QVERIFY2(read, qPrintable(read.message()));
+        const kw::TaggedMeshSet& mesh = *read;
         QCOMPARE(mesh.faces.size(), scene->surfaces.size());
         QCOMPARE(mesh.linearDeflection, linear);
         MeshCheck c;
@@ -209,11 +209,11 @@ private Q_SLOTS:
     void swappedIdsAreCaught() {
         const QString knot = output(QStringLiteral("peer_nut.knot"));
         const QString obj = output(QStringLiteral("peer_nut_0.5.obj"));
-        QString error;
-        const std::optional<kw::Scene> scene = kw::readKnotFile(knot, &error);
-        kw::TaggedMeshSet mesh;
-        if (!scene || !kw::readTaggedMeshObjFile(obj, mesh, error))
+        const auto scene = kw::readKnotFile(knot);
+        kw::Expected<kw::TaggedMeshSet> read = kw::readTaggedMeshObjFile(obj);
+        if (!scene || !read)
             QSKIP("needs meshLiesOnTheConvertedSurfaces's files");
+        kw::TaggedMeshSet mesh = std::move(read).value();
         std::swap(mesh.faces[0].id, mesh.faces[1].id);
         MeshCheck c;
         QVERIFY(check(*scene, mesh, c));

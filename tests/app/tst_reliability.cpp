@@ -1,6 +1,7 @@
 // Reliability of knotwork convert and info, run as processes: the reported hostile
 // inputs are refused with one line and no crash or hang; every file convert writes reopens;
 // kill -9 while convert writes leaves the old or the new complete file.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
@@ -182,14 +183,13 @@ void TestReliability::everyWrittenFileReopens() {
         QVERIFY2(info.code == 0, qPrintable(file + QStringLiteral(" -> .knot: ") + info.err));
         // The OBJ writer in-process (the same writeObjFile convert uses; processes cost about
         // a second each on the shared CI machine): what it writes must read back valid.
-        QString error;
-        const auto scene = readKnotFile(knot, &error);
-        QVERIFY2(scene, qPrintable(error));
-        QVERIFY2(writeObjFile(obj, *scene, error), qPrintable(error));
+        const auto scene = readKnotFile(knot);
+        QVERIFY2(scene, qPrintable(scene.message()));
+        KW_VERIFY_OK(writeObjFile(obj, *scene));
         Scene back;
         ImportReport report;
-        QVERIFY2(readObjFile(obj, back, report, error),
-                 qPrintable(file + QStringLiteral(": ") + error));
+        const Status read = readObjFile(obj, back, report);
+        QVERIFY2(read, qPrintable(file + QStringLiteral(": ") + read.message()));
         QVERIFY2(sceneError(back).isEmpty(),
                  qPrintable(file + QStringLiteral(" OBJ: ") + sceneError(back)));
     }
@@ -226,7 +226,7 @@ void TestReliability::killDuringConvertKeepsACompleteFile() {
     const Scene scene = kw::test::bigFlatScene(400); // a file of about 22 MB
     const QString source = out(QStringLiteral("kill_source.knot"));
     QString error;
-    QVERIFY2(writeKnotFile(source, scene, &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(source, scene));
     const QString target = out(QStringLiteral("kill_target.knot"));
     const QByteArray old = bytesOf(QStringLiteral(KW_SAMPLES_DIR "/bicubic.knot"));
     QVERIFY(writeBytes(target, old));

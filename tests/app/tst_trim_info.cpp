@@ -1,5 +1,6 @@
 // knotwork info on trimmed files, run as a process: loops per surface with their curve counts,
 // and the warnings of messy trims in text and JSON; knotwork render repeats them on stderr.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/io/knotfile.h"
 #include "trim_test_util.h"
@@ -47,7 +48,7 @@ private Q_SLOTS:
         QTemporaryDir dir;
         const QString path = dir.filePath(QStringLiteral("messy.knot"));
         QString error;
-        QVERIFY2(writeKnotFile(path, scene, &error), qPrintable(error));
+        KW_VERIFY_OK(writeKnotFile(path, scene));
 
         const Run text = knotwork({QStringLiteral("info"), path});
         QVERIFY2(text.code == 0, qPrintable(text.err));

@@ -38,9 +38,8 @@ private Q_SLOTS:
 
 void TestBenchScale::tilingKeepsFacesAndSeparatesCopies() {
     QString error;
-    const std::optional<Scene> unit =
-        readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"), &error);
-    QVERIFY2(unit, qPrintable(error));
+    const auto unit = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"));
+    QVERIFY2(unit, qPrintable(unit.message()));
     const size_t n = unit->surfaces.size();
     QCOMPARE(bench::copiesForFaces(int(n), 1), 1);
     QCOMPARE(bench::copiesForFaces(45, 10000), 223);

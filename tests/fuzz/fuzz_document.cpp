@@ -289,10 +289,10 @@ public:
             return doc.setCamera(c);
         }
         case 13: {
-            QString error;
-            const bool ok = doc.resetScene(makeScene(), &error);
-            KW_FUZZ_CHECK(ok == error.isEmpty(), "resetScene: result and error disagree");
-            return ok;
+            const Status reset = doc.resetScene(makeScene());
+            KW_FUZZ_CHECK(bool(reset) == reset.message().isEmpty(),
+                          "resetScene: result and error disagree");
+            return bool(reset);
         }
         case 14:
             return doc.allocateSurfaceId().isValid() || true;

@@ -7,10 +7,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     const QByteArray bytes(reinterpret_cast<const char*>(data), qsizetype(size));
     const QString source = QStringLiteral("fuzz.knot");
     QString error;
-    const std::optional<kw::Scene> scene = kw::sceneFromJson(bytes, source, &error);
+    const auto scene = kw::sceneFromJson(bytes, source);
     if (scene)
         kw::fuzz::checkAcceptedScene(*scene);
     else
-        kw::fuzz::checkRefusal(error, source);
+        kw::fuzz::checkRefusal(scene.message(), source);
     return 0;
 }

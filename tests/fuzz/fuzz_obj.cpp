@@ -10,11 +10,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     scene.nextId = 77; // a marker: a refused file must leave the scene as it was
     const kw::Scene untouched = scene;
     kw::ImportReport report;
-    QString error;
-    if (kw::parseObj(bytes, source, scene, report, error)) {
+    if (const kw::Status parsed = kw::parseObj(bytes, source, scene, report)) {
         kw::fuzz::checkAcceptedScene(scene);
     } else {
-        kw::fuzz::checkRefusal(error, source);
+        kw::fuzz::checkRefusal(parsed.message(), source);
         KW_FUZZ_CHECK(scene == untouched, "a refused OBJ changed the scene");
     }
     return 0;

@@ -54,14 +54,15 @@ inline void checkAcceptedScene(const Scene& given) {
     const QString why = Document::validate(given);
     KW_FUZZ_CHECK(why.isEmpty(), why);
     Document doc;
-    QString error;
-    KW_FUZZ_CHECK(doc.resetScene(given, &error), error);
+    const Status reset = doc.resetScene(given);
+    KW_FUZZ_CHECK(bool(reset), reset.message());
 
     const QByteArray json = sceneToJson(scene);
-    const std::optional<Scene> back = sceneFromJson(json, QStringLiteral("roundtrip.knot"), &error);
+    const auto back = sceneFromJson(json, QStringLiteral("roundtrip.knot"));
     // One validation (model/document/validation.h): every scene Knotwork accepts is written so that
     // it reopens; no refusal of a written file is tolerated.
-    KW_FUZZ_CHECK(back.has_value(), QStringLiteral("the .knot written does not reopen: ") + error);
+    KW_FUZZ_CHECK(back.has_value(),
+                  QStringLiteral("the .knot written does not reopen: ") + back.message());
     KW_FUZZ_CHECK(*back == scene,
                   QStringLiteral("the .knot written reopens as a different scene: ") +
                       firstDifference(scene, *back));
@@ -72,8 +73,8 @@ inline void checkAcceptedScene(const Scene& given) {
     const QByteArray obj = writeObj(scene);
     Scene fromObj;
     ImportReport report;
-    KW_FUZZ_CHECK(parseObj(obj, QStringLiteral("roundtrip.obj"), fromObj, report, error),
-                  QStringLiteral("the OBJ written does not reopen: ") + error);
+    const Status parsed = parseObj(obj, QStringLiteral("roundtrip.obj"), fromObj, report);
+    KW_FUZZ_CHECK(bool(parsed), QStringLiteral("the OBJ written does not reopen: ") + parsed.message());
     KW_FUZZ_CHECK(fromObj == scene,
                   QStringLiteral("the OBJ written reopens as a different scene: ") +
                       firstDifference(scene, fromObj));

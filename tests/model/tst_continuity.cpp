@@ -66,13 +66,12 @@ NurbsSurface wavyLoft(int maxDegreeV, std::vector<double>* parameters) {
         std::vector<glm::dvec3> points;
         for (int i = 0; i < 5; ++i)
             points.push_back({double(i), 1.3 * k, std::sin(0.9 * k) + 0.2 * i * k});
-        sections.push_back(interpolateCurve3(points));
+        sections.push_back(*interpolateCurve3(points));
     }
-    std::string error;
-    const NurbsSurface s = makeLoft(sections, maxDegreeV, &error, parameters);
-    if (!error.empty())
-        qFatal("loft: %s", error.c_str());
-    return s;
+    const Expected<NurbsSurface> s = makeLoft(sections, maxDegreeV, parameters);
+    if (!s)
+        qFatal("loft: %s", qPrintable(s.message()));
+    return *s;
 }
 
 double interiorKnot(const std::vector<double>& knots, int degree) {

@@ -1,5 +1,6 @@
 // The continuity kernel on the closed solids of tests/data as imported (no open edge, no free
 // edge, as many shared edges as OpenCASCADE counts), and `knotwork info --continuity`.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/analysis/continuity.h"
 #include "model/cad/cadimport.h"
@@ -207,7 +208,7 @@ void TestContinuityImport::infoUsesTheProjectsTolerances() {
     r->scene.continuity.g2Percent = 1000.0;
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("nut.knot"));
-    QVERIFY2(writeKnotFile(path, r->scene, &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, r->scene));
     Run run = knotwork(
         {QStringLiteral("info"), path, QStringLiteral("--continuity"), QStringLiteral("--json")});
     QCOMPARE(run.code, 0);

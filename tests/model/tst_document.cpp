@@ -22,9 +22,9 @@ struct Fixture {
     Document doc;
     Fixture() {
         QString error;
-        const bool ok = doc.resetScene(threeSurfaceScene(), &error);
+        const auto ok = doc.resetScene(threeSurfaceScene());
         if (!ok)
-            qFatal("fixture scene invalid: %s", qPrintable(error));
+            qFatal("fixture scene invalid: %s", qPrintable(ok.message()));
     }
 };
 
@@ -182,9 +182,9 @@ void TestDocument::resetScene() {
     QSignalSpy reset(&doc, &Document::sceneReset);
     Scene scene = threeSurfaceScene();
     scene.nextId = 1; // below the ids in use: resetScene raises it
-    QString error;
-    QVERIFY(doc.resetScene(scene, &error));
-    QCOMPARE(error, QString());
+    const Status done = doc.resetScene(scene);
+    QVERIFY(done);
+    QCOMPARE(done.message(), QString());
     QCOMPARE(reset.count(), 1);
     QCOMPARE(log.take(), QStringList({"aboutToReset", "reset"}));
     QCOMPARE(doc.scene().nextId, 13u);
@@ -204,8 +204,9 @@ void TestDocument::resetSceneRejectsInvalid() {
     Scene bad = threeSurfaceScene();
     bad.surfaces[1].id = SurfaceId{1};
     QString error;
-    QVERIFY(!f.doc.resetScene(bad, &error));
-    QVERIFY2(error.contains(QStringLiteral("used twice")), qPrintable(error));
+    const auto result = f.doc.resetScene(bad);
+    QVERIFY(!result);
+    QVERIFY2(result.message().contains(QStringLiteral("used twice")), qPrintable(result.message()));
     QCOMPARE(f.doc.scene(), before);
     QVERIFY(log.entries.isEmpty());
     QVERIFY(!f.doc.resetScene(bad)); // no error pointer: still no crash

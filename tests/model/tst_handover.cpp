@@ -16,9 +16,9 @@ namespace {
 
 kw::ImportResult sample(const char* name) {
     QString error;
-    auto scene = kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name), &error);
+    auto scene = kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name));
     if (!scene)
-        qFatal("%s", qPrintable(error));
+        qFatal("%s", qPrintable(scene.message()));
     kw::ImportResult r;
     r.scene = std::move(*scene);
     for (size_t k = 0; k < r.scene.surfaces.size(); ++k)

@@ -1,5 +1,6 @@
 // .knot file tests: every field round-trips, each broken file gets its precise one-line error,
 // and a failed save leaves the previous file intact.
+#include "expected_test_util.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 
@@ -110,15 +111,15 @@ Scene richScene() {
     return scene;
 }
 
-struct Expected {
+struct BrokenFile {
     QString file, path, reason;
 };
 
-QList<Expected> brokenCorpus() {
+QList<BrokenFile> brokenCorpus() {
     QFile tsv(QStringLiteral(KW_TEST_DATA_DIR "/broken/EXPECTED.tsv"));
     if (!tsv.open(QIODevice::ReadOnly | QIODevice::Text))
         return {};
-    QList<Expected> rows;
+    QList<BrokenFile> rows;
     while (!tsv.atEnd()) {
         const QString line = QString::fromUtf8(tsv.readLine()).trimmed();
         if (line.isEmpty() || line.startsWith(QLatin1Char('#')))
@@ -155,9 +156,8 @@ private Q_SLOTS:
 void TestKnotFile::roundTripEveryField() {
     const Scene scene = richScene();
     QString error;
-    const std::optional<Scene> back =
-        sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), &error);
-    QVERIFY2(back, qPrintable(error));
+    const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
+    QVERIFY2(back, qPrintable(back.message()));
     QCOMPARE(back->surfaces.size(), size_t(2));
     QCOMPARE(back->surfaces[0].name, scene.surfaces[0].name);
     QCOMPARE(back->surfaces[0].trims.size(), size_t(2));
@@ -171,8 +171,7 @@ void TestKnotFile::roundTripEveryField() {
 
 void TestKnotFile::doublesRoundTripBitForBit() {
     const Scene scene = richScene();
-    const std::optional<Scene> back =
-        sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), nullptr);
+    const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
     QVERIFY(back);
     const NurbsSurface& a = scene.surfaces[0].geometry;
     const NurbsSurface& b = back->surfaces[0].geometry;
@@ -202,7 +201,7 @@ void TestKnotFile::cameraOmittedWhenNotAuthored() {
     scene.camera = Camera{};
     const QByteArray json = sceneToJson(scene);
     QVERIFY(!QJsonDocument::fromJson(json).object().contains(QStringLiteral("camera")));
-    const std::optional<Scene> back = sceneFromJson(json, QStringLiteral("mem"), nullptr);
+    const auto back = sceneFromJson(json, QStringLiteral("mem"));
     QVERIFY(back);
     QVERIFY(!back->camera.authored);
     QVERIFY(*back == scene);
@@ -219,15 +218,14 @@ void TestKnotFile::displayOptionalAndChecked() {
     QJsonObject root = QJsonDocument::fromJson(sceneToJson(scene)).object();
     QVERIFY(!root.contains(QStringLiteral("display")));
     root.insert(QStringLiteral("version"), QStringLiteral("1.0"));
-    std::optional<Scene> back =
-        sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
+    auto back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"));
     QVERIFY(back);
     QVERIFY(back->display.partitionMode.isEmpty());
     QVERIFY(*back == scene);
     // Present: the tolerance defaults to 0.5; bad values name their place.
     root.insert(QStringLiteral("display"),
                 QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("adaptive")}});
-    back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), nullptr);
+    back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"));
     QVERIFY(back);
     QCOMPARE(back->display,
              (DisplaySettings{
@@ -250,8 +248,9 @@ void TestKnotFile::displayOptionalAndChecked() {
     for (const auto& b : bad) {
         root.insert(QStringLiteral("display"), b.display);
         QString error;
-        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), &error));
-        QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
+        const auto result = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"));
+        QVERIFY(!result);
+        QVERIFY2(result.message().startsWith(QLatin1String(b.path)), qPrintable(result.message()));
     }
     // The one validation refuses it too (Document, writers).
     scene.display = DisplaySettings{
@@ -269,7 +268,7 @@ void TestKnotFile::solidOptionalAndChecked() {
     scene.surfaces[0].solid = 3;
     scene.surfaces[0].outsideAlongNormal = false;
     scene.surfaces[1].solid = 0;
-    std::optional<Scene> back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), nullptr);
+    auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
     QVERIFY(back);
     QVERIFY(*back == scene);
     QCOMPARE(back->surfaces[0].solid, 3);
@@ -301,8 +300,9 @@ void TestKnotFile::solidOptionalAndChecked() {
         surfaces[0] = first;
         root.insert(QStringLiteral("surfaces"), surfaces);
         QString error;
-        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), &error));
-        QVERIFY2(error.startsWith(QLatin1String(b.path)), qPrintable(error));
+        const auto failed = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"));
+        QVERIFY(!failed);
+        QVERIFY2(failed.message().startsWith(QLatin1String(b.path)), qPrintable(failed.message()));
     }
     scene.surfaces[0].solid = -2;
     QVERIFY(!sceneError(scene).isEmpty());
@@ -311,8 +311,7 @@ void TestKnotFile::solidOptionalAndChecked() {
 void TestKnotFile::idsKeptAndNextIdRaised() {
     Scene scene = richScene();
     scene.nextId = 1; // below the ids in use (surface 7, loop 9)
-    const std::optional<Scene> back =
-        sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), nullptr);
+    const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
     QVERIFY(back);
     QCOMPARE(back->surfaces[0].id.value, 7u);
     QCOMPARE(back->surfaces[1].id.value, 2u);
@@ -320,7 +319,7 @@ void TestKnotFile::idsKeptAndNextIdRaised() {
     QCOMPARE(back->nextId, 10u);
     // A larger nextId in the file is kept.
     scene.nextId = 500;
-    QCOMPARE(sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), nullptr)->nextId, 500u);
+    QCOMPARE(sceneFromJson(sceneToJson(scene), QStringLiteral("mem"))->nextId, 500u);
 }
 
 void TestKnotFile::newerMinorVersionAccepted() {
@@ -328,8 +327,8 @@ void TestKnotFile::newerMinorVersionAccepted() {
     root.insert(QStringLiteral("version"), QStringLiteral("1.7"));
     root.insert(QStringLiteral("someFutureMember"), 42);
     QString error;
-    const auto back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"), &error);
-    QVERIFY2(back, qPrintable(error));
+    const auto back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("mem"));
+    QVERIFY2(back, qPrintable(back.message()));
     QVERIFY(*back == richScene());
 }
 
@@ -338,9 +337,9 @@ void TestKnotFile::readFileRoundTrip() {
     QVERIFY(dir.isValid());
     const QString path = dir.filePath(QStringLiteral("scene.knot"));
     QString error;
-    QVERIFY2(writeKnotFile(path, richScene(), &error), qPrintable(error));
-    const std::optional<Scene> back = readKnotFile(path, &error);
-    QVERIFY2(back, qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, richScene()));
+    const auto back = readKnotFile(path);
+    QVERIFY2(back, qPrintable(back.message()));
     QVERIFY(*back == richScene());
 }
 
@@ -348,7 +347,7 @@ void TestKnotFile::brokenFiles_data() {
     QTest::addColumn<QString>("file");
     QTest::addColumn<QString>("path");
     QTest::addColumn<QString>("reason");
-    for (const Expected& e : brokenCorpus())
+    for (const BrokenFile& e : brokenCorpus())
         QTest::newRow(qPrintable(e.file)) << e.file << e.path << e.reason;
 }
 
@@ -359,21 +358,21 @@ void TestKnotFile::brokenFiles() {
     const QString fullPath = QStringLiteral(KW_TEST_DATA_DIR "/broken/") + file;
     QVERIFY2(QFile::exists(fullPath), qPrintable(fullPath));
     QString error;
-    const std::optional<Scene> scene = readKnotFile(fullPath, &error);
+    const auto scene = readKnotFile(fullPath);
     QVERIFY(!scene);
-    QVERIFY2(!error.contains(QLatin1Char('\n')), qPrintable(error));
+    QVERIFY2(!scene.message().contains(QLatin1Char('\n')), qPrintable(scene.message()));
     const QString prefix = fullPath + QStringLiteral(": ") + path + QStringLiteral(": ");
-    QVERIFY2(error.startsWith(prefix),
-             qPrintable(error + QStringLiteral("  [expected prefix ") + prefix));
-    QVERIFY2(error.mid(prefix.size()).contains(reason),
-             qPrintable(error + QStringLiteral("  [expected reason ") + reason));
+    QVERIFY2(scene.message().startsWith(prefix),
+             qPrintable(scene.message() + QStringLiteral("  [expected prefix ") + prefix));
+    QVERIFY2(scene.message().mid(prefix.size()).contains(reason),
+             qPrintable(scene.message() + QStringLiteral("  [expected reason ") + reason));
 }
 
 void TestKnotFile::corpusIsComplete() {
-    const QList<Expected> rows = brokenCorpus();
+    const QList<BrokenFile> rows = brokenCorpus();
     QVERIFY(rows.size() >= 15);
     QStringList listed;
-    for (const Expected& e : rows)
+    for (const BrokenFile& e : rows)
         listed << e.file;
     const QStringList files =
         QDir(QStringLiteral(KW_TEST_DATA_DIR "/broken")).entryList({QStringLiteral("*.knot")});
@@ -385,8 +384,10 @@ void TestKnotFile::corpusIsComplete() {
 void TestKnotFile::missingFileNamesIt() {
     QString error;
     const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/does/not/exist.knot");
-    QVERIFY(!readKnotFile(path, &error));
-    QVERIFY2(error.startsWith(path + QStringLiteral(": cannot open")), qPrintable(error));
+    const auto failed = readKnotFile(path);
+    QVERIFY(!failed);
+    QVERIFY2(failed.message().startsWith(path + QStringLiteral(": cannot open")),
+             qPrintable(failed.message()));
 }
 
 namespace {
@@ -405,12 +406,12 @@ void TestKnotFile::failedSaveKeepsOldFile() {
     Scene old = richScene();
     old.surfaces.pop_back();
     QString error;
-    QVERIFY2(writeKnotFile(path, old, &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, old));
     const QByteArray before = fileBytes(path);
     QVERIFY(!before.isEmpty());
     auto oldFileIntact = [&] {
         QCOMPARE(fileBytes(path), before);
-        const std::optional<Scene> back = readKnotFile(path, nullptr);
+        const auto back = readKnotFile(path);
         QVERIFY(back);
         QVERIFY(*back == old);
         // No temporary file is left behind.
@@ -428,28 +429,32 @@ void TestKnotFile::failedSaveKeepsOldFile() {
         rlimit limited = saved;
         limited.rlim_cur = rlim_t(before.size());
         QVERIFY(::setrlimit(RLIMIT_FSIZE, &limited) == 0);
-        const bool written = writeKnotFile(path, richScene(), &error);
+        const auto written = writeKnotFile(path, richScene());
         QVERIFY(::setrlimit(RLIMIT_FSIZE, &saved) == 0);
         QVERIFY(!written);
-        QVERIFY2(error.startsWith(path + QStringLiteral(": ")), qPrintable(error));
-        QVERIFY2(!error.contains(QLatin1Char('\n')), qPrintable(error));
+        QVERIFY2(written.message().startsWith(path + QStringLiteral(": ")),
+                 qPrintable(written.message()));
+        QVERIFY2(!written.message().contains(QLatin1Char('\n')), qPrintable(written.message()));
         oldFileIntact();
     }
 
     // 2. A read-only directory: QSaveFile cannot create its temporary file (not for root).
     if (::geteuid() != 0) {
         QVERIFY(QFile::setPermissions(dir.path(), QFile::ReadOwner | QFile::ExeOwner));
-        const bool written = writeKnotFile(path, richScene(), &error);
+        const auto written = writeKnotFile(path, richScene());
         QFile::setPermissions(dir.path(), QFile::ReadOwner | QFile::WriteOwner | QFile::ExeOwner);
         QVERIFY(!written);
-        QVERIFY2(error.startsWith(path + QStringLiteral(": ")), qPrintable(error));
+        QVERIFY2(written.message().startsWith(path + QStringLiteral(": ")),
+                 qPrintable(written.message()));
         oldFileIntact();
     }
 
     // 3. A directory that does not exist.
     const QString nowhere = dir.filePath(QStringLiteral("missing/dir/x.knot"));
-    QVERIFY(!writeKnotFile(nowhere, old, &error));
-    QVERIFY2(error.startsWith(nowhere + QStringLiteral(": ")), qPrintable(error));
+    const auto failed = writeKnotFile(nowhere, old);
+    QVERIFY(!failed);
+    QVERIFY2(failed.message().startsWith(nowhere + QStringLiteral(": ")),
+             qPrintable(failed.message()));
     oldFileIntact();
 }
 
@@ -461,9 +466,9 @@ void TestKnotFile::documentedExampleLoads() {
     const qsizetype end = text.indexOf("```", begin + 8);
     QVERIFY(begin >= 0 && end > begin);
     QString error;
-    const std::optional<Scene> scene = sceneFromJson(text.mid(begin + 8, end - begin - 8),
-                                                     QStringLiteral("FILE_FORMAT.md"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene =
+        sceneFromJson(text.mid(begin + 8, end - begin - 8), QStringLiteral("FILE_FORMAT.md"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     QCOMPARE(scene->surfaces.size(), size_t(1));
     QCOMPARE(scene->surfaces[0].trims.size(), size_t(1));
     QVERIFY(scene->camera.authored);
@@ -476,19 +481,20 @@ void TestKnotFile::mutatedFilesNeverCrash() {
     QFile f(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"));
     QVERIFY(f.open(QIODevice::ReadOnly));
     const QByteArray valid = f.readAll();
-    QVERIFY(sceneFromJson(valid, QStringLiteral("m"), nullptr));
+    QVERIFY(sceneFromJson(valid, QStringLiteral("m")));
     int rejected = 0, loaded = 0;
     auto check = [&](const QByteArray& bytes) {
         QString error;
-        const std::optional<Scene> scene = sceneFromJson(bytes, QStringLiteral("m.knot"), &error);
+        const auto scene = sceneFromJson(bytes, QStringLiteral("m.knot"));
         if (scene) {
             ++loaded;
             for (const Surface& s : scene->surfaces)
                 QVERIFY(surfaceValidationError(s.geometry).empty());
         } else {
             ++rejected;
-            QVERIFY2(error.startsWith(QStringLiteral("m.knot: $")), qPrintable(error));
-            QVERIFY(!error.contains(QLatin1Char('\n')));
+            QVERIFY2(scene.message().startsWith(QStringLiteral("m.knot: $")),
+                     qPrintable(scene.message()));
+            QVERIFY(!scene.message().contains(QLatin1Char('\n')));
         }
     };
     for (qsizetype n = 0; n < valid.size(); n += 7)

@@ -112,8 +112,8 @@ void TestMatchSurface::reachesTheContinuityAsked() {
     const ContinuityReport before = continuityReport(scene, {});
     QCOMPARE(int(before.edges.size()), 0); // 0.05 apart: not even found as one edge
     QString error;
-    const std::optional<MatchResult> r = matchSurface(scene, req, {}, &error);
-    QVERIFY2(r, qPrintable(error));
+    const auto r = matchSurface(scene, req, {});
+    QVERIFY2(r, qPrintable(r.message()));
     QVERIFY(r->exact);
     QVERIFY2(r->reached, qPrintable(r->summary));
     QVERIFY2(r->measured.g0 < 1e-9, qPrintable(r->summary));
@@ -174,8 +174,8 @@ void TestMatchSurface::trimmedTargetIsApproximatedAndSaysSo() {
     MatchRequest r = request(MatchContinuity::G1);
     r.target = ContinuitySide{SurfaceId{2}, TrimLoopId{50}, 0, DomainEdge::None};
     QString error;
-    const std::optional<MatchResult> m = matchSurface(scene, r, {}, &error);
-    QVERIFY2(m, qPrintable(error));
+    const auto m = matchSurface(scene, r, {});
+    QVERIFY2(m, qPrintable(m.message()));
     QVERIFY(!m->exact);
     // Close (a fit), though not necessarily within G0's 0.001.
     QVERIFY2(m->measured.g0 < 0.01, qPrintable(m->summary));
@@ -189,23 +189,26 @@ void TestMatchSurface::trimmedTargetIsApproximatedAndSaysSo() {
 
 void TestMatchSurface::badRequestsAreRefused() {
     Scene scene = twoPatches();
-    QString error;
     MatchRequest r = request(MatchContinuity::G1);
     r.surface = SurfaceId{9};
-    QVERIFY(!matchSurface(scene, r, {}, &error));
-    QVERIFY(error.contains(QStringLiteral("9")));
+    const auto unknownSurface = matchSurface(scene, r, {});
+    QVERIFY(!unknownSurface);
+    QVERIFY(unknownSurface.message().contains(QStringLiteral("9")));
     r = request(MatchContinuity::G1);
     r.target = ContinuitySide{SurfaceId{1}, TrimLoopId{}, -1, DomainEdge::U1};
-    QVERIFY(!matchSurface(scene, r, {}, &error));
+    const auto sameEdge = matchSurface(scene, r, {});
+    QVERIFY(!sameEdge);
     r = request(MatchContinuity::G1);
     r.target = ContinuitySide{SurfaceId{2}, TrimLoopId{4}, 0, DomainEdge::None};
-    QVERIFY(!matchSurface(scene, r, {}, &error));
-    QVERIFY(error.contains(QStringLiteral("no such edge")));
+    const auto noEdge = matchSurface(scene, r, {});
+    QVERIFY(!noEdge);
+    QVERIFY(noEdge.message().contains(QStringLiteral("no such edge")));
     TrimLoop loop;
     loop.id = TrimLoopId{60};
     scene.surfaces[0].trims.push_back(loop);
-    QVERIFY(!matchSurface(scene, request(MatchContinuity::G1), {}, &error));
-    QVERIFY(error.contains(QStringLiteral("trimmed")));
+    const auto trimmed = matchSurface(scene, request(MatchContinuity::G1), {});
+    QVERIFY(!trimmed);
+    QVERIFY(trimmed.message().contains(QStringLiteral("trimmed")));
 }
 
 QTEST_GUILESS_MAIN(TestMatchSurface)

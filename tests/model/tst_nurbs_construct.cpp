@@ -118,10 +118,10 @@ private Q_SLOTS:
         for (size_t k = 0; k < sections.size(); ++k)
             for (glm::dvec3& p : sections[k].points)
                 p.z += 2.0 * double(k); // stacked, so chord lengths are clear
-        std::string error;
         std::vector<double> v;
-        const NurbsSurface s = makeLoft(sections, 3, &error, &v);
-        QVERIFY2(error.empty(), error.c_str());
+        const Expected<NurbsSurface> loft = makeLoft(sections, 3, &v);
+        QVERIFY2(loft, qPrintable(loft.message()));
+        const NurbsSurface& s = *loft;
         QVERIFY(surfaceValidationError(s).empty());
         QCOMPARE(s.degreeU, 3);
         QCOMPARE(s.degreeV, 3);
@@ -135,13 +135,16 @@ private Q_SLOTS:
                          qPrintable(QStringLiteral("section %1 t %2: %3").arg(k).arg(t).arg(d)));
             }
         // Two sections give a ruled surface (degree 1 in v).
-        const NurbsSurface ruled = makeLoft({sections[0], sections[1]}, 3, &error);
-        QCOMPARE(ruled.degreeV, 1);
+        const Expected<NurbsSurface> ruled = makeLoft({sections[0], sections[1]}, 3);
+        QVERIFY(ruled);
+        QCOMPARE(ruled->degreeV, 1);
         // Refusals name the reason.
-        QVERIFY(makeLoft({sections[0]}, 3, &error).countU == 0);
-        QVERIFY(error.find("two") != std::string::npos);
-        QVERIFY(makeLoft({sections[0], sections[0]}, 3, &error).countU == 0);
-        QVERIFY(error.find("coincide") != std::string::npos);
+        const Expected<NurbsSurface> one = makeLoft({sections[0]}, 3);
+        QVERIFY(!one);
+        QVERIFY(one.message().contains(QLatin1String("two")));
+        const Expected<NurbsSurface> same = makeLoft({sections[0], sections[0]}, 3);
+        QVERIFY(!same);
+        QVERIFY(same.message().contains(QLatin1String("coincide")));
     }
 
     void isoCurveLiesOnTheSurface() {
@@ -245,10 +248,11 @@ private Q_SLOTS:
                 std::vector<glm::dvec3> q;
                 for (int k = 0; k < n; ++k)
                     q.emplace_back(coord(rng), coord(rng), coord(rng));
-                std::string error;
                 std::vector<double> t;
-                const NurbsCurve3 c = interpolateCurve3(q, degree, &error, &t);
-                QVERIFY2(curve3ValidationError(c).empty(), error.c_str());
+                const Expected<NurbsCurve3> interpolated = interpolateCurve3(q, degree, &t);
+                QVERIFY2(interpolated, qPrintable(interpolated.message()));
+                const NurbsCurve3& c = *interpolated;
+                QVERIFY(curve3ValidationError(c).empty());
                 QCOMPARE(c.degree, std::min(degree, n - 1));
                 QCOMPARE(c.points.size(), size_t(n));
                 QCOMPARE(t.size(), size_t(n));
@@ -261,15 +265,17 @@ private Q_SLOTS:
                             QStringLiteral("n %1 degree %2 point %3").arg(n).arg(degree).arg(k)));
             }
         // Collinear evenly spaced points give the straight line through them.
-        const NurbsCurve3 line = interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
+        const NurbsCurve3 line = *interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
         QVERIFY(glm::length(curve3Point(line, 0.5) - glm::dvec3(1.5, 0, 0)) < 1e-12);
         // Refused: too few points, a repeated point, a non-finite point.
-        std::string error;
-        QVERIFY(interpolateCurve3({{1, 2, 3}}, 3, &error).points.empty());
-        QVERIFY(!error.empty());
-        QVERIFY(interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}}, 3, &error).points.empty());
-        QVERIFY(QString::fromStdString(error).contains(QStringLiteral("coincide")));
-        QVERIFY(interpolateCurve3({{0, 0, 0}, {std::nan(""), 0, 0}}, 3, &error).points.empty());
+        const Expected<NurbsCurve3> single = interpolateCurve3({{1, 2, 3}}, 3);
+        QVERIFY(!single);
+        QVERIFY(!single.message().isEmpty());
+        const Expected<NurbsCurve3> repeated =
+            interpolateCurve3({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}}, 3);
+        QVERIFY(!repeated);
+        QVERIFY(repeated.message().contains(QStringLiteral("coincide")));
+        QVERIFY(!interpolateCurve3({{0, 0, 0}, {std::nan(""), 0, 0}}, 3));
         // The control-point curve: clamped uniform, its ends on the first and last points.
         const NurbsCurve3 cp =
             controlPointCurve3({{0, 0, 0}, {1, 1, 0}, {2, 0, 0}, {3, 1, 0}, {4, 0, 0}});

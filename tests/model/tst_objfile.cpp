@@ -17,15 +17,16 @@ using namespace kw::test;
 namespace {
 
 Scene sample(const char* name) {
-    QString error;
-    auto s = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + name, &error);
+    auto s = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + name);
     if (!s)
-        qFatal("%s", qPrintable(error));
+        qFatal("%s", qPrintable(s.message()));
     return *s;
 }
 
 bool parse(const QByteArray& text, Scene& scene, ImportReport& report, QString& error) {
-    return parseObj(text, QStringLiteral("t.obj"), scene, report, error);
+    const Status parsed = parseObj(text, QStringLiteral("t.obj"), scene, report);
+    error = parsed.message();
+    return bool(parsed);
 }
 
 } // namespace

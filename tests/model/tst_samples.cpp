@@ -9,12 +9,10 @@ using namespace kw;
 
 namespace {
 
-std::optional<Scene> loadSample(const char* name) {
-    QString error;
-    std::optional<Scene> scene =
-        readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name), &error);
+Expected<Scene> loadSample(const char* name) {
+    auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name));
     if (!scene)
-        qWarning("%s", qPrintable(error));
+        qWarning("%s", qPrintable(scene.message()));
     return scene;
 }
 
@@ -46,9 +44,8 @@ void TestSamples::everySampleIsValid() {
     QVERIFY(files.size() >= 5);
     for (const QString& f : files) {
         QString error;
-        const std::optional<Scene> scene =
-            readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + f, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + f);
+        QVERIFY2(scene, qPrintable(scene.message()));
         QVERIFY(!scene->surfaces.empty());
         QVERIFY(!scene->camera.authored); // views fit a camera to the samples
         for (const Surface& s : scene->surfaces) {

@@ -17,10 +17,9 @@ namespace {
 
 Scene teapot() {
     QString error;
-    const std::optional<Scene> s =
-        readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/teapot.knot"), &error);
+    const auto s = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/teapot.knot"));
     if (!s)
-        qFatal("%s", qPrintable(error));
+        qFatal("%s", qPrintable(s.message()));
     return *s;
 }
 

@@ -30,9 +30,8 @@ private Q_SLOTS:
         const Scene scene = withSections();
         QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
         QString error;
-        const std::optional<Scene> back =
-            sceneFromJson(sceneToJson(scene), QStringLiteral("mem"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
+        QVERIFY2(back, qPrintable(back.message()));
         QVERIFY(back->display == scene.display);
         QCOMPARE(QJsonDocument::fromJson(sceneToJson(scene))
                      .object()[QStringLiteral("version")]
@@ -41,9 +40,8 @@ private Q_SLOTS:
         // Sections alone (no partition mode) are enough for a display object.
         Scene alone = threeSurfaceScene();
         alone.display.sections = {SectionPlane{}};
-        const std::optional<Scene> aloneBack =
-            sceneFromJson(sceneToJson(alone), QStringLiteral("mem"), &error);
-        QVERIFY2(aloneBack, qPrintable(error));
+        const auto aloneBack = sceneFromJson(sceneToJson(alone), QStringLiteral("mem"));
+        QVERIFY2(aloneBack, qPrintable(aloneBack.message()));
         QVERIFY(aloneBack->display == alone.display);
         QVERIFY(aloneBack->display.sectionCaps);
     }
@@ -53,10 +51,8 @@ private Q_SLOTS:
         root.insert(QStringLiteral("version"), QStringLiteral("1.3"));
         root.insert(QStringLiteral("display"),
                     QJsonObject{{QStringLiteral("partitionMode"), QStringLiteral("uniform")}});
-        QString error;
-        const std::optional<Scene> back =
-            sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("old.knot"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("old.knot"));
+        QVERIFY2(back, qPrintable(back.message()));
         QVERIFY(back->display.sections.empty());
         QVERIFY(back->display.sectionCaps);
     }
@@ -70,20 +66,23 @@ private Q_SLOTS:
         planes[1] = zero;
         display.insert(QStringLiteral("sections"), planes);
         root.insert(QStringLiteral("display"), display);
-        QString error;
-        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"), &error));
-        QVERIFY2(error.startsWith(QStringLiteral("bad.knot: $.display.sections[1].normal: ")) &&
-                     error.contains(QStringLiteral("zero length")) && !error.contains('\n'),
-                 qPrintable(error));
+        const auto result = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"));
+        QVERIFY(!result);
+        QVERIFY2(result.message().startsWith(
+                     QStringLiteral("bad.knot: $.display.sections[1].normal: ")) &&
+                     result.message().contains(QStringLiteral("zero length")) &&
+                     !result.message().contains('\n'),
+                 qPrintable(result.message()));
         planes[1] = planes[0];
         planes.append(planes[0]);
         planes.append(planes[0]);
         display.insert(QStringLiteral("sections"), planes);
         root.insert(QStringLiteral("display"), display);
-        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"), &error));
-        QVERIFY2(error.contains(QStringLiteral("$.display.sections")) &&
-                     error.contains(QStringLiteral("4 section planes")),
-                 qPrintable(error));
+        const auto failed = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("bad.knot"));
+        QVERIFY(!failed);
+        QVERIFY2(failed.message().contains(QStringLiteral("$.display.sections")) &&
+                     failed.message().contains(QStringLiteral("4 section planes")),
+                 qPrintable(failed.message()));
 
         Scene scene = withSections();
         scene.display.sections[1].normal = glm::dvec3(0.0);

@@ -2,6 +2,7 @@
 // trip with every field and old files, the reader's errors for inconsistent references, the CAD
 // hand-over, Document's edits and their exact undo, the gap closing's renumbering, and the seam
 // gaps of edited faces (model/document/seamgaps.h) on a cube of six faces.
+#include "expected_test_util.h"
 #include "model/cad/handover.h"
 #include "model/document/document.h"
 #include "model/document/seamgaps.h"
@@ -126,9 +127,9 @@ void TestTopology::knotFileKeepsEveryField() {
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("cube.knot"));
     QString error;
-    QVERIFY2(writeKnotFile(path, scene, &error), qPrintable(error));
-    const std::optional<Scene> back = readKnotFile(path, &error);
-    QVERIFY2(back, qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, scene));
+    const auto back = readKnotFile(path);
+    QVERIFY2(back, qPrintable(back.message()));
     QVERIFY(back->topology == scene.topology);
     QVERIFY(*back == scene);
     QCOMPARE(asJson(scene).value(QStringLiteral("version")).toString(),
@@ -145,16 +146,14 @@ void TestTopology::filesWithoutTopologyStayValid() {
     plain.topology = {};
     QVERIFY(!asJson(plain).contains(QStringLiteral("topology")));
     QString error;
-    const std::optional<Scene> sphere =
-        readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/sphere.knot"), &error);
-    QVERIFY2(sphere, qPrintable(error));
+    const auto sphere = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/sphere.knot"));
+    QVERIFY2(sphere, qPrintable(sphere.message()));
     QVERIFY(sphere->topology.empty());
     QJsonObject old = asJson(cubeScene());
     old.insert(QStringLiteral("version"), QStringLiteral("1.2"));
     old.remove(QStringLiteral("topology"));
-    const std::optional<Scene> read =
-        sceneFromJson(QJsonDocument(old).toJson(), "old.knot", &error);
-    QVERIFY2(read, qPrintable(error));
+    const auto read = sceneFromJson(QJsonDocument(old).toJson(), "old.knot");
+    QVERIFY2(read, qPrintable(read.message()));
     QVERIFY(read->topology.empty());
     QCOMPARE(read->surfaces.size(), size_t(6));
 }
@@ -227,8 +226,9 @@ void TestTopology::readerRejectsInconsistentReferences() {
         json = withValue(cubeScene(), path, value);
     }
     QString error;
-    QVERIFY(!sceneFromJson(json, QStringLiteral("t.knot"), &error));
-    QCOMPARE(error, expected);
+    const auto result = sceneFromJson(json, QStringLiteral("t.knot"));
+    QVERIFY(!result);
+    QCOMPARE(result.message(), expected);
 }
 
 void TestTopology::handoverKeepsTopology() {
@@ -260,15 +260,17 @@ void TestTopology::objKeepsTopology() {
     Scene back;
     ImportReport report;
     QString error;
-    QVERIFY2(parseObj(obj, QStringLiteral("t.obj"), back, report, error), qPrintable(error));
+    KW_VERIFY_OK(parseObj(obj, QStringLiteral("t.obj"), back, report));
     QVERIFY(back.topology == scene.topology);
     QVERIFY(back == scene);
 
     QByteArray cut = obj.left(obj.lastIndexOf("# knotwork shell"));
-    QVERIFY(!parseObj(cut, QStringLiteral("t.obj"), back, report, error));
-    QVERIFY2(error.contains(QLatin1String("'# knotwork topology 12 2' but the file holds 12 "
-                                          "edge(s) and 1 shell(s)")),
-             qPrintable(error));
+    const auto failed = parseObj(cut, QStringLiteral("t.obj"), back, report);
+    QVERIFY(!failed);
+    QVERIFY2(
+        failed.message().contains(QLatin1String("'# knotwork topology 12 2' but the file holds 12 "
+                                                "edge(s) and 1 shell(s)")),
+        qPrintable(failed.message()));
 
     // Edge 3's first side names surface 99.
     QList<QByteArray> lines = obj.split('\n');
@@ -281,9 +283,11 @@ void TestTopology::objKeepsTopology() {
             line = k + 1;
         }
     QVERIFY(line > 0);
-    QVERIFY(!parseObj(lines.join('\n'), QStringLiteral("t.obj"), back, report, error));
-    QVERIFY2(error.startsWith(QStringLiteral("t.obj:%1: knotwork topology: edges[2]").arg(line)),
-             qPrintable(error));
+    const auto badEdge = parseObj(lines.join('\n'), QStringLiteral("t.obj"), back, report);
+    QVERIFY(!badEdge);
+    QVERIFY2(badEdge.message().startsWith(
+                 QStringLiteral("t.obj:%1: knotwork topology: edges[2]").arg(line)),
+             qPrintable(badEdge.message()));
 }
 
 // Removing a face takes its edges and its place in the shell, and opens the shell; undo and

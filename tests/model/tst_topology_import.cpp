@@ -2,6 +2,7 @@
 // tests/data: every shell closed and every seam within its edge's tolerance as imported, the
 // record through .knot, and a control point on a shared boundary moved by d opening that edge
 // by d; `knotwork info --json` reports the same.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/cad/cadimport.h"
 #include "model/document/document.h"
@@ -197,15 +198,14 @@ void TestTopologyImport::closedSolidsImportClosed() {
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("part.knot"));
     QString error;
-    QVERIFY2(writeKnotFile(path, scene, &error), qPrintable(error));
-    const std::optional<Scene> back = readKnotFile(path, &error);
-    QVERIFY2(back, qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, scene));
+    const auto back = readKnotFile(path);
+    QVERIFY2(back, qPrintable(back.message()));
     QVERIFY(back->topology == scene.topology);
     // And through OBJ's '# knotwork' lines.
     Scene fromObj;
     ImportReport report;
-    QVERIFY2(parseObj(writeObj(scene), QStringLiteral("part.obj"), fromObj, report, error),
-             qPrintable(error));
+    KW_VERIFY_OK(parseObj(writeObj(scene), QStringLiteral("part.obj"), fromObj, report));
     QVERIFY(fromObj.topology == scene.topology);
 }
 
@@ -275,7 +275,7 @@ void TestTopologyImport::infoReportsTopology() {
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("edited.knot"));
     QString error;
-    QVERIFY2(writeKnotFile(path, edited, &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, edited));
     run = knotwork({QStringLiteral("info"), path, QStringLiteral("--json")});
     QCOMPARE(run.code, 0);
     topology =

@@ -139,9 +139,9 @@ void TestTrim::columnClassificationMatchesPointwise() {
                                      1e-6));
     for (const char* name : {"trimmed_plate", "star_island"}) {
         QString error;
-        const auto scene = readKnotFile(
-            QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QLatin1String(name)), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene =
+            readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/%1.knot").arg(QLatin1String(name)));
+        QVERIFY2(scene, qPrintable(scene.message()));
         for (const Surface& s : scene->surfaces)
             if (!s.trims.empty())
                 regions.push_back(makeTrimRegion(s.trims, trimTolerance(s.geometry)));
@@ -213,8 +213,8 @@ void TestTrim::areaOfPlateWithHoleAndIsland() {
 
 void TestTrim::areaOfUntrimmedSphere() {
     QString error;
-    const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/sphere.knot"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/sphere.knot"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     const double pi = std::acos(-1.0);
     const double area = trimmedSurfaceArea(scene->surfaces.front().geometry, {});
     QVERIFY2(std::abs(area - 4 * pi) / (4 * pi) < 1e-8, qPrintable(QString::number(area, 'g', 17)));
@@ -223,8 +223,8 @@ void TestTrim::areaOfUntrimmedSphere() {
 void TestTrim::areaOfTrimmedSampleConverges() {
     // The curved trimmed plate sample: the default resolution agrees with a 4x finer one.
     QString error;
-    const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/trimmed_plate.knot"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     const Surface& s = scene->surfaces.front();
     QVERIFY(!s.trims.empty());
     const double coarse = trimmedSurfaceArea(s.geometry, s.trims);

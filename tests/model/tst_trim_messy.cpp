@@ -1,5 +1,6 @@
 // Messy trim input (item 3) on the CPU: gaps and open loops are closed with a warning,
 // degenerate loops dropped with a warning, orientation does not matter, curves up to degree 15.
+#include "expected_test_util.h"
 #include "model/document/document.h"
 #include "model/document/validation.h"
 #include "model/nurbs/nurbs_shapes.h"
@@ -177,7 +178,7 @@ private Q_SLOTS:
         // The document refuses the point alone (the loop would open) and takes the set.
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const TrimPointRef start{s.id, tri, 0, 0};
         QVERIFY(!doc.setTrimPoint(start, {0.2, 0.15}));
         QCOMPARE(doc.scene().surfaces[0].trims, s.trims);

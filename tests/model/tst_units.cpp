@@ -53,8 +53,8 @@ private Q_SLOTS:
         QCOMPARE(QJsonDocument::fromJson(json).object().value(QStringLiteral("unit")).toString(),
                  QStringLiteral("in"));
         QString error;
-        const auto back = sceneFromJson(json, QStringLiteral("in.knot"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(json, QStringLiteral("in.knot"));
+        QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->unit, LengthUnit::Inch);
         QVERIFY(*back == s);
     }
@@ -62,10 +62,8 @@ private Q_SLOTS:
     void olderFilesAreMillimetres() {
         QJsonObject o = QJsonDocument::fromJson(sceneToJson(sphereScene())).object();
         o.insert(QStringLiteral("version"), QStringLiteral("1.3"));
-        QString error;
-        const auto back =
-            sceneFromJson(QJsonDocument(o).toJson(), QStringLiteral("old.knot"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(QJsonDocument(o).toJson(), QStringLiteral("old.knot"));
+        QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->unit, LengthUnit::Millimetre);
     }
 
@@ -79,10 +77,11 @@ private Q_SLOTS:
         QFETCH(QJsonValue, value);
         QJsonObject o = QJsonDocument::fromJson(sceneToJson(sphereScene())).object();
         o.insert(QStringLiteral("unit"), value);
-        QString error;
-        QVERIFY(!sceneFromJson(QJsonDocument(o).toJson(), QStringLiteral("bad.knot"), &error));
-        QVERIFY2(error.startsWith(QStringLiteral("bad.knot: $.unit: ")), qPrintable(error));
-        QVERIFY(!error.contains(QLatin1Char('\n')));
+        const auto result = sceneFromJson(QJsonDocument(o).toJson(), QStringLiteral("bad.knot"));
+        QVERIFY(!result);
+        QVERIFY2(result.message().startsWith(QStringLiteral("bad.knot: $.unit: ")),
+                 qPrintable(result.message()));
+        QVERIFY(!result.message().contains(QLatin1Char('\n')));
     }
 
     void handoverKeepsTheUnit() {
@@ -104,11 +103,11 @@ private Q_SLOTS:
         s.camera.authored = true;
         s.camera.eye = {10, -20, 5};
         QVERIFY(doc.resetScene(s));
+        QString error;
         QUndoStack stack;
         QSignalSpy unitSpy(&doc, &Document::unitChanged);
         const Document::Lengths before = doc.lengths();
 
-        QString error;
         QVERIFY(pushCommand(&stack, SetUnits::create(&doc, LengthUnit::Inch, true, &error)));
         QCOMPARE(doc.scene().unit, LengthUnit::Inch);
         QCOMPARE(unitSpy.count(), 1);

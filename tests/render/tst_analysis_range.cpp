@@ -66,8 +66,8 @@ private Q_SLOTS:
     void teapotBodyShowsItsVariation() {
         QFETCH(AnalysisMode, mode);
         QString error;
-        const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/teapot.knot"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/teapot.knot"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         const ValueRange r = autoRange(*scene, mode);
         const int bands = bandsShown(*scene, mode, r, isBody);
         qInfo("%s: automatic range %g .. %g, the body spans %d of 10 legend bands",

@@ -1,6 +1,7 @@
 // The background saved with the project (DisplaySettings::background, docs/FILE_FORMAT.md
 // ## Display): written and read back, refused when it is neither "dark" nor "light", named
 // to the renderer's options by kw::backgroundNamed. No GL.
+#include "expected_test_util.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 #include "model/io/objfile.h"
@@ -27,9 +28,8 @@ private Q_SLOTS:
         scene.display.partitionMode = QStringLiteral("adaptive");
         scene.display.background = QStringLiteral("light");
         QString error;
-        const std::optional<Scene> back =
-            sceneFromJson(sceneToJson(scene), QStringLiteral("a.knot"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("a.knot"));
+        QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->display.background, QStringLiteral("light"));
         RenderOptions o;
         QVERIFY(backgroundNamed(back->display.background, o));
@@ -39,13 +39,14 @@ private Q_SLOTS:
         scene.display.background.clear();
         const QByteArray plain = sceneToJson(scene);
         QVERIFY(!plain.contains("\"background\""));
-        QVERIFY(sceneFromJson(plain, QStringLiteral("a.knot"), &error));
+        QVERIFY(sceneFromJson(plain, QStringLiteral("a.knot")));
 
         QByteArray bad = sceneToJson(scene);
         bad.replace("\"partitionMode\"", "\"background\": \"purple\", \"partitionMode\"");
-        QVERIFY(!sceneFromJson(bad, QStringLiteral("a.knot"), &error));
-        QVERIFY2(error.startsWith(QStringLiteral("a.knot: $.display.background: ")),
-                 qPrintable(error));
+        const auto result = sceneFromJson(bad, QStringLiteral("a.knot"));
+        QVERIFY(!result);
+        QVERIFY2(result.message().startsWith(QStringLiteral("a.knot: $.display.background: ")),
+                 qPrintable(result.message()));
         scene.display.background = QStringLiteral("purple");
         QVERIFY(!displayError(scene.display).isEmpty());
         QVERIFY(!sceneError(scene).isEmpty());
@@ -53,15 +54,14 @@ private Q_SLOTS:
         // A background without a partition mode is kept too, in .knot and in OBJ.
         scene.display = DisplaySettings{};
         scene.display.background = QStringLiteral("light");
-        const std::optional<Scene> alone =
-            sceneFromJson(sceneToJson(scene), QStringLiteral("b.knot"), &error);
-        QVERIFY2(alone, qPrintable(error));
+        const auto alone = sceneFromJson(sceneToJson(scene), QStringLiteral("b.knot"));
+        QVERIFY2(alone, qPrintable(alone.message()));
         QCOMPARE(alone->display, scene.display);
         const QString obj = QStringLiteral(KW_TEST_OUTPUT_DIR "/background_alone.obj");
-        QVERIFY2(writeObjFile(obj, scene, error), qPrintable(error));
+        KW_VERIFY_OK(writeObjFile(obj, scene));
         Scene fromObj;
         ImportReport report;
-        QVERIFY2(readObjFile(obj, fromObj, report, error), qPrintable(error));
+        KW_VERIFY_OK(readObjFile(obj, fromObj, report));
         QCOMPARE(fromObj.display, scene.display);
     }
 
@@ -77,31 +77,32 @@ private Q_SLOTS:
         QVERIFY(!sceneToJson(scene).contains("\"pullDirection\""));
         scene.display.pullDirection = glm::dvec3(1.0, -2.0, 0.5);
         scene.display.draftAngleDegrees = 7.25;
-        QString error;
         const QByteArray json = sceneToJson(scene);
         QVERIFY(json.contains("\"pullDirection\"") && json.contains("\"draftAngle\""));
-        const std::optional<Scene> back = sceneFromJson(json, QStringLiteral("d.knot"), &error);
-        QVERIFY2(back, qPrintable(error));
+        const auto back = sceneFromJson(json, QStringLiteral("d.knot"));
+        QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->display, scene.display);
         const QString obj = QStringLiteral(KW_TEST_OUTPUT_DIR "/draft_alone.obj");
-        QVERIFY2(writeObjFile(obj, scene, error), qPrintable(error));
+        KW_VERIFY_OK(writeObjFile(obj, scene));
         Scene fromObj;
         ImportReport report;
-        QVERIFY2(readObjFile(obj, fromObj, report, error), qPrintable(error));
+        KW_VERIFY_OK(readObjFile(obj, fromObj, report));
         QCOMPARE(fromObj.display, scene.display);
 
         QJsonObject root = QJsonDocument::fromJson(json).object();
         QJsonObject display = root[QStringLiteral("display")].toObject();
         display[QStringLiteral("pullDirection")] = QJsonArray{0, 0, 0};
         root[QStringLiteral("display")] = display;
-        QVERIFY(!sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("d.knot"), &error));
-        QVERIFY2(error.startsWith(QStringLiteral("d.knot: $.display.pullDirection: ")),
-                 qPrintable(error));
+        const auto zeroPull = sceneFromJson(QJsonDocument(root).toJson(), QStringLiteral("d.knot"));
+        QVERIFY(!zeroPull);
+        QVERIFY2(zeroPull.message().startsWith(QStringLiteral("d.knot: $.display.pullDirection: ")),
+                 qPrintable(zeroPull.message()));
         QByteArray steep = json;
         steep.replace("\"draftAngle\": 7.25", "\"draftAngle\": 95");
-        QVERIFY(!sceneFromJson(steep, QStringLiteral("d.knot"), &error));
-        QVERIFY2(error.startsWith(QStringLiteral("d.knot: $.display.draftAngle: ")),
-                 qPrintable(error));
+        const auto tooSteep = sceneFromJson(steep, QStringLiteral("d.knot"));
+        QVERIFY(!tooSteep);
+        QVERIFY2(tooSteep.message().startsWith(QStringLiteral("d.knot: $.display.draftAngle: ")),
+                 qPrintable(tooSteep.message()));
         scene.display.pullDirection = glm::dvec3(0.0);
         QVERIFY(!displayError(scene.display).isEmpty());
     }
@@ -109,3 +110,4 @@ private Q_SLOTS:
 
 QTEST_APPLESS_MAIN(TestBackgroundSetting)
 #include "tst_background_setting.moc"
+#include "expected_test_util.h"

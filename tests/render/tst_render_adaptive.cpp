@@ -2,6 +2,7 @@
 // checked against the CPU: the cells drawn are those of the CPU's choice, the base polygon then
 // lies within the pixel tolerance of the exact surface on screen (sampled densely), and a
 // frame re-tessellates only the surfaces whose required density changed.
+#include "expected_test_util.h"
 #include "model/nurbs/nurbs.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/adaptive_partitions.h"
@@ -110,26 +111,25 @@ class TestRenderAdaptive : public QObject {
 
     FrameReport frame(const Document& doc, const Camera& camera) {
         QString error;
-        const bool ok = m_renderer->render(doc, camera, m_options, &error);
+        const auto ok = m_renderer->render(doc, camera, m_options);
         if (!ok)
-            qWarning("%s", qPrintable(error));
+            qWarning("%s", qPrintable(ok.message()));
         return m_renderer->lastReport();
     }
 
 private Q_SLOTS:
     void initTestCase() {
-        QString error;
-        m_renderer = kwtest::offscreenRenderer(kSize, false, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(kSize, false);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
         m_options.partitioning = RenderOptions::Partitioning::Adaptive;
         m_options.pixelTolerance = 0.5;
     }
 
     // The renderer draws the CPU's choice, and that polygon lies within the tolerance.
     void drawsTheGuaranteedChoice() {
-        QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(patches(), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(patches()));
         for (const double zoom : {1.0, 3.0, 8.0}) {
             const Camera camera = tilted(doc.scene(), zoom);
             const FrameReport r = frame(doc, camera);
@@ -178,12 +178,11 @@ private Q_SLOTS:
     // A close-up of a sphere that the uniform choice cannot bring within the tolerance at
     // 256 x 256 (its cells are the same everywhere): the tensor grid can, with fewer cells.
     void closeUpMeetsTheBoundWhereUniformCannot() {
-        QString error;
         Document doc;
         Scene scene;
         scene.surfaces.push_back(kwtest::makeSurface(1, makeSphere({0, 0, 0}, 1.0), 1));
         scene.nextId = 2;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const double aspect = double(kSize.width()) / kSize.height();
         const Camera camera =
             zoomedCamera(fitCamera(doc.scene(), aspect), 24.0, glm::dvec2(0.5), aspect);
@@ -207,9 +206,8 @@ private Q_SLOTS:
 
     // Only what changed is evaluated and rebuilt.
     void retessellatesOnlyWhatChanged() {
-        QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(patches(), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(patches()));
         const int n = int(doc.scene().surfaces.size());
         Camera camera = tilted(doc.scene(), 1.0);
         FrameReport r = frame(doc, camera);

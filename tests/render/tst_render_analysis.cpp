@@ -3,6 +3,7 @@
 // image), isocurves at the requested (u, v) within half a pixel, variants built once, and one
 // baseline image per mode under a stated tolerance (KW_UPDATE_BASELINES=1 writes them).
 #include "baseline_compare.h"
+#include "expected_test_util.h"
 #include "render/image_writer.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
@@ -35,19 +36,20 @@ class TestRenderAnalysis : public QObject {
     Q_OBJECT
     std::unique_ptr<OffscreenRenderer> m_renderer;
 
-    bool render(const Scene& scene, const RenderOptions& opt, QString* error) {
+    Status render(const Scene& scene, const RenderOptions& opt) {
         Document doc;
-        if (!doc.resetScene(scene, error))
-            return false;
+        if (Status reset = doc.resetScene(scene); !reset)
+            return reset;
         const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
-        return m_renderer->render(doc, cam, opt, error);
+        return m_renderer->render(doc, cam, opt);
     }
 
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error, true);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true, true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void curvatureAovMatchesKernel_data();
@@ -68,8 +70,8 @@ void TestRenderAnalysis::curvatureAovMatchesKernel_data() {
     QTest::addColumn<bool>("umbilic"); // every point umbilic: no principal direction to compare
     for (const char* name : {"bicubic", "sphere", "torus", "trimmed_plate", "teapot"}) {
         QString error;
-        const std::optional<Scene> s = kwtest::loadSample(QString::fromLatin1(name), &error);
-        QVERIFY2(s, qPrintable(error));
+        const auto s = kwtest::loadSample(QString::fromLatin1(name));
+        QVERIFY2(s, qPrintable(s.message()));
         QTest::newRow(name) << *s << (QByteArray(name) == "sphere");
     }
     {
@@ -110,7 +112,7 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
     RenderOptions opt;
     opt.analysis.mode = AnalysisMode::Mean;
     QString error;
-    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(render(scene, opt));
     const AovBuffer aov = m_renderer->aov();
     QVERIFY(!aov.curvature.empty());
     glm::dvec3 lo, hi;
@@ -258,8 +260,8 @@ void TestRenderAnalysis::curvatureAovMatchesKernel() {
 // radius from it (there float sums about the origin gave 2e-3 to 1e-2).
 void TestRenderAnalysis::sphereCurvatureAtEveryPixel() {
     QString error;
-    const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("sphere"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = kwtest::loadSample(QStringLiteral("sphere"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     struct View {
         glm::dvec3 eye, target, up;
         double fov;
@@ -283,7 +285,7 @@ void TestRenderAnalysis::sphereCurvatureAtEveryPixel() {
         s.camera.up = v.up;
         s.camera.fovYDegrees = v.fov;
         s.camera.authored = true;
-        QVERIFY2(render(s, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(render(s, opt));
         const AovBuffer aov = m_renderer->aov();
         QVERIFY(!aov.curvature.empty());
         int here = 0;
@@ -330,11 +332,10 @@ void TestRenderAnalysis::zebraOnCylinder() {
     opt.analysis.stripeCount = 6.0;
     opt.analysis.stripeAngleDegrees = 90.0;
     QString error;
-    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(render(scene, opt));
     const QImage img = m_renderer->colorImage();
     const AovBuffer aov = m_renderer->aov();
-    QVERIFY2(writeColorImage(img, kwtest::outputDir().filePath("zebra_cylinder.png"), &error),
-             qPrintable(error));
+    KW_VERIFY_OK(writeColorImage(img, kwtest::outputDir().filePath("zebra_cylinder.png")));
 
     // Edges per row: sub-pixel crossings of luminance 0.5 between covered pixels, away from
     // the silhouettes (a grazing reflection's stripes are narrower than a pixel there).
@@ -426,11 +427,10 @@ void TestRenderAnalysis::isocurvesAtRequestedParameters() {
     opt.analysis.isoWidthPixels = 1.5;
     opt.lightCount = 1;
     QString error;
-    QVERIFY2(render(scene, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(render(scene, opt));
     const QImage img = m_renderer->colorImage();
     const AovBuffer aov = m_renderer->aov();
-    QVERIFY2(writeColorImage(img, kwtest::outputDir().filePath("isocurves_plane.png"), &error),
-             qPrintable(error));
+    KW_VERIFY_OK(writeColorImage(img, kwtest::outputDir().filePath("isocurves_plane.png")));
     int found = 0;
     double worst = 0.0;
     for (int y = 100; y < kSide - 100; y += 7) {
@@ -480,10 +480,10 @@ void TestRenderAnalysis::isocurvesAtRequestedParameters() {
 
 void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     QString error;
-    const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("torus"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = kwtest::loadSample(QStringLiteral("torus"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     Document doc;
-    QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(*scene));
     const Camera cam = fitCamera(*scene, 1.0);
     RenderOptions opt;
     const int loads0 = RendererTestHook::environment(m_renderer->renderer()).loads();
@@ -491,7 +491,7 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     first.start();
     for (AnalysisMode m : analysisModes()) {
         opt.analysis.mode = m;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
     }
     m_renderer->finish();
     const qint64 firstMs = first.elapsed();
@@ -499,7 +499,7 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
     for (int round = 0; round < 2; ++round)
         for (AnalysisMode m : analysisModes()) {
             opt.analysis.mode = m;
-            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         }
     m_renderer->finish();
     const qint64 againMs = again.elapsed();
@@ -512,13 +512,15 @@ void TestRenderAnalysis::modesCompileOnceAndEnvironmentLoadsOnce() {
 
 void TestRenderAnalysis::badEnvironmentMapIsReported() {
     QString error;
-    const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("sphere"), &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = kwtest::loadSample(QStringLiteral("sphere"));
+    QVERIFY2(scene, qPrintable(scene.message()));
     RenderOptions opt;
     opt.analysis.mode = AnalysisMode::Environment;
     opt.analysis.environmentMap = QStringLiteral(KW_TEST_OUTPUT_DIR "/no_such_environment.exr");
-    QVERIFY(!render(*scene, opt, &error));
-    QVERIFY2(error.contains(QStringLiteral("no_such_environment.exr")), qPrintable(error));
+    const auto result = render(*scene, opt);
+    QVERIFY(!result);
+    QVERIFY2(result.message().contains(QStringLiteral("no_such_environment.exr")),
+             qPrintable(result.message()));
 }
 
 // Baselines: a pixel fails when a channel differs by more than 0.05 (13 of 255); the image
@@ -546,16 +548,16 @@ void TestRenderAnalysis::matchesBaseline() {
     QFETCH(bool, isocurves);
     const QString name = QString::fromLatin1(QTest::currentDataTag());
     QString error;
-    const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = kwtest::loadSample(sample);
+    QVERIFY2(scene, qPrintable(scene.message()));
     RenderOptions opt;
     opt.analysis.mode = mode;
     opt.analysis.isocurves = isocurves;
-    QVERIFY2(m_renderer->setSize(QSize(256, 256), false, &error), qPrintable(error));
-    const bool rendered = render(*scene, opt, &error);
+    KW_VERIFY_OK(m_renderer->setSize(QSize(256, 256), false));
+    const auto rendered = render(*scene, opt);
     const QImage img = m_renderer->colorImage();
-    QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error, true), qPrintable(error));
-    QVERIFY2(rendered, qPrintable(error));
+    QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, true), qPrintable(rendered.message()));
+    QVERIFY2(rendered, qPrintable(rendered.message()));
     // Analysis colours vary more per pixel than shading: 0.5% of the pixels and a mean error of
     // 0.006 may exceed 0.05.
     kwtest::checkBaseline(img, name, kwtest::BaselineTolerance{0.05f, 0.005, 0.006});

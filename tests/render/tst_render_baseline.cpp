@@ -2,6 +2,7 @@
 // A missing baseline fails; KW_UPDATE_BASELINES=1 writes the baselines instead of comparing.
 // On a mismatch <name>.actual.png and <name>.diff.png are written to KW_TEST_OUTPUT_DIR.
 #include "baseline_compare.h"
+#include "expected_test_util.h"
 
 using namespace kw;
 
@@ -23,8 +24,9 @@ class TestRenderBaseline : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), false, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), false);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void matchesBaseline_data() {
@@ -46,10 +48,10 @@ private Q_SLOTS:
         QFETCH(bool, overlays);
         const QString name = QString::fromLatin1(QTest::currentDataTag());
         QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         RenderOptions opt;
         opt.mode = RenderMode(mode);
         if (opt.mode == RenderMode::Tessellated)
@@ -59,7 +61,7 @@ private Q_SLOTS:
             opt.wireframe = opt.controlNet = true;
         }
         const Camera cam = scene->camera.authored ? scene->camera : fitCamera(*scene, 1.0);
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const QImage img = m_renderer->colorImage();
         kwtest::checkBaseline(img, name, kTolerance);
     }

@@ -2,6 +2,7 @@
 // multi-draw per pass, so 300 surfaces take as many draw calls as 3 of the same variants; the
 // image equals the one-draw-per-surface path's and the kernel's; a moved point is still one
 // texel in a scene of 300 surfaces.
+#include "expected_test_util.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
@@ -33,25 +34,25 @@ class TestRenderBatch : public QObject {
 
     /// The report of the second frame of `doc` (the first uploads everything).
     FrameReport steadyFrame(const Document& doc, const RenderOptions& options = batchOptions()) {
-        QString error;
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
-        m_renderer->render(doc, camera, options, &error);
-        m_renderer->render(doc, camera, options, &error);
+        (void)m_renderer->render(doc, camera, options); // the report says how it went
+        (void)m_renderer->render(doc, camera, options);
         return m_renderer->lastReport();
     }
 
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(320, 240), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(320, 240), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void drawCallsFollowVariantsNotSurfaces() {
         QString error;
         Document few, many;
-        QVERIFY2(few.resetScene(grid(3), &error), qPrintable(error));
-        QVERIFY2(many.resetScene(grid(300), &error), qPrintable(error));
+        KW_VERIFY_OK(few.resetScene(grid(3)));
+        KW_VERIFY_OK(many.resetScene(grid(300)));
         for (auto shading :
              {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth}) {
             RenderOptions options = batchOptions();
@@ -75,7 +76,7 @@ private Q_SLOTS:
         QString error;
         Document doc;
         const Scene scene = grid(300);
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const FrameReport batched = steadyFrame(doc);
         QVERIFY2(batched.ok, qPrintable(batched.error));
         const QImage colour = m_renderer->colorImage();
@@ -125,13 +126,13 @@ private Q_SLOTS:
     void movedPointInManySurfacesIsOneTexel() {
         QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(grid(300), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(grid(300)));
         const FrameReport before = steadyFrame(doc);
         const Surface& s = doc.scene().surfaces.at(150);
         const int index = s.geometry.index(2, 2);
         QVERIFY(doc.setControlPoints(s.id, {index},
                                      {s.geometry.points[size_t(index)] + glm::dvec3(0, 0, 0.3)}));
-        QVERIFY(m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), batchOptions(), &error));
+        QVERIFY(m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), batchOptions()));
         const FrameReport moved = m_renderer->lastReport();
         QCOMPARE(moved.uploads.fullUploads, 0);
         QCOMPARE(moved.uploads.subImageUploads, 1);
@@ -152,7 +153,7 @@ private Q_SLOTS:
     void closeUpCullsWhatIsOutsideTheView() {
         QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(grid(300), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(grid(300)));
         Camera close;
         close.target = glm::dvec3(2.5, 2.0, 0.0); // between the first four patches
         close.eye = close.target + glm::dvec3(0.0, -4.0, 6.0);
@@ -160,7 +161,7 @@ private Q_SLOTS:
         RenderOptions options = batchOptions();
         const auto frame = [&](bool cull) {
             options.cullOutsideView = cull;
-            m_renderer->render(doc, close, options, &error);
+            (void)m_renderer->render(doc, close, options); // the report says how it went
             return std::pair(m_renderer->lastReport(), m_renderer->colorImage());
         };
         const auto [uncut, uncutImage] = frame(false);
@@ -175,7 +176,7 @@ private Q_SLOTS:
         QCOMPARE(cutImage, uncutImage);
         // The fitted view sees every patch: nothing is culled.
         options.cullOutsideView = true;
-        m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options, &error);
+        KW_VERIFY_OK(m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options));
         QCOMPARE(m_renderer->lastReport().culled, 0);
     }
 };

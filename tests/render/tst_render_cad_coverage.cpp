@@ -1,6 +1,7 @@
 // GL test: a render of an imported CAD model shows its faces where
 // OpenCASCADE's trims say they are. Every pixel of a trimmed face in the trimmed or untrimmed
 // AOV is checked against the CPU classification (model/nurbs/trim.h) at that pixel's (id, u, v).
+#include "expected_test_util.h"
 #include "model/cad/cadimport.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
@@ -21,8 +22,9 @@ private Q_SLOTS:
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): IGES and STEP cannot be imported");
 #endif
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(1024, 1024), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(1024, 1024), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void facesAppearWhereTheTrimsSay_data() {
@@ -43,14 +45,14 @@ private Q_SLOTS:
             trimmedFaces += !s.trims.empty();
         QVERIFY(trimmedFaces > 0);
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = fitCamera(scene, 1.0);
         RenderOptions opt;
         opt.trims = false;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer whole = m_renderer->aov();
         opt.trims = true;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer trimmed = m_renderer->aov();
         const GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         const auto texelOf = [&](SurfaceId id) {

@@ -2,6 +2,7 @@
 // torus and a bicubic patch the red marks (k1) run along the screen projection of the kernel's
 // principal direction at the mark's grid cell, the blue ones (k2) across it; a sphere, umbilic
 // everywhere, gets no marks.
+#include "expected_test_util.h"
 #include "model/nurbs/nurbs_curvature.h"
 #include "render/image_writer.h"
 #include "render_test_util.h"
@@ -42,8 +43,9 @@ class TestRenderDirections : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error, true);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true, true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
     void marksFollowTheKernelDirections_data();
     void marksFollowTheKernelDirections();
@@ -67,22 +69,21 @@ void TestRenderDirections::marksFollowTheKernelDirections() {
     QFETCH(QString, sample);
     QFETCH(bool, umbilic);
     QString error;
-    const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
-    QVERIFY2(scene, qPrintable(error));
+    const auto scene = kwtest::loadSample(sample);
+    QVERIFY2(scene, qPrintable(scene.message()));
     Document doc;
-    QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(*scene));
     const Camera cam = scene->camera.authored ? scene->camera : fitCamera(*scene, 1.0);
     RenderOptions opt;
-    QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
     const QImage plain = m_renderer->colorImage();
     opt.analysis.principalDirections = true;
     opt.analysis.directionSpacingPixels = kSpacing;
-    QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
     const QImage img = m_renderer->colorImage();
     const AovBuffer aov = m_renderer->aov();
-    QVERIFY2(
-        writeColorImage(img, kwtest::outputDir().filePath("directions_" + sample + ".png"), &error),
-        qPrintable(error));
+    KW_VERIFY_OK(
+        writeColorImage(img, kwtest::outputDir().filePath("directions_" + sample + ".png")));
     const int cells = int(std::ceil(kSide / kSpacing));
     struct Moments {
         double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;

@@ -1,6 +1,7 @@
 // The Edge Continuity overlay on the GPU (render/edge_bands.h, EdgeBandsPass): the band drawn
 // over each shared edge of a known G2 / G1 / G0 / open configuration has the colour of the
 // class the continuity kernel gives it.
+#include "expected_test_util.h"
 #include "model/analysis/continuity.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "render/edge_bands.h"
@@ -89,8 +90,9 @@ class TestRenderEdgeBands : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), false, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), false);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
     void bandColoursAreTheKernelsClasses();
     void bandsOffScreenAreLeftOut();
@@ -108,12 +110,12 @@ void TestRenderEdgeBands::bandColoursAreTheKernelsClasses() {
                                          ContinuityClass::G0, ContinuityClass::Open};
     Document doc;
     QString error;
-    QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(scene));
     RenderOptions options;
     auto bands = std::make_shared<EdgeBands>(makeEdgeBands(scene, report, 1));
     bands->widthPixels = 5.0f;
     options.edgeBands = bands;
-    QVERIFY2(m_renderer->render(doc, topCamera(), options, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
     const QImage image = m_renderer->colorImage();
     image.save(kwtest::outputDir().filePath(QStringLiteral("edge_bands.png")));
     const CameraMatrices m = cameraMatrices(topCamera(), scene, 1.0);
@@ -139,7 +141,7 @@ void TestRenderEdgeBands::bandColoursAreTheKernelsClasses() {
     }
     // Without the overlay, no band: the same pixel shows the surface.
     options.edgeBands.reset();
-    QVERIFY2(m_renderer->render(doc, topCamera(), options, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
     const QImage plain = m_renderer->colorImage();
     const glm::dvec2 w =
         kwtest::windowPixels(m.projection * m.view, {1.0, 0.5, 0.0}, glm::dvec2(kSide));
@@ -190,15 +192,14 @@ void TestRenderEdgeBands::aDragStepRewritesOnlyTheDraggedFacesBands() {
     Scene scene = configuration();
     ContinuityReport report = continuityReport(scene, {});
     Document doc;
-    QString error;
-    QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(scene));
     EdgeBandCache cache;
     const std::shared_ptr<const EdgeBands> before = cache.update(scene, report);
     const std::uint64_t revision = before->revision, layout = before->layoutRevision;
     QCOMPARE(layout, revision);
     RenderOptions options;
     options.edgeBands = before;
-    QVERIFY2(m_renderer->render(doc, topCamera(), options, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
     const CameraMatrices m = cameraMatrices(topCamera(), scene, 1.0);
     const glm::dvec2 w =
         kwtest::windowPixels(m.projection * m.view, {3.0 * 3 + 1.0, 0.5, 0.0}, glm::dvec2(kSide));
@@ -236,7 +237,7 @@ void TestRenderEdgeBands::aDragStepRewritesOnlyTheDraggedFacesBands() {
         QCOMPARE(after->vertices[k].position, full.vertices[k].position);
         QCOMPARE(after->vertices[k].color, full.vertices[k].color);
     }
-    QVERIFY2(m_renderer->render(doc, topCamera(), options, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, topCamera(), options));
     QVERIFY2(colourDistance(pixel(), continuityColor(ContinuityClass::G2)) < 0.08,
              qPrintable(QColor(pixel()).name()));
     // Hiding the face empties its free sides' lines (its shared edge is drawn along patch 7,

@@ -2,6 +2,7 @@
 // (render/image_reader.h): an EXR written with float values above 1, a hand-written Radiance
 // HDR and a PNG of the same two-hemisphere sky must load with their values and render a sphere
 // whose reflections pick the expected hemisphere's colour; corrupt files fail naming the file.
+#include "expected_test_util.h"
 #include "render/analysis_gl.h"
 #include "render/image_writer.h"
 #include "render/oiio/image_module.h"
@@ -28,26 +29,21 @@ const float* skyAt(int row) {
 }
 
 /// The sky as an EXR through the module's write entry (float, values above 1 kept).
-bool writeExr(const QString& path, QString* error) {
+Status writeExr(const QString& path) {
     std::vector<float> rgb;
     for (int y = 0; y < kEnvH; ++y)
         for (int x = 0; x < kEnvW; ++x)
             rgb.insert(rgb.end(), skyAt(y), skyAt(y) + 3);
-    QString why;
-    const auto write =
-        reinterpret_cast<KwImageWriteFn>(oiioModuleSymbol(KW_IMAGE_WRITE_SYMBOL, &why));
-    if (!write) {
-        *error = why;
-        return false;
-    }
+    const Expected<void*> symbol = oiioModuleSymbol(KW_IMAGE_WRITE_SYMBOL);
+    if (!symbol)
+        return symbol.error();
+    const auto write = reinterpret_cast<KwImageWriteFn>(*symbol);
     const QByteArray file = path.toLocal8Bit();
     const KwImageWrite image{file.constData(), kEnvW, kEnvH, 3, 1, rgb.data(), nullptr, 0, nullptr};
     char message[512] = {0};
-    if (!write(&image, message, sizeof message)) {
-        *error = QString::fromLocal8Bit(message);
-        return false;
-    }
-    return true;
+    if (!write(&image, message, sizeof message))
+        return Error(QString::fromLocal8Bit(message), path);
+    return ok();
 }
 
 /// The sky as a flat (not run-length encoded) Radiance RGBE file, written byte by byte so the
@@ -69,7 +65,7 @@ bool writeHdr(const QString& path) {
 }
 
 /// The sky as an 8-bit PNG (clamped to 1).
-bool writePng(const QString& path, QString* error) {
+Status writePng(const QString& path) {
     QImage img(kEnvW, kEnvH, QImage::Format_RGB888);
     for (int y = 0; y < kEnvH; ++y)
         for (int x = 0; x < kEnvW; ++x) {
@@ -79,7 +75,7 @@ bool writePng(const QString& path, QString* error) {
             };
             img.setPixel(x, y, qRgb(b(c[0]), b(c[1]), b(c[2])));
         }
-    return writeColorImage(img, path, error);
+    return writeColorImage(img, path);
 }
 
 } // namespace
@@ -92,8 +88,9 @@ class TestRenderEnvironment : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
         m_scene.surfaces.push_back(kwtest::makeSurface(1, makeSphere(glm::dvec3(0.0), 1.0), 12));
         m_scene.camera.eye = glm::dvec3(0.0, -6.0, 0.0);
         m_scene.camera.target = glm::dvec3(0.0);
@@ -101,9 +98,9 @@ private Q_SLOTS:
         m_scene.camera.fovYDegrees = 30.0;
         m_scene.camera.authored = true;
         const QDir out = kwtest::outputDir();
-        QVERIFY2(writeExr(out.filePath("env_sky.exr"), &error), qPrintable(error));
+        KW_VERIFY_OK(writeExr(out.filePath("env_sky.exr")));
         QVERIFY(writeHdr(out.filePath("env_sky.hdr")));
-        QVERIFY2(writePng(out.filePath("env_sky.png"), &error), qPrintable(error));
+        KW_VERIFY_OK(writePng(out.filePath("env_sky.png")));
     }
 
     void filesLoadWithTheirValues_data();
@@ -126,10 +123,10 @@ void TestRenderEnvironment::filesLoadWithTheirValues_data() {
 void TestRenderEnvironment::filesLoadWithTheirValues() {
     QFETCH(QString, file);
     QFETCH(bool, hdr);
-    EnvironmentImage img;
-    QString error;
-    QVERIFY2(loadEnvironmentImage(kwtest::outputDir().filePath(file), img, &error),
-             qPrintable(error));
+    const Expected<EnvironmentImage> loaded =
+        loadEnvironmentImage(kwtest::outputDir().filePath(file));
+    QVERIFY2(loaded, qPrintable(loaded.message()));
+    const EnvironmentImage& img = *loaded;
     QCOMPARE(img.width, kEnvW);
     QCOMPARE(img.height, kEnvH);
     for (int y : {0, kEnvH / 2 - 1, kEnvH / 2, kEnvH - 1})
@@ -165,13 +162,12 @@ void TestRenderEnvironment::sphereReflectsTheExpectedHemisphere() {
     opt.analysis.environmentMap = kwtest::outputDir().filePath(file);
     Document doc;
     QString error;
-    QVERIFY2(doc.resetScene(m_scene, &error), qPrintable(error));
-    QVERIFY2(m_renderer->render(doc, m_scene.camera, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(m_scene));
+    KW_VERIFY_OK(m_renderer->render(doc, m_scene.camera, opt));
     const QImage img = m_renderer->colorImage();
     const AovBuffer aov = m_renderer->aov();
-    QVERIFY2(
-        writeColorImage(img, kwtest::outputDir().filePath("environment_" + file + ".png"), &error),
-        qPrintable(error));
+    KW_VERIFY_OK(
+        writeColorImage(img, kwtest::outputDir().filePath("environment_" + file + ".png")));
     int up = 0, down = 0;
     for (int y = 0; y < kSide; ++y)
         for (int x = 0; x < kSide; ++x) {
@@ -223,21 +219,19 @@ void TestRenderEnvironment::corruptFilesAreReported() {
         QFile f(path);
         QVERIFY(f.open(QIODevice::WriteOnly) && f.write(c.bytes) == c.bytes.size());
         f.close();
-        EnvironmentImage img;
-        QString error;
-        QVERIFY2(!loadEnvironmentImage(path, img, &error), c.name);
-        QVERIFY2(error.contains(path), qPrintable(error));
-        QVERIFY(img.rgb.empty());
-        qInfo("%s", qPrintable(error));
+        const Expected<EnvironmentImage> loaded = loadEnvironmentImage(path);
+        QVERIFY2(!loaded, c.name);
+        QVERIFY2(loaded.message().contains(path), qPrintable(loaded.message()));
+        qInfo("%s", qPrintable(loaded.message()));
         // The frame fails with the same message (naming the file) instead of drawing.
         RenderOptions opt;
         opt.analysis.mode = AnalysisMode::Environment;
         opt.analysis.environmentMap = path;
         Document doc;
-        QVERIFY(doc.resetScene(m_scene, &error));
-        error.clear();
-        QVERIFY(!m_renderer->render(doc, m_scene.camera, opt, &error));
-        QVERIFY2(error.contains(path), qPrintable(error));
+        QVERIFY(doc.resetScene(m_scene));
+        const auto result = m_renderer->render(doc, m_scene.camera, opt);
+        QVERIFY(!result);
+        QVERIFY2(result.message().contains(path), qPrintable(result.message()));
     }
 }
 

@@ -1,5 +1,6 @@
 // GL test: the exact renderer's AOV (position, normal at each pixel's (u, v)) against the CPU
 // kernel, for every sample and for scenes built in code (poles, high degree, multiplicities).
+#include "expected_test_util.h"
 #include "kernel_test_util.h"
 #include "model/nurbs/nurbs_shapes.h"
 #include "render_test_util.h"
@@ -35,8 +36,9 @@ class TestRenderExact : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(512, 512), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(512, 512), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
         qInfo("GL: %s", qPrintable(m_renderer->renderer().glDescription()));
     }
 
@@ -44,8 +46,8 @@ private Q_SLOTS:
         QTest::addColumn<Scene>("scene");
         for (const char* name : {"bicubic", "sphere", "torus", "trimmed_plate", "teapot"}) {
             QString error;
-            const std::optional<Scene> s = kwtest::loadSample(QString::fromLatin1(name), &error);
-            QVERIFY2(s, qPrintable(error));
+            const auto s = kwtest::loadSample(QString::fromLatin1(name));
+            QVERIFY2(s, qPrintable(s.message()));
             addScene(name, *s);
         }
         {
@@ -129,8 +131,7 @@ private Q_SLOTS:
         s.camera.up = glm::dvec3(0.0, 0.0, 1.0);
         s.camera.authored = true;
         Document doc;
-        QString error;
-        QVERIFY2(doc.resetScene(s, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(s));
         RenderOptions opt = baseOptions();
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         opt.pixelTolerance = 2.0;
@@ -139,7 +140,7 @@ private Q_SLOTS:
         // kSkirtReachPixels past it and show the edge's point (ExactSurfacePass).
         const auto offsets = [&](std::map<int, std::pair<int, double>>& out) {
             QString e;
-            QVERIFY2(m_renderer->render(doc, doc.scene().camera, opt, &e), qPrintable(e));
+            KW_VERIFY_OK(m_renderer->render(doc, doc.scene().camera, opt));
             const AovBuffer aov = m_renderer->aov();
             const glm::dmat4 vp(frameCamera(doc.scene().camera, doc.scene(), 1.0).viewProjection);
             for (int y = 0; y < aov.height; ++y)
@@ -198,15 +199,14 @@ private Q_SLOTS:
         s.camera.up = glm::dvec3(0.0, 1.0, 0.0);
         s.camera.authored = true;
         Document doc;
-        QString error;
-        QVERIFY2(doc.resetScene(s, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(s));
         const CameraMatrices m = cameraMatrices(s.camera, doc.scene(), 1.0);
         QVERIFY(m.nearPlane < 2e-3); // the case: the eye inside the bounds
         for (const RenderOptions::Shading shading :
              {RenderOptions::Shading::DepthPrepass, RenderOptions::Shading::ExactDepth}) {
             RenderOptions opt = baseOptions();
             opt.shading = shading;
-            QVERIFY2(m_renderer->render(doc, s.camera, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, s.camera, opt));
             const AovBuffer aov = m_renderer->aov();
             const glm::dmat4 inv = glm::inverse(m.projection * m.view);
             int ring2 = 0, hole1 = 0, wrong = 0;
@@ -239,10 +239,10 @@ private Q_SLOTS:
         QFETCH(Scene, scene);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
         RenderOptions opt = baseOptions();
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer aov = m_renderer->aov();
         QCOMPARE(aov.width, 512);
         const kwtest::AovComparison r = kwtest::compareAovWithKernel(doc.scene(), aov);
@@ -273,16 +273,16 @@ private Q_SLOTS:
         QFETCH(QString, name);
         QFETCH(double, zoom);
         QString error;
-        const std::optional<Scene> s = kwtest::loadSample(name, &error);
-        QVERIFY2(s, qPrintable(error));
+        const auto s = kwtest::loadSample(name);
+        QVERIFY2(s, qPrintable(s.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*s, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*s));
         Camera cam = fitCamera(doc.scene(), 1.0);
         cam.eye = cam.target + (cam.eye - cam.target) / zoom;
         RenderOptions opt = baseOptions();
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         opt.pixelTolerance = 0.5;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer aov = m_renderer->aov();
         const glm::dmat4 vp(frameCamera(cam, doc.scene(), 1.0).viewProjection);
         int covered = 0, off = 0, worstX = -1, worstY = -1;
@@ -314,16 +314,16 @@ private Q_SLOTS:
         // surfaces by a few pixels).
         QFETCH(int, shading);
         QString error;
-        const std::optional<Scene> s = kwtest::loadSample(QStringLiteral("teapot"), &error);
-        QVERIFY2(s, qPrintable(error));
+        const auto s = kwtest::loadSample(QStringLiteral("teapot"));
+        QVERIFY2(s, qPrintable(s.message()));
         Document doc;
-        QVERIFY(doc.resetScene(*s, &error));
+        QVERIFY(doc.resetScene(*s));
         const Camera cam = fitCamera(doc.scene(), 1.0);
         RenderOptions opt = baseOptions();
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer prepass = m_renderer->aov();
         opt.shading = RenderOptions::Shading(shading);
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer forward = m_renderer->aov();
         const kwtest::AovComparison r = kwtest::compareAovWithKernel(doc.scene(), forward);
         QVERIFY(r.compared >= 1000);
@@ -361,12 +361,11 @@ private Q_SLOTS:
         QFETCH(double, zoom);
         QFETCH(int, samples);
         QString error;
-        std::optional<Scene> s = sample == QLatin1String("plate+star")
-                                     ? kwtest::plateBesideStar(2.4, &error)
-                                 : sample == QLatin1String("plane+torus")
-                                     ? kwtest::loadSample(QStringLiteral("torus"), &error)
-                                     : kwtest::loadSample(sample, &error);
-        QVERIFY2(s, qPrintable(error));
+        auto s = sample == QLatin1String("plate+star") ? kwtest::plateBesideStar(2.4)
+                 : sample == QLatin1String("plane+torus")
+                     ? kwtest::loadSample(QStringLiteral("torus"))
+                     : kwtest::loadSample(sample);
+        QVERIFY2(s, qPrintable(s.message()));
         const bool plane = sample == QLatin1String("plane+torus");
         // The plane's one cell covers thousands of pixels: it would be drawn the forward way
         // (RenderOptions::deferMaxCellPixels) unless every surface is deferred.
@@ -379,7 +378,7 @@ private Q_SLOTS:
                                     1));
         }
         Document doc;
-        QVERIFY(doc.resetScene(*s, &error));
+        QVERIFY(doc.resetScene(*s));
         Camera cam = fitCamera(doc.scene(), 1.0);
         cam.eye = cam.target + (cam.eye - cam.target) / zoom;
         RenderOptions opt = baseOptions();
@@ -389,12 +388,12 @@ private Q_SLOTS:
             opt.deferMaxCellPixels = 1e30;
         const auto compare = [&](const char* when) {
             opt.deferredPass = true;
-            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
             const int deferred = m_renderer->lastReport().partitions.deferredSurfaces;
             const QImage colour = m_renderer->colorImage();
             const AovBuffer aov = m_renderer->aov();
             opt.deferredPass = false;
-            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
             QCOMPARE(m_renderer->lastReport().partitions.deferredSurfaces, 0);
             const QImage forwardColour = m_renderer->colorImage();
             const AovBuffer forward = m_renderer->aov();
@@ -437,7 +436,7 @@ private Q_SLOTS:
             }
         // A deferred frame before the drag, so that the one after it patches its batches.
         opt.deferredPass = true;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         QVERIFY(doc.setControlPoints(first.id, moved, to));
         compare("after the drag");
     }
@@ -445,17 +444,17 @@ private Q_SLOTS:
     void overlaysLeaveTheAovAlone() {
         // Wireframe and control net draw into the colour target only.
         QString error;
-        const std::optional<Scene> s = kwtest::loadSample(QStringLiteral("torus"), &error);
-        QVERIFY2(s, qPrintable(error));
+        const auto s = kwtest::loadSample(QStringLiteral("torus"));
+        QVERIFY2(s, qPrintable(s.message()));
         Document doc;
-        QVERIFY(doc.resetScene(*s, &error));
+        QVERIFY(doc.resetScene(*s));
         const Camera cam = fitCamera(doc.scene(), 1.0);
         RenderOptions opt = baseOptions();
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const AovBuffer plain = m_renderer->aov();
         const QImage plainColor = m_renderer->colorImage();
         opt.wireframe = opt.controlNet = true;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         QVERIFY(m_renderer->aov().data == plain.data);
         QVERIFY(m_renderer->colorImage() != plainColor);
     }
@@ -463,7 +462,7 @@ private Q_SLOTS:
     void backgroundIsMinusOne() {
         Document doc;
         QString error;
-        QVERIFY2(m_renderer->render(doc, Camera{}, baseOptions(), &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, Camera{}, baseOptions()));
         const AovBuffer aov = m_renderer->aov();
         QCOMPARE(aov.pixel(0, 0)[0], -1.0f);
         QCOMPARE(aov.pixel(511, 511)[0], -1.0f);

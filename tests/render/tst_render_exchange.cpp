@@ -59,19 +59,22 @@ class TestRenderExchange : public QObject {
     std::unique_ptr<OffscreenRenderer> m_renderer;
 
     AovBuffer render(const Scene& scene, const Camera& camera) {
-        QString error;
         Document doc;
-        if (!doc.resetScene(scene, &error) ||
-            !m_renderer->render(doc, camera, RenderOptions{}, &error))
-            qWarning("%s", qPrintable(error));
+        if (const Status reset = doc.resetScene(scene); !reset) {
+            qWarning("%s", qPrintable(reset.message()));
+            return m_renderer->aov();
+        }
+        if (const Status drawn = m_renderer->render(doc, camera, RenderOptions{}); !drawn)
+            qWarning("%s", qPrintable(drawn.message()));
         return m_renderer->aov();
     }
 
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(200, 150), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(200, 150), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void sameAovAfterRoundTrip_data() {

@@ -3,6 +3,7 @@
 // (FrameReport::recordsSynced), and every frame drawn that way equals the frame a fresh
 // renderer draws of the same document: moved points, trim edits, hidden and removed surfaces,
 // another view, adaptive partitions.
+#include "expected_test_util.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
@@ -32,12 +33,12 @@ class TestRenderIncremental : public QObject {
         QString error;
         FrameReport kept;
         [&] {
-            QVERIFY2(m_kept->render(doc, camera, options, &error), qPrintable(error));
+            KW_VERIFY_OK(m_kept->render(doc, camera, options));
             kept = m_kept->lastReport();
             const QImage a = m_kept->colorImage();
             Document copy;
-            QVERIFY2(copy.resetScene(doc.scene(), &error), qPrintable(error));
-            QVERIFY2(m_fresh->render(copy, camera, options, &error), qPrintable(error));
+            KW_VERIFY_OK(copy.resetScene(doc.scene()));
+            KW_VERIFY_OK(m_fresh->render(copy, camera, options));
             const FrameReport& fresh = m_fresh->lastReport();
             QCOMPARE(fresh.recordsSynced, fresh.surfaces); // all new: every record compared
             QCOMPARE(kept.surfaces, fresh.surfaces);
@@ -53,24 +54,25 @@ class TestRenderIncremental : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        QString error;
-        m_kept = kwtest::offscreenRenderer(QSize(320, 240), false, &error);
-        QVERIFY2(m_kept, qPrintable(error));
-        m_fresh = kwtest::offscreenRenderer(QSize(320, 240), false, &error);
-        QVERIFY2(m_fresh, qPrintable(error));
+        auto kept = kwtest::offscreenRenderer(QSize(320, 240), false);
+        QVERIFY2(kept, qPrintable(kept.message()));
+        m_kept = std::move(kept).value();
+        auto fresh = kwtest::offscreenRenderer(QSize(320, 240), false);
+        QVERIFY2(fresh, qPrintable(fresh.message()));
+        m_fresh = std::move(fresh).value();
     }
 
     void oneMovedPointSyncsOneRecord() {
         QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(grid(300), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(grid(300)));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
         const RenderOptions options;
         FrameReport r = frameAgainstFresh(doc, camera, options);
         QCOMPARE(r.recordsSynced, 300);
         QCOMPARE(r.surfaces, 300);
         // Nothing changed: nothing compared, nothing uploaded, no mask drawn.
-        QVERIFY(m_kept->render(doc, camera, options, &error));
+        QVERIFY(m_kept->render(doc, camera, options));
         r = m_kept->lastReport();
         QCOMPARE(r.recordsSynced, 0);
         QCOMPARE(r.uploads, UploadStats{});
@@ -138,7 +140,7 @@ private Q_SLOTS:
     void adaptivePartitionsFollowTheMovedPoint() {
         QString error;
         Document doc;
-        QVERIFY2(doc.resetScene(grid(60), &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(grid(60)));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
         RenderOptions options;
         options.partitioning = RenderOptions::Partitioning::Adaptive;
@@ -147,7 +149,7 @@ private Q_SLOTS:
         // A large move inside the scene's bounds (a move that grows them changes the camera's
         // near and far planes, so every record would be compared): the surface's partitions
         // are chosen again.
-        QVERIFY(m_kept->render(doc, camera, options, &error));
+        QVERIFY(m_kept->render(doc, camera, options));
         QCOMPARE(m_kept->lastReport().recordsSynced, 0);
         const Surface& s = doc.scene().surfaces[25];
         const int index = s.geometry.index(2, 2);

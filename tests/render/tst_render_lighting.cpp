@@ -6,6 +6,7 @@
 // (a connecting rod's lower faces); the viewer's fill (kw::kViewerFill) is what keeps them
 // readable, for faces of either B-rep orientation.
 #include "cad_test_util.h"
+#include "expected_test_util.h"
 #include "render/image_writer.h"
 #include "render_test_util.h"
 
@@ -67,8 +68,9 @@ class TestRenderLighting : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void everyVisibleFaceIsLit_data() {
@@ -83,15 +85,17 @@ private Q_SLOTS:
 
     void everyVisibleFaceIsLit() {
         QFETCH(QString, source);
-        QString error;
-        std::optional<Scene> scene = source.contains(QLatin1Char('.'))
-                                         ? kwtest::importedPart(source)
-                                         : kwtest::loadSample(source, &error);
-        QVERIFY2(scene, qPrintable(error.isEmpty() ? source : error));
+        // A CAD part (its import's reason is logged) or a sample.
+        Expected<Scene> scene = Error(source);
+        if (!source.contains(QLatin1Char('.')))
+            scene = kwtest::loadSample(source);
+        else if (std::optional<Scene> part = kwtest::importedPart(source))
+            scene = std::move(*part);
+        QVERIFY2(scene, qPrintable(scene.message().isEmpty() ? source : scene.message()));
         for (Surface& s : scene->surfaces)
             s.material = Material{};
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         double darkest = 1.0;
         QString where;
         int views = 0;
@@ -101,7 +105,7 @@ private Q_SLOTS:
                 opt.mode = mode;
                 opt.partitioning = RenderOptions::Partitioning::Adaptive;
                 opt.headlight = (views++ % 2) == 0; // both rigs, on alternate views
-                QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+                KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
                 const QImage img = m_renderer->colorImage();
                 const AovBuffer aov = m_renderer->aov();
                 int covered = 0;
@@ -127,8 +131,7 @@ private Q_SLOTS:
                                 .arg(at.x())
                                 .arg(at.y());
                     QString file = QStringLiteral("lighting_darkest_%1.png").arg(source);
-                    QVERIFY2(writeColorImage(img, kwtest::outputDir().filePath(file), &error),
-                             qPrintable(error));
+                    KW_VERIFY_OK(writeColorImage(img, kwtest::outputDir().filePath(file)));
                 }
             }
         qInfo("%d frames, darkest covered pixel %.3f (%s)", views, darkest, qPrintable(where));
@@ -154,30 +157,28 @@ private Q_SLOTS:
         QFETCH(int, samples);
         QFETCH(bool, coverage);
         QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("sphere"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("sphere"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera cam = fitCamera(*scene, 1.0);
         RenderOptions opt;
         opt.samples = samples;
         opt.antialiasing = coverage ? RenderOptions::Antialiasing::Coverage
                                     : RenderOptions::Antialiasing::Accumulate;
         QVERIFY(backgroundNamed(QStringLiteral("dark"), opt));
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const QImage dark = m_renderer->colorImage();
         RenderOptions light = opt;
         QVERIFY(backgroundNamed(QStringLiteral("light"), light));
         QVERIFY(light.backgroundTop && !opt.backgroundTop);
         QVERIFY(!backgroundNamed(QStringLiteral("purple"), light));
-        QVERIFY2(m_renderer->render(doc, cam, light, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, light));
         const QImage img = m_renderer->colorImage();
-        QVERIFY2(writeColorImage(img,
-                                 kwtest::outputDir().filePath(
-                                     QStringLiteral("background_light_%1.png")
-                                         .arg(QString::fromLatin1(QTest::currentDataTag()))),
-                                 &error),
-                 qPrintable(error));
+        KW_VERIFY_OK(writeColorImage(
+            img,
+            kwtest::outputDir().filePath(QStringLiteral("background_light_%1.png")
+                                             .arg(QString::fromLatin1(QTest::currentDataTag())))));
         // The corner columns hold no part: bottom colour at the bottom row, top at the top,
         // brightening monotonically (row 0 of the image is the top).
         const auto channel = [](QRgb c) {
@@ -215,7 +216,7 @@ private Q_SLOTS:
         if (samples == 1) {
             // AOV frames: the background is still "no surface".
             RenderOptions aovLight = light;
-            QVERIFY2(m_renderer->render(doc, cam, aovLight, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, cam, aovLight));
             const AovBuffer aov = m_renderer->aov();
             QCOMPARE(aov.pixel(0, 0)[0], -1.0f);
             QCOMPARE(aov.pixel(0, kSide - 1)[0], -1.0f);

@@ -2,6 +2,7 @@
 // of the document's surfaces, with the same view and AOVs, so the edge report measures it
 // against the CPU reference: its normal error falls with the deflection, and a mesh whose ids
 // are wrong shows up as visible-id disagreements.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/io/meshobj.h"
 
@@ -95,9 +96,9 @@ private Q_SLOTS:
 
     void wrongIdsAreSeen() {
         const QString fine = output(QStringLiteral("rpeer_0.02.obj"));
-        kw::TaggedMeshSet mesh;
-        QString error;
-        QVERIFY2(kw::readTaggedMeshObjFile(fine, mesh, error), qPrintable(error));
+        kw::Expected<kw::TaggedMeshSet> read = kw::readTaggedMeshObjFile(fine);
+        QVERIFY2(read, qPrintable(read.message()));
+        kw::TaggedMeshSet mesh = std::move(read).value();
         // Every face tagged with the next face's id: the geometry is right, the ids are not.
         const kw::SurfaceId first = mesh.faces.front().id;
         for (size_t k = 0; k + 1 < mesh.faces.size(); ++k)

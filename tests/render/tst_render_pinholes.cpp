@@ -11,6 +11,7 @@
 // diagonals included). A failure names the view and each hole's pixel, the reference's face
 // and (u, v) there, and the faces of its 8 neighbours.
 #include "cad_test_util.h"
+#include "expected_test_util.h"
 #include "render/edge_metrics.h"
 #include "render/reference_render.h"
 #include "render_test_util.h"
@@ -167,8 +168,9 @@ class TestRenderPinholes : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
     void noPinholes_data();
     void noPinholes();
@@ -188,7 +190,7 @@ void TestRenderPinholes::noPinholes() {
     QVERIFY(part);
     Document doc;
     QString error;
-    QVERIFY2(doc.resetScene(*part, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(*part));
     std::mt19937 rng(43u + std::uint32_t(qHash(file)));
     RenderOptions opt; // the default configuration: closed solids' back faces skipped
     opt.partitioning = RenderOptions::Partitioning::Adaptive;
@@ -209,16 +211,15 @@ void TestRenderPinholes::noPinholes() {
         const Camera camera =
             view.zoom > 1.0 ? zoomedCamera(view.camera, view.zoom, view.at, 1.0) : view.camera;
         const AovBuffer ref = renderReference(doc.scene(), camera, kSide, kSide);
-        QVERIFY2(m_renderer->render(doc, camera, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, opt));
         // The configuration asked for: the solid seen from outside, its back faces skipped.
         QVERIFY(m_renderer->lastReport().solidsBackCulled >= 1);
         const AovBuffer gpu = m_renderer->aov();
         EdgeMetrics m;
         const double pixelAngle =
             2.0 * std::tan(glm::radians(camera.fovYDegrees) * 0.5) / double(kSide);
-        QVERIFY2(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, &error, pixelAngle,
-                                      &camera.eye),
-                 qPrintable(error));
+        KW_VERIFY_OK(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, pixelAngle,
+                                          &camera.eye));
         const std::vector<QPoint> holes = pinholes(gpu, ref);
         QCOMPARE((long long)holes.size(), m.crackPixelsCoveredInReference);
         raw += m.crackPixels;
@@ -289,8 +290,7 @@ void TestRenderPinholes::silhouetteBesideADomainEdge() {
     scene.surfaces.push_back(s);
     scene.nextId = 2;
     Document doc;
-    QString error;
-    QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+    KW_VERIFY_OK(doc.resetScene(scene));
     Camera camera;
     camera.eye = {-419.06630929749997, -347.47736377494635, -43.78407324412903};
     camera.target = {-54.5, 0.0, 20.450000000000003};
@@ -302,7 +302,7 @@ void TestRenderPinholes::silhouetteBesideADomainEdge() {
     opt.pixelTolerance = 0.5;
     opt.samples = 1;
     const AovBuffer ref = renderReference(doc.scene(), camera, kSide, kSide);
-    QVERIFY2(m_renderer->render(doc, camera, opt, &error), qPrintable(error));
+    KW_VERIFY_OK(m_renderer->render(doc, camera, opt));
     const AovBuffer gpu = m_renderer->aov();
     QStringList missed;
     for (int y = 0; y < kSide; ++y)

@@ -1,6 +1,7 @@
 // Forty strips whose control points together need about ten times the GPU's buffer limit
 // (lowered to 1 MiB for the test): the frame reports them in one short line with the totals,
 // not a line per surface, and draws the surfaces that fit.
+#include "expected_test_util.h"
 #include "render/gpu_scene.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
@@ -14,10 +15,9 @@ class TestRenderScaleLimit : public QObject {
     Q_OBJECT
 private Q_SLOTS:
     void manySurfacesPastTheLimitGiveOneShortLine() {
-        QString error;
-        std::unique_ptr<OffscreenRenderer> renderer =
-            kwtest::offscreenRenderer(QSize(64, 64), true, &error);
-        QVERIFY2(renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(64, 64), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        std::unique_ptr<OffscreenRenderer> renderer = std::move(made).value();
         GpuScene::setBufferLimitForTests(1048576);
         const auto restore = qScopeGuard([] { GpuScene::setBufferLimitForTests(0); });
         // 8192 x 2 control points: 256 KiB of control texels per strip, so about four fit.
@@ -38,22 +38,24 @@ private Q_SLOTS:
         }
         scene.nextId = kStrips + 1;
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
-        QVERIFY(!renderer->render(doc, fitCamera(scene, 1.0), RenderOptions{}, &error));
-        QVERIFY2(!error.contains(QLatin1Char('\n')) && error.size() < 300, qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
+        const auto result = renderer->render(doc, fitCamera(scene, 1.0), RenderOptions{});
+        QVERIFY(!result);
+        QVERIFY2(!result.message().contains(QLatin1Char('\n')) && result.message().size() < 300,
+                 qPrintable(result.message()));
         const QRegularExpressionMatch m =
             QRegularExpression(QStringLiteral("^(\\d+) of 40 surfaces do not fit the GPU's "
                                               "buffer limit of 1048576 bytes"))
-                .match(error);
-        QVERIFY2(m.hasMatch(), qPrintable(error));
+                .match(result.message());
+        QVERIFY2(m.hasMatch(), qPrintable(result.message()));
         const int refused = m.captured(1).toInt();
-        QVERIFY2(refused > 20 && refused < kStrips, qPrintable(error));
+        QVERIFY2(refused > 20 && refused < kStrips, qPrintable(result.message()));
         // The ones that fit are on the GPU; the count of those left out is the error's.
         int drawn = 0;
         for (const Surface& s : doc.scene().surfaces)
             drawn += RendererTestHook::scene(renderer->renderer()).surfaceGpu(s.id) != nullptr;
         QCOMPARE(drawn, kStrips - refused);
-        QCOMPARE(renderer->lastReport().warnings.count(error), 1);
+        QCOMPARE(renderer->lastReport().warnings.count(result.message()), 1);
     }
 };
 

@@ -1,6 +1,7 @@
 // GL test: the renderer's public interface. The pick query against the AOV of a full frame and
 // the kernel; the FrameReport's uploads, draw calls and GPU bytes, which go back to the empty
 // document's when every surface is removed; hidden surfaces left out of frames and picks.
+#include "expected_test_util.h"
 #include "render/gpu_layout.h"
 #include "render_test_util.h"
 
@@ -14,16 +15,16 @@ class TestRenderScene : public QObject {
     std::unique_ptr<OffscreenRenderer> m_renderer;
 
     FrameReport frame(const Document& doc, const RenderOptions& options = {}) {
-        QString error;
-        m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options, &error);
+        (void)m_renderer->render(doc, fitCamera(doc.scene(), 4.0 / 3.0), options); // reported
         return m_renderer->lastReport();
     }
 
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(160, 120), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(160, 120), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void pickMatchesAov_data() {
@@ -36,12 +37,12 @@ private Q_SLOTS:
         // point the full frame's AOV holds there, and the kernel's point at that (u, v).
         QFETCH(QString, sample);
         QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         const AovBuffer aov = m_renderer->aov();
         glm::dvec3 lo, hi;
         sceneBounds(doc.scene(), lo, hi);
@@ -90,17 +91,16 @@ private Q_SLOTS:
         // A trimmed-away spot of trimmed_plate is background for pick, as in the frame; with
         // trims off the same pixel hits the plate.
         QString error;
-        const std::optional<Scene> scene =
-            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("trimmed_plate"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
         RenderOptions untrimmed;
         untrimmed.trims = false;
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         const AovBuffer trimmed = m_renderer->aov();
-        QVERIFY2(m_renderer->render(doc, camera, untrimmed, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, untrimmed));
         const AovBuffer whole = m_renderer->aov();
         int checked = 0;
         for (int y = 0; y < trimmed.height && checked < 5; y += 3)
@@ -118,11 +118,10 @@ private Q_SLOTS:
 
     void reportCountsUploadsAndBytes() {
         QString error;
-        const std::optional<Scene> scene =
-            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("trimmed_plate"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         RenderOptions options;
         options.controlNet = true;
         const FrameReport first = frame(doc, options);
@@ -165,15 +164,14 @@ private Q_SLOTS:
     /// tessellated mode draws, AOVs included; a mesh of a surface the document lacks is
     /// skipped, an empty slot is an error.
     void externalMeshDrawsAsTheBaseline() {
-        QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("teapot"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("teapot"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
         RenderOptions tessellated;
         tessellated.mode = RenderMode::Tessellated;
-        QVERIFY2(m_renderer->render(doc, camera, tessellated, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, tessellated));
         const QImage baseline = m_renderer->colorImage();
         const AovBuffer baselineAov = m_renderer->aov();
         TriangleMesh mesh;
@@ -185,8 +183,7 @@ private Q_SLOTS:
         mesh.surfaces.push_back(mesh.surfaces.front());
         mesh.surfaces.back().id = SurfaceId{999999}; // not in the document: skipped
         QVERIFY(m_renderer->setMesh(1, mesh) > 0);
-        QVERIFY2(m_renderer->renderMesh(doc, 1, camera, RenderOptions{}, &error),
-                 qPrintable(error));
+        KW_VERIFY_OK(m_renderer->renderMesh(doc, 1, camera, RenderOptions{}));
         const FrameReport& r = m_renderer->lastReport();
         QCOMPARE(r.surfaces, int(doc.scene().surfaces.size()));
         QCOMPARE(r.drawCalls, int(doc.scene().surfaces.size()));
@@ -194,8 +191,10 @@ private Q_SLOTS:
         QVERIFY(m_renderer->colorImage() == baseline);
         const AovBuffer aov = m_renderer->aov();
         QVERIFY(aov.data == baselineAov.data);
-        QVERIFY(!m_renderer->renderMesh(doc, 2, camera, RenderOptions{}, &error));
-        QVERIFY2(error.contains(QStringLiteral("no mesh")), qPrintable(error));
+        const auto result = m_renderer->renderMesh(doc, 2, camera, RenderOptions{});
+        QVERIFY(!result);
+        QVERIFY2(result.message().contains(QStringLiteral("no mesh")),
+                 qPrintable(result.message()));
         QCOMPARE(m_renderer->setMesh(Renderer::kMeshSlots, mesh), std::int64_t(-1));
     }
 
@@ -203,13 +202,12 @@ private Q_SLOTS:
         // teapot: every pixel the AOV gives to a hidden surface shows the background (or a
         // visible surface that was behind it), pick never returns a hidden surface, and showing
         // them again uploads nothing: their records were kept.
-        QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("teapot"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("teapot"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera camera = fitCamera(doc.scene(), 4.0 / 3.0);
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         const AovBuffer all = m_renderer->aov();
         const FrameReport shown = m_renderer->lastReport();
         std::set<std::uint32_t> hidden;
@@ -217,7 +215,7 @@ private Q_SLOTS:
             hidden.insert(doc.scene().surfaces[k].id.value);
         for (std::uint32_t id : hidden)
             QVERIFY(doc.setHidden(SurfaceId{id}, true));
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         const AovBuffer some = m_renderer->aov();
         const FrameReport hiddenReport = m_renderer->lastReport();
         QCOMPARE(hiddenReport.surfaces, shown.surfaces - int(hidden.size()));
@@ -242,7 +240,7 @@ private Q_SLOTS:
         QVERIFY(picked > 50);
         for (std::uint32_t id : hidden)
             QVERIFY(doc.setHidden(SurfaceId{id}, false));
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         QCOMPARE(m_renderer->lastReport().uploads, UploadStats{});
         QCOMPARE(m_renderer->lastReport().surfaces, shown.surfaces);
         const AovBuffer again = m_renderer->aov();
@@ -260,10 +258,9 @@ private Q_SLOTS:
         QVERIFY2(none.ok, qPrintable(none.error));
         QCOMPARE(none.gpuBytes, GpuBytes{});
         Document doc;
-        const std::optional<Scene> scene =
-            kwtest::loadSample(QStringLiteral("trimmed_plate"), &error);
-        QVERIFY2(scene, qPrintable(error));
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        const auto scene = kwtest::loadSample(QStringLiteral("trimmed_plate"));
+        QVERIFY2(scene, qPrintable(scene.message()));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         options.mode = RenderMode::Tessellated;
         QVERIFY(frame(doc, options).gpuBytes.tessellatedMeshes > 0);
         options.mode = RenderMode::Exact;

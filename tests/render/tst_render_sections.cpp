@@ -25,9 +25,9 @@ constexpr int kSide = 256;
 /// The teapot sample with a closed sphere (one solid, outside along S_u x S_v) beside it.
 Scene teapotAndSphere() {
     QString error;
-    std::optional<Scene> teapot = kwtest::loadSample(QStringLiteral("teapot"), &error);
+    auto teapot = kwtest::loadSample(QStringLiteral("teapot"));
     if (!teapot)
-        qFatal("%s", qPrintable(error));
+        qFatal("%s", qPrintable(teapot.message()));
     Scene scene = *teapot;
     glm::dvec3 lo, hi;
     sceneBounds(scene, lo, hi);
@@ -82,14 +82,13 @@ class TestRenderSections : public QObject {
     AovBuffer render(const Scene& scene, const Camera& camera, const RenderOptions& options,
                      QString* error = nullptr) {
         Document doc;
-        QString why;
-        if (!doc.resetScene(scene, &why))
-            qFatal("%s", qPrintable(why));
-        if (!m_gl->render(doc, camera, options, &why)) {
+        if (const Status reset = doc.resetScene(scene); !reset)
+            qFatal("%s", qPrintable(reset.message()));
+        if (const Status drawn = m_gl->render(doc, camera, options); !drawn) {
             if (error)
-                *error = why;
+                *error = drawn.message();
             else
-                qWarning("%s", qPrintable(why));
+                qWarning("%s", qPrintable(drawn.message()));
             return {};
         }
         return m_gl->aov();
@@ -143,8 +142,9 @@ class TestRenderSections : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_gl = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_gl, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_gl = std::move(made).value();
     }
 
     void keptSideOnEveryCoveredPixel_data() {

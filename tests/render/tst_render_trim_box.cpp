@@ -3,6 +3,7 @@
 // out. Measured against the CPU reference (render/reference_render.h): the screen normal error
 // of a small disc on a sphere at 4 x 4 partitions. The polygon is rebuilt when a trim edit moves
 // the box, and only then.
+#include "expected_test_util.h"
 #include "model/nurbs/nurbs_shapes.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/edge_metrics.h"
@@ -37,8 +38,9 @@ class TestRenderTrimBox : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(256, 256), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(256, 256), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void polygonSpansTheTrimBox() {
@@ -68,13 +70,13 @@ private Q_SLOTS:
         const Scene scene = discOnSphere(4);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = fitCamera(scene, 1.0);
-        QVERIFY2(m_renderer->render(doc, cam, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, RenderOptions{}));
         const AovBuffer frame = m_renderer->aov();
         const AovBuffer reference = renderReference(scene, cam, frame.width, frame.height);
         EdgeMetrics m;
-        QVERIFY2(compareWithReference(frame, reference, 1e-3, m, &error), qPrintable(error));
+        KW_VERIFY_OK(compareWithReference(frame, reference, 1e-3, m));
         qInfo("disc on a sphere at 4 x 4: %lld covered, normal error mean %.4f p99 %.4f max %.4f "
               "deg over %lld pixels; silhouette max %.2f px",
               m.covered, m.normalMeanDegrees, m.normalP99Degrees, m.normalMaxDegrees,
@@ -88,16 +90,16 @@ private Q_SLOTS:
         const Scene scene = discOnSphere(4);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = fitCamera(scene, 1.0);
         const RenderOptions opt;
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         QCOMPARE(m_renderer->lastReport().uploads.basePolygonBuilds, 1);
         // Moving an interior control point of the circle outward grows the box: one rebuild.
         const SurfaceId sid{1};
         const TrimLoopId lid{2};
         QVERIFY(doc.setTrimPoint(TrimPointRef{sid, lid, 0, 2}, glm::dvec2(0.2, 0.75)));
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         QCOMPARE(m_renderer->lastReport().uploads.basePolygonBuilds, 1);
         // A move inside the box leaves it: no rebuild.
         const glm::dvec2 inside = doc.surface(sid)->trims.front().curves.front().points[4];
@@ -107,7 +109,7 @@ private Q_SLOTS:
                      before.trims.front().curves.front().points[4] = inside;
                      return before;
                  }()));
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         QCOMPARE(m_renderer->lastReport().uploads.basePolygonBuilds, 0);
         // With trims off (and the polygon over the domain, as knotwork render --no-trims) the
         // whole surface shows: one rebuild, and far more of the view is covered.
@@ -123,7 +125,7 @@ private Q_SLOTS:
         RenderOptions untrimmed;
         untrimmed.trims = false;
         untrimmed.polygonOverTrims = false;
-        QVERIFY2(m_renderer->render(doc, cam, untrimmed, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, untrimmed));
         QCOMPARE(m_renderer->lastReport().uploads.basePolygonBuilds, 1);
         QVERIFY(coveredPixels() > 2 * trimmedCover);
     }

@@ -1,5 +1,6 @@
 // GL test: RenderOptions::trimGridCap (set by `knotwork render` from the image size) changes what
 // the exact trim grids cost, not which pixels they keep.
+#include "expected_test_util.h"
 #include "model/document/scene.h"
 #include "render_test_util.h"
 
@@ -21,10 +22,9 @@ class TestTrimGridCap : public QObject {
     Frame draw(const Document& doc, const Camera& camera, int cap) {
         RenderOptions options; // exact mode, exact trims: the editor's defaults
         options.trimGridCap = cap;
-        QString error;
         Frame f;
-        if (!m_renderer->render(doc, camera, options, &error)) {
-            qWarning("%s", qPrintable(error));
+        if (const Status drawn = m_renderer->render(doc, camera, options); !drawn) {
+            qWarning("%s", qPrintable(drawn.message()));
             return f;
         }
         f.color = m_renderer->colorImage();
@@ -37,8 +37,9 @@ class TestTrimGridCap : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kW, kH), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kW, kH), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void capChangesNoPixel_data() {
@@ -52,12 +53,12 @@ private Q_SLOTS:
         QFETCH(QString, sample);
         QFETCH(int, cap);
         QString error;
-        const std::optional<Scene> scene = sample == QLatin1String("plate beside star")
-                                               ? kwtest::plateBesideStar(1.2, &error)
-                                               : kwtest::loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = sample == QLatin1String("plate beside star")
+                               ? kwtest::plateBesideStar(1.2)
+                               : kwtest::loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const Camera camera = fitCamera(doc.scene(), double(kW) / kH);
         const Frame full = draw(doc, camera, kMaxTrimGridSide);
         const Frame capped = draw(doc, camera, cap);

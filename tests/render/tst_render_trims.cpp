@@ -2,6 +2,7 @@
 // trimmed area, every pixel against the CPU classification of model/nurbs/trim.h, nested and
 // concave loops, messy input, one mask redrawn per trim edit, and the trim-edge error against mask
 // resolution.
+#include "expected_test_util.h"
 #include "model/nurbs/trim.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
@@ -85,18 +86,17 @@ class TestRenderTrims : public QObject {
     /// Renders `doc` with and without trims; returns the two AOVs.
     bool renderPair(const Document& doc, const RenderOptions& base, AovBuffer& trimmed,
                     AovBuffer& whole) {
-        QString error;
         const Camera cam = fitCamera(doc.scene(), 1.0);
         RenderOptions opt = base;
         opt.trims = false;
-        if (!m_renderer->render(doc, cam, opt, &error)) {
-            qWarning() << error;
+        if (const Status drawn = m_renderer->render(doc, cam, opt); !drawn) {
+            qWarning() << drawn.message();
             return false;
         }
         whole = m_renderer->aov();
         opt.trims = true;
-        if (!m_renderer->render(doc, cam, opt, &error)) {
-            qWarning() << error;
+        if (const Status drawn = m_renderer->render(doc, cam, opt); !drawn) {
+            qWarning() << drawn.message();
             return false;
         }
         trimmed = m_renderer->aov();
@@ -113,14 +113,15 @@ class TestRenderTrims : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void coveredAreaMatchesAnalyticArea() {
         QString error;
-        const auto scene = loadSample(QStringLiteral("trimmed_plate"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = loadSample(QStringLiteral("trimmed_plate"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         AovBuffer trimmed, whole;
@@ -172,12 +173,10 @@ private Q_SLOTS:
         QFETCH(QString, sample);
         QFETCH(int, mode);
         QFETCH(bool, exactDepth);
-        QString error;
-        const std::optional<Scene> scene =
-            sample.isEmpty() ? std::optional<Scene>(messyScene()) : loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = sample.isEmpty() ? Expected<Scene>(messyScene()) : loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         RenderOptions opt = maskMode();
         opt.mode = RenderMode(mode);
         if (exactDepth)
@@ -197,9 +196,8 @@ private Q_SLOTS:
     }
 
     void starAndIslandRenderCorrectly() {
-        QString error;
-        const auto scene = loadSample(QStringLiteral("star_island"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = loadSample(QStringLiteral("star_island"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         AovBuffer trimmed, whole;
@@ -244,9 +242,8 @@ private Q_SLOTS:
     }
 
     void trimEditRedrawsOnlyThatMask() {
-        QString error;
-        const auto both = plateBesideStar(4.5, &error);
-        QVERIFY2(both, qPrintable(error));
+        const auto both = plateBesideStar(4.5);
+        QVERIFY2(both, qPrintable(both.message()));
         Scene scene = *both;
         Surface untrimmed =
             makeSurface(30, wavyPatch(3, 3, clampedUniform(3, 5), clampedUniform(3, 5)));
@@ -254,10 +251,10 @@ private Q_SLOTS:
             p.y += 3.5;
         scene.surfaces.push_back(untrimmed);
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = fitCamera(scene, 1.0);
         RenderOptions opt = maskMode();
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         QVERIFY(masks.mask(SurfaceId{1}) && masks.mask(SurfaceId{20}));
         QVERIFY(!masks.mask(SurfaceId{30})); // untrimmed surfaces get no mask
@@ -265,14 +262,14 @@ private Q_SLOTS:
 
         // A frame without changes redraws nothing.
         masks.resetStats();
-        QVERIFY(m_renderer->render(doc, cam, opt, &error));
+        QVERIFY(m_renderer->render(doc, cam, opt));
         QCOMPARE(masks.totalMaskStats().redraws, 0);
 
         // Moving one trim control point of surface 20 redraws exactly its mask.
         const TrimPointRef ref{SurfaceId{20}, TrimLoopId{23}, 0, 1};
         const glm::dvec2 old = doc.surface(SurfaceId{20})->trims[1].curves[0].points[1];
         QVERIFY(doc.setTrimPoint(ref, old + glm::dvec2(0.05, 0.08)));
-        QVERIFY(m_renderer->render(doc, cam, opt, &error));
+        QVERIFY(m_renderer->render(doc, cam, opt));
         QCOMPARE(masks.totalMaskStats().redraws, 1);
         QCOMPARE(masks.maskStats(SurfaceId{20}).redraws, 1);
         QCOMPARE(masks.maskStats(SurfaceId{1}).redraws, 0);
@@ -283,11 +280,11 @@ private Q_SLOTS:
         const Surface* s1 = doc.surface(SurfaceId{1});
         QVERIFY(doc.setControlPoints(SurfaceId{1}, {4},
                                      {s1->geometry.points[4] + glm::dvec3(0, 0, 0.01)}));
-        QVERIFY(m_renderer->render(doc, cam, opt, &error));
+        QVERIFY(m_renderer->render(doc, cam, opt));
         QCOMPARE(masks.totalMaskStats().redraws, 0);
         // Removing the trimmed surface frees its mask.
         QVERIFY(doc.removeSurface(SurfaceId{20}));
-        QVERIFY(m_renderer->render(doc, cam, opt, &error));
+        QVERIFY(m_renderer->render(doc, cam, opt));
         QVERIFY(!masks.mask(SurfaceId{20}));
         QVERIFY(masks.mask(SurfaceId{1}));
     }
@@ -308,7 +305,7 @@ private Q_SLOTS:
         scene.nextId = next;
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         GpuScene& masks = RendererTestHook::scene(m_renderer->renderer());
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, maskMode(), trimmed, whole));
@@ -332,7 +329,7 @@ private Q_SLOTS:
 
     void maskResolutionFollowsScreenWithinCap() {
         QString error;
-        const auto scene = loadSample(QStringLiteral("trimmed_plate"), &error);
+        const auto scene = loadSample(QStringLiteral("trimmed_plate"));
         QVERIFY(scene);
         const Surface& s = scene->surfaces.front();
         FrameCamera fc = frameCamera(fitCamera(*scene, 1.0), *scene, 1.0);
@@ -350,8 +347,7 @@ private Q_SLOTS:
     /// The numbers of docs/PERFORMANCE.md (## Trims): trim-edge error in screen pixels at
     /// 1024^2 against the mask cap, from the AOV against the CPU classification.
     void edgeErrorAgainstMaskResolution() {
-        QString error;
-        const auto scene = loadSample(QStringLiteral("trimmed_plate"), &error);
+        const auto scene = loadSample(QStringLiteral("trimmed_plate"));
         QVERIFY(scene);
         Document doc;
         QVERIFY(doc.resetScene(*scene));

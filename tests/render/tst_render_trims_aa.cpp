@@ -3,10 +3,11 @@
 // exact and mask trim mode; two faces sharing a trim edge show no seam (their coverages sum,
 // nothing of the background shows through); MSAA softens a silhouette; --samples 1 stays
 // aliased; AOV frames and picks are never anti-aliased.
+#include "expected_test_util.h"
+#include "model/nurbs/trim_arcs.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/accumulate_target.h"
 #include "render/renderer_test_hook.h"
-#include "model/nurbs/trim_arcs.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
 
@@ -128,9 +129,8 @@ class TestRenderTrimsAa : public QObject {
     }
 
     bool renderImage(const Document& doc, const RenderOptions& o, QImage& image) {
-        QString error;
-        if (!m_renderer->render(doc, topCamera(), o, &error))
-            return qWarning() << error, false;
+        if (const Status drawn = m_renderer->render(doc, topCamera(), o); !drawn)
+            return qWarning() << drawn.message(), false;
         image = m_renderer->colorImage();
         return true;
     }
@@ -144,9 +144,8 @@ class TestRenderTrimsAa : public QObject {
         scene.surfaces.push_back(plane(1));
         scene.surfaces[0].trims = {halfLoop(10, c, dir, true)};
         Document doc;
-        QString error;
-        if (!doc.resetScene(scene, &error))
-            return qWarning() << error, r;
+        if (const Status reset = doc.resetScene(scene); !reset)
+            return qWarning() << reset.message(), r;
         RenderOptions whole = o;
         whole.trims = false;
         QImage trimmed, full;
@@ -194,8 +193,8 @@ private Q_SLOTS:
     void initTestCase() {
         m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), false, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->create());
+        KW_VERIFY_OK(m_renderer->setSize(QSize(kSide, kSide), false));
     }
 
     void straightEdgeCoverage_data() {
@@ -265,8 +264,8 @@ private Q_SLOTS:
         // than the pixels, which keep their centre's classification (trim_exact.glsl).
         const int side = zoom == 1.0 ? 1024 : kSide;
         QString error;
-        const auto scene = loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         const Surface& s = scene->surfaces.front();
@@ -277,15 +276,15 @@ private Q_SLOTS:
             zoomedOn(fitCamera(*scene, 1.0), s, curvePoint(c, 0.5 * (d.first + d.last)), zoom);
         RenderOptions o = aaOptions(4, RenderOptions::TrimMode::Exact);
         o.trims = false;
-        QVERIFY(m_renderer->setSize(QSize(side, side), true, &error));
-        QVERIFY2(m_renderer->render(doc, cam, o, &error), qPrintable(error));
+        QVERIFY(m_renderer->setSize(QSize(side, side), true));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, o));
         const AovBuffer aov = m_renderer->aov();
-        QVERIFY(m_renderer->setSize(QSize(side, side), false, &error));
+        QVERIFY(m_renderer->setSize(QSize(side, side), false));
         QImage whole, cut;
-        QVERIFY2(m_renderer->render(doc, cam, o, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, o));
         whole = m_renderer->colorImage();
         o.trims = true;
-        QVERIFY2(m_renderer->render(doc, cam, o, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, o));
         cut = m_renderer->colorImage();
         cut.save(outputDir().filePath(QStringLiteral("trims_aa_%1_%2x.png").arg(sample).arg(zoom)));
 
@@ -371,7 +370,7 @@ private Q_SLOTS:
         scene.surfaces[1].trims = domainWithHole(11);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         RenderOptions o =
             aaOptions(4, mask ? RenderOptions::TrimMode::Mask : RenderOptions::TrimMode::Exact);
         QImage both, whole;
@@ -420,7 +419,7 @@ private Q_SLOTS:
         scene.surfaces.push_back(s);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         auto partial = [&](int samples, QImage& image) {
             if (!renderImage(doc, aaOptions(samples, RenderOptions::TrimMode::Exact, antialiasing),
                              image))
@@ -455,7 +454,7 @@ private Q_SLOTS:
         scene.surfaces.push_back(plane(1));
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         GLint most = 1;
         m_renderer->makeCurrent();
         RendererTestHook::gl(m_renderer->renderer())->glGetIntegerv(GL_MAX_SAMPLES, &most);
@@ -498,7 +497,7 @@ private Q_SLOTS:
         scene.surfaces[1].trims = domainWithHole(11);
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         RenderOptions o =
             aaOptions(4, RenderOptions::TrimMode::Exact, RenderOptions::Antialiasing::Accumulate);
         QImage whole;
@@ -539,7 +538,7 @@ private Q_SLOTS:
         for (glm::dvec3& p : under.surfaces[0].geometry.points)
             p = glm::dvec3(p.x * 1.5 + 0.6, p.y * 1.5 + 0.6, -0.05); // centred on the hole
         Document underDoc;
-        QVERIFY2(underDoc.resetScene(under, &error), qPrintable(error));
+        KW_VERIFY_OK(underDoc.resetScene(under));
         RenderOptions net = o;
         net.controlNet = true;
         net.progressive = false;
@@ -580,10 +579,9 @@ private Q_SLOTS:
         // Another option, the camera, a surface removed, a frame drawn in between.
         o.background = glm::vec4(0.1f, 0.0f, 0.0f, 1.0f);
         QVERIFY(restarts("another background"));
-        QString cameraError;
         Camera nearer = topCamera();
         nearer.eye.z = 2.5;
-        QVERIFY(m_renderer->render(doc, nearer, o, &cameraError));
+        QVERIFY(m_renderer->render(doc, nearer, o));
         QCOMPARE(m_renderer->lastReport().samplesInImage, 1);
         QVERIFY(restarts("the camera back"));
         RenderOptions once = o;

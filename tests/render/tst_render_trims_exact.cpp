@@ -1,11 +1,12 @@
 // GL test: exact trim edges. Every pixel of the exact trim mode against the CPU
 // classification from 1x to 512x zoom on an edge, hammer.iges's faces, trim memory that scales
 // with each surface's need, one trim edit rebuilding one surface, and the memory budget.
+#include "expected_test_util.h"
 #include "model/cad/cadimport.h"
 #include "model/nurbs/trim.h"
+#include "model/nurbs/trim_arcs.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/renderer_test_hook.h"
-#include "model/nurbs/trim_arcs.h"
 #include "render/trim_grid_store.h"
 #include "render_test_util.h"
 #include "trim_test_util.h"
@@ -127,15 +128,14 @@ class TestRenderTrimsExact : public QObject {
 
     bool renderPair(const Document& doc, const Camera& cam, const RenderOptions& base,
                     AovBuffer& trimmed, AovBuffer& whole) {
-        QString error;
         RenderOptions opt = base;
         opt.trims = false;
-        if (!m_renderer->render(doc, cam, opt, &error))
-            return qWarning() << error, false;
+        if (const Status drawn = m_renderer->render(doc, cam, opt); !drawn)
+            return qWarning() << drawn.message(), false;
         whole = m_renderer->aov();
         opt.trims = true;
-        if (!m_renderer->render(doc, cam, opt, &error))
-            return qWarning() << error, false;
+        if (const Status drawn = m_renderer->render(doc, cam, opt); !drawn)
+            return qWarning() << drawn.message(), false;
         trimmed = m_renderer->aov();
         return true;
     }
@@ -154,8 +154,8 @@ private Q_SLOTS:
     void initTestCase() {
         m_renderer = std::make_unique<OffscreenRenderer>();
         QString error;
-        QVERIFY2(m_renderer->create(&error), qPrintable(error));
-        QVERIFY2(m_renderer->setSize(QSize(kSide, kSide), true, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->create());
+        KW_VERIFY_OK(m_renderer->setSize(QSize(kSide, kSide), true));
     }
 
     void pixelsAgreeAtEveryZoom_data() {
@@ -189,8 +189,8 @@ private Q_SLOTS:
         QFETCH(int, loop);
         QFETCH(double, along);
         QString error;
-        const auto scene = loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
         QVERIFY(doc.resetScene(*scene));
         const Surface& s = scene->surfaces.front();
@@ -281,7 +281,7 @@ private Q_SLOTS:
             cam = zoomedOn(fitCamera(scene, 1.0), face, target, zoom);
         }
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         AovBuffer trimmed, whole;
         QVERIFY(renderPair(doc, cam, RenderOptions{}, trimmed, whole));
         const PixelAgreement a = comparePixels(scene, trimmed, whole);
@@ -310,7 +310,7 @@ private Q_SLOTS:
         QString error;
         const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
         QVERIFY2(imported, qPrintable(error));
-        QVERIFY(m_renderer->setSize(QSize(512, 512), true, &error));
+        QVERIFY(m_renderer->setSize(QSize(512, 512), true));
         int faces = 0;
         long checked = 0, near = 0, lone = 0;
         QStringList failures;
@@ -322,7 +322,7 @@ private Q_SLOTS:
             Scene scene = imported->scene;
             scene.surfaces = {face};
             Document doc;
-            QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+            KW_VERIFY_OK(doc.resetScene(scene));
             for (double zoom : {8.0, 64.0}) {
                 const Camera cam = zoomedOn(fitCamera(scene, 1.0), face, target, zoom);
                 AovBuffer trimmed, whole;
@@ -351,7 +351,7 @@ private Q_SLOTS:
         QVERIFY(faces >= 40);
         QVERIFY2(failures.isEmpty(), qPrintable(failures.join(QStringLiteral("; "))));
         QVERIFY2(lone <= checked / 100000, qPrintable(QString::number(lone))); // a few slivers
-        QVERIFY(m_renderer->setSize(QSize(kSide, kSide), true, &error));
+        QVERIFY(m_renderer->setSize(QSize(kSide, kSide), true));
 #endif
     }
 
@@ -385,12 +385,12 @@ private Q_SLOTS:
             scene = imported->scene;
 #endif
         } else {
-            const std::optional<Scene> sample = loadSample(model, &error);
-            QVERIFY2(sample, qPrintable(error));
+            const auto sample = loadSample(model);
+            QVERIFY2(sample, qPrintable(sample.message()));
             scene = *sample;
         }
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         Camera cam = fitCamera(doc.scene(), 1.0);
         if (zoom > 1.0) {
             // Into the middle of the first trimmed surface's trim box (cut away on the star).
@@ -410,7 +410,7 @@ private Q_SLOTS:
         FrameReport report[2];
         for (int k = 0; k < 2; ++k) {
             opt.splitCellsByTrims = k == 1;
-            QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
             colour[k] = m_renderer->colorImage();
             aov[k] = m_renderer->aov();
             report[k] = m_renderer->lastReport();
@@ -459,8 +459,8 @@ private Q_SLOTS:
         // trims alone, so the words in use are the sum of each surface's own packed grid, and
         // the buffer holds at most a quarter more (it grows by a quarter).
         QString error;
-        const auto plate = loadSample(QStringLiteral("trimmed_plate"), &error);
-        const auto star = loadSample(QStringLiteral("star_island"), &error);
+        const auto plate = loadSample(QStringLiteral("trimmed_plate"));
+        const auto star = loadSample(QStringLiteral("star_island"));
         QVERIFY(plate && star);
         Scene scene;
         std::int64_t need = 0;
@@ -480,9 +480,9 @@ private Q_SLOTS:
         }
         scene.nextId = 5000;
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         RenderOptions opt;
-        QVERIFY2(m_renderer->render(doc, fitCamera(scene, 1.0), opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, fitCamera(scene, 1.0), opt));
         QCOMPARE(blockCount(), 256);
         QCOMPARE(masks().gridBytesUsed(), need);
         const std::int64_t exact = masks().residentBytes();
@@ -492,7 +492,7 @@ private Q_SLOTS:
         // The paper's mask array for the same scene, and back: exact mode's memory is freed
         // while masks are in use, and the other way round.
         opt.trimMode = RenderOptions::TrimMode::Mask;
-        QVERIFY2(m_renderer->render(doc, fitCamera(scene, 1.0), opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, fitCamera(scene, 1.0), opt));
         const std::int64_t mask = masks().residentBytes();
         QCOMPARE(masks().gridBytesUsed(), 0);
         qInfo("256 surfaces: exact grids need %lld bytes (buffer %lld); the mask array holds "
@@ -500,11 +500,11 @@ private Q_SLOTS:
               (long long)need, (long long)exact, (long long)mask);
         QVERIFY(exact < mask);
         opt.trimMode = RenderOptions::TrimMode::Exact;
-        QVERIFY2(m_renderer->render(doc, fitCamera(scene, 1.0), opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, fitCamera(scene, 1.0), opt));
         QCOMPARE(masks().residentBytes(), exact);
         // Removing every surface frees every grid.
         QVERIFY(doc.resetScene(Scene{}));
-        QVERIFY2(m_renderer->render(doc, fitCamera(scene, 1.0), opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, fitCamera(scene, 1.0), opt));
         QCOMPARE(masks().residentBytes(), 0);
     }
 
@@ -517,8 +517,8 @@ private Q_SLOTS:
         std::vector<TrimGridBlock> blocks(6);
         bool grew = false;
         for (size_t k = 0; k < blocks.size(); ++k) {
-            const auto scene = loadSample(k % 2 ? "star_island" : "trimmed_plate", &error);
-            QVERIFY2(scene, qPrintable(error));
+            const auto scene = loadSample(k % 2 ? "star_island" : "trimmed_plate");
+            QVERIFY2(scene, qPrintable(scene.message()));
             const Surface& s = scene->surfaces.front();
             const TrimArcs arcs = makeTrimArcs(s.trims, trimTolerance(s.geometry));
             // Resolutions whose texel lists leave the entries at every length modulo 4.
@@ -573,22 +573,21 @@ private Q_SLOTS:
     }
 
     void oneTrimEditRebuildsOneSurface() {
-        QString error;
-        const auto both = plateBesideStar(5.0, &error);
-        QVERIFY2(both, qPrintable(error));
+        const auto both = plateBesideStar(5.0);
+        QVERIFY2(both, qPrintable(both.message()));
         const Scene& scene = *both;
         Document doc;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = fitCamera(scene, 1.0);
-        QVERIFY2(m_renderer->render(doc, cam, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, RenderOptions{}));
         gpu().resetStats();
-        QVERIFY2(m_renderer->render(doc, cam, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, RenderOptions{}));
         QCOMPARE(gpu().totalMaskStats().redraws, 0); // nothing changed, nothing rebuilt
         const Surface& s = doc.scene().surfaces.back();
         const TrimPointRef ref{s.id, s.trims.front().id, 0, 1};
         const glm::dvec2 old = s.trims.front().curves.front().points[1];
         QVERIFY(doc.setTrimPoint(ref, old + glm::dvec2(0.01, 0.02)));
-        QVERIFY2(m_renderer->render(doc, cam, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, RenderOptions{}));
         QCOMPARE(gpu().totalMaskStats().redraws, 1);
         QCOMPARE(gpu().maskStats(s.id).redraws, 1);
         QCOMPARE(gpu().maskStats(doc.scene().surfaces.front().id).redraws, 0);

@@ -1,4 +1,5 @@
 // GL test: the renderer uploads only what the document's revisions say is stale.
+#include "expected_test_util.h"
 #include "render/gl_context.h"
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
@@ -15,8 +16,8 @@ class TestRenderUploads : public QObject {
     Document m_doc;
     SurfaceId m_bicubic, m_sphere;
 
-    bool renderOnce(QString* error) {
-        return m_renderer->render(m_doc, fitCamera(m_doc.scene(), 1.0), RenderOptions{}, error);
+    Status renderOnce() {
+        return m_renderer->render(m_doc, fitCamera(m_doc.scene(), 1.0), RenderOptions{});
     }
 
     // The surface's control texels as stored in the scene's shared control buffer.
@@ -35,16 +36,17 @@ class TestRenderUploads : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(128, 128), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
-        std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("bicubic"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(128, 128), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
+        auto scene = kwtest::loadSample(QStringLiteral("bicubic"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         m_bicubic = scene->surfaces.at(0).id;
         m_sphere = SurfaceId{scene->nextId};
         scene->surfaces.push_back(
             kwtest::makeSurface(m_sphere.value, makeSphere(glm::dvec3(0.0, 0.0, 1.5), 0.8)));
         scene->nextId = m_sphere.value + 1;
-        QVERIFY2(m_doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(m_doc.resetScene(*scene));
     }
 
     void glDebugPrintsDriverMessages() {
@@ -52,10 +54,9 @@ private Q_SLOTS:
         // debug context whose driver messages reach stderr, here a GL error on purpose.
         setGlDebug(true);
         auto unset = qScopeGuard([] { setGlDebug(false); });
-        QString error;
-        std::unique_ptr<OffscreenRenderer> r =
-            kwtest::offscreenRenderer(QSize(8, 8), false, &error);
-        QVERIFY2(r, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(8, 8), false);
+        QVERIFY2(made, qPrintable(made.message()));
+        std::unique_ptr<OffscreenRenderer> r = std::move(made).value();
         QVERIFY(r->makeCurrent());
         QTest::ignoreMessage(QtWarningMsg, QRegularExpression(QStringLiteral("^GL debug: .+")));
         RendererTestHook::gl(r->renderer())
@@ -102,7 +103,7 @@ private Q_SLOTS:
 
     void firstRenderUploadsEverything() {
         QString error;
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         for (SurfaceId id : {m_bicubic, m_sphere}) {
             const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(id);
             const Surface* surf = m_doc.surface(id);
@@ -113,7 +114,7 @@ private Q_SLOTS:
         }
         // Nothing changed: a second frame uploads nothing.
         RendererTestHook::scene(m_renderer->renderer()).resetStats();
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         QCOMPARE(RendererTestHook::scene(m_renderer->renderer()).totalStats(), UploadStats{});
     }
 
@@ -131,7 +132,7 @@ private Q_SLOTS:
                      ->polygon.vertices.capacity(),
                  size_t(0));
         QVERIFY(m_doc.setControlPoints(m_bicubic, {index}, {moved}));
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
 
         const UploadStats b = RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic);
         QCOMPARE(b.fullUploads, 0);
@@ -163,7 +164,7 @@ private Q_SLOTS:
         QString error;
         RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY(m_doc.setWeight(m_sphere, 7, 2.5));
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere);
         QCOMPARE(s.subImageUploads, 1);
         QCOMPARE(s.texels, 1);
@@ -175,7 +176,7 @@ private Q_SLOTS:
         QString error;
         RendererTestHook::scene(m_renderer->renderer()).resetStats();
         QVERIFY(m_doc.setPartitions(m_sphere, 17, 5));
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_sphere);
         QCOMPARE(s.basePolygonBuilds, 1);
         QCOMPARE(s.texels, 0);
@@ -195,7 +196,7 @@ private Q_SLOTS:
         QCOMPARE(refined.knotsV[4], 0.3);
         refined.knotsV[4] = 0.45;
         QVERIFY(m_doc.setGeometry(m_bicubic, refined));
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         const UploadStats s = RendererTestHook::scene(m_renderer->renderer()).stats(m_bicubic);
         QCOMPARE(s.fullUploads, 1);
         QCOMPARE(s.texels, std::int64_t(refined.countU) * refined.countV);
@@ -205,7 +206,7 @@ private Q_SLOTS:
     void removedSurfaceIsDropped() {
         QString error;
         QVERIFY(m_doc.removeSurface(m_sphere));
-        QVERIFY2(renderOnce(&error), qPrintable(error));
+        KW_VERIFY_OK(renderOnce());
         QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_sphere) == nullptr);
         QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(m_bicubic) != nullptr);
     }
@@ -225,14 +226,14 @@ private Q_SLOTS:
         a.nextId = b.nextId = 2;
         for (RenderMode mode : {RenderMode::Exact, RenderMode::Tessellated}) {
             Document da, db;
-            QVERIFY(da.resetScene(a, &error));
-            QVERIFY(db.resetScene(b, &error));
+            QVERIFY(da.resetScene(a));
+            QVERIFY(db.resetScene(b));
             QVERIFY(da.revisions(SurfaceId{1}).points != db.revisions(SurfaceId{1}).points);
             RenderOptions opt;
             opt.mode = mode;
             const Camera cam = fitCamera(b, 1.0);
-            QVERIFY2(m_renderer->render(da, cam, opt, &error), qPrintable(error));
-            QVERIFY2(m_renderer->render(db, cam, opt, &error), qPrintable(error));
+            KW_VERIFY_OK(m_renderer->render(da, cam, opt));
+            KW_VERIFY_OK(m_renderer->render(db, cam, opt));
             const kwtest::AovComparison r = kwtest::compareAovWithKernel(b, m_renderer->aov());
             QVERIFY(r.compared > 500);
             QVERIFY2(r.maxPosition <= 1e-4 * r.modelSize,
@@ -263,11 +264,12 @@ private Q_SLOTS:
         scene.nextId = 5;
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
-        QVERIFY(!m_renderer->render(doc, fitCamera(scene, 1.0), RenderOptions{}, &error));
-        QVERIFY2(error.contains(QStringLiteral("surface 3")) &&
-                     error.contains(QString::number(maxSize)),
-                 qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
+        const auto result = m_renderer->render(doc, fitCamera(scene, 1.0), RenderOptions{});
+        QVERIFY(!result);
+        QVERIFY2(result.message().contains(QStringLiteral("surface 3")) &&
+                     result.message().contains(QString::number(maxSize)),
+                 qPrintable(result.message()));
         // The other surface is drawn; the oversized one is not.
         QVERIFY(RendererTestHook::scene(m_renderer->renderer()).surfaceGpu(SurfaceId{3}) ==
                 nullptr);
@@ -285,19 +287,18 @@ private Q_SLOTS:
     // The edge skirts: built only for adaptive frames, and a moved point
     // brings the GPU's skirt vertices up to date without rebuilding the polygon.
     void skirtFollowsAMovedPointWithoutARebuild() {
-        QString error;
-        std::optional<Scene> scene = kwtest::loadSample(QStringLiteral("bicubic"), &error);
-        QVERIFY2(scene, qPrintable(error));
+        auto scene = kwtest::loadSample(QStringLiteral("bicubic"));
+        QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
-        QVERIFY2(doc.resetScene(*scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(*scene));
         const SurfaceId id = doc.scene().surfaces.at(0).id;
         const Camera camera = fitCamera(doc.scene(), 1.0);
         const GpuScene& gpu = RendererTestHook::scene(m_renderer->renderer());
-        QVERIFY2(m_renderer->render(doc, camera, RenderOptions{}, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, RenderOptions{}));
         QCOMPARE(gpu.surfaceGpu(id)->skirtVertexOffset, std::int64_t(-1)); // uniform: none
         RenderOptions adaptive;
         adaptive.partitioning = RenderOptions::Partitioning::Adaptive;
-        QVERIFY2(m_renderer->render(doc, camera, adaptive, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, adaptive));
         QVERIFY(m_renderer->lastReport().partitions.skirtTriangles > 0);
         const auto gpuSkirt = [&] {
             const SurfaceGpu* g = gpu.surfaceGpu(id);
@@ -318,7 +319,7 @@ private Q_SLOTS:
         const glm::dvec3 lo = s->geometry.points.front(), hi = s->geometry.points.back();
         QVERIFY(doc.setControlPoints(id, {0}, {lo + 1e-3 * (hi - lo)}));
         RendererTestHook::scene(m_renderer->renderer()).resetStats();
-        QVERIFY2(m_renderer->render(doc, camera, adaptive, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, camera, adaptive));
         const UploadStats st = gpu.stats(id);
         QCOMPARE(st.basePolygonBuilds, 0);
         QCOMPARE(st.vertexUpdates, 1);

@@ -4,6 +4,7 @@
 // axis, from the direction back to the viewer), except within one pixel of a band edge, where
 // the shader's filter mixes the two. A false line (a grey or flipped streak across the image,
 // as llvmpipe's helper invocations drew along the view's diagonal) fails it.
+#include "expected_test_util.h"
 #include "render/image_writer.h"
 #include "render_test_util.h"
 
@@ -56,8 +57,9 @@ class TestRenderZebra : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_renderer = kwtest::offscreenRenderer(QSize(kSide, kSide), true, &error);
-        QVERIFY2(m_renderer, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
     }
 
     void matchesStripeFunction_data() {
@@ -103,9 +105,9 @@ private Q_SLOTS:
         opt.analysis.stripeAngleDegrees = angle;
         Document doc;
         QString error;
-        QVERIFY2(doc.resetScene(scene, &error), qPrintable(error));
+        KW_VERIFY_OK(doc.resetScene(scene));
         const Camera cam = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
-        QVERIFY2(m_renderer->render(doc, cam, opt, &error), qPrintable(error));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, opt));
         const QImage img = m_renderer->colorImage();
         const AovBuffer aov = m_renderer->aov();
         const Stripes stripes = stripesFor(cam, scene, opt.analysis);
@@ -151,14 +153,12 @@ private Q_SLOTS:
                                     .arg(b);
                 }
             }
-        QVERIFY2(writeColorImage(img,
-                                 kwtest::outputDir().filePath(
-                                     QStringLiteral("zebra_%1.png")
-                                         .arg(QString::fromLatin1(QTest::currentDataTag())
-                                                  .replace(QLatin1Char(' '), QLatin1Char('_'))
-                                                  .remove(QLatin1Char(',')))),
-                                 &error),
-                 qPrintable(error));
+        KW_VERIFY_OK(writeColorImage(
+            img,
+            kwtest::outputDir().filePath(QStringLiteral("zebra_%1.png")
+                                             .arg(QString::fromLatin1(QTest::currentDataTag())
+                                                      .replace(QLatin1Char(' '), QLatin1Char('_'))
+                                                      .remove(QLatin1Char(','))))));
         qInfo("%d pixels compared, %d within a pixel of a band edge, %d wrong", compared, edge,
               wrong);
         QVERIFY2(compared > kSide * kSide / 20, "too little of the surface to compare");

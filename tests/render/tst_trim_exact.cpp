@@ -18,9 +18,9 @@ namespace {
 
 std::vector<Surface> trimmedSurfacesOf(const QString& path) {
     QString error;
-    const auto scene = readKnotFile(path, &error);
+    const auto scene = readKnotFile(path);
     if (!scene)
-        qFatal("%s", qPrintable(error));
+        qFatal("%s", qPrintable(scene.message()));
     std::vector<Surface> out;
     for (const Surface& s : scene->surfaces)
         if (!s.trims.empty())

@@ -4,6 +4,7 @@
 // difference times 8) are written to KW_TEST_OUTPUT_DIR.
 #pragma once
 
+#include "expected_test_util.h"
 #include "render/image_writer.h"
 #include "render_test_util.h"
 
@@ -33,7 +34,7 @@ inline void checkBaseline(const QImage& img, const QString& name, const Baseline
     const QString expected = baselinePath(name);
     if (qEnvironmentVariableIntValue("KW_UPDATE_BASELINES") == 1) {
         QDir().mkpath(QFileInfo(expected).absolutePath());
-        QVERIFY2(kw::writeColorImage(img, expected, &error), qPrintable(error));
+        KW_VERIFY_OK(kw::writeColorImage(img, expected));
         qInfo("wrote %s", qPrintable(expected));
         return;
     }
@@ -42,7 +43,7 @@ inline void checkBaseline(const QImage& img, const QString& name, const Baseline
                             .arg(expected)));
     const QString actualPath = outputDir().filePath(name + QStringLiteral(".actual.png"));
     const QString diffPath = outputDir().filePath(name + QStringLiteral(".diff.png"));
-    QVERIFY2(kw::writeColorImage(img, actualPath, &error), qPrintable(error));
+    KW_VERIFY_OK(kw::writeColorImage(img, actualPath));
     OIIO::ImageBuf actual(actualPath.toStdString()), base(expected.toStdString());
     QVERIFY2(actual.read() && base.read(), "could not read the images back");
     QCOMPARE(actual.spec().width, base.spec().width);

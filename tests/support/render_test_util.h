@@ -26,28 +26,31 @@ inline QDir outputDir() {
 }
 
 /// An off-screen renderer with a current OpenGL 4.5 context and a target of `size` (with the
-/// AOV attachments, and the curvature one, when asked), or null with *error set. The render
-/// tests' initTestCase: `m_renderer = offscreenRenderer(...); QVERIFY2(m_renderer, ...)`.
-inline std::unique_ptr<kw::OffscreenRenderer>
-offscreenRenderer(QSize size, bool aov, QString* error, bool curvature = false) {
+/// AOV attachments, and the curvature one, when asked), or the error of creating it. The
+/// render tests' initTestCase: `auto made = offscreenRenderer(...); QVERIFY2(made, ...)`.
+inline kw::Expected<std::unique_ptr<kw::OffscreenRenderer>>
+offscreenRenderer(QSize size, bool aov, bool curvature = false) {
     auto r = std::make_unique<kw::OffscreenRenderer>();
-    if (!r->create(error) || !r->setSize(size, aov, error, curvature))
-        return nullptr;
-    return r;
+    if (kw::Status made = r->create(); !made)
+        return std::move(made).error();
+    if (kw::Status sized = r->setSize(size, aov, curvature); !sized)
+        return std::move(sized).error();
+    return kw::Expected<std::unique_ptr<kw::OffscreenRenderer>>(std::move(r));
 }
 
-inline std::optional<kw::Scene> loadSample(const QString& name, QString* error) {
-    return kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + name + QStringLiteral(".knot"),
-                            error);
+inline kw::Expected<kw::Scene> loadSample(const QString& name) {
+    return kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + name + QStringLiteral(".knot"));
 }
 
 /// trimmed_plate with star_island beside it, moved by `shift` along x: the star's surface gets
 /// id 20 and its loops' ids 20 more; the scene's nextId is 40.
-inline std::optional<kw::Scene> plateBesideStar(double shift, QString* error) {
-    const auto plate = loadSample(QStringLiteral("trimmed_plate"), error);
-    const auto star = plate ? loadSample(QStringLiteral("star_island"), error) : std::nullopt;
-    if (!plate || !star)
-        return std::nullopt;
+inline kw::Expected<kw::Scene> plateBesideStar(double shift) {
+    const auto plate = loadSample(QStringLiteral("trimmed_plate"));
+    if (!plate)
+        return plate.error();
+    const auto star = loadSample(QStringLiteral("star_island"));
+    if (!star)
+        return star.error();
     kw::Scene scene = *plate;
     kw::Surface second = star->surfaces.front();
     second.id = kw::SurfaceId{20};

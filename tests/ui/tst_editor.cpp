@@ -448,10 +448,11 @@ private Q_SLOTS:
         const Scene before = m_window->document()->scene();
         const QString bad = QStringLiteral(KW_TEST_DATA_DIR "/broken/decreasing_knot.knot");
         QString loaderMessage;
-        QVERIFY(!readKnotFile(bad, &loaderMessage));
+        const auto result = readKnotFile(bad);
+        QVERIFY(!result);
         m_script.openPath = bad;
         m_window->action(QStringLiteral("actionOpen"))->trigger();
-        QCOMPARE(m_script.errors, QStringList{loaderMessage});
+        QCOMPARE(m_script.errors, QStringList{result.message()});
         QVERIFY(m_window->document()->scene() == before);
         QCOMPARE(m_window->filePath(), samplePath("bicubic"));
     }
@@ -475,7 +476,7 @@ private Q_SLOTS:
         m_window->action(QStringLiteral("actionOpen"))->trigger();
         QCOMPARE(m_script.opens, 1);
         QCOMPARE(m_window->document()->scene().surfaces.front().name,
-                 readKnotFile(samplePath("sphere"), nullptr)->surfaces.front().name);
+                 readKnotFile(samplePath("sphere"))->surfaces.front().name);
     }
 
     void layoutAndRecentFilesPersist() {

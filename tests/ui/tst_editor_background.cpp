@@ -39,8 +39,8 @@ private Q_SLOTS:
         const QString path = dir.filePath(QStringLiteral("light.knot"));
         QVERIFY(m_window->saveFile(path));
         QString error;
-        const std::optional<Scene> saved = readKnotFile(path, &error);
-        QVERIFY2(saved, qPrintable(error));
+        const auto saved = readKnotFile(path);
+        QVERIFY2(saved, qPrintable(saved.message()));
         QCOMPARE(saved->display.background, QStringLiteral("light"));
 
         // Another project (none saved): dark; this one again: light.

@@ -3,6 +3,7 @@
 // with the overlay on or off, the tolerances (set in Preferences) change its classes, Keep Seams
 // Closed keeps a dragged corner's seam shut as one undo step.
 #include "editor_test_util.h"
+#include "expected_test_util.h"
 #include "model/analysis/continuity.h"
 #include "model/io/knotfile.h"
 #include "model/nurbs/nurbs_construct.h"
@@ -85,7 +86,7 @@ private Q_SLOTS:
     void init() {
         m_path = m_dir.filePath(QStringLiteral("patches.knot"));
         QString error;
-        QVERIFY2(writeKnotFile(m_path, patches(false), &error), qPrintable(error));
+        KW_VERIFY_OK(writeKnotFile(m_path, patches(false)));
         openWindow();
         QVERIFY(m_window->openFile(m_path));
         act("actionEdgeContinuity")->setChecked(true);
@@ -209,8 +210,7 @@ void TestEditorContinuity::overlayFollowsAMouseDragAcrossTheTolerance() {
 // only: the far pair's edge is never measured, and no bands are made.
 void TestEditorContinuity::statusBarSaysWhatADragOpensWithTheOverlayOff() {
     const QString path = m_dir.filePath(QStringLiteral("four.knot"));
-    QString error;
-    QVERIFY2(writeKnotFile(path, patches(true), &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, patches(true)));
     QVERIFY(m_window->openFile(path));
     act("actionEdgeContinuity")->setChecked(false);
     EdgeContinuityOverlay* overlay = m_window->edgeContinuity();
@@ -350,8 +350,7 @@ void TestEditorContinuity::hoveringAnEdgeShowsItsValues() {
 void TestEditorContinuity::openGrid() {
     act("actionKeepSeamsClosed")->setChecked(false);
     const QString path = m_dir.filePath(QStringLiteral("grid.knot"));
-    QString error;
-    QVERIFY2(writeKnotFile(path, grid(kGrid), &error), qPrintable(error));
+    KW_VERIFY_OK(writeKnotFile(path, grid(kGrid)));
     act("actionEdgeContinuity")->setChecked(false);
     QVERIFY(m_window->openFile(path));
     QVERIFY(int(scene().surfaces.size()) > EdgeContinuityOverlay::kForegroundFaces);

@@ -1,5 +1,6 @@
 // Editor GUI tests of File ▸ Export… and Export Selected… (STEP and IGES through the CAD child,
 // the open-seam report) and of Save As with a CAD name, which exports and keeps the project.
+#include "expected_test_util.h"
 #include "knotwork_process.h"
 #include "model/cad/cadimport.h"
 #include "model/io/knotfile.h"
@@ -167,7 +168,7 @@ private Q_SLOTS:
     void exportReportsOpenSeams() {
         const QString project = outputPath(QStringLiteral("lifted_cube.knot"));
         QString error;
-        QVERIFY2(writeKnotFile(project, cube(0.05), &error), qPrintable(error));
+        KW_VERIFY_OK(writeKnotFile(project, cube(0.05)));
         openWindow(project);
         m_script.savePath = outputPath(QStringLiteral("lifted_cube.iges"));
         m_window->action(QStringLiteral("actionExport"))->trigger();

@@ -1,6 +1,7 @@
 // Editor GUI tests of File ▸ Import… under Xvfb: IGES and OBJ replace the document, a truncated
 // file, Cancel and closing the window keep it, the progress dialog fills up, the imported scene
 // is saved as .knot.
+#include "expected_test_util.h"
 #include "model/cad/cadimport.h"
 #include "model/io/knotfile.h"
 #include "model/io/objfile.h"
@@ -264,7 +265,7 @@ private Q_SLOTS:
         QVERIFY(m_window->importedFrom().isEmpty());
         QVERIFY(!m_window->isWindowModified());
         QVERIFY(m_window->windowTitle().startsWith(QStringLiteral("teapot_imported.knot")));
-        const std::optional<Scene> reread = readKnotFile(saved, nullptr);
+        const auto reread = readKnotFile(saved);
         QVERIFY(reread);
         QCOMPARE(reread->surfaces, m_window->document()->scene().surfaces);
     }
@@ -324,11 +325,11 @@ private Q_SLOTS:
     }
 
     void importsObj() {
-        const std::optional<Scene> sphere = readKnotFile(samplePath("sphere"), nullptr);
+        const auto sphere = readKnotFile(samplePath("sphere"));
         QVERIFY(sphere);
         const QString obj = outputPath(QStringLiteral("sphere.obj"));
         QString error;
-        QVERIFY2(writeFileBytes(obj, writeObj(*sphere), error), qPrintable(error));
+        KW_VERIFY_OK(writeFileBytes(obj, writeObj(*sphere)));
 
         openWindow();
         triggerImport(obj);
@@ -348,8 +349,7 @@ private Q_SLOTS:
         openWindow();
         const Scene before = m_window->document()->scene();
         const QString text = outputPath(QStringLiteral("notes.txt"));
-        QString error;
-        QVERIFY(writeFileBytes(text, "not a model\n", error));
+        KW_VERIFY_OK(writeFileBytes(text, "not a model\n"));
         triggerImport(text);
         QCOMPARE(m_script.errors.size(), 1);
         QVERIFY2(m_script.errors.front().contains(QStringLiteral("unknown file type")),

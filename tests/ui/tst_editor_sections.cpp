@@ -121,8 +121,8 @@ private Q_SLOTS:
         const QString path = dir.filePath(QStringLiteral("cut.knot"));
         QVERIFY(m_window->saveFile(path));
         QString error;
-        const std::optional<Scene> saved = readKnotFile(path, &error);
-        QVERIFY2(saved, qPrintable(error));
+        const auto saved = readKnotFile(path);
+        QVERIFY2(saved, qPrintable(saved.message()));
         QCOMPARE(int(saved->display.sections.size()), 1);
         QCOMPARE(saved->display.sections[0], view->sections()[0]);
 

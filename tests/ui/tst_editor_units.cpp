@@ -91,8 +91,8 @@ private Q_SLOTS:
         const QString path = dir.filePath(QStringLiteral("metres.knot"));
         QVERIFY(m_window->saveFile(path));
         QString error;
-        const std::optional<Scene> saved = readKnotFile(path, &error);
-        QVERIFY2(saved, qPrintable(error));
+        const auto saved = readKnotFile(path);
+        QVERIFY2(saved, qPrintable(saved.message()));
         QCOMPARE(saved->unit, LengthUnit::Metre);
         QVERIFY(m_window->openFile(kwtest::samplePath("torus")));
         QCOMPARE(label(), QStringLiteral("Units: mm"));

@@ -108,7 +108,7 @@ struct Editor {
             return false;
         // Save also writes the view's camera and partition mode;
         // everything else is the document.
-        std::optional<Scene> written = readKnotFile(path, nullptr);
+        auto written = readKnotFile(path);
         if (!written)
             return false;
         written->camera = before.camera;

@@ -128,8 +128,8 @@ private Q_SLOTS:
         QFile::remove(path);
         QVERIFY(m_window->saveFile(path));
         QString error;
-        const std::optional<Scene> saved = readKnotFile(path, &error);
-        QVERIFY2(saved, qPrintable(error));
+        const auto saved = readKnotFile(path);
+        QVERIFY2(saved, qPrintable(saved.message()));
         QVERIFY(*saved == scene());
         QCOMPARE(int(std::count_if(saved->surfaces.begin(), saved->surfaces.end(),
                                    [](const Surface& s) { return s.hidden; })),
@@ -445,9 +445,8 @@ private Q_SLOTS:
         QVERIFY(m_window->undoStack()->isClean()); // a view setting, not an edit
         const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/display_uniform.knot");
         QVERIFY(m_window->saveFile(path));
-        QString error;
-        const std::optional<Scene> saved = readKnotFile(path, &error);
-        QVERIFY2(saved, qPrintable(error));
+        const auto saved = readKnotFile(path);
+        QVERIFY2(saved, qPrintable(saved.message()));
         QCOMPARE(saved->display.partitionMode, QStringLiteral("uniform"));
         // The preference says adaptive; the project says uniform and wins on Open.
         adaptive->setChecked(true);

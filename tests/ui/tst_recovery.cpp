@@ -5,6 +5,7 @@
 // The killed editor is this test binary run as `tst_recovery --editor-child FILE EXPECTED`:
 // the real MainWindow and autosave timer, with edits pushed as undo commands.
 #include "editor_test_util.h"
+#include "expected_test_util.h"
 #include "model/io/knotfile.h"
 #include "model_fixtures.h"
 #include "render/offscreen_renderer.h"
@@ -58,14 +59,13 @@ int runChild(int argc, char** argv) {
     w.show();
     if (!w.openFile(QString::fromLocal8Bit(argv[2])) || !editFirstSurface(w))
         return 3;
-    QString error;
-    if (!writeKnotFile(QString::fromLocal8Bit(argv[3]), w.document()->scene(), &error))
+    if (!writeKnotFile(QString::fromLocal8Bit(argv[3]), w.document()->scene()))
         return 4;
     QElapsedTimer clock;
     clock.start();
     while (clock.elapsed() < 60000) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-        const std::optional<Scene> saved = readKnotFile(w.autosave()->scenePath(), nullptr);
+        const auto saved = readKnotFile(w.autosave()->scenePath());
         if (saved && *saved == w.document()->scene()) {
             std::printf("READY\n");
             std::fflush(stdout);
@@ -188,9 +188,9 @@ private Q_SLOTS:
         QVERIFY(w->offerRecovery());
         QCOMPARE(asked.size(), 1);
         QVERIFY2(asked[0].contains(QLatin1String("plate.knot")), qPrintable(asked[0]));
-        const std::optional<Scene> expected = readKnotFile(expectedPath, nullptr);
+        const auto expected = readKnotFile(expectedPath);
         QVERIFY(expected);
-        QVERIFY(*expected != *readKnotFile(m_plate, nullptr)); // the edits did change something
+        QVERIFY(*expected != *readKnotFile(m_plate));          // the edits did change something
         QVERIFY(w->document()->scene() == *expected);          // every edit, exactly
         QCOMPARE(w->filePath(), m_plate);
         QVERIFY(!w->undoStack()->isClean());
@@ -199,13 +199,16 @@ private Q_SLOTS:
         QVERIFY(script.errors.isEmpty());
         // The restored edits are autosaved under this session at once; the old file is gone.
         QVERIFY(Autosave::orphans().empty());
-        QVERIFY(readKnotFile(w->autosave()->scenePath(), nullptr) == *expected);
+        QVERIFY([&] {
+            const auto autosaved = readKnotFile(w->autosave()->scenePath());
+            return autosaved && *autosaved == *expected;
+        }());
 
         // Save: the file gets the edits, the previous version is kept, recovery files go.
         QVERIFY(w->saveFile(m_plate));
         // Save also writes the view's camera and partition mode;
         // everything else is the edits.
-        std::optional<Scene> written = readKnotFile(m_plate, nullptr);
+        auto written = readKnotFile(m_plate);
         QVERIFY(written && written->camera.authored);
         QVERIFY(!written->display.partitionMode.isEmpty());
         written->camera = expected->camera;
@@ -221,8 +224,7 @@ private Q_SLOTS:
         // A recovery file with no lock: its editor is gone.
         const QString base = Autosave::directory() + QStringLiteral("/session-999999");
         QVERIFY(QDir().mkpath(Autosave::directory()));
-        QVERIFY(writeKnotFile(base + QStringLiteral(".knot"), *readKnotFile(m_plate, nullptr),
-                              nullptr));
+        QVERIFY(writeKnotFile(base + QStringLiteral(".knot"), *readKnotFile(m_plate)));
         DialogScript script;
         QStringList asked;
         {
@@ -250,7 +252,12 @@ private Q_SLOTS:
         QVERIFY(!QFile::exists(recovery));
         QVERIFY(editFirstSurface(*w));
         QTRY_VERIFY_WITH_TIMEOUT(QFile::exists(recovery), 10000);
-        QTRY_VERIFY_WITH_TIMEOUT(readKnotFile(recovery, nullptr) == w->document()->scene(), 10000);
+        QTRY_VERIFY_WITH_TIMEOUT(
+            [&] {
+                const auto saved = readKnotFile(recovery);
+                return saved && *saved == w->document()->scene();
+            }(),
+            10000);
         w->undoStack()->setIndex(0); // undone to the saved state: nothing to recover
         QVERIFY(!QFile::exists(recovery));
         w->undoStack()->redo();
@@ -313,7 +320,7 @@ private Q_SLOTS:
         int midSave = 0;
         for (int trial = 0; trial < 20; ++trial) {
             QFile::remove(backup);
-            QVERIFY2(writeKnotFile(path, original, &error), qPrintable(error));
+            KW_VERIFY_OK(writeKnotFile(path, original));
             QProcess child;
             child.start(QCoreApplication::applicationFilePath(),
                         {QStringLiteral("--save-child"), path});
@@ -363,8 +370,9 @@ private Q_SLOTS:
             for (const QString& file : {path, backup}) {
                 if (file == backup && !QFile::exists(backup))
                     continue; // killed before the first .bak was complete
-                const std::optional<Scene> now = readKnotFile(file, &error);
-                QVERIFY2(now, qPrintable(QStringLiteral("trial %1: %2").arg(trial).arg(error)));
+                const auto now = readKnotFile(file);
+                QVERIFY2(now,
+                         qPrintable(QStringLiteral("trial %1: %2").arg(trial).arg(now.message())));
                 QCOMPARE(now->surfaces.size(), size_t(1));
                 QVERIFY(now->surfaces.front().geometry == original.surfaces.front().geometry);
                 const QString name = now->surfaces.front().name;

@@ -42,6 +42,7 @@
 // another face beyond the depth tolerance, 20,494 and 1,976 depth disagreements); without the
 // float-depth target the editor's frames differ. The orbit asserts its own control: the same
 // poses in uniform mode show > 1000 disagreements.
+#include "expected_test_util.h"
 #include "cad_test_util.h"
 #include "model/nurbs/visible_bounds.h"
 #include "render/edge_metrics.h"
@@ -306,7 +307,7 @@ class TestRenderMotion : public QObject {
     void start(Pipeline& p, const Scene& scene) {
         QString error;
         QVERIFY(m_gl->makeCurrent());
-        QVERIFY2(p.renderer.initialize(), qPrintable(p.renderer.lastError()));
+        KW_VERIFY_OK(p.renderer.initialize());
         QVERIFY2(p.target.create(QSize(kSide, kSide), p.depthFormat, p.aov, &error),
                  qPrintable(error));
         p.options = movingFrameOptions(scene, p.partitioning);
@@ -331,8 +332,7 @@ class TestRenderMotion : public QObject {
             2.0 * std::tan(glm::radians(camera.fovYDegrees) * 0.5) / double(kSide);
         EdgeMetrics m;
         QString error;
-        QVERIFY2(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, &error, pixelAngle),
-                 qPrintable(error));
+        KW_VERIFY_OK(compareWithReference(gpu, ref, 1e-4 * glm::length(hi - lo), m, pixelAngle));
         // Each crack the reference covers: where the reference's face comes within 0.75 px of
         // its base polygon's boundary (a chord within 0.5 px of the exact edge: the pixel
         // centre between them is covered by no polygon), or elsewhere.
@@ -467,8 +467,9 @@ class TestRenderMotion : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_gl = kwtest::offscreenRenderer(QSize(8, 8), false, &error);
-        QVERIFY2(m_gl, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(8, 8), false);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_gl = std::move(made).value();
     }
 
     // The editor on a software rasteriser: aliased frames while moving, through the float-depth

@@ -64,9 +64,8 @@ class TestRenderSolids : public QObject {
         RenderOptions options;
         options.partitioning = RenderOptions::Partitioning::Adaptive;
         options.skipBackFaces = skip;
-        QString error;
-        if (!m_gl->render(doc, camera, options, &error)) {
-            qWarning("%s", qPrintable(error));
+        if (const Status drawn = m_gl->render(doc, camera, options); !drawn) {
+            qWarning("%s", qPrintable(drawn.message()));
             return {};
         }
         if (report)
@@ -77,8 +76,9 @@ class TestRenderSolids : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         QString error;
-        m_gl = kwtest::offscreenRenderer(QSize(kSide, kSide), false, &error);
-        QVERIFY2(m_gl, qPrintable(error));
+        auto made = kwtest::offscreenRenderer(QSize(kSide, kSide), false);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_gl = std::move(made).value();
     }
     void cleanupTestCase() { m_gl.reset(); }
 
@@ -191,8 +191,8 @@ private Q_SLOTS:
         QFETCH(QString, sample);
         QFETCH(double, orbit);
         QString error;
-        const std::optional<Scene> scene = kwtest::loadSample(sample, &error);
-        QVERIFY2(scene, qPrintable(error));
+        const auto scene = kwtest::loadSample(sample);
+        QVERIFY2(scene, qPrintable(scene.message()));
         QCOMPARE(scene->surfaces[0].solid, 0);
         Document doc;
         QVERIFY(doc.resetScene(*scene));

@@ -144,9 +144,11 @@ int main(int argc, char** argv) {
     variants.push_back({QStringLiteral("mean+isocurves"), meanIso});
 
     kw::OffscreenRenderer renderer;
-    QString error;
-    if (!renderer.create(&error) || !renderer.setSize(QSize(side, side), false, &error)) {
-        std::fprintf(stderr, "%s\n", qPrintable(error));
+    kw::Status ready = renderer.create();
+    if (ready)
+        ready = renderer.setSize(QSize(side, side), false);
+    if (!ready) {
+        std::fprintf(stderr, "%s\n", qPrintable(ready.message()));
         return 1;
     }
     std::printf("GL: %s; %dx%d, %d rounds\n\n", qPrintable(renderer.renderer().glDescription()),
@@ -160,10 +162,11 @@ int main(int argc, char** argv) {
             "texels | vertex updates | polygon builds | mask redraws |\n|---|---|---|---|---|---|"
             "---|---|---|---|---|\n");
     for (const QString& file : files) {
-        const std::optional<kw::Scene> scene = kw::readKnotFile(file, &error);
+        const kw::Expected<kw::Scene> scene = kw::readKnotFile(file);
         kw::Document doc;
-        if (!scene || !doc.resetScene(*scene, &error)) {
-            std::fprintf(stderr, "%s: %s\n", qPrintable(file), qPrintable(error));
+        const kw::Status reset = scene ? doc.resetScene(*scene) : kw::Status(scene.error());
+        if (!reset) {
+            std::fprintf(stderr, "%s: %s\n", qPrintable(file), qPrintable(reset.message()));
             return 1;
         }
         const kw::Camera cam = scene->camera.authored ? scene->camera : kw::fitCamera(*scene, 1.0);
@@ -189,8 +192,8 @@ int main(int argc, char** argv) {
                                  qPrintable(file), frame - 1);
                     return 1;
                 }
-                if (!renderer.render(doc, cam, opt, &error)) {
-                    std::fprintf(stderr, "%s: %s\n", qPrintable(file), qPrintable(error));
+                if (const kw::Status drawn = renderer.render(doc, cam, opt); !drawn) {
+                    std::fprintf(stderr, "%s: %s\n", qPrintable(file), qPrintable(drawn.message()));
                     return 1;
                 }
                 renderer.finish();

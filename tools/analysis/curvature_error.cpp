@@ -177,10 +177,9 @@ int main(int argc, char** argv) {
     std::printf("| model | mesh | vertices | median error | 95th pct | max | H scale |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const QString& file : files) {
-        QString error;
-        const std::optional<kw::Scene> scene = kw::readKnotFile(file, &error);
+        const kw::Expected<kw::Scene> scene = kw::readKnotFile(file);
         if (!scene) {
-            std::fprintf(stderr, "%s\n", qPrintable(error));
+            std::fprintf(stderr, "%s\n", qPrintable(scene.message()));
             return 1;
         }
         for (int n : parts) {
@@ -230,8 +229,8 @@ int main(int argc, char** argv) {
                                  QStringLiteral("cotangent H, %1x%1 mesh").arg(parts[k]));
             }
             painter.end();
-            if (!kw::saveImageAtomically(out, imagePath, &error)) {
-                std::fprintf(stderr, "%s\n", qPrintable(error));
+            if (const kw::Status saved = kw::saveImageAtomically(out, imagePath); !saved) {
+                std::fprintf(stderr, "%s\n", qPrintable(saved.message()));
                 return 1;
             }
             std::printf("\nwrote %s (surface %d of %s, colour scale +-%.4g)\n",

@@ -173,10 +173,9 @@ MatchSurfaceCommand::create(Document* document, const MatchRequest& request,
     const Surface* s = surfaceIn(document, request.surface);
     if (!s)
         return fail(error, noSurface(document, request.surface));
-    QString why;
-    std::optional<MatchResult> r = matchSurface(document->scene(), request, tolerances, &why);
+    Expected<MatchResult> r = matchSurface(document->scene(), request, tolerances);
     if (!r)
-        return fail(error, why);
+        return fail(error, r.message());
     static const char* const names[] = {"G0", "G1", "G2"};
     const QString text =
         QStringLiteral("Match surface (%1)").arg(QLatin1String(names[int(request.continuity)]));
