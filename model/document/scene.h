@@ -4,6 +4,7 @@
 #include "model/document/ids.h"
 #include "model/document/topology.h"
 #include "model/document/units.h"
+#include "model/nurbs/analytic.h"
 #include "model/nurbs/nurbs.h"
 
 #include <QString>
@@ -76,6 +77,9 @@ struct Surface {
     /// loaded (undo); a surface inserted into a document carries none but as such a face.
     int solid = -1;
     bool outsideAlongNormal = true;
+    /// The closed form the source file gave this face (kw::AnalyticForm), while `geometry` is
+    /// still the NURBS made from it; Kind::None for created, free-form or edited faces.
+    AnalyticForm analytic;
     bool operator==(const Surface&) const = default;
 };
 
