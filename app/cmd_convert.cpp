@@ -113,10 +113,9 @@ int runConvert(const QStringList& args) {
         return kExitUsage;
     }
 
-    QString error;
-    const std::optional<ImportResult> result = importFile(in, error);
+    const Expected<ImportResult> result = importFile(in);
     if (!result) {
-        printError(error);
+        printError(result.message());
         return kExitBadInput;
     }
     if (parser.isSet(report))
@@ -127,6 +126,7 @@ int runConvert(const QStringList& args) {
                        .arg(result->report.facesSkipped())
                        .arg(result->report.facesImported));
 
+    QString error;
     const auto take = [&error](const Status& status) {
         error = status.message();
         return bool(status);
@@ -134,7 +134,7 @@ int runConvert(const QStringList& args) {
     bool written = false;
     if (cadOut) {
         ExportReport exported;
-        written = exportCadFile(result->scene, out, exportOptions, exported, error);
+        written = take(exportCadFile(result->scene, out, exportOptions, exported));
         for (const QString& w : exported.warnings)
             printError(QStringLiteral("%1: warning: %2").arg(out, w));
         if (written && parser.isSet(report))

@@ -389,10 +389,9 @@ int runInfo(const QStringList& args) {
         printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
         return kExitUsage;
     }
-    QString error;
-    const std::optional<ImportResult> imported = openModelFile(files[0], error);
+    const Expected<ImportResult> imported = openModelFile(files[0]);
     if (!imported) {
-        printError(error);
+        printError(imported.message());
         return kExitBadInput;
     }
     printImportRemarks(files[0], imported->report);

@@ -79,12 +79,10 @@ int runMesh(const QStringList& args) {
             QStringLiteral("%1: IN must be an IGES, STEP or BREP file: %2").arg(command, in));
         return kExitUsage;
     }
-    QString error;
     TaggedMeshSet mesh;
-    const std::optional<ImportResult> result =
-        importInChildProcess(in, format, error, {}, &deflection, &mesh);
+    const Expected<ImportResult> result = importInChildProcess(in, format, {}, &deflection, &mesh);
     if (!result) {
-        printError(error);
+        printError(result.message());
         return kExitBadInput;
     }
     for (const QString& w : result->report.warnings)

@@ -48,25 +48,21 @@ QByteArray serve(const QString& dir, const QByteArray& request, OcctMeshFacesFun
         !(linear > 0.0) || !(angular > 0.0) || name.contains(QLatin1Char('/')) || name.isEmpty())
         return "error malformed request: " + request.left(200);
     QFile in(QDir(dir).filePath(name));
-    QString why;
-    std::optional<ImportResult> scene;
-    if (in.open(QIODevice::ReadOnly))
-        scene = decodeImportHandover(in.readAll(), why);
-    else
-        why = in.errorString();
+    const Expected<ImportResult> scene = in.open(QIODevice::ReadOnly)
+                                             ? decodeImportHandover(in.readAll())
+                                             : Expected<ImportResult>(Error(in.errorString()));
     if (!scene)
-        return "error cannot read the faces to mesh: " + why.toUtf8();
+        return "error cannot read the faces to mesh: " + scene.message().toUtf8();
     // The build and the mesh alone are timed: what a viewer holding the face would pay.
     QElapsedTimer wall;
     const double cpu0 = processCpuMs();
     wall.start();
     TaggedMeshSet mesh;
-    QString error;
-    const bool ok = meshFaces(&scene->scene, tolerance, linear, angular, &mesh, &error);
+    const Status meshed = meshFaces(&scene->scene, tolerance, linear, angular, &mesh);
     const double wallMs = double(wall.nsecsElapsed()) * 1e-6;
     const double cpuMs = processCpuMs() - cpu0;
-    if (!ok)
-        return "error " + error.simplified().toUtf8();
+    if (!meshed)
+        return "error " + meshed.message().simplified().toUtf8();
     if (const Status left = saveBytesAtomically(QDir(dir).filePath(name + QStringLiteral(".obj")),
                                                 writeTaggedMeshObj(mesh));
         !left)

@@ -99,14 +99,19 @@ int runReadCad(const QStringList& args) {
         return kExitBadInput;
     }
     const ImportProgress progress = progressToParent();
-    ImportResult result;
     TaggedMeshSet triangles;
-    const bool ok = deflection
-                        ? mesh(in, format, &*deflection, &result, &triangles, &error, &progress) &&
-                              writeMeshForParent(triangles, dir, error)
-                        : read(in, format, &result, &error, &progress);
-    if (!ok || !finishImport(result, in, error) || !writeImportForParent(result, dir, error)) {
-        printError(error);
+    Expected<ImportResult> result = deflection
+                                        ? mesh(in, format, &*deflection, &triangles, &progress)
+                                        : read(in, format, &progress);
+    Status done = result ? Status() : Status(result.error());
+    if (done && deflection)
+        done = writeMeshForParent(triangles, dir);
+    if (done)
+        done = finishImport(*result, in);
+    if (done)
+        done = writeImportForParent(*result, dir);
+    if (!done) {
+        printError(done.message());
         return kExitBadInput;
     }
     return kExitOk;

@@ -57,17 +57,14 @@ int runWriteCad(const QStringList& args) {
             printError(QStringLiteral("%1: cannot set the memory limit").arg(args.value(0)));
     }
     QFile in(scenePath);
-    QString why;
-    std::optional<ImportResult> scene;
-    if (in.open(QIODevice::ReadOnly))
-        scene = decodeImportHandover(in.readAll(), why);
-    else
-        why = in.errorString();
+    const Expected<ImportResult> scene = in.open(QIODevice::ReadOnly)
+                                             ? decodeImportHandover(in.readAll())
+                                             : Expected<ImportResult>(Error(in.errorString()));
     if (!scene) {
-        printError(QStringLiteral("%1: cannot read the scene to write: %2").arg(out, why));
+        printError(
+            QStringLiteral("%1: cannot read the scene to write: %2").arg(out, scene.message()));
         return kExitBadInput;
     }
-    QString error;
     const Expected<QFunctionPointer> resolved =
         app::resolveModuleSymbol(QString::fromLatin1(kOcctWriteModuleName), kOcctExportSymbol);
     if (!resolved) {
@@ -77,15 +74,16 @@ int runWriteCad(const QStringList& args) {
     }
     const auto write = reinterpret_cast<OcctExportFunction>(*resolved);
     const ImportProgress progress = progressToParent();
-    QByteArray bytes;
     ExportReport report;
-    const bool ok = write(&scene->scene, out, &options, &bytes, &report, &error, &progress);
+    const Expected<QByteArray> bytes = write(&scene->scene, out, &options, &report, &progress);
+    const bool ok = bool(bytes);
+    QString error = bytes.message();
     // The report goes back also when the export is refused (--require-closed lists the seams).
     // A failure to leave the results for the parent (a full disk) still names OUT.
     Status left =
         saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.txt")), report.toText());
     if (left && ok)
-        left = saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.out")), bytes);
+        left = saveBytesAtomically(QDir(dir).filePath(QStringLiteral("export.out")), *bytes);
     if (ok && !left)
         error = QStringLiteral("%1: not written: the writer could not keep the file in the "
                                "temporary folder (%2)")

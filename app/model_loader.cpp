@@ -11,11 +11,10 @@ ModelLoader::~ModelLoader() {
 
 void ModelLoader::start(const QString& path, double aspect) {
     m_thread = std::thread([this, path, aspect] {
-        QString error;
-        std::optional<ImportResult> r =
-            openModelFile(path, error, [this](int, int) { return !m_cancel.load(); });
+        Expected<ImportResult> r =
+            openModelFile(path, [this](int, int) { return !m_cancel.load(); });
         if (!r) {
-            m_error = error;
+            m_error = r.message();
             return;
         }
         const Scene& scene = r->scene;

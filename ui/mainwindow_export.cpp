@@ -102,12 +102,14 @@ bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
 
     auto job = std::make_shared<ExportJob>();
     std::unique_ptr<QThread> worker(QThread::create([job, scene, path] {
-        job->ok = exportCadFile(scene, path, ExportOptions{}, job->report, job->error,
-                                [job](int done, int total) {
-                                    job->done = done;
-                                    job->total = total;
-                                    return !job->cancel.load();
-                                });
+        const Status written =
+            exportCadFile(scene, path, ExportOptions{}, job->report, [job](int done, int total) {
+                job->done = done;
+                job->total = total;
+                return !job->cancel.load();
+            });
+        job->ok = bool(written);
+        job->error = written.message();
     }));
     runWithProgress(tr("Export"), tr("Exporting %1…").arg(name), *job, std::move(worker),
                     [job] { return job->ok; });

@@ -115,11 +115,15 @@ bool MainWindow::importFile(const QString& path) {
     auto job = std::make_shared<ImportJob>();
     // importFile is reentrant (plain data out; OCCT sets up its signal handling per thread).
     std::unique_ptr<QThread> worker(QThread::create([job, path] {
-        job->result = kw::importFile(path, job->error, [job](int done, int total) {
+        Expected<ImportResult> read = kw::importFile(path, [job](int done, int total) {
             job->done = done;
             job->total = total;
             return !job->cancel.load();
         });
+        if (read)
+            job->result = std::move(*read);
+        else
+            job->error = read.message();
     }));
 
     runWithProgress(tr("Import"), tr("Importing %1…").arg(name), *job, std::move(worker),

@@ -4,6 +4,7 @@
 
 #include "model/cad/cadimport.h"
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QString>
 #include <QStringList>
@@ -56,10 +57,10 @@ QString exportOptionsError(const ExportOptions& options);
 /// exact B-spline surface and trims (occtbuild.h); faces are sewn so that an edge two faces
 /// share is written once; closed shells become solids, the rest open shells or loose faces.
 /// The file is written under a temporary name and renamed: on any failure `path` is untouched.
-/// Returns false with `error` "<path>: <reason>" when the scene is empty, a surface is refused,
-/// options.requireClosed and a face is not in a closed solid, the writer fails, crashes, runs out
-/// of time or is cancelled ("<path>: export cancelled").
-bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
-                   ExportReport& report, QString& error, const ImportProgress& progress = {});
+/// Returns an Error "<path>: <reason>" (file = path) when the scene is empty, a surface is
+/// refused, options.requireClosed and a face is not in a closed solid, the writer fails, crashes,
+/// runs out of time or is cancelled ("<path>: export cancelled").
+Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                     ExportReport& report, const ImportProgress& progress = {});
 
 } // namespace kw

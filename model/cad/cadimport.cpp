@@ -53,14 +53,12 @@ QString occtUnavailableMessage() {
 
 // Loops bridged on import are saved closed (docs/FILE_FORMAT.md): every gap the file leaves
 // between consecutive trim curves is closed here, as the renderer would bridge it, and reported.
-bool finishImport(ImportResult& result, const QString& path, QString& error) {
+Status finishImport(ImportResult& result, const QString& path) {
     result.report.warnings << closeSceneTrimLoops(result.scene);
     const QString why = sceneError(result.scene);
-    if (!why.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, why);
-        return false;
-    }
-    return true;
+    if (!why.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
+    return ok();
 }
 
 bool occtAvailable() {
@@ -71,15 +69,12 @@ bool occtAvailable() {
 #endif
 }
 
-std::optional<ImportResult> importFile(const QString& path, QString& error,
-                                       const ImportProgress& progress) {
+Expected<ImportResult> importFile(const QString& path, const ImportProgress& progress) {
     const CadFormat format = cadFormatFromPath(path);
     // A device, FIFO or directory is named at once, never opened (each reader then sniffs
     // the first bytes of its format).
-    if (const QString why = regularFileProblem(path); !why.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, why);
-        return std::nullopt;
-    }
+    if (const QString why = regularFileProblem(path); !why.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
     QElapsedTimer timer;
     timer.start();
     ImportResult result;
@@ -87,59 +82,51 @@ std::optional<ImportResult> importFile(const QString& path, QString& error,
     case CadFormat::Iges:
     case CadFormat::Step:
     case CadFormat::Brep: {
-        auto r = importInChildProcess(path, format, error, progress);
+        auto r = importInChildProcess(path, format, progress);
         if (!r)
-            return std::nullopt;
+            return std::move(r).error();
         result = std::move(*r);
         break;
     }
     case CadFormat::Obj:
-        if (const Status read = readObjFile(path, result.scene, result.report); !read) {
-            error = read.message();
-            return std::nullopt;
-        }
-        if (result.scene.surfaces.empty()) {
-            error = QStringLiteral("%1: no surface could be imported (%2)")
-                        .arg(path, result.report.skipped.value(0));
-            return std::nullopt;
-        }
+        if (Status read = readObjFile(path, result.scene, result.report); !read)
+            return std::move(read).error();
+        if (result.scene.surfaces.empty())
+            return Error(QStringLiteral("%1: no surface could be imported (%2)")
+                             .arg(path, result.report.skipped.value(0)),
+                         path);
         break;
     case CadFormat::Knot: {
         auto scene = readKnotFile(path);
-        if (!scene) {
-            error = scene.message();
-            return std::nullopt;
-        }
+        if (!scene)
+            return std::move(scene).error();
         result.scene = std::move(*scene);
         result.report.facesImported = static_cast<int>(result.scene.surfaces.size());
         break;
     }
     case CadFormat::Unknown:
-        error = QStringLiteral("%1: unknown file type (expected .igs, .iges, .stp, .step, .brep, "
-                               ".obj or .knot)")
-                    .arg(path);
-        return std::nullopt;
+        return Error(QStringLiteral("%1: unknown file type (expected .igs, .iges, .stp, .step, "
+                                    ".brep, .obj or .knot)")
+                         .arg(path),
+                     path);
     }
     if (format == CadFormat::Obj || format == CadFormat::Knot)
         for (int k = 0; k < static_cast<int>(result.scene.surfaces.size()); ++k)
             result.sourceFaces.push_back(k + 1);
-    if (!finishImport(result, path, error))
-        return std::nullopt;
+    if (Status finished = finishImport(result, path); !finished)
+        return std::move(finished).error();
     result.report.seconds = timer.elapsed() / 1000.0;
     return result;
 }
 
-std::optional<ImportResult> openModelFile(const QString& path, QString& error,
-                                          const ImportProgress& progress) {
+Expected<ImportResult> openModelFile(const QString& path, const ImportProgress& progress) {
     // Any other name is read as .knot, as these tools always did (its error says what is wrong).
     if (const CadFormat f = cadFormatFromPath(path);
         f != CadFormat::Knot && f != CadFormat::Unknown)
-        return importFile(path, error, progress);
+        return importFile(path, progress);
     Expected<Scene> scene = readKnotFile(path);
-    if (!scene) {
-        error = scene.message();
-        return std::nullopt;
-    }
+    if (!scene)
+        return std::move(scene).error();
     ImportResult result;
     result.scene = std::move(*scene);
     result.report.facesImported = static_cast<int>(result.scene.surfaces.size());

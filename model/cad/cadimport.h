@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 #include "model/io/importreport.h"
 
 #include <QString>
@@ -36,25 +37,33 @@ struct ImportResult {
 /// report.skipped. These three are read by OpenCASCADE in a child process (cadprocess.h:
 /// crash, time limit, memory limit, Cancel). `progress`, if set, is called during long imports
 /// (for the child, also every 50 ms while it works); returning false cancels.
-/// Returns nullopt with `error` "<path>: <reason>" (or "<path>:<line>: <reason>" for OBJ) when
+/// Returns an Error "<path>: <reason>" (or "<path>:<line>: <reason>" for OBJ; file = path) when
 /// the file cannot be read, is truncated or corrupt, holds no importable surface, the format is
 /// unknown or unavailable in this build, the reader crashed or ran out of time or memory, or
 /// the import was cancelled. Never a partial scene.
-std::optional<ImportResult> importFile(const QString& path, QString& error,
-                                       const ImportProgress& progress = {});
+Expected<ImportResult> importFile(const QString& path, const ImportProgress& progress = {});
 
 /// What the tools that take any model file open (`knotwork render` and `info`, the editor's
 /// command line): a .knot project as saved (readKnotFile: its camera, lights and display settings,
 /// nothing repaired; also any path whose extension names no format), IGES, STEP, BREP and OBJ
 /// through importFile. Errors as readKnotFile's and importFile's, naming the file.
-std::optional<ImportResult> openModelFile(const QString& path, QString& error,
-                                          const ImportProgress& progress = {});
+Expected<ImportResult> openModelFile(const QString& path, const ImportProgress& progress = {});
+/// Transitional: openModelFile for bench/, whose own conversion lands separately. Remove with
+/// it; nothing else may call it.
+inline std::optional<ImportResult> openModelFile(const QString& path, QString& error,
+                                                 const ImportProgress& progress = {}) {
+    Expected<ImportResult> read = openModelFile(path, progress);
+    error = read.message();
+    if (!read)
+        return std::nullopt;
+    return std::move(*read);
+}
 
 /// The last step of every import: trim loops with gaps are closed (kw::closeSceneTrimLoops: snapped
 /// within 1e-5 of the domain's diagonal, else bridged by a straight segment), each gap reported
 /// in result.report.warnings, so the scene saves closed and reopens; then the scene is checked
-/// with kw::sceneError. False with `error` "<path>: <reason>" when it is not valid.
-bool finishImport(ImportResult& result, const QString& path, QString& error);
+/// with kw::checkScene. An Error "<path>: <reason>" when it is not valid.
+Status finishImport(ImportResult& result, const QString& path);
 
 /// How `knotwork mesh` asks OpenCASCADE to triangulate a CAD file (BRepMesh_IncrementalMesh's
 /// absolute linear deflection in model units and angular deflection in degrees). linear 0:

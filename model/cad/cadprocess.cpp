@@ -109,18 +109,14 @@ ImportProgress progressToParent() {
     };
 }
 
-bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error) {
-    const Status saved = saveBytesAtomically(QDir(dir).filePath(QString::fromLatin1(kHandoverFile)),
-                                             encodeImportHandover(result));
-    error = saved.message();
-    return bool(saved);
+Status writeImportForParent(const ImportResult& result, const QString& dir) {
+    return saveBytesAtomically(QDir(dir).filePath(QString::fromLatin1(kHandoverFile)),
+                               encodeImportHandover(result));
 }
 
-bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& error) {
-    const Status saved = saveBytesAtomically(QDir(dir).filePath(QStringLiteral("mesh.obj")),
-                                             writeTaggedMeshObj(mesh));
-    error = saved.message();
-    return bool(saved);
+Status writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir) {
+    return saveBytesAtomically(QDir(dir).filePath(QStringLiteral("mesh.obj")),
+                               writeTaggedMeshObj(mesh));
 }
 
 #ifdef KW_HAVE_OCCT
@@ -313,10 +309,11 @@ bool watchPrestarted(const PrestartedCadRead& child, double seconds, const Impor
 } // namespace
 #endif
 
-std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                                 QString& error, const ImportProgress& progress,
-                                                 const MeshDeflection* deflection,
-                                                 TaggedMeshSet* mesh) {
+// importInChildProcess's work; its messages become the Error.
+static std::optional<ImportResult> readInChild(const QString& path, CadFormat format,
+                                               QString& error, const ImportProgress& progress,
+                                               const MeshDeflection* deflection,
+                                               TaggedMeshSet* mesh) {
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
     Q_UNUSED(deflection);
@@ -354,13 +351,13 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
         if (!watched)
             return std::nullopt;
     } else {
-        QString why;
-        dirPath = makeCadTempDir(&why);
-        if (dirPath.isEmpty()) {
+        Expected<QString> made = makeCadTempDir();
+        if (!made) {
             error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                        .arg(path, reader, why);
+                        .arg(path, reader, made.message());
             return std::nullopt;
         }
+        dirPath = *made;
         adoptedDir.emplace(dirPath);
         const double seconds = cadTimeLimitSeconds(QFileInfo(path).size(), deflection && mesh);
         // The child's own deadline (a second after ours) holds should this process stop
@@ -401,15 +398,13 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
                     : elided(safeMessageText(QString::fromLocal8Bit(lines.back().trimmed())), 1000);
         return std::nullopt;
     }
-    QString why;
     QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
-    std::optional<ImportResult> read;
-    if (!handover.open(QIODevice::ReadOnly))
-        why = handover.errorString();
-    else
-        read = decodeImportHandover(handover.readAll(), why);
+    Expected<ImportResult> read = handover.open(QIODevice::ReadOnly)
+                                      ? decodeImportHandover(handover.readAll())
+                                      : Expected<ImportResult>(Error(handover.errorString()));
     if (!read) {
-        error = QStringLiteral("%1: %2 gave no readable result: %3").arg(path, reader, why);
+        error =
+            QStringLiteral("%1: %2 gave no readable result: %3").arg(path, reader, read.message());
         return std::nullopt;
     }
     ImportResult result = std::move(*read);
@@ -427,8 +422,19 @@ std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat 
 #endif
 }
 
-bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
-                   ExportReport& report, QString& error, const ImportProgress& progress) {
+Expected<ImportResult> importInChildProcess(const QString& path, CadFormat format,
+                                            const ImportProgress& progress,
+                                            const MeshDeflection* deflection, TaggedMeshSet* mesh) {
+    QString error;
+    std::optional<ImportResult> read = readInChild(path, format, error, progress, deflection, mesh);
+    if (!read)
+        return Error(error, path);
+    return std::move(*read);
+}
+
+// exportCadFile's work; its messages become the Error.
+static bool writeInChild(const Scene& scene, const QString& path, const ExportOptions& options,
+                         ExportReport& report, QString& error, const ImportProgress& progress) {
     report = ExportReport{};
     const CadFormat format = cadFormatFromPath(path);
     if (format != CadFormat::Step && format != CadFormat::Iges) {
@@ -460,13 +466,13 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
     const QString writer = QStringLiteral("the %1 writer").arg(cadFormatName(format));
     // A folder of the registry (cadtempdir.h): removed on every exit path, SIGTERM included,
     // or swept by a later run if this one is killed.
-    QString why;
-    const QString dirPath = makeCadTempDir(&why);
-    if (dirPath.isEmpty()) {
-        error =
-            QStringLiteral("%1: cannot make a temporary folder for %2: %3").arg(path, writer, why);
+    const Expected<QString> made = makeCadTempDir();
+    if (!made) {
+        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                    .arg(path, writer, made.message());
         return false;
     }
+    const QString dirPath = *made;
     const FolderRemover removeDir(dirPath);
     const QDir dir(dirPath);
     // The scene goes over bit for bit (handover.h), as imports come back.
@@ -539,6 +545,14 @@ bool exportCadFile(const Scene& scene, const QString& path, const ExportOptions&
     error = saved.message();
     return bool(saved);
 #endif
+}
+
+Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                     ExportReport& report, const ImportProgress& progress) {
+    QString error;
+    if (!writeInChild(scene, path, options, report, error, progress))
+        return Error(error, path);
+    return ok();
 }
 
 } // namespace kw

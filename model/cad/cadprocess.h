@@ -39,25 +39,37 @@ void setCadReaderExecutable(const QString& path);
 
 /// Parent side: runs the child on `path` and reads back its scene and report, within
 /// cadTimeLimitSeconds(file size) and cadMemoryLimitBytes() (the environment variables there
-/// set other limits; the tests use them). Errors, as
+/// set other limits; the tests use them). Errors (file = path), as
 /// "<path>: <reason>" except for a crash: "the STEP reader crashed on <path> (signal 11:
 /// Segmentation fault)"; a time-out names the limit; a cancel (progress returned false) kills
 /// the child at once and gives "<path>: import cancelled".
 /// With `deflection` (and `mesh`) set, the child also triangulates the shape with OpenCASCADE
 /// (importAndMeshOcctFile, `knotwork mesh`) and `mesh` gets its triangles, tagged with the ids
 /// of the returned scene's surfaces.
-std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                                 QString& error,
-                                                 const ImportProgress& progress = {},
-                                                 const MeshDeflection* deflection = nullptr,
-                                                 TaggedMeshSet* mesh = nullptr);
+Expected<ImportResult> importInChildProcess(const QString& path, CadFormat format,
+                                            const ImportProgress& progress = {},
+                                            const MeshDeflection* deflection = nullptr,
+                                            TaggedMeshSet* mesh = nullptr);
+/// Transitional: importInChildProcess for bench/, whose own conversion lands separately. Remove
+/// with it; nothing else may call it.
+inline std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
+                                                        QString& error,
+                                                        const ImportProgress& progress = {},
+                                                        const MeshDeflection* deflection = nullptr,
+                                                        TaggedMeshSet* mesh = nullptr) {
+    Expected<ImportResult> read = importInChildProcess(path, format, progress, deflection, mesh);
+    error = read.message();
+    if (!read)
+        return std::nullopt;
+    return std::move(*read);
+}
 
 /// Child side: writes a finished import (finishImport) for the parent as DIR/import.kwi
-/// (encodeImportHandover), atomically. False with `error` set when it cannot.
-bool writeImportForParent(const ImportResult& result, const QString& dir, QString& error);
+/// (encodeImportHandover), atomically. An Error when it cannot.
+Status writeImportForParent(const ImportResult& result, const QString& dir);
 
 /// Child side: writes the mesh for the parent as DIR/mesh.obj (writeTaggedMeshObj), atomically.
-bool writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir, QString& error);
+Status writeMeshForParent(const TaggedMeshSet& mesh, const QString& dir);
 
 /// "progress DONE TOTAL\n", the line the child prints for the parent's progress bar.
 QByteArray progressLine(int done, int total);

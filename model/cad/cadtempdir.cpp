@@ -187,16 +187,13 @@ int sweepStaleCadTempDirs(const QString& tempDir, int minAgeSeconds) {
     return removed;
 }
 
-QString makeCadTempDir(QString* error) {
+Expected<QString> makeCadTempDir() {
     const QString temp = QDir::tempPath();
     sweepStaleCadTempDirs(temp);
     QByteArray path =
         QFile::encodeName(temp) + "/knotwork-" + QByteArray::number(::getpid()) + "-XXXXXX";
-    if (!::mkdtemp(path.data())) {
-        if (error)
-            *error = qt_error_string(errno);
-        return {};
-    }
+    if (!::mkdtemp(path.data()))
+        return Error(qt_error_string(errno), QFile::decodeName(path));
     const QString dir = QFile::decodeName(path);
     registerCadTempDir(dir);
     return dir;

@@ -3,6 +3,8 @@
 // left them behind.
 #pragma once
 
+#include "model/error.h"
+
 #include <QString>
 #include <sys/types.h>
 
@@ -10,8 +12,8 @@ namespace kw {
 
 /// Makes a new folder QDir::tempPath()/knotwork-<pid>-XXXXXX (mode 0700) and registers it for
 /// removal should this process be stopped by SIGTERM, SIGINT or SIGHUP; first sweeps stale
-/// folders (sweepStaleCadTempDirs). Empty with `error` set when it cannot.
-QString makeCadTempDir(QString* error = nullptr);
+/// folders (sweepStaleCadTempDirs). An Error (the system's reason) when it cannot.
+Expected<QString> makeCadTempDir();
 
 /// Registers an existing folder (one the launcher made for a prestarted child) the same way.
 void registerCadTempDir(const QString& dir);

@@ -46,16 +46,15 @@ FaceMesher::~FaceMesher() {
     d->stop();
 }
 
-bool FaceMesher::start(QString& error) {
+Status FaceMesher::start() {
     if (d->child.state() == QProcess::Running)
-        return true;
+        return ok();
     d->stop();
-    QString why;
-    d->dir = makeCadTempDir(&why);
-    if (d->dir.isEmpty()) {
-        error = QStringLiteral("cannot make a temporary folder for the face mesher: %1").arg(why);
-        return false;
-    }
+    Expected<QString> made = makeCadTempDir();
+    if (!made)
+        return Error(QStringLiteral("cannot make a temporary folder for the face mesher: %1")
+                         .arg(made.message()));
+    d->dir = *made;
     d->child.setProgram(cadReaderExecutable());
     d->child.setArguments({QString::fromLatin1(kMeshFacesVerb), d->dir,
                            QStringLiteral("--max-memory-mb"),
@@ -69,21 +68,21 @@ bool FaceMesher::start(QString& error) {
     });
     d->child.start(QIODevice::ReadWrite);
     if (!d->child.waitForStarted(30000)) {
-        error = QStringLiteral("cannot start the face mesher (%1): %2")
-                    .arg(d->child.program(), d->child.errorString());
+        Error failed(QStringLiteral("cannot start the face mesher (%1): %2")
+                         .arg(d->child.program(), d->child.errorString()));
         d->stop();
-        return false;
+        return failed;
     }
     d->pid = pid_t(d->child.processId());
     registerCadChild(d->pid);
-    return true;
+    return ok();
 }
 
-bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, double linear,
-                      double angularDegrees, TaggedMeshSet& out, FaceMeshCost& cost, QString& error,
-                      double seconds) {
-    if (!start(error))
-        return false;
+Status FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, double linear,
+                        double angularDegrees, TaggedMeshSet& out, FaceMeshCost& cost,
+                        double seconds) {
+    if (Status started = start(); !started)
+        return started;
     ImportResult request;
     request.scene.surfaces = surfaces;
     std::uint32_t next = 1;
@@ -97,10 +96,9 @@ bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, do
         request.sourceFaces.push_back(k + 1);
     const QString name = QStringLiteral("request%1.kwi").arg(++d->requests);
     const QString path = QDir(d->dir).filePath(name);
-    if (const Status saved = saveBytesAtomically(path, encodeImportHandover(request)); !saved) {
-        error = QStringLiteral("cannot hand the faces to the face mesher: %1").arg(saved.message());
-        return false;
-    }
+    if (const Status saved = saveBytesAtomically(path, encodeImportHandover(request)); !saved)
+        return Error(
+            QStringLiteral("cannot hand the faces to the face mesher: %1").arg(saved.message()));
     const QByteArray line = "mesh " + name.toUtf8() + ' ' + QByteArray::number(tolerance, 'g', 17) +
                             ' ' + QByteArray::number(linear, 'g', 17) + ' ' +
                             QByteArray::number(angularDegrees, 'g', 17) + '\n';
@@ -112,21 +110,20 @@ bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, do
     while (!d->child.canReadLine()) {
         if (d->child.state() != QProcess::Running) {
             const QList<QByteArray> err = d->child.readAllStandardError().trimmed().split('\n');
-            error = QStringLiteral("the face mesher ended (%1)%2")
-                        .arg(d->child.exitStatus() == QProcess::CrashExit
-                                 ? QStringLiteral("crashed")
-                                 : QStringLiteral("exit code %1").arg(d->child.exitCode()),
-                             err.back().isEmpty()
-                                 ? QString()
-                                 : QStringLiteral(": ") + QString::fromLocal8Bit(err.back()));
+            Error ended(QStringLiteral("the face mesher ended (%1)%2")
+                            .arg(d->child.exitStatus() == QProcess::CrashExit
+                                     ? QStringLiteral("crashed")
+                                     : QStringLiteral("exit code %1").arg(d->child.exitCode()),
+                                 err.back().isEmpty()
+                                     ? QString()
+                                     : QStringLiteral(": ") + QString::fromLocal8Bit(err.back())));
             d->stop();
-            return false;
+            return ended;
         }
         if (clock.elapsed() > seconds * 1000.0) {
-            error = QStringLiteral("the face mesher did not answer within %1 s").arg(seconds);
             d->child.kill();
             d->stop();
-            return false;
+            return Error(QStringLiteral("the face mesher did not answer within %1 s").arg(seconds));
         }
         d->child.waitForReadyRead(50);
     }
@@ -134,23 +131,20 @@ bool FaceMesher::mesh(const std::vector<Surface>& surfaces, double tolerance, do
     QFile::remove(path);
     const QList<QByteArray> t = answer.split(' ');
     if (t.value(0) != "ok" || t.size() != 3) {
-        error = answer.startsWith("error ") ? QString::fromUtf8(answer.mid(6))
-                                            : QStringLiteral("the face mesher answered '%1'")
-                                                  .arg(QString::fromUtf8(answer.left(200)));
-        return false;
+        return Error(answer.startsWith("error ") ? QString::fromUtf8(answer.mid(6))
+                                                 : QStringLiteral("the face mesher answered '%1'")
+                                                       .arg(QString::fromUtf8(answer.left(200))));
     }
     cost.wallMs = t[1].toDouble();
     cost.cpuMs = t[2].toDouble();
     const QString obj = path + QStringLiteral(".obj");
     Expected<TaggedMeshSet> read = readTaggedMeshObjFile(obj);
     QFile::remove(obj);
-    if (!read) {
-        error =
-            QStringLiteral("the face mesher's triangles are unreadable: %1").arg(read.message());
-        return false;
-    }
+    if (!read)
+        return Error(
+            QStringLiteral("the face mesher's triangles are unreadable: %1").arg(read.message()));
     out = std::move(read).value();
-    return true;
+    return ok();
 }
 
 } // namespace kw

@@ -73,11 +73,14 @@ public:
     bool failed() const { return !m_why.isEmpty(); }
     const QString& why() const { return m_why; }
     qsizetype position() const { return m_at; }
+    qsizetype failedAt() const { return m_failedAt; }
     bool atEnd() const { return m_at == m_block.size(); }
 
     void fail(const QString& what, const QString& reason) {
-        if (m_why.isEmpty())
+        if (m_why.isEmpty()) {
             m_why = QStringLiteral("%1 at byte %2: %3").arg(what).arg(m_at).arg(reason);
+            m_failedAt = m_at;
+        }
     }
     bool bytes(void* to, qsizetype n, const char* what) {
         if (failed())
@@ -134,6 +137,7 @@ private:
     const QByteArray& m_block;
     qsizetype m_at = 0;
     QString m_why;
+    qsizetype m_failedAt = 0;
 };
 
 void writeCurve(Writer& w, const NurbsCurve2& c) {
@@ -347,7 +351,7 @@ QByteArray encodeImportHandover(const ImportResult& result) {
     return w.take();
 }
 
-std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QString& why) {
+Expected<ImportResult> decodeImportHandover(const QByteArray& block) {
     Reader r(block);
     char magic[sizeof(kMagic)] = {};
     r.bytes(magic, sizeof(magic), "header");
@@ -412,20 +416,14 @@ std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QStrin
     if (!r.failed() && !r.atEnd())
         r.fail(QStringLiteral("end mark"),
                QStringLiteral("%1 bytes follow it").arg(block.size() - r.position()));
-    if (r.failed()) {
-        why = r.why();
-        return std::nullopt;
-    }
-    if (result.sourceFaces.size() != scene.surfaces.size()) {
-        why = QStringLiteral("%1 source faces for %2 surfaces")
-                  .arg(result.sourceFaces.size())
-                  .arg(scene.surfaces.size());
-        return std::nullopt;
-    }
-    if (const QString bad = sceneError(scene); !bad.isEmpty()) {
-        why = QStringLiteral("the scene is not valid: %1").arg(bad);
-        return std::nullopt;
-    }
+    if (r.failed())
+        return Error(r.why(), QString(), QStringLiteral("byte %1").arg(r.failedAt()));
+    if (result.sourceFaces.size() != scene.surfaces.size())
+        return Error(QStringLiteral("%1 source faces for %2 surfaces")
+                         .arg(result.sourceFaces.size())
+                         .arg(scene.surfaces.size()));
+    if (const QString bad = sceneError(scene); !bad.isEmpty())
+        return Error(QStringLiteral("the scene is not valid: %1").arg(bad));
     return result;
 }
 

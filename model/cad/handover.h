@@ -22,8 +22,8 @@ namespace kw {
 /// Encodes a finished import (finishImport) for the parent.
 QByteArray encodeImportHandover(const ImportResult& result);
 
-/// Decodes encodeImportHandover's block. nullopt with `why` ("<what> at byte N: <reason>")
-/// when it is truncated, corrupt, from another build, or its scene is not valid.
-std::optional<ImportResult> decodeImportHandover(const QByteArray& block, QString& why);
+/// Decodes encodeImportHandover's block. An Error ("<what> at byte N: <reason>", location
+/// "byte N") when it is truncated, corrupt, from another build, or its scene is not valid.
+Expected<ImportResult> decodeImportHandover(const QByteArray& block);
 
 } // namespace kw

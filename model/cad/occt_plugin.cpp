@@ -5,12 +5,8 @@
 
 #include <QtGlobal>
 
-extern "C" Q_DECL_EXPORT bool knotwork_occt_import(const QString& path, kw::CadFormat format,
-                                                   kw::ImportResult* result, QString* error,
-                                                   const kw::ImportProgress* progress) {
-    auto r = kw::importOcctFile(path, format, *error, progress ? *progress : kw::ImportProgress{});
-    if (!r)
-        return false;
-    *result = std::move(*r);
-    return true;
+extern "C" Q_DECL_EXPORT kw::Expected<kw::ImportResult>
+knotwork_occt_import(const QString& path, kw::CadFormat format,
+                     const kw::ImportProgress* progress) {
+    return kw::importOcctFile(path, format, progress ? *progress : kw::ImportProgress{});
 }

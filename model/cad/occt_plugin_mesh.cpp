@@ -7,31 +7,28 @@
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 
-extern "C" Q_DECL_EXPORT bool knotwork_occt_mesh(const QString& path, kw::CadFormat format,
-                                                 const kw::MeshDeflection* deflection,
-                                                 kw::ImportResult* result, kw::TaggedMeshSet* mesh,
-                                                 QString* error,
-                                                 const kw::ImportProgress* progress) {
-    auto r = kw::importAndMeshOcctFile(path, format, *deflection, *mesh, *error,
-                                       progress ? *progress : kw::ImportProgress{});
-    if (!r)
-        return false;
-    *result = std::move(*r);
-    return true;
+extern "C" Q_DECL_EXPORT kw::Expected<kw::ImportResult>
+knotwork_occt_mesh(const QString& path, kw::CadFormat format, const kw::MeshDeflection* deflection,
+                   kw::TaggedMeshSet* mesh, const kw::ImportProgress* progress) {
+    return kw::importAndMeshOcctFile(path, format, *deflection, *mesh,
+                                     progress ? *progress : kw::ImportProgress{});
 }
 
 // `knotwork __mesh-faces`: each surface of `scene` built as a face and meshed alone
 // (occt::meshBuiltFaces), OCCT faults caught.
-extern "C" Q_DECL_EXPORT bool knotwork_occt_mesh_faces(const kw::Scene* scene, double tolerance,
-                                                       double linear, double angularDegrees,
-                                                       kw::TaggedMeshSet* mesh, QString* error) {
+extern "C" Q_DECL_EXPORT kw::Status knotwork_occt_mesh_faces(const kw::Scene* scene,
+                                                             double tolerance, double linear,
+                                                             double angularDegrees,
+                                                             kw::TaggedMeshSet* mesh) {
     try {
         OCC_CATCH_SIGNALS
-        return kw::occt::meshBuiltFaces(*scene, tolerance, linear, angularDegrees, *mesh, *error);
+        if (QString error;
+            !kw::occt::meshBuiltFaces(*scene, tolerance, linear, angularDegrees, *mesh, error))
+            return kw::Error(error);
+        return kw::ok();
     } catch (const Standard_Failure& e) {
-        *error = QStringLiteral("OpenCASCADE failed meshing a face: %1 (%2)")
-                     .arg(QString::fromUtf8(e.GetMessageString()),
-                          QString::fromLatin1(e.DynamicType()->Name()));
-        return false;
+        return kw::Error(QStringLiteral("OpenCASCADE failed meshing a face: %1 (%2)")
+                             .arg(QString::fromUtf8(e.GetMessageString()),
+                                  QString::fromLatin1(e.DynamicType()->Name())));
     }
 }

@@ -4,15 +4,9 @@
 
 #include <QtGlobal>
 
-extern "C" Q_DECL_EXPORT bool knotwork_occt_export(const kw::Scene* scene, const QString& path,
-                                                   const kw::ExportOptions* options,
-                                                   QByteArray* bytes, kw::ExportReport* report,
-                                                   QString* error,
-                                                   const kw::ImportProgress* progress) {
-    auto r = kw::exportOcctBytes(*scene, path, *options, *report, *error,
-                                 progress ? *progress : kw::ImportProgress{});
-    if (!r)
-        return false;
-    *bytes = std::move(*r);
-    return true;
+extern "C" Q_DECL_EXPORT kw::Expected<QByteArray>
+knotwork_occt_export(const kw::Scene* scene, const QString& path, const kw::ExportOptions* options,
+                     kw::ExportReport* report, const kw::ImportProgress* progress) {
+    return kw::exportOcctBytes(*scene, path, *options, *report,
+                               progress ? *progress : kw::ImportProgress{});
 }

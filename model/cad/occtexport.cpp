@@ -415,9 +415,10 @@ QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options, Le
 
 } // namespace
 
-std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& path,
-                                          const ExportOptions& options, ExportReport& report,
-                                          QString& error, const ImportProgress& progress) {
+// exportOcctBytes's work; its messages become the Error.
+static std::optional<QByteArray> exportBytes(const Scene& original, const QString& path,
+                                             const ExportOptions& options, ExportReport& report,
+                                             QString& error, const ImportProgress& progress) {
     QElapsedTimer timer;
     timer.start();
     const CadFormat format = cadFormatFromPath(path);
@@ -717,15 +718,22 @@ std::optional<QByteArray> exportOcctBytes(const Scene& original, const QString& 
     }
 }
 
-bool exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,
-                    ExportReport& report, QString& error, const ImportProgress& progress) {
-    const std::optional<QByteArray> bytes =
-        exportOcctBytes(scene, path, options, report, error, progress);
+Expected<QByteArray> exportOcctBytes(const Scene& scene, const QString& path,
+                                     const ExportOptions& options, ExportReport& report,
+                                     const ImportProgress& progress) {
+    QString error;
+    std::optional<QByteArray> bytes = exportBytes(scene, path, options, report, error, progress);
     if (!bytes)
-        return false;
-    const Status saved = saveBytesAtomically(path, *bytes);
-    error = saved.message();
-    return bool(saved);
+        return Error(error, path);
+    return std::move(*bytes);
+}
+
+Status exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                      ExportReport& report, const ImportProgress& progress) {
+    const Expected<QByteArray> bytes = exportOcctBytes(scene, path, options, report, progress);
+    if (!bytes)
+        return bytes.error();
+    return saveBytesAtomically(path, *bytes);
 }
 
 } // namespace kw

@@ -13,21 +13,21 @@ namespace kw {
 /// Writes `scene` to `path` in this process: the contract of exportCadFile (cadexport.h), with
 /// OCCT exceptions and signals caught; a stack overflow or an endless loop inside OCCT is not,
 /// which is why Knotwork runs it in a child process. The format comes from the extension.
-bool exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,
-                    ExportReport& report, QString& error, const ImportProgress& progress = {});
+Status exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                      ExportReport& report, const ImportProgress& progress = {});
 
 /// exportOcctFile's work without the write: the file's bytes. `path` names the file in errors
 /// and in the STEP header, and its extension picks the format.
-std::optional<QByteArray> exportOcctBytes(const Scene& scene, const QString& path,
-                                          const ExportOptions& options, ExportReport& report,
-                                          QString& error, const ImportProgress& progress = {});
+Expected<QByteArray> exportOcctBytes(const Scene& scene, const QString& path,
+                                     const ExportOptions& options, ExportReport& report,
+                                     const ImportProgress& progress = {});
 
-/// The module's entry point (QLibrary resolves it by this name): calls exportOcctFile.
-/// exportOcctBytes, the bytes in *bytes.
-using OcctExportFunction = bool (*)(const Scene* scene, const QString& path,
-                                    const ExportOptions* options, QByteArray* bytes,
-                                    ExportReport* report, QString* error,
-                                    const ImportProgress* progress);
+/// The module's entry point (QLibrary resolves it by this name): exportOcctBytes. Built with
+/// the executable that loads it, so it returns the Expected itself (as OcctImportFunction).
+using OcctExportFunction = Expected<QByteArray> (*)(const Scene* scene, const QString& path,
+                                                    const ExportOptions* options,
+                                                    ExportReport* report,
+                                                    const ImportProgress* progress);
 constexpr const char* kOcctExportSymbol = "knotwork_occt_export";
 /// The module with both writers: libknotwork_occt_write.so.
 constexpr const char* kOcctWriteModuleName = "knotwork_occt_write";

@@ -475,9 +475,13 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
 
 } // namespace occt
 
-std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
-                                           const ImportProgress& progress) {
-    return occt::importShape(path, format, error, progress, {});
+Expected<ImportResult> importOcctFile(const QString& path, CadFormat format,
+                                      const ImportProgress& progress) {
+    QString error;
+    std::optional<ImportResult> read = occt::importShape(path, format, error, progress, {});
+    if (!read)
+        return Error(error, path);
+    return std::move(*read);
 }
 
 } // namespace kw

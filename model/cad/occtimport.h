@@ -12,32 +12,32 @@ namespace kw {
 /// the scene is not yet finished (finishImport closes trim loops and validates). OCCT faults
 /// that raise exceptions or signals become errors; a stack overflow or an endless loop inside
 /// OCCT cannot be caught here, which is why Knotwork runs it in a child process.
-std::optional<ImportResult> importOcctFile(const QString& path, CadFormat format, QString& error,
-                                           const ImportProgress& progress = {});
+Expected<ImportResult> importOcctFile(const QString& path, CadFormat format,
+                                      const ImportProgress& progress = {});
 
 /// importOcctFile, then the shape triangulated by OpenCASCADE (occt::meshFaces): `mesh` gets
 /// one TaggedMesh per imported surface, tagged with its id. A meshing failure is an error;
 /// faces left without triangles are warnings in the report.
-std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
-                                                  const MeshDeflection& deflection,
-                                                  TaggedMeshSet& mesh, QString& error,
-                                                  const ImportProgress& progress = {});
+Expected<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
+                                             const MeshDeflection& deflection, TaggedMeshSet& mesh,
+                                             const ImportProgress& progress = {});
 
 /// The exported entry point of the OCCT modules (QLibrary resolves it by this name): calls
-/// importOcctFile. Returns true and fills *result, or false with *error set.
-using OcctImportFunction = bool (*)(const QString& path, CadFormat format, ImportResult* result,
-                                    QString* error, const ImportProgress* progress);
+/// importOcctFile. The module is built with the executable that loads it (same compiler, same
+/// kw types: it already takes QString and ImportResult), so it returns the Expected itself.
+using OcctImportFunction = Expected<ImportResult> (*)(const QString& path, CadFormat format,
+                                                      const ImportProgress* progress);
 constexpr const char* kOcctImportSymbol = "knotwork_occt_import";
 /// The module's second entry point: importAndMeshOcctFile.
-using OcctMeshFunction = bool (*)(const QString& path, CadFormat format,
-                                  const MeshDeflection* deflection, ImportResult* result,
-                                  TaggedMeshSet* mesh, QString* error,
-                                  const ImportProgress* progress);
+using OcctMeshFunction = Expected<ImportResult> (*)(const QString& path, CadFormat format,
+                                                    const MeshDeflection* deflection,
+                                                    TaggedMeshSet* mesh,
+                                                    const ImportProgress* progress);
 constexpr const char* kOcctMeshSymbol = "knotwork_occt_mesh";
 /// The module's third entry point: each surface of a scene built as a face and meshed alone
 /// (occt::meshBuiltFaces), for `knotwork __mesh-faces`.
-using OcctMeshFacesFunction = bool (*)(const Scene* scene, double tolerance, double linear,
-                                       double angularDegrees, TaggedMeshSet* mesh, QString* error);
+using OcctMeshFacesFunction = Status (*)(const Scene* scene, double tolerance, double linear,
+                                         double angularDegrees, TaggedMeshSet* mesh);
 constexpr const char* kOcctMeshFacesSymbol = "knotwork_occt_mesh_faces";
 /// The module with every format and the mesher (all entry points): `knotwork mesh`.
 constexpr const char* kOcctModuleName = "knotwork_occt";

@@ -183,10 +183,9 @@ bool meshBuiltFaces(const Scene& scene, double tolerance, double linear, double 
 namespace kw {
 
 // Here rather than in occtimport.cpp so that the import-only modules do not link TKMesh.
-std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
-                                                  const MeshDeflection& deflection,
-                                                  TaggedMeshSet& mesh, QString& error,
-                                                  const ImportProgress& progress) {
+Expected<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat format,
+                                             const MeshDeflection& deflection, TaggedMeshSet& mesh,
+                                             const ImportProgress& progress) {
     const auto triangulate = [&](const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
                                  ImportResult& result, QString& why) {
         try {
@@ -207,7 +206,12 @@ std::optional<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat
         }
         return true;
     };
-    return occt::importShape(path, format, error, progress, triangulate);
+    QString error;
+    std::optional<ImportResult> read =
+        occt::importShape(path, format, error, progress, triangulate);
+    if (!read)
+        return Error(error, path);
+    return std::move(*read);
 }
 
 } // namespace kw

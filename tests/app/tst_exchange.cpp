@@ -143,10 +143,9 @@ Scene original(const QString& source) {
     static QHash<QString, Scene> imported;
     if (const auto it = imported.constFind(source); it != imported.constEnd())
         return *it;
-    QString error;
-    const auto r = importFile(data(source), error);
+    const auto r = importFile(data(source));
     if (!r) {
-        qWarning("%s", qPrintable(error));
+        qWarning("%s", qPrintable(r.message()));
         return Scene{};
     }
     imported.insert(source, r->scene);
@@ -286,11 +285,10 @@ void TestExchange::roundTrip() {
     ExportOptions options;
     options.igesFaces = igesFaces;
     ExportReport report;
-    QString error;
-    QVERIFY2(exportCadFile(before, path, options, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(before, path, options, report));
     QCOMPARE(report.faces, int(before.surfaces.size()));
-    const auto after = importFile(path, error);
-    QVERIFY2(after, qPrintable(error));
+    const auto after = importFile(path);
+    QVERIFY2(after, qPrintable(after.message()));
     QCOMPARE(after->scene.surfaces.size(), before.surfaces.size());
     const bool exact = ext == QLatin1String("step");
     const bool imported = source.contains(QLatin1Char('.'));
@@ -406,8 +404,7 @@ void TestExchange::unitsKept() {
     const QString path = out(QStringLiteral("unit_%1.%2").arg(lengthUnitKey(before.unit), ext));
     ExportOptions options;
     ExportReport report;
-    QString error;
-    QVERIFY2(exportCadFile(before, path, options, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(before, path, options, report));
     QFile f(path);
     QVERIFY(f.open(QIODevice::ReadOnly));
     const QByteArray text = f.readAll();
@@ -417,8 +414,8 @@ void TestExchange::unitsKept() {
                                                                        : ".MILLI.,.METRE.";
         QVERIFY2(text.contains(expected), expected.constData());
     }
-    const auto after = importFile(path, error);
-    QVERIFY2(after, qPrintable(error));
+    const auto after = importFile(path);
+    QVERIFY2(after, qPrintable(after.message()));
     QCOMPARE(after->scene.unit, before.unit);
     QCOMPARE(after->scene.surfaces.size(), before.surfaces.size());
     const double allowed = ext == QLatin1String("step") ? 0.0 : 1e-9;
@@ -453,8 +450,7 @@ void TestExchange::solidsStaySolids() {
         out(QStringLiteral("solid_") + QString(source).replace(QLatin1Char('.'), QLatin1Char('_')) +
             QLatin1Char('.') + ext);
     ExportReport report;
-    QString error;
-    QVERIFY2(exportCadFile(before, path, {}, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(before, path, {}, report));
     // Imported files: as many solids as the import marked; created ones: one.
     const int expected = source.contains(QLatin1Char('.')) ? solidCount(before) : 1;
     QVERIFY(expected > 0);
@@ -485,8 +481,8 @@ void TestExchange::solidsStaySolids() {
                  qPrintable(QStringLiteral("volume %1, expected %2")
                                 .arg(volumes[k], 0, 'g', 17)
                                 .arg(reference[k], 0, 'g', 17)));
-    const auto again = importFile(path, error);
-    QVERIFY2(again, qPrintable(error));
+    const auto again = importFile(path);
+    QVERIFY2(again, qPrintable(again.message()));
     QCOMPARE(solidCount(again->scene), expected);
     for (const Surface& s : again->scene.surfaces)
         QVERIFY2(s.solid >= 0, qPrintable(s.name)); // every face back as a face of a solid
@@ -525,9 +521,8 @@ void TestExchange::buildFaceKeepsGeometry() {
 void TestExchange::editedSolidReportsSeam() {
     const double d = 0.01;
     ExportReport report;
-    QString error;
     const QString path = out(QStringLiteral("edited_cube.step"));
-    QVERIFY2(exportCadFile(cube(d), path, {}, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(cube(d), path, {}, report));
     QCOMPARE(report.solids, 0);
     QCOMPARE(report.openShells, 1);
     QVERIFY(report.freeEdges > 0);
@@ -549,7 +544,7 @@ void TestExchange::editedSolidReportsSeam() {
     const TopoDS_Shape written = readShape(path);
     QCOMPARE(solidVolumes(written).size(), size_t(0));
     // The unedited cube: no warning at all.
-    QVERIFY2(exportCadFile(cube(), path, {}, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(cube(), path, {}, report));
     QCOMPARE(report.solids, 1);
     QVERIFY2(report.warnings.isEmpty(), qPrintable(report.warnings.join(QLatin1Char('\n'))));
 }
@@ -559,10 +554,9 @@ void TestExchange::editedSolidReportsSeam() {
 void TestExchange::editedImportedSolidUsesRecord() {
     const QString cubeStep = out(QStringLiteral("record_cube.step"));
     ExportReport report;
-    QString error;
-    QVERIFY2(exportCadFile(cube(), cubeStep, {}, report, error), qPrintable(error));
-    auto imported = importFile(cubeStep, error);
-    QVERIFY2(imported, qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(cube(), cubeStep, {}, report));
+    auto imported = importFile(cubeStep);
+    QVERIFY2(imported, qPrintable(imported.message()));
     Scene scene = imported->scene;
     QVERIFY(!scene.topology.edges.empty());
     // Below the sewing tolerance (1e-5 of the size), above the edges' own (1e-7): sewing alone
@@ -577,7 +571,7 @@ void TestExchange::editedImportedSolidUsesRecord() {
             }
     QVERIFY(moved);
     const QString path = out(QStringLiteral("record_edited.iges"));
-    QVERIFY2(exportCadFile(scene, path, {}, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(scene, path, {}, report));
     QCOMPARE(report.solids, 0);
     int seams = 0;
     for (const QString& w : report.warnings) {
@@ -604,8 +598,9 @@ void TestExchange::requireClosedLeavesFileUntouched() {
     ExportOptions options;
     options.requireClosed = true;
     ExportReport report;
-    QString error;
-    QVERIFY(!exportCadFile(cube(0.01), path, options, report, error));
+    const Status written = exportCadFile(cube(0.01), path, options, report);
+    QVERIFY(!written);
+    const QString error = written.message();
     QVERIFY2(error.startsWith(path + QLatin1Char(':')), qPrintable(error));
     QVERIFY2(error.contains(QLatin1String("closed")), qPrintable(error));
     QCOMPARE(readAll(path), QByteArray("previous contents\n"));
@@ -735,16 +730,16 @@ void TestExchange::fullDestination() {
     f.write("previous contents\n");
     f.close();
     ExportReport report;
-    QString error;
     rlimit saved{};
     QVERIFY(::getrlimit(RLIMIT_FSIZE, &saved) == 0);
     ::signal(SIGXFSZ, SIG_IGN);
     // Larger than the scene handed to the child, smaller than the STEP file.
     rlimit limited{12 * 1024, saved.rlim_max};
     QVERIFY(::setrlimit(RLIMIT_FSIZE, &limited) == 0);
-    const bool ok = exportCadFile(cube(), path, {}, report, error);
+    const Status written = exportCadFile(cube(), path, {}, report);
     QVERIFY(::setrlimit(RLIMIT_FSIZE, &saved) == 0);
-    QVERIFY(!ok);
+    QVERIFY(!written);
+    const QString error = written.message();
     QVERIFY2(error.startsWith(path + QLatin1Char(':')), qPrintable(error));
     QVERIFY2(!error.contains(QLatin1Char('\n')), qPrintable(error));
     QCOMPARE(readAll(path), QByteArray("previous contents\n"));
@@ -778,8 +773,7 @@ void TestExchange::drawReadsExports() {
         out(QStringLiteral("draw_") + QString(source).replace(QLatin1Char('.'), QLatin1Char('_')) +
             QLatin1Char('.') + ext);
     ExportReport report;
-    QString error;
-    QVERIFY2(exportCadFile(scene, path, {}, report, error), qPrintable(error));
+    KW_VERIFY_OK(exportCadFile(scene, path, {}, report));
     const QString read = ext == QLatin1String("step")
                              ? QStringLiteral("stepread {%1} s *\nset r s_1\n").arg(path)
                              : QStringLiteral("igesread {%1} r *\n").arg(path);

@@ -3,6 +3,7 @@
 #include "model/cad/igesrepair.h"
 #include "model/document/document.h"
 #include "model/nurbs/trim.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QRandomGenerator>
 #include <QTemporaryFile>
@@ -260,9 +261,8 @@ void TestCadImport::teapotIges() {
 #ifndef KW_HAVE_OCCT
     QSKIP("built without OpenCASCADE: IGES import unavailable");
 #else
-    QString error;
-    const auto r = importFile(dataFile("teapot.igs"), error);
-    QVERIFY2(r, qPrintable(error));
+    const auto r = importFile(dataFile("teapot.igs"));
+    QVERIFY2(r, qPrintable(r.message()));
     QCOMPARE(r->scene.surfaces.size(), size_t(32));
     QVERIFY(r->report.skipped.isEmpty());
     QCOMPARE(r->report.warnings.size(), 1); // the numbering repair, and nothing else
@@ -284,9 +284,8 @@ void TestCadImport::hammerIges() {
 #ifndef KW_HAVE_OCCT
     QSKIP("built without OpenCASCADE: IGES import unavailable");
 #else
-    QString error;
-    const auto r = importFile(dataFile("hammer.iges"), error);
-    QVERIFY2(r, qPrintable(error));
+    const auto r = importFile(dataFile("hammer.iges"));
+    QVERIFY2(r, qPrintable(r.message()));
     qInfo().noquote() << r->report.summary();
     QCOMPARE(r->scene.surfaces.size(), size_t(45));
     QVERIFY2(r->report.skipped.isEmpty() && r->report.warnings.isEmpty(),
@@ -307,9 +306,8 @@ void TestCadImport::screwStep() {
 #ifndef KW_HAVE_OCCT
     QSKIP("built without OpenCASCADE: STEP import unavailable");
 #else
-    QString error;
-    const auto r = importFile(dataFile("screw.step"), error);
-    QVERIFY2(r, qPrintable(error));
+    const auto r = importFile(dataFile("screw.step"));
+    QVERIFY2(r, qPrintable(r.message()));
     qInfo().noquote() << r->report.summary();
     QCOMPARE(r->scene.surfaces.size(), size_t(10));
     QVERIFY2(r->report.skipped.isEmpty() && r->report.warnings.isEmpty(),
@@ -346,11 +344,10 @@ void TestCadImport::brepRoundTrip() {
         b.Add(all, faces(k));
     const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/screw.brep");
     QVERIFY(BRepTools::Write(all, QFile::encodeName(path).constData()));
-    QString error;
-    const auto fromBrep = importFile(path, error);
-    QVERIFY2(fromBrep, qPrintable(error));
-    const auto fromStep = importFile(dataFile("screw.step"), error);
-    QVERIFY2(fromStep, qPrintable(error));
+    const auto fromBrep = importFile(path);
+    QVERIFY2(fromBrep, qPrintable(fromBrep.message()));
+    const auto fromStep = importFile(dataFile("screw.step"));
+    QVERIFY2(fromStep, qPrintable(fromStep.message()));
     QCOMPARE(fromBrep->scene.surfaces.size(), size_t(10));
     // BREP text keeps about 15 significant digits: the same surfaces up to that rounding.
     auto near = [](double x, double y) {
@@ -396,11 +393,10 @@ void TestCadImport::locatedFacesAreMoved() {
         b.Add(moved, faces(k).Moved(TopLoc_Location(trsf)));
     const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/screw_moved.brep");
     QVERIFY(BRepTools::Write(moved, QFile::encodeName(path).constData()));
-    QString error;
-    const auto a = importFile(dataFile("screw.step"), error);
-    QVERIFY2(a, qPrintable(error));
-    const auto m = importFile(path, error);
-    QVERIFY2(m, qPrintable(error));
+    const auto a = importFile(dataFile("screw.step"));
+    QVERIFY2(a, qPrintable(a.message()));
+    const auto m = importFile(path);
+    QVERIFY2(m, qPrintable(m.message()));
     QCOMPARE(m->scene.surfaces.size(), a->scene.surfaces.size());
     // A located periodic face may come out with its parameters shifted by a period, so points
     // are compared by projection: moved back, each lies on the original face's surface; and
@@ -443,12 +439,13 @@ void TestCadImport::coincidentFacesAreReported() {
     BRep_Builder b;
     const auto importShape = [&](const TopoDS_Shape& shape, const char* name) {
         const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/") + QLatin1String(name);
-        QString error;
         std::optional<ImportResult> r;
-        if (BRepTools::Write(shape, QFile::encodeName(path).constData()))
-            r = importFile(path, error);
-        if (!r)
-            qWarning("%s: %s", name, qPrintable(error));
+        if (!BRepTools::Write(shape, QFile::encodeName(path).constData()))
+            qWarning("%s: cannot write %s", name, qPrintable(path));
+        else if (Expected<ImportResult> read = importFile(path))
+            r = std::move(*read);
+        else
+            qWarning("%s: %s", name, qPrintable(read.message()));
         return r;
     };
     const auto coincidences = [](const ImportResult& r) {
@@ -536,9 +533,8 @@ void TestCadImport::coincidentFacesAreReported() {
                  lines[21].contains(QLatin1String("more pairs of coincident faces")),
              qPrintable(lines.mid(19).join('\n')));
     // A closed solid on its own: nothing.
-    QString error;
-    const auto nut = importFile(dataFile("Pump_Nut.brep"), error);
-    QVERIFY2(nut, qPrintable(error));
+    const auto nut = importFile(dataFile("Pump_Nut.brep"));
+    QVERIFY2(nut, qPrintable(nut.message()));
     QVERIFY2(coincidences(*nut).isEmpty(), qPrintable(coincidences(*nut).join('\n')));
 #endif
 }
@@ -559,9 +555,8 @@ void TestCadImport::untransferableEntityIsReported() {
     QVERIFY(out.open(QIODevice::WriteOnly));
     out.write(lines.join('\n'));
     out.close();
-    QString error;
-    const auto r = importFile(path, error);
-    QVERIFY2(r, qPrintable(error));
+    const auto r = importFile(path);
+    QVERIFY2(r, qPrintable(r.message()));
     QCOMPARE(r->scene.surfaces.size(), size_t(31));
     QCOMPARE(r->report.facesImported, 31);
     QCOMPARE(r->report.skipped.size(), 1); // counted and reported, not silently dropped
@@ -575,12 +570,12 @@ void TestCadImport::cancelStopsImport() {
     QSKIP("built without OpenCASCADE");
 #else
     int calls = 0;
-    QString error;
-    const auto r = importFile(dataFile("hammer.iges"), error, [&](int done, int total) {
+    const auto r = importFile(dataFile("hammer.iges"), [&](int done, int total) {
         ++calls;
         return done < total / 2; // cancel half way
     });
     QVERIFY(!r);
+    const QString error = r.message();
     QVERIFY2(error.contains(QLatin1String("cancelled")), qPrintable(error));
     QVERIFY(calls > 1);
 #endif
@@ -626,9 +621,9 @@ void TestCadImport::brokenFiles() {
     QFETCH(QString, name);
     QFETCH(int, mode);
     const QString path = makeBroken(source, name, mode);
-    QString error;
-    const auto r = importFile(path, error);
+    const auto r = importFile(path);
     QVERIFY(!r); // no partial scene
+    const QString error = r.message();
     QVERIFY2(error.startsWith(path + QLatin1Char(':')), qPrintable(error));
     qInfo().noquote() << error;
 #ifndef KW_HAVE_OCCT
@@ -637,16 +632,17 @@ void TestCadImport::brokenFiles() {
 }
 
 void TestCadImport::unknownFormat() {
-    QString error;
     const QString path = QStringLiteral(KW_TEST_OUTPUT_DIR "/notes.txt");
     QFile f(path);
     QVERIFY(f.open(QIODevice::WriteOnly));
     f.write("hello\n");
     f.close();
-    QVERIFY(!importFile(path, error));
-    QVERIFY(error.contains(QLatin1String("unknown file type")));
-    QVERIFY(!importFile(QStringLiteral(KW_TEST_OUTPUT_DIR "/missing.step"), error));
-    QVERIFY(error.contains(QLatin1String("no such file")));
+    const auto unknown = importFile(path);
+    QVERIFY(!unknown);
+    QVERIFY(unknown.message().contains(QLatin1String("unknown file type")));
+    const auto missing = importFile(QStringLiteral(KW_TEST_OUTPUT_DIR "/missing.step"));
+    QVERIFY(!missing);
+    QVERIFY(missing.message().contains(QLatin1String("no such file")));
 }
 
 void TestCadImport::randomDamageNeverCrashes_data() {
@@ -674,12 +670,11 @@ void TestCadImport::randomDamageNeverCrashes() {
         QVERIFY(out.open(QIODevice::WriteOnly));
         out.write(bad);
         out.close();
-        QString error;
-        const auto r = importFile(path, error);
+        const auto r = importFile(path);
         if (r)
             QVERIFY(Document::validate(r->scene).isEmpty());
         else
-            QVERIFY2(error.startsWith(path + QLatin1Char(':')), qPrintable(error));
+            QVERIFY2(r.message().startsWith(path + QLatin1Char(':')), qPrintable(r.message()));
     }
 }
 

@@ -83,9 +83,8 @@ void TestContinuityImport::closedSolids_data() {
 // different faces are OpenCASCADE's.
 void TestContinuityImport::closedSolids() {
     QFETCH(QString, file);
-    QString error;
-    const std::optional<ImportResult> r = importFile(data(file), error);
-    QVERIFY2(r, qPrintable(error));
+    const Expected<ImportResult> r = importFile(data(file));
+    QVERIFY2(r, qPrintable(r.message()));
     QElapsedTimer clock;
     clock.start();
     const ContinuityReport report = continuityReport(r->scene, {});
@@ -114,9 +113,8 @@ void TestContinuityImport::closedSolids() {
 // face of hammer.iges (docs/PERFORMANCE.md); the median of 15 runs per face. Printed, and held
 // to a bound loose enough for a loaded machine.
 void TestContinuityImport::dragStepCost() {
-    QString error;
-    const std::optional<ImportResult> r = importFile(data(QStringLiteral("hammer.iges")), error);
-    QVERIFY2(r, qPrintable(error));
+    const Expected<ImportResult> r = importFile(data(QStringLiteral("hammer.iges")));
+    QVERIFY2(r, qPrintable(r.message()));
     const Scene& scene = r->scene;
     ContinuityReport report = continuityReport(scene, {});
     std::vector<double> perFace;
@@ -154,9 +152,8 @@ void TestContinuityImport::infoContinuity() {
     const QJsonObject root = QJsonDocument::fromJson(run.out.toUtf8()).object();
     QStringList keys = root.keys();
     QCOMPARE(keys, (QStringList{"edges", "freeEdges", "tolerances"}));
-    QString error;
-    const std::optional<ImportResult> r = importFile(file, error);
-    QVERIFY2(r, qPrintable(error));
+    const Expected<ImportResult> r = importFile(file);
+    QVERIFY2(r, qPrintable(r.message()));
     const ContinuityReport report = continuityReport(r->scene, {});
     const QJsonArray edges = root[QStringLiteral("edges")].toArray();
     QCOMPARE(edges.size(), qsizetype(report.edges.size()));
@@ -202,9 +199,8 @@ void TestContinuityImport::infoContinuity() {
 
 // A project's own tolerances (saved with it) are the ones `info` judges by; options override.
 void TestContinuityImport::infoUsesTheProjectsTolerances() {
-    QString error;
-    std::optional<ImportResult> r = importFile(data(QStringLiteral("Pump_Nut.brep")), error);
-    QVERIFY2(r, qPrintable(error));
+    Expected<ImportResult> r = importFile(data(QStringLiteral("Pump_Nut.brep")));
+    QVERIFY2(r, qPrintable(r.message()));
     r->scene.continuity.g2Percent = 1000.0;
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("nut.knot"));

@@ -6,6 +6,7 @@
 #include "model/cad/handover.h"
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QFile>
 #include <QRandomGenerator>
@@ -15,7 +16,6 @@
 namespace {
 
 kw::ImportResult sample(const char* name) {
-    QString error;
     auto scene = kw::readKnotFile(QStringLiteral(KW_SAMPLES_DIR "/") + QLatin1String(name));
     if (!scene)
         qFatal("%s", qPrintable(scene.message()));
@@ -82,17 +82,17 @@ private Q_SLOTS:
         r.scene.display.pullDirection = {0.25, -1.0, 0.5};
         r.scene.display.draftAngleDegrees = 7.5;
         QVERIFY2(kw::sceneError(r.scene).isEmpty(), qPrintable(kw::sceneError(r.scene)));
-        QString why;
-        const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r), why);
-        QVERIFY2(back, qPrintable(why));
+        const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r));
+        QVERIFY2(back, qPrintable(back.message()));
         verifySame(r, *back);
     }
 
     void everyTruncationIsAnError() {
         const QByteArray block = kw::encodeImportHandover(sample("trimmed_plate.knot"));
         for (qsizetype n = 0; n < block.size(); ++n) {
-            QString why;
-            QVERIFY2(!kw::decodeImportHandover(block.left(n), why), qPrintable(QString::number(n)));
+            const auto r = kw::decodeImportHandover(block.left(n));
+            QVERIFY2(!r, qPrintable(QString::number(n)));
+            const QString why = r.message();
             QVERIFY2(why.contains(QLatin1String(" at byte ")) && why.contains(QLatin1String(": ")),
                      qPrintable(why));
         }
@@ -107,12 +107,11 @@ private Q_SLOTS:
             QByteArray bad = block;
             for (int k = 0, n = 1 + trial % 4; k < n; ++k)
                 bad[random.bounded(int(bad.size()))] = char(random.bounded(256));
-            QString why;
-            const auto r = kw::decodeImportHandover(bad, why);
+            const auto r = kw::decodeImportHandover(bad);
             if (r)
                 QVERIFY(kw::sceneError(r->scene).isEmpty());
             else
-                QVERIFY(!why.isEmpty());
+                QVERIFY(!r.message().isEmpty());
             refused += r ? 0 : 1;
         }
         QVERIFY(refused > 0);
@@ -121,29 +120,37 @@ private Q_SLOTS:
     void namedFaults() {
         const QByteArray good = kw::encodeImportHandover(sample("bicubic.knot"));
         QString why;
+        const auto refused = [&why](const QByteArray& block) {
+            const auto r = kw::decodeImportHandover(block);
+            why = r.message();
+            return !r;
+        };
         QByteArray bad = good;
         bad[0] = 'X';
-        QVERIFY(!kw::decodeImportHandover(bad, why));
-        QCOMPARE(why, QStringLiteral("header at byte 8: not a Knotwork import hand-over"));
+        const auto header = kw::decodeImportHandover(bad);
+        QVERIFY(!header);
+        QCOMPARE(header.message(),
+                 QStringLiteral("header at byte 8: not a Knotwork import hand-over"));
+        QCOMPARE(header.error().location, QStringLiteral("byte 8"));
         bad = good;
         put(bad, 8, 99);
-        QVERIFY(!kw::decodeImportHandover(bad, why));
+        QVERIFY(refused(bad));
         QVERIFY2(why.contains(QLatin1String("version 99")), qPrintable(why));
         bad = good;
         put(bad, 16, 0xffffffffu); // the surface count
-        QVERIFY(!kw::decodeImportHandover(bad, why));
+        QVERIFY(refused(bad));
         QVERIFY2(why.startsWith(QLatin1String("surface count at byte 20: a count of 4294967295")),
                  qPrintable(why));
-        QVERIFY(!kw::decodeImportHandover(good + "x", why));
+        QVERIFY(refused(good + "x"));
         QVERIFY2(why.contains(QLatin1String("1 bytes follow it")), qPrintable(why));
         // Well-formed, but not a valid scene: the rule of every reader refuses it.
         kw::ImportResult invalid = sample("bicubic.knot");
         invalid.scene.surfaces.front().geometry.degreeU = 40;
-        QVERIFY(!kw::decodeImportHandover(kw::encodeImportHandover(invalid), why));
+        QVERIFY(refused(kw::encodeImportHandover(invalid)));
         QVERIFY2(why.startsWith(QLatin1String("the scene is not valid: ")), qPrintable(why));
         kw::ImportResult faces = sample("bicubic.knot");
         faces.sourceFaces.pop_back();
-        QVERIFY(!kw::decodeImportHandover(kw::encodeImportHandover(faces), why));
+        QVERIFY(refused(kw::encodeImportHandover(faces)));
         QVERIFY2(why.contains(QLatin1String("source faces for")), qPrintable(why));
     }
 
@@ -159,10 +166,10 @@ private Q_SLOTS:
         QVERIFY(f.setPermissions(f.permissions() | QFileDevice::ExeOwner));
         kw::setCadReaderExecutable(script);
         const QString part = QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges");
-        QString error;
-        const auto r = kw::importFile(part, error);
+        const auto r = kw::importFile(part);
         kw::setCadReaderExecutable({});
         QVERIFY(!r);
+        const QString error = r.message();
 #ifdef KW_HAVE_OCCT
         QCOMPARE(error, part + QStringLiteral(": the IGES reader gave no readable result: header "
                                               "at byte 8: the block is truncated"));

@@ -2,6 +2,7 @@
 // OpenCASCADE reads them; a file whose geometry is damaged is still refused, and a file that is
 // not STEP at all says so instead of calling itself truncated.
 #include "model/cad/cadimport.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QFile>
 #include <QRegularExpression>
@@ -33,9 +34,8 @@ class TestStepLenient : public QObject {
 private Q_SLOTS:
     void unsetNamesImportWithAWarning() {
         QVERIFY(readAll(kRhino).contains("AXIS2_PLACEMENT_3D($,"));
-        QString error;
-        const auto result = importFile(kRhino, error);
-        QVERIFY2(result, qPrintable(error));
+        const auto result = importFile(kRhino);
+        QVERIFY2(result, qPrintable(result.message()));
         QCOMPARE(result->scene.surfaces.size(), size_t(3));
         QCOMPARE(result->report.skipped.size(), 0);
         // The warning says what was lenient, once.
@@ -57,8 +57,9 @@ private Q_SLOTS:
         const int open = bytes.indexOf('(', at + 16);
         const int close = bytes.indexOf(')', open);
         bytes.replace(open + 1, close - open - 1, "'x','y'");
-        QString error;
-        QVERIFY(!importFile(writeCopy(bytes, QStringLiteral("bad_point.step")), error));
+        const auto refused = importFile(writeCopy(bytes, QStringLiteral("bad_point.step")));
+        QVERIFY(!refused);
+        const QString error = refused.message();
         QVERIFY2(error.contains(QStringLiteral("corrupt STEP file")), qPrintable(error));
     }
 
@@ -71,9 +72,8 @@ private Q_SLOTS:
                      QStringLiteral("\\1('',"));
         const QByteArray bytes = text.toLatin1();
         QVERIFY(!bytes.contains("AXIS2_PLACEMENT_3D($,") && !bytes.contains("SHAPE($,"));
-        QString error;
-        const auto result = importFile(writeCopy(bytes, QStringLiteral("named.step")), error);
-        QVERIFY2(result, qPrintable(error));
+        const auto result = importFile(writeCopy(bytes, QStringLiteral("named.step")));
+        QVERIFY2(result, qPrintable(result.message()));
         for (const QString& w : result->report.warnings)
             QVERIFY2(!w.contains(QStringLiteral("not a string")), qPrintable(w));
     }
@@ -90,8 +90,9 @@ private Q_SLOTS:
         QFETCH(QByteArray, bytes);
         const QString path =
             writeCopy(bytes, QStringLiteral("garbage_%1.step").arg(QTest::currentDataTag()));
-        QString error;
-        QVERIFY(!importFile(path, error));
+        const auto refused = importFile(path);
+        QVERIFY(!refused);
+        const QString error = refused.message();
         QVERIFY2(error.startsWith(path + QStringLiteral(": ")), qPrintable(error));
         QVERIFY2(error.contains(QStringLiteral("not a STEP file")), qPrintable(error));
         QVERIFY2(error.contains(QStringLiteral("ISO-10303-21;")), qPrintable(error));
@@ -103,8 +104,9 @@ private Q_SLOTS:
     void truncatedStepSaysTruncated() {
         QByteArray bytes = readAll(kRhino);
         bytes.truncate(bytes.size() / 2);
-        QString error;
-        QVERIFY(!importFile(writeCopy(bytes, QStringLiteral("half.step")), error));
+        const auto refused = importFile(writeCopy(bytes, QStringLiteral("half.step")));
+        QVERIFY(!refused);
+        const QString error = refused.message();
         QVERIFY2(error.contains(QStringLiteral("truncated STEP file")), qPrintable(error));
     }
 };

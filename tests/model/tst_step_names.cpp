@@ -11,10 +11,9 @@ using namespace kw;
 namespace {
 
 QStringList namesOf(const QString& file) {
-    QString error;
-    const auto result = importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file, error);
+    const auto result = importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file);
     if (!result) {
-        qWarning("%s", qPrintable(error));
+        qWarning("%s", qPrintable(result.message()));
         return {};
     }
     QStringList names;

@@ -28,11 +28,12 @@ QString data(const QString& name) {
 }
 
 std::optional<ImportResult> import(const QString& name) {
-    QString error;
-    std::optional<ImportResult> r = importFile(data(name), error);
-    if (!r)
-        qWarning("%s", qPrintable(error));
-    return r;
+    Expected<ImportResult> r = importFile(data(name));
+    if (!r) {
+        qWarning("%s", qPrintable(r.message()));
+        return std::nullopt;
+    }
+    return std::move(*r);
 }
 
 double modelSize(const Scene& scene) {

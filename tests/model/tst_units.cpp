@@ -5,6 +5,7 @@
 #include "model/document/document.h"
 #include "model/io/knotfile.h"
 #include "model/nurbs/nurbs_shapes.h"
+#include "tests/support/expected_test_util.h"
 #include "ui/edit/modelcommands.h"
 
 #include <QUndoStack>
@@ -52,7 +53,6 @@ private Q_SLOTS:
         const QByteArray json = sceneToJson(s);
         QCOMPARE(QJsonDocument::fromJson(json).object().value(QStringLiteral("unit")).toString(),
                  QStringLiteral("in"));
-        QString error;
         const auto back = sceneFromJson(json, QStringLiteral("in.knot"));
         QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->unit, LengthUnit::Inch);
@@ -89,9 +89,8 @@ private Q_SLOTS:
         r.scene = sphereScene();
         r.scene.unit = LengthUnit::Foot;
         r.sourceFaces = {1};
-        QString why;
-        const auto back = decodeImportHandover(encodeImportHandover(r), why);
-        QVERIFY2(back, qPrintable(why));
+        const auto back = decodeImportHandover(encodeImportHandover(r));
+        QVERIFY2(back, qPrintable(back.message()));
         QCOMPARE(back->scene.unit, LengthUnit::Foot);
     }
 

@@ -21,7 +21,6 @@ private Q_SLOTS:
 #ifndef KW_HAVE_OCCT
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): IGES and STEP cannot be imported");
 #endif
-        QString error;
         auto made = kwtest::offscreenRenderer(QSize(1024, 1024), true);
         QVERIFY2(made, qPrintable(made.message()));
         m_renderer = std::move(made).value();
@@ -35,10 +34,9 @@ private Q_SLOTS:
 
     void facesAppearWhereTheTrimsSay() {
         QFETCH(QString, file);
-        QString error;
         const std::optional<ImportResult> imported =
-            importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file, error);
-        QVERIFY2(imported, qPrintable(error));
+            importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file);
+        QVERIFY2(imported, qPrintable(imported.message()));
         const Scene& scene = imported->scene;
         int trimmedFaces = 0;
         for (const Surface& s : scene.surfaces)

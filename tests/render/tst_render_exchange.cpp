@@ -5,6 +5,7 @@
 #include "model/cad/cadimport.h"
 #include "model/nurbs/nurbs_shapes.h"
 #include "render_test_util.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QGuiApplication>
 #include <QHash>
@@ -71,7 +72,6 @@ class TestRenderExchange : public QObject {
 
 private Q_SLOTS:
     void initTestCase() {
-        QString error;
         auto made = kwtest::offscreenRenderer(QSize(200, 150), true);
         QVERIFY2(made, qPrintable(made.message()));
         m_renderer = std::move(made).value();
@@ -84,11 +84,10 @@ private Q_SLOTS:
     }
     void sameAovAfterRoundTrip() {
         QFETCH(QString, source);
-        QString error;
         Scene before;
         if (source.contains(QLatin1Char('.'))) {
-            const auto r = importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + source, error);
-            QVERIFY2(r, qPrintable(error));
+            const auto r = importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + source);
+            QVERIFY2(r, qPrintable(r.message()));
             before = r->scene;
         } else {
             before = created(source);
@@ -97,9 +96,9 @@ private Q_SLOTS:
             QStringLiteral("exchange_") +
             QString(source).replace(QLatin1Char('.'), QLatin1Char('_')) + QStringLiteral(".step"));
         ExportReport report;
-        QVERIFY2(exportCadFile(before, path, {}, report, error), qPrintable(error));
-        const auto after = importFile(path, error);
-        QVERIFY2(after, qPrintable(error));
+        KW_VERIFY_OK(exportCadFile(before, path, {}, report));
+        const auto after = importFile(path);
+        QVERIFY2(after, qPrintable(after.message()));
         const QHash<std::uint32_t, std::uint32_t> ids = mapIds(before, after->scene);
         QCOMPARE(ids.size(), qsizetype(before.surfaces.size()));
 

@@ -153,7 +153,6 @@ class TestRenderTrimsExact : public QObject {
 private Q_SLOTS:
     void initTestCase() {
         m_renderer = std::make_unique<OffscreenRenderer>();
-        QString error;
         KW_VERIFY_OK(m_renderer->create());
         KW_VERIFY_OK(m_renderer->setSize(QSize(kSide, kSide), true));
     }
@@ -188,7 +187,6 @@ private Q_SLOTS:
         QFETCH(int, budgetKiB);
         QFETCH(int, loop);
         QFETCH(double, along);
-        QString error;
         const auto scene = loadSample(sample);
         QVERIFY2(scene, qPrintable(scene.message()));
         Document doc;
@@ -252,9 +250,8 @@ private Q_SLOTS:
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): hammer.iges cannot be imported");
 #else
         QFETCH(double, zoom);
-        QString error;
-        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
-        QVERIFY2(imported, qPrintable(error));
+        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"));
+        QVERIFY2(imported, qPrintable(imported.message()));
         Scene scene = imported->scene;
         Camera cam = fitCamera(scene, 1.0);
         if (zoom > 1.0) {
@@ -307,9 +304,8 @@ private Q_SLOTS:
 #ifndef KW_HAVE_OCCT
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): hammer.iges cannot be imported");
 #else
-        QString error;
-        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
-        QVERIFY2(imported, qPrintable(error));
+        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"));
+        QVERIFY2(imported, qPrintable(imported.message()));
         QVERIFY(m_renderer->setSize(QSize(512, 512), true));
         int faces = 0;
         long checked = 0, near = 0, lone = 0;
@@ -373,15 +369,13 @@ private Q_SLOTS:
         QFETCH(QString, model);
         QFETCH(double, zoom);
         QFETCH(bool, adaptive);
-        QString error;
         Scene scene;
         if (model == QLatin1String("hammer")) {
 #ifndef KW_HAVE_OCCT
             QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): hammer.iges cannot be imported");
 #else
-            const auto imported =
-                importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
-            QVERIFY2(imported, qPrintable(error));
+            const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"));
+            QVERIFY2(imported, qPrintable(imported.message()));
             scene = imported->scene;
 #endif
         } else {
@@ -458,7 +452,6 @@ private Q_SLOTS:
         // 256 trimmed surfaces, scaled from tiny to large on screen: the grids depend on the
         // trims alone, so the words in use are the sum of each surface's own packed grid, and
         // the buffer holds at most a quarter more (it grows by a quarter).
-        QString error;
         const auto plate = loadSample(QStringLiteral("trimmed_plate"));
         const auto star = loadSample(QStringLiteral("star_island"));
         QVERIFY(plate && star);
@@ -512,7 +505,6 @@ private Q_SLOTS:
         // The shader reads pieces and points 4 words at a time through an RGBA32UI view of the
         // array (shaders/trim_exact.glsl, kwTrimQuad): blocks, pieces and points must start on
         // a multiple of 4 words, whatever the sizes before them.
-        QString error;
         TrimGridStore store;
         std::vector<TrimGridBlock> blocks(6);
         bool grew = false;

@@ -4,6 +4,7 @@
 #include "model/io/knotfile.h"
 #include "model/nurbs/trim.h"
 #include "render/trim_grid.h"
+#include "tests/support/expected_test_util.h"
 #include "trim_test_util.h"
 
 #include <QElapsedTimer>
@@ -17,7 +18,6 @@ using namespace kwtest;
 namespace {
 
 std::vector<Surface> trimmedSurfacesOf(const QString& path) {
-    QString error;
     const auto scene = readKnotFile(path);
     if (!scene)
         qFatal("%s", qPrintable(scene.message()));
@@ -245,9 +245,8 @@ private Q_SLOTS:
 #ifndef KW_HAVE_OCCT
         QSKIP("built without OpenCASCADE (KW_HAVE_OCCT): hammer.iges cannot be imported");
 #else
-        QString error;
-        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"), error);
-        QVERIFY2(imported, qPrintable(error));
+        const auto imported = importFile(QStringLiteral(KW_TEST_DATA_DIR "/hammer.iges"));
+        QVERIFY2(imported, qPrintable(imported.message()));
         int faces = 0;
         for (const Surface& s : imported->scene.surfaces)
             if (!s.trims.empty()) {

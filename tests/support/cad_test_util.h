@@ -12,11 +12,10 @@ namespace kwtest {
 
 /// tests/data/`file` imported, or nullopt with the reason logged as a warning.
 inline std::optional<kw::Scene> importedPart(const QString& file) {
-    QString error;
-    std::optional<kw::ImportResult> imported =
-        kw::importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file, error);
+    kw::Expected<kw::ImportResult> imported =
+        kw::importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file);
     if (!imported) {
-        qWarning("%s", qPrintable(error));
+        qWarning("%s", qPrintable(imported.message()));
         return std::nullopt;
     }
     return std::move(imported->scene);

@@ -113,10 +113,9 @@ private:
 
     // The written file read back by the importer: its surface count.
     static int facesIn(const QString& path) {
-        QString error;
-        const auto r = importFile(path, error);
+        const auto r = importFile(path);
         if (!r)
-            qWarning("%s", qPrintable(error));
+            qWarning("%s", qPrintable(r.message()));
         return r ? int(r->scene.surfaces.size()) : -1;
     }
 

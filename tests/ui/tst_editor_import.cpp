@@ -280,8 +280,9 @@ private Q_SLOTS:
         QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
         QCOMPARE(out.write(bytes), bytes.size());
         out.close();
-        QString importerMessage;
-        QVERIFY(!kw::importFile(truncated, importerMessage));
+        const auto refused = kw::importFile(truncated);
+        QVERIFY(!refused);
+        const QString importerMessage = refused.message();
         QVERIFY(!importerMessage.isEmpty());
 
         openWindow();
