@@ -17,12 +17,13 @@ constexpr char kMagic[8] = {'K', 'W', 'I', 'M', 'P', 'O', 'R', 'T'};
 // 6: DisplaySettings::pullDirection, draftAngleDegrees
 // 7: Scene::continuity
 // 8: Scene::unit (Scene's size did not change: it took the padding after nextId)
-constexpr std::uint32_t kVersion = 8;
+// 9: Surface::analytic
+constexpr std::uint32_t kVersion = 9;
 constexpr std::uint32_t kEndMark = 0x454e444bu; // "KDNE"
 
 // A field added to these types must be added to the hand-over (and kVersion bumped): the sizes
 // are checked so that the build fails instead of the field being dropped on the way back.
-static_assert(sizeof(void*) != 8 || sizeof(Surface) == 248, "update the CAD hand-over");
+static_assert(sizeof(void*) != 8 || sizeof(Surface) == 432, "update the CAD hand-over");
 static_assert(sizeof(NurbsSurface) == 112, "update the CAD hand-over");
 static_assert(sizeof(NurbsCurve2) == 80, "update the CAD hand-over");
 static_assert(sizeof(TrimLoop) == 32, "update the CAD hand-over");
@@ -37,6 +38,7 @@ static_assert(sizeof(SharedEdge) == 48, "update the CAD hand-over");
 static_assert(sizeof(Shell) == 40, "update the CAD hand-over");
 static_assert(sizeof(Topology) == 48, "update the CAD hand-over");
 static_assert(sizeof(Material) == 56, "update the CAD hand-over");
+static_assert(sizeof(AnalyticForm) == 184, "update the CAD hand-over");
 
 class Writer {
 public:
@@ -150,6 +152,44 @@ NurbsCurve2 readCurve(Reader& r) {
     return c;
 }
 
+void writeAnalytic(Writer& w, const AnalyticForm& a) {
+    w.value(std::uint8_t(a.kind));
+    for (const glm::dvec3& v : {a.origin, a.xAxis, a.yAxis, a.zAxis})
+        w.value(v);
+    for (double d : {a.radius, a.minorRadius, a.semiAngle})
+        w.value(d);
+    for (const AnalyticParamMap& m : {a.u, a.v}) {
+        w.value(std::uint8_t(m.kind));
+        w.value(m.offset);
+        w.value(m.scale);
+    }
+    w.value(std::uint8_t(a.swapped));
+}
+
+AnalyticForm readAnalytic(Reader& r) {
+    AnalyticForm a;
+    const auto kind = r.value<std::uint8_t>("surface analytic kind");
+    if (kind > std::uint8_t(AnalyticForm::Kind::Torus))
+        r.fail(QStringLiteral("surface analytic kind"),
+               QStringLiteral("unknown kind %1").arg(kind));
+    a.kind = AnalyticForm::Kind(kind);
+    for (glm::dvec3* v : {&a.origin, &a.xAxis, &a.yAxis, &a.zAxis})
+        *v = r.value<glm::dvec3>("surface analytic frame");
+    for (double* d : {&a.radius, &a.minorRadius, &a.semiAngle})
+        *d = r.value<double>("surface analytic radii");
+    for (AnalyticParamMap* m : {&a.u, &a.v}) {
+        const auto mapKind = r.value<std::uint8_t>("surface analytic map");
+        if (mapKind > std::uint8_t(AnalyticParamMap::Kind::HalfAngle))
+            r.fail(QStringLiteral("surface analytic map"),
+                   QStringLiteral("unknown kind %1").arg(mapKind));
+        m->kind = AnalyticParamMap::Kind(mapKind);
+        m->offset = r.value<double>("surface analytic map");
+        m->scale = r.value<double>("surface analytic map");
+    }
+    a.swapped = r.flag("surface analytic swapped flag");
+    return a;
+}
+
 void writeSurface(Writer& w, const Surface& s) {
     w.value(s.id.value);
     w.string(s.name);
@@ -173,6 +213,7 @@ void writeSurface(Writer& w, const Surface& s) {
     w.value(std::uint8_t(s.hidden));
     w.value(std::int32_t(s.solid));
     w.value(std::uint8_t(s.outsideAlongNormal));
+    writeAnalytic(w, s.analytic);
 }
 
 Surface readSurface(Reader& r) {
@@ -202,6 +243,7 @@ Surface readSurface(Reader& r) {
     s.hidden = r.flag("surface hidden flag");
     s.solid = r.value<std::int32_t>("surface solid");
     s.outsideAlongNormal = r.flag("surface outside flag");
+    s.analytic = readAnalytic(r);
     return s;
 }
 
