@@ -435,6 +435,13 @@ bool faceBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi) {
     return true;
 }
 
+double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims) {
+    Surface s;
+    s.geometry = surface;
+    s.trims = trims;
+    return faceIntegrals(s).area;
+}
+
 FaceProperties faceProperties(const Surface& surface) {
     FaceProperties p;
     p.type = surfaceType(surface);

@@ -35,6 +35,12 @@ struct FaceIntegrals {
 FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin = glm::dvec3(0.0),
                             double relative = 1e-11);
 
+/// Area of the part of `surface` its trims keep: faceIntegrals' area, the one measure of a
+/// trimmed area (the properties panel, `knotwork info` and the tests use it). A measure over
+/// flattened trims is not enough to compare two faces at 1e-6: its polygons' chord error
+/// (1e-5 of the domain) falls differently on two parameterisations of one boundary.
+double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims);
+
 /// Axis-aligned bounds of the trimmed face: the surface sampled on a grid of the trims'
 /// parameter box (points the trims keep) and along every trim curve, then each extreme refined
 /// (Newton on the coordinate inside, golden section along a curve). False when the trims keep

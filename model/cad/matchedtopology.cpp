@@ -61,7 +61,7 @@ struct Groups {
 
 } // namespace
 
-MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
+MatchedTopology matchedTopology(const Scene& scene, double tolerance, double maxGap) {
     MatchedTopology out;
     const int n = int(scene.surfaces.size());
     QHash<SurfaceId, int> index;
@@ -202,8 +202,31 @@ MatchedTopology matchedTopology(const Scene& scene, double tolerance) {
         }
     };
     forEachRange(chosen.size(), 64, measure);
+    // Pairs too far apart to be one edge stay two free curves; shells are the groups the
+    // remaining edges join.
+    std::vector<const Pair*> withinGap;
+    std::vector<SharedEdge> edges;
+    for (size_t k = 0; k < chosen.size(); ++k) {
+        if (out.edges[k].tolerance > maxGap) {
+            const Pair& p = *chosen[k];
+            out.tooFar.push_back(
+                {{scene.surfaces[size_t(p.face[0])].id, scene.surfaces[size_t(p.face[1])].id},
+                 out.edges[k].tolerance});
+            continue;
+        }
+        withinGap.push_back(chosen[k]);
+        edges.push_back(out.edges[k]);
+    }
+    chosen = std::move(withinGap);
+    out.edges = std::move(edges);
     for (SharedEdge& e : out.edges)
         e.id = EdgeId{nextEdge++};
+    if (!out.tooFar.empty()) {
+        Groups joined(n);
+        for (const Pair* p : chosen)
+            joined.join(p->face[0], p->face[1]);
+        groups = joined;
+    }
 
     // One shell per group; closed when each of its curves is a side of an edge or collapses to
     // a point.

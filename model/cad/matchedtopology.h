@@ -5,6 +5,8 @@
 
 #include "model/document/scene.h"
 
+#include <limits>
+
 namespace kw {
 
 /// Edges and shells found for the faces scene.topology does not touch.
@@ -21,6 +23,14 @@ struct MatchedTopology {
     /// pairing with an untrimmed face's domain edge, a closed trim curve, or a curve paired
     /// twice; sewing splits and merges edges where one edge per curve pair cannot.
     int leftToSewing = 0;
+    /// Pairs that lie on one another within the matching tolerance but further apart than
+    /// `maxGap`: not made an edge, so both curves stay free boundaries of their shell (an open
+    /// seam, reported with its gap).
+    struct FarPair {
+        SurfaceId faces[2];
+        double gap = 0.0;
+    };
+    std::vector<FarPair> tooFar;
 };
 
 /// The boundaries of the faces no recorded edge or shell touches, paired where every sample of
@@ -29,6 +39,9 @@ struct MatchedTopology {
 /// keeps the pairing whose ends meet best. A group of faces joined by pairings is taken whole
 /// or not at all, so that no taken face borders one left to sewing. Cost: the continuity
 /// kernel's matching plus kw::seamGaps' measure on the pairs found (shared out over the cores).
-MatchedTopology matchedTopology(const Scene& scene, double tolerance);
+/// A pair whose measured gap exceeds `maxGap` (model units) is no edge (MatchedTopology::tooFar)
+/// and does not join its faces into one shell.
+MatchedTopology matchedTopology(const Scene& scene, double tolerance,
+                                double maxGap = std::numeric_limits<double>::infinity());
 
 } // namespace kw

@@ -58,6 +58,7 @@
 #include <algorithm>
 #include <mutex>
 #include <ostream>
+#include <set>
 #include <streambuf>
 
 namespace kw {
@@ -69,6 +70,14 @@ constexpr int kSteps = 1000;
 // open seam; farther ones are boundaries of an open shell.
 constexpr double kSeamPairing = 0.05;
 constexpr int kMaxSeamLines = 50;
+// OpenCASCADE's STEP and IGES readers keep a written p-curve only where it lies within
+// min(1, 2 x the file's precision) of its edge's 3D curve (XSAlgo_AlgoContainer::CheckPCurve,
+// in model units); beyond, they replace it by the 3D curve's projection, which moves that face's
+// trim by the gap. Boundaries found by matching that lie further apart than this (half the fixed
+// limit, for the reader's own re-fit) are written as two edges, an open seam, so every reader
+// gets each face's own trim; the file's precision is its greatest tolerance, so 2 x precision
+// covers every edge written shared.
+constexpr double kReaderKeepsPCurve = 0.5;
 
 void setUpOcctOnce() {
     static std::once_flag once;
@@ -260,9 +269,11 @@ std::vector<FreeEdge> freeEdges(const TopoDS_Shape& shape,
 }
 
 // One line per pair of free edges of two faces that lie close together (an open seam, with its
-// largest gap); a count of the other free edges (boundaries of open shells).
+// largest gap); a count of the other free edges (boundaries of open shells). Pairs of faces in
+// `reported` (index pairs, lower first) have their seam reported already, with its exact gap.
 void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& names, double diagonal,
-                     LengthUnit unit, ExportReport& report) {
+                     LengthUnit unit, const std::set<std::pair<int, int>>& reported,
+                     ExportReport& report) {
     std::vector<int> partner(edges.size(), -1);
     std::vector<double> gap(edges.size(), 0.0);
     const double reach = kSeamPairing * diagonal;
@@ -295,6 +306,9 @@ void reportFreeEdges(const std::vector<FreeEdge>& edges, const QStringList& name
         }
         // Each pair once: from the edge whose partner names it back, lower index first.
         if (partner[size_t(j)] == int(i) && size_t(j) < i)
+            continue;
+        const int fa = edges[i].face, fb = edges[size_t(j)].face;
+        if (reported.count({std::min(fa, fb), std::max(fa, fb)}))
             continue;
         if (lines++ >= kMaxSeamLines) {
             ++more;
@@ -449,6 +463,11 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
     // unit to the file's, so both are the document's and nothing is scaled.
     Interface_Static::SetIVal("xstep.cascade.unit", igesUnitFlag(scene.unit));
     UnitsMethods::SetCasCadeLengthUnit(igesUnitFlag(scene.unit));
+    // The file's precision (STEP's uncertainty, IGES's resolution) is the shape's greatest
+    // tolerance: readers take it as theirs and keep every p-curve within twice it of its edge
+    // (kReaderKeepsPCurve); OCCT's default, the average, makes them re-fit the trims of the
+    // edges whose two sides lie further apart than that.
+    Interface_Static::SetIVal("write.precision.mode", 1);
     const auto step = [&](int done) {
         return !progress || progress(done, kSteps);
     };
@@ -501,7 +520,23 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
         // edge one re-fitted p-curve and moves their trims by up to the tolerance.
         const bool hadRecord = !scene.topology.empty();
         const Topology recordOnly = scene.topology;
-        const MatchedTopology matched = matchedTopology(scene, tolerance);
+        const MatchedTopology matched = matchedTopology(scene, tolerance, kReaderKeepsPCurve);
+        // Seams left open for the readers' sake, with their gaps as measured on the exact
+        // surfaces (the free edges' report would give its coarser measure).
+        std::set<std::pair<int, int>> farFaces;
+        for (const MatchedTopology::FarPair& far : matched.tooFar) {
+            const auto index = [&](SurfaceId id) {
+                for (int k = 0; k < n; ++k)
+                    if (scene.surfaces[size_t(k)].id == id)
+                        return k;
+                return -1;
+            };
+            const int a = index(far.faces[0]), c = index(far.faces[1]);
+            if (a < 0 || c < 0)
+                continue;
+            farFaces.insert({std::min(a, c), std::max(a, c)});
+            seamLines << seamLine(names[a], names[c], far.gap, scene.unit);
+        }
         const bool anyMatched = !matched.shells.empty();
         scene.topology.edges.insert(scene.topology.edges.end(), matched.edges.begin(),
                                     matched.edges.end());
@@ -664,7 +699,11 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
         const std::vector<FreeEdge> free = freeEdges(result, ids);
         report.freeEdges = int(free.size());
         if (!hadRecord) {
-            reportFreeEdges(free, names, diagonal, scene.unit, report);
+            report.warnings << seamLines.mid(0, kMaxSeamLines);
+            if (seamLines.size() > kMaxSeamLines)
+                report.warnings
+                    << QStringLiteral("%1 more open seam(s)").arg(seamLines.size() - kMaxSeamLines);
+            reportFreeEdges(free, names, diagonal, scene.unit, farFaces, report);
         } else {
             // The record names the open seams; free edges beyond them are open boundaries.
             report.warnings << seamLines.mid(0, kMaxSeamLines);

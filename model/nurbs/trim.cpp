@@ -74,12 +74,6 @@ std::vector<double> breakpoints(const std::vector<double>& knots, int degree) {
     return out;
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1], 5 points (exact for degree 9).
-constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                               0.9061798459386640};
-constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                               0.4786286704993665, 0.2369268850561891};
-
 // The Boehm / A5.1 knot insertion on a 2D rational curve, in homogeneous coordinates.
 NurbsCurve2 insertCurveKnot(const NurbsCurve2& c, double t) {
     const int p = c.degree;
@@ -470,75 +464,6 @@ std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double
             spans.push_back({a, b});
     }
     return spans;
-}
-
-double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims,
-                          int resolution) {
-    const TrimRegion region = makeTrimRegion(trims, trimTolerance(surface));
-    const int n = std::max(resolution, 4);
-    const std::vector<double> bv = breakpoints(surface.knotsV, surface.degreeV);
-    const double maxPieceV = (bv.back() - bv.front()) / std::max(n / 4, 1);
-
-    // Outer breakpoints: the u knots (the integrand's own kinks) and the u extremes of every
-    // trim polygon (where the set of inside spans changes and the line integral has a square
-    // root singularity).
-    std::vector<double> bu = breakpoints(surface.knotsU, surface.degreeU);
-    const double u0 = bu.front(), u1 = bu.back();
-    for (const TrimPolygon& poly : region.loops) {
-        for (size_t i = 0; i < poly.size(); ++i) {
-            const double prev = poly[(i + poly.size() - 1) % poly.size()].x;
-            const double next = poly[(i + 1) % poly.size()].x;
-            const double x = poly[i].x;
-            if (((x >= prev && x >= next) || (x <= prev && x <= next)) && x > u0 && x < u1)
-                bu.push_back(x);
-        }
-    }
-    std::sort(bu.begin(), bu.end());
-    bu.erase(std::unique(bu.begin(), bu.end()), bu.end());
-    const double maxPieceU = (u1 - u0) / n;
-
-    // Integral of |Su x Sv| along v over [a, b], cut at the v knots and into short pieces.
-    auto integrateV = [&](double u, double a, double b) {
-        double sum = 0.0;
-        auto knot = std::upper_bound(bv.begin(), bv.end(), a);
-        double start = a;
-        while (start < b) {
-            const double end = (knot != bv.end() && *knot < b) ? *knot++ : b;
-            const int pieces = std::max(1, static_cast<int>(std::ceil((end - start) / maxPieceV)));
-            for (int p = 0; p < pieces; ++p) {
-                const double c0 = start + (end - start) * p / pieces;
-                const double c1 = p + 1 == pieces ? end : start + (end - start) * (p + 1) / pieces;
-                const double mid = 0.5 * (c0 + c1), half = 0.5 * (c1 - c0);
-                for (int g = 0; g < 5; ++g) {
-                    const SurfaceDerivatives d =
-                        surfaceDerivatives(surface, u, mid + half * kGaussX[g]);
-                    sum += kGaussW[g] * half * glm::length(glm::cross(d.su, d.sv));
-                }
-            }
-            start = end;
-        }
-        return sum;
-    };
-
-    double area = 0.0;
-    for (size_t k = 0; k + 1 < bu.size(); ++k) {
-        const int pieces =
-            std::max(1, static_cast<int>(std::ceil((bu[k + 1] - bu[k]) / maxPieceU)));
-        for (int p = 0; p < pieces; ++p) {
-            const double c0 = bu[k] + (bu[k + 1] - bu[k]) * p / pieces;
-            const double c1 =
-                p + 1 == pieces ? bu[k + 1] : bu[k] + (bu[k + 1] - bu[k]) * (p + 1) / pieces;
-            const double mid = 0.5 * (c0 + c1), half = 0.5 * (c1 - c0);
-            for (int g = 0; g < 5; ++g) {
-                const double u = mid + half * kGaussX[g];
-                double line = 0.0;
-                for (const Interval& span : trimRegionSpans(region, u, bv.front(), bv.back()))
-                    line += integrateV(u, span.first, span.last);
-                area += kGaussW[g] * half * line;
-            }
-        }
-    }
-    return area;
 }
 
 } // namespace kw

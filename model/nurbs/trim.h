@@ -103,14 +103,4 @@ void trimRegionContainsColumn(const TrimRegion& region, double u, const double* 
 /// parity rule, clipped to [v0, v1], sorted and disjoint. Without loops: {[v0, v1]}.
 std::vector<Interval> trimRegionSpans(const TrimRegion& region, double u, double v0, double v1);
 
-/// Area of the visible part of a surface: the integral of |Su x Sv| over the (u, v) points the
-/// trims keep (even-odd). Outer integral over u by 5-point Gauss-Legendre on pieces no wider
-/// than 1/resolution of the u domain, cut at the u knots and at the u extremes of the trim
-/// polygons; inner integral along v over the exact spans of the flattened trims (trimTolerance),
-/// cut at the v knots into pieces no wider than 4/resolution of the v domain.
-/// Precondition: a valid surface and valid trim curves. Cost ~ 5 resolution x (E + 6 resolution)
-/// for E trim polygon edges.
-double trimmedSurfaceArea(const NurbsSurface& surface, const std::vector<TrimLoop>& trims,
-                          int resolution = 128);
-
 } // namespace kw

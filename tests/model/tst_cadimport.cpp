@@ -1,4 +1,5 @@
 // IGES/STEP/BREP import compared with OpenCASCADE's own reading of the same files.
+#include "model/analysis/mass_properties.h"
 #include "model/cad/cadimport.h"
 #include "model/cad/igesrepair.h"
 #include "model/document/document.h"

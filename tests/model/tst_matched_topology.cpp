@@ -41,6 +41,7 @@ class TestMatchedTopology : public QObject {
 private Q_SLOTS:
     void closedCubeIsOneClosedShell();
     void gapIsMeasured();
+    void pairsBeyondMaxGapStayOpen();
     void looseToleranceKeepsBestPairs();
     void tJunctionLeavesGroupToSewing();
     void recordedFacesAreLeftAlone();
@@ -92,6 +93,31 @@ void TestMatchedTopology::gapIsMeasured() {
     const MatchedTopology far = matchedTopology(s, 1e-5);
     QCOMPARE(int(far.edges.size()), 10);
     QVERIFY(!far.shells[0].closed);
+}
+
+// Within the matching tolerance but beyond `maxGap` (how far apart a reader keeps two sides'
+// own p-curves on one edge): the two edges at the lifted corner are no edges but open seams
+// with their gaps, their faces still one (open) shell through the other edges.
+void TestMatchedTopology::pairsBeyondMaxGapStayOpen() {
+    const double d = 1e-4;
+    const Scene s = trimmedCube(d);
+    const MatchedTopology m = matchedTopology(s, 1e-3, 0.5 * d);
+    QCOMPARE(int(m.edges.size()), 10);
+    QCOMPARE(int(m.tooFar.size()), 2);
+    for (const MatchedTopology::FarPair& far : m.tooFar) {
+        QVERIFY2(std::abs(far.gap - d) <= 0.01 * d, qPrintable(QString::number(far.gap)));
+        QVERIFY(far.faces[0] == s.surfaces[1].id || far.faces[1] == s.surfaces[1].id);
+    }
+    for (const SharedEdge& e : m.edges)
+        QVERIFY(e.tolerance <= 0.5 * d);
+    QCOMPARE(int(m.shells.size()), 1);
+    QCOMPARE(int(m.shells[0].faces.size()), 6);
+    QVERIFY(!m.shells[0].closed);
+    // A limit above the gap keeps all twelve.
+    const MatchedTopology all = matchedTopology(s, 1e-3, 2.0 * d);
+    QCOMPARE(int(all.edges.size()), 12);
+    QVERIFY(all.tooFar.empty());
+    QVERIFY(all.shells[0].closed);
 }
 
 // A tolerance as large as the faces (the sewing tolerance of a scene whose diagonal is large

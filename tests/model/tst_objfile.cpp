@@ -1,5 +1,6 @@
 // OBJ free-form reader/writer and mesh export (model/io/objfile.h): round trips, foreign files,
 // errors.
+#include "model/analysis/mass_properties.h"
 #include "model/document/document.h"
 #include "model/io/knotfile.h"
 #include "model/io/objfile.h"

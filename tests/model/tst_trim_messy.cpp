@@ -1,6 +1,7 @@
 // Messy trim input (item 3) on the CPU: gaps and open loops are closed with a warning,
 // degenerate loops dropped with a warning, orientation does not matter, curves up to degree 15.
 #include "expected_test_util.h"
+#include "model/analysis/mass_properties.h"
 #include "model/document/document.h"
 #include "model/document/validation.h"
 #include "model/nurbs/nurbs_shapes.h"
