@@ -11,3 +11,7 @@ if(TARGET knotwork_occt_read)
               LIBS knotwork_occt_read)
 endif()
 
+# The document and project-file side: edits drop the form, undo restores it, similarities move
+# it, .knot 1.5 round trip, older files, malformed forms.
+kw_add_test(tst_analytic_document SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_analytic_document.cpp
+            LIBS knotwork_model knotwork_edit)
