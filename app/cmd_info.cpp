@@ -5,6 +5,7 @@
 #include "model/analysis/mass_properties.h"
 #include "model/cad/cadimport.h"
 #include "model/document/seamgaps.h"
+#include "model/nurbs/analytic_eval.h"
 #include "model/nurbs/trim.h"
 
 #include <QCommandLineParser>
@@ -203,6 +204,9 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
         };
         const FaceProperties& props = model.faces[k];
         o.insert(QStringLiteral("type"), surfaceTypeName(props.type));
+        // The closed form the importer kept (Surface::analytic), "none" once edited.
+        o.insert(QStringLiteral("analytic"),
+                 QString::fromLatin1(analyticKindName(s.analytic.kind)));
         o.insert(QStringLiteral("area"), props.area);
         o.insert(QStringLiteral("bbox"),
                  props.hasBounds ? bboxJson(props.lo, props.hi) : QJsonValue(QJsonValue::Null));
@@ -259,8 +263,9 @@ QString toText(const QString& file, const Scene& scene) {
                    .arg(g.countV)
                    .arg(isRational(g) ? QStringLiteral(", rational") : QString());
         const FaceProperties& props = model.faces[k];
-        out += QStringLiteral("  type %1, area %2%3\n")
+        out += QStringLiteral("  type %1 (analytic form: %2), area %3%4\n")
                    .arg(surfaceTypeName(props.type))
+                   .arg(QString::fromLatin1(analyticKindName(s.analytic.kind)))
                    .arg(props.area, 0, 'g', 12)
                    .arg(props.hasBounds
                             ? QStringLiteral(", bbox %1 .. %2").arg(text(props.lo), text(props.hi))

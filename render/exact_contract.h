@@ -34,6 +34,9 @@ constexpr int kPrepassUnit = 11;      ///< the deferred pass's input (exact_surf
 /// The deferred pass's vertex pool as RGBA32UI texels (exact_surface.frag kwVertexPool): a
 /// texture buffer, not a storage buffer, as the surface data (surface_data.glsl).
 constexpr int kVertexPoolUnit = 12;
+/// The analytic forms' rows (analytic.glsl kwAnalytic, RGBA32F texels; kw::AnalyticTable),
+/// read only by the KW_ANALYTIC programs.
+constexpr int kAnalyticUnit = 13;
 /// GpuScene's four surface-data views, bound in this order from kSurfaceTableUnit.
 constexpr int kSurfaceDataViews = 4;
 static_assert(kSurfaceIntsUnit == kSurfaceTableUnit + 1 && kControlUnit == kSurfaceTableUnit + 2 &&
@@ -50,6 +53,9 @@ constexpr int kSurfaceTableTrimRectTexel = 4; ///< the trims' (u, v) rectangle
 constexpr int kSurfaceTableTrimSizeTexel = 5; ///< the trims' size and layer
 constexpr int kSurfaceTableDataTexel = 6;     ///< control offset, countU, span-table offsets
 constexpr int kSurfaceTableIdsTexel = 7;      ///< surface id, exact trim grid's first word
+/// The analytic table: RGBA texels per surface row (kw::AnalyticEntry), by the same slot as the
+/// surface table.
+constexpr int kAnalyticTexels = 6;
 /// kw::BaseVertex as 32-bit words (the deferred pass reads the pool as words): its size and
 /// where its knot span and span scale start.
 constexpr int kBaseVertexWords = 8;
@@ -87,6 +93,8 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_TRIM_QUAD_UNIT", kTrimGridQuadUnit},
     ShaderConstant{"KW_PREPASS_UNIT", kPrepassUnit},
     ShaderConstant{"KW_VERTEX_POOL_UNIT", kVertexPoolUnit},
+    ShaderConstant{"KW_ANALYTIC_UNIT", kAnalyticUnit},
+    ShaderConstant{"KW_ANALYTIC_TEXELS", kAnalyticTexels},
     ShaderConstant{"KW_TABLE_TEXELS", kSurfaceTableTexels},
     ShaderConstant{"KW_TABLE_DOMAIN_TEXEL", kSurfaceTableDomainTexel},
     ShaderConstant{"KW_TABLE_ORIGIN_TEXEL", kSurfaceTableOriginTexel},
@@ -108,6 +116,11 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_ANALYSIS_ISOPHOTES", int(AnalysisMode::Isophotes)},
     ShaderConstant{"KW_ANALYSIS_ENVIRONMENT", int(AnalysisMode::Environment)},
     ShaderConstant{"KW_ANALYSIS_DRAFT", int(AnalysisMode::Draft)},
+    ShaderConstant{"KW_FORM_PLANE", int(AnalyticForm::Kind::Plane)},
+    ShaderConstant{"KW_FORM_CYLINDER", int(AnalyticForm::Kind::Cylinder)},
+    ShaderConstant{"KW_FORM_CONE", int(AnalyticForm::Kind::Cone)},
+    ShaderConstant{"KW_FORM_SPHERE", int(AnalyticForm::Kind::Sphere)},
+    ShaderConstant{"KW_FORM_TORUS", int(AnalyticForm::Kind::Torus)},
     ShaderConstant{"KW_SCALE_LINEAR", int(ColourScale::Linear)},
     ShaderConstant{"KW_SCALE_SYMMETRIC", int(ColourScale::Symmetric)},
     ShaderConstant{"KW_SCALE_LOG", int(ColourScale::Log)},
@@ -135,6 +148,9 @@ enum class ExactFeature : std::uint32_t {
     AovCurvature = 1u << 15, ///< KW_AOV_CURVATURE: the curvature AOV targets
     Section = 1u << 16,      ///< KW_SECTION: section planes cut at the exact point, caps
     BackFill = 1u << 17,     ///< KW_BACK_FILL: a solid's skipped side, where nothing covered
+    /// KW_ANALYTIC (with KW_RAY_NEWTON): the point under the pixel from the face's analytic
+    /// form in closed form (analytic.glsl), instead of the Newton step onto the NURBS
+    Analytic = 1u << 18,
 };
 using ExactFeatures = QFlags<ExactFeature>;
 
@@ -162,6 +178,7 @@ inline constexpr std::array kExactFeatureDefines{
     ExactFeatureDefine{ExactFeature::AovCurvature, "KW_AOV_CURVATURE"},
     ExactFeatureDefine{ExactFeature::Section, "KW_SECTION"},
     ExactFeatureDefine{ExactFeature::BackFill, "KW_BACK_FILL"},
+    ExactFeatureDefine{ExactFeature::Analytic, "KW_ANALYTIC"},
 };
 
 /// The defines of `features`, one per bit, in kExactFeatureDefines' order.

@@ -1,6 +1,7 @@
 // The exact pass's planner: variants, culling and batches from the records, no GL.
 #include "render/exact_planner.h"
 
+#include "render/analytic_table.h"
 #include "render/gpu_scene.h"
 #include "render/surface_bound.h"
 
@@ -109,6 +110,7 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
     f.setFlag(PlanFlag::Adaptive, adaptive);
     f.setFlag(PlanFlag::AffineNoNewton, options.affineWithoutNewton);
     f.setFlag(PlanFlag::Deferred, deferred);
+    f.setFlag(PlanFlag::Analytic, options.analyticFaces);
     return ExactPlanKey{scene.identity,
                         scene.layout,
                         scene.marks,
@@ -148,6 +150,13 @@ int ExactPlanner::affineSurfaces() const {
     int n = 0; // each drawn record has one command in m_variants
     for (const auto& [k, b] : m_variants)
         n += b.affine ? int(b.commands.size()) : 0;
+    return n;
+}
+
+int ExactPlanner::analyticSurfaces() const {
+    int n = 0;
+    for (const auto& [k, b] : m_variants)
+        n += b.analytic ? int(b.commands.size()) : 0;
     return n;
 }
 
@@ -238,8 +247,14 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     if (r.bounded)
         box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
     const int cells = g->polygon.cellCount();
-    const bool gather =
-        r.bounded && pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
+    // A face that kept its analytic form (unedited) has the point under the pixel in closed
+    // form, where the Newton step onto the NURBS would be taken; an affine polygon needs
+    // neither. Its program evaluates no NURBS, so the gather's per-cell data would be unused.
+    const bool analytic = key.has(PlanFlag::Adaptive) && key.has(PlanFlag::Analytic) &&
+                          !(key.has(PlanFlag::AffineNoNewton) && g->affine) && r.surface &&
+                          analyticUsable(r.surface->analytic);
+    const bool gather = !analytic && r.bounded &&
+                        pixelsPerCell(box, cells, camera.viewport, true) >= key.minCellPixels;
     // Large cells the forward way (RenderOptions::deferMaxCellPixels). The cells' size on
     // screen, not clamped to the view: in a close-up most of them lie outside it, and those
     // inside are the large ones.
@@ -258,9 +273,10 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     const bool affine =
         key.has(PlanFlag::Adaptive) && key.has(PlanFlag::AffineNoNewton) && g->affine;
     p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
-                int(forward) << 13;
+                int(forward) << 13 | int(analytic) << 14;
     if (mask)
-        p.edgeVariant = degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12;
+        p.edgeVariant =
+            degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12 | int(analytic) << 14;
     if (key.has(PlanFlag::Skirts) && g->skirtIndexOffset >= 0) {
         commands.skirt = IndirectCommand{std::uint32_t(g->skirtIndexCount), 1,
                                          std::uint32_t(g->skirtIndexOffset),
@@ -273,7 +289,8 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     // rejected ones too: 1.15x Pump_Nut's frame unsplit). Never the gather: its vertex fetches
     // and flat inputs cost every triangle, and few fragments are shaded.
     if (p.face != 0 && !key.has(PlanFlag::Antialiased))
-        p.backVariant = degrees | int(mask != nullptr) << 8 | p.face << 10 | int(affine) << 12;
+        p.backVariant = degrees | int(mask != nullptr) << 8 | p.face << 10 | int(affine) << 12 |
+                        int(analytic) << 14;
     return p;
 }
 
@@ -337,6 +354,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             pre.degreeU = r.exact->degreeU;
             pre.degreeV = r.exact->degreeV;
             pre.affine = (p.variant >> 12) & 1;
+            pre.analytic = (p.variant >> 14) & 1;
             pre.route = p.route();
         }
         p.prepassIndex = int(pre.commands.size());
@@ -356,6 +374,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         b.trimmed = (p.variant >> 8) & 1;
         b.gather = (p.variant >> 9) & 1;
         b.affine = (p.variant >> 12) & 1;
+        b.analytic = (p.variant >> 14) & 1;
         b.face = p.face;
     }
     p.index = int(b.commands.size());

@@ -33,6 +33,7 @@ struct ExactBatch {
     int degreeU = 1, degreeV = 1;
     bool trimmed = false, gather = false;
     bool affine = false; ///< the polygon is the surface: no Newton step (variant bit 12)
+    bool analytic = false; ///< the point from the analytic form in closed form (bit 14)
     int route = 0;       ///< pre-pass batches of the deferred pass: ExactPlace::route
     int face = 0;        ///< the triangles skipped: ExactPlace::face
     std::vector<IndirectCommand> commands;
@@ -41,7 +42,7 @@ struct ExactBatch {
 
 /// Where a record's commands are in the planned batches. `variant` packs what selects its
 /// batch: degrees (bits 0-7, 4 each), the trim lookup (8), the gather (9), the side culled
-/// (10-11), affine (12), large cells drawn the forward way (13).
+/// (10-11), affine (12), large cells drawn the forward way (13), the analytic form (14).
 struct ExactPlace {
     bool drawn = false;  ///< has exact data and a table row
     bool culled = false; ///< left out as outside the view
@@ -52,21 +53,23 @@ struct ExactPlace {
     int index = -1; ///< its command in that batch
     bool prepassTrimmed = false;
     int prepassIndex = -1; ///< its command in plain() or trimmedPrepass() (pre-pass)
-    /// Trimmed: its batch in trimmedPrepass(), keyed by the variant's degree, face and affine
-    /// bits.
-    int prepassKey() const { return variant & (0xff | 3 << 10 | 1 << 12); }
+    /// Trimmed: its batch in trimmedPrepass(), keyed by the variant's degree, face, affine and
+    /// analytic bits.
+    int prepassKey() const { return variant & (0xff | 3 << 10 | 1 << 12 | 1 << 14); }
     /// Its trimmed pre-pass batch: by prepassKey, and with the deferred pass by whether it has
     /// a route.
     int trimmedPreKey(bool deferred) const {
         return prepassKey() | (deferred && route() < 0 ? 1 << 9 : 0);
     }
-    /// Its route in the deferred pass: what that pass's program depends on, the degrees and
-    /// affine bits; -1 for the surfaces the forward pass draws (variant bit 13: cells of many
-    /// pixels each, where a pixel is shaded about once anyway).
-    int route() const { return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12); }
+    /// Its route in the deferred pass: what that pass's program depends on, the degrees,
+    /// affine and analytic bits; -1 for the surfaces the forward pass draws (variant bit 13:
+    /// cells of many pixels each, where a pixel is shaded about once anyway).
+    int route() const {
+        return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14);
+    }
     /// Its untrimmed pre-pass batch in plain(): by face, and with the deferred pass by route
     /// too (each route's pre-pass writes its own stencil value).
-    int plainKey(bool deferred) const { return face << 14 | (deferred ? route() & 0x1fff : 0); }
+    int plainKey(bool deferred) const { return face << 16 | (deferred ? route() & 0xffff : 0); }
     /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
     /// plain() (this command), those near a curve in trimmedPrepass() (prepassIndex).
     bool split = false;
@@ -98,6 +101,7 @@ enum class PlanFlag : std::uint32_t {
     Adaptive = 1u << 6,       ///< adaptive partitions: the exact shaders' Newton step
     AffineNoNewton = 1u << 7, ///< RenderOptions::affineWithoutNewton
     Deferred = 1u << 8,       ///< the deferred exact pass (pre-pass batches by route)
+    Analytic = 1u << 9,       ///< RenderOptions::analyticFaces
 };
 using PlanFlags = QFlags<PlanFlag>;
 
@@ -195,6 +199,8 @@ public:
     std::int64_t trimmedAwayCells() const { return m_trimmedAway; }
     /// Surfaces drawn without the Newton step (affine), and those the deferred pass shades.
     int affineSurfaces() const;
+    /// Surfaces shaded from their analytic form (ExactBatch::analytic).
+    int analyticSurfaces() const;
     int deferredSurfaces() const;
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the

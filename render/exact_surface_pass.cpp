@@ -28,7 +28,7 @@ void ExactSurfacePass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
 
 ExactVariant ExactSurfacePass::variant(int p, int q, int lightCount, const RenderOptions& options,
                                        bool trimmed, bool gatherAllowed, TrimAa trimAa, bool skirt,
-                                       bool affine) {
+                                       bool affine, bool analytic) {
     ExactVariant v{p, q, lightCount, options.analysis.mode,
                    analysisFeatures(options.analysis, options.writeCurvatureAov)};
     ExactFeatures& f = v.features;
@@ -52,6 +52,10 @@ ExactVariant ExactSurfacePass::variant(int p, int q, int lightCount, const Rende
     f.setFlag(ExactFeature::TrimAa, trimmed && trimAa != TrimAa::Off);
     f.setFlag(ExactFeature::TrimEdge, trimmed && trimAa == TrimAa::Edge);
     f.setFlag(ExactFeature::Section, !options.sections.empty());
+    // The closed form replaces the Newton step: only where that step is taken.
+    f.setFlag(ExactFeature::Analytic, analytic && f.testFlag(ExactFeature::RayNewton));
+    if (f.testFlag(ExactFeature::Analytic))
+        f.setFlag(ExactFeature::CellGather, false);
     return v;
 }
 
@@ -144,10 +148,11 @@ Status ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
             continue;
         const bool onRay = b->trimmed && atRay && !b->affine;
         const ExactFeatures trims = b->trimmed ? trimFeatures : ExactFeatures();
-        const ExactVariant v =
+        ExactVariant v =
             onRay ? ExactVariant{b->degreeU, b->degreeV, int(lights.size()), AnalysisMode::Phong,
                                  ExactFeature::RayNewton | ExactFeature::DepthOnly | trims | output}
                   : ExactVariant{0, 0, 1, AnalysisMode::Phong, trims | output};
+        v.features.setFlag(ExactFeature::Analytic, onRay && b->analytic);
         const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
             QStringLiteral("surface.vert"),
             onRay ? QStringLiteral("exact_surface.frag") : QStringLiteral("depth_only.frag"),
@@ -243,6 +248,7 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     trimTestedCells = prepass ? m_plan.trimTestedCells() : 0;
     trimmedAwayCells = prepass ? m_plan.trimmedAwayCells() : 0;
     affineSurfaces = m_plan.affineSurfaces();
+    analyticSurfaces = m_plan.analyticSurfaces();
     const std::map<int, ExactBatch>& variants = m_plan.variants();
     if (variants.empty())
         return ok(); // nothing to draw
@@ -308,7 +314,7 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
         const Expected<QOpenGLShaderProgram*> built =
             m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
                                variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                       b.gather, trimAa, false, b.affine)
+                                       b.gather, trimAa, false, b.affine, b.analytic)
                                    .defines());
         if (!built)
             return built.error();
@@ -339,7 +345,7 @@ Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& 
     Status drawn;
     for (const auto& [key, b] : m_plan.backFaces()) {
         ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                 false, TrimAa::Off, false, b.affine);
+                                 false, TrimAa::Off, false, b.affine, b.analytic);
         v.features.setFlag(ExactFeature::ExactDepth, false);
         v.features |= ExactFeature::BackFill;
         const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
@@ -449,7 +455,7 @@ void ExactSurfacePass::releaseDeferred() {
 ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
                                                const RenderOptions& options) {
     ExactVariant v = variant(route & 15, (route >> 4) & 15, lightCount, options, false, false,
-                             TrimAa::Off, false, (route >> 12) & 1);
+                             TrimAa::Off, false, (route >> 12) & 1, (route >> 14) & 1);
     v.features |= ExactFeature::Deferred;
     return v;
 }

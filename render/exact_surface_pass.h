@@ -62,13 +62,16 @@ public:
     /// skirt pass's variant (ExactFeature::Skirt: its own Newton solve and trim test, the
     /// strip's depth; no gather, no RayNewton, no ExactDepth). `affine`: the surface is its own
     /// polygon (SurfaceGpu::affine), whose (u, v) is already the point under the pixel: no
-    /// Newton step (no RayNewton) in adaptive mode.
+    /// Newton step (no RayNewton) in adaptive mode. `analytic`: the surface's analytic form
+    /// gives the point under the pixel in closed form (ExactFeature::Analytic, with RayNewton
+    /// in adaptive mode; never with the gather, which only serves the NURBS evaluation).
     enum class TrimAa { Off, Opaque, Edge };
     static ExactVariant variant(int p, int q, int lightCount, const RenderOptions& options,
                                 bool trimmed = false, bool gatherAllowed = true,
                                 TrimAa trimAa = TrimAa::Off, bool skirt = false,
-                                bool affine = false);
-    /// The deferred pass's program of `route` (ExactPlace::route: degrees and the affine bit).
+                                bool affine = false, bool analytic = false);
+    /// The deferred pass's program of `route` (ExactPlace::route: degrees, the affine and the
+    /// analytic bits).
     static ExactVariant deferredVariant(int route, int lightCount, const RenderOptions& options);
 
     int drawCalls = 0;        ///< counted by draw; the renderer zeroes it per frame
@@ -83,6 +86,8 @@ public:
     /// FrameReport::Partitions::affineSurfaces of the last draw: in adaptive mode, the surfaces
     /// drawn without the Newton step because their polygon is the surface.
     int affineSurfaces = 0;
+    /// FrameReport::Partitions::analyticSurfaces of the last draw.
+    int analyticSurfaces = 0;
     /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
     int deferredSurfaces = 0;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small

@@ -106,6 +106,9 @@ struct FrameReport {
         /// ray, because they are affine in (u, v) (planes: kw::surfaceIsAffine) and their
         /// polygon's (u, v) is already the point under the pixel.
         int affineSurfaces = 0;
+        /// Adaptive exact frames: the surfaces shaded from their analytic form in closed form
+        /// (RenderOptions::analyticFaces), not by the Newton step onto their NURBS.
+        int analyticSurfaces = 0;
         /// Surfaces shaded by the deferred exact pass (RenderOptions::deferredPass) in the
         /// last aliased frame; 0 when every surface was drawn the forward way.
         int deferredSurfaces = 0;

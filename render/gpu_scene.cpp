@@ -531,7 +531,8 @@ void GpuScene::residentBytes(GpuBytes& out) const {
                         m_pools.outlines.residentBytes() + m_pools.skirtVertices.residentBytes() +
                         m_pools.skirtIndices.residentBytes();
     out.perSurface +=
-        std::int64_t(m_table.capacity) * std::int64_t(sizeof(SurfaceTableEntry) + sizeof(int));
+        std::int64_t(m_table.capacity) * std::int64_t(sizeof(SurfaceTableEntry) + sizeof(int)) +
+        m_analytic.bytes();
     out.tessellatedMeshes += m_meshBytes; // kept by syncMesh, syncNet and drop
     out.controlNets += m_netBytes;
     out.trimMasks += m_masks.residentBytes();
@@ -561,6 +562,7 @@ void GpuScene::release() {
             if (*b)
                 m_gl->glDeleteBuffers(1, b), *b = 0;
         m_table = Table{};
+        m_analytic.release(m_gl);
         for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
                            &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
             p->release();

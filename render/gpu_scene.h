@@ -7,6 +7,7 @@
 #include "model/document/document.h"
 #include "model/error.h"
 #include "render/adaptive_partitions.h"
+#include "render/analytic_table.h"
 #include "render/exact_contract.h"
 #include "render/frame_report.h"
 #include "render/gpu_pool.h"
@@ -236,6 +237,8 @@ private:
         GLuint buffer = 0, instances = 0;
         int capacity = 0;
     } m_table;
+    /// The analytic forms' rows, by the table's slots (written with the table's rows).
+    AnalyticTable m_analytic;
     GLuint m_triangleVao = 0, m_outlineVao = 0, m_skirtVao = 0, m_finVao = 0;
     /// Texture buffer views: the table as RGBA32F and as RGBA32I, the control and span pools.
     GLuint m_views[kSurfaceDataViews] = {0, 0, 0, 0};

@@ -8,6 +8,7 @@ namespace kw {
 void GpuScene::bindSurfaceData() const {
     for (int k = 0; k < kSurfaceDataViews; ++k)
         m_gl->glBindTextureUnit(GLuint(kSurfaceTableUnit + k), m_views[k]);
+    m_analytic.bind(m_gl);
     m_gl->glBindVertexArray(m_triangleVao);
 }
 
@@ -22,6 +23,7 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
         t.capacity = 0;
         t.rows.clear();
         t.freeSlots.clear();
+        m_analytic.release(gl);
     } else {
         int lo = int(t.rows.size()), hi = -1;
         for (const SurfaceRecord* r : records) {
@@ -77,6 +79,7 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
             gl->glNamedBufferSubData(t.buffer, GLintptr(lo) * sizeof(SurfaceTableEntry),
                                      GLsizeiptr(hi - lo + 1) * sizeof(SurfaceTableEntry),
                                      t.rows.data() + lo);
+        m_analytic.sync(gl, records, int(t.rows.size()));
     }
     // BaseVertex's attributes 0-3 from binding 0, at `base` bytes into each vertex; the surface
     // index at 4, one int per instance from binding 1 (a draw's base instance picks its row).

@@ -124,6 +124,12 @@ struct RenderOptions {
     /// its polygon's (u, v) without the Newton step. The same pixels; off only to measure
     /// what it saves.
     bool affineWithoutNewton = true;
+    /// Adaptive partitions: a face that kept the analytic form of its source (Surface::analytic:
+    /// a plane, cylinder, cone, sphere or torus, unedited) is shaded at the point where the
+    /// pixel's ray meets that form, found in closed form (a quadratic, a quartic for the
+    /// torus), instead of by the Newton step onto the NURBS (docs/RENDERING.md, "Analytic
+    /// faces in closed form"). The same surface to float precision; off only to compare.
+    bool analyticFaces = true;
     /// Silhouette fins (kw::buildFins) with the edge skirts; off only to measure what they
     /// cover and cost.
     bool silhouetteFins = true;

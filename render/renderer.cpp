@@ -120,6 +120,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     exact.culled = exact.solidsBackCulled = 0;
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.affineSurfaces = 0;
+    exact.analyticSurfaces = 0;
     exact.deferredSurfaces = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
@@ -277,6 +278,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
     report.partitions.skirtTriangles = exact.skirtTriangles;
     report.partitions.affineSurfaces = exact.affineSurfaces;
+    report.partitions.analyticSurfaces = exact.analyticSurfaces;
     report.partitions.deferredSurfaces = exact.deferredSurfaces;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();

@@ -16,7 +16,8 @@
 // which tests the trims at the point under the pixel and shades nothing), KW_SECTION (section
 // planes cut the exact point; caps where a closed solid is seen from inside; section.glsl),
 // KW_BACK_FILL (a closed solid's skipped side, drawn last where nothing nearer covered a pixel:
-// kw::ExactSurfacePass::backFacePass).
+// kw::ExactSurfacePass::backFacePass), KW_ANALYTIC (with KW_RAY_NEWTON: the point under the
+// pixel from the face's analytic form in closed form, analytic.glsl, instead of the Newton step).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"
@@ -387,6 +388,9 @@ vec2 kwOntoRay(vec2 uv, out float residual) {
     return clamp(uv + step, uDomain.xz, uDomain.yw);
 }
 
+#ifdef KW_ANALYTIC
+#include "analytic.glsl"
+#endif
 #endif
 
 #ifdef KW_GBUFFER
@@ -433,8 +437,13 @@ void main() {
     // as kw::surfacePoint does, instead of extrapolating the boundary span's polynomial.
     vec2 uv = clamp(vUv, uDomain.xz, uDomain.yw);
 #ifdef KW_RAY_NEWTON
+#ifdef KW_ANALYTIC
+    SurfaceSample s;
+    vec2 onto = kwAnalyticPoint(uv, span, vSpanScale, s);
+#else
     float before;
     vec2 onto = kwOntoRay(uv, before);
+#endif
 #ifndef KW_TRIM_AA
     // The trims are tested at the point under the pixel, as the depth pre-pass does
     // (KW_DEPTH_ONLY): at the polygon's (u, v), up to the tolerance away, a pixel centre just
@@ -454,6 +463,9 @@ void main() {
     // for those fragments. A loop, not an `if`: SIMD lanes (llvmpipe's, a GPU's) run an `if`
     // body under a mask for the whole group, but leave a loop once no lane is left in it, so
     // the rare undo costs an evaluation only where some fragment of the block needs it.
+#ifdef KW_ANALYTIC
+    uv = onto; // on the ray already, in closed form
+#else
     SurfaceSample s;
     vec2 at = onto;
     for (int round = 0; round < 2; ++round) {
@@ -464,6 +476,7 @@ void main() {
         at = uv;
     }
     uv = at;
+#endif
     // Near a fold (a silhouette) the polygon's triangle in front can span, in (u, v), past the
     // fold onto the hidden sheet behind it, and the point found is then the ray's far meeting
     // with the surface; lit with its normal turned to the eye (phong), it showed as a black
@@ -473,9 +486,11 @@ void main() {
     // parabola about the fold, symmetric along the ray, so the near point's normal is this
     // one with its component along the ray reversed (its depth differs by a fraction of the
     // pixel's footprint along the ray).
+#ifndef KW_ANALYTIC // the closed form found the meeting in front (kwAnalyticPoint)
     vec3 ray = normalize(s.point - uEye);
     if ((dot(s.normal, ray) < 0.0) != KW_FRONT_FACING)
         s.normal -= 2.0 * dot(s.normal, ray) * ray;
+#endif
 #else
     SurfaceSample s = evaluateSurface(uv, vSpan, vSpanScale);
 #endif

@@ -1,6 +1,7 @@
 // ModelingTools: Create / Modify actions and the commands they push.
 #include "ui/modelingtools.h"
 
+#include "model/nurbs/analytic_eval.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "model/nurbs/nurbs_shapes.h"
 #include "ui/curvetool.h"
@@ -291,6 +292,8 @@ bool ModelingTools::duplicateSelected() {
             l.id = {};
         for (glm::dvec3& p : copy.geometry.points)
             p += offset;
+        // The copy is the face moved: its closed form moves with it (Surface::analytic).
+        copy.analytic = analyticTransformed(copy.analytic, glm::dmat3(1.0), offset);
         copy.name = uniqueName(copy.name.section(QLatin1Char(' '), 0, 0));
         if (auto c = AddSurface::create(m_doc, std::move(copy))) {
             copies.push_back(c->surfaceId());

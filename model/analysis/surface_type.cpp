@@ -51,6 +51,22 @@ QString surfaceTypeName(SurfaceType type) {
 }
 
 SurfaceType surfaceType(const Surface& surface, double relative) {
+    // The importer's closed form, while the face is unedited (Document drops it on an edit),
+    // is the file's own statement of the type: no sampling tolerance decides it.
+    switch (surface.analytic.kind) {
+    case AnalyticForm::Kind::None:
+        break;
+    case AnalyticForm::Kind::Plane:
+        return SurfaceType::Plane;
+    case AnalyticForm::Kind::Cylinder:
+        return SurfaceType::Cylinder;
+    case AnalyticForm::Kind::Cone:
+        return SurfaceType::Cone;
+    case AnalyticForm::Kind::Sphere:
+        return SurfaceType::Sphere;
+    case AnalyticForm::Kind::Torus:
+        return SurfaceType::Torus;
+    }
     const NurbsSurface& g = surface.geometry;
     if (!surfaceValidationError(g).empty())
         return SurfaceType::FreeForm;

@@ -14,7 +14,8 @@ enum class SurfaceType { Plane, Cylinder, Cone, Sphere, Torus, FreeForm };
 /// "plane", "cylinder", "cone", "sphere", "torus" or "free-form".
 QString surfaceTypeName(SurfaceType type);
 
-/// The type of the part of `surface` its trims keep (the whole domain without trims): the
+/// The kind of the importer's closed form when the surface has one (Surface::analytic); else
+/// the type of the part of `surface` its trims keep (the whole domain without trims): the
 /// surface is sampled on a 9 x 9 grid of the trims' parameter box (kw::trimParameterBox) and
 /// each sample the trims keep (every sample, when they keep fewer than 12: a sliver) has its
 /// curvature (surfaceCurvature) tested, with `relative` times the samples'

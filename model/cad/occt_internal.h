@@ -83,6 +83,17 @@ bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
                  bool dropNaturalBoundary, QString& why, QStringList& warnings,
                  FaceEdges* edges = nullptr);
 
+/// The closed form of `face`'s surface (plane, cylinder, cone, sphere or torus, also behind a
+/// rectangular trim; the face's location applied), with the maps from the parameters of
+/// `geometry`, the NURBS convertFace made of it: fitted from the surface's points at its knots,
+/// then kept only where analyticDeviation(form, geometry) <= max(1e-9 x the control net's
+/// diagonal, the face's tolerance), and at most analyticMatchLimit (what a .knot file may hold);
+/// Kind::None otherwise and for every other surface.
+/// `deviation`, when given, gets the measured deviation (-1 when none was measured). OCCT
+/// exceptions are the caller's to catch.
+AnalyticForm analyticFormOf(const TopoDS_Face& face, const NurbsSurface& geometry,
+                            double* deviation = nullptr);
+
 /// Records in scene.topology what the imported faces share (model/document/topology.h): every edge
 /// of `shape` of which exactly two trim curves were made (`faceEdges[k]` is convertFace's `edges`
 /// for scene.surfaces[k]), with its number in TopExp::MapShapes(shape, TopAbs_EDGE) as id and

@@ -312,6 +312,8 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
             QStringLiteral("invalid surface after conversion: %1").arg(QString::fromStdString(bad));
         return false;
     }
+    // The file's closed form, for the renderer's closed-form intersection (Surface::analytic).
+    out.analytic = analyticFormOf(original, out.geometry);
 
     // Wires: the outer one first, then the holes, each in the order the wire runs.
     std::vector<TopoDS_Wire> wires;

@@ -4,6 +4,7 @@
 #include "model/analysis/continuity.h"
 #include "model/document/seamkeeper.h"
 #include "model/document/validation.h"
+#include "model/nurbs/analytic_eval.h"
 
 #include <QHashFunctions>
 #include <algorithm>
@@ -153,6 +154,10 @@ Status Document::resetScene(Scene scene) {
     for (const Surface& s : m_scene.surfaces)
         if (s.solid >= 0)
             m_markedFaces.insert(s.id, MarkedFace{s.solid, shapeDigest(s)});
+    m_analyticOrigins.clear();
+    for (const Surface& s : m_scene.surfaces)
+        if (s.analytic.kind != AnalyticForm::Kind::None)
+            m_analyticOrigins.insert(s.id, AnalyticOrigin{s.geometry, s.analytic});
     const std::uint64_t rev = nextRevision();
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
@@ -177,6 +182,9 @@ bool Document::insertSurface(int index, Surface surface) {
     }
     const SurfaceId id = surface.id;
     surface.solid = -1; // joins no solid: its siblings' marks may have been cleared meanwhile
+    if (surface.analytic.kind != AnalyticForm::Kind::None &&
+        !m_analyticOrigins.contains(surface.id))
+        m_analyticOrigins.insert(surface.id, AnalyticOrigin{surface.geometry, surface.analytic});
     Q_EMIT surfaceAboutToBeInserted(index);
     m_scene.surfaces.insert(m_scene.surfaces.begin() + index, std::move(surface));
     const std::uint64_t rev = nextRevision();
@@ -608,6 +616,8 @@ void Document::bump(SurfaceId id, Aspects aspects) {
     if (aspects & Aspect::Display)
         r.display = rev;
     Surface& s = m_scene.surfaces[index];
+    if (aspects & (Aspect::Points | Aspect::Knots))
+        reviewAnalytic(s);
     const int solid = aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)
                           ? std::exchange(s.solid, -1)
                           : -1;
@@ -615,6 +625,20 @@ void Document::bump(SurfaceId id, Aspects aspects) {
     openSolid(solid);
     if (aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims))
         closeSolid(id);
+}
+
+// The form `s` has after a change of its geometry (m_analyticOrigins): the one it came in with
+// while its NURBS is that one again, that form moved by the similarity that moved the NURBS,
+// else none. Taken on every drag step of an analytic face: two comparisons of its net.
+void Document::reviewAnalytic(Surface& s) const {
+    const auto origin = m_analyticOrigins.constFind(s.id);
+    if (origin == m_analyticOrigins.cend())
+        s.analytic = {};
+    else if (s.geometry == origin->geometry)
+        s.analytic = origin->form;
+    else
+        s.analytic =
+            analyticFollow(origin->form, origin->geometry, s.geometry).value_or(AnalyticForm{});
 }
 
 // A face of `solid` changed shape or went away: a seam may be open, and through it the other

@@ -197,6 +197,18 @@ private:
         size_t shape = 0;
     };
     QHash<SurfaceId, MarkedFace> m_markedFaces;
+    /// The closed form a face came in with (a reset, or its first insertion) and the NURBS it
+    /// describes (Surface::analytic). After any change of the face's geometry (bump, Points or
+    /// Knots) the face has the form again where its NURBS is that NURBS (an undo restores the
+    /// very values), the form moved along where its NURBS is a similarity of it (a move, a
+    /// rotation, a uniform scale, a unit conversion: analyticFollow), and none otherwise. The
+    /// record outlives the face's removal, so the undo of an edit made before it still finds it.
+    struct AnalyticOrigin {
+        NurbsSurface geometry;
+        AnalyticForm form;
+    };
+    QHash<SurfaceId, AnalyticOrigin> m_analyticOrigins;
+    void reviewAnalytic(Surface& s) const;
     /// What the removal of a surface or a trim loop took out of the scene's topology (edges
     /// with a side on it, its place in its shell, the shells' `closed`), by the id of what was
     /// removed: ids are never reused, so only the undo of that removal brings the same id back,

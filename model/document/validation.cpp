@@ -3,6 +3,7 @@
 #include "model/document/validation.h"
 
 #include "model/analysis/continuity.h"
+#include "model/nurbs/analytic_eval.h"
 
 #include <algorithm>
 #include <cmath>
@@ -163,6 +164,9 @@ QString surfaceError(const Surface& s) {
         e = partitionsError(s.partitionsU, s.partitionsV);
     if (e.isEmpty())
         e = materialError(s.material);
+    if (e.isEmpty())
+        if (const std::string a = analyticFormError(s.analytic, s.geometry); !a.empty())
+            e = QStringLiteral("analytic form: ") + QString::fromStdString(a);
     if (e.isEmpty() && s.solid < -1)
         e = QStringLiteral("solid number %1 is negative").arg(s.solid);
     if (e.isEmpty() && s.trims.size() > size_t(kMaxTrimLoops))

@@ -51,8 +51,10 @@ int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start = nullptr, glm::dvec2
 /// kMaxCurvePoints control points; the loop closed (trimLoopOpenAt).
 QString trimLoopError(const TrimLoop& loop);
 /// A valid id, geometry valid (kw::surfaceValidationError) with at most kMaxControlPoints,
-/// partitions in range, material valid, at most kMaxTrimLoops loops, every trim loop valid and
-/// loop ids unique within the surface. Ids against other surfaces are the scene's business.
+/// partitions in range, material valid, its analytic form valid for its NURBS
+/// (kw::analyticFormError; whether the form matches the NURBS is the .knot reader's check), at
+/// most kMaxTrimLoops loops, every trim loop valid and loop ids unique within the surface. Ids
+/// against other surfaces are the scene's business.
 QString surfaceError(const Surface& surface);
 /// A whole scene: at most kMaxSurfaces surfaces, each valid; surface and loop ids unique
 /// across the scene (one counter) and below nextId; lights valid; the topology's references

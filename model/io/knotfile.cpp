@@ -4,6 +4,7 @@
 
 #include "model/io/inputcheck.h"
 #include "model/io/savefile.h"
+#include "model/nurbs/analytic_eval.h"
 
 #include <QFile>
 #include <QFileInfo>
@@ -55,6 +56,34 @@ QJsonObject materialToJson(const Material& m) {
     return o;
 }
 
+QJsonObject mapToJson(const AnalyticParamMap& m) {
+    return QJsonObject{{QStringLiteral("map"), m.kind == AnalyticParamMap::Kind::HalfAngle
+                                                   ? QStringLiteral("halfAngle")
+                                                   : QStringLiteral("linear")},
+                       {QStringLiteral("offset"), m.offset},
+                       {QStringLiteral("scale"), m.scale}};
+}
+
+// Only the members the kind uses are written (docs/FILE_FORMAT.md, Analytic).
+QJsonObject analyticToJson(const AnalyticForm& f) {
+    QJsonObject o{{QStringLiteral("kind"), QString::fromLatin1(analyticKindName(f.kind))},
+                  {QStringLiteral("origin"), toJson(f.origin)},
+                  {QStringLiteral("xAxis"), toJson(f.xAxis)},
+                  {QStringLiteral("yAxis"), toJson(f.yAxis)},
+                  {QStringLiteral("zAxis"), toJson(f.zAxis)},
+                  {QStringLiteral("u"), mapToJson(f.u)},
+                  {QStringLiteral("v"), mapToJson(f.v)}};
+    if (f.kind != AnalyticForm::Kind::Plane)
+        o.insert(QStringLiteral("radius"), f.radius);
+    if (f.kind == AnalyticForm::Kind::Torus)
+        o.insert(QStringLiteral("minorRadius"), f.minorRadius);
+    if (f.kind == AnalyticForm::Kind::Cone)
+        o.insert(QStringLiteral("semiAngle"), f.semiAngle);
+    if (f.swapped)
+        o.insert(QStringLiteral("swapped"), true);
+    return o;
+}
+
 QJsonObject surfaceToJson(const Surface& s) {
     const NurbsSurface& g = s.geometry;
     QJsonObject o;
@@ -87,6 +116,8 @@ QJsonObject surfaceToJson(const Surface& s) {
                              {QStringLiteral("outside"), s.outsideAlongNormal
                                                              ? QStringLiteral("normal")
                                                              : QStringLiteral("reversed")}});
+    if (s.analytic.kind != AnalyticForm::Kind::None) // optional (1.5): the file's closed form
+        o.insert(QStringLiteral("analytic"), analyticToJson(s.analytic));
     return o;
 }
 

@@ -14,8 +14,8 @@ namespace kw {
 /// members of a newer minor version are ignored) and reject a newer major version.
 constexpr int kKnotFormatMajor = 1;
 /// 1.1 added the optional "display", 1.2 "solid", 1.3 "topology", 1.4 the display's
-/// "sections" and "sectionCaps" the optional "continuity" and "unit"
-constexpr int kKnotFormatMinor = 4;
+/// "sections" and "sectionCaps" the optional "continuity" and "unit", 1.5 a surface's "analytic"
+constexpr int kKnotFormatMinor = 5;
 
 /// Limits a file must respect (those of a valid scene, model/document/validation.h); larger values
 /// are rejected as corrupt, not attempted.

@@ -3,6 +3,7 @@
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 #include "model/io/knotfile_prescan.h"
+#include "model/nurbs/analytic_eval.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -363,6 +364,65 @@ void readNet(const QJsonObject& o, const QString& path, NurbsSurface& g) {
     g.weights = readWeights(required(o, path, "weights"), member(path, "weights"), total);
 }
 
+AnalyticParamMap readMap(const QJsonObject& o, const QString& path) {
+    AnalyticParamMap m;
+    const QString kindPath = member(path, "map");
+    const QString kind = asString(required(o, path, "map"), kindPath);
+    if (kind == QLatin1String("halfAngle"))
+        m.kind = AnalyticParamMap::Kind::HalfAngle;
+    else if (kind != QLatin1String("linear"))
+        fail(kindPath, QStringLiteral("expected \"linear\" or \"halfAngle\", found ") +
+                           describe(QJsonValue(kind)));
+    m.offset = asNumber(required(o, path, "offset"), member(path, "offset"));
+    m.scale = asNumber(required(o, path, "scale"), member(path, "scale"));
+    return m;
+}
+
+// The closed form of an imported face (1.5): its members, then the rules of analyticFormError,
+// then that it describes this surface's NURBS (a form left from before an edit of the points
+// would draw another surface than the one saved).
+AnalyticForm readAnalytic(const QJsonObject& o, const QString& path, const NurbsSurface& g) {
+    using Kind = AnalyticForm::Kind;
+    AnalyticForm f;
+    const QString kindPath = member(path, "kind");
+    const QString kind = asString(required(o, path, "kind"), kindPath);
+    const std::optional<Kind> k = analyticKindNamed(kind.toStdString());
+    if (!k || *k == Kind::None)
+        fail(kindPath,
+             QStringLiteral("expected \"plane\", \"cylinder\", \"cone\", \"sphere\" or \"torus\", "
+                            "found ") +
+                 describe(QJsonValue(kind)));
+    f.kind = *k;
+    f.origin = asVec3(required(o, path, "origin"), member(path, "origin"));
+    f.xAxis = asVec3(required(o, path, "xAxis"), member(path, "xAxis"));
+    f.yAxis = asVec3(required(o, path, "yAxis"), member(path, "yAxis"));
+    f.zAxis = asVec3(required(o, path, "zAxis"), member(path, "zAxis"));
+    if (f.kind != Kind::Plane)
+        f.radius = asNumber(required(o, path, "radius"), member(path, "radius"));
+    if (f.kind == Kind::Torus)
+        f.minorRadius = asNumber(required(o, path, "minorRadius"), member(path, "minorRadius"));
+    if (f.kind == Kind::Cone)
+        f.semiAngle = asNumber(required(o, path, "semiAngle"), member(path, "semiAngle"));
+    const QString uPath = member(path, "u"), vPath = member(path, "v");
+    f.u = readMap(asObject(required(o, path, "u"), uPath), uPath);
+    f.v = readMap(asObject(required(o, path, "v"), vPath), vPath);
+    if (o.contains(QLatin1String("swapped"))) {
+        const QJsonValue v = o.value(QLatin1String("swapped"));
+        if (!v.isBool())
+            fail(member(path, "swapped"),
+                 QStringLiteral("expected true or false, found ") + describe(v));
+        f.swapped = v.toBool();
+    }
+    if (const std::string why = analyticFormError(f, g); !why.empty())
+        fail(path, QString::fromStdString(why));
+    const double off = analyticDeviation(f, g), limit = analyticMatchLimit(g);
+    if (!(off <= limit))
+        fail(path, QStringLiteral("the form lies %1 from the surface's NURBS, more than %2 "
+                                  "(a millionth of its control net's size)")
+                       .arg(num(off), num(limit)));
+    return f;
+}
+
 Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) {
     Surface s;
     s.id = SurfaceId{ids.take(required(o, path, "id"), member(path, "id"))};
@@ -414,6 +474,10 @@ Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) 
         else
             fail(outsidePath, QStringLiteral("expected \"normal\" or \"reversed\", found ") +
                                   describe(QJsonValue(outside)));
+    }
+    if (o.contains(QLatin1String("analytic"))) {
+        const QString p = member(path, "analytic");
+        s.analytic = readAnalytic(asObject(o.value(QLatin1String("analytic")), p), p, s.geometry);
     }
     return s;
 }

@@ -1,0 +1,353 @@
+// GL test: faces that kept an analytic form are shaded at the pixel's ray's meeting with it,
+// found in closed form (RenderOptions::analyticFaces): the AOV against the CPU kernel and
+// against the Newton path, a torus (the quartic), and a trimmed face.
+#include "expected_test_util.h"
+#include "model/nurbs/nurbs_shapes.h"
+#include "render/analytic_table.h"
+#include "render_test_util.h"
+#include "trim_test_util.h"
+
+#include <QGuiApplication>
+#include <cmath>
+
+using namespace kw;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+AnalyticParamMap halfAngle(double offset, double scale) {
+    return AnalyticParamMap{AnalyticParamMap::Kind::HalfAngle, offset, scale};
+}
+AnalyticParamMap linear(double offset, double scale) {
+    return AnalyticParamMap{AnalyticParamMap::Kind::Linear, offset, scale};
+}
+
+/// The form of kw::makeRevolution's shapes about +z through `centre`: u is the 9-point circle
+/// from +x counter-clockwise (four quarter arcs), so a = 2 pi u by half angles.
+AnalyticForm revolved(AnalyticForm::Kind kind, const glm::dvec3& centre) {
+    AnalyticForm f;
+    f.kind = kind;
+    f.origin = centre;
+    f.u = halfAngle(0.0, 2.0 * kPi);
+    return f;
+}
+
+/// A cone of apex radius `r0` at `base`, half angle `angle`, slant length `length` along v.
+Surface coneSurface(std::uint32_t id, const glm::dvec3& base, double r0, double angle,
+                    double length) {
+    NurbsCurve2 line;
+    line.degree = 1;
+    line.points = {glm::dvec2(r0, 0.0),
+                   glm::dvec2(r0 + length * std::sin(angle), length * std::cos(angle))};
+    line.weights = {1.0, 1.0};
+    line.knots = {0.0, 0.0, 1.0, 1.0};
+    Surface s = kwtest::makeSurface(id, makeRevolution(base, line), 8);
+    s.analytic = revolved(AnalyticForm::Kind::Cone, base);
+    s.analytic.radius = r0;
+    s.analytic.semiAngle = angle;
+    s.analytic.v = linear(0.0, length);
+    return s;
+}
+
+Surface cylinderSurface(std::uint32_t id, const glm::dvec3& base, double r, double h) {
+    Surface s = kwtest::makeSurface(id, makeCylinder(base, r, h), 8);
+    s.analytic = revolved(AnalyticForm::Kind::Cylinder, base);
+    s.analytic.radius = r;
+    s.analytic.v = linear(0.0, h);
+    return s;
+}
+
+Surface sphereSurface(std::uint32_t id, const glm::dvec3& centre, double r) {
+    Surface s = kwtest::makeSurface(id, makeSphere(centre, r), 8);
+    s.analytic = revolved(AnalyticForm::Kind::Sphere, centre);
+    s.analytic.radius = r;
+    s.analytic.v = halfAngle(-0.5 * kPi, kPi); // south pole to north pole, two quarter arcs
+    return s;
+}
+
+Surface torusSurface(std::uint32_t id, const glm::dvec3& centre, double R, double r) {
+    Surface s = kwtest::makeSurface(id, makeTorus(centre, R, r), 8);
+    s.analytic = revolved(AnalyticForm::Kind::Torus, centre);
+    s.analytic.radius = R;
+    s.analytic.minorRadius = r;
+    s.analytic.v = halfAngle(0.0, 2.0 * kPi); // from the outer equator, upward
+    return s;
+}
+
+/// The surface with u and v exchanged (its control net transposed): the form's maps stay with
+/// the parameters they take, and `swapped` says u now gives b.
+Surface swapped(Surface s) {
+    NurbsSurface& g = s.geometry;
+    NurbsSurface t = g;
+    t.degreeU = g.degreeV;
+    t.degreeV = g.degreeU;
+    t.countU = g.countV;
+    t.countV = g.countU;
+    t.knotsU = g.knotsV;
+    t.knotsV = g.knotsU;
+    for (int j = 0; j < g.countV; ++j)
+        for (int i = 0; i < g.countU; ++i) {
+            t.points[size_t(i * t.countU + j)] = g.points[size_t(j * g.countU + i)];
+            t.weights[size_t(i * t.countU + j)] = g.weights[size_t(j * g.countU + i)];
+        }
+    g = t;
+    std::swap(s.analytic.u, s.analytic.v);
+    s.analytic.swapped = true;
+    std::swap(s.partitionsU, s.partitionsV);
+    return s;
+}
+
+/// `s` turned by `angle` about `axis` through the origin, its form with it; `mirror` also
+/// reflects it in the plane x = 0 (a left-handed frame, and the NURBS's normal turned over).
+Surface turned(Surface s, const glm::dvec3& axis, double angle, bool mirror) {
+    const glm::dvec3 k = glm::normalize(axis);
+    const auto apply = [&](glm::dvec3 p, bool point) {
+        (void)point;
+        if (mirror)
+            p.x = -p.x;
+        return p * std::cos(angle) + glm::cross(k, p) * std::sin(angle) +
+               k * glm::dot(k, p) * (1.0 - std::cos(angle));
+    };
+    for (glm::dvec3& p : s.geometry.points)
+        p = apply(p, true);
+    AnalyticForm& f = s.analytic;
+    f.origin = apply(f.origin, true);
+    f.xAxis = apply(f.xAxis, false);
+    f.yAxis = apply(f.yAxis, false);
+    f.zAxis = apply(f.zAxis, false);
+    return s;
+}
+
+Scene sceneOf(std::vector<Surface> surfaces) {
+    Scene scene;
+    std::uint32_t next = 1;
+    for (Surface& s : surfaces)
+        next = std::max(next, s.id.value + 1);
+    for (Surface& s : surfaces)
+        for (TrimLoop& l : s.trims)
+            next = std::max(next, l.id.value + 1);
+    scene.surfaces = std::move(surfaces);
+    scene.nextId = next;
+    return scene;
+}
+
+RenderOptions adaptive(bool analytic) {
+    RenderOptions o;
+    o.partitioning = RenderOptions::Partitioning::Adaptive;
+    o.pixelTolerance = 0.5;
+    o.analyticFaces = analytic;
+    return o;
+}
+
+/// How far the covered pixels' points lie from their rays. Pixels showing the domain's edge
+/// (a (u, v) on the boundary of the fixtures' [0, 1]^2) are left out: past the face's edge a
+/// pixel shows the edge's point (clamped), off its ray by design.
+struct RayFigures {
+    int covered = 0;
+    double worst = 0.0; ///< the farthest an inner pixel's point projects from its centre, px
+    int off = 0;        ///< inner pixels whose point projects more than 0.01 px from it
+};
+RayFigures rayFigures(const AovBuffer& aov, const glm::dmat4& vp) {
+    RayFigures r;
+    for (int y = 0; y < aov.height; ++y)
+        for (int x = 0; x < aov.width; ++x) {
+            const float* a = aov.pixel(x, y);
+            if (a[0] < 0.0f)
+                continue;
+            ++r.covered;
+            const bool edge =
+                std::min(std::min(a[1], 1.0f - a[1]), std::min(a[2], 1.0f - a[2])) < 1e-5f;
+            if (edge)
+                continue;
+            const double d = kwtest::rayOffsetPixels(aov, x, y, vp);
+            r.worst = std::max(r.worst, d);
+            r.off += d > 0.01;
+        }
+    return r;
+}
+
+} // namespace
+
+class TestRenderAnalytic : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenRenderer> m_renderer;
+
+private Q_SLOTS:
+    void initTestCase() {
+        auto made = kwtest::offscreenRenderer(QSize(384, 384), true);
+        QVERIFY2(made, qPrintable(made.message()));
+        m_renderer = std::move(made).value();
+    }
+
+    // Each fixture's form is what the import would keep: the test would fail with a wrong one
+    // (the kernel's point at the AOV's (u, v) would not be the point shown).
+    void formsAreUsable() {
+        for (const Surface& s :
+             {cylinderSurface(1, glm::dvec3(0.0), 1.0, 2.0), sphereSurface(1, glm::dvec3(0.0), 1.0),
+              torusSurface(1, glm::dvec3(0.0), 1.0, 0.3),
+              coneSurface(1, glm::dvec3(0.0), 0.5, 0.4, 1.5)})
+            QVERIFY(analyticUsable(s.analytic));
+        AnalyticForm bad = cylinderSurface(1, glm::dvec3(0.0), 1.0, 2.0).analytic;
+        bad.yAxis = glm::dvec3(1.0, 0.0, 0.0); // not a frame
+        QVERIFY(!analyticUsable(bad));
+        bad = cylinderSurface(1, glm::dvec3(0.0), 1.0, 2.0).analytic;
+        bad.u.scale = 0.0;
+        QVERIFY(!analyticUsable(bad));
+        QVERIFY(!analyticUsable(AnalyticForm{}));
+    }
+
+    // The closed form shows, at every pixel, the surface point on the pixel's ray (to float
+    // rounding, far below the Newton step's residual), the NURBS's own point at the (u, v) it
+    // reports (kernel position and normal within the exact pass's tolerances), and the image
+    // the Newton path shows.
+    void analyticMatchesKernelAndNewton_data() {
+        QTest::addColumn<Scene>("scene");
+        QTest::addColumn<double>("zoom");
+        const glm::dvec3 o(0.0);
+        QTest::newRow("cylinder") << sceneOf({cylinderSurface(1, o, 1.0, 2.0)}) << 1.0;
+        QTest::newRow("sphere") << sceneOf({sphereSurface(1, o, 1.0)}) << 1.0;
+        QTest::newRow("torus") << sceneOf({torusSurface(1, o, 1.0, 0.35)}) << 1.0;
+        QTest::newRow("torus 6x") << sceneOf({torusSurface(1, o, 1.0, 0.35)}) << 6.0;
+        QTest::newRow("cone") << sceneOf({coneSurface(1, o, 0.3, 0.5, 1.5)}) << 1.0;
+        QTest::newRow("swapped cylinder")
+            << sceneOf({swapped(cylinderSurface(1, o, 1.0, 2.0))}) << 1.0;
+        QTest::newRow("turned mirrored torus")
+            << sceneOf({turned(torusSurface(1, glm::dvec3(0.5, 0.2, 0.1), 1.0, 0.4),
+                               glm::dvec3(1.0, 2.0, 0.5), 0.7, true)})
+            << 1.0;
+        QTest::newRow("four forms")
+            << sceneOf({cylinderSurface(1, glm::dvec3(-2.5, 0.0, 0.0), 0.8, 1.5),
+                        sphereSurface(2, glm::dvec3(0.0, 2.5, 0.5), 0.9),
+                        torusSurface(3, glm::dvec3(2.5, 0.0, 0.5), 1.0, 0.3),
+                        coneSurface(4, glm::dvec3(0.0, -2.5, 0.0), 0.2, 0.6, 1.4)})
+            << 1.0;
+    }
+    void analyticMatchesKernelAndNewton() {
+        QFETCH(Scene, scene);
+        QFETCH(double, zoom);
+        Document doc;
+        KW_VERIFY_OK(doc.resetScene(scene));
+        Camera cam = fitCamera(doc.scene(), 1.0);
+        cam.eye = cam.target + (cam.eye - cam.target) / zoom;
+        const glm::dmat4 vp(frameCamera(cam, doc.scene(), 1.0).viewProjection);
+
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
+        const AovBuffer on = m_renderer->aov();
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces,
+                 int(doc.scene().surfaces.size()));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(false)));
+        const AovBuffer off = m_renderer->aov();
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 0);
+
+        const kwtest::AovComparison k = kwtest::compareAovWithKernel(doc.scene(), on);
+        const RayFigures onRay = rayFigures(on, vp), offRay = rayFigures(off, vp);
+        // Where both show the same surface: how far apart their (u, v) and normals are.
+        int same = 0, otherId = 0, apart = 0, unexplained = 0;
+        const glm::dvec3 eye = cam.eye;
+        const double size = glm::length(cam.eye - cam.target);
+        double uvApart = 0.0, normalApart = 0.0;
+        for (int y = 0; y < on.height; ++y)
+            for (int x = 0; x < on.width; ++x) {
+                const float* a = on.pixel(x, y);
+                const float* b = off.pixel(x, y);
+                if (a[0] != b[0]) {
+                    ++otherId;
+                    continue;
+                }
+                if (a[0] < 0.0f)
+                    continue;
+                ++same;
+                const double duv = std::hypot(a[1] - b[1], a[2] - b[2]);
+                const glm::dvec3 na(a[6], a[7], a[8]), nb(b[6], b[7], b[8]);
+                const double dn = glm::degrees(std::acos(std::clamp(glm::dot(na, nb), -1.0, 1.0)));
+                if (duv > 2e-3 || dn > 1.0) {
+                    // Where they differ, the closed form shows the ray's first meeting with the
+                    // face: not farther from the eye than the Newton path's point (which near a
+                    // fold can be on the hidden sheet; 1 % of the view's distance for a grazing
+                    // ray's sub-pixel offsets), unless that one is off its ray or an edge's
+                    // point (clamped: a ray passing just over a rim meets the inside).
+                    ++apart;
+                    const double dOn = glm::length(glm::dvec3(a[3], a[4], a[5]) - eye);
+                    const double dOff = glm::length(glm::dvec3(b[3], b[4], b[5]) - eye);
+                    const bool edge =
+                        std::min(std::min(b[1], 1.0f - b[1]), std::min(b[2], 1.0f - b[2])) < 1e-5f;
+                    unexplained += dOn > dOff + 1e-2 * size && !edge &&
+                                   kwtest::rayOffsetPixels(off, x, y, vp) <= 0.01;
+                }
+                uvApart = std::max(uvApart, duv);
+                normalApart = std::max(normalApart, dn);
+            }
+        qInfo("analytic: %d px, %d compared with the kernel, position %.3g x model, normal "
+              "%.4f deg at (%d, %d); ray offset %.4f px, %d px > 0.01 px (Newton path %.4f px, %d "
+              "px); against the Newton "
+              "path: %d px of another id, %d px apart (%d unexplained), at most (u, v) %.3g apart, "
+              "normals %.4f deg",
+              k.covered, k.compared, k.maxPosition / k.modelSize, k.maxAngleDeg, k.worstX, k.worstY,
+              onRay.worst, onRay.off, offRay.worst, offRay.off, otherId, apart, unexplained,
+              uvApart, normalApart);
+        QCOMPARE(k.unknownIds, 0);
+        QVERIFY(k.compared >= 1000);
+        QVERIFY(k.maxPosition <= 1e-5 * k.modelSize);
+        QVERIFY(k.maxAngleDeg <= 0.05);
+        // On the ray: the Newton step leaves up to ~0.1 px; the closed form float rounding, but
+        // where the ray just misses the surface (a silhouette's pixel centre just outside it).
+        QVERIFY2(onRay.off <= onRay.covered / 2000, "pixels show a point off their ray");
+        QCOMPARE(onRay.covered, offRay.covered);
+        QVERIFY(otherId <= same / 2000);
+        // Both show the point under the pixel, but for the Newton step's residual, its
+        // mirrored normals at folds, and a rim's pixel where the ray passes just over the edge
+        // to the inside (the closed form shows the inside, the Newton step the edge).
+        QVERIFY(apart <= same / 200);
+        QCOMPARE(unexplained, 0);
+    }
+
+    // A trimmed analytic face: the trims are tested at the closed form's (u, v), the pixels
+    // kept are those the Newton path keeps, and the trims remove what they remove there.
+    void trimmedAnalyticFace() {
+        Surface s = cylinderSurface(1, glm::dvec3(0.0), 1.0, 2.0);
+        s.trims.push_back(kwtest::discLoop(2, 0.3));
+        Surface whole = cylinderSurface(1, glm::dvec3(0.0), 1.0, 2.0);
+        Document doc, wholeDoc;
+        KW_VERIFY_OK(doc.resetScene(sceneOf({s})));
+        KW_VERIFY_OK(wholeDoc.resetScene(sceneOf({whole})));
+        const Camera cam = fitCamera(wholeDoc.scene(), 1.0);
+        for (const bool deferred : {true, false}) {
+            RenderOptions on = adaptive(true), off = adaptive(false);
+            on.deferredPass = off.deferredPass = deferred;
+            KW_VERIFY_OK(m_renderer->render(wholeDoc, cam, on));
+            const AovBuffer untrimmed = m_renderer->aov();
+            int all = 0;
+            for (int y = 0; y < untrimmed.height; ++y)
+                for (int x = 0; x < untrimmed.width; ++x)
+                    all += untrimmed.pixel(x, y)[0] >= 0.0f;
+            KW_VERIFY_OK(m_renderer->render(doc, cam, on));
+            QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);
+            const AovBuffer a = m_renderer->aov();
+            KW_VERIFY_OK(m_renderer->render(doc, cam, off));
+            const AovBuffer b = m_renderer->aov();
+            int keptA = 0, keptB = 0, differ = 0;
+            for (int y = 0; y < a.height; ++y)
+                for (int x = 0; x < a.width; ++x) {
+                    keptA += a.pixel(x, y)[0] >= 0.0f;
+                    keptB += b.pixel(x, y)[0] >= 0.0f;
+                    differ += a.pixel(x, y)[0] != b.pixel(x, y)[0];
+                }
+            const kwtest::AovComparison k = kwtest::compareAovWithKernel(doc.scene(), a);
+            qInfo("deferred %d: %d px untrimmed, %d kept (Newton path %d), %d differ, kernel "
+                  "position %.3g x model, normal %.4f deg",
+                  int(deferred), all, keptA, keptB, differ, k.maxPosition / k.modelSize,
+                  k.maxAngleDeg);
+            QVERIFY(keptA > 2000 && keptA < all * 9 / 10); // the trims cut it
+            QVERIFY(differ <= keptA / 500);
+            QVERIFY(k.maxPosition <= 1e-5 * k.modelSize);
+            QVERIFY(k.maxAngleDeg <= 0.05);
+        }
+    }
+
+    void cleanupTestCase() { m_renderer.reset(); }
+};
+
+QTEST_MAIN(TestRenderAnalytic)
+
+#include "tst_render_analytic.moc"
