@@ -264,11 +264,17 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     const bool defer = deferredWanted && !m_plan.routes().empty() && m_plan.routes().size() <= 255;
     deferredSurfaces = defer ? m_plan.deferredSurfaces() : 0;
     std::vector<GLenum> drawBuffers; // the frame's, while the pre-pass writes its texture
+    const auto mark = [this](PassTimes::Pass pass) {
+        if (clock)
+            clock->mark(pass);
+    };
+    mark(PassTimes::Sync); // the plan and its commands
     if (defer)
         drawBuffers = attachPrepassTexture(targetSize);
     if (prepass) {
         drawn = depthPrepass(m_plan.plain(), m_plan.trimmedPrepass(), scene, camera, lights,
                              aa != nullptr, aa == nullptr && adaptive, defer);
+        mark(PassTimes::Prepass);
         gl->glDepthFunc(GL_EQUAL);
         gl->glDepthMask(GL_FALSE);
     } else {
@@ -288,13 +294,17 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
         drawn = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                             options, range);
     }
+    mark(PassTimes::Exact);
     finTriangles = 0;
     if (drawn && !m_plan.skirts().empty())
         drawn = skirtPass(scene, camera, lights, options, range);
+    mark(PassTimes::Fins); // skirtPass marked its skirts
     if (drawn && !m_plan.backFaces().empty())
         drawn = backFacePass(scene, camera, lights, options, range);
+    mark(PassTimes::BackFaces);
     if (drawn && aa && !m_plan.edges().empty())
         drawn = edgePass(scene, camera, lights, options, range, *aa);
+    mark(PassTimes::TrimEdges);
     gl->glDisable(GL_CULL_FACE);
     gl->glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
@@ -544,6 +554,8 @@ Status ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& cam
     for (const auto& [key, b] : m_plan.skirts())
         if (!(drawn = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles)))
             break;
+    if (clock)
+        clock->mark(PassTimes::Skirts);
     if (drawn && options.silhouetteFins)
         drawn = finPass(scene, camera, lights, options, range);
     scene.bindSurfaceData(); // the triangles' vertex array again

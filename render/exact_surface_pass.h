@@ -9,6 +9,7 @@
 #include "render/exact_contract.h"
 #include "render/exact_planner.h"
 #include "render/gpu_scene.h"
+#include "render/pass_clock.h"
 #include "render/render_types.h"
 #include "render/shader_library.h"
 
@@ -54,6 +55,11 @@ public:
                std::int64_t(m_prepassSize.x) * m_prepassSize.y * 16; // the deferred pass's input
     }
     const EnvironmentMap& environment() const { return m_environment; }
+    /// The deferred pass's input as the last deferred frame left it (0 before one): per pixel
+    /// the polygon's (u, v), the surface's table row and the cell's vertex
+    /// (shaders/surface_data.glsl, kwPrepassWords), valid where that frame's stencil is not 0.
+    GLuint prepassTexture() const { return m_prepassTexture; }
+    glm::ivec2 prepassSize() const { return m_prepassSize; }
 
     /// The exact shader variant for degrees (p, q) and these options. The per-cell gather
     /// (ExactFeature::CellGather) is chosen when the cell's data fits the varyings and
@@ -113,6 +119,8 @@ public:
     /// Thread CPU ms (kw::threadCpuMs) when draw issued its first draw call, or < 0 before
     /// (FrameTimes::beforeDraws); the renderer sets it to -1 per frame.
     double firstDrawCpuMs = -1.0;
+    /// The renderer's pass clock (null: none): draw marks each of its passes on it.
+    PassClock* clock = nullptr;
 
 private:
     /// GL_BACK, GL_FRONT or 0 for ExactPlace::face 1, 2, 0.

@@ -51,10 +51,12 @@ Status FloatDepthTarget::ensure(QSize size) {
     return ok();
 }
 
-void FloatDepthTarget::copyColourTo(std::uint32_t framebuffer) {
+void FloatDepthTarget::copyColourTo(std::uint32_t framebuffer, QSize to) {
     const int w = m_size.width(), h = m_size.height();
-    m_gl->glBlitNamedFramebuffer(m_fbo, framebuffer, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
-                                 GL_NEAREST);
+    if (!to.isValid())
+        to = m_size;
+    m_gl->glBlitNamedFramebuffer(m_fbo, framebuffer, 0, 0, w, h, 0, 0, to.width(), to.height(),
+                                 GL_COLOR_BUFFER_BIT, to == m_size ? GL_NEAREST : GL_LINEAR);
     m_gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
 }
 

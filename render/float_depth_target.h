@@ -32,8 +32,9 @@ public:
     GLuint colourTexture() const { return m_colour; }
     GLuint depthTexture() const { return m_depth; }
     /// Copies the colour into `framebuffer`'s draw buffers over the whole size (the host's depth
-    /// is left as it was: nothing is drawn into the host after the frame's overlays).
-    void copyColourTo(std::uint32_t framebuffer);
+    /// is left as it was: nothing is drawn into the host after the frame's overlays); to a
+    /// larger `to` (a preview, RenderOptions::previewScale) magnified, bilinear.
+    void copyColourTo(std::uint32_t framebuffer, QSize to = QSize());
     void release();
     /// Bytes of the attachments (4 + 8 per pixel: colour, depth and stencil).
     std::int64_t residentBytes() const;

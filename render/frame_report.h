@@ -61,6 +61,35 @@ struct FrameTimes {
     double beforeDraws = 0.0;
 };
 
+/// A frame's passes one by one (Renderer::setPassProfiling): each ended by glFinish, so its
+/// GPU work counts to it, in wall ms and process CPU ms (every thread: llvmpipe's rasteriser
+/// threads too). The glFinish after each pass removes the overlap of CPU and GPU work, so the
+/// sum is a little above the unprofiled frame.
+struct PassTimes {
+    enum Pass {
+        Sync,         ///< the GPU scene brought up to date: uploads, partitions, trim masks
+        Prepass,      ///< the depth pre-pass (exact trims tested there near trim curves)
+        Exact,        ///< the exact pass: deferred shading and the forward batches
+        Skirts,       ///< edge skirts
+        Fins,         ///< silhouette fins
+        BackFaces,    ///< back faces of closed solids seen from inside or cut
+        TrimEdges,    ///< MSAA's trim coverage pass
+        Antialiasing, ///< adding samples into the sum and resolving it, or the MSAA composite
+        Overlays,     ///< wireframe, control net, edge bands
+        Present,      ///< the frame copied (or magnified) into the host's framebuffer
+        kCount
+    };
+    double wallMs[kCount] = {};
+    double cpuMs[kCount] = {};
+    bool measured = false; ///< profiling was on for this frame
+    static const char* name(int pass) {
+        static const char* const names[kCount] = {
+            "sync",       "prepass",    "exact",         "skirts",   "fins",
+            "back faces", "trim edges", "anti-aliasing", "overlays", "present"};
+        return pass >= 0 && pass < kCount ? names[pass] : "";
+    }
+};
+
 /// The result of Renderer::render.
 struct FrameReport {
     /// False when the frame could not be drawn as asked; `error` says why. A surface left out
@@ -123,6 +152,10 @@ struct FrameReport {
     /// Progressive accumulation has samples left to add: render again, unchanged, to add the
     /// next one.
     bool refining = false;
+    /// The pixels drawn (RenderOptions::previewScale below 1: fewer than the target's).
+    QSize drawnSize;
+    /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
+    PassTimes passes;
 };
 
 /// The answer of Renderer::pick: the surface visible at a pixel, its parameters there and the

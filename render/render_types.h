@@ -194,6 +194,13 @@ struct RenderOptions {
     /// 1024), so a view that moves stays near aliased speed and a still one converges to the
     /// image of all samples drawn at once (the same pixels: tst_render_trims_aa).
     bool progressive = false;
+    /// Below 1, a preview of a view in motion (the editor on software OpenGL while it orbits
+    /// or drags): the frame is drawn aliased at this fraction of the target's width and height
+    /// (at least a pixel), overlays included, into the renderer's own float-depth framebuffer
+    /// and magnified into the target (bilinear). Every pixel drawn is still exact; the
+    /// anti-aliasing targets are kept for the full frame that follows. 1: the full frame.
+    /// Ignored by AOV frames and picks. Values are clamped to [1/8, 1].
+    double previewScale = 1.0;
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;

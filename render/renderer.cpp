@@ -11,6 +11,7 @@
 #include <QOpenGLVersionFunctionsFactory>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace kw {
 
@@ -82,10 +83,21 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     };
     if (!gl)
         return fail(QStringLiteral("Renderer::render called before initialize()"));
-    const QSize size = target.size;
-    if (size.width() <= 0 || size.height() <= 0)
-        return fail(
-            QStringLiteral("render size %1x%2 is empty").arg(size.width()).arg(size.height()));
+    if (target.size.width() <= 0 || target.size.height() <= 0)
+        return fail(QStringLiteral("render size %1x%2 is empty")
+                        .arg(target.size.width())
+                        .arg(target.size.height()));
+    // A preview of a moving view: fewer pixels, each exact, magnified into the target.
+    const bool preview = options.previewScale < 1.0 && !target.aov && !pickPixel;
+    QSize size = target.size;
+    if (preview) {
+        const double s = std::clamp(options.previewScale, 1.0 / 8.0, 1.0);
+        size = QSize(std::max(1, int(std::lround(size.width() * s))),
+                     std::max(1, int(std::lround(size.height() * s))));
+        options.samples = 1;
+        options.progressive = false;
+    }
+    report.drawnSize = size;
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
     if (options.sections.size() > size_t(kMaxSectionPlanes))
@@ -103,10 +115,12 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     }
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
+    clock.start(gl, &report.passes);
     scene.prepare(doc);
     glm::dvec3 box[2];
+    // The target's aspect: a preview's rounded size must not stretch the image.
     FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
-                                 double(size.width()) / size.height());
+                                 double(target.size.width()) / target.size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
     if (pickPixel) { // beginTarget's shifted viewport
         fc.viewportOrigin = glm::ivec2(-pickPixel->x(), -pickPixel->y());
@@ -126,6 +140,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     // The GPU scene first: trim masks draw into their own framebuffer.
     const Status synced = scene.sync(doc, fc, options, report);
+    clock.mark(PassTimes::Sync);
 
     const int samples = frameSamples(options, target.aov, pickPixel != nullptr, report);
     AntialiasTarget* aa = nullptr;
@@ -141,21 +156,25 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             aa = &antialias;
         else
             report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
-    } else if (!target.aov && !pickPixel) {
+    } else if (!target.aov && !pickPixel && !preview) {
         antialias.release(); // anti-aliasing turned off: free its framebuffers
     }
-    if (!accumulated && !target.aov && !pickPixel)
+    // A preview keeps them for the still frame after it.
+    if (!accumulated && !target.aov && !pickPixel && !preview)
         accumulate.release();
     // An aliased frame into a host whose depth is not float (Qt's widget framebuffers: 24-bit)
     // is drawn into the float-depth target and its colour copied over (float_depth_target.h).
     // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
     RenderTarget drawn = target;
+    drawn.size = size;
     if (!aa && !accumulated && !target.aov && !pickPixel &&
-        floatDepth.hostNeedsIt(target.framebuffer)) {
+        (preview || floatDepth.hostNeedsIt(target.framebuffer))) {
         if (const Status ready = floatDepth.ensure(size))
             drawn.framebuffer = floatDepth.framebuffer();
         else
             report.warnings << ready.message();
+        if (drawn.framebuffer == target.framebuffer)
+            drawn.size = size = target.size; // no own framebuffer: the full frame
     } else if (!aa && !accumulated && !pickPixel) {
         // Freed only when an aliased frame goes straight to its host: the editor alternates
         // aliased frames while moving with anti-aliased still ones, and would otherwise
@@ -212,6 +231,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         // A progressive image's first sample is shown as it is, without the sum.
         if (ok && accumulated && !(options.progressive && i == 0))
             ok = step(accumulated->add(i == 0));
+        clock.mark(PassTimes::Antialiasing);
     }
     fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
     if (ok && accumulated)
@@ -227,6 +247,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             ok = false;
         }
     }
+    clock.mark(PassTimes::Antialiasing);
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
         options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
@@ -252,8 +273,11 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                                               all);
         }
     }
+    clock.mark(PassTimes::Overlays);
     if (drawn.framebuffer != target.framebuffer)
-        floatDepth.copyColourTo(target.framebuffer);
+        floatDepth.copyColourTo(target.framebuffer, target.size);
+    clock.mark(PassTimes::Present);
+    clock.stop();
     report.cpuMs.overlays = msSince(phase);
     gl->glBindVertexArray(0);
     gl->glUseProgram(0);
@@ -289,8 +313,86 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     else if (!synced)
         report.error = synced.message();
     report.ok = ok && synced;
+    if (!pickPixel) {
+        // What pickInLastFrame may read: a sample drawn now with the deferred pass's input, or
+        // a progressive image resolved again (nothing drawn) over the same view.
+        const LastFrame now{&doc, doc.revision(), camera, size, sampleTarget.framebuffer};
+        const bool drewSample = firstSample < endSample;
+        if (!report.ok || preview || target.aov || options.mode != RenderMode::Exact)
+            lastFrame.reset();
+        else if (drewSample)
+            lastFrame = exact.deferredSurfaces > 0 ? std::optional<LastFrame>(now) : std::nullopt;
+        else if (lastFrame && !(*lastFrame == now))
+            lastFrame.reset();
+    }
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+Renderer::FramePick Renderer::pickInLastFrame(const Document& doc, const Camera& camera,
+                                              QSize viewport, QPointF pixel) {
+    FramePick answer;
+    const std::optional<Impl::LastFrame>& last = d->lastFrame;
+    if (!d->gl || !last || last->document != &doc || last->revision != doc.revision() ||
+        !(last->camera == camera) || last->size != viewport)
+        return answer;
+    const glm::ivec2 texture = d->exact.prepassSize();
+    const double fx = std::floor(pixel.x()), fy = std::floor(pixel.y());
+    if (!d->exact.prepassTexture() || texture != glm::ivec2(viewport.width(), viewport.height()) ||
+        !(fx >= 0.0 && fy >= 0.0 && fx < viewport.width() && fy < viewport.height()))
+        return answer;
+    QOpenGLFunctions_4_5_Core* gl = d->gl;
+    const int x = int(fx), y = viewport.height() - 1 - int(fy); // GL rows run bottom-up
+    // Depth and stencil at the pixel (GL_FLOAT_32_UNSIGNED_INT_24_8_REV: the float depth, then
+    // a word whose low 8 bits are the stencil).
+    GLint readBefore = 0;
+    gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readBefore);
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, last->framebuffer);
+    struct {
+        GLfloat depth;
+        GLuint stencil;
+    } ds{kFarDepth, 0};
+    gl->glReadPixels(x, y, 1, 1, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &ds);
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readBefore));
+    const unsigned stencil = ds.stencil & 0xffu;
+    if (stencil == 0) {
+        // Nothing drawn there is background; a surface drawn the forward way, a skirt or a
+        // fin left no (u, v) to read.
+        answer.known = ds.depth == kFarDepth;
+        return answer;
+    }
+    GLuint words[4] = {0, 0, 0, 0};
+    gl->glGetTextureSubImage(d->exact.prepassTexture(), 0, x, y, 0, 1, 1, 1, GL_RGBA_INTEGER,
+                             GL_UNSIGNED_INT, sizeof(words), words);
+    const int row = int(words[2] & 0x7fffffffu);
+    const SurfaceRecord* record = nullptr;
+    for (const SurfaceRecord* r : d->scene.records())
+        if (r->slot == row) {
+            record = r;
+            break;
+        }
+    const Surface* s = record ? doc.surface(record->id) : nullptr;
+    if (!s)
+        return answer; // not known: pick() draws it
+    float uv[2];
+    std::memcpy(uv, words, sizeof(uv));
+    answer.known = true;
+    PickHit hit;
+    hit.surface = s->id;
+    hit.uv = glm::dvec2(uv[0], uv[1]);
+    hit.point = surfacePoint(s->geometry, hit.uv.x, hit.uv.y);
+    hit.depth = glm::dot(hit.point - camera.eye, glm::normalize(camera.target - camera.eye));
+    answer.hit = hit;
+    return answer;
+}
+
+void Renderer::setPassProfiling(bool on) {
+    d->clock.setEnabled(on);
+    d->exact.clock = on ? &d->clock : nullptr;
+}
+
+bool Renderer::passProfiling() const {
+    return d->clock.enabled();
 }
 
 void Renderer::restartProgressive() {

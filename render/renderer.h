@@ -50,6 +50,22 @@ public:
     std::optional<PickHit> pick(const Document& doc, const Camera& camera, QSize viewport,
                                 QPointF pixel, const RenderOptions& options = {});
 
+    /// pick() answered from the last frame drawn, without drawing: when that frame showed
+    /// `doc` at its current revision, from `camera`, at `viewport`'s size, as neither a preview
+    /// nor an AOV frame, and its deferred pre-pass wrote the pixel, the surface there and the
+    /// polygon's (u, v) under the pixel (within the partition's pixel tolerance of the exact
+    /// point, and of the frame's sample offset: refine it onto the pixel's ray, as the probe
+    /// does), read back from that frame's buffers (a few bytes); a pixel that frame left
+    /// empty is background. `known` is false where the frame cannot tell (another view or
+    /// revision, a surface drawn the forward way, a skirt, no deferred pass): then pick().
+    /// Needs the renderer's context current.
+    struct FramePick {
+        bool known = false;
+        std::optional<PickHit> hit;
+    };
+    FramePick pickInLastFrame(const Document& doc, const Camera& camera, QSize viewport,
+                              QPointF pixel);
+
     /// Meshes built outside the renderer (the benchmark's comparison rows: libGLU's
     /// tessellation, a prebuilt fine mesh) for renderMesh. Sends `mesh` to the GPU as mesh
     /// `slot` (0..kMeshSlots - 1), replacing what it held; returns the bytes sent, or -1 for
@@ -73,6 +89,10 @@ public:
                              const Camera& camera, const RenderTarget& target,
                              const RenderOptions& options);
 
+    /// Times each pass of every later frame (FrameReport::passes), ending each with glFinish:
+    /// for profiling only, since the waits keep the CPU and the GPU from overlapping.
+    void setPassProfiling(bool on);
+    bool passProfiling() const;
     /// The next RenderOptions::progressive frame starts its image again at the first sample,
     /// though nothing changed (what changes a frame's pixels restarts it by itself).
     void restartProgressive();

@@ -9,6 +9,7 @@
 #include "render/float_depth_target.h"
 #include "render/gpu_scene.h"
 #include "render/overlay_passes.h"
+#include "render/pass_clock.h"
 #include "render/renderer.h"
 #include "render/shader_library.h"
 #include "render/tessellated_pass.h"
@@ -51,6 +52,7 @@ struct Renderer::Impl {
     WireframePass wireframe;
     ControlNetPass controlNet;
     EdgeBandsPass edgeBands;
+    PassClock clock; ///< Renderer::setPassProfiling
     /// Renderer::setMesh's meshes, created on first use.
     std::unique_ptr<TriangleMeshPass> meshes[Renderer::kMeshSlots];
     QString glDescription;
@@ -80,6 +82,19 @@ struct Renderer::Impl {
         bool operator==(const ProgressKey&) const = default;
     };
     std::optional<ProgressKey> progressKey;
+
+    /// The last frame whose deferred pre-pass left (u, v) and the surface's row per pixel
+    /// (Renderer::pickInLastFrame): what it showed, and the framebuffer whose stencil says
+    /// which pixels that is (non-zero: a deferred surface).
+    struct LastFrame {
+        const Document* document = nullptr;
+        std::uint64_t revision = 0;
+        Camera camera;
+        QSize size;
+        std::uint32_t framebuffer = 0;
+        bool operator==(const LastFrame&) const = default;
+    };
+    std::optional<LastFrame> lastFrame;
 
     /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
     /// so the surface shaders' outputs keep their locations).

@@ -9,6 +9,7 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
+#include <QOpenGLFunctions>
 #include <QPaintEvent>
 #include <QPainter>
 #include <QTimer>
@@ -51,6 +52,13 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
         resetCamera();
     });
     connect(m_selection, &Selection::changed, this, repaint);
+    // The window's composition and swap of the frame paintGL drew (lastFrameTiming).
+    connect(this, &QOpenGLWidget::frameSwapped, this, [this] {
+        if (m_paintEnd.isValid()) {
+            m_timing.swapMs = double(m_paintEnd.nsecsElapsed()) * 1e-6;
+            m_paintEnd.invalidate();
+        }
+    });
     resetCamera();
 }
 
@@ -277,6 +285,18 @@ bool Viewport::aliasedWhileMoving() const {
     return m_samplesWanted == kAutoSamples && m_softwareGl;
 }
 
+bool Viewport::previewWhileMoving() const {
+    return m_softwareGl && m_previewScale < 1.0;
+}
+
+void Viewport::setPreviewScale(double scale) {
+    m_previewScale = std::clamp(scale, 0.125, 1.0);
+}
+
+void Viewport::setPassProfiling(bool on) {
+    m_renderer.setPassProfiling(on);
+}
+
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
     m_options.partitioning = mode;
     m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
@@ -342,10 +362,18 @@ void Viewport::paintGL() {
                    QStringLiteral("The 3D view is unavailable:\n%1").arg(m_glError));
         return;
     }
+    QElapsedTimer paintClock;
+    paintClock.start();
     RenderOptions options = m_options;
     const bool moving = m_gesture != Gesture::None || m_tools.active() ||
                         (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
-    if (options.samples > 1 && aliasedWhileMoving()) {
+    if (moving && previewWhileMoving()) {
+        // A preview: fewer exact pixels, aliased, magnified; the still frame kStillMs after
+        // the last move is the full image again (its samples a frame at a time).
+        options.previewScale = m_previewScale;
+        options.samples = 1;
+        drawAgainWhenStill();
+    } else if (options.samples > 1 && aliasedWhileMoving()) {
         if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
             // A sample per frame: a moving view draws its first, a still one adds the rest.
             options.progressive = true;
@@ -362,6 +390,7 @@ void Viewport::paintGL() {
     const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
     m_lastReport = m_renderer.render(*m_doc, m_camera.camera(),
                                      {defaultFramebufferObject(), pixels, false}, options);
+    m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
     if (!m_lastReport.ok) {
         if (m_lastReport.error != m_lastRenderError) {
             m_lastRenderError = m_lastReport.error;
@@ -385,8 +414,18 @@ void Viewport::paintGL() {
         else
             update();
     }
+    const qint64 painterStart = paintClock.nsecsElapsed();
     drawSelection();
     drawLegend();
+    if (m_renderer.passProfiling()) {
+        // The QPainter overlays' GL work, finished here, as the renderer's passes are.
+        makeCurrent();
+        context()->functions()->glFinish();
+    }
+    m_timing.painterMs = double(paintClock.nsecsElapsed() - painterStart) * 1e-6;
+    m_timing.swapMs = 0.0;
+    m_timing.moving = moving;
+    m_paintEnd.start();
     Q_EMIT frameDrawn(m_lastReport);
     if (timed) {
         m_metrics.moveToDrawMs.push_back(moveToDraw);
@@ -425,6 +464,25 @@ void Viewport::drawAgainWhenStill() {
 }
 
 std::optional<PickHit> Viewport::pickSurface(QPointF position) {
+    // The frame on screen answers most pixels from what its pre-pass left; a new render of the
+    // pixel only where it cannot tell.
+    const Renderer::FramePick shown = pickFromFrame(position);
+    return shown.known ? shown.hit : pickByDrawing(position);
+}
+
+Renderer::FramePick Viewport::pickFromFrame(QPointF position) {
+    if (!m_renderer.isInitialized())
+        return {};
+    const qreal dpr = devicePixelRatioF();
+    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
+    makeCurrent();
+    const Renderer::FramePick shown =
+        m_renderer.pickInLastFrame(*m_doc, m_camera.camera(), pixels, position * dpr);
+    doneCurrent();
+    return shown;
+}
+
+std::optional<PickHit> Viewport::pickByDrawing(QPointF position) {
     if (!m_renderer.isInitialized())
         return std::nullopt;
     RenderOptions options = m_options;

@@ -109,6 +109,16 @@ public:
     /// known once the context exists). With accumulation, still frames are then drawn a sample
     /// at a time (FrameReport::samplesInImage, refining).
     bool aliasedWhileMoving() const;
+    /// While the view moves (orbit, pan, a wheel zoom, a tool's drag) on a software rasteriser,
+    /// frames are previews (RenderOptions::previewScale): aliased, at previewScale() of the
+    /// view's width and height, magnified; the still frame kStillMs after the last move is the
+    /// full anti-aliased image, the same pixels as without the previews. 1 turns them off.
+    bool previewWhileMoving() const;
+    double previewScale() const { return m_previewScale; }
+    void setPreviewScale(double scale);
+    /// At 0.5 a preview draws a quarter of the pixels: an orbit of a 223-face part at the
+    /// default window runs at ~15 FPS on two CPU cores (docs/PERFORMANCE.md ## Editing).
+    static constexpr double kPreviewScale = 0.5;
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
@@ -179,8 +189,27 @@ public:
     /// Renderer::pick at a widget position (logical pixels) of the current view; makes the
     /// view's context current. nullopt when nothing is there or GL is unavailable.
     std::optional<PickHit> pickSurface(QPointF position);
+    /// pickSurface's two ways: the frame on screen read back at the pixel
+    /// (Renderer::pickInLastFrame: a few bytes, nothing drawn; not known where that frame
+    /// cannot tell), and a render of the pixel (Renderer::pick), which pickSurface draws only
+    /// where the first does not know.
+    Renderer::FramePick pickFromFrame(QPointF position);
+    std::optional<PickHit> pickByDrawing(QPointF position);
     /// Frames painted since construction.
     std::int64_t framesDrawn() const { return m_framesDrawn; }
+    /// Where the last frame's time went in paintGL and after it (wall ms): the render call,
+    /// the QPainter overlays (selection outline, nets, legend) and the window's composition
+    /// and swap up to QOpenGLWidget::frameSwapped (0 until it comes).
+    struct FrameTiming {
+        double renderMs = 0.0;
+        double painterMs = 0.0;
+        double swapMs = 0.0;
+        bool moving = false; ///< drawn while the view moved (a preview when previewWhileMoving)
+    };
+    const FrameTiming& lastFrameTiming() const { return m_timing; }
+    /// Renderer::setPassProfiling for this view's frames (FrameReport::passes), the QPainter
+    /// overlays' GL work finished too; for measuring only.
+    void setPassProfiling(bool on);
 
 Q_SIGNALS:
     /// Once a second while frames are drawn: frames in the last second and the last frame's
@@ -238,6 +267,9 @@ private:
     QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
     int m_stillRestarts = 0; ///< consecutive still frames that were a new image's first sample
+    double m_previewScale = kPreviewScale;
+    FrameTiming m_timing;
+    QElapsedTimer m_paintEnd; ///< from the end of paintGL to frameSwapped
     QString m_glError;
     QString m_lastRenderError;
     FrameReport m_lastReport;
