@@ -270,7 +270,10 @@ void UvPanel::mouseMoveEvent(QMouseEvent* event) {
         setView(m_zoom, m_centre - glm::dvec2(d.x() / r.width(), -d.y() / r.height()));
         return;
     }
-    m_tools.move(event);
+    if (Tool* gesture = m_tools.active())
+        gesture->move(event);
+    else
+        m_tools.hover(event);
 }
 
 void UvPanel::mouseReleaseEvent(QMouseEvent* event) {

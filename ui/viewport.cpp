@@ -548,8 +548,13 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
     }
     // A drag step's time from this event to the frame that shows it (dragMetrics).
     m_moveClock.start();
-    const bool drag = m_tools.move(event);
-    if (drag && isDragging()) {
+    Tool* gesture = m_tools.active();
+    if (!gesture) {
+        m_tools.hover(event);
+        return;
+    }
+    gesture->move(event);
+    if (isDragging()) {
         m_moveTimed = true;
         m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
     }

@@ -53,29 +53,19 @@ NurbsSurface reversedU(const NurbsSurface& s) {
     return transposed(reversedV(transposed(s)));
 }
 
-/// Turns `s` so that its edge `edge` is v = first with v running into the surface; `undo`
-/// turns the result back.
-NurbsSurface toV0(const NurbsSurface& s, DomainEdge edge) {
-    switch (edge) {
-    case DomainEdge::V1:
-        return reversedV(s);
-    case DomainEdge::U0:
-        return transposed(s);
-    case DomainEdge::U1:
-        return reversedV(transposed(s));
-    default:
-        return s;
-    }
-}
+enum class Turn { ToV0, Back };
 
-NurbsSurface fromV0(const NurbsSurface& s, DomainEdge edge) {
+/// Turns `s` so that its edge `edge` is v = first with v running into the surface (ToV0), or
+/// turns such a result back (Back). Each turn undoes itself except U1's, whose two steps
+/// are undone in the other order.
+NurbsSurface turned(const NurbsSurface& s, DomainEdge edge, Turn turn) {
     switch (edge) {
     case DomainEdge::V1:
         return reversedV(s);
     case DomainEdge::U0:
         return transposed(s);
     case DomainEdge::U1:
-        return transposed(reversedV(s));
+        return turn == Turn::ToV0 ? reversedV(transposed(s)) : transposed(reversedV(s));
     default:
         return s;
     }
@@ -433,7 +423,7 @@ Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& reque
         continuitySideCurve(*b, request.target, kContinuitySamples);
     if (!target)
         return fail(QStringLiteral("surface '%1' has no such edge").arg(b->name));
-    const NurbsSurface aV0 = toV0(a->geometry, request.edge);
+    const NurbsSurface aV0 = turned(a->geometry, request.edge, Turn::ToV0);
     if (!clampedAtStart(aV0.knotsV, aV0.degreeV))
         return fail(QStringLiteral("edge %1 of surface '%2' is not clamped")
                         .arg(domainEdgeName(request.edge), a->name));
@@ -441,7 +431,7 @@ Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& reque
     QString why;
     std::optional<NurbsSurface> matched;
     if (request.target.domainEdge != DomainEdge::None && b->trims.empty()) {
-        const NurbsSurface bV0 = toV0(b->geometry, request.target.domainEdge);
+        const NurbsSurface bV0 = turned(b->geometry, request.target.domainEdge, Turn::ToV0);
         if (!clampedAtStart(bV0.knotsV, bV0.degreeV))
             return fail(QStringLiteral("edge %1 of surface '%2' is not clamped")
                             .arg(domainEdgeName(request.target.domainEdge), b->name));
@@ -452,7 +442,7 @@ Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& reque
     }
     if (!matched)
         return fail(why);
-    result.geometry = fromV0(*matched, request.edge);
+    result.geometry = turned(*matched, request.edge, Turn::Back);
     if (const std::string bad = surfaceValidationError(result.geometry); !bad.empty())
         return fail(QString::fromStdString(bad));
     // The kernel's measure of the edge as matched.

@@ -1,6 +1,7 @@
 // Tool: one gesture of a view (a drag, a rubber band, a drawing) behind one interface, and
-// ToolRouter, which hands a view's events to its tools and lets them draw (the 3D view and the
-// UV panel both use it; inline, so an event's way to its tool is read in this one file).
+// ToolRouter, which decides which tool gets a view's events and lets them draw (the 3D view and
+// the UV panel both use it). A drag's moves go from the host straight to the gesture's tool
+// (active()), the hottest path of the editor, read in the host and the tool alone.
 #pragma once
 
 #include <QKeyEvent>
@@ -68,8 +69,9 @@ public:
     /// Installs a tool (nullptr removes it), cancelling the gesture of the one it replaces.
     void install(Tool* tool);
     Tool* installed() const { return m_installed; }
-    /// The tool whose gesture runs, or nullptr.
-    Tool* active() const { return m_active; }
+    /// The tool whose gesture runs, or nullptr: the host hands it a drag's moves itself
+    /// (`if (Tool* t = active()) t->move(event); else hover(event);`).
+    Tool* active() const { return m_active && m_active->dragging() ? m_active : nullptr; }
     /// The registered tool of type T, or nullptr.
     template <class T> T* find() const {
         for (const auto& t : m_tools)
@@ -81,8 +83,8 @@ public:
     /// A press: to the installed tool when `toInstalled`, then to the registered ones. True
     /// when a tool took it.
     bool press(QMouseEvent* event, bool toInstalled = true);
-    /// To the gesture's tool, else as hover to every tool; true when a gesture took it.
-    bool move(QMouseEvent* event);
+    /// A move with no gesture running, to every tool.
+    void hover(QMouseEvent* event);
     bool release(QMouseEvent* event);
     bool doubleClick(QMouseEvent* event);
     /// Esc cancels a running gesture; other keys go to it, else to the installed tool.
@@ -136,7 +138,7 @@ template <class F> void ToolRouter::each(F f) const {
 }
 
 inline void ToolRouter::install(Tool* tool) {
-    if (m_active && m_active == m_installed && tool != m_installed)
+    if (active() && m_active == m_installed && tool != m_installed)
         cancel();
     Tool* was = m_installed;
     m_installed = tool;
@@ -145,11 +147,11 @@ inline void ToolRouter::install(Tool* tool) {
 }
 
 inline void ToolRouter::settle() {
-    if (m_active && !m_active->dragging())
-        m_active = nullptr;
+    m_active = active();
 }
 
 inline bool ToolRouter::press(QMouseEvent* event, bool toInstalled) {
+    settle();
     if (m_active)
         return true; // a second button during a gesture: the gesture keeps the mouse
     if (toInstalled && m_installed && m_installed->press(event)) {
@@ -166,17 +168,12 @@ inline bool ToolRouter::press(QMouseEvent* event, bool toInstalled) {
     return false;
 }
 
-inline bool ToolRouter::move(QMouseEvent* event) {
-    if (m_active) {
-        m_active->move(event);
-        settle();
-        return true;
-    }
+inline void ToolRouter::hover(QMouseEvent* event) {
     each([event](Tool* t) { t->hover(event); });
-    return false;
 }
 
 inline bool ToolRouter::release(QMouseEvent* event) {
+    settle();
     if (!m_active)
         return false;
     m_active->release(event);
@@ -185,11 +182,13 @@ inline bool ToolRouter::release(QMouseEvent* event) {
 }
 
 inline bool ToolRouter::doubleClick(QMouseEvent* event) {
+    settle();
     Tool* t = m_active ? m_active : m_installed;
     return t && t->doubleClick(event);
 }
 
 inline bool ToolRouter::key(QKeyEvent* event) {
+    settle();
     if (m_active) {
         if (event->key() == Qt::Key_Escape) {
             cancel();
@@ -203,6 +202,7 @@ inline bool ToolRouter::key(QKeyEvent* event) {
 }
 
 inline bool ToolRouter::keyRelease(QKeyEvent* event) {
+    settle();
     Tool* t = m_active ? m_active : m_installed;
     const bool used = t && t->keyRelease(event);
     settle();
@@ -210,7 +210,7 @@ inline bool ToolRouter::keyRelease(QKeyEvent* event) {
 }
 
 inline bool ToolRouter::listenKey(QKeyEvent* event) {
-    if (m_active)
+    if (active())
         return false;
     for (Tool* t : m_listeners)
         if (t != m_installed && t->key(event))
@@ -219,7 +219,7 @@ inline bool ToolRouter::listenKey(QKeyEvent* event) {
 }
 
 inline bool ToolRouter::listenKeyRelease(QKeyEvent* event) {
-    if (m_active)
+    if (active())
         return false;
     for (Tool* t : m_listeners)
         if (t != m_installed && t->keyRelease(event))
@@ -245,7 +245,7 @@ inline void ToolRouter::focusOut() {
 }
 
 inline void ToolRouter::cancel() {
-    if (Tool* t = m_active) {
+    if (Tool* t = active()) {
         m_active = nullptr;
         t->cancel();
     }
