@@ -113,6 +113,30 @@ int runConvert(const QStringList& args) {
         return kExitUsage;
     }
 
+    const CadFormat inFormat = cadFormatFromPath(in);
+    if (cadOut && (inFormat == CadFormat::Iges || inFormat == CadFormat::Step ||
+                   inFormat == CadFormat::Brep)) {
+        // CAD to CAD: read and written by one child, which loads OpenCASCADE once.
+        ImportReport imported;
+        ExportReport exported;
+        const Status written = convertCadFile(in, out, exportOptions, imported, exported);
+        if (parser.isSet(report) && imported.facesImported > 0)
+            printOut(QStringLiteral("%1: %2").arg(in, imported.summary()));
+        else if (imported.facesSkipped() > 0)
+            printError(QStringLiteral("%1: %2 face(s) skipped, %3 imported (--report lists why)")
+                           .arg(in)
+                           .arg(imported.facesSkipped())
+                           .arg(imported.facesImported));
+        for (const QString& w : exported.warnings)
+            printError(QStringLiteral("%1: warning: %2").arg(out, w));
+        if (!written) {
+            printError(written.message());
+            return kExitBadInput;
+        }
+        if (parser.isSet(report))
+            printOut(QStringLiteral("%1: %2").arg(out, exported.summary()));
+        return kExitOk;
+    }
     const Expected<ImportResult> result = importFile(in);
     if (!result) {
         printError(result.message());

@@ -1,24 +1,63 @@
 // knotwork __write-cad SCENE.kwi OUT DIR [options]: the child process that writes a STEP or IGES
 // file for a parent (model/cad/cadprocess.h, kWriteCadVerb), with OpenCASCADE loaded only here,
 // from libknotwork_occt_write.so. It leaves the bytes in DIR/export.out and the report in
-// DIR/export.txt; the parent writes OUT. Hidden from --help.
+// DIR/export.txt; the parent writes OUT. With --read-cad the first argument is a CAD file,
+// read here first with its format's module (as `__read-cad` does, its import left in
+// DIR/import.kwi), so that a CAD to CAD convert loads OpenCASCADE once. Hidden from --help.
 #include "app/commands.h"
 #include "app/plugin.h"
 #include "model/cad/cadprocess.h"
 #include "model/cad/handover.h"
 #include "model/cad/occtexport.h"
+#include "model/cad/occtimport.h"
 #include "model/io/savefile.h"
 
 #include <QDir>
+#include <QElapsedTimer>
 #include <QFile>
 #include <sys/resource.h>
 
 namespace kw::cli {
+namespace {
+
+// What `__read-cad` does, in this process: `in` read by its format's module and finished, the
+// import left for the parent in DIR/import.kwi (its report and face numbers). The writer module
+// loaded next shares the OpenCASCADE toolkits already mapped.
+Expected<ImportResult> readCadFile(const QString& in, const QString& dir) {
+    const CadFormat format = cadFormatFromPath(in);
+    if (format != CadFormat::Iges && format != CadFormat::Step && format != CadFormat::Brep)
+        return Error(QStringLiteral("%1: not an IGES, STEP or BREP file").arg(in), in);
+    // Temporary files (the IGES numbering repair's copy) go into the parent's folder.
+    qputenv("TMPDIR", QFile::encodeName(dir));
+    const Expected<QFunctionPointer> resolved = app::resolveModuleSymbol(
+        QString::fromLatin1(occtReadModuleName(format)), kOcctImportSymbol);
+    if (!resolved)
+        return Error(QStringLiteral("%1: cannot read %2: %3")
+                         .arg(in, cadFormatName(format), resolved.message()),
+                     in);
+    const auto read = reinterpret_cast<OcctImportFunction>(*resolved);
+    // The read's progress is not sent: the parent's bar follows the write, as for an export.
+    const ImportProgress none;
+    QElapsedTimer timer;
+    timer.start();
+    Expected<ImportResult> result = read(in, format, &none);
+    if (!result)
+        return result;
+    if (const Status finished = finishImport(*result, in); !finished)
+        return finished.error();
+    result->report.seconds = timer.elapsed() / 1000.0;
+    if (const Status left = writeImportForParent(*result, dir); !left)
+        return left.error();
+    return result;
+}
+
+} // namespace
 
 int runWriteCad(const QStringList& args) {
     // args[0] is "knotwork __write-cad"; the parent builds the line.
     bool usage = args.size() < 4;
     long long memoryMb = 0;
+    bool readCad = false;
     ExportOptions options;
     for (qsizetype k = 4; k < args.size() && !usage;) {
         bool ok = true;
@@ -37,15 +76,19 @@ int runWriteCad(const QStringList& args) {
         } else if (args[k] == QLatin1String("--require-closed")) {
             options.requireClosed = true;
             ++k;
+        } else if (args[k] == QLatin1String("--read-cad")) {
+            readCad = true;
+            ++k;
         } else {
             ok = false;
         }
         usage = !ok;
     }
     if (usage) {
-        printError(QStringLiteral("%1: expected SCENE.kwi OUT DIR [--step-schema S] [--iges-faces] "
-                                  "[--require-closed] [--tolerance T] [--max-memory-mb N] (used "
-                                  "by knotwork itself to write CAD files in a child process)")
+        printError(QStringLiteral(
+                       "%1: expected SCENE.kwi OUT DIR [--step-schema S] [--iges-faces] "
+                       "[--require-closed] [--tolerance T] [--max-memory-mb N] [--read-cad] (used "
+                       "by knotwork itself to write CAD files in a child process)")
                        .arg(args.value(0)));
         return kExitUsage;
     }
@@ -56,14 +99,22 @@ int runWriteCad(const QStringList& args) {
         if (::setrlimit(RLIMIT_AS, &limit) != 0)
             printError(QStringLiteral("%1: cannot set the memory limit").arg(args.value(0)));
     }
-    QFile in(scenePath);
-    const Expected<ImportResult> scene = in.open(QIODevice::ReadOnly)
-                                             ? decodeImportHandover(in.readAll())
+    Expected<ImportResult> scene = Error(QString());
+    if (readCad) {
+        scene = readCadFile(scenePath, dir);
+        if (!scene) {
+            printError(scene.message());
+            return kExitBadInput;
+        }
+    } else {
+        QFile in(scenePath);
+        scene = in.open(QIODevice::ReadOnly) ? decodeImportHandover(in.readAll())
                                              : Expected<ImportResult>(Error(in.errorString()));
-    if (!scene) {
-        printError(
-            QStringLiteral("%1: cannot read the scene to write: %2").arg(out, scene.message()));
-        return kExitBadInput;
+        if (!scene) {
+            printError(
+                QStringLiteral("%1: cannot read the scene to write: %2").arg(out, scene.message()));
+            return kExitBadInput;
+        }
     }
     const Expected<QFunctionPointer> resolved =
         app::resolveModuleSymbol(QString::fromLatin1(kOcctWriteModuleName), kOcctExportSymbol);

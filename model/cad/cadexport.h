@@ -63,4 +63,15 @@ QString exportOptionsError(const ExportOptions& options);
 Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
                      ExportReport& report, const ImportProgress& progress = {});
 
+/// `knotwork convert IN.step|.iges|.brep OUT.step|.iges`: what importFile then exportCadFile do,
+/// in one child process (`knotwork __write-cad IN OUT DIR --read-cad`), which loads
+/// OpenCASCADE once: the read with its format's module, the import finished as importFile
+/// finishes it (`imported` gets its report, also when the write then fails), the write as
+/// exportCadFile writes. Errors as importFile's ("<IN>: <reason>") for the read and as
+/// exportCadFile's for the write; the time limit is the read's plus the write's for a file of
+/// IN's size.
+Status convertCadFile(const QString& in, const QString& path, const ExportOptions& options,
+                      ImportReport& imported, ExportReport& report,
+                      const ImportProgress& progress = {});
+
 } // namespace kw

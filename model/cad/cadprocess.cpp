@@ -432,10 +432,11 @@ Expected<ImportResult> importInChildProcess(const QString& path, CadFormat forma
     return std::move(*read);
 }
 
-// exportCadFile's work; its messages become the Error.
-static bool writeInChild(const Scene& scene, const QString& path, const ExportOptions& options,
-                         ExportReport& report, QString& error, const ImportProgress& progress) {
-    report = ExportReport{};
+namespace {
+
+// What an export checks before any child runs: the name, the options, that there is something
+// to write (`empty`: the scene has no surface), the folder.
+bool exportPrecheck(const QString& path, const ExportOptions& options, bool empty, QString& error) {
     const CadFormat format = cadFormatFromPath(path);
     if (format != CadFormat::Step && format != CadFormat::Iges) {
         error = QStringLiteral("%1: not a STEP or IGES name (expected .step, .stp, .iges or .igs)")
@@ -446,7 +447,7 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
         error = QStringLiteral("%1: %2").arg(path, bad);
         return false;
     }
-    if (scene.surfaces.empty()) {
+    if (empty) {
         error = QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path);
         return false;
     }
@@ -457,39 +458,18 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
                                               : QStringLiteral("does not exist"));
         return false;
     }
-#ifndef KW_HAVE_OCCT
-    Q_UNUSED(progress);
-    error = QStringLiteral("%1: cannot write %2: Knotwork was built without OpenCASCADE")
-                .arg(path, cadFormatName(format));
-    return false;
-#else
-    const QString writer = QStringLiteral("the %1 writer").arg(cadFormatName(format));
-    // A folder of the registry (cadtempdir.h): removed on every exit path, SIGTERM included,
-    // or swept by a later run if this one is killed.
-    const Expected<QString> made = makeCadTempDir();
-    if (!made) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, writer, made.message());
-        return false;
-    }
-    const QString dirPath = *made;
-    const FolderRemover removeDir(dirPath);
-    const QDir dir(dirPath);
-    // The scene goes over bit for bit (handover.h), as imports come back.
-    ImportResult handover;
-    handover.scene = scene;
-    for (int k = 0; k < int(scene.surfaces.size()); ++k)
-        handover.sourceFaces.push_back(k + 1);
-    const QByteArray block = encodeImportHandover(handover);
-    const QString scenePath = dir.filePath(QStringLiteral("scene.kwi"));
-    if (const Status saved = saveBytesAtomically(scenePath, block); !saved) {
-        error = QStringLiteral("%1: cannot hand the scene to %2: %3")
-                    .arg(path, writer, saved.message());
-        return false;
-    }
-    const long long memory = cadMemoryLimitBytes();
+    return true;
+}
+
+#ifdef KW_HAVE_OCCT
+// Runs `knotwork __write-cad FIRST OUT DIR ...` (`extra` after the options), reads its report
+// and writes `path` from the bytes it left in `dirPath`.
+bool runWriter(const QString& first, const QString& path, const QString& dirPath,
+               const ExportOptions& options, const QStringList& extra, double seconds,
+               long long memory, const QString& writer, ExportReport& report, QString& error,
+               const ImportProgress& progress) {
     QStringList args{QString::fromLatin1(kWriteCadVerb),
-                     scenePath,
+                     first,
                      path,
                      dirPath,
                      QStringLiteral("--max-memory-mb"),
@@ -502,9 +482,10 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
         args << QStringLiteral("--iges-faces");
     if (options.requireClosed)
         args << QStringLiteral("--require-closed");
+    args << extra;
     ChildEnd end;
-    if (!watchQProcess(path, writer, args, cadTimeLimitSeconds(block.size(), true), progress, end,
-                       error, QStringLiteral("%1: export cancelled").arg(path)))
+    if (!watchQProcess(path, writer, args, seconds, progress, end, error,
+                       QStringLiteral("%1: export cancelled").arg(path)))
         return false;
     if (end.crashed) {
         error = QStringLiteral("%1 crashed on %2 (%3); nothing was written (its memory limit was "
@@ -513,6 +494,7 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
                     .arg(memory >> 20);
         return false;
     }
+    const QDir dir(dirPath);
     QFile text(dir.filePath(QStringLiteral("export.txt")));
     const bool reported = text.open(QIODevice::ReadOnly) && report.fromText(text.readAll());
     if (end.exitCode != 0) {
@@ -544,6 +526,104 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
     });
     error = saved.message();
     return bool(saved);
+}
+#endif
+
+} // namespace
+
+// exportCadFile's work; its messages become the Error.
+static bool writeInChild(const Scene& scene, const QString& path, const ExportOptions& options,
+                         ExportReport& report, QString& error, const ImportProgress& progress) {
+    report = ExportReport{};
+    if (!exportPrecheck(path, options, scene.surfaces.empty(), error))
+        return false;
+#ifndef KW_HAVE_OCCT
+    Q_UNUSED(progress);
+    error = QStringLiteral("%1: cannot write %2: Knotwork was built without OpenCASCADE")
+                .arg(path, cadFormatName(cadFormatFromPath(path)));
+    return false;
+#else
+    const QString writer =
+        QStringLiteral("the %1 writer").arg(cadFormatName(cadFormatFromPath(path)));
+    // A folder of the registry (cadtempdir.h): removed on every exit path, SIGTERM included,
+    // or swept by a later run if this one is killed.
+    const Expected<QString> made = makeCadTempDir();
+    if (!made) {
+        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                    .arg(path, writer, made.message());
+        return false;
+    }
+    const QString dirPath = *made;
+    const FolderRemover removeDir(dirPath);
+    // The scene goes over bit for bit (handover.h), as imports come back.
+    ImportResult handover;
+    handover.scene = scene;
+    for (int k = 0; k < int(scene.surfaces.size()); ++k)
+        handover.sourceFaces.push_back(k + 1);
+    const QByteArray block = encodeImportHandover(handover);
+    const QString scenePath = QDir(dirPath).filePath(QStringLiteral("scene.kwi"));
+    if (const Status saved = saveBytesAtomically(scenePath, block); !saved) {
+        error = QStringLiteral("%1: cannot hand the scene to %2: %3")
+                    .arg(path, writer, saved.message());
+        return false;
+    }
+    return runWriter(scenePath, path, dirPath, options, {}, cadTimeLimitSeconds(block.size(), true),
+                     cadMemoryLimitBytes(), writer, report, error, progress);
+#endif
+}
+
+// convertCadFile's work; its messages become the Error.
+static bool convertInChild(const QString& in, const QString& path, const ExportOptions& options,
+                           ImportReport& imported, ExportReport& report, QString& error,
+                           const ImportProgress& progress) {
+    report = ExportReport{};
+    imported = ImportReport{};
+    const CadFormat format = cadFormatFromPath(in);
+    if (format != CadFormat::Iges && format != CadFormat::Step && format != CadFormat::Brep) {
+        error = QStringLiteral("%1: not an IGES, STEP or BREP file").arg(in);
+        return false;
+    }
+    // As importInChildProcess: a device, FIFO or folder, or a file that does not start like
+    // its format, is refused before any child starts.
+    QString problem = regularFileProblem(in);
+    if (problem.isEmpty())
+        problem = cadHeadProblem(format, fileHead(in, kSniffBytes));
+    if (!problem.isEmpty()) {
+        error = QStringLiteral("%1: %2").arg(in, problem);
+        return false;
+    }
+    if (!exportPrecheck(path, options, false, error))
+        return false;
+#ifndef KW_HAVE_OCCT
+    Q_UNUSED(progress);
+    error = QStringLiteral("%1: cannot read %2: %3")
+                .arg(in, cadFormatName(format), occtUnavailableMessage());
+    return false;
+#else
+    const QString writer = QStringLiteral("the %1 reader and %2 writer")
+                               .arg(cadFormatName(format), cadFormatName(cadFormatFromPath(path)));
+    const Expected<QString> made = makeCadTempDir();
+    if (!made) {
+        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                    .arg(path, writer, made.message());
+        return false;
+    }
+    const QString dirPath = *made;
+    const FolderRemover removeDir(dirPath);
+    // The read's limits and the write's: the scene is about as large in the hand-over as the
+    // file it came from.
+    const qint64 size = QFileInfo(in).size();
+    const bool written = runWriter(in, path, dirPath, options, {QStringLiteral("--read-cad")},
+                                   cadTimeLimitSeconds(size) + cadTimeLimitSeconds(size, true),
+                                   cadMemoryLimitBytes(size), writer, report, error, progress);
+    // The import's report comes back also when the write is refused (a face the reader
+    // skipped may be why).
+    QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
+    if (handover.open(QIODevice::ReadOnly)) {
+        if (Expected<ImportResult> read = decodeImportHandover(handover.readAll()))
+            imported = std::move(read->report);
+    }
+    return written;
 #endif
 }
 
@@ -552,6 +632,15 @@ Status exportCadFile(const Scene& scene, const QString& path, const ExportOption
     QString error;
     if (!writeInChild(scene, path, options, report, error, progress))
         return Error(error, path);
+    return ok();
+}
+
+Status convertCadFile(const QString& in, const QString& path, const ExportOptions& options,
+                      ImportReport& imported, ExportReport& report,
+                      const ImportProgress& progress) {
+    QString error;
+    if (!convertInChild(in, path, options, imported, report, error, progress))
+        return Error(error, error.startsWith(in) ? in : path);
     return ok();
 }
 

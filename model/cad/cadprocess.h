@@ -18,7 +18,8 @@ constexpr const char* kReadCadVerb = "__read-cad";
 /// `knotwork __write-cad SCENE.kwi OUT DIR [--step-schema S] [--iges-faces] [--require-closed]
 /// [--tolerance T] [--max-memory-mb N]` reads the scene hand-over SCENE.kwi (handover.h) and
 /// leaves the file's bytes in DIR/export.out and its report in DIR/export.txt; OUT names the
-/// destination (format, messages, STEP header), which the parent writes.
+/// destination (format, messages, STEP header), which the parent writes. With `--read-cad`,
+/// SCENE.kwi is instead an IGES, STEP or BREP file that the child reads first (convertCadFile).
 constexpr const char* kWriteCadVerb = "__write-cad";
 
 /// The time a file of `bytes` may take: 10 s plus 10 s per MB to read it, twice that when it is

@@ -5,6 +5,7 @@
 #include "model/analysis/mass_properties.h"
 #include "model/cad/cadexport.h"
 #include "model/cad/cadimport.h"
+#include "model/cad/cadprocess.h"
 #include "model/cad/occtbuild.h"
 #include "model/cad/occtexport.h"
 #include "model/io/knotfile.h"
@@ -210,6 +211,7 @@ private Q_SLOTS:
     void editedImportedSolidUsesRecord();
     void requireClosedLeavesFileUntouched();
     void convertWritesSchemasAndModes();
+    void convertCadToCadRunsOneChild();
     void badInputExitsOne_data();
     void badInputExitsOne();
     void fullDestination();
@@ -635,6 +637,56 @@ void TestExchange::convertWritesSchemasAndModes() {
                        QStringLiteral("wire")})
                  .code,
              2);
+}
+
+// CAD to CAD: one child reads and writes, so OpenCASCADE is loaded once. The children are
+// counted through KNOTWORK_CAD_READER, a script that logs its arguments and runs knotwork.
+void TestExchange::convertCadToCadRunsOneChild() {
+    const QString log = out(QStringLiteral("children.log"));
+    const QString script = out(QStringLiteral("child.sh"));
+    QFile::remove(log);
+    QFile f(script);
+    QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    f.write(QStringLiteral("#!/bin/sh\necho \"$*\" >> '%1'\nexec '%2' \"$@\"\n")
+                .arg(log, QStringLiteral(KW_KNOTWORK_BIN))
+                .toUtf8());
+    f.close();
+    QVERIFY(f.setPermissions(QFile::ReadOwner | QFile::WriteOwner | QFile::ExeOwner));
+    const QProcessEnvironment env = environmentWith(QStringLiteral("KNOTWORK_CAD_READER"), script);
+    const QString target = out(QStringLiteral("one_child.iges"));
+    QFile::remove(target);
+    const Run r = knotwork({QStringLiteral("convert"), QStringLiteral("--report"),
+                            data(QStringLiteral("screw.step")), target},
+                           env);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const QStringList children =
+        QString::fromUtf8(readAll(log)).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+    QCOMPARE(children.size(), 1);
+    QVERIFY2(children[0].startsWith(QLatin1String(kWriteCadVerb)) &&
+                 children[0].contains(QLatin1String("--read-cad")),
+             qPrintable(children[0]));
+    // Both reports, as two children gave them; the file reads back whole, as a solid.
+    QVERIFY2(r.out.contains(data(QStringLiteral("screw.step")) + QStringLiteral(": ")) &&
+                 r.out.contains(target + QStringLiteral(": ")) &&
+                 r.out.contains(QStringLiteral("1 solid(s)")),
+             qPrintable(r.out));
+    const auto back = importFile(target);
+    QVERIFY2(back, qPrintable(back.message()));
+    QCOMPARE(back->scene.surfaces.size(), original(QStringLiteral("screw.step")).surfaces.size());
+    // A file the reader refuses: exit 1, one line naming it, nothing written, one child.
+    QFile::remove(log);
+    QFile::remove(target);
+    QFile bad(out(QStringLiteral("truncated.step")));
+    QVERIFY(bad.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    bad.write(readAll(data(QStringLiteral("screw.step"))).left(5000));
+    bad.close();
+    const Run refused = knotwork({QStringLiteral("convert"), bad.fileName(), target}, env);
+    QCOMPARE(refused.code, 1);
+    QVERIFY2(refused.err.startsWith(bad.fileName() + QStringLiteral(": truncated")),
+             qPrintable(refused.err));
+    QCOMPARE(refused.err.count(QLatin1Char('\n')), 1);
+    QVERIFY(!QFile::exists(target));
+    QCOMPARE(QString::fromUtf8(readAll(log)).count(QLatin1Char('\n')), 1);
 }
 
 void TestExchange::badInputExitsOne_data() {
