@@ -7,6 +7,7 @@
 #include "model/document/document.h"
 #include "model/error.h"
 #include "render/adaptive_partitions.h"
+#include "render/section_cells.h"
 #include "render/exact_contract.h"
 #include "render/frame_report.h"
 #include "render/gpu_pool.h"
@@ -207,7 +208,19 @@ private:
         TrimMaskStats maskStats;
         std::uint64_t seen = 0; ///< the last sync whose document held the surface
         AdaptivePartitions adaptive;
+        /// The section split's per-cell data (splitSections): the cells' bounds for the
+        /// polygon and points they were taken from, and the classes last written.
+        struct Sections {
+            std::uint64_t polygonSerial = 0, points = 0, knots = 0;
+            std::vector<CellBox> boxes;
+            std::vector<std::uint8_t> classes;
+            std::uint64_t serial = 0;
+        } sections;
     };
+    /// The cells of `records` ordered for the frame: by their trims (with `splitTrims`) and,
+    /// with planes and RenderOptions::splitCellsBySections, by the planes (kw::splitCells).
+    void splitRecords(const std::vector<SurfaceRecord*>& records, bool splitTrims,
+                      const FrameCamera& camera, const RenderOptions& options);
     /// What one sync knows while it goes through the records.
     struct Pass;
     void drop(Entry& e);
@@ -252,6 +265,14 @@ private:
         bool operator==(const ViewKey&) const = default;
     } m_viewKey;
     std::uint64_t m_viewStamp = 0;
+    /// What the section classes were last taken for: any difference splits every record again.
+    struct SectionKey {
+        std::vector<SectionPlane> planes;
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        bool operator==(const SectionKey&) const = default;
+    } m_sectionKey;
+    std::uint64_t m_sectionSerial = 0; ///< names each new set of a record's section classes
     UploadStats m_removedStats;
     TrimMaskStats m_removedMaskStats;
 
