@@ -388,6 +388,7 @@ bool readDevelopmentSwitches(const QString& cmd, RenderOptions& options) {
     // Same pixels, different cost: the trimmed-cell split (## Trims), closed solids' back
     // faces skipped, affine surfaces without the Newton step, the multi-draw, the deferred pass.
     options.splitCellsByTrims = !off("KW_TRIM_CELL_SPLIT");
+    options.splitCellsBySections = !off("KW_SECTION_CELL_SPLIT"); // ## Section planes
     options.skipBackFaces = !off("KW_BACK_FACES", "1");
     options.affineWithoutNewton = !off("KW_AFFINE");
     options.multiDraw = !off("KW_MULTI_DRAW");

@@ -43,6 +43,25 @@ int AdaptivePartitions::gridFor(int spans) {
     return spans <= 16 ? 4 : spans <= 64 ? 2 : 1;
 }
 
+const std::vector<SpanBound>& AdaptivePartitions::spans(const Surface& surface,
+                                                         const Revisions& rev) {
+    if (m_haveSpans && m_geometry.points == rev.points && m_geometry.knots == rev.knots)
+        return m_spans;
+    const NurbsSurface& g = surface.geometry;
+    // Count the spans first: the grid depends on them.
+    int spans = 0;
+    for (int ku = g.degreeU; ku < g.countU; ++ku)
+        for (int kv = g.degreeV; kv < g.countV; ++kv)
+            spans += g.knotsU[size_t(ku)] < g.knotsU[size_t(ku + 1)] &&
+                     g.knotsV[size_t(kv)] < g.knotsV[size_t(kv + 1)];
+    m_spans = surfaceSpanBounds(g, gridFor(spans));
+    m_geometry = rev;
+    m_haveSpans = true;
+    m_inBox.clear();
+    m_box = ParameterBox{{1.0, 0.0}, {1.0, 0.0}}; // forces choose's filter
+    return m_spans;
+}
+
 const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const Revisions& rev,
                                                   const ParameterBox& box, const ScreenScale& scale,
                                                   std::uint64_t viewStamp, double tolerance,
@@ -52,17 +71,7 @@ const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const 
     const NurbsSurface& g = surface.geometry;
     bool stale = !m_haveChoice || m_viewStamp != viewStamp || m_minU != minU || m_minV != minV;
     if (!m_haveSpans || m_geometry.points != rev.points || m_geometry.knots != rev.knots) {
-        // Count the spans first: the grid depends on them.
-        int spans = 0;
-        for (int ku = g.degreeU; ku < g.countU; ++ku)
-            for (int kv = g.degreeV; kv < g.countV; ++kv)
-                spans += g.knotsU[size_t(ku)] < g.knotsU[size_t(ku + 1)] &&
-                         g.knotsV[size_t(kv)] < g.knotsV[size_t(kv + 1)];
-        m_spans = surfaceSpanBounds(g, gridFor(spans));
-        m_geometry = rev;
-        m_haveSpans = true;
-        m_inBox.clear();
-        m_box = ParameterBox{{1.0, 0.0}, {1.0, 0.0}}; // forces the filter below
+        spans(surface, rev);
         stale = true;
     }
     if (!(box == m_box)) {

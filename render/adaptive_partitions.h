@@ -43,6 +43,10 @@ public:
                                   bool* recomputed = nullptr);
     /// The last choice as a polygon cut (its breaks).
     const PolygonCut& cut() const { return m_cut; }
+    /// The bounds of all of `surface`'s non-empty spans (kw::surfaceSpanBounds at gridFor),
+    /// taken again only when its points or knots changed (the section planes' cell bounds
+    /// use them in either partitioning).
+    const std::vector<SpanBound>& spans(const Surface& surface, const Revisions& rev);
 
     /// Sub-rectangles per span side: 4, fewer for surfaces of many spans so that the bounds
     /// of one surface cost at most ~256 Bezier extractions (measured: 0.27 ms per hammer.iges

@@ -111,6 +111,9 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
     f.setFlag(PlanFlag::AffineNoNewton, options.affineWithoutNewton);
     f.setFlag(PlanFlag::Deferred, deferred);
     f.setFlag(PlanFlag::Analytic, options.analyticFaces);
+    f.setFlag(PlanFlag::SectionSplit, !options.sections.empty() && options.splitCellsBySections &&
+                                          options.shading == RenderOptions::Shading::DepthPrepass &&
+                                          !antialiased);
     return ExactPlanKey{scene.identity,
                         scene.layout,
                         scene.marks,
@@ -141,6 +144,14 @@ int ExactPlanner::stencilOf(const ExactBatch& b) const {
 std::int64_t ExactPlanner::trimTestedCells() const {
     std::int64_t cells = 0;
     for (const auto& [k, b] : m_trimmedPre)
+        for (const IndirectCommand& c : b.commands)
+            cells += c.count / 6;
+    return cells;
+}
+
+std::int64_t ExactPlanner::sectionCells() const {
+    std::int64_t cells = 0;
+    for (const auto& [k, b] : m_sections)
         for (const IndirectCommand& c : b.commands)
             cells += c.count / 6;
     return cells;
@@ -205,10 +216,12 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
             return p;
         }
     }
-    // Wholly on a section plane's removed side: every fragment would be evaluated (a cut frame
-    // has no early depth test) and then discarded.
-    if (!key.sections.empty() && r.bounded &&
-        sectionSide(r.boundsLo, r.boundsHi, key.sections) == SectionSide::Removed) {
+    // Wholly on a section plane's removed side: every fragment would be evaluated, then
+    // discarded.
+    const SectionSide side = !key.sections.empty() && r.bounded
+                                 ? sectionSide(r.boundsLo, r.boundsHi, key.sections)
+                                 : SectionSide::Kept;
+    if (side == SectionSide::Removed) {
         p.culled = true;
         return p;
     }
@@ -291,6 +304,26 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     if (p.face != 0 && !key.has(PlanFlag::Antialiased))
         p.backVariant = degrees | int(mask != nullptr) << 8 | p.face << 10 | int(affine) << 12 |
                         int(analytic) << 14;
+    // Crossed by a section plane: its pre-pass depth would be the polygon's where the shader
+    // then discards, hiding what lies behind. The cells a plane crosses go to their own pass
+    // with exact depth; those every plane keeps stay in the commands above, drawn as an uncut
+    // surface's (kw::splitCells ordered them: kept, crossed, then removed or trimmed away).
+    if (key.has(PlanFlag::SectionSplit) && side == SectionSide::Crossed) {
+        commands.section = commands.all; // the inside and near-edge cells when split by trims
+        if (g->splitSections != 0) {
+            const auto kept = std::uint32_t(g->keptIndexCount);
+            commands.section.firstIndex += kept;
+            commands.section.count = std::uint32_t(g->crossedIndexCount);
+            commands.all.count = kept; // split by the trims too: inside + edge already
+            if (p.split)               // not trimmed away: drawn by the section pass
+                p.awayCells -= g->crossedIndexCount / 6;
+        } else {
+            // Cells not split by the planes (no bounds for them): every one is crossed.
+            commands.all.count = commands.inside.count = commands.edge.count = 0;
+        }
+        p.sectionVariant = degrees | int(mask != nullptr) << 8 | int(gather) << 9 | p.face << 10 |
+                           int(affine) << 12;
+    }
     return p;
 }
 
@@ -414,12 +447,23 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         p.backIndex = addBack(p.backVariant, p.split ? cs.edge : c);
     if (p.backVariant >= 0 && p.split)
         p.backInsideIndex = addBack(p.backVariant & ~(1 << 8), cs.inside);
+    if (p.sectionVariant >= 0) {
+        ExactBatch& k = m_sections[p.sectionVariant];
+        if (k.commands.empty()) {
+            k = b;
+            k.commands.clear();
+            k.trimmed = (p.sectionVariant >> 8) & 1;
+        }
+        p.sectionIndex = int(k.commands.size());
+        k.commands.push_back(cs.section);
+    }
 }
 
 void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
                          const FrameCamera& camera) {
     // Group the surfaces by variant (document order within a group).
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
+    for (auto* batches :
+         {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces, &m_sections})
         batches->clear();
     m_routes.clear();
     chooseBackCulled(scene, key, camera);
@@ -440,7 +484,8 @@ void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
     for (auto& [k, route] : m_routes)
         route.stencil = ++stencil;
     m_commands.clear();
-    for (auto* batches : {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces})
+    for (auto* batches :
+         {&m_plain, &m_trimmedPre, &m_variants, &m_edges, &m_skirts, &m_backFaces, &m_sections})
         for (auto& [k, b] : *batches) {
             b.first = std::int64_t(m_commands.size());
             m_commands.insert(m_commands.end(), b.commands.begin(), b.commands.end());
@@ -466,7 +511,8 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             continue;
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
             now.edgeVariant != was.edgeVariant || now.split != was.split ||
-            now.skirtVariant != was.skirtVariant || now.backVariant != was.backVariant)
+            now.skirtVariant != was.skirtVariant || now.backVariant != was.backVariant ||
+            now.sectionVariant != was.sectionVariant)
             return false;
         const auto patchOne = [&](ExactBatch& b, int index, const IndirectCommand& command) {
             IndirectCommand& old = b.commands[size_t(index)];
@@ -491,6 +537,8 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             patchOne(m_backFaces.at(was.backVariant), was.backIndex, was.split ? cs.edge : c);
         if (was.backVariant >= 0 && was.split)
             patchOne(m_backFaces.at(was.backVariant & ~(1 << 8)), was.backInsideIndex, cs.inside);
+        if (was.sectionVariant >= 0)
+            patchOne(m_sections.at(was.sectionVariant), was.sectionIndex, cs.section);
         if (deferred && now.route() >= 0) {
             it->second.window = now.window;
             addToRoute(now); // grown only: it may have moved

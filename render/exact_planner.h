@@ -32,10 +32,10 @@ static_assert(sizeof(IndirectCommand) == 20, "must match GL's DrawElementsIndire
 struct ExactBatch {
     int degreeU = 1, degreeV = 1;
     bool trimmed = false, gather = false;
-    bool affine = false; ///< the polygon is the surface: no Newton step (variant bit 12)
+    bool affine = false;   ///< the polygon is the surface: no Newton step (variant bit 12)
     bool analytic = false; ///< the point from the analytic form in closed form (bit 14)
-    int route = 0;       ///< pre-pass batches of the deferred pass: ExactPlace::route
-    int face = 0;        ///< the triangles skipped: ExactPlace::face
+    int route = 0;         ///< pre-pass batches of the deferred pass: ExactPlace::route
+    int face = 0;          ///< the triangles skipped: ExactPlace::face
     std::vector<IndirectCommand> commands;
     std::int64_t first = 0;
 };
@@ -64,9 +64,7 @@ struct ExactPlace {
     /// Its route in the deferred pass: what that pass's program depends on, the degrees,
     /// affine and analytic bits; -1 for the surfaces the forward pass draws (variant bit 13:
     /// cells of many pixels each, where a pixel is shaded about once anyway).
-    int route() const {
-        return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14);
-    }
+    int route() const { return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14); }
     /// Its untrimmed pre-pass batch in plain(): by face, and with the deferred pass by route
     /// too (each route's pre-pass writes its own stencil value).
     int plainKey(bool deferred) const { return face << 16 | (deferred ? route() & 0xffff : 0); }
@@ -85,6 +83,12 @@ struct ExactPlace {
     int backVariant = -1;
     int backIndex = -1;
     int backInsideIndex = -1;
+    /// A section plane crosses it (PlanFlag::SectionSplit): key into sections() (degrees, the
+    /// trim lookup, gather, face, affine) and its command there, the cells a plane crosses
+    /// (SurfaceGpu::crossedIndexCount; all of them when its cells are not split by the
+    /// planes). Its other commands then hold only the cells every plane keeps.
+    int sectionVariant = -1;
+    int sectionIndex = -1;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
@@ -102,6 +106,9 @@ enum class PlanFlag : std::uint32_t {
     AffineNoNewton = 1u << 7, ///< RenderOptions::affineWithoutNewton
     Deferred = 1u << 8,       ///< the deferred exact pass (pre-pass batches by route)
     Analytic = 1u << 9,       ///< RenderOptions::analyticFaces
+    /// Section planes with the pre-pass, aliased: the cells a plane crosses go to sections()
+    /// (RenderOptions::splitCellsBySections), the kept ones are drawn the frame's way.
+    SectionSplit = 1u << 10,
 };
 using PlanFlags = QFlags<PlanFlag>;
 
@@ -161,7 +168,7 @@ public:
     void clear();
 
     /// Every batch's commands in upload order (plain, trimmed pre-pass, variants, edges,
-    /// skirts, back faces), each batch's `first` pointing into it.
+    /// skirts, back faces, sections), each batch's `first` pointing into it.
     const std::vector<IndirectCommand>& commands() const { return m_commands; }
     /// The pre-pass's untrimmed ranges, by ExactPlace::plainKey.
     const std::map<int, ExactBatch>& plain() const { return m_plain; }
@@ -178,6 +185,12 @@ public:
     /// which side the other passes skip; this pass skips the other one). Trimmed ones test
     /// their trims in the shader. Empty in anti-aliased (coverage) frames.
     const std::map<int, ExactBatch>& backFaces() const { return m_backFaces; }
+    /// The cells section planes cross, by ExactPlace::sectionVariant: drawn after the kept
+    /// cells' shading with exact depth and the section test (trimmed ones look their trims
+    /// up: no pre-pass covers them). Empty without PlanFlag::SectionSplit.
+    const std::map<int, ExactBatch>& sections() const { return m_sections; }
+    /// The cells in sections().
+    std::int64_t sectionCells() const;
     /// The deferred pass's routes (ExactPlace::route): their stencil values, 1, 2, ..., and
     /// the union of their surfaces' ExactPlace::window.
     struct Route {
@@ -234,7 +247,7 @@ private:
     /// not split); split: the cells inside the trims and those near a curve, and the shading
     /// pass's range covering both (not the trimmed-away cells).
     struct Commands {
-        IndirectCommand all{}, inside{}, edge{}, skirt{};
+        IndirectCommand all{}, inside{}, edge{}, skirt{}, section{};
     };
     /// A record's variant and commands as this frame would draw it.
     ExactPlace classify(const SurfaceRecord& r, const ExactPlanKey& key, const FrameCamera& camera,
@@ -257,7 +270,8 @@ private:
 
     bool m_have = false;
     ExactPlanKey m_key;
-    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts, m_backFaces;
+    std::map<int, ExactBatch> m_plain, m_trimmedPre, m_variants, m_edges, m_skirts, m_backFaces,
+        m_sections;
     std::map<int, Route> m_routes;
     std::set<int> m_backCulled;
     std::unordered_map<const SurfaceRecord*, ExactPlace> m_places;

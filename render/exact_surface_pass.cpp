@@ -294,6 +294,9 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
         drawn = drawBatches(variants, aa ? TrimAa::Opaque : TrimAa::Off, scene, camera, lights,
                             options, range);
     }
+    sectionCrossedCells = m_plan.sectionCells();
+    if (drawn && !m_plan.sections().empty())
+        drawn = sectionPass(scene, camera, lights, options, range);
     mark(PassTimes::Exact);
     finTriangles = 0;
     if (drawn && !m_plan.skirts().empty())
@@ -338,6 +341,18 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
         drawBatch(b);
     }
     return ok();
+}
+
+Status ExactSurfacePass::sectionPass(const GpuScene& scene, const FrameCamera& camera,
+                                     const std::vector<Light>& lights, const RenderOptions& options,
+                                     const ValueRange& range) {
+    // Their exact point decides both the cut and the depth: a fragment in front of the kept
+    // cells' (pre-pass) depth replaces them, one the planes remove leaves what lies behind.
+    m_gl->glDepthFunc(kDepthNearer);
+    m_gl->glDepthMask(GL_TRUE);
+    RenderOptions exactDepth = options;
+    exactDepth.shading = RenderOptions::Shading::ExactDepth;
+    return drawBatches(m_plan.sections(), TrimAa::Off, scene, camera, lights, exactDepth, range);
 }
 
 Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,

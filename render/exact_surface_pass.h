@@ -96,6 +96,8 @@ public:
     int analyticSurfaces = 0;
     /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
     int deferredSurfaces = 0;
+    /// FrameReport::Partitions::sectionCrossedCells of the last draw.
+    std::int64_t sectionCrossedCells = 0;
     /// How far past its exact edge a face's skirt may show it, in pixels on screen: the small
     /// conservative overlap where faces meet. B-rep faces meet within the
     /// model's tolerance, not exactly; Axis_of_bearing's faces miss each other by 0.1-0.15 px
@@ -194,6 +196,11 @@ private:
     Status backFacePass(const GpuScene& scene, const FrameCamera& camera,
                         const std::vector<Light>& lights, const RenderOptions& options,
                         const ValueRange& range);
+    /// After the kept cells' shading: the cells section planes cross (the plan's sections()),
+    /// with exact depth, nearer than what the kept cells' pre-pass left, and the section test.
+    Status sectionPass(const GpuScene& scene, const FrameCamera& camera,
+                       const std::vector<Light>& lights, const RenderOptions& options,
+                       const ValueRange& range);
     /// The anti-aliased frame's edge pass over the plan's edges() (see draw).
     Status edgePass(const GpuScene& scene, const FrameCamera& camera,
                     const std::vector<Light>& lights, const RenderOptions& options,

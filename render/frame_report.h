@@ -141,6 +141,10 @@ struct FrameReport {
         /// Surfaces shaded by the deferred exact pass (RenderOptions::deferredPass) in the
         /// last aliased frame; 0 when every surface was drawn the forward way.
         int deferredSurfaces = 0;
+        /// Frames with section planes and the pre-pass: the cells a plane crosses, drawn with
+        /// exact depth and the section test (RenderOptions::splitCellsBySections); the cells
+        /// of the surfaces a plane crosses that every plane keeps are drawn the frame's way.
+        std::int64_t sectionCrossedCells = 0;
     } partitions;
     /// The colour range a colour-map analysis mode used (the user's, or the automatic one of
     /// kw::autoRange, recomputed only when the geometry or mode changed and held while

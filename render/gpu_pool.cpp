@@ -322,7 +322,8 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     g.polygonSerial = ++serial;
     g.insideIndexCount = -1;
     g.edgeIndexCount = 0;
-    g.splitPolygon = g.splitClasses = 0;
+    g.splitPolygon = g.splitClasses = g.splitSections = 0;
+    g.keptIndexCount = g.crossedIndexCount = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, triangles, u.triangles.data());
     if (withOutlines)
@@ -413,45 +414,77 @@ int cellTrimClass(const TrimMask& m, double u0, double u1, double v0, double v1)
 } // namespace
 
 bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask) {
+    return splitCells(pools, g, mask, nullptr, 0);
+}
+
+bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
+                const std::vector<std::uint8_t>* sections, std::uint64_t sectionSerial) {
     const bool usable = mask && mask->usable() && !mask->texelClass.empty() && mask->width > 0 &&
                         mask->height > 0 && g.triangleOffset >= 0;
     const std::uint64_t classes = usable ? mask->classSerial : 0;
-    if (g.splitPolygon == g.polygonSerial && g.splitClasses == classes)
+    const BasePolygon& poly = g.polygon;
+    const bool cut = sections && sectionSerial != 0 && g.triangleOffset >= 0 &&
+                     sections->size() == size_t(poly.cellCount());
+    const std::uint64_t planes = cut ? sectionSerial : 0;
+    if (g.splitPolygon == g.polygonSerial && g.splitClasses == classes &&
+        g.splitSections == planes)
         return false;
     g.splitPolygon = g.polygonSerial;
     g.splitClasses = classes;
-    const bool wasSplit = g.insideIndexCount >= 0;
-    if (!usable) {
+    g.splitSections = planes;
+    const bool wasSplit = g.insideIndexCount >= 0 || g.keptIndexCount > 0 ||
+                          g.crossedIndexCount > 0;
+    g.keptIndexCount = g.crossedIndexCount = 0;
+    if (!usable && !cut) {
         // One range of every cell, in whatever order the last split left them.
         g.insideIndexCount = -1;
         g.edgeIndexCount = 0;
         return wasSplit;
     }
-    const BasePolygon& poly = g.polygon;
-    std::vector<unsigned> byClass[3];
+    // Buckets in drawing order: kept and inside, kept near an edge, crossed near an edge,
+    // crossed inside, then the rest (trimmed away or removed).
+    std::vector<unsigned> byClass[5];
     const unsigned row = unsigned(poly.nodesU());
     for (int cv = 0; cv < poly.cellsV(); ++cv)
         for (int cu = 0; cu < poly.cellsU(); ++cu) {
-            const int c =
-                cellTrimClass(*mask, poly.breaksU[size_t(cu)], poly.breaksU[size_t(cu + 1)],
-                              poly.breaksV[size_t(cv)], poly.breaksV[size_t(cv + 1)]);
+            const int trim =
+                usable ? cellTrimClass(*mask, poly.breaksU[size_t(cu)],
+                                       poly.breaksU[size_t(cu + 1)], poly.breaksV[size_t(cv)],
+                                       poly.breaksV[size_t(cv + 1)])
+                       : 1;
+            const std::uint8_t side =
+                cut ? (*sections)[size_t(cv) * size_t(poly.cellsU()) + size_t(cu)] : 0;
+            const int bucket = trim == 0 || side == 2 ? 4
+                               : side == 1            ? (trim == 2 ? 2 : 3)
+                                                      : (trim == 2 ? 1 : 0);
             const unsigned ll = unsigned(cv) * row + unsigned(cu), lr = ll + 1, ul = ll + row,
                            ur = ul + 1;
-            byClass[c].insert(byClass[c].end(), {ll, lr, ur, ll, ur, ul});
+            byClass[bucket].insert(byClass[bucket].end(), {ll, lr, ur, ll, ur, ul});
         }
-    const int inside = int(byClass[1].size()), outside = int(byClass[0].size());
-    std::vector<unsigned> tri = std::move(byClass[1]);
-    tri.insert(tri.end(), byClass[2].begin(), byClass[2].end());
-    tri.insert(tri.end(), byClass[0].begin(), byClass[0].end());
+    const int sizes[5] = {int(byClass[0].size()), int(byClass[1].size()), int(byClass[2].size()),
+                          int(byClass[3].size()), int(byClass[4].size())};
+    std::vector<unsigned> tri = std::move(byClass[0]);
+    for (int k = 1; k < 5; ++k)
+        tri.insert(tri.end(), byClass[k].begin(), byClass[k].end());
     if (int(tri.size()) != g.triangleIndexCount) {
         // Not this polygon's cells (cannot happen: built from g.polygon): stay one range.
         g.insideIndexCount = -1;
         g.edgeIndexCount = 0;
+        g.splitSections = 0;
         return wasSplit;
     }
     pools.triangles.write(g.triangleOffset, std::int64_t(tri.size()), tri.data());
-    g.insideIndexCount = inside;
-    g.edgeIndexCount = int(tri.size()) - inside - outside;
+    if (usable) {
+        g.insideIndexCount = sizes[0];
+        g.edgeIndexCount = sizes[1];
+    } else {
+        g.insideIndexCount = -1; // not split by the trims: the kept cells are one range
+        g.edgeIndexCount = 0;
+    }
+    if (cut) {
+        g.keptIndexCount = sizes[0] + sizes[1];
+        g.crossedIndexCount = sizes[2] + sizes[3];
+    }
     return true;
 }
 

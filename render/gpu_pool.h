@@ -120,6 +120,13 @@ struct SurfaceGpu {
     /// wholly trimmed away. insideIndexCount < 0: not split (one range, every cell).
     int insideIndexCount = -1, edgeIndexCount = 0;
     std::uint64_t splitPolygon = 0, splitClasses = 0; ///< what the split was made for
+    /// splitCells with section classes (splitSections != 0, their serial): the cells a plane
+    /// keeps wholly first (keptIndexCount indices; split by the trims too, they are the inside
+    /// then the near-edge cells above, keptIndexCount = insideIndexCount + edgeIndexCount),
+    /// then those a plane crosses (crossedIndexCount; near an edge first), then those removed
+    /// or trimmed away.
+    int keptIndexCount = 0, crossedIndexCount = 0;
+    std::uint64_t splitSections = 0;
     /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
     /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
     bool affine = false;
@@ -172,6 +179,14 @@ struct TrimMask;
 /// changed. Why: the depth pre-pass then tests the trims only on cells near a curve and draws
 /// no cell the trims remove (docs/PERFORMANCE.md ## Trims).
 bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask);
+/// splitByTrims, and with `sections` (one kw::CellSection per cell, row by row, v outer; null
+/// or empty: none) also by the section planes, in SurfaceGpu::keptIndexCount and
+/// crossedIndexCount's order; `sectionSerial` (non-zero) names those classes, so the same
+/// serial again rewrites nothing. Why: a cut frame's kept cells draw with the pre-pass as an
+/// uncut frame's, only the crossed ones with exact depth and the section test, and the removed
+/// ones not at all (docs/RENDERING.md, "Section planes").
+bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
+                const std::vector<std::uint8_t>* sections, std::uint64_t sectionSerial);
 
 /// World-space bounds of the control points of `g` as on the GPU (texels plus origin; they
 /// hold the surface and its base polygon); false without a point of positive weight.

@@ -3,6 +3,7 @@
 #include "render/gpu_scene.h"
 
 #include "model/nurbs/visible_bounds.h"
+#include "render/exact_planner.h"
 #include "render/gpu_layout.h"
 
 #include <QElapsedTimer>
@@ -424,13 +425,70 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
     const bool split = options.splitCellsByTrims && options.trims &&
                        options.trimMode == RenderOptions::TrimMode::Exact &&
                        options.mode == RenderMode::Exact;
-    for (SurfaceRecord* r : masksRan ? m_order : m_touched)
-        if (r->exact)
-            splitByTrims(m_pools, *r->exact, split ? &r->mask : nullptr);
+    // And by the section planes: every record again when the planes or the view changed.
+    const SectionKey sectionKey{options.splitCellsBySections && options.mode == RenderMode::Exact
+                                    ? options.sections
+                                    : std::vector<SectionPlane>{},
+                                camera.viewProjection, camera.viewport};
+    const bool sectionsMoved = !(sectionKey == m_sectionKey);
+    m_sectionKey = sectionKey;
+    splitRecords(masksRan || sectionsMoved ? m_order : m_touched, split, camera, options);
     timer.restart();
     syncTable(masksRan ? m_order : m_touched);
     report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
     return status;
+}
+
+void GpuScene::splitRecords(const std::vector<SurfaceRecord*>& records, bool splitTrims,
+                            const FrameCamera& camera, const RenderOptions& options) {
+    const std::vector<SectionPlane>& planes = m_sectionKey.planes;
+    const ScreenScale scale = frameScreenScale(camera);
+    for (SurfaceRecord* r : records) {
+        if (!r->exact)
+            continue;
+        SurfaceGpu& g = *r->exact;
+        const TrimMask* mask = splitTrims ? &r->mask : nullptr;
+        // Only a surface a plane crosses is split by the planes; one wholly removed is not
+        // drawn (ExactPlanner), and its cells keep whatever order they have.
+        const ExactPlanner::SectionSide side =
+            planes.empty() || !r->bounded
+                ? ExactPlanner::SectionSide::Kept
+                : ExactPlanner::sectionSide(r->boundsLo, r->boundsHi, planes);
+        if (side == ExactPlanner::SectionSide::Removed)
+            continue;
+        const auto it = side == ExactPlanner::SectionSide::Crossed ? m_entries.find(r->id)
+                                                                   : m_entries.end();
+        if (it == m_entries.end() || !r->surface) {
+            splitCells(m_pools, g, mask, nullptr, 0);
+            continue;
+        }
+        Entry::Sections& cells = it->second.sections;
+        if (cells.polygonSerial != g.polygonSerial || cells.points != g.revisions.points ||
+            cells.knots != g.revisions.knots) {
+            cells.boxes = polygonCellBoxes(
+                g.polygon, it->second.adaptive.spans(*r->surface, r->revisions));
+            cells.polygonSerial = g.polygonSerial;
+            cells.points = g.revisions.points;
+            cells.knots = g.revisions.knots;
+            cells.serial = 0;
+        }
+        const std::vector<CellSection> classes =
+            sectionCellClasses(g.polygon, cells.boxes, planes, scale,
+                               kSectionLinePixels + options.pixelTolerance + 0.5);
+        std::vector<std::uint8_t> bytes(classes.size());
+        std::transform(classes.begin(), classes.end(), bytes.begin(),
+                       [](CellSection c) { return std::uint8_t(c); });
+        if (bytes.empty()) {
+            // No bounds for its cells: the whole surface is drawn as crossed (ExactPlanner).
+            splitCells(m_pools, g, mask, nullptr, 0);
+            continue;
+        }
+        if (cells.serial == 0 || bytes != cells.classes) {
+            cells.classes = std::move(bytes);
+            cells.serial = ++m_sectionSerial;
+        }
+        splitCells(m_pools, g, mask, &cells.classes, cells.serial);
+    }
 }
 
 void GpuScene::drop(Entry& e) {

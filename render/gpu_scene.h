@@ -13,6 +13,7 @@
 #include "render/gpu_pool.h"
 #include "render/render_types.h"
 #include "render/scene_changes.h"
+#include "render/section_cells.h"
 #include "render/trim_mask_pass.h"
 
 #include <QOpenGLFunctions_4_5_Core>
@@ -208,7 +209,19 @@ private:
         TrimMaskStats maskStats;
         std::uint64_t seen = 0; ///< the last sync whose document held the surface
         AdaptivePartitions adaptive;
+        /// The section split's per-cell data (splitSections): the cells' bounds for the
+        /// polygon and points they were taken from, and the classes last written.
+        struct Sections {
+            std::uint64_t polygonSerial = 0, points = 0, knots = 0;
+            std::vector<CellBox> boxes;
+            std::vector<std::uint8_t> classes;
+            std::uint64_t serial = 0;
+        } sections;
     };
+    /// The cells of `records` ordered for the frame: by their trims (with `splitTrims`) and,
+    /// with planes and RenderOptions::splitCellsBySections, by the planes (kw::splitCells).
+    void splitRecords(const std::vector<SurfaceRecord*>& records, bool splitTrims,
+                      const FrameCamera& camera, const RenderOptions& options);
     /// What one sync knows while it goes through the records.
     struct Pass;
     void drop(Entry& e);
@@ -255,6 +268,14 @@ private:
         bool operator==(const ViewKey&) const = default;
     } m_viewKey;
     std::uint64_t m_viewStamp = 0;
+    /// What the section classes were last taken for: any difference splits every record again.
+    struct SectionKey {
+        std::vector<SectionPlane> planes;
+        glm::mat4 viewProjection{0.0f};
+        glm::ivec2 viewport{0};
+        bool operator==(const SectionKey&) const = default;
+    } m_sectionKey;
+    std::uint64_t m_sectionSerial = 0; ///< names each new set of a record's section classes
     UploadStats m_removedStats;
     TrimMaskStats m_removedMaskStats;
 

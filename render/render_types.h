@@ -214,11 +214,18 @@ struct RenderOptions {
     /// Section planes (kw::SectionPlane, at most kMaxSectionPlanes, each valid by
     /// sectionPlaneError; Renderer::render refuses others): every pixel whose exact point lies
     /// on a plane's removed side is discarded, in both modes and every shading, and the
-    /// section curve is drawn as a line. A frame with planes draws exact mode with
-    /// Shading::ExactDepth and without skipping back faces: the pre-pass's depth is the base
-    /// polygon's, which cannot tell the exact point's side, and the back faces of closed solids
-    /// are where the caps go (docs/RENDERING.md, "Section planes").
+    /// section curve is drawn as a line. The pre-pass's depth is the base polygon's, which
+    /// cannot tell the exact point's side, so only the cells no plane crosses are drawn the
+    /// frame's way (splitCellsBySections); the back faces of the closed solids a plane crosses
+    /// are drawn, they are where the caps go (docs/RENDERING.md, "Section planes").
     std::vector<SectionPlane> sections;
+    /// With sections and the depth pre-pass, aliased frames (each accumulated sample is
+    /// one): each cut surface's cells are ordered by the planes (kw::splitCells); those wholly
+    /// kept are drawn as an uncut frame's (pre-pass, deferred pass), only those a plane
+    /// crosses with Shading::ExactDepth and the section test, and those removed not at all.
+    /// Off (and in MSAA frames): the whole exact pass is drawn with Shading::ExactDepth. The
+    /// same cut either way (tst_render_sections); off only to measure the difference.
+    bool splitCellsBySections = true;
     /// With sections: where the first kept surface under a pixel is the inside of a closed
     /// solid (Surface::solid), a hatched cap at the plane, AOV id kSectionCapId.
     bool sectionCaps = true;

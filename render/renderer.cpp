@@ -107,12 +107,6 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     for (const SectionPlane& p : options.sections)
         if (const QString why = sectionPlaneError(p); !why.isEmpty())
             return fail(why);
-    if (!options.sections.empty()) {
-        // The pre-pass's depth is the base polygon's, which cannot tell on which side of a
-        // plane a pixel's exact point lies. The back faces of closed solids a plane crosses are
-        // where the caps are drawn: the planner keeps them (ExactPlanner::backCulled).
-        options.shading = RenderOptions::Shading::ExactDepth;
-    }
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
     clock.start(gl, &report.passes);
@@ -136,6 +130,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     exact.affineSurfaces = 0;
     exact.analyticSurfaces = 0;
     exact.deferredSurfaces = 0;
+    exact.sectionCrossedCells = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
 
     // The GPU scene first: trim masks draw into their own framebuffer.
@@ -143,6 +138,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     clock.mark(PassTimes::Sync);
 
     const int samples = frameSamples(options, target.aov, pickPixel != nullptr, report);
+    if (!options.sections.empty() &&
+        (!options.splitCellsBySections ||
+         (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Coverage))) {
+        // The pre-pass's depth is the base polygon's, which cannot tell on which side of a
+        // plane a pixel's exact point lies: without the split of the cut surfaces' cells
+        // (ExactPlanner, kw::splitCells; none in MSAA frames) every cell is drawn with exact
+        // depth. The back faces of closed solids a plane crosses are where the caps are drawn:
+        // the planner keeps them (ExactPlanner::backCulled).
+        options.shading = RenderOptions::Shading::ExactDepth;
+    }
     AntialiasTarget* aa = nullptr;
     AccumulateTarget* accumulated = nullptr;
     if (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
@@ -304,6 +309,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.partitions.affineSurfaces = exact.affineSurfaces;
     report.partitions.analyticSurfaces = exact.analyticSurfaces;
     report.partitions.deferredSurfaces = exact.deferredSurfaces;
+    report.partitions.sectionCrossedCells = exact.sectionCrossedCells;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();

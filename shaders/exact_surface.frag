@@ -503,7 +503,14 @@ void main() {
     // Cut by the exact point; a kept face of a closed solid seen from inside shows the cap in
     // front of it instead: the plane's point and normal. The depth stays the face's, so that a
     // kept surface in front of the face (outside the solid's cut) still hides the cap.
+#ifdef KW_DEFERRED
+    // The deferred pass shades only cells no plane reaches within the line's width (kw::
+    // sectionCellClasses), and its screen derivatives jump between the surfaces of a 2 x 2
+    // block: no line.
+    float sectionLine = 0.0;
+#else
     float sectionLine = kwSectionLine(s.point);
+#endif
     if (kwSectionCut(s.point))
         discard;
     vec3 capPoint;

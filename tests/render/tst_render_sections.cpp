@@ -323,6 +323,120 @@ private Q_SLOTS:
         QVERIFY(c.caps > 0);
     }
 
+    /// A cut frame splits the cut surfaces' cells (RenderOptions::splitCellsBySections): those
+    /// every plane keeps are drawn as an uncut frame's (pre-pass, deferred pass), only those a
+    /// plane crosses with exact depth and the section test. Against the same frame drawn the
+    /// old way, every cell with exact depth: the same surface (or cap) on every pixel but
+    /// where two surfaces meet, where the pre-pass decides by the polygons' depth (no more
+    /// pixels than the uncut frame's pre-pass differs there from its exact-depth frame, plus
+    /// 0.2 % of the covered pixels); the same exact point on every pixel that shows the same
+    /// surface, and that point on the surface at the pixel's (u, v) by the CPU kernel. A
+    /// crossed cell drawn the kept way (its pre-pass depth hiding what the cut opens), one
+    /// drawn without the section test, or a kept cell left out, fails.
+    void cellSplitMatchesAllExactDepth_data() {
+        QTest::addColumn<int>("scene"); // 0 teapot and sphere, 1 sphere, 2 trimmed plate
+        QTest::addColumn<int>("planes");
+        QTest::addColumn<double>("zoom");
+        QTest::addRow("teapot and sphere, 1 plane") << 0 << 1 << 1.0;
+        QTest::addRow("teapot and sphere, 3 planes") << 0 << 3 << 1.0;
+        QTest::addRow("teapot and sphere, 1 plane, 3x") << 0 << 1 << 3.0;
+        QTest::addRow("sphere, cap") << 1 << 1 << 1.0;
+        QTest::addRow("trimmed plate, 2 planes") << 2 << 2 << 1.0;
+    }
+    void cellSplitMatchesAllExactDepth() {
+        QFETCH(int, scene);
+        QFETCH(int, planes);
+        QFETCH(double, zoom);
+        Scene model;
+        if (scene == 2) {
+            auto plate = kwtest::loadSample(QStringLiteral("trimmed_plate"));
+            QVERIFY2(plate, qPrintable(plate.message()));
+            model = *plate;
+        } else {
+            model = scene == 0 ? teapotAndSphere() : sphereSolid();
+        }
+        glm::dvec3 lo, hi;
+        sceneBounds(model, lo, hi);
+        const glm::dvec3 mid = 0.5 * (lo + hi);
+        Camera camera = fitCamera(model, 1.0);
+        camera.fovYDegrees =
+            glm::degrees(2.0 * std::atan(std::tan(glm::radians(camera.fovYDegrees) * 0.5) / zoom));
+        const std::vector<SectionPlane> all{
+            SectionPlane{mid, scene == 1 ? camera.eye - mid : glm::dvec3(0.3, -1.0, 0.2), false},
+            SectionPlane{mid + glm::dvec3(0.0, 0.0, 0.1), glm::dvec3(0.0, 0.2, 1.0), false},
+            SectionPlane{mid - glm::dvec3(0.5, 0.0, 0.0), glm::dvec3(1.0, 0.0, 0.1), true}};
+        RenderOptions options; // adaptive, as the editor and `knotwork render` draw
+        options.partitioning = RenderOptions::Partitioning::Adaptive;
+        options.sections.assign(all.begin(), all.begin() + planes);
+        const double tolerance = 1e-6 * diagonal(model);
+        const AovBuffer split = render(model, camera, options);
+        QVERIFY(!split.data.empty());
+        const FrameReport report = m_gl->lastReport();
+        // The split is in effect: some cells crossed, most kept.
+        QVERIFY2(report.partitions.sectionCrossedCells > 0,
+                 qPrintable(QString::number(report.partitions.sectionCrossedCells)));
+        QVERIFY2(report.partitions.cells > report.partitions.sectionCrossedCells,
+                 qPrintable(QStringLiteral("%1 cells, %2 crossed")
+                                .arg(report.partitions.cells)
+                                .arg(report.partitions.sectionCrossedCells)));
+        qInfo("%lld cells, %lld crossed, %d surfaces deferred",
+              qlonglong(report.partitions.cells),
+              qlonglong(report.partitions.sectionCrossedCells), report.partitions.deferredSurfaces);
+        bool ok = false;
+        const Counts c = checkKept(split, options.sections, tolerance, ok);
+        QVERIFY(ok);
+        QVERIFY(c.surface + c.caps > 300);
+        RenderOptions old = options;
+        old.splitCellsBySections = false;
+        const AovBuffer exactDepth = render(model, camera, old);
+        QVERIFY(!exactDepth.data.empty());
+        QCOMPARE(m_gl->lastReport().partitions.sectionCrossedCells, std::int64_t(0));
+        // The uncut frame's own difference between the pre-pass and exact depth.
+        RenderOptions uncut;
+        uncut.partitioning = options.partitioning;
+        const AovBuffer prepass = render(model, camera, uncut);
+        uncut.shading = RenderOptions::Shading::ExactDepth;
+        const AovBuffer uncutExact = render(model, camera, uncut);
+        QVERIFY(!prepass.data.empty() && !uncutExact.data.empty());
+        // Pixels showing another surface, and pixels of the same surface at points farther
+        // apart than 1e-4 of the diagonal (where a silhouette folds, the two ways may take
+        // the ray's other meeting with the surface).
+        const double far = 1e-4 * diagonal(model);
+        const auto differing = [far](const AovBuffer& a, const AovBuffer& b, int& farPoints) {
+            int n = 0;
+            farPoints = 0;
+            for (int y = 0; y < a.height; ++y)
+                for (int x = 0; x < a.width; ++x) {
+                    const float *pa = a.pixel(x, y), *pb = b.pixel(x, y);
+                    n += pa[0] != pb[0];
+                    farPoints += pa[0] == pb[0] && pa[0] != -1.0f &&
+                                 glm::length(glm::dvec3(pa[3], pa[4], pa[5]) -
+                                             glm::dvec3(pb[3], pb[4], pb[5])) > far;
+                }
+            return n;
+        };
+        int uncutFar = 0, farPoints = 0;
+        const int uncutDiffering = differing(prepass, uncutExact, uncutFar);
+        const int differ = differing(split, exactDepth, farPoints);
+        int covered = 0;
+        for (int y = 0; y < split.height; ++y)
+            for (int x = 0; x < split.width; ++x)
+                covered += split.pixel(x, y)[0] != -1.0f || exactDepth.pixel(x, y)[0] != -1.0f;
+        // Caps (id < 0) are on their plane (checkKept); surfaces against the kernel.
+        const kwtest::AovComparison kernel = kwtest::compareAovWithKernel(model, split);
+        qInfo("%d of %d covered pixels show another surface than the exact-depth frame's, %d "
+              "another point (uncut: %d, %d); the kernel's point by %g (diagonal %g)",
+              differ, covered, farPoints, uncutDiffering, uncutFar, kernel.maxPosition,
+              diagonal(model));
+        QVERIFY2(differ <= uncutDiffering + covered / 500,
+                 qPrintable(QStringLiteral("%1 pixels differ").arg(differ)));
+        QVERIFY2(farPoints <= uncutFar + covered / 1000,
+                 qPrintable(QStringLiteral("%1 pixels at another point").arg(farPoints)));
+        QCOMPARE(kernel.unknownIds, 0);
+        QVERIFY2(kernel.maxPosition <= 1e-4 * kernel.modelSize,
+                 qPrintable(QString::number(kernel.maxPosition)));
+    }
+
     /// The wireframe and the control net are cut as the surfaces are: a plane that removes
     /// everything leaves the background alone, lines included.
     void linesAreCut() {
