@@ -567,8 +567,11 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
                     .arg(path, writer, saved.message());
         return false;
     }
+    // The memory limit grows with the scene as a read's does with its file: OpenCASCADE's
+    // writer holds its whole model and text (10,035 faces: 1.75 GB resident ran out of the
+    // fixed 2 GiB of address space).
     return runWriter(scenePath, path, dirPath, options, {}, cadTimeLimitSeconds(block.size(), true),
-                     cadMemoryLimitBytes(), writer, report, error, progress);
+                     cadMemoryLimitBytes(block.size()), writer, report, error, progress);
 #endif
 }
 
