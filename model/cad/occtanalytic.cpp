@@ -13,6 +13,7 @@
 #include <gp_Pln.hxx>
 #include <gp_Sphere.hxx>
 #include <gp_Torus.hxx>
+#include <limits>
 #include <numbers>
 
 namespace kw::occt {
