@@ -14,13 +14,6 @@ namespace kw::bench {
 
 namespace {
 
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
-
 const QColor kColors[] = {QColor(31, 119, 180),  QColor(214, 39, 40),   QColor(44, 160, 44),
                           QColor(255, 127, 14),  QColor(148, 103, 189), QColor(140, 86, 75),
                           QColor(227, 119, 194), QColor(127, 127, 127)};
@@ -143,13 +136,12 @@ QImage stacked(const QImage& top, const QImage& bottom) {
     return img;
 }
 
-bool save(const QImage& img, const QString& dir, const QString& name, QStringList& written,
-          QString* error) {
+Status save(const QImage& img, const QString& dir, const QString& name, QStringList& written) {
     const QString path = QDir(dir).filePath(name);
-    if (!kept(saveImageAtomically(img, path), error))
-        return false;
+    if (Status saved = saveImageAtomically(img, path); !saved)
+        return saved;
     written << path;
-    return true;
+    return ok();
 }
 
 /// A file-name-safe form of a model name (teapot.knot -> teapot).
@@ -163,13 +155,10 @@ QString stem(const QString& model) {
 
 } // namespace
 
-bool writePlots(const BenchReport& report, const QString& dir, QStringList& written,
-                QString* error) {
+Status writePlots(const BenchReport& report, const QString& dir, QStringList& written) {
     written.clear();
-    if (!QDir().mkpath(dir)) {
-        *error = QStringLiteral("could not create the folder %1").arg(dir);
-        return false;
-    }
+    if (!QDir().mkpath(dir))
+        return Error(QStringLiteral("could not create the folder %1").arg(dir), dir);
     if (!report.table1.empty()) {
         std::vector<double> sizes(report.config.sizes.begin(), report.config.sizes.end());
         std::vector<Series> series;
@@ -188,10 +177,11 @@ bool writePlots(const BenchReport& report, const QString& dir, QStringList& writ
         const QString title = QStringLiteral("Table 1: exact mode, %1x%1 partitions, %2 lights")
                                   .arg(report.config.table1Partitions)
                                   .arg(report.config.lights);
-        if (!save(linePlot(title, QStringLiteral("resolution (pixels per side)"),
-                           QStringLiteral("FPS (median)"), sizes, series, true),
-                  dir, QStringLiteral("table1-fps.png"), written, error))
-            return false;
+        if (Status saved = save(linePlot(title, QStringLiteral("resolution (pixels per side)"),
+                                         QStringLiteral("FPS (median)"), sizes, series, true),
+                                dir, QStringLiteral("table1-fps.png"), written);
+            !saved)
+            return saved;
     }
     QStringList models;
     for (const Table2Row& r : report.table2)
@@ -226,25 +216,29 @@ bool writePlots(const BenchReport& report, const QString& dir, QStringList& writ
         const QString size = QStringLiteral("%1x%2")
                                  .arg(report.config.table2Size.width())
                                  .arg(report.config.table2Size.height());
-        if (!save(linePlot(QStringLiteral("Table 2: %1 at %2").arg(model, size),
-                           QStringLiteral("partitions (n x n)"), QStringLiteral("FPS (median)"),
-                           parts, fps, true),
-                  dir, QStringLiteral("table2-%1-fps.png").arg(stem(model)), written, error) ||
-            !save(stacked(linePlot(QStringLiteral("Table 2 quality: %1 at %2, max normal error")
-                                       .arg(model, size),
-                                   QStringLiteral("partitions (n x n)"),
-                                   QStringLiteral("max normal error (degrees)"), parts, normals,
-                                   true),
-                          linePlot(QStringLiteral("silhouette error against exact mode at %1x%1 "
-                                                  "partitions")
-                                       .arg(report.config.referencePartitions),
-                                   QStringLiteral("partitions (n x n)"),
-                                   QStringLiteral("mismatched px per silhouette px"), parts,
-                                   silhouettes, false)),
-                  dir, QStringLiteral("table2-%1-error.png").arg(stem(model)), written, error))
-            return false;
+        if (Status saved = save(linePlot(QStringLiteral("Table 2: %1 at %2").arg(model, size),
+                                         QStringLiteral("partitions (n x n)"),
+                                         QStringLiteral("FPS (median)"), parts, fps, true),
+                                dir, QStringLiteral("table2-%1-fps.png").arg(stem(model)), written);
+            !saved)
+            return saved;
+        if (Status saved =
+                save(stacked(linePlot(QStringLiteral("Table 2 quality: %1 at %2, max normal error")
+                                          .arg(model, size),
+                                      QStringLiteral("partitions (n x n)"),
+                                      QStringLiteral("max normal error (degrees)"), parts, normals,
+                                      true),
+                             linePlot(QStringLiteral("silhouette error against exact mode at %1x%1 "
+                                                     "partitions")
+                                          .arg(report.config.referencePartitions),
+                                      QStringLiteral("partitions (n x n)"),
+                                      QStringLiteral("mismatched px per silhouette px"), parts,
+                                      silhouettes, false)),
+                     dir, QStringLiteral("table2-%1-error.png").arg(stem(model)), written);
+            !saved)
+            return saved;
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw::bench

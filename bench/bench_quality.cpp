@@ -2,6 +2,7 @@
 #include "bench/bench_quality.h"
 
 #include "model/nurbs/nurbs.h"
+#include "render/edge_metrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,19 +48,11 @@ NormalError normalError(const Scene& scene, const AovBuffer& aov) {
     return e;
 }
 
-bool silhouetteError(const AovBuffer& frame, const AovBuffer& reference, SilhouetteError& out,
-                     QString* error) {
+Status silhouetteError(const AovBuffer& frame, const AovBuffer& reference, SilhouetteError& out) {
     out = SilhouetteError{};
-    if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
-        frame.height <= 0) {
-        *error = QStringLiteral("silhouette error needs two AOV frames of one non-empty size, got "
-                                "%1x%2 and %3x%4")
-                     .arg(frame.width)
-                     .arg(frame.height)
-                     .arg(reference.width)
-                     .arg(reference.height);
-        return false;
-    }
+    if (Status sized = sameAovSize(frame, reference, QStringLiteral("silhouette error needs"));
+        !sized)
+        return sized;
     const int w = reference.width, h = reference.height;
     std::vector<glm::ivec2> silhouette;
     for (int y = 0; y < h; ++y)
@@ -97,7 +90,7 @@ bool silhouetteError(const AovBuffer& frame, const AovBuffer& reference, Silhoue
     out.perSilhouettePixel = out.silhouettePixels
                                  ? double(out.mismatched) / double(out.silhouettePixels)
                                  : (out.mismatched ? double(out.mismatched) : 0.0);
-    return true;
+    return ok();
 }
 
 } // namespace kw::bench

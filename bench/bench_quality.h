@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 #include "render/offscreen_renderer.h"
 
 namespace kw::bench {
@@ -35,8 +36,7 @@ struct SilhouetteError {
     double perSilhouettePixel = 0.0;
 };
 
-/// Both buffers must have the same non-zero size; returns false with *error set otherwise.
-bool silhouetteError(const AovBuffer& frame, const AovBuffer& reference, SilhouetteError& out,
-                     QString* error);
+/// Both buffers must have the same non-zero size; the error says so otherwise.
+Status silhouetteError(const AovBuffer& frame, const AovBuffer& reference, SilhouetteError& out);
 
 } // namespace kw::bench

@@ -20,8 +20,7 @@ QString reportMarkdown(const BenchReport& report, const QString& command,
 /// Writes the plots into `dir` (created if missing): table1-fps.png (FPS against resolution, one
 /// line per model) and, per Table 2 model, table2-<model>-fps.png and table2-<model>-error.png
 /// (FPS and normal / silhouette error against partitions, one line per method). Returns the
-/// written paths, or false with *error set when a file cannot be written.
-bool writePlots(const BenchReport& report, const QString& dir, QStringList& written,
-                QString* error);
+/// written paths in `written`, or the error when a file cannot be written.
+Status writePlots(const BenchReport& report, const QString& dir, QStringList& written);
 
 } // namespace kw::bench

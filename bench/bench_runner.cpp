@@ -21,14 +21,7 @@ namespace kw::bench {
 
 namespace {
 
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
-
-using Frame = std::function<bool(QString*)>;
+using Frame = std::function<Status()>;
 
 /// A loaded model: its document (for the renderer) and camera at one aspect.
 struct Model {
@@ -39,23 +32,20 @@ struct Model {
 
 // Read as `knotwork render` reads it (kw::openModelFile): a .knot as saved, IGES, STEP and BREP
 // through the CAD reader's child process, OBJ; the import's remarks on stderr.
-bool loadModel(const QString& file, double aspect, Model& m, QString* error) {
-    std::optional<ImportResult> read = openModelFile(file, *error);
+Status loadModel(const QString& file, double aspect, Model& m) {
+    QString why;
+    std::optional<ImportResult> read = openModelFile(file, why);
     if (!read)
-        return false;
+        return Error(why, file);
     cli::printImportRemarks(file, read->report);
     const std::optional<Scene> scene = std::move(read->scene);
-    if (const Status reset = m.doc.resetScene(*scene); !reset) {
-        *error = QStringLiteral("%1: %2").arg(file, reset.message());
-        return false;
-    }
-    if (m.doc.scene().surfaces.empty()) {
-        *error = QStringLiteral("%1: the scene has no surfaces to measure").arg(file);
-        return false;
-    }
+    if (const Status reset = m.doc.resetScene(*scene); !reset)
+        return Error(QStringLiteral("%1: %2").arg(file, reset.message()), file);
+    if (m.doc.scene().surfaces.empty())
+        return Error(QStringLiteral("%1: the scene has no surfaces to measure").arg(file), file);
     m.name = QFileInfo(file).fileName();
     m.camera = scene->camera.authored ? scene->camera : fitCamera(*scene, aspect);
-    return true;
+    return ok();
 }
 
 /// The GL side of a run: the off-screen renderer, which also draws the two comparison meshes
@@ -68,10 +58,7 @@ public:
     Session() = default;
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
-    bool create(QString* error) { return kept(renderer.create(), error); }
-    bool setSize(QSize size, bool withAov, QString* error) {
-        return kept(renderer.setSize(size, withAov), error);
-    }
+    Status setSize(QSize size, bool withAov) { return renderer.setSize(size, withAov); }
     FrameCamera frameCamera(const Model& m) const {
         const QSize size = renderer.size();
         FrameCamera fc =
@@ -80,7 +67,7 @@ public:
         return fc;
     }
     /// Exact or baseline frame of the model at `partitions`.
-    bool drawRenderer(const Model& m, RenderMode mode, int partitions, int lights, QString* error) {
+    Status drawRenderer(const Model& m, RenderMode mode, int partitions, int lights) {
         RenderOptions o = base;
         o.shading = shading;
         o.mode = mode;
@@ -91,28 +78,25 @@ public:
         o.trimMode = trimMode;
         o.samples = aaSamples;
         o.antialiasing = aaMethod;
-        return kept(renderer.render(m.doc, m.camera, o), error);
+        return renderer.render(m.doc, m.camera, o);
     }
     /// The comparison mesh in `slot` drawn by the renderer with the model's camera and lights
     /// (cleared as the renderer clears, the baseline's Gouraud shading).
-    bool drawMesh(int slot, const Model& m, int lights, QString* error) {
+    Status drawMesh(int slot, const Model& m, int lights) {
         RenderOptions o;
         o.lightCount = lights;
-        return kept(renderer.renderMesh(m.doc, slot, m.camera, o), error);
+        return renderer.renderMesh(m.doc, slot, m.camera, o);
     }
     /// One GLU frame: tessellate with the current camera, upload, draw.
-    bool drawGlu(const Model& m, double tolerance, int lights, long long* vertices,
-                 QString* error) {
-        if (!gluTessellate(m.doc.scene(), frameCamera(m), tolerance, m_gluMesh, error))
-            return false;
+    Status drawGlu(const Model& m, double tolerance, int lights, long long* vertices) {
+        if (Status made = gluTessellate(m.doc.scene(), frameCamera(m), tolerance, m_gluMesh); !made)
+            return made;
         if (vertices)
             *vertices = m_gluMesh.vertexCount();
         m_gluTriangles = m_gluMesh.triangleCount();
-        if (renderer.setMesh(kGluSlot, m_gluMesh) < 0) {
-            *error = QStringLiteral("lost the OpenGL context");
-            return false;
-        }
-        return drawMesh(kGluSlot, m, lights, error);
+        if (renderer.setMesh(kGluSlot, m_gluMesh) < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
+        return drawMesh(kGluSlot, m, lights);
     }
     long long gluTriangles() const { return m_gluTriangles; }
 
@@ -131,8 +115,8 @@ private:
 
 /// Warm-up frames, then `config.frames` timed frames each ended by glFinish. `before(f)`, when
 /// given, runs ahead of frame f outside the timer.
-bool timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timing& t,
-                QString* error, const std::function<void(int)>& before = {}) {
+Status timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timing& t,
+                  const std::function<void(int)>& before = {}) {
     std::vector<double> ms;
     double cpuStart = 0.0;
     for (int f = 0; f < config.warmup + config.frames; ++f) {
@@ -142,8 +126,8 @@ bool timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timin
             before(f);
         QElapsedTimer timer;
         timer.start();
-        if (!frame(error))
-            return false;
+        if (Status drawn = frame(); !drawn)
+            return drawn;
         s.renderer.finish();
         if (f >= config.warmup)
             ms.push_back(double(timer.nsecsElapsed()) * 1e-6);
@@ -154,30 +138,36 @@ bool timeFrames(Session& s, const BenchConfig& config, const Frame& frame, Timin
     t.maxMs = ms.back();
     const size_t n = ms.size();
     t.medianMs = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-    return true;
+    return ok();
 }
 
 /// Draws one frame with AOVs and measures it against the reference frame.
-bool measureQuality(Session& s, const Model& m, const AovBuffer& reference, const Frame& frame,
-                    Quality& q, AovBuffer* keep, QString* error) {
+Status measureQuality(Session& s, const Model& m, const AovBuffer& reference, const Frame& frame,
+                      Quality& q, AovBuffer* keep) {
     const QSize size = s.renderer.size();
-    if (!s.setSize(size, true, error) || !frame(error))
-        return false;
+    if (Status sized = s.setSize(size, true); !sized)
+        return sized;
+    if (Status drawn = frame(); !drawn)
+        return drawn;
     AovBuffer aov = s.renderer.aov();
     q.normal = normalError(m.doc.scene(), aov);
-    if (reference.width > 0 && !silhouetteError(aov, reference, q.silhouette, error))
-        return false;
+    if (reference.width > 0)
+        if (Status measured = silhouetteError(aov, reference, q.silhouette); !measured)
+            return measured;
     if (keep)
         *keep = std::move(aov);
-    return true;
+    return ok();
 }
 
 /// Quality and timing of one method: an AOV frame, then the timed frames without AOVs.
-bool measure(Session& s, const BenchConfig& config, const Model& m, const AovBuffer& reference,
-             const Frame& frame, MethodResult& r, QString* error) {
+Status measure(Session& s, const BenchConfig& config, const Model& m, const AovBuffer& reference,
+               const Frame& frame, MethodResult& r) {
     const QSize size = s.renderer.size();
-    return measureQuality(s, m, reference, frame, r.quality, nullptr, error) &&
-           s.setSize(size, false, error) && timeFrames(s, config, frame, r.timing, error);
+    if (Status measured = measureQuality(s, m, reference, frame, r.quality, nullptr); !measured)
+        return measured;
+    if (Status sized = s.setSize(size, false); !sized)
+        return sized;
+    return timeFrames(s, config, frame, r.timing);
 }
 
 QString describe(const Model& m, const QString& what, const MethodResult& r) {
@@ -208,8 +198,8 @@ TrimPointRef dragTarget(const Scene& scene) {
 
 /// --trim-drag: times frames that each move `target` a little back and forth (as a drag sends
 /// them) so its mask is redrawn every frame; the point is put back afterwards.
-bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& frame,
-                 const TrimPointRef& target, TrimDrag& drag, QString* error) {
+Status measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& frame,
+                   const TrimPointRef& target, TrimDrag& drag) {
     const Surface* surface = m.doc.surface(target.surface);
     const std::vector<NurbsCurve2>& curves = surface->trims.front().curves;
     const glm::dvec2 home = curves[size_t(target.curve)].points[size_t(target.index)];
@@ -228,49 +218,51 @@ bool measureDrag(Session& s, const BenchConfig& config, Model& m, const Frame& f
         moveTo(home + glm::dvec2(step, 0.5 * step));
     };
     Timing t;
-    const bool ok = timeFrames(s, config, frame, t, error, move);
+    const Status timed = timeFrames(s, config, frame, t, move);
     masks += s.renderer.lastReport().masks;
     moveTo(home);
-    if (!ok)
-        return false;
-    if (refused) {
-        *error = QStringLiteral("%1: the trim drag's point move was refused").arg(m.name);
-        return false;
-    }
+    if (!timed)
+        return timed;
+    if (refused)
+        return Error(QStringLiteral("%1: the trim drag's point move was refused").arg(m.name));
     drag.medianMs = t.medianMs;
     drag.maskCpuMs =
         masks.redraws ? double(masks.cpuNanoseconds) * 1e-6 / double(masks.redraws) : 0.0;
     drag.maskSide = masks.largestSide;
-    return true;
+    return ok();
 }
 
-bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
-               const std::function<void(const QString&)>& progress, QString* error) {
+Status runTable1(Session& s, const BenchConfig& config, BenchReport& report,
+                 const std::function<void(const QString&)>& progress) {
     for (const QString& file : config.table1Files) {
         Model m;
-        if (!loadModel(file, 1.0, m, error))
-            return false;
+        if (Status loaded = loadModel(file, 1.0, m); !loaded)
+            return loaded;
         for (int side : config.sizes) {
             Table1Row row;
             row.model = m.name;
             row.surfaces = int(m.doc.scene().surfaces.size());
             row.side = side;
             AovBuffer reference;
-            if (!s.setSize(QSize(side, side), true, error) ||
-                !s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights,
-                                error))
-                return false;
+            if (Status sized = s.setSize(QSize(side, side), true); !sized)
+                return sized;
+            if (Status drawn =
+                    s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights);
+                !drawn)
+                return drawn;
             reference = s.renderer.aov();
             MethodResult r;
             AovBuffer aov;
-            const Frame exact = [&](QString* e) {
-                return s.drawRenderer(m, config.table1Mode, config.table1Partitions, config.lights,
-                                      e);
+            const Frame exact = [&] {
+                return s.drawRenderer(m, config.table1Mode, config.table1Partitions, config.lights);
             };
-            if (!measureQuality(s, m, reference, exact, r.quality, &aov, error) ||
-                !s.setSize(QSize(side, side), false, error) ||
-                !timeFrames(s, config, exact, r.timing, error))
-                return false;
+            if (Status measured = measureQuality(s, m, reference, exact, r.quality, &aov);
+                !measured)
+                return measured;
+            if (Status sized = s.setSize(QSize(side, side), false); !sized)
+                return sized;
+            if (Status timed = timeFrames(s, config, exact, r.timing); !timed)
+                return timed;
             long long covered = 0;
             for (int k = 0; k < aov.width * aov.height; ++k)
                 covered += aov.data[size_t(k) * AovBuffer::kChannels] >= 0.0f ? 1 : 0;
@@ -288,8 +280,8 @@ bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
             if (const TrimPointRef target = dragTarget(m.doc.scene());
                 config.trimDrag && config.trims && target.surface.isValid()) {
                 TrimDrag drag;
-                if (!measureDrag(s, config, m, exact, target, drag, error))
-                    return false;
+                if (Status measured = measureDrag(s, config, m, exact, target, drag); !measured)
+                    return measured;
                 row.drag = drag;
                 progress(QStringLiteral("%1 %2x%2 trim drag: %3 ms/frame, mask redraw %4 CPU ms, "
                                         "mask side %5")
@@ -302,7 +294,7 @@ bool runTable1(Session& s, const BenchConfig& config, BenchReport& report,
             report.table1.push_back(row);
         }
     }
-    return true;
+    return ok();
 }
 
 /// One density or tolerance tried by an equal-quality search.
@@ -312,17 +304,20 @@ struct SearchPoint {
     long long triangles = 0;
 };
 
-bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, BenchReport& report,
-                    const std::function<void(const QString&)>& progress, QString* error) {
+Status runTable2Model(Session& s, const BenchConfig& config, const QString& file,
+                      BenchReport& report, const std::function<void(const QString&)>& progress) {
     const QSize size = config.table2Size;
     Model m;
-    if (!loadModel(file, double(size.width()) / double(size.height()), m, error))
-        return false;
+    if (Status loaded = loadModel(file, double(size.width()) / double(size.height()), m); !loaded)
+        return loaded;
     const Scene& scene = m.doc.scene();
     const long long surfaces = (long long)scene.surfaces.size();
-    if (!s.setSize(size, true, error) ||
-        !s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights, error))
-        return false;
+    if (Status sized = s.setSize(size, true); !sized)
+        return sized;
+    if (Status drawn =
+            s.drawRenderer(m, RenderMode::Exact, config.referencePartitions, config.lights);
+        !drawn)
+        return drawn;
     const AovBuffer reference = s.renderer.aov();
 
     // The fine mesh and the GLU tessellation do not depend on the row's partitions: each
@@ -337,35 +332,37 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         s.renderer.setMesh(Session::kFineSlot, mesh);
         fineUploaded = n;
     };
-    const Frame fineFrame = [&](QString* e) {
-        return s.drawMesh(Session::kFineSlot, m, config.lights, e);
+    const Frame fineFrame = [&] {
+        return s.drawMesh(Session::kFineSlot, m, config.lights);
     };
-    auto fineQuality = [&](int n, SearchPoint& sp) {
+    auto fineQuality = [&](int n, SearchPoint& sp) -> Status {
         if (auto it = fineSeen.find(n); it != fineSeen.end()) {
             sp = it->second;
-            return true;
+            return ok();
         }
         uploadFine(n);
         sp.vertices = (long long)(n + 1) * (n + 1) * surfaces;
         sp.triangles = 2LL * n * n * surfaces;
-        if (!measureQuality(s, m, reference, fineFrame, sp.quality, nullptr, error))
-            return false;
+        if (Status measured = measureQuality(s, m, reference, fineFrame, sp.quality, nullptr);
+            !measured)
+            return measured;
         fineSeen[n] = sp;
-        return true;
+        return ok();
     };
-    auto gluQuality = [&](double t, SearchPoint& sp) {
+    auto gluQuality = [&](double t, SearchPoint& sp) -> Status {
         if (auto it = gluSeen.find(t); it != gluSeen.end()) {
             sp = it->second;
-            return true;
+            return ok();
         }
-        const Frame frame = [&](QString* e) {
-            return s.drawGlu(m, t, config.lights, &sp.vertices, e);
+        const Frame frame = [&] {
+            return s.drawGlu(m, t, config.lights, &sp.vertices);
         };
-        if (!measureQuality(s, m, reference, frame, sp.quality, nullptr, error))
-            return false;
+        if (Status measured = measureQuality(s, m, reference, frame, sp.quality, nullptr);
+            !measured)
+            return measured;
         sp.triangles = s.gluTriangles();
         gluSeen[t] = sp;
-        return true;
+        return ok();
     };
 
     for (int p : config.partitions) {
@@ -375,14 +372,15 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         row.partitions = p;
         for (auto [mode, result] : {std::pair{RenderMode::Exact, &row.exact},
                                     std::pair{RenderMode::Tessellated, &row.baseline}}) {
-            const Frame frame = [&, mode = mode](QString* e) {
-                return s.drawRenderer(m, mode, p, config.lights, e);
+            const Frame frame = [&, mode = mode] {
+                return s.drawRenderer(m, mode, p, config.lights);
             };
             result->parameter = p;
             result->triangles = 2LL * p * p * surfaces;
-            if (!s.setSize(size, false, error) ||
-                !measure(s, config, m, reference, frame, *result, error))
-                return false;
+            if (Status sized = s.setSize(size, false); !sized)
+                return sized;
+            if (Status measured = measure(s, config, m, reference, frame, *result); !measured)
+                return measured;
             progress(describe(m,
                               QStringLiteral("%1 %2x%2")
                                   .arg(mode == RenderMode::Exact ? QStringLiteral("exact")
@@ -401,8 +399,8 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         int n = p, failed = 0;
         SearchPoint sp;
         for (;;) {
-            if (!fineQuality(n, sp))
-                return false;
+            if (Status measured = fineQuality(n, sp); !measured)
+                return measured;
             row.fine.matched = sp.quality.normal.maxDegrees <= target;
             if (row.fine.matched ||
                 (long long)(2 * n + 1) * (2 * n + 1) * surfaces > config.fineMaxVertices)
@@ -413,8 +411,8 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         while (row.fine.matched && failed > 0 && n - failed > std::max(1, n / 16)) {
             const int mid = (failed + n) / 2;
             SearchPoint midPoint;
-            if (!fineQuality(mid, midPoint))
-                return false;
+            if (Status measured = fineQuality(mid, midPoint); !measured)
+                return measured;
             if (midPoint.quality.normal.maxDegrees <= target) {
                 n = mid;
                 sp = midPoint;
@@ -426,9 +424,10 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         row.fine.triangles = sp.triangles;
         row.fine.quality = sp.quality;
         uploadFine(n);
-        if (!s.setSize(size, false, error) ||
-            !timeFrames(s, config, fineFrame, row.fine.timing, error))
-            return false;
+        if (Status sized = s.setSize(size, false); !sized)
+            return sized;
+        if (Status timed = timeFrames(s, config, fineFrame, row.fine.timing); !timed)
+            return timed;
         progress(describe(m,
                           QStringLiteral("fine mesh %1x%1%2")
                               .arg(n)
@@ -438,8 +437,8 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         // (c) GLU: sampling tolerance halved from GLU's default 50 px.
         double t = 50.0;
         for (;;) {
-            if (!gluQuality(t, sp))
-                return false;
+            if (Status measured = gluQuality(t, sp); !measured)
+                return measured;
             row.glu.matched = sp.quality.normal.maxDegrees <= target;
             if (row.glu.matched || t * 0.5 < config.gluMinTolerance ||
                 sp.vertices * 4 > config.gluMaxVertices)
@@ -449,12 +448,13 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
         row.glu.parameter = t;
         row.glu.triangles = sp.triangles;
         row.glu.quality = sp.quality;
-        const Frame gluFrame = [&](QString* e) {
-            return s.drawGlu(m, t, config.lights, nullptr, e);
+        const Frame gluFrame = [&] {
+            return s.drawGlu(m, t, config.lights, nullptr);
         };
-        if (!s.setSize(size, false, error) ||
-            !timeFrames(s, config, gluFrame, row.glu.timing, error))
-            return false;
+        if (Status sized = s.setSize(size, false); !sized)
+            return sized;
+        if (Status timed = timeFrames(s, config, gluFrame, row.glu.timing); !timed)
+            return timed;
         progress(describe(m,
                           QStringLiteral("GLU tolerance %1 px%2")
                               .arg(t)
@@ -462,13 +462,13 @@ bool runTable2Model(Session& s, const BenchConfig& config, const QString& file, 
                           row.glu));
         report.table2.push_back(row);
     }
-    return true;
+    return ok();
 }
 
 } // namespace
 
-bool runBench(const BenchConfig& config, BenchReport& report,
-              const std::function<void(const QString&)>& progress, QString* error) {
+Status runBench(const BenchConfig& config, BenchReport& report,
+                const std::function<void(const QString&)>& progress) {
     report = BenchReport{};
     report.config = config;
     report.cpu = cpuModel();
@@ -480,15 +480,15 @@ bool runBench(const BenchConfig& config, BenchReport& report,
     s.trimMode = config.trimMode;
     s.aaSamples = config.aaSamples;
     s.aaMethod = config.aaMethod;
-    if (!s.create(error))
-        return false;
+    if (Status created = s.renderer.create(); !created)
+        return created;
     report.gl = s.renderer.renderer().glDescription();
-    if (!runTable1(s, config, report, progress, error))
-        return false;
+    if (Status done = runTable1(s, config, report, progress); !done)
+        return done;
     for (const QString& file : config.table2Files)
-        if (!runTable2Model(s, config, file, report, progress, error))
-            return false;
-    return true;
+        if (Status done = runTable2Model(s, config, file, report, progress); !done)
+            return done;
+    return ok();
 }
 
 } // namespace kw::bench

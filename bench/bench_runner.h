@@ -3,6 +3,7 @@
 #pragma once
 
 #include "bench/bench_quality.h"
+#include "model/error.h"
 
 #include <QSize>
 #include <QString>
@@ -119,9 +120,9 @@ struct BenchReport {
 
 /// Runs both tables (a table whose file list is empty is skipped) in the current process:
 /// needs a QGuiApplication whose default format is OffscreenRenderer::requiredFormat().
-/// `progress` receives one line per measurement. Returns false with *error set on the first
-/// failure (no GL 4.5 context, unreadable or invalid file, GLU error, shader error).
-bool runBench(const BenchConfig& config, BenchReport& report,
-              const std::function<void(const QString&)>& progress, QString* error);
+/// `progress` receives one line per measurement. Returns the first failure (no GL 4.5
+/// context, unreadable or invalid file, GLU error, shader error).
+Status runBench(const BenchConfig& config, BenchReport& report,
+                const std::function<void(const QString&)>& progress);
 
 } // namespace kw::bench

@@ -524,46 +524,48 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     if (!startGui())
         return kExitBadInput;
 
-    QString error;
     bench::BenchReport report;
     const auto progress = [](const QString& line) {
         printError(line);
     };
-    if (!bench::runBench(config, report, progress, &error)) {
-        printError(QStringLiteral("%1: %2").arg(cmd, error));
+    // Each run ends at its first failure, named with the table it stopped.
+    const auto failed = [&cmd](const Status& run, const QString& table) {
+        if (run)
+            return false;
+        printError(table.isEmpty() ? QStringLiteral("%1: %2").arg(cmd, run.message())
+                                   : QStringLiteral("%1: %2: %3").arg(cmd, table, run.message()));
+        return true;
+    };
+    if (failed(bench::runBench(config, report, progress), {}))
         return kExitBadInput;
-    }
     bench::ScaleReport scaleReport;
-    if (scale && !bench::runScale(scaleConfig, scaleReport, progress, &error)) {
-        printError(QStringLiteral("%1: scale table: %2").arg(cmd, error));
+    if (scale &&
+        failed(bench::runScale(scaleConfig, scaleReport, progress), QStringLiteral("scale table")))
         return kExitBadInput;
-    }
     bench::EditLoopReport editReport;
-    if (edit && !bench::runEditLoop(editConfig, editReport, progress, &error)) {
-        printError(QStringLiteral("%1: edit loop: %2").arg(cmd, error));
+    if (edit &&
+        failed(bench::runEditLoop(editConfig, editReport, progress), QStringLiteral("edit loop")))
         return kExitBadInput;
-    }
     bench::ZoomLoopReport zoomReport;
-    if (zoom && !bench::runZoomLoop(zoomConfig, zoomReport, progress, &error)) {
-        printError(QStringLiteral("%1: zoom loop: %2").arg(cmd, error));
+    if (zoom &&
+        failed(bench::runZoomLoop(zoomConfig, zoomReport, progress), QStringLiteral("zoom loop")))
         return kExitBadInput;
-    }
     bench::DragStepReport dragReport;
-    if (drag && !bench::runDragStep(dragConfig, dragReport, progress, &error)) {
-        printError(QStringLiteral("%1: drag step: %2").arg(cmd, error));
+    if (drag &&
+        failed(bench::runDragStep(dragConfig, dragReport, progress), QStringLiteral("drag step")))
         return kExitBadInput;
-    }
     QStringList argv = args.mid(1);
     const QString command = QStringLiteral("knotwork bench %1").arg(argv.join(QLatin1Char(' ')));
     QString plotDir = parser.value(plots);
     if (plotDir.isEmpty() && parser.isSet(markdown))
         plotDir = QFileInfo(parser.value(markdown)).absolutePath();
     QStringList written, relative;
-    if (!plotDir.isEmpty() &&
-        (!bench::writePlots(report, plotDir, written, &error) ||
-         (scale && !bench::writeScalePlot(scaleReport, plotDir, written, &error)))) {
-        printError(QStringLiteral("%1: %2").arg(cmd, error));
-        return kExitBadInput;
+    if (!plotDir.isEmpty()) {
+        Status plotted = bench::writePlots(report, plotDir, written);
+        if (plotted && scale)
+            plotted = bench::writeScalePlot(scaleReport, plotDir, written);
+        if (failed(plotted, {}))
+            return kExitBadInput;
     }
     const QDir mdDir =
         parser.isSet(markdown) ? QFileInfo(parser.value(markdown)).absoluteDir() : QDir::current();

@@ -2,9 +2,9 @@
 // read, or tiled with its shared-edge record), the dragged face, the alternated timed steps.
 #include "bench/drag_step.h"
 
-#include "bench/peer_model.h"
-
 #include "app/commands.h"
+#include "bench/loop_runner.h"
+#include "bench/peer_model.h"
 #include "bench/scale_scene.h"
 #include "model/analysis/continuity.h"
 #include "model/cad/cadimport.h"
@@ -19,7 +19,6 @@
 #include <QFileInfo>
 #include <QHash>
 #include <QJsonObject>
-#include <QThread>
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -27,13 +26,6 @@
 namespace kw::bench {
 
 namespace {
-
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
 
 /// tileScene(unit, copies) with unit's shared edges copied into every copy: a tiled part is
 /// then what an imported assembly of that many faces is, edges from its record (tileScene
@@ -135,10 +127,10 @@ public:
                const std::function<void(const QString&)>& p)
         : config(c), renderer(r), progress(p) {}
 
-    bool run(const Scene& unit, const QString& name, int faces, DragStepRow& row, QString* error);
+    Status run(const Scene& unit, const QString& name, int faces, DragStepRow& row);
 
 private:
-    bool step(bool overlay, const glm::dvec3& to, bool timed, QString* error);
+    Status step(bool overlay, const glm::dvec3& to, bool timed);
 
     const DragStepConfig& config;
     OffscreenRenderer& renderer;
@@ -156,14 +148,12 @@ private:
 // One drag step as the editor takes it: the edit; on the document's change the overlay (on)
 // re-measures the face's edges and re-makes their bands, or (off) the status bar's check
 // re-measures the same edges; then the frame, with the bands uploaded when on.
-bool ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed, QString* error) {
+Status ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed) {
     QElapsedTimer wall;
     const double cpu0 = processCpuMs();
     wall.start();
-    if (!doc.setControlPoints(drag.id, {drag.index}, {to})) {
-        *error = QStringLiteral("the drag's control point move was refused");
-        return false;
-    }
+    if (!doc.setControlPoints(drag.id, {drag.index}, {to}))
+        return Error(QStringLiteral("the drag's control point move was refused"));
     const double t0 = threadCpuMs();
     ContinuityReport& report = overlay ? full : watch;
     updateContinuity(report, doc.scene(), {drag.id});
@@ -180,8 +170,8 @@ bool ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed, QString* e
         bandVertices = (long long)o.edgeBands->vertices.size();
     }
     const double t2 = threadCpuMs();
-    if (!kept(renderer.render(doc, camera, o), error))
-        return false;
+    if (Status drawn = renderer.render(doc, camera, o); !drawn)
+        return drawn;
     renderer.finish();
     if (timed) {
         const int k = overlay ? 0 : 1;
@@ -191,11 +181,10 @@ bool ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed, QString* e
         if (overlay)
             bandsMs.push_back(t2 - t1);
     }
-    return true;
+    return ok();
 }
 
-bool ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStepRow& row,
-                     QString* error) {
+Status ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStepRow& row) {
     const int copies = faces > 0 ? copiesForFaces(int(unit.surfaces.size()), faces) : 1;
     Scene scene = faces > 0 ? tileWithRecord(unit, copies) : unit;
     if (faces > 0)
@@ -203,10 +192,8 @@ bool ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStep
     else if (!scene.camera.authored)
         scene.camera = fitCamera(scene, 1.0);
     camera = scene.camera;
-    if (const Status reset = doc.resetScene(std::move(scene)); !reset) {
-        *error = QStringLiteral("%1: %2").arg(name, reset.message());
-        return false;
-    }
+    if (const Status reset = doc.resetScene(std::move(scene)); !reset)
+        return Error(QStringLiteral("%1: %2").arg(name, reset.message()));
     row.model = faces > 0 ? QStringLiteral("%1 tiled x %2").arg(name).arg(copies) : name;
     row.surfaces = int(doc.scene().surfaces.size());
     row.copies = copies;
@@ -238,26 +225,28 @@ bool ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStep
     // Warm-up, untimed: shaders, first uploads, the exact pass's variants at the drag's ends.
     const glm::dvec3 peak = drag.home + drag.direction * drag.amplitude;
     for (const bool overlay : {true, false})
-        if (overlay ? config.overlayOn : config.overlayOff)
-            if (!step(overlay, peak, false, error) || !step(overlay, drag.home, false, error))
-                return false;
+        if (overlay ? config.overlayOn : config.overlayOff) {
+            if (Status warm = step(overlay, peak, false); !warm)
+                return warm;
+            if (Status warm = step(overlay, drag.home, false); !warm)
+                return warm;
+        }
     // On and off alternate step by step, each at its own point of one drag path.
     const int states = int(config.overlayOn) + int(config.overlayOff);
     const int events = states * config.steps;
     int e = 0;
     for (int k = 0; k < config.steps; ++k)
         for (const bool overlay : {true, false})
-            if ((overlay ? config.overlayOn : config.overlayOff) &&
-                !step(overlay, drag.at(e++, events), true, error))
-                return false;
+            if (overlay ? config.overlayOn : config.overlayOff)
+                if (Status timed = step(overlay, drag.at(e++, events), true); !timed)
+                    return timed;
     // The status bar's text at the farthest point, then the face put back.
-    if (!step(config.overlayOn, peak, false, error))
-        return false;
+    if (Status last = step(config.overlayOn, peak, false); !last)
+        return last;
     row.opens = opens;
-    if (!doc.setControlPoints(drag.id, {drag.index}, {drag.home})) {
-        *error = QStringLiteral("%1: the drag's control point could not be put back").arg(name);
-        return false;
-    }
+    if (!doc.setControlPoints(drag.id, {drag.index}, {drag.home}))
+        return Error(
+            QStringLiteral("%1: the drag's control point could not be put back").arg(name));
     for (int k = 0; k < 2; ++k) {
         DragStepTiming& t = k == 0 ? row.on : row.off;
         t.measured = !ms[k].empty();
@@ -274,7 +263,7 @@ bool ModelSteps::run(const Scene& unit, const QString& name, int faces, DragStep
                  .arg(row.off.ms, 0, 'f', 1)
                  .arg(row.off.cpuMs, 0, 'f', 1)
                  .arg(row.opens.isEmpty() ? QStringLiteral("opens no seam") : row.opens));
-    return true;
+    return ok();
 }
 
 double ratio(const DragStepRow& r) {
@@ -291,36 +280,32 @@ QJsonObject timingJson(const DragStepTiming& t) {
 
 } // namespace
 
-bool runDragStep(const DragStepConfig& config, DragStepReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error) {
+Status runDragStep(const DragStepConfig& config, DragStepReport& report,
+                   const std::function<void(const QString&)>& progress) {
     report = DragStepReport{};
     report.config = config;
-    report.cpu = cpuModel();
-    report.threads = QThread::idealThreadCount();
-    OffscreenRenderer renderer;
-    if (!kept(renderer.create(), error))
-        return false;
-    report.gl = renderer.renderer().glDescription();
-    if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
-        return false;
-    for (const QString& file : config.files) {
-        std::optional<ImportResult> read = openModelFile(file, *error);
-        if (!read)
-            return false;
-        cli::printImportRemarks(file, read->report);
-        if (read->scene.surfaces.empty()) {
-            *error = QStringLiteral("%1: the scene has no surfaces to drag").arg(file);
-            return false;
-        }
-        for (const int faces : config.faces) {
-            ModelSteps steps(config, renderer, progress);
-            DragStepRow row;
-            if (!steps.run(read->scene, QFileInfo(file).fileName(), faces, row, error))
-                return false;
-            report.rows.push_back(row);
-        }
-    }
-    return true;
+    return runPerFile(
+        config.files, report.machine, [&](OffscreenRenderer& renderer, const QString& file) {
+            if (Status sized = renderer.setSize(QSize(config.side, config.side), false); !sized)
+                return sized;
+            QString why;
+            std::optional<ImportResult> read = openModelFile(file, why);
+            if (!read)
+                return Status(Error(why, file));
+            cli::printImportRemarks(file, read->report);
+            if (read->scene.surfaces.empty())
+                return Status(
+                    Error(QStringLiteral("%1: the scene has no surfaces to drag").arg(file), file));
+            for (const int faces : config.faces) {
+                ModelSteps steps(config, renderer, progress);
+                DragStepRow row;
+                if (Status done = steps.run(read->scene, QFileInfo(file).fileName(), faces, row);
+                    !done)
+                    return done;
+                report.rows.push_back(row);
+            }
+            return ok();
+        });
 }
 
 QJsonArray dragStepJson(const DragStepReport& report) {
@@ -348,16 +333,16 @@ QJsonArray dragStepJson(const DragStepReport& report) {
 }
 
 QString dragStepMarkdown(const DragStepReport& report, const QString& command) {
-    QString md = QStringLiteral("### Drag step, Edge Continuity overlay on / off: %1 steps each at "
-                                "%2 x %2\n\n`%3`\n\n%4, %5 (%6 threads)\n\n")
-                     .arg(report.config.steps)
-                     .arg(report.config.side)
-                     .arg(command, report.gl, report.cpu)
-                     .arg(report.threads);
-    md += QStringLiteral("| model | faces | shared edges (dragged face's) | overlay on: step ms "
-                         "(CPU; edges, bands CPU ms) | overlay off: step ms (CPU; edges CPU ms) "
-                         "| on / off | turning it on ms | off: pairing (pool thread) ms |\n"
-                         "|---|---|---|---|---|---|---|---|\n");
+    QString md = loopTableHead(
+        QStringLiteral("Drag step, Edge Continuity overlay on / off: %1 steps each at %2 x %2")
+            .arg(report.config.steps)
+            .arg(report.config.side),
+        command, report.machine,
+        {QStringLiteral("model"), QStringLiteral("faces"),
+         QStringLiteral("shared edges (dragged face's)"),
+         QStringLiteral("overlay on: step ms (CPU; edges, bands CPU ms)"),
+         QStringLiteral("overlay off: step ms (CPU; edges CPU ms)"), QStringLiteral("on / off"),
+         QStringLiteral("turning it on ms"), QStringLiteral("off: pairing (pool thread) ms")});
     const auto cell = [](const DragStepTiming& t, bool bands) {
         if (!t.measured)
             return QStringLiteral("-");
@@ -370,16 +355,13 @@ QString dragStepMarkdown(const DragStepReport& report, const QString& command) {
         return s + QLatin1Char(')');
     };
     for (const DragStepRow& r : report.rows)
-        md += QStringLiteral("| %1 | %2 | %3 (%4) | %5 | %6 | %7 | %8 | %9 |\n")
-                  .arg(r.model)
-                  .arg(r.surfaces)
-                  .arg(r.edges)
-                  .arg(r.faceEdges)
-                  .arg(cell(r.on, true), cell(r.off, false))
-                  .arg(ratio(r) > 0.0 ? QStringLiteral("%1×").arg(ratio(r), 0, 'f', 2)
-                                      : QStringLiteral("-"))
-                  .arg(r.on.measured ? QString::number(r.setupMs, 'f', 0) : QStringLiteral("-"))
-                  .arg(r.pairingMs, 0, 'f', 0);
+        md += markdownRow(
+            {r.model, QString::number(r.surfaces),
+             QStringLiteral("%1 (%2)").arg(r.edges).arg(r.faceEdges), cell(r.on, true),
+             cell(r.off, false),
+             ratio(r) > 0.0 ? QStringLiteral("%1×").arg(ratio(r), 0, 'f', 2) : QStringLiteral("-"),
+             r.on.measured ? QString::number(r.setupMs, 'f', 0) : QStringLiteral("-"),
+             QString::number(r.pairingMs, 'f', 0)});
     return md + QLatin1Char('\n');
 }
 

@@ -5,6 +5,7 @@
 // step on one drag path (docs/PERFORMANCE.md ## Editing).
 #pragma once
 
+#include "bench/loop_runner.h"
 #include "render/render_types.h"
 
 #include <QJsonArray>
@@ -40,29 +41,28 @@ struct DragStepRow {
     QString model; ///< file name, with "tiled x N" for a tiled model
     int surfaces = 0;
     int copies = 1;
-    QString face;         ///< the dragged face's name and id
-    int faceEdges = 0;    ///< shared edges of the dragged face (re-measured per step)
-    int edges = 0;        ///< shared edges of the model
-    double setupMs = 0;   ///< turning the overlay on: every edge measured and its bands made
+    QString face;       ///< the dragged face's name and id
+    int faceEdges = 0;  ///< shared edges of the dragged face (re-measured per step)
+    int edges = 0;      ///< shared edges of the model
+    double setupMs = 0; ///< turning the overlay on: every edge measured and its bands made
     /// Overlay off: the edges paired (continuityWatch), which the editor does on a pool thread
     /// after each change of the faces, never in a drag step.
     double pairingMs = 0;
-    QString opens;        ///< the status bar's text at the drag's farthest point
+    QString opens; ///< the status bar's text at the drag's farthest point
     DragStepTiming on, off;
 };
 
 struct DragStepReport {
-    QString gl, cpu;
-    int threads = 0;
+    LoopMachine machine;
     DragStepConfig config;
     std::vector<DragStepRow> rows;
 };
 
 /// Runs every file at every config.faces (read as `render` reads them). Needs a QGuiApplication
-/// whose default format is OffscreenRenderer::requiredFormat(). False with *error on the first
-/// failure (unreadable file, a model without surfaces, a refused edit, a GL error).
-bool runDragStep(const DragStepConfig& config, DragStepReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error);
+/// whose default format is OffscreenRenderer::requiredFormat(). Returns the first failure
+/// (unreadable file, a model without surfaces, a refused edit, a GL error).
+Status runDragStep(const DragStepConfig& config, DragStepReport& report,
+                   const std::function<void(const QString&)>& progress);
 
 /// The rows as JSON objects: model, surfaces, copies, face, faceEdges, edges, steps, side,
 /// setupMs, pairingMs, opens, "overlayOn" and "overlayOff" ({ms, cpuMs, continuityMs, bandsMs,

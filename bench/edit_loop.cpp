@@ -2,6 +2,7 @@
 // alternated timed steps, and the report.
 #include "bench/edit_loop.h"
 
+#include "bench/loop_runner.h"
 #include "bench/peer_model.h"
 #include "model/cad/facemesher.h"
 #include "model/document/document.h"
@@ -11,20 +12,12 @@
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QJsonObject>
-#include <QThread>
 #include <algorithm>
 #include <cmath>
 
 namespace kw::bench {
 
 namespace {
-
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
 
 // Free-form: a polynomial (all weights equal) surface curved in some direction. Rational
 // surfaces are the conics and quadrics of imported analytic faces, degree 1 x 1 the planes.
@@ -110,13 +103,10 @@ public:
         : config(c), renderer(r), mesher(m), progress(p),
           peer(r, m, {c.lights, c.normalP99Floor, c.maxTriangles}, p) {}
 
-    bool run(const QString& file, EditLoopRow& row, QString* error);
+    Status run(const QString& file, EditLoopRow& row);
 
 private:
     RenderOptions frameOptions(int samples) const;
-    bool knotworkFrame(int samples, QString* error) {
-        return kept(renderer.render(doc, camera, frameOptions(samples)), error);
-    }
 
     const EditLoopConfig& config;
     OffscreenRenderer& renderer;
@@ -138,9 +128,9 @@ RenderOptions ModelLoop::frameOptions(int samples) const {
     return o;
 }
 
-bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
-    if (!peer.load(file, error))
-        return false;
+Status ModelLoop::run(const QString& file, EditLoopRow& row) {
+    if (Status loaded = peer.load(file); !loaded)
+        return loaded;
     const QString name = QFileInfo(file).fileName();
     row.model = name;
     row.surfaces = int(doc.scene().surfaces.size());
@@ -152,9 +142,10 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     } else {
         // Knotwork's quality and the peer's search, against the CPU reference frame.
         PeerChoice choice;
-        if (!peer.measureKnotwork(config.side, frameOptions(1), error) ||
-            !peer.searchStatic(choice, error))
-            return false;
+        if (Status measured = peer.measureKnotwork(config.side, frameOptions(1)); !measured)
+            return measured;
+        if (Status searched = peer.searchStatic(choice); !searched)
+            return searched;
         row.knotworkNormalP99 = peer.knotwork.normalP99;
         row.knotworkSilhouetteMax = peer.knotwork.silhouetteMax;
         row.matched = choice.matched;
@@ -163,8 +154,8 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         row.peerNormalP99 = choice.quality.normalP99;
         row.peerSilhouetteMax = choice.quality.silhouetteMax;
     }
-    if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
-        return false;
+    if (Status sized = renderer.setSize(QSize(config.side, config.side), false); !sized)
+        return sized;
 
     const Drag drag = chooseDrag(doc.scene());
     row.face = drag.name;
@@ -187,14 +178,12 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     peers[1].face = 3;
     for (Peer& p : peers) {
         TaggedMeshSet set;
-        if (!peer.staticMesh(p.linear, p.angular, set, error))
-            return false;
+        if (Status meshed = peer.staticMesh(p.linear, p.angular, set); !meshed)
+            return meshed;
         p.triangles = set.triangleCount();
         if (renderer.setMesh(p.rest, toTriangleMesh(set, drag.id, true)) < 0 ||
-            renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0) {
-            *error = QStringLiteral("lost the OpenGL context");
-            return false;
-        }
+            renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
     }
     row.peerTriangles = peers[0].triangles;
     row.peerDefaultTriangles = peers[1].triangles;
@@ -208,7 +197,7 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     // One peer step: the edit, the face rebuilt and re-meshed in the child (its own time),
     // the triangles re-sent and the frame drawn. The hand-over to the child and back is not
     // counted: a viewer with OCCT in process has none.
-    const auto peerStep = [&](Peer& p, const glm::dvec3& to, bool timed) {
+    const auto peerStep = [&](Peer& p, const glm::dvec3& to, bool timed) -> Status {
         QElapsedTimer wall;
         const double cpu0 = processCpuMs();
         wall.start();
@@ -218,16 +207,16 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
         handover.start();
         TaggedMeshSet set;
         FaceMeshCost cost;
-        if (!mesher.mesh({*doc.surface(drag.id)}, peer.tolerance, p.linear, p.angular, set, cost,
-                         *error)) {
-            *error = QStringLiteral("%1: %2").arg(name, *error);
-            return false;
-        }
+        if (QString why; !mesher.mesh({*doc.surface(drag.id)}, peer.tolerance, p.linear, p.angular,
+                                      set, cost, why))
+            return Error(QStringLiteral("%1: %2").arg(name, why), file);
         const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
         const double handoverCpu = processCpuMs() - handoverCpu0;
-        if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0 ||
-            !kept(renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions), error))
-            return false;
+        if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
+        if (Status drawn = renderer.renderMeshes(doc, {p.rest, p.face}, camera, meshOptions);
+            !drawn)
+            return drawn;
         renderer.finish();
         if (timed) {
             p.ms.push_back(double(wall.nsecsElapsed()) * 1e-6 - handoverMs + cost.wallMs);
@@ -235,23 +224,23 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
             p.mesh.push_back(cost.wallMs);
             p.faceTriangles.push_back(set.triangleCount());
         }
-        return true;
+        return ok();
     };
     std::vector<double> kwMs, kwCpu, stillMs, stillCpu;
     const auto knotworkStep = [&](int samples, const glm::dvec3& to, std::vector<double>* ms,
-                                  std::vector<double>* cpu) {
+                                  std::vector<double>* cpu) -> Status {
         QElapsedTimer wall;
         const double cpu0 = processCpuMs();
         wall.start();
         moveTo(to);
-        if (!knotworkFrame(samples, error))
-            return false;
+        if (Status drawn = renderer.render(doc, camera, frameOptions(samples)); !drawn)
+            return drawn;
         renderer.finish();
         if (ms) {
             ms->push_back(double(wall.nsecsElapsed()) * 1e-6);
             cpu->push_back(processCpuMs() - cpu0);
         }
-        return true;
+        return ok();
     };
     // Warm-up, untimed: shaders, first uploads, the child's first face. The exact pass picks
     // its shader variant per surface from its cells' size on screen, and a variant is compiled
@@ -259,27 +248,37 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
     // too, so that no timed step compiles one.
     const glm::dvec3 warm = drag.home + drag.direction * (1e-3 * drag.amplitude);
     const glm::dvec3 peak = drag.home + drag.direction * drag.amplitude;
-    if (!knotworkStep(1, peak, nullptr, nullptr) ||
-        !knotworkStep(config.stillSamples, peak, nullptr, nullptr) ||
-        !knotworkStep(1, warm, nullptr, nullptr) ||
-        !knotworkStep(config.stillSamples, drag.home, nullptr, nullptr) ||
-        !peerStep(peers[0], warm, false) || !peerStep(peers[1], drag.home, false))
-        return false;
+    Status warmed = knotworkStep(1, peak, nullptr, nullptr);
+    if (warmed)
+        warmed = knotworkStep(config.stillSamples, peak, nullptr, nullptr);
+    if (warmed)
+        warmed = knotworkStep(1, warm, nullptr, nullptr);
+    if (warmed)
+        warmed = knotworkStep(config.stillSamples, drag.home, nullptr, nullptr);
+    if (warmed)
+        warmed = peerStep(peers[0], warm, false);
+    if (warmed)
+        warmed = peerStep(peers[1], drag.home, false);
+    if (!warmed)
+        return warmed;
     // The four methods alternate step by step, each at its own point of one drag path.
     const int events = 4 * config.steps;
     for (int k = 0; k < config.steps; ++k) {
-        if (!knotworkStep(1, dragPosition(drag, 4 * k, events), &kwMs, &kwCpu) ||
-            !knotworkStep(config.stillSamples, dragPosition(drag, 4 * k + 1, events), &stillMs,
-                          &stillCpu) ||
-            !peerStep(peers[0], dragPosition(drag, 4 * k + 2, events), true) ||
-            !peerStep(peers[1], dragPosition(drag, 4 * k + 3, events), true))
-            return false;
+        Status done = knotworkStep(1, dragPosition(drag, 4 * k, events), &kwMs, &kwCpu);
+        if (done)
+            done = knotworkStep(config.stillSamples, dragPosition(drag, 4 * k + 1, events),
+                                &stillMs, &stillCpu);
+        if (done)
+            done = peerStep(peers[0], dragPosition(drag, 4 * k + 2, events), true);
+        if (done)
+            done = peerStep(peers[1], dragPosition(drag, 4 * k + 3, events), true);
+        if (!done)
+            return done;
     }
     moveTo(drag.home);
-    if (refused) {
-        *error = QStringLiteral("%1: the drag's control point move was refused").arg(name);
-        return false;
-    }
+    if (refused)
+        return Error(QStringLiteral("%1: the drag's control point move was refused").arg(name),
+                     file);
     row.knotworkMs = median(kwMs);
     row.knotworkCpuMs = median(kwCpu);
     row.knotworkStillMs = median(stillMs);
@@ -301,30 +300,25 @@ bool ModelLoop::run(const QString& file, EditLoopRow& row, QString* error) {
                  .arg(row.peerMeshMs, 0, 'f', 1)
                  .arg(row.peerTriangles)
                  .arg(row.peerDefaultMs, 0, 'f', 1));
-    return true;
+    return ok();
 }
 
 } // namespace
 
-bool runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error) {
+Status runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
+                   const std::function<void(const QString&)>& progress) {
     report = EditLoopReport{};
     report.config = config;
-    report.cpu = cpuModel();
-    report.threads = QThread::idealThreadCount();
-    OffscreenRenderer renderer;
-    if (!kept(renderer.create(), error))
-        return false;
-    report.gl = renderer.renderer().glDescription();
     FaceMesher mesher;
-    for (const QString& file : config.files) {
-        ModelLoop loop(config, renderer, mesher, progress);
-        EditLoopRow row;
-        if (!loop.run(file, row, error))
-            return false;
-        report.rows.push_back(row);
-    }
-    return true;
+    return runPerFile(config.files, report.machine,
+                      [&](OffscreenRenderer& renderer, const QString& file) -> Status {
+                          ModelLoop loop(config, renderer, mesher, progress);
+                          EditLoopRow row;
+                          if (Status done = loop.run(file, row); !done)
+                              return done;
+                          report.rows.push_back(row);
+                          return ok();
+                      });
 }
 
 QJsonArray editLoopJson(const EditLoopReport& report) {
@@ -353,7 +347,7 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
                       {QStringLiteral("peerAngularDeflection"), r.peerAngular},
                       {QStringLiteral("defaultLinearDeflection"), r.defaultLinear},
                       {QStringLiteral("deflectionsGiven"), r.deflectionsGiven},
-                      {QStringLiteral("ratio"), r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0}};
+                      {QStringLiteral("ratio"), ratioOf(r.knotworkMs, r.peerMs)}};
         if (!r.deflectionsGiven) {
             o.insert(QStringLiteral("equalQuality"), r.matched);
             o.insert(QStringLiteral("knotworkNormalP99"), r.knotworkNormalP99);
@@ -367,41 +361,42 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
 }
 
 QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
-    QString md = QStringLiteral("### Edit loop: %1 drag steps at %2 x %2\n\n`%3`\n\n%4, %5 (%6 "
-                                "threads)\n\n")
-                     .arg(report.config.steps)
-                     .arg(report.config.side)
-                     .arg(command, report.gl, report.cpu)
-                     .arg(report.threads);
-    md += QStringLiteral(
-        "| model | dragged face | Knotwork edit → frame ms (CPU) | edit → still frame ms (CPU) | "
-        "peer deflection linear / angular | peer triangles (face) | peer edit → frame ms (CPU; "
-        "re-mesh) | Knotwork / peer | peer at OCCT defaults ms (re-mesh; triangles) |\n"
-        "|---|---|---|---|---|---|---|---|---|\n");
+    QString md = loopTableHead(QStringLiteral("Edit loop: %1 drag steps at %2 x %2")
+                                   .arg(report.config.steps)
+                                   .arg(report.config.side),
+                               command, report.machine,
+                               {QStringLiteral("model"), QStringLiteral("dragged face"),
+                                QStringLiteral("Knotwork edit → frame ms (CPU)"),
+                                QStringLiteral("edit → still frame ms (CPU)"),
+                                QStringLiteral("peer deflection linear / angular"),
+                                QStringLiteral("peer triangles (face)"),
+                                QStringLiteral("peer edit → frame ms (CPU; re-mesh)"),
+                                QStringLiteral("Knotwork / peer"),
+                                QStringLiteral("peer at OCCT defaults ms (re-mesh; triangles)")});
     for (const EditLoopRow& r : report.rows)
-        md +=
-            QStringLiteral("| %1 | %2%3 | %4 (%5) | %6 (%7) | %8 / %9°%10 | %11 (%12) | %13 (%14; "
-                           "%15) | %16× | %17 (%18; %19) |\n")
-                .arg(r.model, r.face,
-                     r.freeForm ? QString() : QStringLiteral(", analytic, turned free-form"))
-                .arg(r.knotworkMs, 0, 'f', 1)
-                .arg(r.knotworkCpuMs, 0, 'f', 1)
-                .arg(r.knotworkStillMs, 0, 'f', 1)
-                .arg(r.knotworkStillCpuMs, 0, 'f', 1)
-                .arg(r.peerLinear, 0, 'g', 3)
-                .arg(r.peerAngular)
-                .arg(r.deflectionsGiven ? QStringLiteral(" (given)")
-                     : r.matched        ? QString()
-                                        : QStringLiteral(" (equal quality not reached)"))
-                .arg(r.peerTriangles)
-                .arg(r.peerFaceTriangles)
-                .arg(r.peerMs, 0, 'f', 1)
-                .arg(r.peerCpuMs, 0, 'f', 1)
-                .arg(r.peerMeshMs, 0, 'f', 1)
-                .arg(r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0, 0, 'f', 2)
-                .arg(r.peerDefaultMs, 0, 'f', 1)
-                .arg(r.peerDefaultMeshMs, 0, 'f', 1)
-                .arg(r.peerDefaultTriangles);
+        md += markdownRow(
+            {r.model,
+             r.face + (r.freeForm ? QString() : QStringLiteral(", analytic, turned free-form")),
+             QStringLiteral("%1 (%2)").arg(r.knotworkMs, 0, 'f', 1).arg(r.knotworkCpuMs, 0, 'f', 1),
+             QStringLiteral("%1 (%2)")
+                 .arg(r.knotworkStillMs, 0, 'f', 1)
+                 .arg(r.knotworkStillCpuMs, 0, 'f', 1),
+             QStringLiteral("%1 / %2°%3")
+                 .arg(r.peerLinear, 0, 'g', 3)
+                 .arg(r.peerAngular)
+                 .arg(r.deflectionsGiven ? QStringLiteral(" (given)")
+                      : r.matched        ? QString()
+                                         : QStringLiteral(" (equal quality not reached)")),
+             QStringLiteral("%1 (%2)").arg(r.peerTriangles).arg(r.peerFaceTriangles),
+             QStringLiteral("%1 (%2; %3)")
+                 .arg(r.peerMs, 0, 'f', 1)
+                 .arg(r.peerCpuMs, 0, 'f', 1)
+                 .arg(r.peerMeshMs, 0, 'f', 1),
+             QStringLiteral("%1×").arg(ratioOf(r.knotworkMs, r.peerMs), 0, 'f', 2),
+             QStringLiteral("%1 (%2; %3)")
+                 .arg(r.peerDefaultMs, 0, 'f', 1)
+                 .arg(r.peerDefaultMeshMs, 0, 'f', 1)
+                 .arg(r.peerDefaultTriangles)});
     return md + QLatin1Char('\n');
 }
 

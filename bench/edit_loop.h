@@ -3,6 +3,7 @@
 // edited face, re-mesh it at equal quality, re-send and draw it (docs/PERFORMANCE.md ## Editing).
 #pragma once
 
+#include "bench/loop_runner.h"
 #include "render/render_types.h"
 
 #include <QJsonArray>
@@ -51,17 +52,16 @@ struct EditLoopRow {
 };
 
 struct EditLoopReport {
-    QString gl, cpu;
-    int threads = 0;
+    LoopMachine machine;
     EditLoopConfig config;
     std::vector<EditLoopRow> rows;
 };
 
 /// Runs the loop on every file (read as `render` reads it). Needs a QGuiApplication whose
 /// default format is OffscreenRenderer::requiredFormat(), and the knotwork executable's
-/// `__mesh-faces` child (model/cad/facemesher.h). False with *error on the first failure.
-bool runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error);
+/// `__mesh-faces` child (model/cad/facemesher.h). The first failure ends it and is returned.
+Status runEditLoop(const EditLoopConfig& config, EditLoopReport& report,
+                   const std::function<void(const QString&)>& progress);
 
 /// The rows as JSON objects: model, knotworkMs, knotworkStillMs, peerMs, peerDefaultMs,
 /// peerTriangles and the rest of EditLoopRow.

@@ -99,19 +99,15 @@ struct NurbsDeleter {
 
 } // namespace
 
-bool gluTessellate(const Scene& scene, const FrameCamera& camera, double tolerancePixels,
-                   SceneMesh& out, QString* error) {
+Status gluTessellate(const Scene& scene, const FrameCamera& camera, double tolerancePixels,
+                     SceneMesh& out) {
     out.surfaces.clear();
-    if (!(tolerancePixels > 0.0)) {
-        *error = QStringLiteral("GLU sampling tolerance must be > 0 pixels, got %1")
-                     .arg(tolerancePixels);
-        return false;
-    }
+    if (!(tolerancePixels > 0.0))
+        return Error(QStringLiteral("GLU sampling tolerance must be > 0 pixels, got %1")
+                         .arg(tolerancePixels));
     std::unique_ptr<GLUnurbs, NurbsDeleter> nurbs(gluNewNurbsRenderer());
-    if (!nurbs) {
-        *error = QStringLiteral("gluNewNurbsRenderer failed");
-        return false;
-    }
+    if (!nurbs)
+        return Error(QStringLiteral("gluNewNurbsRenderer failed"));
     GLUnurbs* n = nurbs.get();
     gluNurbsProperty(n, GLU_NURBS_MODE, GLU_NURBS_TESSELLATOR);
     gluNurbsProperty(n, GLU_DISPLAY_MODE, GLU_FILL);
@@ -161,15 +157,13 @@ bool gluTessellate(const Scene& scene, const FrameCamera& camera, double toleran
                         GL_MAP2_VERTEX_4);
         gluNurbsSurface(n, 4, linU, 4, linV, 2, 4, uvNet, 2, 2, GL_MAP2_TEXTURE_COORD_2);
         gluEndSurface(n);
-        if (t_gluError != 0) {
-            *error = QStringLiteral("GLU NURBS error on surface %1: %2")
-                         .arg(s.id.value)
-                         .arg(QString::fromLatin1(
-                             reinterpret_cast<const char*>(gluErrorString(t_gluError))));
-            return false;
-        }
+        if (t_gluError != 0)
+            return Error(QStringLiteral("GLU NURBS error on surface %1: %2")
+                             .arg(s.id.value)
+                             .arg(QString::fromLatin1(
+                                 reinterpret_cast<const char*>(gluErrorString(t_gluError)))));
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw::bench

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "bench/bench_mesh.h"
+#include "model/error.h"
 #include "render/render_types.h"
 
 #include <QString>
@@ -14,9 +15,9 @@ namespace kw::bench {
 /// matrices are loaded from `camera`, GLU_AUTO_LOAD_MATRIX off, so no GL context is touched).
 /// (u, v) per vertex comes from a bilinear GL_MAP2_TEXTURE_COORD_2 map over the surface's domain;
 /// normals from GLU's own derivative evaluation. Trim loops are not passed to GLU (the plate is
-/// drawn untrimmed). tolerancePixels must be > 0. Returns false with *error set on a GLU error
-/// (the GLU error string and the surface id).
-bool gluTessellate(const Scene& scene, const FrameCamera& camera, double tolerancePixels,
-                   SceneMesh& out, QString* error);
+/// drawn untrimmed). tolerancePixels must be > 0. Returns the GLU error (its string and the
+/// surface id) when one occurs.
+Status gluTessellate(const Scene& scene, const FrameCamera& camera, double tolerancePixels,
+                     SceneMesh& out);
 
 } // namespace kw::bench

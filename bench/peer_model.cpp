@@ -18,17 +18,6 @@
 
 namespace kw::bench {
 
-namespace {
-
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
-
-} // namespace
-
 double processCpuMs() {
     timespec t{};
     ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -89,21 +78,18 @@ PeerModel::PeerModel(OffscreenRenderer& r, FaceMesher& m, Limits l,
                      std::function<void(const QString&)> p)
     : renderer(r), mesher(m), limits(l), progress(std::move(p)) {}
 
-bool PeerModel::load(const QString& file, QString* error) {
+Status PeerModel::load(const QString& file) {
     path = file;
-    std::optional<ImportResult> read = openModelFile(file, *error);
+    QString why;
+    std::optional<ImportResult> read = openModelFile(file, why);
     if (!read)
-        return false;
+        return Error(why, file);
     cli::printImportRemarks(file, read->report);
-    if (const Status reset = doc.resetScene(read->scene); !reset) {
-        *error = QStringLiteral("%1: %2").arg(file, reset.message());
-        return false;
-    }
+    if (const Status reset = doc.resetScene(read->scene); !reset)
+        return Error(QStringLiteral("%1: %2").arg(file, reset.message()), file);
     const Scene& scene = doc.scene();
-    if (scene.surfaces.empty()) {
-        *error = QStringLiteral("%1: the scene has no surfaces").arg(file);
-        return false;
-    }
+    if (scene.surfaces.empty())
+        return Error(QStringLiteral("%1: the scene has no surfaces").arg(file), file);
     camera = scene.camera.authored ? scene.camera : fitCamera(scene, 1.0);
     // The largest side of the surfaces' bounds, as OCCT's viewers scale their default linear
     // deflection (0.004 of it) from the shape's bounding box.
@@ -120,16 +106,19 @@ bool PeerModel::load(const QString& file, QString* error) {
     tolerance = std::max(1e-5 * glm::length(hi - lo), 1e-7);
     for (const SharedEdge& e : scene.topology.edges)
         tolerance = std::max(tolerance, e.tolerance);
-    return true;
+    return ok();
 }
 
-bool PeerModel::measureKnotwork(int sidePx, const RenderOptions& options, QString* error) {
+Status PeerModel::measureKnotwork(int sidePx, const RenderOptions& options) {
     reference = renderReference(doc.scene(), camera, sidePx, sidePx);
-    return kept(renderer.setSize(QSize(sidePx, sidePx), true), error) &&
-           kept(renderer.render(doc, camera, options), error) && compare(knotwork, error);
+    if (Status sized = renderer.setSize(QSize(sidePx, sidePx), true); !sized)
+        return sized;
+    if (Status drawn = renderer.render(doc, camera, options); !drawn)
+        return drawn;
+    return compare(knotwork);
 }
 
-bool PeerModel::compare(ScreenQuality& q, QString* error) {
+Status PeerModel::compare(ScreenQuality& q) {
     const AovBuffer aov = renderer.aov();
     glm::dvec3 lo(0.0), hi(0.0);
     sceneBounds(doc.scene(), lo, hi);
@@ -137,32 +126,34 @@ bool PeerModel::compare(ScreenQuality& q, QString* error) {
         2.0 * std::tan(glm::radians(std::clamp(camera.fovYDegrees, 1.0, 170.0)) * 0.5) /
         double(aov.height);
     EdgeMetrics m;
-    if (!kept(compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m, pixelAngle,
-                                   &camera.eye),
-              error))
-        return false;
+    if (Status compared = compareWithReference(aov, reference, 1e-4 * glm::length(hi - lo), m,
+                                               pixelAngle, &camera.eye);
+        !compared)
+        return compared;
     q.normalP99 = m.normalP99Degrees;
     q.silhouetteMax = m.silhouetteMaxPixels;
-    return true;
+    return ok();
 }
 
-bool PeerModel::staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error) {
+Status PeerModel::staticMesh(double linear, double angular, TaggedMeshSet& out) {
     const CadFormat format = cadFormatFromPath(path);
     if (format == CadFormat::Iges || format == CadFormat::Step || format == CadFormat::Brep) {
         MeshDeflection deflection;
         deflection.linear = linear;
         deflection.angularDegrees = angular;
-        return importInChildProcess(path, format, *error, {}, &deflection, &out).has_value();
+        QString why;
+        if (!importInChildProcess(path, format, why, {}, &deflection, &out))
+            return Error(why, path);
+        return ok();
     }
     FaceMeshCost cost;
-    if (!mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost, *error)) {
-        *error = QStringLiteral("%1: %2").arg(path, *error);
-        return false;
-    }
-    return true;
+    QString why;
+    if (!mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost, why))
+        return Error(QStringLiteral("%1: %2").arg(path, why), path);
+    return ok();
 }
 
-bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, QString* error) {
+Status PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out) {
     struct Tried {
         ScreenQuality q;
         long long triangles = 0;
@@ -170,16 +161,20 @@ bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, Q
     std::map<std::pair<int, int>, Tried> tried;
     RenderOptions o;
     o.lightCount = limits.lights;
-    const auto at = [&](int l, int a, Tried& t) {
+    const auto at = [&](int l, int a, Tried& t) -> Status {
         if (auto it = tried.find({l, a}); it != tried.end()) {
             t = it->second;
-            return true;
+            return ok();
         }
         TriangleMesh mesh;
-        if (!make(linearStep(l) * side, angularStep(a), mesh, t.triangles, error) ||
-            renderer.setMesh(0, mesh) < 0 || !kept(renderer.renderMesh(doc, 0, camera, o), error) ||
-            !compare(t.q, error))
-            return false;
+        if (Status made = make(linearStep(l) * side, angularStep(a), mesh, t.triangles); !made)
+            return made;
+        if (renderer.setMesh(0, mesh) < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
+        if (Status drawn = renderer.renderMesh(doc, 0, camera, o); !drawn)
+            return drawn;
+        if (Status compared = compare(t.q); !compared)
+            return compared;
         tried[{l, a}] = t;
         progress(QStringLiteral("%1: peer linear %2 angular %3 deg: %4 triangles, silhouette max "
                                 "%5 px, normal p99 %6 deg")
@@ -189,21 +184,21 @@ bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, Q
                      .arg(t.triangles)
                      .arg(t.q.silhouetteMax, 0, 'f', 2)
                      .arg(t.q.normalP99, 0, 'f', 4));
-        return true;
+        return ok();
     };
     li = std::clamp(li, 0, kDeflectionSteps - 1);
     ai = std::clamp(ai, 0, kDeflectionSteps - 1);
     Tried t;
-    if (!at(li, ai, t))
-        return false;
+    if (Status first = at(li, ai, t); !first)
+        return first;
     while (!good(t.q) && std::max(li, ai) + 1 < kDeflectionSteps &&
            t.triangles < limits.maxTriangles) {
         // A finer mesh can pass the CAD child's time or memory limit: the search stops there,
         // with the finest mesh made (peer_search.py does the same).
         Tried finer;
-        if (!at(li + 1, ai + 1, finer)) {
-            progress(
-                QStringLiteral("%1: stopped refining: %2").arg(QFileInfo(path).fileName(), *error));
+        if (Status made = at(li + 1, ai + 1, finer); !made) {
+            progress(QStringLiteral("%1: stopped refining: %2")
+                         .arg(QFileInfo(path).fileName(), made.message()));
             break;
         }
         t = finer;
@@ -233,20 +228,20 @@ bool PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out, Q
     out.matched = good(t.q);
     out.quality = t.q;
     out.triangles = t.triangles;
-    return true;
+    return ok();
 }
 
-bool PeerModel::searchStatic(PeerChoice& out, QString* error) {
+Status PeerModel::searchStatic(PeerChoice& out) {
     return search(
-        [&](double linear, double angular, TriangleMesh& mesh, long long& triangles, QString* err) {
+        [&](double linear, double angular, TriangleMesh& mesh, long long& triangles) -> Status {
             TaggedMeshSet set;
-            if (!staticMesh(linear, angular, set, err))
-                return false;
+            if (Status made = staticMesh(linear, angular, set); !made)
+                return made;
             triangles = set.triangleCount();
             mesh = toTriangleMesh(set, SurfaceId{}, true);
-            return true;
+            return ok();
         },
-        0, 0, out, error);
+        0, 0, out);
 }
 
 } // namespace kw::bench

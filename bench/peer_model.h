@@ -5,6 +5,7 @@
 
 #include "model/cad/facemesher.h"
 #include "model/document/document.h"
+#include "model/error.h"
 #include "render/aov_buffer.h"
 #include "render/render_types.h"
 #include "render/triangle_mesh.h"
@@ -66,13 +67,13 @@ public:
 
     /// Reads `file` as `render` does; sets the fitted (or authored) camera, the model's size and
     /// the faces' tolerance as the STEP/IGES writer builds them.
-    bool load(const QString& file, QString* error);
+    Status load(const QString& file);
 
     /// Renders the CPU reference at `camera` (side x side) and Knotwork's aliased frame with
     /// `options`, and measures Knotwork's quality, the bar the peer must reach.
-    bool measureKnotwork(int side, const RenderOptions& options, QString* error);
+    Status measureKnotwork(int side, const RenderOptions& options);
     /// The last frame drawn (any method) against the reference.
-    bool compare(ScreenQuality& q, QString* error);
+    Status compare(ScreenQuality& q);
     bool good(const ScreenQuality& q) const {
         return q.normalP99 <= std::max(knotwork.normalP99, limits.normalP99Floor) &&
                q.silhouetteMax <= std::max(knotwork.silhouetteMax, 1.0);
@@ -80,17 +81,16 @@ public:
 
     /// The whole model meshed at the deflections: a CAD file as its B-rep (shared edges, as a
     /// viewer that opened it meshes it), a project's surfaces face by face.
-    bool staticMesh(double linear, double angular, TaggedMeshSet& out, QString* error);
+    Status staticMesh(double linear, double angular, TaggedMeshSet& out);
     /// Makes the peer's mesh at (linear, angular) for the search; `triangles` counts it.
-    using MeshMaker = std::function<bool(double linear, double angular, TriangleMesh& out,
-                                         long long& triangles, QString* error)>;
+    using MeshMaker = std::function<Status(double linear, double angular, TriangleMesh& out,
+                                           long long& triangles)>;
     /// The search: from the step (linearIndex, angularIndex), finer in both until equal quality
     /// (or the triangle limit, or a mesh the child refuses), then coarser in one at a time
     /// while the quality holds and the triangles drop. Draws each candidate in slot 0.
-    bool search(const MeshMaker& make, int linearIndex, int angularIndex, PeerChoice& out,
-                QString* error);
+    Status search(const MeshMaker& make, int linearIndex, int angularIndex, PeerChoice& out);
     /// The search over whole-model meshes (staticMesh) from OCCT's defaults.
-    bool searchStatic(PeerChoice& out, QString* error);
+    Status searchStatic(PeerChoice& out);
 
     OffscreenRenderer& renderer;
     FaceMesher& mesher;

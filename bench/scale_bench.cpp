@@ -23,23 +23,15 @@ namespace kw::bench {
 
 namespace {
 
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
-
 /// The part as a Scene, read as `knotwork render` reads it (kw::openModelFile: a .knot as saved,
 /// IGES, STEP and BREP in the CAD reader's child process, OBJ), its import remarks on stderr.
-std::optional<Scene> loadUnit(const QString& model, QString* error) {
-    if (!QFileInfo(model).isFile()) {
-        *error = QStringLiteral("no such file: %1").arg(model);
-        return std::nullopt;
-    }
-    std::optional<ImportResult> read = openModelFile(model, *error);
+Expected<Scene> loadUnit(const QString& model) {
+    if (!QFileInfo(model).isFile())
+        return Error(QStringLiteral("no such file: %1").arg(model), model);
+    QString why;
+    std::optional<ImportResult> read = openModelFile(model, why);
     if (!read)
-        return std::nullopt;
+        return Error(why, model);
     cli::printImportRemarks(model, read->report);
     return std::move(read->scene);
 }
@@ -54,26 +46,25 @@ struct Frames {
 
     /// One render call. A frame that was drawn with a warning (FrameReport: ok false, draws
     /// issued) counts as drawn and keeps its message in `warning`.
-    bool render(const Document& doc, const Camera& camera, QString* error) {
-        if (kept(renderer.render(doc, camera, options), error))
-            return true;
-        if (renderer.lastReport().drawCalls == 0)
-            return false;
+    Status render(const Document& doc, const Camera& camera) {
+        Status drawn = renderer.render(doc, camera, options);
+        if (drawn || renderer.lastReport().drawCalls == 0)
+            return drawn;
         if (warning.isEmpty())
-            warning = *error;
-        return true;
+            warning = drawn.message();
+        return ok();
     }
 
-    bool draw(const Document& doc, const Camera& camera, double* callMs, QString* error) {
+    Status draw(const Document& doc, const Camera& camera, double* callMs) {
         const double t0 = threadCpuMs();
-        const bool ok = render(doc, camera, error);
+        Status drawn = render(doc, camera);
         if (callMs)
             *callMs = threadCpuMs() - t0;
-        return ok;
+        return drawn;
     }
 
     /// Warm-up frames, then config.frames timed frames, each ended by glFinish.
-    bool time(const Document& doc, const Camera& camera, ScaleView& view, QString* error) {
+    Status time(const Document& doc, const Camera& camera, ScaleView& view) {
         std::vector<double> wall, call;
         double cpuStart = 0.0;
         for (int f = 0; f < config.warmup + config.frames; ++f) {
@@ -82,8 +73,8 @@ struct Frames {
             QElapsedTimer timer;
             timer.start();
             double callMs = 0.0;
-            if (!draw(doc, camera, &callMs, error))
-                return false;
+            if (Status drawn = draw(doc, camera, &callMs); !drawn)
+                return drawn;
             renderer.finish();
             if (f >= config.warmup) {
                 wall.push_back(double(timer.nsecsElapsed()) * 1e-6);
@@ -95,15 +86,14 @@ struct Frames {
         view.timing.minMs = *std::min_element(wall.begin(), wall.end());
         view.timing.maxMs = *std::max_element(wall.begin(), wall.end());
         view.renderCallMs = median(call);
-        return true;
+        return ok();
     }
 
     /// Moves one control point of the first surface per step, as a drag does, and times the
     /// edit plus the render call that issues the frame (thread CPU; glFinish outside), and the
     /// edit plus the render call's part before its first surface draw call
     /// (FrameTimes::beforeDraws): the issue's "mouse-move to draw call".
-    bool drag(Document& doc, const Camera& camera, double& stepMs, double& toDrawMs,
-              QString* error) {
+    Status drag(Document& doc, const Camera& camera, double& stepMs, double& toDrawMs) {
         const Surface& s = doc.scene().surfaces.front();
         const int index = s.geometry.index(s.geometry.countU / 2, s.geometry.countV / 2);
         const glm::dvec3 start = s.geometry.points[size_t(index)];
@@ -113,13 +103,11 @@ struct Frames {
         std::vector<double> ms, toDraw;
         for (int k = 0; k <= config.dragSteps; ++k) {
             const double t0 = threadCpuMs();
-            if (!doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)})) {
-                *error = QStringLiteral("the drag step could not move the control point");
-                return false;
-            }
+            if (!doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)}))
+                return Error(QStringLiteral("the drag step could not move the control point"));
             const double edited = threadCpuMs();
-            if (!render(doc, camera, error))
-                return false;
+            if (Status drawn = render(doc, camera); !drawn)
+                return drawn;
             const double t1 = threadCpuMs();
             renderer.finish();
             if (k > 0) { // the first step pays for the first partial upload path
@@ -130,26 +118,23 @@ struct Frames {
         doc.setControlPoints(s.id, {index}, {start});
         stepMs = median(ms);
         toDrawMs = median(toDraw);
-        return true;
+        return ok();
     }
 };
 
 } // namespace
 
-bool runScale(const ScaleConfig& config, ScaleReport& report,
-              const std::function<void(const QString&)>& progress, QString* error) {
+Status runScale(const ScaleConfig& config, ScaleReport& report,
+                const std::function<void(const QString&)>& progress) {
     QTemporaryDir tmp;
-    if (!tmp.isValid()) {
-        *error = QStringLiteral("cannot create a temporary folder: %1").arg(tmp.errorString());
-        return false;
-    }
-    const std::optional<Scene> unit = loadUnit(config.model, error);
+    if (!tmp.isValid())
+        return Error(QStringLiteral("cannot create a temporary folder: %1").arg(tmp.errorString()));
+    const Expected<Scene> unit = loadUnit(config.model);
     if (!unit)
-        return false;
-    if (unit->surfaces.empty()) {
-        *error = QStringLiteral("%1: the model has no surfaces to tile").arg(config.model);
-        return false;
-    }
+        return unit.error();
+    if (unit->surfaces.empty())
+        return Error(QStringLiteral("%1: the model has no surfaces to tile").arg(config.model),
+                     config.model);
     report.model = QFileInfo(config.model).fileName();
     report.unitFaces = int(unit->surfaces.size());
     report.unitTrimmed = int(std::count_if(unit->surfaces.begin(), unit->surfaces.end(),
@@ -157,9 +142,10 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
     report.config = config;
 
     OffscreenRenderer renderer;
-    if (!kept(renderer.create(), error) ||
-        !kept(renderer.setSize(QSize(config.side, config.frameHeight()), false), error))
-        return false;
+    if (Status created = renderer.create(); !created)
+        return created;
+    if (Status sized = renderer.setSize(QSize(config.side, config.frameHeight()), false); !sized)
+        return sized;
     Frames frames{renderer, config, config.base, QString()};
     frames.options.trims = config.trims;
     frames.options.polygonOverTrims = config.trims;
@@ -171,11 +157,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         ScaleRow row;
         row.copies = copiesForFaces(report.unitFaces, faces);
         const QString file = tmp.filePath(QStringLiteral("tiled-%1.knot").arg(row.copies));
-        if (const Status written = writeKnotFile(file, tileScene(*unit, row.copies)); !written) {
-            if (error)
-                *error = written.message();
-            return false;
-        }
+        if (const Status written = writeKnotFile(file, tileScene(*unit, row.copies)); !written)
+            return written;
         Document doc;
         frames.warning.clear();
         {
@@ -183,11 +166,8 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
             load.start();
             Expected<Scene> scene = readKnotFile(file);
             const Status reset = scene ? doc.resetScene(std::move(*scene)) : Status(scene.error());
-            if (!reset) {
-                if (error)
-                    *error = reset.message();
-                return false;
-            }
+            if (!reset)
+                return reset;
             row.loadSeconds = double(load.nsecsElapsed()) * 1e-9;
         }
         QFile::remove(file);
@@ -196,18 +176,19 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
             fitCamera(doc.scene(), double(config.side) / double(config.frameHeight()));
         QElapsedTimer first;
         first.start();
-        if (!frames.draw(doc, fitted, nullptr, error))
-            return false;
+        if (Status drawn = frames.draw(doc, fitted, nullptr); !drawn)
+            return drawn;
         renderer.finish();
         row.firstFrameSeconds = double(first.nsecsElapsed()) * 1e-9;
         row.residentMiB = residentMiB();
         row.gpuBytes = renderer.lastReport().gpuBytes.total();
-        if (!frames.time(doc, fitted, row.fitted, error))
-            return false;
+        if (Status timed = frames.time(doc, fitted, row.fitted); !timed)
+            return timed;
         row.drawCalls = renderer.lastReport().drawCalls; // a steady fitted frame's
-        if (!frames.time(doc, closeUp, row.closeUp, error) ||
-            !frames.drag(doc, fitted, row.dragStepMs, row.dragToDrawMs, error))
-            return false;
+        if (Status timed = frames.time(doc, closeUp, row.closeUp); !timed)
+            return timed;
+        if (Status dragged = frames.drag(doc, fitted, row.dragStepMs, row.dragToDrawMs); !dragged)
+            return dragged;
         progress(QStringLiteral("scale %1 x %2 = %3 faces: load %4 s, %5 MiB, fitted %6 FPS "
                                 "(%7 CPU ms, %8 draw calls), close-up %9 FPS, drag step %10 ms "
                                 "(edit to draw call %11 ms)")
@@ -228,7 +209,7 @@ bool runScale(const ScaleConfig& config, ScaleReport& report,
         report.rows.push_back(row);
     }
     renderer.makeCurrent();
-    return true;
+    return ok();
 }
 
 } // namespace kw::bench

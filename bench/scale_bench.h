@@ -4,6 +4,7 @@
 
 #include "bench/bench_runner.h"
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QString>
 #include <functional>
@@ -72,9 +73,9 @@ struct ScaleReport {
 
 /// Runs the table (rows in the order of config.faces) in the current process: needs a
 /// QGuiApplication whose default format is OffscreenRenderer::requiredFormat(). Tiled models
-/// are written to a temporary folder and read back, as a user would open them. Returns false
-/// with *error set on the first failure (unreadable model, conversion failure, GL error).
-bool runScale(const ScaleConfig& config, ScaleReport& report,
-              const std::function<void(const QString&)>& progress, QString* error);
+/// are written to a temporary folder and read back, as a user would open them. Returns the
+/// first failure (unreadable model, conversion failure, GL error).
+Status runScale(const ScaleConfig& config, ScaleReport& report,
+                const std::function<void(const QString&)>& progress);
 
 } // namespace kw::bench

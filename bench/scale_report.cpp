@@ -14,13 +14,6 @@ namespace kw::bench {
 
 namespace {
 
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
-
 /// How the polygons were cut, for the report: "uniform partitions, each surface's own", ...
 QString partitioningLabel(const ScaleConfig& c) {
     const bool adaptive = c.partitioning == RenderOptions::Partitioning::Adaptive;
@@ -152,10 +145,9 @@ QString scaleMarkdown(const ScaleReport& report) {
     return md;
 }
 
-bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& written,
-                    QString* error) {
+Status writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& written) {
     if (report.rows.empty())
-        return true;
+        return ok();
     std::vector<double> faces;
     Series fitted{QStringLiteral("fitted CPU ms/frame"), QColor(31, 119, 180), {}},
         close{QStringLiteral("close-up CPU ms/frame"), QColor(214, 39, 40), {}},
@@ -193,15 +185,13 @@ bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& 
         p.drawImage(0, 0, top);
         p.drawImage(0, top.height(), bottom);
     }
-    if (!QDir().mkpath(dir)) {
-        *error = QStringLiteral("could not create the folder %1").arg(dir);
-        return false;
-    }
+    if (!QDir().mkpath(dir))
+        return Error(QStringLiteral("could not create the folder %1").arg(dir), dir);
     const QString path = QDir(dir).filePath(QStringLiteral("scale.png"));
-    if (!kept(saveImageAtomically(img, path), error))
-        return false;
+    if (Status saved = saveImageAtomically(img, path); !saved)
+        return saved;
     written << path;
-    return true;
+    return ok();
 }
 
 } // namespace kw::bench

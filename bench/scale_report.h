@@ -16,9 +16,8 @@ QJsonObject scaleJson(const ScaleReport& report);
 QString scaleMarkdown(const ScaleReport& report);
 
 /// Writes scale.png into `dir` (frame, render-call and drag CPU ms; load, first frame and
-/// resident memory, against faces) and appends its path to `written`; false with *error set
-/// when it cannot be written.
-bool writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& written,
-                    QString* error);
+/// resident memory, against faces) and appends its path to `written`; the error when it
+/// cannot be written.
+Status writeScalePlot(const ScaleReport& report, const QString& dir, QStringList& written);
 
 } // namespace kw::bench

@@ -2,13 +2,13 @@
 // the faces in view, the alternated timed transitions, and the report.
 #include "bench/zoom_loop.h"
 
+#include "bench/loop_runner.h"
 #include "bench/peer_model.h"
 #include "render/offscreen_renderer.h"
 
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QJsonObject>
-#include <QThread>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -16,13 +16,6 @@
 namespace kw::bench {
 
 namespace {
-
-/// A step's Status in the bench's QString* reporting: false with *error set on failure.
-bool kept(const Status& step, QString* error) {
-    if (!step && error)
-        *error = step.message();
-    return bool(step);
-}
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
@@ -118,7 +111,7 @@ public:
         : config(c), renderer(r), mesher(m), progress(p),
           peer(r, m, {c.lights, c.normalP99Floor, c.maxTriangles}, p) {}
 
-    bool run(const QString& file, std::vector<ZoomLoopRow>& rows, QString* error);
+    Status run(const QString& file, std::vector<ZoomLoopRow>& rows);
 
 private:
     RenderOptions frameOptions() const {
@@ -130,8 +123,8 @@ private:
         o.progressive = false;
         return o;
     }
-    bool meshFaces(const std::set<std::uint32_t>& ids, double linear, double angular,
-                   TriangleMesh& out, long long& triangles, double* meshMs, QString* error);
+    Status meshFaces(const std::set<std::uint32_t>& ids, double linear, double angular,
+                     TriangleMesh& out, long long& triangles, double* meshMs);
 
     const ZoomLoopConfig& config;
     OffscreenRenderer& renderer;
@@ -140,28 +133,26 @@ private:
     PeerModel peer;
 };
 
-bool ModelZoom::meshFaces(const std::set<std::uint32_t>& ids, double linear, double angular,
-                          TriangleMesh& out, long long& triangles, double* meshMs, QString* error) {
+Status ModelZoom::meshFaces(const std::set<std::uint32_t>& ids, double linear, double angular,
+                            TriangleMesh& out, long long& triangles, double* meshMs) {
     std::vector<Surface> faces;
     for (const Surface& s : peer.doc.scene().surfaces)
         if (ids.count(s.id.value))
             faces.push_back(s);
     TaggedMeshSet set;
     FaceMeshCost cost;
-    if (!mesher.mesh(faces, peer.tolerance, linear, angular, set, cost, *error)) {
-        *error = QStringLiteral("%1: %2").arg(peer.path, *error);
-        return false;
-    }
+    if (QString why; !mesher.mesh(faces, peer.tolerance, linear, angular, set, cost, why))
+        return Error(QStringLiteral("%1: %2").arg(peer.path, why), peer.path);
     triangles = set.triangleCount();
     out = toTriangleMesh(set, SurfaceId{}, true);
     if (meshMs)
         *meshMs = cost.wallMs;
-    return true;
+    return ok();
 }
 
-bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString* error) {
-    if (!peer.load(file, error))
-        return false;
+Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
+    if (Status loaded = peer.load(file); !loaded)
+        return loaded;
     const QString name = QFileInfo(file).fileName();
     const Camera fitted = peer.camera;
     const RenderOptions options = frameOptions();
@@ -169,18 +160,19 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
     // The fitted view: Knotwork's bar and the peer's equal-quality mesh of the whole model,
     // which a viewer has already made and sent when the user starts to zoom.
     PeerChoice fittedChoice;
-    if (!peer.measureKnotwork(config.side, options, error) ||
-        !peer.searchStatic(fittedChoice, error))
-        return false;
+    if (Status measured = peer.measureKnotwork(config.side, options); !measured)
+        return measured;
+    if (Status searched = peer.searchStatic(fittedChoice); !searched)
+        return searched;
     TaggedMeshSet fittedSet;
-    if (!peer.staticMesh(fittedChoice.linear, fittedChoice.angular, fittedSet, error))
-        return false;
+    if (Status meshed = peer.staticMesh(fittedChoice.linear, fittedChoice.angular, fittedSet);
+        !meshed)
+        return meshed;
     const TriangleMesh fittedMesh = toTriangleMesh(fittedSet, SurfaceId{}, true);
     const Target target = chooseTarget(peer.doc.scene(), renderer.aov(), fitted);
-    if (!target.found) {
-        *error = QStringLiteral("%1: no contour in the fitted view to look at closely").arg(name);
-        return false;
-    }
+    if (!target.found)
+        return Error(
+            QStringLiteral("%1: no contour in the fitted view to look at closely").arg(name), file);
     const std::int64_t kwGeometry = geometryBytes(peer.doc.scene());
 
     for (const double zoom : config.zooms) {
@@ -191,8 +183,8 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
         row.fittedTriangles = fittedSet.triangleCount();
         const Camera near = closeUp(fitted, target.point, zoom);
         peer.camera = near;
-        if (!peer.measureKnotwork(config.side, options, error))
-            return false;
+        if (Status measured = peer.measureKnotwork(config.side, options); !measured)
+            return measured;
         row.knotworkNormalP99 = peer.knotwork.normalP99;
         row.knotworkSilhouetteMax = peer.knotwork.silhouetteMax;
         const std::set<std::uint32_t> inView = facesInView(renderer.aov());
@@ -218,9 +210,12 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
             RenderOptions o;
             o.lightCount = config.lights;
             ScreenQuality q;
-            if (renderer.setMesh(0, fittedMesh) < 0 ||
-                !kept(renderer.renderMesh(peer.doc, 0, near, o), error) || !peer.compare(q, error))
-                return false;
+            if (renderer.setMesh(0, fittedMesh) < 0)
+                return Error(QStringLiteral("lost the OpenGL context"));
+            if (Status drawn = renderer.renderMesh(peer.doc, 0, near, o); !drawn)
+                return drawn;
+            if (Status compared = peer.compare(q); !compared)
+                return compared;
             row.fittedMeshNormalP99 = q.normalP99;
             row.fittedMeshSilhouetteMax = q.silhouetteMax;
             row.fittedMeshGood = peer.good(q);
@@ -236,31 +231,32 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
                     rest.surfaces.push_back(std::move(m));
             }
         const std::int64_t restGpu = renderer.setMesh(1, rest);
-        if (restGpu < 0) {
-            *error = QStringLiteral("lost the OpenGL context");
-            return false;
-        }
+        if (restGpu < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
         PeerChoice choice = fittedChoice;
         const int zoomSteps = int(std::lround(std::log2(zoom)));
-        if (!row.fittedMeshGood &&
-            !peer.search(
-                [&](double linear, double angular, TriangleMesh& mesh, long long& triangles,
-                    QString* err) {
-                    if (!meshFaces(inView, linear, angular, mesh, triangles, nullptr, err))
-                        return false;
-                    for (const SurfaceMesh& m : rest.surfaces)
-                        mesh.surfaces.push_back(m);
-                    return true;
-                },
-                fittedChoice.linearIndex + zoomSteps, fittedChoice.angularIndex, choice, error))
-            return false;
+        if (!row.fittedMeshGood)
+            if (Status searched = peer.search(
+                    [&](double linear, double angular, TriangleMesh& mesh,
+                        long long& triangles) -> Status {
+                        if (Status meshed =
+                                meshFaces(inView, linear, angular, mesh, triangles, nullptr);
+                            !meshed)
+                            return meshed;
+                        for (const SurfaceMesh& m : rest.surfaces)
+                            mesh.surfaces.push_back(m);
+                        return ok();
+                    },
+                    fittedChoice.linearIndex + zoomSteps, fittedChoice.angularIndex, choice);
+                !searched)
+                return searched;
         row.peerMatched = choice.matched;
         row.peerLinear = choice.linear;
         row.peerAngular = choice.angular;
         row.peerNormalP99 = choice.quality.normalP99;
         row.peerSilhouetteMax = choice.quality.silhouetteMax;
-        if (!kept(renderer.setSize(QSize(config.side, config.side), false), error))
-            return false;
+        if (Status sized = renderer.setSize(QSize(config.side, config.side), false); !sized)
+            return sized;
 
         // Timed transitions, alternated: from the fitted view (drawn, untimed) to the close-up.
         RenderOptions meshOptions;
@@ -269,35 +265,33 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
         std::int64_t peerGpu = 0, peerCpuBytes = 0;
         // The fitted view's mesh in slot 0 once (the search drew its candidates there).
         const std::int64_t fittedGpu = renderer.setMesh(0, fittedMesh);
-        if (fittedGpu < 0) {
-            *error = QStringLiteral("lost the OpenGL context");
-            return false;
-        }
+        if (fittedGpu < 0)
+            return Error(QStringLiteral("lost the OpenGL context"));
         for (int k = 0; k <= config.repeats; ++k) {
             const bool timed = k > 0; // the first round warms shaders and the child up
-            if (!kept(renderer.render(peer.doc, fitted, options), error))
-                return false;
+            if (Status drawn = renderer.render(peer.doc, fitted, options); !drawn)
+                return drawn;
             renderer.finish();
             QElapsedTimer wall;
             double cpu0 = processCpuMs();
             wall.start();
-            if (!kept(renderer.render(peer.doc, near, options), error))
-                return false;
+            if (Status drawn = renderer.render(peer.doc, near, options); !drawn)
+                return drawn;
             renderer.finish();
             if (timed) {
                 kwMs.push_back(double(wall.nsecsElapsed()) * 1e-6);
                 kwCpu.push_back(processCpuMs() - cpu0);
             }
 
-            if (!kept(renderer.renderMesh(peer.doc, 0, fitted, meshOptions), error))
-                return false;
+            if (Status drawn = renderer.renderMesh(peer.doc, 0, fitted, meshOptions); !drawn)
+                return drawn;
             renderer.finish();
             cpu0 = processCpuMs();
             wall.restart();
             if (row.fittedMeshGood) {
                 // The fitted view's mesh still meets the bar: the peer only draws it.
-                if (!kept(renderer.renderMesh(peer.doc, 0, near, meshOptions), error))
-                    return false;
+                if (Status drawn = renderer.renderMesh(peer.doc, 0, near, meshOptions); !drawn)
+                    return drawn;
                 renderer.finish();
                 if (timed) {
                     peerMs.push_back(double(wall.nsecsElapsed()) * 1e-6);
@@ -314,14 +308,17 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
             const double handoverCpu0 = processCpuMs();
             QElapsedTimer handover;
             handover.start();
-            if (!meshFaces(inView, choice.linear, choice.angular, faces, triangles, &meshMs, error))
-                return false;
+            if (Status meshed =
+                    meshFaces(inView, choice.linear, choice.angular, faces, triangles, &meshMs);
+                !meshed)
+                return meshed;
             const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
             const double handoverCpu = processCpuMs() - handoverCpu0;
             const std::int64_t sent = renderer.setMesh(2, faces);
-            if (sent < 0 ||
-                !kept(renderer.renderMeshes(peer.doc, {1, 2}, near, meshOptions), error))
-                return false;
+            if (sent < 0)
+                return Error(QStringLiteral("lost the OpenGL context"));
+            if (Status drawn = renderer.renderMeshes(peer.doc, {1, 2}, near, meshOptions); !drawn)
+                return drawn;
             renderer.finish();
             if (timed) {
                 peerMs.push_back(double(wall.nsecsElapsed()) * 1e-6 - handoverMs + meshMs);
@@ -355,28 +352,21 @@ bool ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows, QString
                      .arg(row.peerGpuMiB + row.peerCpuMiB, 0, 'f', 1));
         rows.push_back(row);
     }
-    return true;
+    return ok();
 }
 
 } // namespace
 
-bool runZoomLoop(const ZoomLoopConfig& config, ZoomLoopReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error) {
+Status runZoomLoop(const ZoomLoopConfig& config, ZoomLoopReport& report,
+                   const std::function<void(const QString&)>& progress) {
     report = ZoomLoopReport{};
     report.config = config;
-    report.cpu = cpuModel();
-    report.threads = QThread::idealThreadCount();
-    OffscreenRenderer renderer;
-    if (!kept(renderer.create(), error))
-        return false;
-    report.gl = renderer.renderer().glDescription();
     FaceMesher mesher;
-    for (const QString& file : config.files) {
-        ModelZoom loop(config, renderer, mesher, progress);
-        if (!loop.run(file, report.rows, error))
-            return false;
-    }
-    return true;
+    return runPerFile(config.files, report.machine,
+                      [&](OffscreenRenderer& renderer, const QString& file) {
+                          ModelZoom loop(config, renderer, mesher, progress);
+                          return loop.run(file, report.rows);
+                      });
 }
 
 QJsonArray zoomLoopJson(const ZoomLoopReport& report) {
@@ -412,51 +402,51 @@ QJsonArray zoomLoopJson(const ZoomLoopReport& report) {
                         {QStringLiteral("knotworkCpuMiB"), r.knotworkCpuMiB},
                         {QStringLiteral("peerGpuMiB"), r.peerGpuMiB},
                         {QStringLiteral("peerCpuMiB"), r.peerCpuMiB},
-                        {QStringLiteral("ratio"), r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0},
-                        {QStringLiteral("memoryRatio"), peerMem > 0.0 ? kwMem / peerMem : 0.0}});
+                        {QStringLiteral("ratio"), ratioOf(r.knotworkMs, r.peerMs)},
+                        {QStringLiteral("memoryRatio"), ratioOf(kwMem, peerMem)}});
     }
     return rows;
 }
 
 QString zoomLoopMarkdown(const ZoomLoopReport& report, const QString& command) {
-    QString md = QStringLiteral("### Close-up: fitted view to zoom, %1 transitions at %2 x %2\n\n"
-                                "`%3`\n\n%4, %5 (%6 threads)\n\n")
-                     .arg(report.config.repeats)
-                     .arg(report.config.side)
-                     .arg(command, report.gl, report.cpu)
-                     .arg(report.threads);
-    md += QStringLiteral(
-        "| model | zoom | faces in view | fitted mesh at this zoom: silhouette px / normal p99 ° | "
-        "Knotwork ms (CPU) | peer ms (CPU; re-mesh) | peer triangles in view | Knotwork / peer | "
-        "memory MiB Knotwork (GPU + geometry) | peer (GPU + B-rep triangles) | memory ratio |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n");
+    QString md = loopTableHead(
+        QStringLiteral("Close-up: fitted view to zoom, %1 transitions at %2 x %2")
+            .arg(report.config.repeats)
+            .arg(report.config.side),
+        command, report.machine,
+        {QStringLiteral("model"), QStringLiteral("zoom"), QStringLiteral("faces in view"),
+         QStringLiteral("fitted mesh at this zoom: silhouette px / normal p99 °"),
+         QStringLiteral("Knotwork ms (CPU)"), QStringLiteral("peer ms (CPU; re-mesh)"),
+         QStringLiteral("peer triangles in view"), QStringLiteral("Knotwork / peer"),
+         QStringLiteral("memory MiB Knotwork (GPU + geometry)"),
+         QStringLiteral("peer (GPU + B-rep triangles)"), QStringLiteral("memory ratio")});
     for (const ZoomLoopRow& r : report.rows) {
         const double kwMem = r.knotworkGpuMiB + r.knotworkCpuMiB;
         const double peerMem = r.peerGpuMiB + r.peerCpuMiB;
-        md += QStringLiteral("| %1 | %2× | %3 | %4 / %5 | %6 (%7) | %8 (%9; %10)%11 | %12 | %13× | "
-                             "%14 (%15 + %16) | %17 (%18 + %19) | %20× |\n")
-                  .arg(r.model)
-                  .arg(r.zoom)
-                  .arg(r.facesInView)
-                  .arg(r.fittedMeshSilhouetteMax, 0, 'f', 1)
-                  .arg(r.fittedMeshNormalP99, 0, 'f', 2)
-                  .arg(r.knotworkMs, 0, 'f', 1)
-                  .arg(r.knotworkCpuMs, 0, 'f', 1)
-                  .arg(r.peerMs, 0, 'f', 1)
-                  .arg(r.peerCpuMs, 0, 'f', 1)
-                  .arg(r.peerMeshMs, 0, 'f', 1)
-                  .arg(r.fittedMeshGood ? QStringLiteral(" (the fitted mesh still holds)")
-                       : r.peerMatched  ? QString()
-                                        : QStringLiteral(" (equal quality not reached)"))
-                  .arg(r.peerTriangles)
-                  .arg(r.peerMs > 0.0 ? r.knotworkMs / r.peerMs : 0.0, 0, 'f', 2)
-                  .arg(kwMem, 0, 'f', 1)
-                  .arg(r.knotworkGpuMiB, 0, 'f', 1)
-                  .arg(r.knotworkCpuMiB, 0, 'f', 1)
-                  .arg(peerMem, 0, 'f', 1)
-                  .arg(r.peerGpuMiB, 0, 'f', 1)
-                  .arg(r.peerCpuMiB, 0, 'f', 1)
-                  .arg(peerMem > 0.0 ? kwMem / peerMem : 0.0, 0, 'f', 2);
+        md += markdownRow(
+            {r.model, QStringLiteral("%1×").arg(r.zoom), QString::number(r.facesInView),
+             QStringLiteral("%1 / %2")
+                 .arg(r.fittedMeshSilhouetteMax, 0, 'f', 1)
+                 .arg(r.fittedMeshNormalP99, 0, 'f', 2),
+             QStringLiteral("%1 (%2)").arg(r.knotworkMs, 0, 'f', 1).arg(r.knotworkCpuMs, 0, 'f', 1),
+             QStringLiteral("%1 (%2; %3)%4")
+                 .arg(r.peerMs, 0, 'f', 1)
+                 .arg(r.peerCpuMs, 0, 'f', 1)
+                 .arg(r.peerMeshMs, 0, 'f', 1)
+                 .arg(r.fittedMeshGood ? QStringLiteral(" (the fitted mesh still holds)")
+                      : r.peerMatched  ? QString()
+                                       : QStringLiteral(" (equal quality not reached)")),
+             QString::number(r.peerTriangles),
+             QStringLiteral("%1×").arg(ratioOf(r.knotworkMs, r.peerMs), 0, 'f', 2),
+             QStringLiteral("%1 (%2 + %3)")
+                 .arg(kwMem, 0, 'f', 1)
+                 .arg(r.knotworkGpuMiB, 0, 'f', 1)
+                 .arg(r.knotworkCpuMiB, 0, 'f', 1),
+             QStringLiteral("%1 (%2 + %3)")
+                 .arg(peerMem, 0, 'f', 1)
+                 .arg(r.peerGpuMiB, 0, 'f', 1)
+                 .arg(r.peerCpuMiB, 0, 'f', 1),
+             QStringLiteral("%1×").arg(ratioOf(kwMem, peerMem), 0, 'f', 2)});
     }
     return md + QLatin1Char('\n');
 }

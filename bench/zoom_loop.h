@@ -4,6 +4,7 @@
 // and the memory each method holds for that view (docs/PERFORMANCE.md ## Close-up).
 #pragma once
 
+#include "bench/loop_runner.h"
 #include "render/render_types.h"
 
 #include <QJsonArray>
@@ -55,18 +56,16 @@ struct ZoomLoopRow {
 };
 
 struct ZoomLoopReport {
-    QString gl, cpu;
-    int threads = 0;
+    LoopMachine machine;
     ZoomLoopConfig config;
     std::vector<ZoomLoopRow> rows;
 };
 
 /// Runs the close-ups of every file. Needs what runEditLoop needs (a GL application and the
-/// knotwork executable's `__mesh-faces` child). False with *error on the first failure.
-bool runZoomLoop(const ZoomLoopConfig& config, ZoomLoopReport& report,
-                 const std::function<void(const QString&)>& progress, QString* error);
+/// knotwork executable's `__mesh-faces` child). The first failure ends it and is returned.
+Status runZoomLoop(const ZoomLoopConfig& config, ZoomLoopReport& report,
+                   const std::function<void(const QString&)>& progress);
 
-/// The rows as JSON objects (keys as ZoomLoopRow's members, plus "ratio" and "memoryRatio").
 QJsonArray zoomLoopJson(const ZoomLoopReport& report);
 /// The table as GitHub markdown, with the machine.
 QString zoomLoopMarkdown(const ZoomLoopReport& report, const QString& command);

@@ -49,6 +49,11 @@ QString analysisModeTitle(AnalysisMode mode) {
     return {};
 }
 
+QString analysisModeDefine(AnalysisMode mode) {
+    return QStringLiteral("KW_ANALYSIS_") +
+           analysisModeName(mode).toUpper().replace(QLatin1Char('-'), QLatin1Char('_'));
+}
+
 std::vector<AnalysisMode> analysisModes() {
     std::vector<AnalysisMode> out;
     for (const ModeInfo& m : kModes)

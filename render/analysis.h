@@ -76,6 +76,9 @@ struct AnalysisOptions {
 /// "phong", "gaussian", "mean", "max-curvature", "min-radius", "zebra", "isophotes",
 /// "environment", "draft".
 QString analysisModeName(AnalysisMode mode);
+/// The GLSL name of the mode's number (KW_ANALYSIS_ and its name in capitals, '-' as '_':
+/// KW_ANALYSIS_MAX_CURVATURE), which the shader preamble defines (ShaderLibrary::preamble).
+QString analysisModeDefine(AnalysisMode mode);
 /// Every mode, in menu order.
 std::vector<AnalysisMode> analysisModes();
 /// The mode named `name` (analysisModeName), or nullopt.

@@ -80,19 +80,24 @@ long long crackPixels(const AovBuffer& frame) {
     return std::count(mark.begin(), mark.end(), 1);
 }
 
+Status sameAovSize(const AovBuffer& frame, const AovBuffer& reference, const QString& who) {
+    if (frame.width == reference.width && frame.height == reference.height && frame.width > 0 &&
+        frame.height > 0)
+        return ok();
+    return Error(QStringLiteral("%1 two AOV frames of one non-empty size, got %2x%3 and %4x%5")
+                     .arg(who)
+                     .arg(frame.width)
+                     .arg(frame.height)
+                     .arg(reference.width)
+                     .arg(reference.height));
+}
+
 Status compareWithReference(const AovBuffer& frame, const AovBuffer& reference,
                             double depthTolerance, EdgeMetrics& out, double pixelAngle,
                             const glm::dvec3* eye) {
     out = EdgeMetrics{};
-    if (frame.width != reference.width || frame.height != reference.height || frame.width <= 0 ||
-        frame.height <= 0) {
-        return Error(QStringLiteral("edge metrics need two AOV frames of one non-empty size, got "
-                                    "%1x%2 and %3x%4")
-                         .arg(frame.width)
-                         .arg(frame.height)
-                         .arg(reference.width)
-                         .arg(reference.height));
-    }
+    if (Status sized = sameAovSize(frame, reference, QStringLiteral("edge metrics need")); !sized)
+        return sized;
     const int w = frame.width, h = frame.height;
     const size_t n = size_t(w) * size_t(h);
     out.pixels = (long long)n;

@@ -63,6 +63,10 @@ struct EdgeMetrics {
     long long bandBehind = 0;
 };
 
+/// Ok when `frame` and `reference` have one non-empty size; else the error naming both sizes,
+/// opened by `who` ("edge metrics need"): the check before any per-pixel comparison.
+Status sameAovSize(const AovBuffer& frame, const AovBuffer& reference, const QString& who);
+
 /// Compares `frame` (e.g. the GPU's AOVs) with `reference` (renderReference of the same scene,
 /// camera and size). depthTolerance in model units (>= 0). Returns the error naming the sizes
 /// when the two buffers differ in size or are empty.

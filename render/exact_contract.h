@@ -71,9 +71,10 @@ struct ShaderConstant {
     int value;
 };
 
-/// Every constant above that a shader reads, and the light count and analysis modes, under
+/// Every constant above that a shader reads, the light count and the colour scales, under
 /// their GLSL names. The span-table width depends on the degree, so it is a per-variant
-/// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels).
+/// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels). The analysis
+/// modes' numbers come from their table (kw::analysisModeDefine), so a new mode adds no line.
 inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_MAX_LIGHTS", kMaxLights},
     ShaderConstant{"KW_MAX_SECTIONS", kMaxSectionPlanes},
@@ -107,15 +108,6 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_VERTEX_WORDS", kBaseVertexWords},
     ShaderConstant{"KW_VERTEX_SPAN_WORD", kBaseVertexSpanWord},
     ShaderConstant{"KW_VERTEX_SPAN_SCALE_WORD", kBaseVertexSpanScaleWord},
-    ShaderConstant{"KW_ANALYSIS_PHONG", int(AnalysisMode::Phong)},
-    ShaderConstant{"KW_ANALYSIS_GAUSSIAN", int(AnalysisMode::Gaussian)},
-    ShaderConstant{"KW_ANALYSIS_MEAN", int(AnalysisMode::Mean)},
-    ShaderConstant{"KW_ANALYSIS_MAX_CURVATURE", int(AnalysisMode::MaxCurvature)},
-    ShaderConstant{"KW_ANALYSIS_MIN_RADIUS", int(AnalysisMode::MinRadius)},
-    ShaderConstant{"KW_ANALYSIS_ZEBRA", int(AnalysisMode::Zebra)},
-    ShaderConstant{"KW_ANALYSIS_ISOPHOTES", int(AnalysisMode::Isophotes)},
-    ShaderConstant{"KW_ANALYSIS_ENVIRONMENT", int(AnalysisMode::Environment)},
-    ShaderConstant{"KW_ANALYSIS_DRAFT", int(AnalysisMode::Draft)},
     ShaderConstant{"KW_FORM_PLANE", int(AnalyticForm::Kind::Plane)},
     ShaderConstant{"KW_FORM_CYLINDER", int(AnalyticForm::Kind::Cylinder)},
     ShaderConstant{"KW_FORM_CONE", int(AnalyticForm::Kind::Cone)},

@@ -316,28 +316,38 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     return drawn;
 }
 
+Expected<QOpenGLShaderProgram*>
+ExactSurfacePass::bindExactProgram(const ExactVariant& v, bool trimmed, const GpuScene& scene,
+                                   const FrameCamera& camera, const std::vector<Light>& lights,
+                                   const RenderOptions& options, const ValueRange& range,
+                                   const QString& vertexShader) {
+    const Expected<QOpenGLShaderProgram*> built =
+        m_shaders->program(vertexShader, QStringLiteral("exact_surface.frag"), v.defines());
+    if (!built)
+        return built;
+    QOpenGLShaderProgram* prog = *built;
+    prog->bind();
+    setFrameUniforms(m_gl, prog, camera, lights);
+    setAnalysisUniforms(m_gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
+    setSectionUniforms(m_gl, prog, options);
+    if (trimmed)
+        scene.trimMasks().bindArray(prog, kTrimMaskUnit);
+    return prog;
+}
+
 Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,
                                      const GpuScene& scene, const FrameCamera& camera,
                                      const std::vector<Light>& lights, const RenderOptions& options,
                                      const ValueRange& range, bool largeCellsOnly) {
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
     for (const auto& [key, b] : batches) {
         if (largeCellsOnly && !((key >> 13) & 1))
             continue;
-        const Expected<QOpenGLShaderProgram*> built =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                       b.gather, trimAa, false, b.affine, b.analytic)
-                                   .defines());
-        if (!built)
+        const ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                       b.gather, trimAa, false, b.affine, b.analytic);
+        if (const Expected<QOpenGLShaderProgram*> built =
+                bindExactProgram(v, b.trimmed, scene, camera, lights, options, range);
+            !built)
             return built.error();
-        QOpenGLShaderProgram* prog = *built;
-        prog->bind();
-        setFrameUniforms(gl, prog, camera, lights);
-        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-        setSectionUniforms(gl, prog, options);
-        if (b.trimmed)
-            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b);
     }
     return ok();
@@ -373,19 +383,12 @@ Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& 
                                  false, TrimAa::Off, false, b.affine, b.analytic);
         v.features.setFlag(ExactFeature::ExactDepth, false);
         v.features |= ExactFeature::BackFill;
-        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
-            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), v.defines());
-        if (!built) {
+        if (const Expected<QOpenGLShaderProgram*> built =
+                bindExactProgram(v, b.trimmed, scene, camera, lights, options, range);
+            !built) {
             drawn = built.error();
             break;
         }
-        QOpenGLShaderProgram* prog = *built;
-        prog->bind();
-        setFrameUniforms(gl, prog, camera, lights);
-        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-        setSectionUniforms(gl, prog, options);
-        if (b.trimmed)
-            scene.trimMasks().bindArray(prog, kTrimMaskUnit);
         drawBatch(b, true);
     }
     gl->glDepthMask(GL_TRUE);
@@ -520,18 +523,13 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
             glm::ceil(origin + (glm::vec2(r.window.z, r.window.w) * 0.5f + 0.5f) * size) + 1.0f);
         if (hi.x <= lo.x || hi.y <= lo.y)
             continue;
-        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
-            QStringLiteral("aa_composite.vert"), QStringLiteral("exact_surface.frag"),
-            deferredVariant(route, int(lights.size()), options).defines());
-        if (!built) {
+        if (const Expected<QOpenGLShaderProgram*> built = bindExactProgram(
+                deferredVariant(route, int(lights.size()), options), false, scene, camera, lights,
+                options, range, QStringLiteral("aa_composite.vert"));
+            !built) {
             drawn = built.error();
             break;
         }
-        QOpenGLShaderProgram* prog = *built;
-        prog->bind();
-        setFrameUniforms(gl, prog, camera, lights);
-        setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-        setSectionUniforms(gl, prog, options);
         gl->glStencilFunc(GL_EQUAL, r.stencil, 0xff);
         // The route's rectangle only: llvmpipe bins nothing outside the scissor.
         gl->glScissor(lo.x, lo.y, hi.x - lo.x, hi.y - lo.y);
@@ -583,23 +581,16 @@ Status ExactSurfacePass::drawSkirtBatch(const ExactBatch& b, const GpuScene& sce
                                         std::int64_t& triangles) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     const Expected<QOpenGLShaderProgram*> built =
-        m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                           variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                   false, TrimAa::Off, true)
-                               .defines());
+        bindExactProgram(variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                 false, TrimAa::Off, true),
+                         b.trimmed, scene, camera, lights, options, range);
     if (!built)
         return built.error();
     QOpenGLShaderProgram* prog = *built;
-    prog->bind();
-    setFrameUniforms(gl, prog, camera, lights);
-    setAnalysisUniforms(gl, prog, options.analysis, range, camera, lights, kEnvironmentUnit);
-    setSectionUniforms(gl, prog, options);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtPixels,
                     float(options.pixelTolerance) + kSkirtMarginPixels);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtReach, kSkirtReachPixels);
     gl->glUniform1f(ShaderLibrary::uniforms(prog).skirtDepthScale, skirtDepthScale(camera));
-    if (b.trimmed)
-        scene.trimMasks().bindArray(prog, kTrimMaskUnit);
     drawBatch(b);
     for (const IndirectCommand& c : b.commands)
         triangles += c.count / 3;

@@ -164,6 +164,14 @@ private:
     /// After the pre-pass: the texture detached and the draw buffers put back.
     void detachPrepassTexture(const std::vector<GLenum>& drawBuffers);
     void releaseDeferred();
+    /// Builds the exact program of `v` (exact_surface.frag after `vertexShader`) and binds it
+    /// with the frame's, the analysis' and the section planes' uniforms set and, when
+    /// `trimmed`, the trim masks bound; the build's error when it fails.
+    Expected<QOpenGLShaderProgram*>
+    bindExactProgram(const ExactVariant& v, bool trimmed, const GpuScene& scene,
+                     const FrameCamera& camera, const std::vector<Light>& lights,
+                     const RenderOptions& options, const ValueRange& range,
+                     const QString& vertexShader = QStringLiteral("surface.vert"));
     /// Draws each batch with its variant's program (trimAa for the trimmed ones); with
     /// `largeCellsOnly`, only those the deferred pass leaves to it (variant bit 13).
     Status drawBatches(const std::map<int, ExactBatch>& batches, TrimAa trimAa,

@@ -79,7 +79,7 @@ void GpuScene::prepare(const Document& doc) {
         release();
         m_document = &doc;
     }
-    m_changes.follow(doc);
+    m_changes.pull(doc);
     m_changes.updateBounds(doc);
 }
 

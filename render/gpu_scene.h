@@ -121,14 +121,14 @@ public:
     /// Which surfaces it compares: every visible one after a structural change (insert,
     /// removal, reset, another document), a hidden surface shown or a shown one hidden, or a
     /// change of view or of the options the records depend on; otherwise only those the
-    /// document's signals reported changed since the last sync (SceneChanges), plus those
+    /// document reported changed since the last sync (SceneChanges), plus those
     /// that did not fit and are retried. FrameReport::recordsSynced counts them. Call
     /// prepare() first in the frame.
     Status sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
                 FrameReport& report);
-    /// Starts a frame of `doc`: follows its signals (dropping everything when it is not the
-    /// document of the last frame) and brings the scene's control bounds up to date from the
-    /// surfaces that changed. The frame's camera planes come from bounds().
+    /// Starts a frame of `doc`: pulls what changed since the last frame (dropping everything
+    /// when it is not the document of the last frame) and brings the scene's control bounds up to
+    /// date from the surfaces that changed. The frame's camera planes come from bounds().
     void prepare(const Document& doc);
     /// The scene's control bounds as of prepare() (kw::sceneBounds); false without points.
     bool bounds(glm::dvec3& lo, glm::dvec3& hi) const { return m_changes.bounds(lo, hi); }

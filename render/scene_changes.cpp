@@ -1,47 +1,29 @@
-// SceneChanges: the document's signals collected between frames, and the scene's control
-// bounds kept per surface.
+// SceneChanges: the document's changes pulled at frame time, and the scene's control bounds
+// kept per surface.
 #include "render/scene_changes.h"
-
-#include <QObject>
 
 namespace kw {
 
-SceneChanges::SceneChanges() = default;
-SceneChanges::~SceneChanges() = default;
-
-void SceneChanges::follow(const Document& doc) {
-    if (m_document == &doc && m_context)
-        return;
-    forget();
+void SceneChanges::pull(const Document& doc) {
+    const Document::Changes changes = doc.changesSince(m_document == &doc ? m_since : 0);
     m_document = &doc;
-    m_context = std::make_unique<QObject>();
-    QObject* ctx = m_context.get();
-    const auto structural = [this] {
+    m_since = changes.through;
+    if (changes.structural) {
         m_structure = true;
-    };
-    QObject::connect(&doc, &Document::sceneReset, ctx, structural);
-    QObject::connect(&doc, &Document::surfaceInserted, ctx, structural);
-    QObject::connect(&doc, &Document::surfaceRemoved, ctx, structural);
-    QObject::connect(&doc, &Document::surfaceChanged, ctx,
-                     [this](SurfaceId id, Aspects aspects) { changedSurface(id, aspects); });
-    // A destroyed document takes its connections with it; the next one is structural anyway.
-    QObject::connect(&doc, &QObject::destroyed, ctx, [this] { m_document = nullptr; });
+        return;
+    }
+    for (const SurfaceChange& c : changes.surfaces)
+        if (m_changedSet.insert(c.id.value).second)
+            m_changed.push_back(c.id);
 }
 
 void SceneChanges::forget() {
-    m_context.reset(); // disconnects
     m_document = nullptr;
+    m_since = 0;
     m_structure = true;
     m_boundsValid = false;
     m_changed.clear();
     m_changedSet.clear();
-}
-
-void SceneChanges::changedSurface(SurfaceId id, Aspects aspects) {
-    if (!(aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims | Aspect::Display)))
-        return; // a rename draws nothing differently
-    if (m_changedSet.insert(id.value).second)
-        m_changed.push_back(id);
 }
 
 void SceneChanges::clear() {

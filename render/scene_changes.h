@@ -1,33 +1,25 @@
-// What changed in a document since the renderer's last frame, as its signals said: the surfaces
-// whose data changed, and whether the list itself did (insert, remove, reset). GpuScene syncs
-// those records only, so a drag step costs what it changed, not the scene's size.
-// Also the scene's control bounds (the camera's near and far planes), kept per surface.
+// What changed in a document since the renderer's last frame, pulled from the document at frame
+// time (Document::changesSince): the surfaces whose data changed, and whether the list itself
+// did (insert, remove, reset). GpuScene syncs those records only, so a drag step costs what it
+// changed, not the scene's size. Also the scene's control bounds (the camera's near and far
+// planes), kept per surface.
 #pragma once
 
 #include "model/document/document.h"
 
-#include <QMetaObject>
 #include <glm/glm.hpp>
-#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
-
-class QObject;
 
 namespace kw {
 
 class SceneChanges {
 public:
-    SceneChanges();
-    ~SceneChanges();
-    SceneChanges(const SceneChanges&) = delete;
-    SceneChanges& operator=(const SceneChanges&) = delete;
-
-    /// Listens to `doc` from now on. Another document than the one followed (or the first)
-    /// counts as a structural change: everything is new.
-    void follow(const Document& doc);
-    /// Stops listening; the next follow() starts from a structural change.
+    /// Adds what `doc` changed since the last pull. Another document than the one pulled
+    /// from last (or the first pull) counts as a structural change: everything is new.
+    void pull(const Document& doc);
+    /// Drops what was pulled; the next pull() starts from a structural change.
     void forget();
 
     /// True after an insert, a removal, a reset or a new document: the surfaces' order and
@@ -54,11 +46,10 @@ private:
         glm::dvec3 lo{0.0}, hi{0.0};
         bool any = false;
     };
-    void changedSurface(SurfaceId id, Aspects aspects);
     Box boxOf(const Surface& s) const;
 
-    std::unique_ptr<QObject> m_context; ///< owns the connections to the followed document
     const Document* m_document = nullptr;
+    std::uint64_t m_since = 0; ///< Document::changesSince's `through` at the last pull
     bool m_structure = true;
     std::vector<SurfaceId> m_changed;
     std::unordered_set<std::uint32_t> m_changedSet;

@@ -57,6 +57,8 @@ QString ShaderLibrary::preamble() {
     QString out;
     for (const ShaderConstant& c : kShaderConstants)
         out += QStringLiteral("#define %1 %2\n").arg(QLatin1String(c.name)).arg(c.value);
+    for (const AnalysisMode m : analysisModes())
+        out += QStringLiteral("#define %1 %2\n").arg(analysisModeDefine(m)).arg(int(m));
     return out;
 }
 ShaderLibrary::~ShaderLibrary() = default;

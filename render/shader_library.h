@@ -25,7 +25,7 @@ struct UniformLocations {
     int skirtPixels = -1, skirtReach = -1, skirtDepthScale = -1; // the edge skirts' (KW_SKIRT)
     int sectionPlanes = -1, sectionCount = -1, sectionCaps = -1; // section.glsl (KW_SECTION)
     int solidSide = -1; // tessellated.frag's (the exact pass reads the surface table's)
-    int depthBias = -1, pointSize = -1, lineColor = -1;          // lines.vert/.frag
+    int depthBias = -1, pointSize = -1, lineColor = -1; // lines.vert/.frag
     // analysis.glsl (render/analysis_gl.cpp), by mode
     int analysisRange = -1, analysisScale = -1, stripeCount = -1, stripeAxis = -1;
     int isophoteCount = -1, isophoteLight = -1, environment = -1, pullDirection = -1;
@@ -63,7 +63,8 @@ public:
     static const UniformLocations& uniforms(const QOpenGLShaderProgram* program);
 
     /// The #define line of every constant C++ and the shaders share (kw::kShaderConstants,
-    /// render/exact_contract.h), which program() puts after the #version line of each stage.
+    /// render/exact_contract.h, and each analysis mode's kw::analysisModeDefine), which
+    /// program() puts after the #version line of each stage.
     static QString preamble();
 
     /// The source of `file` with #include "x" lines replaced by the files (recursively, at

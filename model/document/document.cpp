@@ -92,7 +92,7 @@ size_t shapeDigest(const Surface& s) {
 
 } // namespace
 
-Document::Document(QObject* parent) : QObject(parent) {
+Document::Document(QObject* parent) : QObject(parent), m_walkFrom(processRevision()) {
     qRegisterMetaType<kw::SurfaceId>();
     qRegisterMetaType<kw::Aspects>();
 }
@@ -163,6 +163,7 @@ Status Document::resetScene(Scene scene) {
     m_lightsRevision = rev;
     m_cameraRevision = rev;
     m_marksRevision = rev;
+    changedStructure();
     Q_EMIT sceneReset();
     return ok();
 }
@@ -194,6 +195,7 @@ bool Document::insertSurface(int index, Surface surface) {
         restoreTopology(m_scene, *taken); // the undo of the surface's removal
         m_takenWithSurface.erase(taken);
     }
+    changedStructure();
     Q_EMIT surfaceInserted(id, index);
     closeSolid(id); // the undo of a face's removal
     return true;
@@ -210,6 +212,7 @@ bool Document::removeSurface(SurfaceId id) {
     m_scene.surfaces.erase(m_scene.surfaces.begin() + index);
     m_revisions.erase(m_revisions.begin() + index);
     nextRevision(); // the scene changed, though no surface's revisions did
+    changedStructure();
     Q_EMIT surfaceRemoved(id);
     openSolid(solid);
     return true;
@@ -381,7 +384,7 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
     const int solid = std::exchange(s->solid, -1);
     Q_EMIT trimLoopInserted(id, index);
-    Q_EMIT surfaceChanged(id, Aspect::Trims);
+    changed(id, Aspect::Trims);
     openSolid(solid);
     closeSolid(id);
     return true;
@@ -404,7 +407,7 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     m_revisions[size_t(indexOf(id))].trims = nextRevision();
     const int solid = std::exchange(s->solid, -1);
     Q_EMIT trimLoopRemoved(id, index);
-    Q_EMIT surfaceChanged(id, Aspect::Trims);
+    changed(id, Aspect::Trims);
     openSolid(solid);
     closeSolid(id);
     return true;
@@ -621,7 +624,7 @@ void Document::bump(SurfaceId id, Aspects aspects) {
     const int solid = aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)
                           ? std::exchange(s.solid, -1)
                           : -1;
-    Q_EMIT surfaceChanged(id, aspects);
+    changed(id, aspects);
     openSolid(solid);
     if (aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims))
         closeSolid(id);
@@ -641,6 +644,24 @@ void Document::reviewAnalytic(Surface& s) const {
             analyticFollow(origin->form, origin->geometry, s.geometry).value_or(AnalyticForm{});
 }
 
+void Document::changed(SurfaceId id, Aspects aspects) {
+    if (aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims | Aspect::Display)) {
+        if (m_changes.size() >= kMaxChanges) {
+            // A reader this far behind walks everything once, as after a reset.
+            const auto half = m_changes.begin() + std::ptrdiff_t(m_changes.size() / 2);
+            m_walkFrom = std::max(m_walkFrom, std::prev(half)->revision);
+            m_changes.erase(m_changes.begin(), half);
+        }
+        m_changes.push_back({m_counter, id});
+    }
+    Q_EMIT surfaceChanged(id, aspects);
+}
+
+void Document::changedStructure() {
+    m_walkFrom = m_counter;
+    m_changes.clear();
+}
+
 // A face of `solid` changed shape or went away: a seam may be open, and through it the other
 // faces' insides may show, so none of them is marked any more (Surface::solid).
 void Document::openSolid(int solid) {
@@ -651,7 +672,7 @@ void Document::openSolid(int solid) {
         if (m_scene.surfaces[i].solid == solid) {
             m_scene.surfaces[i].solid = -1;
             m_revisions[i].display = nextRevision();
-            Q_EMIT surfaceChanged(m_scene.surfaces[i].id, Aspect::Display);
+            changed(m_scene.surfaces[i].id, Aspect::Display);
         }
 }
 
@@ -682,7 +703,7 @@ void Document::closeSolid(SurfaceId id) {
     for (size_t i : faces) {
         m_scene.surfaces[i].solid = solid;
         m_revisions[i].display = nextRevision();
-        Q_EMIT surfaceChanged(m_scene.surfaces[i].id, Aspect::Display);
+        changed(m_scene.surfaces[i].id, Aspect::Display);
     }
 }
 

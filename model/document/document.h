@@ -8,8 +8,10 @@
 #include <QHash>
 #include <QObject>
 #include <QString>
+#include <algorithm>
 #include <cstdint>
 #include <set>
+#include <span>
 #include <vector>
 
 namespace kw {
@@ -33,6 +35,12 @@ struct Revisions {
     std::uint64_t trims = 0;
     std::uint64_t display = 0;
     bool operator==(const Revisions&) const = default;
+};
+
+/// A surface whose drawn data (points, knots, trims or display) changed, at `revision`.
+struct SurfaceChange {
+    std::uint64_t revision = 0;
+    SurfaceId id;
 };
 
 /// The one place the scene changes. Every mutator validates its input and returns false
@@ -68,6 +76,20 @@ public:
     /// Changes whenever some surface's Surface::solid mark is set or cleared (a reset, an edit
     /// that opens a solid, an undo that closes it again), and only then.
     std::uint64_t marksRevision() const { return m_marksRevision; }
+
+    /// What a reader that last looked at revision `since` has to look at again. `structural`:
+    /// every surface (a reset, an insert or a removal came since, or `since` is older than
+    /// what the document keeps: a reader's first look, another document at the old address).
+    /// Else `surfaces`: those whose points, knots, trims or display changed since, oldest
+    /// first, once per change. The next look passes `through` as `since`. The renderer pulls
+    /// this at frame time, so an edit reaches the GPU scene by the frame alone, not by a
+    /// signal.
+    struct Changes {
+        bool structural = false;
+        std::span<const SurfaceChange> surfaces;
+        std::uint64_t through = 0;
+    };
+    Changes changesSince(std::uint64_t since) const;
 
     /// Fresh ids that no surface or loop of this document uses (never reused in a session).
     SurfaceId allocateSurfaceId();
@@ -185,6 +207,10 @@ private:
                        const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
                        std::set<int>& touched) const;
     void bump(SurfaceId id, Aspects aspects);
+    /// Notes a change of the drawn aspects for changesSince(), then emits surfaceChanged.
+    void changed(SurfaceId id, Aspects aspects);
+    /// A reset, an insert or a removal: every reader walks every surface once.
+    void changedStructure();
     void openSolid(int solid);
     void closeSolid(SurfaceId id);
 
@@ -228,7 +254,23 @@ private:
     std::uint64_t m_lightsRevision = 0;
     std::uint64_t m_cameraRevision = 0;
     std::uint64_t m_marksRevision = 0;
+    /// changesSince(): the drawn changes, by revision; a reader from before m_walkFrom walks
+    /// everything (the log starts at the last structural change, and is cut by half when
+    /// it reaches kMaxChanges between two looks).
+    std::vector<SurfaceChange> m_changes;
+    std::uint64_t m_walkFrom = 0;
+    static constexpr size_t kMaxChanges = size_t(1) << 16;
 };
+
+inline Document::Changes Document::changesSince(std::uint64_t since) const {
+    const std::uint64_t through = std::max(m_counter, m_walkFrom);
+    if (since < m_walkFrom)
+        return {true, {}, through};
+    const auto first =
+        std::upper_bound(m_changes.begin(), m_changes.end(), since,
+                         [](std::uint64_t r, const SurfaceChange& c) { return r < c.revision; });
+    return {false, {first, m_changes.end()}, through};
+}
 
 } // namespace kw
 

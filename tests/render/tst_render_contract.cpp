@@ -76,7 +76,17 @@ private Q_SLOTS:
             const QString line = QStringLiteral("#define %1 %2\n").arg(name).arg(c.value);
             QVERIFY2(preamble.contains(line), qPrintable(line));
         }
-        QCOMPARE(preamble.count(QStringLiteral("#define ")), int(kShaderConstants.size()));
+        // Each analysis mode's number, named from its table entry: a new mode needs no
+        // contract line.
+        for (const AnalysisMode m : analysisModes()) {
+            const QString name = analysisModeDefine(m);
+            QVERIFY2(!names.contains(name), qPrintable(name + QStringLiteral(" twice")));
+            names.insert(name);
+            QVERIFY2(preamble.contains(QStringLiteral("#define %1 %2\n").arg(name).arg(int(m))),
+                     qPrintable(name));
+        }
+        QCOMPARE(preamble.count(QStringLiteral("#define ")),
+                 int(kShaderConstants.size() + analysisModes().size()));
         // The values are C++'s own, not copies.
         QVERIFY(preamble.contains(QStringLiteral("#define KW_MAX_LIGHTS %1\n").arg(kMaxLights)));
         QVERIFY(preamble.contains(
@@ -207,6 +217,8 @@ private Q_SLOTS:
         QSet<QString> declared;
         for (const ShaderConstant& c : kShaderConstants)
             declared.insert(QLatin1String(c.name));
+        for (const AnalysisMode m : analysisModes())
+            declared.insert(analysisModeDefine(m));
         const QRegularExpression name(QStringLiteral(
             "\\bKW_(?:\\w+_(?:UNIT|BINDING|TEXEL|TEXELS|WORD|WORDS)|ANALYSIS_\\w+|SCALE_\\w+|"
             "MAX_LIGHTS)\\b"));
