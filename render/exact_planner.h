@@ -33,6 +33,9 @@ struct ExactBatch {
     int degreeU = 1, degreeV = 1;
     bool trimmed = false, gather = false;
     bool affine = false; ///< the polygon is the surface: no Newton step (variant bit 12)
+    /// The section test (ExactFeature::Section, variant bit 14) in a frame with planes: off for
+    /// the cells every plane keeps, except those of the closed solids a plane may cap.
+    bool section = true;
     int route = 0;       ///< pre-pass batches of the deferred pass: ExactPlace::route
     int face = 0;        ///< the triangles skipped: ExactPlace::face
     std::vector<IndirectCommand> commands;
@@ -41,7 +44,7 @@ struct ExactBatch {
 
 /// Where a record's commands are in the planned batches. `variant` packs what selects its
 /// batch: degrees (bits 0-7, 4 each), the trim lookup (8), the gather (9), the side culled
-/// (10-11), affine (12), large cells drawn the forward way (13).
+/// (10-11), affine (12), large cells drawn the forward way (13), the section test (14).
 struct ExactPlace {
     bool drawn = false;  ///< has exact data and a table row
     bool culled = false; ///< left out as outside the view
@@ -60,13 +63,15 @@ struct ExactPlace {
     int trimmedPreKey(bool deferred) const {
         return prepassKey() | (deferred && route() < 0 ? 1 << 9 : 0);
     }
-    /// Its route in the deferred pass: what that pass's program depends on, the degrees and
-    /// affine bits; -1 for the surfaces the forward pass draws (variant bit 13: cells of many
+    /// Its route in the deferred pass: what that pass's program depends on, the degrees,
+    /// affine and section bits; -1 for the surfaces the forward pass draws (variant bit 13: cells of many
     /// pixels each, where a pixel is shaded about once anyway).
-    int route() const { return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12); }
+    int route() const {
+        return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14);
+    }
     /// Its untrimmed pre-pass batch in plain(): by face, and with the deferred pass by route
     /// too (each route's pre-pass writes its own stencil value).
-    int plainKey(bool deferred) const { return face << 14 | (deferred ? route() & 0x1fff : 0); }
+    int plainKey(bool deferred) const { return face << 15 | (deferred ? route() & 0x7fff : 0); }
     /// Split by its trims (SurfaceGpu::insideIndexCount): the cells wholly inside drawn in
     /// plain() (this command), those near a curve in trimmedPrepass() (prepassIndex).
     bool split = false;

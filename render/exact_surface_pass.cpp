@@ -308,11 +308,12 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
     for (const auto& [key, b] : batches) {
         if (largeCellsOnly && !((key >> 13) & 1))
             continue;
-        const Expected<QOpenGLShaderProgram*> built =
-            m_shaders->program(QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"),
-                               variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                       b.gather, trimAa, false, b.affine)
-                                   .defines());
+        ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                 b.gather, trimAa, false, b.affine);
+        if (!b.section) // cells every plane keeps, no solid to cap (ExactBatch::section)
+            v.features.setFlag(ExactFeature::Section, false);
+        const Expected<QOpenGLShaderProgram*> built = m_shaders->program(
+            QStringLiteral("surface.vert"), QStringLiteral("exact_surface.frag"), v.defines());
         if (!built)
             return built.error();
         QOpenGLShaderProgram* prog = *built;
@@ -466,6 +467,8 @@ ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
     ExactVariant v = variant(route & 15, (route >> 4) & 15, lightCount, options, false, false,
                              TrimAa::Off, false, (route >> 12) & 1);
     v.features |= ExactFeature::Deferred;
+    if (!((route >> 14) & 1)) // no section test: ExactBatch::section
+        v.features.setFlag(ExactFeature::Section, false);
     return v;
 }
 
