@@ -285,8 +285,13 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     // under the pixel, and the Newton step would only evaluate the surface once more.
     const bool affine =
         key.has(PlanFlag::Adaptive) && key.has(PlanFlag::AffineNoNewton) && g->affine;
+    // The section test on the cells drawn here: every cell in a frame without the split; with
+    // it these are cells every plane keeps (with a margin: kw::sectionCellClasses), which need
+    // it only for a closed solid's caps, seen through a cut of the solid's other faces.
+    const bool sectionTest =
+        !key.sections.empty() && (!key.has(PlanFlag::SectionSplit) || (solid >= 0 && p.face == 0));
     p.variant = degrees | int(lookUp) << 8 | int(gather) << 9 | p.face << 10 | int(affine) << 12 |
-                int(forward) << 13 | int(analytic) << 14;
+                int(forward) << 13 | int(analytic) << 14 | int(sectionTest) << 15;
     if (mask)
         p.edgeVariant =
             degrees | int(gather) << 9 | p.face << 10 | int(affine) << 12 | int(analytic) << 14;
@@ -408,6 +413,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         b.gather = (p.variant >> 9) & 1;
         b.affine = (p.variant >> 12) & 1;
         b.analytic = (p.variant >> 14) & 1;
+        b.section = (p.variant >> 15) & 1;
         b.face = p.face;
     }
     p.index = int(b.commands.size());
@@ -418,6 +424,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             e = b;
             e.commands.clear();
             e.trimmed = true;
+            e.section = true;
         }
         p.edgeIndex = int(e.commands.size());
         e.commands.push_back(c); // with anti-aliasing: never split
@@ -439,6 +446,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             k.commands.clear();
             k.trimmed = (key >> 8) & 1;
             k.gather = false;
+            k.section = true;
         }
         k.commands.push_back(command);
         return int(k.commands.size()) - 1;
@@ -453,6 +461,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             k = b;
             k.commands.clear();
             k.trimmed = (p.sectionVariant >> 8) & 1;
+            k.section = true;
         }
         p.sectionIndex = int(k.commands.size());
         k.commands.push_back(cs.section);

@@ -34,15 +34,19 @@ struct ExactBatch {
     bool trimmed = false, gather = false;
     bool affine = false;   ///< the polygon is the surface: no Newton step (variant bit 12)
     bool analytic = false; ///< the point from the analytic form in closed form (bit 14)
-    int route = 0;         ///< pre-pass batches of the deferred pass: ExactPlace::route
-    int face = 0;          ///< the triangles skipped: ExactPlace::face
+    /// The section test (ExactFeature::Section, variant bit 15) in a frame with planes: off for
+    /// the cells every plane keeps, except those of the closed solids a plane may cap.
+    bool section = true;
+    int route = 0; ///< pre-pass batches of the deferred pass: ExactPlace::route
+    int face = 0;  ///< the triangles skipped: ExactPlace::face
     std::vector<IndirectCommand> commands;
     std::int64_t first = 0;
 };
 
 /// Where a record's commands are in the planned batches. `variant` packs what selects its
 /// batch: degrees (bits 0-7, 4 each), the trim lookup (8), the gather (9), the side culled
-/// (10-11), affine (12), large cells drawn the forward way (13), the analytic form (14).
+/// (10-11), affine (12), large cells drawn the forward way (13), the analytic form (14), the
+/// section test (15).
 struct ExactPlace {
     bool drawn = false;  ///< has exact data and a table row
     bool culled = false; ///< left out as outside the view
@@ -62,9 +66,11 @@ struct ExactPlace {
         return prepassKey() | (deferred && route() < 0 ? 1 << 9 : 0);
     }
     /// Its route in the deferred pass: what that pass's program depends on, the degrees,
-    /// affine and analytic bits; -1 for the surfaces the forward pass draws (variant bit 13:
-    /// cells of many pixels each, where a pixel is shaded about once anyway).
-    int route() const { return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14); }
+    /// affine, analytic and section bits; -1 for the surfaces the forward pass draws (variant bit
+    /// 13: cells of many pixels each, where a pixel is shaded about once anyway).
+    int route() const {
+        return (variant >> 13) & 1 ? -1 : variant & (0xff | 1 << 12 | 1 << 14 | 1 << 15);
+    }
     /// Its untrimmed pre-pass batch in plain(): by face, and with the deferred pass by route
     /// too (each route's pre-pass writes its own stencil value).
     int plainKey(bool deferred) const { return face << 16 | (deferred ? route() & 0xffff : 0); }

@@ -342,8 +342,10 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
     for (const auto& [key, b] : batches) {
         if (largeCellsOnly && !((key >> 13) & 1))
             continue;
-        const ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
-                                       b.gather, trimAa, false, b.affine, b.analytic);
+        ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
+                                 b.gather, trimAa, false, b.affine, b.analytic);
+        if (!b.section) // cells every plane keeps, no solid to cap (ExactBatch::section)
+            v.features.setFlag(ExactFeature::Section, false);
         if (const Expected<QOpenGLShaderProgram*> built =
                 bindExactProgram(v, b.trimmed, scene, camera, lights, options, range);
             !built)
@@ -485,6 +487,8 @@ ExactVariant ExactSurfacePass::deferredVariant(int route, int lightCount,
     ExactVariant v = variant(route & 15, (route >> 4) & 15, lightCount, options, false, false,
                              TrimAa::Off, false, (route >> 12) & 1, (route >> 14) & 1);
     v.features |= ExactFeature::Deferred;
+    if (!((route >> 15) & 1)) // no section test: ExactBatch::section
+        v.features.setFlag(ExactFeature::Section, false);
     return v;
 }
 

@@ -465,8 +465,9 @@ void GpuScene::splitRecords(const std::vector<SurfaceRecord*>& records, bool spl
         Entry::Sections& cells = it->second.sections;
         if (cells.polygonSerial != g.polygonSerial || cells.points != g.revisions.points ||
             cells.knots != g.revisions.knots) {
-            cells.boxes = polygonCellBoxes(
-                g.polygon, it->second.adaptive.spans(*r->surface, r->revisions));
+            cells.boxes =
+                polygonCellBoxes(r->surface->geometry, g.polygon,
+                                 it->second.adaptive.spans(*r->surface, r->revisions));
             cells.polygonSerial = g.polygonSerial;
             cells.points = g.revisions.points;
             cells.knots = g.revisions.knots;

@@ -8,13 +8,20 @@
 
 namespace kw {
 
-std::vector<CellBox> polygonCellBoxes(const BasePolygon& polygon,
+std::vector<CellBox> polygonCellBoxes(const NurbsSurface& surface, const BasePolygon& polygon,
                                       const std::vector<SpanBound>& spans) {
     std::map<std::pair<int, int>, const SpanBound*> bySpan;
     for (const SpanBound& s : spans)
         bySpan[{s.spanU, s.spanV}] = &s;
     const int cu = polygon.cellsU(), cv = polygon.cellsV();
     std::vector<CellBox> boxes(size_t(cu) * size_t(cv));
+    // The polygon's nodes: exact surface points at the breaks.
+    const int nu = polygon.nodesU();
+    std::vector<glm::dvec3> nodes(size_t(nu) * polygon.breaksV.size());
+    for (size_t j = 0; j < polygon.breaksV.size(); ++j)
+        for (int i = 0; i < nu; ++i)
+            nodes[j * size_t(nu) + size_t(i)] =
+                surfacePoint(surface, polygon.breaksU[size_t(i)], polygon.breaksV[j]);
     // The sub-rectangles [first, last] of a span's grid that the interval [a, b] overlaps.
     const auto subRange = [](double a, double b, double s0, double s1, int grid) {
         const double scale = double(grid) / (s1 - s0);
@@ -34,12 +41,28 @@ std::vector<CellBox> polygonCellBoxes(const BasePolygon& polygon,
                                            polygon.breaksV[size_t(j + 1)], s.v0, s.v1, s.grid);
             CellBox box{glm::dvec3(std::numeric_limits<double>::max()),
                         glm::dvec3(-std::numeric_limits<double>::max())};
+            SecondDerivativeBound m;
             for (int b = b0; b <= b1; ++b)
                 for (int a = a0; a <= a1; ++a) {
                     const SpanBound::Sub& sub = s.subs[size_t(b * s.grid + a)];
                     box.lo = glm::min(box.lo, sub.lo);
                     box.hi = glm::max(box.hi, sub.hi);
+                    m.uu = std::max(m.uu, sub.m.uu);
+                    m.uv = std::max(m.uv, sub.m.uv);
+                    m.vv = std::max(m.vv, sub.m.vv);
                 }
+            const double deviation =
+                cellDeviationBound(m, polygon.breaksU[size_t(i + 1)] - polygon.breaksU[size_t(i)],
+                                   polygon.breaksV[size_t(j + 1)] - polygon.breaksV[size_t(j)]);
+            glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-lo);
+            for (int c = 0; c < 4; ++c) {
+                const glm::dvec3& p =
+                    nodes[size_t(j + (c >> 1)) * size_t(nu) + size_t(i + (c & 1))];
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            box.lo = glm::max(box.lo, lo - deviation);
+            box.hi = glm::min(box.hi, hi + deviation);
             boxes[size_t(j) * size_t(cu) + size_t(i)] = box;
         }
     return boxes;

@@ -25,12 +25,15 @@ struct CellBox {
     glm::dvec3 lo{0.0}, hi{0.0};
 };
 
-/// The bounds of every cell of `polygon` (row by row, v outer, as its triangles): the union of
-/// the Cartesian Bezier control bounds of the span sub-rectangles (kw::surfaceSpanBounds) the
-/// cell's (u, v) rectangle overlaps. They hold the exact surface over the cell (convex hull
-/// property) and the cell's two triangles (their corners are surface points). Empty when a
-/// cell's knot span is not among `spans` (then no cell can be classified).
-std::vector<CellBox> polygonCellBoxes(const BasePolygon& polygon,
+/// The bounds of every cell of `polygon` of `surface` (row by row, v outer, as its
+/// triangles): the box of the cell's four corner points (exact surface points) grown by its
+/// deviation bound (kw::cellDeviationBound with the largest second-derivative bounds of the
+/// span sub-rectangles of `spans`, kw::surfaceSpanBounds, that the cell overlaps: the surface
+/// lies within it of the cell's bilinear interpolant, which lies in the corners' hull), cut
+/// to the union of those sub-rectangles' Bezier control bounds (convex hull property). They
+/// hold the exact surface over the cell and the cell's two triangles. Empty when a cell's
+/// knot span is not among `spans` (then no cell can be classified).
+std::vector<CellBox> polygonCellBoxes(const NurbsSurface& surface, const BasePolygon& polygon,
                                       const std::vector<SpanBound>& spans);
 
 /// Where the box [lo, hi] lies for `planes`, in double: Removed when it lies more than `margin`

@@ -48,7 +48,7 @@ private Q_SLOTS:
                                              kwtest::clampedUniform(2, 6));
         const BasePolygon poly = buildBasePolygon(g, parts, parts);
         const std::vector<SpanBound> spans = surfaceSpanBounds(g, 4);
-        const std::vector<CellBox> boxes = polygonCellBoxes(poly, spans);
+        const std::vector<CellBox> boxes = polygonCellBoxes(g, poly, spans);
         QCOMPARE(boxes.size(), size_t(poly.cellCount()));
         const std::vector<SectionPlane> planes{
             SectionPlane{glm::dvec3(0.1, 0.0, 0.05), glm::dvec3(0.3, -1.0, 0.2), false},
@@ -117,7 +117,7 @@ private Q_SLOTS:
     void marginGrowsWithDistance() {
         const NurbsSurface g = makeSphere(glm::dvec3(0.0), 1.0);
         const BasePolygon poly = buildBasePolygon(g, 24, 24);
-        const std::vector<CellBox> boxes = polygonCellBoxes(poly, surfaceSpanBounds(g, 4));
+        const std::vector<CellBox> boxes = polygonCellBoxes(g, poly, surfaceSpanBounds(g, 4));
         const std::vector<SectionPlane> planes{
             SectionPlane{glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0), false}};
         ScreenScale nearBy = testScale(), far = testScale();
