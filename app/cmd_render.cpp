@@ -385,7 +385,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
                                       "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
                                       "surfaces drawn as their polygon, %7 surfaces shaded by "
-                                      "the deferred pass\n")
+                                      "the deferred pass, %8 analytic faces in closed form\n")
                            .arg(files[0])
                            .arg(parts.cells)
                            .arg(parts.worstBoundPixels, 0, 'f', 3)
@@ -393,6 +393,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                            .arg(parts.skirtTriangles)
                            .arg(parts.affineSurfaces)
                            .arg(parts.deferredSurfaces)
+                           .arg(parts.analyticSurfaces)
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])
                            .arg(parts.cells));
