@@ -397,7 +397,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
                                       "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
                                       "surfaces drawn as their polygon, %7 surfaces shaded by "
-                                      "the deferred pass, %8 cells crossed by a section plane\n")
+                                      "the deferred pass, %8 analytic faces in closed form, %9 "
+                                      "cells crossed by a section plane\n")
                            .arg(files[0])
                            .arg(parts.cells)
                            .arg(parts.worstBoundPixels, 0, 'f', 3)
@@ -405,6 +406,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                            .arg(parts.skirtTriangles)
                            .arg(parts.affineSurfaces)
                            .arg(parts.deferredSurfaces)
+                           .arg(parts.analyticSurfaces)
                            .arg(parts.sectionCrossedCells)
                      : QStringLiteral("%1: uniform partitions: %2 cells\n")
                            .arg(files[0])

@@ -292,6 +292,12 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
     parser.addOption(o.background);
     parser.addOption(o.section);
     parser.addOption(o.noCaps);
+    o.noAnalytic = QCommandLineOption(
+        QStringLiteral("no-analytic"),
+        QStringLiteral("Shade faces that kept their source's analytic form (plane, cylinder, "
+                       "cone, sphere, torus) by the Newton step onto their NURBS, not in closed "
+                       "form: the same image, for comparing costs."));
+    parser.addOption(o.noAnalytic);
     return o;
 }
 
@@ -377,6 +383,7 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
         options.sections.push_back(plane);
     }
     options.sectionCaps = !parser.isSet(o.noCaps);
+    options.analyticFaces = !parser.isSet(o.noAnalytic);
     options.polygonOverTrims = options.trims; // --no-trims shows the whole domains
     return readDevelopmentSwitches(cmd, options);
 }

@@ -28,7 +28,7 @@ QString shadingName(RenderOptions::Shading shading);
 
 /// --mode, --partitions, --partition-mode, --pixel-tolerance, --lights, --depth, --no-trims,
 /// --trim-mask-cap, --trim-mode, --trim-budget, --samples, --aa-method, --background,
-/// --section (repeatable), --no-caps and the analysis options
+/// --section (repeatable), --no-caps, --no-analytic and the analysis options
 /// (--shading MODE, --isocurves, --iso-lines, --range, --scale, --stripes, --stripe-angle,
 /// --isophote-bands, --pull, --draft-angle, --env-map).
 struct RenderCliOptions {
@@ -37,6 +37,7 @@ struct RenderCliOptions {
     QCommandLineOption shading, isocurves, isoLines, range, scale, stripes, stripeAngle,
         isophoteBands, pull, draftAngle, envMap, directions;
     QCommandLineOption section{QStringLiteral("section")}, noCaps{QStringLiteral("no-caps")};
+    QCommandLineOption noAnalytic{QStringLiteral("no-analytic")};
 };
 /// Adds the shared options to `parser`. `defaultPartitions` empty: none (each surface's own).
 /// `defaultPartitioning`: "adaptive" (render) or "uniform" (bench: the paper's tables).

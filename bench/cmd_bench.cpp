@@ -232,6 +232,11 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                        "--aa-method)."),
         QStringLiteral("METHOD"), QStringLiteral("accumulate"));
     parser.addOption(aaMethod);
+    const QCommandLineOption noAnalytic(
+        QStringLiteral("no-analytic"),
+        QStringLiteral("Knotwork's frames shade analytic faces by the Newton step onto their "
+                       "NURBS, not in closed form (as render --no-analytic), for A/B."));
+    parser.addOption(noAnalytic);
     const QCommandLineOption editLoop(
         QStringLiteral("edit-loop"),
         QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): drag one control "
@@ -433,6 +438,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     }
     if (!readDevelopmentSwitches(cmd, config.base))
         return kExitUsage;
+    config.base.analyticFaces = !parser.isSet(noAnalytic);
     scaleConfig.base = config.base;
     if (const std::optional<AnalysisMode> m = parseAnalysisMode(parser.value(scaleShading))) {
         scaleConfig.base.analysis.mode = *m;

@@ -157,7 +157,16 @@ vec2 kwFormParams(AnalyticFrame f, vec3 p, vec2 near) {
         if (length(p.xy) == 0.0)
             a = near.x; // a pole: every a is that point
     } else {
-        b = atan(p.z, length(p.xy) - f.R);
+        // A spindle torus (r > R) has points where R + r cos b < 0, on the far side of the axis
+        // from the direction a: the one of the two readings the point satisfies.
+        float rho = length(p.xy);
+        float outer = abs(length(vec2(rho - f.R, p.z)) - f.r);
+        float across = abs(length(vec2(rho + f.R, p.z)) - f.r);
+        if (across < outer) {
+            a += KW_PI;
+            rho = -rho;
+        }
+        b = atan(p.z, rho - f.R);
         b += 2.0 * KW_PI * round((near.y - b) / (2.0 * KW_PI));
     }
     a += 2.0 * KW_PI * round((near.x - a) / (2.0 * KW_PI));

@@ -1,6 +1,7 @@
 // GL test: faces that kept an analytic form are shaded at the pixel's ray's meeting with it,
 // found in closed form (RenderOptions::analyticFaces): the AOV against the CPU kernel and
-// against the Newton path, a torus (the quartic), and a trimmed face.
+// against the Newton path, a torus (the quartic), a trimmed face, and a face whose form an
+// edit dropped.
 #include "expected_test_util.h"
 #include "model/nurbs/nurbs_shapes.h"
 #include "render/analytic_table.h"
@@ -209,6 +210,8 @@ private Q_SLOTS:
         QTest::newRow("sphere") << sceneOf({sphereSurface(1, o, 1.0)}) << 1.0;
         QTest::newRow("torus") << sceneOf({torusSurface(1, o, 1.0, 0.35)}) << 1.0;
         QTest::newRow("torus 6x") << sceneOf({torusSurface(1, o, 1.0, 0.35)}) << 6.0;
+        // A spindle torus (r > R), as CAD domes are: part of it lies where R + r cos b < 0.
+        QTest::newRow("spindle torus") << sceneOf({torusSurface(1, o, 0.4, 1.0)}) << 1.0;
         QTest::newRow("cone") << sceneOf({coneSurface(1, o, 0.3, 0.5, 1.5)}) << 1.0;
         QTest::newRow("swapped cylinder")
             << sceneOf({swapped(cylinderSurface(1, o, 1.0, 2.0))}) << 1.0;
@@ -343,6 +346,63 @@ private Q_SLOTS:
             QVERIFY(k.maxPosition <= 1e-5 * k.modelSize);
             QVERIFY(k.maxAngleDeg <= 0.05);
         }
+    }
+
+    // An edit of the face's points drops its form (the document's rule): the next frame draws
+    // it the NURBS way, and shows the edited surface, not the form it had.
+    void editedFaceFallsBack() {
+        Document doc;
+        KW_VERIFY_OK(doc.resetScene(sceneOf({torusSurface(1, glm::dvec3(0.0), 1.0, 0.35)})));
+        const Camera cam = fitCamera(doc.scene(), 1.0);
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);
+        const SurfaceId id = doc.scene().surfaces[0].id;
+        const glm::dvec3 p = doc.scene().surfaces[0].geometry.points[20];
+        QVERIFY(doc.setControlPoints(id, {20}, {p + glm::dvec3(0.0, 0.0, 0.4)}));
+        QCOMPARE(int(doc.scene().surfaces[0].analytic.kind), int(AnalyticForm::Kind::None));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 0);
+        const AovBuffer after = m_renderer->aov();
+        // The same frame as the Newton path's: a form left on the GPU would show the torus it
+        // was, not the bump.
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(false)));
+        const AovBuffer newton = m_renderer->aov();
+        int covered = 0, differ = 0;
+        for (int y = 0; y < after.height; ++y)
+            for (int x = 0; x < after.width; ++x) {
+                const float* a = after.pixel(x, y);
+                const float* b = newton.pixel(x, y);
+                covered += a[0] >= 0.0f;
+                bool same = true;
+                for (int c = 0; c < 9; ++c)
+                    same = same && a[c] == b[c];
+                differ += !same;
+            }
+        QVERIFY(covered > 10000);
+        QCOMPARE(differ, 0);
+    }
+
+    // A move of the whole face keeps its form, moved along (the document's rule): the next
+    // frame uploads the moved row and draws the face in closed form where it now is. A stale
+    // row would intersect the form where it was, far from the kernel's point.
+    void movedFaceKeepsItsFormOnTheGpu() {
+        Document doc;
+        KW_VERIFY_OK(doc.resetScene(sceneOf({sphereSurface(1, glm::dvec3(0.0), 1.0)})));
+        const Camera cam = fitCamera(doc.scene(), 1.0);
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);
+        NurbsSurface moved = doc.scene().surfaces[0].geometry;
+        for (glm::dvec3& p : moved.points)
+            p += glm::dvec3(0.3, -0.2, 0.1);
+        QVERIFY(doc.setGeometry(doc.scene().surfaces[0].id, moved));
+        QCOMPARE(int(doc.scene().surfaces[0].analytic.kind), int(AnalyticForm::Kind::Sphere));
+        KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
+        QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);
+        const kwtest::AovComparison k =
+            kwtest::compareAovWithKernel(doc.scene(), m_renderer->aov());
+        QVERIFY(k.compared >= 1000);
+        QVERIFY(k.maxPosition <= 1e-5 * k.modelSize);
+        QVERIFY(k.maxAngleDeg <= 0.05);
     }
 
     void cleanupTestCase() { m_renderer.reset(); }
