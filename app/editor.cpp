@@ -74,8 +74,11 @@ void buildDemo(MainWindow& window) {
         from.push_back(p);
         to.push_back(p + glm::dvec3(0.0, 0.0, 0.45 * std::sin(2.0 * p.x) * std::cos(1.6 * p.y)));
     }
-    pushCommand(window.undoStack(), MoveControlPoints::create(window.document(), patch, indices,
-                                                              from, to, MoveKind::Drag));
+    if (const Status moved = pushCommand(
+            window.undoStack(),
+            MoveControlPoints::create(window.document(), patch, indices, from, to, MoveKind::Drag));
+        !moved)
+        qWarning("%s", qPrintable(moved.message()));
     window.uvPanel()->addLoop({makeCircle2({0.62, 0.5}, 0.2)}, QObject::tr("circular"));
     // From above the front right, so the hole is seen, framing both surfaces.
     Camera c = window.viewport()->cameraController().camera();

@@ -124,19 +124,15 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
 
 } // namespace
 
-bool parseSectionPlane(const QString& text, SectionPlane& plane, QString& why) {
+Expected<SectionPlane> parseSectionPlane(const QString& text) {
     double v[6];
-    if (!parseNumbers(text, 6, v)) {
-        why = QStringLiteral("six numbers X,Y,Z,NX,NY,NZ");
-        return false;
-    }
-    plane = SectionPlane{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), false};
-    why = sectionPlaneError(plane);
-    if (!why.isEmpty()) {
-        why = QStringLiteral("a plane: ") + why.section(QStringLiteral("section plane's "), -1);
-        return false;
-    }
-    return true;
+    if (!parseNumbers(text, 6, v))
+        return Error(QStringLiteral("six numbers X,Y,Z,NX,NY,NZ"));
+    const SectionPlane plane{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), false};
+    if (const QString why = sectionPlaneError(plane); !why.isEmpty())
+        return Error(QStringLiteral("a plane: ") +
+                     why.section(QStringLiteral("section plane's "), -1));
+    return plane;
 }
 
 int trimGridCapForImage(QSize size, double zoom) {
@@ -374,13 +370,13 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
     }
     options.sections.clear();
     for (const QString& text : sections) {
-        SectionPlane plane;
-        QString why;
-        if (!parseSectionPlane(text, plane, why)) {
-            printError(QStringLiteral("%1: --section '%2' is not %3").arg(cmd, text, why));
+        const Expected<SectionPlane> plane = parseSectionPlane(text);
+        if (!plane) {
+            printError(
+                QStringLiteral("%1: --section '%2' is not %3").arg(cmd, text, plane.message()));
             return false;
         }
-        options.sections.push_back(plane);
+        options.sections.push_back(*plane);
     }
     options.sectionCaps = !parser.isSet(o.noCaps);
     options.analyticFaces = !parser.isSet(o.noAnalytic);

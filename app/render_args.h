@@ -13,8 +13,8 @@ class QCommandLineParser;
 namespace kw::cli {
 
 /// A section plane "X,Y,Z,NX,NY,NZ" (a point of it and the normal of the side it removes).
-/// False with `why` set when malformed or the normal has zero length.
-bool parseSectionPlane(const QString& text, SectionPlane& plane, QString& why);
+/// An Error (what it should be) when malformed or the normal has zero length.
+Expected<SectionPlane> parseSectionPlane(const QString& text);
 /// "WxH" with both in 1..16384; false when malformed.
 bool parseImageSize(const QString& text, QSize& size);
 /// "N" or "NxM" with values in [kMinPartitions, kMaxPartitions]; false when malformed.

@@ -27,7 +27,7 @@ const QString kLockSuffix = QStringLiteral(".lock");
 
 /// QSaveFile with the explicit flush check that Qt 6.4's commit() lacks (a failed final flush
 /// would otherwise replace the old file with a truncated one).
-bool writeAtomically(const QString& path, const QByteArray& bytes, QString* error) {
+Status writeAtomically(const QString& path, const QByteArray& bytes) {
     QSaveFile file(path);
     QString why;
     errno = 0;
@@ -38,11 +38,9 @@ bool writeAtomically(const QString& path, const QByteArray& bytes, QString* erro
     else if (!file.commit())
         why = file.errorString();
     if (why.isEmpty())
-        return true;
+        return ok();
     file.cancelWriting();
-    if (error)
-        *error = QStringLiteral("%1: cannot write: %2").arg(path, why);
-    return false;
+    return Error(QStringLiteral("%1: cannot write: %2").arg(path, why), path);
 }
 
 /// A lock file whose owner has ended can be taken; one held by a live editor cannot.
@@ -74,11 +72,10 @@ Autosave::Autosave(const Document* document, QUndoStack* stack, std::function<Or
     connect(&m_timer, &QTimer::timeout, this, [this] {
         if (m_stack->isClean())
             return;
-        QString error;
-        if (writeNow(&error))
+        if (const Status saved = writeNow())
             Q_EMIT written(scenePath());
         else
-            Q_EMIT failed(error);
+            Q_EMIT failed(saved.message());
     });
     // Every edit, undo and redo moves the index; an import or a recovery leaves the clean state.
     connect(m_stack, &QUndoStack::indexChanged, this, &Autosave::documentChanged);
@@ -115,12 +112,9 @@ void Autosave::documentChanged() {
         m_timer.start(std::chrono::seconds(seconds));
 }
 
-bool Autosave::writeNow(QString* error) {
-    if (!QDir().mkpath(directory())) {
-        if (error)
-            *error = QStringLiteral("%1: cannot create the folder").arg(directory());
-        return false;
-    }
+Status Autosave::writeNow() {
+    if (!QDir().mkpath(directory()))
+        return Error(QStringLiteral("%1: cannot create the folder").arg(directory()), directory());
     const Origin origin = m_origin ? m_origin() : Origin{};
     QJsonObject info;
     info.insert(QStringLiteral("format"), QStringLiteral("knotwork-recovery"));
@@ -129,12 +123,9 @@ bool Autosave::writeNow(QString* error) {
     info.insert(QStringLiteral("savedAt"),
                 QDateTime::currentDateTimeUtc().toString(Qt::ISODateWithMs));
     // The scene first: an info file never describes a scene that is not there yet.
-    if (const Status written = writeKnotFile(scenePath(), m_doc->scene()); !written) {
-        if (error)
-            *error = written.message();
-        return false;
-    }
-    return writeAtomically(m_base + kInfoSuffix, QJsonDocument(info).toJson(), error);
+    if (Status written = writeKnotFile(scenePath(), m_doc->scene()); !written)
+        return written;
+    return writeAtomically(m_base + kInfoSuffix, QJsonDocument(info).toJson());
 }
 
 void Autosave::discardOwn() {
@@ -175,14 +166,8 @@ std::vector<Recovery> Autosave::orphans() {
     return out;
 }
 
-std::optional<Scene> Autosave::load(const Recovery& recovery, QString* error) {
-    Expected<Scene> scene = readKnotFile(recovery.scenePath);
-    if (!scene) {
-        if (error)
-            *error = scene.message();
-        return std::nullopt;
-    }
-    return std::move(scene).value();
+Expected<Scene> Autosave::load(const Recovery& recovery) {
+    return readKnotFile(recovery.scenePath);
 }
 
 void Autosave::discard(const Recovery& recovery) {
@@ -190,15 +175,13 @@ void Autosave::discard(const Recovery& recovery) {
     QFile::remove(recovery.infoPath);
 }
 
-bool keepBackup(const QString& path, QString* error) {
+Status keepBackup(const QString& path) {
     QFile source(path);
     if (!source.exists())
-        return true;
+        return ok();
     const QString target = path + QStringLiteral(".bak");
-    auto fail = [&](const QString& why) {
-        if (error)
-            *error = why;
-        return false;
+    const auto fail = [](const QString& why) -> Status {
+        return Error(why);
     };
     if (!source.open(QIODevice::ReadOnly))
         return fail(QStringLiteral("%1: cannot read: %2").arg(path, source.errorString()));
@@ -223,7 +206,7 @@ bool keepBackup(const QString& path, QString* error) {
         copy.cancelWriting();
         return fail(QStringLiteral("%1: cannot write: %2").arg(target, why));
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QDateTime>
 #include <QObject>
@@ -58,15 +59,15 @@ public:
     /// Recovery files of editors that are no longer running, newest first. Stale lock files
     /// without a scene are removed on the way.
     static std::vector<Recovery> orphans();
-    /// Reads a recovery's scene; nullopt with *error naming the file when it cannot be read.
-    static std::optional<Scene> load(const Recovery& recovery, QString* error);
+    /// Reads a recovery's scene; an Error naming the file when it cannot be read.
+    static Expected<Scene> load(const Recovery& recovery);
     /// Deletes a recovery's files.
     static void discard(const Recovery& recovery);
 
     /// This session's recovery file (it exists only while there are unsaved changes).
     QString scenePath() const;
-    /// Writes the recovery file now; false with *error on failure.
-    bool writeNow(QString* error = nullptr);
+    /// Writes the recovery file now; an Error naming the file on failure.
+    Status writeNow();
     /// Deletes this session's recovery files.
     void discardOwn();
 
@@ -87,7 +88,7 @@ private:
 
 /// Keeps the current file at `path` as `path + ".bak"` (one generation: the older .bak is
 /// replaced), copied through QSaveFile so a failed copy leaves the older .bak whole. True when
-/// there is no file at `path`; false with *error naming the file when the copy fails.
-bool keepBackup(const QString& path, QString* error);
+/// there is no file at `path`; an Error naming the file when the copy fails.
+Status keepBackup(const QString& path);
 
 } // namespace kw

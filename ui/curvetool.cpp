@@ -50,28 +50,19 @@ QString CurveTool::hint() const {
         .arg(m_purpose, action);
 }
 
-NurbsCurve3 CurveTool::curveThrough(const std::vector<glm::dvec3>& points, QString* error) const {
-    if (points.size() < 2) {
-        if (error)
-            *error = tr("a curve needs at least two points");
-        return {};
-    }
+Expected<NurbsCurve3> CurveTool::curveThrough(const std::vector<glm::dvec3>& points) const {
+    if (points.size() < 2)
+        return Error(tr("a curve needs at least two points"));
     if (!m_interpolating)
         return controlPointCurve3(points, 3);
-    Expected<NurbsCurve3> c = interpolateCurve3(points, 3);
-    if (!c) {
-        if (error)
-            *error = c.message();
-        return {};
-    }
-    return std::move(c).value();
+    return interpolateCurve3(points, 3);
 }
 
 const NurbsCurve3& CurveTool::preview() {
     // Keyed on the points themselves rather than invalidated at each edit of m_points, so that
     // no path that changes them can leave a stale curve.
     if (m_previewPoints != m_points || m_previewInterpolating != m_interpolating) {
-        m_preview = curveThrough(m_points, nullptr);
+        m_preview = curveThrough(m_points).value_or(NurbsCurve3{});
         m_previewPoints = m_points;
         m_previewInterpolating = m_interpolating;
     }
@@ -107,13 +98,12 @@ bool CurveTool::press(QMouseEvent* event) {
 }
 
 bool CurveTool::endCurve() {
-    QString error;
-    NurbsCurve3 c = curveThrough(m_points, &error);
-    if (c.points.empty()) {
-        Q_EMIT message(tr("Cannot end the curve: %1").arg(error));
+    Expected<NurbsCurve3> c = curveThrough(m_points);
+    if (!c) {
+        Q_EMIT message(tr("Cannot end the curve: %1").arg(c.message()));
         return false;
     }
-    m_curves.push_back(std::move(c));
+    m_curves.push_back(std::move(c).value());
     m_points.clear();
     return true;
 }

@@ -35,8 +35,8 @@ public:
     /// The points of the curve being drawn, and the curves finished so far.
     const std::vector<glm::dvec3>& points() const { return m_points; }
     const std::vector<NurbsCurve3>& curves() const { return m_curves; }
-    /// The curve through `points` as the tool builds it; empty with *error set when it cannot.
-    NurbsCurve3 curveThrough(const std::vector<glm::dvec3>& points, QString* error) const;
+    /// The curve through `points` as the tool builds it; an Error (the reason) when it cannot.
+    Expected<NurbsCurve3> curveThrough(const std::vector<glm::dvec3>& points) const;
     /// curveThrough(points()) as paint() draws it: solved once per change of the points or of
     /// interpolating(), not on every repaint (a camera drag repaints many times a second).
     const NurbsCurve3& preview();

@@ -93,12 +93,11 @@ void LightsPanel::setCount(int count) {
     const std::vector<Light>& lights = m_doc->scene().lights;
     while (int(m_doc->scene().lights.size()) != count) {
         const int now = int(lights.size());
-        QString error;
-        std::unique_ptr<SetLights> c = count > now
-                                           ? SetLights::addLight(m_doc, lights.back(), &error)
-                                           : SetLights::removeLight(m_doc, now - 1, &error);
-        if (!pushCommand(m_stack, std::move(c))) {
-            Q_EMIT editRejected(error);
+        const Status pushed =
+            pushCommand(m_stack, count > now ? SetLights::addLight(m_doc, lights.back())
+                                             : SetLights::removeLight(m_doc, now - 1));
+        if (!pushed) {
+            Q_EMIT editRejected(pushed.message());
             break;
         }
     }
@@ -123,9 +122,9 @@ void LightsPanel::editLight() {
     l.specular = level(l.specular, m_specular->value());
     if (l == lights[size_t(index)])
         return;
-    QString error;
-    if (!pushCommand(m_stack, SetLights::changeLight(m_doc, index, l, &error))) {
-        Q_EMIT editRejected(error);
+    if (const Status pushed = pushCommand(m_stack, SetLights::changeLight(m_doc, index, l));
+        !pushed) {
+        Q_EMIT editRejected(pushed.message());
         refresh();
     }
 }

@@ -112,9 +112,9 @@ MainWindow::MainWindow(QWidget* parent)
     setAcceptDrops(true);
     setDockNestingEnabled(true);
     m_model->setRenameHandler([this](SurfaceId id, const QString& name) {
-        QString error;
-        if (!pushCommand(m_stack, RenameSurface::create(m_doc, id, name, &error)))
-            statusBar()->showMessage(error, 5000);
+        if (const Status pushed = pushCommand(m_stack, RenameSurface::create(m_doc, id, name));
+            !pushed)
+            statusBar()->showMessage(pushed.message(), 5000);
     });
 
     m_viewport = new Viewport(m_doc, m_model, m_selection, m_stack, this);

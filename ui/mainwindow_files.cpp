@@ -95,9 +95,10 @@ bool MainWindow::saveFile(const QString& path) {
     // So is the partition mode the view draws (as the camera, not an edit).
     scene.display = m_desktop->currentDisplay();
     // The previous version becomes FILE.bak. A failed copy does not stop the save; it is said.
-    QString backupError;
-    if (QSettings().value(kKeepBackupKey, true).toBool() && !keepBackup(path, &backupError))
-        statusBar()->showMessage(tr("No backup kept: %1").arg(backupError), 10000);
+    const Status backup =
+        QSettings().value(kKeepBackupKey, true).toBool() ? keepBackup(path) : ok();
+    if (!backup)
+        statusBar()->showMessage(tr("No backup kept: %1").arg(backup.message()), 10000);
     if (const Status written = writeKnotFile(path, scene); !written) {
         showError(tr("Cannot save file"), written.message());
         return false;
@@ -107,7 +108,7 @@ bool MainWindow::saveFile(const QString& path) {
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);
-    if (backupError.isEmpty())
+    if (backup)
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
 }
@@ -129,12 +130,10 @@ bool MainWindow::offerRecovery() {
         }
         if (answer != QMessageBox::Yes)
             continue;
-        QString error;
-        std::optional<Scene> scene = Autosave::load(r, &error);
-        if (scene)
-            error = m_doc->resetScene(std::move(*scene)).message();
-        if (!scene || !error.isEmpty()) {
-            showError(tr("Cannot restore the unsaved changes"), error);
+        Expected<Scene> scene = Autosave::load(r);
+        const Status restored = scene ? m_doc->resetScene(std::move(*scene)) : scene.error();
+        if (!restored) {
+            showError(tr("Cannot restore the unsaved changes"), restored.message());
             continue; // kept: the file may be opened by hand
         }
         m_stack->clear();
@@ -146,10 +145,10 @@ bool MainWindow::offerRecovery() {
             selectSurface(m_doc->scene().surfaces.front().id);
         // Ours first, then the old one goes: a crash in between still leaves a copy.
         statusBar()->showMessage(tr("Restored the unsaved changes to %1").arg(name), 10000);
-        if (m_autosave->writeNow(&error))
+        if (const Status saved = m_autosave->writeNow())
             Autosave::discard(r);
         else
-            statusBar()->showMessage(tr("Autosave failed: %1").arg(error));
+            statusBar()->showMessage(tr("Autosave failed: %1").arg(saved.message()));
         return true;
     }
     return false;

@@ -49,9 +49,10 @@ void MainWindow::unitsDialog() {
     const auto choice = m_dialogs.units(this, m_doc->scene().unit);
     if (!choice)
         return;
-    QString error;
-    if (!pushCommand(m_stack, SetUnits::create(m_doc, choice->unit, choice->convert, &error)))
-        statusBar()->showMessage(error, 5000);
+    if (const Status pushed =
+            pushCommand(m_stack, SetUnits::create(m_doc, choice->unit, choice->convert));
+        !pushed)
+        statusBar()->showMessage(pushed.message(), 5000);
 }
 
 void MainWindow::showUnit() {

@@ -54,15 +54,14 @@ void ModelingTools::selectSurfaces(const std::vector<SurfaceId>& ids) {
 }
 
 SurfaceId ModelingTools::add(Surface surface, const QString& text) {
-    QString error;
-    auto c = AddSurface::create(m_doc, std::move(surface), -1, &error);
+    auto c = AddSurface::create(m_doc, std::move(surface), -1);
     if (!c) {
-        Q_EMIT message(tr("Cannot create: %1").arg(error));
+        Q_EMIT message(tr("Cannot create: %1").arg(c.message()));
         return {};
     }
-    c->setText(text);
-    const SurfaceId id = c->surfaceId();
-    pushCommand(m_stack, std::move(c));
+    (*c)->setText(text);
+    const SurfaceId id = (*c)->surfaceId();
+    pushCommand(m_stack, std::move(*c));
     selectSurfaces({id});
     Q_EMIT message(text);
     return id;
@@ -266,9 +265,9 @@ bool ModelingTools::transformSelected(const TransformParams& p) {
         what << tr("Scale");
     const QString noun = ids.size() == 1 ? tr("surface") : tr("%1 surfaces").arg(ids.size());
     const QString text = QStringLiteral("%1 %2").arg(what.join(QStringLiteral(", ")), noun);
-    QString error;
-    if (!pushCommand(m_stack, TransformSurfaces::create(m_doc, ids, m, text, &error))) {
-        Q_EMIT message(tr("Cannot transform: %1").arg(error));
+    if (const Status pushed = pushCommand(m_stack, TransformSurfaces::create(m_doc, ids, m, text));
+        !pushed) {
+        Q_EMIT message(tr("Cannot transform: %1").arg(pushed.message()));
         return false;
     }
     return true;
@@ -296,8 +295,8 @@ bool ModelingTools::duplicateSelected() {
         copy.analytic = analyticTransformed(copy.analytic, glm::dmat3(1.0), offset);
         copy.name = uniqueName(copy.name.section(QLatin1Char(' '), 0, 0));
         if (auto c = AddSurface::create(m_doc, std::move(copy))) {
-            copies.push_back(c->surfaceId());
-            pushCommand(m_stack, std::move(c));
+            copies.push_back((*c)->surfaceId());
+            pushCommand(m_stack, std::move(*c));
         }
     }
     m_stack->endMacro();
@@ -312,43 +311,41 @@ bool ModelingTools::deleteSelected() {
         return false;
     }
     if (ids.size() == 1) {
-        QString error;
-        if (!pushCommand(m_stack, RemoveSurface::create(m_doc, ids.front(), &error))) {
-            Q_EMIT message(error);
+        if (const Status pushed = pushCommand(m_stack, RemoveSurface::create(m_doc, ids.front()));
+            !pushed) {
+            Q_EMIT message(pushed.message());
             return false;
         }
         return true;
     }
     m_stack->beginMacro(tr("Delete %1 surfaces").arg(ids.size()));
     for (SurfaceId id : ids)
-        pushCommand(m_stack, RemoveSurface::create(m_doc, id));
+        if (const Status pushed = pushCommand(m_stack, RemoveSurface::create(m_doc, id)); !pushed)
+            Q_EMIT message(pushed.message());
     m_stack->endMacro();
     return true;
 }
 
 bool ModelingTools::removeKnots(Direction direction, double tolerance) {
     const SurfaceId id = m_selection->currentSurface();
-    QString error;
-    auto c = RemoveKnots::create(m_doc, id, direction, tolerance, &error);
+    auto c = RemoveKnots::create(m_doc, id, direction, tolerance);
     if (!c) {
-        Q_EMIT message(tr("Knot removal: %1").arg(error));
+        Q_EMIT message(tr("Knot removal: %1").arg(c.message()));
         return false;
     }
-    Q_EMIT message(c->text());
-    pushCommand(m_stack, std::move(c));
+    Q_EMIT message((*c)->text());
+    pushCommand(m_stack, std::move(*c));
     return true;
 }
 
 bool ModelingTools::matchSurface(const MatchRequest& request) {
-    QString error;
-    auto c =
-        MatchSurfaceCommand::create(m_doc, request, continuityTolerances(m_doc->scene()), &error);
+    auto c = MatchSurfaceCommand::create(m_doc, request, continuityTolerances(m_doc->scene()));
     if (!c) {
-        Q_EMIT message(tr("Match Surface: %1").arg(error));
+        Q_EMIT message(tr("Match Surface: %1").arg(c.message()));
         return false;
     }
-    Q_EMIT message(c->result().summary);
-    pushCommand(m_stack, std::move(c));
+    Q_EMIT message((*c)->result().summary);
+    pushCommand(m_stack, std::move(*c));
     return true;
 }
 

@@ -119,16 +119,12 @@ QWidget* PropertyPanel::buildSurfaceBox() {
     };
     connect(m_direction, &QComboBox::currentIndexChanged, this, &PropertyPanel::refresh);
     connect(m_insertKnot, &QPushButton::clicked, this, [this, direction] {
-        QString error;
-        auto c = InsertKnot::create(m_doc, m_selection->currentSurface(), direction(),
-                                    m_knotValue->value(), 1, &error);
-        push(std::move(c), error);
+        rejected(pushCommand(m_stack, InsertKnot::create(m_doc, m_selection->currentSurface(),
+                                                         direction(), m_knotValue->value(), 1)));
     });
     connect(m_elevate, &QPushButton::clicked, this, [this, direction] {
-        QString error;
-        auto c =
-            ElevateDegree::create(m_doc, m_selection->currentSurface(), direction(), 1, &error);
-        push(std::move(c), error);
+        rejected(pushCommand(
+            m_stack, ElevateDegree::create(m_doc, m_selection->currentSurface(), direction(), 1)));
     });
     return box;
 }
@@ -153,8 +149,8 @@ QWidget* PropertyPanel::buildPointBox() {
         const Surface* s = m_doc->surface(r.surface);
         if (!s)
             return;
-        QString error;
-        push(SetWeight::create(m_doc, r.surface, s->geometry.index(r.i, r.j), w, &error), error);
+        rejected(pushCommand(m_stack,
+                             SetWeight::create(m_doc, r.surface, s->geometry.index(r.i, r.j), w)));
     });
     return box;
 }
@@ -205,9 +201,9 @@ QWidget* PropertyPanel::buildDisplayBox() {
     return box;
 }
 
-void PropertyPanel::push(std::unique_ptr<QUndoCommand> command, const QString& error) {
-    if (!pushCommand(m_stack, std::move(command))) {
-        Q_EMIT editRejected(error);
+void PropertyPanel::rejected(const Status& pushed) {
+    if (!pushed) {
+        Q_EMIT editRejected(pushed.message());
         refresh(); // show the document's values again
     }
 }
@@ -216,8 +212,7 @@ void PropertyPanel::setPartitions(int nu, int nv) {
     const Surface* s = m_doc->surface(m_selection->currentSurface());
     if (!s || (s->partitionsU == nu && s->partitionsV == nv))
         return;
-    QString error;
-    push(SetPartitions::create(m_doc, s->id, nu, nv, &error), error);
+    rejected(pushCommand(m_stack, SetPartitions::create(m_doc, s->id, nu, nv)));
 }
 
 void PropertyPanel::editPoint() {
@@ -230,10 +225,8 @@ void PropertyPanel::editPoint() {
     const glm::dvec3 to(m_xyz[0]->value(), m_xyz[1]->value(), m_xyz[2]->value());
     if (from == to)
         return;
-    QString error;
-    push(
-        MoveControlPoints::create(m_doc, r.surface, {index}, {from}, {to}, MoveKind::Nudge, &error),
-        error);
+    rejected(pushCommand(m_stack, MoveControlPoints::create(m_doc, r.surface, {index}, {from}, {to},
+                                                            MoveKind::Nudge)));
 }
 
 void PropertyPanel::editMaterial() {
@@ -247,8 +240,7 @@ void PropertyPanel::editMaterial() {
     m.shininess = m_shininess->value();
     if (m == s->material)
         return;
-    QString error;
-    push(SetMaterial::create(m_doc, s->id, m, &error), error);
+    rejected(pushCommand(m_stack, SetMaterial::create(m_doc, s->id, m)));
 }
 
 void PropertyPanel::pickColor() {
@@ -262,8 +254,7 @@ void PropertyPanel::pickColor() {
         return;
     Material m = s->material;
     m.color = glm::dvec3(c.redF(), c.greenF(), c.blueF());
-    QString error;
-    push(SetMaterial::create(m_doc, id, m, &error), error);
+    rejected(pushCommand(m_stack, SetMaterial::create(m_doc, id, m)));
 }
 
 ControlPointRef PropertyPanel::shownPoint() const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document/selection.h"
+#include "model/error.h"
 
 #include <QWidget>
 #include <memory>
@@ -45,7 +46,8 @@ private:
     /// The picked control point shown in the point box (the first picked point of the current
     /// surface), or a ref with an invalid surface.
     ControlPointRef shownPoint() const;
-    void push(std::unique_ptr<QUndoCommand> command, const QString& error);
+    /// Shows a refused edit (pushCommand's Error) and the document's values again.
+    void rejected(const Status& pushed);
     void setPartitions(int nu, int nv);
     void editPoint();
     void editMaterial();

@@ -156,15 +156,14 @@ bool UvPanel::addLoop(const std::vector<NurbsCurve2>& curves, const QString& wha
     TrimLoop loop;
     loop.curves = curves;
     const bool hole = m_drawHoles && s->trims.empty();
-    QString error;
-    auto add = AddTrimLoop::create(m_doc, s->id, loop, -1, &error);
+    auto add = AddTrimLoop::create(m_doc, s->id, loop, -1);
     if (!add) {
-        Q_EMIT message(tr("Cannot add the trim loop: %1").arg(error));
+        Q_EMIT message(tr("Cannot add the trim loop: %1").arg(add.message()));
         return false;
     }
     if (!hole) {
-        add->setText(tr("Add %1 trim loop").arg(what));
-        pushCommand(m_stack, std::move(add));
+        (*add)->setText(tr("Add %1 trim loop").arg(what));
+        pushCommand(m_stack, std::move(*add));
     } else {
         // The domain boundary as outer loop first, so parity makes the new loop a hole.
         const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
@@ -173,10 +172,13 @@ bool UvPanel::addLoop(const std::vector<NurbsCurve2>& curves, const QString& wha
             {{du.first, dv.first}, {du.last, dv.first}, {du.last, dv.last}, {du.first, dv.last}})};
         auto boundary = AddTrimLoop::create(m_doc, s->id, outer, 0);
         m_stack->beginMacro(tr("Add %1 hole").arg(what));
-        pushCommand(m_stack, std::move(boundary));
+        if (boundary)
+            pushCommand(m_stack, std::move(*boundary));
         // Made again now that the boundary is in: appended after it (the first one checked
         // the loop).
-        pushCommand(m_stack, AddTrimLoop::create(m_doc, s->id, loop, -1));
+        if (const Status pushed = pushCommand(m_stack, AddTrimLoop::create(m_doc, s->id, loop, -1));
+            !pushed)
+            Q_EMIT message(pushed.message());
         m_stack->endMacro();
     }
     if (const QString w = crossingWarning(); !w.isEmpty())
@@ -193,9 +195,9 @@ bool UvPanel::deleteSelectedLoops() {
     if (loops.size() > 1)
         m_stack->beginMacro(tr("Remove %1 trim loops").arg(loops.size()));
     for (const auto& [s, l] : loops) {
-        QString error;
-        if (!pushCommand(m_stack, RemoveTrimLoop::create(m_doc, s, l, &error)))
-            Q_EMIT message(error);
+        if (const Status pushed = pushCommand(m_stack, RemoveTrimLoop::create(m_doc, s, l));
+            !pushed)
+            Q_EMIT message(pushed.message());
     }
     if (loops.size() > 1)
         m_stack->endMacro();
@@ -222,10 +224,11 @@ bool UvPanel::insertTrimPoint() {
         return false;
     }
     c = more;
-    QString error;
-    if (!pushCommand(m_stack, ReplaceTrimLoop::create(m_doc, ref.surface, changed,
-                                                      tr("Insert trim control point"), &error))) {
-        Q_EMIT message(error);
+    if (const Status pushed =
+            pushCommand(m_stack, ReplaceTrimLoop::create(m_doc, ref.surface, changed,
+                                                         tr("Insert trim control point")));
+        !pushed) {
+        Q_EMIT message(pushed.message());
         return false;
     }
     return true;
@@ -249,10 +252,11 @@ bool UvPanel::deleteTrimPoint() {
         return false;
     }
     c = fewer;
-    QString error;
-    if (!pushCommand(m_stack, ReplaceTrimLoop::create(m_doc, ref.surface, changed,
-                                                      tr("Delete trim control point"), &error))) {
-        Q_EMIT message(error);
+    if (const Status pushed =
+            pushCommand(m_stack, ReplaceTrimLoop::create(m_doc, ref.surface, changed,
+                                                         tr("Delete trim control point")));
+        !pushed) {
+        Q_EMIT message(pushed.message());
         return false;
     }
     return true;
@@ -271,14 +275,13 @@ bool UvPanel::setTrimPointPosition(glm::dvec2 uv) {
         from.push_back(trimPointPosition(*m_doc, r));
         to.push_back(uv);
     }
-    QString error;
-    auto c = MoveTrimPoints::create(m_doc, refs, from, to, MoveKind::Drag, &error);
+    auto c = MoveTrimPoints::create(m_doc, refs, from, to, MoveKind::Drag);
     if (!c) {
-        Q_EMIT message(error);
+        Q_EMIT message(c.message());
         return false;
     }
-    c->setText(tr("Set trim point to (%1, %2)").arg(uv.x).arg(uv.y));
-    pushCommand(m_stack, std::move(c));
+    (*c)->setText(tr("Set trim point to (%1, %2)").arg(uv.x).arg(uv.y));
+    pushCommand(m_stack, std::move(*c));
     return true;
 }
 

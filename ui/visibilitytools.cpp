@@ -48,15 +48,15 @@ VisibilityTools::VisibilityTools(QObject* parent, Document* document, Selection*
 
 bool VisibilityTools::apply(const std::vector<std::pair<SurfaceId, bool>>& states,
                             const QString& verb, int count) {
-    QString error;
-    auto c = SetSurfacesHidden::create(m_doc, states, QString(), &error);
+    auto c = SetSurfacesHidden::create(m_doc, states, QString());
     if (!c) {
-        Q_EMIT message(tr("%1: %2").arg(verb, error));
+        Q_EMIT message(tr("%1: %2").arg(verb, c.message()));
         return false;
     }
-    c->setText(QStringLiteral("%1 %2").arg(verb, surfaces(count >= 0 ? count : c->changed())));
-    Q_EMIT message(c->text());
-    pushCommand(m_stack, std::move(c));
+    (*c)->setText(
+        QStringLiteral("%1 %2").arg(verb, surfaces(count >= 0 ? count : (*c)->changed())));
+    Q_EMIT message((*c)->text());
+    pushCommand(m_stack, std::move(*c));
     return true;
 }
 

@@ -110,7 +110,7 @@ private Q_SLOTS:
         QSignalSpy unitSpy(&doc, &Document::unitChanged);
         const Document::Lengths before = doc.lengths();
 
-        QVERIFY(pushCommand(&stack, SetUnits::create(&doc, LengthUnit::Inch, true, &error)));
+        QVERIFY(pushCommand(&stack, SetUnits::create(&doc, LengthUnit::Inch, true)));
         QCOMPARE(doc.scene().unit, LengthUnit::Inch);
         QCOMPARE(unitSpy.count(), 1);
         const double factor = 1.0 / 25.4;
@@ -121,14 +121,15 @@ private Q_SLOTS:
         QVERIFY(doc.lengths() == before); // bit for bit, not scaled back
         QCOMPARE(doc.scene().unit, LengthUnit::Millimetre);
 
-        QVERIFY(pushCommand(&stack, SetUnits::create(&doc, LengthUnit::Metre, false, &error)));
+        QVERIFY(pushCommand(&stack, SetUnits::create(&doc, LengthUnit::Metre, false)));
         QCOMPARE(doc.scene().unit, LengthUnit::Metre);
         QCOMPARE(doc.lengths().points, before.points);
         stack.undo();
         QVERIFY(doc.lengths() == before);
 
         // Nothing to change: refused with a reason, nothing pushed.
-        QVERIFY(!SetUnits::create(&doc, LengthUnit::Millimetre, true, &error));
+        error = kwtest::refusal(SetUnits::create(&doc, LengthUnit::Millimetre, true));
+        QVERIFY(!error.isNull());
         QVERIFY(error.contains(QStringLiteral("already in mm")));
         // Lengths for another scene (other counts) are refused, changing nothing.
         Document::Lengths wrong = before;

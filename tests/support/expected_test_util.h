@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/error.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QTest>
 
@@ -11,3 +12,16 @@
         const auto& kwOutcome_ = (expr);                                                           \
         QVERIFY2(bool(kwOutcome_), qPrintable(kwOutcome_.message()));                              \
     } while (false)
+
+namespace kwtest {
+
+/// The reason a kw::Expected or kw::Status gives for failing, or a null QString when it
+/// succeeded: `why = refusal(f()); QVERIFY(!why.isNull());` and then assertions on the wording.
+template <class Result> QString refusal(const Result& result) {
+    if (result)
+        return QString();
+    const QString why = result.message();
+    return why.isNull() ? QStringLiteral("") : why;
+}
+
+} // namespace kwtest

@@ -2,6 +2,7 @@
 #include "model/document/document.h"
 #include "model_fixtures.h"
 #include "signallog.h"
+#include "tests/support/expected_test_util.h"
 #include "ui/edit/commands.h"
 
 #include <QRegularExpression>
@@ -33,7 +34,7 @@ struct Fixture {
             from.push_back(point(id, i));
             to.push_back(point(id, i) + by);
         }
-        return pushCommand(&stack, MoveControlPoints::create(&doc, id, idx, from, to, kind));
+        return bool(pushCommand(&stack, MoveControlPoints::create(&doc, id, idx, from, to, kind)));
     }
 };
 
@@ -72,8 +73,9 @@ void TestCommands::moveTextAndUndo() {
     QVERIFY(f.nudge(SurfaceId{2}, {4}, {1, 0, 0}, MoveKind::Drag));
     QCOMPARE(f.stack.undoText(), QStringLiteral("Move control point"));
     QString error;
-    QVERIFY(!MoveControlPoints::create(&f.doc, SurfaceId{2}, {20}, {{0, 0, 0}}, {{1, 1, 1}},
-                                       MoveKind::Drag, &error));
+    error = kwtest::refusal(MoveControlPoints::create(&f.doc, SurfaceId{2}, {20}, {{0, 0, 0}},
+                                                      {{1, 1, 1}}, MoveKind::Drag));
+    QVERIFY(!error.isNull());
     QVERIFY2(error.contains(QStringLiteral("out of range")), qPrintable(error));
     QVERIFY(!MoveControlPoints::create(&f.doc, SurfaceId{2}, {1}, {{0, 0, 0}}, {{kNaN, 1, 1}}));
     QVERIFY(!MoveControlPoints::create(&f.doc, SurfaceId{2}, {1, 1}, {{0, 0, 0}, {0, 0, 0}},
@@ -131,7 +133,8 @@ void TestCommands::sliderSweepIsOneStep() {
     QVERIFY(pushCommand(&f.stack, SetPartitions::create(&f.doc, SurfaceId{3}, 5, 6)));
     QCOMPARE(f.stack.count(), 2); // another surface: another step
     QString error;
-    QVERIFY(!SetPartitions::create(&f.doc, SurfaceId{3}, 0, 6, &error));
+    error = kwtest::refusal(SetPartitions::create(&f.doc, SurfaceId{3}, 0, 6));
+    QVERIFY(!error.isNull());
     QVERIFY(error.contains(QStringLiteral("partitions")));
     QVERIFY(!SetPartitions::create(&f.doc, SurfaceId{3}, 5, kMaxPartitions + 1));
 }
@@ -175,11 +178,14 @@ void TestCommands::rejectInvalidKnotVector() {
     const Scene before = f.doc.scene();
     const SurfaceId id{2}; // 5 points, degree 3 in u: 9 knots
     QString error;
-    QVERIFY(
-        !SetKnotVector::create(&f.doc, id, Direction::U, {0, 0, 0, 0, 0.7, 0.5, 1, 1, 1}, &error));
+    error = kwtest::refusal(
+        SetKnotVector::create(&f.doc, id, Direction::U, {0, 0, 0, 0, 0.7, 0.5, 1, 1, 1}));
+    QVERIFY(!error.isNull());
     QVERIFY2(error.startsWith(QStringLiteral("knot vector u")), qPrintable(error));
     error.clear();
-    QVERIFY(!SetKnotVector::create(&f.doc, id, Direction::U, {0, 0, 0, 0, 1, 1, 1, 1}, &error));
+    error =
+        kwtest::refusal(SetKnotVector::create(&f.doc, id, Direction::U, {0, 0, 0, 0, 1, 1, 1, 1}));
+    QVERIFY(!error.isNull());
     QVERIFY(!error.isEmpty());
     QVERIFY(!SetKnotVector::create(&f.doc, id, Direction::V, {0, 0, 0, 0, kNaN, 1, 1, 1}));
     // Multiplicity 5 > degree + 1; an empty domain.
@@ -235,13 +241,15 @@ void TestCommands::insertKnotAndElevateRejected() {
     Fixture f;
     const Scene before = f.doc.scene();
     QString error;
-    QVERIFY(!InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, 1.5, 1, &error));
+    error = kwtest::refusal(InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, 1.5, 1));
+    QVERIFY(!error.isNull());
     QVERIFY2(error.contains(QStringLiteral("(0, 1)")), qPrintable(error));
     QVERIFY(!InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, 0.0));
     QVERIFY(!InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, 0.5, 4)); // > degree
     QVERIFY(!InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, kNaN));
     QVERIFY(!InsertKnot::create(&f.doc, SurfaceId{1}, Direction::U, 0.5, 0));
-    QVERIFY(!ElevateDegree::create(&f.doc, SurfaceId{1}, Direction::U, kMaxDegree, &error));
+    error = kwtest::refusal(ElevateDegree::create(&f.doc, SurfaceId{1}, Direction::U, kMaxDegree));
+    QVERIFY(!error.isNull());
     QVERIFY2(error.contains(QStringLiteral("maximum")), qPrintable(error));
     QVERIFY(!ElevateDegree::create(&f.doc, SurfaceId{1}, Direction::U, 0));
     QVERIFY(!ElevateDegree::create(&f.doc, SurfaceId{42}, Direction::U));
@@ -271,7 +279,8 @@ void TestCommands::addSurfaceAllocatesIdsOnlyWhenValid() {
     Surface bad = makeSurface(0, QStringLiteral("Bad"), patch());
     bad.geometry.knotsU.push_back(2.0);
     QString error;
-    QVERIFY(!AddSurface::create(&f.doc, bad, -1, &error));
+    error = kwtest::refusal(AddSurface::create(&f.doc, bad, -1));
+    QVERIFY(!error.isNull());
     QVERIFY(error.contains(QStringLiteral("surface")));
     QVERIFY(!AddSurface::create(&f.doc, makeSurface(2, QStringLiteral("Dup"), patch())));
     QVERIFY(!AddSurface::create(&f.doc, makeSurface(0, QStringLiteral("Far"), patch()), 5));
@@ -281,7 +290,7 @@ void TestCommands::addSurfaceAllocatesIdsOnlyWhenValid() {
     s.trims.push_back(rectLoop(TrimLoopId{}, 0.2, 0.2, 0.4, 0.4));
     auto cmd = AddSurface::create(&f.doc, s, 1);
     QVERIFY(cmd);
-    const SurfaceId id = cmd->surfaceId();
+    const SurfaceId id = (*cmd)->surfaceId();
     QCOMPARE(id.value, next);
     QVERIFY(pushCommand(&f.stack, std::move(cmd)));
     QCOMPARE(f.stack.undoText(), QStringLiteral("Add surface “Delta”"));
@@ -298,7 +307,7 @@ void TestCommands::trimLoopCommands() {
     const Scene before = f.doc.scene();
     auto add = AddTrimLoop::create(&f.doc, SurfaceId{2}, rectLoop({}, 0.1, 0.1, 0.2, 0.2));
     QVERIFY(add);
-    const TrimLoopId loop = add->loopId();
+    const TrimLoopId loop = (*add)->loopId();
     QVERIFY(loop.isValid());
     QVERIFY(pushCommand(&f.stack, std::move(add)));
     QCOMPARE(f.stack.undoText(), QStringLiteral("Add trim loop (4 curves) to “Beta”"));
@@ -353,7 +362,8 @@ void TestCommands::lightCommands() {
     QVERIFY(pushCommand(&f.stack, SetLights::removeLight(&f.doc, 0)));
     QVERIFY(pushCommand(&f.stack, SetLights::changeLight(&f.doc, 0, lights[1])));
     QString error;
-    QVERIFY(!SetLights::removeLight(&f.doc, 0, &error)); // the last light stays
+    error = kwtest::refusal(SetLights::removeLight(&f.doc, 0));
+    QVERIFY(!error.isNull()); // the last light stays
     QVERIFY(error.contains(QStringLiteral("last light")));
     QVERIFY(!SetLights::changeLight(&f.doc, 3, Light{}));
     Light bad;
@@ -382,11 +392,13 @@ void TestCommands::refusedStepIsDropped() {
 
 void TestCommands::nullDocumentIsRejected() {
     QString error;
-    QVERIFY(!MoveControlPoints::create(nullptr, SurfaceId{1}, {0}, {{0, 0, 0}}, {{1, 1, 1}},
-                                       MoveKind::Drag, &error));
+    error = kwtest::refusal(MoveControlPoints::create(nullptr, SurfaceId{1}, {0}, {{0, 0, 0}},
+                                                      {{1, 1, 1}}, MoveKind::Drag));
+    QVERIFY(!error.isNull());
     QCOMPARE(error, QStringLiteral("no document"));
     error.clear();
-    QVERIFY(!InsertKnot::create(nullptr, SurfaceId{1}, Direction::U, 0.5, 1, &error));
+    error = kwtest::refusal(InsertKnot::create(nullptr, SurfaceId{1}, Direction::U, 0.5, 1));
+    QVERIFY(!error.isNull());
     QCOMPARE(error, QStringLiteral("no document"));
     QVERIFY(!AddSurface::create(nullptr, makeSurface(0, QStringLiteral("A"), patch())));
     QVERIFY(!MoveTrimPoints::create(nullptr, {{SurfaceId{1}, TrimLoopId{10}, 0, 0}}, {{0, 0}},

@@ -142,6 +142,14 @@ public:
         return s.empty() ? nullptr : &s[size_t(pick(0, int(s.size()) - 1))];
     }
 
+    /// The factory's command, or nullptr with its reason kept in m_lastError.
+    template <class C> std::unique_ptr<QUndoCommand> made(Expected<std::unique_ptr<C>> command) {
+        if (!command) {
+            m_lastError = command.message();
+            return nullptr;
+        }
+        return std::move(*command);
+    }
     /// Builds one random command; `expectReject` is set when it was made invalid on purpose.
     std::unique_ptr<QUndoCommand> make(Kind kind, bool& expectReject);
     /// Makes and pushes one command, checking signals, revisions, rows and the snapshot.
@@ -187,20 +195,20 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
             from.push_back(s->geometry.points[size_t(i)]);
             to.push_back(from.back() + glm::dvec3(uniform(-1, 1), uniform(-1, 1), 0.25));
         }
-        return MoveControlPoints::create(&m_doc, id, idx, from, to, mk);
+        return made(MoveControlPoints::create(&m_doc, id, idx, from, to, mk));
     }
     case KWeight: {
         if (!(m_weightSurface == id && coin(0.6)) ||
             size_t(m_weightIndex) >= s->geometry.weights.size())
             m_weightSurface = id, m_weightIndex = pick(0, int(s->geometry.weights.size()) - 1);
-        return SetWeight::create(&m_doc, id, m_weightIndex, uniform(0.5, 2.0));
+        return made(SetWeight::create(&m_doc, id, m_weightIndex, uniform(0.5, 2.0)));
     }
     case KPartitions:
         if (coin(0.1)) {
             expectReject = true;
-            return SetPartitions::create(&m_doc, id, 0, pick(1, 500));
+            return made(SetPartitions::create(&m_doc, id, 0, pick(1, 500)));
         }
-        return SetPartitions::create(&m_doc, id, pick(1, 64), pick(1, 64));
+        return made(SetPartitions::create(&m_doc, id, pick(1, 64), pick(1, 64)));
     case KKnotVector: {
         const Direction dir = coin() ? Direction::U : Direction::V;
         const NurbsSurface& g = s->geometry;
@@ -225,7 +233,7 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
             for (double& x : k)
                 x *= scale;
         }
-        return SetKnotVector::create(&m_doc, id, dir, k, &m_lastError);
+        return made(SetKnotVector::create(&m_doc, id, dir, k));
     }
     case KInsertKnot: {
         const Direction dir = coin() ? Direction::U : Direction::V;
@@ -233,9 +241,9 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
         const Interval d = dir == Direction::U ? surfaceDomainU(g) : surfaceDomainV(g);
         if ((dir == Direction::U ? g.countU : g.countV) >= 9 || coin(0.1)) {
             expectReject = true; // outside the domain
-            return InsertKnot::create(&m_doc, id, dir, d.last + 1.0);
+            return made(InsertKnot::create(&m_doc, id, dir, d.last + 1.0));
         }
-        return InsertKnot::create(&m_doc, id, dir, uniform(d.first, d.last));
+        return made(InsertKnot::create(&m_doc, id, dir, uniform(d.first, d.last)));
     }
     case KElevate: {
         const Direction dir = coin() ? Direction::U : Direction::V;
@@ -244,9 +252,9 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
         const int n = dir == Direction::U ? g.countU : g.countV;
         if (p >= 4 || n >= 9) {
             expectReject = true;
-            return ElevateDegree::create(&m_doc, id, dir, kMaxDegree);
+            return made(ElevateDegree::create(&m_doc, id, dir, kMaxDegree));
         }
-        return ElevateDegree::create(&m_doc, id, dir);
+        return made(ElevateDegree::create(&m_doc, id, dir));
     }
     case KAddSurface: {
         if (m_doc.scene().surfaces.size() >= 7)
@@ -255,28 +263,28 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
                                 patch(pick(2, 6), pick(2, 6), uniform(-5, 5), uniform(0, 2)));
         if (coin())
             n.trims.push_back(rectLoop({}, 0.1, 0.1, uniform(0.2, 0.9), 0.8, coin()));
-        return AddSurface::create(&m_doc, n, pick(0, int(m_doc.scene().surfaces.size())));
+        return made(AddSurface::create(&m_doc, n, pick(0, int(m_doc.scene().surfaces.size()))));
     }
     case KRemoveSurface:
         if (m_doc.scene().surfaces.size() <= 2)
             return make(KAddSurface, expectReject);
-        return RemoveSurface::create(&m_doc, id);
+        return made(RemoveSurface::create(&m_doc, id));
     case KRename:
-        return RenameSurface::create(&m_doc, id, QStringLiteral("N%1").arg(pick(0, 1 << 20)));
+        return made(RenameSurface::create(&m_doc, id, QStringLiteral("N%1").arg(pick(0, 1 << 20))));
     case KAddLoop: {
         const Interval du = surfaceDomainU(s->geometry), dv = surfaceDomainV(s->geometry);
         const double u0 = uniform(du.first, du.last), v0 = uniform(dv.first, dv.last);
         const double u1 = uniform(u0, du.last), v1 = uniform(v0, dv.last);
         if (s->trims.size() >= 4)
             return make(KRemoveLoop, expectReject);
-        return AddTrimLoop::create(&m_doc, id, rectLoop({}, u0, v0, u1, v1, coin()),
-                                   pick(0, int(s->trims.size())));
+        return made(AddTrimLoop::create(&m_doc, id, rectLoop({}, u0, v0, u1, v1, coin()),
+                                        pick(0, int(s->trims.size()))));
     }
     case KRemoveLoop:
         if (s->trims.empty())
             return make(KAddLoop, expectReject);
-        return RemoveTrimLoop::create(&m_doc, id,
-                                      s->trims[size_t(pick(0, int(s->trims.size()) - 1))].id);
+        return made(RemoveTrimLoop::create(&m_doc, id,
+                                           s->trims[size_t(pick(0, int(s->trims.size()) - 1))].id));
     case KMoveTrim: {
         if (s->trims.empty())
             return make(KAddLoop, expectReject);
@@ -287,9 +295,10 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
         // A curve's end point is shared with the next curve (or its own start): moving it alone
         // opens the loop, which the document's rule refuses.
         expectReject = i == 0 || i == int(l.curves[size_t(c)].points.size()) - 1;
-        return MoveTrimPoints::create(&m_doc, {{id, l.id, c, i}}, {p},
-                                      {p + glm::dvec2(uniform(-0.05, 0.05), uniform(-0.05, 0.05))},
-                                      coin() ? MoveKind::Nudge : MoveKind::Drag);
+        return made(
+            MoveTrimPoints::create(&m_doc, {{id, l.id, c, i}}, {p},
+                                   {p + glm::dvec2(uniform(-0.05, 0.05), uniform(-0.05, 0.05))},
+                                   coin() ? MoveKind::Nudge : MoveKind::Drag));
     }
     case KMaterial: {
         Material m;
@@ -300,7 +309,7 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
             expectReject = true;
             m.ks = -1.0;
         }
-        return SetMaterial::create(&m_doc, id, m);
+        return made(SetMaterial::create(&m_doc, id, m));
     }
     case KLights: {
         const int n = int(m_doc.scene().lights.size());
@@ -309,16 +318,16 @@ std::unique_ptr<QUndoCommand> Runner::make(Kind kind, bool& expectReject) {
         l.vector = {uniform(-1, 1), uniform(-1, 1), uniform(0.5, 1)};
         const int which = pick(0, 2);
         if (which == 0 && n < kMaxLights)
-            return SetLights::addLight(&m_doc, l);
+            return made(SetLights::addLight(&m_doc, l));
         if (which == 1 && n > 1)
-            return SetLights::removeLight(&m_doc, pick(0, n - 1));
-        return SetLights::changeLight(&m_doc, pick(0, n - 1), l);
+            return made(SetLights::removeLight(&m_doc, pick(0, n - 1)));
+        return made(SetLights::changeLight(&m_doc, pick(0, n - 1), l));
     }
     case KCamera: {
         Camera c = m_doc.scene().camera;
         c.eye = {uniform(-9, 9), uniform(-9, -1), uniform(1, 9)};
         c.authored = true;
-        return SetCamera::create(&m_doc, c);
+        return made(SetCamera::create(&m_doc, c));
     }
     case KindCount:
         break;

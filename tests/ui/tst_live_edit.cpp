@@ -1,6 +1,7 @@
 // LiveEdit without widgets: a drag's steps follow live, the commit is one undo step, cancel
 // restores, and a step the document's rule refuses changes nothing and says why.
 #include "model_fixtures.h"
+#include "tests/support/expected_test_util.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/liveedit.h"
 
@@ -133,14 +134,17 @@ private Q_SLOTS:
     void commandsUseTheDocumentsRule() {
         Fixture f;
         QString error;
-        QVERIFY(!MoveControlPoints::create(&f.doc, SurfaceId{1}, {99}, {glm::dvec3(0)},
-                                           {glm::dvec3(1)}, MoveKind::Drag, &error));
+        error = kwtest::refusal(MoveControlPoints::create(
+            &f.doc, SurfaceId{1}, {99}, {glm::dvec3(0)}, {glm::dvec3(1)}, MoveKind::Drag));
+        QVERIFY(!error.isNull());
         QCOMPARE(error, f.doc.controlPointsError(SurfaceId{1}, {99}, {glm::dvec3(1)}));
-        QVERIFY(!SetWeight::create(&f.doc, SurfaceId{1}, 0, -1.0, &error));
+        error = kwtest::refusal(SetWeight::create(&f.doc, SurfaceId{1}, 0, -1.0));
+        QVERIFY(!error.isNull());
         QCOMPARE(error, f.doc.weightError(SurfaceId{1}, 0, -1.0));
         const TrimPointRef end{SurfaceId{1}, TrimLoopId{10}, 0, 1};
-        QVERIFY(!MoveTrimPoints::create(&f.doc, {end}, {{0.9, 0.1}}, {{0.8, 0.2}}, MoveKind::Drag,
-                                        &error));
+        error = kwtest::refusal(
+            MoveTrimPoints::create(&f.doc, {end}, {{0.9, 0.1}}, {{0.8, 0.2}}, MoveKind::Drag));
+        QVERIFY(!error.isNull());
         QCOMPARE(error, f.doc.trimPointsError({end}, {{0.8, 0.2}}));
     }
 };

@@ -305,10 +305,10 @@ private Q_SLOTS:
             QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + d);
         vp->grabFramebuffer(); // paints with the preview
         const NurbsCurve3 four = tool->preview();
-        QCOMPARE(four, tool->curveThrough(tool->points(), nullptr));
+        QCOMPARE(four, tool->curveThrough(tool->points()).value());
         QVERIFY(!four.points.empty());
         QTest::keyClick(vp, Qt::Key_Backspace);
-        QCOMPARE(tool->preview(), tool->curveThrough(tool->points(), nullptr));
+        QCOMPARE(tool->preview(), tool->curveThrough(tool->points()).value());
         QVERIFY(!(tool->preview() == four));
         tool->setInterpolating(false);
         QCOMPARE(tool->preview(), controlPointCurve3(tool->points(), 3));

@@ -695,10 +695,8 @@ private Q_SLOTS:
         }
         if (QTest::currentTestFailed())
             return;
-        QString error;
-        std::unique_ptr<MoveControlPoints> release =
-            MoveControlPoints::create(&doc, face, {index}, {from}, {to}, MoveKind::Drag, &error);
-        QVERIFY2(release, qPrintable(error));
+        auto release = MoveControlPoints::create(&doc, face, {index}, {from}, {to}, MoveKind::Drag);
+        QVERIFY2(release, qPrintable(release.message()));
         QVERIFY(pushCommand(&stack, std::move(release)));
         drawn("released");
         stack.undo();

@@ -36,20 +36,18 @@ bool pushCommand(QUndoStack* stack, std::unique_ptr<QUndoCommand> command) {
 
 // ---- MoveControlPoints
 
-std::unique_ptr<MoveControlPoints> MoveControlPoints::create(Document* document, SurfaceId surface,
-                                                             std::vector<int> indices,
-                                                             std::vector<glm::dvec3> from,
-                                                             std::vector<glm::dvec3> to,
-                                                             MoveKind kind, QString* error) {
+Expected<std::unique_ptr<MoveControlPoints>>
+MoveControlPoints::create(Document* document, SurfaceId surface, std::vector<int> indices,
+                          std::vector<glm::dvec3> from, std::vector<glm::dvec3> to, MoveKind kind) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     if (indices.empty() || indices.size() != from.size() || indices.size() != to.size())
-        return fail(error, QStringLiteral("need one old and one new position per point"));
+        return Error(QStringLiteral("need one old and one new position per point"));
     // The document's own rule, for both ends: undo writes `from` as redo writes `to`.
     for (const auto* positions : {&from, &to})
         if (const QString why = document->controlPointsError(surface, indices, *positions);
             !why.isEmpty())
-            return fail(error, why);
+            return Error(why);
     const QString text = indices.size() == 1
                              ? QStringLiteral("Move control point")
                              : QStringLiteral("Move %1 control points").arg(indices.size());
@@ -82,12 +80,12 @@ bool MoveControlPoints::mergeWith(const QUndoCommand* other) {
 
 // ---- SetWeight
 
-std::unique_ptr<SetWeight> SetWeight::create(Document* document, SurfaceId surface, int index,
-                                             double weight, QString* error) {
+Expected<std::unique_ptr<SetWeight>> SetWeight::create(Document* document, SurfaceId surface,
+                                                       int index, double weight) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     if (const QString why = document->weightError(surface, index, weight); !why.isEmpty())
-        return fail(error, why);
+        return Error(why);
     const Surface* s = document->surface(surface);
     std::unique_ptr<SetWeight> c(
         new SetWeight(document, QStringLiteral("Set weight to %1").arg(weight)));
@@ -117,14 +115,13 @@ bool SetWeight::mergeWith(const QUndoCommand* other) {
 
 // ---- SetPartitions
 
-std::unique_ptr<SetPartitions> SetPartitions::create(Document* document, SurfaceId surface, int nu,
-                                                     int nv, QString* error) {
+Expected<std::unique_ptr<SetPartitions>> SetPartitions::create(Document* document,
+                                                               SurfaceId surface, int nu, int nv) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
-    const QString why = partitionsError(nu, nv);
-    if (!why.isEmpty())
-        return fail(error, why);
+        return Error(noSurface(document, surface));
+    if (const QString why = partitionsError(nu, nv); !why.isEmpty())
+        return Error(why);
     std::unique_ptr<SetPartitions> c(
         new SetPartitions(document, QStringLiteral("Set partitions to %1 × %2").arg(nu).arg(nv)));
     c->m_surface = surface;
@@ -155,15 +152,13 @@ bool SetPartitions::mergeWith(const QUndoCommand* other) {
 
 // ---- MoveTrimPoints
 
-std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
-                                                       std::vector<TrimPointRef> refs,
-                                                       std::vector<glm::dvec2> from,
-                                                       std::vector<glm::dvec2> to, MoveKind kind,
-                                                       QString* error) {
+Expected<std::unique_ptr<MoveTrimPoints>>
+MoveTrimPoints::create(Document* document, std::vector<TrimPointRef> refs,
+                       std::vector<glm::dvec2> from, std::vector<glm::dvec2> to, MoveKind kind) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     if (refs.empty() || refs.size() != from.size() || refs.size() != to.size())
-        return fail(error, QStringLiteral("need one old and one new position per trim point"));
+        return Error(QStringLiteral("need one old and one new position per trim point"));
     // The document's own rule, per surface and for both ends (undo writes `from`).
     std::map<SurfaceId, std::pair<std::vector<TrimPointRef>, std::vector<size_t>>> bySurface;
     for (size_t k = 0; k < refs.size(); ++k) {
@@ -176,7 +171,7 @@ std::unique_ptr<MoveTrimPoints> MoveTrimPoints::create(Document* document,
             for (size_t k : group.second)
                 at.push_back((*positions)[k]);
             if (const QString why = document->trimPointsError(group.first, at); !why.isEmpty())
-                return fail(error, why);
+                return Error(why);
         }
     const QString text = refs.size() == 1 ? QStringLiteral("Move trim point")
                                           : QStringLiteral("Move %1 trim points").arg(refs.size());
@@ -221,14 +216,13 @@ bool MoveTrimPoints::mergeWith(const QUndoCommand* other) {
 
 // ---- SetMaterial
 
-std::unique_ptr<SetMaterial> SetMaterial::create(Document* document, SurfaceId surface,
-                                                 const Material& material, QString* error) {
+Expected<std::unique_ptr<SetMaterial>> SetMaterial::create(Document* document, SurfaceId surface,
+                                                           const Material& material) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
-    const QString why = materialError(material);
-    if (!why.isEmpty())
-        return fail(error, why);
+        return Error(noSurface(document, surface));
+    if (const QString why = materialError(material); !why.isEmpty())
+        return Error(why);
     std::unique_ptr<SetMaterial> c(
         new SetMaterial(document, QStringLiteral("Change material of “%1”").arg(s->name)));
     c->m_surface = surface;
@@ -255,13 +249,12 @@ bool SetMaterial::mergeWith(const QUndoCommand* other) {
 
 // ---- SetLights
 
-std::unique_ptr<SetLights> SetLights::make(Document* document, std::vector<Light> lights,
-                                           const QString& text, int changed, QString* error) {
+Expected<std::unique_ptr<SetLights>> SetLights::make(Document* document, std::vector<Light> lights,
+                                                     const QString& text, int changed) {
     if (!document)
-        return fail(error, noDocument());
-    const QString why = lightsError(lights);
-    if (!why.isEmpty())
-        return fail(error, why);
+        return Error(noDocument());
+    if (const QString why = lightsError(lights); !why.isEmpty())
+        return Error(why);
     std::unique_ptr<SetLights> c(new SetLights(document, text));
     c->m_from = document->scene().lights;
     c->m_to = std::move(lights);
@@ -269,45 +262,43 @@ std::unique_ptr<SetLights> SetLights::make(Document* document, std::vector<Light
     return c;
 }
 
-std::unique_ptr<SetLights> SetLights::create(Document* document, std::vector<Light> lights,
-                                             QString* error) {
-    return make(document, std::move(lights), QStringLiteral("Set lights"), -1, error);
+Expected<std::unique_ptr<SetLights>> SetLights::create(Document* document,
+                                                       std::vector<Light> lights) {
+    return make(document, std::move(lights), QStringLiteral("Set lights"), -1);
 }
 
-std::unique_ptr<SetLights> SetLights::addLight(Document* document, const Light& light,
-                                               QString* error) {
+Expected<std::unique_ptr<SetLights>> SetLights::addLight(Document* document, const Light& light) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (lights.size() >= size_t(kMaxLights))
-        return fail(error, QStringLiteral("a scene has at most %1 lights").arg(kMaxLights));
+        return Error(QStringLiteral("a scene has at most %1 lights").arg(kMaxLights));
     lights.push_back(light);
-    return make(document, std::move(lights), QStringLiteral("Add light"), -1, error);
+    return make(document, std::move(lights), QStringLiteral("Add light"), -1);
 }
 
-std::unique_ptr<SetLights> SetLights::removeLight(Document* document, int index, QString* error) {
+Expected<std::unique_ptr<SetLights>> SetLights::removeLight(Document* document, int index) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
-        return fail(error, QStringLiteral("no light %1").arg(index + 1));
+        return Error(QStringLiteral("no light %1").arg(index + 1));
     if (lights.size() == 1)
-        return fail(error, QStringLiteral("cannot remove the last light"));
+        return Error(QStringLiteral("cannot remove the last light"));
     lights.erase(lights.begin() + index);
-    return make(document, std::move(lights), QStringLiteral("Remove light %1").arg(index + 1), -1,
-                error);
+    return make(document, std::move(lights), QStringLiteral("Remove light %1").arg(index + 1), -1);
 }
 
-std::unique_ptr<SetLights> SetLights::changeLight(Document* document, int index, const Light& light,
-                                                  QString* error) {
+Expected<std::unique_ptr<SetLights>> SetLights::changeLight(Document* document, int index,
+                                                            const Light& light) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     std::vector<Light> lights = document->scene().lights;
     if (index < 0 || size_t(index) >= lights.size())
-        return fail(error, QStringLiteral("no light %1").arg(index + 1));
+        return Error(QStringLiteral("no light %1").arg(index + 1));
     lights[size_t(index)] = light;
     return make(document, std::move(lights), QStringLiteral("Change light %1").arg(index + 1),
-                index, error);
+                index);
 }
 
 void SetLights::redo() {
@@ -328,13 +319,11 @@ bool SetLights::mergeWith(const QUndoCommand* other) {
 
 // ---- SetCamera
 
-std::unique_ptr<SetCamera> SetCamera::create(Document* document, const Camera& camera,
-                                             QString* error) {
+Expected<std::unique_ptr<SetCamera>> SetCamera::create(Document* document, const Camera& camera) {
     if (!document)
-        return fail(error, noDocument());
-    const QString why = cameraError(camera);
-    if (!why.isEmpty())
-        return fail(error, why);
+        return Error(noDocument());
+    if (const QString why = cameraError(camera); !why.isEmpty())
+        return Error(why);
     std::unique_ptr<SetCamera> c(new SetCamera(document, QStringLiteral("Change camera")));
     c->m_from = document->scene().camera;
     c->m_to = camera;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/document/document.h"
+#include "model/error.h"
 
 #include <QUndoCommand>
 #include <memory>
@@ -30,7 +31,8 @@ enum CommandId {
 };
 
 /// Every command is built by a static `create` that checks the edit against the document as it
-/// is now and returns nullptr (with *error set, if given) when the edit is invalid, so nothing
+/// is now and returns an Error (the reason, as the status bar shows it) when the edit is invalid,
+/// so nothing
 /// invalid reaches the stack. Commands hold ids and authored values, never pointers into the
 /// scene. Should the document still refuse a step (the stack was bypassed and the document
 /// changed under it), the command warns and marks itself obsolete so the stack drops it.
@@ -46,8 +48,17 @@ private:
     Document* m_doc;
 };
 
-/// Pushes a command made by a `create` factory; returns false (pushing nothing) for nullptr.
+/// Pushes a command; returns false (pushing nothing) for nullptr or no stack.
 bool pushCommand(QUndoStack* stack, std::unique_ptr<QUndoCommand> command);
+/// Pushes what a `create` factory made; its Error (pushing nothing) when it refused the edit,
+/// "no undo stack" without a stack.
+template <class C> Status pushCommand(QUndoStack* stack, Expected<std::unique_ptr<C>> command) {
+    if (!command)
+        return std::move(command).error();
+    if (!pushCommand(stack, std::unique_ptr<QUndoCommand>(std::move(*command))))
+        return Error(QStringLiteral("no undo stack"));
+    return ok();
+}
 
 class MoveControlPoints : public DocumentCommand {
 public:
@@ -55,10 +66,10 @@ public:
     /// at press time, `to` the positions at release (both finite, one per index). The points
     /// of neighbouring faces that the document's seam link carries along (Keep Seams Closed)
     /// move with them in redo and back in undo: one step.
-    static std::unique_ptr<MoveControlPoints>
+    static Expected<std::unique_ptr<MoveControlPoints>>
     create(Document* document, SurfaceId surface, std::vector<int> indices,
-           std::vector<glm::dvec3> from, std::vector<glm::dvec3> to, MoveKind kind = MoveKind::Drag,
-           QString* error = nullptr);
+           std::vector<glm::dvec3> from, std::vector<glm::dvec3> to,
+           MoveKind kind = MoveKind::Drag);
     void redo() override;
     void undo() override;
     int id() const override { return m_kind == MoveKind::Nudge ? MoveControlPointsId : -1; }
@@ -79,8 +90,8 @@ class SetWeight : public DocumentCommand {
 public:
     /// `index` as in NurbsSurface::index; weight finite and > 0. Merges with the next SetWeight
     /// of the same point.
-    static std::unique_ptr<SetWeight> create(Document* document, SurfaceId surface, int index,
-                                             double weight, QString* error = nullptr);
+    static Expected<std::unique_ptr<SetWeight>> create(Document* document, SurfaceId surface,
+                                                       int index, double weight);
     void redo() override;
     void undo() override;
     int id() const override { return SetWeightId; }
@@ -97,8 +108,8 @@ class SetPartitions : public DocumentCommand {
 public:
     /// Both in [kMinPartitions, kMaxPartitions]. Consecutive steps on one surface (a slider
     /// sweep) merge into one undo step.
-    static std::unique_ptr<SetPartitions> create(Document* document, SurfaceId surface, int nu,
-                                                 int nv, QString* error = nullptr);
+    static Expected<std::unique_ptr<SetPartitions>> create(Document* document, SurfaceId surface,
+                                                           int nu, int nv);
     void redo() override;
     void undo() override;
     int id() const override { return SetPartitionsId; }
@@ -130,9 +141,8 @@ class SetKnotVector : public GeometryCommand {
 public:
     /// Replaces the u (or v) knot vector; it must pass kw::knotVectorError for the current
     /// degree and control point count in that direction.
-    static std::unique_ptr<SetKnotVector> create(Document* document, SurfaceId surface,
-                                                 Direction direction, std::vector<double> knots,
-                                                 QString* error = nullptr);
+    static Expected<std::unique_ptr<SetKnotVector>>
+    create(Document* document, SurfaceId surface, Direction direction, std::vector<double> knots);
 
 private:
     using GeometryCommand::GeometryCommand;
@@ -142,9 +152,8 @@ class InsertKnot : public GeometryCommand {
 public:
     /// Inserts `value` `times` times (A5.3); the surface does not move. Rejected when value is
     /// outside the open domain or the multiplicity would exceed the degree.
-    static std::unique_ptr<InsertKnot> create(Document* document, SurfaceId surface,
-                                              Direction direction, double value, int times = 1,
-                                              QString* error = nullptr);
+    static Expected<std::unique_ptr<InsertKnot>>
+    create(Document* document, SurfaceId surface, Direction direction, double value, int times = 1);
 
 private:
     using GeometryCommand::GeometryCommand;
@@ -153,9 +162,8 @@ private:
 class ElevateDegree : public GeometryCommand {
 public:
     /// Raises the degree by `by` >= 1 (A5.9); rejected above kMaxDegree.
-    static std::unique_ptr<ElevateDegree> create(Document* document, SurfaceId surface,
-                                                 Direction direction, int by = 1,
-                                                 QString* error = nullptr);
+    static Expected<std::unique_ptr<ElevateDegree>> create(Document* document, SurfaceId surface,
+                                                           Direction direction, int by = 1);
 
 private:
     using GeometryCommand::GeometryCommand;
@@ -165,9 +173,9 @@ class AddSurface : public DocumentCommand {
 public:
     /// Adds `surface` at `index` (-1 appends). An invalid surface id or trim loop id is replaced
     /// by a freshly allocated one; valid ids must be unused. The surface must pass
-    /// kw::surfaceError.
-    static std::unique_ptr<AddSurface> create(Document* document, Surface surface, int index = -1,
-                                              QString* error = nullptr);
+    /// kw::checkSurface.
+    static Expected<std::unique_ptr<AddSurface>> create(Document* document, Surface surface,
+                                                        int index = -1);
     SurfaceId surfaceId() const { return m_surface.id; }
     void redo() override;
     void undo() override;
@@ -181,8 +189,7 @@ private:
 class RemoveSurface : public DocumentCommand {
 public:
     /// Undo restores the surface at the same index with the same id.
-    static std::unique_ptr<RemoveSurface> create(Document* document, SurfaceId surface,
-                                                 QString* error = nullptr);
+    static Expected<std::unique_ptr<RemoveSurface>> create(Document* document, SurfaceId surface);
     void redo() override;
     void undo() override;
 
@@ -195,8 +202,8 @@ private:
 class RenameSurface : public DocumentCommand {
 public:
     /// `name` must contain a non-space character and differ from the current name.
-    static std::unique_ptr<RenameSurface> create(Document* document, SurfaceId surface,
-                                                 const QString& name, QString* error = nullptr);
+    static Expected<std::unique_ptr<RenameSurface>> create(Document* document, SurfaceId surface,
+                                                           const QString& name);
     void redo() override;
     void undo() override;
 
@@ -209,9 +216,9 @@ private:
 class AddTrimLoop : public DocumentCommand {
 public:
     /// Adds `loop` at `index` (-1 appends) to the surface's trims. An invalid loop id is
-    /// replaced by a fresh one; a valid one must be unused. The loop must pass trimLoopError.
-    static std::unique_ptr<AddTrimLoop> create(Document* document, SurfaceId surface, TrimLoop loop,
-                                               int index = -1, QString* error = nullptr);
+    /// replaced by a fresh one; a valid one must be unused. The loop must pass checkTrimLoop.
+    static Expected<std::unique_ptr<AddTrimLoop>> create(Document* document, SurfaceId surface,
+                                                         TrimLoop loop, int index = -1);
     TrimLoopId loopId() const { return m_loop.id; }
     void redo() override;
     void undo() override;
@@ -226,8 +233,8 @@ private:
 class RemoveTrimLoop : public DocumentCommand {
 public:
     /// Undo restores the loop at the same index with the same id.
-    static std::unique_ptr<RemoveTrimLoop> create(Document* document, SurfaceId surface,
-                                                  TrimLoopId loop, QString* error = nullptr);
+    static Expected<std::unique_ptr<RemoveTrimLoop>> create(Document* document, SurfaceId surface,
+                                                            TrimLoopId loop);
     void redo() override;
     void undo() override;
 
@@ -243,9 +250,9 @@ public:
     /// Trim points (unique, existing) with press-time and release positions, all finite.
     /// Several refs let a caller keep a loop closed by moving a curve's end and the next
     /// curve's start together. Nudges of the same refs merge.
-    static std::unique_ptr<MoveTrimPoints>
+    static Expected<std::unique_ptr<MoveTrimPoints>>
     create(Document* document, std::vector<TrimPointRef> refs, std::vector<glm::dvec2> from,
-           std::vector<glm::dvec2> to, MoveKind kind = MoveKind::Drag, QString* error = nullptr);
+           std::vector<glm::dvec2> to, MoveKind kind = MoveKind::Drag);
     void redo() override;
     void undo() override;
     int id() const override { return m_kind == MoveKind::Nudge ? MoveTrimPointsId : -1; }
@@ -261,9 +268,9 @@ private:
 
 class SetMaterial : public DocumentCommand {
 public:
-    /// Material must pass kw::materialError. Consecutive changes of one surface merge.
-    static std::unique_ptr<SetMaterial> create(Document* document, SurfaceId surface,
-                                               const Material& material, QString* error = nullptr);
+    /// Material must pass kw::checkMaterial. Consecutive changes of one surface merge.
+    static Expected<std::unique_ptr<SetMaterial>> create(Document* document, SurfaceId surface,
+                                                         const Material& material);
     void redo() override;
     void undo() override;
     int id() const override { return SetMaterialId; }
@@ -278,17 +285,15 @@ private:
 class SetLights : public DocumentCommand {
 public:
     /// Replaces all lights (1..kMaxLights, each valid).
-    static std::unique_ptr<SetLights> create(Document* document, std::vector<Light> lights,
-                                             QString* error = nullptr);
+    static Expected<std::unique_ptr<SetLights>> create(Document* document,
+                                                       std::vector<Light> lights);
     /// Appends a light; rejected at kMaxLights.
-    static std::unique_ptr<SetLights> addLight(Document* document, const Light& light,
-                                               QString* error = nullptr);
+    static Expected<std::unique_ptr<SetLights>> addLight(Document* document, const Light& light);
     /// Removes light `index`; rejected for the last remaining light.
-    static std::unique_ptr<SetLights> removeLight(Document* document, int index,
-                                                  QString* error = nullptr);
+    static Expected<std::unique_ptr<SetLights>> removeLight(Document* document, int index);
     /// Changes light `index`; consecutive changes of the same light merge.
-    static std::unique_ptr<SetLights> changeLight(Document* document, int index, const Light& light,
-                                                  QString* error = nullptr);
+    static Expected<std::unique_ptr<SetLights>> changeLight(Document* document, int index,
+                                                            const Light& light);
     void redo() override;
     void undo() override;
     int id() const override { return SetLightsId; }
@@ -296,17 +301,16 @@ public:
 
 private:
     SetLights(Document* d, const QString& text) : DocumentCommand(d, text) {}
-    static std::unique_ptr<SetLights> make(Document* document, std::vector<Light> lights,
-                                           const QString& text, int changed, QString* error);
+    static Expected<std::unique_ptr<SetLights>> make(Document* document, std::vector<Light> lights,
+                                                     const QString& text, int changed);
     std::vector<Light> m_from, m_to;
     int m_changed = -1; ///< index for changeLight (merge key), else -1 (never merges)
 };
 
 class SetCamera : public DocumentCommand {
 public:
-    /// Camera must pass kw::cameraError; consecutive camera changes merge (one orbit, one step).
-    static std::unique_ptr<SetCamera> create(Document* document, const Camera& camera,
-                                             QString* error = nullptr);
+    /// Camera must pass kw::checkCamera; consecutive camera changes merge (one orbit, one step).
+    static Expected<std::unique_ptr<SetCamera>> create(Document* document, const Camera& camera);
     void redo() override;
     void undo() override;
     int id() const override { return SetCameraId; }

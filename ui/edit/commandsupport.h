@@ -12,13 +12,6 @@ inline QString noDocument() {
     return QStringLiteral("no document");
 }
 
-/// Sets *error (if given) and yields the nullptr a rejecting factory returns.
-inline std::nullptr_t fail(QString* error, const QString& why) {
-    if (error)
-        *error = why;
-    return nullptr;
-}
-
 inline const TrimLoop* findLoop(const Surface* s, TrimLoopId id) {
     if (s)
         for (const TrimLoop& l : s->trims)

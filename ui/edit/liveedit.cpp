@@ -166,13 +166,11 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
             to.push_back(m_doc->surface(id)->geometry.points[size_t(index)]);
         if (from == to)
             continue;
-        QString error;
-        if (auto c =
-                MoveControlPoints::create(m_doc, id, indices, from, to, MoveKind::Drag, &error)) {
+        if (auto c = MoveControlPoints::create(m_doc, id, indices, from, to, MoveKind::Drag)) {
             points += int(indices.size());
-            commands.push_back(std::move(c));
+            commands.push_back(std::move(*c));
         } else {
-            refuse(error);
+            refuse(c.message());
         }
     }
     for (const auto& [key, from] : m_weights) {
@@ -184,7 +182,8 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
             continue;
         // SetWeight takes its old value from the document: back to the press-time weight.
         m_doc->setWeight(id, index, from);
-        commands.push_back(SetWeight::create(m_doc, id, index, to));
+        if (auto c = SetWeight::create(m_doc, id, index, to))
+            commands.push_back(std::move(*c));
     }
     std::vector<TrimPointRef> refs;
     std::vector<glm::dvec2> trimFrom, trimTo;
@@ -195,11 +194,10 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
             trimTo.push_back(*now);
         }
     if (!refs.empty() && trimFrom != trimTo) {
-        QString error;
-        if (auto c = MoveTrimPoints::create(m_doc, refs, trimFrom, trimTo, MoveKind::Drag, &error))
-            commands.push_back(std::move(c));
+        if (auto c = MoveTrimPoints::create(m_doc, refs, trimFrom, trimTo, MoveKind::Drag))
+            commands.push_back(std::move(*c));
         else
-            refuse(error);
+            refuse(c.message());
     }
     clear();
     if (commands.empty())

@@ -17,36 +17,35 @@ using namespace edit_detail;
 
 // ---- TransformSurfaces
 
-std::unique_ptr<TransformSurfaces> TransformSurfaces::create(Document* document,
-                                                             std::vector<SurfaceId> surfaces,
-                                                             const glm::dmat4& transform,
-                                                             const QString& text, QString* error) {
+Expected<std::unique_ptr<TransformSurfaces>>
+TransformSurfaces::create(Document* document, std::vector<SurfaceId> surfaces,
+                          const glm::dmat4& transform, const QString& text) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     if (surfaces.empty())
-        return fail(error, QStringLiteral("select a surface to transform"));
+        return Error(QStringLiteral("select a surface to transform"));
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
             if (!std::isfinite(transform[c][r]))
-                return fail(error, QStringLiteral("the transformation is not finite"));
+                return Error(QStringLiteral("the transformation is not finite"));
     if (transform[0][3] != 0.0 || transform[1][3] != 0.0 || transform[2][3] != 0.0 ||
         transform[3][3] != 1.0)
-        return fail(error, QStringLiteral("the transformation is not affine"));
+        return Error(QStringLiteral("the transformation is not affine"));
     std::set<SurfaceId> seen;
     std::unique_ptr<TransformSurfaces> c(new TransformSurfaces(document, text));
     bool moves = false;
     for (SurfaceId id : surfaces) {
         const Surface* s = document->surface(id);
         if (!s)
-            return fail(error, noSurface(document, id));
+            return Error(noSurface(document, id));
         if (!seen.insert(id).second)
-            return fail(error, QStringLiteral("surface %1 listed twice").arg(id.value));
+            return Error(QStringLiteral("surface %1 listed twice").arg(id.value));
         std::vector<glm::dvec3> to;
         to.reserve(s->geometry.points.size());
         for (const glm::dvec3& p : s->geometry.points) {
             const glm::dvec3 q = glm::dvec3(transform * glm::dvec4(p, 1.0));
             if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-                return fail(error, QStringLiteral("a transformed point is not finite"));
+                return Error(QStringLiteral("a transformed point is not finite"));
             to.push_back(q);
         }
         moves = moves || to != s->geometry.points;
@@ -55,7 +54,7 @@ std::unique_ptr<TransformSurfaces> TransformSurfaces::create(Document* document,
         c->m_to.push_back(std::move(to));
     }
     if (!moves)
-        return fail(error, QStringLiteral("the transformation moves nothing"));
+        return Error(QStringLiteral("the transformation moves nothing"));
     return c;
 }
 
@@ -77,10 +76,10 @@ void TransformSurfaces::undo() {
 
 // ---- SetUnits
 
-std::unique_ptr<SetUnits> SetUnits::create(Document* document, LengthUnit unit, bool convert,
-                                           QString* error) {
+Expected<std::unique_ptr<SetUnits>> SetUnits::create(Document* document, LengthUnit unit,
+                                                     bool convert) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     const LengthUnit from = document->scene().unit;
     const double factor = convert ? millimetresPer(from) / millimetresPer(unit) : 1.0;
     std::unique_ptr<SetUnits> c(
@@ -89,11 +88,10 @@ std::unique_ptr<SetUnits> SetUnits::create(Document* document, LengthUnit unit, 
     c->m_from = document->lengths();
     c->m_to = Document::scaledLengths(c->m_from, unit, factor);
     if (c->m_to == c->m_from)
-        return fail(error,
-                    QStringLiteral("the document is already in %1").arg(lengthUnitKey(unit)));
+        return Error(QStringLiteral("the document is already in %1").arg(lengthUnitKey(unit)));
     for (const glm::dvec3& p : c->m_to.points)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            return fail(error, QStringLiteral("a converted control point is not finite"));
+            return Error(QStringLiteral("a converted control point is not finite"));
     return c;
 }
 
@@ -130,26 +128,26 @@ void SetContinuityTolerances::undo() {
 
 // ---- SetSurfacesHidden
 
-std::unique_ptr<SetSurfacesHidden>
+Expected<std::unique_ptr<SetSurfacesHidden>>
 SetSurfacesHidden::create(Document* document, const std::vector<std::pair<SurfaceId, bool>>& states,
-                          const QString& text, QString* error) {
+                          const QString& text) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     std::set<SurfaceId> seen;
     std::unique_ptr<SetSurfacesHidden> c(new SetSurfacesHidden(document, text));
     for (const auto& [id, hidden] : states) {
         const Surface* s = document->surface(id);
         if (!s)
-            return fail(error, noSurface(document, id));
+            return Error(noSurface(document, id));
         if (!seen.insert(id).second)
-            return fail(error, QStringLiteral("surface %1 listed twice").arg(id.value));
+            return Error(QStringLiteral("surface %1 listed twice").arg(id.value));
         if (s->hidden == hidden)
             continue;
         c->m_ids.push_back(id);
         c->m_to.push_back(hidden);
     }
     if (c->m_ids.empty())
-        return fail(error, QStringLiteral("nothing to hide or show"));
+        return Error(QStringLiteral("nothing to hide or show"));
     return c;
 }
 
@@ -167,15 +165,15 @@ void SetSurfacesHidden::undo() {
 
 // ---- RemoveKnots
 
-std::unique_ptr<MatchSurfaceCommand>
+Expected<std::unique_ptr<MatchSurfaceCommand>>
 MatchSurfaceCommand::create(Document* document, const MatchRequest& request,
-                            const ContinuityTolerances& tolerances, QString* error) {
+                            const ContinuityTolerances& tolerances) {
     const Surface* s = surfaceIn(document, request.surface);
     if (!s)
-        return fail(error, noSurface(document, request.surface));
+        return Error(noSurface(document, request.surface));
     Expected<MatchResult> r = matchSurface(document->scene(), request, tolerances);
     if (!r)
-        return fail(error, r.message());
+        return Error(r.message());
     static const char* const names[] = {"G0", "G1", "G2"};
     const QString text =
         QStringLiteral("Match surface (%1)").arg(QLatin1String(names[int(request.continuity)]));
@@ -185,22 +183,21 @@ MatchSurfaceCommand::create(Document* document, const MatchRequest& request,
     return c;
 }
 
-std::unique_ptr<RemoveKnots> RemoveKnots::create(Document* document, SurfaceId surface,
-                                                 Direction direction, double tolerance,
-                                                 QString* error) {
+Expected<std::unique_ptr<RemoveKnots>> RemoveKnots::create(Document* document, SurfaceId surface,
+                                                           Direction direction, double tolerance) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
-        return fail(error, QStringLiteral("the tolerance must be a finite number >= 0"));
+        return Error(QStringLiteral("the tolerance must be a finite number >= 0"));
     int removed = 0;
     NurbsSurface g =
         surfaceRemoveKnots(s->geometry, direction == Direction::U, tolerance, &removed);
     const char axis = direction == Direction::U ? 'u' : 'v';
     if (removed == 0)
-        return fail(error, QStringLiteral("no knot in %1 can be removed within %2")
-                               .arg(QLatin1Char(axis))
-                               .arg(tolerance));
+        return Error(QStringLiteral("no knot in %1 can be removed within %2")
+                         .arg(QLatin1Char(axis))
+                         .arg(tolerance));
     const QString text = QStringLiteral("Remove %1 knot%2 in %3")
                              .arg(removed)
                              .arg(removed == 1 ? QString() : QStringLiteral("s"))
@@ -213,22 +210,19 @@ std::unique_ptr<RemoveKnots> RemoveKnots::create(Document* document, SurfaceId s
 
 // ---- ReplaceTrimLoop
 
-std::unique_ptr<ReplaceTrimLoop> ReplaceTrimLoop::create(Document* document, SurfaceId surface,
-                                                         TrimLoop loop, const QString& text,
-                                                         QString* error) {
+Expected<std::unique_ptr<ReplaceTrimLoop>>
+ReplaceTrimLoop::create(Document* document, SurfaceId surface, TrimLoop loop, const QString& text) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     const TrimLoop* old = findLoop(s, loop.id);
     if (!old)
-        return fail(
-            error,
+        return Error(
             QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.id.value));
-    const QString why = trimLoopError(loop);
-    if (!why.isEmpty())
-        return fail(error, why);
+    if (const QString why = trimLoopError(loop); !why.isEmpty())
+        return Error(why);
     if (loop == *old)
-        return fail(error, QStringLiteral("the trim loop is unchanged"));
+        return Error(QStringLiteral("the trim loop is unchanged"));
     std::unique_ptr<ReplaceTrimLoop> c(new ReplaceTrimLoop(document, text));
     c->m_surface = surface;
     c->m_from = *old;

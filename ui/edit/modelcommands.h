@@ -16,10 +16,10 @@ public:
     /// the listed surfaces (unique, existing). NURBS are affinely invariant, so the surfaces are
     /// transformed exactly; weights, knots and trims are unchanged. `text` names the step
     /// ("Move 2 surfaces"). Rejected when nothing would move.
-    static std::unique_ptr<TransformSurfaces> create(Document* document,
-                                                     std::vector<SurfaceId> surfaces,
-                                                     const glm::dmat4& transform,
-                                                     const QString& text, QString* error = nullptr);
+    static Expected<std::unique_ptr<TransformSurfaces>> create(Document* document,
+                                                               std::vector<SurfaceId> surfaces,
+                                                               const glm::dmat4& transform,
+                                                               const QString& text);
     void redo() override;
     void undo() override;
 
@@ -37,8 +37,8 @@ public:
     /// lights); without, the numbers stay and only their unit changes (a file read with the
     /// wrong unit). Rejected when nothing would change or a scaled value is not finite. Undo
     /// puts back the values as they were, bit for bit.
-    static std::unique_ptr<SetUnits> create(Document* document, LengthUnit unit, bool convert,
-                                            QString* error = nullptr);
+    static Expected<std::unique_ptr<SetUnits>> create(Document* document, LengthUnit unit,
+                                                      bool convert);
     void redo() override;
     void undo() override;
 
@@ -67,9 +67,9 @@ public:
     /// Gives each listed surface (unique, existing) its `hidden` value: hide, show, isolate and
     /// show all are one step each. Surfaces already in that state are left out; rejected when
     /// none is left. `text` names the step ("Hide 2 surfaces").
-    static std::unique_ptr<SetSurfacesHidden>
+    static Expected<std::unique_ptr<SetSurfacesHidden>>
     create(Document* document, const std::vector<std::pair<SurfaceId, bool>>& states,
-           const QString& text, QString* error = nullptr);
+           const QString& text);
     void redo() override;
     void undo() override;
     int changed() const { return int(m_ids.size()); }
@@ -85,9 +85,8 @@ class RemoveKnots : public GeometryCommand {
 public:
     /// Removes every interior knot of the direction that can go while the surface moves by at
     /// most `tolerance` (kw::surfaceRemoveKnots, The NURBS Book A5.8). Rejected when none can.
-    static std::unique_ptr<RemoveKnots> create(Document* document, SurfaceId surface,
-                                               Direction direction, double tolerance,
-                                               QString* error = nullptr);
+    static Expected<std::unique_ptr<RemoveKnots>> create(Document* document, SurfaceId surface,
+                                                         Direction direction, double tolerance);
     int removed() const { return m_removed; }
 
 private:
@@ -101,10 +100,8 @@ public:
     /// rows moved, knots inserted as needed), one undo step. Rejected when matchSurface refuses
     /// the request; a match that does not reach the tolerance is still a step, and result()
     /// says so with the deviation.
-    static std::unique_ptr<MatchSurfaceCommand> create(Document* document,
-                                                       const MatchRequest& request,
-                                                       const ContinuityTolerances& tolerances,
-                                                       QString* error = nullptr);
+    static Expected<std::unique_ptr<MatchSurfaceCommand>>
+    create(Document* document, const MatchRequest& request, const ContinuityTolerances& tolerances);
     const MatchResult& result() const { return m_result; }
 
 private:
@@ -115,10 +112,9 @@ private:
 class ReplaceTrimLoop : public DocumentCommand {
 public:
     /// Replaces the curves of an existing loop (same id, same place among the surface's loops);
-    /// the new loop must pass trimLoopError. `text` names the step ("Insert trim point").
-    static std::unique_ptr<ReplaceTrimLoop> create(Document* document, SurfaceId surface,
-                                                   TrimLoop loop, const QString& text,
-                                                   QString* error = nullptr);
+    /// the new loop must pass checkTrimLoop. `text` names the step ("Insert trim point").
+    static Expected<std::unique_ptr<ReplaceTrimLoop>> create(Document* document, SurfaceId surface,
+                                                             TrimLoop loop, const QString& text);
     void redo() override;
     void undo() override;
 

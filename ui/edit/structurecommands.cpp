@@ -26,37 +26,36 @@ QString curves(size_t n) {
 
 // ---- AddSurface
 
-std::unique_ptr<AddSurface> AddSurface::create(Document* document, Surface surface, int index,
-                                               QString* error) {
+Expected<std::unique_ptr<AddSurface>> AddSurface::create(Document* document, Surface surface,
+                                                         int index) {
     if (!document)
-        return fail(error, noDocument());
+        return Error(noDocument());
     const auto& surfaces = document->scene().surfaces;
     if (index == -1)
         index = int(surfaces.size());
     if (index < 0 || size_t(index) > surfaces.size())
-        return fail(error, QStringLiteral("surface index %1 out of range").arg(index));
+        return Error(QStringLiteral("surface index %1 out of range").arg(index));
     if (surface.id.isValid() && document->surface(surface.id))
-        return fail(error, QStringLiteral("surface id %1 already used").arg(surface.id.value));
+        return Error(QStringLiteral("surface id %1 already used").arg(surface.id.value));
     std::set<TrimLoopId> ids;
     for (const TrimLoop& l : surface.trims)
         if (l.id.isValid() && (loopIdUsed(document->scene(), l.id) || !ids.insert(l.id).second))
-            return fail(error, QStringLiteral("trim loop id %1 already used").arg(l.id.value));
+            return Error(QStringLiteral("trim loop id %1 already used").arg(l.id.value));
     // Check everything but the ids before allocating any, so a rejected edit uses up none.
     Surface probe = surface;
     probe.id = SurfaceId{1};
     std::uint32_t next = 1;
     for (TrimLoop& l : probe.trims)
         l.id = TrimLoopId{next++};
-    const QString why = surfaceError(probe);
-    if (!why.isEmpty())
-        return fail(error, why);
+    if (const QString why = surfaceError(probe); !why.isEmpty())
+        return Error(why);
     if (!surface.id.isValid())
         surface.id = document->allocateSurfaceId();
     for (TrimLoop& l : surface.trims)
         if (!l.id.isValid())
             l.id = document->allocateTrimLoopId();
     if (!surface.id.isValid())
-        return fail(error, QStringLiteral("no ids left"));
+        return Error(QStringLiteral("no ids left"));
     const QString text = QStringLiteral("Add surface “%1”").arg(surface.name);
     std::unique_ptr<AddSurface> c(new AddSurface(document, text));
     c->m_surface = std::move(surface);
@@ -73,11 +72,11 @@ void AddSurface::undo() {
 
 // ---- RemoveSurface
 
-std::unique_ptr<RemoveSurface> RemoveSurface::create(Document* document, SurfaceId surface,
-                                                     QString* error) {
+Expected<std::unique_ptr<RemoveSurface>> RemoveSurface::create(Document* document,
+                                                               SurfaceId surface) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     std::unique_ptr<RemoveSurface> c(
         new RemoveSurface(document, QStringLiteral("Remove surface “%1”").arg(s->name)));
     c->m_surface = *s;
@@ -94,15 +93,15 @@ void RemoveSurface::undo() {
 
 // ---- RenameSurface
 
-std::unique_ptr<RenameSurface> RenameSurface::create(Document* document, SurfaceId surface,
-                                                     const QString& name, QString* error) {
+Expected<std::unique_ptr<RenameSurface>>
+RenameSurface::create(Document* document, SurfaceId surface, const QString& name) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     if (name.trimmed().isEmpty())
-        return fail(error, QStringLiteral("a surface name needs a visible character"));
+        return Error(QStringLiteral("a surface name needs a visible character"));
     if (name == s->name)
-        return fail(error, QStringLiteral("surface is already named “%1”").arg(name));
+        return Error(QStringLiteral("surface is already named “%1”").arg(name));
     std::unique_ptr<RenameSurface> c(
         new RenameSurface(document, QStringLiteral("Rename “%1” to “%2”").arg(s->name, name)));
     c->m_surface = surface;
@@ -120,26 +119,25 @@ void RenameSurface::undo() {
 
 // ---- AddTrimLoop
 
-std::unique_ptr<AddTrimLoop> AddTrimLoop::create(Document* document, SurfaceId surface,
-                                                 TrimLoop loop, int index, QString* error) {
+Expected<std::unique_ptr<AddTrimLoop>> AddTrimLoop::create(Document* document, SurfaceId surface,
+                                                           TrimLoop loop, int index) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     if (index == -1)
         index = int(s->trims.size());
     if (index < 0 || size_t(index) > s->trims.size())
-        return fail(error, QStringLiteral("trim loop index %1 out of range").arg(index));
+        return Error(QStringLiteral("trim loop index %1 out of range").arg(index));
     if (loop.id.isValid() && loopIdUsed(document->scene(), loop.id))
-        return fail(error, QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
+        return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
     TrimLoop probe = loop;
     probe.id = TrimLoopId{1};
-    const QString why = trimLoopError(probe);
-    if (!why.isEmpty())
-        return fail(error, why);
+    if (const QString why = trimLoopError(probe); !why.isEmpty())
+        return Error(why);
     if (!loop.id.isValid())
         loop.id = document->allocateTrimLoopId();
     if (!loop.id.isValid())
-        return fail(error, QStringLiteral("no ids left"));
+        return Error(QStringLiteral("no ids left"));
     const QString text =
         QStringLiteral("Add trim loop (%1) to “%2”").arg(curves(loop.curves.size()), s->name);
     std::unique_ptr<AddTrimLoop> c(new AddTrimLoop(document, text));
@@ -158,15 +156,14 @@ void AddTrimLoop::undo() {
 
 // ---- RemoveTrimLoop
 
-std::unique_ptr<RemoveTrimLoop> RemoveTrimLoop::create(Document* document, SurfaceId surface,
-                                                       TrimLoopId loop, QString* error) {
+Expected<std::unique_ptr<RemoveTrimLoop>>
+RemoveTrimLoop::create(Document* document, SurfaceId surface, TrimLoopId loop) {
     const Surface* s = surfaceIn(document, surface);
     if (!s)
-        return fail(error, noSurface(document, surface));
+        return Error(noSurface(document, surface));
     const TrimLoop* l = findLoop(s, loop);
     if (!l)
-        return fail(
-            error,
+        return Error(
             QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.value));
     const int index = int(l - s->trims.data());
     std::unique_ptr<RemoveTrimLoop> c(new RemoveTrimLoop(

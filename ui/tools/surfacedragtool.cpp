@@ -88,11 +88,13 @@ void SurfaceDragTool::release(QMouseEvent* event) {
         m_live.commitWith([&]() -> std::unique_ptr<QUndoCommand> {
             if (ids.empty() || m == glm::dmat4(1.0))
                 return nullptr;
-            QString error;
-            auto command = TransformSurfaces::create(m_view->document(), ids, m, name, &error);
-            if (!command)
-                m_view->showMessage(QObject::tr("Transform not recorded: %1").arg(error));
-            return command;
+            auto command = TransformSurfaces::create(m_view->document(), ids, m, name);
+            if (!command) {
+                m_view->showMessage(
+                    QObject::tr("Transform not recorded: %1").arg(command.message()));
+                return nullptr;
+            }
+            return std::move(*command);
         });
     }
     m_view->update();
