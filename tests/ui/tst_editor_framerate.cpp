@@ -217,10 +217,12 @@ private:
                           .arg(median(run.passCpu[p]), 0, 'f', 1);
         }
         qInfo("FRAMERATE %s %s view %dx%d drawn %.2f: %.1f FPS (%d frames in %.2f s), status "
-              "bar %.1f FPS, frame %.1f ms (process CPU %.1f): render %.1f, painter %.1f, swap %.1f;%s%s; load %s",
+              "bar %.1f FPS, frame %.1f ms (process CPU %.1f): render %.1f, painter %.1f, swap "
+              "%.1f;%s%s; load %s",
               qPrintable(model), what, vp->width(), vp->height(), median(run.scale),
               run.frames / std::max(1e-6, run.seconds), run.frames, run.seconds, median(fps),
-              median(run.frameWall), median(run.frameCpu), median(run.render), median(run.painter), median(run.swap),
+              median(run.frameWall), median(run.frameCpu), median(run.render), median(run.painter),
+              median(run.swap),
               passes.isEmpty() ? "" : " passes wall (process CPU) ms:", qPrintable(passes),
               qPrintable(loadAverage()));
     }

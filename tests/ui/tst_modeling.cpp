@@ -457,7 +457,7 @@ private Q_SLOTS:
         QCOMPARE(vp->samples(), Viewport::kAutoSamplesCount);
         QTRY_VERIFY(vp->framesDrawn() > 0);
         std::vector<int> samplesDrawn; // FrameReport::samplesInImage of each full frame
-        int previews = 0; // frames of the moving view drawn as previews (fewer pixels)
+        int previews = 0;              // frames of the moving view drawn as previews (fewer pixels)
         connect(vp, &Viewport::frameDrawn, this, [&](const FrameReport& r) {
             if (r.drawnSize.width() < vp->width() * vp->devicePixelRatioF())
                 ++previews;
