@@ -372,6 +372,8 @@ void Viewport::paintGL() {
         // the last move is the full image again (its samples a frame at a time).
         options.previewScale = m_previewScale;
         options.samples = 1;
+        // The silhouettes' last fraction of a pixel (the fins) is not seen in motion.
+        options.silhouetteFins = false;
         drawAgainWhenStill();
     } else if (options.samples > 1 && aliasedWhileMoving()) {
         if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {

@@ -20,6 +20,7 @@
 #include "model/nurbs/nurbs.h"
 #include "render/frame_report.h"
 #include "render/offscreen_renderer.h"
+#include "render/pass_clock.h"
 #include "ui/controlpointpicker.h"
 #include "ui/probe_tool.h"
 
@@ -147,7 +148,7 @@ private:
 
     struct Run {
         std::vector<double> passWall[PassTimes::kCount], passCpu[PassTimes::kCount];
-        std::vector<double> paint, painter, swap, render, frameWall, fps;
+        std::vector<double> paint, painter, swap, render, frameWall, frameCpu, fps;
         std::vector<double> scale;
         int frames = 0;
         double seconds = 0.0; ///< from the first measured frame's move to the last frame
@@ -175,6 +176,7 @@ private:
                 whole.start();
             const std::int64_t before = vp->framesDrawn();
             wall.start();
+            const double cpu0 = processCpuMs();
             at += drag ? QPoint(k % 2 ? 2 : -1, 1) : QPoint(6, k % 2 ? 2 : -2);
             move(at, button);
             QVERIFY(nextFrame(before));
@@ -190,6 +192,7 @@ private:
             run.painter.push_back(t.painterMs);
             run.swap.push_back(t.swapMs);
             run.frameWall.push_back(double(wall.nsecsElapsed()) * 1e-6);
+            run.frameCpu.push_back(processCpuMs() - cpu0);
             run.scale.push_back(double(r.drawnSize.width()) / vp->width() /
                                 vp->devicePixelRatioF());
             ++run.frames;
@@ -214,10 +217,12 @@ private:
                           .arg(median(run.passCpu[p]), 0, 'f', 1);
         }
         qInfo("FRAMERATE %s %s view %dx%d drawn %.2f: %.1f FPS (%d frames in %.2f s), status "
-              "bar %.1f FPS, frame %.1f ms: render %.1f, painter %.1f, swap %.1f;%s%s; load %s",
+              "bar %.1f FPS, frame %.1f ms (process CPU %.1f): render %.1f, painter %.1f, swap "
+              "%.1f;%s%s; load %s",
               qPrintable(model), what, vp->width(), vp->height(), median(run.scale),
               run.frames / std::max(1e-6, run.seconds), run.frames, run.seconds, median(fps),
-              median(run.frameWall), median(run.render), median(run.painter), median(run.swap),
+              median(run.frameWall), median(run.frameCpu), median(run.render), median(run.painter),
+              median(run.swap),
               passes.isEmpty() ? "" : " passes wall (process CPU) ms:", qPrintable(passes),
               qPrintable(loadAverage()));
     }
