@@ -24,11 +24,10 @@ private Q_SLOTS:
 // forms arrive as the in-process import made them.
 void TestAnalyticInfo::throughTheChildAndInfo() {
     const QString path = QStringLiteral(KW_TEST_DATA_DIR "/screw.step");
-    QString error;
-    std::optional<ImportResult> direct = importOcctFile(path, CadFormat::Step, error);
-    QVERIFY2(direct, qPrintable(error));
-    const std::optional<ImportResult> child = importFile(path, error);
-    QVERIFY2(child, qPrintable(error));
+    Expected<ImportResult> direct = importOcctFile(path, CadFormat::Step);
+    QVERIFY2(direct, qPrintable(direct.message()));
+    const Expected<ImportResult> child = importFile(path);
+    QVERIFY2(child, qPrintable(child.message()));
     QCOMPARE(child->scene.surfaces.size(), direct->scene.surfaces.size());
     for (size_t k = 0; k < child->scene.surfaces.size(); ++k)
         QVERIFY(child->scene.surfaces[k].analytic == direct->scene.surfaces[k].analytic);

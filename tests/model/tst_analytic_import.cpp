@@ -9,6 +9,7 @@
 #include "model/cad/occtimport.h"
 #include "model/io/knotfile.h"
 #include "model/nurbs/analytic_eval.h"
+#include "tests/support/expected_test_util.h"
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepTools.hxx>
@@ -119,10 +120,9 @@ void TestAnalyticImport::formsOfTheParts_data() {
 void TestAnalyticImport::formsOfTheParts() {
     QFETCH(int, part);
     const Part p = parts()[size_t(part)];
-    QString error;
     const QString path = data(QString::fromLatin1(p.file));
-    std::optional<ImportResult> r = importOcctFile(path, cadFormatFromPath(path), error);
-    QVERIFY2(r, qPrintable(error));
+    Expected<ImportResult> r = importOcctFile(path, cadFormatFromPath(path));
+    QVERIFY2(r, qPrintable(r.message()));
     const Counts got = count(r->scene);
     qInfo("%s: %d faces: %s", p.file, int(r->scene.surfaces.size()), qPrintable(text(got)));
     for (const auto& [kind, n] : p.expected)
@@ -165,9 +165,9 @@ void TestAnalyticImport::formsOfTheParts() {
     }
     qInfo("%d samples, largest |S - P| %.3g of the face's size", checked, worst);
     // The hand-over carries the forms bit for bit.
-    QVERIFY(finishImport(*r, path, error));
-    const std::optional<ImportResult> back = decodeImportHandover(encodeImportHandover(*r), error);
-    QVERIFY2(back, qPrintable(error));
+    KW_VERIFY_OK(finishImport(*r, path));
+    const Expected<ImportResult> back = decodeImportHandover(encodeImportHandover(*r));
+    QVERIFY2(back, qPrintable(back.message()));
     for (size_t k = 0; k < r->scene.surfaces.size(); ++k)
         QVERIFY(back->scene.surfaces[k].analytic == r->scene.surfaces[k].analytic);
     // So does a .knot file.
@@ -182,9 +182,8 @@ void TestAnalyticImport::formsOfTheParts() {
 void TestAnalyticImport::formsAreOcctsParametrisation() {
     for (const char* file : {"Pump_Nut.brep", "Axis_of_bearing.brep", "Motor-c.brep"}) {
         const QString path = data(QString::fromLatin1(file));
-        QString error;
-        const std::optional<ImportResult> r = importOcctFile(path, CadFormat::Brep, error);
-        QVERIFY2(r, qPrintable(error));
+        const Expected<ImportResult> r = importOcctFile(path, CadFormat::Brep);
+        QVERIFY2(r, qPrintable(r.message()));
         TopoDS_Shape shape;
         BRep_Builder builder;
         QVERIFY(BRepTools::Read(shape, path.toLocal8Bit().constData(), builder));

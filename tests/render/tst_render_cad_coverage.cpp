@@ -34,7 +34,7 @@ private Q_SLOTS:
 
     void facesAppearWhereTheTrimsSay() {
         QFETCH(QString, file);
-        const std::optional<ImportResult> imported =
+        const Expected<ImportResult> imported =
             importFile(QStringLiteral(KW_TEST_DATA_DIR "/") + file);
         QVERIFY2(imported, qPrintable(imported.message()));
         const Scene& scene = imported->scene;

@@ -344,9 +344,8 @@ private Q_SLOTS:
     }
     void profile() {
         QFETCH(QString, path);
-        QString error;
-        std::optional<ImportResult> imported = importFile(path, error);
-        QVERIFY2(imported, qPrintable(error));
+        Expected<ImportResult> imported = importFile(path);
+        QVERIFY2(imported, qPrintable(imported.message()));
         const int n = std::max(3, qEnvironmentVariableIntValue("KW_FRAMERATE_FRAMES"));
         const QString model = QStringLiteral("%1 (%2 faces)")
                                   .arg(QFileInfo(path).fileName())
