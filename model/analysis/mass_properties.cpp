@@ -397,6 +397,11 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
         out.volume += sign * loopSums[k][1];
         out.vectorArea += sign * glm::dvec3(loopSums[k][2], loopSums[k][3], loopSums[k][4]);
     }
+    // Trims whose points or tangents overflow double precision (hostile files reach 1e300)
+    // give inf - inf: such a face has no measurable area, and none is reported.
+    if (!std::isfinite(out.area) || !std::isfinite(out.volume) ||
+        !std::isfinite(glm::length(out.vectorArea)))
+        return {};
     return out;
 }
 
