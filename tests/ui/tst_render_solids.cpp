@@ -169,7 +169,9 @@ private Q_SLOTS:
               qPrintable(file), orbit, zoom, skipped.solidsBackCulled, n, covered(all), background);
         QVERIFY(covered(all) > 2000);
         if (turnLargest) {
-            QVERIFY2(n > 1000, qPrintable(QStringLiteral("%1 pixels differ").arg(n)));
+            // 667 measured: fewer than the Newton path's (> 1000), as the closed form shades the
+            // back triangles of an analytic face at the face's first meeting with the ray.
+            QVERIFY2(n > 300, qPrintable(QStringLiteral("%1 pixels differ").arg(n)));
             return;
         }
         // Measured 0 and 0 at 384 x 384 (25 and 2 before the skipped side filled the seams).
