@@ -462,6 +462,18 @@ bool exportPrecheck(const QString& path, const ExportOptions& options, bool empt
 }
 
 #ifdef KW_HAVE_OCCT
+// A folder of the registry (cadtempdir.h) for `writer`'s child: removed on every exit path,
+// SIGTERM included, or swept by a later run if this one is killed.
+std::optional<QString> writerFolder(const QString& path, const QString& writer, QString& error) {
+    const Expected<QString> made = makeCadTempDir();
+    if (!made) {
+        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                    .arg(path, writer, made.message());
+        return std::nullopt;
+    }
+    return *made;
+}
+
 // Runs `knotwork __write-cad FIRST OUT DIR ...` (`extra` after the options), reads its report
 // and writes `path` from the bytes it left in `dirPath`.
 bool runWriter(const QString& first, const QString& path, const QString& dirPath,
@@ -545,15 +557,10 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
 #else
     const QString writer =
         QStringLiteral("the %1 writer").arg(cadFormatName(cadFormatFromPath(path)));
-    // A folder of the registry (cadtempdir.h): removed on every exit path, SIGTERM included,
-    // or swept by a later run if this one is killed.
-    const Expected<QString> made = makeCadTempDir();
-    if (!made) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, writer, made.message());
+    const std::optional<QString> folder = writerFolder(path, writer, error);
+    if (!folder)
         return false;
-    }
-    const QString dirPath = *made;
+    const QString dirPath = *folder;
     const FolderRemover removeDir(dirPath);
     // The scene goes over bit for bit (handover.h), as imports come back.
     ImportResult handover;
@@ -605,13 +612,10 @@ static bool convertInChild(const QString& in, const QString& path, const ExportO
 #else
     const QString writer = QStringLiteral("the %1 reader and %2 writer")
                                .arg(cadFormatName(format), cadFormatName(cadFormatFromPath(path)));
-    const Expected<QString> made = makeCadTempDir();
-    if (!made) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, writer, made.message());
+    const std::optional<QString> folder = writerFolder(path, writer, error);
+    if (!folder)
         return false;
-    }
-    const QString dirPath = *made;
+    const QString dirPath = *folder;
     const FolderRemover removeDir(dirPath);
     // The read's limits and the write's: the scene is about as large in the hand-over as the
     // file it came from.

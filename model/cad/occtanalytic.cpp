@@ -89,15 +89,6 @@ MapKind mapKindOf(Kind kind, bool first) {
     }
 }
 
-std::vector<double> distinct(const std::vector<double>& knots, int degree) {
-    const Interval d = knotDomain(knots, degree);
-    std::vector<double> out;
-    for (double k : knots)
-        if (k >= d.first && k <= d.last && (out.empty() || k > out.back()))
-            out.push_back(k);
-    return out;
-}
-
 // The affine map phi(s) = offset + scale s of one NURBS direction to analytic parameter
 // `which` (0: a, 1: b), read off the surface: the closed-form inverse (analyticProject) of
 // S at the direction's distinct knots along its middle iso-line, angles unwrapped from knot
@@ -109,7 +100,7 @@ AnalyticParamMap fitMap(const AnalyticForm& f, const NurbsSurface& g, bool along
     AnalyticParamMap m;
     m.kind = mapKindOf(f.kind, which == 0);
     const std::vector<double> k =
-        alongU ? distinct(g.knotsU, g.degreeU) : distinct(g.knotsV, g.degreeV);
+        alongU ? distinctKnots(g.knotsU, g.degreeU) : distinctKnots(g.knotsV, g.degreeV);
     const Interval other = alongU ? surfaceDomainV(g) : surfaceDomainU(g);
     const double mid = 0.5 * (other.first + other.last);
     std::vector<double> x;

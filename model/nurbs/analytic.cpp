@@ -23,16 +23,6 @@ double handedness(const AnalyticForm& f) {
     return glm::dot(glm::cross(f.xAxis, f.yAxis), f.zAxis) < 0.0 ? -1.0 : 1.0;
 }
 
-// The distinct knots of a clamped direction's domain [knots[p], knots[n]], ascending.
-std::vector<double> distinctKnots(const std::vector<double>& knots, int degree) {
-    const Interval d = knotDomain(knots, degree);
-    std::vector<double> out;
-    for (double k : knots)
-        if (k >= d.first && k <= d.last && (out.empty() || k > out.back()))
-            out.push_back(k);
-    return out;
-}
-
 double phi(const AnalyticParamMap& m, double s) {
     return m.offset + m.scale * s;
 }
@@ -199,6 +189,15 @@ LocalRay toLocal(const AnalyticForm& f, const glm::dvec3& origin, const glm::dve
 }
 
 } // namespace
+
+std::vector<double> distinctKnots(const std::vector<double>& knots, int degree) {
+    const Interval d = knotDomain(knots, degree);
+    std::vector<double> out;
+    for (double k : knots)
+        if (k >= d.first && k <= d.last && (out.empty() || k > out.back()))
+            out.push_back(k);
+    return out;
+}
 
 const char* analyticKindName(AnalyticForm::Kind kind) {
     switch (kind) {

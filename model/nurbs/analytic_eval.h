@@ -8,6 +8,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace kw {
 
@@ -25,6 +26,10 @@ std::optional<AnalyticForm::Kind> analyticKindNamed(const std::string& name);
 /// Kind::None is always valid. `geometry` checks the maps against the NURBS: a HalfAngle map
 /// needs a degree 2 direction whose spans each turn by less than pi.
 std::string analyticFormError(const AnalyticForm& form, const NurbsSurface& geometry);
+
+/// The distinct knots of a clamped direction's domain [knots[p], knots[n]], ascending: the
+/// span ends the parameter maps work between.
+std::vector<double> distinctKnots(const std::vector<double>& knots, int degree);
 
 /// P(a, b) of the form (analytic.h gives the formulas).
 glm::dvec3 analyticPoint(const AnalyticForm& form, double a, double b);
