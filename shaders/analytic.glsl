@@ -38,15 +38,9 @@ AnalyticFrame kwAnalyticFrame() {
     return f;
 }
 
-// The analytic parameter phi(s) of NURBS parameter s in the knot span `knots` (analytic.h's
-// AnalyticParamMap), and its rate dphi/ds.
-float kwMapForward(vec4 m, float s, vec2 knots) {
-    if (m.x == 0.0)
-        return m.y + m.z * s;
-    float p0 = m.y + m.z * knots.x, p1 = m.y + m.z * knots.y;
-    float t = (s - knots.x) / (knots.y - knots.x);
-    return 0.5 * (p0 + p1) + 2.0 * atan((2.0 * t - 1.0) * tan(0.25 * (p1 - p0)));
-}
+// The rate dphi/ds of the analytic parameter phi(s) of NURBS parameter s in the knot span `knots`
+// (analytic.h's AnalyticParamMap: linear, or a half angle, 2 atan((2t - 1) tan(turn / 4)) about
+// the span's middle angle).
 float kwMapRate(vec4 m, float s, vec2 knots) {
     if (m.x == 0.0)
         return m.z;
@@ -141,36 +135,27 @@ vec3 kwFormNormal(AnalyticFrame f, vec2 ab) {
     return f.kind == KW_FORM_TORUS && f.R + f.r * cb < 0.0 ? -n : n;
 }
 
-// (a, b) of a point p on (or next to) the form, the angles taken nearest `near`.
+// (a, b) of a point p on (or next to) the form, the angles taken nearest `near`. Written without
+// branches on the kind and with one atan for b (the sphere's and the torus's): llvmpipe runs
+// every branch of a divergent `if` under a mask, so each kind's atan cost every pixel.
 vec2 kwFormParams(AnalyticFrame f, vec3 p, vec2 near) {
-    if (f.kind == KW_FORM_PLANE)
-        return p.xy;
-    float a = atan(p.y, p.x), b;
-    if (f.kind == KW_FORM_CYLINDER) {
-        b = p.z;
-    } else if (f.kind == KW_FORM_CONE) {
-        b = p.z / f.cosA;
-        if (f.R + b * f.sinA < 0.0) // the other nappe: the radius is negative there
-            a += KW_PI;
-    } else if (f.kind == KW_FORM_SPHERE) {
-        b = atan(p.z, length(p.xy));
-        if (length(p.xy) == 0.0)
-            a = near.x; // a pole: every a is that point
-    } else {
-        // A spindle torus (r > R) has points where R + r cos b < 0, on the far side of the axis
-        // from the direction a: the one of the two readings the point satisfies.
-        float rho = length(p.xy);
-        float outer = abs(length(vec2(rho - f.R, p.z)) - f.r);
-        float across = abs(length(vec2(rho + f.R, p.z)) - f.r);
-        if (across < outer) {
-            a += KW_PI;
-            rho = -rho;
-        }
-        b = atan(p.z, rho - f.R);
-        b += 2.0 * KW_PI * round((near.y - b) / (2.0 * KW_PI));
-    }
+    float rho = length(p.xy);
+    bool torus = f.kind == KW_FORM_TORUS, cone = f.kind == KW_FORM_CONE;
+    // A spindle torus (r > R) has points where R + r cos b < 0, on the far side of the axis
+    // from the direction a, and a cone's other nappe has a negative radius: the one of the two
+    // readings the point satisfies.
+    float outer = abs(length(vec2(rho - f.R, p.z)) - f.r);
+    float across = abs(length(vec2(rho + f.R, p.z)) - f.r);
+    float coneB = p.z / f.cosA;
+    bool flip = torus ? across < outer : cone && f.R + coneB * f.sinA < 0.0;
+    float a = atan(p.y, p.x) + (flip ? KW_PI : 0.0);
+    if (f.kind == KW_FORM_SPHERE && rho == 0.0)
+        a = near.x; // a pole: every a is that point
     a += 2.0 * KW_PI * round((near.x - a) / (2.0 * KW_PI));
-    return vec2(a, b);
+    float b = atan(p.z, torus ? (flip ? -rho : rho) - f.R : rho); // sphere, torus
+    b += torus ? 2.0 * KW_PI * round((near.y - b) / (2.0 * KW_PI)) : 0.0;
+    b = f.kind == KW_FORM_CYLINDER ? p.z : cone ? coneB : b;
+    return f.kind == KW_FORM_PLANE ? p.xy : vec2(a, b);
 }
 
 // An angle `phi` (period `period`, 0: not an angle) of the map `m` turned by whole turns so that
@@ -186,6 +171,16 @@ float kwIntoDomain(vec4 m, float phi, float period, float lo, float hi) {
             phi -= sign(m.z) * period * max(1.0, ceil((lin - hi) / turn - 1e-4));
     }
     return phi;
+}
+
+// The map parameters (phi_u, phi_v) of a point p on (or next to) the form: its (a, b) taken next
+// to the polygon's `near`, ordered as the maps (`swapped`), each angle (`period`) turned into
+// the domain.
+vec2 kwAnalyticST(AnalyticFrame f, vec3 p, vec2 near, bool swapped, vec2 period) {
+    vec2 ab = kwFormParams(f, p, near);
+    vec2 st = swapped ? ab.yx : ab;
+    return vec2(kwIntoDomain(f.mapU, st.x, period.x, uDomain.x, uDomain.y),
+                kwIntoDomain(f.mapV, st.y, period.y, uDomain.z, uDomain.w));
 }
 
 // The roots of A t^2 + 2 B t + C = 0 (t from the polygon's point, so the one wanted is small),
@@ -211,60 +206,52 @@ int kwQuadraticRoots(float A, float B, float C, out vec4 roots) {
 
 // The real roots of the monic quartic t^4 + c3 t^3 + c2 t^2 + c1 t + c0 (Ferrari: the depressed
 // quartic factored into two quadratics through the largest root of its resolvent cubic), in
-// double precision, each polished by two Newton steps on the quartic: their count.
-int kwQuarticRoots(double c3, double c2, double c1, double c0, out vec4 result) {
-    double s = c3 / 4.0;
-    double p = c2 - 6.0 * s * s;
-    double q = c1 - 2.0 * c2 * s + 8.0 * s * s * s;
-    double r = c0 - c1 * s + c2 * s * s - 3.0 * s * s * s * s;
+// float: estimates for kwTorusRoots's polish. Their count.
+int kwQuarticRoots(float c3, float c2, float c1, float c0, out vec4 roots) {
+    float s = 0.25 * c3;
+    float p = c2 - 6.0 * s * s;
+    float q = c1 - 2.0 * c2 * s + 8.0 * s * s * s;
+    float r = c0 - c1 * s + c2 * s * s - 3.0 * s * s * s * s;
     // Resolvent m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0: its largest root m >= 0.
-    double a2 = p, a1 = 0.25 * p * p - r, a0 = -0.125 * q * q;
-    double dp = a1 - a2 * a2 / 3.0;
-    double dq = 2.0 * a2 * a2 * a2 / 27.0 - a2 * a1 / 3.0 + a0;
-    double disc = dq * dq / 4.0 + dp * dp * dp / 27.0;
-    double m;
+    float a2 = p, a1 = 0.25 * p * p - r, a0 = -0.125 * q * q;
+    float dp = a1 - a2 * a2 / 3.0;
+    float dq = 2.0 * a2 * a2 * a2 / 27.0 - a2 * a1 / 3.0 + a0;
+    float disc = 0.25 * dq * dq + dp * dp * dp / 27.0;
+    float m;
     if (disc > 0.0) {
-        double sd = sqrt(disc);
-        double u = -dq / 2.0 + sd, v = -dq / 2.0 - sd;
-        // Real cube roots (no double pow in GLSL): float, then a Newton step in double.
-        double cu = double(sign(float(u)) * pow(abs(float(u)), 1.0 / 3.0));
-        double cv = double(sign(float(v)) * pow(abs(float(v)), 1.0 / 3.0));
-        if (cu != 0.0)
-            cu -= (cu * cu * cu - u) / (3.0 * cu * cu);
-        if (cv != 0.0)
-            cv -= (cv * cv * cv - v) / (3.0 * cv * cv);
-        m = cu + cv - a2 / 3.0;
+        float sd = sqrt(disc);
+        float u = -0.5 * dq + sd, v = -0.5 * dq - sd;
+        m = sign(u) * pow(abs(u), 1.0 / 3.0) + sign(v) * pow(abs(v), 1.0 / 3.0) - a2 / 3.0;
     } else {
-        float rho = sqrt(float(max(-dp / 3.0, 0.0)));
-        float phi = rho > 0.0 ? acos(clamp(float(-dq / 2.0) / (rho * rho * rho), -1.0, 1.0)) : 0.0;
-        m = double(2.0 * rho * cos(phi / 3.0)) - a2 / 3.0;
+        float rho = sqrt(max(-dp / 3.0, 0.0));
+        float phi = rho > 0.0 ? acos(clamp(-0.5 * dq / (rho * rho * rho), -1.0, 1.0)) : 0.0;
+        m = 2.0 * rho * cos(phi / 3.0) - a2 / 3.0;
     }
     for (int k = 0; k < 2; ++k) { // polish the cubic's root
-        double f = ((m + a2) * m + a1) * m + a0, df = (3.0 * m + 2.0 * a2) * m + a1;
-        if (df != 0.0)
-            m -= f / df;
+        float f = ((m + a2) * m + a1) * m + a0, df = (3.0 * m + 2.0 * a2) * m + a1;
+        m -= df != 0.0 ? f / df : 0.0;
     }
     m = max(m, 0.0);
-    double roots[4];
+    roots = vec4(0.0);
     int n = 0;
-    double w = sqrt(2.0 * m);
-    if (w > 1e-12 * (1.0 + abs(p))) {
+    float w = sqrt(2.0 * m);
+    if (w > 1e-6 * (1.0 + abs(p))) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
             // y^2 - sgn w y + p/2 + m + sgn q / (2 w) = 0
-            double b = -double(sgn) * w, c = 0.5 * p + m + double(sgn) * q / (2.0 * w);
-            double d = b * b - 4.0 * c;
+            float b = -float(sgn) * w, c = 0.5 * p + m + float(sgn) * q / (2.0 * w);
+            float d = b * b - 4.0 * c;
             if (d >= 0.0) {
-                double sd = sqrt(d);
+                float sd = sqrt(d);
                 roots[n++] = 0.5 * (-b + sd) - s;
                 roots[n++] = 0.5 * (-b - sd) - s;
             }
         }
     } else { // biquadratic: y^4 + p y^2 + r = 0
-        double d = p * p - 4.0 * r;
+        float d = p * p - 4.0 * r;
         if (d >= 0.0) {
-            double sd = sqrt(d);
+            float sd = sqrt(d);
             for (int k = 0; k < 2; ++k) {
-                double y2 = 0.5 * (-p + (k == 0 ? sd : -sd));
+                float y2 = 0.5 * (-p + (k == 0 ? sd : -sd));
                 if (y2 >= 0.0) {
                     roots[n++] = sqrt(y2) - s;
                     roots[n++] = -sqrt(y2) - s;
@@ -272,16 +259,36 @@ int kwQuarticRoots(double c3, double c2, double c1, double c0, out vec4 result) 
             }
         }
     }
-    result = vec4(0.0);
-    for (int k = 0; k < n; ++k) {
-        double t = roots[k];
+    return n;
+}
+
+// The torus (|p|^2 + R^2 - r^2)^2 = 4 R^2 (x^2 + y^2) met by the ray o + t d (|d| = 1, o next
+// to the face): float throughout. G factors into the squared distances' differences to the
+// tube circle and to its mirror across the axis, ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 -
+// r^2), and each factor is computed as (q - r)(q + r) with q that distance: its error is then
+// float's on the coordinates, not on their fourth powers, as in the quadrics. The constant term
+// is G(o) in that form; each of Ferrari's estimates is polished by two Newton steps on G at its
+// point in the same form (the double-precision Ferrari cost 15-20 ms of a 1024^2 frame on
+// llvmpipe, which runs every kind's branch under a mask). Their count.
+float kwTorusG(vec3 p, float R, float r) {
+    float rho = length(p.xy);
+    float outer = length(vec2(rho - R, p.z)), across = length(vec2(rho + R, p.z));
+    return (outer - r) * (outer + r) * ((across - r) * (across + r));
+}
+int kwTorusRoots(vec3 o, vec3 d, float R, float r, out vec4 roots) {
+    float R2 = R * R, k = dot(o, o) + R2 - r * r, b = dot(o, d);
+    float c3 = 4.0 * b;
+    float c2 = 4.0 * b * b + 2.0 * k - 4.0 * R2 * dot(d.xy, d.xy);
+    float c1 = 4.0 * b * k - 8.0 * R2 * dot(o.xy, d.xy);
+    int n = kwQuarticRoots(c3, c2, c1, kwTorusG(o, R, r), roots);
+    for (int i = 0; i < n; ++i) {
+        float t = roots[i];
         for (int step = 0; step < 2; ++step) {
-            double f = (((t + c3) * t + c2) * t + c1) * t + c0;
-            double df = ((4.0 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1;
-            if (df != 0.0)
-                t -= f / df;
+            vec3 p = o + t * d;
+            float dg = 4.0 * (dot(p, p) + R2 - r * r) * dot(p, d) - 8.0 * R2 * dot(p.xy, d.xy);
+            t -= dg != 0.0 ? kwTorusG(p, R, r) / dg : 0.0;
         }
-        result[k] = float(t);
+        roots[i] = t;
     }
     return n;
 }
@@ -302,13 +309,18 @@ vec3 kwPixelRay() {
 // where there is none, the meeting nearest the polygon's point, or where the ray misses, near a
 // silhouette, its closest approach, put onto the form), its (u, v) clamped into the domain (the
 // surface ends there, as the NURBS path clamps), `span` the span holding it, and the sample
-// (with KW_SECOND_ORDER, the curvature of the NURBS at that (u, v)).
-vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out SurfaceSample s) {
+// (with KW_SECOND_ORDER, the curvature of the NURBS at that (u, v)). `away`: that point is
+// trimmed away (tested here for each meeting, so the caller need not test it again).
+vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out SurfaceSample s,
+                     out bool away) {
     AnalyticFrame f = kwAnalyticFrame();
     bool swapped = f.mapU.w != 0.0;
     // The polygon's point on the form: where the root search starts.
-    vec2 knotsU = spanKnotsU(span), knotsV = spanKnotsV(span);
-    vec2 polyST = vec2(kwMapForward(f.mapU, polyUv.x, knotsU), kwMapForward(f.mapV, polyUv.y, knotsV));
+    vec2 knotsU, knotsV;
+    // Its linear estimate (phi = offset + scale s, exact at the knots, a few degrees off within a
+    // quarter arc) serves: the start only has to be near the face, for the shift below and to
+    // take the angles next to it (the forward maps' atan and tan cost every pixel).
+    vec2 polyST = vec2(f.mapU.y, f.mapV.y) + vec2(f.mapU.z, f.mapV.z) * polyUv;
     vec2 polyAb = swapped ? polyST.yx : polyST;
     vec3 pa, pb;
     vec3 start = kwFormPoint(f, polyAb, pa, pb);
@@ -336,23 +348,14 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
                              c2 * dot(o.xy, d.xy) - h * f.sinA * d.z,
                              c2 * dot(o.xy, o.xy) - h * h, roots);
     } else {
-        // (|p|^2 + R^2 - r^2)^2 = 4 R^2 (x^2 + y^2), |d| = 1.
-        dvec3 od = dvec3(o), dd = dvec3(d);
-        double R2 = double(f.R) * double(f.R);
-        double k = dot(od, od) + R2 - double(f.r) * double(f.r), b = dot(od, dd);
-        double c3 = 4.0 * b;
-        double c2 = 4.0 * b * b + 2.0 * k - 4.0 * R2 * dot(dd.xy, dd.xy);
-        double c1 = 4.0 * b * k - 8.0 * R2 * dot(od.xy, dd.xy);
-        double c0 = k * k - 4.0 * R2 * dot(od.xy, od.xy);
-        n = kwQuarticRoots(c3, c2, c1, c0, roots);
+        n = kwTorusRoots(o, d, f.R, f.r, roots);
         if (n == 0)
             n = -1; // missed: the polygon's point (roots.x = 0), put onto the form below
     }
     // Which meeting: the nearest to the eye whose (u, v) lies in the face's domain and is not
     // trimmed away, as a ray cast against the face alone would find (at a fold both meetings
     // are near the polygon's point, and the one in front is seen); where none is, the one
-    // nearest the polygon's point, clamped onto the domain below. A loop over the roots in
-    // order of depth: most pixels take the first.
+    // nearest the polygon's point, clamped onto the domain below. The roots in order of depth.
     int count = max(n, 1);
     for (int i = 1; i < count; ++i) // insertion sort of at most 4
         for (int j = i; j > 0 && roots[j] < roots[j - 1]; --j) {
@@ -364,50 +367,62 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
     for (int i = 1; i < count; ++i)
         if (abs(roots[i]) < abs(roots[chosen]))
             chosen = i;
-    vec2 ab, uv;
+    // The first of them in the face's domain, read in the maps' linear estimate of (u, v), which
+    // is exact at the knots and so at the domain's ends (the maps are monotone): no span walk,
+    // no tan and no trim test for the meetings a pixel passes over. `count`: none.
+    vec2 period = vec2(f.kind == KW_FORM_PLANE ? 0.0 : 2.0 * KW_PI,
+                       f.kind == KW_FORM_TORUS ? 2.0 * KW_PI : 0.0);
+    period = swapped ? period.yx : period;
+    vec2 offset = vec2(f.mapU.y, f.mapV.y), scale = vec2(f.mapU.z, f.mapV.z);
     vec2 margin = 1e-6 * (uDomain.yw - uDomain.xz);
-    for (int i = 0; i <= count; ++i) {
-        int at = i < count ? i : chosen; // the last round: the fallback
-        if (i < count && (n < 0 || !(t0 + roots[at] > 0.0)))
-            continue;
-        ab = kwFormParams(f, o + roots[at] * d, polyAb);
-        vec2 period = vec2(f.kind == KW_FORM_PLANE ? 0.0 : 2.0 * KW_PI,
-                           f.kind == KW_FORM_TORUS ? 2.0 * KW_PI : 0.0);
-        vec2 st = swapped ? ab.yx : ab;
-        period = swapped ? period.yx : period;
-        st = vec2(kwIntoDomain(f.mapU, st.x, period.x, uDomain.x, uDomain.y),
-                  kwIntoDomain(f.mapV, st.y, period.y, uDomain.z, uDomain.w));
-        ab = swapped ? st.yx : st;
-        vec2 lin = (st - vec2(f.mapU.y, f.mapV.y)) / vec2(f.mapU.z, f.mapV.z);
-        ivec2 found = ivec2(kwAnalyticSpanU(lin.x, span.x), kwAnalyticSpanV(lin.y, span.y));
-        knotsU = spanKnotsU(found);
-        knotsV = spanKnotsV(found);
-        uv = vec2(kwMapInverse(f.mapU, st.x, knotsU), kwMapInverse(f.mapV, st.y, knotsV));
-        bool inDomain = all(greaterThanEqual(uv, uDomain.xz - margin)) &&
-                        all(lessThanEqual(uv, uDomain.yw + margin));
-#if defined(KW_TRIM) && !defined(KW_TRIM_AA)
-        bool kept = inDomain && !trimmedAway(clamp(uv, uDomain.xz, uDomain.yw));
-#else
-        bool kept = inDomain;
-#endif
-        if (i == count || kept) {
-            span = found;
+    int first = count;
+    for (int i = 0; i < count; ++i) {
+        vec2 lin = (kwAnalyticST(f, o + roots[i] * d, polyAb, swapped, period) - offset) / scale;
+        if (n >= 0 && t0 + roots[i] > 0.0 && all(greaterThanEqual(lin, uDomain.xz - margin)) &&
+            all(lessThanEqual(lin, uDomain.yw + margin))) {
+            first = i;
             break;
         }
+    }
+    // From there, the nearest not trimmed away; none: the fallback (round `count`). The trim
+    // test is the costly part (made for every meeting in turn it cost a third of Pump_Nut's
+    // frame), and nearly every pixel keeps its first meeting in the domain: one round, as a
+    // loop leaves once no pixel of the SIMD group needs another.
+    ivec2 from = span;
+    vec2 st, uv;
+    away = false;
+    for (int i = first; i <= count; ++i) {
+        int at = i < count ? i : chosen;
+        st = kwAnalyticST(f, o + roots[at] * d, polyAb, swapped, period);
+        vec2 lin = (st - offset) / scale;
+        if (i < count && (n < 0 || !(t0 + roots[at] > 0.0) ||
+                          any(lessThan(lin, uDomain.xz - margin)) ||
+                          any(greaterThan(lin, uDomain.yw + margin))))
+            continue;
+        span = ivec2(kwAnalyticSpanU(lin.x, from.x), kwAnalyticSpanV(lin.y, from.y));
+        knotsU = spanKnotsU(span);
+        knotsV = spanKnotsV(span);
+        uv = vec2(kwMapInverse(f.mapU, st.x, knotsU), kwMapInverse(f.mapV, st.y, knotsV));
+#if defined(KW_TRIM) && !defined(KW_TRIM_AA)
+        away = trimmedAway(clamp(uv, uDomain.xz, uDomain.yw));
+#endif
+        if (i == count || !away)
+            break;
     }
     // Clamped into the domain and its span (the surface ends there, as the NURBS path clamps).
     vec2 inside = clamp(uv, max(uDomain.xz, vec2(knotsU.x, knotsV.x)),
                         min(uDomain.yw, vec2(knotsU.y, knotsV.y)));
-    if (inside != uv) { // past the domain's edge: the edge's point, as the NURBS path shows
-        uv = inside;
-        vec2 st = vec2(kwMapForward(f.mapU, uv.x, knotsU), kwMapForward(f.mapV, uv.y, knotsV));
-        ab = swapped ? st.yx : st;
-    }
+    // Past the domain's edge: the edge's point, as the NURBS path shows. The clamped parameter
+    // is a knot, where the map is linear (no forward map's atan and tan).
+    st = mix(st, offset + scale * inside, notEqual(inside, uv));
+    vec2 ab = swapped ? st.yx : st;
+    uv = inside;
     vec3 p = kwFormPoint(f, ab, pa, pb);
     vec2 rate = vec2(kwMapRate(f.mapU, uv.x, knotsU), kwMapRate(f.mapV, uv.y, knotsV));
     // Su x Sv = rate.x rate.y (Pa x Pb), less when swapped (Su along Pb); a left-handed frame
-    // turns the frame's cross product over.
-    float side = sign(rate.x * rate.y) * (swapped ? -1.0 : 1.0) *
+    // turns the frame's cross product over. The rates have their scales' signs (a half-angle
+    // span turns less than a half turn), so the rates' tan is paid only where S_u, S_v are used.
+    float side = sign(f.mapU.z * f.mapV.z) * (swapped ? -1.0 : 1.0) *
                  sign(dot(cross(f.x, f.y), f.z));
     vec3 normal = kwFormNormal(f, ab) * side;
     mat3 frame = mat3(f.x, f.y, f.z);

@@ -439,7 +439,8 @@ void main() {
 #ifdef KW_RAY_NEWTON
 #ifdef KW_ANALYTIC
     SurfaceSample s;
-    vec2 onto = kwAnalyticPoint(uv, span, vSpanScale, s);
+    bool away; // its trim test, made there for each meeting
+    vec2 onto = kwAnalyticPoint(uv, span, vSpanScale, s, away);
 #else
     float before;
     vec2 onto = kwOntoRay(uv, before);
@@ -448,7 +449,12 @@ void main() {
     // The trims are tested at the point under the pixel, as the depth pre-pass does
     // (KW_DEPTH_ONLY): at the polygon's (u, v), up to the tolerance away, a pixel centre just
     // inside a trimmed edge was dropped and the face behind showed through.
+#ifndef KW_ANALYTIC
     KW_DISCARD_TRIMMED(onto);
+#elif defined(KW_TRIM)
+    if (away)
+        discard;
+#endif
 #endif
 #ifdef KW_DEPTH_ONLY
 #ifdef KW_GBUFFER
