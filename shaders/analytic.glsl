@@ -267,8 +267,8 @@ int kwQuarticRoots(float c3, float c2, float c1, float c0, out vec4 roots) {
 // tube circle and to its mirror across the axis, ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 -
 // r^2), and each factor is computed as (q - r)(q + r) with q that distance: its error is then
 // float's on the coordinates, not on their fourth powers, as in the quadrics. The constant term
-// is G(o) in that form; each of Ferrari's estimates is polished by two Newton steps on G at its
-// point in the same form (the double-precision Ferrari cost 15-20 ms of a 1024^2 frame on
+// is G(o) in that form; the root taken is polished by two Newton steps on G at its point in the
+// same form (kwTorusPolish; the double-precision Ferrari cost 15-20 ms of a 1024^2 frame on
 // llvmpipe, which runs every kind's branch under a mask). Their count.
 float kwTorusG(vec3 p, float R, float r) {
     float rho = length(p.xy);
@@ -280,17 +280,15 @@ int kwTorusRoots(vec3 o, vec3 d, float R, float r, out vec4 roots) {
     float c3 = 4.0 * b;
     float c2 = 4.0 * b * b + 2.0 * k - 4.0 * R2 * dot(d.xy, d.xy);
     float c1 = 4.0 * b * k - 8.0 * R2 * dot(o.xy, d.xy);
-    int n = kwQuarticRoots(c3, c2, c1, kwTorusG(o, R, r), roots);
-    for (int i = 0; i < n; ++i) {
-        float t = roots[i];
-        for (int step = 0; step < 2; ++step) {
-            vec3 p = o + t * d;
-            float dg = 4.0 * (dot(p, p) + R2 - r * r) * dot(p, d) - 8.0 * R2 * dot(p.xy, d.xy);
-            t -= dg != 0.0 ? kwTorusG(p, R, r) / dg : 0.0;
-        }
-        roots[i] = t;
+    return kwQuarticRoots(c3, c2, c1, kwTorusG(o, R, r), roots);
+}
+float kwTorusPolish(vec3 o, vec3 d, float R, float r, float t) {
+    for (int step = 0; step < 2; ++step) {
+        vec3 p = o + t * d;
+        float dg = 4.0 * (dot(p, p) + R * R - r * r) * dot(p, d) - 8.0 * R * R * dot(p.xy, d.xy);
+        t -= dg != 0.0 ? kwTorusG(p, R, r) / dg : 0.0;
     }
-    return n;
+    return t;
 }
 
 // The world direction of this pixel's ray from the eye: the line where the clip x and y of a
@@ -337,16 +335,15 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
     if (f.kind == KW_FORM_PLANE) {
         roots = vec4(abs(d.z) > 0.0 ? -o.z / d.z : 0.0, 0.0, 0.0, 0.0);
         n = abs(d.z) > 0.0 ? 1 : -1;
-    } else if (f.kind == KW_FORM_CYLINDER) {
-        n = kwQuadraticRoots(dot(d.xy, d.xy), dot(o.xy, d.xy), dot(o.xy, o.xy) - f.R * f.R, roots);
-    } else if (f.kind == KW_FORM_SPHERE) {
-        n = kwQuadraticRoots(1.0, dot(o, d), dot(o, o) - f.R * f.R, roots);
-    } else if (f.kind == KW_FORM_CONE) {
-        // cos^2 (x^2 + y^2) = (R cos + z sin)^2
-        float c2 = f.cosA * f.cosA, h = f.R * f.cosA + o.z * f.sinA;
-        n = kwQuadraticRoots(c2 * dot(d.xy, d.xy) - f.sinA * f.sinA * d.z * d.z,
-                             c2 * dot(o.xy, d.xy) - h * f.sinA * d.z,
-                             c2 * dot(o.xy, o.xy) - h * h, roots);
+    } else if (f.kind != KW_FORM_TORUS) {
+        // The quadrics as one: cos^2 (x^2 + y^2) = (R cos + z sin)^2 for the cone, with
+        // (cos, sin) = (1, 0) the cylinder; the sphere adds z^2 (one solve: every branch costs).
+        bool cone = f.kind == KW_FORM_CONE, sphere = f.kind == KW_FORM_SPHERE;
+        float c = cone ? f.cosA : 1.0, sn = cone ? f.sinA : 0.0, zz = sphere ? 1.0 : 0.0;
+        float c2 = c * c, h = f.R * c + o.z * sn;
+        n = kwQuadraticRoots(c2 * dot(d.xy, d.xy) + (zz - sn * sn) * d.z * d.z,
+                             c2 * dot(o.xy, d.xy) + (zz * o.z - h * sn) * d.z,
+                             c2 * dot(o.xy, o.xy) + zz * o.z * o.z - h * h, roots);
     } else {
         n = kwTorusRoots(o, d, f.R, f.r, roots);
         if (n == 0)
@@ -393,6 +390,8 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
     away = false;
     for (int i = first; i <= count; ++i) {
         int at = i < count ? i : chosen;
+        if (f.kind == KW_FORM_TORUS && n > 0)
+            roots[at] = kwTorusPolish(o, d, f.R, f.r, roots[at]);
         st = kwAnalyticST(f, o + roots[at] * d, polyAb, swapped, period);
         vec2 lin = (st - offset) / scale;
         if (i < count && (n < 0 || !(t0 + roots[at] > 0.0) ||
