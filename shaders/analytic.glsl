@@ -65,6 +65,7 @@ float kwMapInverse(vec4 m, float phi, vec2 knots) {
 // KW_ANALYTIC_SPAN_STEPS spans. Where the maps are half angles, phi is linear at the knots, so
 // the span holding the linear estimate of s holds s itself.
 #define KW_ANALYTIC_SPAN_STEPS 64
+#define KW_ANALYTIC_NEAR 0.1 // kwAnalyticPoint: the window of the meetings it takes
 int kwAnalyticSpanU(float s, int span) {
     for (int k = 0; k < KW_ANALYTIC_SPAN_STEPS; ++k) {
         vec2 knots = spanKnotsU(ivec2(span, 0));
@@ -366,17 +367,26 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
             chosen = i;
     // The first of them in the face's domain, read in the maps' linear estimate of (u, v), which
     // is exact at the knots and so at the domain's ends (the maps are monotone): no span walk,
-    // no tan and no trim test for the meetings a pixel passes over. `count`: none.
+    // no tan and no trim test for the meetings a pixel passes over. `count`: none. Only a
+    // meeting near the polygon's (u, v) (KW_ANALYTIC_NEAR of the domain: a fold's two meetings
+    // are) counts: one across the face is another part of it, which its own polygon draws at
+    // its own depth; taken here it was drawn at this polygon's depth, in front of the face that
+    // hides it (Axis_of_bearing: 55 edge-band pixels showed a face behind the reference's, 36
+    // with the window, 38 by the Newton step).
     vec2 period = vec2(f.kind == KW_FORM_PLANE ? 0.0 : 2.0 * KW_PI,
                        f.kind == KW_FORM_TORUS ? 2.0 * KW_PI : 0.0);
     period = swapped ? period.yx : period;
     vec2 offset = vec2(f.mapU.y, f.mapV.y), scale = vec2(f.mapU.z, f.mapV.z);
     vec2 margin = 1e-6 * (uDomain.yw - uDomain.xz);
     int first = count;
+    vec2 turn = period / abs(scale); // a whole turn in (u, v); 0: not an angle
     for (int i = 0; i < count; ++i) {
         vec2 lin = (kwAnalyticST(f, o + roots[i] * d, polyAb, swapped, period) - offset) / scale;
+        vec2 apart = lin - polyUv; // across a closed face's seam: the short way
+        apart = abs(apart - mix(vec2(0.0), turn * round(apart / turn), greaterThan(turn, vec2(0.0))));
         if (n >= 0 && t0 + roots[i] > 0.0 && all(greaterThanEqual(lin, uDomain.xz - margin)) &&
-            all(lessThanEqual(lin, uDomain.yw + margin))) {
+            all(lessThanEqual(lin, uDomain.yw + margin)) &&
+            all(lessThanEqual(apart, KW_ANALYTIC_NEAR * (uDomain.yw - uDomain.xz)))) {
             first = i;
             break;
         }
