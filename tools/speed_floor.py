@@ -15,7 +15,12 @@ variant's medians of `knotwork render --time-frames`):
       pass's shader returning a constant and no skirts or fins: what item 2's polygon costs
       before a single pixel is evaluated;
   P   the OpenCASCADE mesh peer (`--peer FILE=LINEAR,ANGULAR`: `knotwork mesh` at those
-      deflections, drawn with `render --peer-mesh`), where given.
+      deflections, drawn with `render --peer-mesh`), where given;
+  AN  with --newton-too: adaptive with `--no-analytic` (analytic faces by the Newton step).
+
+--cpu reads each run's process CPU per frame (`process CPU N ms`, llvmpipe's threads
+included) instead of its wall median: on a machine shared with other jobs the wall time
+measures the load as much as the frame.
 
 floor = G + (U - U0): the adaptive polygon once, plus per-pixel evaluation, shading and trims no
 dearer than uniform 10 x 10's, whose large cells pass their control points as flat inputs (the
@@ -81,6 +86,10 @@ def main():
     ap.add_argument("--zoom", type=float, default=1.0)
     ap.add_argument("--frames", type=int, default=15, help="--time-frames per run")
     ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds")
+    ap.add_argument("--newton-too", action="store_true",
+                    help="also time adaptive with --no-analytic (AN)")
+    ap.add_argument("--cpu", action="store_true",
+                    help="process CPU per frame instead of the wall median")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     env = dict(os.environ, QT_QPA_PLATFORM="xcb")
@@ -104,10 +113,14 @@ def main():
                 ("A", {}, []),
                 ("G", {"KW_SHADER_DIR": no_op, "KW_EDGE_SKIRTS": "0", "KW_FINS": "0"},
                  ["--depth", "exact-depth"])]
+    if args.newton_too:
+        variants.append(("AN", {}, ["--no-analytic"]))
     print("| model | view | U: uniform 10 × 10 | U0: its geometry and trims | A: adaptive | "
           "G: adaptive polygon once | floor = G + U − U0 | A / U | floor / U | P: peer | "
-          "FPS Knotwork/peer now (P / A) | at best (P / floor) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "FPS Knotwork/peer now (P / A) | at best (P / floor) |" +
+          (" AN: --no-analytic | P / AN |" if args.newton_too else ""))
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|" +
+          ("---|---|" if args.newton_too else ""))
     for path in args.files:
         label = os.path.basename(path)  # teapot.knot and teapot.igs are different models
         name = label.replace(".", "_")
@@ -133,7 +146,8 @@ def main():
                 if args.zoom != 1.0:
                     cmd += ["--zoom", repr(args.zoom)]
                 out, err, _ = run(cmd + extra, dict(env, **extra_env))
-                t = number(r"median frame ([\d.]+) ms", out + err)
+                t = number(r"process CPU ([\d.]+) ms" if args.cpu else r"median frame ([\d.]+) ms",
+                           out + err)
                 if t is None:
                     sys.exit("speed_floor.py: %s printed no median frame time: %s" %
                              (cmd[0], " ".join(cmd[1:] + extra)))
@@ -147,6 +161,8 @@ def main():
                 "%.2f" % peer if peer else "—",
                 "%.2f×" % (peer / ms["A"]) if peer else "—",
                 "**%.2f×**" % (peer / floor) if peer else "—"])
+        if args.newton_too:
+            row += ["%.2f" % ms["AN"], "%.2f×" % (peer / ms["AN"]) if peer else "—"]
         print("| " + " | ".join(row) + " |", flush=True)
 
 
