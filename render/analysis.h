@@ -114,7 +114,7 @@ double colourScaleValue(double t, const ValueRange& range, ColourScale scale);
 glm::vec3 rampColour(double t);
 
 /// Shader defines for the exact pass: KW_ANALYSIS, KW_ISOCURVES, KW_SECOND_ORDER, KW_RAMP,
-/// KW_AOV_CURVATURE (the K, H, k1, k2 target at location 4).
+/// KW_AOV_CURVATURE (the K, H, k1, k2 target at kAovCurvatureOutput).
 QStringList analysisDefines(const AnalysisOptions& options, bool curvatureAov);
 
 /// The value a colour map shows at a kernel curvature sample.

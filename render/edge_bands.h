@@ -12,7 +12,7 @@
 
 namespace kw {
 
-/// One end of a band segment. Matches shaders/edge_bands.vert (location 0 position, 1 colour).
+/// One end of a band segment. Matches shaders/edge_bands.vert (kAttrPosition, kAttrBandColour).
 struct EdgeBandVertex {
     glm::vec3 position;
     glm::vec4 color;

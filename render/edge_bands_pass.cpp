@@ -2,6 +2,7 @@
 #include "render/edge_bands_pass.h"
 
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 
 #include <QOpenGLShaderProgram>
 #include <cmath>
@@ -30,14 +31,14 @@ Status EdgeBandsPass::draw(const EdgeBands& bands, const FrameCamera& camera) {
         gl->glCreateVertexArrays(1, &m_vao);
         gl->glCreateBuffers(1, &m_vbo);
         gl->glVertexArrayVertexBuffer(m_vao, 0, m_vbo, 0, sizeof(EdgeBandVertex));
-        gl->glEnableVertexArrayAttrib(m_vao, 0);
-        gl->glVertexArrayAttribFormat(m_vao, 0, 3, GL_FLOAT, GL_FALSE,
+        gl->glEnableVertexArrayAttrib(m_vao, kAttrPosition);
+        gl->glVertexArrayAttribFormat(m_vao, kAttrPosition, 3, GL_FLOAT, GL_FALSE,
                                       offsetof(EdgeBandVertex, position));
-        gl->glVertexArrayAttribBinding(m_vao, 0, 0);
-        gl->glEnableVertexArrayAttrib(m_vao, 1);
-        gl->glVertexArrayAttribFormat(m_vao, 1, 4, GL_FLOAT, GL_FALSE,
+        gl->glVertexArrayAttribBinding(m_vao, kAttrPosition, 0);
+        gl->glEnableVertexArrayAttrib(m_vao, kAttrBandColour);
+        gl->glVertexArrayAttribFormat(m_vao, kAttrBandColour, 4, GL_FLOAT, GL_FALSE,
                                       offsetof(EdgeBandVertex, color));
-        gl->glVertexArrayAttribBinding(m_vao, 1, 0);
+        gl->glVertexArrayAttribBinding(m_vao, kAttrBandColour, 0);
     }
     if (!m_uploaded || m_revision != bands.revision) {
         // Layout revisions are process-wide and unique, so an equal one is these very bands,

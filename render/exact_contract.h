@@ -62,6 +62,43 @@ constexpr int kBaseVertexWords = 8;
 constexpr int kBaseVertexSpanWord = 5;
 constexpr int kBaseVertexSpanScaleWord = 7;
 
+/// Vertex attribute locations: the `in`s of the vertex shaders and the vertex arrays that feed
+/// them. Every layout has its position at kAttrPosition, so lines.vert draws the base polygon's
+/// outline (kw::BaseVertex) and the control net (plain points) alike.
+constexpr int kAttrPosition = 0;
+/// surface.vert: kw::BaseVertex (render/gpu_layout.h) from binding 0, the table row per instance
+/// from binding 1, and SkirtVertex's outward (u, v) direction (the skirts and fins only).
+constexpr int kAttrUv = 1;
+constexpr int kAttrSpan = 2;
+constexpr int kAttrSpanScale = 3;
+constexpr int kAttrSurface = 4;
+constexpr int kAttrOutward = 5;
+/// tessellated.vert: the tessellated meshes' normal and (u, v), one buffer per attribute.
+constexpr int kAttrMeshNormal = 1;
+constexpr int kAttrMeshUv = 2;
+/// edge_bands.vert: kw::EdgeBandVertex's colour.
+constexpr int kAttrBandColour = 1;
+/// trim_mask.vert: a trim loop's vertex in the unit square of the surface's domain.
+constexpr int kAttrTrimCorner = 0;
+
+/// Fragment output locations. A location is the draw-buffer index the output writes (its place
+/// in glNamedFramebufferDrawBuffers' list, glClearBuffer's drawbuffer); a frame with AOVs
+/// attaches each target at GL_COLOR_ATTACHMENT0 + its output, so outputs and attachments agree.
+constexpr int kColourOutput = 0;       ///< every colour-writing shader's fragColor
+constexpr int kAovIdUvDepthOutput = 1; ///< surface id, u, v, eye-space depth
+constexpr int kAovPositionOutput = 2;  ///< the exact point, w = 1
+constexpr int kAovNormalOutput = 3;    ///< the unit normal, w = 0
+constexpr int kAovCurvatureOutput = 4; ///< K, H, k1, k2 (the curvature AOV only)
+constexpr int kAovDirectionOutput = 5; ///< the principal direction of k1 (the curvature AOV only)
+/// The draw buffers of a frame with AOVs: colour and the three AOVs, then the curvature's two.
+constexpr int kAovDrawBuffers = kAovNormalOutput + 1;
+constexpr int kCurvatureAovDrawBuffers = kAovDirectionOutput + 1;
+/// The deferred pass's pre-pass writes one target, its only draw buffer
+/// (ExactSurfacePass::attachPrepassTexture): depth_only.frag, exact_surface.frag's KW_GBUFFER.
+constexpr int kPrepassOutput = 0;
+/// trim_mask.frag: the mask layer, the trim framebuffer's only colour attachment.
+constexpr int kTrimMaskOutput = 0;
+
 /// The AOV id of a section cap's pixels (surface ids are positive, the background -1).
 constexpr int kSectionCapId = -2;
 
@@ -71,10 +108,11 @@ struct ShaderConstant {
     int value;
 };
 
-/// Every constant above that a shader reads, the light count and the colour scales, under
-/// their GLSL names. The span-table width depends on the degree, so it is a per-variant
-/// define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from kw::spanTableTexels). The analysis
-/// modes' numbers come from their table (kw::analysisModeDefine), so a new mode adds no line.
+/// Every constant above that a shader reads (units, layouts, attribute and output locations),
+/// the light count and the colour scales, under their GLSL names. The span-table width depends
+/// on the degree, so it is a per-variant define (ExactVariant::defines: KW_SPAN_TEXELS_U/V from
+/// kw::spanTableTexels). The analysis modes' numbers come from their table
+/// (kw::analysisModeDefine), so a new mode adds no line.
 inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_MAX_LIGHTS", kMaxLights},
     ShaderConstant{"KW_MAX_SECTIONS", kMaxSectionPlanes},
@@ -108,6 +146,24 @@ inline constexpr std::array kShaderConstants{
     ShaderConstant{"KW_VERTEX_WORDS", kBaseVertexWords},
     ShaderConstant{"KW_VERTEX_SPAN_WORD", kBaseVertexSpanWord},
     ShaderConstant{"KW_VERTEX_SPAN_SCALE_WORD", kBaseVertexSpanScaleWord},
+    ShaderConstant{"KW_ATTR_POSITION", kAttrPosition},
+    ShaderConstant{"KW_ATTR_UV", kAttrUv},
+    ShaderConstant{"KW_ATTR_SPAN", kAttrSpan},
+    ShaderConstant{"KW_ATTR_SPAN_SCALE", kAttrSpanScale},
+    ShaderConstant{"KW_ATTR_SURFACE", kAttrSurface},
+    ShaderConstant{"KW_ATTR_OUTWARD", kAttrOutward},
+    ShaderConstant{"KW_ATTR_MESH_NORMAL", kAttrMeshNormal},
+    ShaderConstant{"KW_ATTR_MESH_UV", kAttrMeshUv},
+    ShaderConstant{"KW_ATTR_BAND_COLOUR", kAttrBandColour},
+    ShaderConstant{"KW_ATTR_TRIM_CORNER", kAttrTrimCorner},
+    ShaderConstant{"KW_COLOUR_OUTPUT", kColourOutput},
+    ShaderConstant{"KW_AOV_ID_UV_DEPTH_OUTPUT", kAovIdUvDepthOutput},
+    ShaderConstant{"KW_AOV_POSITION_OUTPUT", kAovPositionOutput},
+    ShaderConstant{"KW_AOV_NORMAL_OUTPUT", kAovNormalOutput},
+    ShaderConstant{"KW_AOV_CURVATURE_OUTPUT", kAovCurvatureOutput},
+    ShaderConstant{"KW_AOV_DIRECTION_OUTPUT", kAovDirectionOutput},
+    ShaderConstant{"KW_PREPASS_OUTPUT", kPrepassOutput},
+    ShaderConstant{"KW_TRIM_MASK_OUTPUT", kTrimMaskOutput},
     ShaderConstant{"KW_FORM_PLANE", int(AnalyticForm::Kind::Plane)},
     ShaderConstant{"KW_FORM_CYLINDER", int(AnalyticForm::Kind::Cylinder)},
     ShaderConstant{"KW_FORM_CONE", int(AnalyticForm::Kind::Cone)},

@@ -449,9 +449,11 @@ std::vector<GLenum> ExactSurfacePass::attachPrepassTexture(glm::ivec2 size) {
     }
     while (!drawBuffers.empty() && drawBuffers.back() == GL_NONE)
         drawBuffers.pop_back();
-    const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment);
-    gl->glNamedFramebufferTexture(GLuint(framebuffer), attachment, m_prepassTexture, 0);
-    gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), 1, &attachment);
+    // The pre-pass's output is the framebuffer's only draw buffer.
+    GLenum only[kPrepassOutput + 1] = {};
+    only[kPrepassOutput] = GL_COLOR_ATTACHMENT0 + GLenum(kPrepassAttachment);
+    gl->glNamedFramebufferTexture(GLuint(framebuffer), only[kPrepassOutput], m_prepassTexture, 0);
+    gl->glNamedFramebufferDrawBuffers(GLuint(framebuffer), kPrepassOutput + 1, only);
     const GLint zero = 0;
     gl->glStencilMask(0xff);
     gl->glClearBufferiv(GL_STENCIL, 0, &zero);

@@ -36,8 +36,8 @@ constexpr int spanTableTexels(int p) {
 /// Precondition: a valid knot vector (knotVectorError is empty).
 std::vector<glm::vec4> packSpanTable(const std::vector<double>& knots, int p, int count);
 
-/// One base polygon vertex. Must match the attributes of shaders/surface.vert:
-/// location 0 position (vec3), 1 (u, v) (vec2), 2 knot spans (ivec2, flat), 3 span scale
+/// One base polygon vertex. Must match the attributes of shaders/surface.vert (locations in
+/// render/exact_contract.h): position (vec3), (u, v) (vec2), knot spans (ivec2, flat), span scale
 /// (float, flat): the diagonal of the bounds of the (p+1)(q+1) control points of the span, the
 /// length L of the degenerate-normal rule of kw::surfaceFrame.
 struct BaseVertex {
@@ -105,8 +105,8 @@ std::vector<unsigned> basePolygonOutlines(const BasePolygon& poly);
 
 /// One vertex of a base polygon's skirt (docs/RENDERING.md "Skirts"): a node
 /// of the polygon's outline and the outward (u, v) direction across its edge, (0, 0) on the
-/// strip's inner side. Attributes 0-3 as BaseVertex; location 5 of shaders/surface.vert
-/// (KW_SKIRT) is `outward`.
+/// strip's inner side. BaseVertex's attributes, then shaders/surface.vert's aOutward
+/// (KW_SKIRT, kw::kAttrOutward) is `outward`.
 struct SkirtVertex {
     BaseVertex base;
     glm::vec2 outward;

@@ -2,6 +2,7 @@
 // pools, and the per-record tessellated meshes and control nets.
 #include "render/exact_contract.h"
 #include "render/gpu_scene.h"
+#include "render/tessellated_pass.h"
 
 namespace kw {
 
@@ -81,24 +82,25 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
                                      t.rows.data() + lo);
         m_analytic.sync(gl, records, int(t.rows.size()));
     }
-    // BaseVertex's attributes 0-3 from binding 0, at `base` bytes into each vertex; the surface
-    // index at 4, one int per instance from binding 1 (a draw's base instance picks its row).
+    // BaseVertex's attributes from binding 0, at `base` bytes into each vertex; the surface
+    // index, one int per instance from binding 1 (a draw's base instance picks its row).
     const auto baseAttributes = [&](GLuint vao, GLuint base, bool instanced) {
-        for (GLuint a = 0; a < 4; ++a) {
-            gl->glEnableVertexArrayAttrib(vao, a);
-            gl->glVertexArrayAttribBinding(vao, a, 0);
+        for (const int a : {kAttrPosition, kAttrUv, kAttrSpan, kAttrSpanScale}) {
+            gl->glEnableVertexArrayAttrib(vao, GLuint(a));
+            gl->glVertexArrayAttribBinding(vao, GLuint(a), 0);
         }
-        gl->glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
+        gl->glVertexArrayAttribFormat(vao, kAttrPosition, 3, GL_FLOAT, GL_FALSE,
                                       base + offsetof(BaseVertex, position));
-        gl->glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE,
+        gl->glVertexArrayAttribFormat(vao, kAttrUv, 2, GL_FLOAT, GL_FALSE,
                                       base + offsetof(BaseVertex, uv));
-        gl->glVertexArrayAttribIFormat(vao, 2, 2, GL_INT, base + offsetof(BaseVertex, span));
-        gl->glVertexArrayAttribFormat(vao, 3, 1, GL_FLOAT, GL_FALSE,
+        gl->glVertexArrayAttribIFormat(vao, kAttrSpan, 2, GL_INT,
+                                       base + offsetof(BaseVertex, span));
+        gl->glVertexArrayAttribFormat(vao, kAttrSpanScale, 1, GL_FLOAT, GL_FALSE,
                                       base + offsetof(BaseVertex, spanScale));
         if (instanced) {
-            gl->glEnableVertexArrayAttrib(vao, 4);
-            gl->glVertexArrayAttribIFormat(vao, 4, 1, GL_INT, 0);
-            gl->glVertexArrayAttribBinding(vao, 4, 1);
+            gl->glEnableVertexArrayAttrib(vao, kAttrSurface);
+            gl->glVertexArrayAttribIFormat(vao, kAttrSurface, 1, GL_INT, 0);
+            gl->glVertexArrayAttribBinding(vao, kAttrSurface, 1);
             gl->glVertexArrayBindingDivisor(vao, 1, 1);
         }
     };
@@ -110,12 +112,12 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
     }
     for (GLuint* vao : {&m_skirtVao, &m_finVao})
         if (!*vao) {
-            // SkirtVertex: its BaseVertex, then the outward (u, v) direction at 5.
+            // SkirtVertex: its BaseVertex, then the outward (u, v) direction.
             gl->glCreateVertexArrays(1, vao);
             baseAttributes(*vao, offsetof(SkirtVertex, base), true);
-            gl->glEnableVertexArrayAttrib(*vao, 5);
-            gl->glVertexArrayAttribBinding(*vao, 5, 0);
-            gl->glVertexArrayAttribFormat(*vao, 5, 2, GL_FLOAT, GL_FALSE,
+            gl->glEnableVertexArrayAttrib(*vao, kAttrOutward);
+            gl->glVertexArrayAttribBinding(*vao, kAttrOutward, 0);
+            gl->glVertexArrayAttribFormat(*vao, kAttrOutward, 2, GL_FLOAT, GL_FALSE,
                                           offsetof(SkirtVertex, outward));
         }
     const GLuint buffers[4] = {t.buffer, t.buffer, m_pools.control.buffer(),
@@ -153,15 +155,7 @@ void GpuScene::syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, 
         GLuint* bufs[] = {&m.positions, &m.normals, &m.uvs, &m.indices};
         for (GLuint* b : bufs)
             gl->glCreateBuffers(1, b);
-        const GLuint attrBuf[] = {m.positions, m.normals, m.uvs};
-        const int sizes[] = {3, 3, 2};
-        for (GLuint a = 0; a < 3; ++a) {
-            gl->glVertexArrayVertexBuffer(m.vao, a, attrBuf[a], 0,
-                                          GLsizei(sizes[a] * sizeof(float)));
-            gl->glEnableVertexArrayAttrib(m.vao, a);
-            gl->glVertexArrayAttribFormat(m.vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
-            gl->glVertexArrayAttribBinding(m.vao, a, a);
-        }
+        setMeshAttributes(gl, m.vao, {m.positions, m.normals, m.uvs});
         gl->glVertexArrayElementBuffer(m.vao, m.indices);
     }
     gl->glNamedBufferData(m.positions, GLsizeiptr(t.positions.size() * sizeof(glm::vec3)),
@@ -196,9 +190,9 @@ void GpuScene::syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up) 
         gl->glCreateBuffers(1, &n.points);
         gl->glCreateBuffers(1, &n.lines);
         gl->glVertexArrayVertexBuffer(n.vao, 0, n.points, 0, sizeof(glm::vec3));
-        gl->glEnableVertexArrayAttrib(n.vao, 0);
-        gl->glVertexArrayAttribFormat(n.vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        gl->glVertexArrayAttribBinding(n.vao, 0, 0);
+        gl->glEnableVertexArrayAttrib(n.vao, kAttrPosition);
+        gl->glVertexArrayAttribFormat(n.vao, kAttrPosition, 3, GL_FLOAT, GL_FALSE, 0);
+        gl->glVertexArrayAttribBinding(n.vao, kAttrPosition, 0);
         gl->glVertexArrayElementBuffer(n.vao, n.lines);
     }
     std::vector<glm::vec3> pts(s.points.begin(), s.points.end());

@@ -2,6 +2,7 @@
 #include "render/offscreen_renderer.h"
 
 #include "render/depth_convention.h"
+#include "render/exact_contract.h"
 #include "render/gl_context.h"
 
 #include <QOffscreenSurface>
@@ -28,7 +29,9 @@ struct OffscreenRenderer::Impl {
     bool withCurvature = false;
     GLuint fbo = 0;
     GLuint color = 0, depth = 0;
-    GLuint aov[5] = {0, 0, 0, 0, 0};
+    /// The AOV targets from kAovIdUvDepthOutput on, each at its output's attachment.
+    GLuint aov[kCurvatureAovDrawBuffers - kAovIdUvDepthOutput] = {};
+    GLuint aovTarget(int output) const { return aov[output - kAovIdUvDepthOutput]; }
 };
 
 OffscreenRenderer::OffscreenRenderer() : d(std::make_unique<Impl>()) {}
@@ -86,12 +89,13 @@ void OffscreenRenderer::Impl::destroyFramebuffer() {
         return;
     if (fbo)
         gl->glDeleteFramebuffers(1, &fbo);
-    GLuint tex[7] = {color, depth, aov[0], aov[1], aov[2], aov[3], aov[4]};
-    for (GLuint t : tex)
+    for (GLuint* t : {&color, &depth})
+        if (*t)
+            gl->glDeleteTextures(1, t), *t = 0;
+    for (GLuint& t : aov)
         if (t)
-            gl->glDeleteTextures(1, &t);
-    fbo = color = depth = 0;
-    aov[0] = aov[1] = aov[2] = aov[3] = aov[4] = 0;
+            gl->glDeleteTextures(1, &t), t = 0;
+    fbo = 0;
 }
 
 Status OffscreenRenderer::setSize(QSize size, bool withAov, bool withCurvature) {
@@ -115,16 +119,23 @@ Status OffscreenRenderer::setSize(QSize size, bool withAov, bool withCurvature) 
     gl->glCreateFramebuffers(1, &d->fbo);
     d->color = texture(GL_RGBA8);
     d->depth = texture(kDepthStencilFormat);
-    gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT0, d->color, 0);
+    // Each output at its own attachment (render/exact_contract.h).
+    const auto attachment = [](int output) {
+        return GL_COLOR_ATTACHMENT0 + GLenum(output);
+    };
+    gl->glNamedFramebufferTexture(d->fbo, attachment(kColourOutput), d->color, 0);
     gl->glNamedFramebufferTexture(d->fbo, GL_DEPTH_STENCIL_ATTACHMENT, d->depth, 0);
-    GLenum buffers[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                         GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
-    const int aovTargets = withAov ? (withCurvature ? 5 : 3) : 0;
-    for (int k = 0; k < aovTargets; ++k) {
-        d->aov[k] = texture(GL_RGBA32F);
-        gl->glNamedFramebufferTexture(d->fbo, GL_COLOR_ATTACHMENT1 + GLenum(k), d->aov[k], 0);
+    const int drawBuffers =
+        withAov ? (withCurvature ? kCurvatureAovDrawBuffers : kAovDrawBuffers) : kColourOutput + 1;
+    GLenum buffers[kCurvatureAovDrawBuffers];
+    for (int k = 0; k < drawBuffers; ++k)
+        buffers[k] = attachment(k);
+    for (int k = kAovIdUvDepthOutput; k < drawBuffers; ++k) {
+        GLuint& aov = d->aov[k - kAovIdUvDepthOutput];
+        aov = texture(GL_RGBA32F);
+        gl->glNamedFramebufferTexture(d->fbo, attachment(k), aov, 0);
     }
-    gl->glNamedFramebufferDrawBuffers(d->fbo, 1 + aovTargets, buffers);
+    gl->glNamedFramebufferDrawBuffers(d->fbo, drawBuffers, buffers);
     const GLenum status = gl->glCheckNamedFramebufferStatus(d->fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         d->destroyFramebuffer();
@@ -206,9 +217,10 @@ AovBuffer OffscreenRenderer::aov() {
     out.data.resize(size_t(w) * size_t(h) * AovBuffer::kChannels);
     std::vector<float> planes[3];
     QOpenGLFunctions_4_5_Core* gl = d->gl;
+    const int outputs[3] = {kAovIdUvDepthOutput, kAovPositionOutput, kAovNormalOutput};
     for (int k = 0; k < 3; ++k) {
         planes[k].resize(size_t(w) * size_t(h) * 4);
-        gl->glGetTextureImage(d->aov[k], 0, GL_RGBA, GL_FLOAT,
+        gl->glGetTextureImage(d->aovTarget(outputs[k]), 0, GL_RGBA, GL_FLOAT,
                               GLsizei(planes[k].size() * sizeof(float)), planes[k].data());
     }
     for (int y = 0; y < h; ++y)
@@ -224,13 +236,13 @@ AovBuffer OffscreenRenderer::aov() {
             std::copy(values, values + AovBuffer::kChannels, dst);
         }
     if (d->withCurvature) {
-        // K, H, k1, k2 (attachment 4) then d1.x, d1.y, d1.z (attachment 5), per pixel.
+        // K, H, k1, k2 then d1.x, d1.y, d1.z, per pixel.
         constexpr int n = AovBuffer::kCurvatureChannels;
         std::vector<float> curv(size_t(w) * size_t(h) * 4), dir(curv.size());
-        gl->glGetTextureImage(d->aov[3], 0, GL_RGBA, GL_FLOAT, GLsizei(curv.size() * sizeof(float)),
-                              curv.data());
-        gl->glGetTextureImage(d->aov[4], 0, GL_RGBA, GL_FLOAT, GLsizei(dir.size() * sizeof(float)),
-                              dir.data());
+        gl->glGetTextureImage(d->aovTarget(kAovCurvatureOutput), 0, GL_RGBA, GL_FLOAT,
+                              GLsizei(curv.size() * sizeof(float)), curv.data());
+        gl->glGetTextureImage(d->aovTarget(kAovDirectionOutput), 0, GL_RGBA, GL_FLOAT,
+                              GLsizei(dir.size() * sizeof(float)), dir.data());
         out.curvature.resize(size_t(w) * size_t(h) * n);
         for (int y = 0; y < h; ++y) // GL rows run bottom-up
             for (int x = 0; x < w; ++x) {

@@ -260,23 +260,17 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     phase.restart();
     if (ok && (options.wireframe || options.controlNet || options.edgeBands)) {
         // Overlays write colour only; the AOV targets keep the surfaces' values.
-        if (options.writeAov) {
-            const GLenum only0 = GL_COLOR_ATTACHMENT0;
-            gl->glNamedFramebufferDrawBuffers(target.framebuffer, 1, &only0);
-        }
+        if (options.writeAov)
+            setDrawBuffers(target.framebuffer, kColourOutput + 1);
         if (options.wireframe)
             ok = step(wireframe.draw(scene, fc, options));
         if (ok && options.controlNet)
             ok = step(controlNet.draw(scene, fc, options));
         if (ok && options.edgeBands)
             ok = step(edgeBands.draw(*options.edgeBands, fc));
-        if (options.writeAov) {
-            const GLenum all[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                   GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
-                                   GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
-            gl->glNamedFramebufferDrawBuffers(target.framebuffer, options.writeCurvatureAov ? 6 : 4,
-                                              all);
-        }
+        if (options.writeAov)
+            setDrawBuffers(target.framebuffer,
+                           options.writeCurvatureAov ? kCurvatureAovDrawBuffers : kAovDrawBuffers);
     }
     clock.mark(PassTimes::Overlays);
     if (drawn.framebuffer != target.framebuffer)
@@ -437,17 +431,14 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
     gl->glDisable(GL_CULL_FACE);
     gl->glEnable(GL_DEPTH_TEST);
     gl->glDepthMask(GL_TRUE);
-    gl->glClearBufferfv(GL_COLOR, 0, &options.background.x);
+    gl->glClearBufferfv(GL_COLOR, kColourOutput, &options.background.x);
     if (options.writeAov) {
         const GLfloat background[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // surface id -1
         const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        gl->glClearBufferfv(GL_COLOR, 1, background);
-        gl->glClearBufferfv(GL_COLOR, 2, zero);
-        gl->glClearBufferfv(GL_COLOR, 3, zero);
-        if (options.writeCurvatureAov) {
-            gl->glClearBufferfv(GL_COLOR, 4, zero);
-            gl->glClearBufferfv(GL_COLOR, 5, zero);
-        }
+        gl->glClearBufferfv(GL_COLOR, kAovIdUvDepthOutput, background);
+        const int end = options.writeCurvatureAov ? kCurvatureAovDrawBuffers : kAovDrawBuffers;
+        for (int k = kAovPositionOutput; k < end; ++k)
+            gl->glClearBufferfv(GL_COLOR, k, zero);
     }
     gl->glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
     if (options.backgroundTop)
@@ -558,6 +549,13 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
     return report;
 }
 
+void Renderer::Impl::setDrawBuffers(GLuint framebuffer, int count) {
+    GLenum buffers[kCurvatureAovDrawBuffers];
+    for (int k = 0; k < count; ++k)
+        buffers[k] = GL_COLOR_ATTACHMENT0 + GLenum(k);
+    gl->glNamedFramebufferDrawBuffers(framebuffer, count, buffers);
+}
+
 Status Renderer::Impl::ensurePickTarget(QSize size) {
     if (pickFbo && pickSize == size)
         return ok();
@@ -570,16 +568,14 @@ Status Renderer::Impl::ensurePickTarget(QSize size) {
         return t;
     };
     gl->glCreateFramebuffers(1, &pickFbo);
-    const GLenum formats[5] = {GL_RGBA8, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, kDepthFormat};
-    for (int k = 0; k < 5; ++k)
-        pickTextures[k] = texture(formats[k]);
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < kAovDrawBuffers; ++k) {
+        pickTextures[k] = texture(k == kColourOutput ? GL_RGBA8 : GL_RGBA32F);
         gl->glNamedFramebufferTexture(pickFbo, GL_COLOR_ATTACHMENT0 + GLenum(k), pickTextures[k],
                                       0);
-    gl->glNamedFramebufferTexture(pickFbo, GL_DEPTH_ATTACHMENT, pickTextures[4], 0);
-    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                               GL_COLOR_ATTACHMENT3};
-    gl->glNamedFramebufferDrawBuffers(pickFbo, 4, buffers);
+    }
+    pickTextures[kAovDrawBuffers] = texture(kDepthFormat);
+    gl->glNamedFramebufferTexture(pickFbo, GL_DEPTH_ATTACHMENT, pickTextures[kAovDrawBuffers], 0);
+    setDrawBuffers(pickFbo, kAovDrawBuffers);
     if (gl->glCheckNamedFramebufferStatus(pickFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         releasePickTarget();
         return Error(QStringLiteral("the pick framebuffer is incomplete"));
@@ -617,7 +613,8 @@ std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera,
     d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
     d->gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
     float a[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // id, u, v, Z
-    d->gl->glGetTextureImage(d->pickTextures[1], 0, GL_RGBA, GL_FLOAT, sizeof(a), a);
+    d->gl->glGetTextureImage(d->pickTextures[kAovIdUvDepthOutput], 0, GL_RGBA, GL_FLOAT, sizeof(a),
+                             a);
     if (!(a[0] >= 0.0f))
         return std::nullopt;
     const Surface* s = doc.surface(SurfaceId{std::uint32_t(std::lround(a[0]))});

@@ -5,6 +5,7 @@
 #include "render/accumulate_target.h"
 #include "render/antialias_target.h"
 #include "render/edge_bands_pass.h"
+#include "render/exact_contract.h"
 #include "render/exact_surface_pass.h"
 #include "render/float_depth_target.h"
 #include "render/gpu_scene.h"
@@ -39,6 +40,9 @@ struct Renderer::Impl {
     void drawBackground(const RenderOptions& options);
     Status ensurePickTarget(QSize size);
     void releasePickTarget();
+    /// Draws `framebuffer`'s first `count` fragment outputs, each to its own attachment
+    /// (render/exact_contract.h).
+    void setDrawBuffers(GLuint framebuffer, int count);
 
     QOpenGLFunctions_4_5_Core* gl = nullptr;
     ShaderLibrary shaders;
@@ -96,11 +100,12 @@ struct Renderer::Impl {
     };
     std::optional<LastFrame> lastFrame;
 
-    /// Framebuffer of the pick query: depth and the AOV attachments 1..3 (attachment 0 too,
-    /// so the surface shaders' outputs keep their locations).
     GLuint backgroundVao = 0; ///< attribute-less, for drawBackground's one triangle
+    /// Framebuffer of the pick query: depth and the three AOVs' attachments (the colour's too,
+    /// so the surface shaders' outputs keep their locations).
     GLuint pickFbo = 0;
-    GLuint pickTextures[5] = {0, 0, 0, 0, 0}; ///< colour, AOV 1..3, depth
+    /// Colour and the AOVs, each at its output (kColourOutput .. kAovNormalOutput), then depth.
+    GLuint pickTextures[kAovDrawBuffers + 1] = {};
     QSize pickSize;
 };
 

@@ -11,6 +11,18 @@
 
 namespace kw {
 
+void setMeshAttributes(QOpenGLFunctions_4_5_Core* gl, GLuint vao, const GLuint (&buffers)[3]) {
+    const int locations[3] = {kAttrPosition, kAttrMeshNormal, kAttrMeshUv};
+    const int sizes[3] = {3, 3, 2};
+    for (int k = 0; k < 3; ++k) {
+        const GLuint a = GLuint(locations[k]);
+        gl->glVertexArrayVertexBuffer(vao, a, buffers[k], 0, GLsizei(sizes[k] * sizeof(float)));
+        gl->glEnableVertexArrayAttrib(vao, a);
+        gl->glVertexArrayAttribFormat(vao, a, sizes[k], GL_FLOAT, GL_FALSE, 0);
+        gl->glVertexArrayAttribBinding(vao, a, a);
+    }
+}
+
 void TessellatedPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders) {
     m_gl = gl;
     m_shaders = shaders;

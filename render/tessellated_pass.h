@@ -11,6 +11,11 @@
 
 namespace kw {
 
+/// Sets up `vao` for tessellated.vert: the positions, normals and (u, v) of `buffers`, in that
+/// order, each buffer bound at its attribute's location (kAttrPosition, kAttrMeshNormal,
+/// kAttrMeshUv). The index buffer is the caller's.
+void setMeshAttributes(QOpenGLFunctions_4_5_Core* gl, GLuint vao, const GLuint (&buffers)[3]);
+
 class TessellatedPass {
 public:
     void initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* shaders);

@@ -3,6 +3,7 @@
 
 #include "render/depth_convention.h"
 #include "render/shading_uniforms.h"
+#include "render/tessellated_pass.h"
 
 #include <QOpenGLShaderProgram>
 #include <unordered_map>
@@ -14,13 +15,7 @@ void TriangleMeshPass::initialize(QOpenGLFunctions_4_5_Core* gl, ShaderLibrary* 
     m_shaders = shaders;
     gl->glCreateVertexArrays(1, &m_vao);
     gl->glCreateBuffers(4, m_buffers);
-    const int sizes[] = {3, 3, 2};
-    for (GLuint a = 0; a < 3; ++a) {
-        gl->glVertexArrayVertexBuffer(m_vao, a, m_buffers[a], 0, GLsizei(sizes[a] * sizeof(float)));
-        gl->glEnableVertexArrayAttrib(m_vao, a);
-        gl->glVertexArrayAttribFormat(m_vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
-        gl->glVertexArrayAttribBinding(m_vao, a, a);
-    }
+    setMeshAttributes(gl, m_vao, {m_buffers[0], m_buffers[1], m_buffers[2]});
     gl->glVertexArrayElementBuffer(m_vao, m_buffers[3]);
 }
 

@@ -124,9 +124,9 @@ Status TrimMaskPass::ensureArray(int size, int layers) {
         gl->glCreateVertexArrays(1, &m_vao);
         gl->glCreateBuffers(1, &m_buffer);
         gl->glVertexArrayVertexBuffer(m_vao, 0, m_buffer, 0, GLsizei(sizeof(glm::vec2)));
-        gl->glEnableVertexArrayAttrib(m_vao, 0);
-        gl->glVertexArrayAttribFormat(m_vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
-        gl->glVertexArrayAttribBinding(m_vao, 0, 0);
+        gl->glEnableVertexArrayAttrib(m_vao, kAttrTrimCorner);
+        gl->glVertexArrayAttribFormat(m_vao, kAttrTrimCorner, 2, GL_FLOAT, GL_FALSE, 0);
+        gl->glVertexArrayAttribBinding(m_vao, kAttrTrimCorner, 0);
     }
     return ok();
 }
@@ -287,6 +287,9 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     d.texels += std::int64_t(m.width) * m.height;
     gl->glNamedBufferData(m_buffer, GLsizeiptr(vertices.size() * sizeof(glm::vec2)),
                           vertices.data(), GL_STREAM_DRAW);
+    // trim_mask.frag's output reaches the layer as the framebuffer's default draw buffer, the
+    // only one: attachment 0.
+    static_assert(kTrimMaskOutput == 0);
     gl->glNamedFramebufferTextureLayer(m_fbo, GL_COLOR_ATTACHMENT0, m_texture, 0, m.layer);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
     gl->glViewport(0, 0, m.width, m.height);
@@ -297,7 +300,7 @@ void TrimMaskPass::redraw(TrimMask& m, const Surface& s, glm::ivec2 resolution) 
     gl->glDisable(GL_CULL_FACE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    gl->glClearBufferfv(GL_COLOR, 0, zero);
+    gl->glClearBufferfv(GL_COLOR, kTrimMaskOutput, zero);
     // Parity fill: each fan triangle toggles the texels whose centres it covers; the shared
     // fan edges are rasterised once (GL's fill rule), so a texel flips once per loop crossing.
     gl->glEnable(GL_COLOR_LOGIC_OP);

@@ -7,7 +7,7 @@ layout(binding = KW_COMPOSITE_COLOUR_UNIT) uniform sampler2DMS uColour;
 layout(binding = KW_COMPOSITE_ACCUM_UNIT) uniform sampler2DMS uAccum;
 layout(binding = KW_COMPOSITE_DEPTH_UNIT) uniform sampler2DMS uDepth;
 
-out vec4 fragColor;
+layout(location = KW_COLOUR_OUTPUT) out vec4 fragColor;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

@@ -5,7 +5,7 @@ layout(binding = KW_ACCUMULATE_SAMPLE_UNIT) uniform sampler2D uSum;
 layout(binding = KW_ACCUMULATE_DEPTH_UNIT) uniform sampler2D uDepth;
 uniform float uScale; // 1 / samples
 
-out vec4 fragColor;
+layout(location = KW_COLOUR_OUTPUT) out vec4 fragColor;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

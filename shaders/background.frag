@@ -5,7 +5,7 @@ uniform vec4 uViewport;         // the view's origin and size in window pixels
 uniform vec4 uBackgroundBottom; // RenderOptions::background
 uniform vec4 uBackgroundTop;    // RenderOptions::backgroundTop
 
-layout(location = 0) out vec4 fragColor;
+layout(location = KW_COLOUR_OUTPUT) out vec4 fragColor;
 
 void main() {
     float t = clamp((gl_FragCoord.y - uViewport.y) / max(uViewport.w, 1.0), 0.0, 1.0);

@@ -10,7 +10,7 @@ flat in int vSurface;
 // With the deferred exact pass (kw::ExactSurfacePass): the polygon's (u, v), the surface's
 // row and facing, and the cell's provoking vertex, for exact_surface.frag's KW_DEFERRED.
 flat in int vVertex;
-layout(location = 0) out uvec4 kwPrepassOut;
+layout(location = KW_PREPASS_OUTPUT) out uvec4 kwPrepassOut;
 #endif
 
 void main() {

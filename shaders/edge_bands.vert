@@ -1,7 +1,7 @@
 // Edge Continuity overlay: line segments in their class colour, drawn several times shifted by
 // a few pixels (uOffset, in clip units per w) to make a band, pulled towards the camera.
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec4 aColor;
+layout(location = KW_ATTR_POSITION) in vec3 aPosition;
+layout(location = KW_ATTR_BAND_COLOUR) in vec4 aColor;
 
 uniform mat4 uViewProjection;
 uniform vec2 uOffset;

@@ -8,9 +8,9 @@
 // KW_ANALYSIS (an analysis colouring instead of Phong, analysis.glsl), KW_ISOCURVES (knot and
 // iso-parameter lines over the colour), KW_DIRECTIONS (principal-direction marks; needs
 // KW_SECOND_ORDER), KW_SECOND_ORDER (second derivatives and curvature,
-// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at location 4 and the
-// principal direction of k1 at location 5), KW_RAY_NEWTON (adaptive partitions: shade the
-// point truly under the pixel, kwOntoRay), KW_SKIRT (the edge skirts: keep a fragment only
+// for the curvature modes and KW_AOV_CURVATURE: the K, H, k1, k2 target at
+// KW_AOV_CURVATURE_OUTPUT and the principal direction of k1 at KW_AOV_DIRECTION_OUTPUT),
+// KW_RAY_NEWTON (adaptive partitions: shade the point truly under the pixel, kwOntoRay), KW_SKIRT (the edge skirts: keep a fragment only
 // where the pixel's ray meets the surface inside its domain and trims, kwSkirtPoint),
 // KW_DEPTH_ONLY (with KW_RAY_NEWTON and KW_TRIM: the depth pre-pass of cells near a trim curve,
 // which tests the trims at the point under the pixel and shades nothing), KW_SECTION (section
@@ -394,20 +394,20 @@ vec2 kwOntoRay(vec2 uv, out float residual) {
 #endif
 
 #ifdef KW_GBUFFER
-layout(location = 0) out uvec4 kwPrepassOut; // the deferred pass's input (depth_only.frag)
+layout(location = KW_PREPASS_OUTPUT) out uvec4 kwPrepassOut; // the deferred pass's input (depth_only.frag)
 flat in int vVertex;
 vec4 fragColor; // not written: the pre-pass returns before shading
 #else
-layout(location = 0) out vec4 fragColor;
+layout(location = KW_COLOUR_OUTPUT) out vec4 fragColor;
 #endif
 #ifdef KW_AOV
-layout(location = 1) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
-layout(location = 2) out vec4 aovPosition;  // exact point, w = 1
-layout(location = 3) out vec4 aovNormal;    // unit normal (Su x Sv side, not flipped), w = 0
+layout(location = KW_AOV_ID_UV_DEPTH_OUTPUT) out vec4 aovIdUvDepth; // surface id, u, v, eye-space depth
+layout(location = KW_AOV_POSITION_OUTPUT) out vec4 aovPosition; // exact point, w = 1
+layout(location = KW_AOV_NORMAL_OUTPUT) out vec4 aovNormal; // unit normal (Su x Sv side, not flipped), w = 0
 #endif
 #ifdef KW_AOV_CURVATURE
-layout(location = 4) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvature)
-layout(location = 5) out vec4 aovDirection; // unit principal direction of k1 (world), w = 0
+layout(location = KW_AOV_CURVATURE_OUTPUT) out vec4 aovCurvature; // K, H, k1, k2 (kw::surfaceCurvature)
+layout(location = KW_AOV_DIRECTION_OUTPUT) out vec4 aovDirection; // unit principal direction of k1 (world), w = 0
 #endif
 
 void main() {

@@ -1,6 +1,6 @@
 // Overlays (base polygon wireframe, control net): positions pulled slightly towards the camera
 // in clip space so lines on the surface win the depth test.
-layout(location = 0) in vec3 aPosition;
+layout(location = KW_ATTR_POSITION) in vec3 aPosition;
 out vec3 vWorld; // for KW_SECTION's cut (lines.frag)
 
 uniform mat4 uViewProjection;

@@ -1,11 +1,11 @@
 // Base polygon vertex stage (paper 3.4.1): exact vertex positions, (u, v) and the cell's knot span.
 // Attributes match kw::BaseVertex (render/gpu_layout.h). The flat outputs are those of the
 // cell whose lower-left corner this vertex is (the provoking vertex of its triangles).
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec2 aUv;
-layout(location = 2) in ivec2 aSpan;
-layout(location = 3) in float aSpanScale;
-layout(location = 4) in int aSurface; // per instance: the draw's base instance, a table row
+layout(location = KW_ATTR_POSITION) in vec3 aPosition;
+layout(location = KW_ATTR_UV) in vec2 aUv;
+layout(location = KW_ATTR_SPAN) in ivec2 aSpan;
+layout(location = KW_ATTR_SPAN_SCALE) in float aSpanScale;
+layout(location = KW_ATTR_SURFACE) in int aSurface; // per instance: the draw's base instance, a table row
 
 uniform mat4 uViewProjection;
 
@@ -24,7 +24,7 @@ flat out int vVertex; // the provoking vertex: the cell's span and span scale (K
 #ifdef KW_SKIRT
 // The edge skirt (kw::buildSkirt, kw::ExactSurfacePass::skirtPass): the outline's nodes, those
 // marked with an outward (u, v) direction pushed uSkirtPixels across the edge on screen.
-layout(location = 5) in vec2 aOutward;
+layout(location = KW_ATTR_OUTWARD) in vec2 aOutward;
 uniform float uSkirtPixels;
 uniform float uSkirtDepthScale; // clip z factor: the strip lies kSkirtDepthPixels behind
 #include "nurbs_surface.glsl"

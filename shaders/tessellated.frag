@@ -18,11 +18,11 @@ in float vDepth;
 
 uniform float uSurfaceId;
 
-layout(location = 0) out vec4 fragColor;
+layout(location = KW_COLOUR_OUTPUT) out vec4 fragColor;
 #ifdef KW_AOV
-layout(location = 1) out vec4 aovIdUvDepth;
-layout(location = 2) out vec4 aovPosition;
-layout(location = 3) out vec4 aovNormal;
+layout(location = KW_AOV_ID_UV_DEPTH_OUTPUT) out vec4 aovIdUvDepth;
+layout(location = KW_AOV_POSITION_OUTPUT) out vec4 aovPosition;
+layout(location = KW_AOV_NORMAL_OUTPUT) out vec4 aovNormal;
 #endif
 
 void main() {

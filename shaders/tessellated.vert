@@ -2,9 +2,9 @@
 // normals, Gouraud shading (lighting per vertex, colour interpolated).
 #include "phong.glsl"
 
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec2 aUv;
+layout(location = KW_ATTR_POSITION) in vec3 aPosition;
+layout(location = KW_ATTR_MESH_NORMAL) in vec3 aNormal;
+layout(location = KW_ATTR_MESH_UV) in vec2 aUv;
 
 uniform mat4 uViewProjection;
 uniform vec3 uForward;

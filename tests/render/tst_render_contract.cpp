@@ -16,12 +16,14 @@ using namespace kw;
 
 namespace {
 
-/// Lines of `source` that write a shared constant as a number instead of its name: texture
-/// and buffer bindings, the light array's size, analysis modes and colour scales, the surface
+/// Lines of `source` that write a shared constant as a number instead of its name: any layout
+/// qualifier's number (texture and buffer bindings, vertex attribute and fragment output
+/// locations), the light array's size, analysis modes and colour scales, the surface
 /// table's and the vertex pool's layouts, the span-table formula.
 QStringList literalViolations(const QString& source) {
     static const QRegularExpression patterns[] = {
-        QRegularExpression(QStringLiteral("binding\\s*=\\s*\\d")),
+        QRegularExpression(QStringLiteral(
+            "layout\\s*\\([^)]*\\b(binding|location|index|component)\\s*=\\s*[-+(]*\\d")),
         QRegularExpression(QStringLiteral("uniform\\s+\\w+\\s+\\w+\\s*\\[\\s*\\d")),
         QRegularExpression(QStringLiteral("\\bkMaxLights\\b")),
         QRegularExpression(QStringLiteral("KW_ANALYSIS\\s*(==|!=|>=|<=|>|<)\\s*\\d")),
@@ -44,6 +46,38 @@ QStringList literalViolations(const QString& source) {
                 break;
             }
     }
+    return out;
+}
+
+/// Declarations of `source` (a .vert's inputs when `vertexInputs`, else a .frag's outputs) that
+/// leave their location to the linker or give it as something other than a contract name.
+QStringList unnamedLocations(const QString& source, bool vertexInputs) {
+    static const QRegularExpression input(
+        QStringLiteral("^\\s*(layout\\s*\\(([^)]*)\\)\\s*)?(flat\\s+)?in\\s+\\w+\\s+\\w+"));
+    static const QRegularExpression output(
+        QStringLiteral("^\\s*(layout\\s*\\(([^)]*)\\)\\s*)?(flat\\s+)?out\\s+\\w+\\s+\\w+"));
+    static const QRegularExpression named(QStringLiteral("^\\s*location\\s*=\\s*KW_\\w+\\s*$"));
+    QStringList out;
+    const QStringList lines = source.split(QLatin1Char('\n'));
+    for (int k = 0; k < lines.size(); ++k) {
+        const QRegularExpressionMatch m = (vertexInputs ? input : output).match(lines[k]);
+        if (m.hasMatch() && !named.match(m.captured(2)).hasMatch())
+            out << QStringLiteral("line %1: %2").arg(k + 1).arg(lines[k].trimmed());
+    }
+    return out;
+}
+
+/// Lines of a C++ source that give a vertex attribute's location as a number: the vertex
+/// array calls whose second argument is the attribute.
+QStringList numericAttributes(const QString& source) {
+    static const QRegularExpression call(QStringLiteral(
+        "gl(?:EnableVertexArrayAttrib|DisableVertexArrayAttrib|VertexArrayAttrib[IL]?Format|"
+        "VertexArrayAttribBinding)\\s*\\(\\s*[^,()]+,\\s*\\d"));
+    QStringList out;
+    const QStringList lines = source.split(QLatin1Char('\n'));
+    for (int k = 0; k < lines.size(); ++k)
+        if (call.match(lines[k].section(QStringLiteral("//"), 0, 0)).hasMatch())
+            out << QStringLiteral("line %1: %2").arg(k + 1).arg(lines[k].trimmed());
     return out;
 }
 
@@ -103,6 +137,11 @@ private Q_SLOTS:
         QVERIFY(
             preamble.contains(QStringLiteral("#define KW_SECTION_CAP_ID %1\n").arg(kSectionCapId)));
         QCOMPARE(featureDefines(ExactFeature::Section), QStringList{QStringLiteral("KW_SECTION")});
+        // Attribute and output locations.
+        QVERIFY(
+            preamble.contains(QStringLiteral("#define KW_ATTR_OUTWARD %1\n").arg(kAttrOutward)));
+        QVERIFY(preamble.contains(
+            QStringLiteral("#define KW_AOV_CURVATURE_OUTPUT %1\n").arg(kAovCurvatureOutput)));
     }
 
     void degreeDefinesCarrySpanTableWidths() {
@@ -185,6 +224,18 @@ private Q_SLOTS:
     void checkFindsLiterals() {
         // The check itself: each kind of repeated literal is caught, comments are not.
         QVERIFY(!literalViolations(QStringLiteral("layout(binding = 5) uniform x;")).isEmpty());
+        QVERIFY(!literalViolations(QStringLiteral("layout(location = 0) in vec3 aPosition;"))
+                     .isEmpty());
+        QVERIFY(!literalViolations(QStringLiteral("layout(location=4) out vec4 aovCurvature;"))
+                     .isEmpty());
+        QVERIFY(!literalViolations(QStringLiteral("layout(std140, binding = 2) uniform B {"))
+                     .isEmpty());
+        QVERIFY(!literalViolations(QStringLiteral("layout(location = 1, index = 1) out vec4 c;"))
+                     .isEmpty());
+        QVERIFY(literalViolations(
+                    QStringLiteral("layout(location = KW_ATTR_POSITION) in vec3 aPosition;"))
+                    .isEmpty());
+        QVERIFY(literalViolations(QStringLiteral("int location = 0;")).isEmpty());
         QVERIFY(!literalViolations(QStringLiteral("uniform vec3 uL[8];")).isEmpty());
         QVERIFY(!literalViolations(QStringLiteral("#if KW_ANALYSIS == 8")).isEmpty());
         QVERIFY(!literalViolations(QStringLiteral("#define KW_ANALYSIS 0")).isEmpty());
@@ -211,6 +262,52 @@ private Q_SLOTS:
         }
     }
 
+    void locationsAreContractNames() {
+        // The check: a number, a missing layout and a name are told apart.
+        QVERIFY(!unnamedLocations(QStringLiteral("in vec3 aPosition;"), true).isEmpty());
+        QVERIFY(
+            !unnamedLocations(QStringLiteral("layout(location = 2) in vec2 aUv;"), true).isEmpty());
+        QVERIFY(unnamedLocations(QStringLiteral("layout(location = KW_ATTR_UV) in vec2 aUv;"), true)
+                    .isEmpty());
+        QVERIFY(!unnamedLocations(QStringLiteral("out vec4 fragColor;"), false).isEmpty());
+        QVERIFY(unnamedLocations(QStringLiteral("flat in int vSurface;"), false).isEmpty());
+        QVERIFY(unnamedLocations(QStringLiteral("layout(location = KW_COLOUR_OUTPUT) out vec4 c;"),
+                                 false)
+                    .isEmpty());
+        // Every vertex input and fragment output names its location from the contract.
+        int named = 0;
+        for (const QString& f : shaderFiles()) {
+            const bool vertex = f.endsWith(QLatin1String(".vert"));
+            if (!vertex && !f.endsWith(QLatin1String(".frag")))
+                continue;
+            const QString source = readShader(f);
+            const QStringList bad = unnamedLocations(source, vertex);
+            QVERIFY2(bad.isEmpty(),
+                     qPrintable(f + QStringLiteral(": ") + bad.join(QLatin1Char('\n'))));
+            named += int(source.count(QStringLiteral("location = KW_")));
+        }
+        QVERIFY(named >= 32);
+        // And the C++ side: the vertex arrays set their attributes by the same names.
+        QVERIFY(
+            !numericAttributes(QStringLiteral("gl->glEnableVertexArrayAttrib(vao, 4);")).isEmpty());
+        QVERIFY(!numericAttributes(
+                     QStringLiteral("glVertexArrayAttribIFormat(m.vao, 2, 2, GL_INT, 0);"))
+                     .isEmpty());
+        QVERIFY(numericAttributes(QStringLiteral("glVertexArrayAttribBinding(vao, kAttrUv, 0);"))
+                    .isEmpty());
+        const QDir render(QStringLiteral(KW_SOURCE_DIR "/render"));
+        const QStringList sources =
+            render.entryList({QStringLiteral("*.cpp"), QStringLiteral("*.h")}, QDir::Files);
+        QVERIFY(sources.size() > 20);
+        for (const QString& name : sources) {
+            QFile f(render.filePath(name));
+            QVERIFY(f.open(QIODevice::ReadOnly | QIODevice::Text));
+            const QStringList bad = numericAttributes(QString::fromUtf8(f.readAll()));
+            QVERIFY2(bad.isEmpty(),
+                     qPrintable(name + QStringLiteral(": ") + bad.join(QLatin1Char('\n'))));
+        }
+    }
+
     void shadersUseOnlyDeclaredConstants() {
         // A contract name a shader uses and the preamble lacks would fail only when that
         // variant is built; every one must be declared.
@@ -220,8 +317,8 @@ private Q_SLOTS:
         for (const AnalysisMode m : analysisModes())
             declared.insert(analysisModeDefine(m));
         const QRegularExpression name(QStringLiteral(
-            "\\bKW_(?:\\w+_(?:UNIT|BINDING|TEXEL|TEXELS|WORD|WORDS)|ANALYSIS_\\w+|SCALE_\\w+|"
-            "MAX_LIGHTS)\\b"));
+            "\\bKW_(?:\\w+_(?:UNIT|BINDING|TEXEL|TEXELS|WORD|WORDS|OUTPUT)|ANALYSIS_\\w+|"
+            "SCALE_\\w+|ATTR_\\w+|MAX_LIGHTS)\\b"));
         // Names a shader defines for itself are its own, not shared with C++.
         const QRegularExpression own(QStringLiteral("#define\\s+(\\w+)"));
         for (const QString& f : shaderFiles()) {
