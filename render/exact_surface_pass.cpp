@@ -295,9 +295,10 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
                             options, range);
     }
     sectionCrossedCells = m_plan.sectionCells();
+    mark(PassTimes::Exact);
     if (drawn && !m_plan.sections().empty())
         drawn = sectionPass(scene, camera, lights, options, range);
-    mark(PassTimes::Exact);
+    mark(PassTimes::Sections);
     finTriangles = 0;
     if (drawn && !m_plan.skirts().empty())
         drawn = skirtPass(scene, camera, lights, options, range);
@@ -502,6 +503,10 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
     gl->glDisable(GL_DEPTH_TEST);
     gl->glDisable(GL_CULL_FACE);
     gl->glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    // No stencil write either: llvmpipe moves the stencil test after a shader that may discard
+    // (the section test's cut) whenever the stencil's write mask is not 0, and then shaded
+    // every pixel of the route's window, background included (4x the cut sphere's exact pass).
+    gl->glStencilMask(0);
     if (!m_emptyVao)
         gl->glCreateVertexArrays(1, &m_emptyVao);
     gl->glBindVertexArray(m_emptyVao);
@@ -545,6 +550,7 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
         gl->glDisable(GL_SCISSOR_TEST);
     gl->glBindTextureUnit(kVertexPoolUnit, 0);
     gl->glBindTextureUnit(kPrepassUnit, 0);
+    gl->glStencilMask(0xff);
     gl->glEnable(GL_DEPTH_TEST);
     return drawn;
 }
