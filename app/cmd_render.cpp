@@ -334,6 +334,11 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
         };
         double image = 0.0;
+        // KW_PASS_TIMES=1 (development): each pass's process CPU too, ended by glFinish
+        // (Renderer::setPassProfiling; the frame's total then includes the waits).
+        const bool passTimes = qEnvironmentVariable("KW_PASS_TIMES") == QLatin1String("1");
+        renderer.renderer().setPassProfiling(passTimes);
+        std::vector<std::vector<double>> passCpu(PassTimes::kCount);
         for (int k = 0; k < timedFrames; ++k) {
             if (options.progressive && k % options.samples == 0)
                 renderer.renderer().restartProgressive();
@@ -348,6 +353,9 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             renderer.finish();
             ms.push_back(double(t.nsecsElapsed()) * 1e-6);
             cpuMs.push_back(processCpuMs() - cpu);
+            if (const PassTimes& p = renderer.lastReport().passes; p.measured)
+                for (int pass = 0; pass < PassTimes::kCount; ++pass)
+                    passCpu[std::size_t(pass)].push_back(p.cpuMs[pass]);
             if (options.progressive) {
                 const FrameReport& r = renderer.lastReport();
                 (r.samplesInImage == 1 ? firstMs : laterMs).push_back(ms.back());
@@ -372,6 +380,15 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                          .arg(options.samples)
                          .arg(median(imageMs), 0, 'f', 2)
                          .arg(imageMs.size()));
+        if (passTimes) {
+            QString line;
+            for (int pass = 0; pass < PassTimes::kCount; ++pass)
+                if (const double m = median(passCpu[std::size_t(pass)]); m >= 0.05)
+                    line += QStringLiteral(" %1 %2")
+                                .arg(QLatin1String(PassTimes::name(pass)))
+                                .arg(m, 0, 'f', 1);
+            printOut(QStringLiteral("%1: median pass CPU ms:%2\n").arg(files[0], line));
+        }
         std::sort(ms.begin(), ms.end());
         // The GL renderer too: a timing is only comparable with one taken on the same device.
         printOut(

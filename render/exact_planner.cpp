@@ -138,7 +138,7 @@ const ExactPlace* ExactPlanner::place(const SurfaceRecord* r) const {
 }
 
 int ExactPlanner::stencilOf(const ExactBatch& b) const {
-    return b.route >= 0 ? m_routes.at(b.route).stencil : 0;
+    return b.route >= 0 ? m_routes.at(b.route).stencil : kForwardStencil;
 }
 
 std::int64_t ExactPlanner::trimTestedCells() const {

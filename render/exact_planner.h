@@ -204,7 +204,12 @@ public:
         glm::vec4 window{0.0f};
     };
     const std::map<int, Route>& routes() const { return m_routes; }
-    /// The stencil value of a pre-pass batch's route (0: none, the forward pass draws it).
+    /// The stencil value the forward pass's cells write in a deferred frame's pre-pass (with
+    /// their pre-pass data, for Renderer::pickInLastFrame): no route has it, so the deferred
+    /// pass leaves those pixels alone. Routes take 1 .. kForwardStencil - 1.
+    static constexpr int kForwardStencil = 255;
+    /// The stencil value of a pre-pass batch's route (kForwardStencil: none, the forward pass
+    /// draws it).
     int stencilOf(const ExactBatch& b) const;
     /// A record's place, or null when the last plan did not see it.
     const ExactPlace* place(const SurfaceRecord* r) const;

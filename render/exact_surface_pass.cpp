@@ -176,10 +176,10 @@ Status ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
             gl->glDisable(GL_STENCIL_TEST);
         else if (deferred)
             gl->glStencilFunc(GL_ALWAYS, m_plan.stencilOf(*b), 0xff);
-        // The forward pass's surfaces (no route) need no input for the deferred pass.
-        const GLboolean write = deferred && b->route >= 0 ? GL_TRUE : GL_FALSE;
+        // The forward pass's surfaces (no route) write the same words, which the deferred
+        // pass skips (ExactPlanner::kForwardStencil) and a pick reads (pickInLastFrame).
         if (deferred)
-            gl->glColorMask(write, write, write, write);
+            gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         drawBatch(*b);
         if (deferred && b->trimmed)
             gl->glEnable(GL_STENCIL_TEST);
@@ -200,8 +200,6 @@ Status ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
             gl->glDepthFunc(GL_EQUAL);
             gl->glDepthMask(GL_FALSE);
             for (const auto& [k, b] : trimmed) {
-                if (b.route < 0)
-                    continue; // drawn the forward way: no stencil needed (deferredPass)
                 gl->glStencilFunc(GL_ALWAYS, m_plan.stencilOf(b), 0xff);
                 drawBatch(b);
             }
@@ -259,9 +257,11 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     // triangle, and GL_EQUAL needs bit-identical depths.
     gl->glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
     Status drawn;
-    // One stencil value per route, 1..255 (0: no surface); none when every surface has large
+    // One stencil value per route, 1..254 (0: no surface, 255: the forward pass's surfaces);
+    // none when every surface has large
     // cells (a close-up): then the forward way alone, without the deferred pass's set-up.
-    const bool defer = deferredWanted && !m_plan.routes().empty() && m_plan.routes().size() <= 255;
+    const bool defer = deferredWanted && !m_plan.routes().empty() &&
+                       m_plan.routes().size() < std::size_t(ExactPlanner::kForwardStencil);
     deferredSurfaces = defer ? m_plan.deferredSurfaces() : 0;
     std::vector<GLenum> drawBuffers; // the frame's, while the pre-pass writes its texture
     const auto mark = [this](PassTimes::Pass pass) {
@@ -295,9 +295,10 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
                             options, range);
     }
     sectionCrossedCells = m_plan.sectionCells();
+    mark(PassTimes::Exact);
     if (drawn && !m_plan.sections().empty())
         drawn = sectionPass(scene, camera, lights, options, range);
-    mark(PassTimes::Exact);
+    mark(PassTimes::Sections);
     finTriangles = 0;
     if (drawn && !m_plan.skirts().empty())
         drawn = skirtPass(scene, camera, lights, options, range);
@@ -360,11 +361,20 @@ Status ExactSurfacePass::sectionPass(const GpuScene& scene, const FrameCamera& c
                                      const ValueRange& range) {
     // Their exact point decides both the cut and the depth: a fragment in front of the kept
     // cells' (pre-pass) depth replaces them, one the planes remove leaves what lies behind.
+    // Their pixels' stencil goes to 0: the pre-pass data under them is the kept cells' behind
+    // (Renderer::pickInLastFrame then draws the pixel). gl_FragDepth already keeps llvmpipe's
+    // depth test after the shader, so the stencil write costs no early test.
     m_gl->glDepthFunc(kDepthNearer);
     m_gl->glDepthMask(GL_TRUE);
+    m_gl->glEnable(GL_STENCIL_TEST);
+    m_gl->glStencilFunc(GL_ALWAYS, 0, 0xff);
+    m_gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     RenderOptions exactDepth = options;
     exactDepth.shading = RenderOptions::Shading::ExactDepth;
-    return drawBatches(m_plan.sections(), TrimAa::Off, scene, camera, lights, exactDepth, range);
+    const Status drawn =
+        drawBatches(m_plan.sections(), TrimAa::Off, scene, camera, lights, exactDepth, range);
+    m_gl->glDisable(GL_STENCIL_TEST);
+    return drawn;
 }
 
 Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& camera,
@@ -504,6 +514,10 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
     gl->glDisable(GL_DEPTH_TEST);
     gl->glDisable(GL_CULL_FACE);
     gl->glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    // No stencil write either: llvmpipe moves the stencil test after a shader that may discard
+    // (the section test's cut) whenever the stencil's write mask is not 0, and then shaded
+    // every pixel of the route's window, background included (4x the cut sphere's exact pass).
+    gl->glStencilMask(0);
     if (!m_emptyVao)
         gl->glCreateVertexArrays(1, &m_emptyVao);
     gl->glBindVertexArray(m_emptyVao);
@@ -547,6 +561,7 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
         gl->glDisable(GL_SCISSOR_TEST);
     gl->glBindTextureUnit(kVertexPoolUnit, 0);
     gl->glBindTextureUnit(kPrepassUnit, 0);
+    gl->glStencilMask(0xff);
     gl->glEnable(GL_DEPTH_TEST);
     return drawn;
 }

@@ -70,6 +70,7 @@ struct PassTimes {
         Sync,         ///< the GPU scene brought up to date: uploads, partitions, trim masks
         Prepass,      ///< the depth pre-pass (exact trims tested there near trim curves)
         Exact,        ///< the exact pass: deferred shading and the forward batches
+        Sections,     ///< the cells a section plane crosses (exact depth, the section test)
         Skirts,       ///< edge skirts
         Fins,         ///< silhouette fins
         BackFaces,    ///< back faces of closed solids seen from inside or cut
@@ -84,7 +85,7 @@ struct PassTimes {
     bool measured = false; ///< profiling was on for this frame
     static const char* name(int pass) {
         static const char* const names[kCount] = {
-            "sync",       "prepass",    "exact",         "skirts",   "fins",
+            "sync",       "prepass",    "exact",         "sections", "skirts", "fins",
             "back faces", "trim edges", "anti-aliasing", "overlays", "present"};
         return pass >= 0 && pass < kCount ? names[pass] : "";
     }

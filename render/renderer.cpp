@@ -356,8 +356,9 @@ Renderer::FramePick Renderer::pickInLastFrame(const Document& doc, const Camera&
     gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readBefore));
     const unsigned stencil = ds.stencil & 0xffu;
     if (stencil == 0) {
-        // Nothing drawn there is background; a surface drawn the forward way, a skirt or a
-        // fin left no (u, v) to read.
+        // Nothing drawn there is background; a skirt, a fin or a cell a section plane
+        // crosses left no (u, v) to read. The forward pass's surfaces left theirs
+        // (ExactPlanner::kForwardStencil).
         answer.known = ds.depth == kFarDepth;
         return answer;
     }

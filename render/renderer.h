@@ -57,7 +57,9 @@ public:
     /// point, and of the frame's sample offset: refine it onto the pixel's ray, as the probe
     /// does), read back from that frame's buffers (a few bytes); a pixel that frame left
     /// empty is background. `known` is false where the frame cannot tell (another view or
-    /// revision, a surface drawn the forward way, a skirt, no deferred pass): then pick().
+    /// revision, a skirt or fin, a cell a section plane crosses, no deferred pass): then
+    /// pick(). The forward pass's surfaces leave their data in the pre-pass as the deferred
+    /// pass's do.
     /// Needs the renderer's context current.
     struct FramePick {
         bool known = false;
