@@ -208,6 +208,8 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
         o.insert(QStringLiteral("analytic"),
                  QString::fromLatin1(analyticKindName(s.analytic.kind)));
         o.insert(QStringLiteral("area"), props.area);
+        if (props.approximate) // hostile trims spent the exact measure's budget
+            o.insert(QStringLiteral("areaApproximate"), true);
         o.insert(QStringLiteral("bbox"),
                  props.hasBounds ? bboxJson(props.lo, props.hi) : QJsonValue(QJsonValue::Null));
         if (s.solid >= 0) // as the .knot file writes it (docs/FILE_FORMAT.md, "Solid")
@@ -229,6 +231,8 @@ QJsonObject toJson(const QString& file, const Scene& scene) {
                      {QStringLiteral("unit"), lengthUnitKey(scene.unit)},
                      {QStringLiteral("nextId"), qint64(scene.nextId)}};
     root.insert(QStringLiteral("area"), model.area);
+    if (model.approximate)
+        root.insert(QStringLiteral("areaApproximate"), true);
     root.insert(QStringLiteral("volume"),
                 model.volume ? QJsonValue(*model.volume) : QJsonValue(QJsonValue::Null));
     root.insert(QStringLiteral("bbox"),
@@ -266,7 +270,8 @@ QString toText(const QString& file, const Scene& scene) {
         out += QStringLiteral("  type %1 (analytic form: %2), area %3%4\n")
                    .arg(surfaceTypeName(props.type))
                    .arg(QString::fromLatin1(analyticKindName(s.analytic.kind)))
-                   .arg(props.area, 0, 'g', 12)
+                   .arg(QString::number(props.area, 'g', 12) +
+                        (props.approximate ? QStringLiteral(" (approximate)") : QString()))
                    .arg(props.hasBounds
                             ? QStringLiteral(", bbox %1 .. %2").arg(text(props.lo), text(props.hi))
                             : QString());
@@ -292,10 +297,12 @@ QString toText(const QString& file, const Scene& scene) {
                                                  : QStringLiteral("against Su x Sv"));
     }
     out += topologyText(scene);
-    out += QStringLiteral("area: %1\nvolume: %2\n")
-               .arg(model.area, 0, 'g', 12)
-               .arg(model.volume ? QString::number(*model.volume, 'g', 12)
-                                 : QStringLiteral("none (no closed solid)"));
+    out +=
+        QStringLiteral("area: %1\nvolume: %2\n")
+            .arg(QString::number(model.area, 'g', 12) +
+                 (model.approximate ? QStringLiteral(" (approximate: hostile trims)") : QString()))
+            .arg(model.volume ? QString::number(*model.volume, 'g', 12)
+                              : QStringLiteral("none (no closed solid)"));
     if (model.hasBounds)
         out += QStringLiteral("bbox: %1 .. %2\n").arg(text(model.lo), text(model.hi));
     for (size_t k = 0; k < scene.lights.size(); ++k)

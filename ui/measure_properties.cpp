@@ -166,12 +166,13 @@ void MeasuredProperties::show(std::uint64_t generation, SurfaceId face,
     if (f) {
         const Surface* s = m_doc->surface(face);
         // The unit's powers are concatenated: arg() would read "%6²" as a two-digit placeholder.
-        m_face->setText(
-            tr("%1\ntype %2, degree %3 × %4\narea %5 %6\n%7")
-                .arg(s ? s->name : QString(), surfaceTypeName(f->type))
-                .arg(f->degreeU)
-                .arg(f->degreeV)
-                .arg(num(f->area), unit + u'²', boxText(f->hasBounds, f->lo, f->hi, unit)));
+        m_face->setText(tr("%1\ntype %2, degree %3 × %4\narea %5 %6\n%7")
+                            .arg(s ? s->name : QString(), surfaceTypeName(f->type))
+                            .arg(f->degreeU)
+                            .arg(f->degreeV)
+                            .arg(num(f->area),
+                                 unit + u'²' + (f->approximate ? tr(" (approximate)") : QString()),
+                                 boxText(f->hasBounds, f->lo, f->hi, unit)));
     } else {
         m_face->setText(tr("no surface selected"));
     }
@@ -182,7 +183,8 @@ void MeasuredProperties::show(std::uint64_t generation, SurfaceId face,
                                              .arg(num(*m.volume), unit + u'³')
                                              .arg(m.closedShells)
                                        : tr("none (no closed solid)"),
-                              boxText(m.hasBounds, m.lo, m.hi, unit), unit + u'²'));
+                              boxText(m.hasBounds, m.lo, m.hi, unit),
+                              unit + u'²' + (m.approximate ? tr(" (approximate)") : QString())));
     m_shown = generation;
     Q_EMIT updated();
 }

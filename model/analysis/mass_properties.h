@@ -12,6 +12,12 @@
 
 namespace kw {
 
+/// Density evaluations (|Su x Sv| and its companions at one (u, v)) one face's integrals may
+/// spend, about half a second. Well-formed faces need far fewer (the CAD parts in tests/data at
+/// most ~60,000); hostile trims (nearly singular rational curves, thousands of knot spans) would
+/// otherwise halve to the depth limit everywhere and run for minutes.
+constexpr long kAreaEvaluationBudget = 1'500'000;
+
 /// Integrals over the trimmed part of one face.
 struct FaceIntegrals {
     double area = 0.0;
@@ -21,6 +27,10 @@ struct FaceIntegrals {
     /// The integral of Su x Sv (the normal times dA): the flux about another origin o' is
     /// volume + (origin - o') . vectorArea / 3.
     glm::dvec3 vectorArea{0.0};
+    /// True when the quadrature or the search for crossing trims ran out of its budget (hostile
+    /// trims): the values are then the best estimate reached, not exact to `relative`.
+    bool approximate = false;
+    long evaluations = 0; ///< density evaluations spent (the budget caps them)
 };
 
 /// Area and volume flux of the part of `surface` its trims keep (even-odd, as the trim mask),
@@ -31,9 +41,13 @@ struct FaceIntegrals {
 /// split at the surface's v knots, so no flattening error enters. Loops are signed by their
 /// orientation and their nesting depth. Without trims the domain's boundary is the loop.
 /// Invalid trim curves are left out and gaps bridged straight, as makeTrimRegion does.
+/// Trims that cross one another or themselves, or reach past the (u, v) domain, are measured
+/// through the boundary of their even-odd region clipped to the domain (the loops cut where they
+/// cross), so the area lies in [0, the untrimmed area] for any trims. Past `budget` density
+/// evaluations no interval is halved again and the result is flagged approximate.
 /// Precondition: a valid surface.
 FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin = glm::dvec3(0.0),
-                            double relative = 1e-11);
+                            double relative = 1e-11, long budget = kAreaEvaluationBudget);
 
 /// Area of the part of `surface` its trims keep: faceIntegrals' area, the one measure of a
 /// trimmed area (the properties panel, `knotwork info` and the tests use it). A measure over
@@ -52,6 +66,9 @@ struct FaceProperties {
     SurfaceType type = SurfaceType::FreeForm;
     int degreeU = 0, degreeV = 0;
     double area = 0.0;
+    /// The area (and the face's flux) is an estimate: hostile trims spent the measure's budget
+    /// (FaceIntegrals::approximate). Shown as such, never passed off as exact.
+    bool approximate = false;
     bool hasBounds = false;
     glm::dvec3 lo{0.0}, hi{0.0};
 };
@@ -76,6 +93,7 @@ std::vector<FaceMeasure> measureFaces(const Scene& scene, const std::vector<size
 /// The model's totals.
 struct ModelProperties {
     double area = 0.0; ///< every face, hidden or not
+    bool approximate = false; ///< some face's area is an estimate (FaceProperties::approximate)
     /// Sum of the volumes of the closed shells (kw::closedShells: recorded closed and every seam
     /// within tolerance), each face oriented by Surface::outsideAlongNormal; nullopt when no shell
     /// is closed. The shells of one solid (Shell::solid: an outer shell and its cavities) are
