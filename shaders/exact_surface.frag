@@ -439,7 +439,7 @@ void main() {
 #ifdef KW_RAY_NEWTON
 #ifdef KW_ANALYTIC
     SurfaceSample s;
-    bool away; // its trim test, made there for each meeting
+    bool away; // the trim test at the meeting taken, made there
     vec2 onto = kwAnalyticPoint(uv, span, vSpanScale, s, away);
 #else
     float before;
