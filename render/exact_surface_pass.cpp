@@ -359,59 +359,21 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
 Status ExactSurfacePass::sectionPass(const GpuScene& scene, const FrameCamera& camera,
                                      const std::vector<Light>& lights, const RenderOptions& options,
                                      const ValueRange& range) {
-    // Their exact point decides the cut: a fragment in front of the kept cells' (pre-pass)
-    // depth replaces them, one the planes remove leaves what lies behind. Their pixels'
-    // stencil goes to 0: the pre-pass data under them is the kept cells' behind
-    // (Renderer::pickInLastFrame then draws the pixel).
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
-    gl->glDepthFunc(kDepthNearer);
-    gl->glDepthMask(GL_TRUE);
-    std::map<int, ExactBatch> curved, affine;
-    for (const auto& [key, b] : m_plan.sections())
-        (b.affine ? affine : curved).emplace(key, b);
-    Status drawn;
-    if (!affine.empty()) {
-        // An affine surface's polygon is the surface: its depth is the exact point's, so no
-        // gl_FragDepth, and the depth test stays before the shader (no stencil write with the
-        // shader's discard either, which would move it after): the kept cells in front spare
-        // the hidden fragments. Their stencil after, on the depth they left.
-        gl->glDisable(GL_STENCIL_TEST);
-        drawn = drawBatches(affine, TrimAa::Off, scene, camera, lights, options, range);
-        const Expected<QOpenGLShaderProgram*> built =
-            drawn ? m_shaders->program(QStringLiteral("surface.vert"),
-                                       QStringLiteral("depth_only.frag"), {})
-                  : Expected<QOpenGLShaderProgram*>(nullptr);
-        if (drawn && !built) {
-            drawn = built.error();
-        } else if (drawn) {
-            QOpenGLShaderProgram* prog = *built;
-            prog->bind();
-            gl->glUniformMatrix4fv(ShaderLibrary::uniforms(prog).viewProjection, 1, GL_FALSE,
-                                   glm::value_ptr(drawnViewProjection(camera)));
-            gl->glEnable(GL_STENCIL_TEST);
-            gl->glStencilFunc(GL_ALWAYS, 0, 0xff);
-            gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-            gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-            gl->glDepthFunc(GL_EQUAL);
-            gl->glDepthMask(GL_FALSE);
-            for (const auto& [key, b] : affine)
-                drawBatch(b);
-            gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-            gl->glDepthFunc(kDepthNearer);
-            gl->glDepthMask(GL_TRUE);
-        }
-    }
-    if (drawn && !curved.empty()) {
-        // The others with their exact point's depth: gl_FragDepth keeps llvmpipe's depth test
-        // after the shader anyway, so the stencil write costs no early test.
-        gl->glEnable(GL_STENCIL_TEST);
-        gl->glStencilFunc(GL_ALWAYS, 0, 0xff);
-        gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-        RenderOptions exactDepth = options;
-        exactDepth.shading = RenderOptions::Shading::ExactDepth;
-        drawn = drawBatches(curved, TrimAa::Off, scene, camera, lights, exactDepth, range);
-    }
-    gl->glDisable(GL_STENCIL_TEST);
+    // Their exact point decides both the cut and the depth: a fragment in front of the kept
+    // cells' (pre-pass) depth replaces them, one the planes remove leaves what lies behind.
+    // Their pixels' stencil goes to 0: the pre-pass data under them is the kept cells' behind
+    // (Renderer::pickInLastFrame then draws the pixel). gl_FragDepth already keeps llvmpipe's
+    // depth test after the shader, so the stencil write costs no early test.
+    m_gl->glDepthFunc(kDepthNearer);
+    m_gl->glDepthMask(GL_TRUE);
+    m_gl->glEnable(GL_STENCIL_TEST);
+    m_gl->glStencilFunc(GL_ALWAYS, 0, 0xff);
+    m_gl->glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    RenderOptions exactDepth = options;
+    exactDepth.shading = RenderOptions::Shading::ExactDepth;
+    const Status drawn =
+        drawBatches(m_plan.sections(), TrimAa::Off, scene, camera, lights, exactDepth, range);
+    m_gl->glDisable(GL_STENCIL_TEST);
     return drawn;
 }
 
