@@ -326,8 +326,9 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
             // Cells not split by the planes (no bounds for them): every one is crossed.
             commands.all.count = commands.inside.count = commands.edge.count = 0;
         }
+        // The analytic bit too: a batch takes its program's features from its first record.
         p.sectionVariant = degrees | int(mask != nullptr) << 8 | int(gather) << 9 | p.face << 10 |
-                           int(affine) << 12;
+                           int(affine) << 12 | int(analytic) << 14;
     }
     return p;
 }

@@ -90,9 +90,9 @@ struct ExactPlace {
     int backIndex = -1;
     int backInsideIndex = -1;
     /// A section plane crosses it (PlanFlag::SectionSplit): key into sections() (degrees, the
-    /// trim lookup, gather, face, affine) and its command there, the cells a plane crosses
-    /// (SurfaceGpu::crossedIndexCount; all of them when its cells are not split by the
-    /// planes). Its other commands then hold only the cells every plane keeps.
+    /// trim lookup, gather, face, affine, analytic) and its command there, the cells a plane
+    /// crosses (SurfaceGpu::crossedIndexCount; all of them when its cells are not split by
+    /// the planes). Its other commands then hold only the cells every plane keeps.
     int sectionVariant = -1;
     int sectionIndex = -1;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its

@@ -510,15 +510,15 @@ void main() {
     // front of it instead: the plane's point and normal. The depth stays the face's, so that a
     // kept surface in front of the face (outside the solid's cut) still hides the cap.
 #ifdef KW_DEFERRED
-    // The deferred pass shades only cells no plane reaches within the line's width (kw::
-    // sectionCellClasses), and its screen derivatives jump between the surfaces of a 2 x 2
-    // block: no line.
+    // The deferred pass shades only cells every plane keeps, farther than the line's width
+    // (kw::sectionCellClasses, conservative): no cut to test, and no line (its screen
+    // derivatives jump between the surfaces of a 2 x 2 block there). Only the caps remain.
     float sectionLine = 0.0;
 #else
     float sectionLine = kwSectionLine(s.point);
-#endif
     if (kwSectionCut(s.point))
         discard;
+#endif
     vec3 capPoint;
     int capPlane = uSolidSide == 0 ? -1 : kwSectionCap(s.point, s.normal * float(uSolidSide), capPoint);
     if (capPlane >= 0) {
@@ -538,7 +538,11 @@ void main() {
 #endif
 #ifdef KW_SECTION
     if (capPlane >= 0) {
+#if KW_ANALYSIS != KW_ANALYSIS_PHONG
         colour = kwCapColour(phong(s.point, s.normal));
+#else
+        colour = kwCapColour(colour); // lit at the cap already (s is the cap's point)
+#endif
         curvature = vec4(0.0); // a plane
     } else {
 #endif

@@ -112,6 +112,29 @@ private Q_SLOTS:
         QCOMPARE(plan.analyticSurfaces(), 0);
     }
 
+    // Crossed by a section plane, an analytic face and a NURBS face of the same degrees go to
+    // two section batches: a batch's program takes its closed form from its first record.
+    void crossedAnalyticFacesBatchApart() {
+        Records rs;
+        SurfaceRecord& cylinder = rs.add(2, 1, true);
+        SurfaceRecord& nurbs = rs.add(2, 1, false, glm::vec3(1.0f, 0.0f, 0.0f));
+        RenderOptions o;
+        o.partitioning = RenderOptions::Partitioning::Adaptive;
+        o.sections = {SectionPlane{glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0), false}};
+        const FrameCamera cam = camera();
+        ExactPlanner plan;
+        std::vector<ExactPlanner::CommandWrite> writes;
+        plan.update(rs.scene(), ExactPlanner::keyFor(rs.scene(), cam, o, false, false, true), cam,
+                    writes);
+        const ExactPlace* pc = plan.place(&cylinder);
+        const ExactPlace* pn = plan.place(&nurbs);
+        QVERIFY(pc && pn && pc->sectionVariant >= 0 && pn->sectionVariant >= 0);
+        QVERIFY(pc->sectionVariant != pn->sectionVariant);
+        QCOMPARE(int(plan.sections().size()), 2);
+        QVERIFY(plan.sections().at(pc->sectionVariant).analytic);
+        QVERIFY(!plan.sections().at(pn->sectionVariant).analytic);
+    }
+
     void droppedFormIsPlannedAgain() {
         Records rs;
         SurfaceRecord& cylinder = rs.add(2, 1, true);

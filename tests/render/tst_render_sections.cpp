@@ -334,7 +334,9 @@ private Q_SLOTS:
     /// crossed cell drawn the kept way (its pre-pass depth hiding what the cut opens), one
     /// drawn without the section test, or a kept cell left out, fails.
     void cellSplitMatchesAllExactDepth_data() {
-        QTest::addColumn<int>("scene"); // 0 teapot and sphere, 1 sphere, 2 trimmed plate
+        // 0 teapot and sphere, 1 sphere, 2 trimmed plate, 3 torus and a plane (affine: its
+        // crossed cell is drawn with its polygon's depth, which is its exact point's)
+        QTest::addColumn<int>("scene");
         QTest::addColumn<int>("planes");
         QTest::addColumn<double>("zoom");
         QTest::addRow("teapot and sphere, 1 plane") << 0 << 1 << 1.0;
@@ -342,6 +344,7 @@ private Q_SLOTS:
         QTest::addRow("teapot and sphere, 1 plane, 3x") << 0 << 1 << 3.0;
         QTest::addRow("sphere, cap") << 1 << 1 << 1.0;
         QTest::addRow("trimmed plate, 2 planes") << 2 << 2 << 1.0;
+        QTest::addRow("torus and a plane, 1 plane") << 3 << 1 << 1.0;
     }
     void cellSplitMatchesAllExactDepth() {
         QFETCH(int, scene);
@@ -352,6 +355,15 @@ private Q_SLOTS:
             auto plate = kwtest::loadSample(QStringLiteral("trimmed_plate"));
             QVERIFY2(plate, qPrintable(plate.message()));
             model = *plate;
+        } else if (scene == 3) {
+            auto torus = kwtest::loadSample(QStringLiteral("torus"));
+            QVERIFY2(torus, qPrintable(torus.message()));
+            model = *torus;
+            model.surfaces.push_back(kwtest::makeSurface(
+                model.nextId++,
+                makePlane(glm::dvec3(-2.0, -0.8, 0.3), glm::dvec3(1.6, 0.0, 0.0),
+                          glm::dvec3(0.0, 1.6, 0.0)),
+                1));
         } else {
             model = scene == 0 ? teapotAndSphere() : sphereSolid();
         }
@@ -379,6 +391,8 @@ private Q_SLOTS:
                  qPrintable(QStringLiteral("%1 cells, %2 crossed")
                                 .arg(report.partitions.cells)
                                 .arg(report.partitions.sectionCrossedCells)));
+        if (scene == 3) // the plane drawn as its polygon
+            QVERIFY(report.partitions.affineSurfaces >= 1);
         qInfo("%lld cells, %lld crossed, %d surfaces deferred",
               qlonglong(report.partitions.cells),
               qlonglong(report.partitions.sectionCrossedCells), report.partitions.deferredSurfaces);
