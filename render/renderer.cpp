@@ -151,7 +151,6 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     phase.start();
     const SampleRange range = sampleRange(doc, camera, target, size, options, samples,
                                           accumulated != nullptr, pickPixel != nullptr);
-    const std::vector<glm::vec2>& offsets = range.offsets;
     const size_t firstSample = range.first, endSample = range.end;
     RenderTarget sampleTarget = drawn;
     if (accumulated)
@@ -166,40 +165,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             error = done.message();
         return bool(done);
     };
-    bool ok = true;
-    if (accumulated && firstSample > 0 && firstSample < endSample)
-        ok = step(accumulated->keepFirst()); // before the next sample is drawn over it
-    for (size_t i = firstSample; ok && i < endSample; ++i) {
-        fc.jitter = offsets[i];
-        beginTarget(sampleTarget, options, pickPixel);
-        if (aa) {
-            aa->begin(&options.background.x);
-            if (options.backgroundTop)
-                drawBackground(options); // into the multisampled colour, as beginTarget did
-        }
-        ok = step(
-            options.mode == RenderMode::Exact
-                ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa)
-                : tessellated.draw(scene, options.trims, fc, lights, options));
-        // A progressive image's first sample is shown as it is, without the sum.
-        if (ok && accumulated && !(options.progressive && i == 0))
-            ok = step(accumulated->add(i == 0));
-        clock.mark(PassTimes::Antialiasing);
-    }
-    fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
-    if (ok && accumulated)
-        ok = step(options.progressive && firstSample == 0
-                      ? accumulated->resolveFirst(target.framebuffer)
-                      : accumulated->resolve(target.framebuffer));
-    // Resolved before the overlays: they are drawn into the host's framebuffer over the
-    // composite's colour and depth, as without anti-aliasing.
-    if (aa) {
-        if (const Status composited = aa->composite(target.framebuffer); !composited) {
-            if (ok)
-                error = composited.message();
-            ok = false;
-        }
-    }
+    bool ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights,
+                               options, report.analysisRange, pickPixel));
     clock.mark(PassTimes::Antialiasing);
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
@@ -540,6 +507,44 @@ Renderer::Impl::SampleRange Renderer::Impl::sampleRange(const Document& doc, con
         progressKey.reset();
     }
     return out;
+}
+
+Status Renderer::Impl::drawSamples(const SampleRange& range, const RenderTarget& sampleTarget,
+                                   std::uint32_t framebuffer, const FrameTargets& targets,
+                                   FrameCamera& fc, const std::vector<Light>& lights,
+                                   const RenderOptions& options, const ValueRange& analysisRange,
+                                   const QRect* pickPixel) {
+    AntialiasTarget* const aa = targets.aa;
+    AccumulateTarget* const accumulated = targets.accumulated;
+    Status done;
+    if (accumulated && range.first > 0 && range.first < range.end)
+        done = accumulated->keepFirst(); // before the next sample is drawn over it
+    for (size_t i = range.first; done && i < range.end; ++i) {
+        fc.jitter = range.offsets[i];
+        beginTarget(sampleTarget, options, pickPixel);
+        if (aa) {
+            aa->begin(&options.background.x);
+            if (options.backgroundTop)
+                drawBackground(options); // into the multisampled colour, as beginTarget did
+        }
+        done = options.mode == RenderMode::Exact
+                   ? exact.draw(scene, options.trims, fc, lights, options, analysisRange, aa)
+                   : tessellated.draw(scene, options.trims, fc, lights, options);
+        // A progressive image's first sample is shown as it is, without the sum.
+        if (done && accumulated && !(options.progressive && i == 0))
+            done = accumulated->add(i == 0);
+        clock.mark(PassTimes::Antialiasing);
+    }
+    fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
+    if (done && accumulated)
+        done = options.progressive && range.first == 0 ? accumulated->resolveFirst(framebuffer)
+                                                       : accumulated->resolve(framebuffer);
+    // Resolved before the overlays: they are drawn into the host's framebuffer over the
+    // composite's colour and depth, as without anti-aliasing. The first failure is kept.
+    if (aa)
+        if (const Status composited = aa->composite(framebuffer); !composited && done)
+            done = composited;
+    return done;
 }
 
 Status Renderer::Impl::drawOverlays(const RenderTarget& target, const FrameCamera& fc,

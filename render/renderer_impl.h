@@ -123,6 +123,13 @@ struct Renderer::Impl {
     SampleRange sampleRange(const Document& doc, const Camera& camera, const RenderTarget& target,
                             QSize size, const RenderOptions& options, int samples, bool accumulated,
                             bool pick);
+    /// Draws the samples [range.first, range.end) into `sampleTarget` (`fc` shifted by each
+    /// one's offset, unshifted after), then resolves the accumulated or multisampled frame into
+    /// `framebuffer`. Stops at the first failure, which it returns; the composite runs anyway.
+    Status drawSamples(const SampleRange& range, const RenderTarget& sampleTarget,
+                       std::uint32_t framebuffer, const FrameTargets& targets, FrameCamera& fc,
+                       const std::vector<Light>& lights, const RenderOptions& options,
+                       const ValueRange& analysisRange, const QRect* pickPixel);
     /// The wireframe, control net and edge bands over the frame, into its colour only.
     Status drawOverlays(const RenderTarget& target, const FrameCamera& fc,
                         const RenderOptions& options);
