@@ -82,9 +82,8 @@ bool readAnalysisOptions(const QCommandLineParser& parser, const RenderCliOption
     } else if (const std::optional<AnalysisMode> m = parseAnalysisMode(mode)) {
         a.mode = *m;
     } else {
-        return fail(o.shading, QStringLiteral("phong, gaussian, mean, max-curvature, min-radius, "
-                                              "zebra, isophotes, environment, draft or "
-                                              "isocurves"));
+        return fail(o.shading, analysisModeNames().join(QStringLiteral(", ")) +
+                                   QStringLiteral(" or isocurves"));
     }
     a.isocurves = a.isocurves || parser.isSet(o.isocurves);
     a.principalDirections = parser.isSet(o.directions);
@@ -226,10 +225,10 @@ RenderCliOptions addRenderOptions(QCommandLineParser& parser, const QString& def
                                           "viewers offer); default the project's."),
                            QStringLiteral("NAME"), QStringLiteral("dark")),
         QCommandLineOption(QStringLiteral("shading"),
-                           QStringLiteral("Exact mode colouring: phong (default), gaussian, mean, "
-                                          "max-curvature, min-radius, zebra, isophotes, "
-                                          "environment, draft, or isocurves (phong with "
-                                          "--isocurves)."),
+                           QStringLiteral("Exact mode colouring: %1 (default), %2, or isocurves "
+                                          "(phong with --isocurves).")
+                               .arg(analysisModeNames().first(),
+                                    analysisModeNames().mid(1).join(QStringLiteral(", "))),
                            QStringLiteral("MODE"), QStringLiteral("phong")),
         QCommandLineOption(QStringLiteral("isocurves"),
                            QStringLiteral("Overlay knot lines and iso-parameter lines on any "

@@ -443,10 +443,9 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     if (const std::optional<AnalysisMode> m = parseAnalysisMode(parser.value(scaleShading))) {
         scaleConfig.base.analysis.mode = *m;
     } else {
-        printError(QStringLiteral("%1: --scale-shading '%2' is not phong or an analysis mode "
-                                  "(gaussian, mean, max-curvature, min-radius, zebra, isophotes, "
-                                  "environment, draft)")
-                       .arg(cmd, parser.value(scaleShading)));
+        printError(QStringLiteral("%1: --scale-shading '%2' is not phong or an analysis mode (%3)")
+                       .arg(cmd, parser.value(scaleShading),
+                            analysisModeNames().mid(1).join(QStringLiteral(", "))));
         return kExitUsage;
     }
     scaleConfig.frames = config.frames;

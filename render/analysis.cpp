@@ -6,26 +6,53 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace kw {
 
 namespace {
+/// A mode's row: everything C++ knows of it besides a colour map's value (analysisValue). Its
+/// name gives the `--shading` parser, the View › Analysis menu and the toolbar list
+/// (analysisModes) and the shaders' define of its number (analysisModeDefine); its parameters
+/// say which uniforms setAnalysisUniforms sets and whether it is a colour map.
 struct ModeInfo {
     AnalysisMode mode;
     const char* name;
     const char* title;
+    AnalysisParameters parameters;
+    ColourScale scale; ///< a colour map's default scale
 };
+using P = AnalysisParameters;
 constexpr ModeInfo kModes[] = {
-    {AnalysisMode::Phong, "phong", "Shaded (Phong)"},
-    {AnalysisMode::Gaussian, "gaussian", "Gaussian curvature"},
-    {AnalysisMode::Mean, "mean", "Mean curvature"},
-    {AnalysisMode::MaxCurvature, "max-curvature", "Maximum curvature |k|"},
-    {AnalysisMode::MinRadius, "min-radius", "Minimum radius"},
-    {AnalysisMode::Zebra, "zebra", "Zebra stripes"},
-    {AnalysisMode::Isophotes, "isophotes", "Isophotes"},
-    {AnalysisMode::Environment, "environment", "Environment map"},
-    {AnalysisMode::Draft, "draft", "Draft angle"},
+    {AnalysisMode::Phong, "phong", "Shaded (Phong)", P::None, ColourScale::Linear},
+    {AnalysisMode::Gaussian, "gaussian", "Gaussian curvature", P::ColourMap,
+     ColourScale::Symmetric},
+    {AnalysisMode::Mean, "mean", "Mean curvature", P::ColourMap, ColourScale::Symmetric},
+    {AnalysisMode::MaxCurvature, "max-curvature", "Maximum curvature |k|", P::ColourMap,
+     ColourScale::Linear},
+    {AnalysisMode::MinRadius, "min-radius", "Minimum radius", P::ColourMap, ColourScale::Linear},
+    {AnalysisMode::Zebra, "zebra", "Zebra stripes", P::Stripes, ColourScale::Linear},
+    {AnalysisMode::Isophotes, "isophotes", "Isophotes", P::Isophotes, ColourScale::Linear},
+    {AnalysisMode::Environment, "environment", "Environment map", P::Environment,
+     ColourScale::Linear},
+    {AnalysisMode::Draft, "draft", "Draft angle", P::Draft, ColourScale::Linear},
 };
+
+/// Row k is mode k: a mode's row is found by its number, and a row out of order or a gap
+/// does not compile. (A mode with no row at the end is unnamed: no parser, menu or shader
+/// define knows it, and tst_render_contract finds its GLSL name undeclared.)
+constexpr bool rowsInModeOrder() {
+    for (size_t k = 0; k < std::size(kModes); ++k)
+        if (int(kModes[k].mode) != int(k))
+            return false;
+    return true;
+}
+static_assert(rowsInModeOrder(), "kModes: one row per AnalysisMode, in its order");
+
+const ModeInfo& row(AnalysisMode mode) {
+    const auto k = size_t(mode);
+    return k < std::size(kModes) ? kModes[k] : kModes[0];
+}
 
 /// Signed-log scale: linear within kLogLinearFraction * m of zero.
 constexpr double kLogLinearFraction = 1e-3;
@@ -36,17 +63,18 @@ double maxAbs(const ValueRange& r) {
 } // namespace
 
 QString analysisModeName(AnalysisMode mode) {
+    return QString::fromLatin1(row(mode).name);
+}
+
+QStringList analysisModeNames() {
+    QStringList out;
     for (const ModeInfo& m : kModes)
-        if (m.mode == mode)
-            return QString::fromLatin1(m.name);
-    return QStringLiteral("phong");
+        out << QString::fromLatin1(m.name);
+    return out;
 }
 
 QString analysisModeTitle(AnalysisMode mode) {
-    for (const ModeInfo& m : kModes)
-        if (m.mode == mode)
-            return QString::fromLatin1(m.title);
-    return {};
+    return QString::fromLatin1(row(mode).title);
 }
 
 QString analysisModeDefine(AnalysisMode mode) {
@@ -68,9 +96,12 @@ std::optional<AnalysisMode> parseAnalysisMode(const QString& name) {
     return std::nullopt;
 }
 
+AnalysisParameters analysisParameters(AnalysisMode mode) {
+    return row(mode).parameters;
+}
+
 bool isColourMap(AnalysisMode mode) {
-    return mode == AnalysisMode::Gaussian || mode == AnalysisMode::Mean ||
-           mode == AnalysisMode::MaxCurvature || mode == AnalysisMode::MinRadius;
+    return analysisParameters(mode) == AnalysisParameters::ColourMap;
 }
 
 bool needsCurvature(AnalysisMode mode) {
@@ -78,8 +109,7 @@ bool needsCurvature(AnalysisMode mode) {
 }
 
 ColourScale defaultScale(AnalysisMode mode) {
-    return mode == AnalysisMode::Gaussian || mode == AnalysisMode::Mean ? ColourScale::Symmetric
-                                                                        : ColourScale::Linear;
+    return row(mode).scale;
 }
 
 QString colourScaleName(ColourScale scale) {

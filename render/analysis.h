@@ -16,6 +16,8 @@
 namespace kw {
 
 /// What the exact pass shows. The numeric values are the shader's KW_ANALYSIS (analysis.glsl).
+/// Each mode has a row in analysis.cpp's table, in this order: its names, its parameters and
+/// its default scale. A new mode is a value here, its row and its colour in analysis.glsl.
 enum class AnalysisMode {
     Phong = 0,        ///< plain shading (paper eq. 3.8)
     Gaussian = 1,     ///< K, colour map
@@ -26,6 +28,18 @@ enum class AnalysisMode {
     Isophotes = 6,    ///< bands of N.L
     Environment = 7,  ///< reflection of an equirectangular environment image
     Draft = 8,        ///< draft angle against a pull direction, three colours
+};
+
+/// The parameters of AnalysisOptions that a mode's shader reads; setAnalysisUniforms
+/// (render/analysis_gl.cpp) sets them by this group, so a mode that reads an existing group
+/// needs no GL code.
+enum class AnalysisParameters {
+    None,        ///< Phong: nothing
+    ColourMap,   ///< the colour range and scale: the mode is a colour map (ramp, legend)
+    Stripes,     ///< zebra: the stripe count and axis
+    Isophotes,   ///< the band count and the light's direction
+    Environment, ///< the environment image's unit
+    Draft,       ///< the pull direction and the draft angle
 };
 
 /// How a colour-map value maps to the colour scale.
@@ -76,6 +90,8 @@ struct AnalysisOptions {
 /// "phong", "gaussian", "mean", "max-curvature", "min-radius", "zebra", "isophotes",
 /// "environment", "draft".
 QString analysisModeName(AnalysisMode mode);
+/// Every mode's name (analysisModeName) in menu order, for help texts and messages.
+QStringList analysisModeNames();
 /// The GLSL name of the mode's number (KW_ANALYSIS_ and its name in capitals, '-' as '_':
 /// KW_ANALYSIS_MAX_CURVATURE), which the shader preamble defines (ShaderLibrary::preamble).
 QString analysisModeDefine(AnalysisMode mode);
@@ -86,10 +102,13 @@ std::optional<AnalysisMode> parseAnalysisMode(const QString& name);
 /// Menu text, e.g. "Gaussian curvature".
 QString analysisModeTitle(AnalysisMode mode);
 
+/// The parameters the mode's shader reads (its row).
+AnalysisParameters analysisParameters(AnalysisMode mode);
+/// A mode whose parameters are AnalysisParameters::ColourMap.
 bool isColourMap(AnalysisMode mode);
 /// Colour maps and the curvature AOV need second derivatives (KW_SECOND_ORDER).
 bool needsCurvature(AnalysisMode mode);
-/// Symmetric for the signed quantities (K, H), Linear otherwise.
+/// The mode's row's scale: Symmetric for the signed quantities (K, H), Linear otherwise.
 ColourScale defaultScale(AnalysisMode mode);
 QString colourScaleName(ColourScale scale); ///< "linear", "symmetric", "log"
 std::optional<ColourScale> parseColourScale(const QString& name);

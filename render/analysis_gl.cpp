@@ -120,15 +120,13 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
     // Locations looked up once per program (ShaderLibrary), not by name on every draw.
     const UniformLocations& u = ShaderLibrary::uniforms(program);
     const float toRad = float(M_PI / 180.0);
-    switch (o.mode) {
-    case AnalysisMode::Gaussian:
-    case AnalysisMode::Mean:
-    case AnalysisMode::MaxCurvature:
-    case AnalysisMode::MinRadius:
+    // By the parameters the mode's row names, so a new mode with no new parameters adds no case.
+    switch (analysisParameters(o.mode)) {
+    case AnalysisParameters::ColourMap:
         gl->glUniform2f(u.analysisRange, float(range.low), float(range.high));
         gl->glUniform1i(u.analysisScale, int(o.scale.value_or(defaultScale(o.mode))));
         break;
-    case AnalysisMode::Zebra: {
+    case AnalysisParameters::Stripes: {
         // The stripe axis in the view plane: angle 0 along the camera's right, 90 along its up.
         const glm::mat3 rot = glm::transpose(glm::mat3(camera.view)); // view -> world rotation
         const glm::vec3 right = rot[0], up = rot[1];
@@ -142,7 +140,7 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
         gl->glUniform3fv(u.stripeAxis, 1, glm::value_ptr(axis));
         break;
     }
-    case AnalysisMode::Isophotes: {
+    case AnalysisParameters::Isophotes: {
         // The first light's direction (a point light: from the scene centre's side, the eye).
         glm::vec3 L = -camera.forward;
         if (!lights.empty() && lights.front().kind == Light::Kind::Directional &&
@@ -152,17 +150,17 @@ void setAnalysisUniforms(QOpenGLFunctions_4_5_Core* gl, QOpenGLShaderProgram* pr
         gl->glUniform3fv(u.isophoteLight, 1, glm::value_ptr(L));
         break;
     }
-    case AnalysisMode::Environment:
+    case AnalysisParameters::Environment:
         gl->glUniform1i(u.environment, environmentUnit);
         break;
-    case AnalysisMode::Draft: {
+    case AnalysisParameters::Draft: {
         const glm::dvec3 d = glm::length(o.pullDirection) > 0.0 ? glm::normalize(o.pullDirection)
                                                                 : glm::dvec3(0.0, 0.0, 1.0);
         gl->glUniform3fv(u.pullDirection, 1, glm::value_ptr(glm::vec3(d)));
         gl->glUniform1f(u.draftAngle, float(o.draftAngleDegrees) * toRad);
         break;
     }
-    case AnalysisMode::Phong:
+    case AnalysisParameters::None:
         break;
     }
     if (o.principalDirections) {

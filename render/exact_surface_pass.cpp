@@ -216,7 +216,7 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
                               const ValueRange& range, AntialiasTarget* aa) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     m_multiDraw = options.multiDraw;
-    if (options.analysis.mode == AnalysisMode::Environment)
+    if (analysisParameters(options.analysis.mode) == AnalysisParameters::Environment)
         if (Status bound = m_environment.bind(options.analysis.environmentMap, kEnvironmentUnit);
             !bound)
             return bound;

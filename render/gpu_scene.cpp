@@ -210,31 +210,55 @@ bool GpuScene::maskStale(const SurfaceRecord& r, const FrameCamera& camera,
 
 Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
                       FrameReport& report) {
-    QOpenGLFunctions_4_5_Core* gl = m_gl;
     QElapsedTimer timer;
     timer.start();
     prepare(doc); // a no-op when the renderer already called it this frame
     const Scene& scene = doc.scene();
     Pass pass(doc, camera, options);
+    beginPass(pass);
+    std::vector<int> work;
+    const bool full = needsFullWalk(scene, camera, options, work);
+    m_touched.clear();
+    if (full)
+        syncAll(scene, pass);
+    else
+        syncChanged(scene, work, pass);
+    countSolidMembers(doc, full);
+    m_changes.clear();
+    Status status = reportPass(scene, pass, double(timer.nsecsElapsed()) * 1e-6, report);
+    const bool masksRan = options.trims && syncMasks(doc, camera, options, full, status, report);
+    orderCells(masksRan, camera, options);
+    timer.restart();
+    syncTable(masksRan ? m_order : m_touched);
+    report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
+    return status;
+}
+
+void GpuScene::beginPass(Pass& pass) {
     pass.limit = bufferLimit();
     for (GpuPool* p : {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
                        &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
-        p->initialize(gl,
+        p->initialize(m_gl,
                       p == &m_pools.control || p == &m_pools.spans ? sizeof(glm::vec4)
                       : p == &m_pools.vertices                     ? sizeof(BaseVertex)
                       : p == &m_pools.skirtVertices                ? sizeof(SkirtVertex)
                                                                    : sizeof(unsigned),
                       pass.limit);
+    const RenderOptions& options = pass.options;
     pass.adaptive = options.partitioning == RenderOptions::Partitioning::Adaptive &&
                     options.mode == RenderMode::Exact;
     if (pass.adaptive) {
-        const ViewKey key{camera.viewProjection, camera.viewport, options.pixelTolerance};
+        const ViewKey key{pass.camera.viewProjection, pass.camera.viewport, options.pixelTolerance};
         if (!(key == m_viewKey)) {
             m_viewKey = key;
             ++m_viewStamp;
         }
-        pass.scale = frameScreenScale(camera);
+        pass.scale = frameScreenScale(pass.camera);
     }
+}
+
+bool GpuScene::needsFullWalk(const Scene& scene, const FrameCamera& camera,
+                             const RenderOptions& options, std::vector<int>& work) {
     // Everything a record depends on besides its own surface: when one of these changed,
     // every record is compared (each still rebuilds only what is stale).
     const FrameKey key{camera.viewProjection,   camera.viewport,        options.mode,
@@ -243,118 +267,121 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
                        options.controlNet,      options.trims,          options.trimMode,
                        options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
                        options.edgeSkirts,      options.wireframe};
-    bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
+    const bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
-
+    if (full)
+        return true;
     // The incremental way: the surfaces the document reported changed, and those retried.
-    std::vector<int> work;
-    if (!full) {
-        for (const SurfaceId id : m_changes.changed()) {
-            const int index = m_changes.indexOf(id);
-            if (index < 0 || scene.surfaces[size_t(index)].id != id) {
-                full = true; // not where the last structural walk put it
-                break;
-            }
-            const Surface& s = scene.surfaces[size_t(index)];
-            const auto it = m_entries.find(id);
-            const bool listed = it != m_entries.end() && it->second.record.inOrder;
-            if (s.hidden != !listed) {
-                full = true; // shown or hidden: the draw list changes
-                break;
-            }
-            if (!s.hidden)
-                work.push_back(index);
-        }
-        work.insert(work.end(), m_tooLarge.begin(), m_tooLarge.end());
-        std::sort(work.begin(), work.end());
-        work.erase(std::unique(work.begin(), work.end()), work.end());
+    for (const SurfaceId id : m_changes.changed()) {
+        const int index = m_changes.indexOf(id);
+        if (index < 0 || scene.surfaces[size_t(index)].id != id)
+            return true; // not where the last structural walk put it
+        const Surface& s = scene.surfaces[size_t(index)];
+        const auto it = m_entries.find(id);
+        const bool listed = it != m_entries.end() && it->second.record.inOrder;
+        if (s.hidden != !listed)
+            return true; // shown or hidden: the draw list changes
+        if (!s.hidden)
+            work.push_back(index);
     }
-    m_touched.clear();
-    if (full) {
-        m_order.clear();
-        m_order.reserve(scene.surfaces.size());
-        m_unmet.clear();
-        m_tooLarge.clear();
-        ++m_syncs;
-        ++m_layoutStamp;
-        for (int index = 0; index < int(scene.surfaces.size()); ++index) {
-            const Surface& s = scene.surfaces[size_t(index)];
-            // The draw list: a hidden surface is left out of the frame (every pass and the
-            // pick query draw records() only) but keeps its record, so showing it again
-            // uploads only what changed meanwhile. Its trim mask layer is given back: the
-            // mask pass reassigns layers among the records it sees, so a kept layer could go
-            // to another surface.
-            if (s.hidden) {
-                if (const auto it = m_entries.find(s.id); it != m_entries.end()) {
-                    it->second.seen = m_syncs; // kept, not dropped
-                    it->second.record.inOrder = false;
-                    m_masks.freeLayer(it->second.record.mask);
-                }
-                continue;
+    work.insert(work.end(), m_tooLarge.begin(), m_tooLarge.end());
+    std::sort(work.begin(), work.end());
+    work.erase(std::unique(work.begin(), work.end()), work.end());
+    return false;
+}
+
+void GpuScene::syncAll(const Scene& scene, Pass& pass) {
+    m_order.clear();
+    m_order.reserve(scene.surfaces.size());
+    m_unmet.clear();
+    m_tooLarge.clear();
+    ++m_syncs;
+    ++m_layoutStamp;
+    for (int index = 0; index < int(scene.surfaces.size()); ++index) {
+        const Surface& s = scene.surfaces[size_t(index)];
+        // The draw list: a hidden surface is left out of the frame (every pass and the
+        // pick query draw records() only) but keeps its record, so showing it again
+        // uploads only what changed meanwhile. Its trim mask layer is given back: the
+        // mask pass reassigns layers among the records it sees, so a kept layer could go
+        // to another surface.
+        if (s.hidden) {
+            if (const auto it = m_entries.find(s.id); it != m_entries.end()) {
+                it->second.seen = m_syncs; // kept, not dropped
+                it->second.record.inOrder = false;
+                m_masks.freeLayer(it->second.record.mask);
             }
-            Entry& e = m_entries[s.id];
-            e.seen = m_syncs;
-            e.record.inOrder = true;
-            syncSurface(e, s, index, pass);
-            m_order.push_back(&e.record);
+            continue;
         }
-        // The one place removed surfaces are dropped, with every part they hold: those the
-        // loop above did not see.
-        for (auto it = m_entries.begin(); it != m_entries.end();) {
-            if (it->second.seen != m_syncs) {
-                drop(it->second);
-                it = m_entries.erase(it);
-            } else {
-                ++it;
-            }
+        Entry& e = m_entries[s.id];
+        e.seen = m_syncs;
+        e.record.inOrder = true;
+        syncSurface(e, s, index, pass);
+        m_order.push_back(&e.record);
+    }
+    // The one place removed surfaces are dropped, with every part they hold: those the
+    // loop above did not see.
+    for (auto it = m_entries.begin(); it != m_entries.end();) {
+        if (it->second.seen != m_syncs) {
+            drop(it->second);
+            it = m_entries.erase(it);
+        } else {
+            ++it;
         }
-        m_touched = m_order;
-        // The frame's figures over every drawn record, summed again after a full walk.
-        m_drawn = 0;
-        m_cells = 0;
+    }
+    m_touched = m_order;
+    // The frame's figures over every drawn record, summed again after a full walk.
+    m_drawn = 0;
+    m_cells = 0;
+    m_worstBound = 0.0;
+    for (const SurfaceRecord* r : m_order) {
+        m_drawn += r->exact ? 1 : 0;
+        m_cells += r->cells;
+        m_worstBound = std::max(m_worstBound, r->boundPixels);
+    }
+}
+
+void GpuScene::syncChanged(const Scene& scene, const std::vector<int>& work, Pass& pass) {
+    // A changed record's share is replaced; the worst bound is looked for again only when
+    // the record that held it got better.
+    bool lowered = false;
+    for (const int index : work) {
+        const Surface& s = scene.surfaces[size_t(index)];
+        Entry& e = m_entries.at(s.id);
+        SurfaceRecord& r = e.record;
+        const int drawn = r.exact ? 1 : 0;
+        const std::int64_t cells = r.cells;
+        const double bound = r.boundPixels;
+        syncSurface(e, s, index, pass);
+        m_touched.push_back(&r);
+        m_drawn += (r.exact ? 1 : 0) - drawn;
+        m_cells += r.cells - cells;
+        if (r.boundPixels >= m_worstBound)
+            m_worstBound = r.boundPixels;
+        else if (bound >= m_worstBound)
+            lowered = true;
+    }
+    if (lowered) {
         m_worstBound = 0.0;
-        for (const SurfaceRecord* r : m_order) {
-            m_drawn += r->exact ? 1 : 0;
-            m_cells += r->cells;
+        for (const SurfaceRecord* r : m_order)
             m_worstBound = std::max(m_worstBound, r->boundPixels);
-        }
-    } else {
-        // Else a changed record's share is replaced; the worst bound is looked for again
-        // only when the record that held it got better.
-        bool lowered = false;
-        for (const int index : work) {
-            const Surface& s = scene.surfaces[size_t(index)];
-            Entry& e = m_entries.at(s.id);
-            SurfaceRecord& r = e.record;
-            const int drawn = r.exact ? 1 : 0;
-            const std::int64_t cells = r.cells;
-            const double bound = r.boundPixels;
-            syncSurface(e, s, index, pass);
-            m_touched.push_back(&r);
-            m_drawn += (r.exact ? 1 : 0) - drawn;
-            m_cells += r.cells - cells;
-            if (r.boundPixels >= m_worstBound)
-                m_worstBound = r.boundPixels;
-            else if (bound >= m_worstBound)
-                lowered = true;
-        }
-        if (lowered) {
-            m_worstBound = 0.0;
-            for (const SurfaceRecord* r : m_order)
-                m_worstBound = std::max(m_worstBound, r->boundPixels);
-        }
     }
+}
+
+void GpuScene::countSolidMembers(const Document& doc, bool full) {
     // Marks are cleared and set again by edits of their faces (Document::openSolid,
     // closeSolid), hidden ones included, between full walks too: counted again when they did.
-    if (full || doc.marksRevision() != m_marksRevision) {
-        m_marksRevision = doc.marksRevision();
-        m_solidMembers.clear();
-        for (const Surface& s : scene.surfaces)
-            if (s.solid >= 0)
-                ++m_solidMembers[s.solid];
-    }
-    m_changes.clear();
+    if (!full && doc.marksRevision() == m_marksRevision)
+        return;
+    m_marksRevision = doc.marksRevision();
+    m_solidMembers.clear();
+    for (const Surface& s : doc.scene().surfaces)
+        if (s.solid >= 0)
+            ++m_solidMembers[s.solid];
+}
+
+Status GpuScene::reportPass(const Scene& scene, const Pass& pass, double cpuMs,
+                            FrameReport& report) const {
     report.recordsSynced += pass.examined;
     report.uploads += pass.frame;
     FrameReport::Partitions& parts = report.partitions;
@@ -362,7 +389,7 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
     parts.cells += m_cells;
     parts.worstBoundPixels = std::max(parts.worstBoundPixels, m_worstBound);
     parts.unmet += int(m_unmet.size());
-    report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
+    report.cpuMs.sync += cpuMs;
     if (!m_unmet.empty()) {
         QStringList unmet;
         for (const int index : m_unmet) {
@@ -376,50 +403,55 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
                                           "within %2 px of the surface at %3 x %3 partitions "
                                           "(too close to the eye); drawn at %3 x %3")
                                .arg(unmet.join(QStringLiteral(", ")))
-                               .arg(options.pixelTolerance)
+                               .arg(pass.options.pixelTolerance)
                                .arg(kMaxPartitions);
     }
-
     // The frame is drawn without what failed; the first failure is the frame's error.
-    Status status;
-    if (pass.tooLarge != 0) {
-        // One line with the totals, however many surfaces it is about.
-        std::int64_t resident = 0;
-        for (const GpuPool* p :
-             {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
-              &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
-            resident += p->residentBytes();
-        status = Error(QStringLiteral("%1 of %2 surfaces do not fit the GPU's buffer limit of %3 "
-                                      "bytes (%4 MiB of surface data resident; the first: %5) and "
-                                      "are not drawn")
-                           .arg(m_tooLarge.size())
-                           .arg(scene.surfaces.size())
-                           .arg(pass.limit)
-                           .arg(double(resident) / double(1 << 20), 0, 'f', 1)
-                           .arg(pass.firstTooLarge));
-        report.warnings << status.message();
+    if (pass.tooLarge == 0)
+        return ok();
+    // One line with the totals, however many surfaces it is about.
+    std::int64_t resident = 0;
+    for (const GpuPool* p :
+         {&m_pools.control, &m_pools.spans, &m_pools.vertices, &m_pools.triangles,
+          &m_pools.outlines, &m_pools.skirtVertices, &m_pools.skirtIndices})
+        resident += p->residentBytes();
+    const Error error(QStringLiteral("%1 of %2 surfaces do not fit the GPU's buffer limit of %3 "
+                                     "bytes (%4 MiB of surface data resident; the first: %5) and "
+                                     "are not drawn")
+                          .arg(m_tooLarge.size())
+                          .arg(scene.surfaces.size())
+                          .arg(pass.limit)
+                          .arg(double(resident) / double(1 << 20), 0, 'f', 1)
+                          .arg(pass.firstTooLarge));
+    report.warnings << error.message;
+    return error;
+}
+
+bool GpuScene::syncMasks(const Document& doc, const FrameCamera& camera,
+                         const RenderOptions& options, bool full, Status& status,
+                         FrameReport& report) {
+    QElapsedTimer timer;
+    timer.start();
+    // The mask pass looks at every record; a frame whose changed records need no new mask
+    // skips it and repeats its last answer.
+    bool stale = full;
+    for (size_t k = 0; !stale && k < m_touched.size(); ++k)
+        stale = maskStale(*m_touched[k], camera, options);
+    if (stale) {
+        ++m_layoutStamp;
+        m_maskError = m_masks.sync(doc, m_order, camera, options).message();
+        m_maskWarnings = maskWarnings();
+        report.masks += m_masks.frameStats();
+        report.drawCalls += m_masks.drawCalls;
     }
-    bool masksRan = false;
-    if (options.trims) {
-        timer.restart();
-        // The mask pass looks at every record; a frame whose changed records need no new
-        // mask skips it and repeats its last answer.
-        bool stale = full;
-        for (size_t k = 0; !stale && k < m_touched.size(); ++k)
-            stale = maskStale(*m_touched[k], camera, options);
-        if (stale) {
-            masksRan = true;
-            ++m_layoutStamp;
-            m_maskError = m_masks.sync(doc, m_order, camera, options).message();
-            m_maskWarnings = maskWarnings();
-            report.masks += m_masks.frameStats();
-            report.drawCalls += m_masks.drawCalls;
-        }
-        if (!m_maskError.isEmpty() && status)
-            status = Error(m_maskError);
-        report.warnings << m_maskWarnings;
-        report.cpuMs.masks += double(timer.nsecsElapsed()) * 1e-6;
-    }
+    if (!m_maskError.isEmpty() && status)
+        status = Error(m_maskError);
+    report.warnings << m_maskWarnings;
+    report.cpuMs.masks += double(timer.nsecsElapsed()) * 1e-6;
+    return stale;
+}
+
+void GpuScene::orderCells(bool masksRan, const FrameCamera& camera, const RenderOptions& options) {
     // Cells ordered by how the trims cut them (inside, near a curve, trimmed away), for the
     // pre-pass's split draws: after the masks, whose grids classify them.
     const bool split = options.splitCellsByTrims && options.trims &&
@@ -433,10 +465,6 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
     const bool sectionsMoved = !(sectionKey == m_sectionKey);
     m_sectionKey = sectionKey;
     splitRecords(masksRan || sectionsMoved ? m_order : m_touched, split, camera, options);
-    timer.restart();
-    syncTable(masksRan ? m_order : m_touched);
-    report.cpuMs.sync += double(timer.nsecsElapsed()) * 1e-6;
-    return status;
 }
 
 void GpuScene::splitRecords(const std::vector<SurfaceRecord*>& records, bool splitTrims,

@@ -224,6 +224,32 @@ private:
                       const FrameCamera& camera, const RenderOptions& options);
     /// What one sync knows while it goes through the records.
     struct Pass;
+    // sync's steps, in its order.
+    /// Sizes the pools for the GPU's buffer limit and sets the pass's adaptive view.
+    void beginPass(Pass& pass);
+    /// Whether every record is compared this frame (the structure, the view or an option a
+    /// record depends on changed); else `work` gets the indices of the surfaces to sync: those
+    /// the document reported changed and those that did not fit last time.
+    bool needsFullWalk(const Scene& scene, const FrameCamera& camera, const RenderOptions& options,
+                       std::vector<int>& work);
+    /// Every visible surface synced, the draw list rebuilt, the removed surfaces dropped and
+    /// the frame's figures summed again.
+    void syncAll(const Scene& scene, Pass& pass);
+    /// The surfaces of `work` synced, and their shares of the frame's figures replaced.
+    void syncChanged(const Scene& scene, const std::vector<int>& work, Pass& pass);
+    /// Each solid's member count, again after a full walk or when the marks changed.
+    void countSolidMembers(const Document& doc, bool full);
+    /// The pass's figures, its CPU time `cpuMs` and its warnings into `report`; the error
+    /// naming the surfaces that did not fit, if any did not.
+    Status reportPass(const Scene& scene, const Pass& pass, double cpuMs,
+                      FrameReport& report) const;
+    /// The trim mask pass, when a touched record (any after a full walk) needs a new mask;
+    /// its error replaces an ok `status`. True when it ran.
+    bool syncMasks(const Document& doc, const FrameCamera& camera, const RenderOptions& options,
+                   bool full, Status& status, FrameReport& report);
+    /// splitRecords on the records whose cells may have moved: all of them when the masks ran
+    /// or the section planes or the view changed, else the touched ones.
+    void orderCells(bool masksRan, const FrameCamera& camera, const RenderOptions& options);
     void drop(Entry& e);
     void dropExact(SurfaceRecord& r);
     /// Brings one visible surface's record up to date (the per-record part of sync).

@@ -123,15 +123,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     const std::vector<Light> lights =
         lightsFor(doc.scene(), camera, options.lightCount, options.headlight);
 
-    exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
-    edgeBands.drawCalls = 0;
-    exact.culled = exact.solidsBackCulled = 0;
-    exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
-    exact.affineSurfaces = 0;
-    exact.analyticSurfaces = 0;
-    exact.deferredSurfaces = 0;
-    exact.sectionCrossedCells = 0;
-    exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
+    resetPassCounters();
 
     // The GPU scene first: trim masks draw into their own framebuffer.
     const Status synced = scene.sync(doc, fc, options, report);
@@ -148,63 +140,18 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         // the planner keeps them (ExactPlanner::backCulled).
         options.shading = RenderOptions::Shading::ExactDepth;
     }
-    AntialiasTarget* aa = nullptr;
-    AccumulateTarget* accumulated = nullptr;
-    if (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
-        if (const Status ready = accumulate.ensure(size))
-            accumulated = &accumulate;
-        else
-            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
-        antialias.release();
-    } else if (samples > 1) {
-        if (const Status ready = antialias.ensure(size, samples))
-            aa = &antialias;
-        else
-            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
-    } else if (!target.aov && !pickPixel && !preview) {
-        antialias.release(); // anti-aliasing turned off: free its framebuffers
-    }
-    // A preview keeps them for the still frame after it.
-    if (!accumulated && !target.aov && !pickPixel && !preview)
-        accumulate.release();
-    // An aliased frame into a host whose depth is not float (Qt's widget framebuffers: 24-bit)
-    // is drawn into the float-depth target and its colour copied over (float_depth_target.h).
-    // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
-    RenderTarget drawn = target;
-    drawn.size = size;
-    if (!aa && !accumulated && !target.aov && !pickPixel &&
-        (preview || floatDepth.hostNeedsIt(target.framebuffer))) {
-        if (const Status ready = floatDepth.ensure(size))
-            drawn.framebuffer = floatDepth.framebuffer();
-        else
-            report.warnings << ready.message();
-        if (drawn.framebuffer == target.framebuffer)
-            drawn.size = size = target.size; // no own framebuffer: the full frame
-    } else if (!aa && !accumulated && !pickPixel) {
-        // Freed only when an aliased frame goes straight to its host: the editor alternates
-        // aliased frames while moving with anti-aliased still ones, and would otherwise
-        // allocate the target again at every move.
-        floatDepth.release();
-    }
+    const FrameTargets targets =
+        frameTargets(target, samples, options, preview, pickPixel != nullptr, size, report);
+    AntialiasTarget* const aa = targets.aa;
+    AccumulateTarget* const accumulated = targets.accumulated;
+    const RenderTarget& drawn = targets.drawn;
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
 
     QElapsedTimer phase;
     phase.start();
-    // Accumulated anti-aliasing draws the whole aliased frame once per sample, shifted by the
-    // sample's offset, into its own framebuffer, and adds it up; otherwise one frame.
-    const std::vector<glm::vec2> offsets =
-        accumulated ? accumulationOffsets(samples) : std::vector<glm::vec2>{glm::vec2(0.0f)};
-    size_t firstSample = 0, endSample = offsets.size();
-    if (accumulated && options.progressive) {
-        // One sample per call onto the sum of the calls before, while they drew the same thing.
-        const ProgressKey key{&doc, doc.revision(), camera, target.framebuffer, size, options};
-        const int inSum = progressKey && *progressKey == key ? accumulate.added() : 0;
-        progressKey = key;
-        firstSample = size_t(std::clamp(inSum, 0, samples));
-        endSample = std::min(firstSample + 1, offsets.size()); // all in: none, resolved again
-    } else if (!pickPixel && !target.aov) {
-        progressKey.reset();
-    }
+    const SampleRange range = sampleRange(doc, camera, target, size, options, samples,
+                                          accumulated != nullptr, pickPixel != nullptr);
+    const size_t firstSample = range.first, endSample = range.end;
     RenderTarget sampleTarget = drawn;
     if (accumulated)
         sampleTarget.framebuffer = accumulated->sampleFramebuffer();
@@ -218,60 +165,16 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             error = done.message();
         return bool(done);
     };
-    bool ok = true;
-    if (accumulated && firstSample > 0 && firstSample < endSample)
-        ok = step(accumulated->keepFirst()); // before the next sample is drawn over it
-    for (size_t i = firstSample; ok && i < endSample; ++i) {
-        fc.jitter = offsets[i];
-        beginTarget(sampleTarget, options, pickPixel);
-        if (aa) {
-            aa->begin(&options.background.x);
-            if (options.backgroundTop)
-                drawBackground(options); // into the multisampled colour, as beginTarget did
-        }
-        ok = step(
-            options.mode == RenderMode::Exact
-                ? exact.draw(scene, options.trims, fc, lights, options, report.analysisRange, aa)
-                : tessellated.draw(scene, options.trims, fc, lights, options));
-        // A progressive image's first sample is shown as it is, without the sum.
-        if (ok && accumulated && !(options.progressive && i == 0))
-            ok = step(accumulated->add(i == 0));
-        clock.mark(PassTimes::Antialiasing);
-    }
-    fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
-    if (ok && accumulated)
-        ok = step(options.progressive && firstSample == 0
-                      ? accumulated->resolveFirst(target.framebuffer)
-                      : accumulated->resolve(target.framebuffer));
-    // Resolved before the overlays: they are drawn into the host's framebuffer over the
-    // composite's colour and depth, as without anti-aliasing.
-    if (aa) {
-        if (const Status composited = aa->composite(target.framebuffer); !composited) {
-            if (ok)
-                error = composited.message();
-            ok = false;
-        }
-    }
+    bool ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights,
+                               options, report.analysisRange, pickPixel));
     clock.mark(PassTimes::Antialiasing);
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
         options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
     report.cpuMs.beforeDraws = (firstDraw >= 0.0 ? firstDraw : threadCpuMs()) - cpuStart;
     phase.restart();
-    if (ok && (options.wireframe || options.controlNet || options.edgeBands)) {
-        // Overlays write colour only; the AOV targets keep the surfaces' values.
-        if (options.writeAov)
-            setDrawBuffers(target.framebuffer, kColourOutput + 1);
-        if (options.wireframe)
-            ok = step(wireframe.draw(scene, fc, options));
-        if (ok && options.controlNet)
-            ok = step(controlNet.draw(scene, fc, options));
-        if (ok && options.edgeBands)
-            ok = step(edgeBands.draw(*options.edgeBands, fc));
-        if (options.writeAov)
-            setDrawBuffers(target.framebuffer,
-                           options.writeCurvatureAov ? kCurvatureAovDrawBuffers : kAovDrawBuffers);
-    }
+    if (ok && (options.wireframe || options.controlNet || options.edgeBands))
+        ok = step(drawOverlays(target, fc, options));
     clock.mark(PassTimes::Overlays);
     if (drawn.framebuffer != target.framebuffer)
         floatDepth.copyColourTo(target.framebuffer, target.size);
@@ -284,8 +187,6 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         gl->glDisable(GL_SCISSOR_TEST);
     endReversedDepth(gl);
 
-    report.drawCalls += exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls +
-                        controlNet.drawCalls + edgeBands.drawCalls;
     if (!ok)
         progressKey.reset(); // a sum with a failed sample in it is not kept
     if (accumulated) {
@@ -294,37 +195,17 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     } else if (aa) {
         report.samplesInImage = samples;
     }
-    report.surfaces = scene.drawnCount();
-    report.culled = exact.culled;
-    report.solidsBackCulled = exact.solidsBackCulled;
-    report.partitions.trimTestedCells = exact.trimTestedCells;
-    report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
-    report.partitions.skirtTriangles = exact.skirtTriangles;
-    report.partitions.affineSurfaces = exact.affineSurfaces;
-    report.partitions.analyticSurfaces = exact.analyticSurfaces;
-    report.partitions.deferredSurfaces = exact.deferredSurfaces;
-    report.partitions.sectionCrossedCells = exact.sectionCrossedCells;
-    scene.residentBytes(report.gpuBytes);
-    report.gpuBytes.perSurface += exact.residentBytes();
-    report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();
-    report.gpuBytes.floatDepthTarget = floatDepth.residentBytes();
+    reportPassFigures(report);
     if (!ok)
         report.error = error;
     else if (!synced)
         report.error = synced.message();
     report.ok = ok && synced;
-    if (!pickPixel) {
-        // What pickInLastFrame may read: a sample drawn now with the deferred pass's input, or
-        // a progressive image resolved again (nothing drawn) over the same view.
-        const LastFrame now{&doc, doc.revision(), camera, size, sampleTarget.framebuffer};
-        const bool drewSample = firstSample < endSample;
-        if (!report.ok || preview || target.aov || options.mode != RenderMode::Exact)
-            lastFrame.reset();
-        else if (drewSample)
-            lastFrame = exact.deferredSurfaces > 0 ? std::optional<LastFrame>(now) : std::nullopt;
-        else if (lastFrame && !(*lastFrame == now))
-            lastFrame.reset();
-    }
+    if (!pickPixel)
+        rememberLastFrame(LastFrame{&doc, doc.revision(), camera, size, sampleTarget.framebuffer},
+                          firstSample < endSample,
+                          report.ok && !preview && !target.aov &&
+                              options.mode == RenderMode::Exact);
     report.cpuMs.total = msSince(total);
     return report;
 }
@@ -548,6 +429,171 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
             report.gpuBytes.tessellatedMeshes += m->residentBytes();
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+void Renderer::Impl::resetPassCounters() {
+    exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
+    edgeBands.drawCalls = 0;
+    exact.culled = exact.solidsBackCulled = 0;
+    exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
+    exact.affineSurfaces = 0;
+    exact.analyticSurfaces = 0;
+    exact.deferredSurfaces = 0;
+    exact.sectionCrossedCells = 0;
+    exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
+}
+
+Renderer::Impl::FrameTargets Renderer::Impl::frameTargets(const RenderTarget& target, int samples,
+                                                          const RenderOptions& options,
+                                                          bool preview, bool pick, QSize& size,
+                                                          FrameReport& report) {
+    FrameTargets out;
+    if (samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
+        if (const Status ready = accumulate.ensure(size))
+            out.accumulated = &accumulate;
+        else
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
+        antialias.release();
+    } else if (samples > 1) {
+        if (const Status ready = antialias.ensure(size, samples))
+            out.aa = &antialias;
+        else
+            report.warnings << QStringLiteral("anti-aliasing is off: %1").arg(ready.message());
+    } else if (!target.aov && !pick && !preview) {
+        antialias.release(); // anti-aliasing turned off: free its framebuffers
+    }
+    // A preview keeps them for the still frame after it.
+    if (!out.accumulated && !target.aov && !pick && !preview)
+        accumulate.release();
+    // An aliased frame into a host whose depth is not float (Qt's widget framebuffers: 24-bit)
+    // is drawn into the float-depth target and its colour copied over (float_depth_target.h).
+    // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
+    out.drawn = target;
+    out.drawn.size = size;
+    if (!out.aa && !out.accumulated && !target.aov && !pick &&
+        (preview || floatDepth.hostNeedsIt(target.framebuffer))) {
+        if (const Status ready = floatDepth.ensure(size))
+            out.drawn.framebuffer = floatDepth.framebuffer();
+        else
+            report.warnings << ready.message();
+        if (out.drawn.framebuffer == target.framebuffer)
+            out.drawn.size = size = target.size; // no own framebuffer: the full frame
+    } else if (!out.aa && !out.accumulated && !pick) {
+        // Freed only when an aliased frame goes straight to its host: the editor alternates
+        // aliased frames while moving with anti-aliased still ones, and would otherwise
+        // allocate the target again at every move.
+        floatDepth.release();
+    }
+    return out;
+}
+
+Renderer::Impl::SampleRange Renderer::Impl::sampleRange(const Document& doc, const Camera& camera,
+                                                        const RenderTarget& target, QSize size,
+                                                        const RenderOptions& options, int samples,
+                                                        bool accumulated, bool pick) {
+    // Accumulated anti-aliasing draws the whole aliased frame once per sample, shifted by the
+    // sample's offset, into its own framebuffer, and adds it up; otherwise one frame.
+    SampleRange out;
+    out.offsets =
+        accumulated ? accumulationOffsets(samples) : std::vector<glm::vec2>{glm::vec2(0.0f)};
+    out.end = out.offsets.size();
+    if (accumulated && options.progressive) {
+        // One sample per call onto the sum of the calls before, while they drew the same thing.
+        const ProgressKey key{&doc, doc.revision(), camera, target.framebuffer, size, options};
+        const int inSum = progressKey && *progressKey == key ? accumulate.added() : 0;
+        progressKey = key;
+        out.first = size_t(std::clamp(inSum, 0, samples));
+        out.end = std::min(out.first + 1, out.offsets.size()); // all in: none, resolved again
+    } else if (!pick && !target.aov) {
+        progressKey.reset();
+    }
+    return out;
+}
+
+Status Renderer::Impl::drawSamples(const SampleRange& range, const RenderTarget& sampleTarget,
+                                   std::uint32_t framebuffer, const FrameTargets& targets,
+                                   FrameCamera& fc, const std::vector<Light>& lights,
+                                   const RenderOptions& options, const ValueRange& analysisRange,
+                                   const QRect* pickPixel) {
+    AntialiasTarget* const aa = targets.aa;
+    AccumulateTarget* const accumulated = targets.accumulated;
+    Status done;
+    if (accumulated && range.first > 0 && range.first < range.end)
+        done = accumulated->keepFirst(); // before the next sample is drawn over it
+    for (size_t i = range.first; done && i < range.end; ++i) {
+        fc.jitter = range.offsets[i];
+        beginTarget(sampleTarget, options, pickPixel);
+        if (aa) {
+            aa->begin(&options.background.x);
+            if (options.backgroundTop)
+                drawBackground(options); // into the multisampled colour, as beginTarget did
+        }
+        done = options.mode == RenderMode::Exact
+                   ? exact.draw(scene, options.trims, fc, lights, options, analysisRange, aa)
+                   : tessellated.draw(scene, options.trims, fc, lights, options);
+        // A progressive image's first sample is shown as it is, without the sum.
+        if (done && accumulated && !(options.progressive && i == 0))
+            done = accumulated->add(i == 0);
+        clock.mark(PassTimes::Antialiasing);
+    }
+    fc.jitter = glm::vec2(0.0f); // the overlays are drawn once, unshifted
+    if (done && accumulated)
+        done = options.progressive && range.first == 0 ? accumulated->resolveFirst(framebuffer)
+                                                       : accumulated->resolve(framebuffer);
+    // Resolved before the overlays: they are drawn into the host's framebuffer over the
+    // composite's colour and depth, as without anti-aliasing. The first failure is kept.
+    if (aa)
+        if (const Status composited = aa->composite(framebuffer); !composited && done)
+            done = composited;
+    return done;
+}
+
+Status Renderer::Impl::drawOverlays(const RenderTarget& target, const FrameCamera& fc,
+                                    const RenderOptions& options) {
+    // Overlays write colour only; the AOV targets keep the surfaces' values.
+    if (options.writeAov)
+        setDrawBuffers(target.framebuffer, kColourOutput + 1);
+    Status drawn;
+    if (options.wireframe)
+        drawn = wireframe.draw(scene, fc, options);
+    if (drawn && options.controlNet)
+        drawn = controlNet.draw(scene, fc, options);
+    if (drawn && options.edgeBands)
+        drawn = edgeBands.draw(*options.edgeBands, fc);
+    if (options.writeAov)
+        setDrawBuffers(target.framebuffer,
+                       options.writeCurvatureAov ? kCurvatureAovDrawBuffers : kAovDrawBuffers);
+    return drawn;
+}
+
+void Renderer::Impl::reportPassFigures(FrameReport& report) const {
+    report.drawCalls += exact.drawCalls + tessellated.drawCalls + wireframe.drawCalls +
+                        controlNet.drawCalls + edgeBands.drawCalls;
+    report.surfaces = scene.drawnCount();
+    report.culled = exact.culled;
+    report.solidsBackCulled = exact.solidsBackCulled;
+    report.partitions.trimTestedCells = exact.trimTestedCells;
+    report.partitions.trimmedAwayCells = exact.trimmedAwayCells;
+    report.partitions.skirtTriangles = exact.skirtTriangles;
+    report.partitions.affineSurfaces = exact.affineSurfaces;
+    report.partitions.analyticSurfaces = exact.analyticSurfaces;
+    report.partitions.deferredSurfaces = exact.deferredSurfaces;
+    report.partitions.sectionCrossedCells = exact.sectionCrossedCells;
+    scene.residentBytes(report.gpuBytes);
+    report.gpuBytes.perSurface += exact.residentBytes();
+    report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();
+    report.gpuBytes.floatDepthTarget = floatDepth.residentBytes();
+}
+
+void Renderer::Impl::rememberLastFrame(const LastFrame& now, bool drewSample, bool pickable) {
+    // What pickInLastFrame may read: a sample drawn now with the deferred pass's input, or a
+    // progressive image resolved again (nothing drawn) over the same view.
+    if (!pickable)
+        lastFrame.reset();
+    else if (drewSample)
+        lastFrame = exact.deferredSurfaces > 0 ? std::optional<LastFrame>(now) : std::nullopt;
+    else if (lastFrame && !(*lastFrame == now))
+        lastFrame.reset();
 }
 
 void Renderer::Impl::setDrawBuffers(GLuint framebuffer, int count) {

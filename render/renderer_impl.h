@@ -100,6 +100,45 @@ struct Renderer::Impl {
     };
     std::optional<LastFrame> lastFrame;
 
+    // renderFrame's steps.
+    /// Zeroes the passes' per-frame counters.
+    void resetPassCounters();
+    /// Where a frame is drawn: the multisampled or the accumulation target for `samples` > 1,
+    /// the float-depth target for an aliased frame into a host without float depth (`size`
+    /// becomes the target's when that cannot be had), else `target`. Frees the targets a frame
+    /// no longer uses; warns in `report` when anti-aliasing is off.
+    struct FrameTargets {
+        AntialiasTarget* aa = nullptr;
+        AccumulateTarget* accumulated = nullptr;
+        RenderTarget drawn;
+    };
+    FrameTargets frameTargets(const RenderTarget& target, int samples, const RenderOptions& options,
+                              bool preview, bool pick, QSize& size, FrameReport& report);
+    /// The sub-pixel offsets of the frame's samples and those this call draws, [first, end):
+    /// all of them, or the next one of a progressive image (none once all are in).
+    struct SampleRange {
+        std::vector<glm::vec2> offsets;
+        size_t first = 0, end = 0;
+    };
+    SampleRange sampleRange(const Document& doc, const Camera& camera, const RenderTarget& target,
+                            QSize size, const RenderOptions& options, int samples, bool accumulated,
+                            bool pick);
+    /// Draws the samples [range.first, range.end) into `sampleTarget` (`fc` shifted by each
+    /// one's offset, unshifted after), then resolves the accumulated or multisampled frame into
+    /// `framebuffer`. Stops at the first failure, which it returns; the composite runs anyway.
+    Status drawSamples(const SampleRange& range, const RenderTarget& sampleTarget,
+                       std::uint32_t framebuffer, const FrameTargets& targets, FrameCamera& fc,
+                       const std::vector<Light>& lights, const RenderOptions& options,
+                       const ValueRange& analysisRange, const QRect* pickPixel);
+    /// The wireframe, control net and edge bands over the frame, into its colour only.
+    Status drawOverlays(const RenderTarget& target, const FrameCamera& fc,
+                        const RenderOptions& options);
+    /// The passes' counters and the GPU memory into `report`.
+    void reportPassFigures(FrameReport& report) const;
+    /// Keeps `now` for pickInLastFrame when it can be read there (`pickable`: an exact,
+    /// full-size, successful frame) and a sample was drawn, or the same view was resolved.
+    void rememberLastFrame(const LastFrame& now, bool drewSample, bool pickable);
+
     GLuint backgroundVao = 0; ///< attribute-less, for drawBackground's one triangle
     /// Framebuffer of the pick query: depth and the three AOVs' attachments (the colour's too,
     /// so the surface shaders' outputs keep their locations).

@@ -6,7 +6,7 @@
 // scale of kw::colourRamp(), defined once in C++ (render/analysis.h) so the legend matches.
 // Uniforms are set by kw::setAnalysisUniforms.
 
-#if KW_ANALYSIS >= KW_ANALYSIS_GAUSSIAN && KW_ANALYSIS <= KW_ANALYSIS_MIN_RADIUS
+#ifdef KW_RAMP // a colour map: kw::isColourMap, from its mode's row (ExactVariant::defines)
 uniform vec2 uAnalysisRange; // the scale's low and high value (model units: 1/length, 1/length^2 or length)
 uniform int uAnalysisScale;  // kw::ColourScale: 0 linear, 1 symmetric about 0, 2 log
 
@@ -32,19 +32,19 @@ vec3 rampColour(float t) {
     return mix(ramp[i], ramp[i + 1], x - float(i));
 }
 
-// The analysed quantity from (K, H, k1, k2).
+// The analysed quantity from (K, H, k1, k2), as kw::analysisValue.
 float analysisValue(vec4 c) {
 #if KW_ANALYSIS == KW_ANALYSIS_GAUSSIAN
     return c.x;
 #elif KW_ANALYSIS == KW_ANALYSIS_MEAN
     return c.y;
-#else
+#elif KW_ANALYSIS == KW_ANALYSIS_MAX_CURVATURE
+    return max(abs(c.z), abs(c.w));
+#elif KW_ANALYSIS == KW_ANALYSIS_MIN_RADIUS
     float kmax = max(abs(c.z), abs(c.w));
-#if KW_ANALYSIS == KW_ANALYSIS_MAX_CURVATURE
-    return kmax;
-#else
     return kmax > 0.0 ? 1.0 / kmax : 3.0e38; // a plane: infinite radius, the scale's top
-#endif
+#else
+#error "a colour map's row with no value here"
 #endif
 }
 #endif
@@ -84,7 +84,7 @@ float headlight(vec3 normal, vec3 V) {
 vec3 analysisColour(vec3 point, vec3 normal, vec4 curvature) {
     vec3 V = normalize(uEye - point);
     vec3 N = dot(normal, V) < 0.0 ? -normal : normal; // two-sided, as phong()
-#if KW_ANALYSIS >= KW_ANALYSIS_GAUSSIAN && KW_ANALYSIS <= KW_ANALYSIS_MIN_RADIUS
+#ifdef KW_RAMP
     return rampColour(scalePosition(analysisValue(curvature))) * headlight(normal, V);
 #elif KW_ANALYSIS == KW_ANALYSIS_ZEBRA
     // Zebra: infinitely long light tubes parallel to the stripe axis A (in the view plane),

@@ -308,6 +308,30 @@ private Q_SLOTS:
         }
     }
 
+    void everyModeHasItsRowAndColour() {
+        // The mode table is the one list of modes: each row's define is used by the
+        // analysis shader (its colour), and the colour maps are the rows that say so, not a
+        // range of numbers.
+        const QString analysis = readShader(QStringLiteral("analysis.glsl"));
+        QVERIFY(!analysis.isEmpty());
+        QCOMPARE(analysisModes().front(), AnalysisMode::Phong);
+        QCOMPARE(analysisModeNames().size(), int(analysisModes().size()));
+        for (const AnalysisMode m : analysisModes()) {
+            QCOMPARE(analysisModeNames().at(int(m)), analysisModeName(m));
+            QCOMPARE(parseAnalysisMode(analysisModeName(m)), std::optional<AnalysisMode>(m));
+            QCOMPARE(isColourMap(m), analysisParameters(m) == AnalysisParameters::ColourMap);
+            QCOMPARE(needsCurvature(m), isColourMap(m));
+            if (m != AnalysisMode::Phong)
+                QVERIFY2(analysis.contains(analysisModeDefine(m)),
+                         qPrintable(analysisModeDefine(m)));
+        }
+        QCOMPARE(analysisParameters(AnalysisMode::Zebra), AnalysisParameters::Stripes);
+        QCOMPARE(defaultScale(AnalysisMode::Gaussian), ColourScale::Symmetric);
+        QCOMPARE(defaultScale(AnalysisMode::MaxCurvature), ColourScale::Linear);
+        QVERIFY(!analysis.contains(
+            QRegularExpression(QStringLiteral("KW_ANALYSIS\\s*(>=|<=|>|<)\\s*KW_ANALYSIS_"))));
+    }
+
     void shadersUseOnlyDeclaredConstants() {
         // A contract name a shader uses and the preamble lacks would fail only when that
         // variant is built; every one must be declared.
