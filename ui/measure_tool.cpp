@@ -12,9 +12,8 @@ namespace kw {
 
 namespace {
 
-/// The probe marker's half-size on screen, and what its repaint covers (with the pen).
+/// The probe marker's half-size on screen.
 constexpr int kMarkerArm = 6;
-constexpr int kMarkerReach = kMarkerArm + 2;
 
 /// A label in a rounded box at `at`, readable on any background.
 void drawLabel(QPainter& p, QPointF at, const QString& text) {
@@ -36,15 +35,14 @@ void drawPoint(QPainter& p, QPointF at) {
 
 } // namespace
 
-MeasureTool::MeasureTool(Viewport* viewport) : QWidget(viewport), m_view(viewport) {
+MeasureTool::MeasureTool(Viewport* viewport) : QObject(viewport), m_view(viewport) {
     setObjectName(QStringLiteral("measureOverlay"));
-    setAttribute(Qt::WA_TransparentForMouseEvents);
-    setAttribute(Qt::WA_NoSystemBackground);
-    setAttribute(Qt::WA_TranslucentBackground);
-    setFocusPolicy(Qt::NoFocus);
-    setGeometry(viewport->rect());
-    // The dimensions follow the camera: redraw after every frame of the view.
-    connect(viewport, &Viewport::frameDrawn, this, [this] { update(); });
+    // The dimensions follow the camera: drawn over every frame of the view.
+    viewport->addOverlay(this, [this](QPainter& p) { paint(p); });
+}
+
+void MeasureTool::update() {
+    m_view->updateOverlays();
 }
 
 void MeasureTool::setKind(Measurement::Kind kind) {
@@ -92,22 +90,9 @@ void MeasureTool::clear() {
 void MeasureTool::setProbeMarker(std::optional<glm::dvec3> point) {
     if (point == m_marker)
         return;
-    // Only the old and the new cross are repainted: a repaint of the whole overlay would make
-    // the view under it draw its frame again (Viewport::paintEvent), at every hover.
-    const ViewProjection view = m_view->viewProjection();
-    QRegion dirty;
-    for (const std::optional<glm::dvec3>& at : {m_marker, point})
-        if (at) {
-            const std::optional<QPointF> px = view.project(*at);
-            if (!px) {
-                dirty = rect();
-                break;
-            }
-            dirty += QRect(px->toPoint() - QPoint(kMarkerReach, kMarkerReach),
-                           QSize(2 * kMarkerReach + 1, 2 * kMarkerReach + 1));
-        }
+    // The overlays alone are painted again over the last frame: no new frame at every hover.
     m_marker = point;
-    update(dirty);
+    update();
 }
 
 QString MeasureTool::unitKey() const {
@@ -122,12 +107,10 @@ QStringList MeasureTool::labels() const {
     return out;
 }
 
-void MeasureTool::paintEvent(QPaintEvent*) {
-    if (geometry() != m_view->rect())
-        setGeometry(m_view->rect());
+void MeasureTool::paint(QPainter& p) const {
     if (m_done.empty() && !m_pending && !m_marker)
         return;
-    QPainter p(this);
+    p.save();
     p.setRenderHint(QPainter::Antialiasing);
     const ViewProjection view = m_view->viewProjection();
     // Length on screen of a normal's arrow.
@@ -184,6 +167,7 @@ void MeasureTool::paintEvent(QPaintEvent*) {
             p.drawLine(*a + QPointF(-kMarkerArm, 0), *a + QPointF(kMarkerArm, 0));
             p.drawLine(*a + QPointF(0, -kMarkerArm), *a + QPointF(0, kMarkerArm));
         }
+    p.restore();
 }
 
 } // namespace kw

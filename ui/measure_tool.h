@@ -5,19 +5,22 @@
 
 #include "model/analysis/probe.h"
 
-#include <QWidget>
+#include <QObject>
+#include <QString>
+#include <QStringList>
 #include <functional>
 #include <optional>
 #include <vector>
+
+class QPainter;
 
 namespace kw {
 
 class Viewport;
 
-/// The dimensions drawn over a viewport (a transparent child widget the size of the view,
-/// repainted after each of its frames) and the clicks that make them: Distance and Angle take
-/// two points, Radius one.
-class MeasureTool : public QWidget {
+/// The dimensions drawn over a viewport (a QPainter overlay of its frames, Viewport::addOverlay)
+/// and the clicks that make them: Distance and Angle take two points, Radius one.
+class MeasureTool : public QObject {
     Q_OBJECT
 public:
     explicit MeasureTool(Viewport* viewport);
@@ -43,10 +46,13 @@ public:
     QString unitKey() const;
     QStringList labels() const;
 
-protected:
-    void paintEvent(QPaintEvent* event) override;
+    /// Draws the dimensions, the half-made one's point and the marker (view pixels).
+    void paint(QPainter& p) const;
 
 private:
+    /// Paints the view's overlays again (a changed dimension or marker; no new frame).
+    void update();
+
     Viewport* m_view;
     Measurement::Kind m_kind = Measurement::Kind::Distance;
     std::optional<ProbePoint> m_pending;

@@ -26,10 +26,30 @@ namespace kw {
 
 ProbeTool::ProbeTool(Document* document, Viewport* viewport)
     : QObject(viewport), m_doc(document), m_view(viewport), m_measure(new MeasureTool(viewport)) {
-    m_panel = new QFrame(viewport);
+    makePanel();
+    if (viewport->isNativeWindow())
+        viewport->installEventFilter(this);
+    viewport->listen(this);
+    // Dimensions and the probe belong to the geometry they were taken on: a new or opened
+    // document starts without them.
+    connect(document, &Document::sceneReset, this, [this] {
+        m_measure->clear();
+        hideProbe();
+    });
+}
+
+void ProbeTool::makePanel() {
+    m_panel = new QFrame(m_view);
     m_panel->setObjectName(QStringLiteral("probePanel"));
     m_panel->setFrameShape(QFrame::StyledPanel);
     m_panel->setAutoFillBackground(true);
+    if (m_view->isNativeWindow()) {
+        // Over the view's native window only a native window shows: the panel is one, a child
+        // of the main window's placed over the view (its ancestors and siblings stay alien:
+        // Qt::AA_DontCreateNativeWidgetSiblings, set with the view's window).
+        m_panel->setAttribute(Qt::WA_DontCreateNativeAncestors);
+        m_panel->setAttribute(Qt::WA_NativeWindow);
+    }
     auto* layout = new QVBoxLayout(m_panel);
     layout->setContentsMargins(6, 4, 6, 4);
     m_text = new QLabel;
@@ -44,13 +64,17 @@ ProbeTool::ProbeTool(Document* document, Viewport* viewport)
     layout->addWidget(copy, 0, Qt::AlignRight);
     connect(copy, &QToolButton::clicked, this, [this] { copyProbe(); });
     m_panel->hide();
-    viewport->listen(this);
-    // Dimensions and the probe belong to the geometry they were taken on: a new or opened
-    // document starts without them.
-    connect(document, &Document::sceneReset, this, [this] {
-        m_measure->clear();
+}
+
+bool ProbeTool::eventFilter(QObject* watched, QEvent* event) {
+    // A native panel whose view moves to another window would keep a native window of the old
+    // one (gone with it): a new panel, made in the new window when next shown.
+    if (watched == m_view && event->type() == QEvent::ParentAboutToChange) {
         hideProbe();
-    });
+        delete m_panel;
+        makePanel();
+    }
+    return QObject::eventFilter(watched, event);
 }
 
 void ProbeTool::buildMenu(QMenuBar* bar) {

@@ -81,7 +81,12 @@ Q_SIGNALS:
     void probed();
     void measured(const kw::Measurement& m);
 
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
+    /// The panel of values (a native window over a native view window).
+    void makePanel();
     bool probing() const { return m_mode == Mode::Probe || m_held; }
     void hideProbe();
     /// The probe point at a position: pick, then refinement onto the ray through the centre of

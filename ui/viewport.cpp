@@ -5,15 +5,19 @@
 #include "render/gl_context.h"
 #include "ui/analysiscontrols.h"
 #include "ui/tools/viewtools.h"
+#include "ui/view_surface.h"
 
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
+#include <QOpenGLExtraFunctions>
+#include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
 #include <QPaintEvent>
 #include <QPainter>
 #include <QTimer>
 #include <QUndoStack>
+#include <QVBoxLayout>
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
@@ -22,17 +26,26 @@ namespace kw {
 
 Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, QUndoStack* stack,
                    QWidget* parent)
-    : QOpenGLWidget(parent), m_doc(document), m_model(model), m_selection(selection),
-      m_stack(stack) {
+    : QWidget(parent), m_doc(document), m_model(model), m_selection(selection), m_stack(stack) {
     setFocusPolicy(Qt::StrongFocus);
     setMouseTracking(true); // hover moves for the tools
+    // The frames cover the widget: nothing of its own to paint under them.
+    setAttribute(Qt::WA_OpaquePaintEvent);
+    setAttribute(Qt::WA_NoSystemBackground);
     // KW_GL_DEBUG=1: a debug context whatever the application's default format (initializeGL
     // starts its log).
-    if (glDebugRequested()) {
-        QSurfaceFormat f = format();
-        f.setOption(QSurfaceFormat::DebugContext);
-        setFormat(f);
-    }
+    QSurfaceFormat format = QSurfaceFormat::defaultFormat();
+    if (glDebugRequested())
+        format.setOption(QSurfaceFormat::DebugContext);
+    m_surface =
+        ViewSurface::create(this, format,
+                            {[this] { initializeGL(); }, [this](int w, int h) { resizeGL(w, h); },
+                             [this] {
+                                 paintGL();
+                             }});
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(m_surface->widget());
     setMinimumSize(160, 120);
     m_options.controlNet = true;
     m_options.samples = samples(); // the automatic count: kept resolved, as setSamples does
@@ -53,30 +66,82 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     });
     connect(m_selection, &Selection::changed, this, repaint);
     // The window's composition and swap of the frame paintGL drew (lastFrameTiming).
-    connect(this, &QOpenGLWidget::frameSwapped, this, [this] {
+    connect(m_surface.get(), &ViewSurface::frameSwapped, this, [this] {
         if (m_paintEnd.isValid()) {
             m_timing.swapMs = double(m_paintEnd.nsecsElapsed()) * 1e-6;
             m_paintEnd.invalidate();
         }
+        Q_EMIT frameSwapped();
     });
     resetCamera();
 }
 
 Viewport::~Viewport() {
-    // QOpenGLWidget's destructor, which runs after this one, destroys the context: its
-    // aboutToBeDestroyed must not call releaseGl() on this already destroyed Viewport.
+    // The surface's destructor destroys the context: its aboutToBeDestroyed must not call
+    // releaseGl() on this already destroyed Viewport.
     if (QOpenGLContext* gl = context())
         disconnect(gl, &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl);
     releaseGl();
+    m_surface.reset();
 }
 
 void Viewport::releaseGl() {
-    if (!m_renderer.isInitialized() && !m_glDebug)
+    if (!m_renderer.isInitialized() && !m_glDebug && !m_cleanFrame)
         return;
     makeCurrent();
     m_renderer.release();
+    m_cleanFrame.reset();
+    m_cleanFrameValid = false;
     m_glDebug.reset(); // stops logging while its context is current
     doneCurrent();
+}
+
+void Viewport::update() {
+    m_framePending = true;
+    m_surface->requestFrame();
+}
+
+void Viewport::updateOverlays() {
+    m_overlaysOnly = true;
+    m_surface->requestFrame();
+}
+
+void Viewport::addOverlay(QObject* owner, std::function<void(QPainter&)> paint) {
+    m_overlays.emplace_back(owner, std::move(paint));
+}
+
+void Viewport::makeCurrent() {
+    m_surface->makeCurrent();
+}
+
+void Viewport::doneCurrent() {
+    m_surface->doneCurrent();
+}
+
+QOpenGLContext* Viewport::context() const {
+    return m_surface->context();
+}
+
+QSurfaceFormat Viewport::format() const {
+    return m_surface->format();
+}
+
+unsigned Viewport::defaultFramebufferObject() const {
+    return m_surface->framebuffer();
+}
+
+QImage Viewport::grabFramebuffer() {
+    m_framePending = true;
+    return m_surface->grabFramebuffer();
+}
+
+bool Viewport::isNativeWindow() const {
+    return m_surface->isNativeWindow();
+}
+
+QSize Viewport::framePixels() const {
+    const qreal dpr = devicePixelRatioF();
+    return QSize(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
 }
 
 double Viewport::aspect() const {
@@ -125,7 +190,7 @@ void Viewport::setAnalysis(const AnalysisOptions& analysis) {
 void Viewport::drawLegend() {
     if (m_options.edgeBands) {
         // The Edge Continuity overlay's classes, bottom right.
-        QPainter p(this);
+        QPainter p(m_surface->paintDevice());
         const std::pair<glm::vec4, QString> rows[] = {
             {continuityColor(ContinuityClass::G2), tr("G2")},
             {continuityColor(ContinuityClass::G1), tr("G1")},
@@ -146,14 +211,14 @@ void Viewport::drawLegend() {
     }
     const AnalysisOptions& a = m_options.analysis;
     if (m_options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
-        QPainter p(this);
+        QPainter p(m_surface->paintDevice());
         drawDraftLegend(p, QRect(width() - 190, 16, 170, 100), a.pullDirection,
                         a.draftAngleDegrees);
         return;
     }
     if (m_options.mode != RenderMode::Exact || !isColourMap(a.mode))
         return;
-    QPainter p(this);
+    QPainter p(m_surface->paintDevice());
     const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
     drawColourLegend(p, area, a.mode, m_lastReport.analysisRange,
                      a.scale.value_or(defaultScale(a.mode)), !a.range);
@@ -344,18 +409,31 @@ void Viewport::initializeGL() {
 }
 
 void Viewport::resizeGL(int, int) {
+    m_cleanFrameValid = false; // the framebuffer is new
     // A fitted camera was fitted for the old aspect; fit again until the user moves it.
     if (m_autoFit)
         m_camera.setCamera(fitCamera(m_doc->scene(), aspect()));
 }
 
 void Viewport::paintGL() {
+    const bool overlaysOnly = m_overlaysOnly && !m_framePending && m_cleanFrameValid;
+    m_overlaysOnly = m_framePending = false;
+    const QSize pixels = framePixels();
+    if (overlaysOnly && m_renderer.isInitialized() && restoreCleanFrame(pixels)) {
+        // Only what is painted over the frame changed (a probe marker): the last still frame
+        // again, its overlays painted anew; no new frame.
+        paintOverlays();
+        return;
+    }
     const bool timed = m_moveTimed;
     const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
     m_moveTimed = false;
 
     if (!m_renderer.isInitialized()) {
-        QPainter p(this);
+        QPaintDevice* device = m_surface->paintDevice();
+        if (!device)
+            return;
+        QPainter p(device);
         p.fillRect(rect(), QColor(46, 48, 54));
         p.setPen(Qt::white);
         p.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
@@ -388,8 +466,6 @@ void Viewport::paintGL() {
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
-    const qreal dpr = devicePixelRatioF();
-    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
     m_lastReport = m_renderer.render(*m_doc, m_camera.camera(),
                                      {defaultFramebufferObject(), pixels, false}, options);
     m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
@@ -417,8 +493,16 @@ void Viewport::paintGL() {
             update();
     }
     const qint64 painterStart = paintClock.nsecsElapsed();
-    drawSelection();
-    drawLegend();
+    // A frame is kept bare, so that its overlays can be painted again alone (the probe's
+    // marker, a rubber band), unless the camera or the document is moving: the next frame
+    // comes anyway.
+    const bool changing = m_gesture != Gesture::None || isDragging() ||
+                          (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
+    if (!changing)
+        keepCleanFrame(pixels);
+    else
+        m_cleanFrameValid = false;
+    paintOverlays();
     if (m_renderer.passProfiling()) {
         // The QPainter overlays' GL work, finished here, as the renderer's passes are.
         makeCurrent();
@@ -446,14 +530,52 @@ void Viewport::paintGL() {
     }
 }
 
-void Viewport::paintEvent(QPaintEvent* event) {
-    // QOpenGLWidget draws its frame again at every paint event, and a child overlay's repaint
-    // (the probe's marker, at every hover) sends one for the part under it. What the frame
-    // shows changes only through update() of the whole view; a part of it is the last frame
-    // composited again, as it is: no new frame.
-    if (m_framesDrawn > 0 && !event->region().contains(rect()))
+void Viewport::paintEvent(QPaintEvent*) {
+    // Nothing of the widget's own: the surface over it draws and shows the frames (a first
+    // frame, a resize and an expose are its own), and a frame comes through update().
+}
+
+void Viewport::paintOverlays() {
+    drawSelection();
+    drawLegend();
+    QPaintDevice* device = m_surface->paintDevice();
+    if (!device)
         return;
-    QOpenGLWidget::paintEvent(event);
+    std::erase_if(m_overlays, [](const auto& overlay) { return overlay.first.isNull(); });
+    if (m_overlays.empty())
+        return;
+    QPainter p(device);
+    for (const auto& overlay : m_overlays)
+        overlay.second(p);
+}
+
+void Viewport::keepCleanFrame(QSize pixels) {
+    m_cleanFrameValid = false;
+    if (!m_cleanFrame || m_cleanFrame->size() != pixels)
+        m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
+    QOpenGLExtraFunctions* f = context()->extraFunctions();
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, defaultFramebufferObject());
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_cleanFrame->handle());
+    f->glDisable(GL_SCISSOR_TEST);
+    f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
+                         pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    m_cleanFrameValid = true;
+}
+
+bool Viewport::restoreCleanFrame(QSize pixels) {
+    if (!m_cleanFrameValid || !m_cleanFrame || m_cleanFrame->size() != pixels)
+        return false;
+    QOpenGLExtraFunctions* f = context()->extraFunctions();
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_cleanFrame->handle());
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+    f->glDisable(GL_SCISSOR_TEST);
+    f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
+                         pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    return true;
 }
 
 void Viewport::drawAgainWhenStill() {
@@ -574,7 +696,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
 
 void Viewport::mouseDoubleClickEvent(QMouseEvent* event) {
     if (!m_tools.doubleClick(event))
-        QOpenGLWidget::mouseDoubleClickEvent(event);
+        QWidget::mouseDoubleClickEvent(event);
 }
 
 void Viewport::wheelEvent(QWheelEvent* event) {
@@ -614,7 +736,7 @@ void Viewport::keyPressEvent(QKeyEvent* event) {
         event->accept();
         return;
     }
-    QOpenGLWidget::keyPressEvent(event);
+    QWidget::keyPressEvent(event);
 }
 
 void Viewport::keyReleaseEvent(QKeyEvent* event) {
@@ -632,18 +754,18 @@ void Viewport::keyReleaseEvent(QKeyEvent* event) {
         event->accept();
         return;
     }
-    QOpenGLWidget::keyReleaseEvent(event);
+    QWidget::keyReleaseEvent(event);
 }
 
 void Viewport::focusOutEvent(QFocusEvent* event) {
     m_axis = -1;
     m_tools.focusOut();
-    QOpenGLWidget::focusOutEvent(event);
+    QWidget::focusOutEvent(event);
 }
 
 void Viewport::leaveEvent(QEvent* event) {
     m_tools.leave();
-    QOpenGLWidget::leaveEvent(event);
+    QWidget::leaveEvent(event);
 }
 
 bool Viewport::event(QEvent* event) {
@@ -653,7 +775,7 @@ bool Viewport::event(QEvent* event) {
         event->accept();
         return true;
     }
-    return QOpenGLWidget::event(event);
+    return QWidget::event(event);
 }
 
 } // namespace kw

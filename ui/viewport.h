@@ -1,5 +1,6 @@
-// Viewport: the 3D view (QOpenGLWidget) drawing the document with the render module; orbit, pan,
-// zoom, standard views, and picking; every other gesture is a tool's (ui/tools/).
+// Viewport: the 3D view drawing the document with the render module; orbit, pan, zoom, standard
+// views, and picking; every other gesture is a tool's (ui/tools/). A plain widget: its frames go
+// to a ViewSurface that fills it (a native OpenGL window, ui/view_surface.h).
 #pragma once
 
 #include "model/document/selection.h"
@@ -9,20 +10,28 @@
 #include "ui/tools/tool.h"
 
 #include <QElapsedTimer>
+#include <QImage>
 #include <QOpenGLDebugLogger>
-#include <QOpenGLWidget>
+#include <QPointer>
+#include <QSurfaceFormat>
+#include <QWidget>
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
 
 class QKeyEvent;
 class QMouseEvent;
+class QOpenGLContext;
+class QOpenGLFramebufferObject;
 class QPainter;
 class QUndoStack;
 
 class QTimer;
 
 namespace kw {
+
+class ViewSurface;
 
 /// Mouse: middle drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel
 /// zooms; every other press goes to the tools (ui/tools/tool.h), the installed one first, then
@@ -33,7 +42,7 @@ namespace kw {
 /// points in the view plane (hold X, Y or Z to move along that world axis), a left drag
 /// elsewhere draws a rubber band. Esc cancels a drag. A drag edits the document live through
 /// a LiveEdit and its release is one undo step; a refused step's reason goes to message().
-class Viewport : public QOpenGLWidget {
+class Viewport : public QWidget {
     Q_OBJECT
 public:
     /// All pointers must outlive the viewport; `model` is the one `selection` was built on.
@@ -140,6 +149,27 @@ public:
     /// The map the running rotate or scale drag applies (identity otherwise), and its angle in
     /// radians or its factor through `amount`.
     glm::dmat4 surfaceDragMatrix(double* amount = nullptr) const;
+    /// Draws a new frame soon (QWidget::update of the view; many calls, one frame).
+    void update();
+    /// Paints the overlays again over the last frame without drawing a new one (a hover's
+    /// probe marker, a rubber band); a new frame when the last one was drawn while moving.
+    void updateOverlays();
+    /// Adds a QPainter overlay drawn over every frame after the view's own (the measurements'
+    /// dimensions), until `owner` is destroyed.
+    void addOverlay(QObject* owner, std::function<void(QPainter&)> paint);
+    /// As QOpenGLWidget's: the view's context current with its frame's framebuffer bound,
+    /// the context (null before the first frame), its format, that framebuffer, and a frame
+    /// painted now and read back.
+    void makeCurrent();
+    void doneCurrent();
+    QOpenGLContext* context() const;
+    QSurfaceFormat format() const;
+    unsigned defaultFramebufferObject() const;
+    QImage grabFramebuffer();
+    /// Frames go to a native OpenGL window (else, where the platform has no native child
+    /// windows or KNOTWORK_VIEW=widget, to a QOpenGLWidget: ui/view_surface.h).
+    bool isNativeWindow() const;
+
     /// Installs a tool (a mode such as the curve tool; nullptr removes it): it sees plain
     /// left presses, hover moves and keys first, and draws over the frame. The tool must
     /// outlive its installation; navigation keeps working under it.
@@ -198,8 +228,9 @@ public:
     /// Frames painted since construction.
     std::int64_t framesDrawn() const { return m_framesDrawn; }
     /// Where the last frame's time went in paintGL and after it (wall ms): the render call,
-    /// the QPainter overlays (selection outline, nets, legend) and the window's composition
-    /// and swap up to QOpenGLWidget::frameSwapped (0 until it comes).
+    /// the QPainter overlays (selection outline, nets, legend) and the frame's way to the
+    /// screen up to frameSwapped (0 until it comes): the native window's blit and swap, or
+    /// the fallback QOpenGLWidget's composition of the whole main window and swap.
     struct FrameTiming {
         double renderMs = 0.0;
         double painterMs = 0.0;
@@ -224,11 +255,13 @@ Q_SIGNALS:
     void message(const QString& text);
     /// The section planes moved in the view (moveSections), as now drawn.
     void sectionsMoved(const std::vector<kw::SectionPlane>& planes, bool caps);
+    /// A frame is on screen (QOpenGLWidget::frameSwapped).
+    void frameSwapped();
 
 protected:
-    void initializeGL() override;
-    void resizeGL(int w, int h) override;
-    void paintGL() override;
+    void initializeGL();
+    void resizeGL(int w, int h);
+    void paintGL();
     void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
@@ -251,8 +284,20 @@ private:
     void drawLegend();
     /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
     void drawOverlays(class QPainter& p, const ViewProjection& view);
+    /// All the QPainter work over a frame: selection, nets, tools, legend, added overlays.
+    void paintOverlays();
+    /// The frame before its overlays, kept after still frames (updateOverlays): copy, restore.
+    void keepCleanFrame(QSize pixels);
+    bool restoreCleanFrame(QSize pixels);
+    QSize framePixels() const;
     double aspect() const;
 
+    std::unique_ptr<ViewSurface> m_surface;
+    std::unique_ptr<QOpenGLFramebufferObject> m_cleanFrame; ///< the last still frame, bare
+    bool m_cleanFrameValid = false;
+    bool m_framePending = false; ///< update() since the last frame
+    bool m_overlaysOnly = false; ///< updateOverlays() since the last frame
+    std::vector<std::pair<QPointer<QObject>, std::function<void(QPainter&)>>> m_overlays;
     Document* m_doc;
     SceneModel* m_model;
     Selection* m_selection;

@@ -1,6 +1,7 @@
 // Viewport overlays drawn with QPainter over the rendered frame (selection highlight, control
 // nets of the selected surfaces, ground grid, axis indicator, the tools' overlays).
 #include "model/nurbs/trim.h"
+#include "ui/view_surface.h"
 #include "ui/viewport.h"
 
 #include <QPainter>
@@ -119,7 +120,7 @@ bool kept(const glm::dvec3& x, const std::vector<SectionPlane>& planes) {
 void Viewport::drawSelection() {
     const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
     // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
-    QPainter p(this);
+    QPainter p(m_surface->paintDevice());
     p.setRenderHint(QPainter::Antialiasing);
     const ViewProjection view = viewProjection();
     drawOverlays(p, view);

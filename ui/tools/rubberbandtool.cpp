@@ -4,8 +4,10 @@
 #include "ui/viewport.h"
 
 #include <QMouseEvent>
-#include <QPointer>
+#include <QPainter>
 #include <QRubberBand>
+#include <QStyle>
+#include <QStyleOptionRubberBand>
 #include <algorithm>
 
 namespace kw {
@@ -21,17 +23,32 @@ public:
             (event->modifiers() & (Qt::ControlModifier | Qt::AltModifier)))
             return false;
         m_press = event->position();
-        if (!m_band)
-            m_band = new QRubberBand(QRubberBand::Rectangle, m_view);
-        m_band->setGeometry(QRect(m_press.toPoint(), QSize()));
-        m_band->show();
+        m_band = QRect(m_press.toPoint(), QSize());
         m_dragging = true;
+        m_view->updateOverlays();
         return true;
     }
 
     void move(QMouseEvent* event) override {
-        if (m_band)
-            m_band->setGeometry(QRectF(m_press, event->position()).normalized().toRect());
+        if (!m_dragging)
+            return;
+        m_band = QRectF(m_press, event->position()).normalized().toRect();
+        m_view->updateOverlays();
+    }
+
+    void paint(QPainter& painter) override {
+        // As a QRubberBand child of the view draws itself (a widget would be hidden under the
+        // view's native window): the style's rubber band over the frame.
+        if (!m_dragging || m_band.isEmpty())
+            return;
+        QStyleOptionRubberBand option;
+        option.initFrom(m_view);
+        option.rect = m_band;
+        option.shape = QRubberBand::Rectangle;
+        option.opaque = false;
+        painter.save();
+        m_view->style()->drawControl(QStyle::CE_RubberBand, &option, &painter, m_view);
+        painter.restore();
     }
 
     void release(QMouseEvent* event) override {
@@ -42,9 +59,9 @@ public:
     }
 
     void cancel() override {
+        if (m_dragging)
+            m_view->updateOverlays();
         m_dragging = false;
-        if (m_band)
-            m_band->hide();
     }
 
     bool dragging() const override { return m_dragging; }
@@ -75,7 +92,7 @@ private:
     }
 
     Viewport* m_view;
-    QPointer<QRubberBand> m_band;
+    QRect m_band; ///< the band while dragging, view pixels
     QPointF m_press;
     bool m_dragging = false;
 };

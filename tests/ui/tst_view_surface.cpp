@@ -1,0 +1,199 @@
+// The 3D view's frames in a native OpenGL window (ui/view_surface.h) on the unit sphere sample
+// (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads,
+// the probe's panel shows over the window, measurements and the rubber band are painted over
+// the frame, and the QOpenGLWidget fallback draws the same pixels.
+#include "editor_test_util.h"
+#include "render/offscreen_renderer.h"
+#include "ui/probe_tool.h"
+
+#include <QCursor>
+#include <QFrame>
+#include <QScreen>
+
+using namespace kw;
+
+namespace {
+
+/// Counts paint events of the widgets inside the view.
+class PaintCounter : public QObject {
+public:
+    int paints = 0;
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override {
+        if (event->type() == QEvent::Paint && watched->isWidgetType())
+            ++paints;
+        return false;
+    }
+};
+
+/// Pixels within `tolerance` of `colour` in each channel.
+int pixelsNear(const QImage& image, QColor colour, int tolerance = 24) {
+    int n = 0;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            const QRgb p = image.pixel(x, y);
+            n += std::abs(qRed(p) - colour.red()) <= tolerance &&
+                 std::abs(qGreen(p) - colour.green()) <= tolerance &&
+                 std::abs(qBlue(p) - colour.blue()) <= tolerance;
+        }
+    return n;
+}
+
+} // namespace
+
+class TestViewSurface : public kwtest::EditorTestBase {
+    Q_OBJECT
+public:
+    static void initMain() {
+        QSurfaceFormat::setDefaultFormat(OffscreenRenderer::requiredFormat());
+    }
+
+private Q_SLOTS:
+    void cleanup() {
+        closeWindow();
+        qunsetenv("KNOTWORK_VIEW");
+    }
+
+    void framesGoToTheNativeWindow() {
+        openWindow("sphere");
+        Viewport* vp = m_window->viewport();
+        QVERIFY(vp->isNativeWindow());
+        QVERIFY(vp->findChild<QWidget*>(QStringLiteral("viewWindowContainer")));
+        settle();
+        // Frames are drawn and swapped by the window alone: no widget in the view repaints
+        // (a QOpenGLWidget is repainted, and its window composed again, at every frame).
+        PaintCounter counter;
+        vp->installEventFilter(&counter);
+        for (QWidget* w : vp->findChildren<QWidget*>())
+            w->installEventFilter(&counter);
+        for (int k = 0; k < 4; ++k)
+            QVERIFY(nextFrame());
+        QCOMPARE(counter.paints, 0);
+        // What is on screen is the frame.
+        settle();
+        const QImage frame = vp->grabFramebuffer();
+        QCoreApplication::processEvents(); // the grabbed frame shown
+        QTest::qWait(50);
+        QCOMPARE(differingPixels(frame, onScreen(vp, vp->rect())), 0);
+    }
+
+    void probePanelShowsOverTheView() {
+        openWindow("sphere");
+        Viewport* vp = m_window->viewport();
+        settle();
+        auto* probe = vp->findChild<ProbeTool*>();
+        QVERIFY(probe);
+        act("actionProbe")->trigger();
+        const QPoint at = vp->rect().center();
+        QCursor::setPos(vp->mapToGlobal(at));
+        QMouseEvent move(QEvent::MouseMove, at, vp->mapToGlobal(at), Qt::NoButton, Qt::NoButton,
+                         Qt::NoModifier);
+        QCoreApplication::sendEvent(vp, &move);
+        QTRY_VERIFY(probe->lastProbe().has_value());
+        auto* panel = vp->findChild<QFrame*>(QStringLiteral("probePanel"));
+        QVERIFY(panel && panel->isVisible());
+        QTest::qWait(100);
+        // The panel as it paints itself is what the screen shows there, not the frame under it.
+        const QImage drawn = panel->grab().toImage();
+        const QImage shown = onScreen(panel, panel->rect());
+        QVERIFY2(differingPixels(drawn, shown) < drawn.width() * drawn.height() / 50,
+                 qPrintable(QString::number(differingPixels(drawn, shown))));
+    }
+
+    void measurementsAndRubberBandArePaintedOverTheFrame() {
+        openWindow("sphere");
+        Viewport* vp = m_window->viewport();
+        settle();
+        const QColor dimension(255, 200, 40);
+        const QImage bare = vp->grabFramebuffer();
+        const int before = pixelsNear(bare, dimension);
+        act("actionMeasureDistance")->trigger();
+        const QPoint c = vp->rect().center();
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + QPoint(-40, -10));
+        QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, c + QPoint(40, 20));
+        auto* probe = vp->findChild<ProbeTool*>();
+        QCOMPARE(probe->measureTool()->measurements().size(), size_t(1));
+        const QImage measured = vp->grabFramebuffer();
+        QVERIFY2(pixelsNear(measured, dimension) > before + 40,
+                 qPrintable(
+                     QStringLiteral("%1 -> %2").arg(before).arg(pixelsNear(measured, dimension))));
+        // Drawn over the frame on screen too, after the view came to rest.
+        settle();
+        QTest::qWait(50);
+        QVERIFY(pixelsNear(onScreen(vp, vp->rect()), dimension) > before + 40);
+        act("actionClearMeasurements")->trigger();
+        act("actionMeasureDistance")->trigger(); // off: plain clicks select again
+
+        // A rubber band from empty space (top right) is painted over the last frame while it
+        // is dragged: no new frame, the band on screen, nothing else changed; gone on release.
+        settle();
+        const QPoint from(vp->width() - 150, 30), to(vp->width() - 40, 110);
+        const QRect band = QRect(from, to).normalized();
+        const QRect below(0, 150, vp->width(), 100);
+        QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, from);
+        const QImage still = vp->grabFramebuffer(); // the press's frame: no band yet
+        QTest::qWait(50);
+        const std::int64_t drawn = vp->framesDrawn();
+        QTest::mouseMove(vp, to - QPoint(30, 30));
+        QTest::mouseMove(vp, to);
+        QTest::qWait(100);
+        QCOMPARE(vp->framesDrawn(), drawn);
+        QVERIFY(differingPixels(onScreen(vp, band), still.copy(band)) > band.width() * 2);
+        QCOMPARE(differingPixels(onScreen(vp, below), still.copy(below)), 0);
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, to);
+        settle();
+        QCOMPARE(differingPixels(onScreen(vp, band), vp->grabFramebuffer().copy(band)), 0);
+    }
+
+    void widgetFallbackDrawsTheSameFrame() {
+        openWindow("sphere");
+        QVERIFY(m_window->viewport()->isNativeWindow());
+        settle();
+        const QImage native = m_window->viewport()->grabFramebuffer();
+        closeWindow();
+        // Where the platform has no native child windows (or KNOTWORK_VIEW=widget).
+        qputenv("KNOTWORK_VIEW", "widget");
+        openWindow("sphere");
+        Viewport* vp = m_window->viewport();
+        QVERIFY(!vp->isNativeWindow());
+        QVERIFY(!vp->findChild<QWidget*>(QStringLiteral("viewWindowContainer")));
+        settle();
+        QCOMPARE(differingPixels(vp->grabFramebuffer(), native), 0);
+    }
+
+private:
+    /// Draws one frame and waits for it.
+    bool nextFrame() {
+        Viewport* vp = m_window->viewport();
+        const std::int64_t before = vp->framesDrawn();
+        vp->update();
+        return QTest::qWaitFor([&] { return vp->framesDrawn() > before; }, 5000);
+    }
+    /// Waits until the view draws no more frames (the still image complete).
+    void settle() {
+        Viewport* vp = m_window->viewport();
+        std::int64_t drawn = -1;
+        for (int k = 0; k < 100; ++k) {
+            if (drawn == vp->framesDrawn() && !vp->lastFrameReport().refining)
+                return;
+            drawn = vp->framesDrawn();
+            QTest::qWait(300);
+        }
+        QFAIL("the view did not come to rest");
+    }
+    /// The screen's pixels of `rect` of `widget` (the X server's image, child windows in).
+    QImage onScreen(QWidget* widget, QRect rect) const {
+        const QPoint at = widget->mapTo(m_window.get(), rect.topLeft());
+        return m_window->screen()
+            ->grabWindow(m_window->winId(), at.x(), at.y(), rect.width(), rect.height())
+            .toImage();
+    }
+    static int differingPixels(const QImage& a, const QImage& b) {
+        return kwtest::differingPixels(a.convertToFormat(QImage::Format_RGB32),
+                                       b.convertToFormat(QImage::Format_RGB32));
+    }
+};
+
+QTEST_MAIN(TestViewSurface)
+#include "tst_view_surface.moc"
