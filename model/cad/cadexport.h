@@ -48,8 +48,8 @@ struct ExportReport {
     bool fromText(const QByteArray& text);
 };
 
-/// Checks `options` (schema name); empty when valid, else the reason.
-QString exportOptionsError(const ExportOptions& options);
+/// Checks `options` (schema name); ok() when valid, else an Error with the reason.
+Status checkExportOptions(const ExportOptions& options);
 
 /// Writes `scene` to `path` (.step/.stp or .iges/.igs) through OpenCASCADE in a child process
 /// (the parent hands the scene over as a binary block in a temporary folder; a crash, the time

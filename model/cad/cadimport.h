@@ -31,7 +31,7 @@ struct ImportResult {
     std::vector<int> sourceFaces;
 };
 
-/// Reads any supported file into a new, complete, valid Scene (kw::sceneError is empty).
+/// Reads any supported file into a new, complete, valid Scene (kw::checkScene passes).
 /// IGES, STEP, BREP: every face becomes a surface (analytic ones converted to exact rational
 /// B-splines) with its wires as trim loops; faces that cannot be converted are listed in
 /// report.skipped. These three are read by OpenCASCADE in a child process (cadprocess.h:

@@ -324,9 +324,9 @@ static std::optional<ImportResult> readInChild(const QString& path, CadFormat fo
 #else
     // A device, FIFO or directory is named at once and never opened, and a file that does not
     // start like its format is refused from its first bytes, before any child is started.
-    QString problem = regularFileProblem(path);
+    QString problem = checkRegularFile(path).message();
     if (problem.isEmpty())
-        problem = cadHeadProblem(format, fileHead(path, kSniffBytes));
+        problem = checkCadHead(format, fileHead(path, kSniffBytes)).message();
     if (!problem.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, problem);
         return std::nullopt;
@@ -443,7 +443,7 @@ bool exportPrecheck(const QString& path, const ExportOptions& options, bool empt
                     .arg(path);
         return false;
     }
-    if (const QString bad = exportOptionsError(options); !bad.isEmpty()) {
+    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, bad);
         return false;
     }
@@ -595,9 +595,9 @@ static bool convertInChild(const QString& in, const QString& path, const ExportO
     }
     // As importInChildProcess: a device, FIFO or folder, or a file that does not start like
     // its format, is refused before any child starts.
-    QString problem = regularFileProblem(in);
+    QString problem = checkRegularFile(in).message();
     if (problem.isEmpty())
-        problem = cadHeadProblem(format, fileHead(in, kSniffBytes));
+        problem = checkCadHead(format, fileHead(in, kSniffBytes)).message();
     if (!problem.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(in, problem);
         return false;

@@ -193,7 +193,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                QString& error) {
     const QByteArray native = QFile::encodeName(path);
     if (format == CadFormat::Brep) {
-        if (const QString why = cadFileProblem(path, format); !why.isEmpty()) {
+        if (const QString why = checkCadFile(path, format).message(); !why.isEmpty()) {
             error = why;
             return false;
         }
@@ -225,7 +225,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     }
     QString cut = truncation(path, format);
     if (cut.isEmpty()) // numbers and lists OCCT would choke on (cadprecheck.h)
-        cut = cadFileProblem(path, format);
+        cut = checkCadFile(path, format).message();
     if (!cut.isEmpty()) {
         error = cut;
         return false;

@@ -171,8 +171,8 @@ Status Document::resetScene(Scene scene) {
 bool Document::insertSurface(int index, Surface surface) {
     if (index < 0 || size_t(index) > m_scene.surfaces.size())
         return false;
-    if (!surfaceError(surface).isEmpty() || idUsed(m_scene, surface.id.value) ||
-        surface.id.value == kMaxId || m_scene.surfaces.size() >= size_t(kMaxSurfaces))
+    if (!checkSurface(surface) || idUsed(m_scene, surface.id.value) || surface.id.value == kMaxId ||
+        m_scene.surfaces.size() >= size_t(kMaxSurfaces))
         return false;
     std::uint32_t maxId = surface.id.value;
     for (const TrimLoop& l : surface.trims) {
@@ -332,7 +332,7 @@ bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
 
 bool Document::setPartitions(SurfaceId id, int nu, int nv) {
     Surface* s = mutableSurface(id);
-    if (!s || !partitionsError(nu, nv).isEmpty())
+    if (!s || !checkPartitions(nu, nv))
         return false;
     if (s->partitionsU == nu && s->partitionsV == nv)
         return true;
@@ -344,7 +344,7 @@ bool Document::setPartitions(SurfaceId id, int nu, int nv) {
 
 bool Document::setMaterial(SurfaceId id, const Material& material) {
     Surface* s = mutableSurface(id);
-    if (!s || !materialError(material).isEmpty())
+    if (!s || !checkMaterial(material))
         return false;
     if (s->material == material)
         return true;
@@ -368,8 +368,8 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Surface* s = mutableSurface(id);
     if (!s || index < 0 || size_t(index) > s->trims.size())
         return false;
-    if (!trimLoopError(loop).isEmpty() || loop.id.value == kMaxId ||
-        idUsed(m_scene, loop.id.value) || s->trims.size() >= size_t(kMaxTrimLoops))
+    if (!checkTrimLoop(loop) || loop.id.value == kMaxId || idUsed(m_scene, loop.id.value) ||
+        s->trims.size() >= size_t(kMaxTrimLoops))
         return false;
     Q_EMIT trimLoopAboutToBeInserted(id, index);
     const TrimLoopId loopId = loop.id;
@@ -417,7 +417,7 @@ bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
     return setTrimPoints({ref}, {position});
 }
 
-// All points move first, then each touched loop must still be closed (trimLoopError): a curve
+// All points move first, then each touched loop must still be closed (checkTrimLoop): a curve
 // end moves together with the coinciding end of its neighbour in one call.
 QString Document::movedTrims(const std::vector<TrimPointRef>& refs,
                              const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
@@ -451,7 +451,7 @@ QString Document::movedTrims(const std::vector<TrimPointRef>& refs,
         touched.insert(li);
     }
     for (int li : touched)
-        if (const QString why = trimLoopError(trims[size_t(li)]); !why.isEmpty())
+        if (const QString why = checkTrimLoop(trims[size_t(li)]).message(); !why.isEmpty())
             return why;
     return {};
 }
@@ -478,7 +478,7 @@ bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
 }
 
 bool Document::setLights(std::vector<Light> lights) {
-    if (!lightsError(lights).isEmpty())
+    if (!checkLights(lights))
         return false;
     if (m_scene.lights == lights)
         return true;
@@ -489,7 +489,7 @@ bool Document::setLights(std::vector<Light> lights) {
 }
 
 bool Document::setCamera(const Camera& camera) {
-    if (!cameraError(camera).isEmpty())
+    if (!checkCamera(camera))
         return false;
     if (m_scene.camera == camera)
         return true;
@@ -500,7 +500,7 @@ bool Document::setCamera(const Camera& camera) {
 }
 
 bool Document::setDisplay(const DisplaySettings& display) {
-    if (!displayError(display).isEmpty())
+    if (!checkDisplay(display))
         return false;
     if (m_scene.display == display)
         return true;
@@ -510,7 +510,7 @@ bool Document::setDisplay(const DisplaySettings& display) {
 }
 
 bool Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
-    if (!continuityTolerancesError(tolerances).isEmpty())
+    if (!checkContinuityTolerances(tolerances))
         return false;
     if (m_scene.continuity == tolerances)
         return true;
@@ -563,7 +563,7 @@ bool Document::setLengths(const Lengths& lengths) {
     for (double t : lengths.tolerances)
         if (!std::isfinite(t) || t < 0)
             return false;
-    if (!cameraError(lengths.camera).isEmpty() || !lightsError(lengths.lights).isEmpty())
+    if (!checkCamera(lengths.camera) || !checkLights(lengths.lights))
         return false;
     size_t at = 0;
     std::vector<SurfaceId> moved;
@@ -591,7 +591,7 @@ bool Document::setLengths(const Lengths& lengths) {
 }
 
 QString Document::validate(const Scene& scene) {
-    return sceneError(scene);
+    return checkScene(scene).message();
 }
 
 std::uint64_t Document::nextRevision() {

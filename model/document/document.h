@@ -138,20 +138,20 @@ public:
     /// applied. Control points: a known surface, at least one index, one finite position per
     /// index, every index in the net and listed once. Weights: a known point, finite and > 0.
     /// Trim points: known and listed once, all of one surface, finite, and every touched loop
-    /// still closed (kw::trimLoopError).
+    /// still closed (kw::checkTrimLoop).
     QString controlPointsError(SurfaceId id, const std::vector<int>& indices,
                                const std::vector<glm::dvec3>& positions) const;
     QString weightError(SurfaceId id, int index, double weight) const;
     QString trimPointsError(const std::vector<TrimPointRef>& refs,
                             const std::vector<glm::dvec2>& positions) const;
-    /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
+    /// 0..kMaxLights lights (none: unlit), each valid (kw::checkLights).
     bool setLights(std::vector<Light> lights);
     bool setCamera(const Camera& camera);
     /// The display settings saved with the project (as the camera: not an edit, no signal
-    /// the views react to); false when invalid (validation.h displayError).
+    /// the views react to); false when invalid (validation.h checkDisplay).
     bool setDisplay(const DisplaySettings& display);
     /// The continuity tolerances saved with the project (not an edit); emits
-    /// continuityTolerancesChanged; false when invalid (continuityTolerancesError).
+    /// continuityTolerancesChanged; false when invalid (checkContinuityTolerances).
     bool setContinuityTolerances(const ContinuityTolerances& tolerances);
 
     SeamLink seamLink() const { return m_seamLink; }
@@ -177,7 +177,7 @@ public:
     /// and unitChanged for what changed.
     bool setLengths(const Lengths& lengths);
 
-    /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
+    /// Checks a whole scene with kw::checkScene, the rule every reader and writer uses.
     /// Returns an empty string when valid.
     static QString validate(const Scene& scene);
 

@@ -76,7 +76,7 @@ struct TopologyProblem {
 /// existing surface, ascending, and in no other shell; solid >= -1. nullopt when valid.
 std::optional<TopologyProblem> topologyProblem(const Scene& scene);
 
-/// topologyProblem as one line, "topology: PLACE: REASON", empty when valid (kw::sceneError's).
+/// topologyProblem as one line, "topology: PLACE: REASON", empty when valid (kw::checkScene's).
 QString topologyError(const Scene& scene);
 
 /// The edge with this id, nullptr for none.

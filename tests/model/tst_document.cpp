@@ -4,6 +4,7 @@
 #include "model/document/validation.h"
 #include "model_fixtures.h"
 #include "signallog.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QSignalSpy>
 #include <QTest>
@@ -597,7 +598,7 @@ void TestDocument::setTrimPoint() {
     // ...together with the coinciding start of the next curve it is one valid step.
     QVERIFY(f.doc.setTrimPoints({end, start}, {{0.31, 0.29}, {0.31, 0.29}}));
     QCOMPARE(log.take(), QStringList({"changed 1 Trims"}));
-    QVERIFY(sceneError(f.doc.scene()).isEmpty());
+    KW_VERIFY_OK(checkScene(f.doc.scene()));
 }
 
 void TestDocument::lightsAndCamera() {

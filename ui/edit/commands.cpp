@@ -120,8 +120,8 @@ Expected<std::unique_ptr<SetPartitions>> SetPartitions::create(Document* documen
     const Surface* s = surfaceIn(document, surface);
     if (!s)
         return Error(noSurface(document, surface));
-    if (const QString why = partitionsError(nu, nv); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkPartitions(nu, nv); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetPartitions> c(
         new SetPartitions(document, QStringLiteral("Set partitions to %1 × %2").arg(nu).arg(nv)));
     c->m_surface = surface;
@@ -221,8 +221,8 @@ Expected<std::unique_ptr<SetMaterial>> SetMaterial::create(Document* document, S
     const Surface* s = surfaceIn(document, surface);
     if (!s)
         return Error(noSurface(document, surface));
-    if (const QString why = materialError(material); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkMaterial(material); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetMaterial> c(
         new SetMaterial(document, QStringLiteral("Change material of “%1”").arg(s->name)));
     c->m_surface = surface;
@@ -253,8 +253,8 @@ Expected<std::unique_ptr<SetLights>> SetLights::make(Document* document, std::ve
                                                      const QString& text, int changed) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = lightsError(lights); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkLights(lights); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetLights> c(new SetLights(document, text));
     c->m_from = document->scene().lights;
     c->m_to = std::move(lights);
@@ -322,8 +322,8 @@ bool SetLights::mergeWith(const QUndoCommand* other) {
 Expected<std::unique_ptr<SetCamera>> SetCamera::create(Document* document, const Camera& camera) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = cameraError(camera); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkCamera(camera); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetCamera> c(new SetCamera(document, QStringLiteral("Change camera")));
     c->m_from = document->scene().camera;
     c->m_to = camera;
