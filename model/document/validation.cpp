@@ -212,7 +212,7 @@ static QString displayReason(const DisplaySettings& d) {
             .arg(d.sections.size())
             .arg(kMaxSectionPlanes);
     for (size_t k = 0; k < d.sections.size(); ++k)
-        if (const QString why = sectionPlaneError(d.sections[k]); !why.isEmpty())
+        if (const QString why = checkSectionPlane(d.sections[k]).message(); !why.isEmpty())
             return QStringLiteral("section %1: %2").arg(k + 1).arg(why);
     return QString();
 }
@@ -244,7 +244,7 @@ static QString sceneReason(const Scene& scene) {
             .arg(maxId);
     QString e = lightsReason(scene.lights);
     if (e.isEmpty())
-        e = topologyError(scene);
+        e = checkTopology(scene).message();
     if (e.isEmpty())
         e = cameraReason(scene.camera);
     if (e.isEmpty())

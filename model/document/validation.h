@@ -59,7 +59,7 @@ Status checkTrimLoop(const TrimLoop& loop);
 Status checkSurface(const Surface& surface);
 /// A whole scene: at most kMaxSurfaces surfaces, each valid; surface and loop ids unique
 /// across the scene (one counter) and below nextId; lights valid; the topology's references
-/// valid (kw::topologyError); camera and display settings valid.
+/// valid (kw::checkTopology); camera and display settings valid.
 Status checkScene(const Scene& scene);
 
 } // namespace kw

@@ -635,8 +635,8 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
             plane.normal = asVec3(required(po, p, "normal"), member(p, "normal"));
             if (po.contains(QLatin1String("flip")))
                 plane.flip = asBool(po.value(QLatin1String("flip")), member(p, "flip"));
-            if (const QString why = sectionPlaneError(plane); !why.isEmpty())
-                fail(member(p, "normal"), why);
+            if (Status valid = checkSectionPlane(plane); !valid)
+                fail(member(p, "normal"), valid.message());
             d.sections.push_back(plane);
         }
     }

@@ -45,9 +45,8 @@ MoveControlPoints::create(Document* document, SurfaceId surface, std::vector<int
         return Error(QStringLiteral("need one old and one new position per point"));
     // The document's own rule, for both ends: undo writes `from` as redo writes `to`.
     for (const auto* positions : {&from, &to})
-        if (const QString why = document->controlPointsError(surface, indices, *positions);
-            !why.isEmpty())
-            return Error(why);
+        if (Status step = document->checkControlPoints(surface, indices, *positions); !step)
+            return step.error();
     const QString text = indices.size() == 1
                              ? QStringLiteral("Move control point")
                              : QStringLiteral("Move %1 control points").arg(indices.size());
@@ -84,8 +83,8 @@ Expected<std::unique_ptr<SetWeight>> SetWeight::create(Document* document, Surfa
                                                        int index, double weight) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = document->weightError(surface, index, weight); !why.isEmpty())
-        return Error(why);
+    if (Status step = document->checkWeight(surface, index, weight); !step)
+        return step.error();
     const Surface* s = document->surface(surface);
     std::unique_ptr<SetWeight> c(
         new SetWeight(document, QStringLiteral("Set weight to %1").arg(weight)));
@@ -170,8 +169,8 @@ MoveTrimPoints::create(Document* document, std::vector<TrimPointRef> refs,
             std::vector<glm::dvec2> at;
             for (size_t k : group.second)
                 at.push_back((*positions)[k]);
-            if (const QString why = document->trimPointsError(group.first, at); !why.isEmpty())
-                return Error(why);
+            if (Status step = document->checkTrimPoints(group.first, at); !step)
+                return step.error();
         }
     const QString text = refs.size() == 1 ? QStringLiteral("Move trim point")
                                           : QStringLiteral("Move %1 trim points").arg(refs.size());
