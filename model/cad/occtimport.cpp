@@ -394,7 +394,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
             // An edge range outside its curve sends the conversion's projections into a
             // minute of approximation: such a face is skipped before they see it.
-            why = occt::edgeRangeProblem(face);
+            why = occt::checkEdgeRanges(face).message();
             ok = why.isEmpty() &&
                  occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings, &edges);
             if (ok) {
