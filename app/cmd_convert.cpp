@@ -84,7 +84,7 @@ int runConvert(const QStringList& args) {
         return kExitUsage;
     }
     exportOptions.igesFaces = mode == QLatin1String("faces");
-    if (const QString bad = exportOptionsError(exportOptions); !bad.isEmpty()) {
+    if (const QString bad = checkExportOptions(exportOptions).message(); !bad.isEmpty()) {
         printError(QStringLiteral("%1: --step-schema: %2").arg(command, bad));
         return kExitUsage;
     }

@@ -397,7 +397,7 @@ int runInfo(const QStringList& args) {
             t.match = std::max(t.match, t.g0);
         return t;
     };
-    if (const QString why = continuityTolerancesError(withOptions({})); !why.isEmpty()) {
+    if (const QString why = checkContinuityTolerances(withOptions({})).message(); !why.isEmpty()) {
         printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
         return kExitUsage;
     }
@@ -410,7 +410,7 @@ int runInfo(const QStringList& args) {
     const Scene& scene = imported->scene;
     if (parser.isSet(continuity)) {
         const ContinuityTolerances tolerances = withOptions(continuityTolerances(scene));
-        if (const QString why = continuityTolerancesError(tolerances); !why.isEmpty()) {
+        if (const QString why = checkContinuityTolerances(tolerances).message(); !why.isEmpty()) {
             printError(QStringLiteral("%1: tolerances: %2").arg(args.value(0), why));
             return kExitUsage;
         }

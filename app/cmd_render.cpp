@@ -217,7 +217,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
         return kExitUsage;
     }
     // The input before the display: a missing file is the error to report, not the display.
-    if (const QString why = regularFileProblem(files[0]); !why.isEmpty()) {
+    if (const QString why = checkRegularFile(files[0]).message(); !why.isEmpty()) {
         printError(QStringLiteral("%1: %2").arg(files[0], why));
         return kExitBadInput;
     }

@@ -230,7 +230,7 @@ int runEditor(int argc, char** argv) {
     // dialog; here only that it can be opened is checked.
     const CadFormat format = file.isEmpty() ? CadFormat::Unknown : cadFormatFromPath(file);
     const bool import = format != CadFormat::Knot && format != CadFormat::Unknown;
-    if (const QString why = import ? regularFileProblem(file) : QString(); !why.isEmpty()) {
+    if (const QString why = import ? checkRegularFile(file).message() : QString(); !why.isEmpty()) {
         cli::printError(QStringLiteral("%1: %2").arg(file, why));
         return cli::kExitBadInput;
     }

@@ -128,9 +128,9 @@ Expected<SectionPlane> parseSectionPlane(const QString& text) {
     if (!parseNumbers(text, 6, v))
         return Error(QStringLiteral("six numbers X,Y,Z,NX,NY,NZ"));
     const SectionPlane plane{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), false};
-    if (const QString why = sectionPlaneError(plane); !why.isEmpty())
+    if (Status valid = checkSectionPlane(plane); !valid)
         return Error(QStringLiteral("a plane: ") +
-                     why.section(QStringLiteral("section plane's "), -1));
+                     valid.message().section(QStringLiteral("section plane's "), -1));
     return plane;
 }
 

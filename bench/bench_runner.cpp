@@ -33,10 +33,9 @@ struct Model {
 // Read as `knotwork render` reads it (kw::openModelFile): a .knot as saved, IGES, STEP and BREP
 // through the CAD reader's child process, OBJ; the import's remarks on stderr.
 Status loadModel(const QString& file, double aspect, Model& m) {
-    QString why;
-    std::optional<ImportResult> read = openModelFile(file, why);
+    Expected<ImportResult> read = openModelFile(file);
     if (!read)
-        return Error(why, file);
+        return read.error();
     cli::printImportRemarks(file, read->report);
     const std::optional<Scene> scene = std::move(read->scene);
     if (const Status reset = m.doc.resetScene(*scene); !reset)

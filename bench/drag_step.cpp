@@ -288,10 +288,9 @@ Status runDragStep(const DragStepConfig& config, DragStepReport& report,
         config.files, report.machine, [&](OffscreenRenderer& renderer, const QString& file) {
             if (Status sized = renderer.setSize(QSize(config.side, config.side), false); !sized)
                 return sized;
-            QString why;
-            std::optional<ImportResult> read = openModelFile(file, why);
+            Expected<ImportResult> read = openModelFile(file);
             if (!read)
-                return Status(Error(why, file));
+                return Status(read.error());
             cli::printImportRemarks(file, read->report);
             if (read->scene.surfaces.empty())
                 return Status(

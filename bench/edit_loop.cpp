@@ -207,9 +207,10 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
         handover.start();
         TaggedMeshSet set;
         FaceMeshCost cost;
-        if (QString why; !mesher.mesh({*doc.surface(drag.id)}, peer.tolerance, p.linear, p.angular,
-                                      set, cost, why))
-            return Error(QStringLiteral("%1: %2").arg(name, why), file);
+        if (Status meshed = mesher.mesh({*doc.surface(drag.id)}, peer.tolerance, p.linear,
+                                        p.angular, set, cost);
+            !meshed)
+            return Error(QStringLiteral("%1: %2").arg(name, meshed.message()), file);
         const double handoverMs = double(handover.nsecsElapsed()) * 1e-6;
         const double handoverCpu = processCpuMs() - handoverCpu0;
         if (renderer.setMesh(p.face, toTriangleMesh(set, drag.id, false)) < 0)

@@ -80,10 +80,9 @@ PeerModel::PeerModel(OffscreenRenderer& r, FaceMesher& m, Limits l,
 
 Status PeerModel::load(const QString& file) {
     path = file;
-    QString why;
-    std::optional<ImportResult> read = openModelFile(file, why);
+    Expected<ImportResult> read = openModelFile(file);
     if (!read)
-        return Error(why, file);
+        return read.error();
     cli::printImportRemarks(file, read->report);
     if (const Status reset = doc.resetScene(read->scene); !reset)
         return Error(QStringLiteral("%1: %2").arg(file, reset.message()), file);
@@ -141,15 +140,15 @@ Status PeerModel::staticMesh(double linear, double angular, TaggedMeshSet& out) 
         MeshDeflection deflection;
         deflection.linear = linear;
         deflection.angularDegrees = angular;
-        QString why;
-        if (!importInChildProcess(path, format, why, {}, &deflection, &out))
-            return Error(why, path);
+        if (Expected<ImportResult> read = importInChildProcess(path, format, {}, &deflection, &out);
+            !read)
+            return read.error();
         return ok();
     }
     FaceMeshCost cost;
-    QString why;
-    if (!mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost, why))
-        return Error(QStringLiteral("%1: %2").arg(path, why), path);
+    if (Status meshed = mesher.mesh(doc.scene().surfaces, tolerance, linear, angular, out, cost);
+        !meshed)
+        return Error(QStringLiteral("%1: %2").arg(path, meshed.message()), path);
     return ok();
 }
 

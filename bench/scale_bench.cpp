@@ -28,10 +28,9 @@ namespace {
 Expected<Scene> loadUnit(const QString& model) {
     if (!QFileInfo(model).isFile())
         return Error(QStringLiteral("no such file: %1").arg(model), model);
-    QString why;
-    std::optional<ImportResult> read = openModelFile(model, why);
+    Expected<ImportResult> read = openModelFile(model);
     if (!read)
-        return Error(why, model);
+        return read.error();
     cli::printImportRemarks(model, read->report);
     return std::move(read->scene);
 }

@@ -141,8 +141,8 @@ Status ModelZoom::meshFaces(const std::set<std::uint32_t>& ids, double linear, d
             faces.push_back(s);
     TaggedMeshSet set;
     FaceMeshCost cost;
-    if (QString why; !mesher.mesh(faces, peer.tolerance, linear, angular, set, cost, why))
-        return Error(QStringLiteral("%1: %2").arg(peer.path, why), peer.path);
+    if (Status meshed = mesher.mesh(faces, peer.tolerance, linear, angular, set, cost); !meshed)
+        return Error(QStringLiteral("%1: %2").arg(peer.path, meshed.message()), peer.path);
     triangles = set.triangleCount();
     out = toTriangleMesh(set, SurfaceId{}, true);
     if (meshMs)

@@ -31,7 +31,7 @@ ExactPlanner::SectionSide ExactPlanner::sectionSide(const glm::vec3& lo, const g
     for (const SectionPlane& plane : planes) {
         const glm::dvec3 n = plane.removedSide();
         if (n == glm::dvec3(0.0))
-            continue; // refused before drawing (sectionPlaneError)
+            continue; // refused before drawing (checkSectionPlane)
         // The shader compares a float distance: a margin of the float resolution of the
         // coordinates involved keeps a point the shader might keep out of Removed.
         const double margin =

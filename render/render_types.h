@@ -212,7 +212,7 @@ struct RenderOptions {
     /// Lights follow the camera (see lightsFor), so orbiting never leaves a part unlit.
     bool headlight = false;
     /// Section planes (kw::SectionPlane, at most kMaxSectionPlanes, each valid by
-    /// sectionPlaneError; Renderer::render refuses others): every pixel whose exact point lies
+    /// checkSectionPlane; Renderer::render refuses others): every pixel whose exact point lies
     /// on a plane's removed side is discarded, in both modes and every shading, and the
     /// section curve is drawn as a line. The pre-pass's depth is the base polygon's, which
     /// cannot tell the exact point's side, so only the cells no plane crosses are drawn the

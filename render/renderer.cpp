@@ -105,8 +105,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                         .arg(options.sections.size())
                         .arg(kMaxSectionPlanes));
     for (const SectionPlane& p : options.sections)
-        if (const QString why = sectionPlaneError(p); !why.isEmpty())
-            return fail(why);
+        if (Status valid = checkSectionPlane(p); !valid)
+            return fail(valid.message());
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
     clock.start(gl, &report.passes);

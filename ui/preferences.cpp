@@ -57,7 +57,7 @@ Preferences Preferences::load() {
     t.g2Percent =
         s.value(QStringLiteral("continuity/g2Percent"), d.continuity.g2Percent).toDouble();
     t.match = s.value(QStringLiteral("continuity/match"), d.continuity.match).toDouble();
-    if (continuityTolerancesError(t).isEmpty())
+    if (checkContinuityTolerances(t))
         p.continuity = t;
     return p;
 }
@@ -146,7 +146,7 @@ void PreferencesDialog::acceptIfValid() {
     for (size_t column = 0; column < 2; ++column) {
         if (!m_continuity[column][0])
             continue;
-        const QString why = continuityTolerancesError(fromSpins(m_continuity[column]));
+        const QString why = checkContinuityTolerances(fromSpins(m_continuity[column])).message();
         if (!why.isEmpty()) {
             m_continuityError->setText(
                 (column == 0 ? tr("This project: %1") : tr("New projects: %1")).arg(why));

@@ -143,7 +143,7 @@ void SectionDialog::setSections(const std::vector<SectionPlane>& planes, bool ca
 std::vector<SectionPlane> SectionDialog::sections() const {
     std::vector<SectionPlane> out;
     for (const Row& r : m_rows)
-        if (r.enabled->isChecked() && sectionPlaneError(r.plane()).isEmpty())
+        if (r.enabled->isChecked() && checkSectionPlane(r.plane()))
             out.push_back(r.plane());
     return out;
 }
@@ -156,7 +156,8 @@ void SectionDialog::changed() {
     if (!m_built)
         return; // the constructor is filling the fields
     for (Row& r : m_rows) {
-        const QString why = r.enabled->isChecked() ? sectionPlaneError(r.plane()) : QString();
+        const QString why =
+            r.enabled->isChecked() ? checkSectionPlane(r.plane()).message() : QString();
         // A zero normal gives no plane: said here, and the others still cut.
         r.status->setText(why.isEmpty() ? QString() : tr("No plane: %1").arg(why));
     }

@@ -306,7 +306,7 @@ void Viewport::setHeadlight(bool on) {
 void Viewport::setSections(const std::vector<SectionPlane>& planes, bool caps) {
     std::vector<SectionPlane> kept;
     for (const SectionPlane& p : planes)
-        if (int(kept.size()) < kMaxSectionPlanes && sectionPlaneError(p).isEmpty())
+        if (int(kept.size()) < kMaxSectionPlanes && checkSectionPlane(p))
             kept.push_back(p);
     if (kept == m_options.sections && caps == m_options.sectionCaps)
         return;

@@ -163,7 +163,7 @@ std::optional<Piece> makePiece(const Surface& s, const ContinuitySide& side) {
 
 } // namespace
 
-QString continuityTolerancesError(const ContinuityTolerances& t) {
+static QString continuityTolerancesReason(const ContinuityTolerances& t) {
     for (const auto& [value, name] : {std::pair{t.g0, "g0"},
                                       {t.g1Degrees, "g1Degrees"},
                                       {t.g2Percent, "g2Percent"},
@@ -175,6 +175,12 @@ QString continuityTolerancesError(const ContinuityTolerances& t) {
     if (t.match < t.g0)
         return QStringLiteral("match (%1) must not be below g0 (%2)").arg(t.match).arg(t.g0);
     return {};
+}
+
+Status checkContinuityTolerances(const ContinuityTolerances& t) {
+    if (const QString why = continuityTolerancesReason(t); !why.isEmpty())
+        return Error(why);
+    return ok();
 }
 
 QString continuityClassName(ContinuityClass c) {

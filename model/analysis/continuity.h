@@ -5,6 +5,7 @@
 
 #include "model/document/scene.h"
 #include "model/document/seamgaps.h"
+#include "model/error.h"
 
 #include <QString>
 #include <array>
@@ -19,8 +20,8 @@ inline const ContinuityTolerances& continuityTolerances(const Scene& scene) {
     return scene.continuity;
 }
 
-/// Empty when every value is finite and > 0 and match >= g0, else the reason.
-QString continuityTolerancesError(const ContinuityTolerances& t);
+/// ok() when every value is finite and > 0 and match >= g0, else an Error with the reason.
+Status checkContinuityTolerances(const ContinuityTolerances& t);
 
 enum class ContinuityClass { G2, G1, G0, Open };
 /// "G2", "G1", "G0" or "open".
@@ -117,7 +118,7 @@ struct ContinuityReport {
 };
 
 /// continuityTopology and measureEdgeContinuity of every edge (shared out over the cores when
-/// there are many). Precondition: valid tolerances (continuityTolerancesError).
+/// there are many). Precondition: valid tolerances (checkContinuityTolerances).
 ContinuityReport continuityReport(const Scene& scene, const ContinuityTolerances& tolerances);
 
 /// Measures every edge of `report.topology` into `report.edges` (resized to match), in blocks

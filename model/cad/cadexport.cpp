@@ -61,7 +61,7 @@ bool ExportReport::fromText(const QByteArray& text) {
     return true;
 }
 
-QString exportOptionsError(const ExportOptions& options) {
+static QString exportOptionsReason(const ExportOptions& options) {
     if (options.stepSchema != QLatin1String("ap203") &&
         options.stepSchema != QLatin1String("ap214") &&
         options.stepSchema != QLatin1String("ap242"))
@@ -70,6 +70,12 @@ QString exportOptionsError(const ExportOptions& options) {
     if (!(options.tolerance >= 0.0) || !std::isfinite(options.tolerance))
         return QStringLiteral("the tolerance must be a finite number >= 0");
     return {};
+}
+
+Status checkExportOptions(const ExportOptions& options) {
+    if (const QString why = exportOptionsReason(options); !why.isEmpty())
+        return Error(why);
+    return ok();
 }
 
 } // namespace kw

@@ -48,8 +48,8 @@ struct ExportReport {
     bool fromText(const QByteArray& text);
 };
 
-/// Checks `options` (schema name); empty when valid, else the reason.
-QString exportOptionsError(const ExportOptions& options);
+/// Checks `options` (schema name); ok() when valid, else an Error with the reason.
+Status checkExportOptions(const ExportOptions& options);
 
 /// Writes `scene` to `path` (.step/.stp or .iges/.igs) through OpenCASCADE in a child process
 /// (the parent hands the scene over as a binary block in a temporary folder; a crash, the time
@@ -67,9 +67,9 @@ Status exportCadFile(const Scene& scene, const QString& path, const ExportOption
 /// in one child process (`knotwork __write-cad IN OUT DIR --read-cad`), which loads
 /// OpenCASCADE once: the read with its format's module, the import finished as importFile
 /// finishes it (`imported` gets its report, also when the write then fails), the write as
-/// exportCadFile writes. Errors as importFile's ("<IN>: <reason>") for the read and as
-/// exportCadFile's for the write; the time limit is the read's plus the write's for a file of
-/// IN's size.
+/// exportCadFile writes. Errors as importFile's ("<IN>: <reason>", file = IN) for the read and
+/// as exportCadFile's (file = OUT) for the write; the time limit is the read's plus the write's for
+/// a file of IN's size.
 Status convertCadFile(const QString& in, const QString& path, const ExportOptions& options,
                       ImportReport& imported, ExportReport& report,
                       const ImportProgress& progress = {});

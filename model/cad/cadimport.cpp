@@ -55,7 +55,7 @@ QString occtUnavailableMessage() {
 // between consecutive trim curves is closed here, as the renderer would bridge it, and reported.
 Status finishImport(ImportResult& result, const QString& path) {
     result.report.warnings << closeSceneTrimLoops(result.scene);
-    const QString why = sceneError(result.scene);
+    const QString why = checkScene(result.scene).message();
     if (!why.isEmpty())
         return Error(QStringLiteral("%1: %2").arg(path, why), path);
     return ok();
@@ -73,7 +73,7 @@ Expected<ImportResult> importFile(const QString& path, const ImportProgress& pro
     const CadFormat format = cadFormatFromPath(path);
     // A device, FIFO or directory is named at once, never opened (each reader then sniffs
     // the first bytes of its format).
-    if (const QString why = regularFileProblem(path); !why.isEmpty())
+    if (const QString why = checkRegularFile(path).message(); !why.isEmpty())
         return Error(QStringLiteral("%1: %2").arg(path, why), path);
     QElapsedTimer timer;
     timer.start();

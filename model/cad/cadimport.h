@@ -31,7 +31,7 @@ struct ImportResult {
     std::vector<int> sourceFaces;
 };
 
-/// Reads any supported file into a new, complete, valid Scene (kw::sceneError is empty).
+/// Reads any supported file into a new, complete, valid Scene (kw::checkScene passes).
 /// IGES, STEP, BREP: every face becomes a surface (analytic ones converted to exact rational
 /// B-splines) with its wires as trim loops; faces that cannot be converted are listed in
 /// report.skipped. These three are read by OpenCASCADE in a child process (cadprocess.h:
@@ -48,16 +48,6 @@ Expected<ImportResult> importFile(const QString& path, const ImportProgress& pro
 /// nothing repaired; also any path whose extension names no format), IGES, STEP, BREP and OBJ
 /// through importFile. Errors as readKnotFile's and importFile's, naming the file.
 Expected<ImportResult> openModelFile(const QString& path, const ImportProgress& progress = {});
-/// Transitional: openModelFile for bench/, whose own conversion lands separately. Remove with
-/// it; nothing else may call it.
-inline std::optional<ImportResult> openModelFile(const QString& path, QString& error,
-                                                 const ImportProgress& progress = {}) {
-    Expected<ImportResult> read = openModelFile(path, progress);
-    error = read.message();
-    if (!read)
-        return std::nullopt;
-    return std::move(*read);
-}
 
 /// The last step of every import: trim loops with gaps are closed (kw::closeSceneTrimLoops: snapped
 /// within 1e-5 of the domain's diagonal, else bridged by a straight segment), each gap reported

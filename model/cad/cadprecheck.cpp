@@ -278,7 +278,7 @@ QString quoted(QByteArrayView head) {
 
 } // namespace
 
-QString cadHeadProblem(CadFormat format, QByteArrayView head) {
+static QString cadHeadReason(CadFormat format, QByteArrayView head) {
     qsizetype k = head.startsWith("\xEF\xBB\xBF") ? 3 : 0;
     switch (format) {
     case CadFormat::Iges: {
@@ -318,8 +318,14 @@ QString cadHeadProblem(CadFormat format, QByteArrayView head) {
     }
 }
 
-QString cadContentProblem(CadFormat format, QByteArrayView bytes) {
-    if (QString why = cadHeadProblem(format, bytes.first(std::min<qsizetype>(bytes.size(), 4096)));
+Status checkCadHead(CadFormat format, QByteArrayView head) {
+    if (const QString why = cadHeadReason(format, head); !why.isEmpty())
+        return Error(why);
+    return ok();
+}
+
+static QString cadContentReason(CadFormat format, QByteArrayView bytes) {
+    if (QString why = cadHeadReason(format, bytes.first(std::min<qsizetype>(bytes.size(), 4096)));
         !why.isEmpty())
         return why;
     switch (format) {
@@ -334,8 +340,14 @@ QString cadContentProblem(CadFormat format, QByteArrayView bytes) {
     }
 }
 
-QString cadFileProblem(const QString& path, CadFormat format) {
-    if (QString why = regularFileProblem(path); !why.isEmpty())
+Status checkCadContent(CadFormat format, QByteArrayView bytes) {
+    if (const QString why = cadContentReason(format, bytes); !why.isEmpty())
+        return Error(why);
+    return ok();
+}
+
+static QString cadFileReason(const QString& path, CadFormat format) {
+    if (QString why = checkRegularFile(path).message(); !why.isEmpty())
         return why;
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly))
@@ -345,8 +357,14 @@ QString cadFileProblem(const QString& path, CadFormat format) {
     const uchar* bytes = file.map(0, file.size());
     if (!bytes)
         return QStringLiteral("cannot read: %1").arg(file.errorString());
-    return cadContentProblem(format,
-                             QByteArrayView(reinterpret_cast<const char*>(bytes), file.size()));
+    return cadContentReason(format,
+                            QByteArrayView(reinterpret_cast<const char*>(bytes), file.size()));
+}
+
+Status checkCadFile(const QString& path, CadFormat format) {
+    if (const QString why = cadFileReason(path, format); !why.isEmpty())
+        return Error(why);
+    return ok();
 }
 
 } // namespace kw

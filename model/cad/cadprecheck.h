@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/cad/cadimport.h"
+#include "model/error.h"
 
 #include <QByteArrayView>
 #include <QString>
@@ -20,24 +21,24 @@ constexpr long long kMaxStepListItems = 50'000;
 /// file, a -inf pole in a BREP file), and no real model needs it.
 constexpr double kMaxCadMagnitude = 1e100;
 
-/// Empty when `head` (a file's first bytes, inputcheck.h kSniffBytes) can start a file of
+/// ok() when `head` (a file's first bytes, inputcheck.h kSniffBytes) can start a file of
 /// `format` (IGES: the first record is 80 columns with 'S' in column 73; STEP: it starts with
-/// "ISO-10303-21;"; BREP: "DBRep_DrawableShape" or "CASCADE Topology"). Otherwise the reason,
-/// with a short safe quote of what is there. Other formats: always empty.
-QString cadHeadProblem(CadFormat format, QByteArrayView head);
+/// "ISO-10303-21;"; BREP: "DBRep_DrawableShape" or "CASCADE Topology"). Otherwise an Error,
+/// with a short safe quote of what is there. Other formats: always ok().
+Status checkCadHead(CadFormat format, QByteArrayView head);
 
-/// The whole file's scan for `format`, on its bytes. Empty when OpenCASCADE may read it;
-/// otherwise "line N: reason". Refused:
+/// The whole file's scan for `format`, on its bytes. ok() when OpenCASCADE may read it;
+/// otherwise an Error "line N: reason". Refused:
 /// - STEP: a list with more than kMaxStepListItems items; a number in the DATA section that is
 ///   not finite or larger in magnitude than kMaxCadMagnitude.
 /// - IGES: such a number in the parameter data section (strings, Hollerith "nH...", skipped).
 /// - BREP: such a number anywhere (including "inf" and "nan").
 /// Also the head check above. Runs in time linear in the size and allocates nothing that grows
 /// with it.
-QString cadContentProblem(CadFormat format, QByteArrayView bytes);
+Status checkCadContent(CadFormat format, QByteArrayView bytes);
 
-/// cadContentProblem on the file at `path`, mapped into memory rather than read (nothing grows
-/// with its size), after inputcheck.h's regularFileProblem. Empty when it passes.
-QString cadFileProblem(const QString& path, CadFormat format);
+/// checkCadContent on the file at `path`, mapped into memory rather than read (nothing grows
+/// with its size), after inputcheck.h's checkRegularFile. ok() when it passes.
+Status checkCadFile(const QString& path, CadFormat format);
 
 } // namespace kw

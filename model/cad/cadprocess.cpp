@@ -324,9 +324,9 @@ static std::optional<ImportResult> readInChild(const QString& path, CadFormat fo
 #else
     // A device, FIFO or directory is named at once and never opened, and a file that does not
     // start like its format is refused from its first bytes, before any child is started.
-    QString problem = regularFileProblem(path);
+    QString problem = checkRegularFile(path).message();
     if (problem.isEmpty())
-        problem = cadHeadProblem(format, fileHead(path, kSniffBytes));
+        problem = checkCadHead(format, fileHead(path, kSniffBytes)).message();
     if (!problem.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, problem);
         return std::nullopt;
@@ -443,7 +443,7 @@ bool exportPrecheck(const QString& path, const ExportOptions& options, bool empt
                     .arg(path);
         return false;
     }
-    if (const QString bad = exportOptionsError(options); !bad.isEmpty()) {
+    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, bad);
         return false;
     }
@@ -582,58 +582,6 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
 #endif
 }
 
-// convertCadFile's work; its messages become the Error.
-static bool convertInChild(const QString& in, const QString& path, const ExportOptions& options,
-                           ImportReport& imported, ExportReport& report, QString& error,
-                           const ImportProgress& progress) {
-    report = ExportReport{};
-    imported = ImportReport{};
-    const CadFormat format = cadFormatFromPath(in);
-    if (format != CadFormat::Iges && format != CadFormat::Step && format != CadFormat::Brep) {
-        error = QStringLiteral("%1: not an IGES, STEP or BREP file").arg(in);
-        return false;
-    }
-    // As importInChildProcess: a device, FIFO or folder, or a file that does not start like
-    // its format, is refused before any child starts.
-    QString problem = regularFileProblem(in);
-    if (problem.isEmpty())
-        problem = cadHeadProblem(format, fileHead(in, kSniffBytes));
-    if (!problem.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(in, problem);
-        return false;
-    }
-    if (!exportPrecheck(path, options, false, error))
-        return false;
-#ifndef KW_HAVE_OCCT
-    Q_UNUSED(progress);
-    error = QStringLiteral("%1: cannot read %2: %3")
-                .arg(in, cadFormatName(format), occtUnavailableMessage());
-    return false;
-#else
-    const QString writer = QStringLiteral("the %1 reader and %2 writer")
-                               .arg(cadFormatName(format), cadFormatName(cadFormatFromPath(path)));
-    const std::optional<QString> folder = writerFolder(path, writer, error);
-    if (!folder)
-        return false;
-    const QString dirPath = *folder;
-    const FolderRemover removeDir(dirPath);
-    // The read's limits and the write's: the scene is about as large in the hand-over as the
-    // file it came from.
-    const qint64 size = QFileInfo(in).size();
-    const bool written = runWriter(in, path, dirPath, options, {QStringLiteral("--read-cad")},
-                                   cadTimeLimitSeconds(size) + cadTimeLimitSeconds(size, true),
-                                   cadMemoryLimitBytes(size), writer, report, error, progress);
-    // The import's report comes back also when the write is refused (a face the reader
-    // skipped may be why).
-    QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
-    if (handover.open(QIODevice::ReadOnly)) {
-        if (Expected<ImportResult> read = decodeImportHandover(handover.readAll()))
-            imported = std::move(read->report);
-    }
-    return written;
-#endif
-}
-
 Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
                      ExportReport& report, const ImportProgress& progress) {
     QString error;
@@ -642,13 +590,59 @@ Status exportCadFile(const Scene& scene, const QString& path, const ExportOption
     return ok();
 }
 
+// The read's failures are Errors of `in`, the write's of `path`: each stage names its own file.
 Status convertCadFile(const QString& in, const QString& path, const ExportOptions& options,
                       ImportReport& imported, ExportReport& report,
                       const ImportProgress& progress) {
+    report = ExportReport{};
+    imported = ImportReport{};
+    const auto readError = [&](const QString& why) {
+        return Error(QStringLiteral("%1: %2").arg(in, why), in);
+    };
+    const CadFormat format = cadFormatFromPath(in);
+    if (format != CadFormat::Iges && format != CadFormat::Step && format != CadFormat::Brep)
+        return readError(QStringLiteral("not an IGES, STEP or BREP file"));
+    // As importInChildProcess: a device, FIFO or folder, or a file that does not start like
+    // its format, is refused before any child starts.
+    if (const Status regular = checkRegularFile(in); !regular)
+        return readError(regular.message());
+    if (const Status head = checkCadHead(format, fileHead(in, kSniffBytes)); !head)
+        return readError(head.message());
     QString error;
-    if (!convertInChild(in, path, options, imported, report, error, progress))
-        return Error(error, error.startsWith(in) ? in : path);
+    if (!exportPrecheck(path, options, false, error))
+        return Error(error, path);
+#ifndef KW_HAVE_OCCT
+    Q_UNUSED(progress);
+    return readError(
+        QStringLiteral("cannot read %1: %2").arg(cadFormatName(format), occtUnavailableMessage()));
+#else
+    const QString writer = QStringLiteral("the %1 reader and %2 writer")
+                               .arg(cadFormatName(format), cadFormatName(cadFormatFromPath(path)));
+    const std::optional<QString> folder = writerFolder(path, writer, error);
+    if (!folder)
+        return Error(error, path);
+    const QString dirPath = *folder;
+    const FolderRemover removeDir(dirPath);
+    // The read's limits and the write's: the scene is about as large in the hand-over as the
+    // file it came from.
+    const qint64 size = QFileInfo(in).size();
+    const bool written = runWriter(in, path, dirPath, options, {QStringLiteral("--read-cad")},
+                                   cadTimeLimitSeconds(size) + cadTimeLimitSeconds(size, true),
+                                   cadMemoryLimitBytes(size), writer, report, error, progress);
+    // The child leaves the import's hand-over once the read is finished, before the write
+    // starts: with it, the failure is the write's; without it, the read's (also a crash, a
+    // time-out or a cancel while reading). Its report comes back also when the write is
+    // refused (a face the reader skipped may be why).
+    QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
+    const bool read = handover.open(QIODevice::ReadOnly);
+    if (read) {
+        if (Expected<ImportResult> result = decodeImportHandover(handover.readAll()))
+            imported = std::move(result->report);
+    }
+    if (!written)
+        return Error(error, read ? path : in);
     return ok();
+#endif
 }
 
 } // namespace kw

@@ -51,19 +51,6 @@ Expected<ImportResult> importInChildProcess(const QString& path, CadFormat forma
                                             const ImportProgress& progress = {},
                                             const MeshDeflection* deflection = nullptr,
                                             TaggedMeshSet* mesh = nullptr);
-/// Transitional: importInChildProcess for bench/, whose own conversion lands separately. Remove
-/// with it; nothing else may call it.
-inline std::optional<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                                        QString& error,
-                                                        const ImportProgress& progress = {},
-                                                        const MeshDeflection* deflection = nullptr,
-                                                        TaggedMeshSet* mesh = nullptr) {
-    Expected<ImportResult> read = importInChildProcess(path, format, progress, deflection, mesh);
-    error = read.message();
-    if (!read)
-        return std::nullopt;
-    return std::move(*read);
-}
 
 /// Child side: writes a finished import (finishImport) for the parent as DIR/import.kwi
 /// (encodeImportHandover), atomically. An Error when it cannot.

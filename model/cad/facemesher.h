@@ -47,15 +47,6 @@ public:
     Status mesh(const std::vector<Surface>& surfaces, double tolerance, double linear,
                 double angularDegrees, TaggedMeshSet& out, FaceMeshCost& cost,
                 double seconds = 120.0);
-    /// Transitional: mesh for bench/, whose own conversion lands separately. Remove with it;
-    /// nothing else may call it.
-    bool mesh(const std::vector<Surface>& surfaces, double tolerance, double linear,
-              double angularDegrees, TaggedMeshSet& out, FaceMeshCost& cost, QString& error,
-              double seconds = 120.0) {
-        const Status meshed = mesh(surfaces, tolerance, linear, angularDegrees, out, cost, seconds);
-        error = meshed.message();
-        return bool(meshed);
-    }
 
 private:
     struct Impl;

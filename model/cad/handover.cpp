@@ -422,8 +422,8 @@ Expected<ImportResult> decodeImportHandover(const QByteArray& block) {
         return Error(QStringLiteral("%1 source faces for %2 surfaces")
                          .arg(result.sourceFaces.size())
                          .arg(scene.surfaces.size()));
-    if (const QString bad = sceneError(scene); !bad.isEmpty())
-        return Error(QStringLiteral("the scene is not valid: %1").arg(bad));
+    if (const Status valid = checkScene(scene); !valid)
+        return Error(QStringLiteral("the scene is not valid: %1").arg(valid.message()));
     return result;
 }
 

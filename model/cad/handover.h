@@ -7,7 +7,7 @@
 // numbers are stored in the machine's byte order and doubles bit for bit; a block from another
 // build is refused by its version. The reader trusts nothing: every count is checked against
 // the bytes left before anything is allocated, enums and flags against their values, the
-// block must end exactly after its end mark, and the scene must then pass kw::sceneError, the
+// block must end exactly after its end mark, and the scene must then pass kw::checkScene, the
 // rule of every reader (docs/FILE_FORMAT.md). A bad block gives an error, never a crash.
 #pragma once
 

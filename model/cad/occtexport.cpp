@@ -440,7 +440,7 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
         error = QStringLiteral("%1: not a STEP (.step, .stp) or IGES (.iges, .igs) name").arg(path);
         return std::nullopt;
     }
-    if (const QString bad = exportOptionsError(options); !bad.isEmpty()) {
+    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty()) {
         error = QStringLiteral("%1: %2").arg(path, bad);
         return std::nullopt;
     }

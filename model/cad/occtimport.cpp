@@ -193,7 +193,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                QString& error) {
     const QByteArray native = QFile::encodeName(path);
     if (format == CadFormat::Brep) {
-        if (const QString why = cadFileProblem(path, format); !why.isEmpty()) {
+        if (const QString why = checkCadFile(path, format).message(); !why.isEmpty()) {
             error = why;
             return false;
         }
@@ -225,7 +225,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     }
     QString cut = truncation(path, format);
     if (cut.isEmpty()) // numbers and lists OCCT would choke on (cadprecheck.h)
-        cut = cadFileProblem(path, format);
+        cut = checkCadFile(path, format).message();
     if (!cut.isEmpty()) {
         error = cut;
         return false;
@@ -394,7 +394,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
             // An edge range outside its curve sends the conversion's projections into a
             // minute of approximation: such a face is skipped before they see it.
-            why = occt::edgeRangeProblem(face);
+            why = occt::checkEdgeRanges(face).message();
             ok = why.isEmpty() &&
                  occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings, &edges);
             if (ok) {

@@ -34,7 +34,7 @@ QString rangeFault(const char* curve, double first, double last, bool periodic, 
 
 } // namespace
 
-QString edgeRangeProblem(const TopoDS_Face& face) {
+Status checkEdgeRanges(const TopoDS_Face& face) {
     int k = 0;
     for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
         ++k;
@@ -55,9 +55,9 @@ QString edgeRangeProblem(const TopoDS_Face& face) {
                                  p->LastParameter());
         }
         if (!why.isEmpty())
-            return QStringLiteral("edge %1: %2").arg(k).arg(why);
+            return Error(QStringLiteral("edge %1: %2").arg(k).arg(why));
     }
-    return {};
+    return ok();
 }
 
 } // namespace kw::occt

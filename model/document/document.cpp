@@ -137,15 +137,11 @@ Status Document::resetScene(Scene scene) {
         for (const TrimLoop& l : s.trims)
             maxId = std::max(maxId, l.id.value);
     }
-    QString why;
     if (maxId == kMaxId)
-        why = QStringLiteral("id %1 leaves no room for new ids").arg(maxId);
-    else
-        scene.nextId = std::max(scene.nextId, maxId + 1);
-    if (why.isEmpty())
-        why = validate(scene);
-    if (!why.isEmpty())
-        return Error(why);
+        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(maxId));
+    scene.nextId = std::max(scene.nextId, maxId + 1);
+    if (Status valid = validate(scene); !valid)
+        return valid;
     Q_EMIT sceneAboutToBeReset();
     m_scene = std::move(scene);
     m_markedFaces.clear();
@@ -171,8 +167,8 @@ Status Document::resetScene(Scene scene) {
 bool Document::insertSurface(int index, Surface surface) {
     if (index < 0 || size_t(index) > m_scene.surfaces.size())
         return false;
-    if (!surfaceError(surface).isEmpty() || idUsed(m_scene, surface.id.value) ||
-        surface.id.value == kMaxId || m_scene.surfaces.size() >= size_t(kMaxSurfaces))
+    if (!checkSurface(surface) || idUsed(m_scene, surface.id.value) || surface.id.value == kMaxId ||
+        m_scene.surfaces.size() >= size_t(kMaxSurfaces))
         return false;
     std::uint32_t maxId = surface.id.value;
     for (const TrimLoop& l : surface.trims) {
@@ -229,24 +225,24 @@ bool Document::setName(SurfaceId id, const QString& name) {
     return true;
 }
 
-QString Document::controlPointsError(SurfaceId id, const std::vector<int>& indices,
-                                     const std::vector<glm::dvec3>& positions) const {
+Status Document::checkControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                    const std::vector<glm::dvec3>& positions) const {
     const Surface* s = surface(id);
     if (!s)
-        return QStringLiteral("no surface with id %1").arg(id.value);
+        return Error(QStringLiteral("no surface with id %1").arg(id.value));
     if (indices.empty() || indices.size() != positions.size())
-        return QStringLiteral("need one position per control point");
+        return Error(QStringLiteral("need one position per control point"));
     std::set<int> seen;
     for (size_t k = 0; k < indices.size(); ++k) {
         const int i = indices[k];
         if (i < 0 || size_t(i) >= s->geometry.points.size())
-            return QStringLiteral("control point index %1 out of range").arg(i);
+            return Error(QStringLiteral("control point index %1 out of range").arg(i));
         if (!seen.insert(i).second)
-            return QStringLiteral("control point %1 listed twice").arg(i);
+            return Error(QStringLiteral("control point %1 listed twice").arg(i));
         if (!finite(positions[k]))
-            return QStringLiteral("control point positions must be finite");
+            return Error(QStringLiteral("control point positions must be finite"));
     }
-    return {};
+    return ok();
 }
 
 bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
@@ -256,7 +252,7 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
 
 bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
                                 const std::vector<glm::dvec3>& positions, SeamLink link) {
-    if (!controlPointsError(id, indices, positions).isEmpty())
+    if (!checkControlPoints(id, indices, positions))
         return false;
     Surface* s = mutableSurface(id);
     // The neighbours' points that move with these, from the positions before the move.
@@ -289,19 +285,19 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
     return true;
 }
 
-QString Document::weightError(SurfaceId id, int index, double weight) const {
+Status Document::checkWeight(SurfaceId id, int index, double weight) const {
     const Surface* s = surface(id);
     if (!s)
-        return QStringLiteral("no surface with id %1").arg(id.value);
+        return Error(QStringLiteral("no surface with id %1").arg(id.value));
     if (index < 0 || size_t(index) >= s->geometry.weights.size())
-        return QStringLiteral("control point index %1 out of range").arg(index);
+        return Error(QStringLiteral("control point index %1 out of range").arg(index));
     if (!std::isfinite(weight) || weight <= 0)
-        return QStringLiteral("weight %1 must be finite and > 0").arg(weight);
-    return {};
+        return Error(QStringLiteral("weight %1 must be finite and > 0").arg(weight));
+    return ok();
 }
 
 bool Document::setWeight(SurfaceId id, int index, double weight) {
-    if (!weightError(id, index, weight).isEmpty())
+    if (!checkWeight(id, index, weight))
         return false;
     double& w = mutableSurface(id)->geometry.weights[size_t(index)];
     if (w == weight)
@@ -332,7 +328,7 @@ bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
 
 bool Document::setPartitions(SurfaceId id, int nu, int nv) {
     Surface* s = mutableSurface(id);
-    if (!s || !partitionsError(nu, nv).isEmpty())
+    if (!s || !checkPartitions(nu, nv))
         return false;
     if (s->partitionsU == nu && s->partitionsV == nv)
         return true;
@@ -344,7 +340,7 @@ bool Document::setPartitions(SurfaceId id, int nu, int nv) {
 
 bool Document::setMaterial(SurfaceId id, const Material& material) {
     Surface* s = mutableSurface(id);
-    if (!s || !materialError(material).isEmpty())
+    if (!s || !checkMaterial(material))
         return false;
     if (s->material == material)
         return true;
@@ -368,8 +364,8 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Surface* s = mutableSurface(id);
     if (!s || index < 0 || size_t(index) > s->trims.size())
         return false;
-    if (!trimLoopError(loop).isEmpty() || loop.id.value == kMaxId ||
-        idUsed(m_scene, loop.id.value) || s->trims.size() >= size_t(kMaxTrimLoops))
+    if (!checkTrimLoop(loop) || loop.id.value == kMaxId || idUsed(m_scene, loop.id.value) ||
+        s->trims.size() >= size_t(kMaxTrimLoops))
         return false;
     Q_EMIT trimLoopAboutToBeInserted(id, index);
     const TrimLoopId loopId = loop.id;
@@ -417,17 +413,17 @@ bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
     return setTrimPoints({ref}, {position});
 }
 
-// All points move first, then each touched loop must still be closed (trimLoopError): a curve
+// All points move first, then each touched loop must still be closed (checkTrimLoop): a curve
 // end moves together with the coinciding end of its neighbour in one call.
-QString Document::movedTrims(const std::vector<TrimPointRef>& refs,
-                             const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
-                             std::set<int>& touched) const {
+Status Document::movedTrims(const std::vector<TrimPointRef>& refs,
+                            const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
+                            std::set<int>& touched) const {
     if (refs.empty() || refs.size() != positions.size())
-        return QStringLiteral("need one position per trim point");
+        return Error(QStringLiteral("need one position per trim point"));
     const SurfaceId id = refs.front().surface;
     const Surface* s = surface(id);
     if (!s)
-        return QStringLiteral("no surface with id %1").arg(id.value);
+        return Error(QStringLiteral("no surface with id %1").arg(id.value));
     trims = s->trims;
     std::set<TrimPointRef> seen;
     for (size_t k = 0; k < refs.size(); ++k) {
@@ -435,29 +431,29 @@ QString Document::movedTrims(const std::vector<TrimPointRef>& refs,
         const int li = ref.surface == id ? loopIndex(*s, ref.loop) : -1;
         const std::vector<NurbsCurve2>* curves = li >= 0 ? &trims[size_t(li)].curves : nullptr;
         if (ref.surface != id)
-            return QStringLiteral("trim points of one surface at a time");
+            return Error(QStringLiteral("trim points of one surface at a time"));
         if (!curves || ref.curve < 0 || size_t(ref.curve) >= curves->size() || ref.index < 0 ||
             size_t(ref.index) >= (*curves)[size_t(ref.curve)].points.size())
-            return QStringLiteral("no trim point %1 of curve %2 in loop %3 of surface %4")
-                .arg(ref.index)
-                .arg(ref.curve)
-                .arg(ref.loop.value)
-                .arg(ref.surface.value);
+            return Error(QStringLiteral("no trim point %1 of curve %2 in loop %3 of surface %4")
+                             .arg(ref.index)
+                             .arg(ref.curve)
+                             .arg(ref.loop.value)
+                             .arg(ref.surface.value));
         if (!seen.insert(ref).second)
-            return QStringLiteral("trim point listed twice");
+            return Error(QStringLiteral("trim point listed twice"));
         if (!std::isfinite(positions[k].x) || !std::isfinite(positions[k].y))
-            return QStringLiteral("trim point positions must be finite");
+            return Error(QStringLiteral("trim point positions must be finite"));
         trims[size_t(li)].curves[size_t(ref.curve)].points[size_t(ref.index)] = positions[k];
         touched.insert(li);
     }
     for (int li : touched)
-        if (const QString why = trimLoopError(trims[size_t(li)]); !why.isEmpty())
-            return why;
-    return {};
+        if (Status closed = checkTrimLoop(trims[size_t(li)]); !closed)
+            return closed;
+    return ok();
 }
 
-QString Document::trimPointsError(const std::vector<TrimPointRef>& refs,
-                                  const std::vector<glm::dvec2>& positions) const {
+Status Document::checkTrimPoints(const std::vector<TrimPointRef>& refs,
+                                 const std::vector<glm::dvec2>& positions) const {
     std::vector<TrimLoop> trims;
     std::set<int> touched;
     return movedTrims(refs, positions, trims, touched);
@@ -467,7 +463,7 @@ bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
                              const std::vector<glm::dvec2>& positions) {
     std::vector<TrimLoop> trims;
     std::set<int> touched;
-    if (!movedTrims(refs, positions, trims, touched).isEmpty())
+    if (!movedTrims(refs, positions, trims, touched))
         return false;
     Surface* s = mutableSurface(refs.front().surface);
     if (trims == s->trims)
@@ -478,7 +474,7 @@ bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
 }
 
 bool Document::setLights(std::vector<Light> lights) {
-    if (!lightsError(lights).isEmpty())
+    if (!checkLights(lights))
         return false;
     if (m_scene.lights == lights)
         return true;
@@ -489,7 +485,7 @@ bool Document::setLights(std::vector<Light> lights) {
 }
 
 bool Document::setCamera(const Camera& camera) {
-    if (!cameraError(camera).isEmpty())
+    if (!checkCamera(camera))
         return false;
     if (m_scene.camera == camera)
         return true;
@@ -500,7 +496,7 @@ bool Document::setCamera(const Camera& camera) {
 }
 
 bool Document::setDisplay(const DisplaySettings& display) {
-    if (!displayError(display).isEmpty())
+    if (!checkDisplay(display))
         return false;
     if (m_scene.display == display)
         return true;
@@ -510,7 +506,7 @@ bool Document::setDisplay(const DisplaySettings& display) {
 }
 
 bool Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
-    if (!continuityTolerancesError(tolerances).isEmpty())
+    if (!checkContinuityTolerances(tolerances))
         return false;
     if (m_scene.continuity == tolerances)
         return true;
@@ -563,7 +559,7 @@ bool Document::setLengths(const Lengths& lengths) {
     for (double t : lengths.tolerances)
         if (!std::isfinite(t) || t < 0)
             return false;
-    if (!cameraError(lengths.camera).isEmpty() || !lightsError(lengths.lights).isEmpty())
+    if (!checkCamera(lengths.camera) || !checkLights(lengths.lights))
         return false;
     size_t at = 0;
     std::vector<SurfaceId> moved;
@@ -590,8 +586,8 @@ bool Document::setLengths(const Lengths& lengths) {
     return true;
 }
 
-QString Document::validate(const Scene& scene) {
-    return sceneError(scene);
+Status Document::validate(const Scene& scene) {
+    return checkScene(scene);
 }
 
 std::uint64_t Document::nextRevision() {

@@ -134,24 +134,24 @@ public:
     bool setTrimPoints(const std::vector<TrimPointRef>& refs,
                        const std::vector<glm::dvec2>& positions);
     /// The one rule for the point edits above (the mutators, the undo commands and the live
-    /// drags all ask it): why the edit would be refused, or an empty string when it would be
-    /// applied. Control points: a known surface, at least one index, one finite position per
-    /// index, every index in the net and listed once. Weights: a known point, finite and > 0.
+    /// drags all ask it): ok() when the edit would be applied, else an Error saying why it
+    /// would be refused. Control points: a known surface, at least one index, one finite position
+    /// per index, every index in the net and listed once. Weights: a known point, finite and > 0.
     /// Trim points: known and listed once, all of one surface, finite, and every touched loop
-    /// still closed (kw::trimLoopError).
-    QString controlPointsError(SurfaceId id, const std::vector<int>& indices,
-                               const std::vector<glm::dvec3>& positions) const;
-    QString weightError(SurfaceId id, int index, double weight) const;
-    QString trimPointsError(const std::vector<TrimPointRef>& refs,
-                            const std::vector<glm::dvec2>& positions) const;
-    /// 0..kMaxLights lights (none: unlit), each valid (kw::lightsError).
+    /// still closed (kw::checkTrimLoop).
+    Status checkControlPoints(SurfaceId id, const std::vector<int>& indices,
+                              const std::vector<glm::dvec3>& positions) const;
+    Status checkWeight(SurfaceId id, int index, double weight) const;
+    Status checkTrimPoints(const std::vector<TrimPointRef>& refs,
+                           const std::vector<glm::dvec2>& positions) const;
+    /// 0..kMaxLights lights (none: unlit), each valid (kw::checkLights).
     bool setLights(std::vector<Light> lights);
     bool setCamera(const Camera& camera);
     /// The display settings saved with the project (as the camera: not an edit, no signal
-    /// the views react to); false when invalid (validation.h displayError).
+    /// the views react to); false when invalid (validation.h checkDisplay).
     bool setDisplay(const DisplaySettings& display);
     /// The continuity tolerances saved with the project (not an edit); emits
-    /// continuityTolerancesChanged; false when invalid (continuityTolerancesError).
+    /// continuityTolerancesChanged; false when invalid (checkContinuityTolerances).
     bool setContinuityTolerances(const ContinuityTolerances& tolerances);
 
     SeamLink seamLink() const { return m_seamLink; }
@@ -177,9 +177,8 @@ public:
     /// and unitChanged for what changed.
     bool setLengths(const Lengths& lengths);
 
-    /// Checks a whole scene with kw::sceneError, the rule every reader and writer uses.
-    /// Returns an empty string when valid.
-    static QString validate(const Scene& scene);
+    /// Checks a whole scene with kw::checkScene, the rule every reader and writer uses.
+    static Status validate(const Scene& scene);
 
 Q_SIGNALS:
     void sceneAboutToBeReset();
@@ -202,10 +201,10 @@ Q_SIGNALS:
 private:
     Surface* mutableSurface(SurfaceId id);
     /// The surface's trims with the moved trim points, and the indices of the touched loops;
-    /// the reason when trimPointsError refuses.
-    QString movedTrims(const std::vector<TrimPointRef>& refs,
-                       const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
-                       std::set<int>& touched) const;
+    /// checkTrimPoints' Error when it refuses.
+    Status movedTrims(const std::vector<TrimPointRef>& refs,
+                      const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
+                      std::set<int>& touched) const;
     void bump(SurfaceId id, Aspects aspects);
     /// Notes a change of the drawn aspects for changesSince(), then emits surfaceChanged.
     void changed(SurfaceId id, Aspects aspects);

@@ -8,18 +8,18 @@
 
 namespace kw {
 
-QString sectionPlaneError(const SectionPlane& plane) {
+Status checkSectionPlane(const SectionPlane& plane) {
     const auto finite = [](const glm::dvec3& v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     };
     if (!finite(plane.position))
-        return QStringLiteral("the section plane's position is not a finite point");
+        return Error(QStringLiteral("the section plane's position is not a finite point"));
     if (!finite(plane.normal))
-        return QStringLiteral("the section plane's normal is not a finite vector");
+        return Error(QStringLiteral("the section plane's normal is not a finite vector"));
     // A normal too short to normalise in double gives no plane either.
     if (!(glm::length(plane.normal) > 1e-300))
-        return QStringLiteral("the section plane's normal has zero length");
-    return QString();
+        return Error(QStringLiteral("the section plane's normal has zero length"));
+    return ok();
 }
 
 std::vector<Light> defaultLights() {

@@ -4,6 +4,7 @@
 #include "model/document/ids.h"
 #include "model/document/topology.h"
 #include "model/document/units.h"
+#include "model/error.h"
 #include "model/nurbs/analytic.h"
 #include "model/nurbs/nurbs.h"
 
@@ -109,7 +110,7 @@ constexpr double kMaxPixelTolerance = 16.0;
 /// A section plane: it removes the half-space its normal points into, so that what is left
 /// faces the eye with the plane's normal as its outward normal (the cap's). `flip` keeps the
 /// other half instead. The normal need not be unit length but must not be zero
-/// (sectionPlaneError).
+/// (checkSectionPlane).
 struct SectionPlane {
     glm::dvec3 position{0.0};
     glm::dvec3 normal{1.0, 0.0, 0.0};
@@ -123,8 +124,9 @@ struct SectionPlane {
 };
 /// At most this many section planes cut a view at once (the exact pass's uniform array).
 constexpr int kMaxSectionPlanes = 3;
-/// Why `plane` cannot cut (a zero or non-finite normal, a non-finite position), or empty.
-QString sectionPlaneError(const SectionPlane& plane);
+/// ok() when `plane` can cut, else an Error saying why not (a zero or non-finite normal, a
+/// non-finite position).
+Status checkSectionPlane(const SectionPlane& plane);
 
 /// How the project asks to be drawn, saved with it like the camera (not an edit). An empty
 /// mode leaves it to the viewer (the editor's preference, render's --partition-mode).

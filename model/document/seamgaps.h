@@ -75,7 +75,7 @@ void forEachRange(size_t count, size_t perThread,
 /// curve's domain and at each of the curve's distinct knots; the distance from each sample to
 /// the other side's edge is minimised over that edge's parameter (nearest of its own samples,
 /// then Newton's iteration on (C(s) - p) . C'(s) = 0, The NURBS Book 6.1, clamped to the ends).
-/// Precondition: a valid scene (kw::sceneError); an edge naming a surface, loop or curve the
+/// Precondition: a valid scene (kw::checkScene); an edge naming a surface, loop or curve the
 /// scene does not have gets an infinite gap (open) rather than undefined behaviour. Cost ~ 2 x
 /// samples x (samples + 5 surface derivative evaluations) per edge, about 0.3 ms for a bicubic
 /// face's edge; more than 128 edges are shared out over the machine's cores (std::thread), with the

@@ -163,9 +163,10 @@ std::optional<TopologyProblem> topologyProblem(const Scene& scene) {
     return std::nullopt;
 }
 
-QString topologyError(const Scene& scene) {
-    const std::optional<TopologyProblem> p = topologyProblem(scene);
-    return p ? QStringLiteral("topology: %1: %2").arg(p->place, p->reason) : QString();
+Status checkTopology(const Scene& scene) {
+    if (const std::optional<TopologyProblem> p = topologyProblem(scene))
+        return Error(QStringLiteral("topology: %1: %2").arg(p->place, p->reason));
+    return ok();
 }
 
 const SharedEdge* findSharedEdge(const Topology& topology, EdgeId id) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model/document/ids.h"
+#include "model/error.h"
 
 #include <QString>
 #include <array>
@@ -76,8 +77,9 @@ struct TopologyProblem {
 /// existing surface, ascending, and in no other shell; solid >= -1. nullopt when valid.
 std::optional<TopologyProblem> topologyProblem(const Scene& scene);
 
-/// topologyProblem as one line, "topology: PLACE: REASON", empty when valid (kw::sceneError's).
-QString topologyError(const Scene& scene);
+/// topologyProblem as an Error of one line, "topology: PLACE: REASON"; ok() when valid
+/// (kw::checkScene's).
+Status checkTopology(const Scene& scene);
 
 /// The edge with this id, nullptr for none.
 const SharedEdge* findSharedEdge(const Topology& topology, EdgeId id);

@@ -26,9 +26,16 @@ bool in(const glm::dvec3& v, double lo, double hi) {
     return in(v.x, lo, hi) && in(v.y, lo, hi) && in(v.z, lo, hi);
 }
 
+// A reason, empty when valid, as a Status.
+Status asStatus(const QString& reason) {
+    if (reason.isEmpty())
+        return ok();
+    return Error(reason);
+}
+
 } // namespace
 
-QString partitionsError(int nu, int nv) {
+static QString partitionsReason(int nu, int nv) {
     if (nu < kMinPartitions || nu > kMaxPartitions || nv < kMinPartitions || nv > kMaxPartitions)
         return QStringLiteral("partitions %1 x %2 outside [%3, %4]")
             .arg(nu)
@@ -38,7 +45,7 @@ QString partitionsError(int nu, int nv) {
     return {};
 }
 
-QString materialError(const Material& m) {
+static QString materialReason(const Material& m) {
     if (!in(m.color, 0.0, 1.0))
         return QStringLiteral("material colour components must be in [0, 1]");
     if (!in(m.ka, 0.0, 1.0) || !in(m.kd, 0.0, 1.0) || !in(m.ks, 0.0, 1.0))
@@ -48,7 +55,7 @@ QString materialError(const Material& m) {
     return {};
 }
 
-QString lightError(const Light& l) {
+static QString lightReason(const Light& l) {
     if (l.kind != Light::Kind::Directional && l.kind != Light::Kind::Point)
         return QStringLiteral("unknown light kind");
     if (!finite(l.vector))
@@ -61,20 +68,20 @@ QString lightError(const Light& l) {
     return {};
 }
 
-QString lightsError(const std::vector<Light>& lights) {
+static QString lightsReason(const std::vector<Light>& lights) {
     if (lights.size() > size_t(kMaxLights))
         return QStringLiteral("%1 lights, more than the limit %2")
             .arg(lights.size())
             .arg(kMaxLights);
     for (size_t i = 0; i < lights.size(); ++i) {
-        const QString e = lightError(lights[i]);
+        const QString e = lightReason(lights[i]);
         if (!e.isEmpty())
             return QStringLiteral("light %1: %2").arg(i + 1).arg(e);
     }
     return {};
 }
 
-QString cameraError(const Camera& c) {
+static QString cameraReason(const Camera& c) {
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return QStringLiteral("camera vectors must be finite");
     const glm::dvec3 view = c.target - c.eye;
@@ -114,7 +121,7 @@ int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start, glm::dvec2* end) {
     return -1;
 }
 
-QString trimLoopError(const TrimLoop& loop) {
+static QString trimLoopReason(const TrimLoop& loop) {
     if (!loop.id.isValid())
         return QStringLiteral("trim loop has no id");
     if (loop.curves.empty())
@@ -147,7 +154,7 @@ QString trimLoopError(const TrimLoop& loop) {
     return {};
 }
 
-QString surfaceError(const Surface& s) {
+static QString surfaceReason(const Surface& s) {
     if (!s.id.isValid())
         return QStringLiteral("surface has no id");
     const QString who = QStringLiteral("surface %1").arg(s.id.value);
@@ -161,9 +168,9 @@ QString surfaceError(const Surface& s) {
                 .arg(s.geometry.countV)
                 .arg(kMaxControlPoints);
     if (e.isEmpty())
-        e = partitionsError(s.partitionsU, s.partitionsV);
+        e = partitionsReason(s.partitionsU, s.partitionsV);
     if (e.isEmpty())
-        e = materialError(s.material);
+        e = materialReason(s.material);
     if (e.isEmpty())
         if (const std::string a = analyticFormError(s.analytic, s.geometry); !a.empty())
             e = QStringLiteral("analytic form: ") + QString::fromStdString(a);
@@ -175,14 +182,14 @@ QString surfaceError(const Surface& s) {
                 .arg(kMaxTrimLoops);
     std::set<std::uint32_t> loops;
     for (size_t i = 0; e.isEmpty() && i < s.trims.size(); ++i) {
-        e = trimLoopError(s.trims[i]);
+        e = trimLoopReason(s.trims[i]);
         if (e.isEmpty() && !loops.insert(s.trims[i].id.value).second)
             e = QStringLiteral("trim loop id %1 used twice").arg(s.trims[i].id.value);
     }
     return e.isEmpty() ? QString() : who + QStringLiteral(": ") + e;
 }
 
-QString displayError(const DisplaySettings& d) {
+static QString displayReason(const DisplaySettings& d) {
     if (!d.partitionMode.isEmpty() && d.partitionMode != QLatin1String("adaptive") &&
         d.partitionMode != QLatin1String("uniform"))
         return QStringLiteral("partition mode \"%1\" is neither \"adaptive\" nor \"uniform\"")
@@ -205,12 +212,12 @@ QString displayError(const DisplaySettings& d) {
             .arg(d.sections.size())
             .arg(kMaxSectionPlanes);
     for (size_t k = 0; k < d.sections.size(); ++k)
-        if (const QString why = sectionPlaneError(d.sections[k]); !why.isEmpty())
+        if (const QString why = checkSectionPlane(d.sections[k]).message(); !why.isEmpty())
             return QStringLiteral("section %1: %2").arg(k + 1).arg(why);
     return QString();
 }
 
-QString sceneError(const Scene& scene) {
+static QString sceneReason(const Scene& scene) {
     if (scene.surfaces.size() > size_t(kMaxSurfaces))
         return QStringLiteral("%1 surfaces, more than the limit %2")
             .arg(scene.surfaces.size())
@@ -218,7 +225,7 @@ QString sceneError(const Scene& scene) {
     std::set<std::uint32_t> ids;
     std::uint32_t maxId = 0;
     for (const Surface& s : scene.surfaces) {
-        const QString e = surfaceError(s);
+        const QString e = surfaceReason(s);
         if (!e.isEmpty())
             return e;
         // Surface and loop ids come from one counter, so all of them differ.
@@ -235,17 +242,56 @@ QString sceneError(const Scene& scene) {
         return QStringLiteral("nextId %1 is not above the largest id %2")
             .arg(scene.nextId)
             .arg(maxId);
-    QString e = lightsError(scene.lights);
+    QString e = lightsReason(scene.lights);
     if (e.isEmpty())
-        e = topologyError(scene);
+        e = checkTopology(scene).message();
     if (e.isEmpty())
-        e = cameraError(scene.camera);
+        e = cameraReason(scene.camera);
     if (e.isEmpty())
-        e = displayError(scene.display);
+        e = displayReason(scene.display);
     if (e.isEmpty())
-        if (const QString why = continuityTolerancesError(scene.continuity); !why.isEmpty())
+        if (const QString why = checkContinuityTolerances(scene.continuity).message();
+            !why.isEmpty())
             e = QStringLiteral("continuity: ") + why;
     return e;
+}
+
+// The checks as the public interface states them: the reason above becomes the Error.
+
+Status checkPartitions(int nu, int nv) {
+    return asStatus(partitionsReason(nu, nv));
+}
+
+Status checkMaterial(const Material& material) {
+    return asStatus(materialReason(material));
+}
+
+Status checkLight(const Light& light) {
+    return asStatus(lightReason(light));
+}
+
+Status checkLights(const std::vector<Light>& lights) {
+    return asStatus(lightsReason(lights));
+}
+
+Status checkCamera(const Camera& camera) {
+    return asStatus(cameraReason(camera));
+}
+
+Status checkDisplay(const DisplaySettings& display) {
+    return asStatus(displayReason(display));
+}
+
+Status checkTrimLoop(const TrimLoop& loop) {
+    return asStatus(trimLoopReason(loop));
+}
+
+Status checkSurface(const Surface& surface) {
+    return asStatus(surfaceReason(surface));
+}
+
+Status checkScene(const Scene& scene) {
+    return asStatus(sceneReason(scene));
 }
 
 } // namespace kw

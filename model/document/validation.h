@@ -1,10 +1,11 @@
 // The one notion of a valid scene: Document, the .knot reader, every importer and every writer
 // check with these functions, so nothing Knotwork accepts or writes fails to reopen
-// (docs/FILE_FORMAT.md states the same rules). Each returns an empty string when valid, else
+// (docs/FILE_FORMAT.md states the same rules). Each returns ok() when valid, else an Error with
 // the reason in plain English.
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <QString>
 #include <glm/glm.hpp>
@@ -24,20 +25,20 @@ constexpr double kMaxShininess = 1e4;
 constexpr double kMaxLightIntensity = 1e3;
 
 /// Both counts in [kMinPartitions, kMaxPartitions].
-QString partitionsError(int nu, int nv);
+Status checkPartitions(int nu, int nv);
 /// Colour components, ka, kd and ks in [0, 1]; shininess in [0, kMaxShininess].
-QString materialError(const Material& material);
+Status checkMaterial(const Material& material);
 /// Known kind; vector finite (non-zero for a directional light); intensities in
 /// [0, kMaxLightIntensity].
-QString lightError(const Light& light);
+Status checkLight(const Light& light);
 /// 0..kMaxLights lights (none: the scene is unlit), each valid.
-QString lightsError(const std::vector<Light>& lights);
+Status checkLights(const std::vector<Light>& lights);
 /// Finite eye, target and up; eye != target; up not zero and not parallel to the view
 /// direction; fovYDegrees in (0, 180).
-QString cameraError(const Camera& camera);
+Status checkCamera(const Camera& camera);
 /// A mode other than "", "adaptive" or "uniform", or a tolerance outside
 /// [kMinPixelTolerance, kMaxPixelTolerance].
-QString displayError(const DisplaySettings& display);
+Status checkDisplay(const DisplaySettings& display);
 
 /// The largest distance at which consecutive curves of a loop still meet: 1e-9 times the
 /// largest control point coordinate magnitude of the loop, at least 1e-9.
@@ -49,16 +50,16 @@ int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start = nullptr, glm::dvec2
 
 /// A valid id; 1..kMaxLoopCurves curves, each valid (kw::curveValidationError) with at most
 /// kMaxCurvePoints control points; the loop closed (trimLoopOpenAt).
-QString trimLoopError(const TrimLoop& loop);
+Status checkTrimLoop(const TrimLoop& loop);
 /// A valid id, geometry valid (kw::surfaceValidationError) with at most kMaxControlPoints,
 /// partitions in range, material valid, its analytic form valid for its NURBS
 /// (kw::analyticFormError; whether the form matches the NURBS is the .knot reader's check), at
 /// most kMaxTrimLoops loops, every trim loop valid and loop ids unique within the surface. Ids
 /// against other surfaces are the scene's business.
-QString surfaceError(const Surface& surface);
+Status checkSurface(const Surface& surface);
 /// A whole scene: at most kMaxSurfaces surfaces, each valid; surface and loop ids unique
 /// across the scene (one counter) and below nextId; lights valid; the topology's references
-/// valid (kw::topologyError); camera and display settings valid.
-QString sceneError(const Scene& scene);
+/// valid (kw::checkTopology); camera and display settings valid.
+Status checkScene(const Scene& scene);
 
 } // namespace kw

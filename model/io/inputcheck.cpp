@@ -35,7 +35,7 @@ QString byteCount(qint64 bytes) {
 
 } // namespace
 
-QString regularFileProblem(const QString& path, qint64 maxBytes, const QString& formatName) {
+static QString regularFileReason(const QString& path, qint64 maxBytes, const QString& formatName) {
     const QByteArray native = QFile::encodeName(path);
     struct stat target {};
     if (::stat(native.constData(), &target) != 0) {
@@ -60,6 +60,12 @@ QString regularFileProblem(const QString& path, qint64 maxBytes, const QString& 
     return {};
 }
 
+Status checkRegularFile(const QString& path, qint64 maxBytes, const QString& formatName) {
+    if (const QString why = regularFileReason(path, maxBytes, formatName); !why.isEmpty())
+        return Error(why);
+    return ok();
+}
+
 QByteArray fileHead(const QString& path, qsizetype count) {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly | QIODevice::Unbuffered))
@@ -67,7 +73,7 @@ QByteArray fileHead(const QString& path, qsizetype count) {
     return f.read(count);
 }
 
-QString knotHeadProblem(const QByteArray& head) {
+static QString knotHeadReason(const QByteArray& head) {
     qsizetype k = head.startsWith("\xEF\xBB\xBF") ? 3 : 0;
     while (k < head.size() &&
            (head[k] == ' ' || head[k] == '\t' || head[k] == '\n' || head[k] == '\r'))
@@ -90,7 +96,13 @@ QString knotHeadProblem(const QByteArray& head) {
         .arg(k);
 }
 
-QString objHeadProblem(const QByteArray& head) {
+Status checkKnotHead(const QByteArray& head) {
+    if (const QString why = knotHeadReason(head); !why.isEmpty())
+        return Error(why);
+    return ok();
+}
+
+static QString objHeadReason(const QByteArray& head) {
     int line = 1;
     for (qsizetype k = 0; k < head.size(); ++k) {
         const unsigned char c = static_cast<unsigned char>(head[k]);
@@ -137,6 +149,12 @@ QString objHeadProblem(const QByteArray& head) {
                           "'%2'")
         .arg(line)
         .arg(quoteInput(QByteArrayView(head).sliced(k, std::min<qsizetype>(eol - k, 40)), 40));
+}
+
+Status checkObjHead(const QByteArray& head) {
+    if (const QString why = objHeadReason(head); !why.isEmpty())
+        return Error(why);
+    return ok();
 }
 
 } // namespace kw

@@ -230,7 +230,7 @@ QByteArray sceneToJson(const Scene& scene) {
 }
 
 Status writeKnotFile(const QString& path, const Scene& scene) {
-    if (const QString why = sceneError(scene); !why.isEmpty())
+    if (const QString why = checkScene(scene).message(); !why.isEmpty())
         return Error(QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why),
                      path);
     return saveBytesAtomically(path, sceneToJson(scene));
@@ -241,10 +241,10 @@ Expected<Scene> readKnotFile(const QString& path) {
     // start like JSON is refused from its first bytes, whatever its size.
     // (A missing file is left to open(), which names the reason.)
     QString why = QFileInfo::exists(path)
-                      ? regularFileProblem(path, kMaxKnotFileBytes, QStringLiteral(".knot"))
+                      ? checkRegularFile(path, kMaxKnotFileBytes, QStringLiteral(".knot")).message()
                       : QString();
     if (why.isEmpty() && QFileInfo::exists(path))
-        why = knotHeadProblem(fileHead(path, kSniffBytes));
+        why = checkKnotHead(fileHead(path, kSniffBytes)).message();
     if (!why.isEmpty())
         return Error(QStringLiteral("%1: %2").arg(path, why), path);
     QFile file(path);

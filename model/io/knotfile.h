@@ -42,7 +42,7 @@ Expected<Scene> sceneFromJson(const QByteArray& json, const QString& sourceName)
 
 /// Writes the scene atomically (QSaveFile, flush checked): on failure the previous file at
 /// `path` is left untouched and the error names the file and the reason. An invalid scene
-/// (kw::sceneError) is refused before anything is written, so every file written reads back.
+/// (kw::checkScene) is refused before anything is written, so every file written reads back.
 Status writeKnotFile(const QString& path, const Scene& scene);
 
 /// Reads a .knot file; errors as for sceneFromJson, with the path as the source name (also

@@ -592,7 +592,7 @@ Camera readCamera(const QJsonObject& o, const QString& path) {
     if (glm::length(glm::cross(view, c.up)) <= 1e-12 * glm::length(view) * glm::length(c.up))
         fail(member(path, "up"), QStringLiteral("up is zero or parallel to the view direction"));
     c.authored = true;
-    if (const QString why = cameraError(c); !why.isEmpty())
+    if (const QString why = checkCamera(c).message(); !why.isEmpty())
         fail(path, why);
     return c;
 }
@@ -635,8 +635,8 @@ DisplaySettings readDisplay(const QJsonObject& o, const QString& path) {
             plane.normal = asVec3(required(po, p, "normal"), member(p, "normal"));
             if (po.contains(QLatin1String("flip")))
                 plane.flip = asBool(po.value(QLatin1String("flip")), member(p, "flip"));
-            if (const QString why = sectionPlaneError(plane); !why.isEmpty())
-                fail(member(p, "normal"), why);
+            if (Status valid = checkSectionPlane(plane); !valid)
+                fail(member(p, "normal"), valid.message());
             d.sections.push_back(plane);
         }
     }
@@ -673,7 +673,7 @@ ContinuityTolerances readContinuity(const QJsonObject& o, const QString& path) {
     t.g1Degrees = asNumber(required(o, path, "g1Degrees"), member(path, "g1Degrees"));
     t.g2Percent = asNumber(required(o, path, "g2Percent"), member(path, "g2Percent"));
     t.match = asNumber(required(o, path, "match"), member(path, "match"));
-    if (const QString why = continuityTolerancesError(t); !why.isEmpty())
+    if (const QString why = checkContinuityTolerances(t).message(); !why.isEmpty())
         fail(path, why);
     return t;
 }
@@ -764,7 +764,7 @@ Scene readScene(const QJsonObject& root) {
     }
     // The member checks above name the exact place; this is the same rule Document, the
     // importers and the writers apply, so what reads here also opens, edits and saves.
-    if (const QString why = sceneError(scene); !why.isEmpty())
+    if (const QString why = checkScene(scene).message(); !why.isEmpty())
         fail(top, why);
     return scene;
 }

@@ -18,7 +18,7 @@ namespace kw {
 /// kMaxDegree) are listed in report.skipped. Knotwork's own "# knotwork ..." comment lines,
 /// written by writeObj, restore ids, names, partitions, materials, lights and camera exactly.
 /// Gaps between the pieces of a trim loop are closed (kw::closeSceneTrimLoops) and reported in
-/// report.warnings, and the scene must pass kw::sceneError, so an accepted file saves and
+/// report.warnings, and the scene must pass kw::checkScene, so an accepted file saves and
 /// reopens. Sets `scene` and `report` on success; on malformed input returns the error
 /// "<fileName>:<line>: <reason>" (Error::location "line N" where there is one) and leaves
 /// `scene` and `report` untouched.
@@ -54,7 +54,7 @@ Status writeObjMeshFile(const QString& path, const Scene& scene, const ObjMeshOp
 /// Writes bytes to a file atomically (kw::saveBytesAtomically: QSaveFile, flush checked);
 /// an error naming the file when it cannot be written; the old file is then kept.
 Status writeFileBytes(const QString& path, const QByteArray& bytes);
-/// writeObj into `path` atomically; an invalid scene (kw::sceneError) is refused first.
+/// writeObj into `path` atomically; an invalid scene (kw::checkScene) is refused first.
 Status writeObjFile(const QString& path, const Scene& scene);
 
 } // namespace kw

@@ -299,7 +299,7 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         l.ambient = {num(7), num(8), num(9)};
         l.diffuse = {num(10), num(11), num(12)};
         l.specular = {num(13), num(14), num(15)};
-        check(lightError(l));
+        check(checkLight(l).message());
         m_scene.lights.push_back(l);
         if (static_cast<int>(m_scene.lights.size()) > kMaxLights)
             fail(line, QStringLiteral("more than %1 lights").arg(kMaxLights));
@@ -310,17 +310,17 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         c.up = {num(9), num(10), num(11)};
         c.fovYDegrees = num(12);
         c.authored = true;
-        check(cameraError(c));
+        check(checkCamera(c).message());
     } else if (key == "display") {
         const QString mode = QString::fromLatin1(t.value(3));
         m_scene.display.partitionMode = mode == QLatin1String("-") ? QString() : mode;
         m_scene.display.pixelTolerance = num(4);
         m_scene.display.background = QString::fromLatin1(t.value(5));
-        check(displayError(m_scene.display));
+        check(checkDisplay(m_scene.display).message());
     } else if (key == "draft") {
         m_scene.display.pullDirection = {num(3), num(4), num(5)};
         m_scene.display.draftAngleDegrees = num(6);
-        check(displayError(m_scene.display));
+        check(checkDisplay(m_scene.display).message());
     } else if (key == "surface") {
         m_meta = Metadata{};
         m_metaPending = true;
@@ -333,7 +333,7 @@ void ObjParser::knotworkComment(const QList<QByteArray>& t, int line) {
         m.kd = num(10);
         m.ks = num(11);
         m.shininess = num(12);
-        check(materialError(m));
+        check(checkMaterial(m).message());
         m_meta.material = m;
     } else if (key == "name") {
         m_meta.name = QUrl::fromPercentEncoding(t.value(3));
@@ -715,7 +715,7 @@ Status parseObj(const QByteArray& text, const QString& fileName, Scene& scene,
                          .arg(bad->place, bad->reason),
                      fileName, QStringLiteral("line %1").arg(line));
     }
-    if (const QString why = sceneError(out); !why.isEmpty())
+    if (const QString why = checkScene(out).message(); !why.isEmpty())
         return Error(QStringLiteral("%1: %2").arg(fileName, why), fileName);
     if (out.surfaces.empty() && local.skipped.isEmpty())
         return Error(
@@ -729,9 +729,9 @@ Status parseObj(const QByteArray& text, const QString& fileName, Scene& scene,
 Status readObjFile(const QString& path, Scene& scene, ImportReport& report) {
     // Only a regular file within the size limit, and only text that starts like OBJ: random
     // bytes are refused from their first 4 KiB, not after reading and splitting all of them.
-    QString why = regularFileProblem(path, kMaxObjFileBytes, QStringLiteral("OBJ"));
+    QString why = checkRegularFile(path, kMaxObjFileBytes, QStringLiteral("OBJ")).message();
     if (why.isEmpty())
-        why = objHeadProblem(fileHead(path, kSniffBytes));
+        why = checkObjHead(fileHead(path, kSniffBytes)).message();
     if (!why.isEmpty()) {
         if (why.startsWith(QLatin1String("line ")))
             return Error(QStringLiteral("%1:%2").arg(path, why.mid(5)), path,

@@ -307,7 +307,7 @@ Status writeFileBytes(const QString& path, const QByteArray& bytes) {
 }
 
 Status writeObjFile(const QString& path, const Scene& scene) {
-    if (const QString why = sceneError(scene); !why.isEmpty())
+    if (const QString why = checkScene(scene).message(); !why.isEmpty())
         return Error(QStringLiteral("%1: not written, the scene is not valid: %2").arg(path, why),
                      path);
     return writeFileBytes(path, writeObj(scene));

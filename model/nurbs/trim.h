@@ -52,7 +52,7 @@ struct TrimRegion {
 TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
                           QStringList* warnings = nullptr);
 
-/// Makes a loop closed in the sense of kw::trimLoopError (what the .knot reader demands), the
+/// Makes a loop closed in the sense of kw::checkTrimLoop (what the .knot reader demands), the
 /// way makeTrimRegion would draw it: a gap between consecutive curves (and between the last
 /// curve's end and the first curve's start) no wider than `snap` moves the later curve's first
 /// control point onto the earlier curve's end (its start, for a curve with a clamped start);
@@ -67,7 +67,7 @@ QStringList closeTrimLoop(TrimLoop& loop, double snap, std::vector<int>* newInde
 /// renumbered with the curves they name), as an import ends
 /// (CAD and OBJ readers): returns one line per gap closed, "surface 'NAME', trim loop ID:
 /// <closeTrimLoop's line>". A loop with an invalid curve (curveValidationError) is left as it
-/// is, for kw::sceneError to name.
+/// is, for kw::checkScene to name.
 QStringList closeSceneTrimLoops(Scene& scene);
 
 /// The trim points that must move with `hit` so that its loop stays closed (Document refuses a

@@ -5,6 +5,7 @@
 #include "knotwork_process.h"
 #include "model/cad/cadprecheck.h"
 #include "model/io/safetext.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QDir>
 #include <QElapsedTimer>
@@ -505,34 +506,39 @@ void TestBounds::stepListsCountItemsHoweverSeparated() {
         return head + stepList(items, separator) + tail;
     };
     for (const char* separator : {",", " ", "\n", " ,\t", "/* (1 2 3) */"}) {
-        QVERIFY2(cadContentProblem(CadFormat::Step, file(50000, separator)).isEmpty(), separator);
-        QVERIFY2(cadContentProblem(CadFormat::Step, file(50001, separator)).contains("50000"),
-                 separator);
+        QVERIFY2(bool(checkCadContent(CadFormat::Step, file(50000, separator))), separator);
+        QVERIFY2(
+            checkCadContent(CadFormat::Step, file(50001, separator)).message().contains("50000"),
+            separator);
     }
     // Nested lists count once in their parent; strings and comments are not lists.
     QByteArray nested = "#1=X((";
     for (int k = 0; k < 40000; ++k)
         nested += "(1 2) ";
-    QVERIFY(cadContentProblem(CadFormat::Step, head + nested + "));" + tail).isEmpty());
-    QVERIFY(cadContentProblem(CadFormat::Step, head + "#1=X('1.E400 (((');" + tail).isEmpty());
-    QVERIFY(cadContentProblem(CadFormat::Step, head + "#1=X(.T.,#12,-1.5E99);" + tail).isEmpty());
-    QVERIFY(cadContentProblem(CadFormat::Step, head + "#1=X(-1.5E101);" + tail)
+    QVERIFY(checkCadContent(CadFormat::Step, head + nested + "));" + tail).message().isEmpty());
+    QVERIFY(
+        checkCadContent(CadFormat::Step, head + "#1=X('1.E400 (((');" + tail).message().isEmpty());
+    QVERIFY(checkCadContent(CadFormat::Step, head + "#1=X(.T.,#12,-1.5E99);" + tail)
+                .message()
+                .isEmpty());
+    QVERIFY(checkCadContent(CadFormat::Step, head + "#1=X(-1.5E101);" + tail)
+                .message()
                 .startsWith(QLatin1String("line 6: the value -1.5E101 is out of range")));
 }
 
 void TestBounds::igesStringsAreNotNumbers() {
     const QByteArray teapot = bytesOf(data(QStringLiteral("teapot.igs")));
-    QVERIFY(cadContentProblem(CadFormat::Iges, teapot).isEmpty());
-    QVERIFY(
-        cadContentProblem(CadFormat::Iges, bytesOf(data(QStringLiteral("hammer.iges")))).isEmpty());
+    KW_VERIFY_OK(checkCadContent(CadFormat::Iges, teapot));
+    QVERIFY(bool(checkCadContent(CadFormat::Iges, bytesOf(data(QStringLiteral("hammer.iges"))))));
     // A Hollerith string holding a huge number and delimiters is text, not a value.
     const QByteArray string = igesWith(teapot, "1.4,0.0,2.4,", "12H1.0D308,,;;,1.4,0.0,2.4,");
     QVERIFY(!string.isEmpty());
-    QVERIFY2(cadContentProblem(CadFormat::Iges, string).isEmpty(),
-             qPrintable(cadContentProblem(CadFormat::Iges, string)));
-    QVERIFY(cadContentProblem(CadFormat::Iges, igesWith(teapot, "1.4,0.0,2.4,", "1.4,1.0E101,2.4,"))
+    KW_VERIFY_OK(checkCadContent(CadFormat::Iges, string));
+    QVERIFY(checkCadContent(CadFormat::Iges, igesWith(teapot, "1.4,0.0,2.4,", "1.4,1.0E101,2.4,"))
+                .message()
                 .contains(QLatin1String("1.0E101")));
-    QVERIFY(cadContentProblem(CadFormat::Iges, QByteArray("PK\x03\x04 not IGES"))
+    QVERIFY(checkCadContent(CadFormat::Iges, QByteArray("PK\x03\x04 not IGES"))
+                .message()
                 .startsWith(QLatin1String("line 1: not an IGES file")));
 }
 

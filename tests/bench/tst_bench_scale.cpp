@@ -4,6 +4,7 @@
 #include "bench/scale_scene.h"
 #include "model/document/document.h"
 #include "model/io/knotfile.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QDir>
 #include <QFile>
@@ -47,7 +48,7 @@ void TestBenchScale::tilingKeepsFacesAndSeparatesCopies() {
     const Scene tiled = bench::tileScene(*unit, 10);
     QCOMPARE(tiled.surfaces.size(), 10 * n);
     // A valid document: unique ids, nextId above them.
-    QVERIFY2(Document::validate(tiled).isEmpty(), qPrintable(Document::validate(tiled)));
+    KW_VERIFY_OK(Document::validate(tiled));
     std::set<std::uint32_t> ids;
     for (const Surface& s : tiled.surfaces) {
         ids.insert(s.id.value);

@@ -26,9 +26,11 @@ inline bool printable(const QString& text) {
 /// same bytes: quotes are at most 80 characters and printable, OCCT placeholders are gone.
 inline void checkCadPrecheck(CadFormat format, const std::uint8_t* data, size_t size) {
     const QByteArrayView bytes(reinterpret_cast<const char*>(data), qsizetype(size));
-    const QString why = cadContentProblem(format, bytes);
-    KW_FUZZ_CHECK(why == cadContentProblem(format, bytes), "the check is not deterministic");
-    const QString head = cadHeadProblem(format, bytes.first(std::min<qsizetype>(size, 4096)));
+    const QString why = checkCadContent(format, bytes).message();
+    KW_FUZZ_CHECK(why == checkCadContent(format, bytes).message(),
+                  "the check is not deterministic");
+    const QString head =
+        checkCadHead(format, bytes.first(std::min<qsizetype>(size, 4096))).message();
     if (!head.isEmpty())
         KW_FUZZ_CHECK(why == head,
                       QStringLiteral("head refused (%1) but content: %2").arg(head, why));

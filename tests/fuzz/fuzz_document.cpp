@@ -315,7 +315,7 @@ public:
         // call; the empty scene is valid), so an unchanged scene needs no second run.
         const bool unchanged = now == before;
         if (!unchanged) {
-            const QString why = Document::validate(now);
+            const QString why = Document::validate(now).message();
             KW_FUZZ_CHECK(why.isEmpty(), why);
         }
         // The content is all but nextId, which id allocation moves; a copy only when it moved.
@@ -412,7 +412,7 @@ public:
     }
 
     void run() {
-        KW_FUZZ_CHECK(Document::validate(doc.scene()).isEmpty(), "a new document is invalid");
+        KW_FUZZ_CHECK(bool(Document::validate(doc.scene())), "a new document is invalid");
         for (int n = 0; n < 32 && !in.empty(); ++n) {
             const Scene before = doc.scene();
             std::map<std::uint32_t, Revisions> revs;

@@ -51,7 +51,7 @@ inline Scene asSaved(Scene scene) {
 /// Aborts unless `scene` is valid for the document and survives .knot and OBJ round trips.
 inline void checkAcceptedScene(const Scene& given) {
     const Scene scene = asSaved(given);
-    const QString why = Document::validate(given);
+    const QString why = Document::validate(given).message();
     KW_FUZZ_CHECK(why.isEmpty(), why);
     Document doc;
     const Status reset = doc.resetScene(given);

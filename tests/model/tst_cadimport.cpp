@@ -276,7 +276,7 @@ void TestCadImport::teapotIges() {
             QCOMPARE(w, 1.0);                         // polynomial
         QCOMPARE(s.name, QStringLiteral("FACE____")); // the entities' labels in the file
     }
-    QVERIFY(Document::validate(r->scene).isEmpty());
+    KW_VERIFY_OK(Document::validate(r->scene));
     compareWithOcct(dataFile("teapot.igs"), *r);
 #endif
 }
@@ -673,7 +673,7 @@ void TestCadImport::randomDamageNeverCrashes() {
         out.close();
         const auto r = importFile(path);
         if (r)
-            QVERIFY(Document::validate(r->scene).isEmpty());
+            KW_VERIFY_OK(Document::validate(r->scene));
         else
             QVERIFY2(r.message().startsWith(path + QLatin1Char(':')), qPrintable(r.message()));
     }

@@ -4,6 +4,7 @@
 #include "model/analysis/continuity.h"
 #include "model/nurbs/nurbs_construct.h"
 #include "model/nurbs/nurbs_shapes.h"
+#include "tests/support/expected_test_util.h"
 #include "topology_fixtures.h"
 
 #include <QTest>
@@ -316,10 +317,10 @@ void TestContinuity::badInputIsCountedApart() {
 }
 
 void TestContinuity::tolerancesAreChecked() {
-    QVERIFY(continuityTolerancesError({}).isEmpty());
-    QVERIFY(!continuityTolerancesError({0.0, 0.5, 5.0, 0.01}).isEmpty());
-    QVERIFY(!continuityTolerancesError({0.001, std::nan(""), 5.0, 0.01}).isEmpty());
-    QVERIFY(!continuityTolerancesError({0.1, 0.5, 5.0, 0.01}).isEmpty());
+    KW_VERIFY_OK(checkContinuityTolerances({}));
+    QVERIFY(!checkContinuityTolerances({0.0, 0.5, 5.0, 0.01}));
+    QVERIFY(!checkContinuityTolerances({0.001, std::nan(""), 5.0, 0.01}));
+    QVERIFY(!checkContinuityTolerances({0.1, 0.5, 5.0, 0.01}));
 }
 
 // measureContinuity (the overlay's background measure) gives continuityReport's values, tells

@@ -4,6 +4,7 @@
 #include "model/document/validation.h"
 #include "model_fixtures.h"
 #include "signallog.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QSignalSpy>
 #include <QTest>
@@ -150,7 +151,7 @@ void TestDocument::editedFaceOpensItsSolid() {
         QCOMPARE(solids(doc), (std::vector<int>{-1, 5}));
         QVERIFY(doc.insertSurface(1, removed)); // undo of the removal
         QCOMPARE(solids(doc), (std::vector<int>{4, 4, 5}));
-        QCOMPARE(Document::validate(doc.scene()), QString());
+        KW_VERIFY_OK(Document::validate(doc.scene()));
         // A face of another shape under the removed one's id does not close it.
         QVERIFY(doc.removeSurface(SurfaceId{2}));
         Surface other = removed;
@@ -170,7 +171,7 @@ void TestDocument::emptyDocument() {
     Document doc;
     QVERIFY(doc.scene().surfaces.empty());
     QCOMPARE(doc.scene().lights.size(), size_t(2));
-    QCOMPARE(Document::validate(doc.scene()), QString());
+    KW_VERIFY_OK(Document::validate(doc.scene()));
     QVERIFY(!doc.surface(SurfaceId{1}));
     QCOMPARE(doc.indexOf(SurfaceId{1}), -1);
     QCOMPARE(doc.revisions(SurfaceId{1}), Revisions{});
@@ -279,7 +280,7 @@ void TestDocument::validateScene() {
     default:
         break;
     }
-    const QString error = Document::validate(s);
+    const QString error = kwtest::refusal(Document::validate(s));
     if (expected.isEmpty())
         QCOMPARE(error, QString());
     else
@@ -597,7 +598,7 @@ void TestDocument::setTrimPoint() {
     // ...together with the coinciding start of the next curve it is one valid step.
     QVERIFY(f.doc.setTrimPoints({end, start}, {{0.31, 0.29}, {0.31, 0.29}}));
     QCOMPARE(log.take(), QStringList({"changed 1 Trims"}));
-    QVERIFY(sceneError(f.doc.scene()).isEmpty());
+    KW_VERIFY_OK(checkScene(f.doc.scene()));
 }
 
 void TestDocument::lightsAndCamera() {

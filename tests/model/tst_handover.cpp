@@ -81,7 +81,7 @@ private Q_SLOTS:
         r.scene.display.sectionCaps = false;
         r.scene.display.pullDirection = {0.25, -1.0, 0.5};
         r.scene.display.draftAngleDegrees = 7.5;
-        QVERIFY2(kw::sceneError(r.scene).isEmpty(), qPrintable(kw::sceneError(r.scene)));
+        KW_VERIFY_OK(kw::checkScene(r.scene));
         const auto back = kw::decodeImportHandover(kw::encodeImportHandover(r));
         QVERIFY2(back, qPrintable(back.message()));
         verifySame(r, *back);
@@ -109,7 +109,7 @@ private Q_SLOTS:
                 bad[random.bounded(int(bad.size()))] = char(random.bounded(256));
             const auto r = kw::decodeImportHandover(bad);
             if (r)
-                QVERIFY(kw::sceneError(r->scene).isEmpty());
+                KW_VERIFY_OK(kw::checkScene(r->scene));
             else
                 QVERIFY(!r.message().isEmpty());
             refused += r ? 0 : 1;

@@ -6,6 +6,7 @@
 #include "model/io/objfile.h"
 #include "model/nurbs/trim.h"
 #include "model_fixtures.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QDir>
 #include <QRandomGenerator>
@@ -80,7 +81,7 @@ void TestObjFile::roundTripSamples() {
         for (size_t l = 0; l < original.surfaces[k].trims.size(); ++l)
             QCOMPARE(foreign.surfaces[k].trims[l].curves, original.surfaces[k].trims[l].curves);
     }
-    QVERIFY(Document::validate(foreign).isEmpty());
+    KW_VERIFY_OK(Document::validate(foreign));
 }
 
 void TestObjFile::roundTripEveryField() {
@@ -102,7 +103,7 @@ void TestObjFile::roundTripEveryField() {
     point.vector = {1, 2, 3};
     s.lights.push_back(point);
     s.nextId = 99;
-    QVERIFY(Document::validate(s).isEmpty());
+    KW_VERIFY_OK(Document::validate(s));
     Scene back;
     ImportReport report;
     QString error;
@@ -159,7 +160,7 @@ void TestObjFile::foreignFreeForm() {
     for (double t : {0.0, 0.25, 0.5, 1.8, 3.0})
         QVERIFY(glm::length(curvePoint(hole, -t) - curvePoint(source, t)) < 1e-15);
     QVERIFY(surf.id.isValid() && surf.trims[0].id.isValid() && surf.trims[1].id.isValid());
-    QVERIFY(Document::validate(s).isEmpty());
+    KW_VERIFY_OK(Document::validate(s));
     // Trim semantics: the hole removes its inside.
     const TrimRegion r = makeTrimRegion(surf.trims, 1e-6);
     QVERIFY(trimRegionContains(r, {0.2, 0.2}));
@@ -354,7 +355,7 @@ void TestObjFile::randomDamageNeverCrashes() {
         ImportReport report;
         QString error;
         if (parse(bad, s, report, error)) {
-            QVERIFY2(Document::validate(s).isEmpty(), qPrintable(Document::validate(s)));
+            KW_VERIFY_OK(Document::validate(s));
         } else {
             ++refused;
             QVERIFY2(error.startsWith(QLatin1String("t.obj")), qPrintable(error));

@@ -4,6 +4,7 @@
 #include "model/document/validation.h"
 #include "model/io/knotfile.h"
 #include "model_fixtures.h"
+#include "tests/support/expected_test_util.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -28,7 +29,7 @@ class TestSectionFile : public QObject {
 private Q_SLOTS:
     void roundTrip() {
         const Scene scene = withSections();
-        QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+        KW_VERIFY_OK(checkScene(scene));
         QString error;
         const auto back = sceneFromJson(sceneToJson(scene), QStringLiteral("mem"));
         QVERIFY2(back, qPrintable(back.message()));
@@ -86,10 +87,10 @@ private Q_SLOTS:
 
         Scene scene = withSections();
         scene.display.sections[1].normal = glm::dvec3(0.0);
-        QVERIFY2(sceneError(scene).contains(QStringLiteral("section 2")),
-                 qPrintable(sceneError(scene)));
+        QVERIFY2(checkScene(scene).message().contains(QStringLiteral("section 2")),
+                 qPrintable(checkScene(scene).message()));
         scene.display.sections[1].normal = glm::dvec3(std::nan(""), 0.0, 1.0);
-        QVERIFY(!sceneError(scene).isEmpty());
+        QVERIFY(!checkScene(scene));
     }
 
     void removedSide() {

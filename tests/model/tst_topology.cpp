@@ -111,7 +111,7 @@ private Q_SLOTS:
 
 void TestTopology::cubeFixtureIsValid() {
     const Scene scene = cubeScene();
-    QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+    KW_VERIFY_OK(checkScene(scene));
     QCOMPARE(scene.topology.edges.size(), size_t(12));
     for (const SharedEdge& e : scene.topology.edges) {
         QVERIFY(e.sides[0].surface != e.sides[1].surface);
@@ -123,7 +123,7 @@ void TestTopology::cubeFixtureIsValid() {
 // version.
 void TestTopology::knotFileKeepsEveryField() {
     const Scene scene = richCube();
-    QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+    KW_VERIFY_OK(checkScene(scene));
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("cube.knot"));
     KW_VERIFY_OK(writeKnotFile(path, scene));
@@ -301,11 +301,11 @@ void TestTopology::removeSurfaceKeepsRecordConsistent() {
         QVERIFY(!edgeTouches(e, SurfaceId{2}));
     QCOMPARE(t.shells.front().faces.size(), size_t(5));
     QVERIFY(!t.shells.front().closed);
-    QVERIFY2(sceneError(doc.scene()).isEmpty(), qPrintable(sceneError(doc.scene())));
+    KW_VERIFY_OK(checkScene(doc.scene()));
     const Topology afterOne = t;
     QVERIFY(pushCommand(&stack, RemoveSurface::create(&doc, SurfaceId{5})));
     QCOMPARE(t.edges.size(), size_t(5)); // face 5 shares one edge with face 2
-    QVERIFY2(sceneError(doc.scene()).isEmpty(), qPrintable(sceneError(doc.scene())));
+    KW_VERIFY_OK(checkScene(doc.scene()));
     stack.undo();
     QVERIFY(doc.scene().topology == afterOne);
     stack.undo();
@@ -336,7 +336,7 @@ void TestTopology::removeTrimLoopKeepsRecordConsistent() {
     QCOMPARE(doc.scene().topology.edges.size(), size_t(8));
     QVERIFY(!doc.scene().topology.shells.front().closed);
     QCOMPARE(doc.scene().topology.shells.front().faces.size(), size_t(6));
-    QVERIFY2(sceneError(doc.scene()).isEmpty(), qPrintable(sceneError(doc.scene())));
+    KW_VERIFY_OK(checkScene(doc.scene()));
     stack.undo();
     QVERIFY(doc.scene().topology == cube.topology);
     stack.redo();
@@ -366,7 +366,7 @@ void TestTopology::replaceTrimLoopKeepsItsEdges() {
         &stack, ReplaceTrimLoop::create(&doc, SurfaceId{1}, split, QStringLiteral("split"))));
     QCOMPARE(doc.scene().topology.edges.size(), size_t(8));
     QVERIFY(!doc.scene().topology.shells.front().closed);
-    QVERIFY2(sceneError(doc.scene()).isEmpty(), qPrintable(sceneError(doc.scene())));
+    KW_VERIFY_OK(checkScene(doc.scene()));
     stack.undo();
     QVERIFY(doc.scene().topology == cube.topology);
 }
@@ -387,7 +387,7 @@ void TestTopology::bridgedGapRenumbersSides() {
     }();
     QVERIFY(!closeSceneTrimLoops(scene).isEmpty());
     QCOMPARE(loop.curves.size(), size_t(5));
-    QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+    KW_VERIFY_OK(checkScene(scene));
     size_t k = 0;
     for (const SharedEdge& e : scene.topology.edges)
         for (const EdgeUse& s : e.sides)
@@ -421,7 +421,7 @@ void TestTopology::topologyOfSelectedFaces() {
         return !std::binary_search(faces.begin(), faces.end(), s.id);
     });
     selected.topology = part;
-    QVERIFY2(sceneError(selected).isEmpty(), qPrintable(sceneError(selected)));
+    KW_VERIFY_OK(checkScene(selected));
 }
 
 void TestTopology::unEditedCubeIsClosed() {

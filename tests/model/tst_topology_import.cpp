@@ -142,7 +142,7 @@ void TestTopologyImport::closedSolidsImportClosed() {
     const std::optional<ImportResult> r = import(file);
     QVERIFY(r);
     const Scene& scene = r->scene;
-    QVERIFY2(sceneError(scene).isEmpty(), qPrintable(sceneError(scene)));
+    KW_VERIFY_OK(checkScene(scene));
     QVERIFY(!scene.topology.edges.empty());
     std::set<int> solidNumbers;
     size_t faces = 0;

@@ -120,7 +120,7 @@ private Q_SLOTS:
         s.name = QStringLiteral("plate");
         s.geometry = makeBilinear({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
         // Open by 0.3: bridged by a straight segment. Loop 3: closed already. Loop 4: a curve
-        // with too few knots, left for sceneError to name.
+        // with too few knots, left for checkScene to name.
         s.trims.push_back(loopOf(2, {polylineCurve({{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}}),
                                      polylineCurve({{0.9, 0.9}, {0.1, 0.9}, {0.1, 0.4}})}));
         s.trims.push_back(
@@ -135,7 +135,7 @@ private Q_SLOTS:
                      lines[0].contains("bridged"),
                  qPrintable(lines[0]));
         const std::vector<TrimLoop>& trims = scene.surfaces[0].trims;
-        QVERIFY(trimLoopError(trims[0]).isEmpty());
+        KW_VERIFY_OK(checkTrimLoop(trims[0]));
         QCOMPARE(trims[0].curves.size(), size_t(3));
         QCOMPARE(trims[1], s.trims[1]);
         QCOMPARE(trims[2], s.trims[2]);
@@ -171,7 +171,7 @@ private Q_SLOTS:
         // bit of a coordinate differs in the trimmed_plate sample).
         Surface off = s;
         off.trims[0].curves[2].points[1].y = std::nextafter(0.1, 1.0);
-        QVERIFY(trimLoopError(off.trims[0]).isEmpty());
+        KW_VERIFY_OK(checkTrimLoop(off.trims[0]));
         QCOMPARE(trimPointWithCoincidentEnds(off, {s.id, tri, 0, 0}),
                  (Refs{{s.id, tri, 0, 0}, {s.id, tri, 2, 1}}));
         QCOMPARE(trimPointWithCoincidentEnds(s, {s.id, TrimLoopId{9}, 0, 0}),

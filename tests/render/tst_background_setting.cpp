@@ -48,8 +48,8 @@ private Q_SLOTS:
         QVERIFY2(result.message().startsWith(QStringLiteral("a.knot: $.display.background: ")),
                  qPrintable(result.message()));
         scene.display.background = QStringLiteral("purple");
-        QVERIFY(!displayError(scene.display).isEmpty());
-        QVERIFY(!sceneError(scene).isEmpty());
+        QVERIFY(!checkDisplay(scene.display));
+        QVERIFY(!checkScene(scene));
 
         // A background without a partition mode is kept too, in .knot and in OBJ.
         scene.display = DisplaySettings{};
@@ -104,7 +104,7 @@ private Q_SLOTS:
         QVERIFY2(tooSteep.message().startsWith(QStringLiteral("d.knot: $.display.draftAngle: ")),
                  qPrintable(tooSteep.message()));
         scene.display.pullDirection = glm::dvec3(0.0);
-        QVERIFY(!displayError(scene.display).isEmpty());
+        QVERIFY(!checkDisplay(scene.display));
     }
 };
 

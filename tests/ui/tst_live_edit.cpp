@@ -89,7 +89,7 @@ private Q_SLOTS:
         const double nan = std::numeric_limits<double>::quiet_NaN();
         const glm::dvec3 p0 = f.geometry(1).points[0];
         QString why = f.live.moveControlPoints(SurfaceId{1}, {0}, {glm::dvec3(nan)});
-        QCOMPARE(why, f.doc.controlPointsError(SurfaceId{1}, {0}, {glm::dvec3(nan)}));
+        QCOMPARE(why, f.doc.checkControlPoints(SurfaceId{1}, {0}, {glm::dvec3(nan)}).message());
         QCOMPARE(why, QStringLiteral("control point positions must be finite"));
         QCOMPARE(f.geometry(1).points[0], p0);
         // A curve end moved without the coinciding start of the next curve opens the loop.
@@ -137,15 +137,15 @@ private Q_SLOTS:
         error = kwtest::refusal(MoveControlPoints::create(
             &f.doc, SurfaceId{1}, {99}, {glm::dvec3(0)}, {glm::dvec3(1)}, MoveKind::Drag));
         QVERIFY(!error.isNull());
-        QCOMPARE(error, f.doc.controlPointsError(SurfaceId{1}, {99}, {glm::dvec3(1)}));
+        QCOMPARE(error, f.doc.checkControlPoints(SurfaceId{1}, {99}, {glm::dvec3(1)}).message());
         error = kwtest::refusal(SetWeight::create(&f.doc, SurfaceId{1}, 0, -1.0));
         QVERIFY(!error.isNull());
-        QCOMPARE(error, f.doc.weightError(SurfaceId{1}, 0, -1.0));
+        QCOMPARE(error, f.doc.checkWeight(SurfaceId{1}, 0, -1.0).message());
         const TrimPointRef end{SurfaceId{1}, TrimLoopId{10}, 0, 1};
         error = kwtest::refusal(
             MoveTrimPoints::create(&f.doc, {end}, {{0.9, 0.1}}, {{0.8, 0.2}}, MoveKind::Drag));
         QVERIFY(!error.isNull());
-        QCOMPARE(error, f.doc.trimPointsError({end}, {{0.8, 0.2}}));
+        QCOMPARE(error, f.doc.checkTrimPoints({end}, {{0.8, 0.2}}).message());
     }
 };
 

@@ -45,9 +45,8 @@ MoveControlPoints::create(Document* document, SurfaceId surface, std::vector<int
         return Error(QStringLiteral("need one old and one new position per point"));
     // The document's own rule, for both ends: undo writes `from` as redo writes `to`.
     for (const auto* positions : {&from, &to})
-        if (const QString why = document->controlPointsError(surface, indices, *positions);
-            !why.isEmpty())
-            return Error(why);
+        if (Status step = document->checkControlPoints(surface, indices, *positions); !step)
+            return step.error();
     const QString text = indices.size() == 1
                              ? QStringLiteral("Move control point")
                              : QStringLiteral("Move %1 control points").arg(indices.size());
@@ -84,8 +83,8 @@ Expected<std::unique_ptr<SetWeight>> SetWeight::create(Document* document, Surfa
                                                        int index, double weight) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = document->weightError(surface, index, weight); !why.isEmpty())
-        return Error(why);
+    if (Status step = document->checkWeight(surface, index, weight); !step)
+        return step.error();
     const Surface* s = document->surface(surface);
     std::unique_ptr<SetWeight> c(
         new SetWeight(document, QStringLiteral("Set weight to %1").arg(weight)));
@@ -120,8 +119,8 @@ Expected<std::unique_ptr<SetPartitions>> SetPartitions::create(Document* documen
     const Surface* s = surfaceIn(document, surface);
     if (!s)
         return Error(noSurface(document, surface));
-    if (const QString why = partitionsError(nu, nv); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkPartitions(nu, nv); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetPartitions> c(
         new SetPartitions(document, QStringLiteral("Set partitions to %1 × %2").arg(nu).arg(nv)));
     c->m_surface = surface;
@@ -170,8 +169,8 @@ MoveTrimPoints::create(Document* document, std::vector<TrimPointRef> refs,
             std::vector<glm::dvec2> at;
             for (size_t k : group.second)
                 at.push_back((*positions)[k]);
-            if (const QString why = document->trimPointsError(group.first, at); !why.isEmpty())
-                return Error(why);
+            if (Status step = document->checkTrimPoints(group.first, at); !step)
+                return step.error();
         }
     const QString text = refs.size() == 1 ? QStringLiteral("Move trim point")
                                           : QStringLiteral("Move %1 trim points").arg(refs.size());
@@ -221,8 +220,8 @@ Expected<std::unique_ptr<SetMaterial>> SetMaterial::create(Document* document, S
     const Surface* s = surfaceIn(document, surface);
     if (!s)
         return Error(noSurface(document, surface));
-    if (const QString why = materialError(material); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkMaterial(material); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetMaterial> c(
         new SetMaterial(document, QStringLiteral("Change material of “%1”").arg(s->name)));
     c->m_surface = surface;
@@ -253,8 +252,8 @@ Expected<std::unique_ptr<SetLights>> SetLights::make(Document* document, std::ve
                                                      const QString& text, int changed) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = lightsError(lights); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkLights(lights); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetLights> c(new SetLights(document, text));
     c->m_from = document->scene().lights;
     c->m_to = std::move(lights);
@@ -322,8 +321,8 @@ bool SetLights::mergeWith(const QUndoCommand* other) {
 Expected<std::unique_ptr<SetCamera>> SetCamera::create(Document* document, const Camera& camera) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = cameraError(camera); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkCamera(camera); !valid)
+        return std::move(valid).error();
     std::unique_ptr<SetCamera> c(new SetCamera(document, QStringLiteral("Change camera")));
     c->m_from = document->scene().camera;
     c->m_to = camera;

@@ -47,8 +47,8 @@ QString LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& i
                                     const std::vector<glm::dvec3>& positions) {
     if (!m_active)
         return refuse(tr("no edit running"));
-    if (QString why = m_doc->controlPointsError(surface, indices, positions); !why.isEmpty())
-        return refuse(why);
+    if (Status step = m_doc->checkControlPoints(surface, indices, positions); !step)
+        return refuse(step.message());
     if (QString why = netChanged(surface); !why.isEmpty())
         return refuse(why);
     const NurbsSurface& g = m_doc->surface(surface)->geometry;
@@ -89,7 +89,7 @@ QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
     for (const auto& [id, change] : bySurface) {
         QString why = netChanged(id);
         if (why.isEmpty())
-            why = m_doc->controlPointsError(id, change.first, change.second);
+            why = m_doc->checkControlPoints(id, change.first, change.second).message();
         if (!why.isEmpty())
             return refuse(why);
     }
@@ -108,8 +108,8 @@ QString LiveEdit::netChanged(SurfaceId surface) const {
 QString LiveEdit::setWeight(SurfaceId surface, int index, double weight) {
     if (!m_active)
         return refuse(tr("no edit running"));
-    if (QString why = m_doc->weightError(surface, index, weight); !why.isEmpty())
-        return refuse(why);
+    if (Status step = m_doc->checkWeight(surface, index, weight); !step)
+        return refuse(step.message());
     m_weights.try_emplace({surface, index},
                           m_doc->surface(surface)->geometry.weights[size_t(index)]);
     m_doc->setWeight(surface, index, weight);
@@ -120,8 +120,8 @@ QString LiveEdit::moveTrimPoints(const std::vector<TrimPointRef>& refs,
                                  const std::vector<glm::dvec2>& positions) {
     if (!m_active)
         return refuse(tr("no edit running"));
-    if (QString why = m_doc->trimPointsError(refs, positions); !why.isEmpty())
-        return refuse(why);
+    if (Status step = m_doc->checkTrimPoints(refs, positions); !step)
+        return refuse(step.message());
     for (const TrimPointRef& ref : refs)
         if (!m_trims.count(ref))
             m_trims.emplace(ref, *trimPoint(*m_doc, ref)); // the rule found it
@@ -160,7 +160,7 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
         }
         // A surface removed or its net changed under the drag (an undo by key): its step is
         // dropped.
-        if (!netChanged(id).isEmpty() || !m_doc->controlPointsError(id, indices, from).isEmpty())
+        if (!netChanged(id).isEmpty() || !m_doc->checkControlPoints(id, indices, from))
             continue;
         for (int index : indices)
             to.push_back(m_doc->surface(id)->geometry.points[size_t(index)]);
@@ -175,7 +175,7 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
     }
     for (const auto& [key, from] : m_weights) {
         const auto& [id, index] = key;
-        if (!m_doc->weightError(id, index, from).isEmpty())
+        if (!m_doc->checkWeight(id, index, from))
             continue;
         const double to = m_doc->surface(id)->geometry.weights[size_t(index)];
         if (to == from)

@@ -18,8 +18,8 @@ namespace kw {
 /// begin() -> update steps as the mouse moves (the document follows live, so the surface and
 /// the panels do) -> commit() as ONE undo step, or cancel() putting back the state at begin().
 ///
-/// Each step is checked by the document's rule (Document::controlPointsError, weightError,
-/// trimPointsError) before anything changes: a refused step changes nothing, returns the reason
+/// Each step is checked by the document's rule (Document::checkControlPoints, checkWeight,
+/// checkTrimPoints) before anything changes: a refused step changes nothing, returns the reason
 /// and emits refused(reason) for the status bar. The press-time value of every point is
 /// recorded the first time a step touches it. A scene reset (Open, New) ends the edit without
 /// restoring anything: the points it recorded are gone.

@@ -108,7 +108,7 @@ Expected<std::unique_ptr<SetContinuityTolerances>>
 SetContinuityTolerances::create(Document* document, const ContinuityTolerances& to) {
     if (!document)
         return Error(noDocument());
-    if (const QString why = continuityTolerancesError(to); !why.isEmpty())
+    if (const QString why = checkContinuityTolerances(to).message(); !why.isEmpty())
         return Error(why);
     if (document->scene().continuity == to)
         return Error(QStringLiteral("the continuity tolerances are already these"));
@@ -219,8 +219,8 @@ ReplaceTrimLoop::create(Document* document, SurfaceId surface, TrimLoop loop, co
     if (!old)
         return Error(
             QStringLiteral("surface %1 has no trim loop %2").arg(surface.value).arg(loop.id.value));
-    if (const QString why = trimLoopError(loop); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkTrimLoop(loop); !valid)
+        return std::move(valid).error();
     if (loop == *old)
         return Error(QStringLiteral("the trim loop is unchanged"));
     std::unique_ptr<ReplaceTrimLoop> c(new ReplaceTrimLoop(document, text));

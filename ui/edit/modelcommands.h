@@ -51,7 +51,7 @@ private:
 /// re-classifies every edge, so a change is an undo step like any other edit.
 class SetContinuityTolerances : public DocumentCommand {
 public:
-    /// Refused when `to` is invalid (continuityTolerancesError) or equal to the document's.
+    /// Refused when `to` is invalid (checkContinuityTolerances) or equal to the document's.
     static Expected<std::unique_ptr<SetContinuityTolerances>>
     create(Document* document, const ContinuityTolerances& to);
     void redo() override;

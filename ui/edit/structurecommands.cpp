@@ -47,8 +47,8 @@ Expected<std::unique_ptr<AddSurface>> AddSurface::create(Document* document, Sur
     std::uint32_t next = 1;
     for (TrimLoop& l : probe.trims)
         l.id = TrimLoopId{next++};
-    if (const QString why = surfaceError(probe); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkSurface(probe); !valid)
+        return std::move(valid).error();
     if (!surface.id.isValid())
         surface.id = document->allocateSurfaceId();
     for (TrimLoop& l : surface.trims)
@@ -132,8 +132,8 @@ Expected<std::unique_ptr<AddTrimLoop>> AddTrimLoop::create(Document* document, S
         return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
     TrimLoop probe = loop;
     probe.id = TrimLoopId{1};
-    if (const QString why = trimLoopError(probe); !why.isEmpty())
-        return Error(why);
+    if (Status valid = checkTrimLoop(probe); !valid)
+        return std::move(valid).error();
     if (!loop.id.isValid())
         loop.id = document->allocateTrimLoopId();
     if (!loop.id.isValid())
