@@ -362,6 +362,7 @@ struct Meetings {
     long limit = 150'000;
     bool cut = false;
     bool crossing = false; ///< a meeting other than consecutive arcs' shared end points
+    glm::dvec2 clipLo{0.0}, clipHi{0.0}; ///< the box meetings are looked for in
 };
 
 // Newton's iteration on A(t) = B(s) from the meeting found by subdivision; kept when it stays in
@@ -395,6 +396,10 @@ void meet(const TrimArcs& arcs, int ia, const ArcSpan& A, int ib, const ArcSpan&
     const glm::dvec2 loA = glm::min(A.a, A.b), hiA = glm::max(A.a, A.b);
     const glm::dvec2 loB = glm::min(B.a, B.b), hiB = glm::max(B.a, B.b);
     if (!(loA.x <= hiB.x && loB.x <= hiA.x && loA.y <= hiB.y && loB.y <= hiA.y))
+        return;
+    // Meetings outside the domain bound no piece that counts.
+    const glm::dvec2 lo = glm::max(loA, loB), hi = glm::min(hiA, hiB);
+    if (!(lo.x <= m.clipHi.x && lo.y <= m.clipHi.y && hi.x >= m.clipLo.x && hi.y >= m.clipLo.y))
         return;
     const TrimArc& arcA = arcs.arcs[size_t(ia)];
     const TrimArc& arcB = arcs.arcs[size_t(ib)];
@@ -431,10 +436,13 @@ void meet(const TrimArcs& arcs, int ia, const ArcSpan& A, int ib, const ArcSpan&
     }
 }
 
-Meetings arcMeetings(const TrimArcs& arcs, double resolution) {
+Meetings arcMeetings(const TrimArcs& arcs, double resolution, glm::dvec2 clipLo,
+                     glm::dvec2 clipHi) {
     Meetings m;
     m.at.resize(arcs.arcs.size());
     m.resolution = resolution;
+    m.clipLo = clipLo;
+    m.clipHi = clipHi;
     std::vector<int> order(arcs.arcs.size());
     std::iota(order.begin(), order.end(), 0);
     const auto lowU = [&](int k) {
@@ -573,16 +581,14 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
         arcs = makeTrimArcs(surface.trims, tol);
         general = arcs.empty();
         if (!arcs.empty()) {
-            const double scale =
-                std::max({domainSize, arcs.hi.x - arcs.lo.x, arcs.hi.y - arcs.lo.y});
-            meetings = arcMeetings(arcs, 1e-13 * scale);
-            if (meetings.cut) // coincident arcs: their meetings are everywhere, keep none
-                for (std::vector<double>& at : meetings.at)
-                    at.clear();
             // CAD systems write p-curves that stray past the domain within their tolerance (the
             // parts in tests/data up to ~3e-6 of it); OpenCASCADE measures such loops whole, and
-            // so do we: within the trim tolerance (the mask's) a loop counts as inside.
+            // so do we: within the trim tolerance (the mask's) a loop counts as inside. Meetings
+            // are sought near the domain only, at a resolution of its size (arcs may reach
+            // 1e300 away).
             const double margin = tol;
+            meetings = arcMeetings(arcs, 1e-13 * domainSize, domainLo - 2.0 * margin,
+                                   domainHi + 2.0 * margin);
             const bool inside =
                 arcs.lo.x >= domainLo.x - margin && arcs.lo.y >= domainLo.y - margin &&
                 arcs.hi.x <= domainHi.x + margin && arcs.hi.y <= domainHi.y + margin;
@@ -641,7 +647,42 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
     };
 
     FaceIntegrals out;
-    if (general) {
+    // Arcs reaching a million domains away (hostile files reach 1e300) are solved for a u or v
+    // of the domain only to their own scale's precision: no exact boundary either.
+    const bool wild =
+        !arcs.empty() && std::max(arcs.hi.x - arcs.lo.x, arcs.hi.y - arcs.lo.y) > 1e6 * domainSize;
+    if (general && (meetings.cut || wild)) {
+        // Arcs that meet without end (coincident or cusped stretches), or wild ones: no exact
+        // boundary. The estimate integrates the density over the even-odd spans of columns of
+        // the domain, so it stays in [0, the untrimmed area]; flagged approximate below.
+        Inner total(0.0);
+        constexpr int kColumns = 16;
+        const double width = (du.last - du.first) / kColumns;
+        for (int c = 0; c < kColumns; ++c) {
+            const auto column = [&](double u) {
+                std::vector<double> at;
+                for (const TrimArc& a : arcs.arcs)
+                    if ((a.start.x <= u) != (a.end.x <= u))
+                        at.push_back(trimArcPoint(a, trimArcSolve(a, 0, u, 0.0, 1.0)).y);
+                std::sort(at.begin(), at.end());
+                Inner sum(0.0);
+                const auto f = [&](double v) {
+                    return density(u, v);
+                };
+                for (size_t k = 0; k + 1 < at.size(); k += 2) {
+                    const double a = std::max(at[k], dv.first), b = std::min(at[k + 1], dv.last);
+                    if (b > a)
+                        sum += gauss8<Inner>(f, a, b);
+                }
+                return sum;
+            };
+            const double a = du.first + c * width;
+            total += gauss8<Inner>(column, a, c + 1 == kColumns ? du.last : a + width);
+        }
+        out.area = total[0];
+        out.volume = total[1];
+        out.vectorArea = glm::dvec3(total[2], total[3], total[4]);
+    } else if (general) {
         // One F for every piece, from the domain's lower edge: the pieces form closed curves
         // only together, so no piece may have its own reference.
         const double hair = 1e-10 * domainSize;
@@ -707,7 +748,7 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
             out.vectorArea += sign * glm::dvec3(loopSums[k][2], loopSums[k][3], loopSums[k][4]);
         }
     }
-    out.approximate = q.cut || meetings.cut;
+    out.approximate = q.cut || (general && (meetings.cut || wild));
     out.evaluations = q.evaluations;
     // Trims whose points or tangents overflow double precision (hostile files reach 1e300)
     // give inf - inf: such a face has no measurable area, and none is reported.

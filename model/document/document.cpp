@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -20,6 +22,45 @@
 namespace kw {
 
 namespace {
+
+// splitmix64's finaliser (Steele, Lea and Flood 2014): every input bit reaches every output bit.
+std::uint64_t mix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+std::uint64_t bitsOf(double d) {
+    d += 0.0; // -0 and +0 compare equal, so they digest alike
+    std::uint64_t b;
+    std::memcpy(&b, &d, sizeof b);
+    return b;
+}
+
+// One control point's share of Document::NetDigest::points: the net's digest is the sum (mod
+// 2^64) of these, so moving a point changes it by two terms.
+std::uint64_t pointDigest(int index, const glm::dvec3& p, double w) {
+    std::uint64_t h = mix64(std::uint64_t(index));
+    for (double x : {p.x, p.y, p.z, w})
+        h = mix64(h ^ bitsOf(x));
+    return h;
+}
+
+Document::NetDigest netDigest(const NurbsSurface& g) {
+    Document::NetDigest d;
+    std::uint64_t h = mix64(std::uint64_t(g.degreeU) << 32 | std::uint32_t(g.degreeV));
+    h = mix64(h ^ (std::uint64_t(std::uint32_t(g.countU)) << 32 | std::uint32_t(g.countV)));
+    for (const std::vector<double>* knots : {&g.knotsU, &g.knotsV}) {
+        h = mix64(h ^ knots->size());
+        for (double k : *knots)
+            h = mix64(h ^ bitsOf(k));
+    }
+    d.shape = h;
+    for (size_t i = 0; i < g.points.size(); ++i)
+        d.points += pointDigest(int(i), g.points[i], g.weights[i]);
+    return d;
+}
 
 constexpr std::uint32_t kMaxId = std::numeric_limits<std::uint32_t>::max();
 
@@ -152,8 +193,10 @@ Status Document::resetScene(Scene scene) {
             m_markedFaces.insert(s.id, MarkedFace{s.solid, shapeDigest(s)});
     m_analyticOrigins.clear();
     for (const Surface& s : m_scene.surfaces)
-        if (s.analytic.kind != AnalyticForm::Kind::None)
-            m_analyticOrigins.insert(s.id, AnalyticOrigin{s.geometry, s.analytic});
+        if (s.analytic.kind != AnalyticForm::Kind::None) {
+            const NetDigest net = netDigest(s.geometry);
+            m_analyticOrigins.insert(s.id, AnalyticOrigin{net, s.analytic, {}, {}, net});
+        }
     const std::uint64_t rev = nextRevision();
     m_revisions.assign(m_scene.surfaces.size(), Revisions{rev, rev, rev, rev});
     m_lightsRevision = rev;
@@ -179,9 +222,12 @@ bool Document::insertSurface(int index, Surface surface) {
     }
     const SurfaceId id = surface.id;
     surface.solid = -1; // joins no solid: its siblings' marks may have been cleared meanwhile
-    if (surface.analytic.kind != AnalyticForm::Kind::None &&
-        !m_analyticOrigins.contains(surface.id))
-        m_analyticOrigins.insert(surface.id, AnalyticOrigin{surface.geometry, surface.analytic});
+    if (const auto origin = m_analyticOrigins.find(surface.id); origin != m_analyticOrigins.end())
+        origin->current = netDigest(surface.geometry); // the undo of its removal
+    else if (surface.analytic.kind != AnalyticForm::Kind::None) {
+        const NetDigest net = netDigest(surface.geometry);
+        m_analyticOrigins.insert(surface.id, AnalyticOrigin{net, surface.analytic, {}, {}, net});
+    }
     Q_EMIT surfaceAboutToBeInserted(index);
     m_scene.surfaces.insert(m_scene.surfaces.begin() + index, std::move(surface));
     const std::uint64_t rev = nextRevision();
@@ -252,9 +298,29 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
 
 bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
                                 const std::vector<glm::dvec3>& positions, SeamLink link) {
+    return moveControlPoints(id, indices, positions, link, false);
+}
+
+bool Document::placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions) {
+    std::vector<int> indices(positions.size());
+    for (size_t k = 0; k < indices.size(); ++k)
+        indices[k] = int(k);
+    const Surface* s = surface(id);
+    if (!s || positions.size() != s->geometry.points.size())
+        return false;
+    return moveControlPoints(id, indices, positions, m_seamLink, true);
+}
+
+bool Document::moveControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                 const std::vector<glm::dvec3>& positions, SeamLink link,
+                                 bool placement) {
     if (!checkControlPoints(id, indices, positions))
         return false;
     Surface* s = mutableSurface(id);
+    // The net before a placement, for the form to follow: the only copy, and only then.
+    std::optional<NurbsSurface> before;
+    if (placement && s->analytic.kind != AnalyticForm::Kind::None)
+        before = s->geometry;
     // The neighbours' points that move with these, from the positions before the move.
     const std::vector<LinkedMove> linked =
         link == SeamLink::Off
@@ -263,7 +329,11 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
     bool changed = false;
     for (size_t k = 0; k < indices.size(); ++k) {
         glm::dvec3& p = s->geometry.points[size_t(indices[k])];
-        changed = changed || p != positions[k];
+        if (p == positions[k])
+            continue;
+        changed = true;
+        const double w = s->geometry.weights[size_t(indices[k])];
+        digestPoint(id, indices[k], p, w, positions[k], w);
         p = positions[k];
     }
     std::vector<SurfaceId> others;
@@ -272,6 +342,8 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
         glm::dvec3& p = o->geometry.points[size_t(m.index)];
         if (p == m.position)
             continue;
+        const double w = o->geometry.weights[size_t(m.index)];
+        digestPoint(m.surface, m.index, p, w, m.position, w);
         p = m.position;
         if (m.surface == id)
             changed = true;
@@ -279,7 +351,7 @@ bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
             others.push_back(m.surface);
     }
     if (changed)
-        bump(id, Aspect::Points);
+        bump(id, Aspect::Points, before ? &*before : nullptr);
     for (SurfaceId o : others)
         bump(o, Aspect::Points);
     return true;
@@ -299,9 +371,12 @@ Status Document::checkWeight(SurfaceId id, int index, double weight) const {
 bool Document::setWeight(SurfaceId id, int index, double weight) {
     if (!checkWeight(id, index, weight))
         return false;
-    double& w = mutableSurface(id)->geometry.weights[size_t(index)];
+    Surface* s = mutableSurface(id);
+    double& w = s->geometry.weights[size_t(index)];
     if (w == weight)
         return true;
+    digestPoint(id, index, s->geometry.points[size_t(index)], w, s->geometry.points[size_t(index)],
+                weight);
     w = weight;
     bump(id, Aspect::Points);
     return true;
@@ -322,6 +397,7 @@ bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
     if (!aspects)
         return true;
     s->geometry = geometry;
+    digestNet(id, geometry);
     bump(id, aspects);
     return true;
 }
@@ -563,19 +639,28 @@ bool Document::setLengths(const Lengths& lengths) {
         return false;
     size_t at = 0;
     std::vector<SurfaceId> moved;
+    // A unit conversion scales every net: a placement, which analytic forms follow.
+    std::vector<NurbsSurface> before;
     for (Surface& s : m_scene.surfaces) {
-        bool changed = false;
-        for (glm::dvec3& p : s.geometry.points) {
-            changed = changed || p != lengths.points[at];
+        const bool follow = s.analytic.kind != AnalyticForm::Kind::None;
+        const bool changed = !std::equal(s.geometry.points.begin(), s.geometry.points.end(),
+                                         lengths.points.begin() + std::ptrdiff_t(at));
+        if (changed && follow)
+            before.push_back(s.geometry);
+        for (glm::dvec3& p : s.geometry.points)
             p = lengths.points[at++];
-        }
-        if (changed)
+        if (changed) {
             moved.push_back(s.id);
+            digestNet(s.id, s.geometry);
+        }
     }
     for (size_t k = 0; k < lengths.tolerances.size(); ++k)
         m_scene.topology.edges[k].tolerance = lengths.tolerances[k];
-    for (SurfaceId id : moved)
-        bump(id, Aspect::Points);
+    size_t placed = 0;
+    for (SurfaceId id : moved) {
+        const bool follow = surface(id)->analytic.kind != AnalyticForm::Kind::None;
+        bump(id, Aspect::Points, follow ? &before[placed++] : nullptr);
+    }
     setCamera(lengths.camera);
     setLights(lengths.lights);
     if (m_scene.unit != lengths.unit) {
@@ -602,7 +687,7 @@ Surface* Document::mutableSurface(SurfaceId id) {
 
 // Gives every changed aspect one fresh value of the document-wide counter, then signals.
 // Name has no revision: nothing is uploaded for it.
-void Document::bump(SurfaceId id, Aspects aspects) {
+void Document::bump(SurfaceId id, Aspects aspects, const NurbsSurface* placedFrom) {
     const size_t index = size_t(indexOf(id));
     Revisions& r = m_revisions[index];
     const std::uint64_t rev = nextRevision();
@@ -616,7 +701,7 @@ void Document::bump(SurfaceId id, Aspects aspects) {
         r.display = rev;
     Surface& s = m_scene.surfaces[index];
     if (aspects & (Aspect::Points | Aspect::Knots))
-        reviewAnalytic(s);
+        reviewAnalytic(s, placedFrom);
     const int solid = aspects & (Aspect::Points | Aspect::Knots | Aspect::Trims)
                           ? std::exchange(s.solid, -1)
                           : -1;
@@ -626,18 +711,39 @@ void Document::bump(SurfaceId id, Aspects aspects) {
         closeSolid(id);
 }
 
-// The form `s` has after a change of its geometry (m_analyticOrigins): the one it came in with
-// while its NURBS is that one again, that form moved by the similarity that moved the NURBS,
-// else none. Taken on every drag step of an analytic face: two comparisons of its net.
-void Document::reviewAnalytic(Surface& s) const {
-    const auto origin = m_analyticOrigins.constFind(s.id);
-    if (origin == m_analyticOrigins.cend())
+// The form `s` has after a change of its geometry (AnalyticOrigin): O(1) but for a placement,
+// which fits the similarity that moved the net.
+void Document::reviewAnalytic(Surface& s, const NurbsSurface* placedFrom) {
+    const auto origin = m_analyticOrigins.find(s.id);
+    if (origin == m_analyticOrigins.end()) {
         s.analytic = {};
-    else if (s.geometry == origin->geometry)
+    } else if (origin->current == origin->imported) {
         s.analytic = origin->form;
-    else
-        s.analytic =
-            analyticFollow(origin->form, origin->geometry, s.geometry).value_or(AnalyticForm{});
+    } else if (placedFrom && s.analytic.kind != AnalyticForm::Kind::None) {
+        ++m_analyticFits;
+        s.analytic = analyticFollow(s.analytic, *placedFrom, s.geometry).value_or(AnalyticForm{});
+        if (s.analytic.kind != AnalyticForm::Kind::None) {
+            origin->placed = origin->current;
+            origin->placedForm = s.analytic;
+        }
+    } else if (origin->placedForm.kind != AnalyticForm::Kind::None &&
+               origin->current == origin->placed) {
+        s.analytic = origin->placedForm;
+    } else {
+        s.analytic = {};
+    }
+}
+
+void Document::digestPoint(SurfaceId id, int index, const glm::dvec3& from, double fromWeight,
+                           const glm::dvec3& to, double toWeight) {
+    if (const auto origin = m_analyticOrigins.find(id); origin != m_analyticOrigins.end())
+        origin->current.points +=
+            pointDigest(index, to, toWeight) - pointDigest(index, from, fromWeight);
+}
+
+void Document::digestNet(SurfaceId id, const NurbsSurface& net) {
+    if (const auto origin = m_analyticOrigins.find(id); origin != m_analyticOrigins.end())
+        origin->current = netDigest(net);
 }
 
 void Document::changed(SurfaceId id, Aspects aspects) {

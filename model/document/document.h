@@ -113,6 +113,39 @@ public:
     /// that kw::linkedMoves names move too (each such surface bumped and signalled).
     bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
                           const std::vector<glm::dvec3>& positions, SeamLink link);
+    /// Every control point of `id` moved at once by one placement (a move, rotation, mirror or
+    /// scale: TransformSurfaces), as setControlPoints on all of them with seamLink(). The one
+    /// point edit whose analytic form (Surface::analytic) may follow: where the new net is a
+    /// similarity of the old one (analyticFollow). Any other edit of points, weights, knots or
+    /// degrees drops the form at once, and gives back the form the face had at those very values.
+    bool placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions);
+
+    /// What the document keeps of the closed form a face came in with (a reset, or its first
+    /// insertion), in a few words whatever the size of its net. After any change of the face's
+    /// geometry the face has that form again where its net has the very values it came in with
+    /// (an undo), the form a placement moved it to where its net has the values that placement
+    /// left (the undo of a later edit), the form moved along by a placement that is a similarity
+    /// (a move, rotation, uniform scale, mirror, unit conversion: analyticFollow, the only fit),
+    /// and none otherwise: a point, weight, knot or degree edit drops it at once. Nets are
+    /// compared by digest (NetDigest), kept current in O(1) per moved point, so a drag step
+    /// costs nothing per control point of the face. The record outlives the face's removal, so
+    /// the undo of an edit made before it still finds it.
+    struct NetDigest {
+        std::uint64_t shape = 0; ///< degrees, counts and knots
+        /// The sum over the control points of a hash of (index, point, weight).
+        std::uint64_t points = 0;
+        bool operator==(const NetDigest&) const = default;
+    };
+    struct AnalyticOrigin {
+        NetDigest imported;
+        AnalyticForm form;
+        NetDigest placed; ///< the net the last placement left, and the form it gave
+        AnalyticForm placedForm;
+        NetDigest current;
+    };
+    /// How many similarity fits (analyticFollow) the document ran to move analytic forms along
+    /// with placements and unit conversions: never for other edits. For tests and benchmarks.
+    std::uint64_t analyticFits() const { return m_analyticFits; }
     bool setWeight(SurfaceId id, int index, double weight);
     /// Degrees, knots and control net at once (knot edit, knot insertion, degree elevation).
     bool setGeometry(SurfaceId id, const NurbsSurface& geometry);
@@ -205,7 +238,11 @@ private:
     Status movedTrims(const std::vector<TrimPointRef>& refs,
                       const std::vector<glm::dvec2>& positions, std::vector<TrimLoop>& trims,
                       std::set<int>& touched) const;
-    void bump(SurfaceId id, Aspects aspects);
+    /// `placedFrom`: the net before a placement (placeControlPoints, setLengths), for the
+    /// analytic form to follow; nullptr for every other edit.
+    void bump(SurfaceId id, Aspects aspects, const NurbsSurface* placedFrom = nullptr);
+    bool moveControlPoints(SurfaceId id, const std::vector<int>& indices,
+                           const std::vector<glm::dvec3>& positions, SeamLink link, bool placement);
     /// Notes a change of the drawn aspects for changesSince(), then emits surfaceChanged.
     void changed(SurfaceId id, Aspects aspects);
     /// A reset, an insert or a removal: every reader walks every surface once.
@@ -222,18 +259,13 @@ private:
         size_t shape = 0;
     };
     QHash<SurfaceId, MarkedFace> m_markedFaces;
-    /// The closed form a face came in with (a reset, or its first insertion) and the NURBS it
-    /// describes (Surface::analytic). After any change of the face's geometry (bump, Points or
-    /// Knots) the face has the form again where its NURBS is that NURBS (an undo restores the
-    /// very values), the form moved along where its NURBS is a similarity of it (a move, a
-    /// rotation, a uniform scale, a unit conversion: analyticFollow), and none otherwise. The
-    /// record outlives the face's removal, so the undo of an edit made before it still finds it.
-    struct AnalyticOrigin {
-        NurbsSurface geometry;
-        AnalyticForm form;
-    };
     QHash<SurfaceId, AnalyticOrigin> m_analyticOrigins;
-    void reviewAnalytic(Surface& s) const;
+    std::uint64_t m_analyticFits = 0;
+    void reviewAnalytic(Surface& s, const NurbsSurface* placedFrom);
+    /// Keeps the digest of an analytic face's net current (AnalyticOrigin::current).
+    void digestPoint(SurfaceId id, int index, const glm::dvec3& from, double fromWeight,
+                     const glm::dvec3& to, double toWeight);
+    void digestNet(SurfaceId id, const NurbsSurface& net);
     /// What the removal of a surface or a trim loop took out of the scene's topology (edges
     /// with a side on it, its place in its shell, the shells' `closed`), by the id of what was
     /// removed: ids are never reused, so only the undo of that removal brings the same id back,

@@ -391,10 +391,11 @@ private Q_SLOTS:
         const Camera cam = fitCamera(doc.scene(), 1.0);
         KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
         QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);
-        NurbsSurface moved = doc.scene().surfaces[0].geometry;
-        for (glm::dvec3& p : moved.points)
+        // A placement (as TransformSurfaces makes it): the form follows.
+        std::vector<glm::dvec3> moved = doc.scene().surfaces[0].geometry.points;
+        for (glm::dvec3& p : moved)
             p += glm::dvec3(0.3, -0.2, 0.1);
-        QVERIFY(doc.setGeometry(doc.scene().surfaces[0].id, moved));
+        QVERIFY(doc.placeControlPoints(doc.scene().surfaces[0].id, moved));
         QCOMPARE(int(doc.scene().surfaces[0].analytic.kind), int(AnalyticForm::Kind::Sphere));
         KW_VERIFY_OK(m_renderer->render(doc, cam, adaptive(true)));
         QCOMPARE(m_renderer->lastReport().partitions.analyticSurfaces, 1);

@@ -59,12 +59,10 @@ TransformSurfaces::create(Document* document, std::vector<SurfaceId> surfaces,
 }
 
 void TransformSurfaces::apply(bool forward, const char* what) {
-    for (size_t k = 0; k < m_surfaces.size(); ++k) {
-        const auto& points = forward ? m_to[k] : m_from[k];
-        std::vector<int> indices(points.size());
-        std::iota(indices.begin(), indices.end(), 0);
-        check(document()->setControlPoints(m_surfaces[k], indices, points), what);
-    }
+    // A placement, not a point edit: analytic forms follow a similarity (and only here is one
+    // fitted).
+    for (size_t k = 0; k < m_surfaces.size(); ++k)
+        check(document()->placeControlPoints(m_surfaces[k], forward ? m_to[k] : m_from[k]), what);
 }
 
 void TransformSurfaces::redo() {

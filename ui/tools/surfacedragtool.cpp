@@ -1,7 +1,8 @@
 // SurfaceDragTool: Ctrl + drag moves, rotates or scales the selected surfaces. The live drag
-// writes M * p for every press-time point p; a rotation or scale is committed as one
-// TransformSurfaces step with the same M applied to the press-time points, so the result is
-// exactly the affine map applied once (NURBS are affinely invariant, The NURBS Book Sec. 4.4).
+// writes M * p for every press-time point p; the release commits one TransformSurfaces step
+// with the same M applied to the press-time points, so the result is exactly the affine map
+// applied once (NURBS are affinely invariant, The NURBS Book Sec. 4.4), and a placement that
+// analytic forms follow (the live steps are point edits, which drop them until the release).
 #include "ui/edit/modelcommands.h"
 #include "ui/tools/viewtools.h"
 #include "ui/viewport.h"
@@ -74,29 +75,27 @@ void SurfaceDragTool::release(QMouseEvent* event) {
     m_last = event->position();
     m_snap = event->modifiers() & Qt::ShiftModifier;
     step();
-    if (m_view->surfaceDrag() == Viewport::SurfaceDrag::Move) {
-        m_live.commit(QObject::tr("Move surface"), QObject::tr("Move %1 surfaces"));
-    } else {
-        double amount = 0.0;
-        const glm::dmat4 m = matrix(&amount);
-        std::vector<SurfaceId> ids;
-        for (SurfaceId id : m_surfaces)
-            if (m_view->document()->surface(id)) // not removed under the drag
-                ids.push_back(id);
-        const QString name = text(amount);
-        // Back to the press-time points, then one step with the exact map.
-        m_live.commitWith([&]() -> std::unique_ptr<QUndoCommand> {
-            if (ids.empty() || m == glm::dmat4(1.0))
-                return nullptr;
-            auto command = TransformSurfaces::create(m_view->document(), ids, m, name);
-            if (!command) {
-                m_view->showMessage(
-                    QObject::tr("Transform not recorded: %1").arg(command.message()));
-                return nullptr;
-            }
-            return std::move(*command);
-        });
-    }
+    double amount = 0.0;
+    matrix(&amount);
+    const glm::dmat4 m = dragMap();
+    std::vector<SurfaceId> ids;
+    for (SurfaceId id : m_surfaces)
+        if (m_view->document()->surface(id)) // not removed under the drag
+            ids.push_back(id);
+    const QString name = m_view->surfaceDrag() != Viewport::SurfaceDrag::Move ? text(amount)
+                         : ids.size() == 1 ? QObject::tr("Move surface")
+                                           : QObject::tr("Move %1 surfaces").arg(ids.size());
+    // Back to the press-time points, then one step with the exact map.
+    m_live.commitWith([&]() -> std::unique_ptr<QUndoCommand> {
+        if (ids.empty() || m == glm::dmat4(1.0))
+            return nullptr;
+        auto command = TransformSurfaces::create(m_view->document(), ids, m, name);
+        if (!command) {
+            m_view->showMessage(QObject::tr("Transform not recorded: %1").arg(command.message()));
+            return nullptr;
+        }
+        return std::move(*command);
+    });
     m_view->update();
 }
 
@@ -117,19 +116,22 @@ void SurfaceDragTool::cancel() {
     m_view->update();
 }
 
+glm::dmat4 SurfaceDragTool::dragMap() const {
+    if (!dragging() || m_view->surfaceDrag() != Viewport::SurfaceDrag::Move)
+        return matrix();
+    const ViewProjection view = m_view->viewProjection();
+    const int axis = m_view->axisConstraint();
+    const glm::dvec3 delta =
+        axis >= 0 ? view.onAxis(m_last, m_pivot, unitAxis(axis)) -
+                        view.onAxis(m_press, m_pivot, unitAxis(axis))
+                  : view.onViewPlane(m_last, m_pivot) - view.onViewPlane(m_press, m_pivot);
+    return glm::translate(glm::dmat4(1.0), delta);
+}
+
 void SurfaceDragTool::step() {
     if (!dragging())
         return;
-    glm::dmat4 map = matrix();
-    if (m_view->surfaceDrag() == Viewport::SurfaceDrag::Move) {
-        const ViewProjection view = m_view->viewProjection();
-        const int axis = m_view->axisConstraint();
-        const glm::dvec3 delta =
-            axis >= 0 ? view.onAxis(m_last, m_pivot, unitAxis(axis)) -
-                            view.onAxis(m_press, m_pivot, unitAxis(axis))
-                      : view.onViewPlane(m_last, m_pivot) - view.onViewPlane(m_press, m_pivot);
-        map = glm::translate(glm::dmat4(1.0), delta);
-    }
+    const glm::dmat4 map = dragMap();
     std::vector<glm::dvec3> to;
     to.reserve(m_from.size());
     for (const glm::dvec3& p : m_from)

@@ -23,9 +23,9 @@ std::vector<std::unique_ptr<Tool>> makeViewTools(Viewport* view);
 void showRefusals(LiveEdit& live, Viewport* view);
 
 /// Ctrl + drag on the selected surfaces (Viewport::SurfaceDrag): every control point follows
-/// the move, rotation or scale (viewport.h tells how each is measured). A move is one step of
-/// the moved points; a rotation or scale is one TransformSurfaces step with the exact affine
-/// map applied to the press-time points.
+/// the move, rotation or scale (viewport.h tells how each is measured). Each is one
+/// TransformSurfaces step with the exact affine map applied to the press-time points: a
+/// placement, which the surfaces' analytic forms follow (Document::placeControlPoints).
 class SurfaceDragTool : public Tool {
 public:
     explicit SurfaceDragTool(Viewport* view);
@@ -44,6 +44,8 @@ public:
 
 private:
     void step();
+    /// The map the running drag applies: matrix(), or the translation in the Move mode.
+    glm::dmat4 dragMap() const;
     QString text(double amount) const;
 
     Viewport* m_view;
