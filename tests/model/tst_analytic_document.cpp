@@ -6,6 +6,7 @@
 #include "model/io/knotfile.h"
 #include "model/nurbs/analytic_eval.h"
 #include "model/nurbs/nurbs_shapes.h"
+#include "tests/support/analytic_fixtures.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/modelcommands.h"
 
@@ -25,25 +26,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// An imported-looking cylinder: the kernel's exact cylinder (quarter arcs in standard form) and
-// the form that describes it.
-Surface cylinder() {
-    Surface s;
-    s.id = SurfaceId{1};
-    s.name = QStringLiteral("Bore");
-    const glm::dvec3 base(1.0, 2.0, -3.0);
-    s.geometry = makeCylinder(base, 2.0, 5.0);
-    s.analytic.kind = Kind::Cylinder;
-    s.analytic.origin = base;
-    s.analytic.radius = 2.0;
-    s.analytic.u = {AnalyticParamMap::Kind::HalfAngle, 0.0, 2 * kPi};
-    s.analytic.v = {AnalyticParamMap::Kind::Linear, 0.0, 5.0};
-    return s;
-}
-
 Scene scene() {
     Scene sc;
-    sc.surfaces.push_back(cylinder());
+    sc.surfaces.push_back(test::importedCylinder());
     Surface plane;
     plane.id = SurfaceId{2};
     plane.name = QStringLiteral("Free");

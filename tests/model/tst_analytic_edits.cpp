@@ -5,6 +5,7 @@
 #include "model/document/document.h"
 #include "model/nurbs/analytic_eval.h"
 #include "model/nurbs/nurbs_shapes.h"
+#include "tests/support/analytic_fixtures.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/modelcommands.h"
 
@@ -23,20 +24,9 @@ static_assert(sizeof(Document::AnalyticOrigin) <= 3 * sizeof(AnalyticForm) + 64)
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // An imported-looking cylinder and its form.
 Scene scene() {
-    Surface s;
-    s.id = SurfaceId{1};
-    s.name = QStringLiteral("Bore");
-    const glm::dvec3 base(1.0, 2.0, -3.0);
-    s.geometry = makeCylinder(base, 2.0, 5.0);
-    s.analytic.kind = Kind::Cylinder;
-    s.analytic.origin = base;
-    s.analytic.radius = 2.0;
-    s.analytic.u = {AnalyticParamMap::Kind::HalfAngle, 0.0, 2 * kPi};
-    s.analytic.v = {AnalyticParamMap::Kind::Linear, 0.0, 5.0};
+    Surface s = test::importedCylinder();
     Scene sc;
     sc.surfaces.push_back(s);
     sc.nextId = 2;

@@ -3,6 +3,7 @@
 // curve that would make the adaptive quadrature run for minutes stops at the budget and says so.
 #include "model/analysis/mass_properties.h"
 #include "model/nurbs/nurbs_shapes.h"
+#include "tests/support/model_fixtures.h"
 
 #include <QTest>
 #include <cmath>
@@ -25,21 +26,12 @@ Surface unitPlane() {
     return face(makePlane(glm::dvec3(0.0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0)));
 }
 
-NurbsCurve2 line(glm::dvec2 a, glm::dvec2 b) {
-    NurbsCurve2 c;
-    c.degree = 1;
-    c.knots = {0, 0, 1, 1};
-    c.points = {a, b};
-    c.weights = {1, 1};
-    return c;
-}
-
 /// A closed polygon loop through `p`.
 TrimLoop polygon(const std::vector<glm::dvec2>& p, std::uint32_t id) {
     TrimLoop l;
     l.id = TrimLoopId{id};
     for (size_t k = 0; k < p.size(); ++k)
-        l.curves.push_back(line(p[k], p[(k + 1) % p.size()]));
+        l.curves.push_back(test::segment(p[k], p[(k + 1) % p.size()]));
     return l;
 }
 
