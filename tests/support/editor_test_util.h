@@ -87,6 +87,18 @@ protected:
             QApplication::setActiveWindow(m_window.get());
         QTRY_VERIFY(m_window->isActiveWindow());
     }
+    /// Until the view draws no more frames for `quietMs` and its image has all its samples.
+    void waitStill(int quietMs = 400) {
+        kw::Viewport* vp = m_window->viewport();
+        std::int64_t drawn = -1;
+        for (int k = 0; k < 100; ++k) {
+            if (drawn == vp->framesDrawn() && !vp->lastFrameReport().refining)
+                return;
+            drawn = vp->framesDrawn();
+            QTest::qWait(quietMs);
+        }
+        QFAIL("the view did not come to rest");
+    }
     const kw::Scene& scene() const { return m_window->document()->scene(); }
     /// The window's action by object name (a warning names a missing one).
     QAction* act(const char* name) const {

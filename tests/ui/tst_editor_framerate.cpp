@@ -73,18 +73,6 @@ private:
                  qPrintable(m_window->viewport()->glError()));
         waitStill();
     }
-    /// Until no frame comes for 400 ms and the image has all its samples.
-    void waitStill() {
-        Viewport* vp = m_window->viewport();
-        std::int64_t drawn = -1;
-        for (int k = 0; k < 100; ++k) {
-            if (drawn == vp->framesDrawn() && !vp->lastFrameReport().refining)
-                return;
-            drawn = vp->framesDrawn();
-            QTest::qWait(400);
-        }
-        QFAIL("the view did not come to rest");
-    }
     /// Processes events until the view has drawn a frame after `before` frames.
     bool nextFrame(std::int64_t before) {
         QElapsedTimer t;

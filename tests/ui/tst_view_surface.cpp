@@ -60,7 +60,7 @@ private Q_SLOTS:
         Viewport* vp = m_window->viewport();
         QVERIFY(vp->isNativeWindow());
         QVERIFY(vp->findChild<QWidget*>(QStringLiteral("viewWindowContainer")));
-        settle();
+        waitStill(300);
         // Frames are drawn and swapped by the window alone: no widget in the view repaints
         // (a QOpenGLWidget is repainted, and its window composed again, at every frame).
         PaintCounter counter;
@@ -71,7 +71,7 @@ private Q_SLOTS:
             QVERIFY(nextFrame());
         QCOMPARE(counter.paints, 0);
         // What is on screen is the frame.
-        settle();
+        waitStill(300);
         const QImage frame = vp->grabFramebuffer();
         QCoreApplication::processEvents(); // the grabbed frame shown
         QTest::qWait(50);
@@ -81,7 +81,7 @@ private Q_SLOTS:
     void probePanelShowsOverTheView() {
         openWindow("sphere");
         Viewport* vp = m_window->viewport();
-        settle();
+        waitStill(300);
         auto* probe = vp->findChild<ProbeTool*>();
         QVERIFY(probe);
         act("actionProbe")->trigger();
@@ -104,7 +104,7 @@ private Q_SLOTS:
     void measurementsAndRubberBandArePaintedOverTheFrame() {
         openWindow("sphere");
         Viewport* vp = m_window->viewport();
-        settle();
+        waitStill(300);
         const QColor dimension(255, 200, 40);
         const QImage bare = vp->grabFramebuffer();
         const int before = pixelsNear(bare, dimension);
@@ -119,7 +119,7 @@ private Q_SLOTS:
                  qPrintable(
                      QStringLiteral("%1 -> %2").arg(before).arg(pixelsNear(measured, dimension))));
         // Drawn over the frame on screen too, after the view came to rest.
-        settle();
+        waitStill(300);
         QTest::qWait(50);
         QVERIFY(pixelsNear(onScreen(vp, vp->rect()), dimension) > before + 40);
         act("actionClearMeasurements")->trigger();
@@ -127,7 +127,7 @@ private Q_SLOTS:
 
         // A rubber band from empty space (top right) is painted over the last frame while it
         // is dragged: no new frame, the band on screen, nothing else changed; gone on release.
-        settle();
+        waitStill(300);
         const QPoint from(vp->width() - 150, 30), to(vp->width() - 40, 110);
         const QRect band = QRect(from, to).normalized();
         const QRect below(0, 150, vp->width(), 100);
@@ -142,14 +142,14 @@ private Q_SLOTS:
         QVERIFY(differingPixels(onScreen(vp, band), still.copy(band)) > band.width() * 2);
         QCOMPARE(differingPixels(onScreen(vp, below), still.copy(below)), 0);
         QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, to);
-        settle();
+        waitStill(300);
         QCOMPARE(differingPixels(onScreen(vp, band), vp->grabFramebuffer().copy(band)), 0);
     }
 
     void widgetFallbackDrawsTheSameFrame() {
         openWindow("sphere");
         QVERIFY(m_window->viewport()->isNativeWindow());
-        settle();
+        waitStill(300);
         const QImage native = m_window->viewport()->grabFramebuffer();
         closeWindow();
         // Where the platform has no native child windows (or KNOTWORK_VIEW=widget).
@@ -158,7 +158,7 @@ private Q_SLOTS:
         Viewport* vp = m_window->viewport();
         QVERIFY(!vp->isNativeWindow());
         QVERIFY(!vp->findChild<QWidget*>(QStringLiteral("viewWindowContainer")));
-        settle();
+        waitStill(300);
         QCOMPARE(differingPixels(vp->grabFramebuffer(), native), 0);
     }
 
@@ -169,18 +169,6 @@ private:
         const std::int64_t before = vp->framesDrawn();
         vp->update();
         return QTest::qWaitFor([&] { return vp->framesDrawn() > before; }, 5000);
-    }
-    /// Waits until the view draws no more frames (the still image complete).
-    void settle() {
-        Viewport* vp = m_window->viewport();
-        std::int64_t drawn = -1;
-        for (int k = 0; k < 100; ++k) {
-            if (drawn == vp->framesDrawn() && !vp->lastFrameReport().refining)
-                return;
-            drawn = vp->framesDrawn();
-            QTest::qWait(300);
-        }
-        QFAIL("the view did not come to rest");
     }
     /// The screen's pixels of `rect` of `widget` (the X server's image, child windows in).
     QImage onScreen(QWidget* widget, QRect rect) const {
