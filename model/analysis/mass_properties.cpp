@@ -649,12 +649,24 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
     FaceIntegrals out;
     // Arcs reaching a million domains away (hostile files reach 1e300) are solved for a u or v
     // of the domain only to their own scale's precision: no exact boundary either.
-    const bool wild =
-        !arcs.empty() && std::max(arcs.hi.x - arcs.lo.x, arcs.hi.y - arcs.lo.y) > 1e6 * domainSize;
-    if (general && (meetings.cut || wild)) {
-        // Arcs that meet without end (coincident or cusped stretches), or wild ones: no exact
-        // boundary. The estimate integrates the density over the even-odd spans of columns of
-        // the domain, so it stays in [0, the untrimmed area]; flagged approximate below.
+    // So are arcs whose weights differ by more than double precision can follow: the point
+    // stays at one end for all but the last few ulps of the parameter, and the quadrature along
+    // the arc never sees it move.
+    const auto extremeWeights = [](const TrimArc& a) {
+        double lo = a.hw.front().z, hi = lo;
+        for (const glm::dvec3& h : a.hw) {
+            lo = std::min(lo, h.z);
+            hi = std::max(hi, h.z);
+        }
+        return !(hi <= 1e12 * lo);
+    };
+    const bool wild = !arcs.empty() &&
+                      (std::max(arcs.hi.x - arcs.lo.x, arcs.hi.y - arcs.lo.y) > 1e6 * domainSize ||
+                       std::any_of(arcs.arcs.begin(), arcs.arcs.end(), extremeWeights));
+    // Arcs that meet without end (coincident or cusped stretches), or wild ones: no exact
+    // boundary. The estimate integrates the density over the even-odd spans of columns of the
+    // domain, so it stays in [0, the untrimmed area]; flagged approximate below.
+    const auto columnEstimate = [&] {
         Inner total(0.0);
         constexpr int kColumns = 16;
         const double width = (du.last - du.first) / kColumns;
@@ -679,9 +691,17 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
             const double a = du.first + c * width;
             total += gauss8<Inner>(column, a, c + 1 == kColumns ? du.last : a + width);
         }
+        return total;
+    };
+    bool estimated = false;
+    const auto keep = [&](const Inner& total) {
         out.area = total[0];
         out.volume = total[1];
         out.vectorArea = glm::dvec3(total[2], total[3], total[4]);
+    };
+    if (general && (meetings.cut || wild)) {
+        keep(columnEstimate());
+        estimated = true;
     } else if (general) {
         // One F for every piece, from the domain's lower edge: the pieces form closed curves
         // only together, so no piece may have its own reference.
@@ -702,9 +722,13 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
             };
             total += piece.sign * integrate<Inner>(h, piece.t0, piece.t1, floorIn, relative, q);
         }
-        out.area = total[0];
-        out.volume = total[1];
-        out.vectorArea = glm::dvec3(total[2], total[3], total[4]);
+        keep(total);
+        // An area below zero means the boundary was not followed (an arc the quadrature could
+        // not resolve): the bounded estimate instead, flagged approximate.
+        if (!(out.area >= -relative * size * size)) {
+            keep(columnEstimate());
+            estimated = true;
+        }
     } else {
         std::vector<LoopPieces> loops;
         for (const TrimLoop& loop : surface.trims) {
@@ -748,7 +772,7 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
             out.vectorArea += sign * glm::dvec3(loopSums[k][2], loopSums[k][3], loopSums[k][4]);
         }
     }
-    out.approximate = q.cut || (general && (meetings.cut || wild));
+    out.approximate = q.cut || estimated;
     out.evaluations = q.evaluations;
     // Trims whose points or tangents overflow double precision (hostile files reach 1e300)
     // give inf - inf: such a face has no measurable area, and none is reported.
