@@ -87,6 +87,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "frame time in ms (glFinish per frame) and the OpenGL renderer it ran on, "
                        "for docs/PERFORMANCE.md."),
         QStringLiteral("N"));
+    const QCommandLineOption passTimes(
+        QStringLiteral("pass-times"),
+        QStringLiteral("With --time-frames: also print each pass's median process CPU, each pass "
+                       "ended by glFinish (the frame's total then includes the waits)."));
     const QCommandLineOption progressive(
         QStringLiteral("progressive"),
         QStringLiteral("With --samples N > 1 (accumulate): draw the image a sample per frame, as "
@@ -120,8 +124,8 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                        "the centre: the camera turns to it and narrows its field of view, the eye "
                        "stays (a close-up that never puts the camera inside the part)."),
         QStringLiteral("F[@X,Y]"));
-    parser.addOptions({out, size, aov, aovCurvature, timeFrames, progressive, wire, net, reference,
-                       edgeReport, peerMesh, zoom});
+    parser.addOptions({out, size, aov, aovCurvature, timeFrames, passTimes, progressive, wire, net,
+                       reference, edgeReport, peerMesh, zoom});
     const RenderCliOptions shared = addRenderOptions(
         parser, QString(), partitioningName(RenderOptions::Partitioning::Adaptive));
     parser.addPositionalArgument(
@@ -166,6 +170,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
     if (parser.isSet(timeFrames) && !parseIntIn(parser.value(timeFrames), 1, 10000, timedFrames)) {
         printError(QStringLiteral("%1: --time-frames '%2' is not in 1..10000")
                        .arg(cmd, parser.value(timeFrames)));
+        return kExitUsage;
+    }
+    if (parser.isSet(passTimes) && timedFrames == 0) {
+        printError(QStringLiteral("%1: --pass-times needs --time-frames N").arg(cmd));
         return kExitUsage;
     }
     double zoomFactor = 1.0;
@@ -334,10 +342,10 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
             return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
         };
         double image = 0.0;
-        // KW_PASS_TIMES=1 (development): each pass's process CPU too, ended by glFinish
+        // --pass-times: each pass's process CPU too, ended by glFinish
         // (Renderer::setPassProfiling; the frame's total then includes the waits).
-        const bool passTimes = qEnvironmentVariable("KW_PASS_TIMES") == QLatin1String("1");
-        renderer.renderer().setPassProfiling(passTimes);
+        const bool profilePasses = parser.isSet(passTimes);
+        renderer.renderer().setPassProfiling(profilePasses);
         std::vector<std::vector<double>> passCpu(PassTimes::kCount);
         for (int k = 0; k < timedFrames; ++k) {
             if (options.progressive && k % options.samples == 0)
@@ -380,7 +388,7 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                          .arg(options.samples)
                          .arg(median(imageMs), 0, 'f', 2)
                          .arg(imageMs.size()));
-        if (passTimes) {
+        if (profilePasses) {
             QString line;
             for (int pass = 0; pass < PassTimes::kCount; ++pass)
                 if (const double m = median(passCpu[std::size_t(pass)]); m >= 0.05)

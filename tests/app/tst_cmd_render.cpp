@@ -6,6 +6,7 @@
 #include <QDir>
 #include <QFile>
 #include <QProcess>
+#include <QRegularExpression>
 #include <QTest>
 #include <vector>
 
@@ -123,10 +124,16 @@ private Q_SLOTS:
         const Run b = knotwork(
             common + QStringList{QStringLiteral("-o"), progressive, QStringLiteral("--samples"),
                                  QStringLiteral("4"), QStringLiteral("--progressive"),
-                                 QStringLiteral("--time-frames"), QStringLiteral("8")});
+                                 QStringLiteral("--time-frames"), QStringLiteral("8"),
+                                 QStringLiteral("--pass-times")});
         QVERIFY2(b.code == 0, qPrintable(b.err));
         QVERIFY2(b.out.contains(QStringLiteral("median whole image of 4 samples")) &&
                      b.out.contains(QStringLiteral("over 2 images")),
+                 qPrintable(b.out));
+        // --pass-times: the passes' CPU, the exact pass among them.
+        QVERIFY2(QRegularExpression(QStringLiteral("median pass CPU ms:.* exact [0-9]"))
+                     .match(b.out)
+                     .hasMatch(),
                  qPrintable(b.out));
         const Run c = knotwork(common + QStringList{QStringLiteral("-o"), aliased});
         QVERIFY2(c.code == 0, qPrintable(c.err));
@@ -306,6 +313,9 @@ private Q_SLOTS:
         QTest::newRow("bad zoom factor")
             << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
                            QStringLiteral("--zoom"), QStringLiteral("0.5")};
+        QTest::newRow("pass times untimed")
+            << QStringList{sample("trimmed_plate"), QStringLiteral("-o"), output("x.png"),
+                           QStringLiteral("--pass-times")};
     }
     void usageErrorsExitTwo() {
         QFETCH(QStringList, args);
@@ -333,6 +343,9 @@ private Q_SLOTS:
             QVERIFY2(r.err.contains(QStringLiteral("--samples '17'")), qPrintable(r.err));
         if (args.contains(QStringLiteral("--zoom")))
             QVERIFY2(r.err.contains(QStringLiteral("--zoom '")), qPrintable(r.err));
+        if (args.contains(QStringLiteral("--pass-times")))
+            QVERIFY2(r.err.contains(QStringLiteral("--pass-times needs --time-frames N")),
+                     qPrintable(r.err));
     }
 
     void benchPrintsATable() {
