@@ -549,32 +549,28 @@ void Viewport::paintOverlays() {
         overlay.second(p);
 }
 
-void Viewport::keepCleanFrame(QSize pixels) {
-    m_cleanFrameValid = false;
-    if (!m_cleanFrame || m_cleanFrame->size() != pixels)
-        m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
+void Viewport::copyFrame(unsigned from, unsigned to, QSize pixels) {
     QOpenGLExtraFunctions* f = context()->extraFunctions();
-    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, defaultFramebufferObject());
-    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_cleanFrame->handle());
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
     f->glDisable(GL_SCISSOR_TEST);
     f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
                          pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
     f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+}
+
+void Viewport::keepCleanFrame(QSize pixels) {
+    if (!m_cleanFrame || m_cleanFrame->size() != pixels)
+        m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
+    copyFrame(defaultFramebufferObject(), m_cleanFrame->handle(), pixels);
     m_cleanFrameValid = true;
 }
 
 bool Viewport::restoreCleanFrame(QSize pixels) {
     if (!m_cleanFrameValid || !m_cleanFrame || m_cleanFrame->size() != pixels)
         return false;
-    QOpenGLExtraFunctions* f = context()->extraFunctions();
-    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_cleanFrame->handle());
-    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
-    f->glDisable(GL_SCISSOR_TEST);
-    f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
-                         pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    copyFrame(m_cleanFrame->handle(), defaultFramebufferObject(), pixels);
     return true;
 }
 
@@ -597,11 +593,9 @@ std::optional<PickHit> Viewport::pickSurface(QPointF position) {
 Renderer::FramePick Viewport::pickFromFrame(QPointF position) {
     if (!m_renderer.isInitialized())
         return {};
-    const qreal dpr = devicePixelRatioF();
-    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
     makeCurrent();
-    const Renderer::FramePick shown =
-        m_renderer.pickInLastFrame(*m_doc, m_camera.camera(), pixels, position * dpr);
+    const Renderer::FramePick shown = m_renderer.pickInLastFrame(
+        *m_doc, m_camera.camera(), framePixels(), position * devicePixelRatioF());
     doneCurrent();
     return shown;
 }
@@ -611,11 +605,9 @@ std::optional<PickHit> Viewport::pickByDrawing(QPointF position) {
         return std::nullopt;
     RenderOptions options = m_options;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
-    const qreal dpr = devicePixelRatioF();
-    const QSize pixels(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
     makeCurrent();
-    std::optional<PickHit> hit =
-        m_renderer.pick(*m_doc, m_camera.camera(), pixels, position * dpr, options);
+    std::optional<PickHit> hit = m_renderer.pick(*m_doc, m_camera.camera(), framePixels(),
+                                                 position * devicePixelRatioF(), options);
     doneCurrent();
     return hit;
 }
