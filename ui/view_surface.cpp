@@ -187,11 +187,7 @@ private:
 
     qreal devicePixelRatio() const { return m_container->devicePixelRatioF(); }
 
-    QSize framePixels() const {
-        const qreal dpr = devicePixelRatio();
-        return QSize(qMax(1, qRound(m_container->width() * dpr)),
-                     qMax(1, qRound(m_container->height() * dpr)));
-    }
+    QSize framePixels() const { return devicePixels(*m_container); }
 
     void post() {
         if (m_posted)
@@ -253,13 +249,7 @@ private:
         m_presentPending = false;
         QOpenGLExtraFunctions* f = m_context->extraFunctions();
         const QSize pixels = m_fbo->size();
-        f->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo->handle());
-        f->glReadBuffer(GL_COLOR_ATTACHMENT0);
-        f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_context->defaultFramebufferObject());
-        f->glDisable(GL_SCISSOR_TEST);
-        f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
-                             pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        blitColour(f, m_fbo->handle(), m_context->defaultFramebufferObject(), pixels);
         m_context->swapBuffers(m_window);
         m_fbo->bind();
         Q_EMIT frameSwapped();
@@ -372,6 +362,21 @@ private:
 };
 
 } // namespace
+
+QSize devicePixels(const QWidget& widget) {
+    const qreal dpr = widget.devicePixelRatioF();
+    return QSize(qMax(1, qRound(widget.width() * dpr)), qMax(1, qRound(widget.height() * dpr)));
+}
+
+void blitColour(QOpenGLExtraFunctions* f, unsigned from, unsigned to, QSize pixels) {
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    f->glReadBuffer(GL_COLOR_ATTACHMENT0);
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+    f->glDisable(GL_SCISSOR_TEST);
+    f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
+                         pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
 
 bool ViewSurface::nativeWindowsAvailable() {
     // KNOTWORK_VIEW=widget: the QOpenGLWidget, for comparison and for platforms not listed.

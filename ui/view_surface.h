@@ -13,15 +13,23 @@
 
 #include <QImage>
 #include <QObject>
+#include <QSize>
 #include <QSurfaceFormat>
 #include <functional>
 #include <memory>
 
 class QOpenGLContext;
+class QOpenGLExtraFunctions;
 class QPaintDevice;
 class QWidget;
 
 namespace kw {
+
+/// The widget's size in device pixels, at least 1 x 1: the size of the frames drawn for it.
+QSize devicePixels(const QWidget& widget);
+/// Blits the colour of framebuffer `from` onto framebuffer `to`, both `pixels` in size (no
+/// scissor, every channel written).
+void blitColour(QOpenGLExtraFunctions* f, unsigned from, unsigned to, QSize pixels);
 
 class ViewSurface : public QObject {
     Q_OBJECT

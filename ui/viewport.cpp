@@ -140,8 +140,7 @@ bool Viewport::isNativeWindow() const {
 }
 
 QSize Viewport::framePixels() const {
-    const qreal dpr = devicePixelRatioF();
-    return QSize(qMax(1, qRound(width() * dpr)), qMax(1, qRound(height() * dpr)));
+    return devicePixels(*this);
 }
 
 double Viewport::aspect() const {
@@ -549,28 +548,21 @@ void Viewport::paintOverlays() {
         overlay.second(p);
 }
 
-void Viewport::copyFrame(unsigned from, unsigned to, QSize pixels) {
-    QOpenGLExtraFunctions* f = context()->extraFunctions();
-    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
-    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
-    f->glDisable(GL_SCISSOR_TEST);
-    f->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    f->glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(),
-                         pixels.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-}
-
 void Viewport::keepCleanFrame(QSize pixels) {
     if (!m_cleanFrame || m_cleanFrame->size() != pixels)
         m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
-    copyFrame(defaultFramebufferObject(), m_cleanFrame->handle(), pixels);
+    blitColour(context()->extraFunctions(), defaultFramebufferObject(), m_cleanFrame->handle(),
+               pixels);
+    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
     m_cleanFrameValid = true;
 }
 
 bool Viewport::restoreCleanFrame(QSize pixels) {
     if (!m_cleanFrameValid || !m_cleanFrame || m_cleanFrame->size() != pixels)
         return false;
-    copyFrame(m_cleanFrame->handle(), defaultFramebufferObject(), pixels);
+    blitColour(context()->extraFunctions(), m_cleanFrame->handle(), defaultFramebufferObject(),
+               pixels);
+    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
     return true;
 }
 

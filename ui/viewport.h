@@ -289,8 +289,6 @@ private:
     /// The frame before its overlays, kept after still frames (updateOverlays): copy, restore.
     void keepCleanFrame(QSize pixels);
     bool restoreCleanFrame(QSize pixels);
-    /// Blits the colour of framebuffer `from` onto `to`, then binds the frame's again.
-    void copyFrame(unsigned from, unsigned to, QSize pixels);
     QSize framePixels() const;
     double aspect() const;
 
