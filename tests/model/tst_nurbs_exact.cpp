@@ -8,6 +8,7 @@
 
 #include <QTest>
 #include <algorithm>
+#include <random>
 
 using namespace kw;
 
@@ -166,6 +167,9 @@ private Q_SLOTS:
     void elevateDegreeKeepsShape();
     void collapsedEdgesStayCollapsed();
     void poleNormalBesideNarrowSpan();
+    void removeKnotsStaysWithinTolerance_data();
+    void removeKnotsStaysWithinTolerance();
+    void removeKnotsIgnoresPlacement();
 };
 
 void TestNurbsExact::insertKnotKeepsShape_data() {
@@ -262,6 +266,64 @@ void TestNurbsExact::poleNormalBesideNarrowSpan() {
         }
         const NurbsSurface twice = surfaceInsertKnotV(sphere, gap, 2);
         QVERIFY(glm::length(surfaceFrame(twice, 0.3, 0.0).normal - glm::dvec3(0, 0, -1)) < 1e-6);
+    }
+}
+
+void TestNurbsExact::removeKnotsStaysWithinTolerance_data() {
+    addShapeRows();
+}
+
+// A knot inserted into the widest span comes out again within a tolerance of 1e-6 of the
+// net's size, and the surface stays within that tolerance (measured: 0.07 of it, worst).
+void TestNurbsExact::removeKnotsStaysWithinTolerance() {
+    QFETCH(NurbsSurface, surface);
+    QFETCH(bool, alongU);
+    const int p = alongU ? surface.degreeU : surface.degreeV;
+    const Insertion in = insertions(alongU ? surface.knotsU : surface.knotsV, p).front();
+    const NurbsSurface refined = insert(surface, alongU, in.value, 1);
+    const double tol = 1e-6 * kwtest::controlScale(surface);
+    int removed = 0;
+    const NurbsSurface r = surfaceRemoveKnots(refined, alongU, tol, &removed);
+    QVERIFY(removed >= 1);
+    const Interval du = surfaceDomainU(r), dv = surfaceDomainV(r);
+    for (int i = 0; i <= 40; ++i)
+        for (int j = 0; j <= 40; ++j) {
+            const double u = du.first + (du.last - du.first) * i / 40;
+            const double v = dv.first + (dv.last - dv.first) * j / 40;
+            QVERIFY(glm::length(surfacePoint(r, u, v) - surfacePoint(refined, u, v)) <= tol);
+        }
+}
+
+// Knot removal's error bound (The NURBS Book, Eq. 5.30) involves |P|max; measured from the
+// model's origin it tightened with the distance, and the same surface 100 units away kept
+// every knot that a tolerance let go at the origin. The removals must not depend on where the
+// surface lies.
+void TestNurbsExact::removeKnotsIgnoresPlacement() {
+    NurbsSurface s = makePatch(glm::dvec3(0.0), 3, 3, 8, 8, 10.0, 10.0);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (glm::dvec3& p : s.points)
+        p.z += 0.5 * unit(rng);
+    for (double x : {0.13, 0.27, 0.41, 0.58, 0.77, 0.9})
+        s = surfaceInsertKnotU(s, x, 1);
+    for (glm::dvec3& p : s.points)
+        p.z += 1e-4 * unit(rng); // the inserted knots are removable within ~1e-4 only
+    for (double tol : {1e-3, 1e-2}) {
+        int atOrigin = 0;
+        surfaceRemoveKnots(s, true, tol, &atOrigin);
+        QVERIFY(atOrigin >= 1);
+        for (double offset : {100.0, 1000.0}) {
+            NurbsSurface moved = s;
+            for (glm::dvec3& p : moved.points)
+                p += glm::dvec3(offset, -offset, 0.5 * offset);
+            int removed = 0;
+            const NurbsSurface r = surfaceRemoveKnots(moved, true, tol, &removed);
+            QCOMPARE(removed, atOrigin);
+            for (int i = 0; i <= 30; ++i)
+                for (int j = 0; j <= 30; ++j)
+                    QVERIFY(glm::length(surfacePoint(r, i / 30.0, j / 30.0) -
+                                        surfacePoint(moved, i / 30.0, j / 30.0)) <= tol);
+        }
     }
 }
 
