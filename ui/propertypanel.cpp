@@ -18,6 +18,8 @@
 #include <QSpinBox>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
 
 namespace kw {
 
@@ -37,6 +39,18 @@ QString knotText(const std::vector<double>& knots) {
     for (double k : knots)
         parts << QString::number(k, 'g', 6);
     return parts.join(QStringLiteral(", "));
+}
+
+/// Fits the knot value field to a domain: decimals that resolve a ten-thousandth of its width
+/// (imported faces have domains such as [4.61663, 4.6188] in model units, where four fixed
+/// decimals left 22 positions and rounded a typed value by up to 2% of the domain) and a step
+/// of a twentieth of it.
+void fitKnotField(QDoubleSpinBox* box, const Interval& dom) {
+    const double width = dom.last - dom.first;
+    const int decimals =
+        width > 0.0 ? std::clamp(4 + int(std::ceil(-std::log10(width))), 4, 12) : 4;
+    box->setDecimals(decimals); // before the range and value, which it rounds
+    box->setSingleStep(width > 0.0 ? width / 20.0 : 0.05);
 }
 
 /// Shows `value`, undoing blank().
@@ -301,6 +315,7 @@ void PropertyPanel::refresh() {
     {
         const QSignalBlocker b(m_knotValue);
         m_knotValue->setSpecialValueText(QString());
+        fitKnotField(m_knotValue, dom);
         m_knotValue->setRange(dom.first, dom.last);
         if (m_knotValue->value() <= dom.first || m_knotValue->value() >= dom.last)
             m_knotValue->setValue(0.5 * (dom.first + dom.last));

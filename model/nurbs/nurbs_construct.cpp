@@ -463,11 +463,17 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
     if (!(tolerance >= 0.0) || !surfaceValidationError(s).empty())
         return s;
     // Eq. 5.30: a homogeneous deviation below tol * wmin / (1 + |P|max) keeps the rational
-    // surface within tol.
+    // surface within tol. The net is lifted about the centre c of its bounds, (w (P - c), w):
+    // the deviation does not change under a translation, and |P - c|max is the net's half
+    // diagonal. Lifted about the model's origin, |P|max grew with the distance from it, and a
+    // surface moved 100 units away lost every removal that a tolerance allowed at the origin.
+    glm::dvec3 lo, hi;
+    surfaceControlBounds(s, lo, hi);
+    const glm::dvec3 c = 0.5 * (lo + hi);
     double wmin = s.weights.front(), pmax = 0.0;
     for (size_t k = 0; k < s.points.size(); ++k) {
         wmin = std::min(wmin, s.weights[k]);
-        pmax = std::max(pmax, glm::length(s.points[k]));
+        pmax = std::max(pmax, glm::length(s.points[k] - c));
     }
     const double tol4 = tolerance * wmin / (1.0 + pmax);
     const int p = alongU ? s.degreeU : s.degreeV;
@@ -479,7 +485,7 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
         for (int k = 0; k < nPts; ++k) {
             const size_t idx = size_t(alongU ? s.index(k, l) : s.index(l, k));
             lines[size_t(l)][size_t(k)] =
-                glm::dvec4(s.points[idx] * s.weights[idx], s.weights[idx]);
+                glm::dvec4((s.points[idx] - c) * s.weights[idx], s.weights[idx]);
         }
     // Each removal moves the surface by at most its A5.8 distance; their sum stays within the
     // budget so that the removals together keep the surface within tolerance.
@@ -525,7 +531,7 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
         for (int k = 0; k < newPts; ++k) {
             const size_t idx = size_t(alongU ? out.index(k, l) : out.index(l, k));
             const glm::dvec4& pw = lines[size_t(l)][size_t(k)];
-            out.points[idx] = glm::dvec3(pw) / pw.w;
+            out.points[idx] = c + glm::dvec3(pw) / pw.w;
             out.weights[idx] = pw.w;
         }
     if (!surfaceValidationError(out).empty() || !(out.weights == out.weights))

@@ -17,10 +17,16 @@ namespace {
 
 using Line = std::vector<glm::dvec4>;
 
-/// The homogeneous control net seen along one direction: a family of curves ("lines") that
-/// share one knot vector and degree. For direction u there is one line per j (countV lines of
-/// countU points); for v one line per i. Surface algorithms of Chapter 5 are exactly the curve
-/// algorithms applied to every line with the same knot bookkeeping.
+/// The control net seen along one direction: a family of curves ("lines") that share one knot
+/// vector and degree. For direction u there is one line per j (countV lines of countU points);
+/// for v one line per i. Surface algorithms of Chapter 5 are exactly the curve algorithms
+/// applied to every line with the same knot bookkeeping.
+///
+/// A point is kept Cartesian with its weight, (P, w); the algorithms combine the homogeneous
+/// (w P, w) (blend(), elevateBy()) but never round-trip a point they do not change, and equal
+/// points combine to exactly that point. Stored as (w P, w), w P / w rounded the collapsed row
+/// of a sphere's pole or a cone's apex apart by ~1e-16 of its distance from the origin, and the
+/// evaluator saw a non-zero Su at the pole.
 struct Lines {
     int degree = 1;
     std::vector<double> knots;
@@ -38,7 +44,7 @@ Lines extract(const NurbsSurface& s, bool alongU) {
         for (int k = 0; k < nPts; ++k) {
             const size_t idx = size_t(alongU ? s.index(k, l) : s.index(l, k));
             const double w = s.weights[idx];
-            out.lines[size_t(l)][size_t(k)] = glm::dvec4(s.points[idx] * w, w);
+            out.lines[size_t(l)][size_t(k)] = glm::dvec4(s.points[idx], w);
         }
     }
     return out;
@@ -62,11 +68,22 @@ NurbsSurface rebuild(const NurbsSurface& s, const Lines& ls, bool alongU) {
         for (int k = 0; k < nPts; ++k) {
             const size_t idx = size_t(alongU ? out.index(k, int(l)) : out.index(int(l), k));
             const glm::dvec4& pw = ls.lines[l][size_t(k)];
-            out.points[idx] = glm::dvec3(pw) / pw.w;
+            out.points[idx] = glm::dvec3(pw);
             out.weights[idx] = pw.w;
         }
     }
     return out;
+}
+
+/// (1 - a) x + a y of two (P, w) points taken in homogeneous space, as knot insertion combines
+/// them (The NURBS Book, Eq. 5.15 on Pw), written as x + t (y - x) with the weighted ratio
+/// t = a w_y / ((1 - a) w_x + a w_y): equal points give exactly that point, and the rounding
+/// is relative to |y - x| rather than to |P|.
+glm::dvec4 blend(double a, const glm::dvec4& x, const glm::dvec4& y) {
+    const double wy = a * y.w;
+    const double w = (1.0 - a) * x.w + wy;
+    const glm::dvec3 px(x), py(y);
+    return glm::dvec4(px + (wy / w) * (py - px), w);
 }
 
 // The NURBS Book, A5.3 (SurfaceKnotIns), written for the family of lines: insert u r times
@@ -103,7 +120,7 @@ void insertKnot(Lines& ls, double u, int k, int s, int r) {
         for (int j = 1; j <= r; ++j) {
             L = k - p + j;
             for (int i = 0; i <= p - j - s; ++i)
-                rw[i] = alpha[i][j] * rw[i + 1] + (1.0 - alpha[i][j]) * rw[i];
+                rw[i] = blend(alpha[i][j], rw[i], rw[i + 1]);
             qw[size_t(L)] = rw[0];
             qw[size_t(k + r - j - s)] = rw[p - j - s];
         }
@@ -173,7 +190,10 @@ void clampStart(Lines& ls) {
 // point operations per new control point. The same operations on the same kind of values as
 // the elevation by one that was repeated t times before (which made a surface elevated from 3
 // to 15 cost about 11 times as much, a fuzzer input 5 to 15 s under AddressSanitizer), but
-// with no intermediate rounding. Precondition: clamped knot vector without interior knots of
+// with no intermediate rounding. The span's points are lifted about its first point O,
+// (w (P - O), w), and the result is O + (sum) / w: equal points stay exactly equal, and the
+// rounding is relative to the span's size. The end points of a clamped curve do not move under
+// elevation, so they are copied. Precondition: clamped knot vector without interior knots of
 // multiplicity p + 1 (see elevate()).
 void elevateBy(Lines& ls, int t) {
     const int p = ls.degree;
@@ -195,6 +215,7 @@ void elevateBy(Lines& ls, int t) {
     // alpha[i][r][m]: the coefficient a of level r, row m, for argument i (0-based).
     static thread_local double alpha[kMaxDegree][kMaxDegree + 1][kMaxDegree + 1];
     glm::dvec4 d[kMaxDegree + 1][kMaxDegree + 1]; // d[r][m]: D[r], rows r..p
+    glm::dvec4 d0[kMaxDegree + 1];                 // D[0]: the span's points, lifted about O
     std::uint64_t work = 0;
     for (int j = 0; j < count; ++j) {
         // The non-empty span of the new knots inside [u'_j, u'_{j+ph+1}) nearest its middle.
@@ -213,7 +234,10 @@ void elevateBy(Lines& ls, int t) {
                 }
         }
         for (size_t l = 0; l < ls.lines.size(); ++l) {
-            const glm::dvec4* d0 = ls.lines[l].data() + (k - p); // D[0]: the span's points
+            const glm::dvec4* span = ls.lines[l].data() + (k - p);
+            const glm::dvec3 o(span[0]);
+            for (int m = 0; m <= p; ++m)
+                d0[m] = glm::dvec4((glm::dvec3(span[m]) - o) * span[m].w, span[m].w);
             for (int i = 0; i < ph; ++i) {
                 // Downwards in r, so that D[r - 1] is still the sum before argument i.
                 for (int r = std::min(i + 1, p); r >= std::max(1, i + 1 - t); --r) {
@@ -234,8 +258,13 @@ void elevateBy(Lines& ls, int t) {
                     work += std::uint64_t(p + 1 - r);
                 }
             }
-            out[l][size_t(j)] = d[p][p] / binomial;
+            const glm::dvec4 q = d[p][p] / binomial;
+            out[l][size_t(j)] = glm::dvec4(o + glm::dvec3(q) / q.w, q.w);
         }
+    }
+    for (size_t l = 0; l < ls.lines.size(); ++l) {
+        out[l].front() = ls.lines[l].front();
+        out[l].back() = ls.lines[l].back();
     }
     detail::elevationWork() += work;
     ls.knots = std::move(uh);

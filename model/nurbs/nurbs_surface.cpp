@@ -16,6 +16,14 @@ constexpr double kBinom[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
 
 // The NURBS Book, A3.6 (SurfaceDerivsAlg1) on homogeneous points Pw = (w P, w), to order 2,
 // followed by A4.4 (RatSurfaceDerivs) for the derivatives of the rational quotient.
+// The points are lifted relative to the span's corner control point nearest (u, v), O:
+// (w (P - O), w), and O is added to S at the end (derivatives do not change under a
+// translation). At a collapsed edge (a sphere's pole, a cone's apex) O is the collapsed point,
+// its row lifts to exact zeros, and Su there is exactly zero as the normal rule expects; lifted
+// about the model's origin, the rounding of w P times derivative basis functions of size
+// 1 / (span width) gave Su a spurious size of ~1e-16 |P| / (span width), which after a knot
+// inserted 1e-6 of the domain from another was above the rule's thresholds and turned the
+// pole's normal. Elsewhere the rounding becomes relative to the span's size, not to |P|.
 // Preconditions: detail::shapeOk(s); u, v inside the domain.
 LocalEval evaluateSpan(const NurbsSurface& s, double u, double v) {
     const int pu = s.degreeU;
@@ -26,6 +34,10 @@ LocalEval evaluateSpan(const NurbsSurface& s, double u, double v) {
     double nv[3 * (kMaxDegree + 1)];
     basisFunctionDerivatives(spanU, u, pu, 2, s.knotsU, nu);
     basisFunctionDerivatives(spanV, v, pv, 2, s.knotsV, nv);
+    const size_t su = size_t(spanU), sv = size_t(spanV);
+    const int cornerU = u - s.knotsU[su] <= s.knotsU[su + 1] - u ? spanU - pu : spanU;
+    const int cornerV = v - s.knotsV[sv] <= s.knotsV[sv + 1] - v ? spanV - pv : spanV;
+    const glm::dvec3 origin = s.points[size_t(s.index(cornerU, cornerV))];
 
     glm::dvec4 a[3][3] = {}; // a[k][l]: d^(k+l) / du^k dv^l of the homogeneous surface
     glm::dvec3 lo(0.0), hi(0.0);
@@ -36,7 +48,7 @@ LocalEval evaluateSpan(const NurbsSurface& s, double u, double v) {
             const size_t idx = size_t(s.index(spanU - pu + r, j));
             const glm::dvec3& p = s.points[idx];
             const double w = s.weights[idx];
-            const glm::dvec4 pw(p * w, w);
+            const glm::dvec4 pw((p - origin) * w, w);
             for (int k = 0; k < 3; ++k)
                 temp[k] += nu[k * (pu + 1) + r] * pw;
             lo = (l == 0 && r == 0) ? p : glm::min(lo, p);
@@ -64,7 +76,7 @@ LocalEval evaluateSpan(const NurbsSurface& s, double u, double v) {
         }
     }
     LocalEval out;
-    out.d.s = skl[0][0];
+    out.d.s = origin + skl[0][0];
     out.d.su = skl[1][0];
     out.d.sv = skl[0][1];
     out.d.suu = skl[2][0];

@@ -308,6 +308,36 @@ private Q_SLOTS:
         QVERIFY(geometry() == before);
     }
 
+    // An imported face's domain can be narrow and far from zero (a Pump_Nut face has v in
+    // [4.6166286, 4.6188022]): the knot field resolves it, and the knot goes in where the field
+    // says. With four fixed decimals a typed value moved by up to 2% of such a domain.
+    void knotFieldResolvesNarrowDomains() {
+        openWindow("bicubic");
+        PropertyPanel* panel = m_window->propertyPanel();
+        const SurfaceId id = m_window->document()->scene().surfaces.front().id;
+        const NurbsSurface before = geometry();
+        const Interval d0 = surfaceDomainU(before);
+        const double a = 4.6166285687407065, width = 0.0021735827027216;
+        std::vector<double> knots = before.knotsU;
+        for (double& k : knots)
+            k = a + (k - d0.first) / (d0.last - d0.first) * width;
+        QVERIFY(pushCommand(m_window->undoStack(),
+                            SetKnotVector::create(m_window->document(), id, Direction::U, knots)));
+        auto* value = panel->findChild<QDoubleSpinBox*>(QStringLiteral("knotValue"));
+        QVERIFY(value);
+        const double x = a + 0.3717 * width;
+        value->setValue(x);
+        QVERIFY2(std::abs(value->value() - x) <= 1e-4 * width, qPrintable(value->text()));
+        const double shown = value->value();
+        QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("insertKnot")),
+                          Qt::LeftButton);
+        QCOMPARE(geometry().countU, before.countU + 1);
+        QCOMPARE(std::count(geometry().knotsU.begin(), geometry().knotsU.end(), shown), 1);
+        m_window->undoStack()->undo();
+        m_window->undoStack()->undo();
+        QVERIFY(geometry() == before);
+    }
+
     void lightsPanelEditsLights() {
         openWindow("bicubic");
         LightsPanel* panel = m_window->lightsPanel();

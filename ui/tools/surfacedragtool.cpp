@@ -74,10 +74,11 @@ void SurfaceDragTool::release(QMouseEvent* event) {
         return;
     m_last = event->position();
     m_snap = event->modifiers() & Qt::ShiftModifier;
-    step();
+    // One map for the last live step, the command and its name.
     double amount = 0.0;
-    matrix(&amount);
-    const glm::dmat4 m = dragMap();
+    const glm::dmat4 m = dragMap(&amount);
+    if (dragging())
+        apply(m);
     std::vector<SurfaceId> ids;
     for (SurfaceId id : m_surfaces)
         if (m_view->document()->surface(id)) // not removed under the drag
@@ -116,9 +117,11 @@ void SurfaceDragTool::cancel() {
     m_view->update();
 }
 
-glm::dmat4 SurfaceDragTool::dragMap() const {
+glm::dmat4 SurfaceDragTool::dragMap(double* amount) const {
     if (!dragging() || m_view->surfaceDrag() != Viewport::SurfaceDrag::Move)
-        return matrix();
+        return matrix(amount);
+    if (amount)
+        *amount = 1.0;
     const ViewProjection view = m_view->viewProjection();
     const int axis = m_view->axisConstraint();
     const glm::dvec3 delta =
@@ -129,9 +132,11 @@ glm::dmat4 SurfaceDragTool::dragMap() const {
 }
 
 void SurfaceDragTool::step() {
-    if (!dragging())
-        return;
-    const glm::dmat4 map = dragMap();
+    if (dragging())
+        apply(dragMap());
+}
+
+void SurfaceDragTool::apply(const glm::dmat4& map) {
     std::vector<glm::dvec3> to;
     to.reserve(m_from.size());
     for (const glm::dvec3& p : m_from)

@@ -43,9 +43,13 @@ public:
     glm::dmat4 matrix(double* amount = nullptr) const;
 
 private:
+    /// Applies dragMap() to the press-time points as a live step (nothing when none runs).
     void step();
-    /// The map the running drag applies: matrix(), or the translation in the Move mode.
-    glm::dmat4 dragMap() const;
+    /// Moves the press-time points by `map` as a live step. Precondition: dragging().
+    void apply(const glm::dmat4& map);
+    /// The map the running drag applies: matrix(), or the translation in the Move mode;
+    /// `amount` as matrix() gives it (1 for a move).
+    glm::dmat4 dragMap(double* amount = nullptr) const;
     QString text(double amount) const;
 
     Viewport* m_view;
