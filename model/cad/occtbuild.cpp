@@ -182,9 +182,9 @@ bool buildWire(const TrimLoop& loop, const Handle(Geom_BSplineSurface) & geom, d
 } // namespace
 
 Handle(Geom_BSplineSurface) makeGeomSurface(const NurbsSurface& s, QString& why) {
-    const std::string bad = surfaceValidationError(s);
-    if (!bad.empty()) {
-        why = QString::fromStdString(bad);
+    const Status valid = checkNurbsSurface(s);
+    if (!valid) {
+        why = valid.message();
         return nullptr;
     }
     std::vector<double> ku, kv;
@@ -213,9 +213,9 @@ Handle(Geom_BSplineSurface) makeGeomSurface(const NurbsSurface& s, QString& why)
 }
 
 Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why) {
-    const std::string bad = curveValidationError(c);
-    if (!bad.empty()) {
-        why = QStringLiteral("trim curve: %1").arg(QString::fromStdString(bad));
+    const Status valid = checkNurbsCurve(c);
+    if (!valid) {
+        why = QStringLiteral("trim curve: %1").arg(valid.message());
         return nullptr;
     }
     std::vector<double> k;

@@ -306,10 +306,9 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
         return false;
     }
     out.geometry = toNurbs(bs);
-    const std::string bad = surfaceValidationError(out.geometry);
-    if (!bad.empty()) {
-        why =
-            QStringLiteral("invalid surface after conversion: %1").arg(QString::fromStdString(bad));
+    const Status valid = checkNurbsSurface(out.geometry);
+    if (!valid) {
+        why = QStringLiteral("invalid surface after conversion: %1").arg(valid.message());
         return false;
     }
     // The file's closed form, for the renderer's closed-form intersection (Surface::analytic).
@@ -377,9 +376,9 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
                             .arg(worst)
                             .arg(uvSize);
         for (const NurbsCurve2& c : loop.curves) {
-            const std::string cbad = curveValidationError(c);
-            if (!cbad.empty()) {
-                why = QStringLiteral("invalid trim curve: %1").arg(QString::fromStdString(cbad));
+            const Status valid = checkNurbsCurve(c);
+            if (!valid) {
+                why = QStringLiteral("invalid trim curve: %1").arg(valid.message());
                 return false;
             }
         }
