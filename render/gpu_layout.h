@@ -33,7 +33,7 @@ constexpr int spanTableTexels(int p) {
 ///   U[k+1-j] for j = 1..p, then U[k+j] for j = 1..p, then for j = 1..p, r = 0..j-1 the
 ///   reciprocal 1 / (U[k+r+1] - U[k+1-j+r]) (always > 0 for a non-empty span).
 /// Rows are padded to whole RGBA texels: width spanTableTexels(p), height count - p.
-/// Precondition: a valid knot vector (knotVectorError is empty).
+/// Precondition: a valid knot vector (checkKnotVector passes).
 std::vector<glm::vec4> packSpanTable(const std::vector<double>& knots, int p, int count);
 
 /// One base polygon vertex. Must match the attributes of shaders/surface.vert (locations in

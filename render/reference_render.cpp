@@ -269,7 +269,7 @@ AovBuffer renderReference(const Scene& scene, const Camera& camera, int width, i
     raster.stats = &st;
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
         const Surface& s = scene.surfaces[k];
-        if (s.hidden || !surfaceValidationError(s.geometry).empty()) // as the GPU frame
+        if (s.hidden || !checkNurbsSurface(s.geometry)) // as the GPU frame
             continue;
         rasteriseSurface(raster, view, scale, s, int(k), options);
     }

@@ -160,7 +160,7 @@ LoopPieces loopPieces(const TrimLoop& loop, double tolerance) {
     LoopPieces out;
     std::vector<const NurbsCurve2*> curves;
     for (const NurbsCurve2& c : loop.curves)
-        if (curveValidationError(c).empty())
+        if (checkNurbsCurve(c).has_value())
             curves.push_back(&c);
     if (curves.empty())
         return out;
@@ -562,7 +562,7 @@ std::vector<SignedPiece> clippedBoundary(const TrimArcs& arcs, const Meetings& m
 FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, double relative,
                             long budget) {
     const NurbsSurface& g = surface.geometry;
-    if (!surfaceValidationError(g).empty())
+    if (!checkNurbsSurface(g))
         return {};
     const double tol = trimTolerance(g);
     const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
@@ -784,7 +784,7 @@ FaceIntegrals faceIntegrals(const Surface& surface, const glm::dvec3& origin, do
 
 bool faceBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi) {
     const NurbsSurface& g = surface.geometry;
-    if (!surfaceValidationError(g).empty())
+    if (!checkNurbsSurface(g))
         return false;
     const Samples s = faceSamples(surface, 16);
     if (s.inside.empty() && s.boundary.empty())

@@ -36,8 +36,8 @@ double curvatureRadius(double k) {
 std::optional<ProbePoint> probeOnRay(const Surface& surface, glm::dvec2 uvGuess,
                                      const glm::dvec3& origin, const glm::dvec3& direction) {
     const NurbsSurface& g = surface.geometry;
-    if (!surfaceValidationError(g).empty() || !std::isfinite(uvGuess.x) ||
-        !std::isfinite(uvGuess.y) || !(glm::length(direction) > 0.0))
+    if (!checkNurbsSurface(g) || !std::isfinite(uvGuess.x) || !std::isfinite(uvGuess.y) ||
+        !(glm::length(direction) > 0.0))
         return std::nullopt;
     const glm::dvec3 d = glm::normalize(direction);
     // Any two unit vectors across the ray.

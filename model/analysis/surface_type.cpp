@@ -68,7 +68,7 @@ SurfaceType surfaceType(const Surface& surface, double relative) {
         return SurfaceType::Torus;
     }
     const NurbsSurface& g = surface.geometry;
-    if (!surfaceValidationError(g).empty())
+    if (!checkNurbsSurface(g))
         return SurfaceType::FreeForm;
     std::vector<SurfaceCurvature> c;
     for (const glm::dvec2& uv : keptSamples(surface, 8, 12)) {

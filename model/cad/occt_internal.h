@@ -50,13 +50,13 @@ const ExchangeFormat* exchangeFormat(CadFormat format);
 
 /// A step after every face is converted (`knotwork mesh`: triangulating the shape), given the
 /// transferred shape and the face map result.sourceFaces indexes; it catches OCCT's exceptions
-/// itself. False with `error` "<path>: <reason>".
-using AfterImport =
-    std::function<bool(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
-                       ImportResult& result, QString& error)>;
+/// itself. Its Error's message reads "<path>: <reason>".
+using AfterImport = std::function<Status(
+    const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces, ImportResult& result)>;
 /// importOcctFile (occtimport.h), with `after` run before the final progress step when set.
-std::optional<ImportResult> importShape(const QString& path, CadFormat format, QString& error,
-                                        const ImportProgress& progress, const AfterImport& after);
+/// An Error's message reads "<path>: <reason>" and its file is `path`.
+Expected<ImportResult> importShape(const QString& path, CadFormat format,
+                                   const ImportProgress& progress, const AfterImport& after);
 
 /// The B-rep edge one trim curve was made from: the edge of the file's face (not of a converted
 /// copy), whether the curve runs against the edge's direction (the wire uses it REVERSED), and
@@ -77,11 +77,10 @@ using FaceEdges = std::vector<std::vector<CurveEdge>>;
 /// wire runs along its surface's natural boundary, the face gets no loop; otherwise every wire
 /// is kept as the file states it. Loop ids are taken from `nextId`. `edges`, when given, gets
 /// the edge of each trim curve, parallel to out.trims.
-/// Returns false with `why` set when the face cannot be represented (degree above kMaxDegree,
-/// no p-curve, conversion failure); OCCT exceptions are the caller's to catch.
-bool convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
-                 bool dropNaturalBoundary, QString& why, QStringList& warnings,
-                 FaceEdges* edges = nullptr);
+/// Returns the reason when the face cannot be represented (degree above kMaxDegree, no
+/// p-curve, conversion failure); OCCT exceptions are the caller's to catch.
+Status convertFace(const TopoDS_Face& face, Surface& out, std::uint32_t& nextId,
+                   bool dropNaturalBoundary, QStringList& warnings, FaceEdges* edges = nullptr);
 
 /// The closed form of `face`'s surface (plane, cylinder, cone, sphere or torus, also behind a
 /// rectangular trim; the face's location applied), with the maps from the parameters of
@@ -145,19 +144,19 @@ double defaultLinearDeflection(const TopoDS_Shape& shape);
 /// sequential) and fills `out` with the triangles of each imported face (`faces` is the map
 /// imported.sourceFaces indexes; one TaggedMesh per surface of imported.scene, tagged with its
 /// id), positions and normals (OCCT viewers' nodal normals, occtmesh.cpp) moved by the face's
-/// location. A face left without triangles is a warning. False with `error` when the
-/// deflections are not positive, BRepMesh fails or no face got triangles; OCCT exceptions are
-/// the caller's to catch.
-bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
-               const ImportResult& imported, double linear, double angularDegrees,
-               TaggedMeshSet& out, QStringList& warnings, QString& error);
+/// location. A face left without triangles is a warning. The reason when the deflections are
+/// not positive, BRepMesh fails or no face got triangles; OCCT exceptions are the caller's to
+/// catch.
+Status meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                 const ImportResult& imported, double linear, double angularDegrees,
+                 TaggedMeshSet& out, QStringList& warnings);
 
 /// Each surface of `scene` built alone as a face (buildFace at `tolerance`) and triangulated
 /// alone by BRepMesh_IncrementalMesh(face, linear, absolute, angular, sequential): what a
 /// viewer pays to show a face again after an edit. One TaggedMesh per surface, in order, with
-/// its id. False with `error` naming the surface when a face cannot be built or gets no
-/// triangle; OCCT exceptions are the caller's to catch.
-bool meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
-                    TaggedMeshSet& out, QString& error);
+/// its id. The reason, naming the surface, when a face cannot be built or gets no triangle;
+/// OCCT exceptions are the caller's to catch.
+Status meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
+                      TaggedMeshSet& out);
 
 } // namespace kw::occt

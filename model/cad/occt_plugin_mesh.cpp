@@ -22,10 +22,7 @@ extern "C" Q_DECL_EXPORT kw::Status knotwork_occt_mesh_faces(const kw::Scene* sc
                                                              kw::TaggedMeshSet* mesh) {
     try {
         OCC_CATCH_SIGNALS
-        if (QString error;
-            !kw::occt::meshBuiltFaces(*scene, tolerance, linear, angularDegrees, *mesh, error))
-            return kw::Error(error);
-        return kw::ok();
+        return kw::occt::meshBuiltFaces(*scene, tolerance, linear, angularDegrees, *mesh);
     } catch (const Standard_Failure& e) {
         return kw::Error(QStringLiteral("OpenCASCADE failed meshing a face: %1 (%2)")
                              .arg(QString::fromUtf8(e.GetMessageString()),

@@ -129,7 +129,7 @@ AnalyticForm analyticFormOf(const TopoDS_Face& face, const NurbsSurface& geometr
     AnalyticForm form = surfaceForm(face);
     if (deviation)
         *deviation = -1.0;
-    if (form.kind == Kind::None || !surfaceValidationError(geometry).empty())
+    if (form.kind == Kind::None || !checkNurbsSurface(geometry))
         return {};
     double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
     BRepTools::UVBounds(face, u0, u1, v0, v1);
@@ -147,7 +147,7 @@ AnalyticForm analyticFormOf(const TopoDS_Face& face, const NurbsSurface& geometr
         f.swapped = swapped;
         f.u = fitMap(f, geometry, true, swapped ? 1 : 0, swapped ? v0 : u0);
         f.v = fitMap(f, geometry, false, swapped ? 0 : 1, swapped ? u0 : v0);
-        if (!analyticFormError(f, geometry).empty())
+        if (!checkAnalyticForm(f, geometry))
             continue;
         const double d = analyticDeviation(f, geometry);
         if (d < best) {

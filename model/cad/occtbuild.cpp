@@ -133,17 +133,17 @@ std::vector<TrimLoop> orientedLoops(const Surface& surface) {
 }
 
 // A wire of edges carrying the loop's curves as p-curves on `geom`, consecutive edges sharing
-// a vertex. False with `why` when a curve is refused.
-bool buildWire(const TrimLoop& loop, const Handle(Geom_BSplineSurface) & geom, double tolerance,
-               TopoDS_Wire& wire, QString& why) {
+// a vertex. The reason when a curve is refused.
+Status buildWire(const TrimLoop& loop, const Handle(Geom_BSplineSurface) & geom, double tolerance,
+                 TopoDS_Wire& wire) {
     BRep_Builder b;
     const size_t n = loop.curves.size();
     std::vector<Handle(Geom2d_BSplineCurve)> curves;
     for (const NurbsCurve2& c : loop.curves) {
-        Handle(Geom2d_BSplineCurve) g = makeGeomCurve(c, why);
-        if (g.IsNull())
-            return false;
-        curves.push_back(g);
+        Expected<Handle(Geom2d_BSplineCurve)> g = makeGeomCurve(c);
+        if (!g)
+            return g.error();
+        curves.push_back(*g);
     }
     // Vertex k: where curve k starts and curve k - 1 ends; its tolerance covers both ends.
     std::vector<TopoDS_Vertex> vertices(n);
@@ -176,17 +176,14 @@ bool buildWire(const TrimLoop& loop, const Handle(Geom_BSplineSurface) & geom, d
         b.Add(wire, edge);
     }
     wire.Closed(Standard_True);
-    return true;
+    return ok();
 }
 
 } // namespace
 
-Handle(Geom_BSplineSurface) makeGeomSurface(const NurbsSurface& s, QString& why) {
-    const std::string bad = surfaceValidationError(s);
-    if (!bad.empty()) {
-        why = QString::fromStdString(bad);
-        return nullptr;
-    }
+Expected<Handle(Geom_BSplineSurface)> makeGeomSurface(const NurbsSurface& s) {
+    if (const Status valid = checkNurbsSurface(s); !valid)
+        return valid.error();
     std::vector<double> ku, kv;
     std::vector<int> mu, mv;
     splitKnots(s.knotsU, ku, mu);
@@ -202,22 +199,20 @@ Handle(Geom_BSplineSurface) makeGeomSurface(const NurbsSurface& s, QString& why)
     try {
         OCC_CATCH_SIGNALS
         if (allEqual(s.weights) && s.weights.front() == 1.0)
-            return new Geom_BSplineSurface(poles, realArray(ku), realArray(kv), intArray(mu),
-                                           intArray(mv), s.degreeU, s.degreeV);
-        return new Geom_BSplineSurface(poles, weights, realArray(ku), realArray(kv), intArray(mu),
-                                       intArray(mv), s.degreeU, s.degreeV);
+            return Handle(Geom_BSplineSurface)(
+                new Geom_BSplineSurface(poles, realArray(ku), realArray(kv), intArray(mu),
+                                        intArray(mv), s.degreeU, s.degreeV));
+        return Handle(Geom_BSplineSurface)(
+            new Geom_BSplineSurface(poles, weights, realArray(ku), realArray(kv), intArray(mu),
+                                    intArray(mv), s.degreeU, s.degreeV));
     } catch (const Standard_Failure& e) {
-        why = QStringLiteral("OpenCASCADE refuses the surface: %1").arg(failure(e));
-        return nullptr;
+        return Error(QStringLiteral("OpenCASCADE refuses the surface: %1").arg(failure(e)));
     }
 }
 
-Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why) {
-    const std::string bad = curveValidationError(c);
-    if (!bad.empty()) {
-        why = QStringLiteral("trim curve: %1").arg(QString::fromStdString(bad));
-        return nullptr;
-    }
+Expected<Handle(Geom2d_BSplineCurve)> makeGeomCurve(const NurbsCurve2& c) {
+    if (const Status valid = checkNurbsCurve(c); !valid)
+        return Error(QStringLiteral("trim curve: %1").arg(valid.message()));
     std::vector<double> k;
     std::vector<int> m;
     splitKnots(c.knots, k, m);
@@ -227,39 +222,38 @@ Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why) {
     try {
         OCC_CATCH_SIGNALS
         if (allEqual(c.weights) && c.weights.front() == 1.0)
-            return new Geom2d_BSplineCurve(poles, realArray(k), intArray(m), c.degree);
-        return new Geom2d_BSplineCurve(poles, realArray(c.weights), realArray(k), intArray(m),
-                                       c.degree);
+            return Handle(Geom2d_BSplineCurve)(
+                new Geom2d_BSplineCurve(poles, realArray(k), intArray(m), c.degree));
+        return Handle(Geom2d_BSplineCurve)(new Geom2d_BSplineCurve(
+            poles, realArray(c.weights), realArray(k), intArray(m), c.degree));
     } catch (const Standard_Failure& e) {
-        why = QStringLiteral("OpenCASCADE refuses a trim curve: %1").arg(failure(e));
-        return nullptr;
+        return Error(QStringLiteral("OpenCASCADE refuses a trim curve: %1").arg(failure(e)));
     }
 }
 
-TopoDS_Face buildFace(const Surface& surface, double tolerance, QString& why) {
-    Handle(Geom_BSplineSurface) geom = makeGeomSurface(surface.geometry, why);
-    if (geom.IsNull())
-        return {};
+Expected<TopoDS_Face> buildFace(const Surface& surface, double tolerance) {
+    const Expected<Handle(Geom_BSplineSurface)> made = makeGeomSurface(surface.geometry);
+    if (!made)
+        return made.error();
+    const Handle(Geom_BSplineSurface)& geom = *made;
     TopoDS_Face face;
     try {
         OCC_CATCH_SIGNALS
         const std::vector<TrimLoop> loops = orientedLoops(surface);
         if (loops.empty()) {
             BRepBuilderAPI_MakeFace make(geom, tolerance);
-            if (!make.IsDone()) {
-                why = QStringLiteral("OpenCASCADE cannot bound the surface by its natural edges "
-                                     "(BRepBuilderAPI_MakeFace error %1)")
-                          .arg(int(make.Error()));
-                return {};
-            }
+            if (!make.IsDone())
+                return Error(QStringLiteral("OpenCASCADE cannot bound the surface by its natural "
+                                            "edges (BRepBuilderAPI_MakeFace error %1)")
+                                 .arg(int(make.Error())));
             face = make.Face();
         } else {
             BRep_Builder b;
             b.MakeFace(face, geom, TopLoc_Location(), tolerance);
             for (const TrimLoop& loop : loops) {
                 TopoDS_Wire wire;
-                if (!buildWire(loop, geom, tolerance, wire, why))
-                    return {};
+                if (Status built = buildWire(loop, geom, tolerance, wire); !built)
+                    return built.error();
                 b.Add(face, wire);
             }
             BRepLib::BuildCurves3d(face, std::max(tolerance, Precision::Confusion()));
@@ -272,15 +266,12 @@ TopoDS_Face buildFace(const Surface& surface, double tolerance, QString& why) {
             fix.FixOrientationMode() = 0; // the nesting rule above decided the orientation
             fix.Perform();
             face = fix.Face();
-            if (!BRepCheck_Analyzer(face).IsValid()) {
-                why = QStringLiteral("OpenCASCADE finds the face invalid even after repair "
-                                     "(BRepCheck_Analyzer)");
-                return {};
-            }
+            if (!BRepCheck_Analyzer(face).IsValid())
+                return Error(QStringLiteral("OpenCASCADE finds the face invalid even after repair "
+                                            "(BRepCheck_Analyzer)"));
         }
     } catch (const Standard_Failure& e) {
-        why = QStringLiteral("OpenCASCADE failed building the face: %1").arg(failure(e));
-        return {};
+        return Error(QStringLiteral("OpenCASCADE failed building the face: %1").arg(failure(e)));
     }
     return face;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/document/scene.h"
+#include "model/error.h"
 
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -15,12 +16,12 @@ namespace kw::occt {
 
 /// `s` as a Geom_BSplineSurface: poles, weights and knots copied bit for bit (the knot sequence
 /// split into distinct values and multiplicities by exact comparison), non-periodic, rational
-/// when any weight differs from the others. Null with `why` when OCCT refuses it (two distinct
+/// when any weight differs from the others. The reason when OCCT refuses it (two distinct
 /// knots closer than its Epsilon, a degree above Geom_BSplineSurface::MaxDegree, ...).
 /// OCCT exceptions are caught.
-Handle(Geom_BSplineSurface) makeGeomSurface(const NurbsSurface& s, QString& why);
+Expected<Handle(Geom_BSplineSurface)> makeGeomSurface(const NurbsSurface& s);
 /// The same for a trim curve in (u, v).
-Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why);
+Expected<Handle(Geom2d_BSplineCurve)> makeGeomCurve(const NurbsCurve2& c);
 
 /// Builds the face of `surface`: its exact surface, and one wire per trim loop whose edges carry
 /// the loop's curves as p-curves (unchanged) and 3D curves computed from them
@@ -29,9 +30,9 @@ Handle(Geom2d_BSplineCurve) makeGeomCurve(const NurbsCurve2& c, QString& why);
 /// the others clockwise. A curve whose 3D image is a point (a sphere's pole) becomes a
 /// degenerated edge. Without loops the face is bounded by the surface's natural boundary.
 /// `tolerance` (model units, > 0) is the vertices' and edges' least tolerance. When the face
-/// BRepCheck finds invalid, ShapeFix_Face repairs its wires (never its surface). Null face with
-/// `why` when OCCT rejects the surface or a curve, or the result is still invalid.
-TopoDS_Face buildFace(const Surface& surface, double tolerance, QString& why);
+/// BRepCheck finds invalid, ShapeFix_Face repairs its wires (never its surface). The reason
+/// when OCCT rejects the surface or a curve, or the result is still invalid.
+Expected<TopoDS_Face> buildFace(const Surface& surface, double tolerance);
 
 /// How each trim loop of `surface` must run for OCCT, which reads a face's wires with the
 /// material on the left (Knotwork's loops are even-odd): 1 as stored, -1 reversed, 0 left out
@@ -58,9 +59,9 @@ struct RecordedFaces {
 /// the seam open. `tolerance` (model units, > 0): the least tolerance of every vertex and edge;
 /// a shared edge's tolerance is at least its recorded one. A face is turned REVERSED when its
 /// loops had to be reversed for OCCT (the source's face was reversed), so the two uses of a
-/// shared edge run opposite ways as in the source's shell. False with `why` when OCCT refuses a
+/// shared edge run opposite ways as in the source's shell. The reason when OCCT refuses a
 /// curve or a face is invalid (BRepCheck): the caller then builds every face alone and sews.
-bool buildRecordedFaces(const Scene& scene, const std::vector<std::uint32_t>& openEdges,
-                        double tolerance, RecordedFaces& out, QString& why);
+Status buildRecordedFaces(const Scene& scene, const std::vector<std::uint32_t>& openEdges,
+                          double tolerance, RecordedFaces& out);
 
 } // namespace kw::occt

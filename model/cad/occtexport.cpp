@@ -544,19 +544,19 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
                                      matched.shells.end());
         occt::RecordedFaces recorded;
         if (!scene.topology.empty()) {
-            QString why;
             const double least = std::max(1e-7, 1e-9 * diagonal);
-            bool built = occt::buildRecordedFaces(scene, openIds, least, recorded, why);
+            Status built = occt::buildRecordedFaces(scene, openIds, least, recorded);
             if (!built && anyMatched) {
                 // OCCT refused an edge found by matching: those faces are sewn as before.
                 scene.topology = recordOnly;
                 recorded = {};
-                built = hadRecord && occt::buildRecordedFaces(scene, openIds, least, recorded, why);
+                if (hadRecord)
+                    built = occt::buildRecordedFaces(scene, openIds, least, recorded);
             }
             if (!built && hadRecord)
                 report.warnings << QStringLiteral("the import's shared edges could not be built "
                                                   "(%1): the faces are sewn instead")
-                                       .arg(why);
+                                       .arg(built.message());
             if (!built)
                 recorded = {};
         }
@@ -570,15 +570,15 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
                 return cancelled();
             if (!faces[size_t(k)].IsNull())
                 continue;
-            QString why;
-            TopoDS_Face face = occt::buildFace(scene.surfaces[size_t(k)], tolerance, why);
-            if (face.IsNull()) {
+            const Expected<TopoDS_Face> face =
+                occt::buildFace(scene.surfaces[size_t(k)], tolerance);
+            if (!face) {
                 error = QStringLiteral("%1: surface '%2' cannot be written: %3")
-                            .arg(path, names[k], why);
+                            .arg(path, names[k], face.message());
                 return std::nullopt;
             }
-            faces[size_t(k)] = face;
-            sewing.Add(face);
+            faces[size_t(k)] = *face;
+            sewing.Add(*face);
             ++toSew;
         }
         if (!step(600))

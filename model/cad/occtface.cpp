@@ -266,15 +266,14 @@ std::vector<gp_Pnt2d> parametersInside(const TopoDS_Face& face,
     return out;
 }
 
-bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextId,
-                 bool dropNaturalBoundary, QString& why, QStringList& warnings, FaceEdges* edges) {
+Status convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextId,
+                   bool dropNaturalBoundary, QStringList& warnings, FaceEdges* edges) {
     TopoDS_Face face = original;
     // The converted copy's edges by the file's: the topology names the file's edges.
     TopTools_DataMapOfShapeShape fileEdge;
     const Handle(Geom_Surface) geom = BRep_Tool::Surface(face);
     if (geom.IsNull()) {
-        why = QStringLiteral("face has no surface");
-        return false;
+        return Error(QStringLiteral("face has no surface"));
     }
     Handle(Geom_BSplineSurface) bs = asBSpline(geom);
     if (bs.IsNull()) {
@@ -282,8 +281,7 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
         // p-curves together, so the trims follow the new parameterisation).
         BRepBuilderAPI_NurbsConvert convert(face, Standard_True);
         if (!convert.IsDone() || convert.Shape().ShapeType() != TopAbs_FACE) {
-            why = QStringLiteral("conversion of a %1 to NURBS failed").arg(typeName(geom));
-            return false;
+            return Error(QStringLiteral("conversion of a %1 to NURBS failed").arg(typeName(geom)));
         }
         face = TopoDS::Face(convert.Shape());
         for (TopExp_Explorer e(original, TopAbs_EDGE); e.More(); e.Next()) {
@@ -293,24 +291,21 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
         }
         bs = asBSpline(BRep_Tool::Surface(face));
         if (bs.IsNull()) {
-            why = QStringLiteral("a %1 did not convert to a B-spline surface").arg(typeName(geom));
-            return false;
+            return Error(
+                QStringLiteral("a %1 did not convert to a B-spline surface").arg(typeName(geom)));
         }
     }
     makeNonPeriodic(bs, face);
     if (bs->UDegree() > kMaxDegree || bs->VDegree() > kMaxDegree) {
-        why = QStringLiteral("degree %1 x %2 is above Knotwork's maximum %3")
-                  .arg(bs->UDegree())
-                  .arg(bs->VDegree())
-                  .arg(kMaxDegree);
-        return false;
+        return Error(QStringLiteral("degree %1 x %2 is above Knotwork's maximum %3")
+                         .arg(bs->UDegree())
+                         .arg(bs->VDegree())
+                         .arg(kMaxDegree));
     }
     out.geometry = toNurbs(bs);
-    const std::string bad = surfaceValidationError(out.geometry);
-    if (!bad.empty()) {
-        why =
-            QStringLiteral("invalid surface after conversion: %1").arg(QString::fromStdString(bad));
-        return false;
+    const Status valid = checkNurbsSurface(out.geometry);
+    if (!valid) {
+        return Error(QStringLiteral("invalid surface after conversion: %1").arg(valid.message()));
     }
     // The file's closed form, for the renderer's closed-form intersection (Surface::analytic).
     out.analytic = analyticFormOf(original, out.geometry);
@@ -340,14 +335,12 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
             const TopoDS_Edge& edge = we.Current();
             Handle(Geom2d_BSplineCurve) bc = pcurve(edge, face);
             if (bc.IsNull()) {
-                why = QStringLiteral("an edge has no curve in the face's parameter space");
-                return false;
+                return Error(QStringLiteral("an edge has no curve in the face's parameter space"));
             }
             if (bc->Degree() > kMaxDegree) {
-                why = QStringLiteral("a trim curve of degree %1 is above the maximum %2")
-                          .arg(bc->Degree())
-                          .arg(kMaxDegree);
-                return false;
+                return Error(QStringLiteral("a trim curve of degree %1 is above the maximum %2")
+                                 .arg(bc->Degree())
+                                 .arg(kMaxDegree));
             }
             loop.curves.push_back(toNurbs(bc));
             const TopoDS_Shape* file = fileEdge.Seek(edge);
@@ -377,10 +370,9 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
                             .arg(worst)
                             .arg(uvSize);
         for (const NurbsCurve2& c : loop.curves) {
-            const std::string cbad = curveValidationError(c);
-            if (!cbad.empty()) {
-                why = QStringLiteral("invalid trim curve: %1").arg(QString::fromStdString(cbad));
-                return false;
+            const Status valid = checkNurbsCurve(c);
+            if (!valid) {
+                return Error(QStringLiteral("invalid trim curve: %1").arg(valid.message()));
             }
         }
         loops.push_back(std::move(loop));
@@ -410,7 +402,7 @@ bool convertFace(const TopoDS_Face& original, Surface& out, std::uint32_t& nextI
     out.trims = std::move(loops);
     if (edges)
         *edges = std::move(loopEdges);
-    return true;
+    return ok();
 }
 
 } // namespace kw::occt

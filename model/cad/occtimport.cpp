@@ -330,8 +330,8 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
 
 namespace occt {
 
-std::optional<ImportResult> importShape(const QString& path, CadFormat format, QString& error,
-                                        const ImportProgress& progress, const AfterImport& after) {
+Expected<ImportResult> importShape(const QString& path, CadFormat format,
+                                   const ImportProgress& progress, const AfterImport& after) {
     setUpOcctOnce();
     // Also in this thread (the editor imports on a worker thread): FPE masks and handlers.
     OSD::SetThreadLocalSignal(OSD_SignalMode_Set, Standard_False);
@@ -345,9 +345,9 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         OCC_CATCH_SIGNALS
         QString why;
         if (!readShape(path, format, bridge, read, why)) {
-            error = bridge.cancelled() ? QStringLiteral("%1: import cancelled").arg(path)
-                                       : QStringLiteral("%1: %2").arg(path, why);
-            return std::nullopt;
+            return Error(bridge.cancelled() ? QStringLiteral("%1: import cancelled").arg(path)
+                                            : QStringLiteral("%1: %2").arg(path, why),
+                         path);
         }
         TopExp::MapShapes(read.shape, TopAbs_FACE, faces);
         origins = faceOrigins(read.names, read.format, faces);
@@ -355,14 +355,13 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             result.report.warnings << n;
         result.report.skipped << read.skipped;
     } catch (const Standard_Failure& e) {
-        error = QStringLiteral("%1: OpenCASCADE failed reading the file: %2 (%3)")
-                    .arg(path, occtMessageText(e.GetMessageString()),
-                         QString::fromLatin1(e.DynamicType()->Name()));
-        return std::nullopt;
+        return Error(QStringLiteral("%1: OpenCASCADE failed reading the file: %2 (%3)")
+                         .arg(path, occtMessageText(e.GetMessageString()),
+                              QString::fromLatin1(e.DynamicType()->Name())),
+                     path);
     }
     if (faces.IsEmpty()) {
-        error = QStringLiteral("%1: the file holds no faces to import").arg(path);
-        return std::nullopt;
+        return Error(QStringLiteral("%1: the file holds no faces to import").arg(path), path);
     }
 
     Scene& scene = result.scene;
@@ -373,8 +372,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         if (progress &&
             !progress(kTransferSteps + (kSteps - kTransferSteps) * (k - 1) / faces.Extent(),
                       kSteps)) {
-            error = QStringLiteral("%1: import cancelled").arg(path);
-            return std::nullopt;
+            return Error(QStringLiteral("%1: import cancelled").arg(path), path);
         }
         const TopoDS_Face& face = TopoDS::Face(faces(k));
         Surface surface;
@@ -394,9 +392,12 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
             std::uint32_t ids = scene.nextId + 1; // the surface id comes first
             // An edge range outside its curve sends the conversion's projections into a
             // minute of approximation: such a face is skipped before they see it.
-            why = occt::checkEdgeRanges(face).message();
-            ok = why.isEmpty() &&
-                 occt::convertFace(face, surface, ids, untrimmedInFile, why, warnings, &edges);
+            Status converted = occt::checkEdgeRanges(face);
+            if (converted)
+                converted =
+                    occt::convertFace(face, surface, ids, untrimmedInFile, warnings, &edges);
+            ok = bool(converted);
+            why = converted.message();
             if (ok) {
                 surface.id = SurfaceId{scene.nextId};
                 scene.nextId = ids;
@@ -425,11 +426,12 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
         ++result.report.facesImported;
     }
     if (scene.surfaces.empty()) {
-        error = QStringLiteral("%1: none of the %2 face(s) could be imported; first reason: %3")
-                    .arg(path)
-                    .arg(faces.Extent())
-                    .arg(result.report.skipped.value(0));
-        return std::nullopt;
+        return Error(
+            QStringLiteral("%1: none of the %2 face(s) could be imported; first reason: %3")
+                .arg(path)
+                .arg(faces.Extent())
+                .arg(result.report.skipped.value(0)),
+            path);
     }
     // Faces lying on one another: a defect of the file that shows as either face, pixel by
     // pixel, where both are drawn.
@@ -466,8 +468,9 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
                                                  "%1; the faces are kept as loose faces")
                                       .arg(QString::fromUtf8(e.GetMessageString()));
     }
-    if (after && !after(read.shape, faces, result, error))
-        return std::nullopt;
+    if (after)
+        if (Status done = after(read.shape, faces, result); !done)
+            return Error(std::move(done).error().message, path);
     if (progress)
         progress(kSteps, kSteps);
     return result;
@@ -477,11 +480,7 @@ std::optional<ImportResult> importShape(const QString& path, CadFormat format, Q
 
 Expected<ImportResult> importOcctFile(const QString& path, CadFormat format,
                                       const ImportProgress& progress) {
-    QString error;
-    std::optional<ImportResult> read = occt::importShape(path, format, error, progress, {});
-    if (!read)
-        return Error(error, path);
-    return std::move(*read);
+    return occt::importShape(path, format, progress, {});
 }
 
 } // namespace kw

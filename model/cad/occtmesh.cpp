@@ -101,24 +101,20 @@ double defaultLinearDeflection(const TopoDS_Shape& shape) {
     return 0.004 * std::max({x1 - x0, y1 - y0, z1 - z0});
 }
 
-bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
-               const ImportResult& imported, double linear, double angularDegrees,
-               TaggedMeshSet& out, QStringList& warnings, QString& error) {
-    if (!(linear > 0.0) || !(angularDegrees > 0.0)) {
-        error = QStringLiteral("the deflections must be positive (linear %1, angular %2 deg)")
-                    .arg(linear)
-                    .arg(angularDegrees);
-        return false;
-    }
+Status meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
+                 const ImportResult& imported, double linear, double angularDegrees,
+                 TaggedMeshSet& out, QStringList& warnings) {
+    if (!(linear > 0.0) || !(angularDegrees > 0.0))
+        return Error(QStringLiteral("the deflections must be positive (linear %1, angular %2 deg)")
+                         .arg(linear)
+                         .arg(angularDegrees));
     // As the viewers call it: absolute linear deflection, angular in radians, not in parallel
     // (one thread, as on the machine the table is measured on).
     BRepMesh_IncrementalMesh mesher(shape, linear, Standard_False, angularDegrees * M_PI / 180.0,
                                     Standard_False);
-    if (!mesher.IsDone()) {
-        error = QStringLiteral("BRepMesh_IncrementalMesh failed (status %1)")
-                    .arg(mesher.GetStatusFlags());
-        return false;
-    }
+    if (!mesher.IsDone())
+        return Error(QStringLiteral("BRepMesh_IncrementalMesh failed (status %1)")
+                         .arg(mesher.GetStatusFlags()));
     out = TaggedMeshSet{};
     out.linearDeflection = linear;
     out.angularDeflectionDegrees = angularDegrees;
@@ -136,46 +132,40 @@ bool meshFaces(const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& face
         m.sourceFace = index;
         out.faces.push_back(std::move(m));
     }
-    if (out.faces.empty()) {
-        error = QStringLiteral("BRepMesh made no triangles on any face");
-        return false;
-    }
-    return true;
+    if (out.faces.empty())
+        return Error(QStringLiteral("BRepMesh made no triangles on any face"));
+    return ok();
 }
 
-bool meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
-                    TaggedMeshSet& out, QString& error) {
+Status meshBuiltFaces(const Scene& scene, double tolerance, double linear, double angularDegrees,
+                      TaggedMeshSet& out) {
     out = TaggedMeshSet{};
     out.linearDeflection = linear;
     out.angularDeflectionDegrees = angularDegrees;
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
         const Surface& surface = scene.surfaces[k];
-        QString why;
-        const TopoDS_Face face = buildFace(surface, tolerance, why);
-        if (face.IsNull()) {
-            error = QStringLiteral("surface %1 (\"%2\"): %3")
-                        .arg(surface.id.value)
-                        .arg(surface.name, why);
-            return false;
-        }
+        const Expected<TopoDS_Face> built = buildFace(surface, tolerance);
+        if (!built)
+            return Error(QStringLiteral("surface %1 (\"%2\"): %3")
+                             .arg(surface.id.value)
+                             .arg(surface.name, built.message()));
+        const TopoDS_Face& face = *built;
         // One face alone, as a viewer re-meshes the face an edit changed: absolute linear
         // deflection, angular in radians, not in parallel.
         BRepMesh_IncrementalMesh mesher(face, linear, Standard_False, angularDegrees * M_PI / 180.0,
                                         Standard_False);
         TopLoc_Location loc;
         const Handle(Poly_Triangulation) tris = BRep_Tool::Triangulation(face, loc);
-        if (!mesher.IsDone() || tris.IsNull() || tris->NbTriangles() == 0) {
-            error = QStringLiteral("surface %1 (\"%2\"): BRepMesh made no triangles")
-                        .arg(surface.id.value)
-                        .arg(surface.name);
-            return false;
-        }
+        if (!mesher.IsDone() || tris.IsNull() || tris->NbTriangles() == 0)
+            return Error(QStringLiteral("surface %1 (\"%2\"): BRepMesh made no triangles")
+                             .arg(surface.id.value)
+                             .arg(surface.name));
         TaggedMesh m = taggedMesh(face, tris, loc);
         m.id = surface.id;
         m.sourceFace = int(k) + 1;
         out.faces.push_back(std::move(m));
     }
-    return true;
+    return ok();
 }
 
 } // namespace kw::occt
@@ -187,31 +177,24 @@ Expected<ImportResult> importAndMeshOcctFile(const QString& path, CadFormat form
                                              const MeshDeflection& deflection, TaggedMeshSet& mesh,
                                              const ImportProgress& progress) {
     const auto triangulate = [&](const TopoDS_Shape& shape, const TopTools_IndexedMapOfShape& faces,
-                                 ImportResult& result, QString& why) {
+                                 ImportResult& result) -> Status {
         try {
             OCC_CATCH_SIGNALS
-            QString fault;
             const double linear =
                 deflection.linear > 0.0 ? deflection.linear : occt::defaultLinearDeflection(shape);
-            if (!occt::meshFaces(shape, faces, result, linear, deflection.angularDegrees, mesh,
-                                 result.report.warnings, fault)) {
-                why = QStringLiteral("%1: cannot mesh: %2").arg(path, fault);
-                return false;
-            }
+            if (Status meshed =
+                    occt::meshFaces(shape, faces, result, linear, deflection.angularDegrees, mesh,
+                                    result.report.warnings);
+                !meshed)
+                return Error(QStringLiteral("%1: cannot mesh: %2").arg(path, meshed.message()));
         } catch (const Standard_Failure& e) {
-            why = QStringLiteral("%1: OpenCASCADE failed meshing the shape: %2 (%3)")
-                      .arg(path, QString::fromUtf8(e.GetMessageString()),
-                           QString::fromLatin1(e.DynamicType()->Name()));
-            return false;
+            return Error(QStringLiteral("%1: OpenCASCADE failed meshing the shape: %2 (%3)")
+                             .arg(path, QString::fromUtf8(e.GetMessageString()),
+                                  QString::fromLatin1(e.DynamicType()->Name())));
         }
-        return true;
+        return ok();
     };
-    QString error;
-    std::optional<ImportResult> read =
-        occt::importShape(path, format, error, progress, triangulate);
-    if (!read)
-        return Error(error, path);
-    return std::move(*read);
+    return occt::importShape(path, format, progress, triangulate);
 }
 
 } // namespace kw

@@ -125,7 +125,7 @@ class Builder {
 public:
     Builder(const Scene& scene, double tolerance) : scene_(scene), tolerance_(tolerance) {}
 
-    bool run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& out, QString& why);
+    Status run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& out);
 
 private:
     // The junction ids of a loop (one per curve), made on first use.
@@ -141,8 +141,8 @@ private:
         return scene_.surfaces[size_t(p.surface)].trims[size_t(p.loop)].curves[size_t(p.curve)];
     }
     bool makeVertices();
-    bool makeSharedEdge(Shared& s, QString& why);
-    bool makeFace(int index, TopoDS_Face& face, QString& why);
+    Status makeSharedEdge(Shared& s);
+    Status makeFace(int index, TopoDS_Face& face);
 
     const Scene& scene_;
     double tolerance_;
@@ -189,14 +189,16 @@ bool Builder::makeVertices() {
     return true;
 }
 
-bool Builder::makeSharedEdge(Shared& s, QString& why) {
+Status Builder::makeSharedEdge(Shared& s) {
     // The edge runs as the first side's curve does when that side is not reversed.
     Handle(Geom2d_BSplineCurve) c[2];
     for (int k = 0; k < 2; ++k) {
         const NurbsCurve2& stored = curve(s.side[k]);
-        c[k] = makeGeomCurve(s.reversed[k] ? trimCurveReversed(stored) : stored, why);
-        if (c[k].IsNull())
-            return false;
+        Expected<Handle(Geom2d_BSplineCurve)> made =
+            makeGeomCurve(s.reversed[k] ? trimCurveReversed(stored) : stored);
+        if (!made)
+            return made.error();
+        c[k] = *made;
     }
     const double t0 = c[0]->FirstParameter(), t1 = c[0]->LastParameter();
     reparameterise(c[1], t0, t1);
@@ -217,10 +219,8 @@ bool Builder::makeSharedEdge(Shared& s, QString& why) {
             !s.reversed[0] == (directions_[size_t(a.surface)][size_t(a.loop)] > 0);
         const bool forwardZ =
             !s.reversed[1] == (directions_[size_t(z.surface)][size_t(z.loop)] > 0);
-        if (forwardA == forwardZ) {
-            why = QStringLiteral("a seam used the same way by both of its sides");
-            return false;
-        }
+        if (forwardA == forwardZ)
+            return Error(QStringLiteral("a seam used the same way by both of its sides"));
         b_.UpdateEdge(e, forwardA ? c[0] : c[1], forwardA ? c[1] : c[0], geoms_[size_t(a.surface)],
                       TopLoc_Location(), tol);
     } else {
@@ -241,10 +241,10 @@ bool Builder::makeSharedEdge(Shared& s, QString& why) {
     b_.SameParameter(e, Standard_False);
     b_.SameRange(e, Standard_False);
     BRepLib::SameParameter(e, tol);
-    return true;
+    return ok();
 }
 
-bool Builder::makeFace(int index, TopoDS_Face& face, QString& why) {
+Status Builder::makeFace(int index, TopoDS_Face& face) {
     const Surface& surface = scene_.surfaces[size_t(index)];
     const Handle(Geom_BSplineSurface)& geom = geoms_[size_t(index)];
     const std::vector<int>& dirs = directions_[size_t(index)];
@@ -274,10 +274,11 @@ bool Builder::makeFace(int index, TopoDS_Face& face, QString& why) {
                 continue;
             }
             const NurbsCurve2& stored = curve(p);
-            Handle(Geom2d_BSplineCurve) c =
-                makeGeomCurve(flip ? trimCurveReversed(stored) : stored, why);
-            if (c.IsNull())
-                return false;
+            const Expected<Handle(Geom2d_BSplineCurve)> made =
+                makeGeomCurve(flip ? trimCurveReversed(stored) : stored);
+            if (!made)
+                return made.error();
+            const Handle(Geom2d_BSplineCurve)& c = *made;
             const double t0 = c->FirstParameter(), t1 = c->LastParameter();
             TopoDS_Edge e;
             b_.MakeEdge(e);
@@ -307,25 +308,21 @@ bool Builder::makeFace(int index, TopoDS_Face& face, QString& why) {
         wire.Closed(Standard_True);
         b_.Add(face, wire);
     }
-    if (!decided) {
-        why = QStringLiteral("surface '%1' has no trim loop to build its recorded edges on")
-                  .arg(surface.name);
-        return false;
-    }
+    if (!decided)
+        return Error(QStringLiteral("surface '%1' has no trim loop to build its recorded edges on")
+                         .arg(surface.name));
     BRepLib::UpdateTolerances(face);
-    if (!BRepCheck_Analyzer(face).IsValid()) {
-        why = QStringLiteral("face '%1' built with its shared edges is invalid (BRepCheck)")
-                  .arg(surface.name);
-        return false;
-    }
+    if (!BRepCheck_Analyzer(face).IsValid())
+        return Error(QStringLiteral("face '%1' built with its shared edges is invalid (BRepCheck)")
+                         .arg(surface.name));
     // Wires run counter-clockwise around the material on a FORWARD face; where the loops had to
     // be turned for that, the source's face was reversed, and so is this one.
     if (flippedOuter)
         face.Reverse();
-    return true;
+    return ok();
 }
 
-bool Builder::run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& out, QString& why) {
+Status Builder::run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& out) {
     const int n = int(scene_.surfaces.size());
     std::unordered_map<std::uint32_t, int> index;
     for (int k = 0; k < n; ++k)
@@ -345,11 +342,11 @@ bool Builder::run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& ou
         if (!covered[size_t(k)])
             continue;
         const Surface& s = scene_.surfaces[size_t(k)];
-        geoms_[size_t(k)] = makeGeomSurface(s.geometry, why);
-        if (geoms_[size_t(k)].IsNull()) {
-            why = QStringLiteral("surface '%1' cannot be written: %2").arg(s.name, why);
-            return false;
-        }
+        const Expected<Handle(Geom_BSplineSurface)> made = makeGeomSurface(s.geometry);
+        if (!made)
+            return Error(
+                QStringLiteral("surface '%1' cannot be written: %2").arg(s.name, made.message()));
+        geoms_[size_t(k)] = *made;
         directions_[size_t(k)] = loopDirections(s);
         for (size_t l = 0; l < s.trims.size(); ++l)
             if (directions_[size_t(k)][l] != 0)
@@ -400,15 +397,16 @@ bool Builder::run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& ou
         OCC_CATCH_SIGNALS
         makeVertices();
         for (Shared& s : shared_)
-            if (!makeSharedEdge(s, why))
-                return false;
+            if (Status made = makeSharedEdge(s); !made)
+                return made;
         out.faces.assign(size_t(n), TopoDS_Face());
         for (int k = 0; k < n; ++k)
-            if (covered[size_t(k)] && !makeFace(k, out.faces[size_t(k)], why))
-                return false;
+            if (covered[size_t(k)])
+                if (Status made = makeFace(k, out.faces[size_t(k)]); !made)
+                    return made;
     } catch (const Standard_Failure& e) {
-        why = QStringLiteral("OpenCASCADE failed building the shared edges: %1").arg(failure(e));
-        return false;
+        return Error(
+            QStringLiteral("OpenCASCADE failed building the shared edges: %1").arg(failure(e)));
     }
     out.sharedEdges = int(shared_.size());
     out.shells.clear();
@@ -420,16 +418,16 @@ bool Builder::run(const std::vector<std::uint32_t>& openEdges, RecordedFaces& ou
         out.shells.push_back(std::move(faces));
     }
     orientShells(out.faces, out.shells);
-    return true;
+    return ok();
 }
 
 } // namespace
 
-bool buildRecordedFaces(const Scene& scene, const std::vector<std::uint32_t>& openEdges,
-                        double tolerance, RecordedFaces& out, QString& why) {
+Status buildRecordedFaces(const Scene& scene, const std::vector<std::uint32_t>& openEdges,
+                          double tolerance, RecordedFaces& out) {
     std::vector<std::uint32_t> open = openEdges;
     std::sort(open.begin(), open.end());
-    return Builder(scene, tolerance).run(open, out, why);
+    return Builder(scene, tolerance).run(open, out);
 }
 
 } // namespace kw::occt

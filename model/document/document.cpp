@@ -384,7 +384,7 @@ bool Document::setWeight(SurfaceId id, int index, double weight) {
 
 bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
     Surface* s = mutableSurface(id);
-    if (!s || !surfaceValidationError(geometry).empty())
+    if (!s || !checkNurbsSurface(geometry))
         return false;
     const NurbsSurface& old = s->geometry;
     Aspects aspects;

@@ -443,8 +443,8 @@ Expected<MatchResult> matchSurface(const Scene& scene, const MatchRequest& reque
     if (!matched)
         return fail(why);
     result.geometry = turned(*matched, request.edge, Turn::Back);
-    if (const std::string bad = surfaceValidationError(result.geometry); !bad.empty())
-        return fail(QString::fromStdString(bad));
+    if (const Status valid = checkNurbsSurface(result.geometry); !valid)
+        return fail(valid.message());
     // The kernel's measure of the edge as matched.
     Scene after = scene;
     for (Surface& s : after.surfaces)

@@ -132,14 +132,14 @@ static QString trimLoopReason(const TrimLoop& loop) {
             .arg(loop.curves.size())
             .arg(kMaxLoopCurves);
     for (size_t i = 0; i < loop.curves.size(); ++i) {
-        std::string e = curveValidationError(loop.curves[i]);
-        if (e.empty() && loop.curves[i].points.size() > size_t(kMaxCurvePoints))
-            e = "more than " + std::to_string(kMaxCurvePoints) + " control points";
-        if (!e.empty())
+        QString e = checkNurbsCurve(loop.curves[i]).message();
+        if (e.isEmpty() && loop.curves[i].points.size() > size_t(kMaxCurvePoints))
+            e = QStringLiteral("more than %1 control points").arg(kMaxCurvePoints);
+        if (!e.isEmpty())
             return QStringLiteral("trim loop %1, curve %2: %3")
                 .arg(loop.id.value)
                 .arg(i + 1)
-                .arg(QString::fromStdString(e));
+                .arg(e);
     }
     glm::dvec2 start, end;
     if (const int k = trimLoopOpenAt(loop, &start, &end); k >= 0)
@@ -158,9 +158,9 @@ static QString surfaceReason(const Surface& s) {
     if (!s.id.isValid())
         return QStringLiteral("surface has no id");
     const QString who = QStringLiteral("surface %1").arg(s.id.value);
-    const std::string g = surfaceValidationError(s.geometry);
-    if (!g.empty())
-        return who + QStringLiteral(": ") + QString::fromStdString(g);
+    const Status geometry = checkNurbsSurface(s.geometry);
+    if (!geometry)
+        return who + QStringLiteral(": ") + geometry.message();
     QString e;
     if ((long long)s.geometry.countU * s.geometry.countV > kMaxControlPoints)
         e = QStringLiteral("%1 x %2 control points, more than the limit %3")
@@ -172,8 +172,8 @@ static QString surfaceReason(const Surface& s) {
     if (e.isEmpty())
         e = materialReason(s.material);
     if (e.isEmpty())
-        if (const std::string a = analyticFormError(s.analytic, s.geometry); !a.empty())
-            e = QStringLiteral("analytic form: ") + QString::fromStdString(a);
+        if (const Status a = checkAnalyticForm(s.analytic, s.geometry); !a)
+            e = QStringLiteral("analytic form: ") + a.message();
     if (e.isEmpty() && s.solid < -1)
         e = QStringLiteral("solid number %1 is negative").arg(s.solid);
     if (e.isEmpty() && s.trims.size() > size_t(kMaxTrimLoops))

@@ -48,12 +48,12 @@ double trimLoopClosureTolerance(const TrimLoop& loop);
 /// the last curve), with both points; -1 when the loop is closed. Precondition: valid curves.
 int trimLoopOpenAt(const TrimLoop& loop, glm::dvec2* start = nullptr, glm::dvec2* end = nullptr);
 
-/// A valid id; 1..kMaxLoopCurves curves, each valid (kw::curveValidationError) with at most
+/// A valid id; 1..kMaxLoopCurves curves, each valid (kw::checkNurbsCurve) with at most
 /// kMaxCurvePoints control points; the loop closed (trimLoopOpenAt).
 Status checkTrimLoop(const TrimLoop& loop);
-/// A valid id, geometry valid (kw::surfaceValidationError) with at most kMaxControlPoints,
+/// A valid id, geometry valid (kw::checkNurbsSurface) with at most kMaxControlPoints,
 /// partitions in range, material valid, its analytic form valid for its NURBS
-/// (kw::analyticFormError; whether the form matches the NURBS is the .knot reader's check), at
+/// (kw::checkAnalyticForm; whether the form matches the NURBS is the .knot reader's check), at
 /// most kMaxTrimLoops loops, every trim loop valid and loop ids unique within the surface. Ids
 /// against other surfaces are the scene's business.
 Status checkSurface(const Surface& surface);

@@ -213,7 +213,7 @@ private:
 };
 
 // Element-wise checks first so the error points at the offending knot; the kernel's
-// knotVectorError then covers whatever else makes the vector unusable (e.g. an empty domain).
+// checkKnotVector then covers whatever else makes the vector unusable (e.g. an empty domain).
 std::vector<double> readKnots(const QJsonValue& v, const QString& path, int degree, int count,
                               const QString& countName, const QString& degreeName) {
     const qsizetype expected = qsizetype(count) + degree + 1;
@@ -240,9 +240,9 @@ std::vector<double> readKnots(const QJsonValue& v, const QString& path, int degr
                                        .arg(degreeName)
                                        .arg(degree + 1));
     }
-    const std::string why = knotVectorError(knots, degree, count);
-    if (!why.empty())
-        fail(path, QString::fromStdString(why));
+    const Status valid = checkKnotVector(knots, degree, count);
+    if (!valid)
+        fail(path, valid.message());
     return knots;
 }
 
@@ -276,9 +276,9 @@ NurbsCurve2 readCurve(const QJsonObject& o, const QString& path) {
     c.knots = readKnots(required(o, path, "knots"), member(path, "knots"), c.degree, n,
                         QStringLiteral("points"), QStringLiteral("degree"));
     c.weights = readWeights(required(o, path, "weights"), member(path, "weights"), n);
-    const std::string why = curveValidationError(c);
-    if (!why.empty())
-        fail(path, QString::fromStdString(why));
+    const Status valid = checkNurbsCurve(c);
+    if (!valid)
+        fail(path, valid.message());
     return c;
 }
 
@@ -378,7 +378,7 @@ AnalyticParamMap readMap(const QJsonObject& o, const QString& path) {
     return m;
 }
 
-// The closed form of an imported face (1.5): its members, then the rules of analyticFormError,
+// The closed form of an imported face (1.5): its members, then the rules of checkAnalyticForm,
 // then that it describes this surface's NURBS (a form left from before an edit of the points
 // would draw another surface than the one saved).
 AnalyticForm readAnalytic(const QJsonObject& o, const QString& path, const NurbsSurface& g) {
@@ -413,8 +413,8 @@ AnalyticForm readAnalytic(const QJsonObject& o, const QString& path, const Nurbs
                  QStringLiteral("expected true or false, found ") + describe(v));
         f.swapped = v.toBool();
     }
-    if (const std::string why = analyticFormError(f, g); !why.empty())
-        fail(path, QString::fromStdString(why));
+    if (const Status valid = checkAnalyticForm(f, g); !valid)
+        fail(path, valid.message());
     const double off = analyticDeviation(f, g), limit = analyticMatchLimit(g);
     if (!(off <= limit))
         fail(path, QStringLiteral("the form lies %1 from the surface's NURBS, more than %2 "
@@ -428,9 +428,9 @@ Surface readSurface(const QJsonObject& o, const QString& path, IdRegistry& ids) 
     s.id = SurfaceId{ids.take(required(o, path, "id"), member(path, "id"))};
     s.name = asString(required(o, path, "name"), member(path, "name"));
     readNet(o, path, s.geometry);
-    const std::string why = surfaceValidationError(s.geometry);
-    if (!why.empty())
-        fail(path, QString::fromStdString(why));
+    const Status valid = checkNurbsSurface(s.geometry);
+    if (!valid)
+        fail(path, valid.message());
 
     if (o.contains(QLatin1String("trims"))) {
         const QString trimsPath = member(path, "trims");

@@ -544,9 +544,9 @@ void ObjParser::finishCurve2() {
         fail(m_el.line, QStringLiteral("Bezier curv2 with %1 control points does not match its "
                                        "parm u")
                             .arg(c.points.size()));
-    const std::string why = curveValidationError(c);
-    if (!why.empty())
-        fail(m_el.line, QStringLiteral("invalid curv2: %1").arg(QString::fromStdString(why)));
+    const Status valid = checkNurbsCurve(c);
+    if (!valid)
+        fail(m_el.line, QStringLiteral("invalid curv2: %1").arg(valid.message()));
     m_curv2.push_back(c);
 }
 
@@ -590,9 +590,9 @@ void ObjParser::finishSurface() {
         g.points.emplace_back(m_v[i]);
         g.weights.push_back(m_el.rational ? m_v[i].w : 1.0);
     }
-    const std::string why = surfaceValidationError(g);
-    if (!why.empty())
-        fail(m_el.line, QStringLiteral("invalid surface: %1").arg(QString::fromStdString(why)));
+    const Status valid = checkNurbsSurface(g);
+    if (!valid)
+        fail(m_el.line, QStringLiteral("invalid surface: %1").arg(valid.message()));
     // The surf range s0 s1 t0 t1 selects part of the knot domain: cut the surface to it.
     const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
     const double* r = m_el.range;

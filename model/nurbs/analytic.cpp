@@ -224,7 +224,10 @@ std::optional<AnalyticForm::Kind> analyticKindNamed(const std::string& name) {
     return std::nullopt;
 }
 
-std::string analyticFormError(const AnalyticForm& f, const NurbsSurface& geometry) {
+namespace {
+
+/// checkAnalyticForm's rules, the reason as plain text.
+std::string analyticFormProblem(const AnalyticForm& f, const NurbsSurface& geometry) {
     if (f.kind == Kind::None)
         return {};
     if (!finite(f.origin) || !finite(f.xAxis) || !finite(f.yAxis) || !finite(f.zAxis))
@@ -263,7 +266,7 @@ std::string analyticFormError(const AnalyticForm& f, const NurbsSurface& geometr
         if (m->kind != AnalyticParamMap::Kind::HalfAngle)
             continue;
         const bool alongU = m == &f.u;
-        if (surfaceValidationError(geometry).empty()) {
+        if (checkNurbsSurface(geometry).has_value()) {
             if ((alongU ? geometry.degreeU : geometry.degreeV) != 2)
                 return "a half-angle map needs a direction of degree 2";
             const std::vector<double> k =
@@ -274,6 +277,14 @@ std::string analyticFormError(const AnalyticForm& f, const NurbsSurface& geometr
         }
     }
     return {};
+}
+
+} // namespace
+
+Status checkAnalyticForm(const AnalyticForm& f, const NurbsSurface& geometry) {
+    if (const std::string why = analyticFormProblem(f, geometry); !why.empty())
+        return Error(QString::fromStdString(why));
+    return ok();
 }
 
 glm::dvec3 analyticPoint(const AnalyticForm& f, double a, double b) {
@@ -443,7 +454,7 @@ AnalyticRayHits analyticRayHits(const AnalyticForm& f, const glm::dvec3& origin,
 }
 
 double analyticDeviation(const AnalyticForm& f, const NurbsSurface& g, int samples) {
-    if (f.kind == Kind::None || !surfaceValidationError(g).empty() || samples < 1)
+    if (f.kind == Kind::None || !checkNurbsSurface(g) || samples < 1)
         return std::numeric_limits<double>::infinity();
     const Interval du = surfaceDomainU(g), dv = surfaceDomainV(g);
     std::vector<double> us, vs;

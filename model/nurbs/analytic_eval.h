@@ -12,7 +12,7 @@
 
 namespace kw {
 
-// `form` must be valid (analyticFormError empty) and not Kind::None unless stated. The maps:
+// `form` must be valid (checkAnalyticForm passes) and not Kind::None unless stated. The maps:
 // the map named `u` always takes the NURBS's u (when `swapped`, it gives b, and `v` gives a).
 
 /// "none", "plane", "cylinder", "cone", "sphere" or "torus" (the .knot file's and the JSON's
@@ -20,12 +20,12 @@ namespace kw {
 const char* analyticKindName(AnalyticForm::Kind kind);
 std::optional<AnalyticForm::Kind> analyticKindNamed(const std::string& name);
 
-/// Why `form` cannot be used, or empty: a frame of finite, unit (1e-9), mutually orthogonal
+/// Why `form` cannot be used, or ok(): a frame of finite, unit (1e-9), mutually orthogonal
 /// (1e-9) axes; finite values; radius > 0 (cylinder, sphere, torus; cone: >= 0);
 /// 0 < minorRadius (torus); |semiAngle| in (0, pi/2) (cone); map scales finite and non-zero.
 /// Kind::None is always valid. `geometry` checks the maps against the NURBS: a HalfAngle map
 /// needs a degree 2 direction whose spans each turn by less than pi.
-std::string analyticFormError(const AnalyticForm& form, const NurbsSurface& geometry);
+Status checkAnalyticForm(const AnalyticForm& form, const NurbsSurface& geometry);
 
 /// The distinct knots of a clamped direction's domain [knots[p], knots[n]], ascending: the
 /// span ends the parameter maps work between.

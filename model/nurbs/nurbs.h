@@ -2,8 +2,9 @@
 // ed.).
 #pragma once
 
+#include "model/error.h"
+
 #include <glm/glm.hpp>
-#include <string>
 #include <vector>
 
 namespace kw {
@@ -45,17 +46,18 @@ struct Interval {
     bool operator==(const Interval&) const = default;
 };
 
-// ---- Validation: each returns an empty string when valid, else the reason in plain English.
+// ---- Validation: each returns ok() when valid, else an Error whose message is the reason in
+// plain English.
 
 /// Degree in [1, kMaxDegree], knots.size() == count + degree + 1, finite non-decreasing knots,
 /// interior multiplicity <= degree + 1 (ends too), and a non-empty domain.
-std::string knotVectorError(const std::vector<double>& knots, int degree, int count);
+Status checkKnotVector(const std::vector<double>& knots, int degree, int count);
 /// Knot vectors as above; points and weights sized countU*countV; coordinates finite; weights
 /// finite and > 0.
-std::string surfaceValidationError(const NurbsSurface& s);
-std::string curveValidationError(const NurbsCurve2& c);
+Status checkNurbsSurface(const NurbsSurface& s);
+Status checkNurbsCurve(const NurbsCurve2& c);
 
-// ---- Basis functions. Preconditions: a valid knot vector for `degree` (see knotVectorError).
+// ---- Basis functions. Preconditions: a valid knot vector for `degree` (see checkKnotVector).
 
 /// A2.1: the knot span index k with knots[k] <= u < knots[k+1], clamped to the valid range
 /// [degree, n] so that u == last knot maps to the last non-empty span.

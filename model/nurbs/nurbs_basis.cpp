@@ -15,7 +15,7 @@ double grevilleAbscissa(const std::vector<double>& knots, int degree, int i) {
 
 Interval knotDomain(const std::vector<double>& knots, int degree) {
     // Domain [u_p, u_{m-p}] with m = knots.size() - 1. A knot vector too short for the degree
-    // (invalid, see knotVectorError) yields its own first and last knot, or [0, 0] if empty.
+    // (invalid, see checkKnotVector) yields its own first and last knot, or [0, 0] if empty.
     if (knots.empty())
         return {0.0, 0.0};
     const size_t m = knots.size() - 1;

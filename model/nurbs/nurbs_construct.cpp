@@ -124,20 +124,19 @@ bool removeOnce(const Line& pw, const std::vector<double>& U, int p, int r, int 
 
 } // namespace
 
-std::string curve3ValidationError(const NurbsCurve3& c) {
-    std::string e = knotVectorError(c.knots, c.degree, int(c.points.size()));
-    if (!e.empty())
-        return e;
+Status checkNurbsCurve3(const NurbsCurve3& c) {
+    if (Status knots = checkKnotVector(c.knots, c.degree, int(c.points.size())); !knots)
+        return knots;
     if (c.weights.size() != c.points.size())
-        return "weights and points differ in count";
+        return Error("weights and points differ in count");
     for (size_t i = 0; i < c.points.size(); ++i) {
         const glm::dvec3& p = c.points[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            return "control point " + std::to_string(i) + " is not finite";
+            return Error(QStringLiteral("control point %1 is not finite").arg(i));
         if (!(c.weights[i] > 0.0) || !std::isfinite(c.weights[i]))
-            return "weight " + std::to_string(i) + " is not a finite positive number";
+            return Error(QStringLiteral("weight %1 is not a finite positive number").arg(i));
     }
-    return {};
+    return ok();
 }
 
 glm::dvec3 curve3Point(const NurbsCurve3& c, double t) {
@@ -226,9 +225,8 @@ Expected<NurbsSurface> makeLoft(std::vector<NurbsCurve3> sections, int maxDegree
     int P = 1;
     for (int k = 0; k < K; ++k) {
         NurbsCurve3& c = sections[size_t(k)];
-        const std::string e = curve3ValidationError(c);
-        if (!e.empty())
-            return fail("curve " + std::to_string(k + 1) + ": " + e);
+        if (const Status valid = checkNurbsCurve3(c); !valid)
+            return Error(QStringLiteral("curve %1: %2").arg(k + 1).arg(valid.message()));
         const Interval d = knotDomain(c.knots, c.degree);
         for (double& x : c.knots)
             x = (x - d.first) / (d.last - d.first);
@@ -350,9 +348,8 @@ Expected<NurbsSurface> makeLoft(std::vector<NurbsCurve3> sections, int maxDegree
             s.weights[size_t(s.index(i, j))] = pw.w;
         }
     }
-    const std::string e = surfaceValidationError(s);
-    if (!e.empty())
-        return fail("the loft is invalid: " + e);
+    if (const Status valid = checkNurbsSurface(s); !valid)
+        return Error(QStringLiteral("the loft is invalid: %1").arg(valid.message()));
     if (sectionParameters)
         *sectionParameters = v;
     return s;
@@ -460,7 +457,7 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
                                 int* removed) {
     if (removed)
         *removed = 0;
-    if (!(tolerance >= 0.0) || !surfaceValidationError(s).empty())
+    if (!(tolerance >= 0.0) || !checkNurbsSurface(s))
         return s;
     // Eq. 5.30: a homogeneous deviation below tol * wmin / (1 + |P|max) keeps the rational
     // surface within tol. The net is lifted about the centre c of its bounds, (w (P - c), w):
@@ -534,7 +531,7 @@ NurbsSurface surfaceRemoveKnots(const NurbsSurface& s, bool alongU, double toler
             out.points[idx] = c + glm::dvec3(pw) / pw.w;
             out.weights[idx] = pw.w;
         }
-    if (!surfaceValidationError(out).empty() || !(out.weights == out.weights))
+    if (!checkNurbsSurface(out) || !(out.weights == out.weights))
         return s;
     for (double w : out.weights)
         if (!(w > 0.0))

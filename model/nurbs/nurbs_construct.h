@@ -22,8 +22,8 @@ struct NurbsCurve3 {
     bool operator==(const NurbsCurve3&) const = default;
 };
 
-/// Empty when valid, else the reason (knotVectorError, finite points, weights > 0).
-std::string curve3ValidationError(const NurbsCurve3& c);
+/// ok() when valid, else the reason (checkKnotVector, finite points, weights > 0).
+Status checkNurbsCurve3(const NurbsCurve3& c);
 /// A3.2/A4.1 on homogeneous points; t is clamped to the domain. Precondition: a valid curve.
 glm::dvec3 curve3Point(const NurbsCurve3& c, double t);
 

@@ -9,7 +9,7 @@
 namespace kw::detail {
 
 /// O(1) consistency check that makes indexing safe (degrees, counts and array sizes agree).
-/// It does not look at values; surfaceValidationError does. Evaluation of a surface that fails
+/// It does not look at values; checkNurbsSurface does. Evaluation of a surface that fails
 /// it returns zeros instead of reading out of bounds.
 inline bool shapeOk(const NurbsSurface& s) {
     if (s.degreeU < 1 || s.degreeU > kMaxDegree || s.degreeV < 1 || s.degreeV > kMaxDegree)

@@ -317,10 +317,10 @@ void elevate(Lines& ls, int t) {
     ls = std::move(result);
 }
 
-/// Contract (beyond nurbs.h): an invalid surface (surfaceValidationError) or times <= 0 also
+/// Contract (beyond nurbs.h): an invalid surface (checkNurbsSurface) or times <= 0 also
 /// returns the input unchanged.
 NurbsSurface insertKnot(const NurbsSurface& s, double u, int times, bool alongU) {
-    if (times <= 0 || !surfaceValidationError(s).empty())
+    if (times <= 0 || !checkNurbsSurface(s))
         return s;
     const int p = alongU ? s.degreeU : s.degreeV;
     const std::vector<double>& knots = alongU ? s.knotsU : s.knotsV;
@@ -338,7 +338,7 @@ NurbsSurface insertKnot(const NurbsSurface& s, double u, int times, bool alongU)
 /// Contract (beyond nurbs.h): an invalid surface or t <= 0 also returns the input unchanged.
 /// An unclamped knot vector comes back clamped at the domain ends (same surface, same domain).
 NurbsSurface elevateDegree(const NurbsSurface& s, int t, bool alongU) {
-    if (t <= 0 || !surfaceValidationError(s).empty())
+    if (t <= 0 || !checkNurbsSurface(s))
         return s;
     const int p = alongU ? s.degreeU : s.degreeV;
     if (t > kMaxDegree - p) // written so that a huge t cannot overflow

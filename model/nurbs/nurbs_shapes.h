@@ -10,7 +10,7 @@ namespace kw {
 // profile in v. The axis is parallel to +z. u runs counter-clockwise seen from +z, v runs
 // along the profile so that Su x Sv points outward. Domains are [0, 1] x [0, 1].
 // Contract: lengths should be finite and > 0; other values still give a well-formed surface
-// (degenerate or inside-out), and non-finite input is reported by surfaceValidationError.
+// (degenerate or inside-out), and non-finite input is reported by checkNurbsSurface.
 
 /// Sphere: u around the axis (9 x), v from the south pole (v = 0) to the north pole (v = 1)
 /// along a 5-point half circle, so the v = 0 and v = 1 edges collapse to the poles.

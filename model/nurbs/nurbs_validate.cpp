@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace kw {
@@ -81,13 +82,7 @@ std::string text(const glm::dvec2& p) {
     return "(" + num(p.x) + ", " + num(p.y) + ")";
 }
 
-} // namespace
-
-std::string knotVectorError(const std::vector<double>& knots, int degree, int count) {
-    return knotError(knots, degree, count, "");
-}
-
-std::string surfaceValidationError(const NurbsSurface& s) {
+std::string surfaceProblem(const NurbsSurface& s) {
     if (std::string e = knotError(s.knotsU, s.degreeU, s.countU, "U"); !e.empty())
         return e;
     if (std::string e = knotError(s.knotsV, s.degreeV, s.countV, "V"); !e.empty())
@@ -119,7 +114,7 @@ std::string surfaceValidationError(const NurbsSurface& s) {
     return {};
 }
 
-std::string curveValidationError(const NurbsCurve2& c) {
+std::string curveProblem(const NurbsCurve2& c) {
     if (c.points.size() > size_t(INT32_MAX))
         return "curve has too many control points";
     const int count = int(c.points.size());
@@ -139,6 +134,28 @@ std::string curveValidationError(const NurbsCurve2& c) {
                    ", must be finite and > 0";
     }
     return {};
+}
+
+/// The reason as the kernel's result: the messages are built as std::string by the checks
+/// above (std::to_chars gives the shortest text that reads back as the same double).
+Status reasonStatus(const std::string& why) {
+    if (why.empty())
+        return ok();
+    return Error(QString::fromStdString(why));
+}
+
+} // namespace
+
+Status checkKnotVector(const std::vector<double>& knots, int degree, int count) {
+    return reasonStatus(knotError(knots, degree, count, ""));
+}
+
+Status checkNurbsSurface(const NurbsSurface& s) {
+    return reasonStatus(surfaceProblem(s));
+}
+
+Status checkNurbsCurve(const NurbsCurve2& c) {
+    return reasonStatus(curveProblem(c));
 }
 
 } // namespace kw

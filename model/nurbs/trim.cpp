@@ -203,7 +203,7 @@ QStringList closeSceneTrimLoops(Scene& scene) {
         for (TrimLoop& loop : s.trims) {
             const bool valid =
                 std::all_of(loop.curves.begin(), loop.curves.end(),
-                            [](const NurbsCurve2& c) { return curveValidationError(c).empty(); });
+                            [](const NurbsCurve2& c) { return checkNurbsCurve(c).has_value(); });
             if (!valid)
                 continue;
             std::vector<int> newIndex;
@@ -316,11 +316,11 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
         glm::dvec2 lastEnd{0.0};
         for (size_t c = 0; c < loop.curves.size(); ++c) {
             const NurbsCurve2& curve = loop.curves[c];
-            if (const std::string e = curveValidationError(curve); !e.empty()) {
+            if (const Status e = checkNurbsCurve(curve); !e) {
                 warn(QStringLiteral("%1: curve %2 is invalid (%3); left out")
                          .arg(name)
                          .arg(c + 1)
-                         .arg(QString::fromStdString(e)));
+                         .arg(e.message()));
                 continue;
             }
             const std::vector<glm::dvec2> pts = tessellateTrimCurve(curve, tolerance);

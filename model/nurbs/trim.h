@@ -25,7 +25,7 @@ NurbsCurve2 trimCurveReversed(const NurbsCurve2& curve);
 /// midpoint of each chord is within `tolerance` (in parameter units) of the curve, or the
 /// depth limit is reached. The depth limit (at most 18) shrinks with the number of knot spans
 /// so that a curve gives at most max(2^14, 4 x spans) + 1 points, whatever its scale. Returns the
-/// points from start to end inclusive. Precondition: a valid curve (curveValidationError empty)
+/// points from start to end inclusive. Precondition: a valid curve (checkNurbsCurve passes)
 /// and tolerance > 0.
 std::vector<glm::dvec2> tessellateTrimCurve(const NurbsCurve2& curve, double tolerance);
 
@@ -43,7 +43,7 @@ struct TrimRegion {
 
 /// Flattens every loop of `trims`; tolerance as in tessellateTrimLoop. Messy input is made
 /// usable and, when `warnings` is given, reported there (one line per problem, naming the loop):
-/// - a curve that is not valid (curveValidationError) is left out of its loop;
+/// - a curve that is not valid (checkNurbsCurve) is left out of its loop;
 /// - a gap wider than `tolerance` between consecutive curves, or between the last curve's end
 ///   and the first curve's start, is bridged by a straight segment (the polygon is closed);
 /// - a loop that flattens to fewer than 3 distinct points or encloses no area (|signed area|
@@ -60,13 +60,13 @@ TrimRegion makeTrimRegion(const std::vector<TrimLoop>& trims, double tolerance,
 /// ("gap of G before curve K snapped" / "... bridged by a straight segment"), empty when the
 /// loop was already closed. `newIndex`, when given, gets the index each curve has after the
 /// bridges were inserted (curve k is now curve (*newIndex)[k]). Precondition: every curve valid
-/// (curveValidationError).
+/// (checkNurbsCurve).
 QStringList closeTrimLoop(TrimLoop& loop, double snap, std::vector<int>* newIndex = nullptr);
 
 /// closeTrimLoop for every loop of `scene` at trimTolerance of its surface (the topology's sides
 /// renumbered with the curves they name), as an import ends
 /// (CAD and OBJ readers): returns one line per gap closed, "surface 'NAME', trim loop ID:
-/// <closeTrimLoop's line>". A loop with an invalid curve (curveValidationError) is left as it
+/// <closeTrimLoop's line>". A loop with an invalid curve (checkNurbsCurve) is left as it
 /// is, for kw::checkScene to name.
 QStringList closeSceneTrimLoops(Scene& scene);
 

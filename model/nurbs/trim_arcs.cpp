@@ -228,7 +228,7 @@ TrimArcs makeTrimArcs(const std::vector<TrimLoop>& trims, double tolerance, QStr
             continue;
         std::vector<TrimArc> arcs;
         for (const NurbsCurve2& curve : loop.curves) {
-            if (!curveValidationError(curve).empty())
+            if (!checkNurbsCurve(curve))
                 continue;
             std::vector<TrimArc> pieces = monotoneTrimArcs(curve);
             // makeTrimRegion leaves out a curve whose evaluation overflows; so do the arcs.

@@ -47,7 +47,7 @@ double trimArcSolve(const TrimArc& arc, int axis, double value, double t0, doubl
 /// sign change among the coefficients, no root) and refined by bisection.
 std::vector<double> trimArcTurningPoints(const std::vector<glm::dvec3>& hw);
 
-/// Splits a valid curve (curveValidationError empty, degree <= kMaxDegree, rational allowed)
+/// Splits a valid curve (checkNurbsCurve passes, degree <= kMaxDegree, rational allowed)
 /// into monotone arcs: one rational Bezier per knot span (knot insertion, A5.1), each cut at its
 /// turning points. The arcs run from the curve's start to its end, sharing end points.
 std::vector<TrimArc> monotoneTrimArcs(const NurbsCurve2& curve);

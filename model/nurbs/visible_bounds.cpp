@@ -67,7 +67,7 @@ ParameterBox trimParameterBox(const Surface& surface) {
     glm::dvec2 lo(0.0), hi(0.0);
     for (const TrimLoop& loop : surface.trims)
         for (const NurbsCurve2& c : loop.curves) {
-            if (!curveValidationError(c).empty())
+            if (!checkNurbsCurve(c))
                 continue;
             for (const glm::dvec2& p : c.points) {
                 lo = any ? glm::min(lo, p) : p;
@@ -90,7 +90,7 @@ ParameterBox trimParameterBox(const Surface& surface) {
 
 bool surfaceVisibleBounds(const Surface& surface, glm::dvec3& lo, glm::dvec3& hi) {
     const NurbsSurface& g = surface.geometry;
-    if (!surfaceValidationError(g).empty())
+    if (!checkNurbsSurface(g))
         return false;
     const ParameterBox box = trimParameterBox(surface);
     const TrimRegion region =

@@ -455,9 +455,9 @@ void TestExchange::solidsStaySolids() {
 // The face builder on its own: the exact surface, one wire per loop, oriented by nesting.
 void TestExchange::buildFaceKeepsGeometry() {
     const Scene s = created(QStringLiteral("patch"));
-    QString why;
-    const TopoDS_Face face = occt::buildFace(s.surfaces[0], 1e-7, why);
-    QVERIFY2(!face.IsNull(), qPrintable(why));
+    const Expected<TopoDS_Face> built = occt::buildFace(s.surfaces[0], 1e-7);
+    QVERIFY2(built, qPrintable(built.message()));
+    const TopoDS_Face& face = *built;
     QVERIFY(BRepCheck_Analyzer(face).IsValid());
     const auto bs = Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(face));
     QVERIFY(!bs.IsNull());

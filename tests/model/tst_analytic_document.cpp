@@ -152,7 +152,7 @@ void TestAnalyticDocument::similaritiesCarryAlong() {
             &stack, TransformSurfaces::create(&doc, {SurfaceId{1}}, t, QStringLiteral("Move"))));
         const Surface& s = *doc.surface(SurfaceId{1});
         QVERIFY(s.analytic.kind == Kind::Cylinder);
-        QVERIFY(analyticFormError(s.analytic, s.geometry).empty());
+        QVERIFY(checkAnalyticForm(s.analytic, s.geometry).has_value());
         QVERIFY(analyticDeviation(s.analytic, s.geometry) <= 1e-12 * diagonal(s.geometry) * 1e3);
         // A drag after the move drops it; its undo gives the moved form back.
         const AnalyticForm moved = s.analytic;

@@ -163,7 +163,7 @@ void TestContinuity::loftInnerBoundaryIsG2WhereC2() {
     const double t = interiorKnot(loft.knotsV, loft.degreeV);
     QVERIFY(t > 0.0);
     const auto [lo, hi] = splitV(loft, t);
-    QVERIFY(surfaceValidationError(lo).empty() && surfaceValidationError(hi).empty());
+    QVERIFY(checkNurbsSurface(lo).has_value() && checkNurbsSurface(hi).has_value());
     const Scene scene = sceneOf({lo, reverseOne ? reversedU(hi) : hi});
     const ContinuityReport r = continuityReport(scene, {});
     const EdgeContinuity* e = edgeBetween(r, SurfaceId{1}, SurfaceId{2});

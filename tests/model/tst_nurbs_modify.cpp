@@ -81,7 +81,7 @@ void TestNurbsModify::insertKnot() {
     for (int trial = 0; trial < 6; ++trial) {
         const NurbsSurface s = kwtest::randomSurface(rng, degreeU, degreeV, degreeU + 3,
                                                      degreeV + 3, true, 1, unclamped);
-        QVERIFY2(surfaceValidationError(s).empty(), surfaceValidationError(s).c_str());
+        QVERIFY2(checkNurbsSurface(s).has_value(), qPrintable(checkNurbsSurface(s).message()));
         const int p = alongU ? degreeU : degreeV;
         const std::vector<double>& knots = alongU ? s.knotsU : s.knotsV;
         const Interval d = knotDomain(knots, p);
@@ -91,7 +91,7 @@ void TestNurbsModify::insertKnot() {
         const int times = 1 + int(rng() % unsigned(p));
         NurbsSurface r =
             alongU ? surfaceInsertKnotU(s, fresh, times) : surfaceInsertKnotV(s, fresh, times);
-        QVERIFY2(surfaceValidationError(r).empty(), surfaceValidationError(r).c_str());
+        QVERIFY2(checkNurbsSurface(r).has_value(), qPrintable(checkNurbsSurface(r).message()));
         const std::vector<double>& rk = alongU ? r.knotsU : r.knotsV;
         QCOMPARE(rk.size(), knots.size() + size_t(times));
         QCOMPARE(int(std::count(rk.begin(), rk.end(), fresh)), times);
@@ -163,9 +163,9 @@ void TestNurbsModify::elevateDegree() {
         const NurbsSurface s =
             kwtest::randomSurface(rng, pu, pv, pu + 1 + int(rng() % 6), pv + 1 + int(rng() % 6),
                                   true, maxMult, unclamped);
-        QVERIFY2(surfaceValidationError(s).empty(), surfaceValidationError(s).c_str());
+        QVERIFY2(checkNurbsSurface(s).has_value(), qPrintable(checkNurbsSurface(s).message()));
         const NurbsSurface e = alongU ? surfaceElevateDegreeU(s, t) : surfaceElevateDegreeV(s, t);
-        QVERIFY2(surfaceValidationError(e).empty(), surfaceValidationError(e).c_str());
+        QVERIFY2(checkNurbsSurface(e).has_value(), qPrintable(checkNurbsSurface(e).message()));
         QCOMPARE(alongU ? e.degreeU : e.degreeV, degree + t);
         QCOMPARE(alongU ? e.degreeV : e.degreeU, other);
         QCOMPARE(alongU ? e.knotsV : e.knotsU, alongU ? s.knotsV : s.knotsU);
@@ -267,7 +267,7 @@ void TestNurbsModify::elevateKeepsLinearPrecision() {
             s.weights.push_back(1.0);
         }
     }
-    QVERIFY(surfaceValidationError(s).empty());
+    QVERIFY(checkNurbsSurface(s).has_value());
     std::vector<int> steps = {1}; // by 1, by 2 and up to the maximum degree, where possible
     if (p + 2 <= kMaxDegree)
         steps.push_back(2);
@@ -308,12 +308,12 @@ void TestNurbsModify::elevateInOneGoMatchesRepeated() {
     QFETCH(bool, unclamped);
     std::mt19937 rng(4242u + unsigned(degree * 16 + t));
     const NurbsSurface s = kwtest::randomSurface(rng, degree, 2, 60, 3, true, maxMult, unclamped);
-    QVERIFY2(surfaceValidationError(s).empty(), surfaceValidationError(s).c_str());
+    QVERIFY2(checkNurbsSurface(s).has_value(), qPrintable(checkNurbsSurface(s).message()));
     const NurbsSurface once = surfaceElevateDegreeU(s, t);
     NurbsSurface steps = s;
     for (int q = 0; q < t; ++q)
         steps = surfaceElevateDegreeU(steps, 1);
-    QVERIFY2(surfaceValidationError(once).empty(), surfaceValidationError(once).c_str());
+    QVERIFY2(checkNurbsSurface(once).has_value(), qPrintable(checkNurbsSurface(once).message()));
     QCOMPARE(once.degreeU, degree + t);
     QCOMPARE(once.knotsU, steps.knotsU);
     QCOMPARE(once.countU, steps.countU);

@@ -44,7 +44,7 @@ using Analytic = std::function<bool(const glm::dvec3& p, double& distance, glm::
 /// normal equals the analytic outward normal (times `orientation`) to 1e-9.
 void checkShape(const NurbsSurface& s, double size, const Analytic& analytic,
                 double orientation = 1.0) {
-    QVERIFY2(surfaceValidationError(s).empty(), surfaceValidationError(s).c_str());
+    QVERIFY2(checkNurbsSurface(s).has_value(), qPrintable(checkNurbsSurface(s).message()));
     std::mt19937 rng(3);
     const std::vector<double> us = samples(rng), vs = samples(rng);
     for (double u : us) {
@@ -173,7 +173,7 @@ void TestNurbsShapes::torus() {
 void TestNurbsShapes::plane() {
     const glm::dvec3 o(1, 2, 3), eu(2, 0, 0), ev(0, 0, 3);
     const NurbsSurface s = makePlane(o, eu, ev);
-    QVERIFY(surfaceValidationError(s).empty());
+    QVERIFY(checkNurbsSurface(s).has_value());
     const SurfaceFrame f = surfaceFrame(s, 0.25, 0.5);
     QVERIFY(glm::length(f.point - (o + 0.25 * eu + 0.5 * ev)) < 1e-15);
     QVERIFY(glm::length(f.du - eu) < 1e-15);
@@ -187,7 +187,7 @@ void TestNurbsShapes::circle() {
     const double r = 0.125;
     for (bool clockwise : {false, true}) {
         const NurbsCurve2 k = makeCircle2(c, r, clockwise);
-        QVERIFY2(curveValidationError(k).empty(), curveValidationError(k).c_str());
+        QVERIFY2(checkNurbsCurve(k).has_value(), qPrintable(checkNurbsCurve(k).message()));
         QCOMPARE(curveDomain(k), (Interval{0.0, 1.0}));
         QCOMPARE(k.points.front(), k.points.back()); // closed
         double signedArea = 0.0;

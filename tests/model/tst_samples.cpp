@@ -49,11 +49,11 @@ void TestSamples::everySampleIsValid() {
         QVERIFY(!scene->surfaces.empty());
         QVERIFY(!scene->camera.authored); // views fit a camera to the samples
         for (const Surface& s : scene->surfaces) {
-            QVERIFY2(surfaceValidationError(s.geometry).empty(), qPrintable(f));
+            QVERIFY2(checkNurbsSurface(s.geometry).has_value(), qPrintable(f));
             QVERIFY2(!s.name.isEmpty(), qPrintable(f));
             for (const TrimLoop& loop : s.trims)
                 for (const NurbsCurve2& c : loop.curves)
-                    QVERIFY(curveValidationError(c).empty());
+                    QVERIFY(checkNurbsCurve(c).has_value());
         }
     }
 }

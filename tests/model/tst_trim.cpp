@@ -262,7 +262,7 @@ void TestTrim::segmentAndReverseKeepTheCurve() {
     c.weights = {1, 0.5, 2, 1, 0.7, 1.5, 1};
     for (auto [a, b] : {std::pair{0.0, 0.45}, {0.3, 1.0}, {0.12, 0.77}, {0.6, 0.61}}) {
         const NurbsCurve2 piece = trimCurveSegment(c, a, b);
-        QVERIFY(curveValidationError(piece).empty());
+        QVERIFY(checkNurbsCurve(piece).has_value());
         QCOMPARE(curveDomain(piece).first, a);
         QCOMPARE(curveDomain(piece).last, b);
         for (int k = 0; k <= 20; ++k) {
@@ -272,7 +272,7 @@ void TestTrim::segmentAndReverseKeepTheCurve() {
         }
     }
     const NurbsCurve2 r = trimCurveReversed(c);
-    QVERIFY(curveValidationError(r).empty());
+    QVERIFY(checkNurbsCurve(r).has_value());
     QCOMPARE(curveDomain(r), (Interval{-1.0, 0.0}));
     for (int k = 0; k <= 20; ++k)
         QVERIFY(glm::length(curvePoint(r, -k / 20.0) - curvePoint(c, k / 20.0)) < 1e-13);
@@ -293,9 +293,9 @@ void TestTrim::reversingAHugeDomainKeepsTheKnotsApart() {
                1e308};
     c.points = {{0.65, 0.82}, {0.38, -0.86}, {-0.05, -0.05}, {-0.05, -0.05}, {-0.05, -0.05}};
     c.weights = {1, 1, 1, 1, 1};
-    QVERIFY(curveValidationError(c).empty());
+    QVERIFY(checkNurbsCurve(c).has_value());
     const NurbsCurve2 r = trimCurveReversed(c);
-    QVERIFY2(curveValidationError(r).empty(), curveValidationError(r).c_str());
+    QVERIFY2(checkNurbsCurve(r).has_value(), qPrintable(checkNurbsCurve(r).message()));
     QCOMPARE(curveDomain(r), (Interval{-1e308, 1.4871137560082399}));
     for (size_t i = 0; i < c.knots.size(); ++i)
         QCOMPARE(r.knots[i], -c.knots[c.knots.size() - 1 - i]);

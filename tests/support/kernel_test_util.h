@@ -45,7 +45,7 @@ inline std::vector<double> randomKnots(std::mt19937& rng, int degree, int count,
                                        int maxInteriorMult, bool unclamped = false) {
     for (;;) {
         std::vector<double> k = randomKnotsOnce(rng, degree, count, maxInteriorMult, unclamped);
-        if (kw::knotVectorError(k, degree, count).empty())
+        if (kw::checkKnotVector(k, degree, count).has_value())
             return k;
     }
 }

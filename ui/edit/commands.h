@@ -139,7 +139,7 @@ private:
 
 class SetKnotVector : public GeometryCommand {
 public:
-    /// Replaces the u (or v) knot vector; it must pass kw::knotVectorError for the current
+    /// Replaces the u (or v) knot vector; it must pass kw::checkKnotVector for the current
     /// degree and control point count in that direction.
     static Expected<std::unique_ptr<SetKnotVector>>
     create(Document* document, SurfaceId surface, Direction direction, std::vector<double> knots);

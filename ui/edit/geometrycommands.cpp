@@ -37,12 +37,10 @@ Expected<std::unique_ptr<SetKnotVector>> SetKnotVector::create(Document* documen
         return Error(noSurface(document, surface));
     NurbsSurface g = s->geometry;
     const bool u = direction == Direction::U;
-    const std::string why =
-        knotVectorError(knots, u ? g.degreeU : g.degreeV, u ? g.countU : g.countV);
-    if (!why.empty())
-        return Error(QStringLiteral("knot vector %1: %2")
-                         .arg(axis(direction))
-                         .arg(QString::fromStdString(why)));
+    const Status valid = checkKnotVector(knots, u ? g.degreeU : g.degreeV, u ? g.countU : g.countV);
+    if (!valid)
+        return Error(
+            QStringLiteral("knot vector %1: %2").arg(axis(direction)).arg(valid.message()));
     (u ? g.knotsU : g.knotsV) = std::move(knots);
     if (g == s->geometry)
         return Error(QStringLiteral("knot vector %1 unchanged").arg(axis(direction)));
@@ -94,7 +92,7 @@ ElevateDegree::create(Document* document, SurfaceId surface, Direction direction
                          .arg(by)
                          .arg(kMaxDegree));
     NurbsSurface to = u ? surfaceElevateDegreeU(g, by) : surfaceElevateDegreeV(g, by);
-    if (to == g || !surfaceValidationError(to).empty())
+    if (to == g || !checkNurbsSurface(to))
         return Error(QStringLiteral("degree elevation in %1 failed").arg(axis(direction)));
     const QString text =
         QStringLiteral("Elevate degree %1 to %2").arg(axis(direction)).arg(degree + by);

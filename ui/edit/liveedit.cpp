@@ -51,6 +51,12 @@ QString LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& i
         return refuse(step.message());
     if (QString why = netChanged(surface); !why.isEmpty())
         return refuse(why);
+    applyPoints(surface, indices, positions);
+    return {};
+}
+
+void LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
+                           const std::vector<glm::dvec3>& positions) {
     const NurbsSurface& g = m_doc->surface(surface)->geometry;
     auto [record, fresh] = m_points.try_emplace(surface);
     if (fresh)
@@ -59,7 +65,6 @@ QString LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& i
     for (int index : indices)
         from.try_emplace(index, g.points[size_t(index)]);
     m_doc->setControlPoints(surface, indices, positions);
-    return {};
 }
 
 QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
@@ -93,8 +98,9 @@ QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
         if (!why.isEmpty())
             return refuse(why);
     }
+    // Every surface's step passed: applied, none checked again.
     for (const auto& [id, change] : bySurface)
-        moveControlPoints(id, change.first, change.second);
+        applyPoints(id, change.first, change.second);
     return {};
 }
 
