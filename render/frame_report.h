@@ -5,6 +5,7 @@
 #include "model/document/scene.h"
 #include "render/render_types.h"
 
+#include <QRect>
 #include <QSize>
 #include <QString>
 #include <QStringList>
@@ -159,6 +160,13 @@ struct FrameReport {
     bool refining = false;
     /// The pixels drawn (RenderOptions::previewScale below 1: fewer than the target's).
     QSize drawnSize;
+    /// RenderOptions::FrameReuse::Partial: the frame redrew only `partialRect` (pixels of the
+    /// drawn frame, x right, y down; empty: nothing changed, the kept frame was copied again)
+    /// and kept the rest of the last frame; `partialSurfaces` surfaces reached it. False: the
+    /// whole frame was drawn.
+    bool partial = false;
+    QRect partialRect;
+    int partialSurfaces = 0;
     /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
     PassTimes passes;
 };
