@@ -279,8 +279,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                          QStringLiteral("--zoom-loop: timed transitions per "
                                                         "method and zoom, 1..1000 (default 5)."),
                                          QStringLiteral("N"), QStringLiteral("5"));
-    parser.addOptions(
-        {editLoop, peerDeflections, editSteps, editSize, zoomLoop, zoomLevels, zoomRepeats});
+    const QCommandLineOption fullFrames(
+        QStringLiteral("full-frames"),
+        QStringLiteral("--edit-loop: draw the editor's aliased frames whole after each step, "
+                       "not only the rectangle the dragged face covered before and covers now "
+                       "(docs/RENDERING.md, \"The partial frame\")."));
+    parser.addOptions({editLoop, peerDeflections, editSteps, editSize, fullFrames, zoomLoop,
+                       zoomLevels, zoomRepeats});
     const QCommandLineOption dragStep(
         QStringLiteral("drag-step"),
         QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): time one "
@@ -472,6 +477,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         }
         editConfig.peerDeflections = std::pair{lin, ang};
     }
+    editConfig.fullFrames = parser.isSet(fullFrames);
     editConfig.files = files1;
     editConfig.lights = config.lights;
     editConfig.base = config.base;
