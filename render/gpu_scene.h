@@ -92,6 +92,14 @@ struct SurfaceRecord {
     glm::vec3 boundsLo{0.0f}, boundsHi{0.0f};
     bool bounded = false;
     Revisions boundsOf; ///< the exact data's revisions the bounds were taken from
+    /// World-space bounds of its base polygon's vertices (`exact->polygon`), which hold every
+    /// pixel the exact passes draw of it but for the skirts' and fins' few pixels past its
+    /// edge on screen: a partial frame's rectangle and culling (render/partial_frame.h). Taken
+    /// by the renderer at the polygon serial and points revision `drawnOf`; valid while
+    /// `drawnBounded` (the polygon's vertices are kept on the CPU).
+    glm::vec3 drawnLo{0.0f}, drawnHi{0.0f};
+    bool drawnBounded = false;
+    std::pair<std::uint64_t, std::uint64_t> drawnOf{0, 0};
     /// What this record adds to the frame's partition figures (FrameReport::Partitions).
     std::int64_t cells = 0;
     double boundPixels = 0.0;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace kw {
 
@@ -166,7 +167,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     std::optional<glm::ivec4> damage;
     if (keepable) {
         view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
-        footprints = surfaceFootprints();
+        footprints = surfaceFootprints(options.controlNet);
         if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
             damage = partial.damage(view, exact.prepassWrites(), footprints, fc.viewProjection,
                                     options.edgeBands.get());
@@ -538,18 +539,39 @@ PartialFrameView Renderer::Impl::partialView(const Document& doc, const RenderTa
     return v;
 }
 
-std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints() const {
+std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(bool controlNet) {
     std::vector<SurfaceFootprint> out;
     out.reserve(scene.records().size());
-    for (const SurfaceRecord* r : scene.records()) {
+    for (SurfaceRecord* r : scene.records()) {
+        // The polygon's bounds, again only when it was rebuilt or its points moved: a B-rep
+        // face's control net spans its whole untrimmed surface, its polygon only the face.
+        const SurfaceGpu* g = r->exact.get();
+        if (!g || g->polygon.vertices.empty()) {
+            r->drawnBounded = false;
+        } else if (const std::pair at{g->polygonSerial, g->revisions.points};
+                   !r->drawnBounded || r->drawnOf != at) {
+            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-lo);
+            for (const BaseVertex& v : g->polygon.vertices) {
+                lo = glm::min(lo, v.position);
+                hi = glm::max(hi, v.position);
+            }
+            r->drawnLo = lo;
+            r->drawnHi = hi;
+            r->drawnOf = at;
+            r->drawnBounded = true;
+        }
         SurfaceFootprint f;
         f.id = r->id.value;
         f.slot = r->slot;
         f.revisions = r->revisions;
-        f.drawn = r->exact != nullptr && r->slot >= 0;
-        f.bounded = r->bounded;
-        f.lo = r->boundsLo;
-        f.hi = r->boundsHi;
+        f.drawn = g != nullptr && r->slot >= 0;
+        f.bounded = r->drawnBounded || r->bounded;
+        f.lo = r->drawnBounded ? r->drawnLo : r->boundsLo;
+        f.hi = r->drawnBounded ? r->drawnHi : r->boundsHi;
+        if (controlNet && r->drawnBounded && r->bounded) {
+            f.lo = glm::min(f.lo, r->boundsLo);
+            f.hi = glm::max(f.hi, r->boundsHi);
+        }
         out.push_back(f);
     }
     return out;

@@ -114,7 +114,9 @@ struct Renderer::Impl {
     PartialFrameView partialView(const Document& doc, const RenderTarget& target, QSize drawnSize,
                                  const FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const ValueRange& range) const;
-    std::vector<SurfaceFootprint> surfaceFootprints() const;
+    /// Brings each record's polygon bounds (SurfaceRecord::drawnLo) up to date first; with
+    /// `controlNet` a footprint holds the control points too (the net is drawn).
+    std::vector<SurfaceFootprint> surfaceFootprints(bool controlNet);
 
     // renderFrame's steps.
     /// Zeroes the passes' per-frame counters.

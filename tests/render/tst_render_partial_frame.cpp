@@ -1,7 +1,7 @@
 // GL test: the partial frame (RenderOptions::FrameReuse::Partial; render/partial_frame.h). On
 // hammer.iges and Motor-c.brep, a control point of the largest free-form face is dragged in
-// steps, one of them growing the face past its old bounds and one back, another face is edited,
-// one hidden and shown again: each frame after an edit is partial, and its pixels are byte for
+// steps, the whole face moved past its old bounds and put back, another face is edited, hidden
+// and shown again: each frame after an edit is partial, and its pixels are byte for
 // byte those of the same frame drawn whole (FrameReuse::Full, following the same edits), and
 // those of a fresh renderer's whole frame but for depth ties of a few pixels; the pre-pass data
 // that Renderer::pickInLastFrame reads answers as the whole frame's. A new camera, a colour map
@@ -159,7 +159,7 @@ class TestRenderPartialFrame : public QObject {
         QVERIFY2(known > 100, qPrintable(QString::number(known)));
     }
 
-    /// `grown`: the step past the face's old bounds, in face sizes (Motor-c's face is a few
+    /// `grown`: the face's move past its old bounds, in face sizes (Motor-c's face is a few
     /// pixels wide).
     /// `solid`: the faces edited bound closed solids, whose marks an edit, a hide or a show
     /// changes (every face's back faces then: a whole frame).
@@ -173,6 +173,7 @@ class TestRenderPartialFrame : public QObject {
         QVERIFY2(drag.size > 0.0, qPrintable(file));
         drawAndCompare(doc, cam, file + QStringLiteral("-first"), 0);
         QRect first, grownRect;
+        const NurbsSurface homeGeometry = doc.surface(drag.id)->geometry;
         // Sideways on screen too, so that the face's rectangle grows with the amount.
         const glm::dvec3 right = glm::normalize(glm::cross(cam.target - cam.eye, cam.up));
         const auto moveTo = [&](double amount) {
@@ -188,8 +189,18 @@ class TestRenderPartialFrame : public QObject {
         drawAndCompare(doc, cam, file + QStringLiteral("-small"), 1, &first);
         QVERIFY(moveTo(0.04));
         drawAndCompare(doc, cam, file + QStringLiteral("-more"), 1);
-        // Far past its old bounds: the rectangle must hold the new ones.
-        QVERIFY(moveTo(grown));
+        // The whole face moved sideways past its old bounds: the rectangle must hold both.
+        {
+            const Surface* face = doc.surface(drag.id);
+            QVERIFY(face);
+            std::vector<int> all;
+            std::vector<glm::dvec3> moved;
+            for (int k = 0; k < int(face->geometry.points.size()); ++k) {
+                all.push_back(k);
+                moved.push_back(face->geometry.points[size_t(k)] + right * (grown * drag.size));
+            }
+            QVERIFY(doc.setControlPoints(drag.id, all, moved));
+        }
         drawAndCompare(doc, cam, file + QStringLiteral("-grown"), 1, &grownRect);
         QVERIFY2(!first.contains(grownRect), qPrintable(QStringLiteral("%1: %2x%3 after %4x%5")
                                                             .arg(file)
@@ -198,7 +209,7 @@ class TestRenderPartialFrame : public QObject {
                                                             .arg(first.width())
                                                             .arg(first.height())));
         comparePicks(doc, cam);
-        QVERIFY(moveTo(0.0));
+        QVERIFY(doc.setGeometry(drag.id, homeGeometry));
         drawAndCompare(doc, cam, file + QStringLiteral("-back"), solid ? -1 : 1);
         // Nothing changed: the kept frame again.
         drawAndCompare(doc, cam, file + QStringLiteral("-same"), 1);
@@ -236,7 +247,7 @@ private Q_SLOTS:
     }
 
     void hammerEdits() { editSequence(QStringLiteral("hammer.iges"), 0.25, false); }
-    void motorEdits() { editSequence(QStringLiteral("Motor-c.brep"), 3.0, true); }
+    void motorEdits() { editSequence(QStringLiteral("Motor-c.brep"), 0.5, true); }
 
     /// What a partial frame cannot bound is drawn whole: a colour map over the whole scene
     /// whose range the edit moved, and anti-aliased frames.
