@@ -231,11 +231,14 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     // A partial frame redraws one rectangle: a surface whose projected polygon (or control)
     // bounds miss its reach has no pixel in it (the reach is already grown by what a surface
     // draws past them).
-    if (key.reach.z > key.reach.x && (r.drawnBounded || r.bounded)) {
-        const ScreenBox box = r.drawnBounded
-                                  ? screenBox(r.drawnLo, r.drawnHi, camera.viewProjection)
-                                  : screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
-        const glm::ivec4 at = pixelRect(box, camera.viewport);
+    if (key.reach.z > key.reach.x) {
+        const bool polygon = r.drawnBounded && r.drawnView == camera.viewProjection &&
+                             r.drawnViewport == camera.viewport;
+        ScreenBox box;
+        box.behind = !polygon && !r.bounded;
+        if (!polygon && r.bounded)
+            box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+        const glm::ivec4 at = polygon ? r.drawnRect : pixelRect(box, camera.viewport);
         if (!box.behind && (at.z <= key.reach.x || at.x >= key.reach.z || at.w <= key.reach.y ||
                             at.y >= key.reach.w)) {
             p.culled = true;

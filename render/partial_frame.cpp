@@ -26,12 +26,14 @@ std::optional<glm::ivec4> PartialFrames::windowRect(const glm::vec3& lo, const g
     const ExactPlanner::ScreenBox box = ExactPlanner::screenBox(lo, hi, viewProjection);
     if (box.behind)
         return std::nullopt;
-    glm::ivec4 r = ExactPlanner::pixelRect(box, viewport);
-    r += glm::ivec4(-pad, -pad, pad, pad);
-    r = glm::ivec4(std::max(r.x, 0), std::max(r.y, 0), std::min(r.z, viewport.x),
-                   std::min(r.w, viewport.y));
+    return grown(ExactPlanner::pixelRect(box, viewport), pad, viewport);
+}
+
+glm::ivec4 PartialFrames::grown(const glm::ivec4& rect, int pad, glm::ivec2 viewport) {
+    const glm::ivec4 r(std::max(rect.x - pad, 0), std::max(rect.y - pad, 0),
+                       std::min(rect.z + pad, viewport.x), std::min(rect.w + pad, viewport.y));
     if (r.z <= r.x || r.w <= r.y)
-        return glm::ivec4(0); // wholly off screen
+        return glm::ivec4(0); // wholly off the view
     return r;
 }
 
@@ -65,12 +67,10 @@ std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
     const auto add = [&](const SurfaceFootprint& s) {
         if (!s.drawn)
             return; // nothing of it was or will be drawn
-        const std::optional<glm::ivec4> r =
-            s.bounded ? windowRect(s.lo, s.hi, viewProjection, view.viewport, pad) : std::nullopt;
-        if (!r)
+        if (!s.bounded)
             whole = true;
         else
-            unite(rect, *r);
+            unite(rect, grown(s.rect, pad, view.viewport));
     };
     size_t matched = 0;
     for (const SurfaceFootprint& now : surfaces) {

@@ -44,8 +44,10 @@ struct SurfaceFootprint {
     int slot = -1; ///< its surface table row (the pre-pass data's, Renderer::pickInLastFrame)
     Revisions revisions;
     bool drawn = false;   ///< has exact data
-    bool bounded = false; ///< `lo` and `hi` hold its control points (else it may be anywhere)
-    glm::vec3 lo{0.0f}, hi{0.0f};
+    bool bounded = false; ///< `rect` holds what it draws (else it may draw anywhere)
+    /// Window pixels (x0, y0, x1, y1 exclusive, GL rows) its polygon, or its control points,
+    /// project to; what it draws past them is PartialFrames::reachPixels.
+    glm::ivec4 rect{0};
     bool operator==(const SurfaceFootprint&) const = default;
 };
 
@@ -63,6 +65,8 @@ public:
     static std::optional<glm::ivec4> windowRect(const glm::vec3& lo, const glm::vec3& hi,
                                                 const glm::mat4& viewProjection,
                                                 glm::ivec2 viewport, int pad);
+    /// `rect` grown by `pad` and clamped to `viewport` (x1 <= x0: off the view).
+    static glm::ivec4 grown(const glm::ivec4& rect, int pad, glm::ivec2 viewport);
 
     /// The rectangle a frame of `view` over `surfaces` must redraw after the remembered one,
     /// in window pixels (x0, y0, x1, y1 exclusive, GL rows; x1 <= x0: none, the kept frame

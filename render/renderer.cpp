@@ -167,7 +167,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     std::optional<glm::ivec4> damage;
     if (keepable) {
         view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
-        footprints = surfaceFootprints(options.controlNet);
+        footprints = surfaceFootprints(fc, options.controlNet);
         if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
             damage = partial.damage(view, exact.prepassWrites(), footprints, fc.viewProjection,
                                     options.edgeBands.get());
@@ -182,14 +182,14 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
                 QRect(damage->x, damage->y, damage->z - damage->x, damage->w - damage->y);
             report.partialRect = QRect(damage->x, size.height() - damage->w, damage->z - damage->x,
                                        damage->w - damage->y);
-            for (const SurfaceFootprint& f : footprints) {
-                const std::optional<glm::ivec4> r =
-                    f.bounded
-                        ? PartialFrames::windowRect(f.lo, f.hi, fc.viewProjection, fc.viewport, 0)
-                        : std::nullopt;
-                report.partialSurfaces +=
-                    f.drawn && (!r || (r->z > fc.reach.x && r->x < fc.reach.z &&
-                                       r->w > fc.reach.y && r->y < fc.reach.w));
+            for (size_t k = 0; k < footprints.size(); ++k) {
+                const SurfaceFootprint& f = footprints[k];
+                const glm::ivec4& r = f.rect;
+                if (f.drawn && (!f.bounded || (r.z > fc.reach.x && r.x < fc.reach.z &&
+                                               r.w > fc.reach.y && r.y < fc.reach.w))) {
+                    ++report.partialSurfaces;
+                    report.partialCells += scene.records()[k]->cells;
+                }
             }
         }
     }
@@ -539,39 +539,61 @@ PartialFrameView Renderer::Impl::partialView(const Document& doc, const RenderTa
     return v;
 }
 
-std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(bool controlNet) {
+std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamera& fc,
+                                                                bool controlNet) {
     std::vector<SurfaceFootprint> out;
     out.reserve(scene.records().size());
     for (SurfaceRecord* r : scene.records()) {
-        // The polygon's bounds, again only when it was rebuilt or its points moved: a B-rep
-        // face's control net spans its whole untrimmed surface, its polygon only the face.
+        // Where the polygon's vertices project, again only when the view, the polygon or its
+        // points changed: a B-rep face's control net spans its whole untrimmed surface, and
+        // the 8 corners of a slanted face's box project far wider than the face.
         const SurfaceGpu* g = r->exact.get();
         if (!g || g->polygon.vertices.empty()) {
             r->drawnBounded = false;
         } else if (const std::pair at{g->polygonSerial, g->revisions.points};
-                   !r->drawnBounded || r->drawnOf != at) {
-            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-lo);
+                   r->drawnOf != at || r->drawnView != fc.viewProjection ||
+                   r->drawnViewport != fc.viewport) {
+            glm::vec2 lo(std::numeric_limits<float>::max()), hi(-lo);
+            bool front = true;
             for (const BaseVertex& v : g->polygon.vertices) {
-                lo = glm::min(lo, v.position);
-                hi = glm::max(hi, v.position);
+                const glm::vec4 clip = fc.viewProjection * glm::vec4(v.position, 1.0f);
+                if (!(clip.w > 0.0f)) {
+                    front = false;
+                    break;
+                }
+                const glm::vec2 ndc = glm::clamp(glm::vec2(clip) / clip.w, -2.0f, 2.0f);
+                lo = glm::min(lo, ndc);
+                hi = glm::max(hi, ndc);
             }
-            r->drawnLo = lo;
-            r->drawnHi = hi;
+            const ExactPlanner::ScreenBox box{lo, hi, !front};
+            r->drawnRect = front ? ExactPlanner::pixelRect(box, fc.viewport) : glm::ivec4(0);
+            r->drawnBounded = front;
             r->drawnOf = at;
-            r->drawnBounded = true;
+            r->drawnView = fc.viewProjection;
+            r->drawnViewport = fc.viewport;
         }
         SurfaceFootprint f;
         f.id = r->id.value;
         f.slot = r->slot;
         f.revisions = r->revisions;
         f.drawn = g != nullptr && r->slot >= 0;
-        f.bounded = r->drawnBounded || r->bounded;
-        f.lo = r->drawnBounded ? r->drawnLo : r->boundsLo;
-        f.hi = r->drawnBounded ? r->drawnHi : r->boundsHi;
-        if (controlNet && r->drawnBounded && r->bounded) {
-            f.lo = glm::min(f.lo, r->boundsLo);
-            f.hi = glm::max(f.hi, r->boundsHi);
+        // The control points' rectangle: without the polygon's, and where the net is drawn.
+        std::optional<glm::ivec4> control;
+        if (r->bounded && (controlNet || !r->drawnBounded)) {
+            const ExactPlanner::ScreenBox box =
+                ExactPlanner::screenBox(r->boundsLo, r->boundsHi, fc.viewProjection);
+            if (!box.behind)
+                control = ExactPlanner::pixelRect(box, fc.viewport);
         }
+        const bool needControl = !r->drawnBounded || (controlNet && r->bounded);
+        f.bounded = needControl ? control.has_value() : true;
+        if (r->drawnBounded)
+            f.rect = r->drawnRect;
+        if (control && r->drawnBounded)
+            f.rect = glm::ivec4(std::min(f.rect.x, control->x), std::min(f.rect.y, control->y),
+                                std::max(f.rect.z, control->z), std::max(f.rect.w, control->w));
+        else if (control)
+            f.rect = *control;
         out.push_back(f);
     }
     return out;

@@ -114,9 +114,9 @@ struct Renderer::Impl {
     PartialFrameView partialView(const Document& doc, const RenderTarget& target, QSize drawnSize,
                                  const FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const ValueRange& range) const;
-    /// Brings each record's polygon bounds (SurfaceRecord::drawnLo) up to date first; with
+    /// Brings each record's polygon rectangle (SurfaceRecord::drawnRect) up to date first; with
     /// `controlNet` a footprint holds the control points too (the net is drawn).
-    std::vector<SurfaceFootprint> surfaceFootprints(bool controlNet);
+    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc, bool controlNet);
 
     // renderFrame's steps.
     /// Zeroes the passes' per-frame counters.
