@@ -239,15 +239,17 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     parser.addOption(noAnalytic);
     const QCommandLineOption editLoop(
         QStringLiteral("edit-loop"),
-        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): drag one control "
-                       "point of each FILE's largest free-form face (else its largest face, "
-                       "which the drag turns free-form) through --edit-steps steps and time, "
-                       "alternated step by step, Knotwork's edit to the aliased frame and to the "
-                       "editor's still frame (4 samples), against OpenCASCADE's mesh peer: the "
-                       "face rebuilt as an OCCT face, re-meshed by BRepMesh at equal quality "
-                       "(searched as tools/peer_search.py does, or --peer-deflections), re-sent "
-                       "and drawn; and the peer at OCCT viewers' default deflections. JSON "
-                       "rows under \"editLoop\" (docs/PERFORMANCE.md ## Editing)."));
+        QStringLiteral(
+            "Instead of Tables 1 and 2 (unless --tables is given): drag one control "
+            "point of each FILE's largest free-form face (else its largest face, "
+            "which the drag turns free-form) through --edit-steps steps and time, "
+            "alternated step by step, Knotwork's edit to the editor's aliased frame "
+            "(partial: the face's rectangle redrawn), to the same frame drawn whole and "
+            "to the editor's still frame (4 samples), against OpenCASCADE's mesh peer: the "
+            "face rebuilt as an OCCT face, re-meshed by BRepMesh at equal quality "
+            "(searched as tools/peer_search.py does, or --peer-deflections), re-sent "
+            "and drawn; and the peer at OCCT viewers' default deflections. JSON "
+            "rows under \"editLoop\" (docs/PERFORMANCE.md ## Editing)."));
     const QCommandLineOption peerDeflections(
         QStringLiteral("peer-deflections"),
         QStringLiteral("--edit-loop: the peer's linear (model units) and angular (degrees) "

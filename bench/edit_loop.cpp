@@ -230,7 +230,8 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
         }
         return ok();
     };
-    std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, reached;
+    std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, reached, cells,
+        fullCells;
     // The editor's aliased frames are kept in the renderer's own framebuffer and copied
     // (Viewport::paintGL); a drag step redraws what the dragged face covered then and now.
     using Reuse = RenderOptions::FrameReuse;
@@ -254,7 +255,10 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
             areas.push_back(double(report.partialRect.width()) * report.partialRect.height() /
                             (double(config.side) * config.side));
             reached.push_back(report.partialSurfaces);
+            cells.push_back(double(report.partialCells));
         }
+        if (ms == &fullMs)
+            fullCells.push_back(double(report.partitions.cells));
         return ok();
     };
     // Warm-up, untimed: shaders, first uploads, the child's first face. The exact pass picks
@@ -311,6 +315,8 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     row.knotworkFullCpuMs = median(fullCpu);
     row.partialArea = areas.empty() ? 0.0 : median(areas);
     row.partialSurfaces = reached.empty() ? 0.0 : median(reached);
+    row.partialCells = cells.empty() ? 0.0 : median(cells);
+    row.fullCells = median(fullCells);
     row.knotworkStillMs = median(stillMs);
     row.knotworkStillCpuMs = median(stillCpu);
     row.peerMs = median(peers[0].ms);
@@ -372,6 +378,8 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
                       {QStringLiteral("partialFrames"), r.partialFrames},
                       {QStringLiteral("partialArea"), r.partialArea},
                       {QStringLiteral("partialSurfaces"), r.partialSurfaces},
+                      {QStringLiteral("partialCells"), r.partialCells},
+                      {QStringLiteral("fullCells"), r.fullCells},
                       {QStringLiteral("knotworkStillMs"), r.knotworkStillMs},
                       {QStringLiteral("knotworkStillCpuMs"), r.knotworkStillCpuMs},
                       {QStringLiteral("peerMs"), r.peerMs},

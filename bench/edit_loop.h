@@ -50,6 +50,9 @@ struct EditLoopRow {
     int partialFrames = 0;
     double partialArea = 0.0;
     double partialSurfaces = 0.0;
+    /// Medians of the partial frames' cells drawn (FrameReport::partialCells) and of the
+    /// whole frames' (partitions.cells): the partial frame's geometry share.
+    double partialCells = 0.0, fullCells = 0.0;
     double knotworkStillMs = 0.0, knotworkStillCpuMs = 0.0;
     double peerMs = 0.0, peerCpuMs = 0.0, peerMeshMs = 0.0;
     double peerDefaultMs = 0.0, peerDefaultCpuMs = 0.0, peerDefaultMeshMs = 0.0;
