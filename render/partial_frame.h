@@ -43,6 +43,10 @@ struct SurfaceFootprint {
     std::uint32_t id = 0;
     int slot = -1; ///< its surface table row (the pre-pass data's, Renderer::pickInLastFrame)
     Revisions revisions;
+    /// Its polygon (SurfaceGpu::polygonSerial) and trim mask's size: an unchanged surface's
+    /// cells or mask chosen again (another view drawn between, a pick) may move its pixels.
+    std::uint64_t polygon = 0;
+    int maskWidth = 0, maskHeight = 0;
     bool drawn = false;   ///< has exact data
     bool bounded = false; ///< `rect` holds what it draws (else it may draw anywhere)
     /// Window pixels (x0, y0, x1, y1 exclusive, GL rows) its polygon, or its control points,

@@ -576,6 +576,9 @@ std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamer
         f.id = r->id.value;
         f.slot = r->slot;
         f.revisions = r->revisions;
+        f.polygon = g ? g->polygonSerial : 0;
+        f.maskWidth = r->mask.width;
+        f.maskHeight = r->mask.height;
         f.drawn = g != nullptr && r->slot >= 0;
         // The control points' rectangle: without the polygon's, and where the net is drawn.
         std::optional<glm::ivec4> control;

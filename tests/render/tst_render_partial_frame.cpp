@@ -187,6 +187,9 @@ class TestRenderPartialFrame : public QObject {
         drawAndCompare(doc, cam, file + QStringLiteral("-open"), -1);
         QVERIFY(moveTo(0.02));
         drawAndCompare(doc, cam, file + QStringLiteral("-small"), 1, &first);
+        // A pick between two frames (the probe's hover) draws its own pixel with its own plan.
+        m_partial->pick(doc, cam, QPointF(kSide / 2 + 0.5, kSide / 2 + 0.5),
+                        options(RenderOptions::FrameReuse::Partial));
         QVERIFY(moveTo(0.04));
         drawAndCompare(doc, cam, file + QStringLiteral("-more"), 1);
         // The whole face moved sideways past its old bounds: the rectangle must hold both.
