@@ -8,3 +8,7 @@ kw_add_test(tst_render_partial_frame NEEDS gl SOURCES
             ${KW_TEST_SUPPORT_DIR}/cad_test_util.h ${KW_TEST_SUPPORT_DIR}/render_test_util.h
             LIBS ${KW_PINHOLE_LIBS})
 kw_use_cad_reader(tst_render_partial_frame)
+# Its bookkeeping without GL: the rectangle after changed, hidden and shown surfaces and edge
+# bands, the cases drawn whole, the kept camera planes (label render).
+kw_add_test(tst_partial_frame_damage SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_partial_frame_damage.cpp
+            LIBS knotwork_render)
