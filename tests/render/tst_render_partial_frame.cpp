@@ -4,14 +4,16 @@
 // and shown again: each frame after an edit is partial, and its pixels are byte for
 // byte those of the same frame drawn whole (FrameReuse::Full, following the same edits), and
 // those of a fresh renderer's whole frame but for depth ties of a few pixels; the pre-pass data
-// that Renderer::pickInLastFrame reads answers as the whole frame's. A new camera, a colour map
-// whose range the edit moved, and an anti-aliased frame are drawn whole.
+// that Renderer::pickInLastFrame reads answers as the whole frame's; likewise with a section
+// plane (caps), the wireframe and the control nets on. A new camera, a colour map whose range
+// the edit moved, and an anti-aliased frame are drawn whole.
 #include "cad_test_util.h"
 #include "expected_test_util.h"
 #include "render_test_util.h"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 using namespace kw;
 
@@ -80,8 +82,19 @@ class TestRenderPartialFrame : public QObject {
     std::unique_ptr<OffscreenRenderer> m_fresh;   ///< FrameReuse::None: main's way
     std::uint64_t m_drawnRevision = 0;            ///< the document's at the last frame
 
+    RenderOptions m_base;             ///< what every frame draws besides the defaults
+    std::map<QString, Scene> m_parts; ///< imported once (the CAD reader takes seconds)
+
+    const Scene* part(const QString& file) {
+        if (!m_parts.count(file))
+            if (std::optional<Scene> imported = kwtest::importedPart(file))
+                m_parts.emplace(file, std::move(*imported));
+        const auto it = m_parts.find(file);
+        return it == m_parts.end() ? nullptr : &it->second;
+    }
+
     RenderOptions options(RenderOptions::FrameReuse reuse) const {
-        RenderOptions o;
+        RenderOptions o = m_base;
         o.partitioning = RenderOptions::Partitioning::Adaptive; // the editor's
         o.frameReuse = reuse;
         return o;
@@ -164,10 +177,10 @@ class TestRenderPartialFrame : public QObject {
     /// `solid`: the faces edited bound closed solids, whose marks an edit, a hide or a show
     /// changes (every face's back faces then: a whole frame).
     void editSequence(const QString& file, double grown, bool solid) {
-        const std::optional<Scene> part = kwtest::importedPart(file);
-        QVERIFY2(part, qPrintable(file));
+        const Scene* scene = part(file);
+        QVERIFY2(scene, qPrintable(file));
         Document doc;
-        QVERIFY(doc.resetScene(*part));
+        QVERIFY(doc.resetScene(*scene));
         const Camera cam = fitCamera(doc.scene(), 1.0);
         const Drag drag = chooseDrag(doc.scene());
         QVERIFY2(drag.size > 0.0, qPrintable(file));
@@ -252,13 +265,40 @@ private Q_SLOTS:
     void hammerEdits() { editSequence(QStringLiteral("hammer.iges"), 0.25, false); }
     void motorEdits() { editSequence(QStringLiteral("Motor-c.brep"), 0.5, true); }
 
+    /// A section plane through Motor-c (caps on its closed solids), the wireframe and the
+    /// control nets: the partial frames still draw the whole frame's pixels.
+    void sectionsAndOverlays() {
+        const Scene* scene = part(QStringLiteral("Motor-c.brep"));
+        QVERIFY(scene);
+        Document doc;
+        QVERIFY(doc.resetScene(*scene));
+        const Camera cam = fitCamera(doc.scene(), 1.0);
+        const Drag drag = chooseDrag(doc.scene());
+        glm::dvec3 lo, hi;
+        QVERIFY(sceneBounds(doc.scene(), lo, hi));
+        SectionPlane plane;
+        plane.position = 0.5 * (lo + hi);
+        plane.normal = glm::dvec3(1.0, 0.0, 0.0);
+        m_base.sections = {plane};
+        m_base.wireframe = m_base.controlNet = true;
+        int partial = 0;
+        for (int k = 0; k <= 4; ++k) {
+            QVERIFY(doc.setControlPoints(drag.id, {drag.index},
+                                         {drag.home + drag.direction * (0.02 * k * drag.size)}));
+            drawAndCompare(doc, cam, QStringLiteral("sections-%1").arg(k), -1);
+            partial += m_partial->lastReport().partial;
+        }
+        m_base = RenderOptions{};
+        QVERIFY2(partial >= 3, qPrintable(QString::number(partial)));
+    }
+
     /// What a partial frame cannot bound is drawn whole: a colour map over the whole scene
     /// whose range the edit moved, and anti-aliased frames.
     void wholeWhereItMustBe() {
-        const std::optional<Scene> part = kwtest::importedPart(QStringLiteral("hammer.iges"));
-        QVERIFY(part);
+        const Scene* scene = part(QStringLiteral("hammer.iges"));
+        QVERIFY(scene);
         Document doc;
-        QVERIFY(doc.resetScene(*part));
+        QVERIFY(doc.resetScene(*scene));
         const Camera cam = fitCamera(doc.scene(), 1.0);
         const Drag drag = chooseDrag(doc.scene());
         RenderOptions map = options(RenderOptions::FrameReuse::Partial);
