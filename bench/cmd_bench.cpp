@@ -239,15 +239,17 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
     parser.addOption(noAnalytic);
     const QCommandLineOption editLoop(
         QStringLiteral("edit-loop"),
-        QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): drag one control "
-                       "point of each FILE's largest free-form face (else its largest face, "
-                       "which the drag turns free-form) through --edit-steps steps and time, "
-                       "alternated step by step, Knotwork's edit to the aliased frame and to the "
-                       "editor's still frame (4 samples), against OpenCASCADE's mesh peer: the "
-                       "face rebuilt as an OCCT face, re-meshed by BRepMesh at equal quality "
-                       "(searched as tools/peer_search.py does, or --peer-deflections), re-sent "
-                       "and drawn; and the peer at OCCT viewers' default deflections. JSON "
-                       "rows under \"editLoop\" (docs/PERFORMANCE.md ## Editing)."));
+        QStringLiteral(
+            "Instead of Tables 1 and 2 (unless --tables is given): drag one control "
+            "point of each FILE's largest free-form face (else its largest face, "
+            "which the drag turns free-form) through --edit-steps steps and time, "
+            "alternated step by step, Knotwork's edit to the editor's aliased frame "
+            "(partial: the face's rectangle redrawn), to the same frame drawn whole and "
+            "to the editor's still frame (4 samples), against OpenCASCADE's mesh peer: the "
+            "face rebuilt as an OCCT face, re-meshed by BRepMesh at equal quality "
+            "(searched as tools/peer_search.py does, or --peer-deflections), re-sent "
+            "and drawn; and the peer at OCCT viewers' default deflections. JSON "
+            "rows under \"editLoop\" (docs/PERFORMANCE.md ## Editing)."));
     const QCommandLineOption peerDeflections(
         QStringLiteral("peer-deflections"),
         QStringLiteral("--edit-loop: the peer's linear (model units) and angular (degrees) "
@@ -279,8 +281,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
                                          QStringLiteral("--zoom-loop: timed transitions per "
                                                         "method and zoom, 1..1000 (default 5)."),
                                          QStringLiteral("N"), QStringLiteral("5"));
-    parser.addOptions(
-        {editLoop, peerDeflections, editSteps, editSize, zoomLoop, zoomLevels, zoomRepeats});
+    const QCommandLineOption fullFrames(
+        QStringLiteral("full-frames"),
+        QStringLiteral("--edit-loop: draw the editor's aliased frames whole after each step, "
+                       "not only the rectangle the dragged face covered before and covers now "
+                       "(docs/RENDERING.md, \"The partial frame\")."));
+    parser.addOptions({editLoop, peerDeflections, editSteps, editSize, fullFrames, zoomLoop,
+                       zoomLevels, zoomRepeats});
     const QCommandLineOption dragStep(
         QStringLiteral("drag-step"),
         QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): time one "
@@ -472,6 +479,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         }
         editConfig.peerDeflections = std::pair{lin, ang};
     }
+    editConfig.fullFrames = parser.isSet(fullFrames);
     editConfig.files = files1;
     editConfig.lights = config.lights;
     editConfig.base = config.base;

@@ -106,7 +106,9 @@ public:
     Status run(const QString& file, EditLoopRow& row);
 
 private:
-    RenderOptions frameOptions(int samples) const;
+    RenderOptions
+    frameOptions(int samples,
+                 RenderOptions::FrameReuse reuse = RenderOptions::FrameReuse::None) const;
 
     const EditLoopConfig& config;
     OffscreenRenderer& renderer;
@@ -117,8 +119,9 @@ private:
     Camera& camera = peer.camera;
 };
 
-RenderOptions ModelLoop::frameOptions(int samples) const {
+RenderOptions ModelLoop::frameOptions(int samples, RenderOptions::FrameReuse reuse) const {
     RenderOptions o = config.base;
+    o.frameReuse = reuse;
     o.mode = RenderMode::Exact;
     o.partitioning = RenderOptions::Partitioning::Adaptive; // the editor's and render's default
     o.lightCount = config.lights;
@@ -227,20 +230,35 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
         }
         return ok();
     };
-    std::vector<double> kwMs, kwCpu, stillMs, stillCpu;
-    const auto knotworkStep = [&](int samples, const glm::dvec3& to, std::vector<double>* ms,
-                                  std::vector<double>* cpu) -> Status {
+    std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, reached, cells,
+        fullCells;
+    // The editor's aliased frames are kept in the renderer's own framebuffer and copied
+    // (Viewport::paintGL); a drag step redraws what the dragged face covered then and now.
+    using Reuse = RenderOptions::FrameReuse;
+    const Reuse editorReuse = config.fullFrames ? Reuse::Full : Reuse::Partial;
+    const auto knotworkStep = [&](int samples, Reuse reuse, const glm::dvec3& to,
+                                  std::vector<double>* ms, std::vector<double>* cpu) -> Status {
         QElapsedTimer wall;
         const double cpu0 = processCpuMs();
         wall.start();
         moveTo(to);
-        if (Status drawn = renderer.render(doc, camera, frameOptions(samples)); !drawn)
+        if (Status drawn = renderer.render(doc, camera, frameOptions(samples, reuse)); !drawn)
             return drawn;
         renderer.finish();
         if (ms) {
             ms->push_back(double(wall.nsecsElapsed()) * 1e-6);
             cpu->push_back(processCpuMs() - cpu0);
         }
+        const FrameReport& report = renderer.lastReport();
+        if (ms == &kwMs && report.partial) {
+            ++row.partialFrames;
+            areas.push_back(double(report.partialRect.width()) * report.partialRect.height() /
+                            (double(config.side) * config.side));
+            reached.push_back(report.partialSurfaces);
+            cells.push_back(double(report.partialCells));
+        }
+        if (ms == &fullMs)
+            fullCells.push_back(double(report.partitions.cells));
         return ok();
     };
     // Warm-up, untimed: shaders, first uploads, the child's first face. The exact pass picks
@@ -249,30 +267,41 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     // too, so that no timed step compiles one.
     const glm::dvec3 warm = drag.home + drag.direction * (1e-3 * drag.amplitude);
     const glm::dvec3 peak = drag.home + drag.direction * drag.amplitude;
-    Status warmed = knotworkStep(1, peak, nullptr, nullptr);
+    Status warmed = knotworkStep(1, Reuse::Full, peak, nullptr, nullptr);
     if (warmed)
-        warmed = knotworkStep(config.stillSamples, peak, nullptr, nullptr);
+        warmed = knotworkStep(1, editorReuse, drag.home, nullptr, nullptr);
     if (warmed)
-        warmed = knotworkStep(1, warm, nullptr, nullptr);
+        warmed = knotworkStep(config.stillSamples, Reuse::None, peak, nullptr, nullptr);
     if (warmed)
-        warmed = knotworkStep(config.stillSamples, drag.home, nullptr, nullptr);
+        warmed = knotworkStep(1, Reuse::Full, warm, nullptr, nullptr);
+    if (warmed)
+        warmed = knotworkStep(1, editorReuse, peak, nullptr, nullptr);
+    if (warmed)
+        warmed = knotworkStep(config.stillSamples, Reuse::None, drag.home, nullptr, nullptr);
     if (warmed)
         warmed = peerStep(peers[0], warm, false);
     if (warmed)
         warmed = peerStep(peers[1], drag.home, false);
     if (!warmed)
         return warmed;
-    // The four methods alternate step by step, each at its own point of one drag path.
-    const int events = 4 * config.steps;
+    // The five methods alternate step by step, each at its own point of one drag path. The
+    // editor's frame follows the whole aliased frame, as a drag step follows the last: its
+    // partial frame redraws the face's rectangles at both points (the still frame, with its
+    // samples, is always whole and keeps nothing).
+    const int events = 5 * config.steps;
     for (int k = 0; k < config.steps; ++k) {
-        Status done = knotworkStep(1, dragPosition(drag, 4 * k, events), &kwMs, &kwCpu);
+        Status done = knotworkStep(config.stillSamples, Reuse::None,
+                                   dragPosition(drag, 5 * k, events), &stillMs, &stillCpu);
         if (done)
-            done = knotworkStep(config.stillSamples, dragPosition(drag, 4 * k + 1, events),
-                                &stillMs, &stillCpu);
+            done = knotworkStep(1, Reuse::Full, dragPosition(drag, 5 * k + 1, events), &fullMs,
+                                &fullCpu);
         if (done)
-            done = peerStep(peers[0], dragPosition(drag, 4 * k + 2, events), true);
+            done =
+                knotworkStep(1, editorReuse, dragPosition(drag, 5 * k + 2, events), &kwMs, &kwCpu);
         if (done)
-            done = peerStep(peers[1], dragPosition(drag, 4 * k + 3, events), true);
+            done = peerStep(peers[0], dragPosition(drag, 5 * k + 3, events), true);
+        if (done)
+            done = peerStep(peers[1], dragPosition(drag, 5 * k + 4, events), true);
         if (!done)
             return done;
     }
@@ -282,6 +311,12 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
                      file);
     row.knotworkMs = median(kwMs);
     row.knotworkCpuMs = median(kwCpu);
+    row.knotworkFullMs = median(fullMs);
+    row.knotworkFullCpuMs = median(fullCpu);
+    row.partialArea = areas.empty() ? 0.0 : median(areas);
+    row.partialSurfaces = reached.empty() ? 0.0 : median(reached);
+    row.partialCells = cells.empty() ? 0.0 : median(cells);
+    row.fullCells = median(fullCells);
     row.knotworkStillMs = median(stillMs);
     row.knotworkStillCpuMs = median(stillCpu);
     row.peerMs = median(peers[0].ms);
@@ -292,15 +327,19 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     row.peerDefaultMeshMs = median(peers[1].mesh);
     std::vector<double> faceTris(peers[0].faceTriangles.begin(), peers[0].faceTriangles.end());
     row.peerFaceTriangles = (long long)median(faceTris);
-    progress(QStringLiteral("%1: edit loop on %2: Knotwork %3 ms (still %4 ms), peer %5 ms "
-                            "(mesh %6 ms, %7 triangles), peer at OCCT's defaults %8 ms")
+    progress(QStringLiteral("%1: edit loop on %2: Knotwork %3 ms (%9 of %10 frames partial; "
+                            "whole %11 ms; still %4 ms), peer %5 ms (mesh %6 ms, %7 triangles), "
+                            "peer at OCCT's defaults %8 ms")
                  .arg(name, drag.name)
                  .arg(row.knotworkMs, 0, 'f', 1)
                  .arg(row.knotworkStillMs, 0, 'f', 1)
                  .arg(row.peerMs, 0, 'f', 1)
                  .arg(row.peerMeshMs, 0, 'f', 1)
                  .arg(row.peerTriangles)
-                 .arg(row.peerDefaultMs, 0, 'f', 1));
+                 .arg(row.peerDefaultMs, 0, 'f', 1)
+                 .arg(row.partialFrames)
+                 .arg(config.steps)
+                 .arg(row.knotworkFullMs, 0, 'f', 1));
     return ok();
 }
 
@@ -333,6 +372,14 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
                       {QStringLiteral("side"), report.config.side},
                       {QStringLiteral("knotworkMs"), r.knotworkMs},
                       {QStringLiteral("knotworkCpuMs"), r.knotworkCpuMs},
+                      {QStringLiteral("knotworkFullMs"), r.knotworkFullMs},
+                      {QStringLiteral("knotworkFullCpuMs"), r.knotworkFullCpuMs},
+                      {QStringLiteral("fullFrames"), report.config.fullFrames},
+                      {QStringLiteral("partialFrames"), r.partialFrames},
+                      {QStringLiteral("partialArea"), r.partialArea},
+                      {QStringLiteral("partialSurfaces"), r.partialSurfaces},
+                      {QStringLiteral("partialCells"), r.partialCells},
+                      {QStringLiteral("fullCells"), r.fullCells},
                       {QStringLiteral("knotworkStillMs"), r.knotworkStillMs},
                       {QStringLiteral("knotworkStillCpuMs"), r.knotworkStillCpuMs},
                       {QStringLiteral("peerMs"), r.peerMs},
@@ -362,23 +409,32 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
 }
 
 QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
-    QString md = loopTableHead(QStringLiteral("Edit loop: %1 drag steps at %2 x %2")
-                                   .arg(report.config.steps)
-                                   .arg(report.config.side),
-                               command, report.machine,
-                               {QStringLiteral("model"), QStringLiteral("dragged face"),
-                                QStringLiteral("Knotwork edit → frame ms (CPU)"),
-                                QStringLiteral("edit → still frame ms (CPU)"),
-                                QStringLiteral("peer deflection linear / angular"),
-                                QStringLiteral("peer triangles (face)"),
-                                QStringLiteral("peer edit → frame ms (CPU; re-mesh)"),
-                                QStringLiteral("Knotwork / peer"),
-                                QStringLiteral("peer at OCCT defaults ms (re-mesh; triangles)")});
+    QString md = loopTableHead(
+        QStringLiteral("Edit loop: %1 drag steps at %2 x %2")
+            .arg(report.config.steps)
+            .arg(report.config.side),
+        command, report.machine,
+        {QStringLiteral("model"), QStringLiteral("dragged face"),
+         QStringLiteral("Knotwork edit → frame ms (CPU)"),
+         QStringLiteral("partial frames (rectangle, surfaces)"),
+         QStringLiteral("whole frame ms (CPU)"), QStringLiteral("edit → still frame ms (CPU)"),
+         QStringLiteral("peer deflection linear / angular"),
+         QStringLiteral("peer triangles (face)"),
+         QStringLiteral("peer edit → frame ms (CPU; re-mesh)"), QStringLiteral("Knotwork / peer"),
+         QStringLiteral("peer at OCCT defaults ms (re-mesh; triangles)")});
     for (const EditLoopRow& r : report.rows)
         md += markdownRow(
             {r.model,
              r.face + (r.freeForm ? QString() : QStringLiteral(", analytic, turned free-form")),
              QStringLiteral("%1 (%2)").arg(r.knotworkMs, 0, 'f', 1).arg(r.knotworkCpuMs, 0, 'f', 1),
+             QStringLiteral("%1 of %2 (%3 %, %4)")
+                 .arg(r.partialFrames)
+                 .arg(report.config.steps)
+                 .arg(100.0 * r.partialArea, 0, 'f', 1)
+                 .arg(r.partialSurfaces, 0, 'f', 0),
+             QStringLiteral("%1 (%2)")
+                 .arg(r.knotworkFullMs, 0, 'f', 1)
+                 .arg(r.knotworkFullCpuMs, 0, 'f', 1),
              QStringLiteral("%1 (%2)")
                  .arg(r.knotworkStillMs, 0, 'f', 1)
                  .arg(r.knotworkStillCpuMs, 0, 'f', 1),
@@ -393,7 +449,10 @@ QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
                  .arg(r.peerMs, 0, 'f', 1)
                  .arg(r.peerCpuMs, 0, 'f', 1)
                  .arg(r.peerMeshMs, 0, 'f', 1),
-             QStringLiteral("%1×").arg(ratioOf(r.knotworkMs, r.peerMs), 0, 'f', 2),
+             QStringLiteral("%1× (CPU %2×; whole frames %3×)")
+                 .arg(ratioOf(r.knotworkMs, r.peerMs), 0, 'f', 2)
+                 .arg(ratioOf(r.knotworkCpuMs, r.peerCpuMs), 0, 'f', 2)
+                 .arg(ratioOf(r.knotworkFullMs, r.peerMs), 0, 'f', 2),
              QStringLiteral("%1 (%2; %3)")
                  .arg(r.peerDefaultMs, 0, 'f', 1)
                  .arg(r.peerDefaultMeshMs, 0, 'f', 1)

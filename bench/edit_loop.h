@@ -29,6 +29,9 @@ struct EditLoopConfig {
     double normalP99Floor = 0.1;
     long long maxTriangles = 4'000'000; ///< the search stops refining past this
     RenderOptions base;                 ///< the development switches, else the defaults
+    /// --full-frames: the editor's aliased frames drawn whole (RenderOptions::FrameReuse::Full)
+    /// instead of partial; the whole-frame column is then the same way.
+    bool fullFrames = false;
 };
 
 /// Medians over the steps, milliseconds, wall and process CPU (the peer's CPU includes its
@@ -38,7 +41,18 @@ struct EditLoopRow {
     int surfaces = 0;
     QString face;         ///< the dragged face's name and id
     bool freeForm = true; ///< false: an analytic face (rational or planar) turned free-form
+    /// The editor's aliased frame: partial (RenderOptions::FrameReuse::Partial) unless
+    /// --full-frames; then the same frame drawn whole, alternated with it.
     double knotworkMs = 0.0, knotworkCpuMs = 0.0;
+    double knotworkFullMs = 0.0, knotworkFullCpuMs = 0.0;
+    /// Of the timed editor's frames, those drawn partial, and the medians of their rectangle's
+    /// share of the view and of the surfaces it reached.
+    int partialFrames = 0;
+    double partialArea = 0.0;
+    double partialSurfaces = 0.0;
+    /// Medians of the partial frames' cells drawn (FrameReport::partialCells) and of the
+    /// whole frames' (partitions.cells): the partial frame's geometry share.
+    double partialCells = 0.0, fullCells = 0.0;
     double knotworkStillMs = 0.0, knotworkStillCpuMs = 0.0;
     double peerMs = 0.0, peerCpuMs = 0.0, peerMeshMs = 0.0;
     double peerDefaultMs = 0.0, peerDefaultCpuMs = 0.0, peerDefaultMeshMs = 0.0;

@@ -6,6 +6,7 @@
 #include "render/surface_bound.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace kw {
@@ -78,6 +79,16 @@ ExactPlanner::ScreenBox ExactPlanner::screenBox(const glm::vec3& lo, const glm::
     return box;
 }
 
+glm::ivec4 ExactPlanner::pixelRect(const ScreenBox& box, glm::ivec2 viewport) {
+    // Clamped a little past the view first: a corner near the eye projects far out, and only
+    // the part on screen matters.
+    const glm::vec2 size(viewport);
+    const glm::vec2 lo = (glm::clamp(box.lo, -2.0f, 2.0f) * 0.5f + 0.5f) * size;
+    const glm::vec2 hi = (glm::clamp(box.hi, -2.0f, 2.0f) * 0.5f + 0.5f) * size;
+    return glm::ivec4(int(std::floor(lo.x)), int(std::floor(lo.y)), int(std::ceil(hi.x)),
+                      int(std::ceil(hi.y)));
+}
+
 double ExactPlanner::pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,
                                    bool clampToView) {
     if (cells <= 0)
@@ -123,7 +134,8 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
                         options.gatherMinCellPixels,
                         options.deferMaxCellPixels,
                         options.sections,
-                        camera.pickPixel};
+                        camera.pickPixel,
+                        camera.reach};
 }
 
 void ExactPlanner::clear() {
@@ -212,6 +224,23 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
         const glm::vec2 at = pixel * 2.0f - 1.0f, margin = 4.0f / glm::vec2(camera.viewport);
         if (!box.behind && (glm::any(glm::lessThan(at, box.lo - margin)) ||
                             glm::any(glm::greaterThan(at, box.hi + margin)))) {
+            p.culled = true;
+            return p;
+        }
+    }
+    // A partial frame redraws one rectangle: a surface whose projected polygon (or control)
+    // bounds miss its reach has no pixel in it (the reach is already grown by what a surface
+    // draws past them).
+    if (key.reach.z > key.reach.x) {
+        const bool polygon = r.drawnBounded && r.drawnView == camera.viewProjection &&
+                             r.drawnViewport == camera.viewport;
+        ScreenBox box;
+        box.behind = !polygon && !r.bounded;
+        if (!polygon && r.bounded)
+            box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
+        const glm::ivec4 at = polygon ? r.drawnRect : pixelRect(box, camera.viewport);
+        if (!box.behind && (at.z <= key.reach.x || at.x >= key.reach.z || at.w <= key.reach.y ||
+                            at.y >= key.reach.w)) {
             p.culled = true;
             return p;
         }

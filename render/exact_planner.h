@@ -131,12 +131,13 @@ struct ExactPlanKey {
     double deferMaxCellPixels = 0.0;    ///< RenderOptions::deferMaxCellPixels
     std::vector<SectionPlane> sections; ///< RenderOptions::sections
     glm::ivec2 pickPixel{-1, -1};       ///< FrameCamera::pickPixel
+    glm::ivec4 reach{0, 0, 0, 0};       ///< FrameCamera::reach
     bool has(PlanFlag f) const { return flags.testFlag(f); }
     bool operator==(const ExactPlanKey& o) const {
         return scene == o.scene && layout == o.layout && marks == o.marks &&
                viewProjection == o.viewProjection && viewport == o.viewport && flags == o.flags &&
                minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels &&
-               sections == o.sections && pickPixel == o.pickPixel;
+               sections == o.sections && pickPixel == o.pickPixel && reach == o.reach;
     }
 };
 
@@ -239,6 +240,8 @@ public:
     };
     static ScreenBox screenBox(const glm::vec3& lo, const glm::vec3& hi,
                                const glm::mat4& viewProjection);
+    /// `box` in window pixels of `viewport` (x0, y0, x1, y1, GL rows), widened to whole pixels.
+    static glm::ivec4 pixelRect(const ScreenBox& box, glm::ivec2 viewport);
     /// Pixels per cell of `cells` cells over the box (clamped to the view with `clampToView`;
     /// without, the cells' own size however many lie outside it); infinity when `behind`.
     static double pixelsPerCell(const ScreenBox& box, int cells, glm::ivec2 viewport,

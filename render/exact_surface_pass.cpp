@@ -448,6 +448,7 @@ std::vector<GLenum> ExactSurfacePass::attachPrepassTexture(glm::ivec2 size) {
         gl->glTextureParameteri(m_prepassTexture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         m_prepassSize = size;
     }
+    ++m_prepassWrites;
     GLint framebuffer = 0, count = 0;
     gl->glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     gl->glGetIntegerv(GL_MAX_DRAW_BUFFERS, &count);
@@ -538,9 +539,13 @@ Status ExactSurfacePass::deferredPass(const GpuScene& scene, const FrameCamera& 
     for (const auto& [route, r] : m_plan.routes()) {
         // The route's window in pixels, a pixel more on each side (rounding, and the
         // polygon's pixel centres).
-        const glm::ivec2 lo(glm::floor(origin + (glm::vec2(r.window) * 0.5f + 0.5f) * size) - 1.0f);
-        const glm::ivec2 hi(
-            glm::ceil(origin + (glm::vec2(r.window.z, r.window.w) * 0.5f + 0.5f) * size) + 1.0f);
+        glm::ivec2 lo(glm::floor(origin + (glm::vec2(r.window) * 0.5f + 0.5f) * size) - 1.0f);
+        glm::ivec2 hi(glm::ceil(origin + (glm::vec2(r.window.z, r.window.w) * 0.5f + 0.5f) * size) +
+                      1.0f);
+        if (scissored) { // within the frame's own scissor (a pick's pixel, a partial frame's)
+            lo = glm::max(lo, glm::ivec2(scissor[0], scissor[1]));
+            hi = glm::min(hi, glm::ivec2(scissor[0] + scissor[2], scissor[1] + scissor[3]));
+        }
         if (hi.x <= lo.x || hi.y <= lo.y)
             continue;
         if (const Expected<QOpenGLShaderProgram*> built = bindExactProgram(
@@ -663,8 +668,11 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
         if (!f.indices.empty())
             layout.emplace_back(r, r->slot, place->skirtVariant);
     }
-    for (auto it = m_fins.begin(); it != m_fins.end();)
-        it = it->second.frame == m_finFrame ? std::next(it) : m_fins.erase(it);
+    // A partial frame draws the records its rectangle reaches: the others' fins stay for the
+    // next whole frame.
+    if (camera.reach.z <= camera.reach.x)
+        for (auto it = m_fins.begin(); it != m_fins.end();)
+            it = it->second.frame == m_finFrame ? std::next(it) : m_fins.erase(it);
     // 2. One upload of them all when any changed, grouped by skirt variant.
     if (rebuilt || layout != m_finLayout) {
         m_finLayout = layout;

@@ -60,6 +60,12 @@ public:
     /// (shaders/surface_data.glsl, kwPrepassWords), valid where that frame's stencil is not 0.
     GLuint prepassTexture() const { return m_prepassTexture; }
     glm::ivec2 prepassSize() const { return m_prepassSize; }
+    /// Counts the frames whose pre-pass wrote prepassTexture() (or made it anew): a partial
+    /// frame keeps the last frame's data outside its rectangle only while no other frame
+    /// wrote it since.
+    std::uint64_t prepassWrites() const { return m_prepassWrites; }
+    /// The closed solids whose back faces the last draw skipped (ExactPlanner::backCulled).
+    const std::set<int>& backCulledSolids() const { return m_plan.backCulled(); }
 
     /// The exact shader variant for degrees (p, q) and these options. The per-cell gather
     /// (ExactFeature::CellGather) is chosen when the cell's data fits the varyings and
@@ -230,6 +236,7 @@ private:
     GLuint m_prepassTexture = 0, m_emptyVao = 0;
     GLuint m_vertexPoolView = 0; ///< the vertex pool as RGBA32UI texels (kVertexPoolUnit)
     glm::ivec2 m_prepassSize{0};
+    std::uint64_t m_prepassWrites = 0;
     /// One record's fins and what they were built for.
     struct Fins {
         glm::mat4 viewProjection{0.0f};

@@ -48,6 +48,7 @@ Status FloatDepthTarget::ensure(QSize size) {
                          .arg(size.height()));
     }
     m_size = size;
+    ++m_serial;
     return ok();
 }
 
@@ -71,6 +72,7 @@ void FloatDepthTarget::release() {
             m_gl->glDeleteTextures(1, &t);
     m_fbo = m_colour = m_depth = 0;
     m_size = QSize();
+    ++m_serial;
 }
 
 std::int64_t FloatDepthTarget::residentBytes() const {

@@ -29,6 +29,8 @@ public:
     /// cannot be made.
     Status ensure(QSize size);
     GLuint framebuffer() const { return m_fbo; }
+    /// Changes whenever the framebuffer is made or freed: a frame kept in it is gone then.
+    std::uint64_t serial() const { return m_serial; }
     GLuint colourTexture() const { return m_colour; }
     GLuint depthTexture() const { return m_depth; }
     /// Copies the colour into `framebuffer`'s draw buffers over the whole size (the host's depth
@@ -43,6 +45,7 @@ private:
     QOpenGLFunctions_4_5_Core* m_gl = nullptr;
     GLuint m_fbo = 0, m_colour = 0, m_depth = 0;
     QSize m_size;
+    std::uint64_t m_serial = 0;
 };
 
 } // namespace kw

@@ -5,6 +5,7 @@
 #include "model/document/scene.h"
 #include "render/render_types.h"
 
+#include <QRect>
 #include <QSize>
 #include <QString>
 #include <QStringList>
@@ -159,6 +160,14 @@ struct FrameReport {
     bool refining = false;
     /// The pixels drawn (RenderOptions::previewScale below 1: fewer than the target's).
     QSize drawnSize;
+    /// RenderOptions::FrameReuse::Partial: the frame redrew only `partialRect` (pixels of the
+    /// drawn frame, x right, y down; empty: nothing changed, the kept frame was copied again)
+    /// and kept the rest of the last frame; `partialSurfaces` surfaces reached it, whose cells
+    /// it drew (partitions.cells counts every surface's). False: the whole frame was drawn.
+    bool partial = false;
+    QRect partialRect;
+    int partialSurfaces = 0;
+    std::int64_t partialCells = 0; ///< base polygon cells of those surfaces
     /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
     PassTimes passes;
 };

@@ -92,6 +92,17 @@ struct SurfaceRecord {
     glm::vec3 boundsLo{0.0f}, boundsHi{0.0f};
     bool bounded = false;
     Revisions boundsOf; ///< the exact data's revisions the bounds were taken from
+    /// The window pixels (x0, y0, x1, y1 exclusive, GL rows; clamped a view beyond the view)
+    /// its base polygon's vertices project to under `drawnView` at `drawnViewport`: they hold
+    /// every pixel the exact passes draw of it but the skirts' and fins' few past its edge,
+    /// for a partial frame's rectangle and culling (render/partial_frame.h). Taken by the
+    /// renderer at the polygon serial and points revision `drawnOf`; valid while `drawnBounded`
+    /// (the polygon's vertices are kept on the CPU and all lie before the eye).
+    glm::ivec4 drawnRect{0};
+    glm::mat4 drawnView{0.0f};
+    glm::ivec2 drawnViewport{0};
+    bool drawnBounded = false;
+    std::pair<std::uint64_t, std::uint64_t> drawnOf{0, 0};
     /// What this record adds to the frame's partition figures (FrameReport::Partitions).
     std::int64_t cells = 0;
     double boundPixels = 0.0;

@@ -204,6 +204,22 @@ struct RenderOptions {
     /// Exact mode sends no triangle of a surface whose control points lie wholly outside the
     /// view (FrameReport::culled). Off only to check that culling changes no pixel.
     bool cullOutsideView = true;
+    /// What the renderer keeps of a frame for the next one (docs/RENDERING.md, "The partial
+    /// frame"). Aliased exact frames only (previews included); anti-aliased, AOV and pick frames
+    /// are always whole and drawn as with None.
+    enum class FrameReuse {
+        /// Straight into the target (`knotwork render`, the bench's tables).
+        None,
+        /// Into the renderer's own framebuffer (render/float_depth_target.h), copied into the
+        /// target; every frame whole. What Partial is measured against (bench --full-frames).
+        Full,
+        /// As Full, and a frame with the last one's view, size and options that only some
+        /// surfaces' data changed since redraws only the rectangle those surfaces covered then
+        /// or cover now (FrameReport::partial); anything it cannot bound draws the frame whole.
+        /// The editor's frames: a drag step costs the dragged face's pixels, not the view's.
+        Partial,
+    };
+    FrameReuse frameReuse = FrameReuse::None;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
     /// With a value, the background is a vertical gradient from `background` at the view's
     /// bottom to this at its top (kw::backgroundNamed's "light", as CAD viewers offer);
@@ -325,6 +341,11 @@ struct FrameCamera {
     /// A pick's one pixel (GL rows, bottom-up), or (-1, -1): the whole view is drawn. The exact
     /// pass then leaves out the surfaces whose bounds do not reach that pixel.
     glm::ivec2 pickPixel{-1, -1};
+    /// A partial frame's reach (window pixels x0, y0, x1, y1 exclusive, GL rows bottom-up):
+    /// the rectangle it redraws grown by how far a surface may draw past its projected control
+    /// bounds (skirts, fins, overlays). The exact pass leaves out the surfaces whose bounds miss
+    /// it. Empty (x1 <= x0): the whole view.
+    glm::ivec4 reach{0, 0, 0, 0};
     /// Sub-pixel shift of the whole image, in pixels (RenderOptions::Antialiasing::Accumulate's
     /// samples): applied to what the shaders get (drawnViewProjection), not to viewProjection,
     /// which the passes' caches and the CPU's choices keep, so a frame's samples share them.

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace kw {
 
@@ -74,6 +75,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     QElapsedTimer total;
     total.start();
     const double cpuStart = threadCpuMs();
+    const RenderOptions asked = options; // for a partial frame drawn again whole
     FrameReport report;
     const auto fail = [&](const QString& message) {
         report.ok = false;
@@ -116,6 +118,13 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     FrameCamera fc = frameCamera(camera, scene.bounds(box[0], box[1]) ? &box : nullptr,
                                  double(target.size.width()) / target.size.height());
     fc.viewport = glm::ivec2(size.width(), size.height());
+    // A frame of a view being edited keeps the last one's camera planes while they hold the
+    // scene: an edit that moves the scene's bounds a little then changes no depth elsewhere
+    // (render/partial_frame.h).
+    if (options.frameReuse != RenderOptions::FrameReuse::None && !pickPixel && !target.aov)
+        if (const std::optional<FrameCamera> kept = partial.keptCamera(
+                camera, size, target.size, scene.bounds(box[0], box[1]) ? &box : nullptr))
+            fc = *kept;
     if (pickPixel) { // beginTarget's shifted viewport
         fc.viewportOrigin = glm::ivec2(-pickPixel->x(), -pickPixel->y());
         fc.pickPixel = glm::ivec2(pickPixel->x(), pickPixel->y());
@@ -147,6 +156,44 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     const RenderTarget& drawn = targets.drawn;
     report.analysisRange = resolveAnalysisRange(doc, options.analysis);
 
+    // The partial frame (render/partial_frame.h): an aliased exact frame kept in the own
+    // framebuffer, of which the next frame of the same view redraws only what changed.
+    const bool keepable = options.frameReuse != RenderOptions::FrameReuse::None && !pickPixel &&
+                          !target.aov && !aa && !accumulated && options.mode == RenderMode::Exact &&
+                          floatDepth.framebuffer() != 0 &&
+                          drawn.framebuffer == floatDepth.framebuffer();
+    PartialFrameView view;
+    std::vector<SurfaceFootprint> footprints;
+    std::optional<glm::ivec4> damage;
+    if (keepable) {
+        view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
+        footprints = surfaceFootprints(fc, options.controlNet);
+        if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
+            damage = partial.damage(view, exact.prepassWrites(), footprints, fc.viewProjection,
+                                    options.edgeBands.get());
+    }
+    const bool unchanged = damage && damage->z <= damage->x; // the kept frame is the image
+    if (damage) {
+        report.partial = true;
+        if (!unchanged) {
+            const int pad = PartialFrames::reachPixels(options);
+            fc.reach = *damage + glm::ivec4(-pad, -pad, pad, pad);
+            partialScissor =
+                QRect(damage->x, damage->y, damage->z - damage->x, damage->w - damage->y);
+            report.partialRect = QRect(damage->x, size.height() - damage->w, damage->z - damage->x,
+                                       damage->w - damage->y);
+            for (size_t k = 0; k < footprints.size(); ++k) {
+                const SurfaceFootprint& f = footprints[k];
+                const glm::ivec4& r = f.rect;
+                if (f.drawn && (!f.bounded || (r.z > fc.reach.x && r.x < fc.reach.z &&
+                                               r.w > fc.reach.y && r.y < fc.reach.w))) {
+                    ++report.partialSurfaces;
+                    report.partialCells += scene.records()[k]->cells;
+                }
+            }
+        }
+    }
+
     QElapsedTimer phase;
     phase.start();
     const SampleRange range = sampleRange(doc, camera, target, size, options, samples,
@@ -165,17 +212,33 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             error = done.message();
         return bool(done);
     };
-    bool ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights,
-                               options, report.analysisRange, pickPixel));
+    bool ok = unchanged || step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc,
+                                            lights, options, report.analysisRange, pickPixel));
     clock.mark(PassTimes::Antialiasing);
+    if (report.partial && !unchanged && exact.backCulledSolids() != partial.backCulled()) {
+        // A solid's back faces skipped now and drawn in the kept frame, or the reverse: that
+        // reaches every face of the solid, not only the rectangle's.
+        partialScissor = QRect();
+        gl->glDisable(GL_SCISSOR_TEST);
+        endReversedDepth(gl);
+        clock.stop();
+        wholeFrameAgain = true;
+        FrameReport again = renderFrame(doc, camera, target, asked, pickPixel);
+        wholeFrameAgain = false;
+        return again;
+    }
     report.cpuMs.surfaces = msSince(phase);
     const double firstDraw =
         options.mode == RenderMode::Exact ? exact.firstDrawCpuMs : tessellated.firstDrawCpuMs;
     report.cpuMs.beforeDraws = (firstDraw >= 0.0 ? firstDraw : threadCpuMs()) - cpuStart;
     phase.restart();
-    if (ok && (options.wireframe || options.controlNet || options.edgeBands))
+    if (ok && !unchanged && (options.wireframe || options.controlNet || options.edgeBands))
         ok = step(drawOverlays(target, fc, options));
     clock.mark(PassTimes::Overlays);
+    if (!partialScissor.isNull()) {
+        partialScissor = QRect(); // the whole kept frame goes to the host
+        gl->glDisable(GL_SCISSOR_TEST);
+    }
     if (drawn.framebuffer != target.framebuffer)
         floatDepth.copyColourTo(target.framebuffer, target.size);
     clock.mark(PassTimes::Present);
@@ -201,11 +264,24 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     else if (!synced)
         report.error = synced.message();
     report.ok = ok && synced;
-    if (!pickPixel)
-        rememberLastFrame(LastFrame{&doc, doc.revision(), camera, size, sampleTarget.framebuffer},
-                          firstSample < endSample,
-                          report.ok && !preview && !target.aov &&
-                              options.mode == RenderMode::Exact);
+    if (!pickPixel) {
+        const LastFrame now{&doc, doc.revision(), camera, size, sampleTarget.framebuffer};
+        const bool pickable =
+            report.ok && !preview && !target.aov && options.mode == RenderMode::Exact;
+        // A partial frame's pre-pass data is its rectangle's and the kept frame's.
+        if (report.partial)
+            lastFrame =
+                pickable && partial.pickable() ? std::optional<LastFrame>(now) : std::nullopt;
+        else
+            rememberLastFrame(now, firstSample < endSample, pickable);
+        // Any other frame may have drawn over the own framebuffer or the pre-pass data.
+        if (keepable && report.ok)
+            partial.remember(camera, fc, view, exact.prepassWrites(), footprints,
+                             options.edgeBands.get(), exact.backCulledSolids(),
+                             lastFrame.has_value());
+        else
+            partial.forget();
+    }
     report.cpuMs.total = msSince(total);
     return report;
 }
@@ -308,6 +384,17 @@ void Renderer::Impl::beginTarget(const RenderTarget& target, const RenderOptions
         gl->glScissor(0, 0, 1, 1);
     } else {
         gl->glViewport(0, 0, size.width(), size.height());
+        if (!partialScissor.isNull()) {
+            // A partial frame: every clear and draw below within its rectangle, the rest of
+            // the kept frame left as it is. Its stencil too, which says where the pre-pass data
+            // is (Renderer::pickInLastFrame): the rectangle's old data is not.
+            gl->glEnable(GL_SCISSOR_TEST);
+            gl->glScissor(partialScissor.x(), partialScissor.y(), partialScissor.width(),
+                          partialScissor.height());
+            const GLint zero = 0;
+            gl->glStencilMask(0xff);
+            gl->glClearBufferiv(GL_STENCIL, 0, &zero);
+        }
     }
     gl->glDisable(GL_BLEND);
     gl->glDisable(GL_CULL_FACE);
@@ -431,6 +518,90 @@ FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& 
     return report;
 }
 
+PartialFrameView Renderer::Impl::partialView(const Document& doc, const RenderTarget& target,
+                                             QSize drawnSize, const FrameCamera& fc,
+                                             const std::vector<Light>& lights,
+                                             const RenderOptions& options,
+                                             const ValueRange& range) const {
+    PartialFrameView v;
+    v.document = &doc;
+    v.target = floatDepth.serial();
+    v.drawnSize = drawnSize;
+    v.targetSize = target.size;
+    v.view = fc.view;
+    v.projection = fc.projection;
+    v.viewport = fc.viewport;
+    v.lights = lights;
+    v.options = options;
+    v.options.frameReuse = RenderOptions::FrameReuse::Partial; // Full and Partial alike
+    v.analysisRange = range;
+    v.marks = scene.marksRevision();
+    return v;
+}
+
+std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamera& fc,
+                                                                bool controlNet) {
+    std::vector<SurfaceFootprint> out;
+    out.reserve(scene.records().size());
+    for (SurfaceRecord* r : scene.records()) {
+        // Where the polygon's vertices project, again only when the view, the polygon or its
+        // points changed: a B-rep face's control net spans its whole untrimmed surface, and
+        // the 8 corners of a slanted face's box project far wider than the face.
+        const SurfaceGpu* g = r->exact.get();
+        if (!g || g->polygon.vertices.empty()) {
+            r->drawnBounded = false;
+        } else if (const std::pair at{g->polygonSerial, g->revisions.points};
+                   r->drawnOf != at || r->drawnView != fc.viewProjection ||
+                   r->drawnViewport != fc.viewport) {
+            glm::vec2 lo(std::numeric_limits<float>::max()), hi(-lo);
+            bool front = true;
+            for (const BaseVertex& v : g->polygon.vertices) {
+                const glm::vec4 clip = fc.viewProjection * glm::vec4(v.position, 1.0f);
+                if (!(clip.w > 0.0f)) {
+                    front = false;
+                    break;
+                }
+                const glm::vec2 ndc = glm::clamp(glm::vec2(clip) / clip.w, -2.0f, 2.0f);
+                lo = glm::min(lo, ndc);
+                hi = glm::max(hi, ndc);
+            }
+            const ExactPlanner::ScreenBox box{lo, hi, !front};
+            r->drawnRect = front ? ExactPlanner::pixelRect(box, fc.viewport) : glm::ivec4(0);
+            r->drawnBounded = front;
+            r->drawnOf = at;
+            r->drawnView = fc.viewProjection;
+            r->drawnViewport = fc.viewport;
+        }
+        SurfaceFootprint f;
+        f.id = r->id.value;
+        f.slot = r->slot;
+        f.revisions = r->revisions;
+        f.polygon = g ? g->polygonSerial : 0;
+        f.maskWidth = r->mask.width;
+        f.maskHeight = r->mask.height;
+        f.drawn = g != nullptr && r->slot >= 0;
+        // The control points' rectangle: without the polygon's, and where the net is drawn.
+        std::optional<glm::ivec4> control;
+        if (r->bounded && (controlNet || !r->drawnBounded)) {
+            const ExactPlanner::ScreenBox box =
+                ExactPlanner::screenBox(r->boundsLo, r->boundsHi, fc.viewProjection);
+            if (!box.behind)
+                control = ExactPlanner::pixelRect(box, fc.viewport);
+        }
+        const bool needControl = !r->drawnBounded || (controlNet && r->bounded);
+        f.bounded = needControl ? control.has_value() : true;
+        if (r->drawnBounded)
+            f.rect = r->drawnRect;
+        if (control && r->drawnBounded)
+            f.rect = glm::ivec4(std::min(f.rect.x, control->x), std::min(f.rect.y, control->y),
+                                std::max(f.rect.z, control->z), std::max(f.rect.w, control->w));
+        else if (control)
+            f.rect = *control;
+        out.push_back(f);
+    }
+    return out;
+}
+
 void Renderer::Impl::resetPassCounters() {
     exact.drawCalls = tessellated.drawCalls = wireframe.drawCalls = controlNet.drawCalls = 0;
     edgeBands.drawCalls = 0;
@@ -470,8 +641,11 @@ Renderer::Impl::FrameTargets Renderer::Impl::frameTargets(const RenderTarget& ta
     // AOV frames and picks go to Knotwork's own float-depth framebuffers already.
     out.drawn = target;
     out.drawn.size = size;
+    // A frame kept for the next one (RenderOptions::FrameReuse) is drawn there too: the
+    // host's framebuffer is swapped, drawn over and read by others between frames.
     if (!out.aa && !out.accumulated && !target.aov && !pick &&
-        (preview || floatDepth.hostNeedsIt(target.framebuffer))) {
+        (preview || options.frameReuse != RenderOptions::FrameReuse::None ||
+         floatDepth.hostNeedsIt(target.framebuffer))) {
         if (const Status ready = floatDepth.ensure(size))
             out.drawn.framebuffer = floatDepth.framebuffer();
         else
@@ -700,6 +874,7 @@ void Renderer::release() {
     if (!d->gl)
         return;
     d->releasePickTarget();
+    d->partial.forget();
     for (std::unique_ptr<TriangleMeshPass>& m : d->meshes)
         if (m)
             m->release(), m.reset();

@@ -35,7 +35,10 @@ public:
     /// (those surfaces are drawn untrimmed). Trimmed surfaces are cut by their masks unless
     /// options.trims is false. Surface ids and revisions are per document: drawing another
     /// Document than last time drops every cached upload first. Hidden surfaces
-    /// (Surface::hidden) are not drawn. Leaves the scissor test off.
+    /// (Surface::hidden) are not drawn. With options.frameReuse an aliased frame is drawn into
+    /// the renderer's own framebuffer and copied, and after an edit may redraw only what the
+    /// changed surfaces covered (FrameReport::partial; render/partial_frame.h); any other draw
+    /// into `target` between frames is then overwritten whole. Leaves the scissor test off.
     FrameReport render(const Document& doc, const Camera& camera, const RenderTarget& target,
                        const RenderOptions& options);
 

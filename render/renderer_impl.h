@@ -10,6 +10,7 @@
 #include "render/float_depth_target.h"
 #include "render/gpu_scene.h"
 #include "render/overlay_passes.h"
+#include "render/partial_frame.h"
 #include "render/pass_clock.h"
 #include "render/renderer.h"
 #include "render/shader_library.h"
@@ -99,6 +100,23 @@ struct Renderer::Impl {
         bool operator==(const LastFrame&) const = default;
     };
     std::optional<LastFrame> lastFrame;
+
+    /// The last frame kept in the own framebuffer for a partial frame after it
+    /// (RenderOptions::FrameReuse; render/partial_frame.h).
+    PartialFrames partial;
+    /// The partial frame being drawn: its rectangle (GL window pixels), which beginTarget
+    /// scissors every clear and draw to; null otherwise.
+    QRect partialScissor;
+    /// Set while a partial frame is drawn again whole (its plan skipped other solids' back
+    /// faces than the kept frame's).
+    bool wholeFrameAgain = false;
+    /// The frame's view as partial frames compare it, and its surfaces' footprints.
+    PartialFrameView partialView(const Document& doc, const RenderTarget& target, QSize drawnSize,
+                                 const FrameCamera& fc, const std::vector<Light>& lights,
+                                 const RenderOptions& options, const ValueRange& range) const;
+    /// Brings each record's polygon rectangle (SurfaceRecord::drawnRect) up to date first; with
+    /// `controlNet` a footprint holds the control points too (the net is drawn).
+    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc, bool controlNet);
 
     // renderFrame's steps.
     /// Zeroes the passes' per-frame counters.

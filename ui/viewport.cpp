@@ -462,6 +462,10 @@ void Viewport::paintGL() {
         }
     }
     options.analysis.holdRange = isDragging();
+    // A drag step redraws the dragged face's pixels, not the view's; anti-aliased frames are
+    // drawn whole anyway.
+    options.frameReuse =
+        m_partialFrames ? RenderOptions::FrameReuse::Partial : RenderOptions::FrameReuse::None;
     // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
     options.controlNet = m_options.controlNet && m_netForAll;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);

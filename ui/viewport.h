@@ -128,6 +128,11 @@ public:
     /// At 0.5 a preview draws a quarter of the pixels: an orbit of a 223-face part at the
     /// default window runs at ~15 FPS on two CPU cores (docs/PERFORMANCE.md ## Editing).
     static constexpr double kPreviewScale = 0.5;
+    /// Aliased frames after an edit redraw only the rectangle the changed surfaces covered
+    /// before and cover now, the rest kept from the last frame (RenderOptions::FrameReuse::
+    /// Partial; on by default). Off draws every frame whole, as before (for measuring).
+    void setPartialFrames(bool on) { m_partialFrames = on; }
+    bool partialFrames() const { return m_partialFrames; }
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
@@ -313,6 +318,7 @@ private:
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
     int m_stillRestarts = 0; ///< consecutive still frames that were a new image's first sample
     double m_previewScale = kPreviewScale;
+    bool m_partialFrames = true;
     FrameTiming m_timing;
     QElapsedTimer m_paintEnd; ///< from the end of paintGL to frameSwapped
     QString m_glError;

@@ -5,14 +5,16 @@
 //   (Viewport::previewWhileMoving: fewer pixels, aliased, magnified) and the still frame after
 //   the last move is the full anti-aliased image, the same bytes as the image of that view
 //   drawn with previews off (the editor before previews existed); a drag's frames are previews
-//   too, and its still frame is the full image again.
+//   too, partial frames (the dragged face's rectangle redrawn), and its still frame is the
+//   full image again.
 // - probeReadsTheFrame: a probe hover over the still frame reads the pixel's surface and
 //   (u, v) back from the frame (Renderer::pickInLastFrame) and draws nothing; the refined
 //   point is on the pixel's ray.
 // - profile (a measurement, printed, nothing timed is asserted): orbit and drag frames of
 //   each model, per pass medians (Renderer::setPassProfiling: each pass ended by glFinish,
 //   wall and process CPU), the paint, QPainter overlays and swap, and the frames per second
-//   the status bar shows, with previews on (the editor) and off (the full frame, as before).
+//   the status bar shows, with previews on (the editor) and off (the full frame, as before),
+//   the drag with partial frames (the editor's) and with every frame whole (before).
 //   Models: KW_FRAMERATE_FILES (paths, comma separated), else tests/data/hammer.iges;
 //   KW_FRAMERATE_FRAMES frames per gesture (default 3: the suite's short run).
 #include "cad_test_util.h"
@@ -139,6 +141,7 @@ private:
         std::vector<double> paint, painter, swap, render, frameWall, frameCpu, fps;
         std::vector<double> scale;
         int frames = 0;
+        int partial = 0;      ///< frames drawn partial (FrameReport::partial)
         double seconds = 0.0; ///< from the first measured frame's move to the last frame
     };
     /// `frames` frames of an orbit (middle drag) or of a control-point drag, measured.
@@ -183,6 +186,7 @@ private:
             run.frameCpu.push_back(processCpuMs() - cpu0);
             run.scale.push_back(double(r.drawnSize.width()) / vp->width() /
                                 vp->devicePixelRatioF());
+            run.partial += r.partial;
             ++run.frames;
         }
         run.seconds = double(whole.nsecsElapsed()) * 1e-9;
@@ -204,13 +208,13 @@ private:
                           .arg(w, 0, 'f', 1)
                           .arg(median(run.passCpu[p]), 0, 'f', 1);
         }
-        qInfo("FRAMERATE %s %s view %dx%d drawn %.2f: %.1f FPS (%d frames in %.2f s), status "
-              "bar %.1f FPS, frame %.1f ms (process CPU %.1f): render %.1f, painter %.1f, swap "
-              "%.1f;%s%s; load %s",
+        qInfo("FRAMERATE %s %s view %dx%d drawn %.2f: %.1f FPS (%d frames in %.2f s, %d "
+              "partial), status bar %.1f FPS, frame %.1f ms (process CPU %.1f): render %.1f, "
+              "painter %.1f, swap %.1f;%s%s; load %s",
               qPrintable(model), what, vp->width(), vp->height(), median(run.scale),
-              run.frames / std::max(1e-6, run.seconds), run.frames, run.seconds, median(fps),
-              median(run.frameWall), median(run.frameCpu), median(run.render), median(run.painter),
-              median(run.swap),
+              run.frames / std::max(1e-6, run.seconds), run.frames, run.seconds, run.partial,
+              median(fps), median(run.frameWall), median(run.frameCpu), median(run.render),
+              median(run.painter), median(run.swap),
               passes.isEmpty() ? "" : " passes wall (process CPU) ms:", qPrintable(passes),
               qPrintable(loadAverage()));
     }
@@ -273,6 +277,8 @@ private Q_SLOTS:
         gesture(true, 3, run);
         QCOMPARE(run.frames, 3);
         QVERIFY(*std::max_element(run.scale.begin(), run.scale.end()) < 0.6);
+        // Each step after the first redraws the dragged face's rectangle only.
+        QCOMPARE(run.partial, 3);
         waitStill();
         QCOMPARE(vp->lastFrameReport().samplesInImage, vp->samples());
         QCOMPARE(vp->lastFrameReport().drawnSize,
@@ -343,18 +349,23 @@ private Q_SLOTS:
             Viewport* vp = m_window->viewport();
             vp->setPreviewScale(scale);
             // First as the editor runs, then each pass ended by glFinish (slower: no overlap).
+            // A drag twice: with partial frames (the editor's) and every frame whole (before).
             for (bool profiled : {false, true}) {
                 vp->setPassProfiling(profiled);
-                for (bool drag : {false, true}) {
+                for (int gestureKind : {0, 1, 2}) {
+                    const bool drag = gestureKind > 0;
+                    vp->setPartialFrames(gestureKind != 2);
                     Run run;
                     gesture(drag, n, run);
-                    const QString what = QStringLiteral("%1 %2%3")
+                    const QString what = QStringLiteral("%1 %2%3%4")
                                              .arg(drag ? "drag" : "orbit")
                                              .arg(scale < 1.0 ? "preview" : "full")
+                                             .arg(gestureKind == 2 ? " whole frames" : "")
                                              .arg(profiled ? " profiled" : "");
                     print(model, qPrintable(what), run);
                     waitStill();
                 }
+                vp->setPartialFrames(true);
             }
             closeWindow();
         }
