@@ -18,7 +18,7 @@ constexpr int kInitialLayers = 4;
 // Mask texels per screen pixel of control-net length. The bilinear lookup puts the edge within
 // about half a texel. Misclassified pixels are those within that band of a curve, so their
 // share halves with each doubling; four texels per pixel bring the faces of an imported CAD
-// model (many short edges) under 0.1% at 1024^2 (docs/PERFORMANCE.md, ## Trims). The cap
+// model (many short edges) under 0.1% at 1024^2 (docs/ACCURACY.md, ## Trims). The cap
 // bounds it for large surfaces.
 constexpr double kTexelsPerPixel = 4.0;
 // Loop flattening tolerance in mask texels: chords of convex arcs cut inside the curve, a bias
