@@ -318,7 +318,7 @@ private:
         RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
-        bool splitCellsByTrims = false, edgeSkirts = false;
+        bool splitCellsByTrims = false, edgeSkirts = false, polygonsInView = false;
         bool wireframe = false; ///< outlines are uploaded once a frame draws them
         bool operator==(const FrameKey&) const = default;
     };
