@@ -1,7 +1,8 @@
 // GL test: base polygons keep only the cells that may reach the view (kw::cutInView,
 // RenderOptions::polygonsInView). Every cell of the whole cut that shows a point on screen is
 // kept (checked on the CPU), and close-up frames are the same bytes, colour and AOV, as with
-// every cell, while holding fewer cells and fewer polygon bytes.
+// every cell, while holding fewer cells and fewer polygon bytes. A close-up with nothing for the
+// deferred pass gives its per-pixel input back.
 #include "expected_test_util.h"
 #include "model/nurbs/nurbs.h"
 #include "model/nurbs/visible_bounds.h"
@@ -194,6 +195,34 @@ private Q_SLOTS:
         QVERIFY(cellsInView < cellsAll);
         if (sample != QLatin1String("sphere"))
             QVERIFY(2 * cellsInView < cellsAll);
+    }
+
+    // The deferred pass's input (16 bytes a pixel) is held while frames defer, and given back
+    // by a close-up whose surfaces all have cells large enough for the forward way.
+    void closeUpGivesTheDeferredInputBack() {
+        const auto teapot = kwtest::loadSample(QStringLiteral("teapot"));
+        QVERIFY2(teapot, qPrintable(teapot.message()));
+        Document doc;
+        KW_VERIFY_OK(doc.resetScene(*teapot));
+        RenderOptions opt;
+        opt.partitioning = RenderOptions::Partitioning::Adaptive;
+        const double aspect = double(kSize.width()) / kSize.height();
+        const Camera fit = fitCamera(doc.scene(), aspect);
+        const std::int64_t input = std::int64_t(kSize.width()) * kSize.height() * 16;
+        KW_VERIFY_OK(m_renderer->render(doc, fit, opt));
+        const FrameReport fitted = m_renderer->lastReport();
+        QVERIFY(fitted.partitions.deferredSurfaces > 0);
+        QVERIFY(fitted.gpuBytes.perSurface >= input);
+        const Camera near = zoomedCamera(fit, 64.0, glm::dvec2(0.5, 0.5), aspect);
+        KW_VERIFY_OK(m_renderer->render(doc, near, opt));
+        const FrameReport close = m_renderer->lastReport();
+        QCOMPARE(close.partitions.deferredSurfaces, 0);
+        QVERIFY(close.gpuBytes.perSurface < input);
+        // And made again when a frame defers.
+        KW_VERIFY_OK(m_renderer->render(doc, fit, opt));
+        QCOMPARE(m_renderer->lastReport().partitions.deferredSurfaces,
+                 fitted.partitions.deferredSurfaces);
+        QCOMPARE(m_renderer->lastReport().gpuBytes.perSurface, fitted.gpuBytes.perSurface);
     }
 };
 
