@@ -193,17 +193,20 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
                                     renderer.lastReport().gpuBytes.frameTargets -
                                     renderer.lastReport().gpuBytes.floatDepthTarget) /
                              kMiB;
-        row.knotworkCpuMiB = double(kwGeometry) / kMiB;
+        // Host memory: the exact geometry, and the renderer's CPU copies of what it uploaded.
+        row.knotworkCpuMiB = double(kwGeometry + renderer.lastReport().hostCopyBytes) / kMiB;
         const GpuBytes& b = renderer.lastReport().gpuBytes;
         progress(QStringLiteral("%1 at %2x: Knotwork's GPU bytes: control points %3, span tables "
-                                "%4, base polygons %5, trim masks %6, per surface %7 (MiB)")
+                                "%4, base polygons %5, trim masks %6, per surface %7; host "
+                                "copies %8 (MiB)")
                      .arg(name)
                      .arg(zoom)
                      .arg(double(b.controlPoints) / kMiB, 0, 'f', 2)
                      .arg(double(b.spanTables) / kMiB, 0, 'f', 2)
                      .arg(double(b.basePolygons) / kMiB, 0, 'f', 2)
                      .arg(double(b.trimMasks) / kMiB, 0, 'f', 2)
-                     .arg(double(b.perSurface) / kMiB, 0, 'f', 2));
+                     .arg(double(b.perSurface) / kMiB, 0, 'f', 2)
+                     .arg(double(renderer.lastReport().hostCopyBytes) / kMiB, 0, 'f', 2));
 
         // The fitted view's mesh seen this close: what the peer shows before it re-meshes.
         {
@@ -338,7 +341,8 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
         row.peerCpuMs = median(peerCpu);
         row.peerMeshMs = median(peerMesh);
         row.peerGpuMiB = double(peerGpu) / kMiB;
-        row.peerCpuMiB = double(peerCpuBytes) / kMiB;
+        // The peer keeps the exact model too: it re-meshes from it at every close-up.
+        row.peerCpuMiB = double(peerCpuBytes + kwGeometry) / kMiB;
         progress(QStringLiteral("%1 at %2x on the %3: Knotwork %4 ms, peer %5 ms (re-mesh %6 ms, "
                                 "%7 triangles in view); memory %8 MiB against %9 MiB")
                      .arg(name)
@@ -418,8 +422,8 @@ QString zoomLoopMarkdown(const ZoomLoopReport& report, const QString& command) {
          QStringLiteral("fitted mesh at this zoom: silhouette px / normal p99 °"),
          QStringLiteral("Knotwork ms (CPU)"), QStringLiteral("peer ms (CPU; re-mesh)"),
          QStringLiteral("peer triangles in view"), QStringLiteral("Knotwork / peer"),
-         QStringLiteral("memory MiB Knotwork (GPU + geometry)"),
-         QStringLiteral("peer (GPU + B-rep triangles)"), QStringLiteral("memory ratio")});
+         QStringLiteral("memory MiB Knotwork (GPU + host: geometry, copies)"),
+         QStringLiteral("peer (GPU + B-rep: triangles, geometry)"), QStringLiteral("memory ratio")});
     for (const ZoomLoopRow& r : report.rows) {
         const double kwMem = r.knotworkGpuMiB + r.knotworkCpuMiB;
         const double peerMem = r.peerGpuMiB + r.peerCpuMiB;

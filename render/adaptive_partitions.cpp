@@ -106,6 +106,14 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
     return tensor;
 }
 
+std::int64_t AdaptivePartitions::hostBytes() const {
+    std::int64_t bytes = 0;
+    for (const std::vector<SpanBound>* v : {&m_spans, &m_inBox})
+        for (const SpanBound& b : *v)
+            bytes += std::int64_t(sizeof(SpanBound) + b.subs.size() * sizeof(SpanBound::Sub));
+    return bytes + std::int64_t((m_cut.breaksU.size() + m_cut.breaksV.size()) * sizeof(double));
+}
+
 int AdaptivePartitions::gridFor(int spans) {
     return spans <= 16 ? 4 : spans <= 64 ? 2 : 1;
 }

@@ -74,6 +74,8 @@ public:
     /// of one surface cost at most ~256 Bezier extractions (measured: 0.27 ms per hammer.iges
     /// face at 4, 1 ms at 8).
     static int gridFor(int spans);
+    /// Bytes of the span bounds and the cut kept here (FrameReport::hostCopyBytes).
+    std::int64_t hostBytes() const;
 
 private:
     Revisions m_geometry; ///< points and knots the spans were built from

@@ -627,6 +627,22 @@ void GpuScene::residentBytes(GpuBytes& out) const {
     out.trimMasks += m_masks.residentBytes();
 }
 
+std::int64_t GpuScene::hostCopyBytes() const {
+    std::int64_t bytes = 0;
+    for (const auto& [id, e] : m_entries) {
+        bytes += e.adaptive.hostBytes();
+        const SurfaceGpu* g = e.record.exact.get();
+        if (!g)
+            continue;
+        const BasePolygon& p = g->polygon;
+        bytes += std::int64_t(g->control.size() * sizeof(glm::vec4) +
+                              p.vertices.size() * sizeof(BaseVertex) +
+                              (p.breaksU.size() + p.breaksV.size()) * sizeof(double) +
+                              (p.spanU.size() + p.spanV.size()) * sizeof(int));
+    }
+    return bytes;
+}
+
 void GpuScene::release() {
     if (m_gl)
         for (auto& [id, e] : m_entries)

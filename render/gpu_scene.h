@@ -199,6 +199,9 @@ public:
 
     /// Adds the bytes of every record and of the mask array to `out` by kind.
     void residentBytes(GpuBytes& out) const;
+    /// FrameReport::hostCopyBytes of the records: their control texels, base polygon vertices,
+    /// breaks and spans kept on the CPU, and their adaptive choices' span bounds.
+    std::int64_t hostCopyBytes() const;
     /// Frees every GL object; the context must be current.
     void release();
 

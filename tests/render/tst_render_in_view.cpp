@@ -156,7 +156,7 @@ private Q_SLOTS:
         KW_VERIFY_OK(doc.resetScene(*s));
         RenderOptions opt;
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
-        std::int64_t cellsAll = 0, cellsInView = 0;
+        std::int64_t cellsAll = 0, cellsInView = 0, hostAll = 0, hostInView = 0;
         for (const View& view : closeUps(doc.scene())) {
             opt.polygonsInView = false;
             KW_VERIFY_OK(m_renderer->render(doc, view.camera, opt));
@@ -187,12 +187,18 @@ private Q_SLOTS:
             // The same choice: the partition bound and the surfaces drawn do not change.
             QCOMPARE(in.partitions.worstBoundPixels, all.partitions.worstBoundPixels);
             QCOMPARE(in.partitions.deferredSurfaces, all.partitions.deferredSurfaces);
+            // The host copies (control texels, polygon vertices, span bounds, fins) follow.
+            QVERIFY(in.hostCopyBytes > 0);
+            QVERIFY(in.hostCopyBytes <= all.hostCopyBytes);
             cellsAll += all.partitions.cells;
             cellsInView += in.partitions.cells;
+            hostAll += all.hostCopyBytes;
+            hostInView += in.hostCopyBytes;
         }
         // A sphere's far side lies in the view's frustum too, behind its near side: the block
         // of rows and columns holding both keeps most of its cells.
         QVERIFY(cellsInView < cellsAll);
+        QVERIFY(hostInView < hostAll);
         if (sample != QLatin1String("sphere"))
             QVERIFY(2 * cellsInView < cellsAll);
     }
