@@ -398,6 +398,8 @@ bool readDevelopmentSwitches(const QString& cmd, RenderOptions& options) {
     // The edge skirts and their silhouette fins (## Edges): cracks and cost.
     options.edgeSkirts = !off("KW_EDGE_SKIRTS");
     options.silhouetteFins = !off("KW_FINS");
+    // Base polygons of every cell, not only those in view (## Close-up): memory and cost.
+    options.polygonsInView = !off("KW_POLYGONS_IN_VIEW");
     // Thresholds of the per-cell gather and of the deferred pass's forward surfaces.
     for (const auto& [name, value] :
          {std::pair{"KW_GATHER_MIN_CELL_PX", &options.gatherMinCellPixels},

@@ -66,7 +66,8 @@ bool readRenderOptions(const QCommandLineParser& parser, const RenderCliOptions&
 /// "The contract between C++ and the shaders"); each sets a RenderOptions field, and render/
 /// reads no environment.
 /// KW_TRIM_CELL_SPLIT=0, KW_BACK_FACES=1, KW_AFFINE=0, KW_MULTI_DRAW=0, KW_DEFERRED=0,
-/// KW_EDGE_SKIRTS=0, KW_FINS=0, KW_GATHER_MIN_CELL_PX=N, KW_DEFER_MAX_CELL_PX=N. A threshold
+/// KW_EDGE_SKIRTS=0, KW_FINS=0, KW_POLYGONS_IN_VIEW=0, KW_GATHER_MIN_CELL_PX=N,
+/// KW_DEFER_MAX_CELL_PX=N. A threshold
 /// that is not a number >= 0 prints "<cmd>: NAME 'value' is ..." and returns false.
 bool readDevelopmentSwitches(const QString& cmd, RenderOptions& options);
 

@@ -188,7 +188,16 @@ Status PeerModel::search(const MeshMaker& make, int li, int ai, PeerChoice& out)
     li = std::clamp(li, 0, kDeflectionSteps - 1);
     ai = std::clamp(ai, 0, kDeflectionSteps - 1);
     Tried t;
-    if (Status first = at(li, ai, t); !first)
+    Status first = at(li, ai, t);
+    // A start too fine for BRepMesh (a close-up's start, the fitted choice made zoom times
+    // finer, can leave a face with no triangles): one step coarser at a time, as the refinement
+    // below stops at its first failure.
+    while (!first && li > 0) {
+        progress(QStringLiteral("%1: %2; one step coarser")
+                     .arg(QFileInfo(path).fileName(), first.message()));
+        first = at(--li, ai, t);
+    }
+    if (!first)
         return first;
     while (!good(t.q) && std::max(li, ai) + 1 < kDeflectionSteps &&
            t.triangles < limits.maxTriangles) {

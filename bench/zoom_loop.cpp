@@ -141,7 +141,10 @@ Status ModelZoom::meshFaces(const std::set<std::uint32_t>& ids, double linear, d
             faces.push_back(s);
     TaggedMeshSet set;
     FaceMeshCost cost;
-    if (Status meshed = mesher.mesh(faces, peer.tolerance, linear, angular, set, cost); !meshed)
+    // A close-up's equal-quality mesh of the faces in view can take BRepMesh minutes on a
+    // loaded machine; the search's candidates are timed too, so they get the time they need.
+    if (Status meshed = mesher.mesh(faces, peer.tolerance, linear, angular, set, cost, 600.0);
+        !meshed)
         return Error(QStringLiteral("%1: %2").arg(peer.path, meshed.message()), peer.path);
     triangles = set.triangleCount();
     out = toTriangleMesh(set, SurfaceId{}, true);
@@ -162,6 +165,12 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
     PeerChoice fittedChoice;
     if (Status measured = peer.measureKnotwork(config.side, options); !measured)
         return measured;
+    // The contour in Knotwork's exact frame, before the peer's search draws its candidates
+    // into the same AOV (the target then followed where that search stopped).
+    const Target target = chooseTarget(peer.doc.scene(), renderer.aov(), fitted);
+    if (!target.found)
+        return Error(
+            QStringLiteral("%1: no contour in the fitted view to look at closely").arg(name), file);
     if (Status searched = peer.searchStatic(fittedChoice); !searched)
         return searched;
     TaggedMeshSet fittedSet;
@@ -169,10 +178,6 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
         !meshed)
         return meshed;
     const TriangleMesh fittedMesh = toTriangleMesh(fittedSet, SurfaceId{}, true);
-    const Target target = chooseTarget(peer.doc.scene(), renderer.aov(), fitted);
-    if (!target.found)
-        return Error(
-            QStringLiteral("%1: no contour in the fitted view to look at closely").arg(name), file);
     const std::int64_t kwGeometry = geometryBytes(peer.doc.scene());
 
     for (const double zoom : config.zooms) {
@@ -193,17 +198,23 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
                                     renderer.lastReport().gpuBytes.frameTargets -
                                     renderer.lastReport().gpuBytes.floatDepthTarget) /
                              kMiB;
-        row.knotworkCpuMiB = double(kwGeometry) / kMiB;
+        // Host memory: the exact geometry, and the renderer's CPU copies of what it uploaded.
+        row.knotworkCpuMiB = double(kwGeometry + renderer.lastReport().hostCopyBytes) / kMiB;
         const GpuBytes& b = renderer.lastReport().gpuBytes;
         progress(QStringLiteral("%1 at %2x: Knotwork's GPU bytes: control points %3, span tables "
-                                "%4, base polygons %5, trim masks %6, per surface %7 (MiB)")
+                                "%4, base polygons %5, trim masks %6, per surface %7; host "
+                                "copies %8 (MiB); %9 cells drawn, %10 surfaces past the "
+                                "tolerance")
                      .arg(name)
                      .arg(zoom)
                      .arg(double(b.controlPoints) / kMiB, 0, 'f', 2)
                      .arg(double(b.spanTables) / kMiB, 0, 'f', 2)
                      .arg(double(b.basePolygons) / kMiB, 0, 'f', 2)
                      .arg(double(b.trimMasks) / kMiB, 0, 'f', 2)
-                     .arg(double(b.perSurface) / kMiB, 0, 'f', 2));
+                     .arg(double(b.perSurface) / kMiB, 0, 'f', 2)
+                     .arg(double(renderer.lastReport().hostCopyBytes) / kMiB, 0, 'f', 2)
+                     .arg(renderer.lastReport().partitions.cells)
+                     .arg(renderer.lastReport().partitions.unmet));
 
         // The fitted view's mesh seen this close: what the peer shows before it re-meshes.
         {
@@ -338,7 +349,8 @@ Status ModelZoom::run(const QString& file, std::vector<ZoomLoopRow>& rows) {
         row.peerCpuMs = median(peerCpu);
         row.peerMeshMs = median(peerMesh);
         row.peerGpuMiB = double(peerGpu) / kMiB;
-        row.peerCpuMiB = double(peerCpuBytes) / kMiB;
+        // The peer keeps the exact model too: it re-meshes from it at every close-up.
+        row.peerCpuMiB = double(peerCpuBytes + kwGeometry) / kMiB;
         progress(QStringLiteral("%1 at %2x on the %3: Knotwork %4 ms, peer %5 ms (re-mesh %6 ms, "
                                 "%7 triangles in view); memory %8 MiB against %9 MiB")
                      .arg(name)
@@ -418,8 +430,8 @@ QString zoomLoopMarkdown(const ZoomLoopReport& report, const QString& command) {
          QStringLiteral("fitted mesh at this zoom: silhouette px / normal p99 °"),
          QStringLiteral("Knotwork ms (CPU)"), QStringLiteral("peer ms (CPU; re-mesh)"),
          QStringLiteral("peer triangles in view"), QStringLiteral("Knotwork / peer"),
-         QStringLiteral("memory MiB Knotwork (GPU + geometry)"),
-         QStringLiteral("peer (GPU + B-rep triangles)"), QStringLiteral("memory ratio")});
+         QStringLiteral("memory MiB Knotwork (GPU + host: geometry, copies)"),
+         QStringLiteral("peer (GPU + B-rep: triangles, geometry)"), QStringLiteral("memory ratio")});
     for (const ZoomLoopRow& r : report.rows) {
         const double kwMem = r.knotworkGpuMiB + r.knotworkCpuMiB;
         const double peerMem = r.peerGpuMiB + r.peerCpuMiB;

@@ -47,10 +47,13 @@ struct ZoomLoopRow {
     bool fittedMeshGood = false;
     double knotworkNormalP99 = 0.0, knotworkSilhouetteMax = 0.0;
     double peerNormalP99 = 0.0, peerSilhouetteMax = 0.0;
-    /// Memory each method holds for this view, MiB. Knotwork: its GPU buffers and textures
-    /// (FrameReport::gpuBytes, frame targets excluded) and the exact geometry in the process.
-    /// The peer: the triangles on the GPU (as sent) and as OpenCASCADE holds them in the B-rep
-    /// (Poly_Triangulation: double nodes and uv, float normals, int triangles).
+    /// Memory each method holds for this view, MiB; neither counts the colour and depth target
+    /// both draw into. Knotwork: its GPU buffers and textures (FrameReport::gpuBytes, frame
+    /// targets excluded), and on the host the exact geometry and the renderer's CPU copies
+    /// (FrameReport::hostCopyBytes). The peer: the triangles on the GPU (as sent), and on the
+    /// host the triangles as OpenCASCADE holds them in the B-rep (Poly_Triangulation: double
+    /// nodes and uv, float normals, int triangles) and the exact geometry it re-meshes from
+    /// (counted as Knotwork's).
     double knotworkGpuMiB = 0.0, knotworkCpuMiB = 0.0;
     double peerGpuMiB = 0.0, peerCpuMiB = 0.0;
 };

@@ -18,7 +18,74 @@ ScreenScale frameScreenScale(const FrameCamera& camera) {
     sc.nearDepth = std::max(double(camera.nearPlane), 1e-300);
     sc.cullOutsideView = true;
     sc.viewProjection = glm::dmat4(camera.viewProjection);
+    sc.viewportPixels = glm::dvec2(std::max(camera.viewport.x, 1), std::max(camera.viewport.y, 1));
     return sc;
+}
+
+double viewMarginPixels(double tolerance) {
+    return 2.0 * std::max(tolerance, 0.0) + 2.0;
+}
+
+PolygonCut cutInView(const PolygonCut& cut, const std::vector<SpanBound>& spans,
+                     bool cellsInOneSub, const ScreenScale& scale, double marginPixels) {
+    const std::vector<double>&bu = cut.breaksU, &bv = cut.breaksV;
+    if (!scale.cullOutsideView || bu.size() < 2 || bv.size() < 2)
+        return cut;
+    // The frustum grown by the margin: |x| <= w (1 + 2 m / width) is |x'| <= w for
+    // x' = x / (1 + 2 m / width), and likewise y.
+    glm::dmat4 grow(1.0);
+    grow[0][0] = 1.0 / (1.0 + 2.0 * marginPixels / scale.viewportPixels.x);
+    grow[1][1] = 1.0 / (1.0 + 2.0 * marginPixels / scale.viewportPixels.y);
+    const glm::dmat4 clip = grow * scale.viewProjection;
+    // The (u, v) rectangle of the parts that may show, as surfaceSpanBounds cuts them.
+    const auto side = [](double t0, double t1, int g, int i) {
+        return i == g ? t1 : t0 + (t1 - t0) / g * i;
+    };
+    double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+    const auto add = [&](double a0, double a1, double b0, double b1) {
+        u0 = std::min(u0, a0), u1 = std::max(u1, a1);
+        v0 = std::min(v0, b0), v1 = std::max(v1, b1);
+    };
+    for (const SpanBound& b : spans) {
+        if (b.u1 <= bu.front() || b.u0 >= bu.back() || b.v1 <= bv.front() || b.v0 >= bv.back())
+            continue;
+        if (!cellsInOneSub) {
+            // A cell may straddle this span's sub-rectangles: the span's bounds as one.
+            glm::dvec3 lo(1e300), hi(-1e300);
+            for (const SpanBound::Sub& sub : b.subs)
+                lo = glm::min(lo, sub.lo), hi = glm::max(hi, sub.hi);
+            if (!boxOutsideFrustum(clip, lo, hi))
+                add(b.u0, b.u1, b.v0, b.v1);
+            continue;
+        }
+        for (int j = 0; j < b.grid; ++j)
+            for (int i = 0; i < b.grid; ++i) {
+                const SpanBound::Sub& sub = b.subs[size_t(j * b.grid + i)];
+                if (!boxOutsideFrustum(clip, sub.lo, sub.hi))
+                    add(side(b.u0, b.u1, b.grid, i), side(b.u0, b.u1, b.grid, i + 1),
+                        side(b.v0, b.v1, b.grid, j), side(b.v0, b.v1, b.grid, j + 1));
+            }
+    }
+    // Cells [first, last) along one direction: those meeting (t0, t1), or the first alone.
+    const auto lanes = [](const std::vector<double>& br, double t0, double t1, int& first,
+                          int& last) {
+        const int cells = int(br.size()) - 1;
+        first = int(std::upper_bound(br.begin(), br.end(), t0) - br.begin()) - 1;
+        last = int(std::lower_bound(br.begin(), br.end(), t1) - br.begin());
+        first = std::clamp(first, 0, cells - 1);
+        last = std::clamp(last, first + 1, cells);
+    };
+    int iu0 = 0, iu1 = 1, iv0 = 0, iv1 = 1;
+    if (u0 < u1 && v0 < v1) {
+        lanes(bu, u0, u1, iu0, iu1);
+        lanes(bv, v0, v1, iv0, iv1);
+    }
+    PolygonCut out;
+    out.nu = cut.nu;
+    out.nv = cut.nv;
+    out.breaksU.assign(bu.begin() + iu0, bu.begin() + iu1 + 1);
+    out.breaksV.assign(bv.begin() + iv0, bv.begin() + iv1 + 1);
+    return out;
 }
 
 PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& spans,
@@ -37,6 +104,14 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
     if (!tensor.met || (uniform.met && cells(uniform) <= cells(tensor)))
         return uniform;
     return tensor;
+}
+
+std::int64_t AdaptivePartitions::hostBytes() const {
+    std::int64_t bytes = 0;
+    for (const std::vector<SpanBound>* v : {&m_spans, &m_inBox})
+        for (const SpanBound& b : *v)
+            bytes += std::int64_t(sizeof(SpanBound) + b.subs.size() * sizeof(SpanBound::Sub));
+    return bytes + std::int64_t((m_cut.breaksU.size() + m_cut.breaksV.size()) * sizeof(double));
 }
 
 int AdaptivePartitions::gridFor(int spans) {
@@ -65,11 +140,13 @@ const std::vector<SpanBound>& AdaptivePartitions::spans(const Surface& surface,
 const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const Revisions& rev,
                                                   const ParameterBox& box, const ScreenScale& scale,
                                                   std::uint64_t viewStamp, double tolerance,
-                                                  int minU, int minV, bool* recomputed) {
+                                                  int minU, int minV, bool* recomputed,
+                                                  bool inView) {
     if (recomputed)
         *recomputed = false;
     const NurbsSurface& g = surface.geometry;
-    bool stale = !m_haveChoice || m_viewStamp != viewStamp || m_minU != minU || m_minV != minV;
+    bool stale = !m_haveChoice || m_viewStamp != viewStamp || m_minU != minU || m_minV != minV ||
+                 m_inView != inView;
     if (!m_haveSpans || m_geometry.points != rev.points || m_geometry.knots != rev.knots) {
         spans(surface, rev);
         stale = true;
@@ -86,13 +163,20 @@ const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const 
     if (stale) {
         // The breaks are kept once, in the cut the polygon is built from.
         PartitionChoice c = chooseCut(g, m_inBox, box, scale, tolerance, minU, minV);
+        m_choiceCells = std::int64_t(std::max<std::size_t>(c.breaksU.size(), 1) - 1) *
+                        std::int64_t(std::max<std::size_t>(c.breaksV.size(), 1) - 1);
         m_cut = PolygonCut{c.nu, c.nv, std::move(c.breaksU), std::move(c.breaksV)};
+        // At a close-up most of a surface's cells lie off screen: only those that may reach
+        // the view are kept, so the polygon's memory and build follow what is on screen.
+        if (inView)
+            m_cut = cutInView(m_cut, m_inBox, c.cellsInOneSub, scale, viewMarginPixels(tolerance));
         c.breaksU.clear();
         c.breaksV.clear();
         m_choice = std::move(c);
         m_viewStamp = viewStamp;
         m_minU = minU;
         m_minV = minV;
+        m_inView = inView;
         m_haveChoice = true;
         if (recomputed)
             *recomputed = true;

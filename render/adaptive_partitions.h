@@ -29,6 +29,23 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
                           const ParameterBox& box, const ScreenScale& scale, double tolerance,
                           int minU, int minV);
 
+/// How far past the view's edges, in pixels, cells are kept (cutInView): past what a kept
+/// polygon's skirts and silhouette fins reach on screen (the tolerance plus
+/// ExactSurfacePass::kSkirtMarginPixels), with room to spare.
+double viewMarginPixels(double tolerance);
+
+/// The cells of `cut` (breaks set, each cell inside one span, and inside one sub-rectangle of
+/// `spans` when `cellsInOneSub`) that may reach the view: the smallest block of its rows and
+/// columns holding every cell over a sub-rectangle (over a span, when cells may straddle its
+/// sub-rectangles) whose control bounds reach `scale`'s frustum grown by `marginPixels` on
+/// each side. A cell left out lies, triangles and all, inside such bounds wholly outside one
+/// plane of that frustum (the convex hull property: its corners are surface points there),
+/// so it, its skirt and its fins cover no pixel; the kept cells are the cut's own, so every
+/// pixel is drawn from the same triangle as with the whole cut. With nothing in view, one
+/// cell. Without scale.cullOutsideView, `cut` as it is.
+PolygonCut cutInView(const PolygonCut& cut, const std::vector<SpanBound>& spans,
+                     bool cellsInOneSub, const ScreenScale& scale, double marginPixels);
+
 /// One surface's cached adaptive choice. The span bounds depend on the geometry only (points
 /// and knots revisions); the choice on them, the polygon's box, the minimum and the view.
 class AdaptivePartitions {
@@ -36,13 +53,18 @@ public:
     /// The partitions for `surface` (valid) over `box` seen with `scale`; `viewStamp` changes
     /// whenever the camera, viewport or tolerance does. Recomputes only what is stale; sets
     /// `recomputed` when the choice was evaluated again (not when it was reused). The choice
-    /// returned holds the counts, bound and whether it was met; its breaks are in cut().
+    /// returned holds the counts, bound and whether it was met; its breaks are in cut(),
+    /// which keeps only the cells in view with `inView` (RenderOptions::polygonsInView).
     const PartitionChoice& choose(const Surface& surface, const Revisions& rev,
                                   const ParameterBox& box, const ScreenScale& scale,
                                   std::uint64_t viewStamp, double tolerance, int minU, int minV,
-                                  bool* recomputed = nullptr);
-    /// The last choice as a polygon cut (its breaks).
+                                  bool* recomputed = nullptr, bool inView = true);
+    /// The last choice as a polygon cut (its breaks), with `inView` (choose) only the cells
+    /// that may reach the view (cutInView).
     const PolygonCut& cut() const { return m_cut; }
+    /// Cells of the last choice over the whole box, in view or not: the cell size the exact
+    /// planner estimates from the surface's whole screen box.
+    std::int64_t choiceCells() const { return m_choiceCells; }
     /// The bounds of all of `surface`'s non-empty spans (kw::surfaceSpanBounds at gridFor),
     /// taken again only when its points or knots changed (the section planes' cell bounds
     /// use them in either partitioning).
@@ -52,6 +74,8 @@ public:
     /// of one surface cost at most ~256 Bezier extractions (measured: 0.27 ms per hammer.iges
     /// face at 4, 1 ms at 8).
     static int gridFor(int spans);
+    /// Bytes of the span bounds and the cut kept here (FrameReport::hostCopyBytes).
+    std::int64_t hostBytes() const;
 
 private:
     Revisions m_geometry; ///< points and knots the spans were built from
@@ -61,7 +85,9 @@ private:
     std::vector<SpanBound> m_inBox; ///< the spans meeting m_box
     std::uint64_t m_viewStamp = 0;
     int m_minU = 0, m_minV = 0;
+    bool m_inView = true;
     bool m_haveChoice = false;
+    std::int64_t m_choiceCells = 0;
     PartitionChoice m_choice;
     PolygonCut m_cut;
 };

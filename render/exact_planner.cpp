@@ -53,12 +53,21 @@ ExactPlanner::SectionSide ExactPlanner::sectionSide(const glm::vec3& lo, const g
     return crossed ? SectionSide::Crossed : SectionSide::Kept;
 }
 
+namespace {
+/// The cells the partition choice cut the surface's polygon box into, whether or not the
+/// polygon keeps them all (RenderOptions::polygonsInView): the cell size over the surface's
+/// whole screen box, as before the off-screen cells were left out.
+int cellsOver(const SurfaceGpu& g) {
+    return int(std::max<std::int64_t>(g.choiceCells, g.polygon.cellCount()));
+}
+} // namespace
+
 double ExactPlanner::projectedPixelsPerCell(const SurfaceGpu& g, const FrameCamera& camera) {
     glm::vec3 lo, hi;
     if (!kw::controlBounds(g, lo, hi))
         return 0.0;
-    return pixelsPerCell(screenBox(lo, hi, camera.viewProjection), g.polygon.cellCount(),
-                         camera.viewport, true);
+    return pixelsPerCell(screenBox(lo, hi, camera.viewProjection), cellsOver(g), camera.viewport,
+                         true);
 }
 
 ExactPlanner::ScreenBox ExactPlanner::screenBox(const glm::vec3& lo, const glm::vec3& hi,
@@ -288,7 +297,7 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     box.behind = true;
     if (r.bounded)
         box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
-    const int cells = g->polygon.cellCount();
+    const int cells = cellsOver(*g);
     // A face that kept its analytic form (unedited) has the point under the pixel in closed
     // form, where the Newton step onto the NURBS would be taken; an affine polygon needs
     // neither. Its program evaluates no NURBS, so the gather's per-cell data would be unused.

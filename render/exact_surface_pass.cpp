@@ -263,6 +263,12 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     const bool defer = deferredWanted && !m_plan.routes().empty() &&
                        m_plan.routes().size() < std::size_t(ExactPlanner::kForwardStencil);
     deferredSurfaces = defer ? m_plan.deferredSurfaces() : 0;
+    // A frame that could defer but has nothing to (a close-up of large cells) gives the input
+    // texture back: 16 bytes a pixel held for nothing (docs/PERFORMANCE.md ### Close-up). This
+    // frame leaves no input to read (Renderer::pickInLastFrame forgets it), and the next
+    // deferred frame makes the texture again.
+    if (deferredWanted && !defer && m_prepassTexture)
+        releaseDeferred();
     std::vector<GLenum> drawBuffers; // the frame's, while the pre-pass writes its texture
     const auto mark = [this](PassTimes::Pass pass) {
         if (clock)

@@ -54,6 +54,14 @@ public:
         return m_commandBytes + m_finBytes +
                std::int64_t(m_prepassSize.x) * m_prepassSize.y * 16; // the deferred pass's input
     }
+    /// Host bytes of the silhouette fins' vertices and indices (FrameReport::hostCopyBytes).
+    std::int64_t hostCopyBytes() const {
+        std::int64_t bytes = 0;
+        for (const auto& [record, f] : m_fins)
+            bytes += std::int64_t(f.vertices.size() * sizeof(SkirtVertex) +
+                                  f.indices.size() * sizeof(unsigned));
+        return bytes;
+    }
     const EnvironmentMap& environment() const { return m_environment; }
     /// The deferred pass's input as the last deferred frame left it (0 before one): per pixel
     /// the polygon's (u, v), the surface's table row and the cell's vertex

@@ -113,6 +113,10 @@ struct FrameReport {
     /// structural change or a new view, else only those the document reported changed.
     int recordsSynced = 0;
     GpuBytes gpuBytes; ///< resident after this frame
+    /// Host memory the renderer keeps beside gpuBytes, after this frame: the CPU copies that
+    /// partial updates and the silhouette fins read (control texels, base polygon vertices,
+    /// cell breaks and spans, the span bounds of the adaptive choice, the fins' vertices).
+    std::int64_t hostCopyBytes = 0;
     /// What the frame drew differently from the document: trim loops repaired or ignored
     /// (each prefixed with its surface id) and surfaces left out. The current state, not only
     /// what changed in this frame.

@@ -115,6 +115,9 @@ struct SurfaceGpu {
     ParameterBox polygonBox;         ///< the (u, v) box the polygon spans
     bool polygonTrimmed = false;     ///< polygonBox is trimParameterBox, not the domain
     std::uint64_t polygonSerial = 0; ///< changes whenever the polygon is rebuilt
+    /// Cells of the partition choice over polygonBox, in view or not (the polygon holds only
+    /// those in view: RenderOptions::polygonsInView); the exact planner's cell size estimate.
+    std::int64_t choiceCells = 0;
     /// splitByTrims: the triangle range holds the cells wholly inside the trims first
     /// (insideIndexCount indices), then those near a trim curve (edgeIndexCount), then those
     /// wholly trimmed away. insideIndexCount < 0: not split (one range, every cell).

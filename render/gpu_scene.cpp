@@ -127,7 +127,7 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
         bool evaluated = false;
         const PartitionChoice& c =
             e.adaptive.choose(s, rev, box, pass.scale, m_viewStamp, options.pixelTolerance, sliderU,
-                              sliderV, &evaluated);
+                              sliderV, &evaluated, options.polygonsInView);
         chosenCut = &e.adaptive.cut();
         pass.choicesEvaluated += evaluated;
         r.boundPixels = c.boundPixels;
@@ -156,6 +156,7 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     g->polygonTrimmed = options.polygonOverTrims;
     m_tooLarge.erase(index);
     if (fits) {
+        g->choiceCells = pass.adaptive ? e.adaptive.choiceCells() : g->polygon.cellCount();
         g->revisions = rev;
         if (r.slot < 0) {
             if (!m_table.freeSlots.empty()) {
@@ -266,7 +267,8 @@ bool GpuScene::needsFullWalk(const Scene& scene, const FrameCamera& camera,
                        options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
                        options.controlNet,      options.trims,          options.trimMode,
                        options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
-                       options.edgeSkirts,      options.wireframe};
+                       options.edgeSkirts,      options.polygonsInView,
+                       options.wireframe};
     const bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
@@ -623,6 +625,22 @@ void GpuScene::residentBytes(GpuBytes& out) const {
     out.tessellatedMeshes += m_meshBytes; // kept by syncMesh, syncNet and drop
     out.controlNets += m_netBytes;
     out.trimMasks += m_masks.residentBytes();
+}
+
+std::int64_t GpuScene::hostCopyBytes() const {
+    std::int64_t bytes = 0;
+    for (const auto& [id, e] : m_entries) {
+        bytes += e.adaptive.hostBytes();
+        const SurfaceGpu* g = e.record.exact.get();
+        if (!g)
+            continue;
+        const BasePolygon& p = g->polygon;
+        bytes += std::int64_t(g->control.size() * sizeof(glm::vec4) +
+                              p.vertices.size() * sizeof(BaseVertex) +
+                              (p.breaksU.size() + p.breaksV.size()) * sizeof(double) +
+                              (p.spanU.size() + p.spanV.size()) * sizeof(int));
+    }
+    return bytes;
 }
 
 void GpuScene::release() {

@@ -210,6 +210,9 @@ public:
 
     /// Adds the bytes of every record and of the mask array to `out` by kind.
     void residentBytes(GpuBytes& out) const;
+    /// FrameReport::hostCopyBytes of the records: their control texels, base polygon vertices,
+    /// breaks and spans kept on the CPU, and their adaptive choices' span bounds.
+    std::int64_t hostCopyBytes() const;
     /// Frees every GL object; the context must be current.
     void release();
 
@@ -329,7 +332,7 @@ private:
         RenderOptions::TrimMode trimMode = RenderOptions::TrimMode::Exact;
         std::int64_t trimBudgetBytes = 0;
         int trimGridCap = 0;
-        bool splitCellsByTrims = false, edgeSkirts = false;
+        bool splitCellsByTrims = false, edgeSkirts = false, polygonsInView = false;
         bool wireframe = false; ///< outlines are uploaded once a frame draws them
         bool operator==(const FrameKey&) const = default;
     };

@@ -106,6 +106,10 @@ struct RenderOptions {
     /// chord and the surface's true edge, which no face covered (cracks).
     /// Off only to measure the difference.
     bool edgeSkirts = true;
+    /// Adaptive partitions: a base polygon keeps only the cells that may reach the view
+    /// (kw::cutInView), so a close-up holds and builds what is on screen, not every cell of
+    /// each surface in view. The same pixels; off only to measure the difference.
+    bool polygonsInView = true;
     /// Adaptive exact frames with the depth pre-pass, aliased (each sample of accumulated
     /// anti-aliasing is one): the pre-pass also writes each pixel's (u, v), surface and cell,
     /// and a deferred pass shades each pixel once from them, however small the adaptive

@@ -755,6 +755,7 @@ void Renderer::Impl::reportPassFigures(FrameReport& report) const {
     report.partitions.sectionCrossedCells = exact.sectionCrossedCells;
     scene.residentBytes(report.gpuBytes);
     report.gpuBytes.perSurface += exact.residentBytes();
+    report.hostCopyBytes = scene.hostCopyBytes() + exact.hostCopyBytes();
     report.gpuBytes.frameTargets = antialias.residentBytes() + accumulate.residentBytes();
     report.gpuBytes.floatDepthTarget = floatDepth.residentBytes();
 }

@@ -546,6 +546,7 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
     // 3. Grow: each cell over the tolerance asks its column and row for cells sqrt(excess)
     // times smaller (the bound is quadratic in the cell size), the direction(s) that matter.
     c.met = true;
+    c.cellsInOneSub = true;
     for (;;) {
         std::vector<int> want[2] = {count[0], count[1]};
         bool over = false;

@@ -71,6 +71,8 @@ struct ScreenScale {
     /// point over it then lies outside too, so the bound still holds for all that is drawn.
     bool cullOutsideView = false;
     glm::dmat4 viewProjection{1.0}; ///< OpenGL clip transform (only with cullOutsideView)
+    /// The viewport in pixels (only with cullOutsideView): a margin in pixels around the view.
+    glm::dvec2 viewportPixels{1.0};
 };
 
 /// The scale of `camera` (as kw::cameraMatrices reads it: target - eye is the view direction,
@@ -123,6 +125,9 @@ struct PartitionChoice {
     int nv = 1;
     double boundPixels = 0.0; ///< the guaranteed screen deviation bound at (nu, nv)
     bool met = true;          ///< false when kMaxPartitions could not reach the tolerance
+    /// chooseBreaks' grid: every cell lies inside one sub-rectangle of the spans (a uniform
+    /// cell lies inside one span only).
+    bool cellsInOneSub = false;
     /// The cell boundaries (chooseBreaks; empty from choosePartitions): nu + 1 increasing
     /// values along u from the box's first to its last, nv + 1 along v.
     std::vector<double> breaksU, breaksV;
