@@ -22,6 +22,22 @@ double msSince(const QElapsedTimer& t) {
     return double(t.nsecsElapsed()) * 1e-6;
 }
 
+/// The first reason `target` and `options` cannot make a frame, or ok.
+Status checkFrameRequest(const RenderTarget& target, const RenderOptions& options) {
+    if (target.size.width() <= 0 || target.size.height() <= 0)
+        return Error(QStringLiteral("render size %1x%2 is empty")
+                         .arg(target.size.width())
+                         .arg(target.size.height()));
+    if (options.sections.size() > size_t(kMaxSectionPlanes))
+        return Error(QStringLiteral("%1 section planes, at most %2")
+                         .arg(options.sections.size())
+                         .arg(kMaxSectionPlanes));
+    for (const SectionPlane& p : options.sections)
+        if (Status valid = checkSectionPlane(p); !valid)
+            return valid;
+    return ok();
+}
+
 } // namespace
 
 Renderer::Renderer() : d(std::make_unique<Impl>()) {}
@@ -85,10 +101,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     };
     if (!gl)
         return fail(QStringLiteral("Renderer::render called before initialize()"));
-    if (target.size.width() <= 0 || target.size.height() <= 0)
-        return fail(QStringLiteral("render size %1x%2 is empty")
-                        .arg(target.size.width())
-                        .arg(target.size.height()));
+    if (Status request = checkFrameRequest(target, options); !request)
+        return fail(request.message());
     // A preview of a moving view: fewer pixels, each exact, magnified into the target.
     const bool preview = options.previewScale < 1.0 && !target.aov && !pickPixel;
     QSize size = target.size;
@@ -102,13 +116,6 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     report.drawnSize = size;
     options.writeAov = target.aov;
     options.writeCurvatureAov = target.aov && target.curvatureAov;
-    if (options.sections.size() > size_t(kMaxSectionPlanes))
-        return fail(QStringLiteral("%1 section planes, at most %2")
-                        .arg(options.sections.size())
-                        .arg(kMaxSectionPlanes));
-    for (const SectionPlane& p : options.sections)
-        if (Status valid = checkSectionPlane(p); !valid)
-            return fail(valid.message());
     // The scene's bounds (the camera planes) are kept per surface by the GPU scene, which
     // follows the document's changes: no walk over every control point per frame.
     clock.start(gl, &report.passes);
@@ -158,41 +165,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
 
     // The partial frame (render/partial_frame.h): an aliased exact frame kept in the own
     // framebuffer, of which the next frame of the same view redraws only what changed.
-    const bool keepable = options.frameReuse != RenderOptions::FrameReuse::None && !pickPixel &&
-                          !target.aov && !aa && !accumulated && options.mode == RenderMode::Exact &&
-                          floatDepth.framebuffer() != 0 &&
-                          drawn.framebuffer == floatDepth.framebuffer();
-    PartialFrameView view;
-    std::vector<SurfaceFootprint> footprints;
-    std::optional<glm::ivec4> damage;
-    if (keepable) {
-        view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
-        footprints = surfaceFootprints(fc, options.controlNet);
-        if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
-            damage = partial.damage(view, exact.prepassWrites(), footprints, fc.viewProjection,
-                                    options.edgeBands.get());
-    }
-    const bool unchanged = damage && damage->z <= damage->x; // the kept frame is the image
-    if (damage) {
-        report.partial = true;
-        if (!unchanged) {
-            const int pad = PartialFrames::reachPixels(options);
-            fc.reach = *damage + glm::ivec4(-pad, -pad, pad, pad);
-            partialScissor =
-                QRect(damage->x, damage->y, damage->z - damage->x, damage->w - damage->y);
-            report.partialRect = QRect(damage->x, size.height() - damage->w, damage->z - damage->x,
-                                       damage->w - damage->y);
-            for (size_t k = 0; k < footprints.size(); ++k) {
-                const SurfaceFootprint& f = footprints[k];
-                const glm::ivec4& r = f.rect;
-                if (f.drawn && (!f.bounded || (r.z > fc.reach.x && r.x < fc.reach.z &&
-                                               r.w > fc.reach.y && r.y < fc.reach.w))) {
-                    ++report.partialSurfaces;
-                    report.partialCells += scene.records()[k]->cells;
-                }
-            }
-        }
-    }
+    const PartialPlan plan = planPartialFrame(doc, target, size, fc, lights, options, targets,
+                                              pickPixel != nullptr, report);
+    const bool unchanged = plan.unchanged;
 
     QElapsedTimer phase;
     phase.start();
@@ -265,25 +240,70 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         report.error = synced.message();
     report.ok = ok && synced;
     if (!pickPixel) {
-        const LastFrame now{&doc, doc.revision(), camera, size, sampleTarget.framebuffer};
         const bool pickable =
             report.ok && !preview && !target.aov && options.mode == RenderMode::Exact;
-        // A partial frame's pre-pass data is its rectangle's and the kept frame's.
-        if (report.partial)
-            lastFrame =
-                pickable && partial.pickable() ? std::optional<LastFrame>(now) : std::nullopt;
-        else
-            rememberLastFrame(now, firstSample < endSample, pickable);
-        // Any other frame may have drawn over the own framebuffer or the pre-pass data.
-        if (keepable && report.ok)
-            partial.remember(camera, fc, view, exact.prepassWrites(), footprints,
-                             options.edgeBands.get(), exact.backCulledSolids(),
-                             lastFrame.has_value());
-        else
-            partial.forget();
+        rememberFrame(LastFrame{&doc, doc.revision(), camera, size, sampleTarget.framebuffer}, fc,
+                      options, plan, firstSample < endSample, pickable, report.ok);
     }
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+Renderer::Impl::PartialPlan
+Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target, QSize size,
+                                 FrameCamera& fc, const std::vector<Light>& lights,
+                                 const RenderOptions& options, const FrameTargets& targets,
+                                 bool pick, FrameReport& report) {
+    PartialPlan plan;
+    plan.keepable = options.frameReuse != RenderOptions::FrameReuse::None && !pick && !target.aov &&
+                    !targets.aa && !targets.accumulated && options.mode == RenderMode::Exact &&
+                    floatDepth.framebuffer() != 0 &&
+                    targets.drawn.framebuffer == floatDepth.framebuffer();
+    if (!plan.keepable)
+        return plan;
+    plan.view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
+    plan.footprints = surfaceFootprints(fc, options.controlNet);
+    if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
+        plan.damage = partial.damage(plan.view, exact.prepassWrites(), plan.footprints,
+                                     fc.viewProjection, options.edgeBands.get());
+    if (!plan.damage)
+        return plan;
+    const glm::ivec4& damage = *plan.damage;
+    report.partial = true;
+    plan.unchanged = damage.z <= damage.x; // the kept frame is the image
+    if (plan.unchanged)
+        return plan;
+    const int pad = PartialFrames::reachPixels(options);
+    fc.reach = damage + glm::ivec4(-pad, -pad, pad, pad);
+    partialScissor = QRect(damage.x, damage.y, damage.z - damage.x, damage.w - damage.y);
+    report.partialRect =
+        QRect(damage.x, size.height() - damage.w, damage.z - damage.x, damage.w - damage.y);
+    for (size_t k = 0; k < plan.footprints.size(); ++k) {
+        const SurfaceFootprint& f = plan.footprints[k];
+        const glm::ivec4& r = f.rect;
+        if (f.drawn && (!f.bounded || (r.z > fc.reach.x && r.x < fc.reach.z && r.w > fc.reach.y &&
+                                       r.y < fc.reach.w))) {
+            ++report.partialSurfaces;
+            report.partialCells += scene.records()[k]->cells;
+        }
+    }
+    return plan;
+}
+
+void Renderer::Impl::rememberFrame(const LastFrame& now, const FrameCamera& fc,
+                                   const RenderOptions& options, const PartialPlan& plan,
+                                   bool drewSample, bool pickable, bool ok) {
+    // A partial frame's pre-pass data is its rectangle's and the kept frame's.
+    if (plan.damage)
+        lastFrame = pickable && partial.pickable() ? std::optional<LastFrame>(now) : std::nullopt;
+    else
+        rememberLastFrame(now, drewSample, pickable);
+    // Any other frame may have drawn over the own framebuffer or the pre-pass data.
+    if (plan.keepable && ok)
+        partial.remember(now.camera, fc, plan.view, exact.prepassWrites(), plan.footprints,
+                         options.edgeBands.get(), exact.backCulledSolids(), lastFrame.has_value());
+    else
+        partial.forget();
 }
 
 Renderer::FramePick Renderer::pickInLastFrame(const Document& doc, const Camera& camera,

@@ -156,6 +156,24 @@ struct Renderer::Impl {
     /// Keeps `now` for pickInLastFrame when it can be read there (`pickable`: an exact,
     /// full-size, successful frame) and a sample was drawn, or the same view was resolved.
     void rememberLastFrame(const LastFrame& now, bool drewSample, bool pickable);
+    /// What the frame does as a partial frame: whether it can be kept for the next one
+    /// (`keepable`), and what of the kept frame it redraws (`damage`, GL window pixels; none:
+    /// the whole frame). Sets fc.reach, partialScissor and the report's partial figures.
+    struct PartialPlan {
+        bool keepable = false;
+        PartialFrameView view;
+        std::vector<SurfaceFootprint> footprints;
+        std::optional<glm::ivec4> damage;
+        bool unchanged = false; ///< nothing to redraw: the kept frame is the image
+    };
+    PartialPlan planPartialFrame(const Document& doc, const RenderTarget& target, QSize size,
+                                 FrameCamera& fc, const std::vector<Light>& lights,
+                                 const RenderOptions& options, const FrameTargets& targets,
+                                 bool pick, FrameReport& report);
+    /// After a frame that is not a pick: what pickInLastFrame and the next partial frame may
+    /// read from it (`ok`: the frame succeeded).
+    void rememberFrame(const LastFrame& now, const FrameCamera& fc, const RenderOptions& options,
+                       const PartialPlan& plan, bool drewSample, bool pickable, bool ok);
 
     GLuint backgroundVao = 0; ///< attribute-less, for drawBackground's one triangle
     /// Framebuffer of the pick query: depth and the three AOVs' attachments (the colour's too,
