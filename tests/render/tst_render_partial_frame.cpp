@@ -9,6 +9,7 @@
 // the edit moved, and an anti-aliased frame are drawn whole.
 #include "cad_test_util.h"
 #include "expected_test_util.h"
+#include "image_test_util.h"
 #include "render_test_util.h"
 
 #include <algorithm>
@@ -20,20 +21,6 @@ using namespace kw;
 namespace {
 
 constexpr int kSide = 320;
-
-/// Pixels where `a` and `b` differ in any channel.
-int differing(const QImage& a, const QImage& b) {
-    if (a.size() != b.size())
-        return a.width() * a.height();
-    int n = 0;
-    for (int y = 0; y < a.height(); ++y) {
-        const QRgb* pa = reinterpret_cast<const QRgb*>(a.constScanLine(y));
-        const QRgb* pb = reinterpret_cast<const QRgb*>(b.constScanLine(y));
-        for (int x = 0; x < a.width(); ++x)
-            n += pa[x] != pb[x];
-    }
-    return n;
-}
 
 /// The largest free-form face (polynomial, degree >= 2, by control bounds) and its middle
 /// control point, moved along the surface normal there (the bench's drag, bench/edit_loop.cpp).
@@ -124,8 +111,8 @@ class TestRenderPartialFrame : public QObject {
             *rect = report.partialRect;
         const QImage got = m_partial->colorImage(), whole = m_whole->colorImage(),
                      fresh = m_fresh->colorImage();
-        const int vsWhole = differing(got, whole);
-        const int vsFresh = differing(got, fresh);
+        const int vsWhole = kwtest::differingPixels(got, whole);
+        const int vsFresh = kwtest::differingPixels(got, fresh);
         qInfo("%s: partial %d, rectangle %d,%d %dx%d, surfaces %d; %d pixels differ from a "
               "fresh whole frame",
               qPrintable(step), report.partial, report.partialRect.x(), report.partialRect.y(),
