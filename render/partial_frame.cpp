@@ -37,10 +37,7 @@ glm::ivec4 PartialFrames::grown(const glm::ivec4& rect, int pad, glm::ivec2 view
     return r;
 }
 
-namespace {
-
-/// Grows `into` (x1 <= x0: empty) to hold `r`.
-void unite(glm::ivec4& into, const glm::ivec4& r) {
+void PartialFrames::unite(glm::ivec4& into, const glm::ivec4& r) {
     if (r.z <= r.x || r.w <= r.y)
         return;
     if (into.z <= into.x) {
@@ -50,8 +47,6 @@ void unite(glm::ivec4& into, const glm::ivec4& r) {
     into = glm::ivec4(std::min(into.x, r.x), std::min(into.y, r.y), std::max(into.z, r.z),
                       std::max(into.w, r.w));
 }
-
-} // namespace
 
 std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
                                                 std::uint64_t prepassWrites,
@@ -103,14 +98,13 @@ std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
         if (bands->layoutRevision != m_bandsLayout || bands->ranges.empty() ||
             bands->ranges.size() != m_bandBounds.size())
             return std::nullopt;
-        const int bandPad = reachPixels(view.options);
         for (size_t k = 0; k < bands->ranges.size() && !whole; ++k) {
             const EdgeBandRange& b = bands->ranges[k];
             if (b.revision <= m_bandsRevision)
                 continue;
             for (const auto& [lo, hi] : {m_bandBounds[k], std::pair(b.lo, b.hi)}) {
                 const std::optional<glm::ivec4> r =
-                    windowRect(lo, hi, viewProjection, view.viewport, bandPad);
+                    windowRect(lo, hi, viewProjection, view.viewport, pad);
                 if (!r)
                     whole = true;
                 else

@@ -71,6 +71,8 @@ public:
                                                 glm::ivec2 viewport, int pad);
     /// `rect` grown by `pad` and clamped to `viewport` (x1 <= x0: off the view).
     static glm::ivec4 grown(const glm::ivec4& rect, int pad, glm::ivec2 viewport);
+    /// Grows `into` (x1 <= x0: empty) to hold `r` (an empty `r` adds nothing).
+    static void unite(glm::ivec4& into, const glm::ivec4& r);
 
     /// The rectangle a frame of `view` over `surfaces` must redraw after the remembered one,
     /// in window pixels (x0, y0, x1, y1 exclusive, GL rows; x1 <= x0: none, the kept frame

@@ -612,11 +612,8 @@ std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamer
         f.bounded = needControl ? control.has_value() : true;
         if (r->drawnBounded)
             f.rect = r->drawnRect;
-        if (control && r->drawnBounded)
-            f.rect = glm::ivec4(std::min(f.rect.x, control->x), std::min(f.rect.y, control->y),
-                                std::max(f.rect.z, control->z), std::max(f.rect.w, control->w));
-        else if (control)
-            f.rect = *control;
+        if (control)
+            PartialFrames::unite(f.rect, *control);
         out.push_back(f);
     }
     return out;
