@@ -233,7 +233,7 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, reached, cells,
         fullCells;
     // The editor's aliased frames are kept in the renderer's own framebuffer and copied
-    // (Viewport::paintGL); a drag step redraws what the dragged face covered then and now.
+    // (ViewSurface::drawFrame); a drag step redraws what the dragged face covered then and now.
     using Reuse = RenderOptions::FrameReuse;
     const Reuse editorReuse = config.fullFrames ? Reuse::Full : Reuse::Partial;
     const auto knotworkStep = [&](int samples, Reuse reuse, const glm::dvec3& to,

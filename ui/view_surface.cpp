@@ -1,5 +1,8 @@
-// ViewSurface: the 3D view's native OpenGL window (or its QOpenGLWidget fallback).
+// ViewSurface: the 3D view's native OpenGL window (or its QOpenGLWidget fallback), and the
+// frame policy of its frames.
 #include "ui/view_surface.h"
+
+#include "ui/cameracontroller.h"
 
 #include <QCoreApplication>
 #include <QEvent>
@@ -8,13 +11,17 @@
 #include <QOpenGLContext>
 #include <QOpenGLExtraFunctions>
 #include <QOpenGLFramebufferObject>
+#include <QOpenGLFunctions>
 #include <QOpenGLPaintDevice>
 #include <QOpenGLWidget>
 #include <QPaintEvent>
+#include <QPainter>
 #include <QPointer>
 #include <QRegion>
+#include <QTimer>
 #include <QWidget>
 #include <QWindow>
+#include <algorithm>
 
 namespace kw {
 
@@ -60,8 +67,9 @@ private:
 
 class NativeSurface final : public ViewSurface {
 public:
-    NativeSurface(QWidget* host, const QSurfaceFormat& format, Callbacks callbacks)
-        : ViewSurface(std::move(callbacks)), m_format(format) {
+    NativeSurface(QWidget* host, const QSurfaceFormat& format, const ViewState& view,
+                  Callbacks callbacks)
+        : ViewSurface(host, view, std::move(callbacks)), m_format(format) {
         m_window = new ViewWindow(this, host);
         m_window->setFormat(format);
         // The container owns the window.
@@ -91,11 +99,6 @@ public:
     }
     unsigned framebuffer() const override { return m_fbo ? m_fbo->handle() : 0u; }
 
-    void requestFrame() override {
-        m_paintPending = true;
-        post();
-    }
-
     void makeCurrent() override {
         if (!ensureContext())
             return;
@@ -123,23 +126,6 @@ public:
         return m_device.get();
     }
 
-    QImage grabFramebuffer() override {
-        if (!ensureContext())
-            return {};
-        makeCurrent();
-        if (!m_fbo)
-            return {};
-        m_callbacks.paint();
-        m_drawn = true;
-        makeCurrent();
-        const QImage image =
-            readFrame(m_context.get(), m_fbo->handle(), m_fbo->size(), devicePixelRatio());
-        // The window shows what was grabbed, as a QOpenGLWidget would at its next composition.
-        m_presentPending = true;
-        post();
-        return image;
-    }
-
     void bindFramebuffer() {
         if (m_fbo)
             m_fbo->bind();
@@ -157,6 +143,28 @@ public:
     }
 
 protected:
+    void requestFrame() override {
+        m_paintPending = true;
+        post();
+    }
+
+    QImage grab() override {
+        if (!ensureContext())
+            return {};
+        makeCurrent();
+        if (!m_fbo)
+            return {};
+        paint();
+        m_drawn = true;
+        makeCurrent();
+        const QImage image =
+            readFrame(m_context.get(), m_fbo->handle(), m_fbo->size(), devicePixelRatio());
+        // The window shows what was grabbed, as a QOpenGLWidget would at its next composition.
+        m_presentPending = true;
+        post();
+        return image;
+    }
+
     bool eventFilter(QObject* watched, QEvent* event) override {
         // As QOpenGLWidget::resizeEvent: the context made, the framebuffer resized (which
         // tells the view), a frame asked for.
@@ -229,7 +237,7 @@ private:
         m_fbo = std::make_unique<QOpenGLFramebufferObject>(pixels, f);
         m_drawn = false;
         m_fbo->bind();
-        m_callbacks.resize(m_container->width(), m_container->height());
+        resized(m_container->width(), m_container->height());
     }
 
     /// Paints a frame if asked (else shows the last one again), blits it to the window and
@@ -242,7 +250,7 @@ private:
             return;
         if (paint || !m_drawn) {
             m_paintPending = false;
-            m_callbacks.paint();
+            ViewSurface::paint();
             m_drawn = true;
             makeCurrent(); // the view may have let it go (a pick)
         }
@@ -252,7 +260,7 @@ private:
         blitColour(f, m_fbo->handle(), m_context->defaultFramebufferObject(), pixels);
         m_context->swapBuffers(m_window);
         m_fbo->bind();
-        Q_EMIT frameSwapped();
+        swapped();
     }
 
     QSurfaceFormat m_format;
@@ -307,18 +315,17 @@ bool ViewWindow::event(QEvent* event) {
 
 // ---- The fallback: a QOpenGLWidget
 
+class WidgetSurface;
+
 class ViewWidget : public QOpenGLWidget {
 public:
-    ViewWidget(const ViewSurface::Callbacks& callbacks, QWidget* parent)
-        : QOpenGLWidget(parent), m_callbacks(callbacks) {}
+    ViewWidget(WidgetSurface* surface, QWidget* parent)
+        : QOpenGLWidget(parent), m_surface(surface) {}
 
 protected:
-    void initializeGL() override { m_callbacks.initialize(); }
-    void resizeGL(int w, int h) override { m_callbacks.resize(w, h); }
-    void paintGL() override {
-        m_callbacks.paint();
-        m_painted = true;
-    }
+    void initializeGL() override;
+    void resizeGL(int w, int h) override;
+    void paintGL() override;
     void paintEvent(QPaintEvent* event) override {
         // QOpenGLWidget draws its frame again at every paint event, and a child widget's
         // repaint sends one for the part under it: that part is the last frame composed
@@ -329,37 +336,58 @@ protected:
     }
 
 private:
-    const ViewSurface::Callbacks& m_callbacks;
+    WidgetSurface* m_surface;
     bool m_painted = false;
 };
 
 class WidgetSurface final : public ViewSurface {
 public:
-    WidgetSurface(QWidget* host, const QSurfaceFormat& format, Callbacks callbacks)
-        : ViewSurface(std::move(callbacks)) {
-        m_widget = new ViewWidget(m_callbacks, host);
+    WidgetSurface(QWidget* host, const QSurfaceFormat& format, const ViewState& view,
+                  Callbacks callbacks)
+        : ViewSurface(host, view, std::move(callbacks)) {
+        m_widget = new ViewWidget(this, host);
         m_widget->setObjectName(QStringLiteral("viewWidget"));
         m_widget->setFormat(format);
         m_widget->setAttribute(Qt::WA_TransparentForMouseEvents);
         m_widget->setFocusPolicy(Qt::NoFocus);
-        connect(m_widget, &QOpenGLWidget::frameSwapped, this, &ViewSurface::frameSwapped);
+        connect(m_widget, &QOpenGLWidget::frameSwapped, this, [this] { swapped(); });
     }
     ~WidgetSurface() override { delete m_widget.data(); }
 
     QWidget* widget() const override { return m_widget; }
     bool isNativeWindow() const override { return false; }
-    void requestFrame() override { m_widget->update(); }
     void makeCurrent() override { m_widget->makeCurrent(); }
     void doneCurrent() override { m_widget->doneCurrent(); }
     QOpenGLContext* context() const override { return m_widget->context(); }
     QSurfaceFormat format() const override { return m_widget->format(); }
     unsigned framebuffer() const override { return m_widget->defaultFramebufferObject(); }
     QPaintDevice* paintDevice() override { return m_widget; }
-    QImage grabFramebuffer() override { return m_widget->grabFramebuffer(); }
+
+    // ViewWidget's calls.
+    void initializeGl() { m_callbacks.initialize(); }
+    void resizeGl(int w, int h) { resized(w, h); }
+    void paintGl() { paint(); }
+
+protected:
+    void requestFrame() override { m_widget->update(); }
+    QImage grab() override { return m_widget->grabFramebuffer(); }
 
 private:
     QPointer<ViewWidget> m_widget;
 };
+
+void ViewWidget::initializeGL() {
+    m_surface->initializeGl();
+}
+
+void ViewWidget::resizeGL(int w, int h) {
+    m_surface->resizeGl(w, h);
+}
+
+void ViewWidget::paintGL() {
+    m_surface->paintGl();
+    m_painted = true;
+}
 
 } // namespace
 
@@ -388,14 +416,223 @@ bool ViewSurface::nativeWindowsAvailable() {
 }
 
 std::unique_ptr<ViewSurface> ViewSurface::create(QWidget* host, const QSurfaceFormat& format,
-                                                 Callbacks callbacks) {
+                                                 const ViewState& view, Callbacks callbacks) {
     if (nativeWindowsAvailable()) {
         // A native widget over the view (the probe's panel) would otherwise make its siblings
         // native, and through them the view and every widget of the main window.
         QCoreApplication::setAttribute(Qt::AA_DontCreateNativeWidgetSiblings);
-        return std::make_unique<NativeSurface>(host, format, std::move(callbacks));
+        return std::make_unique<NativeSurface>(host, format, view, std::move(callbacks));
     }
-    return std::make_unique<WidgetSurface>(host, format, std::move(callbacks));
+    return std::make_unique<WidgetSurface>(host, format, view, std::move(callbacks));
+}
+
+// ---- The frames
+
+ViewSurface::ViewSurface(QWidget* host, const ViewState& view, Callbacks callbacks)
+    : m_callbacks(std::move(callbacks)), m_host(host), m_view(view) {}
+
+ViewSurface::~ViewSurface() = default;
+
+void ViewSurface::update() {
+    m_framePending = true;
+    requestFrame();
+}
+
+void ViewSurface::updateOverlays() {
+    m_overlaysOnly = true;
+    requestFrame();
+}
+
+QImage ViewSurface::grabFramebuffer() {
+    m_framePending = true;
+    return grab();
+}
+
+void ViewSurface::releaseGl() {
+    m_cleanFrame.reset();
+    m_cleanFrameValid = false;
+}
+
+void ViewSurface::resized(int width, int height) {
+    m_cleanFrameValid = false; // the framebuffer is new
+    m_callbacks.resize(width, height);
+}
+
+void ViewSurface::swapped() {
+    // The window's composition and swap of the frame drawn (lastFrameTiming).
+    if (m_paintEnd.isValid()) {
+        m_timing.swapMs = double(m_paintEnd.nsecsElapsed()) * 1e-6;
+        m_paintEnd.invalidate();
+    }
+    Q_EMIT frameSwapped();
+}
+
+void ViewSurface::paint() {
+    const bool overlaysOnly = m_overlaysOnly && !m_framePending && m_cleanFrameValid;
+    m_overlaysOnly = m_framePending = false;
+    // The view's size: the frames cover it.
+    const QSize pixels = devicePixels(*m_host);
+    if (overlaysOnly && m_view.renderer->isInitialized() && restoreCleanFrame(pixels)) {
+        // Only what is painted over the frame changed (a probe marker): the last still frame
+        // again, its overlays painted anew; no new frame.
+        m_callbacks.paintOverlays();
+        return;
+    }
+    drawFrame(pixels);
+}
+
+void ViewSurface::drawFrame(QSize pixels) {
+    const bool timed = m_moveTimed;
+    const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
+    m_moveTimed = false;
+    Renderer& renderer = *m_view.renderer;
+    if (!renderer.isInitialized()) {
+        paintUnavailable();
+        return;
+    }
+    QElapsedTimer paintClock;
+    paintClock.start();
+    const bool moving = m_view.moving();
+    const RenderOptions options = frameOptions(moving);
+    m_lastReport = renderer.render(*m_view.document, m_view.camera->camera(),
+                                   {framebuffer(), pixels, false}, options);
+    m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
+    reportError();
+    refine(moving);
+    const qint64 painterStart = paintClock.nsecsElapsed();
+    // A frame is kept bare, so that its overlays can be painted again alone (the probe's
+    // marker, a rubber band), unless the camera or the document is moving: the next frame
+    // comes anyway.
+    if (!m_view.changing())
+        keepCleanFrame(pixels);
+    else
+        m_cleanFrameValid = false;
+    m_callbacks.paintOverlays();
+    if (renderer.passProfiling()) {
+        // The QPainter overlays' GL work, finished here, as the renderer's passes are.
+        makeCurrent();
+        context()->functions()->glFinish();
+    }
+    m_timing.painterMs = double(paintClock.nsecsElapsed() - painterStart) * 1e-6;
+    m_timing.swapMs = 0.0;
+    m_timing.moving = moving;
+    m_paintEnd.start();
+    Q_EMIT frameDrawn(m_lastReport);
+    count(moveToDraw, timed);
+}
+
+RenderOptions ViewSurface::frameOptions(bool moving) {
+    RenderOptions options = m_view.options;
+    if (moving && m_view.previewWhileMoving()) {
+        // A preview: fewer exact pixels, aliased, magnified; the still frame kStillMs after
+        // the last move is the full image again (its samples a frame at a time).
+        options.previewScale = m_view.previewScale;
+        options.samples = 1;
+        // The silhouettes' last fraction of a pixel (the fins) is not seen in motion.
+        options.silhouetteFins = false;
+        drawAgainWhenStill();
+    } else if (options.samples > 1 && m_view.aliasedWhileMoving()) {
+        if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
+            // A sample per frame: a moving view draws its first, a still one adds the rest.
+            options.progressive = true;
+        } else if (moving) { // MSAA: aliased while moving, all samples in the still frame
+            options.samples = 1;
+            drawAgainWhenStill();
+        }
+    }
+    options.analysis.holdRange = m_view.dragging();
+    // A drag step redraws the dragged face's pixels, not the view's; anti-aliased frames are
+    // drawn whole anyway.
+    options.frameReuse =
+        m_view.partialFrames ? RenderOptions::FrameReuse::Partial : RenderOptions::FrameReuse::None;
+    // The renderer draws every net; with nets for the selection only, the view's overlays
+    // draw them.
+    options.controlNet = m_view.options.controlNet && m_view.netForAll;
+    options.lightCount = std::clamp(int(m_view.document->scene().lights.size()), 1, kMaxLights);
+    return options;
+}
+
+void ViewSurface::paintUnavailable() {
+    QPaintDevice* device = paintDevice();
+    if (!device)
+        return;
+    QPainter p(device);
+    const QRect rect = m_host->rect();
+    p.fillRect(rect, QColor(46, 48, 54));
+    p.setPen(Qt::white);
+    p.drawText(rect.adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
+               QStringLiteral("The 3D view is unavailable:\n%1").arg(m_view.gl.message()));
+}
+
+void ViewSurface::reportError() {
+    if (m_lastReport.ok) {
+        m_lastRenderError.clear();
+        return;
+    }
+    if (m_lastReport.error != m_lastRenderError) {
+        m_lastRenderError = m_lastReport.error;
+        Q_EMIT renderError(QStringLiteral("Frame failed: %1").arg(m_lastRenderError));
+    }
+}
+
+void ViewSurface::refine(bool moving) {
+    // Still frames that started their image again, one after the other: each found something
+    // changed though the view did not move (a slider held, or something that changes every
+    // frame).
+    const bool restarted = !moving && m_lastReport.samplesInImage == 1;
+    m_stillRestarts = restarted ? m_stillRestarts + 1 : 0;
+    if (!m_lastReport.refining)
+        return;
+    // The next sample: at once when the view is still, else once it has been for kStillMs
+    // (a moving view's next frame starts the image again). After two restarts in a row also
+    // kStillMs later, so that what changes the image every frame is not drawn again and again
+    // as fast as the machine can.
+    if (moving || m_stillRestarts >= 2)
+        drawAgainWhenStill();
+    else
+        update();
+}
+
+void ViewSurface::count(double moveToDrawMs, bool timed) {
+    if (timed) {
+        m_metrics.moveToDrawMs.push_back(moveToDrawMs);
+        m_metrics.handlerMs.push_back(m_handlerMs);
+        m_metrics.frames.push_back(m_lastReport);
+    }
+    ++m_framesDrawn;
+    if (!m_fpsClock.isValid())
+        m_fpsClock.start();
+    ++m_frames;
+    if (m_fpsClock.elapsed() >= 1000) {
+        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), m_lastReport);
+        m_frames = 0;
+        m_fpsClock.restart();
+    }
+}
+
+void ViewSurface::drawAgainWhenStill() {
+    if (!m_stillTimer) {
+        m_stillTimer = new QTimer(this);
+        m_stillTimer->setSingleShot(true);
+        connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
+    }
+    m_stillTimer->start(ViewState::kStillMs);
+}
+
+void ViewSurface::keepCleanFrame(QSize pixels) {
+    if (!m_cleanFrame || m_cleanFrame->size() != pixels)
+        m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
+    blitColour(context()->extraFunctions(), framebuffer(), m_cleanFrame->handle(), pixels);
+    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer());
+    m_cleanFrameValid = true;
+}
+
+bool ViewSurface::restoreCleanFrame(QSize pixels) {
+    if (!m_cleanFrameValid || !m_cleanFrame || m_cleanFrame->size() != pixels)
+        return false;
+    blitColour(context()->extraFunctions(), m_cleanFrame->handle(), framebuffer(), pixels);
+    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer());
+    return true;
 }
 
 } // namespace kw

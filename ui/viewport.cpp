@@ -1,4 +1,5 @@
-// Viewport: GL lifetime, frame drawing with timing, camera gestures and routing to the tools.
+// Viewport: GL lifetime, camera gestures, picking and routing to the tools; its surface draws
+// the frames (ui/view_surface.cpp).
 #include "ui/viewport.h"
 
 #include "render/edge_bands.h"
@@ -10,12 +11,8 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
-#include <QOpenGLExtraFunctions>
-#include <QOpenGLFramebufferObject>
-#include <QOpenGLFunctions>
 #include <QPaintEvent>
 #include <QPainter>
-#include <QTimer>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <QWheelEvent>
@@ -37,42 +34,40 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     QSurfaceFormat format = QSurfaceFormat::defaultFormat();
     if (glDebugRequested())
         format.setOption(QSurfaceFormat::DebugContext);
+    m_view.document = m_doc;
+    m_view.renderer = &m_renderer;
+    m_view.camera = &m_camera;
+    m_view.tools = &m_tools;
     m_surface =
-        ViewSurface::create(this, format,
+        ViewSurface::create(this, format, m_view,
                             {[this] { initializeGL(); }, [this](int w, int h) { resizeGL(w, h); },
                              [this] {
-                                 paintGL();
+                                 paintOverlays();
                              }});
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(m_surface->widget());
     setMinimumSize(160, 120);
-    m_options.controlNet = true;
-    m_options.samples = samples(); // the automatic count: kept resolved, as setSamples does
-    // A document change only schedules a repaint; nothing renders inside a signal.
-    auto repaint = [this] {
-        update();
-    };
-    connect(m_doc, &Document::surfaceChanged, this, repaint);
-    connect(m_doc, &Document::surfaceInserted, this, repaint);
-    connect(m_doc, &Document::surfaceRemoved, this, repaint);
-    connect(m_doc, &Document::lightsChanged, this, repaint);
+    m_view.options.controlNet = true;
+    m_view.options.samples = samples(); // the automatic count: kept resolved, as setSamples does
+    // A document change only asks the surface for a frame; nothing renders inside a signal.
+    ViewSurface* frames = m_surface.get();
+    connect(m_doc, &Document::surfaceChanged, frames, &ViewSurface::update);
+    connect(m_doc, &Document::surfaceInserted, frames, &ViewSurface::update);
+    connect(m_doc, &Document::surfaceRemoved, frames, &ViewSurface::update);
+    connect(m_doc, &Document::lightsChanged, frames, &ViewSurface::update);
     for (auto& tool : makeViewTools(this))
         m_tools.add(std::move(tool));
     connect(m_doc, &Document::sceneReset, this, [this] {
         m_tools.cancel(); // the live edit has already let go of the old scene's points
-        m_gesture = Gesture::None;
+        m_view.gesture = Gesture::None;
         resetCamera();
     });
-    connect(m_selection, &Selection::changed, this, repaint);
-    // The window's composition and swap of the frame paintGL drew (lastFrameTiming).
-    connect(m_surface.get(), &ViewSurface::frameSwapped, this, [this] {
-        if (m_paintEnd.isValid()) {
-            m_timing.swapMs = double(m_paintEnd.nsecsElapsed()) * 1e-6;
-            m_paintEnd.invalidate();
-        }
-        Q_EMIT frameSwapped();
-    });
+    connect(m_selection, &Selection::changed, frames, &ViewSurface::update);
+    connect(frames, &ViewSurface::frameSwapped, this, &Viewport::frameSwapped);
+    connect(frames, &ViewSurface::frameDrawn, this, &Viewport::frameDrawn);
+    connect(frames, &ViewSurface::framesPerSecond, this, &Viewport::framesPerSecond);
+    connect(frames, &ViewSurface::renderError, this, &Viewport::renderError);
     resetCamera();
 }
 
@@ -86,24 +81,21 @@ Viewport::~Viewport() {
 }
 
 void Viewport::releaseGl() {
-    if (!m_renderer.isInitialized() && !m_glDebug && !m_cleanFrame)
+    if (!m_renderer.isInitialized() && !m_glDebug && !m_surface->holdsGl())
         return;
     makeCurrent();
     m_renderer.release();
-    m_cleanFrame.reset();
-    m_cleanFrameValid = false;
+    m_surface->releaseGl();
     m_glDebug.reset(); // stops logging while its context is current
     doneCurrent();
 }
 
 void Viewport::update() {
-    m_framePending = true;
-    m_surface->requestFrame();
+    m_surface->update();
 }
 
 void Viewport::updateOverlays() {
-    m_overlaysOnly = true;
-    m_surface->requestFrame();
+    m_surface->updateOverlays();
 }
 
 void Viewport::addOverlay(QObject* owner, std::function<void(QPainter&)> paint) {
@@ -131,7 +123,6 @@ unsigned Viewport::defaultFramebufferObject() const {
 }
 
 QImage Viewport::grabFramebuffer() {
-    m_framePending = true;
     return m_surface->grabFramebuffer();
 }
 
@@ -172,22 +163,22 @@ void Viewport::setStandardView(StandardView view) {
 }
 
 void Viewport::setRenderMode(RenderMode mode) {
-    m_options.mode = mode;
+    m_view.options.mode = mode;
     update();
 }
 
 void Viewport::setWireframe(bool on) {
-    m_options.wireframe = on;
+    m_view.options.wireframe = on;
     update();
 }
 
 void Viewport::setAnalysis(const AnalysisOptions& analysis) {
-    m_options.analysis = analysis;
+    m_view.options.analysis = analysis;
     update();
 }
 
 void Viewport::drawLegend() {
-    if (m_options.edgeBands) {
+    if (m_view.options.edgeBands) {
         // The Edge Continuity overlay's classes, bottom right.
         QPainter p(m_surface->paintDevice());
         const std::pair<glm::vec4, QString> rows[] = {
@@ -208,38 +199,34 @@ void Viewport::drawLegend() {
                        Qt::AlignVCenter | Qt::AlignLeft, rows[k].second);
         }
     }
-    const AnalysisOptions& a = m_options.analysis;
-    if (m_options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
+    const AnalysisOptions& a = m_view.options.analysis;
+    if (m_view.options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
         QPainter p(m_surface->paintDevice());
         drawDraftLegend(p, QRect(width() - 190, 16, 170, 100), a.pullDirection,
                         a.draftAngleDegrees);
         return;
     }
-    if (m_options.mode != RenderMode::Exact || !isColourMap(a.mode))
+    if (m_view.options.mode != RenderMode::Exact || !isColourMap(a.mode))
         return;
     QPainter p(m_surface->paintDevice());
     const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
-    drawColourLegend(p, area, a.mode, m_lastReport.analysisRange,
+    drawColourLegend(p, area, a.mode, lastFrameReport().analysisRange,
                      a.scale.value_or(defaultScale(a.mode)), !a.range);
 }
 
 void Viewport::setEdgeBands(std::shared_ptr<const EdgeBands> bands) {
-    m_options.edgeBands = std::move(bands);
+    m_view.options.edgeBands = std::move(bands);
     update();
 }
 
 void Viewport::setControlNet(bool on) {
-    m_options.controlNet = on;
+    m_view.options.controlNet = on;
     update();
 }
 
 void Viewport::setTool(Tool* tool) {
     m_tools.install(tool);
     update();
-}
-
-bool Viewport::isDragging() const {
-    return m_tools.active() && m_tools.active()->editing();
 }
 
 void Viewport::showMessage(const QString& text) {
@@ -267,7 +254,7 @@ std::vector<ControlPointRef> Viewport::controlPointsIn(const QRectF& rect) {
 }
 
 void Viewport::setControlNetForAll(bool on) {
-    m_netForAll = on;
+    m_view.netForAll = on;
     update();
 }
 
@@ -289,16 +276,16 @@ void Viewport::setBackground(const QColor& c) {
 void Viewport::setLightBackground(bool on) {
     m_lightBackground = on;
     if (on) {
-        backgroundNamed(QStringLiteral("light"), m_options);
+        backgroundNamed(QStringLiteral("light"), m_view.options);
     } else {
-        m_options.background = m_flatBackground;
-        m_options.backgroundTop.reset();
+        m_view.options.background = m_flatBackground;
+        m_view.options.backgroundTop.reset();
     }
     update();
 }
 
 void Viewport::setHeadlight(bool on) {
-    m_options.headlight = on;
+    m_view.options.headlight = on;
     update();
 }
 
@@ -307,54 +294,44 @@ void Viewport::setSections(const std::vector<SectionPlane>& planes, bool caps) {
     for (const SectionPlane& p : planes)
         if (int(kept.size()) < kMaxSectionPlanes && checkSectionPlane(p))
             kept.push_back(p);
-    if (kept == m_options.sections && caps == m_options.sectionCaps)
+    if (kept == m_view.options.sections && caps == m_view.options.sectionCaps)
         return;
-    m_options.sections = std::move(kept);
-    m_options.sectionCaps = caps;
+    m_view.options.sections = std::move(kept);
+    m_view.options.sectionCaps = caps;
     update();
 }
 
 void Viewport::moveSections(const std::vector<SectionPlane>& planes) {
-    setSections(planes, m_options.sectionCaps);
-    Q_EMIT sectionsMoved(m_options.sections, m_options.sectionCaps);
+    setSections(planes, m_view.options.sectionCaps);
+    Q_EMIT sectionsMoved(m_view.options.sections, m_view.options.sectionCaps);
 }
 
 void Viewport::setTrimMaskCap(int texels) {
-    m_options.trimMaskCap = std::clamp(texels, kMinTrimMaskSize, 16384);
+    m_view.options.trimMaskCap = std::clamp(texels, kMinTrimMaskSize, 16384);
     update();
 }
 
 void Viewport::setTrimMode(RenderOptions::TrimMode mode, std::int64_t budgetBytes) {
-    m_options.trimMode = mode;
-    m_options.trimBudgetBytes = std::clamp(budgetBytes, kMinTrimBudgetBytes, kMaxTrimBudgetBytes);
+    m_view.options.trimMode = mode;
+    m_view.options.trimBudgetBytes =
+        std::clamp(budgetBytes, kMinTrimBudgetBytes, kMaxTrimBudgetBytes);
     update();
 }
 
 void Viewport::setSamples(int samples) {
-    m_samplesWanted = samples == kAutoSamples ? kAutoSamples : std::clamp(samples, 1, kMaxSamples);
-    m_options.samples = this->samples();
+    m_view.samplesWanted =
+        samples == kAutoSamples ? kAutoSamples : std::clamp(samples, 1, kMaxSamples);
+    m_view.options.samples = this->samples();
     update();
 }
 
 void Viewport::setAntialiasing(RenderOptions::Antialiasing method) {
-    m_options.antialiasing = method;
+    m_view.options.antialiasing = method;
     update();
 }
 
-int Viewport::samples() const {
-    return m_samplesWanted == kAutoSamples ? kAutoSamplesCount : m_samplesWanted;
-}
-
-bool Viewport::aliasedWhileMoving() const {
-    return m_samplesWanted == kAutoSamples && m_softwareGl;
-}
-
-bool Viewport::previewWhileMoving() const {
-    return m_softwareGl && m_previewScale < 1.0;
-}
-
 void Viewport::setPreviewScale(double scale) {
-    m_previewScale = std::clamp(scale, 0.125, 1.0);
+    m_view.previewScale = std::clamp(scale, 0.125, 1.0);
 }
 
 void Viewport::setPassProfiling(bool on) {
@@ -362,15 +339,16 @@ void Viewport::setPassProfiling(bool on) {
 }
 
 void Viewport::setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance) {
-    m_options.partitioning = mode;
-    m_options.pixelTolerance = std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
+    m_view.options.partitioning = mode;
+    m_view.options.pixelTolerance =
+        std::clamp(pixelTolerance, kMinPixelTolerance, kMaxPixelTolerance);
     update();
 }
 
 std::vector<SurfaceId> Viewport::netSurfaces() const {
-    if (!m_options.controlNet)
+    if (!m_view.options.controlNet)
         return {};
-    return shownSurfaces(!m_netForAll); // a hidden surface's points cannot be picked either
+    return shownSurfaces(!m_view.netForAll); // a hidden surface's points cannot be picked either
 }
 
 std::vector<SurfaceId> Viewport::shownSurfaces(bool selectedOnly) const {
@@ -394,143 +372,23 @@ void Viewport::initializeGL() {
             Qt::DirectConnection);
     m_glDebug = startDebugLog(); // KW_GL_DEBUG=1 only
     if (const Status initialized = m_renderer.initialize(); !initialized) {
-        m_glError = initialized.message();
-        Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_glError));
+        m_view.gl = initialized;
+        Q_EMIT renderError(QStringLiteral("Renderer unavailable: %1").arg(m_view.gl.message()));
         return;
     }
     // Software OpenGL rasterises every sample on the CPU (aliasedWhileMoving).
     static const QStringList software{QStringLiteral("llvmpipe"), QStringLiteral("softpipe"),
                                       QStringLiteral("SwiftShader"), QStringLiteral("swrast")};
     const QString gl = m_renderer.glDescription();
-    m_softwareGl = std::any_of(software.begin(), software.end(), [&](const QString& s) {
+    m_view.softwareGl = std::any_of(software.begin(), software.end(), [&](const QString& s) {
         return gl.contains(s, Qt::CaseInsensitive);
     });
 }
 
 void Viewport::resizeGL(int, int) {
-    m_cleanFrameValid = false; // the framebuffer is new
     // A fitted camera was fitted for the old aspect; fit again until the user moves it.
     if (m_autoFit)
         m_camera.setCamera(fitCamera(m_doc->scene(), aspect()));
-}
-
-void Viewport::paintGL() {
-    const bool overlaysOnly = m_overlaysOnly && !m_framePending && m_cleanFrameValid;
-    m_overlaysOnly = m_framePending = false;
-    const QSize pixels = framePixels();
-    if (overlaysOnly && m_renderer.isInitialized() && restoreCleanFrame(pixels)) {
-        // Only what is painted over the frame changed (a probe marker): the last still frame
-        // again, its overlays painted anew; no new frame.
-        paintOverlays();
-        return;
-    }
-    const bool timed = m_moveTimed;
-    const double moveToDraw = timed ? double(m_moveClock.nsecsElapsed()) * 1e-6 : 0.0;
-    m_moveTimed = false;
-
-    if (!m_renderer.isInitialized()) {
-        QPaintDevice* device = m_surface->paintDevice();
-        if (!device)
-            return;
-        QPainter p(device);
-        p.fillRect(rect(), QColor(46, 48, 54));
-        p.setPen(Qt::white);
-        p.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
-                   QStringLiteral("The 3D view is unavailable:\n%1").arg(m_glError));
-        return;
-    }
-    QElapsedTimer paintClock;
-    paintClock.start();
-    RenderOptions options = m_options;
-    const bool moving = m_gesture != Gesture::None || m_tools.active() ||
-                        (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
-    if (moving && previewWhileMoving()) {
-        // A preview: fewer exact pixels, aliased, magnified; the still frame kStillMs after
-        // the last move is the full image again (its samples a frame at a time).
-        options.previewScale = m_previewScale;
-        options.samples = 1;
-        // The silhouettes' last fraction of a pixel (the fins) is not seen in motion.
-        options.silhouetteFins = false;
-        drawAgainWhenStill();
-    } else if (options.samples > 1 && aliasedWhileMoving()) {
-        if (options.antialiasing == RenderOptions::Antialiasing::Accumulate) {
-            // A sample per frame: a moving view draws its first, a still one adds the rest.
-            options.progressive = true;
-        } else if (moving) { // MSAA: aliased while moving, all samples in the still frame
-            options.samples = 1;
-            drawAgainWhenStill();
-        }
-    }
-    options.analysis.holdRange = isDragging();
-    // A drag step redraws the dragged face's pixels, not the view's; anti-aliased frames are
-    // drawn whole anyway.
-    options.frameReuse =
-        m_partialFrames ? RenderOptions::FrameReuse::Partial : RenderOptions::FrameReuse::None;
-    // The renderer draws every net; with nets for the selection only, drawOverlays draws them.
-    options.controlNet = m_options.controlNet && m_netForAll;
-    options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
-    m_lastReport = m_renderer.render(*m_doc, m_camera.camera(),
-                                     {defaultFramebufferObject(), pixels, false}, options);
-    m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
-    if (!m_lastReport.ok) {
-        if (m_lastReport.error != m_lastRenderError) {
-            m_lastRenderError = m_lastReport.error;
-            Q_EMIT renderError(QStringLiteral("Frame failed: %1").arg(m_lastRenderError));
-        }
-    } else {
-        m_lastRenderError.clear();
-    }
-    // Still frames that started their image again, one after the other: each found something
-    // changed though the view did not move (a slider held, or something that changes every
-    // frame).
-    const bool restarted = !moving && m_lastReport.samplesInImage == 1;
-    m_stillRestarts = restarted ? m_stillRestarts + 1 : 0;
-    if (m_lastReport.refining) {
-        // The next sample: at once when the view is still, else once it has been for kStillMs
-        // (a moving view's next frame starts the image again). After two restarts in a row
-        // also kStillMs later, so that what changes the image every frame is not drawn again
-        // and again as fast as the machine can.
-        if (moving || m_stillRestarts >= 2)
-            drawAgainWhenStill();
-        else
-            update();
-    }
-    const qint64 painterStart = paintClock.nsecsElapsed();
-    // A frame is kept bare, so that its overlays can be painted again alone (the probe's
-    // marker, a rubber band), unless the camera or the document is moving: the next frame
-    // comes anyway.
-    const bool changing = m_gesture != Gesture::None || isDragging() ||
-                          (m_wheelClock.isValid() && m_wheelClock.elapsed() < kStillMs);
-    if (!changing)
-        keepCleanFrame(pixels);
-    else
-        m_cleanFrameValid = false;
-    paintOverlays();
-    if (m_renderer.passProfiling()) {
-        // The QPainter overlays' GL work, finished here, as the renderer's passes are.
-        makeCurrent();
-        context()->functions()->glFinish();
-    }
-    m_timing.painterMs = double(paintClock.nsecsElapsed() - painterStart) * 1e-6;
-    m_timing.swapMs = 0.0;
-    m_timing.moving = moving;
-    m_paintEnd.start();
-    Q_EMIT frameDrawn(m_lastReport);
-    if (timed) {
-        m_metrics.moveToDrawMs.push_back(moveToDraw);
-        m_metrics.handlerMs.push_back(m_handlerMs);
-        m_metrics.frames.push_back(m_lastReport);
-    }
-
-    ++m_framesDrawn;
-    if (!m_fpsClock.isValid())
-        m_fpsClock.start();
-    ++m_frames;
-    if (m_fpsClock.elapsed() >= 1000) {
-        Q_EMIT framesPerSecond(m_frames * 1000.0 / double(m_fpsClock.elapsed()), m_lastReport);
-        m_frames = 0;
-        m_fpsClock.restart();
-    }
 }
 
 void Viewport::paintEvent(QPaintEvent*) {
@@ -550,33 +408,6 @@ void Viewport::paintOverlays() {
     QPainter p(device);
     for (const auto& overlay : m_overlays)
         overlay.second(p);
-}
-
-void Viewport::keepCleanFrame(QSize pixels) {
-    if (!m_cleanFrame || m_cleanFrame->size() != pixels)
-        m_cleanFrame = std::make_unique<QOpenGLFramebufferObject>(pixels);
-    blitColour(context()->extraFunctions(), defaultFramebufferObject(), m_cleanFrame->handle(),
-               pixels);
-    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-    m_cleanFrameValid = true;
-}
-
-bool Viewport::restoreCleanFrame(QSize pixels) {
-    if (!m_cleanFrameValid || !m_cleanFrame || m_cleanFrame->size() != pixels)
-        return false;
-    blitColour(context()->extraFunctions(), m_cleanFrame->handle(), defaultFramebufferObject(),
-               pixels);
-    context()->extraFunctions()->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-    return true;
-}
-
-void Viewport::drawAgainWhenStill() {
-    if (!m_stillTimer) {
-        m_stillTimer = new QTimer(this);
-        m_stillTimer->setSingleShot(true);
-        connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
-    }
-    m_stillTimer->start(kStillMs);
 }
 
 std::optional<PickHit> Viewport::pickSurface(QPointF position) {
@@ -599,7 +430,7 @@ Renderer::FramePick Viewport::pickFromFrame(QPointF position) {
 std::optional<PickHit> Viewport::pickByDrawing(QPointF position) {
     if (!m_renderer.isInitialized())
         return std::nullopt;
-    RenderOptions options = m_options;
+    RenderOptions options = m_view.options;
     options.lightCount = std::clamp(int(m_doc->scene().lights.size()), 1, kMaxLights);
     makeCurrent();
     std::optional<PickHit> hit = m_renderer.pick(*m_doc, m_camera.camera(), framePixels(),
@@ -628,17 +459,17 @@ void Viewport::selectClickedSurface(SurfaceId id, bool additive) {
 void Viewport::mousePressEvent(QMouseEvent* event) {
     setFocus(Qt::MouseFocusReason);
     event->accept();
-    if (m_gesture != Gesture::None || m_tools.active())
+    if (m_view.gesture != Gesture::None || m_tools.active())
         return;
     m_lastPixel = event->position();
     const Qt::KeyboardModifiers mods = event->modifiers();
     if (event->button() == Qt::MiddleButton && (mods & Qt::ShiftModifier))
-        m_gesture = Gesture::Pan;
+        m_view.gesture = Gesture::Pan;
     else if (event->button() == Qt::MiddleButton ||
              (event->button() == Qt::LeftButton && (mods & Qt::AltModifier)))
-        m_gesture = Gesture::Orbit;
+        m_view.gesture = Gesture::Orbit;
     else if (event->button() == Qt::RightButton)
-        m_gesture = Gesture::Pan;
+        m_view.gesture = Gesture::Pan;
     else if (event->button() == Qt::LeftButton &&
              m_tools.press(event, !(mods & (Qt::ControlModifier | Qt::AltModifier))))
         update();
@@ -649,9 +480,9 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
     const QPointF delta = pixel - m_lastPixel;
     m_lastPixel = pixel;
     event->accept();
-    if (m_gesture == Gesture::Orbit || m_gesture == Gesture::Pan) {
+    if (m_view.gesture == Gesture::Orbit || m_view.gesture == Gesture::Pan) {
         m_autoFit = false;
-        if (m_gesture == Gesture::Orbit)
+        if (m_view.gesture == Gesture::Orbit)
             m_camera.orbit(delta.x(), delta.y());
         else
             m_camera.pan(delta.x(), delta.y(), size());
@@ -659,23 +490,21 @@ void Viewport::mouseMoveEvent(QMouseEvent* event) {
         return;
     }
     // A drag step's time from this event to the frame that shows it (dragMetrics).
-    m_moveClock.start();
+    m_surface->moveStarted();
     Tool* gesture = m_tools.active();
     if (!gesture) {
         m_tools.hover(event);
         return;
     }
     gesture->move(event);
-    if (isDragging()) {
-        m_moveTimed = true;
-        m_handlerMs = double(m_moveClock.nsecsElapsed()) * 1e-6;
-    }
+    if (isDragging())
+        m_surface->moveHandled();
 }
 
 void Viewport::mouseReleaseEvent(QMouseEvent* event) {
     event->accept();
-    if (m_gesture != Gesture::None) {
-        m_gesture = Gesture::None;
+    if (m_view.gesture != Gesture::None) {
+        m_view.gesture = Gesture::None;
         return;
     }
     if (m_tools.release(event))
@@ -689,7 +518,7 @@ void Viewport::mouseDoubleClickEvent(QMouseEvent* event) {
 
 void Viewport::wheelEvent(QWheelEvent* event) {
     m_autoFit = false;
-    m_wheelClock.start();
+    m_view.wheelClock.start();
     // Toward the cursor: the point under it on the target's view plane stays under it, so
     // eye and target both move toward that point by the zoom's fraction.
     const ViewProjection view = viewProjection();

@@ -1,6 +1,7 @@
-// Viewport: the 3D view drawing the document with the render module; orbit, pan, zoom, standard
-// views, and picking; every other gesture is a tool's (ui/tools/). A plain widget: its frames go
-// to a ViewSurface that fills it (a native OpenGL window, ui/view_surface.h).
+// Viewport: the 3D view of the document: orbit, pan, zoom, standard views, picking and the
+// overlays; every other gesture is a tool's (ui/tools/). A plain widget: a ViewSurface that
+// fills it (a native OpenGL window, ui/view_surface.h) draws its frames from its state
+// (ViewState) with the render module and shows them.
 #pragma once
 
 #include "model/document/selection.h"
@@ -8,8 +9,8 @@
 #include "ui/cameracontroller.h"
 #include "ui/controlpointpicker.h"
 #include "ui/tools/tool.h"
+#include "ui/view_surface.h"
 
-#include <QElapsedTimer>
 #include <QImage>
 #include <QOpenGLDebugLogger>
 #include <QPointer>
@@ -23,15 +24,10 @@
 class QKeyEvent;
 class QMouseEvent;
 class QOpenGLContext;
-class QOpenGLFramebufferObject;
 class QPainter;
 class QUndoStack;
 
-class QTimer;
-
 namespace kw {
-
-class ViewSurface;
 
 /// Mouse: middle drag or Alt+left drag orbits, right drag or Shift+middle drag pans, the wheel
 /// zooms; every other press goes to the tools (ui/tools/tool.h), the installed one first, then
@@ -64,7 +60,7 @@ public:
 
     /// The view's options, samples resolved (automatic: kAutoSamplesCount); what a frame
     /// changes while the view moves (fewer samples, progressive) is not in them.
-    const RenderOptions& renderOptions() const { return m_options; }
+    const RenderOptions& renderOptions() const { return m_view.options; }
     void setRenderMode(RenderMode mode);
     void setWireframe(bool on);
     /// Control nets on or off; while on, only the selected surfaces' nets are drawn and
@@ -75,7 +71,7 @@ public:
     /// Analysis colouring (View ▸ Analysis). While a drag runs the automatic colour range is
     /// held (AnalysisOptions::holdRange), so colours do not swim; it follows on release.
     void setAnalysis(const AnalysisOptions& analysis);
-    bool controlNetForAll() const { return m_netForAll; }
+    bool controlNetForAll() const { return m_view.netForAll; }
     void setControlNetForAll(bool on);
     bool groundGrid() const { return m_grid; }
     void setGroundGrid(bool on);
@@ -89,11 +85,11 @@ public:
     /// Section planes (at most kMaxSectionPlanes; invalid ones, a zero normal, are left out)
     /// and caps: view state saved with the project (DisplaySettings), not an edit.
     void setSections(const std::vector<SectionPlane>& planes, bool caps);
-    const std::vector<SectionPlane>& sections() const { return m_options.sections; }
+    const std::vector<SectionPlane>& sections() const { return m_view.options.sections; }
     /// setSections from the view itself (a plane's handle dragged): the caps stay, and
     /// sectionsMoved() tells the Section dialog.
     void moveSections(const std::vector<SectionPlane>& planes);
-    bool sectionCaps() const { return m_options.sectionCaps; }
+    bool sectionCaps() const { return m_view.options.sectionCaps; }
     /// Trim mask budget (RenderOptions::trimMaskCap), clamped to what the renderer accepts.
     void setTrimMaskCap(int texels);
     /// How trims cut (RenderOptions::trimMode) and exact trims' memory budget in bytes.
@@ -109,35 +105,35 @@ public:
     void setSamples(int samples);
     /// How frames with samples > 1 are anti-aliased (RenderOptions::antialiasing).
     void setAntialiasing(RenderOptions::Antialiasing method);
-    static constexpr int kAutoSamples = 0;
-    static constexpr int kAutoSamplesCount = 4;
-    static constexpr int kStillMs = 250;
+    static constexpr int kAutoSamples = ViewState::kAutoSamples;
+    static constexpr int kAutoSamplesCount = ViewState::kAutoSamplesCount;
+    static constexpr int kStillMs = ViewState::kStillMs;
     /// The samples of a still frame (setSamples' choice, automatic resolved).
-    int samples() const;
+    int samples() const { return m_view.samples(); }
     /// Whether frames drawn while the view moves are aliased (automatic on software OpenGL;
     /// known once the context exists). With accumulation, still frames are then drawn a sample
     /// at a time (FrameReport::samplesInImage, refining).
-    bool aliasedWhileMoving() const;
+    bool aliasedWhileMoving() const { return m_view.aliasedWhileMoving(); }
     /// While the view moves (orbit, pan, a wheel zoom, a tool's drag) on a software rasteriser,
     /// frames are previews (RenderOptions::previewScale): aliased, at previewScale() of the
     /// view's width and height, magnified; the still frame kStillMs after the last move is the
     /// full anti-aliased image, the same pixels as without the previews. 1 turns them off.
-    bool previewWhileMoving() const;
-    double previewScale() const { return m_previewScale; }
+    bool previewWhileMoving() const { return m_view.previewWhileMoving(); }
+    double previewScale() const { return m_view.previewScale; }
     void setPreviewScale(double scale);
     /// At 0.5 a preview draws a quarter of the pixels: an orbit of a 223-face part at the
     /// default window runs at ~15 FPS on two CPU cores (docs/PERFORMANCE.md ## Editing).
-    static constexpr double kPreviewScale = 0.5;
+    static constexpr double kPreviewScale = ViewState::kPreviewScale;
     /// Aliased frames after an edit redraw only the rectangle the changed surfaces covered
     /// before and cover now, the rest kept from the last frame (RenderOptions::FrameReuse::
     /// Partial; on by default). Off draws every frame whole, as before (for measuring).
-    void setPartialFrames(bool on) { m_partialFrames = on; }
-    bool partialFrames() const { return m_partialFrames; }
+    void setPartialFrames(bool on) { m_view.partialFrames = on; }
+    bool partialFrames() const { return m_view.partialFrames; }
     /// Adaptive partitions within `pixelTolerance` (clamped to kMin..kMaxPixelTolerance), the
     /// sliders then being the minimum, or the paper's uniform sliders' grid.
     void setPartitioning(RenderOptions::Partitioning mode, double pixelTolerance);
-    RenderOptions::Partitioning partitioning() const { return m_options.partitioning; }
-    double pixelTolerance() const { return m_options.pixelTolerance; }
+    RenderOptions::Partitioning partitioning() const { return m_view.options.partitioning; }
+    double pixelTolerance() const { return m_view.options.pixelTolerance; }
     /// The surfaces whose nets are drawn and pickable now.
     std::vector<SurfaceId> netSurfaces() const;
 
@@ -202,25 +198,20 @@ public:
     /// Emits message(text): a tool's word for the status bar.
     void showMessage(const QString& text);
 
-    /// Empty when the renderer is ready; else why it is not (shown in the view).
-    QString glError() const { return m_glError; }
+    /// ok when the renderer is ready (or not yet set up); else why it could not be set up
+    /// (shown in the view).
+    const Status& glError() const { return m_view.gl; }
     /// A tool's drag is editing the document (points, surfaces or a weight).
-    bool isDragging() const;
+    bool isDragging() const { return m_view.dragging(); }
     /// World axis a drag is constrained to (0 x, 1 y, 2 z) or -1.
     int axisConstraint() const { return m_axis; }
 
-    /// Responsiveness during drags: for each drag step that reached a frame, the wall time
-    /// from the mouse-move event to the start of the next paintGL (the draw call), and that
-    /// frame's FrameReport (its CPU time by phase, uploads and draw calls).
-    struct DragMetrics {
-        std::vector<double> moveToDrawMs;
-        std::vector<double> handlerMs; ///< of moveToDrawMs: the mouse-move handler itself
-        std::vector<FrameReport> frames;
-    };
-    const DragMetrics& dragMetrics() const { return m_metrics; }
-    void resetDragMetrics() { m_metrics = {}; }
+    /// Responsiveness during drags (kw::DragMetrics, ui/view_surface.h).
+    using DragMetrics = kw::DragMetrics;
+    const DragMetrics& dragMetrics() const { return m_surface->dragMetrics(); }
+    void resetDragMetrics() { m_surface->resetDragMetrics(); }
     /// The report of the last frame drawn (empty before the first).
-    const FrameReport& lastFrameReport() const { return m_lastReport; }
+    const FrameReport& lastFrameReport() const { return m_surface->lastFrameReport(); }
     /// Renderer::pick at a widget position (logical pixels) of the current view; makes the
     /// view's context current. nullopt when nothing is there or GL is unavailable.
     std::optional<PickHit> pickSurface(QPointF position);
@@ -231,18 +222,10 @@ public:
     Renderer::FramePick pickFromFrame(QPointF position);
     std::optional<PickHit> pickByDrawing(QPointF position);
     /// Frames painted since construction.
-    std::int64_t framesDrawn() const { return m_framesDrawn; }
-    /// Where the last frame's time went in paintGL and after it (wall ms): the render call,
-    /// the QPainter overlays (selection outline, nets, legend) and the frame's way to the
-    /// screen up to frameSwapped (0 until it comes): the native window's blit and swap, or
-    /// the fallback QOpenGLWidget's composition of the whole main window and swap.
-    struct FrameTiming {
-        double renderMs = 0.0;
-        double painterMs = 0.0;
-        double swapMs = 0.0;
-        bool moving = false; ///< drawn while the view moved (a preview when previewWhileMoving)
-    };
-    const FrameTiming& lastFrameTiming() const { return m_timing; }
+    std::int64_t framesDrawn() const { return m_surface->framesDrawn(); }
+    /// Where the last frame's time went (kw::FrameTiming, ui/view_surface.h).
+    using FrameTiming = kw::FrameTiming;
+    const FrameTiming& lastFrameTiming() const { return m_surface->lastFrameTiming(); }
     /// Renderer::setPassProfiling for this view's frames (FrameReport::passes), the QPainter
     /// overlays' GL work finished too; for measuring only.
     void setPassProfiling(bool on);
@@ -266,7 +249,6 @@ Q_SIGNALS:
 protected:
     void initializeGL();
     void resizeGL(int w, int h);
-    void paintGL();
     void paintEvent(QPaintEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
@@ -280,28 +262,20 @@ protected:
     bool event(QEvent* event) override;
 
 private:
-    /// Navigation; every other gesture is a tool's.
-    enum class Gesture { None, Orbit, Pan };
+    using Gesture = ViewState::Gesture;
     void releaseGl();
-    /// Draws again kStillMs from now (restarted by every call): the still frame after a move.
-    void drawAgainWhenStill();
     void drawSelection();
     void drawLegend();
     /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
     void drawOverlays(class QPainter& p, const ViewProjection& view);
     /// All the QPainter work over a frame: selection, nets, tools, legend, added overlays.
     void paintOverlays();
-    /// The frame before its overlays, kept after still frames (updateOverlays): copy, restore.
-    void keepCleanFrame(QSize pixels);
-    bool restoreCleanFrame(QSize pixels);
     QSize framePixels() const;
     double aspect() const;
 
+    /// What the frames are drawn from; the surface draws them (the frame policy).
+    ViewState m_view;
     std::unique_ptr<ViewSurface> m_surface;
-    std::unique_ptr<QOpenGLFramebufferObject> m_cleanFrame; ///< the last still frame, bare
-    bool m_cleanFrameValid = false;
-    bool m_framePending = false; ///< update() since the last frame
-    bool m_overlaysOnly = false; ///< updateOverlays() since the last frame
     std::vector<std::pair<QPointer<QObject>, std::function<void(QPainter&)>>> m_overlays;
     Document* m_doc;
     SceneModel* m_model;
@@ -310,40 +284,17 @@ private:
     Renderer m_renderer;
     CameraController m_camera;
     ControlPointPicker m_picker;
-    RenderOptions m_options;
-    int m_samplesWanted = kAutoSamples;
-    bool m_softwareGl = false; ///< the context is a software rasteriser (set at initializeGL)
     std::unique_ptr<QOpenGLDebugLogger> m_glDebug; ///< KW_GL_DEBUG=1: the driver's messages
-    QElapsedTimer m_wheelClock;     ///< the last wheel zoom (the view moving without a gesture)
-    QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving
-    int m_stillRestarts = 0; ///< consecutive still frames that were a new image's first sample
-    double m_previewScale = kPreviewScale;
-    bool m_partialFrames = true;
-    FrameTiming m_timing;
-    QElapsedTimer m_paintEnd; ///< from the end of paintGL to frameSwapped
-    QString m_glError;
-    QString m_lastRenderError;
-    FrameReport m_lastReport;
 
-    Gesture m_gesture = Gesture::None;
     QPointF m_lastPixel;
     int m_axis = -1;
     SurfaceDrag m_surfaceDrag = SurfaceDrag::Move;
     ToolRouter m_tools;
-    bool m_netForAll = false;
     bool m_grid = false;
     bool m_axes = true;
     bool m_lightBackground = false;
     glm::vec4 m_flatBackground = RenderOptions{}.background; ///< setBackground's colour
     bool m_autoFit = true; ///< refit on resize until the user moves the camera
-
-    QElapsedTimer m_moveClock; ///< started by a drag's mouse move, read by the next paintGL
-    bool m_moveTimed = false;
-    double m_handlerMs = 0.0; ///< duration of the last timed mouse-move handler
-    DragMetrics m_metrics;
-    QElapsedTimer m_fpsClock; ///< frames per second: frames drawn over wall time
-    int m_frames = 0;
-    std::int64_t m_framesDrawn = 0;
 };
 
 } // namespace kw

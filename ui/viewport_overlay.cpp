@@ -157,7 +157,7 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
     }
     // Selected surfaces: outlined.
     // Like the surfaces, they are cut by the section planes.
-    const std::vector<SectionPlane>& planes = m_options.sections;
+    const std::vector<SectionPlane>& planes = m_view.options.sections;
     const auto drawCut = [&](const std::vector<glm::dvec3>& line) {
         for (const std::vector<glm::dvec3>& piece : keptPieces(line, planes))
             drawPolyline3(p, view, piece);
@@ -169,7 +169,7 @@ void Viewport::drawOverlays(QPainter& p, const ViewProjection& view) {
             for (const auto& line : outline(*s))
                 drawCut(line);
     // Control nets of the selected surfaces (the renderer draws them all when asked to).
-    if (m_options.controlNet && !m_netForAll) {
+    if (m_view.options.controlNet && !m_view.netForAll) {
         for (SurfaceId id : selected) {
             const Surface* s = m_doc->surface(id);
             if (!s)

@@ -65,8 +65,8 @@ protected:
         if (sample)
             QVERIFY(m_window->openFile(samplePath(sample)));
         QTest::qWait(50);
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
+        QVERIFY2(m_window->viewport()->glError(),
+                 qPrintable(m_window->viewport()->glError().message()));
     }
     /// Closes the window without the unsaved-changes question and forgets the script.
     void closeWindow() {

@@ -229,7 +229,7 @@ private Q_SLOTS:
         vp()->setSamples(1);
         QTest::qWait(20);
         QTest::qWait(50);
-        QVERIFY2(vp()->glError().isEmpty(), qPrintable(vp()->glError()));
+        QVERIFY2(vp()->glError(), qPrintable(vp()->glError().message()));
     }
     void cleanupTestCase() {
         m_window->close();

@@ -71,8 +71,8 @@ private:
         m_window->show();
         QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
         QVERIFY(m_window->document()->resetScene(std::move(scene)));
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
+        QVERIFY2(m_window->viewport()->glError(),
+                 qPrintable(m_window->viewport()->glError().message()));
         waitStill();
     }
     /// Processes events until the view has drawn a frame after `before` frames.

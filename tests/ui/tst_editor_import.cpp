@@ -129,8 +129,8 @@ private:
         QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
         QVERIFY(m_window->openFile(samplePath("bicubic")));
         QTest::qWait(50);
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
+        QVERIFY2(m_window->viewport()->glError(),
+                 qPrintable(m_window->viewport()->glError().message()));
     }
 
     /// File ▸ Import… with the scripted answers.
@@ -242,8 +242,8 @@ private Q_SLOTS:
         // The frame shows the teapot: covered, and not the bicubic's picture.
         QTest::qWait(50);
         const QImage frame = m_window->viewport()->grabFramebuffer();
-        QVERIFY2(m_window->viewport()->glError().isEmpty(),
-                 qPrintable(m_window->viewport()->glError()));
+        QVERIFY2(m_window->viewport()->glError(),
+                 qPrintable(m_window->viewport()->glError().message()));
         QVERIFY2(coveredPixels(frame) > 200, qPrintable(QString::number(coveredPixels(frame))));
         QVERIFY(frame != bicubicFrame);
 

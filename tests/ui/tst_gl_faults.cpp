@@ -294,7 +294,7 @@ private Q_SLOTS:
         QVERIFY(e.frames(2));
         // Without a native window the first context is gone: these frames used another.
         QCOMPARE(destroyed.count(), native ? 0 : 1);
-        QVERIFY2(vp->glError().isEmpty(), qPrintable(vp->glError()));
+        QVERIFY2(vp->glError(), qPrintable(vp->glError().message()));
         QVERIFY(vp->lastFrameReport().ok);
         QVERIFY(covered(vp->grabFramebuffer()) > 200);
         e.w->setCentralWidget(vp); // and back: a third context

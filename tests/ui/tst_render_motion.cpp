@@ -3,7 +3,7 @@
 // each frame is measured against the CPU reference of the same pose and scene
 // (render/reference_render.h, render/edge_metrics.h).
 //
-// How the editor draws them (ui/viewport.cpp, paintGL): one kw::Renderer for the widget's life,
+// How the editor draws them (ui/view_surface.cpp): one kw::Renderer for the widget's life,
 // synced incrementally frame to frame (docs/RENDERING.md, "What a frame looks at"); adaptive
 // partitions re-chosen per view and per changed surface; on a software rasteriser a frame drawn
 // while the view moves or points are dragged is aliased (Viewport::aliasedWhileMoving) into
