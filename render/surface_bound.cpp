@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace kw {
@@ -227,6 +228,68 @@ double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dv
     return best;
 }
 
+double boxMinDepthInFrustum(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi) {
+    // The half-spaces n.p + c >= 0 of the four side planes (rows w +- x, w +- y of the clip
+    // transform) and of the near plane (depth >= nearDepth).
+    const glm::dmat4& m = scale.viewProjection;
+    const auto row = [&](int r) {
+        return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+    };
+    const glm::dvec4 planes[5] = {
+        row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1),
+        glm::dvec4(scale.forward, -glm::dot(scale.forward, scale.eye) - scale.nearDepth)};
+    const auto side = [](const glm::dvec4& pl, const glm::dvec3& p) {
+        return glm::dot(glm::dvec3(pl), p) + pl.w;
+    };
+    const auto depth = [&](const glm::dvec3& p) {
+        return glm::dot(p - scale.eye, scale.forward);
+    };
+    double best = std::numeric_limits<double>::infinity();
+    // The least of a linear function over the convex polytope box & frustum is at one of its
+    // vertices: each lies on a face of the box (found by clipping that face to the five
+    // half-spaces, Sutherland-Hodgman) or is a corner of the near rectangle inside the box.
+    const glm::dvec3 c[2] = {lo, hi};
+    for (int axis = 0; axis < 3; ++axis)
+        for (int end = 0; end < 2; ++end) {
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            std::vector<glm::dvec3> poly;
+            for (int k = 0; k < 4; ++k) {
+                glm::dvec3 p;
+                p[axis] = c[end][axis];
+                p[a1] = c[(k == 1 || k == 2) ? 1 : 0][a1];
+                p[a2] = c[k >= 2 ? 1 : 0][a2];
+                poly.push_back(p);
+            }
+            for (const glm::dvec4& pl : planes) {
+                std::vector<glm::dvec3> next;
+                for (size_t i = 0; i < poly.size(); ++i) {
+                    const glm::dvec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+                    const double sp = side(pl, p), sq = side(pl, q);
+                    if (sp >= 0.0)
+                        next.push_back(p);
+                    if ((sp >= 0.0) != (sq >= 0.0))
+                        next.push_back(p + (q - p) * (sp / (sp - sq)));
+                }
+                poly = std::move(next);
+                if (poly.empty())
+                    break;
+            }
+            for (const glm::dvec3& p : poly)
+                best = std::min(best, depth(p));
+        }
+    for (int k = 0; k < 4; ++k) {
+        const glm::dvec4 px = planes[k & 1], py = planes[2 + (k >> 1)], pn = planes[4];
+        const glm::dmat3 a =
+            glm::transpose(glm::dmat3(glm::dvec3(px), glm::dvec3(py), glm::dvec3(pn)));
+        if (std::abs(glm::determinant(a)) < 1e-300)
+            continue;
+        const glm::dvec3 p = glm::inverse(a) * -glm::dvec3(px.w, py.w, pn.w);
+        if (glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi)))
+            best = std::min(best, depth(p));
+    }
+    return best;
+}
+
 bool surfaceIsAffine(const NurbsSurface& s, double relTolerance) {
     const int n = s.countU, m = s.countV;
     if (n < 2 || m < 2 || s.points.size() != size_t(n) * size_t(m) ||
@@ -365,6 +428,18 @@ SpanScore scoreSpan(const SpanBound& b, const Interval& domU, const Interval& do
                 boxOutsideFrustum(scale.viewProjection, self.lo - glm::dvec3(deviation),
                                   self.hi + glm::dvec3(deviation)))
                 continue;
+            if (minDepth < scale.nearDepth && scale.cullOutsideView) {
+                // Bounds reaching past the near plane: the depth of what is in view.
+                double inView = std::numeric_limits<double>::infinity();
+                for (int y = std::max(0, j - rv); y <= std::min(g - 1, j + rv); ++y)
+                    for (int x = std::max(0, i - ru); x <= std::min(g - 1, i + ru); ++x) {
+                        const SpanBound::Sub& o = b.subs[size_t(y * g + x)];
+                        inView = std::min(inView, boxMinDepthInFrustum(scale, o.lo, o.hi));
+                    }
+                if (inView == std::numeric_limits<double>::infinity())
+                    continue;
+                minDepth = std::max(minDepth, inView - deviation);
+            }
             const double px = screenDistanceBound(scale, deviation, minDepth);
             if (px > worst.pixels) {
                 worst.pixels = px;
@@ -495,6 +570,9 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
         SecondDerivativeBound m;
         glm::dvec3 lo, hi;
         double minDepth;
+        /// The least depth of the part of the bounds in view (boxMinDepthInFrustum), where
+        /// they reach past the near plane; else minDepth.
+        double inViewDepth;
     };
     std::vector<Entry> entries;
     std::vector<std::vector<int>> byLane[2];
@@ -521,6 +599,9 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
                 e.lo = s.lo;
                 e.hi = s.hi;
                 e.minDepth = boxMinDepth(scale, s.lo, s.hi);
+                e.inViewDepth = e.minDepth < scale.nearDepth && scale.cullOutsideView
+                                    ? boxMinDepthInFrustum(scale, s.lo, s.hi)
+                                    : e.minDepth;
                 byLane[0][size_t(e.lane[0])].push_back(int(entries.size()));
                 byLane[1][size_t(e.lane[1])].push_back(int(entries.size()));
                 entries.push_back(e);
@@ -528,6 +609,9 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
     // The screen bound of an entry's cells at the current counts (0 when never on screen).
     struct Score {
         double pixels = 0.0, uPart = 0.0, vPart = 0.0, du = 0.0, dv = 0.0;
+        /// The bound at the depth in view itself: the growth's estimate, since near the eye
+        /// the bound of coarse cells is far past quadratic (their deviation eats the depth).
+        double growPixels = 0.0;
     };
     const auto score = [&](const Entry& e) {
         Score sc;
@@ -538,7 +622,16 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
             boxOutsideFrustum(scale.viewProjection, e.lo - glm::dvec3(deviation),
                               e.hi + glm::dvec3(deviation)))
             return sc;
-        sc.pixels = screenDistanceBound(scale, deviation, e.minDepth);
+        // Bounds reaching past the near plane (where minDepth is no bound at all): a polygon
+        // point drawn lies in the view, so at inViewDepth or deeper, and the surface point
+        // it stands for within `deviation` of it.
+        if (e.inViewDepth == std::numeric_limits<double>::infinity())
+            return sc;
+        sc.pixels =
+            screenDistanceBound(scale, deviation, std::max(e.minDepth, e.inViewDepth - deviation));
+        sc.growPixels = e.inViewDepth > e.minDepth
+                            ? screenDistanceBound(scale, deviation, e.inViewDepth)
+                            : sc.pixels;
         sc.uPart = e.m.uu * sc.du * sc.du + e.m.uv * sc.du * sc.dv;
         sc.vPart = e.m.vv * sc.dv * sc.dv + e.m.uv * sc.du * sc.dv;
         return sc;
@@ -558,7 +651,7 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
             const int ku = e.lane[0], kv = e.lane[1];
             const bool canU = count[0][size_t(ku)] < kMaxPartitions;
             const bool canV = count[1][size_t(kv)] < kMaxPartitions;
-            const double shrink = std::sqrt(sc.pixels / pixelTolerance);
+            const double shrink = std::max(std::sqrt(sc.growPixels / pixelTolerance), 1.25);
             const double total = sc.uPart + sc.vPart;
             const auto grow = [&](int d, int k, double cell) {
                 const double target = std::ceil(width[d][size_t(k)] / (cell / shrink));

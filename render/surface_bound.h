@@ -99,6 +99,12 @@ bool boxOutsideFrustum(const glm::dmat4& viewProjection, const glm::dvec3& lo,
 /// Smallest eye depth of the axis-aligned box [lo, hi] (the minimum over its corners).
 double boxMinDepth(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi);
 
+/// Smallest eye depth of the part of the box [lo, hi] inside `scale`'s frustum (its four side
+/// planes, from viewProjection, and the near plane at nearDepth; the far plane left out), or
+/// +infinity when none of the box is inside. Exact up to rounding: the least depth over the
+/// convex polytope box & frustum, at one of its vertices. At least boxMinDepth and nearDepth.
+double boxMinDepthInFrustum(const ScreenScale& scale, const glm::dvec3& lo, const glm::dvec3& hi);
+
 /// One knot span rectangle of a surface cut into grid x grid equal sub-rectangles, each with its
 /// derivative bounds and the Cartesian bounds of its Bezier control points (the surface and the
 /// base polygon points over it lie inside them).
