@@ -1,7 +1,8 @@
 // The 3D view's frames in a native OpenGL window (ui/view_surface.h) on the unit sphere sample
 // (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads,
 // the probe's panel shows over the window, measurements and the rubber band are painted over
-// the frame, and the QOpenGLWidget fallback draws the same pixels.
+// the frame, and the QOpenGLWidget fallback draws the same pixels; on a context too old for
+// the renderer (tests/ui/view_frames.cmake) the view shows why instead of a frame.
 #include "editor_test_util.h"
 #include "render/offscreen_renderer.h"
 #include "ui/probe_tool.h"
@@ -9,6 +10,7 @@
 #include <QCursor>
 #include <QFrame>
 #include <QScreen>
+#include <QSignalSpy>
 
 using namespace kw;
 
@@ -160,6 +162,29 @@ private Q_SLOTS:
         QVERIFY(!vp->findChild<QWidget*>(QStringLiteral("viewWindowContainer")));
         waitStill(300);
         QCOMPARE(differingPixels(vp->grabFramebuffer(), native), 0);
+    }
+
+    void unavailableRendererIsShownInTheView() {
+        // CTest runs this alone on a context the renderer cannot use (MESA_GL_VERSION_OVERRIDE
+        // =3.3, tests/ui/view_frames.cmake); the suite's own run has a 4.5 context.
+        if (qEnvironmentVariableIsEmpty("MESA_GL_VERSION_OVERRIDE"))
+            QSKIP("needs a context older than OpenGL 4.5 (MESA_GL_VERSION_OVERRIDE=3.3)");
+        m_window = std::make_unique<MainWindow>();
+        Viewport* vp = m_window->viewport();
+        QSignalSpy errors(vp, &Viewport::renderError);
+        m_window->resize(960, 640);
+        m_window->show();
+        QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+        QTRY_VERIFY(!vp->glError());
+        const QString why = vp->glError().message();
+        QVERIFY2(why.startsWith(QStringLiteral("OpenGL 4.5 core is required, got ")),
+                 qPrintable(why));
+        QTRY_COMPARE(errors.size(), 1);
+        QCOMPARE(errors.at(0).at(0).toString(), QStringLiteral("Renderer unavailable: ") + why);
+        // The view says so where the frame would be, and draws no frame.
+        const QImage shown = vp->grabFramebuffer();
+        QCOMPARE(shown.pixelColor(4, 4), QColor(46, 48, 54));
+        QCOMPARE(vp->framesDrawn(), std::int64_t(0));
     }
 
 private:
