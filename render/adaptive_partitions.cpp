@@ -88,6 +88,11 @@ PolygonCut cutInView(const PolygonCut& cut, const std::vector<SpanBound>& spans,
     return out;
 }
 
+namespace {
+/// The most sub-rectangles chooseCut bounds again near the eye (about 4 ms at ~1 us each).
+constexpr std::int64_t kMaxFinerSubs = 4096;
+} // namespace
+
 PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& spans,
                           const ParameterBox& box, const ScreenScale& scale, double tolerance,
                           int minU, int minV) {
@@ -98,6 +103,37 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
     // seen. Its coarser cells put the polygon's silhouettes nearer the full tolerance inside
     // the exact ones: the silhouette fins (kw::buildFins) cover the pixel centres there.
     PartitionChoice tensor = chooseBreaks(spans, box.u, box.v, scale, tolerance, minU, minV);
+    // Near the eye a sub-rectangle's control bounds can hold the eye's surroundings in view
+    // though the surface keeps its distance: finer bounds of the same spans (re-extracted,
+    // so tighter; their sides nest in the coarse ones, so a cell inside a fine one is inside a
+    // coarse one too) let the tensor grid see that, at a bounded cost per view.
+    const auto pastNear = [&] {
+        for (const SpanBound& b : spans)
+            for (const SpanBound::Sub& sub : b.subs)
+                if (boxMinDepth(scale, sub.lo, sub.hi) < scale.nearDepth)
+                    return true;
+        return false;
+    };
+    if (!tensor.met && scale.cullOutsideView && !spans.empty() && pastNear()) {
+        int allSpans = 0;
+        for (int ku = s.degreeU; ku < s.countU; ++ku)
+            for (int kv = s.degreeV; kv < s.countV; ++kv)
+                allSpans += s.knotsU[size_t(ku)] < s.knotsU[size_t(ku + 1)] &&
+                            s.knotsV[size_t(kv)] < s.knotsV[size_t(kv + 1)];
+        for (int grid = spans.front().grid * 2;
+             grid <= 16 && std::int64_t(allSpans) * grid * grid <= kMaxFinerSubs; grid *= 2) {
+            std::vector<SpanBound> finer;
+            for (SpanBound& b : surfaceSpanBounds(s, grid))
+                if (b.u1 > box.u.first && b.u0 < box.u.last && b.v1 > box.v.first &&
+                    b.v0 < box.v.last)
+                    finer.push_back(std::move(b));
+            PartitionChoice t = chooseBreaks(finer, box.u, box.v, scale, tolerance, minU, minV);
+            if (t.met) {
+                tensor = std::move(t);
+                break;
+            }
+        }
+    }
     const auto cells = [](const PartitionChoice& c) {
         return std::int64_t(c.breaksU.size() - 1) * std::int64_t(c.breaksV.size() - 1);
     };

@@ -23,7 +23,10 @@ ScreenScale frameScreenScale(const FrameCamera& camera);
 /// (chooseBreaks) meets the tolerance with fewer cells; both are proven bounds, and neither is
 /// always smaller (uniform wins where the sliders' minimum decides, since the tensor grid
 /// rounds it up per sub-rectangle column). When neither meets it, the uniform one (its
-/// nu x nv are then kMaxPartitions where the bound fell short). Breaks always set. The
+/// nu x nv are then kMaxPartitions where the bound fell short). When neither meets it and
+/// some control bounds reach past the near plane, the tensor grid is tried again on finer
+/// bounds of the same spans (up to 16 x 16 a span, 4096 sub-rectangles): near the eye coarse
+/// bounds can hold the eye's surroundings though the surface keeps away. Breaks always set. The
 /// renderer's silhouette fins cover what the polygon's silhouette leaves out.
 PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& spans,
                           const ParameterBox& box, const ScreenScale& scale, double tolerance,

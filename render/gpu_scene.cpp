@@ -201,7 +201,9 @@ bool GpuScene::maskStale(const SurfaceRecord& r, const FrameCamera& camera,
         return m.layer >= 0 || m.active || !m.warnings.isEmpty() || m.grid.words || m.grid.cap;
     if (m.trimsRevision != r.revisions.trims || m.knotsRevision != r.revisions.knots)
         return true;
-    if (options.trimMode == RenderOptions::TrimMode::Exact) // grids do not follow the view
+    // Exact grids follow the view only by which surfaces are in it (a new view walks every
+    // record); one dropped out of view has no grid (cap 0).
+    if (options.trimMode == RenderOptions::TrimMode::Exact)
         return m.grid.cap == 0 || m.layer >= 0;
     if (m.layer < 0)
         return true;
@@ -267,8 +269,8 @@ bool GpuScene::needsFullWalk(const Scene& scene, const FrameCamera& camera,
                        options.partitionsV,     options.trimMaskCap,    options.polygonOverTrims,
                        options.controlNet,      options.trims,          options.trimMode,
                        options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
-                       options.edgeSkirts,      options.polygonsInView,
-                       options.wireframe};
+                       options.edgeSkirts,      options.polygonsInView, options.wireframe,
+                       options.cullOutsideView};
     const bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;

@@ -334,6 +334,7 @@ private:
         int trimGridCap = 0;
         bool splitCellsByTrims = false, edgeSkirts = false, polygonsInView = false;
         bool wireframe = false; ///< outlines are uploaded once a frame draws them
+        bool cullOutsideView = false; ///< exact trim grids are held for what is in view
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

@@ -138,7 +138,7 @@ Status TrimMaskPass::sync(const Document& /*doc*/, const std::vector<SurfaceReco
     drawCalls = 0;
     m_exactMode = options.trimMode == RenderOptions::TrimMode::Exact;
     if (m_exactMode)
-        return syncExact(records, options);
+        return syncExact(records, camera, options);
     // Mask mode: what exact mode held goes (the records' blocks, then the buffer).
     for (SurfaceRecord* r : records)
         if (r->mask.grid.words || r->mask.grid.cap)

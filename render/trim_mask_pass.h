@@ -128,7 +128,12 @@ private:
     /// trimBudgetBytes, at most what one texture buffer holds) the cap on the grids' sides is
     /// halved for the largest until they fit: classification stays exact, more fragments walk
     /// lists; the warning says so. Errors leave the trimmed surfaces untrimmed this frame.
-    Status syncExact(const std::vector<SurfaceRecord*>& records, const RenderOptions& options);
+    /// Records wholly outside `camera`'s view (ExactPlanner::outsideView, with
+    /// options.cullOutsideView) hold no grid: dropGrid.
+    Status syncExact(const std::vector<SurfaceRecord*>& records, const FrameCamera& camera,
+                     const RenderOptions& options);
+    /// Gives a grid block back, keeping the mask's warnings and statistics.
+    void dropGrid(TrimMask& m);
     void buildGrid(TrimMask& m, const Surface& s, const Revisions& rev, bool* grew);
     void buildGrid(TrimMask& m, const TrimSurfaceArcs& arcs, const Revisions& rev, bool* grew);
     void freeArray();

@@ -1,6 +1,7 @@
 // TrimMaskPass in exact mode: the hybrid trim grids of every trimmed surface in one
 // texture buffer, each rebuilt and re-sent only when its surface's trims or knots change.
 #include "model/nurbs/trim.h"
+#include "render/exact_planner.h"
 #include "render/gpu_scene.h"
 #include "render/trim_mask_pass.h"
 
@@ -114,8 +115,20 @@ void TrimMaskPass::buildGrid(TrimMask& m, const TrimSurfaceArcs& a, const Revisi
     m_frame += d;
 }
 
+void TrimMaskPass::dropGrid(TrimMask& m) {
+    if (!m.grid.words && !m.grid.cap && !m.active)
+        return;
+    m_grids.release(m.grid);
+    const TrimMaskStats stats = m.stats;
+    const QStringList warnings = m.warnings;
+    m = TrimMask{};
+    m.stats = stats;
+    m.warnings = warnings;
+    m.classSerial = nextClassSerial();
+}
+
 Status TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
-                               const RenderOptions& options) {
+                               const FrameCamera& camera, const RenderOptions& options) {
     QOpenGLFunctions_4_5_Core* gl = m_gl;
     // What mask mode held goes: the records' layers, then the array.
     for (SurfaceRecord* r : records)
@@ -125,10 +138,17 @@ Status TrimMaskPass::syncExact(const std::vector<SurfaceRecord*>& records,
 
     std::vector<SurfaceRecord*> trimmed;
     for (SurfaceRecord* r : records) {
-        if (!r->surface->trims.empty() && r->exact)
-            trimmed.push_back(r);
-        else
+        if (r->surface->trims.empty() || !r->exact) {
             freeLayer(r->mask); // no longer trimmed (or not drawn)
+        } else if (options.cullOutsideView && r->bounded &&
+                   ExactPlanner::outsideView(r->boundsLo, r->boundsHi, camera.viewProjection)) {
+            // Wholly outside the view: the exact passes cull it by the same test, so no
+            // fragment reads its grid. A close-up then holds the grids of what it shows;
+            // the grid is built again when the surface comes back into view.
+            dropGrid(r->mask);
+        } else {
+            trimmed.push_back(r);
+        }
     }
     if (trimmed.empty()) {
         // No trimmed surface left: an emptied scene holds no trim memory.
