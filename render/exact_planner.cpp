@@ -2,6 +2,7 @@
 #include "render/exact_planner.h"
 
 #include "render/analytic_table.h"
+#include "render/exact_surface_pass.h"
 #include "render/gpu_scene.h"
 #include "render/surface_bound.h"
 
@@ -134,6 +135,11 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
     f.setFlag(PlanFlag::SectionSplit, !options.sections.empty() && options.splitCellsBySections &&
                                           options.shading == RenderOptions::Shading::DepthPrepass &&
                                           !antialiased);
+    const bool partial = camera.reach.z > camera.reach.x;
+    const int skirtPush =
+        partial ? int(std::ceil(skirtPushPixels(options.pixelTolerance +
+                                                double(ExactSurfacePass::kSkirtMarginPixels))))
+                : 0;
     return ExactPlanKey{scene.identity,
                         scene.layout,
                         scene.marks,
@@ -144,7 +150,8 @@ ExactPlanKey ExactPlanner::keyFor(const ExactPlanScene& scene, const FrameCamera
                         options.deferMaxCellPixels,
                         options.sections,
                         camera.pickPixel,
-                        camera.reach};
+                        camera.reach,
+                        skirtPush};
 }
 
 void ExactPlanner::clear() {
@@ -179,24 +186,15 @@ std::int64_t ExactPlanner::sectionCells() const {
 }
 
 int ExactPlanner::affineSurfaces() const {
-    int n = 0; // each drawn record has one command in m_variants
-    for (const auto& [k, b] : m_variants)
-        n += b.affine ? int(b.commands.size()) : 0;
-    return n;
+    return m_affine;
 }
 
 int ExactPlanner::analyticSurfaces() const {
-    int n = 0;
-    for (const auto& [k, b] : m_variants)
-        n += b.analytic ? int(b.commands.size()) : 0;
-    return n;
+    return m_analytic;
 }
 
 int ExactPlanner::deferredSurfaces() const {
-    int n = 0;
-    for (const auto& [k, b] : m_variants)
-        n += (k >> 13) & 1 ? 0 : int(b.commands.size());
-    return n;
+    return m_deferred;
 }
 
 bool ExactPlanner::update(const ExactPlanScene& scene, const ExactPlanKey& key,
@@ -253,6 +251,30 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
             p.culled = true;
             return p;
         }
+        // Of a surface that reaches it, the cells that do: a face at the rectangle's corner
+        // sends the few cells there through every pass, not all of them.
+        const std::vector<std::uint8_t> keep = cellsReaching(
+            g->polygon, camera.viewProjection, camera.viewport, key.reach, key.skirtPush);
+        if (!keep.empty() && std::int64_t(keep.size()) * 6 == g->triangleIndexCount) {
+            const auto reached = [&](std::uint8_t bit) {
+                return std::count_if(keep.begin(), keep.end(),
+                                     [bit](std::uint8_t k) { return (k & bit) != 0; });
+            };
+            const std::int64_t cells = reached(kCellTriangles);
+            if (cells == 0 && reached(kCellSkirt) == 0) {
+                p.culled = true;
+                return p;
+            }
+            if (cells < std::int64_t(keep.size()) ||
+                reached(kCellSkirt) < std::int64_t(keep.size())) {
+                p.pieces = true;
+                commands.cells = cellRuns(*g, keep, kCellTriangles, kCellRunGap);
+                commands.skirtRuns = skirtRuns(*g, keep, kCellRunGap, commands.skirtWhole);
+                commands.triangles = std::uint32_t(g->triangleOffset);
+                commands.skirtIndices =
+                    std::uint32_t(std::max<std::int64_t>(g->skirtIndexOffset, 0));
+            }
+        }
     }
     // Wholly on a section plane's removed side: every fragment would be evaluated, then
     // discarded.
@@ -266,6 +288,12 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     commands.all =
         IndirectCommand{std::uint32_t(g->triangleIndexCount), 1, std::uint32_t(g->triangleOffset),
                         std::int32_t(g->vertexOffset), std::uint32_t(r.slot)};
+    p.cells = g->triangleIndexCount / 6;
+    if (p.pieces) {
+        p.cells = 0;
+        for (const CellRun& run : commands.cells)
+            p.cells += run.count;
+    }
     const bool prepass = key.has(PlanFlag::Prepass);
     const TrimMask* mask = key.has(PlanFlag::Trims) ? maskOf(r) : nullptr;
     // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
@@ -413,6 +441,27 @@ void ExactPlanner::chooseBackCulled(const ExactPlanScene& scene, const ExactPlan
     }
 }
 
+int ExactPlanner::addCommand(ExactBatch& b, const IndirectCommand& command, const ExactPlace& p,
+                             const Commands& cs, bool skirt) {
+    const int at = int(b.commands.size());
+    if (!p.pieces || (skirt && cs.skirtWhole)) {
+        b.commands.push_back(command);
+        return at;
+    }
+    // The command's part of each run: a run may cross from one of the range's parts (inside,
+    // near an edge, crossed by a plane) into the next.
+    const std::uint32_t unit = skirt ? 1 : 6, start = skirt ? cs.skirtIndices : cs.triangles;
+    const std::uint32_t lo = command.firstIndex, hi = command.firstIndex + command.count;
+    for (const CellRun& run : skirt ? cs.skirtRuns : cs.cells) {
+        const std::uint32_t first = std::max(lo, start + std::uint32_t(run.first) * unit);
+        const std::uint32_t end = std::min(hi, start + std::uint32_t(run.first + run.count) * unit);
+        if (end > first)
+            b.commands.push_back(IndirectCommand{end - first, command.instanceCount, first,
+                                                 command.baseVertex, command.baseInstance});
+    }
+    return at;
+}
+
 void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Commands& cs,
                                 const ExactPlanKey& key) {
     const IndirectCommand& c = cs.all;
@@ -434,13 +483,9 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             pre.analytic = (p.variant >> 14) & 1;
             pre.route = p.route();
         }
-        p.prepassIndex = int(pre.commands.size());
-        pre.commands.push_back(p.split ? cs.edge : c);
-        if (p.split) {
-            ExactBatch& inside = plain();
-            p.insideIndex = int(inside.commands.size());
-            inside.commands.push_back(cs.inside);
-        }
+        p.prepassIndex = addCommand(pre, p.split ? cs.edge : c, p, cs);
+        if (p.split)
+            p.insideIndex = addCommand(plain(), cs.inside, p, cs);
         if (deferred && p.route() >= 0)
             addToRoute(p);
     }
@@ -455,8 +500,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
         b.section = (p.variant >> 15) & 1;
         b.face = p.face;
     }
-    p.index = int(b.commands.size());
-    b.commands.push_back(c);
+    p.index = addCommand(b, c, p, cs);
     if (p.edgeVariant >= 0) {
         ExactBatch& e = m_edges[p.edgeVariant];
         if (e.commands.empty()) {
@@ -465,8 +509,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             e.trimmed = true;
             e.section = true;
         }
-        p.edgeIndex = int(e.commands.size());
-        e.commands.push_back(c); // with anti-aliasing: never split
+        p.edgeIndex = addCommand(e, c, p, cs); // with anti-aliasing: never split
     }
     if (p.skirtVariant >= 0) {
         ExactBatch& k = m_skirts[p.skirtVariant];
@@ -475,8 +518,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             k.degreeV = b.degreeV;
             k.trimmed = (p.skirtVariant >> 8) & 1;
         }
-        p.skirtIndex = int(k.commands.size());
-        k.commands.push_back(cs.skirt);
+        p.skirtIndex = addCommand(k, cs.skirt, p, cs, true);
     }
     const auto addBack = [&](int key, const IndirectCommand& command) {
         ExactBatch& k = m_backFaces[key];
@@ -487,8 +529,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             k.gather = false;
             k.section = true;
         }
-        k.commands.push_back(command);
-        return int(k.commands.size()) - 1;
+        return addCommand(k, command, p, cs);
     };
     if (p.backVariant >= 0)
         p.backIndex = addBack(p.backVariant, p.split ? cs.edge : c);
@@ -502,8 +543,7 @@ void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Com
             k.trimmed = (p.sectionVariant >> 8) & 1;
             k.section = true;
         }
-        p.sectionIndex = int(k.commands.size());
-        k.commands.push_back(cs.section);
+        p.sectionIndex = addCommand(k, cs.section, p, cs);
     }
 }
 
@@ -519,11 +559,18 @@ void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
     m_places.reserve(scene.records->size());
     m_culled = 0;
     m_trimmedAway = 0;
+    m_cellsSent = 0;
+    m_affine = m_analytic = m_deferred = 0;
     for (const SurfaceRecord* r : *scene.records) {
         Commands cs;
         ExactPlace p = classify(*r, key, camera, cs);
-        if (p.drawn && !p.culled)
+        if (p.drawn && !p.culled) {
             addToBatches(*r, p, cs, key);
+            m_cellsSent += p.cells;
+            m_affine += (p.variant >> 12) & 1;
+            m_analytic += (p.variant >> 14) & 1;
+            m_deferred += (p.variant >> 13) & 1 ? 0 : 1;
+        }
         m_culled += p.culled ? 1 : 0;
         m_trimmedAway += p.awayCells;
         m_places[r] = p;
@@ -553,7 +600,7 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
         Commands cs;
         const ExactPlace now = classify(*r, key, camera, cs);
         const IndirectCommand& c = cs.all;
-        if (now.drawn != was.drawn || now.culled != was.culled)
+        if (now.drawn != was.drawn || now.culled != was.culled || now.pieces || was.pieces)
             return false;
         if (!now.drawn || now.culled)
             continue;
@@ -593,6 +640,8 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
         }
         m_trimmedAway += now.awayCells - was.awayCells;
         it->second.awayCells = now.awayCells;
+        m_cellsSent += now.cells - was.cells;
+        it->second.cells = now.cells;
     }
     return true;
 }

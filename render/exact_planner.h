@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/gpu_pool.h"
+#include "render/partial_cells.h"
 #include "render/render_types.h"
 
 #include <QFlags>
@@ -98,6 +99,11 @@ struct ExactPlace {
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
+    /// A partial frame sends only its cells (and skirt segments) that reach the rectangle
+    /// (render/partial_cells.h): each of its commands above is then the first of its runs'
+    /// commands in that batch, and the plan is built again rather than patched.
+    bool pieces = false;
+    std::int64_t cells = 0; ///< the cells of its polygon the frame sends (drawn and not culled)
 };
 
 /// What of a frame decides the plan besides the camera, one bit each.
@@ -132,12 +138,16 @@ struct ExactPlanKey {
     std::vector<SectionPlane> sections; ///< RenderOptions::sections
     glm::ivec2 pickPixel{-1, -1};       ///< FrameCamera::pickPixel
     glm::ivec4 reach{0, 0, 0, 0};       ///< FrameCamera::reach
+    /// With a reach: how far a skirt's pushed nodes may lie from their nodes, in whole pixels
+    /// (kw::skirtPushPixels for the frame's tolerance).
+    int skirtPush = 0;
     bool has(PlanFlag f) const { return flags.testFlag(f); }
     bool operator==(const ExactPlanKey& o) const {
         return scene == o.scene && layout == o.layout && marks == o.marks &&
                viewProjection == o.viewProjection && viewport == o.viewport && flags == o.flags &&
                minCellPixels == o.minCellPixels && deferMaxCellPixels == o.deferMaxCellPixels &&
-               sections == o.sections && pickPixel == o.pickPixel && reach == o.reach;
+               sections == o.sections && pickPixel == o.pickPixel && reach == o.reach &&
+               skirtPush == o.skirtPush;
     }
 };
 
@@ -227,6 +237,9 @@ public:
     /// Surfaces shaded from their analytic form (ExactBatch::analytic).
     int analyticSurfaces() const;
     int deferredSurfaces() const;
+    /// The cells of the drawn surfaces' polygons the plan sends: in a partial frame those
+    /// reaching its rectangle (FrameReport::partialCells), else every drawn surface's.
+    std::int64_t cellsSent() const { return m_cellsSent; }
 
     /// Estimated screen pixels per base-polygon cell of `g` under `camera`: the area of the
     /// projected bounding box of its control points (clamped to the viewport) over its cell
@@ -262,7 +275,16 @@ private:
     /// pass's range covering both (not the trimmed-away cells).
     struct Commands {
         IndirectCommand all{}, inside{}, edge{}, skirt{}, section{};
+        /// ExactPlace::pieces: the runs of the cells to send (in cells of the triangle range
+        /// at `triangles`) and of the skirt's indices (at `skirtIndices`; `skirtWhole`: all).
+        std::vector<CellRun> cells, skirtRuns;
+        bool skirtWhole = true;
+        std::uint32_t triangles = 0, skirtIndices = 0;
     };
+    /// Appends `command` to `b`, or with `p.pieces` the parts of it `cs`'s runs keep (`skirt`:
+    /// the skirt's runs). Returns where its first command is in `b`.
+    static int addCommand(ExactBatch& b, const IndirectCommand& command, const ExactPlace& p,
+                          const Commands& cs, bool skirt = false);
     /// A record's variant and commands as this frame would draw it.
     ExactPlace classify(const SurfaceRecord& r, const ExactPlanKey& key, const FrameCamera& camera,
                         Commands& commands) const;
@@ -291,7 +313,10 @@ private:
     std::unordered_map<const SurfaceRecord*, ExactPlace> m_places;
     std::vector<IndirectCommand> m_commands;
     std::int64_t m_trimmedAway = 0; ///< the batches' ExactPlace::awayCells, summed
+    std::int64_t m_cellsSent = 0;   ///< ExactPlace::cells, summed
     int m_culled = 0;
+    /// The drawn surfaces that are affine, analytic, and shaded by the deferred pass.
+    int m_affine = 0, m_analytic = 0, m_deferred = 0;
 };
 
 // In the namespace, so that argument-dependent lookup finds the operators.

@@ -200,6 +200,8 @@ Status ExactSurfacePass::depthPrepass(const std::map<int, ExactBatch>& plain,
             gl->glDepthFunc(GL_EQUAL);
             gl->glDepthMask(GL_FALSE);
             for (const auto& [k, b] : trimmed) {
+                if (b.commands.empty())
+                    continue;
                 gl->glStencilFunc(GL_ALWAYS, m_plan.stencilOf(b), 0xff);
                 drawBatch(b);
             }
@@ -347,8 +349,8 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
                                      const std::vector<Light>& lights, const RenderOptions& options,
                                      const ValueRange& range, bool largeCellsOnly) {
     for (const auto& [key, b] : batches) {
-        if (largeCellsOnly && !((key >> 13) & 1))
-            continue;
+        if ((largeCellsOnly && !((key >> 13) & 1)) || b.commands.empty())
+            continue; // empty: a partial frame's surfaces sent none of their cells here
         ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
                                  b.gather, trimAa, false, b.affine, b.analytic);
         if (!b.section) // cells every plane keeps, no solid to cap (ExactBatch::section)
@@ -397,6 +399,8 @@ Status ExactSurfacePass::backFacePass(const GpuScene& scene, const FrameCamera& 
     gl->glDepthMask(GL_FALSE);
     Status drawn;
     for (const auto& [key, b] : m_plan.backFaces()) {
+        if (b.commands.empty())
+            continue;
         ExactVariant v = variant(b.degreeU, b.degreeV, int(lights.size()), options, b.trimmed,
                                  false, TrimAa::Off, false, b.affine, b.analytic);
         v.features.setFlag(ExactFeature::ExactDepth, false);
@@ -597,7 +601,8 @@ Status ExactSurfacePass::skirtPass(const GpuScene& scene, const FrameCamera& cam
     gl->glBindVertexArray(scene.skirtVao());
     Status drawn;
     for (const auto& [key, b] : m_plan.skirts())
-        if (!(drawn = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles)))
+        if (!b.commands.empty() &&
+            !(drawn = drawSkirtBatch(b, scene, camera, lights, options, range, skirtTriangles)))
             break;
     if (clock)
         clock->mark(PassTimes::Skirts);
@@ -679,9 +684,12 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
     if (camera.reach.z <= camera.reach.x)
         for (auto it = m_fins.begin(); it != m_fins.end();)
             it = it->second.frame == m_finFrame ? std::next(it) : m_fins.erase(it);
-    // 2. One upload of them all when any changed, grouped by skirt variant.
-    if (rebuilt || layout != m_finLayout) {
+    // 2. One upload of them all when any changed, grouped by skirt variant; in a partial frame
+    // only the fins that reach its rectangle.
+    const bool partial = camera.reach.z > camera.reach.x;
+    if (rebuilt || layout != m_finLayout || camera.reach != m_finReach) {
         m_finLayout = layout;
+        m_finReach = camera.reach;
         std::stable_sort(layout.begin(), layout.end(), [](const auto& a, const auto& b) {
             return std::get<2>(a) < std::get<2>(b);
         });
@@ -690,8 +698,15 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
         std::vector<IndirectCommand> commands;
         m_finBatches.clear();
         int lastVariant = -1;
+        std::vector<unsigned> reaching;
         for (const auto& [r, slot, variant] : layout) {
             const Fins& f = m_fins.at(r);
+            if (partial)
+                reaching = finsReaching(f.vertices, f.indices, camera.viewProjection,
+                                        camera.viewport, camera.reach);
+            const std::vector<unsigned>& sent = partial ? reaching : f.indices;
+            if (sent.empty())
+                continue;
             if (variant != lastVariant) {
                 lastVariant = variant;
                 ExactBatch b;
@@ -701,13 +716,12 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
                 b.first = std::int64_t(commands.size());
                 m_finBatches.push_back(b);
             }
-            const IndirectCommand c{std::uint32_t(f.indices.size()), 1,
-                                    std::uint32_t(indices.size()), std::int32_t(vertices.size()),
-                                    std::uint32_t(slot)};
+            const IndirectCommand c{std::uint32_t(sent.size()), 1, std::uint32_t(indices.size()),
+                                    std::int32_t(vertices.size()), std::uint32_t(slot)};
             commands.push_back(c);
             m_finBatches.back().commands.push_back(c);
             vertices.insert(vertices.end(), f.vertices.begin(), f.vertices.end());
-            indices.insert(indices.end(), f.indices.begin(), f.indices.end());
+            indices.insert(indices.end(), sent.begin(), sent.end());
         }
         for (GLuint* b : {&m_finVertexBuffer, &m_finIndexBuffer, &m_finCommandBuffer})
             if (!*b)

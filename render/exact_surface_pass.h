@@ -74,6 +74,8 @@ public:
     std::uint64_t prepassWrites() const { return m_prepassWrites; }
     /// The closed solids whose back faces the last draw skipped (ExactPlanner::backCulled).
     const std::set<int>& backCulledSolids() const { return m_plan.backCulled(); }
+    /// The cells the last draw sent (ExactPlanner::cellsSent).
+    std::int64_t cellsSent() const { return m_plan.cellsSent(); }
 
     /// The exact shader variant for degrees (p, q) and these options. The per-cell gather
     /// (ExactFeature::CellGather) is chosen when the cell's data fits the varyings and
@@ -263,8 +265,10 @@ private:
     GLuint m_finVertexBuffer = 0, m_finIndexBuffer = 0, m_finCommandBuffer = 0;
     std::int64_t m_finBytes = 0;
     std::vector<ExactBatch> m_finBatches; ///< `first` counts in m_finCommandBuffer
-    /// The records, slots and variants the uploaded fins were laid out for.
+    /// The records, slots and variants the uploaded fins were laid out for, and the partial
+    /// frame's reach they were chosen for (empty: all of them).
     std::vector<std::tuple<const SurfaceRecord*, int, int>> m_finLayout;
+    glm::ivec4 m_finReach{0};
 };
 
 } // namespace kw

@@ -166,12 +166,14 @@ struct FrameReport {
     QSize drawnSize;
     /// RenderOptions::FrameReuse::Partial: the frame redrew only `partialRect` (pixels of the
     /// drawn frame, x right, y down; empty: nothing changed, the kept frame was copied again)
-    /// and kept the rest of the last frame; `partialSurfaces` surfaces reached it, whose cells
-    /// it drew (partitions.cells counts every surface's). False: the whole frame was drawn.
+    /// and kept the rest of the last frame; `partialSurfaces` surfaces reached it, with
+    /// `partialSurfaceCells` base polygon cells, of which it drew the `partialCells` that reach
+    /// it (partitions.cells counts every surface's). False: the whole frame was drawn.
     bool partial = false;
     QRect partialRect;
     int partialSurfaces = 0;
-    std::int64_t partialCells = 0; ///< base polygon cells of those surfaces
+    std::int64_t partialSurfaceCells = 0;
+    std::int64_t partialCells = 0;
     /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
     PassTimes passes;
 };

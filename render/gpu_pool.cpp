@@ -324,6 +324,7 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     g.edgeIndexCount = 0;
     g.splitPolygon = g.splitClasses = g.splitSections = 0;
     g.keptIndexCount = g.crossedIndexCount = 0;
+    std::vector<std::uint8_t>().swap(g.cellBuckets);
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, triangles, u.triangles.data());
     if (withOutlines)
@@ -444,6 +445,7 @@ bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
     // Buckets in drawing order: kept and inside, kept near an edge, crossed near an edge,
     // crossed inside, then the rest (trimmed away or removed).
     std::vector<unsigned> byClass[5];
+    std::vector<std::uint8_t> buckets(size_t(poly.cellCount()));
     const unsigned row = unsigned(poly.nodesU());
     for (int cv = 0; cv < poly.cellsV(); ++cv)
         for (int cu = 0; cu < poly.cellsU(); ++cu) {
@@ -457,6 +459,7 @@ bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
             const int bucket = trim == 0 || side == 2 ? 4
                                : side == 1            ? (trim == 2 ? 2 : 3)
                                                       : (trim == 2 ? 1 : 0);
+            buckets[size_t(cv) * size_t(poly.cellsU()) + size_t(cu)] = std::uint8_t(bucket);
             const unsigned ll = unsigned(cv) * row + unsigned(cu), lr = ll + 1, ul = ll + row,
                            ur = ul + 1;
             byClass[bucket].insert(byClass[bucket].end(), {ll, lr, ur, ll, ur, ul});
@@ -474,6 +477,7 @@ bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
         return wasSplit;
     }
     pools.triangles.write(g.triangleOffset, std::int64_t(tri.size()), tri.data());
+    g.cellBuckets = std::move(buckets);
     if (usable) {
         g.insideIndexCount = sizes[0];
         g.edgeIndexCount = sizes[1];

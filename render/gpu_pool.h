@@ -130,6 +130,11 @@ struct SurfaceGpu {
     /// or trimmed away.
     int keptIndexCount = 0, crossedIndexCount = 0;
     std::uint64_t splitSections = 0;
+    /// The order of the cells in the triangle range as the last split wrote it: per cell (row
+    /// by row, v outer) its bucket, the range holding bucket 0's cells row by row, then bucket
+    /// 1's, and so on (kw::splitCells). Empty: row by row, as rebuildPolygon wrote them. A
+    /// partial frame draws sub-ranges of it (render/partial_cells.h).
+    std::vector<std::uint8_t> cellBuckets;
     /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
     /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
     bool affine = false;

@@ -637,10 +637,10 @@ std::int64_t GpuScene::hostCopyBytes() const {
         if (!g)
             continue;
         const BasePolygon& p = g->polygon;
-        bytes += std::int64_t(g->control.size() * sizeof(glm::vec4) +
-                              p.vertices.size() * sizeof(BaseVertex) +
-                              (p.breaksU.size() + p.breaksV.size()) * sizeof(double) +
-                              (p.spanU.size() + p.spanV.size()) * sizeof(int));
+        bytes += std::int64_t(
+            g->control.size() * sizeof(glm::vec4) + p.vertices.size() * sizeof(BaseVertex) +
+            (p.breaksU.size() + p.breaksV.size()) * sizeof(double) +
+            (p.spanU.size() + p.spanV.size()) * sizeof(int) + g->cellBuckets.size());
     }
     return bytes;
 }

@@ -190,6 +190,8 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     bool ok = unchanged || step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc,
                                             lights, options, report.analysisRange, pickPixel));
     clock.mark(PassTimes::Antialiasing);
+    if (report.partial && !unchanged && options.mode == RenderMode::Exact)
+        report.partialCells = exact.cellsSent();
     if (report.partial && !unchanged && exact.backCulledSolids() != partial.backCulled()) {
         // A solid's back faces skipped now and drawn in the kept frame, or the reverse: that
         // reaches every face of the solid, not only the rectangle's.
@@ -284,7 +286,7 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
         if (f.drawn && (!f.bounded || (r.z > fc.reach.x && r.x < fc.reach.z && r.w > fc.reach.y &&
                                        r.y < fc.reach.w))) {
             ++report.partialSurfaces;
-            report.partialCells += scene.records()[k]->cells;
+            report.partialSurfaceCells += scene.records()[k]->cells;
         }
     }
     return plan;

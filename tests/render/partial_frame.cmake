@@ -12,3 +12,7 @@ kw_use_cad_reader(tst_render_partial_frame)
 # bands, the cases drawn whole, the kept camera planes (label render).
 kw_add_test(tst_partial_frame_damage SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_partial_frame_damage.cpp
             LIBS knotwork_render)
+# The cells a partial frame's rectangle reaches, their runs and the planner's commands for them,
+# without GL (label render).
+kw_add_test(tst_partial_cells SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_partial_cells.cpp
+            LIBS knotwork_render)

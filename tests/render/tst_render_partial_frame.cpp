@@ -3,7 +3,8 @@
 // steps, the whole face moved past its old bounds and put back, another face is edited, hidden
 // and shown again: each frame after an edit is partial, and its pixels are byte for
 // byte those of the same frame drawn whole (FrameReuse::Full, following the same edits), and
-// those of a fresh renderer's whole frame but for depth ties of a few pixels; the pre-pass data
+// those of a fresh renderer's whole frame but for depth ties of a few pixels, while it sends only
+// the cells of the reached faces that reach its rectangle; the pre-pass data
 // that Renderer::pickInLastFrame reads answers as the whole frame's; likewise with a section
 // plane (caps), the wireframe and the control nets on. A new camera, a colour map whose range
 // the edit moved, and an anti-aliased frame are drawn whole.
@@ -68,6 +69,9 @@ class TestRenderPartialFrame : public QObject {
     std::unique_ptr<OffscreenRenderer> m_whole;   ///< FrameReuse::Full: the same frames whole
     std::unique_ptr<OffscreenRenderer> m_fresh;   ///< FrameReuse::None: main's way
     std::uint64_t m_drawnRevision = 0;            ///< the document's at the last frame
+    /// Over the partial frames since the last reset: the cells of the surfaces that reached
+    /// their rectangles, and those of them the frames sent (the ones reaching it).
+    std::int64_t m_surfaceCells = 0, m_sentCells = 0;
 
     RenderOptions m_base;             ///< what every frame draws besides the defaults
     std::map<QString, Scene> m_parts; ///< imported once (the CAD reader takes seconds)
@@ -105,6 +109,10 @@ class TestRenderPartialFrame : public QObject {
             QVERIFY2(report.partialSurfaces >= 1 &&
                          report.partialSurfaces <= int(doc.scene().surfaces.size()),
                      qPrintable(step));
+            QVERIFY2(report.partialCells >= 1 && report.partialCells <= report.partialSurfaceCells,
+                     qPrintable(step));
+            m_surfaceCells += report.partialSurfaceCells;
+            m_sentCells += report.partialCells;
         }
         m_drawnRevision = doc.revision();
         if (rect)
@@ -113,11 +121,11 @@ class TestRenderPartialFrame : public QObject {
                      fresh = m_fresh->colorImage();
         const int vsWhole = kwtest::differingPixels(got, whole);
         const int vsFresh = kwtest::differingPixels(got, fresh);
-        qInfo("%s: partial %d, rectangle %d,%d %dx%d, surfaces %d; %d pixels differ from a "
-              "fresh whole frame",
+        qInfo("%s: partial %d, rectangle %d,%d %dx%d, surfaces %d, cells %lld of %lld; %d pixels "
+              "differ from a fresh whole frame",
               qPrintable(step), report.partial, report.partialRect.x(), report.partialRect.y(),
               report.partialRect.width(), report.partialRect.height(), report.partialSurfaces,
-              vsFresh);
+              (long long)report.partialCells, (long long)report.partialSurfaceCells, vsFresh);
         if (vsWhole != 0) {
             got.save(kwtest::outputDir().filePath(QStringLiteral("partial_%1.png").arg(step)));
             whole.save(kwtest::outputDir().filePath(QStringLiteral("whole_%1.png").arg(step)));
@@ -171,6 +179,7 @@ class TestRenderPartialFrame : public QObject {
         const Camera cam = fitCamera(doc.scene(), 1.0);
         const Drag drag = chooseDrag(doc.scene());
         QVERIFY2(drag.size > 0.0, qPrintable(file));
+        m_surfaceCells = m_sentCells = 0;
         drawAndCompare(doc, cam, file + QStringLiteral("-first"), 0);
         QRect first, grownRect;
         const NurbsSurface homeGeometry = doc.surface(drag.id)->geometry;
@@ -232,6 +241,15 @@ class TestRenderPartialFrame : public QObject {
         Camera turned = cam;
         turned.eye += 0.05 * (cam.target - cam.eye);
         drawAndCompare(doc, turned, file + QStringLiteral("-camera"), 0);
+        // The faces reaching a rectangle sent only their cells that reach it: on both parts
+        // the rectangles cut through faces, whose cells outside were left out.
+        qInfo("%s: partial frames sent %lld of their surfaces' %lld cells", qPrintable(file),
+              (long long)m_sentCells, (long long)m_surfaceCells);
+        QVERIFY2(m_sentCells < m_surfaceCells * 9 / 10,
+                 qPrintable(QStringLiteral("%1: %2 of %3 cells")
+                                .arg(file)
+                                .arg(m_sentCells)
+                                .arg(m_surfaceCells)));
     }
 
 private Q_SLOTS:
