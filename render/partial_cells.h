@@ -75,7 +75,10 @@ std::vector<unsigned> finsReaching(const std::vector<SkirtVertex>& vertices,
                                    const glm::ivec4& reach);
 
 /// Runs of cells at most this many cells apart in a triangle range are sent as one: on
-/// llvmpipe a draw command costs about what a few cells' vertices and triangle set-up do.
-constexpr int kCellRunGap = 4;
+/// llvmpipe each command of a multi-draw is a draw of its own (state, vertex set-up), which
+/// costs about what some tens of cells' vertices and triangle set-up do, so a face's rows in a
+/// rectangle go as one band of rows, not one command per row (with 4, Motor-c's partial frames
+/// sent a few hundred commands more than whole faces and measured no faster).
+constexpr int kCellRunGap = 32;
 
 } // namespace kw
