@@ -497,7 +497,8 @@ void MainWindow::deleteSelection() {
     // Del in the UV panel with a picked trim loop removes the loop, not the surface.
     if (m_uv->hasFocus() && m_uv->deleteSelectedLoops())
         return;
-    m_tools->deleteSelected();
+    if (const Status deleted = m_tools->deleteSelected(); !deleted)
+        statusBar()->showMessage(deleted.message(), 5000);
 }
 
 void MainWindow::selectSurface(SurfaceId id) {
