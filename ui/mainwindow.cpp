@@ -108,7 +108,8 @@ MainWindow::MainWindow(QWidget* parent)
       m_dialogs(Dialogs::standard()) {
     setObjectName(QStringLiteral("KnotworkMainWindow"));
     // The untitled project the window starts with is a new one: the user's default tolerances.
-    m_doc->setContinuityTolerances(Preferences::load().continuity);
+    // Preferences::load keeps the defaults in place of invalid tolerances: never refused.
+    (void)m_doc->setContinuityTolerances(Preferences::load().continuity);
     setAcceptDrops(true);
     setDockNestingEnabled(true);
     m_model->setRenameHandler([this](SurfaceId id, const QString& name) {

@@ -51,12 +51,13 @@ QString LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& i
         return refuse(step.message());
     if (QString why = netChanged(surface); !why.isEmpty())
         return refuse(why);
-    applyPoints(surface, indices, positions);
+    if (Status moved = applyPoints(surface, indices, positions); !moved)
+        return refuse(moved.message());
     return {};
 }
 
-void LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
-                           const std::vector<glm::dvec3>& positions) {
+Status LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
+                             const std::vector<glm::dvec3>& positions) {
     const NurbsSurface& g = m_doc->surface(surface)->geometry;
     auto [record, fresh] = m_points.try_emplace(surface);
     if (fresh)
@@ -64,7 +65,7 @@ void LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
     std::map<int, glm::dvec3>& from = record->second.from;
     for (int index : indices)
         from.try_emplace(index, g.points[size_t(index)]);
-    m_doc->setControlPoints(surface, indices, positions);
+    return m_doc->setControlPoints(surface, indices, positions);
 }
 
 QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
@@ -100,7 +101,8 @@ QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
     }
     // Every surface's step passed: applied, none checked again.
     for (const auto& [id, change] : bySurface)
-        applyPoints(id, change.first, change.second);
+        if (Status moved = applyPoints(id, change.first, change.second); !moved)
+            return refuse(moved.message());
     return {};
 }
 
@@ -118,7 +120,8 @@ QString LiveEdit::setWeight(SurfaceId surface, int index, double weight) {
         return refuse(step.message());
     m_weights.try_emplace({surface, index},
                           m_doc->surface(surface)->geometry.weights[size_t(index)]);
-    m_doc->setWeight(surface, index, weight);
+    if (Status set = m_doc->setWeight(surface, index, weight); !set)
+        return refuse(set.message());
     return {};
 }
 
@@ -131,7 +134,8 @@ QString LiveEdit::moveTrimPoints(const std::vector<TrimPointRef>& refs,
     for (const TrimPointRef& ref : refs)
         if (!m_trims.count(ref))
             m_trims.emplace(ref, *trimPoint(*m_doc, ref)); // the rule found it
-    m_doc->setTrimPoints(refs, positions);
+    if (Status moved = m_doc->setTrimPoints(refs, positions); !moved)
+        return refuse(moved.message());
     return {};
 }
 
@@ -187,7 +191,8 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
         if (to == from)
             continue;
         // SetWeight takes its old value from the document: back to the press-time weight.
-        m_doc->setWeight(id, index, from);
+        if (!m_doc->setWeight(id, index, from))
+            continue;
         if (auto c = SetWeight::create(m_doc, id, index, to))
             commands.push_back(std::move(*c));
     }
@@ -250,17 +255,18 @@ void LiveEdit::restore() {
             indices.push_back(index);
             from.push_back(p);
         }
-        m_doc->setControlPoints(id, indices, from); // refused (nothing to restore) when gone
+        // Refused, with nothing to restore, when the surface is gone.
+        (void)m_doc->setControlPoints(id, indices, from);
     }
     for (const auto& [key, from] : m_weights)
-        m_doc->setWeight(key.first, key.second, from);
+        (void)m_doc->setWeight(key.first, key.second, from); // as above
     std::map<SurfaceId, std::pair<std::vector<TrimPointRef>, std::vector<glm::dvec2>>> bySurface;
     for (const auto& [ref, from] : m_trims) {
         bySurface[ref.surface].first.push_back(ref);
         bySurface[ref.surface].second.push_back(from);
     }
     for (const auto& [id, moves] : bySurface)
-        m_doc->setTrimPoints(moves.first, moves.second);
+        (void)m_doc->setTrimPoints(moves.first, moves.second); // as above
 }
 
 void LiveEdit::clear() {

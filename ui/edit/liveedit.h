@@ -69,9 +69,10 @@ Q_SIGNALS:
 private:
     QString refuse(const QString& reason);
     /// A checked points step: records the press-time values it touches first, then moves the
-    /// points in the document. The one place a drag step of points reaches the document.
-    void applyPoints(SurfaceId surface, const std::vector<int>& indices,
-                     const std::vector<glm::dvec3>& positions);
+    /// points in the document. The one place a drag step of points reaches the document; the
+    /// document's reason should it still refuse.
+    Status applyPoints(SurfaceId surface, const std::vector<int>& indices,
+                       const std::vector<glm::dvec3>& positions);
     /// Puts back the press-time values; the surfaces or loops gone since are skipped.
     void restore();
     void clear();
