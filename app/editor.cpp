@@ -62,9 +62,16 @@ bool headlessPlatform() {
 /// beside it. Each step is an undo step of the window.
 void buildDemo(MainWindow& window) {
     ModelingTools* tools = window.modelingTools();
-    tools->createPrimitive(ModelingTools::Primitive::Torus);
-    tools->transformSelected({{2.2, 1.2, 0.0}, 0, 35.0, 1.6});
-    const SurfaceId patch = tools->createPatch({3, 3, 7, 6, 3.0, 2.4});
+    if (const auto torus = tools->createPrimitive(ModelingTools::Primitive::Torus); !torus)
+        qWarning("%s", qPrintable(torus.message()));
+    else if (const Status moved = tools->transformSelected({{2.2, 1.2, 0.0}, 0, 35.0, 1.6}); !moved)
+        qWarning("%s", qPrintable(moved.message()));
+    const Expected<SurfaceId> created = tools->createPatch({3, 3, 7, 6, 3.0, 2.4});
+    if (!created) {
+        qWarning("%s", qPrintable(created.message()));
+        return;
+    }
+    const SurfaceId patch = *created;
     const NurbsSurface& g = window.document()->surface(patch)->geometry;
     std::vector<int> indices;
     std::vector<glm::dvec3> from, to;

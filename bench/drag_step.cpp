@@ -152,8 +152,9 @@ Status ModelSteps::step(bool overlay, const glm::dvec3& to, bool timed) {
     QElapsedTimer wall;
     const double cpu0 = processCpuMs();
     wall.start();
-    if (!doc.setControlPoints(drag.id, {drag.index}, {to}))
-        return Error(QStringLiteral("the drag's control point move was refused"));
+    if (const Status moved = doc.setControlPoints(drag.id, {drag.index}, {to}); !moved)
+        return Error(
+            QStringLiteral("the drag's control point move was refused: %1").arg(moved.message()));
     const double t0 = threadCpuMs();
     ContinuityReport& report = overlay ? full : watch;
     updateContinuity(report, doc.scene(), {drag.id});
@@ -244,9 +245,9 @@ Status ModelSteps::run(const Scene& unit, const QString& name, int faces, DragSt
     if (Status last = step(config.overlayOn, peak, false); !last)
         return last;
     row.opens = opens;
-    if (!doc.setControlPoints(drag.id, {drag.index}, {drag.home}))
-        return Error(
-            QStringLiteral("%1: the drag's control point could not be put back").arg(name));
+    if (const Status home = doc.setControlPoints(drag.id, {drag.index}, {drag.home}); !home)
+        return Error(QStringLiteral("%1: the drag's control point could not be put back: %2")
+                         .arg(name, home.message()));
     for (int k = 0; k < 2; ++k) {
         DragStepTiming& t = k == 0 ? row.on : row.off;
         t.measured = !ms[k].empty();

@@ -102,8 +102,11 @@ struct Frames {
         std::vector<double> ms, toDraw;
         for (int k = 0; k <= config.dragSteps; ++k) {
             const double t0 = threadCpuMs();
-            if (!doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)}))
-                return Error(QStringLiteral("the drag step could not move the control point"));
+            if (const Status moved =
+                    doc.setControlPoints(s.id, {index}, {start + glm::dvec3(0.0, 0.0, step * k)});
+                !moved)
+                return Error(QStringLiteral("the drag step could not move the control point: %1")
+                                 .arg(moved.message()));
             const double edited = threadCpuMs();
             if (Status drawn = render(doc, camera); !drawn)
                 return drawn;
@@ -114,7 +117,8 @@ struct Frames {
                 toDraw.push_back(edited - t0 + renderer.lastReport().cpuMs.beforeDraws);
             }
         }
-        doc.setControlPoints(s.id, {index}, {start});
+        if (const Status home = doc.setControlPoints(s.id, {index}, {start}); !home)
+            return home;
         stepMs = median(ms);
         toDrawMs = median(toDraw);
         return ok();

@@ -108,7 +108,8 @@ MainWindow::MainWindow(QWidget* parent)
       m_dialogs(Dialogs::standard()) {
     setObjectName(QStringLiteral("KnotworkMainWindow"));
     // The untitled project the window starts with is a new one: the user's default tolerances.
-    m_doc->setContinuityTolerances(Preferences::load().continuity);
+    // Preferences::load keeps the defaults in place of invalid tolerances: never refused.
+    (void)m_doc->setContinuityTolerances(Preferences::load().continuity);
     setAcceptDrops(true);
     setDockNestingEnabled(true);
     m_model->setRenameHandler([this](SurfaceId id, const QString& name) {
@@ -497,7 +498,8 @@ void MainWindow::deleteSelection() {
     // Del in the UV panel with a picked trim loop removes the loop, not the surface.
     if (m_uv->hasFocus() && m_uv->deleteSelectedLoops())
         return;
-    m_tools->deleteSelected();
+    if (const Status deleted = m_tools->deleteSelected(); !deleted)
+        statusBar()->showMessage(deleted.message(), 5000);
 }
 
 void MainWindow::selectSurface(SurfaceId id) {

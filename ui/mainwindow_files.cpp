@@ -103,8 +103,9 @@ bool MainWindow::saveFile(const QString& path) {
         showError(tr("Cannot save file"), written.message());
         return false;
     }
-    m_doc->setCamera(camera);
-    m_doc->setDisplay(scene.display);
+    // Both were written, so both passed the writer's checkScene: neither can be refused.
+    (void)m_doc->setCamera(camera);
+    (void)m_doc->setDisplay(scene.display);
     m_stack->setClean();
     setFilePath(path);
     addRecent(path);

@@ -53,12 +53,10 @@ void ModelingTools::selectSurfaces(const std::vector<SurfaceId>& ids) {
         items->setCurrentIndex(m_model->surfaceIndex(ids.front()), QItemSelectionModel::NoUpdate);
 }
 
-SurfaceId ModelingTools::add(Surface surface, const QString& text) {
+Expected<SurfaceId> ModelingTools::add(Surface surface, const QString& text) {
     auto c = AddSurface::create(m_doc, std::move(surface), -1);
-    if (!c) {
-        Q_EMIT message(tr("Cannot create: %1").arg(c.message()));
-        return {};
-    }
+    if (!c)
+        return Error(tr("Cannot create: %1").arg(c.message()));
     (*c)->setText(text);
     const SurfaceId id = (*c)->surfaceId();
     pushCommand(m_stack, std::move(*c));
@@ -88,7 +86,7 @@ glm::dvec3 ModelingTools::placeBesideShown(double radius) const {
     return c.target + right * (reach + radius + gap);
 }
 
-SurfaceId ModelingTools::createPrimitive(Primitive kind) {
+Expected<SurfaceId> ModelingTools::createPrimitive(Primitive kind) {
     const double r = 0.5 * viewScale();
     // 1.45 r bounds every shape below (the plane's half diagonal is 1.41 r).
     const glm::dvec3 at = placeBesideShown(1.45 * r);
@@ -119,14 +117,12 @@ SurfaceId ModelingTools::createPrimitive(Primitive kind) {
     return add(std::move(s), text);
 }
 
-SurfaceId ModelingTools::createPatch(const PatchParams& p) {
+Expected<SurfaceId> ModelingTools::createPatch(const PatchParams& p) {
     if (p.degreeU < 1 || p.degreeV < 1 || p.degreeU > kMaxDegree || p.degreeV > kMaxDegree ||
-        p.countU <= p.degreeU || p.countV <= p.degreeV) {
-        Q_EMIT message(tr("Cannot create: a patch needs 1 <= degree < control points (degree "
-                          "at most %1)")
-                           .arg(kMaxDegree));
-        return {};
-    }
+        p.countU <= p.degreeU || p.countV <= p.degreeV)
+        return Error(tr("Cannot create: a patch needs 1 <= degree < control points (degree "
+                        "at most %1)")
+                         .arg(kMaxDegree));
     const double size = viewScale();
     Surface s;
     const double sizeU = p.sizeU > 0 ? p.sizeU : size, sizeV = p.sizeV > 0 ? p.sizeV : size;
@@ -156,7 +152,8 @@ NurbsCurve3 ModelingTools::surfaceCurve(const NurbsSurface& s, const CurveSpec& 
     return {};
 }
 
-SurfaceId ModelingTools::createFromCurves(CurveOperationKind kind, const CurveOperation& op) {
+Expected<SurfaceId> ModelingTools::createFromCurves(CurveOperationKind kind,
+                                                    const CurveOperation& op) {
     const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
     std::vector<NurbsCurve3> curves;
     for (SurfaceId id : ids)
@@ -181,49 +178,42 @@ void ModelingTools::drawCurvesFor(CurveOperationKind kind) {
                     kind == CurveOperationKind::Extrude ? -0.5 * viewScale() * forward : c.up;
                 if (auto op = m_prompts.curveOperation(m_window, kind, initial)) {
                     op->drawnCurves = true;
-                    createFromCurveList(kind, *op, curves);
+                    report(createFromCurveList(kind, *op, curves));
                 }
             });
     m_curveTool->start(kind == CurveOperationKind::Loft ? 0 : 1, tr(purposes[int(kind)]));
 }
 
-SurfaceId ModelingTools::createFromCurveList(CurveOperationKind kind, const CurveOperation& op,
-                                             const std::vector<NurbsCurve3>& curves) {
+Expected<SurfaceId> ModelingTools::createFromCurveList(CurveOperationKind kind,
+                                                       const CurveOperation& op,
+                                                       const std::vector<NurbsCurve3>& curves) {
     const size_t needed = kind == CurveOperationKind::Loft ? 2 : 1;
-    if (curves.size() < needed) {
-        Q_EMIT message(op.drawnCurves ? tr("Draw the curves first.")
-                       : kind == CurveOperationKind::Loft
-                           ? tr("Select two or more surfaces whose curves to loft through.")
-                           : tr("Select a surface whose curve to use."));
-        return {};
-    }
+    if (curves.size() < needed)
+        return Error(op.drawnCurves ? tr("Draw the curves first.")
+                     : kind == CurveOperationKind::Loft
+                         ? tr("Select two or more surfaces whose curves to loft through.")
+                         : tr("Select a surface whose curve to use."));
     Surface s;
     QString text;
     switch (kind) {
     case CurveOperationKind::Revolve:
-        if (!(glm::length(op.vector) > 0.0)) {
-            Q_EMIT message(tr("Cannot revolve: the axis direction is zero."));
-            return {};
-        }
+        if (!(glm::length(op.vector) > 0.0))
+            return Error(tr("Cannot revolve: the axis direction is zero."));
         s.geometry = makeRevolution3(curves.front(), op.point, op.vector);
         s.name = uniqueName(tr("Revolution"));
         text = tr("Create revolution");
         break;
     case CurveOperationKind::Extrude:
-        if (!(glm::length(op.vector) > 0.0)) {
-            Q_EMIT message(tr("Cannot extrude: the direction is zero."));
-            return {};
-        }
+        if (!(glm::length(op.vector) > 0.0))
+            return Error(tr("Cannot extrude: the direction is zero."));
         s.geometry = makeExtrusion(curves.front(), op.vector);
         s.name = uniqueName(tr("Extrusion"));
         text = tr("Create extrusion");
         break;
     case CurveOperationKind::Loft: {
         Expected<NurbsSurface> loft = makeLoft(curves, 3);
-        if (!loft) {
-            Q_EMIT message(tr("Cannot loft: %1").arg(loft.message()));
-            return {};
-        }
+        if (!loft)
+            return Error(tr("Cannot loft: %1").arg(loft.message()));
         s.geometry = std::move(loft).value();
         s.name = uniqueName(tr("Loft"));
         text = tr("Create loft through %1 curves").arg(curves.size());
@@ -233,12 +223,10 @@ SurfaceId ModelingTools::createFromCurveList(CurveOperationKind kind, const Curv
     return add(std::move(s), text);
 }
 
-bool ModelingTools::transformSelected(const TransformParams& p) {
+Status ModelingTools::transformSelected(const TransformParams& p) {
     const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
-    if (ids.empty()) {
-        Q_EMIT message(tr("Select the surfaces to transform."));
-        return false;
-    }
+    if (ids.empty())
+        return Error(tr("Select the surfaces to transform."));
     // Rotation and scale act about the centre of the selection's control-point bounds.
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (SurfaceId id : ids) {
@@ -266,22 +254,19 @@ bool ModelingTools::transformSelected(const TransformParams& p) {
     const QString noun = ids.size() == 1 ? tr("surface") : tr("%1 surfaces").arg(ids.size());
     const QString text = QStringLiteral("%1 %2").arg(what.join(QStringLiteral(", ")), noun);
     if (const Status pushed = pushCommand(m_stack, TransformSurfaces::create(m_doc, ids, m, text));
-        !pushed) {
-        Q_EMIT message(tr("Cannot transform: %1").arg(pushed.message()));
-        return false;
-    }
-    return true;
+        !pushed)
+        return Error(tr("Cannot transform: %1").arg(pushed.message()));
+    return ok();
 }
 
-bool ModelingTools::duplicateSelected() {
+Status ModelingTools::duplicateSelected() {
     const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
-    if (ids.empty()) {
-        Q_EMIT message(tr("Select the surfaces to duplicate."));
-        return false;
-    }
+    if (ids.empty())
+        return Error(tr("Select the surfaces to duplicate."));
     // The copies are offset by a tenth of the view scale so they can be told apart.
     const glm::dvec3 offset(0.1 * viewScale(), 0.1 * viewScale(), 0.0);
     std::vector<SurfaceId> copies;
+    Status result;
     m_stack->beginMacro(ids.size() == 1 ? tr("Duplicate surface")
                                         : tr("Duplicate %1 surfaces").arg(ids.size()));
     for (SurfaceId id : ids) {
@@ -297,56 +282,47 @@ bool ModelingTools::duplicateSelected() {
         if (auto c = AddSurface::create(m_doc, std::move(copy))) {
             copies.push_back((*c)->surfaceId());
             pushCommand(m_stack, std::move(*c));
+        } else {
+            result = Error(tr("Cannot duplicate: %1").arg(c.message()));
         }
     }
     m_stack->endMacro();
     selectSurfaces(copies);
-    return !copies.empty();
+    return result;
 }
 
-bool ModelingTools::deleteSelected() {
+Status ModelingTools::deleteSelected() {
     const std::vector<SurfaceId> ids = m_selection->selectedSurfaces();
-    if (ids.empty()) {
-        Q_EMIT message(tr("Select a surface to delete."));
-        return false;
-    }
-    if (ids.size() == 1) {
-        if (const Status pushed = pushCommand(m_stack, RemoveSurface::create(m_doc, ids.front()));
-            !pushed) {
-            Q_EMIT message(pushed.message());
-            return false;
-        }
-        return true;
-    }
+    if (ids.empty())
+        return Error(tr("Select a surface to delete."));
+    if (ids.size() == 1)
+        return pushCommand(m_stack, RemoveSurface::create(m_doc, ids.front()));
+    Status result;
     m_stack->beginMacro(tr("Delete %1 surfaces").arg(ids.size()));
     for (SurfaceId id : ids)
-        if (const Status pushed = pushCommand(m_stack, RemoveSurface::create(m_doc, id)); !pushed)
-            Q_EMIT message(pushed.message());
+        if (Status pushed = pushCommand(m_stack, RemoveSurface::create(m_doc, id)); !pushed)
+            result = std::move(pushed);
     m_stack->endMacro();
-    return true;
+    return result;
 }
 
-bool ModelingTools::removeKnots(Direction direction, double tolerance) {
+Status ModelingTools::removeKnots(Direction direction, double tolerance) {
     const SurfaceId id = m_selection->currentSurface();
     auto c = RemoveKnots::create(m_doc, id, direction, tolerance);
-    if (!c) {
-        Q_EMIT message(tr("Knot removal: %1").arg(c.message()));
-        return false;
-    }
+    if (!c)
+        return Error(tr("Knot removal: %1").arg(c.message()));
     Q_EMIT message((*c)->text());
     pushCommand(m_stack, std::move(*c));
-    return true;
+    return ok();
 }
 
-bool ModelingTools::matchSurface(const MatchRequest& request) {
+Status ModelingTools::matchSurface(const MatchRequest& request) {
     auto c = MatchSurfaceCommand::create(m_doc, request, continuityTolerances(m_doc->scene()));
-    if (!c) {
-        Q_EMIT message(tr("Match Surface: %1").arg(c.message()));
-        return false;
-    }
+    if (!c)
+        return Error(tr("Match Surface: %1").arg(c.message()));
     Q_EMIT message((*c)->result().summary);
     pushCommand(m_stack, std::move(*c));
-    return true;
+    return ok();
 }
 
 void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
@@ -362,7 +338,7 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
     QMenu* create = bar->addMenu(tr("&Create"));
     QAction* patch = make(create, "actionCreatePatch", tr("NURBS &Patch…"), QKeySequence(), [this] {
         if (auto p = m_prompts.patch(m_window, PatchParams{}))
-            createPatch(*p);
+            report(createPatch(*p));
     });
     create->addSeparator();
     const struct {
@@ -377,8 +353,8 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
     std::vector<QAction*> shapeActions;
     for (const auto& s : shapes) {
         const Primitive kind = s.kind;
-        shapeActions.push_back(
-            make(create, s.name, s.text, QKeySequence(), [this, kind] { createPrimitive(kind); }));
+        shapeActions.push_back(make(create, s.name, s.text, QKeySequence(),
+                                    [this, kind] { report(createPrimitive(kind)); }));
     }
     create->addSeparator();
     const struct {
@@ -399,7 +375,7 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
                                  ? glm::dvec3(0.0, 0.0, 0.5 * viewScale())
                                  : glm::dvec3(0.0, 0.0, 1.0);
             if (auto op = m_prompts.curveOperation(m_window, kind, initial))
-                createFromCurves(kind, *op);
+                report(createFromCurves(kind, *op));
         }));
     }
     opActions.front()->setStatusTip(tr("Revolve a boundary or iso-curve of the selected surface "
@@ -431,10 +407,10 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
     make(modify, "actionTransform", tr("&Move, Rotate, Scale…"), QKeySequence(Qt::CTRL | Qt::Key_T),
          [this] {
              if (auto p = m_prompts.transform(m_window))
-                 transformSelected(*p);
+                 report(transformSelected(*p));
          });
     make(modify, "actionDuplicate", tr("D&uplicate"), QKeySequence(Qt::CTRL | Qt::Key_D),
-         [this] { duplicateSelected(); });
+         [this] { report(duplicateSelected()); });
     modify->addSeparator();
     // What Ctrl + drag in the view does to the selected surfaces (X / Y / Z held lock an axis).
     auto* dragModes = new QActionGroup(this);
@@ -465,7 +441,7 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
         glm::dvec3 lo, hi;
         surfaceControlBounds(s->geometry, lo, hi);
         if (auto r = m_prompts.knotRemoval(m_window, 1e-4 * glm::length(hi - lo)))
-            removeKnots(r->first == 0 ? Direction::U : Direction::V, r->second);
+            report(removeKnots(r->first == 0 ? Direction::U : Direction::V, r->second));
     });
     QAction* match =
         make(modify, "actionMatchSurface", tr("Match &Surface…"), QKeySequence(), [this] {
@@ -475,7 +451,7 @@ void ModelingTools::buildMenus(QMenuBar* bar, QToolBar* toolbar) {
                 return;
             }
             if (auto r = m_prompts.matchSurface(m_window, m_doc->scene(), id))
-                matchSurface(*r);
+                report(matchSurface(*r));
         });
     match->setStatusTip(tr("Move the selected surface's edge rows so that it meets a "
                            "neighbour's edge with G0, G1 or G2 continuity"));

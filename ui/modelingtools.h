@@ -89,26 +89,30 @@ public:
     /// Adds the Create and Modify menus to `bar` and their main entries to `toolbar`.
     void buildMenus(QMenuBar* bar, QToolBar* toolbar);
 
-    // Each creates one undo step and selects the new surface; an invalid id (and message())
-    // when refused.
-    SurfaceId createPrimitive(Primitive kind);
-    SurfaceId createPatch(const PatchParams& params);
-    SurfaceId createFromCurves(CurveOperationKind kind, const CurveOperation& op);
+    // Each creates one undo step, selects the new surface, shows what was done (message())
+    // and returns its id; when refused, the Error says why, in the words the status bar shows
+    // (the menu actions show it there).
+    Expected<SurfaceId> createPrimitive(Primitive kind);
+    Expected<SurfaceId> createPatch(const PatchParams& params);
+    Expected<SurfaceId> createFromCurves(CurveOperationKind kind, const CurveOperation& op);
     /// The same from given curves (the curve tool's).
-    SurfaceId createFromCurveList(CurveOperationKind kind, const CurveOperation& op,
-                                  const std::vector<NurbsCurve3>& curves);
+    Expected<SurfaceId> createFromCurveList(CurveOperationKind kind, const CurveOperation& op,
+                                            const std::vector<NurbsCurve3>& curves);
     /// Create ▸ Draw Curve to Revolve / Extrude / Loft: starts the curve tool; when it
     /// finishes, the operation's dialog is asked and the surface made (one undo step).
     void drawCurvesFor(CurveOperationKind kind);
     CurveTool* curveTool() const { return m_curveTool; }
-    /// Applies to the selected surfaces (one undo step); false with message() when refused.
-    bool transformSelected(const TransformParams& params);
-    bool duplicateSelected();
-    bool deleteSelected();
-    bool removeKnots(Direction direction, double tolerance);
+    /// Applies to the selected surfaces (one undo step); the Error says why when refused (as
+    /// for the create functions). Several surfaces are deleted or duplicated one by one in
+    /// one step: one refused leaves the others done, and the Error names the last refused.
+    Status transformSelected(const TransformParams& params);
+    Status duplicateSelected();
+    Status deleteSelected();
+    /// Of the current surface; message() names what was removed.
+    Status removeKnots(Direction direction, double tolerance);
     /// Modify > Match Surface (one undo step); message() gives the kernel's measure of the
-    /// result, or why it was refused.
-    bool matchSurface(const MatchRequest& request);
+    /// result.
+    Status matchSurface(const MatchRequest& request);
 
     /// The curve `spec` of a surface (kernel iso-curve, exact).
     static NurbsCurve3 surfaceCurve(const NurbsSurface& s, const CurveSpec& spec);
@@ -122,11 +126,16 @@ public:
     void selectSurfaces(const std::vector<SurfaceId>& ids);
 
 Q_SIGNALS:
-    /// A status-bar message (a refusal or what was done).
+    /// A status-bar message: what was done, or why a menu action was refused.
     void message(const QString& text);
 
 private:
-    SurfaceId add(Surface surface, const QString& text);
+    Expected<SurfaceId> add(Surface surface, const QString& text);
+    /// Shows why an action was refused (message()); nothing when it was done.
+    template <class T> void report(const Expected<T>& result) {
+        if (!result)
+            Q_EMIT message(result.message());
+    }
     QString uniqueName(const QString& base) const;
 
     QWidget* m_window;

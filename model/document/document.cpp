@@ -16,8 +16,8 @@
 #include <set>
 #include <utility>
 
-// Beyond the header's contract: a valid call that would change nothing (same name, same
-// positions, same lights...) returns true and emits nothing, so a no-op never costs an upload.
+// A valid call that would change nothing (same name, same positions, same lights...) is ok()
+// and emits nothing, so a no-op never costs an upload.
 
 namespace kw {
 
@@ -88,6 +88,10 @@ bool idUsed(const Scene& scene, std::uint32_t id) {
 std::uint64_t processRevision() {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;
+}
+
+Error noSurface(SurfaceId id) {
+    return Error(QStringLiteral("no surface with id %1").arg(id.value));
 }
 
 int loopIndex(const Surface& s, TrimLoopId id) {
@@ -207,17 +211,25 @@ Status Document::resetScene(Scene scene) {
     return ok();
 }
 
-bool Document::insertSurface(int index, Surface surface) {
+Status Document::insertSurface(int index, Surface surface) {
     if (index < 0 || size_t(index) > m_scene.surfaces.size())
-        return false;
-    if (!checkSurface(surface) || idUsed(m_scene, surface.id.value) || surface.id.value == kMaxId ||
-        m_scene.surfaces.size() >= size_t(kMaxSurfaces))
-        return false;
+        return Error(QStringLiteral("surface index %1 out of range").arg(index));
+    if (Status valid = checkSurface(surface); !valid)
+        return valid;
+    if (idUsed(m_scene, surface.id.value))
+        return Error(QStringLiteral("surface id %1 already used").arg(surface.id.value));
+    if (surface.id.value == kMaxId)
+        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+    if (m_scene.surfaces.size() >= size_t(kMaxSurfaces))
+        return Error(QStringLiteral("%1 surfaces, more than the limit %2")
+                         .arg(m_scene.surfaces.size() + 1)
+                         .arg(kMaxSurfaces));
     std::uint32_t maxId = surface.id.value;
     for (const TrimLoop& l : surface.trims) {
-        if (l.id.value == kMaxId || l.id == TrimLoopId{surface.id.value} ||
-            idUsed(m_scene, l.id.value))
-            return false;
+        if (l.id.value == kMaxId)
+            return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+        if (l.id == TrimLoopId{surface.id.value} || idUsed(m_scene, l.id.value))
+            return Error(QStringLiteral("trim loop id %1 already used").arg(l.id.value));
         maxId = std::max(maxId, l.id.value);
     }
     const SurfaceId id = surface.id;
@@ -240,13 +252,13 @@ bool Document::insertSurface(int index, Surface surface) {
     changedStructure();
     Q_EMIT surfaceInserted(id, index);
     closeSolid(id); // the undo of a face's removal
-    return true;
+    return ok();
 }
 
-bool Document::removeSurface(SurfaceId id) {
+Status Document::removeSurface(SurfaceId id) {
     const int index = indexOf(id);
     if (index < 0)
-        return false;
+        return noSurface(id);
     const int solid = m_scene.surfaces[size_t(index)].solid;
     Q_EMIT surfaceAboutToBeRemoved(id, index);
     if (TopologyPiece taken = takeSurfaceTopology(m_scene.topology, id); !taken.empty())
@@ -257,25 +269,27 @@ bool Document::removeSurface(SurfaceId id) {
     changedStructure();
     Q_EMIT surfaceRemoved(id);
     openSolid(solid);
-    return true;
+    return ok();
 }
 
-bool Document::setName(SurfaceId id, const QString& name) {
+Status Document::setName(SurfaceId id, const QString& name) {
     Surface* s = mutableSurface(id);
-    if (!s || name.trimmed().isEmpty())
-        return false;
+    if (!s)
+        return noSurface(id);
+    if (name.trimmed().isEmpty())
+        return Error(QStringLiteral("a surface name needs a visible character"));
     if (s->name == name)
-        return true;
+        return ok();
     s->name = name;
     bump(id, Aspect::Name);
-    return true;
+    return ok();
 }
 
 Status Document::checkControlPoints(SurfaceId id, const std::vector<int>& indices,
                                     const std::vector<glm::dvec3>& positions) const {
     const Surface* s = surface(id);
     if (!s)
-        return Error(QStringLiteral("no surface with id %1").arg(id.value));
+        return noSurface(id);
     if (indices.empty() || indices.size() != positions.size())
         return Error(QStringLiteral("need one position per control point"));
     std::set<int> seen;
@@ -291,31 +305,35 @@ Status Document::checkControlPoints(SurfaceId id, const std::vector<int>& indice
     return ok();
 }
 
-bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
-                                const std::vector<glm::dvec3>& positions) {
+Status Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                  const std::vector<glm::dvec3>& positions) {
     return setControlPoints(id, indices, positions, m_seamLink);
 }
 
-bool Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
-                                const std::vector<glm::dvec3>& positions, SeamLink link) {
+Status Document::setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                  const std::vector<glm::dvec3>& positions, SeamLink link) {
     return moveControlPoints(id, indices, positions, link, false);
 }
 
-bool Document::placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions) {
+Status Document::placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions) {
     std::vector<int> indices(positions.size());
     for (size_t k = 0; k < indices.size(); ++k)
         indices[k] = int(k);
     const Surface* s = surface(id);
-    if (!s || positions.size() != s->geometry.points.size())
-        return false;
+    if (!s)
+        return noSurface(id);
+    if (positions.size() != s->geometry.points.size())
+        return Error(QStringLiteral("need %1 positions, one per control point of surface %2")
+                         .arg(s->geometry.points.size())
+                         .arg(id.value));
     return moveControlPoints(id, indices, positions, m_seamLink, true);
 }
 
-bool Document::moveControlPoints(SurfaceId id, const std::vector<int>& indices,
-                                 const std::vector<glm::dvec3>& positions, SeamLink link,
-                                 bool placement) {
-    if (!checkControlPoints(id, indices, positions))
-        return false;
+Status Document::moveControlPoints(SurfaceId id, const std::vector<int>& indices,
+                                   const std::vector<glm::dvec3>& positions, SeamLink link,
+                                   bool placement) {
+    if (Status valid = checkControlPoints(id, indices, positions); !valid)
+        return valid;
     Surface* s = mutableSurface(id);
     // The net before a placement, for the form to follow: the only copy, and only then.
     std::optional<NurbsSurface> before;
@@ -354,13 +372,13 @@ bool Document::moveControlPoints(SurfaceId id, const std::vector<int>& indices,
         bump(id, Aspect::Points, before ? &*before : nullptr);
     for (SurfaceId o : others)
         bump(o, Aspect::Points);
-    return true;
+    return ok();
 }
 
 Status Document::checkWeight(SurfaceId id, int index, double weight) const {
     const Surface* s = surface(id);
     if (!s)
-        return Error(QStringLiteral("no surface with id %1").arg(id.value));
+        return noSurface(id);
     if (index < 0 || size_t(index) >= s->geometry.weights.size())
         return Error(QStringLiteral("control point index %1 out of range").arg(index));
     if (!std::isfinite(weight) || weight <= 0)
@@ -368,24 +386,26 @@ Status Document::checkWeight(SurfaceId id, int index, double weight) const {
     return ok();
 }
 
-bool Document::setWeight(SurfaceId id, int index, double weight) {
-    if (!checkWeight(id, index, weight))
-        return false;
+Status Document::setWeight(SurfaceId id, int index, double weight) {
+    if (Status valid = checkWeight(id, index, weight); !valid)
+        return valid;
     Surface* s = mutableSurface(id);
     double& w = s->geometry.weights[size_t(index)];
     if (w == weight)
-        return true;
+        return ok();
     digestPoint(id, index, s->geometry.points[size_t(index)], w, s->geometry.points[size_t(index)],
                 weight);
     w = weight;
     bump(id, Aspect::Points);
-    return true;
+    return ok();
 }
 
-bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
+Status Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
     Surface* s = mutableSurface(id);
-    if (!s || !checkNurbsSurface(geometry))
-        return false;
+    if (!s)
+        return noSurface(id);
+    if (Status valid = checkNurbsSurface(geometry); !valid)
+        return valid;
     const NurbsSurface& old = s->geometry;
     Aspects aspects;
     if (old.degreeU != geometry.degreeU || old.degreeV != geometry.degreeV ||
@@ -395,54 +415,67 @@ bool Document::setGeometry(SurfaceId id, const NurbsSurface& geometry) {
     if (old.points != geometry.points || old.weights != geometry.weights)
         aspects |= Aspect::Points;
     if (!aspects)
-        return true;
+        return ok();
     s->geometry = geometry;
     digestNet(id, geometry);
     bump(id, aspects);
-    return true;
+    return ok();
 }
 
-bool Document::setPartitions(SurfaceId id, int nu, int nv) {
+Status Document::setPartitions(SurfaceId id, int nu, int nv) {
     Surface* s = mutableSurface(id);
-    if (!s || !checkPartitions(nu, nv))
-        return false;
+    if (!s)
+        return noSurface(id);
+    if (Status valid = checkPartitions(nu, nv); !valid)
+        return valid;
     if (s->partitionsU == nu && s->partitionsV == nv)
-        return true;
+        return ok();
     s->partitionsU = nu;
     s->partitionsV = nv;
     bump(id, Aspect::Display);
-    return true;
+    return ok();
 }
 
-bool Document::setMaterial(SurfaceId id, const Material& material) {
-    Surface* s = mutableSurface(id);
-    if (!s || !checkMaterial(material))
-        return false;
-    if (s->material == material)
-        return true;
-    s->material = material;
-    bump(id, Aspect::Display);
-    return true;
-}
-
-bool Document::setHidden(SurfaceId id, bool hidden) {
+Status Document::setMaterial(SurfaceId id, const Material& material) {
     Surface* s = mutableSurface(id);
     if (!s)
-        return false;
-    if (s->hidden == hidden)
-        return true;
-    s->hidden = hidden;
+        return noSurface(id);
+    if (Status valid = checkMaterial(material); !valid)
+        return valid;
+    if (s->material == material)
+        return ok();
+    s->material = material;
     bump(id, Aspect::Display);
-    return true;
+    return ok();
 }
 
-bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
+Status Document::setHidden(SurfaceId id, bool hidden) {
     Surface* s = mutableSurface(id);
-    if (!s || index < 0 || size_t(index) > s->trims.size())
-        return false;
-    if (!checkTrimLoop(loop) || loop.id.value == kMaxId || idUsed(m_scene, loop.id.value) ||
-        s->trims.size() >= size_t(kMaxTrimLoops))
-        return false;
+    if (!s)
+        return noSurface(id);
+    if (s->hidden == hidden)
+        return ok();
+    s->hidden = hidden;
+    bump(id, Aspect::Display);
+    return ok();
+}
+
+Status Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
+    Surface* s = mutableSurface(id);
+    if (!s)
+        return noSurface(id);
+    if (index < 0 || size_t(index) > s->trims.size())
+        return Error(QStringLiteral("trim loop index %1 out of range").arg(index));
+    if (Status valid = checkTrimLoop(loop); !valid)
+        return valid;
+    if (loop.id.value == kMaxId)
+        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+    if (idUsed(m_scene, loop.id.value))
+        return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
+    if (s->trims.size() >= size_t(kMaxTrimLoops))
+        return Error(QStringLiteral("%1 trim loops, more than the limit %2")
+                         .arg(s->trims.size() + 1)
+                         .arg(kMaxTrimLoops));
     Q_EMIT trimLoopAboutToBeInserted(id, index);
     const TrimLoopId loopId = loop.id;
     const int curves = int(loop.curves.size());
@@ -459,14 +492,17 @@ bool Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     changed(id, Aspect::Trims);
     openSolid(solid);
     closeSolid(id);
-    return true;
+    return ok();
 }
 
-bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
+Status Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     Surface* s = mutableSurface(id);
-    const int index = s ? loopIndex(*s, loop) : -1;
+    if (!s)
+        return noSurface(id);
+    const int index = loopIndex(*s, loop);
     if (index < 0)
-        return false;
+        return Error(
+            QStringLiteral("no trim loop with id %1 on surface %2").arg(loop.value).arg(id.value));
     Q_EMIT trimLoopAboutToBeRemoved(id, index);
     // A removal that takes no edge keeps what an earlier one took: ReplaceTrimLoop's undo
     // removes the edited loop (no edges, when its curve count differed) before it inserts the
@@ -482,10 +518,10 @@ bool Document::removeTrimLoop(SurfaceId id, TrimLoopId loop) {
     changed(id, Aspect::Trims);
     openSolid(solid);
     closeSolid(id);
-    return true;
+    return ok();
 }
 
-bool Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
+Status Document::setTrimPoint(const TrimPointRef& ref, glm::dvec2 position) {
     return setTrimPoints({ref}, {position});
 }
 
@@ -499,7 +535,7 @@ Status Document::movedTrims(const std::vector<TrimPointRef>& refs,
     const SurfaceId id = refs.front().surface;
     const Surface* s = surface(id);
     if (!s)
-        return Error(QStringLiteral("no surface with id %1").arg(id.value));
+        return noSurface(id);
     trims = s->trims;
     std::set<TrimPointRef> seen;
     for (size_t k = 0; k < refs.size(); ++k) {
@@ -535,61 +571,61 @@ Status Document::checkTrimPoints(const std::vector<TrimPointRef>& refs,
     return movedTrims(refs, positions, trims, touched);
 }
 
-bool Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
-                             const std::vector<glm::dvec2>& positions) {
+Status Document::setTrimPoints(const std::vector<TrimPointRef>& refs,
+                               const std::vector<glm::dvec2>& positions) {
     std::vector<TrimLoop> trims;
     std::set<int> touched;
-    if (!movedTrims(refs, positions, trims, touched))
-        return false;
+    if (Status valid = movedTrims(refs, positions, trims, touched); !valid)
+        return valid;
     Surface* s = mutableSurface(refs.front().surface);
     if (trims == s->trims)
-        return true;
+        return ok();
     s->trims = std::move(trims);
     bump(s->id, Aspect::Trims);
-    return true;
+    return ok();
 }
 
-bool Document::setLights(std::vector<Light> lights) {
-    if (!checkLights(lights))
-        return false;
+Status Document::setLights(std::vector<Light> lights) {
+    if (Status valid = checkLights(lights); !valid)
+        return valid;
     if (m_scene.lights == lights)
-        return true;
+        return ok();
     m_scene.lights = std::move(lights);
     m_lightsRevision = nextRevision();
     Q_EMIT lightsChanged();
-    return true;
+    return ok();
 }
 
-bool Document::setCamera(const Camera& camera) {
-    if (!checkCamera(camera))
-        return false;
+Status Document::setCamera(const Camera& camera) {
+    if (Status valid = checkCamera(camera); !valid)
+        return valid;
     if (m_scene.camera == camera)
-        return true;
+        return ok();
     m_scene.camera = camera;
     m_cameraRevision = nextRevision();
     Q_EMIT cameraChanged();
-    return true;
+    return ok();
 }
 
-bool Document::setDisplay(const DisplaySettings& display) {
-    if (!checkDisplay(display))
-        return false;
+Status Document::setDisplay(const DisplaySettings& display) {
+    if (Status valid = checkDisplay(display); !valid)
+        return valid;
     if (m_scene.display == display)
-        return true;
+        return ok();
     m_scene.display = display;
     nextRevision(); // no surface or signal: the scene's content changed all the same
-    return true;
+    return ok();
 }
 
-bool Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
-    if (!checkContinuityTolerances(tolerances))
-        return false;
+Status Document::setContinuityTolerances(const ContinuityTolerances& tolerances) {
+    if (Status valid = checkContinuityTolerances(tolerances); !valid)
+        return valid;
     if (m_scene.continuity == tolerances)
-        return true;
+        return ok();
     m_scene.continuity = tolerances;
     nextRevision();
     Q_EMIT continuityTolerancesChanged();
-    return true;
+    return ok();
 }
 
 Document::Lengths Document::lengths() const {
@@ -622,21 +658,28 @@ Document::Lengths Document::scaledLengths(const Lengths& from, LengthUnit unit, 
     return out;
 }
 
-bool Document::setLengths(const Lengths& lengths) {
+Status Document::setLengths(const Lengths& lengths) {
     size_t points = 0;
     for (const Surface& s : m_scene.surfaces)
         points += s.geometry.points.size();
-    if (lengths.points.size() != points ||
-        lengths.tolerances.size() != m_scene.topology.edges.size())
-        return false;
+    if (lengths.points.size() != points)
+        return Error(QStringLiteral("%1 control points for the %2 of the scene")
+                         .arg(lengths.points.size())
+                         .arg(points));
+    if (lengths.tolerances.size() != m_scene.topology.edges.size())
+        return Error(QStringLiteral("%1 edge tolerances for the %2 edges of the scene")
+                         .arg(lengths.tolerances.size())
+                         .arg(m_scene.topology.edges.size()));
     for (const glm::dvec3& p : lengths.points)
         if (!finite(p))
-            return false;
+            return Error(QStringLiteral("control point positions must be finite"));
     for (double t : lengths.tolerances)
         if (!std::isfinite(t) || t < 0)
-            return false;
-    if (!checkCamera(lengths.camera) || !checkLights(lengths.lights))
-        return false;
+            return Error(QStringLiteral("edge tolerance %1 must be finite and >= 0").arg(t));
+    if (Status valid = checkCamera(lengths.camera); !valid)
+        return valid;
+    if (Status valid = checkLights(lengths.lights); !valid)
+        return valid;
     size_t at = 0;
     std::vector<SurfaceId> moved;
     // A unit conversion scales every net: a placement, which analytic forms follow.
@@ -661,14 +704,15 @@ bool Document::setLengths(const Lengths& lengths) {
         const bool follow = surface(id)->analytic.kind != AnalyticForm::Kind::None;
         bump(id, Aspect::Points, follow ? &before[placed++] : nullptr);
     }
-    setCamera(lengths.camera);
-    setLights(lengths.lights);
+    // Both checked above: they cannot be refused here.
+    static_cast<void>(setCamera(lengths.camera));
+    static_cast<void>(setLights(lengths.lights));
     if (m_scene.unit != lengths.unit) {
         m_scene.unit = lengths.unit;
         nextRevision();
         Q_EMIT unitChanged();
     }
-    return true;
+    return ok();
 }
 
 Status Document::validate(const Scene& scene) {

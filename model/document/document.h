@@ -43,10 +43,12 @@ struct SurfaceChange {
     SurfaceId id;
 };
 
-/// The one place the scene changes. Every mutator validates its input and returns false
-/// (changing nothing, emitting nothing) when it is invalid or names an unknown id; on success
-/// it bumps the revisions and emits the matching signals. Undo commands (ui/edit) call these;
-/// views and the renderer only read and listen.
+/// The one place the scene changes. Every mutator validates its input and, when it is invalid
+/// or names an unknown id, returns an Error saying why (the validator's words: checkSurface,
+/// checkControlPoints, checkDisplay...), changing nothing and emitting nothing; on success it
+/// bumps the revisions and emits the matching signals. A valid call that changes nothing (the
+/// same name, positions, lights...) is ok() and emits nothing. Undo commands (ui/edit) call
+/// these; views and the renderer only read and listen.
 class Document : public QObject {
     Q_OBJECT
 public:
@@ -100,25 +102,26 @@ public:
     Status resetScene(Scene scene);
 
     /// index in [0, size]; surface.id valid and unused; geometry valid.
-    bool insertSurface(int index, Surface surface);
+    Status insertSurface(int index, Surface surface);
     /// Also takes the surface out of the scene's topology (its edges, its place in its shell);
     /// inserting it again (the undo) puts the record back as it was.
-    bool removeSurface(SurfaceId id);
-    bool setName(SurfaceId id, const QString& name);
+    Status removeSurface(SurfaceId id);
+    /// A name with a visible character.
+    Status setName(SurfaceId id, const QString& name);
     /// Moves the listed control points (NurbsSurface::index) to new positions.
-    bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
-                          const std::vector<glm::dvec3>& positions);
+    Status setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                            const std::vector<glm::dvec3>& positions);
     /// The same with the seam link given (an undo step replays the link it was made with);
     /// the plain form uses seamLink(). With a link, the points of neighbouring untrimmed faces
     /// that kw::linkedMoves names move too (each such surface bumped and signalled).
-    bool setControlPoints(SurfaceId id, const std::vector<int>& indices,
-                          const std::vector<glm::dvec3>& positions, SeamLink link);
+    Status setControlPoints(SurfaceId id, const std::vector<int>& indices,
+                            const std::vector<glm::dvec3>& positions, SeamLink link);
     /// Every control point of `id` moved at once by one placement (a move, rotation, mirror or
     /// scale: TransformSurfaces), as setControlPoints on all of them with seamLink(). The one
     /// point edit whose analytic form (Surface::analytic) may follow: where the new net is a
     /// similarity of the old one (analyticFollow). Any other edit of points, weights, knots or
     /// degrees drops the form at once, and gives back the form the face had at those very values.
-    bool placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions);
+    Status placeControlPoints(SurfaceId id, const std::vector<glm::dvec3>& positions);
 
     /// What the document keeps of the closed form a face came in with (a reset, or its first
     /// insertion), in a few words whatever the size of its net. After any change of the face's
@@ -146,26 +149,26 @@ public:
     /// How many similarity fits (analyticFollow) the document ran to move analytic forms along
     /// with placements and unit conversions: never for other edits. For tests and benchmarks.
     std::uint64_t analyticFits() const { return m_analyticFits; }
-    bool setWeight(SurfaceId id, int index, double weight);
+    Status setWeight(SurfaceId id, int index, double weight);
     /// Degrees, knots and control net at once (knot edit, knot insertion, degree elevation).
-    bool setGeometry(SurfaceId id, const NurbsSurface& geometry);
+    Status setGeometry(SurfaceId id, const NurbsSurface& geometry);
     /// Both in [kMinPartitions, kMaxPartitions].
-    bool setPartitions(SurfaceId id, int nu, int nv);
-    bool setMaterial(SurfaceId id, const Material& material);
+    Status setPartitions(SurfaceId id, int nu, int nv);
+    Status setMaterial(SurfaceId id, const Material& material);
     /// Hides or shows a surface (Aspect::Display).
-    bool setHidden(SurfaceId id, bool hidden);
+    Status setHidden(SurfaceId id, bool hidden);
     /// index in [0, loop count]; loop.id valid and unused; every curve valid.
-    bool insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
+    Status insertTrimLoop(SurfaceId id, int index, TrimLoop loop);
     /// Also takes the edges with a side on the loop out of the scene's topology; inserting the
     /// loop again with as many curves (an undo, an edit of its curves) puts them back.
-    bool removeTrimLoop(SurfaceId id, TrimLoopId loop);
+    Status removeTrimLoop(SurfaceId id, TrimLoopId loop);
     /// Moves one trim control point; refused when its loop would no longer be closed.
-    bool setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
+    Status setTrimPoint(const TrimPointRef& ref, glm::dvec2 position);
     /// Moves several trim control points of one surface at once (a curve end together with
     /// the coinciding end of its neighbour); refused, changing nothing, when a ref is unknown
     /// or repeated, a position is not finite or a touched loop would no longer be closed.
-    bool setTrimPoints(const std::vector<TrimPointRef>& refs,
-                       const std::vector<glm::dvec2>& positions);
+    Status setTrimPoints(const std::vector<TrimPointRef>& refs,
+                         const std::vector<glm::dvec2>& positions);
     /// The one rule for the point edits above (the mutators, the undo commands and the live
     /// drags all ask it): ok() when the edit would be applied, else an Error saying why it
     /// would be refused. Control points: a known surface, at least one index, one finite position
@@ -178,14 +181,14 @@ public:
     Status checkTrimPoints(const std::vector<TrimPointRef>& refs,
                            const std::vector<glm::dvec2>& positions) const;
     /// 0..kMaxLights lights (none: unlit), each valid (kw::checkLights).
-    bool setLights(std::vector<Light> lights);
-    bool setCamera(const Camera& camera);
+    Status setLights(std::vector<Light> lights);
+    Status setCamera(const Camera& camera);
     /// The display settings saved with the project (as the camera: not an edit, no signal
-    /// the views react to); false when invalid (validation.h checkDisplay).
-    bool setDisplay(const DisplaySettings& display);
+    /// the views react to); validated by validation.h's checkDisplay.
+    Status setDisplay(const DisplaySettings& display);
     /// The continuity tolerances saved with the project (not an edit); emits
-    /// continuityTolerancesChanged; false when invalid (checkContinuityTolerances).
-    bool setContinuityTolerances(const ContinuityTolerances& tolerances);
+    /// continuityTolerancesChanged; validated by checkContinuityTolerances.
+    Status setContinuityTolerances(const ContinuityTolerances& tolerances);
 
     SeamLink seamLink() const { return m_seamLink; }
     void setSeamLink(SeamLink link) { m_seamLink = link; }
@@ -205,10 +208,10 @@ public:
     /// factor 1 relabels, millimetresPer(old) / millimetresPer(unit) converts.
     static Lengths scaledLengths(const Lengths& from, LengthUnit unit, double factor);
     /// Sets what lengths() returns, for the scene as it is (as many points and tolerances);
-    /// false, changing nothing, when the counts differ or a value is not finite or valid.
+    /// refused, changing nothing, when the counts differ or a value is not finite or valid.
     /// Emits surfaceChanged (Points) for each surface that moved, cameraChanged, lightsChanged
     /// and unitChanged for what changed.
-    bool setLengths(const Lengths& lengths);
+    Status setLengths(const Lengths& lengths);
 
     /// Checks a whole scene with kw::checkScene, the rule every reader and writer uses.
     static Status validate(const Scene& scene);
@@ -241,8 +244,9 @@ private:
     /// `placedFrom`: the net before a placement (placeControlPoints, setLengths), for the
     /// analytic form to follow; nullptr for every other edit.
     void bump(SurfaceId id, Aspects aspects, const NurbsSurface* placedFrom = nullptr);
-    bool moveControlPoints(SurfaceId id, const std::vector<int>& indices,
-                           const std::vector<glm::dvec3>& positions, SeamLink link, bool placement);
+    Status moveControlPoints(SurfaceId id, const std::vector<int>& indices,
+                             const std::vector<glm::dvec3>& positions, SeamLink link,
+                             bool placement);
     /// Notes a change of the drawn aspects for changesSince(), then emits surfaceChanged.
     void changed(SurfaceId id, Aspects aspects);
     /// A reset, an insert or a removal: every reader walks every surface once.

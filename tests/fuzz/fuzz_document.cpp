@@ -176,8 +176,8 @@ public:
         return scene;
     }
 
-    /// One mutator call; returns its result (true for the id allocators).
-    bool step() {
+    /// One mutator call; returns its result (ok() for the id allocators).
+    Status step() {
         const int op = in.integer(0, 17);
         switch (op) {
         case 0: {
@@ -292,12 +292,14 @@ public:
             const Status reset = doc.resetScene(makeScene());
             KW_FUZZ_CHECK(bool(reset) == reset.message().isEmpty(),
                           "resetScene: result and error disagree");
-            return bool(reset);
+            return reset;
         }
         case 14:
-            return doc.allocateSurfaceId().isValid() || true;
+            doc.allocateSurfaceId();
+            return ok();
         case 15:
-            return doc.allocateTrimLoopId().isValid() || true;
+            doc.allocateTrimLoopId();
+            return ok();
         default: { // a pure no-op: setting what is already there
             const SurfaceId id = pickSurface();
             const Surface* s = doc.surface(id);
@@ -425,8 +427,11 @@ public:
                 std::max({maxRevision, doc.lightsRevision(), doc.cameraRevision(), doc.revision()});
             revisionBefore = doc.revision();
             log.clear();
-            const bool ok = step();
-            checkAfter(before, revs, ok);
+            const Status done = step();
+            // A refusal says why; a success says nothing.
+            KW_FUZZ_CHECK(bool(done) == done.message().isEmpty(),
+                          "a mutator's result and its reason disagree");
+            checkAfter(before, revs, bool(done));
         }
         kw::fuzz::checkAcceptedScene(doc.scene());
     }

@@ -1,5 +1,5 @@
 // Document tests: each mutator changes exactly what it says, bumps exactly the right revisions
-// and signals in order; invalid input returns false with no change and no signal.
+// and signals in order; invalid input is refused with the reason, no change and no signal.
 #include "model/document/document.h"
 #include "model/document/validation.h"
 #include "model_fixtures.h"
@@ -56,6 +56,7 @@ private Q_SLOTS:
     void revisionMovesWithEveryChange();
     void editedFaceOpensItsSolid();
     void idsNeverReused();
+    void refusalsSayWhy();
 };
 
 // Surface::solid: a change of a face's shape or trims, or its removal, clears the mark on every
@@ -737,6 +738,82 @@ void TestDocument::idsNeverReused() {
     QVERIFY(f.doc.insertSurface(0, makeSurface(a.value, QStringLiteral("New"), patch())));
     QVERIFY(f.doc.removeSurface(a));
     QCOMPARE(f.doc.allocateSurfaceId().value, 15u);
+}
+
+// Every refusal carries the validator's reason, or names the unknown id; nothing changes and
+// nothing is signalled.
+void TestDocument::refusalsSayWhy() {
+    using kwtest::refusal;
+    Fixture f;
+    SignalLog log(&f.doc);
+    const Scene before = f.doc.scene();
+
+    DisplaySettings display = before.display;
+    display.partitionMode = QStringLiteral("sideways");
+    QCOMPARE(refusal(f.doc.setDisplay(display)),
+             QStringLiteral("partition mode \"sideways\" is neither \"adaptive\" nor \"uniform\""));
+    display = before.display;
+    display.draftAngleDegrees = 95.0;
+    QCOMPARE(refusal(f.doc.setDisplay(display)), QStringLiteral("draft angle 95 is outside 0..90"));
+    ContinuityTolerances tolerances = before.continuity;
+    tolerances.g1Degrees = -1.0;
+    QCOMPARE(refusal(f.doc.setContinuityTolerances(tolerances)),
+             QStringLiteral("g1Degrees must be a finite number above 0, not -1"));
+    QCOMPARE(
+        refusal(f.doc.setLights(std::vector<Light>(size_t(kMaxLights + 1)))),
+        QStringLiteral("%1 lights, more than the limit %2").arg(kMaxLights + 1).arg(kMaxLights));
+    Camera camera = before.camera;
+    camera.target = camera.eye;
+    QCOMPARE(refusal(f.doc.setCamera(camera)), QStringLiteral("camera eye and target coincide"));
+
+    // An unknown id is named.
+    QCOMPARE(refusal(f.doc.removeSurface(SurfaceId{99})), QStringLiteral("no surface with id 99"));
+    QCOMPARE(refusal(f.doc.setHidden(SurfaceId{98}, true)),
+             QStringLiteral("no surface with id 98"));
+    QCOMPARE(refusal(f.doc.setName(SurfaceId{97}, QStringLiteral("x"))),
+             QStringLiteral("no surface with id 97"));
+    QCOMPARE(refusal(f.doc.setGeometry(SurfaceId{96}, before.surfaces[0].geometry)),
+             QStringLiteral("no surface with id 96"));
+    QCOMPARE(refusal(f.doc.removeTrimLoop(SurfaceId{1}, TrimLoopId{12})),
+             QStringLiteral("no trim loop with id 12 on surface 1"));
+    QCOMPARE(refusal(f.doc.placeControlPoints(SurfaceId{1}, {glm::dvec3(0.0)})),
+             QStringLiteral("need 16 positions, one per control point of surface 1"));
+
+    // The validators' words, through the mutators.
+    QCOMPARE(refusal(f.doc.setName(SurfaceId{1}, QStringLiteral("  "))),
+             QStringLiteral("a surface name needs a visible character"));
+    QCOMPARE(refusal(f.doc.setWeight(SurfaceId{1}, 5, -1.0)),
+             QStringLiteral("weight -1 must be finite and > 0"));
+    QCOMPARE(refusal(f.doc.setControlPoints(SurfaceId{1}, {3, 3}, {{0, 0, 0}, {1, 1, 1}})),
+             QStringLiteral("control point 3 listed twice"));
+    QCOMPARE(refusal(f.doc.setPartitions(SurfaceId{1}, 0, 5)), refusal(checkPartitions(0, 5)));
+    QVERIFY(refusal(f.doc.setPartitions(SurfaceId{1}, 0, 5))
+                .startsWith(QStringLiteral("partitions 0 x 5")));
+    QCOMPARE(refusal(f.doc.insertSurface(-1, makeSurface(20, QStringLiteral("D"), patch()))),
+             QStringLiteral("surface index -1 out of range"));
+    QCOMPARE(refusal(f.doc.insertSurface(0, makeSurface(2, QStringLiteral("D"), patch()))),
+             QStringLiteral("surface id 2 already used"));
+    QCOMPARE(refusal(f.doc.insertTrimLoop(SurfaceId{1}, 9,
+                                          rectLoop(TrimLoopId{40}, 0.1, 0.1, 0.2, 0.2))),
+             QStringLiteral("trim loop index 9 out of range"));
+    QCOMPARE(refusal(f.doc.insertTrimLoop(SurfaceId{1}, 0,
+                                          rectLoop(TrimLoopId{12}, 0.1, 0.1, 0.2, 0.2))),
+             QStringLiteral("trim loop id 12 already used"));
+    Document::Lengths lengths = f.doc.lengths();
+    lengths.points.pop_back();
+    QVERIFY(
+        refusal(f.doc.setLengths(lengths))
+            .startsWith(QStringLiteral("%1 control points for the ").arg(lengths.points.size())));
+    lengths = f.doc.lengths();
+    lengths.camera = camera;
+    QCOMPARE(refusal(f.doc.setLengths(lengths)), QStringLiteral("camera eye and target coincide"));
+
+    QCOMPARE(f.doc.scene(), before);
+    QVERIFY(log.entries.isEmpty());
+    // A no-op is no refusal.
+    KW_VERIFY_OK(f.doc.setDisplay(before.display));
+    KW_VERIFY_OK(f.doc.setHidden(SurfaceId{1}, before.surfaces[0].hidden));
+    QVERIFY(log.entries.isEmpty());
 }
 
 QTEST_GUILESS_MAIN(TestDocument)

@@ -174,7 +174,7 @@ private Q_SLOTS:
                                  "actionCreatePlane", "actionCreateCone", "patch"}) {
             const size_t before = m_window->document()->scene().surfaces.size();
             if (QLatin1String(name) == QLatin1String("patch"))
-                QVERIFY(tools->createPatch(ModelingTools::PatchParams{}).isValid());
+                QVERIFY(tools->createPatch(ModelingTools::PatchParams{})->isValid());
             else
                 act(name)->trigger();
             const Scene& scene = m_window->document()->scene();

@@ -38,8 +38,8 @@ private Q_SLOTS:
         const NurbsSurface before = f.geometry(1);
         f.live.begin();
         for (int k = 1; k <= 5; ++k) // five steps of a drag
-            QVERIFY(f.live.moveControlPoints(SurfaceId{1}, {0, 5}, {glm::dvec3(k), glm::dvec3(-k)})
-                        .isEmpty());
+            KW_VERIFY_OK(
+                f.live.moveControlPoints(SurfaceId{1}, {0, 5}, {glm::dvec3(k), glm::dvec3(-k)}));
         QCOMPARE(f.geometry(1).points[0], glm::dvec3(5));
         QCOMPARE(f.stack.count(), 0);
         QVERIFY(f.live.commit());
@@ -56,10 +56,8 @@ private Q_SLOTS:
     void severalSurfacesAreOneMacro() {
         Fixture f;
         f.live.begin();
-        QVERIFY(f.live
-                    .moveControlPoints({{SurfaceId{1}, 0, 0}, {SurfaceId{2}, 1, 1}},
-                                       {glm::dvec3(1, 2, 3), glm::dvec3(4, 5, 6)})
-                    .isEmpty());
+        KW_VERIFY_OK(f.live.moveControlPoints({{SurfaceId{1}, 0, 0}, {SurfaceId{2}, 1, 1}},
+                                              {glm::dvec3(1, 2, 3), glm::dvec3(4, 5, 6)}));
         QCOMPARE(f.live.movedSurfaces(), 2);
         QVERIFY(f.live.commit(QStringLiteral("Move surface"), QStringLiteral("Move %1 surfaces")));
         QCOMPARE(f.stack.count(), 1);
@@ -70,11 +68,11 @@ private Q_SLOTS:
         Fixture f;
         const Scene before = f.doc.scene();
         f.live.begin();
-        QVERIFY(f.live.moveControlPoints(SurfaceId{2}, {3}, {glm::dvec3(9)}).isEmpty());
-        QVERIFY(f.live.setWeight(SurfaceId{2}, 3, 2.5).isEmpty());
+        KW_VERIFY_OK(f.live.moveControlPoints(SurfaceId{2}, {3}, {glm::dvec3(9)}));
+        KW_VERIFY_OK(f.live.setWeight(SurfaceId{2}, 3, 2.5));
         const TrimPointRef end{SurfaceId{1}, TrimLoopId{10}, 0, 1},
             start{SurfaceId{1}, TrimLoopId{10}, 1, 0};
-        QVERIFY(f.live.moveTrimPoints({end, start}, {{0.8, 0.2}, {0.8, 0.2}}).isEmpty());
+        KW_VERIFY_OK(f.live.moveTrimPoints({end, start}, {{0.8, 0.2}, {0.8, 0.2}}));
         QVERIFY(!sameContent(f.doc.scene(), before));
         f.live.cancel();
         QVERIFY(!f.live.isActive());
@@ -88,18 +86,19 @@ private Q_SLOTS:
         f.live.begin();
         const double nan = std::numeric_limits<double>::quiet_NaN();
         const glm::dvec3 p0 = f.geometry(1).points[0];
-        QString why = f.live.moveControlPoints(SurfaceId{1}, {0}, {glm::dvec3(nan)});
+        QString why =
+            kwtest::refusal(f.live.moveControlPoints(SurfaceId{1}, {0}, {glm::dvec3(nan)}));
         QCOMPARE(why, f.doc.checkControlPoints(SurfaceId{1}, {0}, {glm::dvec3(nan)}).message());
         QCOMPARE(why, QStringLiteral("control point positions must be finite"));
         QCOMPARE(f.geometry(1).points[0], p0);
         // A curve end moved without the coinciding start of the next curve opens the loop.
         const TrimPointRef end{SurfaceId{1}, TrimLoopId{10}, 0, 1};
-        why = f.live.moveTrimPoints({end}, {{0.8, 0.2}});
+        why = kwtest::refusal(f.live.moveTrimPoints({end}, {{0.8, 0.2}}));
         QVERIFY2(why.contains(QStringLiteral("is not closed")), qPrintable(why));
         QCOMPARE(refused.count(), 2);
         QCOMPARE(refused.at(1).at(0).toString(), why);
         // A point no longer in its net.
-        why = f.live.moveControlPoints({{SurfaceId{1}, 7, 0}}, {glm::dvec3(0)});
+        why = kwtest::refusal(f.live.moveControlPoints({{SurfaceId{1}, 7, 0}}, {glm::dvec3(0)}));
         QVERIFY2(why.contains(QStringLiteral("no longer in the 4 × 4 net")), qPrintable(why));
         QVERIFY(!f.live.commit()); // nothing applied, nothing pushed
         QCOMPARE(f.stack.count(), 0);
@@ -110,11 +109,11 @@ private Q_SLOTS:
         const SurfaceId id{2};
         QVERIFY(pushCommand(&f.stack, InsertKnot::create(&f.doc, id, Direction::U, 0.5)));
         f.live.begin();
-        QVERIFY(f.live.moveControlPoints(id, {6}, {glm::dvec3(7)}).isEmpty());
+        KW_VERIFY_OK(f.live.moveControlPoints(id, {6}, {glm::dvec3(7)}));
         // An undo by key under the drag takes the knot out: index 6 means another point now.
         f.stack.undo();
         const NurbsSurface undone = f.geometry(2);
-        const QString why = f.live.moveControlPoints(id, {6}, {glm::dvec3(8)});
+        const QString why = kwtest::refusal(f.live.moveControlPoints(id, {6}, {glm::dvec3(8)}));
         QVERIFY2(why.contains(QStringLiteral("changed under the drag")), qPrintable(why));
         f.live.cancel(); // does not write the old indices into the new net
         QVERIFY(f.geometry(2) == undone);
@@ -123,7 +122,7 @@ private Q_SLOTS:
     void sceneResetEndsTheEdit() {
         Fixture f;
         f.live.begin();
-        QVERIFY(f.live.moveControlPoints(SurfaceId{1}, {0}, {glm::dvec3(3)}).isEmpty());
+        KW_VERIFY_OK(f.live.moveControlPoints(SurfaceId{1}, {0}, {glm::dvec3(3)}));
         QVERIFY(f.doc.resetScene(threeSurfaceScene()));
         QVERIFY(!f.live.isActive());
         const Scene fresh = f.doc.scene();

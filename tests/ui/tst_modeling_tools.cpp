@@ -12,6 +12,7 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QSettings>
+#include <QStatusBar>
 #include <QTreeView>
 #include <QUndoStack>
 #include <glm/gtc/matrix_transform.hpp>
@@ -66,9 +67,9 @@ private Q_SLOTS:
         Viewport* vp = m_window->viewport();
         ModelingTools* tools = m_window->modelingTools();
         const double side = 1.5 * tools->viewScale();
-        QVERIFY(tools->createPrimitive(ModelingTools::Primitive::Sphere).isValid());
+        QVERIFY(tools->createPrimitive(ModelingTools::Primitive::Sphere)->isValid());
         QVERIFY(tools->transformSelected({{side, 0.0, 0.0}, 2, 0.0, 1.0}));
-        QVERIFY(tools->createPrimitive(ModelingTools::Primitive::Torus).isValid());
+        QVERIFY(tools->createPrimitive(ModelingTools::Primitive::Torus)->isValid());
         QVERIFY(tools->transformSelected({{-side, 0.0, 0.0}, 2, 0.0, 1.0}));
         act("actionFit")->trigger();
         QTest::qWait(50);
@@ -154,6 +155,60 @@ private Q_SLOTS:
         for (const char* name :
              {"actionHide", "actionIsolate", "actionShowSelected", "actionShowAll"})
             QVERIFY2(menu.contains(act(name)), name);
+    }
+
+    void refusedActionsSayWhyInTheStatusBar() {
+        openWindow("bicubic");
+        ModelingTools* tools = m_window->modelingTools();
+        QStatusBar* status = m_window->statusBar();
+        const int surfaces = int(scene().surfaces.size());
+        tools->selectSurfaces({});
+        // Each refusal returns its reason, in the words the status bar shows, and changes
+        // nothing.
+        const Status moved = tools->transformSelected({{1.0, 0.0, 0.0}, 2, 0.0, 1.0});
+        QVERIFY(!moved);
+        QCOMPARE(moved.message(), QStringLiteral("Select the surfaces to transform."));
+        QCOMPARE(tools->duplicateSelected().message(),
+                 QStringLiteral("Select the surfaces to duplicate."));
+        const Status knots = tools->removeKnots(Direction::U, 1e-3);
+        QVERIFY(knots.message().startsWith(QStringLiteral("Knot removal: ")));
+        QVERIFY(knots.message().size() > QStringLiteral("Knot removal: ").size());
+        const Expected<SurfaceId> patch = tools->createPatch({3, 3, 3, 4, 1.0, 1.0});
+        QVERIFY(!patch);
+        QVERIFY2(patch.message().startsWith(
+                     QStringLiteral("Cannot create: a patch needs 1 <= degree < control points")),
+                 qPrintable(patch.message()));
+        const Expected<SurfaceId> loft = tools->createFromCurveList(
+            ModelingTools::CurveOperationKind::Loft, ModelingTools::CurveOperation{}, {});
+        QCOMPARE(loft.message(),
+                 QStringLiteral("Select two or more surfaces whose curves to loft through."));
+        QCOMPARE(int(scene().surfaces.size()), surfaces);
+        QVERIFY(m_window->undoStack()->count() == 0);
+
+        // The menu actions show the reason in the status bar.
+        ModelingTools::Prompts prompts = ModelingTools::Prompts::standard();
+        prompts.transform = [](QWidget*) {
+            return std::optional<ModelingTools::TransformParams>(
+                ModelingTools::TransformParams{{1.0, 0.0, 0.0}, 2, 0.0, 1.0});
+        };
+        tools->setPrompts(prompts);
+        act("actionTransform")->trigger();
+        QCOMPARE(status->currentMessage(), QStringLiteral("Select the surfaces to transform."));
+        act("actionDuplicate")->trigger();
+        QCOMPARE(status->currentMessage(), QStringLiteral("Select the surfaces to duplicate."));
+        act("actionDelete")->trigger();
+        QCOMPARE(status->currentMessage(), QStringLiteral("Select a surface to delete."));
+        QCOMPARE(int(scene().surfaces.size()), surfaces);
+
+        // Done: what was done shows, and the next step is refused no more.
+        const Expected<SurfaceId> sphere = tools->createPrimitive(ModelingTools::Primitive::Sphere);
+        QVERIFY2(sphere, qPrintable(sphere.message()));
+        QCOMPARE(status->currentMessage(), QStringLiteral("Create sphere"));
+        act("actionTransform")->trigger();
+        QCOMPARE(m_window->undoStack()->undoText(), QStringLiteral("Move surface"));
+        const Status deleted = tools->deleteSelected();
+        QVERIFY2(deleted, qPrintable(deleted.message()));
+        QCOMPARE(int(scene().surfaces.size()), surfaces);
     }
 
     void hideDeselectsTrimPointsOfTheHiddenSurface() {

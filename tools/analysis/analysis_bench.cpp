@@ -72,16 +72,16 @@ public:
                     break;
                 }
     }
-    ~Dragger() { move(0.0); }
+    ~Dragger() { (void)move(0.0); } // home again; a refusal leaves nothing to undo
     bool ok() const { return m_ok; }
-    /// False when the document refused the move: the frame would time an edit that did not
-    /// happen.
-    bool step(int frame) { return move(frame % 2 ? -m_step : m_step); }
+    /// The document's reason when it refused the move: the frame would time an edit that did
+    /// not happen.
+    kw::Status step(int frame) { return move(frame % 2 ? -m_step : m_step); }
 
 private:
-    bool move(double d) {
+    kw::Status move(double d) {
         if (!m_ok)
-            return false;
+            return kw::Error(QStringLiteral("nothing to drag"));
         if (m_drag == Drag::Points)
             return m_doc.setControlPoints(m_surface, {m_index},
                                           {m_home + glm::dvec3(d, 0.5 * d, 0.25 * d)});
@@ -187,11 +187,12 @@ int main(int argc, char** argv) {
                 QElapsedTimer t;
                 t.start();
                 const double c0 = cpuMs();
-                if (drag != Drag::None && !dragger.step(frame++)) {
-                    std::fprintf(stderr, "%s: the drag's edit was refused (frame %d)\n",
-                                 qPrintable(file), frame - 1);
-                    return 1;
-                }
+                if (drag != Drag::None)
+                    if (const kw::Status moved = dragger.step(frame++); !moved) {
+                        std::fprintf(stderr, "%s: the drag's edit was refused (frame %d): %s\n",
+                                     qPrintable(file), frame - 1, qPrintable(moved.message()));
+                        return 1;
+                    }
                 if (const kw::Status drawn = renderer.render(doc, cam, opt); !drawn) {
                     std::fprintf(stderr, "%s: %s\n", qPrintable(file), qPrintable(drawn.message()));
                     return 1;

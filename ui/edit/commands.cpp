@@ -19,11 +19,11 @@ using namespace edit_detail;
 DocumentCommand::DocumentCommand(Document* document, const QString& text)
     : QUndoCommand(text), m_doc(document) {}
 
-void DocumentCommand::check(bool ok, const char* what) {
-    if (ok)
+void DocumentCommand::check(const Status& done, const char* what) {
+    if (done)
         return;
-    qCWarning(lcEdit) << "document refused" << what << "of" << text()
-                      << "- the document changed outside the undo stack; dropping the command";
+    qCWarning(lcEdit) << "document refused" << what << "of" << text() << "(" << done.message()
+                      << ") - the document changed outside the undo stack; dropping the command";
     setObsolete(true);
 }
 
@@ -191,10 +191,11 @@ void MoveTrimPoints::apply(const std::vector<glm::dvec2>& positions, const char*
         refs.push_back(m_refs[k]);
         to.push_back(positions[k]);
     }
-    bool ok = true;
+    Status done;
     for (const auto& [surface, moves] : bySurface)
-        ok = document()->setTrimPoints(moves.first, moves.second) && ok;
-    check(ok, what);
+        if (Status moved = document()->setTrimPoints(moves.first, moves.second); !moved)
+            done = std::move(moved);
+    check(done, what);
 }
 
 void MoveTrimPoints::redo() {

@@ -41,8 +41,9 @@ class DocumentCommand : public QUndoCommand {
 protected:
     DocumentCommand(Document* document, const QString& text);
     Document* document() const { return m_doc; }
-    /// Call with the result of a document mutator; warns and marks obsolete on false.
-    void check(bool ok, const char* what);
+    /// Call with the result of a document mutator; when it was refused, warns with the
+    /// document's reason and marks the command obsolete.
+    void check(const Status& done, const char* what);
 
 private:
     Document* m_doc;

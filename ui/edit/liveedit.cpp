@@ -38,25 +38,26 @@ void LiveEdit::begin() {
     m_active = true;
 }
 
-QString LiveEdit::refuse(const QString& reason) {
-    Q_EMIT refused(reason);
+Error LiveEdit::refuse(Error reason) {
+    Q_EMIT refused(reason.message);
     return reason;
 }
 
-QString LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& indices,
-                                    const std::vector<glm::dvec3>& positions) {
+Status LiveEdit::moveControlPoints(SurfaceId surface, const std::vector<int>& indices,
+                                   const std::vector<glm::dvec3>& positions) {
     if (!m_active)
         return refuse(tr("no edit running"));
     if (Status step = m_doc->checkControlPoints(surface, indices, positions); !step)
-        return refuse(step.message());
-    if (QString why = netChanged(surface); !why.isEmpty())
-        return refuse(why);
-    applyPoints(surface, indices, positions);
-    return {};
+        return refuse(std::move(step).error());
+    if (Status net = checkNet(surface); !net)
+        return refuse(std::move(net).error());
+    if (Status moved = applyPoints(surface, indices, positions); !moved)
+        return refuse(std::move(moved).error());
+    return ok();
 }
 
-void LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
-                           const std::vector<glm::dvec3>& positions) {
+Status LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
+                             const std::vector<glm::dvec3>& positions) {
     const NurbsSurface& g = m_doc->surface(surface)->geometry;
     auto [record, fresh] = m_points.try_emplace(surface);
     if (fresh)
@@ -64,11 +65,11 @@ void LiveEdit::applyPoints(SurfaceId surface, const std::vector<int>& indices,
     std::map<int, glm::dvec3>& from = record->second.from;
     for (int index : indices)
         from.try_emplace(index, g.points[size_t(index)]);
-    m_doc->setControlPoints(surface, indices, positions);
+    return m_doc->setControlPoints(surface, indices, positions);
 }
 
-QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
-                                    const std::vector<glm::dvec3>& positions) {
+Status LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
+                                   const std::vector<glm::dvec3>& positions) {
     if (!m_active)
         return refuse(tr("no edit running"));
     if (refs.size() != positions.size())
@@ -92,54 +93,57 @@ QString LiveEdit::moveControlPoints(const std::vector<ControlPointRef>& refs,
         at.push_back(positions[k]);
     }
     for (const auto& [id, change] : bySurface) {
-        QString why = netChanged(id);
-        if (why.isEmpty())
-            why = m_doc->checkControlPoints(id, change.first, change.second).message();
-        if (!why.isEmpty())
-            return refuse(why);
+        Status step = checkNet(id);
+        if (step)
+            step = m_doc->checkControlPoints(id, change.first, change.second);
+        if (!step)
+            return refuse(std::move(step).error());
     }
     // Every surface's step passed: applied, none checked again.
     for (const auto& [id, change] : bySurface)
-        applyPoints(id, change.first, change.second);
-    return {};
+        if (Status moved = applyPoints(id, change.first, change.second); !moved)
+            return refuse(std::move(moved).error());
+    return ok();
 }
 
-QString LiveEdit::netChanged(SurfaceId surface) const {
+Status LiveEdit::checkNet(SurfaceId surface) const {
     const auto record = m_points.find(surface);
     if (record == m_points.end() || m_doc->revisions(surface).knots == record->second.knots)
-        return {};
-    return tr("the net of surface %1 changed under the drag").arg(surface.value);
+        return ok();
+    return Error(tr("the net of surface %1 changed under the drag").arg(surface.value));
 }
 
-QString LiveEdit::setWeight(SurfaceId surface, int index, double weight) {
+Status LiveEdit::setWeight(SurfaceId surface, int index, double weight) {
     if (!m_active)
         return refuse(tr("no edit running"));
     if (Status step = m_doc->checkWeight(surface, index, weight); !step)
-        return refuse(step.message());
+        return refuse(std::move(step).error());
     m_weights.try_emplace({surface, index},
                           m_doc->surface(surface)->geometry.weights[size_t(index)]);
-    m_doc->setWeight(surface, index, weight);
-    return {};
+    if (Status set = m_doc->setWeight(surface, index, weight); !set)
+        return refuse(std::move(set).error());
+    return ok();
 }
 
-QString LiveEdit::moveTrimPoints(const std::vector<TrimPointRef>& refs,
-                                 const std::vector<glm::dvec2>& positions) {
+Status LiveEdit::moveTrimPoints(const std::vector<TrimPointRef>& refs,
+                                const std::vector<glm::dvec2>& positions) {
     if (!m_active)
         return refuse(tr("no edit running"));
     if (Status step = m_doc->checkTrimPoints(refs, positions); !step)
-        return refuse(step.message());
+        return refuse(std::move(step).error());
     for (const TrimPointRef& ref : refs)
         if (!m_trims.count(ref))
             m_trims.emplace(ref, *trimPoint(*m_doc, ref)); // the rule found it
-    m_doc->setTrimPoints(refs, positions);
-    return {};
+    if (Status moved = m_doc->setTrimPoints(refs, positions); !moved)
+        return refuse(std::move(moved).error());
+    return ok();
 }
 
 int LiveEdit::movedSurfaces() const {
     int moved = 0;
     for (const auto& [id, record] : m_points) {
         const Surface* s = m_doc->surface(id);
-        if (!netChanged(id).isEmpty())
+        if (!checkNet(id))
             continue;
         for (const auto& [index, p] : record.from)
             if (s && size_t(index) < s->geometry.points.size() &&
@@ -166,7 +170,7 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
         }
         // A surface removed or its net changed under the drag (an undo by key): its step is
         // dropped.
-        if (!netChanged(id).isEmpty() || !m_doc->checkControlPoints(id, indices, from))
+        if (!checkNet(id) || !m_doc->checkControlPoints(id, indices, from))
             continue;
         for (int index : indices)
             to.push_back(m_doc->surface(id)->geometry.points[size_t(index)]);
@@ -176,7 +180,7 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
             points += int(indices.size());
             commands.push_back(std::move(*c));
         } else {
-            refuse(c.message());
+            refuse(std::move(c).error());
         }
     }
     for (const auto& [key, from] : m_weights) {
@@ -187,7 +191,8 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
         if (to == from)
             continue;
         // SetWeight takes its old value from the document: back to the press-time weight.
-        m_doc->setWeight(id, index, from);
+        if (!m_doc->setWeight(id, index, from))
+            continue;
         if (auto c = SetWeight::create(m_doc, id, index, to))
             commands.push_back(std::move(*c));
     }
@@ -203,7 +208,7 @@ bool LiveEdit::commit(const QString& text, const QString& severalText) {
         if (auto c = MoveTrimPoints::create(m_doc, refs, trimFrom, trimTo, MoveKind::Drag))
             commands.push_back(std::move(*c));
         else
-            refuse(c.message());
+            refuse(std::move(c).error());
     }
     clear();
     if (commands.empty())
@@ -242,7 +247,7 @@ void LiveEdit::cancel() {
 
 void LiveEdit::restore() {
     for (const auto& [id, record] : m_points) {
-        if (!netChanged(id).isEmpty())
+        if (!checkNet(id))
             continue; // the indices name other points now
         std::vector<int> indices;
         std::vector<glm::dvec3> from;
@@ -250,17 +255,18 @@ void LiveEdit::restore() {
             indices.push_back(index);
             from.push_back(p);
         }
-        m_doc->setControlPoints(id, indices, from); // refused (nothing to restore) when gone
+        // Refused, with nothing to restore, when the surface is gone.
+        (void)m_doc->setControlPoints(id, indices, from);
     }
     for (const auto& [key, from] : m_weights)
-        m_doc->setWeight(key.first, key.second, from);
+        (void)m_doc->setWeight(key.first, key.second, from); // as above
     std::map<SurfaceId, std::pair<std::vector<TrimPointRef>, std::vector<glm::dvec2>>> bySurface;
     for (const auto& [ref, from] : m_trims) {
         bySurface[ref.surface].first.push_back(ref);
         bySurface[ref.surface].second.push_back(from);
     }
     for (const auto& [id, moves] : bySurface)
-        m_doc->setTrimPoints(moves.first, moves.second);
+        (void)m_doc->setTrimPoints(moves.first, moves.second); // as above
 }
 
 void LiveEdit::clear() {

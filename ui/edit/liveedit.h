@@ -19,10 +19,10 @@ namespace kw {
 /// the panels do) -> commit() as ONE undo step, or cancel() putting back the state at begin().
 ///
 /// Each step is checked by the document's rule (Document::checkControlPoints, checkWeight,
-/// checkTrimPoints) before anything changes: a refused step changes nothing, returns the reason
-/// and emits refused(reason) for the status bar. The press-time value of every point is
-/// recorded the first time a step touches it. A scene reset (Open, New) ends the edit without
-/// restoring anything: the points it recorded are gone.
+/// checkTrimPoints) before anything changes: a refused step changes nothing, returns the
+/// reason as an Error and emits refused(reason) for the status bar. The press-time value of
+/// every point is recorded the first time a step touches it. A scene reset (Open, New) ends the
+/// edit without restoring anything: the points it recorded are gone.
 class LiveEdit : public QObject {
     Q_OBJECT
 public:
@@ -33,19 +33,19 @@ public:
     /// Starts an edit (ending a running one as cancel() does).
     void begin();
 
-    /// One step; an empty string when applied, else why it was refused. Out of an edit the
-    /// step is refused ("no edit running").
-    QString moveControlPoints(SurfaceId surface, const std::vector<int>& indices,
-                              const std::vector<glm::dvec3>& positions);
+    /// One step; ok() when applied, else why it was refused. Out of an edit the step is
+    /// refused ("no edit running").
+    Status moveControlPoints(SurfaceId surface, const std::vector<int>& indices,
+                             const std::vector<glm::dvec3>& positions);
     /// The same for points of any surfaces, by net position: every surface's step is checked
     /// before any is applied. A point no longer in its net (an undo re-sized it under the drag)
     /// refuses the step.
-    QString moveControlPoints(const std::vector<ControlPointRef>& refs,
-                              const std::vector<glm::dvec3>& positions);
-    QString setWeight(SurfaceId surface, int index, double weight);
+    Status moveControlPoints(const std::vector<ControlPointRef>& refs,
+                             const std::vector<glm::dvec3>& positions);
+    Status setWeight(SurfaceId surface, int index, double weight);
     /// Refs of one surface (a curve end with the coinciding end of its neighbour).
-    QString moveTrimPoints(const std::vector<TrimPointRef>& refs,
-                           const std::vector<glm::dvec2>& positions);
+    Status moveTrimPoints(const std::vector<TrimPointRef>& refs,
+                          const std::vector<glm::dvec2>& positions);
 
     /// Surfaces whose control points now differ from their press-time values.
     int movedSurfaces() const;
@@ -67,11 +67,13 @@ Q_SIGNALS:
     void refused(const QString& reason);
 
 private:
-    QString refuse(const QString& reason);
+    /// Emits refused() with the reason and returns it.
+    Error refuse(Error reason);
     /// A checked points step: records the press-time values it touches first, then moves the
-    /// points in the document. The one place a drag step of points reaches the document.
-    void applyPoints(SurfaceId surface, const std::vector<int>& indices,
-                     const std::vector<glm::dvec3>& positions);
+    /// points in the document. The one place a drag step of points reaches the document; the
+    /// document's reason should it still refuse.
+    Status applyPoints(SurfaceId surface, const std::vector<int>& indices,
+                       const std::vector<glm::dvec3>& positions);
     /// Puts back the press-time values; the surfaces or loops gone since are skipped.
     void restore();
     void clear();
@@ -87,8 +89,9 @@ private:
         std::uint64_t knots = 0;
         std::map<int, glm::dvec3> from;
     };
-    /// The reason when `surface`'s net changed since its record began, else empty.
-    QString netChanged(SurfaceId surface) const;
+    /// ok() while `surface`'s net is the one its record began with (or it has none), else
+    /// why not.
+    Status checkNet(SurfaceId surface) const;
     std::map<SurfaceId, Recorded> m_points;
     std::map<std::pair<SurfaceId, int>, double> m_weights;
     std::map<TrimPointRef, glm::dvec2> m_trims;

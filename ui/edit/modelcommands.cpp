@@ -230,14 +230,16 @@ ReplaceTrimLoop::create(Document* document, SurfaceId surface, TrimLoop loop, co
 }
 
 void ReplaceTrimLoop::redo() {
-    check(document()->removeTrimLoop(m_surface, m_from.id) &&
-              document()->insertTrimLoop(m_surface, m_index, m_to),
-          "redo");
+    Status done = document()->removeTrimLoop(m_surface, m_from.id);
+    if (done)
+        done = document()->insertTrimLoop(m_surface, m_index, m_to);
+    check(done, "redo");
 }
 void ReplaceTrimLoop::undo() {
-    check(document()->removeTrimLoop(m_surface, m_to.id) &&
-              document()->insertTrimLoop(m_surface, m_index, m_from),
-          "undo");
+    Status done = document()->removeTrimLoop(m_surface, m_to.id);
+    if (done)
+        done = document()->insertTrimLoop(m_surface, m_index, m_from);
+    check(done, "undo");
 }
 
 } // namespace kw

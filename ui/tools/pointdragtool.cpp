@@ -138,7 +138,7 @@ private:
         std::vector<glm::dvec3> to;
         for (const glm::dvec3& from : m_from)
             to.push_back(from + delta);
-        m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
+        (void)m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
     }
 
     bool axisKey(QKeyEvent* event) {

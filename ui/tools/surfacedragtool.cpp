@@ -141,7 +141,7 @@ void SurfaceDragTool::apply(const glm::dmat4& map) {
     to.reserve(m_from.size());
     for (const glm::dvec3& p : m_from)
         to.push_back(glm::dvec3(map * glm::dvec4(p, 1.0)));
-    m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
+    (void)m_live.moveControlPoints(m_refs, to); // a refusal goes to the status bar
     m_view->update();
 }
 

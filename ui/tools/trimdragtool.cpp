@@ -47,7 +47,8 @@ public:
         std::vector<glm::dvec2> to;
         for (const glm::dvec2& from : m_from)
             to.push_back(from + delta);
-        m_live.moveTrimPoints(m_refs, to); // coinciding ends together: the loop stays closed
+        // Coinciding ends together: the loop stays closed. A refusal goes to the panel's status.
+        (void)m_live.moveTrimPoints(m_refs, to);
     }
 
     void release(QMouseEvent* event) override {

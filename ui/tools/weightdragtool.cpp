@@ -39,7 +39,8 @@ public:
 
     void move(QMouseEvent* event) override {
         const double w = m_from * std::pow(2.0, (m_pressY - event->position().y()) / 100.0);
-        m_live.setWeight(m_ref.surface, m_index, std::clamp(w, 1e-6, 1e6));
+        // A refusal goes to the status bar.
+        (void)m_live.setWeight(m_ref.surface, m_index, std::clamp(w, 1e-6, 1e6));
         m_view->update();
     }
 
