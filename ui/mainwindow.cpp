@@ -508,10 +508,11 @@ void MainWindow::selectSurface(SurfaceId id) {
                                                            QItemSelectionModel::Rows);
 }
 
-void MainWindow::showError(const QString& title, const QString& text) {
-    statusBar()->showMessage(text, 10000);
+Error MainWindow::showError(const QString& title, Error error) {
+    statusBar()->showMessage(error.message, 10000);
     if (m_dialogs.error)
-        m_dialogs.error(this, title, text);
+        m_dialogs.error(this, title, error.message);
+    return error;
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model/document/selection.h"
+#include "model/error.h"
 #include "ui/cameracontroller.h"
 
 #include <QMainWindow>
@@ -92,31 +93,36 @@ public:
 
     void setDialogs(Dialogs dialogs) { m_dialogs = std::move(dialogs); }
 
-    /// Opens a .knot file, replacing the document. On failure shows the loader's message,
-    /// keeps the current document and returns false. Does not ask about unsaved changes.
-    bool openFile(const QString& path);
+    // The file actions below show their own failure (status bar and error dialog, through
+    // showError) and return it too, for callers that stop on it (the command line).
+
+    /// Opens a .knot file, replacing the document. On failure shows and returns the loader's
+    /// Error and keeps the current document. Does not ask about unsaved changes.
+    Status openFile(const QString& path);
     /// Imports IGES, STEP, BREP or OBJ (model/cad importFile) on a worker thread behind a
     /// progress dialog whose Cancel stops the import. On success the imported scene replaces
     /// the document, which is then unsaved and has no .knot path (Save asks where), the report's
-    /// warnings and skipped entities are shown, and it returns true. On failure shows the
-    /// importer's message, on cancel says so in the status bar; both keep the current document
-    /// and return false. Does not ask about unsaved changes; false while another import runs.
-    bool importFile(const QString& path);
+    /// warnings and skipped entities are shown. On failure shows and returns the importer's
+    /// Error; on cancel says why in the status bar and returns that; both keep the current
+    /// document. Does not ask about unsaved changes; refused while another exchange runs.
+    Status importFile(const QString& path);
     /// File ▸ Open Sample: asks about unsaved changes, then opens the sample `path` (a file of
     /// samplesDir()) as an unsaved copy with no .knot path (Save asks where), or imports a CAD
-    /// sample as importFile does. False when declined or on failure (the message is shown).
-    bool openSample(const QString& path);
+    /// sample as importFile does. On failure shows and returns the Error; declined (the user
+    /// kept the unsaved changes), returns an Error saying so without showing it.
+    Status openSample(const QString& path);
     bool isImporting() const { return m_importProgress != nullptr; }
     /// File ▸ Export… (`selectedOnly`: Export Selected…): writes the document, or its selected
     /// surfaces, as STEP or IGES (kw::exportCadFile, in the CAD child process, on a worker thread
     /// behind a progress dialog whose Cancel stops it) or OBJ. The document keeps its path and
     /// its modified state. Open seams and other remarks are shown in a report when done. On
-    /// failure shows the message (nothing is written); on cancel says so in the status bar.
-    bool exportModel(const QString& path, bool selectedOnly = false);
-    /// Writes the document to `path` (atomic); on failure shows the message and returns false.
-    /// A STEP, IGES or OBJ name is exported instead (exportModel), a BREP name refused: a
-    /// project is never written under another format's name.
-    bool saveFile(const QString& path);
+    /// failure shows and returns the Error (nothing is written); on cancel says so in the
+    /// status bar and returns that. Refused while another exchange runs.
+    Status exportModel(const QString& path, bool selectedOnly = false);
+    /// Writes the document to `path` (atomic); on failure shows and returns the Error. A STEP,
+    /// IGES or OBJ name is exported instead (exportModel), a BREP name refused: a project is
+    /// never written under another format's name.
+    Status saveFile(const QString& path);
     /// Offers the recovery files of editors that crashed (Autosave::orphans, newest first)
     /// through Dialogs::askRecover. Restoring replaces the document with the autosaved scene,
     /// remembers its original path (Save writes there) and marks it modified; the restored
@@ -190,7 +196,9 @@ private:
     void updateTitle();
     /// The document's file name for titles and questions ("Untitled" when it has none).
     QString displayName() const;
-    void showError(const QString& title, const QString& text);
+    /// The one place a file action's failure is shown: the status bar and the error dialog
+    /// titled `title`. Returns `error`, so that a failure is shown where it is returned.
+    Error showError(const QString& title, Error error);
 
     Document* m_doc;
     class EdgeContinuityOverlay* m_edgeContinuity = nullptr;

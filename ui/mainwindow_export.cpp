@@ -21,9 +21,8 @@ namespace kw {
 namespace {
 
 struct ExportJob : ExchangeJob {
-    bool ok = false;
     ExportReport report;
-    QString error;
+    std::optional<Error> error; ///< set when the export failed or was cancelled
 };
 
 // The scene with only `keep`'s surfaces, and the part of the import's record among them: edges
@@ -69,35 +68,32 @@ void MainWindow::exportDialog(bool selectedOnly) {
         m_dialogs.saveFile(this, selectedOnly ? tr("Export selected surfaces") : tr("Export"),
                            exportFileFilter(occtAvailable()), suggested);
     if (!path.isEmpty())
-        exportModel(path, selectedOnly);
+        (void)exportModel(path, selectedOnly); // a failure is shown there
 }
 
-bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
-    if (m_importProgress)
-        return false;
+Status MainWindow::exportModel(const QString& path, bool selectedOnly) {
+    if (m_importProgress) // one exchange at a time; its own dialog is up
+        return Error(tr("Cannot export %1 while another import or export runs").arg(path), path);
     const CadFormat format = cadFormatFromPath(path);
     const QString name = QFileInfo(path).fileName();
-    if (!isExportPath(path)) {
-        showError(tr("Cannot export"),
-                  tr("%1: Knotwork exports STEP (.step, .stp), IGES (.iges, .igs) and OBJ (.obj)")
-                      .arg(path));
-        return false;
-    }
+    if (!isExportPath(path))
+        return showError(
+            tr("Cannot export"),
+            Error(tr("%1: Knotwork exports STEP (.step, .stp), IGES (.iges, .igs) and OBJ (.obj)")
+                      .arg(path),
+                  path));
     const Scene scene =
         selectedOnly ? sceneOf(m_doc->scene(), m_selection->selectedSurfaces()) : m_doc->scene();
     if (format == CadFormat::Obj) {
-        if (scene.surfaces.empty()) {
-            showError(tr("Cannot export"),
-                      tr("%1: nothing to export: the document has no surfaces").arg(path));
-            return false;
-        }
-        if (const Status written = writeObjFile(path, scene); !written) {
-            showError(tr("Cannot export"), written.message());
-            return false;
-        }
+        if (scene.surfaces.empty())
+            return showError(
+                tr("Cannot export"),
+                Error(tr("%1: nothing to export: the document has no surfaces").arg(path), path));
+        if (const Status written = writeObjFile(path, scene); !written)
+            return showError(tr("Cannot export"), written.error());
         statusBar()->showMessage(
             tr("Exported %1; the document is still %2").arg(name, displayName()), 10000);
-        return true;
+        return ok();
     }
 
     auto job = std::make_shared<ExportJob>();
@@ -108,22 +104,23 @@ bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
                 job->total = total;
                 return !job->cancel.load();
             });
-        job->ok = bool(written);
-        job->error = written.message();
+        if (!written)
+            job->error = written.error();
     }));
     runWithProgress(tr("Export"), tr("Exporting %1…").arg(name), *job, std::move(worker),
-                    [job] { return job->ok; });
+                    [job] { return !job->error; });
 
-    if (!job->ok) {
-        if (job->cancel)
-            statusBar()->showMessage(tr("Export of %1 cancelled; nothing was written").arg(name),
-                                     10000);
-        else
-            showError(tr("Cannot export"),
-                      job->report.warnings.isEmpty()
-                          ? job->error
-                          : job->error + QStringLiteral("\n\n") + job->report.summary());
-        return false;
+    if (job->error) {
+        if (job->cancel) { // asked for by the user: the status bar says so, no error dialog
+            const Error cancelled(tr("Export of %1 cancelled; nothing was written").arg(name),
+                                  path);
+            statusBar()->showMessage(cancelled.message, 10000);
+            return cancelled;
+        }
+        Error failed = *job->error;
+        if (!job->report.warnings.isEmpty())
+            failed.message += QStringLiteral("\n\n") + job->report.summary();
+        return showError(tr("Cannot export"), std::move(failed));
     }
     const QString summary = tr("Exported %1: %2 face(s), %3 solid(s); the document is still %4")
                                 .arg(name)
@@ -136,7 +133,7 @@ bool MainWindow::exportModel(const QString& path, bool selectedOnly) {
             this, tr("Export report"),
             tr("%1 was written with remarks:\n\n%2").arg(name, job->report.summary()));
     statusBar()->showMessage(summary, 10000);
-    return true;
+    return ok();
 }
 
 } // namespace kw

@@ -45,13 +45,11 @@ QString knotPathNextTo(const QString& imported) {
 
 } // namespace
 
-bool MainWindow::openFile(const QString& path) {
+Status MainWindow::openFile(const QString& path) {
     Expected<Scene> scene = readKnotFile(path);
     const Status reset = scene ? m_doc->resetScene(std::move(*scene)) : Status(scene.error());
-    if (!reset) {
-        showError(tr("Cannot open file"), reset.message());
-        return false;
-    }
+    if (!reset)
+        return showError(tr("Cannot open file"), reset.error());
     m_stack->clear();
     m_stack->setClean();
     setFilePath(path);
@@ -61,31 +59,30 @@ bool MainWindow::openFile(const QString& path) {
     if (!m_doc->scene().surfaces.empty())
         selectSurface(m_doc->scene().surfaces.front().id);
     statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
-    return true;
+    return ok();
 }
 
 bool isExportPath(const QString& path); // mainwindow_export.cpp
 
-bool MainWindow::saveFile(const QString& path) {
+Status MainWindow::saveFile(const QString& path) {
     // A project is JSON: never under a CAD or mesh name, which other programs would misread.
     if (isExportPath(path)) {
-        if (!exportModel(path))
-            return false;
+        if (Status exported = exportModel(path); !exported)
+            return exported; // shown by exportModel
         statusBar()->showMessage(tr("Exported %1 (Save As with a %2 name exports); the document "
                                     "is still the project %3")
                                      .arg(QFileInfo(path).fileName(),
                                           cadFormatName(cadFormatFromPath(path)), displayName()),
                                  10000);
-        return true;
+        return ok();
     }
     if (const CadFormat f = cadFormatFromPath(path);
-        f != CadFormat::Knot && f != CadFormat::Unknown) {
-        showError(tr("Cannot save file"),
-                  tr("%1: Knotwork does not write %2 files; save the project as .knot, or "
-                     "export STEP, IGES or OBJ")
-                      .arg(path, cadFormatName(f)));
-        return false;
-    }
+        f != CadFormat::Knot && f != CadFormat::Unknown)
+        return showError(tr("Cannot save file"),
+                         Error(tr("%1: Knotwork does not write %2 files; save the project as "
+                                  ".knot, or export STEP, IGES or OBJ")
+                                   .arg(path, cadFormatName(f)),
+                               path));
     // The view's camera goes into the file; it is not an edit (no undo step, not "modified"),
     // as in other editors, so it is copied into the document only here.
     Camera camera = m_viewport->cameraController().camera();
@@ -99,10 +96,8 @@ bool MainWindow::saveFile(const QString& path) {
         QSettings().value(kKeepBackupKey, true).toBool() ? keepBackup(path) : ok();
     if (!backup)
         statusBar()->showMessage(tr("No backup kept: %1").arg(backup.message()), 10000);
-    if (const Status written = writeKnotFile(path, scene); !written) {
-        showError(tr("Cannot save file"), written.message());
-        return false;
-    }
+    if (const Status written = writeKnotFile(path, scene); !written)
+        return showError(tr("Cannot save file"), written.error());
     // Both were written, so both passed the writer's checkScene: neither can be refused.
     (void)m_doc->setCamera(camera);
     (void)m_doc->setDisplay(scene.display);
@@ -111,7 +106,7 @@ bool MainWindow::saveFile(const QString& path) {
     addRecent(path);
     if (backup)
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
-    return true;
+    return ok();
 }
 
 bool MainWindow::offerRecovery() {
@@ -134,7 +129,7 @@ bool MainWindow::offerRecovery() {
         Expected<Scene> scene = Autosave::load(r);
         const Status restored = scene ? m_doc->resetScene(std::move(*scene)) : scene.error();
         if (!restored) {
-            showError(tr("Cannot restore the unsaved changes"), restored.message());
+            showError(tr("Cannot restore the unsaved changes"), restored.error());
             continue; // kept: the file may be opened by hand
         }
         m_stack->clear();
@@ -172,11 +167,11 @@ void MainWindow::openDialog() {
         return;
     const QString path = m_dialogs.openFile(this, tr("Open project"), kKnotFilter);
     if (!path.isEmpty())
-        openFile(path);
+        (void)openFile(path); // a failure is shown there
 }
 
 bool MainWindow::save() {
-    return m_path.isEmpty() ? saveAs() : saveFile(m_path);
+    return m_path.isEmpty() ? saveAs() : bool(saveFile(m_path));
 }
 
 bool MainWindow::saveAs() {
@@ -188,7 +183,7 @@ bool MainWindow::saveAs() {
         return false;
     if (QFileInfo(path).suffix().isEmpty())
         path += QStringLiteral(".knot");
-    return saveFile(path);
+    return bool(saveFile(path));
 }
 
 void MainWindow::exportImage() {
@@ -336,7 +331,7 @@ void MainWindow::rebuildRecentMenu() {
         a->setData(path);
         connect(a, &QAction::triggered, this, [this, path] {
             if (maybeSave())
-                openFile(path);
+                (void)openFile(path); // a failure is shown there
         });
     }
     if (list.isEmpty())
@@ -361,7 +356,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
         return;
     event->acceptProposedAction();
     if (maybeSave())
-        openFile(path);
+        (void)openFile(path); // a failure is shown there
 }
 
 } // namespace kw

@@ -24,7 +24,7 @@ namespace {
 // thread writes `cancel`; the outcome is read only after the thread has finished.
 struct ImportJob : ExchangeJob {
     std::optional<ImportResult> result;
-    QString error;
+    Error error; ///< without a result: why
 };
 
 // How often the UI thread looks at the worker's progress.
@@ -52,7 +52,7 @@ void MainWindow::importDialog() {
     const auto ask = m_dialogs.importFile ? m_dialogs.importFile : m_dialogs.openFile;
     const QString path = ask(this, tr("Import"), importFileFilter(occtAvailable()));
     if (!path.isEmpty())
-        importFile(path);
+        (void)importFile(path); // a failure is shown there
 }
 
 void MainWindow::runWithProgress(const QString& title, const QString& label, ExchangeJob& job,
@@ -108,9 +108,9 @@ void MainWindow::runWithProgress(const QString& title, const QString& label, Exc
     progress.hide();
 }
 
-bool MainWindow::importFile(const QString& path) {
-    if (m_importProgress)
-        return false;
+Status MainWindow::importFile(const QString& path) {
+    if (m_importProgress) // one exchange at a time; its own dialog is up
+        return Error(tr("Cannot import %1 while another import or export runs").arg(path), path);
     const QString name = QFileInfo(path).fileName();
     auto job = std::make_shared<ImportJob>();
     // importFile is reentrant (plain data out; OCCT sets up its signal handling per thread).
@@ -123,32 +123,30 @@ bool MainWindow::importFile(const QString& path) {
         if (read)
             job->result = std::move(*read);
         else
-            job->error = read.message();
+            job->error = std::move(read).error();
     }));
 
     runWithProgress(tr("Import"), tr("Importing %1…").arg(name), *job, std::move(worker),
                     [job] { return job->result.has_value(); });
 
     if (job->cancel) {
-        // The importer's own message when it stopped; otherwise it had finished first.
-        statusBar()->showMessage(
-            job->result ? tr("Import of %1 cancelled; the document is unchanged").arg(name)
-                        : job->error,
-            10000);
-        return false;
+        // The importer's own Error when it stopped; otherwise it had finished first. Asked
+        // for by the user: the status bar says so, no error dialog.
+        const Error cancelled =
+            job->result
+                ? Error(tr("Import of %1 cancelled; the document is unchanged").arg(name), path)
+                : job->error;
+        statusBar()->showMessage(cancelled.message, 10000);
+        return cancelled;
     }
-    QString error = job->error;
-    if (job->result) { // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree
-        makeSurfaceNamesDistinct(job->result->scene, QFileInfo(path).completeBaseName());
-        // A CAD or mesh file carries no continuity tolerances: the user's defaults apply.
-        job->result->scene.continuity = Preferences::load().continuity;
-    }
-    if (job->result)
-        error = m_doc->resetScene(std::move(job->result->scene)).message();
-    if (!job->result || !error.isEmpty()) {
-        showError(tr("Cannot import file"), error);
-        return false;
-    }
+    if (!job->result)
+        return showError(tr("Cannot import file"), job->error);
+    // "Face" x 200 in one file: "Face 1" .. "Face 200" in the tree.
+    makeSurfaceNamesDistinct(job->result->scene, QFileInfo(path).completeBaseName());
+    // A CAD or mesh file carries no continuity tolerances: the user's defaults apply.
+    job->result->scene.continuity = Preferences::load().continuity;
+    if (const Status reset = m_doc->resetScene(std::move(job->result->scene)); !reset)
+        return showError(tr("Cannot import file"), reset.error());
     m_stack->clear();
     m_stack->resetClean(); // unsaved until written as .knot: the title is marked, Save asks where
     setFilePath(QString());
@@ -166,7 +164,7 @@ bool MainWindow::importFile(const QString& path) {
             this, tr("Import report"),
             tr("%1 was imported with remarks:\n\n%2").arg(name, report.summary()));
     statusBar()->showMessage(summary, 10000);
-    return true;
+    return ok();
 }
 
 } // namespace kw

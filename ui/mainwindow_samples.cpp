@@ -33,8 +33,9 @@ void MainWindow::addSamplesMenu(QMenu* file) {
         return cadFormatFromPath(f.fileName()) == CadFormat::Knot;
     });
     for (const QFileInfo& f : files) {
-        QAction* a = menu->addAction(f.fileName(), this,
-                                     [this, path = f.absoluteFilePath()] { openSample(path); });
+        QAction* a = menu->addAction(f.fileName(), this, [this, path = f.absoluteFilePath()] {
+            (void)openSample(path); // a failure is shown there
+        });
         a->setObjectName(QStringLiteral("actionSample_") + f.completeBaseName());
     }
     if (files.isEmpty()) {
@@ -44,18 +45,18 @@ void MainWindow::addSamplesMenu(QMenu* file) {
     }
 }
 
-bool MainWindow::openSample(const QString& path) {
-    if (!maybeSave())
-        return false;
+Status MainWindow::openSample(const QString& path) {
+    if (!maybeSave()) // the user's own answer: nothing to show
+        return Error(
+            tr("%1 was not opened: the unsaved changes were kept").arg(QFileInfo(path).fileName()),
+            path);
     // A CAD part is imported as File ▸ Import does (no .knot path; Save asks where).
     if (cadFormatFromPath(path) != CadFormat::Knot)
         return importFile(path);
     Expected<Scene> scene = readKnotFile(path);
     const Status reset = scene ? m_doc->resetScene(std::move(*scene)) : Status(scene.error());
-    if (!reset) {
-        showError(tr("Cannot open sample"), reset.message());
-        return false;
-    }
+    if (!reset)
+        return showError(tr("Cannot open sample"), reset.error());
     m_stack->clear();
     m_stack->setClean();
     // A copy to start from, not the file: the installed samples are read-only, so Save asks
@@ -67,7 +68,7 @@ bool MainWindow::openSample(const QString& path) {
     if (!m_doc->scene().surfaces.empty())
         selectSurface(m_doc->scene().surfaces.front().id);
     statusBar()->showMessage(tr("Opened the sample %1").arg(QFileInfo(path).fileName()), 5000);
-    return true;
+    return ok();
 }
 
 } // namespace kw

@@ -48,10 +48,10 @@ class NativeSurface;
 
 /// The window: shows the frames; takes no input (Qt::WindowTransparentForInput), so that the
 /// view's widget under it gets the mouse as it would without it; where the platform cannot
-/// make a window transparent for input, what it gets is handed to the view's widget.
+/// make a window transparent for input, the view filters what it gets (nativeWindow()).
 class ViewWindow : public QWindow {
 public:
-    ViewWindow(NativeSurface* surface, QWidget* host) : m_surface(surface), m_host(host) {
+    explicit ViewWindow(NativeSurface* surface) : m_surface(surface) {
         setSurfaceType(QSurface::OpenGLSurface);
         setFlags(flags() | Qt::WindowTransparentForInput | Qt::WindowDoesNotAcceptFocus);
     }
@@ -62,7 +62,6 @@ protected:
 
 private:
     NativeSurface* m_surface;
-    QPointer<QWidget> m_host;
 };
 
 class NativeSurface final : public ViewSurface {
@@ -70,7 +69,7 @@ public:
     NativeSurface(QWidget* host, const QSurfaceFormat& format, const ViewState& view,
                   Callbacks callbacks)
         : ViewSurface(host, view, std::move(callbacks)), m_format(format) {
-        m_window = new ViewWindow(this, host);
+        m_window = new ViewWindow(this);
         m_window->setFormat(format);
         // The container owns the window.
         m_container = QWidget::createWindowContainer(m_window, host);
@@ -93,6 +92,7 @@ public:
 
     QWidget* widget() const override { return m_container; }
     bool isNativeWindow() const override { return true; }
+    QWindow* nativeWindow() const override { return m_window; }
     QOpenGLContext* context() const override { return m_context.get(); }
     QSurfaceFormat format() const override {
         return m_context && m_context->isValid() ? m_context->format() : m_format;
@@ -281,34 +281,9 @@ void ViewWindow::exposeEvent(QExposeEvent*) {
 }
 
 bool ViewWindow::event(QEvent* event) {
-    switch (event->type()) {
-    case QEvent::UpdateRequest:
+    if (event->type() == QEvent::UpdateRequest) {
         m_surface->updateRequested();
         return true;
-    case QEvent::MouseButtonPress:
-    case QEvent::MouseButtonRelease:
-    case QEvent::MouseButtonDblClick:
-    case QEvent::MouseMove:
-    case QEvent::Wheel:
-    case QEvent::KeyPress:
-    case QEvent::KeyRelease:
-    case QEvent::TabletPress:
-    case QEvent::TabletMove:
-    case QEvent::TabletRelease:
-    case QEvent::ContextMenu:
-    case QEvent::Enter:
-    case QEvent::Leave:
-        // The window fills the view's widget from its corner: positions carry over as they
-        // are.
-        if (m_host) {
-            const std::unique_ptr<QEvent> copy(event->clone());
-            QCoreApplication::sendEvent(m_host, copy.get());
-            event->setAccepted(copy->isAccepted());
-            return true;
-        }
-        break;
-    default:
-        break;
     }
     return QWindow::event(event);
 }

@@ -10,7 +10,9 @@
 // - a QOpenGLWidget where the platform has no native child windows (offscreen, eglfs, wasm).
 // Both keep the frame in a framebuffer object with depth and stencil that outlives it (the
 // probe reads the last frame's pre-pass back), and neither takes input: the view's own widget
-// gets the mouse, the wheel, keys and focus, as the tests' events do.
+// gets the mouse, the wheel, keys and focus, as the tests' events do. Input that reaches the
+// native window anyway (a platform that cannot make it transparent for input, events sent to
+// it) the view takes through an event filter on nativeWindow(), without a hop through here.
 #pragma once
 
 #include "render/renderer.h"
@@ -31,6 +33,7 @@ class QOpenGLFramebufferObject;
 class QPaintDevice;
 class QTimer;
 class QWidget;
+class QWindow;
 
 namespace kw {
 
@@ -136,6 +139,10 @@ public:
     /// The widget that shows the frames (the window container or the QOpenGLWidget).
     virtual QWidget* widget() const = 0;
     virtual bool isNativeWindow() const = 0;
+    /// The native window that shows the frames, null for the fallback. It asks for no input;
+    /// what it gets all the same is the host's to filter (its positions are the host's: the
+    /// window fills it from its corner).
+    virtual QWindow* nativeWindow() const { return nullptr; }
     /// The context current with the frame's framebuffer bound, as QOpenGLWidget::makeCurrent.
     virtual void makeCurrent() = 0;
     virtual void doneCurrent() = 0;

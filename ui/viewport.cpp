@@ -8,6 +8,7 @@
 #include "ui/tools/viewtools.h"
 #include "ui/view_surface.h"
 
+#include <QCoreApplication>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
@@ -16,6 +17,7 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <QWheelEvent>
+#include <QWindow>
 #include <algorithm>
 #include <cmath>
 
@@ -47,6 +49,8 @@ Viewport::Viewport(Document* document, SceneModel* model, Selection* selection, 
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(m_surface->widget());
+    if (QWindow* window = m_surface->nativeWindow())
+        window->installEventFilter(this);
     setMinimumSize(160, 120);
     m_view.options.controlNet = true;
     m_view.options.samples = samples(); // the automatic count: kept resolved, as setSamples does
@@ -593,6 +597,53 @@ bool Viewport::event(QEvent* event) {
         return true;
     }
     return QWidget::event(event);
+}
+
+bool Viewport::eventFilter(QObject* watched, QEvent* event) {
+    // (No surface while the destructor lets it go.)
+    if (!m_surface || watched != m_surface->nativeWindow())
+        return QWidget::eventFilter(watched, event);
+    // The native window asks for no input, but a platform that cannot make it transparent for
+    // input (or a test's events sent to it) gives it some: it is the view's, at the view's
+    // positions (the window fills it from its corner). Mouse and wheel go straight to the
+    // handlers, so that a drag step enters no file twice; the rest through QWidget's own
+    // dispatch (Tab's focus move, the context-menu policy, enter and leave), which hands what
+    // the view ignores to its parents. Disabled, the view takes none of it, as QWidget.
+    const bool enabled = isEnabled();
+    switch (event->type()) {
+    case QEvent::MouseButtonPress:
+        if (enabled)
+            mousePressEvent(static_cast<QMouseEvent*>(event));
+        return true;
+    case QEvent::MouseButtonRelease:
+        if (enabled)
+            mouseReleaseEvent(static_cast<QMouseEvent*>(event));
+        return true;
+    case QEvent::MouseButtonDblClick:
+        if (enabled)
+            mouseDoubleClickEvent(static_cast<QMouseEvent*>(event));
+        return true;
+    case QEvent::MouseMove:
+        if (enabled)
+            mouseMoveEvent(static_cast<QMouseEvent*>(event));
+        return true;
+    case QEvent::Wheel:
+        if (enabled)
+            wheelEvent(static_cast<QWheelEvent*>(event));
+        return true;
+    case QEvent::KeyPress:
+    case QEvent::KeyRelease:
+    case QEvent::TabletPress:
+    case QEvent::TabletMove:
+    case QEvent::TabletRelease:
+    case QEvent::ContextMenu:
+    case QEvent::Enter:
+    case QEvent::Leave:
+        QCoreApplication::sendEvent(this, event);
+        return true;
+    default:
+        return false;
+    }
 }
 
 } // namespace kw

@@ -260,6 +260,8 @@ protected:
     void focusOutEvent(QFocusEvent* event) override;
     void leaveEvent(QEvent* event) override;
     bool event(QEvent* event) override;
+    /// What reaches the native window (nativeWindow()) is the view's input (see the .cpp).
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
     using Gesture = ViewState::Gesture;

@@ -176,10 +176,10 @@ QString outOfTime(const QString& path, const QString& reader, double seconds) {
 }
 
 // Runs the child with QProcess and watches it: progress every kPollMs, Cancel, time limit.
-// False with `error` when it was stopped.
-bool watchQProcess(const QString& path, const QString& reader, const QStringList& childArgs,
-                   double seconds, const ImportProgress& progress, ChildEnd& end, QString& error,
-                   const QString& cancelText) {
+// An Error of `path` when it could not start or was stopped.
+Status watchQProcess(const QString& path, const QString& reader, const QStringList& childArgs,
+                     double seconds, const ImportProgress& progress, ChildEnd& end,
+                     const QString& cancelText) {
     QProcess child;
     child.setProgram(cadReaderExecutable());
     child.setArguments(childArgs);
@@ -192,11 +192,10 @@ bool watchQProcess(const QString& path, const QString& reader, const QStringList
             ::_exit(127);
     });
     child.start(QIODevice::ReadOnly);
-    if (!child.waitForStarted(30000)) {
-        error = QStringLiteral("%1: cannot start %2 (%3): %4")
-                    .arg(path, reader, child.program(), child.errorString());
-        return false;
-    }
+    if (!child.waitForStarted(30000))
+        return Error(QStringLiteral("%1: cannot start %2 (%3): %4")
+                         .arg(path, reader, child.program(), child.errorString()),
+                     path);
     QElapsedTimer clock;
     clock.start();
     const pid_t pid = pid_t(child.processId());
@@ -206,11 +205,10 @@ bool watchQProcess(const QString& path, const QString& reader, const QStringList
         ~Unregister() { unregisterCadChild(pid); }
     } unregister{pid};
     ProgressLines lines;
-    auto stop = [&](const QString& why) {
+    auto stop = [&](const QString& why) -> Status {
         child.kill();
         child.waitForFinished(-1);
-        error = why;
-        return false;
+        return Error(why, path);
     };
     while (child.state() != QProcess::NotRunning) {
         child.waitForFinished(kPollMs);
@@ -227,7 +225,7 @@ bool watchQProcess(const QString& path, const QString& reader, const QStringList
     end.crashed = child.exitStatus() == QProcess::CrashExit || child.error() == QProcess::Crashed;
     end.signal = end.crashed ? child.exitCode() : 0; // Qt reports the signal as the exit code
     end.exitCode = end.crashed ? 0 : child.exitCode();
-    return true;
+    return ok();
 }
 
 // Reads what is there on a non-blocking pipe; false once it is closed (or broken).
@@ -246,9 +244,10 @@ bool drain(int fd, QByteArray& into) {
 }
 
 // The same watch on a child the launcher started (cadprestart.h), by its pid and pipes; the
-// time limit counts from its start. Closes the pipes; false with `error` when it was stopped.
-bool watchPrestarted(const PrestartedCadRead& child, double seconds, const ImportProgress& progress,
-                     const QString& path, const QString& reader, ChildEnd& end, QString& error) {
+// time limit counts from its start. Closes the pipes; an Error of `path` when it was stopped.
+Status watchPrestarted(const PrestartedCadRead& child, double seconds,
+                       const ImportProgress& progress, const QString& path, const QString& reader,
+                       ChildEnd& end) {
     ProgressLines lines;
     // A pidfd wakes the poll when the child exits (QProcess waits the same way); without one
     // (kernels before 5.3) the poll falls back to short naps once both pipes are closed.
@@ -262,13 +261,12 @@ bool watchPrestarted(const PrestartedCadRead& child, double seconds, const Impor
         if (pidfd >= 0)
             ::close(pidfd);
     };
-    const auto stop = [&](const QString& why) {
+    const auto stop = [&](const QString& why) -> Status {
         ::kill(child.pid, SIGKILL);
         while (!exited && ::waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
         }
         finish();
-        error = why;
-        return false;
+        return Error(why, path);
     };
     for (;;) {
         const bool napping = pidfd < 0 && fds[0].fd < 0 && fds[1].fd < 0;
@@ -303,34 +301,33 @@ bool watchPrestarted(const PrestartedCadRead& child, double seconds, const Impor
     } else {
         end.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
     }
-    return true;
+    return ok();
 }
 
 } // namespace
 #endif
 
-// importInChildProcess's work; its messages become the Error.
-static std::optional<ImportResult> readInChild(const QString& path, CadFormat format,
-                                               QString& error, const ImportProgress& progress,
-                                               const MeshDeflection* deflection,
-                                               TaggedMeshSet* mesh) {
+Expected<ImportResult> importInChildProcess(const QString& path, CadFormat format,
+                                            const ImportProgress& progress,
+                                            const MeshDeflection* deflection, TaggedMeshSet* mesh) {
+    // Every failure is an Error of `path`.
+    const auto fail = [&path](QString message) {
+        return Error(std::move(message), path);
+    };
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
     Q_UNUSED(deflection);
     Q_UNUSED(mesh);
-    error = QStringLiteral("%1: cannot read %2: %3")
-                .arg(path, cadFormatName(format), occtUnavailableMessage());
-    return std::nullopt;
+    return fail(QStringLiteral("%1: cannot read %2: %3")
+                    .arg(path, cadFormatName(format), occtUnavailableMessage()));
 #else
     // A device, FIFO or directory is named at once and never opened, and a file that does not
     // start like its format is refused from its first bytes, before any child is started.
     QString problem = checkRegularFile(path).message();
     if (problem.isEmpty())
         problem = checkCadHead(format, fileHead(path, kSniffBytes)).message();
-    if (!problem.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, problem);
-        return std::nullopt;
-    }
+    if (!problem.isEmpty())
+        return fail(QStringLiteral("%1: %2").arg(path, problem));
     const QString reader =
         QString::fromLatin1(deflection && mesh ? "the %1 reader and mesher" : "the %1 reader")
             .arg(cadFormatName(format));
@@ -346,17 +343,15 @@ static std::optional<ImportResult> readInChild(const QString& path, CadFormat fo
         adoptedDir.emplace(pre->dir);
         dirPath = pre->dir;
         const double seconds = cadTimeLimitSeconds(QFileInfo(path).size());
-        const bool watched = watchPrestarted(*pre, seconds, progress, path, reader, end, error);
+        const Status watched = watchPrestarted(*pre, seconds, progress, path, reader, end);
         unregisterCadChild(pre->pid);
         if (!watched)
-            return std::nullopt;
+            return watched.error();
     } else {
         Expected<QString> made = makeCadTempDir();
-        if (!made) {
-            error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                        .arg(path, reader, made.message());
-            return std::nullopt;
-        }
+        if (!made)
+            return fail(QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                            .arg(path, reader, made.message()));
         dirPath = *made;
         adoptedDir.emplace(dirPath);
         const double seconds = cadTimeLimitSeconds(QFileInfo(path).size(), deflection && mesh);
@@ -374,112 +369,96 @@ static std::optional<ImportResult> readInChild(const QString& path, CadFormat fo
         if (deflection && mesh)
             childArgs << QStringLiteral("--mesh") << QString::number(deflection->linear, 'g', 17)
                       << QString::number(deflection->angularDegrees, 'g', 17);
-        if (!watchQProcess(path, reader, childArgs, seconds, progress, end, error, cancelled(path)))
-            return std::nullopt;
+        if (const Status watched =
+                watchQProcess(path, reader, childArgs, seconds, progress, end, cancelled(path));
+            !watched)
+            return watched.error();
     }
     if (end.crashed) {
         const int sig = end.signal;
         // SIGSEGV is the stack overflow of a cyclic file; an abort can also be memory the
         // limit refused, so that one names the limit.
-        error = QStringLiteral("%1 crashed on %2 (%3); nothing was imported%4")
-                    .arg(reader, path, signalText(sig),
-                         sig == SIGSEGV ? QString()
-                                        : QStringLiteral(" (its memory limit was %1 MB; "
-                                                         "KNOTWORK_CAD_MEMORY_MB sets another)")
-                                              .arg(memory >> 20));
-        return std::nullopt;
+        return fail(QStringLiteral("%1 crashed on %2 (%3); nothing was imported%4")
+                        .arg(reader, path, signalText(sig),
+                             sig == SIGSEGV ? QString()
+                                            : QStringLiteral(" (its memory limit was %1 MB; "
+                                                             "KNOTWORK_CAD_MEMORY_MB sets another)")
+                                                  .arg(memory >> 20)));
     }
     if (end.exitCode != 0) {
         const QList<QByteArray> lines = end.err.trimmed().split('\n');
-        error = lines.isEmpty() || lines.back().trimmed().isEmpty()
-                    ? QStringLiteral("%1: %2 failed with exit code %3")
-                          .arg(path, reader)
-                          .arg(end.exitCode)
-                    : elided(safeMessageText(QString::fromLocal8Bit(lines.back().trimmed())), 1000);
-        return std::nullopt;
+        return fail(
+            lines.isEmpty() || lines.back().trimmed().isEmpty()
+                ? QStringLiteral("%1: %2 failed with exit code %3")
+                      .arg(path, reader)
+                      .arg(end.exitCode)
+                : elided(safeMessageText(QString::fromLocal8Bit(lines.back().trimmed())), 1000));
     }
     QFile handover(QDir(dirPath).filePath(QString::fromLatin1(kHandoverFile)));
     Expected<ImportResult> read = handover.open(QIODevice::ReadOnly)
                                       ? decodeImportHandover(handover.readAll())
                                       : Expected<ImportResult>(Error(handover.errorString()));
-    if (!read) {
-        error =
-            QStringLiteral("%1: %2 gave no readable result: %3").arg(path, reader, read.message());
-        return std::nullopt;
-    }
+    if (!read)
+        return fail(
+            QStringLiteral("%1: %2 gave no readable result: %3").arg(path, reader, read.message()));
     ImportResult result = std::move(*read);
     if (deflection && mesh) {
         Expected<TaggedMeshSet> read =
             readTaggedMeshObjFile(QDir(dirPath).filePath(QStringLiteral("mesh.obj")));
-        if (!read) {
-            error = QStringLiteral("%1: %2 gave no readable mesh: %3")
-                        .arg(path, reader, read.message());
-            return std::nullopt;
-        }
+        if (!read)
+            return fail(QStringLiteral("%1: %2 gave no readable mesh: %3")
+                            .arg(path, reader, read.message()));
         *mesh = std::move(read).value();
     }
     return result;
 #endif
 }
 
-Expected<ImportResult> importInChildProcess(const QString& path, CadFormat format,
-                                            const ImportProgress& progress,
-                                            const MeshDeflection* deflection, TaggedMeshSet* mesh) {
-    QString error;
-    std::optional<ImportResult> read = readInChild(path, format, error, progress, deflection, mesh);
-    if (!read)
-        return Error(error, path);
-    return std::move(*read);
-}
-
 namespace {
 
 // What an export checks before any child runs: the name, the options, that there is something
 // to write (`empty`: the scene has no surface), the folder.
-bool exportPrecheck(const QString& path, const ExportOptions& options, bool empty, QString& error) {
+// Errors of `path`.
+Status exportPrecheck(const QString& path, const ExportOptions& options, bool empty) {
     const CadFormat format = cadFormatFromPath(path);
-    if (format != CadFormat::Step && format != CadFormat::Iges) {
-        error = QStringLiteral("%1: not a STEP or IGES name (expected .step, .stp, .iges or .igs)")
-                    .arg(path);
-        return false;
-    }
-    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, bad);
-        return false;
-    }
-    if (empty) {
-        error = QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path);
-        return false;
-    }
+    if (format != CadFormat::Step && format != CadFormat::Iges)
+        return Error(
+            QStringLiteral("%1: not a STEP or IGES name (expected .step, .stp, .iges or .igs)")
+                .arg(path),
+            path);
+    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty())
+        return Error(QStringLiteral("%1: %2").arg(path, bad), path);
+    if (empty)
+        return Error(
+            QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path), path);
     const QFileInfo folder(QFileInfo(path).absolutePath());
-    if (!folder.isDir() || !folder.isWritable()) {
-        error = QStringLiteral("%1: cannot write there: the folder %2")
-                    .arg(path, folder.isDir() ? QStringLiteral("is not writable")
-                                              : QStringLiteral("does not exist"));
-        return false;
-    }
-    return true;
+    if (!folder.isDir() || !folder.isWritable())
+        return Error(QStringLiteral("%1: cannot write there: the folder %2")
+                         .arg(path, folder.isDir() ? QStringLiteral("is not writable")
+                                                   : QStringLiteral("does not exist")),
+                     path);
+    return ok();
 }
 
 #ifdef KW_HAVE_OCCT
 // A folder of the registry (cadtempdir.h) for `writer`'s child: removed on every exit path,
 // SIGTERM included, or swept by a later run if this one is killed.
-std::optional<QString> writerFolder(const QString& path, const QString& writer, QString& error) {
+// An Error of `path` when none can be made.
+Expected<QString> writerFolder(const QString& path, const QString& writer) {
     const Expected<QString> made = makeCadTempDir();
-    if (!made) {
-        error = QStringLiteral("%1: cannot make a temporary folder for %2: %3")
-                    .arg(path, writer, made.message());
-        return std::nullopt;
-    }
+    if (!made)
+        return Error(QStringLiteral("%1: cannot make a temporary folder for %2: %3")
+                         .arg(path, writer, made.message()),
+                     path);
     return *made;
 }
 
 // Runs `knotwork __write-cad FIRST OUT DIR ...` (`extra` after the options), reads its report
-// and writes `path` from the bytes it left in `dirPath`.
-bool runWriter(const QString& first, const QString& path, const QString& dirPath,
-               const ExportOptions& options, const QStringList& extra, double seconds,
-               long long memory, const QString& writer, ExportReport& report, QString& error,
-               const ImportProgress& progress) {
+// and writes `path` from the bytes it left in `dirPath`. Errors of `path`.
+Status runWriter(const QString& first, const QString& path, const QString& dirPath,
+                 const ExportOptions& options, const QStringList& extra, double seconds,
+                 long long memory, const QString& writer, ExportReport& report,
+                 const ImportProgress& progress) {
     QStringList args{QString::fromLatin1(kWriteCadVerb),
                      first,
                      path,
@@ -496,39 +475,36 @@ bool runWriter(const QString& first, const QString& path, const QString& dirPath
         args << QStringLiteral("--require-closed");
     args << extra;
     ChildEnd end;
-    if (!watchQProcess(path, writer, args, seconds, progress, end, error,
-                       QStringLiteral("%1: export cancelled").arg(path)))
-        return false;
-    if (end.crashed) {
-        error = QStringLiteral("%1 crashed on %2 (%3); nothing was written (its memory limit was "
-                               "%4 MB; KNOTWORK_CAD_MEMORY_MB sets another)")
-                    .arg(writer, path, signalText(end.signal))
-                    .arg(memory >> 20);
-        return false;
-    }
+    if (Status watched = watchQProcess(path, writer, args, seconds, progress, end,
+                                       QStringLiteral("%1: export cancelled").arg(path));
+        !watched)
+        return watched;
+    if (end.crashed)
+        return Error(QStringLiteral("%1 crashed on %2 (%3); nothing was written (its memory "
+                                    "limit was %4 MB; KNOTWORK_CAD_MEMORY_MB sets another)")
+                         .arg(writer, path, signalText(end.signal))
+                         .arg(memory >> 20),
+                     path);
     const QDir dir(dirPath);
     QFile text(dir.filePath(QStringLiteral("export.txt")));
     const bool reported = text.open(QIODevice::ReadOnly) && report.fromText(text.readAll());
     if (end.exitCode != 0) {
         const QList<QByteArray> lines = end.err.trimmed().split('\n');
-        error = lines.isEmpty() || lines.back().trimmed().isEmpty()
-                    ? QStringLiteral("%1: %2 failed with exit code %3")
-                          .arg(path, writer)
-                          .arg(end.exitCode)
-                    : QString::fromLocal8Bit(lines.back().trimmed());
-        return false;
+        return Error(lines.isEmpty() || lines.back().trimmed().isEmpty()
+                         ? QStringLiteral("%1: %2 failed with exit code %3")
+                               .arg(path, writer)
+                               .arg(end.exitCode)
+                         : QString::fromLocal8Bit(lines.back().trimmed()),
+                     path);
     }
-    if (!reported) {
-        error = QStringLiteral("%1: %2 gave no readable report").arg(path, writer);
-        return false;
-    }
+    if (!reported)
+        return Error(QStringLiteral("%1: %2 gave no readable report").arg(path, writer), path);
     // The destination is written here, not by the child: a child killed half-way leaves
     // nothing beside it.
     QFile bytes(dir.filePath(QStringLiteral("export.out")));
-    if (!bytes.open(QIODevice::ReadOnly)) {
-        error = QStringLiteral("%1: %2 gave no file: %3").arg(path, writer, bytes.errorString());
-        return false;
-    }
+    if (!bytes.open(QIODevice::ReadOnly))
+        return Error(
+            QStringLiteral("%1: %2 gave no file: %3").arg(path, writer, bytes.errorString()), path);
     const Status saved = saveFileAtomically(path, [&](QIODevice& out) {
         QByteArray chunk;
         while (!(chunk = bytes.read(1 << 20)).isEmpty())
@@ -536,30 +512,31 @@ bool runWriter(const QString& first, const QString& path, const QString& dirPath
                 return false;
         return bytes.error() == QFileDevice::NoError;
     });
-    error = saved.message();
-    return bool(saved);
+    if (!saved)
+        return Error(saved.message(), path);
+    return ok();
 }
 #endif
 
 } // namespace
 
-// exportCadFile's work; its messages become the Error.
-static bool writeInChild(const Scene& scene, const QString& path, const ExportOptions& options,
-                         ExportReport& report, QString& error, const ImportProgress& progress) {
+// Every failure is an Error of `path`.
+Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
+                     ExportReport& report, const ImportProgress& progress) {
     report = ExportReport{};
-    if (!exportPrecheck(path, options, scene.surfaces.empty(), error))
-        return false;
+    if (Status checked = exportPrecheck(path, options, scene.surfaces.empty()); !checked)
+        return checked;
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
-    error = QStringLiteral("%1: cannot write %2: Knotwork was built without OpenCASCADE")
-                .arg(path, cadFormatName(cadFormatFromPath(path)));
-    return false;
+    return Error(QStringLiteral("%1: cannot write %2: Knotwork was built without OpenCASCADE")
+                     .arg(path, cadFormatName(cadFormatFromPath(path))),
+                 path);
 #else
     const QString writer =
         QStringLiteral("the %1 writer").arg(cadFormatName(cadFormatFromPath(path)));
-    const std::optional<QString> folder = writerFolder(path, writer, error);
+    const Expected<QString> folder = writerFolder(path, writer);
     if (!folder)
-        return false;
+        return folder.error();
     const QString dirPath = *folder;
     const FolderRemover removeDir(dirPath);
     // The scene goes over bit for bit (handover.h), as imports come back.
@@ -569,25 +546,16 @@ static bool writeInChild(const Scene& scene, const QString& path, const ExportOp
         handover.sourceFaces.push_back(k + 1);
     const QByteArray block = encodeImportHandover(handover);
     const QString scenePath = QDir(dirPath).filePath(QStringLiteral("scene.kwi"));
-    if (const Status saved = saveBytesAtomically(scenePath, block); !saved) {
-        error = QStringLiteral("%1: cannot hand the scene to %2: %3")
-                    .arg(path, writer, saved.message());
-        return false;
-    }
+    if (const Status saved = saveBytesAtomically(scenePath, block); !saved)
+        return Error(QStringLiteral("%1: cannot hand the scene to %2: %3")
+                         .arg(path, writer, saved.message()),
+                     path);
     // The memory limit grows with the scene as a read's does with its file: OpenCASCADE's
     // writer holds its whole model and text (10,035 faces: 1.75 GB resident ran out of the
     // fixed 2 GiB of address space).
     return runWriter(scenePath, path, dirPath, options, {}, cadTimeLimitSeconds(block.size(), true),
-                     cadMemoryLimitBytes(block.size()), writer, report, error, progress);
+                     cadMemoryLimitBytes(block.size()), writer, report, progress);
 #endif
-}
-
-Status exportCadFile(const Scene& scene, const QString& path, const ExportOptions& options,
-                     ExportReport& report, const ImportProgress& progress) {
-    QString error;
-    if (!writeInChild(scene, path, options, report, error, progress))
-        return Error(error, path);
-    return ok();
 }
 
 // The read's failures are Errors of `in`, the write's of `path`: each stage names its own file.
@@ -608,9 +576,8 @@ Status convertCadFile(const QString& in, const QString& path, const ExportOption
         return readError(regular.message());
     if (const Status head = checkCadHead(format, fileHead(in, kSniffBytes)); !head)
         return readError(head.message());
-    QString error;
-    if (!exportPrecheck(path, options, false, error))
-        return Error(error, path);
+    if (Status checked = exportPrecheck(path, options, false); !checked)
+        return checked;
 #ifndef KW_HAVE_OCCT
     Q_UNUSED(progress);
     return readError(
@@ -618,17 +585,17 @@ Status convertCadFile(const QString& in, const QString& path, const ExportOption
 #else
     const QString writer = QStringLiteral("the %1 reader and %2 writer")
                                .arg(cadFormatName(format), cadFormatName(cadFormatFromPath(path)));
-    const std::optional<QString> folder = writerFolder(path, writer, error);
+    const Expected<QString> folder = writerFolder(path, writer);
     if (!folder)
-        return Error(error, path);
+        return folder.error();
     const QString dirPath = *folder;
     const FolderRemover removeDir(dirPath);
     // The read's limits and the write's: the scene is about as large in the hand-over as the
     // file it came from.
     const qint64 size = QFileInfo(in).size();
-    const bool written = runWriter(in, path, dirPath, options, {QStringLiteral("--read-cad")},
-                                   cadTimeLimitSeconds(size) + cadTimeLimitSeconds(size, true),
-                                   cadMemoryLimitBytes(size), writer, report, error, progress);
+    const Status written = runWriter(in, path, dirPath, options, {QStringLiteral("--read-cad")},
+                                     cadTimeLimitSeconds(size) + cadTimeLimitSeconds(size, true),
+                                     cadMemoryLimitBytes(size), writer, report, progress);
     // The child leaves the import's hand-over once the read is finished, before the write
     // starts: with it, the failure is the write's; without it, the read's (also a crash, a
     // time-out or a cancel while reading). Its report comes back also when the write is
@@ -640,7 +607,7 @@ Status convertCadFile(const QString& in, const QString& path, const ExportOption
             imported = std::move(result->report);
     }
     if (!written)
-        return Error(error, read ? path : in);
+        return Error(written.message(), read ? path : in);
     return ok();
 #endif
 }

@@ -113,16 +113,16 @@ void exactReals(Interface_FloatWriter& w) {
 
 // The scene with every magnitude below 1e-99 written as 0 (there is no room for a three-digit
 // exponent; a length of 1e-99 model units is zero for any CAD system), counted in `flushed`.
-// False with `why` for a magnitude of 1e100 or more, which no writer here can hold.
-bool twoDigitExponents(Scene& scene, int& flushed, QString& why) {
-    bool ok = true;
+// Refused (the surface named) for a magnitude of 1e100 or more, which no writer here can hold.
+Status twoDigitExponents(Scene& scene, int& flushed) {
+    bool held = true; // every magnitude fits
     const auto fix = [&](double& x) {
         const double a = std::abs(x);
         if (a > 0 && a < 1e-99) {
             x = 0.0;
             ++flushed;
         } else if (a >= 1e100) {
-            ok = false;
+            held = false;
         }
     };
     for (Surface& s : scene.surfaces) {
@@ -143,14 +143,13 @@ bool twoDigitExponents(Scene& scene, int& flushed, QString& why) {
                 for (double& k : c.knots)
                     fix(k);
             }
-        if (!ok) {
-            why = QStringLiteral("surface '%1' has a coordinate, weight or knot of magnitude "
-                                 "1e100 or more, which STEP and IGES writers cannot hold")
-                      .arg(s.name);
-            return false;
-        }
+        if (!held)
+            return Error(QStringLiteral("surface '%1' has a coordinate, weight or knot of "
+                                        "magnitude 1e100 or more, which STEP and IGES writers "
+                                        "cannot hold")
+                             .arg(s.name));
     }
-    return true;
+    return ok();
 }
 
 // An output stream straight into a QByteArray: the writers' text (150 MB for 10,000 faces) is
@@ -346,16 +345,15 @@ void nameEntities(const Handle(Transfer_FinderProcess) & fp, const TopoDS_Shape&
     }
 }
 
-QByteArray writeStep(const TopoDS_Shape& shape, const QString& path, const ExportOptions& options,
-                     LengthUnit unit, const TopTools_DataMapOfShapeInteger& ids,
-                     const QStringList& names, QString& why) {
+Expected<QByteArray> writeStep(const TopoDS_Shape& shape, const QString& path,
+                               const ExportOptions& options, LengthUnit unit,
+                               const TopTools_DataMapOfShapeInteger& ids,
+                               const QStringList& names) {
     Interface_Static::SetCVal("write.step.schema", stepSchemaValue(options.stepSchema));
     Interface_Static::SetIVal("write.step.unit", igesUnitFlag(unit));
     STEPControl_Writer writer;
-    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
-        why = QStringLiteral("OpenCASCADE's STEP writer could not transfer the shape");
-        return {};
-    }
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+        return Error(QStringLiteral("OpenCASCADE's STEP writer could not transfer the shape"));
     nameEntities<StepShape_AdvancedFace>(
         writer.WS()->TransferWriter()->FinderProcess(), shape, ids, names,
         [](const Handle(StepShape_AdvancedFace) & f, const QString& name) {
@@ -372,16 +370,14 @@ QByteArray writeStep(const TopoDS_Shape& shape, const QString& path, const Expor
     QByteArray bytes;
     ByteArrayBuffer buffer(bytes);
     std::ostream out(&buffer);
-    if (!sw.Print(out) || !out) {
-        why = QStringLiteral("OpenCASCADE's STEP writer failed");
-        return {};
-    }
+    if (!sw.Print(out) || !out)
+        return Error(QStringLiteral("OpenCASCADE's STEP writer failed"));
     return bytes;
 }
 
-QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options, LengthUnit unit,
-                     const TopTools_DataMapOfShapeInteger& ids, const QStringList& names,
-                     QString& why) {
+Expected<QByteArray> writeIges(const TopoDS_Shape& shape, const ExportOptions& options,
+                               LengthUnit unit, const TopTools_DataMapOfShapeInteger& ids,
+                               const QStringList& names) {
     const QByteArray unitName = igesUnitName(unit);
     Interface_Static::SetCVal("write.iges.unit", unitName.constData());
     IGESControl_Writer writer(unitName.constData(), options.igesFaces ? 0 : 1);
@@ -396,10 +392,8 @@ QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options, Le
             b.Add(faces, e.Current().Oriented(TopAbs_FORWARD));
         toWrite = faces;
     }
-    if (!writer.AddShape(toWrite)) {
-        why = QStringLiteral("OpenCASCADE's IGES writer could not transfer the shape");
-        return {};
-    }
+    if (!writer.AddShape(toWrite))
+        return Error(QStringLiteral("OpenCASCADE's IGES writer could not transfer the shape"));
     const Handle(IGESData_IGESModel) model = writer.Model();
     // Short labels hold 8 characters: the whole name goes in a Name property (406 form 15),
     // which readers prefer.
@@ -420,40 +414,35 @@ QByteArray writeIges(const TopoDS_Shape& shape, const ExportOptions& options, Le
     QByteArray bytes;
     ByteArrayBuffer buffer(bytes);
     std::ostream out(&buffer);
-    if (!iw.Print(out) || !out) {
-        why = QStringLiteral("OpenCASCADE's IGES writer failed");
-        return {};
-    }
+    if (!iw.Print(out) || !out)
+        return Error(QStringLiteral("OpenCASCADE's IGES writer failed"));
     return bytes;
 }
 
 } // namespace
 
-// exportOcctBytes's work; its messages become the Error.
-static std::optional<QByteArray> exportBytes(const Scene& original, const QString& path,
-                                             const ExportOptions& options, ExportReport& report,
-                                             QString& error, const ImportProgress& progress) {
+Expected<QByteArray> exportOcctBytes(const Scene& original, const QString& path,
+                                     const ExportOptions& options, ExportReport& report,
+                                     const ImportProgress& progress) {
+    // Every failure is an Error of `path`.
+    const auto fail = [&path](QString message) {
+        return Error(std::move(message), path);
+    };
     QElapsedTimer timer;
     timer.start();
     const CadFormat format = cadFormatFromPath(path);
-    if (format != CadFormat::Step && format != CadFormat::Iges) {
-        error = QStringLiteral("%1: not a STEP (.step, .stp) or IGES (.iges, .igs) name").arg(path);
-        return std::nullopt;
-    }
-    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty()) {
-        error = QStringLiteral("%1: %2").arg(path, bad);
-        return std::nullopt;
-    }
-    if (original.surfaces.empty()) {
-        error = QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path);
-        return std::nullopt;
-    }
+    if (format != CadFormat::Step && format != CadFormat::Iges)
+        return fail(
+            QStringLiteral("%1: not a STEP (.step, .stp) or IGES (.iges, .igs) name").arg(path));
+    if (const QString bad = checkExportOptions(options).message(); !bad.isEmpty())
+        return fail(QStringLiteral("%1: %2").arg(path, bad));
+    if (original.surfaces.empty())
+        return fail(
+            QStringLiteral("%1: nothing to export: the document has no surfaces").arg(path));
     Scene scene = original;
     int flushed = 0;
-    if (QString why; !twoDigitExponents(scene, flushed, why)) {
-        error = QStringLiteral("%1: %2").arg(path, why);
-        return std::nullopt;
-    }
+    if (const Status held = twoDigitExponents(scene, flushed); !held)
+        return fail(QStringLiteral("%1: %2").arg(path, held.message()));
     if (flushed > 0)
         report.warnings
             << QStringLiteral("%1 value(s) of magnitude below 1e-99 written as 0").arg(flushed);
@@ -471,9 +460,8 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
     const auto step = [&](int done) {
         return !progress || progress(done, kSteps);
     };
-    const auto cancelled = [&]() -> std::optional<QByteArray> {
-        error = QStringLiteral("%1: export cancelled").arg(path);
-        return std::nullopt;
+    const auto cancelled = [&] {
+        return fail(QStringLiteral("%1: export cancelled").arg(path));
     };
 
     glm::dvec3 lo, hi;
@@ -572,11 +560,9 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
                 continue;
             const Expected<TopoDS_Face> face =
                 occt::buildFace(scene.surfaces[size_t(k)], tolerance);
-            if (!face) {
-                error = QStringLiteral("%1: surface '%2' cannot be written: %3")
-                            .arg(path, names[k], face.message());
-                return std::nullopt;
-            }
+            if (!face)
+                return fail(QStringLiteral("%1: surface '%2' cannot be written: %3")
+                                .arg(path, names[k], face.message()));
             faces[size_t(k)] = *face;
             sewing.Add(*face);
             ++toSew;
@@ -724,47 +710,33 @@ static std::optional<QByteArray> exportBytes(const Scene& original, const QStrin
             const QString first = report.warnings.isEmpty()
                                       ? QString()
                                       : QStringLiteral("; ") + report.warnings.front();
-            error = QStringLiteral("%1: not written: %2 of %3 face(s) do not end in a closed "
-                                   "solid (--require-closed)%4")
-                        .arg(path)
-                        .arg(outside)
-                        .arg(report.faces)
-                        .arg(first);
-            return std::nullopt;
+            return fail(QStringLiteral("%1: not written: %2 of %3 face(s) do not end in a closed "
+                                       "solid (--require-closed)%4")
+                            .arg(path)
+                            .arg(outside)
+                            .arg(report.faces)
+                            .arg(first));
         }
 
         // The built shape is all the writer needs: the scene's copy goes before the writer's
         // model and text, the peak of a large export.
         std::vector<Surface>().swap(scene.surfaces);
         scene.topology = {};
-        QString why;
         QElapsedTimer writer;
         writer.start();
-        const QByteArray bytes = format == CadFormat::Step
-                                     ? writeStep(result, path, options, scene.unit, ids, names, why)
-                                     : writeIges(result, options, scene.unit, ids, names, why);
-        if (bytes.isEmpty()) {
-            error = QStringLiteral("%1: %2").arg(path, why);
-            return std::nullopt;
-        }
+        Expected<QByteArray> bytes = format == CadFormat::Step
+                                         ? writeStep(result, path, options, scene.unit, ids, names)
+                                         : writeIges(result, options, scene.unit, ids, names);
+        if (!bytes)
+            return fail(QStringLiteral("%1: %2").arg(path, bytes.message()));
         report.writerSeconds = writer.nsecsElapsed() * 1e-9;
         step(kSteps);
         report.seconds = timer.nsecsElapsed() * 1e-9;
         return bytes;
     } catch (const Standard_Failure& e) {
-        error = QStringLiteral("%1: OpenCASCADE failed writing the file: %2").arg(path, failure(e));
-        return std::nullopt;
+        return fail(
+            QStringLiteral("%1: OpenCASCADE failed writing the file: %2").arg(path, failure(e)));
     }
-}
-
-Expected<QByteArray> exportOcctBytes(const Scene& scene, const QString& path,
-                                     const ExportOptions& options, ExportReport& report,
-                                     const ImportProgress& progress) {
-    QString error;
-    std::optional<QByteArray> bytes = exportBytes(scene, path, options, report, error, progress);
-    if (!bytes)
-        return Error(error, path);
-    return std::move(*bytes);
 }
 
 Status exportOcctFile(const Scene& scene, const QString& path, const ExportOptions& options,

@@ -188,20 +188,15 @@ struct ReadShape {
     LengthUnit unit = LengthUnit::Millimetre;     // the file's, which the shape is in
 };
 
-// Reads and transfers the file; false with `error` set on any fault.
-bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, ReadShape& out,
-               QString& error) {
+// Reads and transfers the file into `out`; refused with the fault (not naming the file) on any.
+Status readShape(const QString& path, CadFormat format, ProgressBridge& bridge, ReadShape& out) {
     const QByteArray native = QFile::encodeName(path);
     if (format == CadFormat::Brep) {
-        if (const QString why = checkCadFile(path, format).message(); !why.isEmpty()) {
-            error = why;
-            return false;
-        }
+        if (Status checked = checkCadFile(path, format); !checked)
+            return checked;
         std::ifstream in(native.constData(), std::ios::binary);
-        if (!in) {
-            error = QStringLiteral("cannot open the file");
-            return false;
-        }
+        if (!in)
+            return Error(QStringLiteral("cannot open the file"));
         // OCCT's BREP reader loops for ever on a truncated file or on a section count larger
         // than its data (it reads on past the end without checking the stream). With
         // exceptions on, every read that fails (past the end, a word where a number belongs)
@@ -211,25 +206,21 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         try {
             BRepTools::Read(out.shape, in, builder, bridge.Start());
         } catch (const std::ios_base::failure&) {
-            error = QStringLiteral("truncated or corrupt BREP file: a section ends before the "
-                                   "count of entries its header states (read failed at byte "
-                                   "%1)")
-                        .arg(in.rdbuf() ? qint64(in.rdbuf()->pubseekoff(0, std::ios::cur)) : -1);
-            return false;
+            return Error(
+                QStringLiteral("truncated or corrupt BREP file: a section ends before the "
+                               "count of entries its header states (read failed at byte "
+                               "%1)")
+                    .arg(in.rdbuf() ? qint64(in.rdbuf()->pubseekoff(0, std::ios::cur)) : -1));
         }
-        if (out.shape.IsNull()) {
-            error = QStringLiteral("not a readable BREP file");
-            return false;
-        }
-        return true;
+        if (out.shape.IsNull())
+            return Error(QStringLiteral("not a readable BREP file"));
+        return ok();
     }
     QString cut = truncation(path, format);
     if (cut.isEmpty()) // numbers and lists OCCT would choke on (cadprecheck.h)
         cut = checkCadFile(path, format).message();
-    if (!cut.isEmpty()) {
-        error = cut;
-        return false;
-    }
+    if (!cut.isEmpty())
+        return Error(cut);
     QByteArray fileToRead = native;
     QTemporaryFile repaired;
     if (format == CadFormat::Iges) {
@@ -239,28 +230,23 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
         if (f.open(QIODevice::ReadOnly))
             fixed = repairIgesNumbering(f.readAll(), note);
         if (fixed) {
-            if (!repaired.open() || repaired.write(*fixed) != fixed->size() || !repaired.flush()) {
-                error =
-                    QStringLiteral("cannot write a repaired copy: %1").arg(repaired.errorString());
-                return false;
-            }
+            if (!repaired.open() || repaired.write(*fixed) != fixed->size() || !repaired.flush())
+                return Error(
+                    QStringLiteral("cannot write a repaired copy: %1").arg(repaired.errorString()));
             fileToRead = QFile::encodeName(repaired.fileName());
             out.notes << note;
         }
     }
     out.format = occt::exchangeFormat(format);
-    if (!out.format) { // a module built for other formats (cmd_readcad.cpp picks the right one)
-        error = QStringLiteral("this OpenCASCADE module does not read %1 files")
-                    .arg(cadFormatName(format));
-        return false;
-    }
+    if (!out.format) // a module built for other formats (cmd_readcad.cpp picks the right one)
+        return Error(QStringLiteral("this OpenCASCADE module does not read %1 files")
+                         .arg(cadFormatName(format)));
     std::unique_ptr<XSControl_Reader> reader = out.format->makeReader();
     if (reader->ReadFile(fileToRead.constData()) != IFSelect_RetDone) {
         const QString why = loadFailures(reader->WS());
-        error =
-            QStringLiteral("not a readable %1 file%2")
-                .arg(cadFormatName(format), why.isEmpty() ? QString() : QStringLiteral(": ") + why);
-        return false;
+        return Error(QStringLiteral("not a readable %1 file%2")
+                         .arg(cadFormatName(format),
+                              why.isEmpty() ? QString() : QStringLiteral(": ") + why));
     }
     // Entities the parser could not make sense of mean a corrupt file: refuse it rather than
     // import what happens to survive. The one exception is a name or description that is not a
@@ -277,14 +263,12 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
                          .arg(model->NbEntities());
         broken = 0;
     }
-    if (broken > 0) {
-        error = QStringLiteral("corrupt %1 file: %2 of %3 entities could not be parsed (%4)")
-                    .arg(cadFormatName(format))
-                    .arg(broken)
-                    .arg(model->NbEntities())
-                    .arg(loadFailures(reader->WS()));
-        return false;
-    }
+    if (broken > 0)
+        return Error(QStringLiteral("corrupt %1 file: %2 of %3 entities could not be parsed (%4)")
+                         .arg(cadFormatName(format))
+                         .arg(broken)
+                         .arg(model->NbEntities())
+                         .arg(loadFailures(reader->WS())));
     // The shape is made in the file's own unit (OCCT's "cascade" unit set to it), so every
     // coordinate stays the number the file holds; a file that names no unit Knotwork knows is
     // read in millimetres, OCCT's default.
@@ -295,7 +279,7 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     const int roots = reader->NbRootsForTransfer();
     reader->TransferRoots(bridge.Start());
     if (bridge.cancelled())
-        return false;
+        return Error(QStringLiteral("import cancelled"));
     // Root entities that produced no shape are reported, not silently dropped.
     const Handle(Transfer_TransientProcess) tp = reader->WS()->TransferReader()->TransientProcess();
     for (int i = 1; i <= roots && !tp.IsNull(); ++i) {
@@ -315,15 +299,13 @@ bool readShape(const QString& path, CadFormat format, ProgressBridge& bridge, Re
     out.shape = reader->OneShape();
     out.names = reader->WS()->TransferReader();
     out.reader = std::move(reader);
-    if (out.shape.IsNull()) {
-        error = QStringLiteral("the %1 file holds no shape that could be transferred%2")
-                    .arg(cadFormatName(format),
-                         out.skipped.isEmpty()
-                             ? QString()
-                             : QStringLiteral(" (") + out.skipped.front() + QLatin1Char(')'));
-        return false;
-    }
-    return true;
+    if (out.shape.IsNull())
+        return Error(QStringLiteral("the %1 file holds no shape that could be transferred%2")
+                         .arg(cadFormatName(format),
+                              out.skipped.isEmpty()
+                                  ? QString()
+                                  : QStringLiteral(" (") + out.skipped.front() + QLatin1Char(')')));
+    return ok();
 }
 
 } // namespace
@@ -343,10 +325,10 @@ Expected<ImportResult> importShape(const QString& path, CadFormat format,
     std::vector<FaceOrigin> origins;
     try {
         OCC_CATCH_SIGNALS
-        QString why;
-        if (!readShape(path, format, bridge, read, why)) {
-            return Error(bridge.cancelled() ? QStringLiteral("%1: import cancelled").arg(path)
-                                            : QStringLiteral("%1: %2").arg(path, why),
+        if (const Status readable = readShape(path, format, bridge, read); !readable) {
+            return Error(bridge.cancelled()
+                             ? QStringLiteral("%1: import cancelled").arg(path)
+                             : QStringLiteral("%1: %2").arg(path, readable.message()),
                          path);
         }
         TopExp::MapShapes(read.shape, TopAbs_FACE, faces);

@@ -2,6 +2,7 @@
 #include "model/document/document.h"
 
 #include "model/analysis/continuity.h"
+#include "model/document/edit_checks.h"
 #include "model/document/seamkeeper.h"
 #include "model/document/validation.h"
 #include "model/nurbs/analytic_eval.h"
@@ -137,6 +138,53 @@ size_t shapeDigest(const Surface& s) {
 
 } // namespace
 
+// ---- The edit checks (edit_checks.h)
+
+Status checkInsertSurface(const Scene& scene, int index, const Surface& surface) {
+    if (index < 0 || size_t(index) > scene.surfaces.size())
+        return Error(QStringLiteral("surface index %1 out of range").arg(index));
+    if (Status valid = checkSurface(surface); !valid)
+        return valid;
+    if (idUsed(scene, surface.id.value))
+        return Error(QStringLiteral("surface id %1 already used").arg(surface.id.value));
+    if (surface.id.value == kMaxId)
+        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+    if (scene.surfaces.size() >= size_t(kMaxSurfaces))
+        return Error(QStringLiteral("%1 surfaces, more than the limit %2")
+                         .arg(scene.surfaces.size() + 1)
+                         .arg(kMaxSurfaces));
+    for (const TrimLoop& l : surface.trims) {
+        if (l.id.value == kMaxId)
+            return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+        if (l.id == TrimLoopId{surface.id.value} || idUsed(scene, l.id.value))
+            return Error(QStringLiteral("trim loop id %1 already used").arg(l.id.value));
+    }
+    return ok();
+}
+
+Status checkInsertTrimLoop(const Scene& scene, const Surface& target, int index,
+                           const TrimLoop& loop) {
+    if (index < 0 || size_t(index) > target.trims.size())
+        return Error(QStringLiteral("trim loop index %1 out of range").arg(index));
+    if (Status valid = checkTrimLoop(loop); !valid)
+        return valid;
+    if (loop.id.value == kMaxId)
+        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
+    if (idUsed(scene, loop.id.value))
+        return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
+    if (target.trims.size() >= size_t(kMaxTrimLoops))
+        return Error(QStringLiteral("%1 trim loops, more than the limit %2")
+                         .arg(target.trims.size() + 1)
+                         .arg(kMaxTrimLoops));
+    return ok();
+}
+
+Status checkSurfaceName(const QString& name) {
+    if (name.trimmed().isEmpty())
+        return Error(QStringLiteral("a surface name needs a visible character"));
+    return ok();
+}
+
 Document::Document(QObject* parent) : QObject(parent), m_walkFrom(processRevision()) {
     qRegisterMetaType<kw::SurfaceId>();
     qRegisterMetaType<kw::Aspects>();
@@ -212,26 +260,11 @@ Status Document::resetScene(Scene scene) {
 }
 
 Status Document::insertSurface(int index, Surface surface) {
-    if (index < 0 || size_t(index) > m_scene.surfaces.size())
-        return Error(QStringLiteral("surface index %1 out of range").arg(index));
-    if (Status valid = checkSurface(surface); !valid)
-        return valid;
-    if (idUsed(m_scene, surface.id.value))
-        return Error(QStringLiteral("surface id %1 already used").arg(surface.id.value));
-    if (surface.id.value == kMaxId)
-        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
-    if (m_scene.surfaces.size() >= size_t(kMaxSurfaces))
-        return Error(QStringLiteral("%1 surfaces, more than the limit %2")
-                         .arg(m_scene.surfaces.size() + 1)
-                         .arg(kMaxSurfaces));
+    if (Status allowed = checkInsertSurface(m_scene, index, surface); !allowed)
+        return allowed;
     std::uint32_t maxId = surface.id.value;
-    for (const TrimLoop& l : surface.trims) {
-        if (l.id.value == kMaxId)
-            return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
-        if (l.id == TrimLoopId{surface.id.value} || idUsed(m_scene, l.id.value))
-            return Error(QStringLiteral("trim loop id %1 already used").arg(l.id.value));
+    for (const TrimLoop& l : surface.trims)
         maxId = std::max(maxId, l.id.value);
-    }
     const SurfaceId id = surface.id;
     surface.solid = -1; // joins no solid: its siblings' marks may have been cleared meanwhile
     if (const auto origin = m_analyticOrigins.find(surface.id); origin != m_analyticOrigins.end())
@@ -276,8 +309,8 @@ Status Document::setName(SurfaceId id, const QString& name) {
     Surface* s = mutableSurface(id);
     if (!s)
         return noSurface(id);
-    if (name.trimmed().isEmpty())
-        return Error(QStringLiteral("a surface name needs a visible character"));
+    if (Status valid = checkSurfaceName(name); !valid)
+        return valid;
     if (s->name == name)
         return ok();
     s->name = name;
@@ -464,18 +497,8 @@ Status Document::insertTrimLoop(SurfaceId id, int index, TrimLoop loop) {
     Surface* s = mutableSurface(id);
     if (!s)
         return noSurface(id);
-    if (index < 0 || size_t(index) > s->trims.size())
-        return Error(QStringLiteral("trim loop index %1 out of range").arg(index));
-    if (Status valid = checkTrimLoop(loop); !valid)
-        return valid;
-    if (loop.id.value == kMaxId)
-        return Error(QStringLiteral("id %1 leaves no room for new ids").arg(kMaxId));
-    if (idUsed(m_scene, loop.id.value))
-        return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
-    if (s->trims.size() >= size_t(kMaxTrimLoops))
-        return Error(QStringLiteral("%1 trim loops, more than the limit %2")
-                         .arg(s->trims.size() + 1)
-                         .arg(kMaxTrimLoops));
+    if (Status allowed = checkInsertTrimLoop(m_scene, *s, index, loop); !allowed)
+        return allowed;
     Q_EMIT trimLoopAboutToBeInserted(id, index);
     const TrimLoopId loopId = loop.id;
     const int curves = int(loop.curves.size());

@@ -7,6 +7,7 @@
 #include <QElapsedTimer>
 #include <QRandomGenerator>
 #include <QTest>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -189,23 +190,30 @@ void TestProbe::silhouetteDoesNotDiverge() {
              qPrintable(QString::number(p->rayDistance)));
 }
 
-// A probe update's CPU part (refinement, curvature, text) stays far below 1 ms.
+// A probe update's CPU part (refinement, curvature, text) over rays sweeping the sphere: each
+// hits the sphere and gives a text. The time per probe is reported, not asserted: speed is
+// measured by the bench, on a machine whose load a test cannot know.
 void TestProbe::cost() {
     const Surface s = sphere(glm::dvec3(0.0), 1.0);
     const glm::dvec3 eye(0, -5, 0.3);
     QElapsedTimer t;
     t.start();
     constexpr int kRuns = 2000;
-    int length = 0;
+    int hits = 0, texts = 0;
+    double worst = 0.0; // the largest distance of a hit from the sphere
     for (int k = 0; k < kRuns; ++k) {
         const double x = -0.5 + k / double(kRuns);
         const auto p = probeOnRay(s, {0.74, 0.55}, eye, glm::normalize(glm::dvec3(x, 5, 0)));
-        length += int(probeText(*p).size());
+        if (!p)
+            continue;
+        ++hits;
+        worst = std::max(worst, std::abs(glm::length(p->point) - 1.0));
+        texts += !probeText(*p).isEmpty();
     }
-    const double ms = t.nsecsElapsed() * 1e-6 / kRuns;
-    qInfo("one probe: %.4f ms", ms);
-    QVERIFY(length > 0);
-    QVERIFY2(ms < 1.0, qPrintable(QString::number(ms)));
+    qInfo("one probe: %.4f ms", t.nsecsElapsed() * 1e-6 / kRuns);
+    QCOMPARE(hits, kRuns);
+    QCOMPARE(texts, kRuns);
+    QVERIFY2(worst < 1e-9, qPrintable(QString::number(worst)));
 }
 
 QTEST_GUILESS_MAIN(TestProbe)

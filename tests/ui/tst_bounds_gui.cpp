@@ -72,7 +72,8 @@ private Q_SLOTS:
                 errors.clear();
                 QElapsedTimer clock;
                 clock.start();
-                const bool ok = import ? window.importFile(path) : window.openFile(path);
+                const bool ok =
+                    import ? bool(window.importFile(path)) : bool(window.openFile(path));
                 const qint64 ms = clock.elapsed();
                 QVERIFY2(!ok, qPrintable(path));
                 QVERIFY2(ms < 2000, qPrintable(QStringLiteral("%1: %2 ms").arg(path).arg(ms)));

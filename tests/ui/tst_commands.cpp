@@ -55,6 +55,7 @@ private Q_SLOTS:
     void insertKnotAndElevateRejected();
     void removeSurfaceRestoresIndexAndId();
     void addSurfaceAllocatesIdsOnlyWhenValid();
+    void createRefusesWithTheDocumentsReason();
     void trimLoopCommands();
     void moveTrimPointsMerge();
     void lightCommands();
@@ -300,6 +301,30 @@ void TestCommands::addSurfaceAllocatesIdsOnlyWhenValid() {
     QCOMPARE(f.doc.indexOf(id), -1);
     f.stack.redo();
     QCOMPARE(f.doc.indexOf(id), 1); // same id, same index
+}
+
+void TestCommands::createRefusesWithTheDocumentsReason() {
+    // A create asks the document's own rule (model/document/edit_checks.h): what the document
+    // would refuse is refused before anything changes, with the document's reason, ids
+    // included (one counter for surfaces and loops).
+    Fixture f;
+    const Scene before = f.doc.scene();
+    const Surface onLoopId = makeSurface(10, QStringLiteral("Taken"), patch()); // loop 10's id
+    const QString surfaceIdUsed = QStringLiteral("surface id 10 already used");
+    QCOMPARE(kwtest::refusal(AddSurface::create(&f.doc, onLoopId)), surfaceIdUsed);
+    QCOMPARE(f.doc.insertSurface(3, onLoopId).message(), surfaceIdUsed);
+    Surface loopOnSurfaceId = makeSurface(0, QStringLiteral("Loop"), patch(5, 5));
+    loopOnSurfaceId.trims.push_back(rectLoop(TrimLoopId{2}, 0.2, 0.2, 0.4, 0.4));
+    QCOMPARE(kwtest::refusal(AddSurface::create(&f.doc, loopOnSurfaceId)),
+             QStringLiteral("trim loop id 2 already used"));
+    const TrimLoop onSurfaceId = rectLoop(TrimLoopId{1}, 0.1, 0.1, 0.2, 0.2);
+    const QString loopIdUsed = QStringLiteral("trim loop id 1 already used");
+    QCOMPARE(kwtest::refusal(AddTrimLoop::create(&f.doc, SurfaceId{2}, onSurfaceId)), loopIdUsed);
+    QCOMPARE(f.doc.insertTrimLoop(SurfaceId{2}, 0, onSurfaceId).message(), loopIdUsed);
+    QCOMPARE(kwtest::refusal(RenameSurface::create(&f.doc, SurfaceId{1}, QStringLiteral(" "))),
+             f.doc.setName(SurfaceId{1}, QStringLiteral(" ")).message());
+    QCOMPARE(f.doc.scene(), before); // nextId included: no id was used up
+    QCOMPARE(f.stack.count(), 0);
 }
 
 void TestCommands::trimLoopCommands() {

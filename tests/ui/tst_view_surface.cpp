@@ -1,16 +1,20 @@
 // The 3D view's frames in a native OpenGL window (ui/view_surface.h) on the unit sphere sample
 // (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads,
 // the probe's panel shows over the window, measurements and the rubber band are painted over
-// the frame, and the QOpenGLWidget fallback draws the same pixels; on a context too old for
-// the renderer (tests/ui/view_frames.cmake) the view shows why instead of a frame.
+// the frame, input that reaches the native window itself is the view's (a control-point drag
+// edits the document), and the QOpenGLWidget fallback draws the same pixels; on a context too old
+// for the renderer (tests/ui/view_frames.cmake) the view shows why instead of a frame.
 #include "editor_test_util.h"
 #include "render/offscreen_renderer.h"
+#include "ui/controlpointpicker.h"
 #include "ui/probe_tool.h"
 
 #include <QCursor>
 #include <QFrame>
 #include <QScreen>
 #include <QSignalSpy>
+#include <QUndoStack>
+#include <QWindow>
 
 using namespace kw;
 
@@ -148,6 +152,47 @@ private Q_SLOTS:
         QCOMPARE(differingPixels(onScreen(vp, band), vp->grabFramebuffer().copy(band)), 0);
     }
 
+    void inputOnTheNativeWindowIsTheViews() {
+        // Where a platform hands the native window input despite WindowTransparentForInput,
+        // the window's own events must drive the view: a control-point drag sent to the
+        // window edits the document live and is one undo step.
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        QWindow* window = nativeWindow();
+        QVERIFY(window);
+        QCOMPARE(window->geometry().size(), vp->size());
+        waitStill(300);
+        ControlPointPicker picker;
+        picker.update(*m_window->document(), vp->viewProjection());
+        const Surface& s = m_window->document()->scene().surfaces.front();
+        const ControlPointRef ref{s.id, 1, 1};
+        const auto pixel = picker.pixelOf(ref);
+        QVERIFY(pixel && vp->rect().contains(pixel->toPoint()));
+        QCOMPARE(picker.nearest(pixel->toPoint()), ref);
+        const QPoint press = pixel->toPoint();
+        const glm::dvec3 p0 = point(ref);
+
+        QTest::mouseMove(window, press);
+        QTest::mousePress(window, Qt::LeftButton, Qt::NoModifier, press);
+        QVERIFY(vp->isDragging());
+        QTest::mouseMove(window, press + QPoint(12, -8));
+        QVERIFY(point(ref) != p0); // the step reached the document
+        QCOMPARE(m_window->undoStack()->count(), 0);
+        QTest::mouseMove(window, press + QPoint(30, -20));
+        QTest::mouseRelease(window, Qt::LeftButton, Qt::NoModifier, press + QPoint(30, -20));
+        QVERIFY(!vp->isDragging());
+        QCOMPARE(m_window->undoStack()->count(), 1);
+        const glm::dvec3 p1 = point(ref);
+        QVERIFY(p1 != p0);
+        // The point's pixel moved as far as the mouse did.
+        const auto moved = vp->viewProjection().project(p1);
+        QVERIFY(moved);
+        QVERIFY2(std::hypot(moved->x() - (pixel->x() + 30), moved->y() - (pixel->y() - 20)) < 1e-3,
+                 qPrintable(QStringLiteral("%1,%2").arg(moved->x()).arg(moved->y())));
+        m_window->undoStack()->undo();
+        QCOMPARE(point(ref), p0);
+    }
+
     void widgetFallbackDrawsTheSameFrame() {
         openWindow("sphere");
         QVERIFY(m_window->viewport()->isNativeWindow());
@@ -188,6 +233,22 @@ private Q_SLOTS:
     }
 
 private:
+    /// The view's native window (the one that shows its frames and asks for no input).
+    QWindow* nativeWindow() const {
+        for (QWindow* w : QGuiApplication::allWindows()) {
+            if (w->surfaceType() != QSurface::OpenGLSurface ||
+                !(w->flags() & Qt::WindowTransparentForInput))
+                continue;
+            for (QWindow* up = w->parent(); up; up = up->parent())
+                if (up == m_window->windowHandle())
+                    return w;
+        }
+        return nullptr;
+    }
+    glm::dvec3 point(const ControlPointRef& ref) const {
+        const Surface& s = m_window->document()->scene().surfaces.front();
+        return s.geometry.points[size_t(s.geometry.index(ref.i, ref.j))];
+    }
     /// Draws one frame and waits for it.
     bool nextFrame() {
         Viewport* vp = m_window->viewport();

@@ -1,22 +1,13 @@
 // Edit commands that add, remove and rename surfaces and add or remove trim loops.
-#include "model/document/validation.h"
+#include "model/document/edit_checks.h"
 #include "ui/edit/commands.h"
 #include "ui/edit/commandsupport.h"
-
-#include <set>
 
 namespace kw {
 
 using namespace edit_detail;
 
 namespace {
-
-bool loopIdUsed(const Scene& scene, TrimLoopId id) {
-    for (const Surface& s : scene.surfaces)
-        if (findLoop(&s, id))
-            return true;
-    return false;
-}
 
 QString curves(size_t n) {
     return n == 1 ? QStringLiteral("1 curve") : QStringLiteral("%1 curves").arg(n);
@@ -33,22 +24,18 @@ Expected<std::unique_ptr<AddSurface>> AddSurface::create(Document* document, Sur
     const auto& surfaces = document->scene().surfaces;
     if (index == -1)
         index = int(surfaces.size());
-    if (index < 0 || size_t(index) > surfaces.size())
-        return Error(QStringLiteral("surface index %1 out of range").arg(index));
-    if (surface.id.isValid() && document->surface(surface.id))
-        return Error(QStringLiteral("surface id %1 already used").arg(surface.id.value));
-    std::set<TrimLoopId> ids;
-    for (const TrimLoop& l : surface.trims)
-        if (l.id.isValid() && (loopIdUsed(document->scene(), l.id) || !ids.insert(l.id).second))
-            return Error(QStringLiteral("trim loop id %1 already used").arg(l.id.value));
-    // Check everything but the ids before allocating any, so a rejected edit uses up none.
+    // The document's rule, on the ids the surface will have: its own, else those the document
+    // hands out next, in the order allocated below. Checked before any is allocated, so a
+    // refused edit uses up none.
     Surface probe = surface;
-    probe.id = SurfaceId{1};
-    std::uint32_t next = 1;
+    std::uint32_t next = document->scene().nextId;
+    if (!probe.id.isValid())
+        probe.id = SurfaceId{next++};
     for (TrimLoop& l : probe.trims)
-        l.id = TrimLoopId{next++};
-    if (Status valid = checkSurface(probe); !valid)
-        return std::move(valid).error();
+        if (!l.id.isValid())
+            l.id = TrimLoopId{next++};
+    if (Status allowed = checkInsertSurface(document->scene(), index, probe); !allowed)
+        return std::move(allowed).error();
     if (!surface.id.isValid())
         surface.id = document->allocateSurfaceId();
     for (TrimLoop& l : surface.trims)
@@ -98,8 +85,8 @@ RenameSurface::create(Document* document, SurfaceId surface, const QString& name
     const Surface* s = surfaceIn(document, surface);
     if (!s)
         return Error(noSurface(document, surface));
-    if (name.trimmed().isEmpty())
-        return Error(QStringLiteral("a surface name needs a visible character"));
+    if (Status valid = checkSurfaceName(name); !valid)
+        return std::move(valid).error();
     if (name == s->name)
         return Error(QStringLiteral("surface is already named “%1”").arg(name));
     std::unique_ptr<RenameSurface> c(
@@ -126,14 +113,13 @@ Expected<std::unique_ptr<AddTrimLoop>> AddTrimLoop::create(Document* document, S
         return Error(noSurface(document, surface));
     if (index == -1)
         index = int(s->trims.size());
-    if (index < 0 || size_t(index) > s->trims.size())
-        return Error(QStringLiteral("trim loop index %1 out of range").arg(index));
-    if (loop.id.isValid() && loopIdUsed(document->scene(), loop.id))
-        return Error(QStringLiteral("trim loop id %1 already used").arg(loop.id.value));
+    // The document's rule, on the id the loop will have: its own, else the one the document
+    // hands out next (none is allocated for a refused edit).
     TrimLoop probe = loop;
-    probe.id = TrimLoopId{1};
-    if (Status valid = checkTrimLoop(probe); !valid)
-        return std::move(valid).error();
+    if (!probe.id.isValid())
+        probe.id = TrimLoopId{document->scene().nextId};
+    if (Status allowed = checkInsertTrimLoop(document->scene(), *s, index, probe); !allowed)
+        return std::move(allowed).error();
     if (!loop.id.isValid())
         loop.id = document->allocateTrimLoopId();
     if (!loop.id.isValid())
