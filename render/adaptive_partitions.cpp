@@ -115,11 +115,7 @@ PartitionChoice chooseCut(const NurbsSurface& s, const std::vector<SpanBound>& s
         return false;
     };
     if (!tensor.met && scale.cullOutsideView && !spans.empty() && pastNear()) {
-        int allSpans = 0;
-        for (int ku = s.degreeU; ku < s.countU; ++ku)
-            for (int kv = s.degreeV; kv < s.countV; ++kv)
-                allSpans += s.knotsU[size_t(ku)] < s.knotsU[size_t(ku + 1)] &&
-                            s.knotsV[size_t(kv)] < s.knotsV[size_t(kv + 1)];
+        const int allSpans = surfaceSpanCount(s);
         for (int grid = spans.front().grid * 2;
              grid <= 16 && std::int64_t(allSpans) * grid * grid <= kMaxFinerSubs; grid *= 2) {
             std::vector<SpanBound> finer;
@@ -159,13 +155,8 @@ const std::vector<SpanBound>& AdaptivePartitions::spans(const Surface& surface,
     if (m_haveSpans && m_geometry.points == rev.points && m_geometry.knots == rev.knots)
         return m_spans;
     const NurbsSurface& g = surface.geometry;
-    // Count the spans first: the grid depends on them.
-    int spans = 0;
-    for (int ku = g.degreeU; ku < g.countU; ++ku)
-        for (int kv = g.degreeV; kv < g.countV; ++kv)
-            spans += g.knotsU[size_t(ku)] < g.knotsU[size_t(ku + 1)] &&
-                     g.knotsV[size_t(kv)] < g.knotsV[size_t(kv + 1)];
-    m_spans = surfaceSpanBounds(g, gridFor(spans));
+    // The grid depends on the count of spans.
+    m_spans = surfaceSpanBounds(g, gridFor(surfaceSpanCount(g)));
     m_geometry = rev;
     m_haveSpans = true;
     m_inBox.clear();

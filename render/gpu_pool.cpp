@@ -112,6 +112,62 @@ void GpuPool::write(std::int64_t offset, std::int64_t count, const void* data) {
                                    GLsizeiptr(count * m_elementBytes), data);
 }
 
+bool GpuPool::shouldCompact(std::int64_t capacity, std::int64_t used) {
+    return used > 0 && capacity > 2 * compactedCapacity(used);
+}
+
+std::int64_t GpuPool::compactedCapacity(std::int64_t used) {
+    return std::max(used + used / 4, kMinElements);
+}
+
+bool GpuPool::compact(std::vector<Range> ranges) {
+    const std::int64_t used = m_ranges.used();
+    if (!m_buffer || !shouldCompact(m_capacity, used))
+        return false;
+    std::int64_t total = 0;
+    for (const Range& r : ranges) {
+        if (!r.offset || *r.offset < 0 || r.count <= 0 || *r.offset + r.count > m_ranges.end())
+            return false;
+        total += r.count;
+    }
+    std::sort(ranges.begin(), ranges.end(),
+              [](const Range& a, const Range& b) { return *a.offset < *b.offset; });
+    for (size_t k = 1; k < ranges.size(); ++k)
+        if (*ranges[k - 1].offset + ranges[k - 1].count > *ranges[k].offset)
+            return false; // overlapping: not the allocator's ranges
+    if (total != used)
+        return false; // a range not listed would be lost
+    const std::int64_t capacity = compactedCapacity(used);
+    GLuint packed = 0;
+    m_gl->glCreateBuffers(1, &packed);
+    m_gl->glNamedBufferData(packed, GLsizeiptr(capacity * m_elementBytes), nullptr,
+                            GL_DYNAMIC_DRAW);
+    // Neighbouring ranges stay neighbours: one copy per run of them.
+    std::int64_t to = 0;
+    for (size_t k = 0; k < ranges.size();) {
+        const std::int64_t from = *ranges[k].offset;
+        std::int64_t run = 0;
+        size_t end = k;
+        while (end < ranges.size() && *ranges[end].offset == from + run)
+            run += ranges[end++].count;
+        m_gl->glCopyNamedBufferSubData(m_buffer, packed, GLintptr(from * m_elementBytes),
+                                       GLintptr(to * m_elementBytes),
+                                       GLsizeiptr(run * m_elementBytes));
+        for (; k < end; ++k) {
+            *ranges[k].offset = to;
+            to += ranges[k].count;
+        }
+    }
+    // Waited for before the old buffer goes, as when the pool grows (allocate).
+    m_gl->glFinish();
+    m_gl->glDeleteBuffers(1, &m_buffer);
+    m_buffer = packed;
+    m_capacity = capacity;
+    m_ranges.clear();
+    m_ranges.allocate(used); // one live block [0, used): the ranges' new places
+    return true;
+}
+
 void GpuPool::release() {
     if (m_buffer && m_gl)
         m_gl->glDeleteBuffers(1, &m_buffer);

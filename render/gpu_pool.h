@@ -13,6 +13,7 @@
 #include <QString>
 #include <cstdint>
 #include <map>
+#include <vector>
 
 namespace kw {
 
@@ -55,9 +56,30 @@ public:
     /// Bytes of the GL buffer (capacity, not only the live ranges).
     std::int64_t residentBytes() const { return m_capacity * m_elementBytes; }
     std::int64_t usedElements() const { return m_ranges.used(); }
+    std::int64_t elementBytes() const { return m_elementBytes; }
     std::int64_t maxBytes() const { return m_maxBytes; }
     /// Frees the GL buffer and every range.
     void release();
+
+    /// One live range of the pool and where its owner keeps the offset (compact moves it).
+    struct Range {
+        std::int64_t* offset = nullptr; ///< elements; compact writes the new place here
+        std::int64_t count = 0;
+    };
+    /// Packs `ranges` (every live range of the pool, each once) to the front of a new buffer
+    /// of compactedCapacity(used) elements, in the order of their offsets, copying their
+    /// contents on the GPU, and writes each range's new offset to its owner. Due only when the
+    /// buffer holds more than twice what the ranges need (shouldCompact): a pool keeps the
+    /// high-water mark of a view's polygons (a close-up's rebuilt polygon allocated past the
+    /// fitted view's). False, with nothing moved, when not due or when `ranges` are not
+    /// exactly the pool's live elements. Users re-bind buffer() afterwards, as after allocate.
+    bool compact(std::vector<Range> ranges);
+    /// Whether a pool of `capacity` elements holding `used` is worth packing: more than twice
+    /// compactedCapacity(used). No GL: the policy is testable alone.
+    static bool shouldCompact(std::int64_t capacity, std::int64_t used);
+    /// The capacity a pack leaves for `used` elements: a quarter of room to grow (a view that
+    /// needs a few more cells then re-uses it, without a copy), at least kMinElements.
+    static std::int64_t compactedCapacity(std::int64_t used);
 
     /// The capacity (elements) a pool of `capacity` grows to for `need` elements: at least
     /// kMinElements, doubled while under kDoublingBytes, then a quarter more at a time, capped

@@ -227,6 +227,7 @@ Status GpuScene::sync(const Document& doc, const FrameCamera& camera, const Rend
     else
         syncChanged(scene, work, pass);
     countSolidMembers(doc, full);
+    compactPools();
     m_changes.clear();
     Status status = reportPass(scene, pass, double(timer.nsecsElapsed()) * 1e-6, report);
     const bool masksRan = options.trims && syncMasks(doc, camera, options, full, status, report);

@@ -275,6 +275,11 @@ private:
     /// Writes the rows of `records` that changed since the last frame and re-points the VAOs
     /// at the pools' current buffers.
     void syncTable(const std::vector<SurfaceRecord*>& records);
+    /// Packs the polygon pools that hold more than twice what their polygons need
+    /// (GpuPool::compact): a close-up's polygons are allocated while the fitted view's are
+    /// still held, and a view back out leaves them at the close-up's size. When something
+    /// moved, the layout stamp moves (the draw commands hold the offsets).
+    void compactPools();
     void syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up);
     void syncNet(SurfaceRecord& r, const Revisions& rev, UploadStats& up);
 

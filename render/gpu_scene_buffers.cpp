@@ -143,6 +143,53 @@ void GpuScene::syncTable(const std::vector<SurfaceRecord*>& records) {
     gl->glVertexArrayElementBuffer(m_outlineVao, m_pools.outlines.buffer());
 }
 
+void GpuScene::compactPools() {
+    struct Owned {
+        GpuPool* pool;
+        std::int64_t SurfaceGpu::*offset;
+        std::int64_t (*count)(const SurfaceGpu&);
+    };
+    const Owned owned[] = {
+        {&m_pools.vertices, &SurfaceGpu::vertexOffset,
+         [](const SurfaceGpu& g) {
+             return g.vertexCount;
+         }},
+        {&m_pools.triangles, &SurfaceGpu::triangleOffset,
+         [](const SurfaceGpu& g) {
+             return std::int64_t(g.triangleIndexCount);
+         }},
+        {&m_pools.outlines, &SurfaceGpu::outlineOffset,
+         [](const SurfaceGpu& g) {
+             return std::int64_t(g.outlineIndexCount);
+         }},
+        {&m_pools.skirtVertices, &SurfaceGpu::skirtVertexOffset,
+         [](const SurfaceGpu& g) {
+             return g.skirtVertexCount;
+         }},
+        {&m_pools.skirtIndices, &SurfaceGpu::skirtIndexOffset,
+         [](const SurfaceGpu& g) {
+             return std::int64_t(g.skirtIndexCount);
+         }},
+    };
+    bool moved = false;
+    for (const Owned& o : owned) {
+        if (!GpuPool::shouldCompact(o.pool->residentBytes() / o.pool->elementBytes(),
+                                    o.pool->usedElements()))
+            continue;
+        std::vector<GpuPool::Range> ranges;
+        for (auto& [id, e] : m_entries)
+            if (SurfaceGpu* g = e.record.exact.get(); g && g->*o.offset >= 0 && o.count(*g) > 0)
+                ranges.push_back({&(g->*o.offset), o.count(*g)});
+        moved = o.pool->compact(std::move(ranges)) || moved;
+    }
+    // The same contents at new places: the draw commands (which hold the offsets) are made
+    // again. Nothing else keeps them: the polygons, splits, fins and footprints keyed by
+    // SurfaceGpu::polygonSerial hold no place in a pool, and a pick from the last frame reads
+    // its (u, v) and surface, not the cell's vertex.
+    if (moved)
+        ++m_layoutStamp;
+}
+
 void GpuScene::syncMesh(SurfaceRecord& r, const Revisions& rev, int nu, int nv, UploadStats& up) {
     MeshGpu& m = r.mesh;
     if (m.vao && m.revisions.points == rev.points && m.revisions.knots == rev.knots && m.nu == nu &&

@@ -62,6 +62,10 @@ Status checkNurbsCurve(const NurbsCurve2& c);
 /// A2.1: the knot span index k with knots[k] <= u < knots[k+1], clamped to the valid range
 /// [degree, n] so that u == last knot maps to the last non-empty span.
 int findSpan(int degree, const std::vector<double>& knots, double u);
+/// The non-empty knot spans of the domain, [knots[k], knots[k+1]) with knots[k] < knots[k+1]
+/// for k in [degree, n]: the spans findSpan can return. 0 for a knot vector too short for
+/// `degree`.
+int nonEmptySpanCount(int degree, const std::vector<double>& knots);
 /// A2.2: the degree+1 non-zero basis functions N[span-degree .. span] at u, written to out.
 void basisFunctions(int span, double u, int degree, const std::vector<double>& knots, double* out);
 /// A2.3: derivatives 0..order of the non-zero basis functions; out[k*(degree+1) + j] is the
@@ -106,6 +110,9 @@ SurfaceFrame surfaceFrame(const NurbsSurface& s, double u, double v);
 /// Axis-aligned bounds of the control points (the surface lies inside by the convex hull
 /// property, weights > 0).
 void surfaceControlBounds(const NurbsSurface& s, glm::dvec3& lo, glm::dvec3& hi);
+/// The non-empty spans (rectangles of one polynomial piece) of the surface's domain: the
+/// product of nonEmptySpanCount along u and along v.
+int surfaceSpanCount(const NurbsSurface& s);
 
 // ---- Curve evaluation (2D). Preconditions: a valid curve; t is clamped to the domain.
 

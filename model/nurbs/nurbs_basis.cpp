@@ -56,6 +56,18 @@ int findSpan(int degree, const std::vector<double>& knots, double u) {
     return mid;
 }
 
+int nonEmptySpanCount(int degree, const std::vector<double>& knots) {
+    // Spans k in [degree, n], n = knots.size() - degree - 2 (the last control point).
+    int count = 0;
+    for (int k = std::max(degree, 0); k + degree + 2 <= int(knots.size()); ++k)
+        count += knots[size_t(k)] < knots[size_t(k + 1)];
+    return count;
+}
+
+int surfaceSpanCount(const NurbsSurface& s) {
+    return nonEmptySpanCount(s.degreeU, s.knotsU) * nonEmptySpanCount(s.degreeV, s.knotsV);
+}
+
 // The NURBS Book, A2.2 (BasisFuns): the triangular scheme of the Cox-de Boor recurrence,
 // with left[j] = u - u_{span+1-j} and right[j] = u_{span+j} - u.
 void basisFunctions(int span, double u, int degree, const std::vector<double>& knots, double* out) {

@@ -3,6 +3,8 @@
 #include "kernel_test_util.h"
 
 #include <QTest>
+#include <cstdint>
+#include <set>
 
 using namespace kw;
 
@@ -39,6 +41,7 @@ class TestNurbsBasis : public QObject {
     Q_OBJECT
 private Q_SLOTS:
     void findSpanCases();
+    void spanCounts();
     void partitionOfUnity_data();
     void partitionOfUnity();
     void derivativesMatchFiniteDifferences_data();
@@ -63,6 +66,51 @@ void TestNurbsBasis::findSpanCases() {
     const std::vector<double> V = {0, 1, 2, 3, 4, 5, 6, 7};
     QCOMPARE(knotDomain(V, 3), (Interval{3.0, 4.0}));
     QCOMPARE(findSpan(3, V, 4.0), 3);
+}
+
+void TestNurbsBasis::spanCounts() {
+    // Known cases: a double interior knot leaves an empty span; an unclamped vector's domain
+    // is one span; a vector too short for its degree has none.
+    QCOMPARE(nonEmptySpanCount(2, {0, 0, 0, 1, 2, 2, 3, 4, 4, 4}), 4);
+    QCOMPARE(nonEmptySpanCount(3, {0, 1, 2, 3, 4, 5, 6, 7}), 1);
+    QCOMPARE(nonEmptySpanCount(1, {0, 0, 1, 1}), 1);
+    QCOMPARE(nonEmptySpanCount(2, {0, 0, 1}), 0);
+    QCOMPARE(nonEmptySpanCount(1, {}), 0);
+    // Property: the count is the number of distinct spans findSpan gives over the domain
+    // (sampled at every knot and between them), for knot vectors with repeated knots.
+    std::uint32_t seed = 12345;
+    const auto next = [&seed] { return (seed = seed * 1664525u + 1013904223u) >> 8; };
+    for (int trial = 0; trial < 200; ++trial) {
+        const int p = 1 + int(next() % 5);
+        const int count = p + 1 + int(next() % 8);
+        std::vector<double> U(size_t(count + p + 1));
+        double t = 0.0;
+        for (size_t i = 0; i < U.size(); ++i) {
+            if (i > 0 && next() % 3 != 0)
+                t += 1.0 + double(next() % 3);
+            U[i] = t;
+        }
+        const Interval dom = knotDomain(U, p);
+        if (!(dom.first < dom.last))
+            continue; // no domain: not a valid knot vector
+        std::set<int> seen;
+        for (double k : U) {
+            const double mid = k + 0.5;
+            for (double u : {k, mid})
+                if (u >= dom.first && u <= dom.last)
+                    seen.insert(findSpan(p, U, u));
+        }
+        QCOMPARE(nonEmptySpanCount(p, U), int(seen.size()));
+    }
+    // A surface: the product of its two directions' counts.
+    NurbsSurface s;
+    s.degreeU = 2;
+    s.degreeV = 1;
+    s.knotsU = {0, 0, 0, 1, 2, 2, 3, 4, 4, 4};
+    s.knotsV = {0, 0, 1, 1, 2, 2};
+    s.countU = 7;
+    s.countV = 4;
+    QCOMPARE(surfaceSpanCount(s), 4 * 2);
 }
 
 void TestNurbsBasis::partitionOfUnity_data() {
