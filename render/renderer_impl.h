@@ -164,12 +164,22 @@ struct Renderer::Impl {
         PartialFrameView view;
         std::vector<SurfaceFootprint> footprints;
         std::optional<glm::ivec4> damage;
+        /// What of `damage` is redrawn, one pass sequence each: its changed surfaces' tiles
+        /// (render/damage_tiles.h), or `damage` itself with overlays.
+        std::vector<glm::ivec4> regions;
         bool unchanged = false; ///< nothing to redraw: the kept frame is the image
     };
     PartialPlan planPartialFrame(const Document& doc, const RenderTarget& target, QSize size,
                                  FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const FrameTargets& targets,
                                  bool pick, FrameReport& report);
+    /// The rectangles covering the damage tiles (render/damage_tiles.h) of the `changed`
+    /// surfaces, as they were (their footprint's tiles, else its rectangle's) and as they are
+    /// drawn now (their cells' tiles, taken here, kept in the record and in `footprints`).
+    std::vector<glm::ivec4> damageRegions(const std::vector<DamagedSurface>& changed,
+                                          const FrameCamera& fc, int pad,
+                                          const RenderOptions::DamageTiles& options,
+                                          std::vector<SurfaceFootprint>& footprints);
     /// After a frame that is not a pick: what pickInLastFrame and the next partial frame may
     /// read from it (`ok`: the frame succeeded).
     void rememberFrame(const LastFrame& now, const FrameCamera& fc, const RenderOptions& options,
