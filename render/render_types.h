@@ -227,12 +227,13 @@ struct RenderOptions {
     /// How a partial frame narrows its rectangle to the changed surfaces' damage tiles
     /// (render/damage_tiles.h): tiles of `tilePixels`, covered by at most `maxRects`
     /// rectangles, two merged when their union adds at most `mergePixels` pixels. Each
-    /// rectangle draws every pass again, which costs about what some thousand pixels do on
-    /// llvmpipe. maxRects 1: the one rectangle (tile-aligned).
+    /// rectangle draws every pass again (its plan, the fins, the deferred pass's set-up), which
+    /// on llvmpipe measured about what several thousand of hammer's pixels cost (docs/
+    /// PERFORMANCE.md ## Editing). maxRects 1: the one rectangle.
     struct DamageTiles {
         int tilePixels = 16;
-        int maxRects = 8;
-        std::int64_t mergePixels = 2048;
+        int maxRects = 4;
+        std::int64_t mergePixels = 8192;
         bool operator==(const DamageTiles&) const = default;
     };
     DamageTiles damageTiles;

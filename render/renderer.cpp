@@ -283,7 +283,7 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     if (!plan.keepable)
         return plan;
     plan.view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
-    plan.footprints = surfaceFootprints(fc, options.controlNet);
+    plan.footprints = surfaceFootprints(fc, options);
     std::vector<DamagedSurface> changed;
     bool bandsChanged = false;
     if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
@@ -343,6 +343,25 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     return plan;
 }
 
+std::shared_ptr<const std::vector<std::int32_t>> Renderer::Impl::recordTiles(SurfaceRecord& r,
+                                                                             const FrameCamera& fc,
+                                                                             const TileGrid& grid,
+                                                                             int pad) {
+    r.tilesWanted = true;
+    if (!r.drawnBounded || !r.exact)
+        return nullptr;
+    if (!r.drawnTiles || r.drawnTilesPad != pad || r.drawnTilesSide != grid.tile()) {
+        std::optional<std::vector<std::int32_t>> cells =
+            cellTiles(r.exact->polygon, fc.viewProjection, grid, pad);
+        if (!cells)
+            return nullptr;
+        r.drawnTiles = std::make_shared<const std::vector<std::int32_t>>(std::move(*cells));
+        r.drawnTilesPad = pad;
+        r.drawnTilesSide = grid.tile();
+    }
+    return r.drawnTiles;
+}
+
 std::vector<glm::ivec4> Renderer::Impl::damageRegions(const std::vector<DamagedSurface>& changed,
                                                       const FrameCamera& fc, int pad,
                                                       const RenderOptions::DamageTiles& options,
@@ -351,20 +370,8 @@ std::vector<glm::ivec4> Renderer::Impl::damageRegions(const std::vector<DamagedS
     for (const DamagedSurface& c : changed) {
         std::shared_ptr<const std::vector<std::int32_t>> tiles = c.footprint.tiles;
         if (!c.before && c.index >= 0 && size_t(c.index) < scene.records().size()) {
-            // As this frame draws it: its cells' tiles, kept for the next frame's "before".
-            SurfaceRecord* r = scene.records()[size_t(c.index)];
-            if (r->drawnBounded && r->exact &&
-                (!r->drawnTiles || r->drawnTilesPad != pad || r->drawnTilesSide != grid.tile()))
-                if (std::optional<std::vector<std::int32_t>> cells =
-                        cellTiles(r->exact->polygon, fc.viewProjection, grid, pad)) {
-                    r->drawnTiles =
-                        std::make_shared<const std::vector<std::int32_t>>(std::move(*cells));
-                    r->drawnTilesPad = pad;
-                    r->drawnTilesSide = grid.tile();
-                }
-            tiles = r->drawnBounded && r->drawnTilesPad == pad && r->drawnTilesSide == grid.tile()
-                        ? r->drawnTiles
-                        : nullptr;
+            // As this frame draws it, kept for the next frame's "before".
+            tiles = recordTiles(*scene.records()[size_t(c.index)], fc, grid, pad);
             footprints[size_t(c.index)].tiles = tiles;
         }
         if (tiles)
@@ -645,7 +652,10 @@ PartialFrameView Renderer::Impl::partialView(const Document& doc, const RenderTa
 }
 
 std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamera& fc,
-                                                                bool controlNet) {
+                                                                const RenderOptions& options) {
+    const bool controlNet = options.controlNet;
+    const TileGrid grid(fc.viewport, options.damageTiles.tilePixels);
+    const int pad = PartialFrames::reachPixels(options);
     std::vector<SurfaceFootprint> out;
     out.reserve(scene.records().size());
     for (SurfaceRecord* r : scene.records()) {
@@ -700,8 +710,10 @@ std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamer
             f.rect = r->drawnRect;
         if (control)
             PartialFrames::unite(f.rect, *control);
-        else if (r->drawnBounded)
-            f.tiles = r->drawnTiles; // those of its rectangle, when taken
+        else if (r->drawnBounded && r->tilesWanted)
+            // A surface a partial frame redrew (being edited): its tiles as this frame draws
+            // it, for the next partial frame, even when this one is drawn whole.
+            f.tiles = recordTiles(*r, fc, grid, pad);
         out.push_back(f);
     }
     return out;

@@ -4,6 +4,7 @@
 
 #include "render/accumulate_target.h"
 #include "render/antialias_target.h"
+#include "render/damage_tiles.h"
 #include "render/edge_bands_pass.h"
 #include "render/exact_contract.h"
 #include "render/exact_surface_pass.h"
@@ -116,7 +117,13 @@ struct Renderer::Impl {
                                  const RenderOptions& options, const ValueRange& range) const;
     /// Brings each record's polygon rectangle (SurfaceRecord::drawnRect) up to date first; with
     /// `controlNet` a footprint holds the control points too (the net is drawn).
-    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc, bool controlNet);
+    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc,
+                                                    const RenderOptions& options);
+    /// r's damage tiles at fc's view (kw::cellTiles, grown by `pad`), taken when missing and
+    /// kept in the record (SurfaceRecord::drawnTiles); null when its polygon cannot tell them.
+    /// Marks it SurfaceRecord::tilesWanted.
+    std::shared_ptr<const std::vector<std::int32_t>>
+    recordTiles(SurfaceRecord& r, const FrameCamera& fc, const TileGrid& grid, int pad);
 
     // renderFrame's steps.
     /// Zeroes the passes' per-frame counters.

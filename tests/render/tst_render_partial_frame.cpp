@@ -221,6 +221,11 @@ class TestRenderPartialFrame : public QObject {
         // A pick between two frames (the probe's hover) draws its own pixel with its own plan.
         m_partial->pick(doc, cam, QPointF(kSide / 2 + 0.5, kSide / 2 + 0.5),
                         options(RenderOptions::FrameReuse::Partial));
+        // A whole frame between two partial ones (the bench alternates them): the next partial
+        // frame redraws the face's tiles as that frame drew it.
+        QVERIFY(moveTo(0.03));
+        KW_VERIFY_OK(m_partial->render(doc, cam, options(RenderOptions::FrameReuse::Full)));
+        QVERIFY(!m_partial->lastReport().partial);
         QVERIFY(moveTo(0.04));
         drawAndCompare(doc, cam, file + QStringLiteral("-more"), 1);
         // The whole face moved sideways past its old bounds: the rectangle must hold both.
