@@ -116,7 +116,8 @@ struct Renderer::Impl {
                                  const FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const ValueRange& range) const;
     /// Brings each record's polygon rectangle (SurfaceRecord::drawnRect) up to date first; with
-    /// `controlNet` a footprint holds the control points too (the net is drawn).
+    /// options.controlNet a footprint holds the control points too (the net is drawn); a
+    /// surface being edited (SurfaceRecord::tilesWanted) carries its damage tiles.
     std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc,
                                                     const RenderOptions& options);
     /// r's damage tiles at fc's view (kw::cellTiles, grown by `pad`), taken when missing and
