@@ -230,7 +230,8 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
         }
         return ok();
     };
-    std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, reached, cells,
+    std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, redrawn, regions,
+        reached, cells,
         fullCells;
     // The editor's aliased frames are kept in the renderer's own framebuffer and copied
     // (ViewSurface::drawFrame); a drag step redraws what the dragged face covered then and now.
@@ -254,6 +255,8 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
             ++row.partialFrames;
             areas.push_back(double(report.partialRect.width()) * report.partialRect.height() /
                             (double(config.side) * config.side));
+            redrawn.push_back(double(report.partialPixels) / (double(config.side) * config.side));
+            regions.push_back(report.partialRegions);
             reached.push_back(report.partialSurfaces);
             cells.push_back(double(report.partialCells));
         }
@@ -314,6 +317,8 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     row.knotworkFullMs = median(fullMs);
     row.knotworkFullCpuMs = median(fullCpu);
     row.partialArea = areas.empty() ? 0.0 : median(areas);
+    row.partialRedrawn = redrawn.empty() ? 0.0 : median(redrawn);
+    row.partialRegions = regions.empty() ? 0.0 : median(regions);
     row.partialSurfaces = reached.empty() ? 0.0 : median(reached);
     row.partialCells = cells.empty() ? 0.0 : median(cells);
     row.fullCells = median(fullCells);
@@ -377,6 +382,8 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
                       {QStringLiteral("fullFrames"), report.config.fullFrames},
                       {QStringLiteral("partialFrames"), r.partialFrames},
                       {QStringLiteral("partialArea"), r.partialArea},
+                      {QStringLiteral("partialRedrawn"), r.partialRedrawn},
+                      {QStringLiteral("partialRegions"), r.partialRegions},
                       {QStringLiteral("partialSurfaces"), r.partialSurfaces},
                       {QStringLiteral("partialCells"), r.partialCells},
                       {QStringLiteral("fullCells"), r.fullCells},
@@ -416,7 +423,7 @@ QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
         command, report.machine,
         {QStringLiteral("model"), QStringLiteral("dragged face"),
          QStringLiteral("Knotwork edit → frame ms (CPU)"),
-         QStringLiteral("partial frames (rectangle, surfaces)"),
+         QStringLiteral("partial frames (rectangle, redrawn in rectangles, surfaces)"),
          QStringLiteral("whole frame ms (CPU)"), QStringLiteral("edit → still frame ms (CPU)"),
          QStringLiteral("peer deflection linear / angular"),
          QStringLiteral("peer triangles (face)"),
@@ -427,10 +434,12 @@ QString editLoopMarkdown(const EditLoopReport& report, const QString& command) {
             {r.model,
              r.face + (r.freeForm ? QString() : QStringLiteral(", analytic, turned free-form")),
              QStringLiteral("%1 (%2)").arg(r.knotworkMs, 0, 'f', 1).arg(r.knotworkCpuMs, 0, 'f', 1),
-             QStringLiteral("%1 of %2 (%3 %, %4)")
+             QStringLiteral("%1 of %2 (%3 %, %4 % in %5, %6)")
                  .arg(r.partialFrames)
                  .arg(report.config.steps)
                  .arg(100.0 * r.partialArea, 0, 'f', 1)
+                 .arg(100.0 * r.partialRedrawn, 0, 'f', 1)
+                 .arg(r.partialRegions, 0, 'f', 0)
                  .arg(r.partialSurfaces, 0, 'f', 0),
              QStringLiteral("%1 (%2)")
                  .arg(r.knotworkFullMs, 0, 'f', 1)

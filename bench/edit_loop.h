@@ -49,6 +49,9 @@ struct EditLoopRow {
     /// share of the view and of the surfaces it reached.
     int partialFrames = 0;
     double partialArea = 0.0;
+    /// Of which the median share of the view the frames redrew (their damage tiles'
+    /// rectangles, FrameReport::partialPixels) and the median number of those rectangles.
+    double partialRedrawn = 0.0, partialRegions = 0.0;
     double partialSurfaces = 0.0;
     /// Medians of the partial frames' cells drawn (FrameReport::partialCells) and of the
     /// whole frames' (partitions.cells): the partial frame's geometry share.

@@ -256,17 +256,16 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
         const std::vector<std::uint8_t> keep = cellsReaching(
             g->polygon, camera.viewProjection, camera.viewport, key.reach, key.skirtPush);
         if (!keep.empty() && std::int64_t(keep.size()) * 6 == g->triangleIndexCount) {
-            const auto reached = [&](std::uint8_t bit) {
-                return std::count_if(keep.begin(), keep.end(),
-                                     [bit](std::uint8_t k) { return (k & bit) != 0; });
-            };
-            const std::int64_t cells = reached(kCellTriangles);
-            if (cells == 0 && reached(kCellSkirt) == 0) {
+            std::int64_t cells = 0, skirted = 0; // cells with each bit, in one pass
+            for (const std::uint8_t k : keep) {
+                cells += (k & kCellTriangles) != 0;
+                skirted += (k & kCellSkirt) != 0;
+            }
+            if (cells == 0 && skirted == 0) {
                 p.culled = true;
                 return p;
             }
-            if (cells < std::int64_t(keep.size()) ||
-                reached(kCellSkirt) < std::int64_t(keep.size())) {
+            if (cells < std::int64_t(keep.size()) || skirted < std::int64_t(keep.size())) {
                 p.pieces = true;
                 commands.cells = cellRuns(*g, keep, kCellTriangles, kCellRunGap);
                 commands.skirtRuns = skirtRuns(*g, keep, kCellRunGap, commands.skirtWhole);

@@ -4,6 +4,7 @@
 
 #include "render/depth_convention.h"
 #include "render/exact_contract.h"
+#include "render/partial_frame.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
@@ -667,6 +668,7 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
             f.points != g.revisions.points) {
             f.vertices.clear();
             f.indices.clear();
+            f.rects.clear();
             buildFins(g.polygon, glm::dmat4(camera.viewProjection), glm::dvec3(camera.eye),
                       camera.viewport, pixels, f.vertices, f.indices);
             f.viewProjection = camera.viewProjection;
@@ -700,11 +702,24 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
         int lastVariant = -1;
         std::vector<unsigned> reaching;
         for (const auto& [r, slot, variant] : layout) {
-            const Fins& f = m_fins.at(r);
-            if (partial)
-                reaching = finsReaching(f.vertices, f.indices, camera.viewProjection,
-                                        camera.viewport, camera.reach);
-            const std::vector<unsigned>& sent = partial ? reaching : f.indices;
+            Fins& f = m_fins.at(r);
+            bool all = !partial;
+            if (partial) {
+                if (f.rects.empty() && !f.indices.empty()) {
+                    f.rects =
+                        finRects(f.vertices, f.indices, camera.viewProjection, camera.viewport);
+                    f.bounds = glm::ivec4(0); // empty: meets nothing
+                    for (const glm::ivec4& q : f.rects)
+                        PartialFrames::unite(f.bounds, q);
+                }
+                const glm::ivec4 &b = f.bounds, &reach = camera.reach;
+                reaching.clear();
+                if (b.x >= reach.x && b.y >= reach.y && b.z <= reach.z && b.w <= reach.w)
+                    all = true; // every fin inside
+                else if (b.z > reach.x && b.x < reach.z && b.w > reach.y && b.y < reach.w)
+                    reaching = finsMeeting(f.rects, f.indices, camera.reach);
+            }
+            const std::vector<unsigned>& sent = all ? f.indices : reaching;
             if (sent.empty())
                 continue;
             if (variant != lastVariant) {

@@ -256,6 +256,11 @@ private:
         std::uint64_t points = 0; ///< SurfaceGpu::revisions.points
         std::vector<SkirtVertex> vertices;
         std::vector<unsigned> indices;
+        /// Each fin's window rectangle and their union (partial_cells.h finRects), taken at
+        /// the first partial frame after a rebuild: a moving rectangle then costs a comparison
+        /// per fin, and one per record whose fins it misses or holds whole.
+        std::vector<glm::ivec4> rects;
+        glm::ivec4 bounds{0};
         std::uint64_t frame = 0; ///< the last finPass that drew its record
     };
     std::unordered_map<const SurfaceRecord*, Fins> m_fins;

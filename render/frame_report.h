@@ -169,8 +169,13 @@ struct FrameReport {
     /// and kept the rest of the last frame; `partialSurfaces` surfaces reached it, with
     /// `partialSurfaceCells` base polygon cells, of which it drew the `partialCells` that reach
     /// it (partitions.cells counts every surface's). False: the whole frame was drawn.
+    /// Within partialRect it redrew `partialRegions` rectangles of `partialPixels` pixels in
+    /// all (the damage tiles of the changed surfaces, render/damage_tiles.h; one rectangle,
+    /// partialRect, with overlays).
     bool partial = false;
     QRect partialRect;
+    int partialRegions = 0;
+    std::int64_t partialPixels = 0;
     int partialSurfaces = 0;
     std::int64_t partialSurfaceCells = 0;
     std::int64_t partialCells = 0;

@@ -103,6 +103,14 @@ struct SurfaceRecord {
     glm::ivec2 drawnViewport{0};
     bool drawnBounded = false;
     std::pair<std::uint64_t, std::uint64_t> drawnOf{0, 0};
+    /// The damage tiles its cells touch at drawnRect's view, grown by `drawnTilesPad` pixels
+    /// (render/damage_tiles.h cellTiles); taken when a partial frame redraws it, dropped with
+    /// drawnRect.
+    std::shared_ptr<const std::vector<std::int32_t>> drawnTiles;
+    int drawnTilesPad = -1, drawnTilesSide = 0; ///< the pad and tile side they were taken at
+    /// A partial frame redrew it (it is being edited): its tiles are taken again in every
+    /// frame that can be kept, whole ones too, for the partial frame after it.
+    bool tilesWanted = false;
     /// What this record adds to the frame's partition figures (FrameReport::Partitions).
     std::int64_t cells = 0;
     double boundPixels = 0.0;

@@ -39,9 +39,8 @@ glm::ivec4 pixels(const glm::vec2& lo, const glm::vec2& hi) {
 
 } // namespace
 
-std::vector<std::uint8_t> cellsReaching(const BasePolygon& poly, const glm::mat4& viewProjection,
-                                        glm::ivec2 viewport, const glm::ivec4& reach,
-                                        int skirtPush) {
+std::vector<glm::ivec4> cellRects(const BasePolygon& poly, const glm::mat4& viewProjection,
+                                  glm::ivec2 viewport) {
     const int nu = poly.nodesU(), nv = int(poly.breaksV.size());
     if (nu < 2 || nv < 2 || poly.vertices.size() != size_t(nu) * size_t(nv))
         return {};
@@ -52,9 +51,8 @@ std::vector<std::uint8_t> cellsReaching(const BasePolygon& poly, const glm::mat4
     for (size_t k = 0; k < at.size(); ++k)
         if (!windowPoint(poly.vertices[k].position, viewProjection, size, at[k]))
             return {};
-    const glm::ivec4 wide = reach + glm::ivec4(-skirtPush, -skirtPush, skirtPush, skirtPush);
     const int cu = nu - 1, cv = nv - 1;
-    std::vector<std::uint8_t> keep(size_t(cu) * size_t(cv), 0);
+    std::vector<glm::ivec4> rects(size_t(cu) * size_t(cv));
     for (int j = 0; j < cv; ++j)
         for (int i = 0; i < cu; ++i) {
             const size_t ll = size_t(j) * size_t(nu) + size_t(i), ul = ll + size_t(nu);
@@ -62,37 +60,62 @@ std::vector<std::uint8_t> cellsReaching(const BasePolygon& poly, const glm::mat4
                 glm::min(glm::min(at[ll], at[ll + 1]), glm::min(at[ul], at[ul + 1]));
             const glm::vec2 hi =
                 glm::max(glm::max(at[ll], at[ll + 1]), glm::max(at[ul], at[ul + 1]));
-            const glm::ivec4 rect = pixels(lo, hi);
-            keep[size_t(j) * size_t(cu) + size_t(i)] = std::uint8_t(
-                (meets(rect, reach) ? kCellTriangles : 0) | (meets(rect, wide) ? kCellSkirt : 0));
+            rects[size_t(j) * size_t(cu) + size_t(i)] = pixels(lo, hi);
         }
+    return rects;
+}
+
+std::vector<std::uint8_t> cellsReaching(const BasePolygon& poly, const glm::mat4& viewProjection,
+                                        glm::ivec2 viewport, const glm::ivec4& reach,
+                                        int skirtPush) {
+    const std::vector<glm::ivec4> rects = cellRects(poly, viewProjection, viewport);
+    const glm::ivec4 wide = reach + glm::ivec4(-skirtPush, -skirtPush, skirtPush, skirtPush);
+    std::vector<std::uint8_t> keep(rects.size(), 0);
+    for (size_t c = 0; c < rects.size(); ++c)
+        keep[c] = std::uint8_t((meets(rects[c], reach) ? kCellTriangles : 0) |
+                               (meets(rects[c], wide) ? kCellSkirt : 0));
     return keep;
+}
+
+std::vector<glm::ivec4> finRects(const std::vector<SkirtVertex>& vertices,
+                                 const std::vector<unsigned>& indices,
+                                 const glm::mat4& viewProjection, glm::ivec2 viewport) {
+    std::vector<glm::ivec4> out;
+    out.reserve(indices.size() / 6);
+    const glm::vec2 size(viewport);
+    for (size_t f = 0; f + 6 <= indices.size(); f += 6) {
+        const unsigned first = indices[f];
+        bool everywhere = first + 4 > vertices.size(); // not buildFins' layout
+        glm::vec2 lo(std::numeric_limits<float>::max()), hi(-lo);
+        for (unsigned k = first; !everywhere && k < first + 4; ++k) {
+            glm::vec2 at(0.0f);
+            if (!windowPoint(vertices[k].base.position, viewProjection, size, at)) {
+                everywhere = true;
+                break;
+            }
+            lo = glm::min(lo, at);
+            hi = glm::max(hi, at);
+        }
+        out.push_back(everywhere ? kEverywhere : pixels(lo, hi));
+    }
+    return out;
+}
+
+std::vector<unsigned> finsMeeting(const std::vector<glm::ivec4>& rects,
+                                  const std::vector<unsigned>& indices, const glm::ivec4& reach) {
+    std::vector<unsigned> out;
+    for (size_t f = 0; f < rects.size() && 6 * f + 6 <= indices.size(); ++f)
+        if (meets(rects[f], reach))
+            out.insert(out.end(), indices.begin() + std::ptrdiff_t(6 * f),
+                       indices.begin() + std::ptrdiff_t(6 * f + 6));
+    return out;
 }
 
 std::vector<unsigned> finsReaching(const std::vector<SkirtVertex>& vertices,
                                    const std::vector<unsigned>& indices,
                                    const glm::mat4& viewProjection, glm::ivec2 viewport,
                                    const glm::ivec4& reach) {
-    std::vector<unsigned> out;
-    const glm::vec2 size(viewport);
-    for (size_t f = 0; f + 6 <= indices.size(); f += 6) {
-        const unsigned first = indices[f];
-        bool kept = first + 4 > vertices.size(); // not buildFins' layout: kept
-        glm::vec2 lo(std::numeric_limits<float>::max()), hi(-lo);
-        for (unsigned k = first; !kept && k < first + 4; ++k) {
-            glm::vec2 at(0.0f);
-            if (!windowPoint(vertices[k].base.position, viewProjection, size, at)) {
-                kept = true;
-                break;
-            }
-            lo = glm::min(lo, at);
-            hi = glm::max(hi, at);
-        }
-        if (kept || meets(pixels(lo, hi), reach))
-            out.insert(out.end(), indices.begin() + std::ptrdiff_t(f),
-                       indices.begin() + std::ptrdiff_t(f + 6));
-    }
-    return out;
+    return finsMeeting(finRects(vertices, indices, viewProjection, viewport), indices, reach);
 }
 
 namespace {

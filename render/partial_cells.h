@@ -40,6 +40,14 @@ enum CellReach : std::uint8_t {
 /// geometric bound.
 double skirtPushPixels(double skirtPixels);
 
+/// Per cell of `poly` (row by row, v outer), the window rectangle (x0, y0, x1, y1 exclusive,
+/// GL rows) of its four corners projected under `viewProjection` into `viewport`, taken as the
+/// renderer takes a polygon's rectangle (normalised device coordinates clamped to +-2, widened
+/// to whole pixels): its triangles lie in the corners' convex hull. Empty when a corner lies
+/// behind the eye, or the polygon has no vertices on the CPU.
+std::vector<glm::ivec4> cellRects(const BasePolygon& poly, const glm::mat4& viewProjection,
+                                  glm::ivec2 viewport);
+
 /// Per cell of `poly` (row by row, v outer), the CellReach bits for the window rectangle
 /// `reach` (x0, y0, x1, y1 exclusive, GL rows): where its four corners project under
 /// `viewProjection` into `viewport`, taken as the renderer takes a polygon's rectangle
@@ -66,9 +74,19 @@ std::vector<CellRun> cellRuns(const SurfaceGpu& g, const std::vector<std::uint8_
 std::vector<CellRun> skirtRuns(const SurfaceGpu& g, const std::vector<std::uint8_t>& keep, int gap,
                                bool& whole);
 
+/// A window rectangle that meets every other (a fin with a vertex behind the eye).
+constexpr glm::ivec4 kEverywhere{-(1 << 29), -(1 << 29), 1 << 29, 1 << 29};
+
 /// Of silhouette fins (kw::buildFins: two triangles each, 6 indices starting at its first of
-/// 4 vertices), the indices of those whose vertices' window rectangle under `viewProjection`
-/// meets `reach` (taken as cellsReaching takes a cell's; a vertex behind the eye keeps its fin).
+/// 4 vertices), each one's window rectangle under `viewProjection` (taken as cellsReaching takes
+/// a cell's), kEverywhere for one with a vertex behind the eye or not laid out so.
+std::vector<glm::ivec4> finRects(const std::vector<SkirtVertex>& vertices,
+                                 const std::vector<unsigned>& indices,
+                                 const glm::mat4& viewProjection, glm::ivec2 viewport);
+/// The indices of the fins whose rectangle (`rects`, finRects') meets `reach`.
+std::vector<unsigned> finsMeeting(const std::vector<glm::ivec4>& rects,
+                                  const std::vector<unsigned>& indices, const glm::ivec4& reach);
+/// finsMeeting of finRects: the indices of the fins whose window rectangle meets `reach`.
 std::vector<unsigned> finsReaching(const std::vector<SkirtVertex>& vertices,
                                    const std::vector<unsigned>& indices,
                                    const glm::mat4& viewProjection, glm::ivec2 viewport,

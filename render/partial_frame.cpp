@@ -48,36 +48,43 @@ void PartialFrames::unite(glm::ivec4& into, const glm::ivec4& r) {
                       std::max(into.w, r.w));
 }
 
-std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
-                                                std::uint64_t prepassWrites,
-                                                const std::vector<SurfaceFootprint>& surfaces,
-                                                const glm::mat4& viewProjection,
-                                                const EdgeBands* bands) const {
+std::optional<glm::ivec4>
+PartialFrames::damage(const PartialFrameView& view, std::uint64_t prepassWrites,
+                      const std::vector<SurfaceFootprint>& surfaces,
+                      const glm::mat4& viewProjection, const EdgeBands* bands,
+                      std::vector<DamagedSurface>* changed, bool* bandsChanged) const {
+    if (changed)
+        changed->clear();
+    if (bandsChanged)
+        *bandsChanged = false;
     if (!m_have || !(view == m_view) || prepassWrites != m_prepassWrites)
         return std::nullopt;
     const int pad = reachPixels(view.options);
     glm::ivec4 rect(0);
     bool whole = false;
     // A surface's pixels as the remembered frame drew them, or as this one will.
-    const auto add = [&](const SurfaceFootprint& s) {
+    const auto add = [&](const SurfaceFootprint& s, bool before, int index) {
         if (!s.drawn)
             return; // nothing of it was or will be drawn
         if (!s.bounded)
             whole = true;
         else
             unite(rect, grown(s.rect, pad, view.viewport));
+        if (changed)
+            changed->push_back(DamagedSurface{s, before, index});
     };
     size_t matched = 0;
-    for (const SurfaceFootprint& now : surfaces) {
+    for (size_t k = 0; k < surfaces.size(); ++k) {
+        const SurfaceFootprint& now = surfaces[k];
         const auto was = m_surfaces.find(now.id);
         if (was == m_surfaces.end()) {
-            add(now); // shown or added
+            add(now, false, int(k)); // shown or added
             continue;
         }
         ++matched;
         if (!(was->second == now)) {
-            add(was->second);
-            add(now);
+            add(was->second, true, -1);
+            add(now, false, int(k));
         }
         if (whole)
             return std::nullopt;
@@ -88,7 +95,7 @@ std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
             present.insert(now.id);
         for (const auto& [id, was] : m_surfaces)
             if (!present.count(id))
-                add(was);
+                add(was, true, -1);
     }
     if (bands != m_bands)
         return std::nullopt; // the options compared the pointer already; null on both sides
@@ -102,6 +109,8 @@ std::optional<glm::ivec4> PartialFrames::damage(const PartialFrameView& view,
             const EdgeBandRange& b = bands->ranges[k];
             if (b.revision <= m_bandsRevision)
                 continue;
+            if (bandsChanged)
+                *bandsChanged = true;
             for (const auto& [lo, hi] : {m_bandBounds[k], std::pair(b.lo, b.hi)}) {
                 const std::optional<glm::ivec4> r =
                     windowRect(lo, hi, viewProjection, view.viewport, pad);

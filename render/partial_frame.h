@@ -11,6 +11,7 @@
 #include <QSize>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <set>
 #include <unordered_map>
@@ -52,7 +53,23 @@ struct SurfaceFootprint {
     /// Window pixels (x0, y0, x1, y1 exclusive, GL rows) its polygon, or its control points,
     /// project to; what it draws past them is PartialFrames::reachPixels.
     glm::ivec4 rect{0};
-    bool operator==(const SurfaceFootprint&) const = default;
+    /// The damage tiles (render/damage_tiles.h) its cells touch, grown by
+    /// PartialFrames::reachPixels, when known (taken for the surfaces a partial frame redraws);
+    /// else its rectangle's. What it holds, not part of what it is: left out of ==.
+    std::shared_ptr<const std::vector<std::int32_t>> tiles;
+    bool operator==(const SurfaceFootprint& o) const {
+        return id == o.id && slot == o.slot && revisions == o.revisions && polygon == o.polygon &&
+               maskWidth == o.maskWidth && maskHeight == o.maskHeight && drawn == o.drawn &&
+               bounded == o.bounded && rect == o.rect;
+    }
+};
+
+/// A surface whose pixels a partial frame redraws: as the remembered frame drew it (`before`)
+/// or as this one will (`index` into the frame's footprints).
+struct DamagedSurface {
+    SurfaceFootprint footprint;
+    bool before = false;
+    int index = -1; ///< this frame's footprint; -1 for one before
 };
 
 class PartialFrames {
@@ -83,9 +100,14 @@ public:
     /// A surface changed when its revisions, table row or bounds did, or it came or went
     /// (shown, hidden, added, removed); its old and new rectangles both count. `bands`: the
     /// frame's edge bands (RenderOptions::edgeBands), whose changed ranges count likewise.
+    /// `changed`, when given, receives the changed surfaces counted, each as it was and as it
+    /// is (the renderer narrows the rectangle to their tiles); `bandsChanged` whether edge
+    /// bands added to it.
     std::optional<glm::ivec4> damage(const PartialFrameView& view, std::uint64_t prepassWrites,
                                      const std::vector<SurfaceFootprint>& surfaces,
-                                     const glm::mat4& viewProjection, const EdgeBands* bands) const;
+                                     const glm::mat4& viewProjection, const EdgeBands* bands,
+                                     std::vector<DamagedSurface>* changed = nullptr,
+                                     bool* bandsChanged = nullptr) const;
     /// A partial frame costs about its share of the view's pixels; past this share of the
     /// view the whole frame is drawn (it costs the same, and is the simpler path).
     static constexpr double kMaxFraction = 0.5;

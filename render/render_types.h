@@ -224,6 +224,19 @@ struct RenderOptions {
         Partial,
     };
     FrameReuse frameReuse = FrameReuse::None;
+    /// How a partial frame narrows its rectangle to the changed surfaces' damage tiles
+    /// (render/damage_tiles.h): tiles of `tilePixels`, covered by at most `maxRects`
+    /// rectangles, two merged when their union adds at most `mergePixels` pixels. Each
+    /// rectangle draws every pass again (its plan, the fins, the deferred pass's set-up), which
+    /// on llvmpipe measured about what several thousand of hammer's pixels cost (docs/
+    /// PERFORMANCE.md ## Editing). maxRects 1: the one rectangle.
+    struct DamageTiles {
+        int tilePixels = 16;
+        int maxRects = 4;
+        std::int64_t mergePixels = 8192;
+        bool operator==(const DamageTiles&) const = default;
+    };
+    DamageTiles damageTiles;
     glm::vec4 background{0.18f, 0.19f, 0.21f, 1.0f};
     /// With a value, the background is a vertical gradient from `background` at the view's
     /// bottom to this at its top (kw::backgroundNamed's "light", as CAD viewers offer);

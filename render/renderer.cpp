@@ -1,5 +1,6 @@
 // Renderer: context check, per-frame state setup, cache sync, passes in order, overlays, the
 // frame report, and the pick query.
+#include "render/damage_tiles.h"
 #include "render/depth_convention.h"
 #include "render/gl_context.h"
 #include "render/renderer_impl.h"
@@ -187,12 +188,30 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             error = done.message();
         return bool(done);
     };
-    bool ok = unchanged || step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc,
-                                            lights, options, report.analysisRange, pickPixel));
+    bool ok = true, backCulledMoved = false;
+    if (plan.regions.size() > 1) {
+        // The changed surfaces' tiles: each rectangle cleared and drawn whole, as the whole
+        // frame draws it, with the cells that reach it (they may overlap: drawn twice alike).
+        const int pad = PartialFrames::reachPixels(options);
+        for (const glm::ivec4& r : plan.regions) {
+            partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
+            fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
+            ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights,
+                                  options, report.analysisRange, pickPixel));
+            report.partialCells += exact.cellsSent();
+            backCulledMoved = backCulledMoved || exact.backCulledSolids() != partial.backCulled();
+            if (!ok)
+                break;
+        }
+    } else if (!unchanged) {
+        ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights, options,
+                              report.analysisRange, pickPixel));
+        if (report.partial && options.mode == RenderMode::Exact)
+            report.partialCells = exact.cellsSent();
+        backCulledMoved = report.partial && exact.backCulledSolids() != partial.backCulled();
+    }
     clock.mark(PassTimes::Antialiasing);
-    if (report.partial && !unchanged && options.mode == RenderMode::Exact)
-        report.partialCells = exact.cellsSent();
-    if (report.partial && !unchanged && exact.backCulledSolids() != partial.backCulled()) {
+    if (backCulledMoved) {
         // A solid's back faces skipped now and drawn in the kept frame, or the reverse: that
         // reaches every face of the solid, not only the rectangle's.
         partialScissor = QRect();
@@ -264,10 +283,13 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     if (!plan.keepable)
         return plan;
     plan.view = partialView(doc, target, size, fc, lights, options, report.analysisRange);
-    plan.footprints = surfaceFootprints(fc, options.controlNet);
+    plan.footprints = surfaceFootprints(fc, options);
+    std::vector<DamagedSurface> changed;
+    bool bandsChanged = false;
     if (options.frameReuse == RenderOptions::FrameReuse::Partial && !wholeFrameAgain)
-        plan.damage = partial.damage(plan.view, exact.prepassWrites(), plan.footprints,
-                                     fc.viewProjection, options.edgeBands.get());
+        plan.damage =
+            partial.damage(plan.view, exact.prepassWrites(), plan.footprints, fc.viewProjection,
+                           options.edgeBands.get(), &changed, &bandsChanged);
     if (!plan.damage)
         return plan;
     const glm::ivec4& damage = *plan.damage;
@@ -278,8 +300,37 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     const int pad = PartialFrames::reachPixels(options);
     fc.reach = damage + glm::ivec4(-pad, -pad, pad, pad);
     partialScissor = QRect(damage.x, damage.y, damage.z - damage.x, damage.w - damage.y);
+    // The overlays are drawn over the whole rectangle (their lines and points are not the
+    // surfaces' cells), and edge bands' ranges have no tiles: one rectangle then.
+    if (options.wireframe || options.controlNet || options.edgeBands || bandsChanged)
+        plan.regions = {damage};
+    else
+        plan.regions = damageRegions(changed, fc, pad, options.damageTiles, plan.footprints);
+    // Both the tiles and the rectangle hold every pixel to redraw: so does what they share
+    // (the tiles' edges fall on the grid, past the rectangle's).
+    std::vector<glm::ivec4> regions;
+    for (const glm::ivec4& r : plan.regions) {
+        const glm::ivec4 shared(glm::max(glm::ivec2(r), glm::ivec2(damage)),
+                                glm::min(glm::ivec2(r.z, r.w), glm::ivec2(damage.z, damage.w)));
+        if (shared.z > shared.x && shared.w > shared.y)
+            regions.push_back(shared);
+    }
+    if (regions.empty())
+        regions.push_back(damage);
+    plan.regions = std::move(regions);
+    glm::ivec4 bounds(0);
+    for (const glm::ivec4& r : plan.regions) {
+        report.partialPixels += rectPixels(r);
+        PartialFrames::unite(bounds, r);
+    }
+    report.partialRegions = int(plan.regions.size());
     report.partialRect =
-        QRect(damage.x, size.height() - damage.w, damage.z - damage.x, damage.w - damage.y);
+        QRect(bounds.x, size.height() - bounds.w, bounds.z - bounds.x, bounds.w - bounds.y);
+    if (plan.regions.size() == 1) {
+        const glm::ivec4& r = plan.regions.front();
+        fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
+        partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
+    }
     for (size_t k = 0; k < plan.footprints.size(); ++k) {
         const SurfaceFootprint& f = plan.footprints[k];
         const glm::ivec4& r = f.rect;
@@ -290,6 +341,45 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
         }
     }
     return plan;
+}
+
+std::shared_ptr<const std::vector<std::int32_t>> Renderer::Impl::recordTiles(SurfaceRecord& r,
+                                                                             const FrameCamera& fc,
+                                                                             const TileGrid& grid,
+                                                                             int pad) {
+    r.tilesWanted = true;
+    if (!r.drawnBounded || !r.exact)
+        return nullptr;
+    if (!r.drawnTiles || r.drawnTilesPad != pad || r.drawnTilesSide != grid.tile()) {
+        std::optional<std::vector<std::int32_t>> cells =
+            cellTiles(r.exact->polygon, fc.viewProjection, grid, pad);
+        if (!cells)
+            return nullptr;
+        r.drawnTiles = std::make_shared<const std::vector<std::int32_t>>(std::move(*cells));
+        r.drawnTilesPad = pad;
+        r.drawnTilesSide = grid.tile();
+    }
+    return r.drawnTiles;
+}
+
+std::vector<glm::ivec4> Renderer::Impl::damageRegions(const std::vector<DamagedSurface>& changed,
+                                                      const FrameCamera& fc, int pad,
+                                                      const RenderOptions::DamageTiles& options,
+                                                      std::vector<SurfaceFootprint>& footprints) {
+    TileGrid grid(fc.viewport, options.tilePixels);
+    for (const DamagedSurface& c : changed) {
+        std::shared_ptr<const std::vector<std::int32_t>> tiles = c.footprint.tiles;
+        if (!c.before && c.index >= 0 && size_t(c.index) < scene.records().size()) {
+            // As this frame draws it, kept for the next frame's "before".
+            tiles = recordTiles(*scene.records()[size_t(c.index)], fc, grid, pad);
+            footprints[size_t(c.index)].tiles = tiles;
+        }
+        if (tiles)
+            grid.addTiles(*tiles);
+        else
+            grid.addRect(PartialFrames::grown(c.footprint.rect, pad, fc.viewport));
+    }
+    return grid.rects(options.maxRects, options.mergePixels);
 }
 
 void Renderer::Impl::rememberFrame(const LastFrame& now, const FrameCamera& fc,
@@ -562,7 +652,10 @@ PartialFrameView Renderer::Impl::partialView(const Document& doc, const RenderTa
 }
 
 std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamera& fc,
-                                                                bool controlNet) {
+                                                                const RenderOptions& options) {
+    const bool controlNet = options.controlNet;
+    const TileGrid grid(fc.viewport, options.damageTiles.tilePixels);
+    const int pad = PartialFrames::reachPixels(options);
     std::vector<SurfaceFootprint> out;
     out.reserve(scene.records().size());
     for (SurfaceRecord* r : scene.records()) {
@@ -590,6 +683,7 @@ std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamer
             const ExactPlanner::ScreenBox box{lo, hi, !front};
             r->drawnRect = front ? ExactPlanner::pixelRect(box, fc.viewport) : glm::ivec4(0);
             r->drawnBounded = front;
+            r->drawnTiles.reset();
             r->drawnOf = at;
             r->drawnView = fc.viewProjection;
             r->drawnViewport = fc.viewport;
@@ -616,6 +710,10 @@ std::vector<SurfaceFootprint> Renderer::Impl::surfaceFootprints(const FrameCamer
             f.rect = r->drawnRect;
         if (control)
             PartialFrames::unite(f.rect, *control);
+        else if (r->drawnBounded && r->tilesWanted)
+            // A surface a partial frame redrew (being edited): its tiles as this frame draws
+            // it, for the next partial frame, even when this one is drawn whole.
+            f.tiles = recordTiles(*r, fc, grid, pad);
         out.push_back(f);
     }
     return out;

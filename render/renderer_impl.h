@@ -4,6 +4,7 @@
 
 #include "render/accumulate_target.h"
 #include "render/antialias_target.h"
+#include "render/damage_tiles.h"
 #include "render/edge_bands_pass.h"
 #include "render/exact_contract.h"
 #include "render/exact_surface_pass.h"
@@ -115,8 +116,15 @@ struct Renderer::Impl {
                                  const FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const ValueRange& range) const;
     /// Brings each record's polygon rectangle (SurfaceRecord::drawnRect) up to date first; with
-    /// `controlNet` a footprint holds the control points too (the net is drawn).
-    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc, bool controlNet);
+    /// options.controlNet a footprint holds the control points too (the net is drawn); a
+    /// surface being edited (SurfaceRecord::tilesWanted) carries its damage tiles.
+    std::vector<SurfaceFootprint> surfaceFootprints(const FrameCamera& fc,
+                                                    const RenderOptions& options);
+    /// r's damage tiles at fc's view (kw::cellTiles, grown by `pad`), taken when missing and
+    /// kept in the record (SurfaceRecord::drawnTiles); null when its polygon cannot tell them.
+    /// Marks it SurfaceRecord::tilesWanted.
+    std::shared_ptr<const std::vector<std::int32_t>>
+    recordTiles(SurfaceRecord& r, const FrameCamera& fc, const TileGrid& grid, int pad);
 
     // renderFrame's steps.
     /// Zeroes the passes' per-frame counters.
@@ -164,12 +172,22 @@ struct Renderer::Impl {
         PartialFrameView view;
         std::vector<SurfaceFootprint> footprints;
         std::optional<glm::ivec4> damage;
+        /// What of `damage` is redrawn, one pass sequence each: its changed surfaces' tiles
+        /// (render/damage_tiles.h), or `damage` itself with overlays.
+        std::vector<glm::ivec4> regions;
         bool unchanged = false; ///< nothing to redraw: the kept frame is the image
     };
     PartialPlan planPartialFrame(const Document& doc, const RenderTarget& target, QSize size,
                                  FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const FrameTargets& targets,
                                  bool pick, FrameReport& report);
+    /// The rectangles covering the damage tiles (render/damage_tiles.h) of the `changed`
+    /// surfaces, as they were (their footprint's tiles, else its rectangle's) and as they are
+    /// drawn now (their cells' tiles, taken here, kept in the record and in `footprints`).
+    std::vector<glm::ivec4> damageRegions(const std::vector<DamagedSurface>& changed,
+                                          const FrameCamera& fc, int pad,
+                                          const RenderOptions::DamageTiles& options,
+                                          std::vector<SurfaceFootprint>& footprints);
     /// After a frame that is not a pick: what pickInLastFrame and the next partial frame may
     /// read from it (`ok`: the frame succeeded).
     void rememberFrame(const LastFrame& now, const FrameCamera& fc, const RenderOptions& options,

@@ -16,3 +16,7 @@ kw_add_test(tst_partial_frame_damage SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_parti
 # without GL (label render).
 kw_add_test(tst_partial_cells SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_partial_cells.cpp
             LIBS knotwork_render)
+# The damage tiles a partial frame narrows its rectangle to: the tiles of rectangles and of a
+# polygon's cells, and the rectangles covering them, without GL (label render).
+kw_add_test(tst_damage_tiles SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_damage_tiles.cpp
+            LIBS knotwork_render)
