@@ -79,7 +79,9 @@ void TestNurbsBasis::spanCounts() {
     // Property: the count is the number of distinct spans findSpan gives over the domain
     // (sampled at every knot and between them), for knot vectors with repeated knots.
     std::uint32_t seed = 12345;
-    const auto next = [&seed] { return (seed = seed * 1664525u + 1013904223u) >> 8; };
+    const auto next = [&seed] {
+        return (seed = seed * 1664525u + 1013904223u) >> 8;
+    };
     for (int trial = 0; trial < 200; ++trial) {
         const int p = 1 + int(next() % 5);
         const int count = p + 1 + int(next() % 8);
