@@ -8,43 +8,20 @@
 #include "render/renderer_test_hook.h"
 #include "render_test_util.h"
 
-#include <cstring>
-
 using namespace kw;
 
 namespace {
 
 constexpr QSize kSize(256, 192);
 
-struct Frame {
-    QImage colour;
-    AovBuffer aov;
-};
-
-Expected<Frame> draw(OffscreenRenderer& r, const Document& doc, const Camera& cam,
-                     const RenderOptions& opt) {
-    if (Status drawn = r.render(doc, cam, opt); !drawn)
-        return drawn.error();
-    return Frame{r.colorImage(), r.aov()};
-}
-
-/// Pixels whose colour or AOV differ.
-int differing(const Frame& a, const Frame& b) {
-    int n = 0;
-    for (int y = 0; y < a.aov.height; ++y)
-        for (int x = 0; x < a.aov.width; ++x)
-            n += a.colour.pixel(x, y) != b.colour.pixel(x, y) ||
-                 std::memcmp(a.aov.pixel(x, y), b.aov.pixel(x, y),
-                             sizeof(float) * size_t(AovBuffer::kChannels)) != 0;
-    return n;
-}
+using Frame = kwtest::DrawnFrame;
 
 /// Drawn in a renderer of its own: no pool history.
 Expected<Frame> fresh(const Document& doc, const Camera& cam, const RenderOptions& opt) {
     auto made = kwtest::offscreenRenderer(kSize, true);
     if (!made)
         return made.error();
-    return draw(**made, doc, cam, opt);
+    return kwtest::drawFrame(**made, doc, cam, opt);
 }
 
 struct PoolState {
@@ -104,7 +81,7 @@ private Q_SLOTS:
         std::vector<Frame> frames;
         std::vector<std::int64_t> vertexCapacity;
         for (const auto& [cam, o] : views) {
-            auto f = draw(r, doc, *cam, *o);
+            auto f = kwtest::drawFrame(r, doc, *cam, *o);
             QVERIFY2(f, qPrintable(f.message()));
             frames.push_back(*f);
             for (const PoolState& p : polygonPools(r)) {
@@ -120,7 +97,7 @@ private Q_SLOTS:
         for (size_t k = 0; k < std::size(views); ++k) {
             auto alone = fresh(doc, *views[k].first, *views[k].second);
             QVERIFY2(alone, qPrintable(alone.message()));
-            QCOMPARE(differing(frames[k], *alone), 0);
+            QCOMPARE(kwtest::differingPixels(frames[k], *alone), 0);
         }
     }
 
@@ -139,18 +116,18 @@ private Q_SLOTS:
         RenderOptions opt;
         opt.partitioning = RenderOptions::Partitioning::Adaptive;
         const Camera fit = fitCamera(doc.scene(), double(kSize.width()) / kSize.height());
-        auto before = draw(r, doc, fit, opt);
+        auto before = kwtest::drawFrame(r, doc, fit, opt);
         QVERIFY2(before, qPrintable(before.message()));
         const std::int64_t grown = polygonPools(r)[0].capacity;
         KW_VERIFY_OK(doc.setPartitions(first, 6, 6));
-        auto after = draw(r, doc, fit, opt);
+        auto after = kwtest::drawFrame(r, doc, fit, opt);
         QVERIFY2(after, qPrintable(after.message()));
         qInfo("vertex pool: %lld elements, then %lld (%lld used)", (long long)grown,
               (long long)polygonPools(r)[0].capacity, (long long)polygonPools(r)[0].used);
         QVERIFY(2 * polygonPools(r)[0].capacity < grown);
         auto alone = fresh(doc, fit, opt);
         QVERIFY2(alone, qPrintable(alone.message()));
-        QCOMPARE(differing(*after, *alone), 0);
+        QCOMPARE(kwtest::differingPixels(*after, *alone), 0);
     }
 };
 

@@ -6,37 +6,13 @@
 #include "render/offscreen_renderer.h"
 #include "render_test_util.h"
 
-#include <cstring>
-
 using namespace kw;
 
 namespace {
 
 constexpr QSize kSize(256, 192);
 
-struct Frame {
-    FrameReport report;
-    QImage colour;
-    AovBuffer aov;
-};
-
-Expected<Frame> draw(OffscreenRenderer& r, const Document& doc, const Camera& cam,
-                     const RenderOptions& opt) {
-    if (Status drawn = r.render(doc, cam, opt); !drawn)
-        return drawn.error();
-    return Frame{r.lastReport(), r.colorImage(), r.aov()};
-}
-
-/// Pixels whose colour or AOV differ.
-int differing(const Frame& a, const Frame& b) {
-    int n = 0;
-    for (int y = 0; y < a.aov.height; ++y)
-        for (int x = 0; x < a.aov.width; ++x)
-            n += a.colour.pixel(x, y) != b.colour.pixel(x, y) ||
-                 std::memcmp(a.aov.pixel(x, y), b.aov.pixel(x, y),
-                             sizeof(float) * size_t(AovBuffer::kChannels)) != 0;
-    return n;
-}
+using Frame = kwtest::DrawnFrame;
 
 int trimmedPixels(const Frame& f, const Scene& scene) {
     // Pixels of trimmed surfaces (odd ids' surfaces carry the discs) in the AOV.
@@ -71,17 +47,17 @@ private Q_SLOTS:
         opt.trimMode = RenderOptions::TrimMode::Exact;
         const double aspect = double(kSize.width()) / kSize.height();
         const Camera fit = fitCamera(doc.scene(), aspect);
-        auto fitted = draw(r, doc, fit, opt);
+        auto fitted = kwtest::drawFrame(r, doc, fit, opt);
         QVERIFY2(fitted, qPrintable(fitted.message()));
         QVERIFY(trimmedPixels(*fitted, doc.scene()) > 100);
         // A close-up on a trimmed patch (the second): its disc and its neighbours fill the view.
         const Surface& patch = doc.scene().surfaces[1];
         QVERIFY(!patch.trims.empty());
         const Camera near = kwtest::zoomedOn(fit, patch, {0.5, 0.5}, 6.0);
-        auto close = draw(r, doc, near, opt);
+        auto close = kwtest::drawFrame(r, doc, near, opt);
         QVERIFY2(close, qPrintable(close.message()));
         opt.cullOutsideView = false;
-        auto every = draw(r, doc, near, opt);
+        auto every = kwtest::drawFrame(r, doc, near, opt);
         QVERIFY2(every, qPrintable(every.message()));
         opt.cullOutsideView = true;
         qInfo("trim grid bytes: fitted %lld, close-up %lld, close-up holding every grid %lld",
@@ -89,13 +65,13 @@ private Q_SLOTS:
               (long long)close->report.gpuBytes.trimMasks,
               (long long)every->report.gpuBytes.trimMasks);
         QVERIFY(trimmedPixels(*close, doc.scene()) > 300);
-        QCOMPARE(differing(*close, *every), 0);
+        QCOMPARE(kwtest::differingPixels(*close, *every), 0);
         QVERIFY(4 * close->report.gpuBytes.trimMasks < every->report.gpuBytes.trimMasks);
         QVERIFY(4 * close->report.gpuBytes.trimMasks < fitted->report.gpuBytes.trimMasks);
         // Back out: the dropped grids are built again, the frame is the fitted one.
-        auto back = draw(r, doc, fit, opt);
+        auto back = kwtest::drawFrame(r, doc, fit, opt);
         QVERIFY2(back, qPrintable(back.message()));
-        QCOMPARE(differing(*back, *fitted), 0);
+        QCOMPARE(kwtest::differingPixels(*back, *fitted), 0);
         // Every grid held again (the array's capacity may differ with the order of placement).
         QVERIFY(back->report.gpuBytes.trimMasks > 4 * close->report.gpuBytes.trimMasks);
         QCOMPARE(back->report.warnings, fitted->report.warnings);

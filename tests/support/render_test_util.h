@@ -12,6 +12,7 @@
 #include <QString>
 #include <QTest>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <optional>
 
@@ -36,6 +37,33 @@ offscreenRenderer(QSize size, bool aov, bool curvature = false) {
     if (kw::Status sized = r->setSize(size, aov, curvature); !sized)
         return std::move(sized).error();
     return kw::Expected<std::unique_ptr<kw::OffscreenRenderer>>(std::move(r));
+}
+
+/// One drawn frame as the renderer left it: its report, the colour image and the AOV.
+struct DrawnFrame {
+    kw::FrameReport report;
+    QImage colour;
+    kw::AovBuffer aov;
+};
+
+/// Renders `doc` from `camera` into `r` and reads the frame back, or the render's error.
+inline kw::Expected<DrawnFrame> drawFrame(kw::OffscreenRenderer& r, const kw::Document& doc,
+                                          const kw::Camera& camera,
+                                          const kw::RenderOptions& options) {
+    if (kw::Status drawn = r.render(doc, camera, options); !drawn)
+        return drawn.error();
+    return DrawnFrame{r.lastReport(), r.colorImage(), r.aov()};
+}
+
+/// Pixels whose colour or AOV differ between two frames of the same size.
+inline int differingPixels(const DrawnFrame& a, const DrawnFrame& b) {
+    int n = 0;
+    for (int y = 0; y < a.aov.height; ++y)
+        for (int x = 0; x < a.aov.width; ++x)
+            n += a.colour.pixel(x, y) != b.colour.pixel(x, y) ||
+                 std::memcmp(a.aov.pixel(x, y), b.aov.pixel(x, y),
+                             sizeof(float) * size_t(kw::AovBuffer::kChannels)) != 0;
+    return n;
 }
 
 inline kw::Expected<kw::Scene> loadSample(const QString& name) {
