@@ -36,6 +36,9 @@ struct ZoomLoopRow {
     double zoom = 1.0;
     int facesInView = 0; ///< faces covering a pixel of the close-up (the peer re-meshes these)
     double knotworkMs = 0.0, knotworkCpuMs = 0.0;
+    /// The same close-up drawn once more with every buffer in place: the frame alone, which
+    /// no first frame at that view can beat (the floor of knotworkMs).
+    double knotworkAgainMs = 0.0, knotworkAgainCpuMs = 0.0;
     double peerMs = 0.0, peerCpuMs = 0.0, peerMeshMs = 0.0;
     bool peerMatched = true; ///< the search reached equal quality at this zoom
     double peerLinear = 0.0, peerAngular = 0.0;
