@@ -4,7 +4,9 @@
 #include "render/partial_cells.h"
 
 #include <algorithm>
-#include <limits>
+#include <functional>
+#include <queue>
+#include <tuple>
 
 namespace kw {
 
@@ -97,26 +99,54 @@ std::vector<glm::ivec4> TileGrid::rects(int maxRects, std::int64_t mergePixels) 
     for (glm::ivec4& r : out)
         r = glm::ivec4(r.x * m_tile, r.y * m_tile, std::min(r.z * m_tile, m_viewport.x),
                        std::min(r.w * m_tile, m_viewport.y));
-    // 3. The cheapest unions, while cheap enough or too many.
+    // 3. The cheapest unions, while cheap enough or too many: pair costs in a queue, cheapest
+    // first, of two equal the one whose first and then second rectangle comes first in `out`
+    // (as a scan of the pairs in order finds it). A merged pair's first takes the union, keeps
+    // its place and is re-dated; entries naming a removed or re-dated rectangle are skipped.
+    // Rectangles keep their order, so their indices order them as their places do.
     const int limit = std::max(maxRects, 1);
-    while (out.size() > 1) {
-        std::int64_t best = std::numeric_limits<std::int64_t>::max();
-        size_t bi = 0, bj = 0;
-        for (size_t i = 0; i < out.size(); ++i)
-            for (size_t j = i + 1; j < out.size(); ++j) {
-                const std::int64_t added =
-                    rectPixels(united(out[i], out[j])) - rectPixels(out[i]) - rectPixels(out[j]);
-                if (added < best) {
-                    best = added;
-                    bi = i;
-                    bj = j;
-                }
-            }
-        if (best > mergePixels && int(out.size()) <= limit)
+    struct Pair {
+        std::int64_t added;
+        std::uint32_t i, j, ageI, ageJ;
+        bool operator>(const Pair& o) const {
+            return std::tie(added, i, j) > std::tie(o.added, o.i, o.j);
+        }
+    };
+    std::vector<std::uint32_t> age(out.size(), 0);
+    std::vector<bool> alive(out.size(), true);
+    const auto pair = [&](std::uint32_t i, std::uint32_t j) {
+        const std::int64_t added =
+            rectPixels(united(out[i], out[j])) - rectPixels(out[i]) - rectPixels(out[j]);
+        return Pair{added, i, j, age[i], age[j]};
+    };
+    std::vector<Pair> initial;
+    for (std::uint32_t i = 0; i < out.size(); ++i)
+        for (std::uint32_t j = i + 1; j < out.size(); ++j)
+            initial.push_back(pair(i, j));
+    std::priority_queue<Pair, std::vector<Pair>, std::greater<>> queue(std::greater<>(),
+                                                                       std::move(initial));
+    size_t left = out.size();
+    while (left > 1) {
+        while (!alive[queue.top().j] || !alive[queue.top().i] ||
+               queue.top().ageI != age[queue.top().i] || queue.top().ageJ != age[queue.top().j])
+            queue.pop(); // every live pair is queued at its age: the queue holds one
+        const Pair best = queue.top();
+        if (best.added > mergePixels && int(left) <= limit)
             break;
-        out[bi] = united(out[bi], out[bj]);
-        out.erase(out.begin() + std::ptrdiff_t(bj));
+        queue.pop();
+        out[best.i] = united(out[best.i], out[best.j]);
+        alive[best.j] = false;
+        ++age[best.i];
+        --left;
+        for (std::uint32_t k = 0; k < out.size(); ++k)
+            if (alive[k] && k != best.i)
+                queue.push(k < best.i ? pair(k, best.i) : pair(best.i, k));
     }
+    std::vector<glm::ivec4> kept;
+    for (size_t k = 0; k < out.size(); ++k)
+        if (alive[k])
+            kept.push_back(out[k]);
+    out = std::move(kept);
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include "render/damage_tiles.h"
 
 #include <QtTest>
+#include <limits>
 #include <set>
 
 using namespace kw;
@@ -35,6 +36,35 @@ bool covered(const std::vector<glm::ivec4>& rects, int x, int y) {
         if (x >= r.x && x < r.z && y >= r.y && y < r.w)
             return true;
     return false;
+}
+
+/// TileGrid::rects' merging as a scan of every pair per merge (O(n^3) in the runs): the
+/// cheapest union, of two equal the first pair in order, while cheap enough or too many.
+std::vector<glm::ivec4> mergedByScan(std::vector<glm::ivec4> out, int maxRects,
+                                     std::int64_t mergePixels) {
+    const auto united = [](const glm::ivec4& a, const glm::ivec4& b) {
+        return glm::ivec4(glm::min(glm::ivec2(a), glm::ivec2(b)),
+                          glm::max(glm::ivec2(a.z, a.w), glm::ivec2(b.z, b.w)));
+    };
+    while (out.size() > 1) {
+        std::int64_t best = std::numeric_limits<std::int64_t>::max();
+        size_t bi = 0, bj = 0;
+        for (size_t i = 0; i < out.size(); ++i)
+            for (size_t j = i + 1; j < out.size(); ++j) {
+                const std::int64_t added =
+                    rectPixels(united(out[i], out[j])) - rectPixels(out[i]) - rectPixels(out[j]);
+                if (added < best) {
+                    best = added;
+                    bi = i;
+                    bj = j;
+                }
+            }
+        if (best > mergePixels && int(out.size()) <= std::max(maxRects, 1))
+            break;
+        out[bi] = united(out[bi], out[bj]);
+        out.erase(out.begin() + std::ptrdiff_t(bj));
+    }
+    return out;
 }
 
 } // namespace
@@ -109,6 +139,37 @@ private Q_SLOTS:
                         QVERIFY(covered(merged, x, y));
                 }
         }
+    }
+
+    /// The queue of pair costs merges as a scan of every pair would, ties and overlaps
+    /// (merged rectangles may overlap: a negative cost) included, on random tile sets.
+    void mergesAsAScanOfPairs() {
+        std::uint32_t seed = 777;
+        const auto next = [&seed] {
+            seed = seed * 1664525u + 1013904223u;
+            return seed >> 8;
+        };
+        int merged = 0;
+        for (int round = 0; round < 60; ++round) {
+            TileGrid g(glm::ivec2(320, 240), 8);
+            const int marks = 5 + int(next() % 60u);
+            for (int k = 0; k < marks; ++k) {
+                const int x = int(next() % 320u), y = int(next() % 240u);
+                g.addRect({x, y, x + int(next() % 40u), y + int(next() % 24u)});
+            }
+            const std::vector<glm::ivec4> runs = g.rects(1 << 20, -(1 << 30));
+            const int maxRects = 1 + int(next() % 8u);
+            const std::int64_t mergePixels = std::int64_t(next() % 4096u) - 256;
+            const std::vector<glm::ivec4> got = g.rects(maxRects, mergePixels);
+            const std::vector<glm::ivec4> want = mergedByScan(runs, maxRects, mergePixels);
+            QCOMPARE(got.size(), want.size());
+            for (size_t k = 0; k < got.size(); ++k)
+                QVERIFY2(got[k] == want[k], qPrintable(QStringLiteral("round %1, rectangle %2")
+                                                           .arg(round)
+                                                           .arg(k)));
+            merged += int(runs.size() - got.size());
+        }
+        QVERIFY2(merged > 100, qPrintable(QString::number(merged)));
     }
 
     /// A polygon's cells: the tiles their rectangles grown by the pad touch, not all of its
