@@ -188,28 +188,10 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
             error = done.message();
         return bool(done);
     };
-    bool ok = true, backCulledMoved = false;
-    if (plan.regions.size() > 1) {
-        // The changed surfaces' tiles: each rectangle cleared and drawn whole, as the whole
-        // frame draws it, with the cells that reach it (they may overlap: drawn twice alike).
-        const int pad = PartialFrames::reachPixels(options);
-        for (const glm::ivec4& r : plan.regions) {
-            partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
-            fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
-            ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights,
-                                  options, report.analysisRange, pickPixel));
-            report.partialCells += exact.cellsSent();
-            backCulledMoved = backCulledMoved || exact.backCulledSolids() != partial.backCulled();
-            if (!ok)
-                break;
-        }
-    } else if (!unchanged) {
-        ok = step(drawSamples(range, sampleTarget, target.framebuffer, targets, fc, lights, options,
-                              report.analysisRange, pickPixel));
-        if (report.partial && options.mode == RenderMode::Exact)
-            report.partialCells = exact.cellsSent();
-        backCulledMoved = report.partial && exact.backCulledSolids() != partial.backCulled();
-    }
+    bool backCulledMoved = false;
+    bool ok = unchanged || step(drawRegions(plan, range, sampleTarget, target.framebuffer,
+                                            targets, fc, lights, options, pickPixel, report,
+                                            backCulledMoved));
     clock.mark(PassTimes::Antialiasing);
     if (backCulledMoved) {
         // A solid's back faces skipped now and drawn in the kept frame, or the reverse: that
@@ -380,6 +362,37 @@ std::vector<glm::ivec4> Renderer::Impl::damageRegions(const std::vector<DamagedS
             grid.addRect(PartialFrames::grown(c.footprint.rect, pad, fc.viewport));
     }
     return grid.rects(options.maxRects, options.mergePixels);
+}
+
+Status Renderer::Impl::drawRegions(const PartialPlan& plan, const SampleRange& range,
+                                   const RenderTarget& sampleTarget, std::uint32_t framebuffer,
+                                   const FrameTargets& targets, FrameCamera& fc,
+                                   const std::vector<Light>& lights, const RenderOptions& options,
+                                   const QRect* pickPixel, FrameReport& report,
+                                   bool& backCulledMoved) {
+    if (plan.regions.size() <= 1) {
+        const Status drawn = drawSamples(range, sampleTarget, framebuffer, targets, fc, lights,
+                                         options, report.analysisRange, pickPixel);
+        if (report.partial && options.mode == RenderMode::Exact)
+            report.partialCells = exact.cellsSent();
+        backCulledMoved = report.partial && exact.backCulledSolids() != partial.backCulled();
+        return drawn;
+    }
+    // The changed surfaces' tiles: each rectangle cleared and drawn whole, as the whole
+    // frame draws it, with the cells that reach it (they may overlap: drawn twice alike).
+    const int pad = PartialFrames::reachPixels(options);
+    Status drawn;
+    for (const glm::ivec4& r : plan.regions) {
+        partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
+        fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
+        drawn = drawSamples(range, sampleTarget, framebuffer, targets, fc, lights, options,
+                            report.analysisRange, pickPixel);
+        report.partialCells += exact.cellsSent();
+        backCulledMoved = backCulledMoved || exact.backCulledSolids() != partial.backCulled();
+        if (!drawn)
+            break;
+    }
+    return drawn;
 }
 
 void Renderer::Impl::rememberFrame(const LastFrame& now, const FrameCamera& fc,

@@ -188,6 +188,15 @@ struct Renderer::Impl {
                                           const FrameCamera& fc, int pad,
                                           const RenderOptions::DamageTiles& options,
                                           std::vector<SurfaceFootprint>& footprints);
+    /// Draws the frame's samples (drawSamples): over the whole frame or `plan`'s one rectangle,
+    /// or over each of plan.regions with its own reach. Adds the cells sent to `report`'s
+    /// partial figures; `backCulledMoved`: a partial frame skipped other solids' back faces
+    /// than the kept frame (it must be drawn again whole).
+    Status drawRegions(const PartialPlan& plan, const SampleRange& range,
+                       const RenderTarget& sampleTarget, std::uint32_t framebuffer,
+                       const FrameTargets& targets, FrameCamera& fc,
+                       const std::vector<Light>& lights, const RenderOptions& options,
+                       const QRect* pickPixel, FrameReport& report, bool& backCulledMoved);
     /// After a frame that is not a pick: what pickInLastFrame and the next partial frame may
     /// read from it (`ok`: the frame succeeded).
     void rememberFrame(const LastFrame& now, const FrameCamera& fc, const RenderOptions& options,
