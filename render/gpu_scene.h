@@ -108,8 +108,10 @@ struct SurfaceRecord {
     /// drawnRect.
     std::shared_ptr<const std::vector<std::int32_t>> drawnTiles;
     int drawnTilesPad = -1, drawnTilesSide = 0; ///< the pad and tile side they were taken at
-    /// A partial frame redrew it (it is being edited): its tiles are taken again in every
-    /// frame that can be kept, whole ones too, for the partial frame after it.
+    /// The last partial frame that redrew pixels redrew it (it is being edited): its tiles are
+    /// taken again in every frame that can be kept, whole ones too, for the partial frame
+    /// after it. Each partial frame that redraws pixels clears it and sets it again for the
+    /// surfaces it redraws.
     bool tilesWanted = false;
     /// What this record adds to the frame's partition figures (FrameReport::Partitions).
     std::int64_t cells = 0;

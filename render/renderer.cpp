@@ -282,6 +282,11 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     const int pad = PartialFrames::reachPixels(options);
     fc.reach = damage + glm::ivec4(-pad, -pad, pad, pad);
     partialScissor = QRect(damage.x, damage.y, damage.z - damage.x, damage.w - damage.y);
+    // Tiles are taken in the frames after this one for the surfaces it redraws (damageRegions
+    // marks them) and no longer for those of an earlier edit: else every face ever dragged
+    // would have its cells projected again in every frame of each later view.
+    for (SurfaceRecord* r : scene.records())
+        r->tilesWanted = false;
     // The overlays are drawn over the whole rectangle (their lines and points are not the
     // surfaces' cells), and edge bands' ranges have no tiles: one rectangle then.
     if (options.wireframe || options.controlNet || options.edgeBands || bandsChanged)
