@@ -155,6 +155,86 @@ bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1,
     return true;
 }
 
+namespace {
+// Calls `f(span, u0, u1, v0, v1)` for each sub-rectangle of `spans` that meets `box`, its
+// rectangle cut to the box.
+template <class F>
+void forEachCoverSub(const std::vector<SpanBound>& spans, const ParameterBox& box, F f) {
+    for (const SpanBound& b : spans) {
+        const double su = (b.u1 - b.u0) / b.grid, sv = (b.v1 - b.v0) / b.grid;
+        for (int j = 0; j < b.grid; ++j)
+            for (int i = 0; i < b.grid; ++i) {
+                // As surfaceSpanBounds cuts them.
+                const double u0 = b.u0 + su * i, u1 = i + 1 == b.grid ? b.u1 : u0 + su;
+                const double v0 = b.v0 + sv * j, v1 = j + 1 == b.grid ? b.v1 : v0 + sv;
+                const double a0 = std::max(u0, box.u.first), a1 = std::min(u1, box.u.last);
+                const double c0 = std::max(v0, box.v.first), c1 = std::min(v1, box.v.last);
+                if (a0 <= a1 && c0 <= c1)
+                    f(b, b.subs[size_t(j * b.grid + i)], a0, a1, c0, c1);
+            }
+    }
+}
+} // namespace
+
+int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box) {
+    int n = 0;
+    forEachCoverSub(
+        spans, box,
+        [&](const SpanBound&, const SpanBound::Sub&, double, double, double, double) { ++n; });
+    return n;
+}
+
+CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                     const ParameterBox& box) {
+    // The faces of the unit box, corner k at (k & 1, k >> 1 & 1, k >> 2 & 1), each as a quad
+    // turned so that its normal (by the right-hand rule) points into the box.
+    struct Quad {
+        unsigned c[4];
+    };
+    std::vector<Quad> faces;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+            Quad q{};
+            const int order[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            for (int k = 0; k < 4; ++k)
+                q.c[k] = unsigned(side << axis | order[k][0] << b | order[k][1] << c);
+            const auto at = [](unsigned k) {
+                return glm::dvec3(k & 1, k >> 1 & 1, k >> 2 & 1);
+            };
+            const glm::dvec3 n = glm::cross(at(q.c[1]) - at(q.c[0]), at(q.c[2]) - at(q.c[0]));
+            const glm::dvec3 inward = glm::dvec3(0.5) - at(q.c[0]);
+            if (glm::dot(n, inward) < 0.0)
+                std::swap(q.c[1], q.c[3]);
+            faces.push_back(q);
+        }
+    CoverMesh m;
+    forEachCoverSub(spans, box,
+                    [&](const SpanBound& b, const SpanBound::Sub& sub, double u0, double u1,
+                        double v0, double v1) {
+                        // The corners are floats: grown by their rounding and then some, so the box
+                        // still holds the patch as the GPU sees it.
+                        const double margin = 1e-6 * (glm::length(sub.hi - sub.lo) +
+                                                      glm::length(sub.lo) + glm::length(sub.hi));
+                        const glm::dvec3 lo = sub.lo - margin, hi = sub.hi + margin;
+                        const unsigned first = unsigned(m.vertices.size());
+                        BaseVertex v{};
+                        v.uv = glm::vec2(float(0.5 * (u0 + u1)), float(0.5 * (v0 + v1)));
+                        v.span = glm::ivec2(b.spanU, b.spanV);
+                        v.spanScale = spanScale(s, b.spanU, b.spanV);
+                        for (unsigned k = 0; k < 8; ++k) {
+                            v.position = glm::vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
+                                                   k & 4 ? hi.z : lo.z);
+                            m.vertices.push_back(v);
+                        }
+                        for (const Quad& q : faces)
+                            m.triangles.insert(m.triangles.end(),
+                                               {first + q.c[0], first + q.c[1], first + q.c[2],
+                                                first + q.c[0], first + q.c[2], first + q.c[3]});
+                    });
+    return m;
+}
+
 std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly) {
     std::vector<unsigned> idx;
     idx.reserve(size_t(poly.cellCount()) * 6);

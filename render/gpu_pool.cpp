@@ -192,6 +192,9 @@ void freePolygon(ScenePools& pools, SurfaceGpu& g) {
     g.triangleIndexCount = g.outlineIndexCount = g.skirtIndexCount = 0;
 }
 
+// Every polygon and cover rebuilt gets the next: SurfaceGpu::polygonSerial.
+std::uint64_t g_polygonSerial = 0;
+
 void freeControl(ScenePools& pools, SurfaceGpu& g) {
     pools.control.free(g.controlOffset, std::int64_t(g.countU) * g.countV);
     pools.spans.free(g.spanOffset, g.spanTexelsU + g.spanTexelsV);
@@ -275,6 +278,8 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     // surface's points brings it back whole, from the new points. The nodes outside the moved
     // points' support come out as they are on the GPU (the same points, the same sums), so
     // only the support's range is written, as with the copy kept.
+    if (g.cover)
+        return; // a cover is rebuilt from the new bounds (GpuScene::syncSurface)
     if (g.polygon.vertices.empty() && g.vertexCount > 0)
         g.polygon.vertices = buildBasePolygon(s.geometry, g.polygonBox, g.cut).vertices;
     int first = 0, last = -1;
@@ -374,13 +379,14 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     g.outlineOffset = o, g.outlineIndexCount = int(lines);
     g.skirtVertexOffset = sv, g.skirtVertexCount = skirtVertices;
     g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIndices);
-    static std::uint64_t serial = 0;
-    g.polygonSerial = ++serial;
+    g.polygonSerial = ++g_polygonSerial;
     g.insideIndexCount = -1;
     g.edgeIndexCount = 0;
     g.splitPolygon = g.splitClasses = g.splitSections = 0;
     g.keptIndexCount = g.crossedIndexCount = 0;
     std::vector<std::uint8_t>().swap(g.cellBuckets);
+    g.cover = false;
+    g.coverBoxes = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, triangles, u.triangles.data());
     if (withOutlines)
@@ -396,6 +402,42 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     // brings it back then). Not kept: at 30 x 30 it is 30 KB a surface, 300 MB over 10,000.
     if (!withSkirt)
         std::vector<BaseVertex>().swap(g.polygon.vertices); // `= {}` would keep the capacity
+    return true;
+}
+
+bool rebuildCover(ScenePools& pools, SurfaceGpu& g, const CoverMesh& cover, const PolygonCut& cut,
+                  const ParameterBox& box, UploadStats& stats) {
+    freePolygon(pools, g);
+    g.cut = cut;
+    g.polygonBox = box;
+    const std::int64_t vertices = std::int64_t(cover.vertices.size());
+    const std::int64_t triangles = std::int64_t(cover.triangles.size());
+    const std::int64_t v = pools.vertices.allocate(vertices);
+    const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(triangles);
+    if (t < 0) {
+        if (v >= 0)
+            pools.vertices.free(v, vertices);
+        return false;
+    }
+    g.polygon = BasePolygon{};
+    g.vertexOffset = v, g.vertexCount = vertices;
+    g.triangleOffset = t, g.triangleIndexCount = int(triangles);
+    g.outlineOffset = -1, g.outlineIndexCount = 0;
+    g.skirtVertexOffset = -1, g.skirtVertexCount = 0;
+    g.skirtIndexOffset = -1, g.skirtIndexCount = 0;
+    g.polygonSerial = ++g_polygonSerial;
+    g.insideIndexCount = -1;
+    g.edgeIndexCount = 0;
+    g.splitPolygon = g.splitClasses = g.splitSections = 0;
+    g.keptIndexCount = g.crossedIndexCount = 0;
+    std::vector<std::uint8_t>().swap(g.cellBuckets);
+    g.cover = true;
+    g.coverBoxes = cover.boxes();
+    pools.vertices.write(v, vertices, cover.vertices.data());
+    pools.triangles.write(t, triangles, cover.triangles.data());
+    stats.basePolygonBuilds += 1;
+    stats.bytes += std::int64_t(vertices * std::int64_t(sizeof(BaseVertex)) +
+                                triangles * std::int64_t(sizeof(unsigned)));
     return true;
 }
 
@@ -479,6 +521,8 @@ bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
     const bool usable = mask && mask->usable() && !mask->texelClass.empty() && mask->width > 0 &&
                         mask->height > 0 && g.triangleOffset >= 0;
     const std::uint64_t classes = usable ? mask->classSerial : 0;
+    if (g.cover)
+        return false; // one range, drawn with exact depth: nothing to split
     const BasePolygon& poly = g.polygon;
     const bool cut = sections && sectionSerial != 0 && g.triangleOffset >= 0 &&
                      sections->size() == size_t(poly.cellCount());

@@ -160,6 +160,12 @@ struct SurfaceGpu {
     /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
     /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
     bool affine = false;
+    /// The triangle range holds the face's cover (kw::buildCover, rebuildCover), not a base
+    /// polygon: `polygon` is then empty (no cells, no breaks), and the exact planner draws the
+    /// range with the closed form's exact depth only (docs/RENDERING.md, "Covers of
+    /// closed-form faces"). `coverBoxes` counts its boxes.
+    bool cover = false;
+    int coverBoxes = 0;
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
@@ -195,6 +201,11 @@ PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& bo
 /// overlay most frames do not draw (addOutlines brings them when one does).
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                     const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
+/// Replaces the polygon's ranges with `cover`'s (kw::buildCover): no skirt, no outlines, an
+/// empty `polygon`; `box` and `cut` recorded as rebuildPolygon records them. Returns false (the
+/// ranges freed) when a pool would exceed its limit.
+bool rebuildCover(ScenePools& pools, SurfaceGpu& g, const CoverMesh& cover, const PolygonCut& cut,
+                  const ParameterBox& box, UploadStats& stats);
 /// The outline indices of the polygon on the GPU, when it has none yet (a frame that draws the
 /// wireframe). Returns false when the outline pool would exceed its limit (nothing changed).
 bool addOutlines(ScenePools& pools, SurfaceGpu& g, UploadStats& stats);
