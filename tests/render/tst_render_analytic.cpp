@@ -527,6 +527,43 @@ private Q_SLOTS:
         QVERIFY(colourApart <= covered / 1000);
     }
 
+    // A cover keeps what the polygon's skirts keep past the face's edges: a pixel whose ray
+    // meets the form's continuation within a quarter pixel of the edge shows the edge (B-rep
+    // faces meet within the model's tolerance). Covered at every size (coverMinCells 0), the
+    // fitted cylinder and cone cover the polygon's pixels; without that reach they lost 108
+    // and 105 pixels along their rims.
+    void coverKeepsTheSkirtsReach_data() {
+        QTest::addColumn<Scene>("scene");
+        const glm::dvec3 o(0.0);
+        QTest::newRow("cylinder") << sceneOf({cylinderSurface(1, o, 1.0, 2.0)});
+        QTest::newRow("cone") << sceneOf({coneSurface(1, o, 0.3, 0.5, 1.5)});
+    }
+    void coverKeepsTheSkirtsReach() {
+        QFETCH(Scene, scene);
+        Document doc;
+        KW_VERIFY_OK(doc.resetScene(scene));
+        const Camera cam = fitCamera(doc.scene(), 1.0);
+        RenderOptions cover = adaptive(true), polygon = adaptive(true);
+        cover.coverMinCells = 0.0;
+        polygon.coverMinCells = 1e30;
+        KW_VERIFY_OK(m_renderer->render(doc, cam, cover));
+        QCOMPARE(m_renderer->lastReport().partitions.coverSurfaces, 1);
+        const AovBuffer a = m_renderer->aov();
+        KW_VERIFY_OK(m_renderer->render(doc, cam, polygon));
+        QCOMPARE(m_renderer->lastReport().partitions.coverSurfaces, 0);
+        const AovBuffer b = m_renderer->aov();
+        int coveredA = 0, coveredB = 0, otherId = 0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) {
+                coveredA += a.pixel(x, y)[0] >= 0.0f;
+                coveredB += b.pixel(x, y)[0] >= 0.0f;
+                otherId += a.pixel(x, y)[0] != b.pixel(x, y)[0];
+            }
+        qInfo("cover %d px, polygon %d px, %d of another id", coveredA, coveredB, otherId);
+        QVERIFY(coveredB > 20000);
+        QVERIFY(otherId <= coveredB / 2000);
+    }
+
     void cleanupTestCase() { m_renderer.reset(); }
 };
 
