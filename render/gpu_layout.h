@@ -4,7 +4,6 @@
 
 #include "model/nurbs/nurbs.h"
 #include "model/nurbs/visible_bounds.h"
-#include "render/surface_bound.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -98,23 +97,9 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, con
 bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
                        int& first, int& last);
 
-/// A closed-form face's cover (docs/RENDERING.md, "Covers of closed-form faces"): one box, the
-/// bounds of the Bezier control points of the sub-rectangles of `spans` meeting `box` (with
-/// positive weights each patch lies in their convex hull, so in the box) grown by a float
-/// margin. 8 BaseVertex: its corners, each with the (u, v) of the middle of those
-/// sub-rectangles (within `box`), the knot span nearest it and its span scale; 12 triangles,
-/// each face wound counter-clockwise seen from inside, so that with GL_BACK culled a pixel is
-/// drawn once, by the face where its ray leaves the box, whether the eye is outside or inside
-/// it (and the part of the box past the near plane is what rays beyond it cross).
-struct CoverMesh {
-    std::vector<BaseVertex> vertices;
-    std::vector<unsigned> triangles;
-    int boxes() const { return int(vertices.size() / 8); }
-};
-CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
-                     const ParameterBox& box);
-/// The boxes buildCover makes for `spans` over `box` (1, or 0 when no span meets it).
-int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box);
+/// The diagonal of the bounds of the control points acting on knot span (ku, kv): the length L
+/// of the degenerate-normal rule of kw::surfaceFrame (BaseVertex::spanScale).
+float spanScale(const NurbsSurface& s, int ku, int kv);
 
 /// Indices of two triangles per cell (GL_TRIANGLES), each starting at the cell's lower-left
 /// corner: draw with glProvokingVertex(GL_FIRST_VERTEX_CONVENTION).

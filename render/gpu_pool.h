@@ -8,6 +8,7 @@
 #include "render/frame_report.h"
 #include "render/gpu_layout.h"
 #include "render/render_types.h"
+#include "render/surface_bound.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QString>
@@ -100,6 +101,24 @@ private:
     GLuint m_buffer = 0;
     RangeAllocator m_ranges;
 };
+
+/// A closed-form face's cover (docs/RENDERING.md, "Covers of closed-form faces"): one box, the
+/// bounds of the Bezier control points of the sub-rectangles of `spans` meeting `box` (with
+/// positive weights each patch lies in their convex hull, so in the box) grown by a float
+/// margin. 8 BaseVertex: its corners, each with the (u, v) of the middle of those
+/// sub-rectangles (within `box`), the knot span nearest it and its span scale; 12 triangles,
+/// each face wound counter-clockwise seen from inside, so that with GL_BACK culled a pixel is
+/// drawn once, by the face where its ray leaves the box, whether the eye is outside or inside
+/// it (and the part of the box past the near plane is what rays beyond it cross).
+struct CoverMesh {
+    std::vector<BaseVertex> vertices;
+    std::vector<unsigned> triangles;
+    int boxes() const { return int(vertices.size() / 8); }
+};
+CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                     const ParameterBox& box);
+/// The boxes buildCover makes for `spans` over `box` (1, or 0 when no span meets it).
+int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box);
 
 // ---- One surface's ranges in the pools, and its uploads
 
