@@ -418,24 +418,26 @@ int runRender(const QStringList& args, const std::function<bool()>& startGui) {
                      .arg(meshBytes)
                      .arg(renderer.lastReport().surfaces));
     else if (options.mode == RenderMode::Exact)
-        printOut(options.partitioning == RenderOptions::Partitioning::Adaptive
-                     ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
-                                      "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
-                                      "surfaces drawn as their polygon, %7 surfaces shaded by "
-                                      "the deferred pass, %8 analytic faces in closed form, %9 "
-                                      "cells crossed by a section plane\n")
-                           .arg(files[0])
-                           .arg(parts.cells)
-                           .arg(parts.worstBoundPixels, 0, 'f', 3)
-                           .arg(options.pixelTolerance)
-                           .arg(parts.skirtTriangles)
-                           .arg(parts.affineSurfaces)
-                           .arg(parts.deferredSurfaces)
-                           .arg(parts.analyticSurfaces)
-                           .arg(parts.sectionCrossedCells)
-                     : QStringLiteral("%1: uniform partitions: %2 cells\n")
-                           .arg(files[0])
-                           .arg(parts.cells));
+        printOut(
+            options.partitioning == RenderOptions::Partitioning::Adaptive
+                ? QStringLiteral("%1: adaptive partitions: %2 cells, screen bound %3 px "
+                                 "(tolerance %4 px), %5 edge skirt triangles, %6 affine "
+                                 "surfaces drawn as their polygon, %7 surfaces shaded by "
+                                 "the deferred pass, %8 analytic faces in closed form, %9 "
+                                 "cells crossed by a section plane, %10 faces drawn by covers\n")
+                      .arg(files[0])
+                      .arg(parts.cells)
+                      .arg(parts.worstBoundPixels, 0, 'f', 3)
+                      .arg(options.pixelTolerance)
+                      .arg(parts.skirtTriangles)
+                      .arg(parts.affineSurfaces)
+                      .arg(parts.deferredSurfaces)
+                      .arg(parts.analyticSurfaces)
+                      .arg(parts.sectionCrossedCells)
+                      .arg(parts.coverSurfaces)
+                : QStringLiteral("%1: uniform partitions: %2 cells\n")
+                      .arg(files[0])
+                      .arg(parts.cells));
     printOut(QStringLiteral("%1: %2 bytes resident on the GPU\n")
                  .arg(files[0])
                  .arg(renderer.lastReport().gpuBytes.total()));

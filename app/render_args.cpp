@@ -403,13 +403,14 @@ bool readDevelopmentSwitches(const QString& cmd, RenderOptions& options) {
     // Thresholds of the per-cell gather and of the deferred pass's forward surfaces.
     for (const auto& [name, value] :
          {std::pair{"KW_GATHER_MIN_CELL_PX", &options.gatherMinCellPixels},
-          std::pair{"KW_DEFER_MAX_CELL_PX", &options.deferMaxCellPixels}}) {
+          std::pair{"KW_DEFER_MAX_CELL_PX", &options.deferMaxCellPixels},
+          std::pair{"KW_COVER_MIN_CELLS", &options.coverMinCells}}) {
         if (!qEnvironmentVariableIsSet(name))
             continue;
         bool ok = false;
         const double v = qEnvironmentVariable(name).toDouble(&ok);
         if (!ok || !(v >= 0.0)) {
-            printError(QStringLiteral("%1: %2 '%3' is not a number of pixels >= 0")
+            printError(QStringLiteral("%1: %2 '%3' is not a number >= 0")
                            .arg(cmd, QLatin1String(name), qEnvironmentVariable(name)));
             return false;
         }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace kw {
 
@@ -159,7 +160,8 @@ const std::vector<SpanBound>& AdaptivePartitions::spans(const Surface& surface,
     m_spans = surfaceSpanBounds(g, gridFor(surfaceSpanCount(g)));
     m_geometry = rev;
     m_haveSpans = true;
-    m_inBox.clear();
+    std::vector<SpanBound>().swap(m_inBox);
+    m_allInBox = false;
     m_box = ParameterBox{{1.0, 0.0}, {1.0, 0.0}}; // forces choose's filter
     return m_spans;
 }
@@ -180,23 +182,27 @@ const PartitionChoice& AdaptivePartitions::choose(const Surface& surface, const 
     }
     if (!(box == m_box)) {
         // Spans wholly outside the polygon's box carry no cell of it.
-        m_inBox.clear();
-        for (const SpanBound& b : m_spans)
-            if (b.u1 > box.u.first && b.u0 < box.u.last && b.v1 > box.v.first && b.v0 < box.v.last)
-                m_inBox.push_back(b);
+        const auto meets = [&box](const SpanBound& b) {
+            return b.u1 > box.u.first && b.u0 < box.u.last && b.v1 > box.v.first &&
+                   b.v0 < box.v.last;
+        };
+        std::vector<SpanBound>().swap(m_inBox);
+        m_allInBox = std::all_of(m_spans.begin(), m_spans.end(), meets);
+        if (!m_allInBox)
+            std::copy_if(m_spans.begin(), m_spans.end(), std::back_inserter(m_inBox), meets);
         m_box = box;
         stale = true;
     }
     if (stale) {
         // The breaks are kept once, in the cut the polygon is built from.
-        PartitionChoice c = chooseCut(g, m_inBox, box, scale, tolerance, minU, minV);
+        PartitionChoice c = chooseCut(g, inBox(), box, scale, tolerance, minU, minV);
         m_choiceCells = std::int64_t(std::max<std::size_t>(c.breaksU.size(), 1) - 1) *
                         std::int64_t(std::max<std::size_t>(c.breaksV.size(), 1) - 1);
         m_cut = PolygonCut{c.nu, c.nv, std::move(c.breaksU), std::move(c.breaksV)};
         // At a close-up most of a surface's cells lie off screen: only those that may reach
         // the view are kept, so the polygon's memory and build follow what is on screen.
         if (inView)
-            m_cut = cutInView(m_cut, m_inBox, c.cellsInOneSub, scale, viewMarginPixels(tolerance));
+            m_cut = cutInView(m_cut, inBox(), c.cellsInOneSub, scale, viewMarginPixels(tolerance));
         c.breaksU.clear();
         c.breaksV.clear();
         m_choice = std::move(c);

@@ -85,7 +85,11 @@ private:
     bool m_haveSpans = false;
     std::vector<SpanBound> m_spans; ///< all non-empty spans
     ParameterBox m_box;
-    std::vector<SpanBound> m_inBox; ///< the spans meeting m_box
+    /// The spans meeting m_box: empty while they are all of m_spans (inBox), so that the
+    /// common case (an untrimmed face, or trims over every span) keeps one copy of its bounds.
+    std::vector<SpanBound> m_inBox;
+    bool m_allInBox = false;
+    const std::vector<SpanBound>& inBox() const { return m_allInBox ? m_spans : m_inBox; }
     std::uint64_t m_viewStamp = 0;
     int m_minU = 0, m_minV = 0;
     bool m_inView = true;

@@ -199,6 +199,10 @@ enum class ExactFeature : std::uint32_t {
     /// KW_ANALYTIC (with KW_RAY_NEWTON): the point under the pixel from the face's analytic
     /// form in closed form (analytic.glsl), instead of the Newton step onto the NURBS
     Analytic = 1u << 18,
+    /// KW_COVER (with KW_ANALYTIC and KW_EXACT_DEPTH): a closed-form face drawn by its cover's
+    /// boxes (SurfaceGpu::cover): the ray's first meeting with the face in its domain, beyond
+    /// the near plane and not trimmed away, or the fragment is discarded
+    Cover = 1u << 19,
 };
 using ExactFeatures = QFlags<ExactFeature>;
 
@@ -227,6 +231,7 @@ inline constexpr std::array kExactFeatureDefines{
     ExactFeatureDefine{ExactFeature::Section, "KW_SECTION"},
     ExactFeatureDefine{ExactFeature::BackFill, "KW_BACK_FILL"},
     ExactFeatureDefine{ExactFeature::Analytic, "KW_ANALYTIC"},
+    ExactFeatureDefine{ExactFeature::Cover, "KW_COVER"},
 };
 
 /// The defines of `features`, one per bit, in kExactFeatureDefines' order.

@@ -180,8 +180,9 @@ std::int64_t ExactPlanner::trimTestedCells() const {
 std::int64_t ExactPlanner::sectionCells() const {
     std::int64_t cells = 0;
     for (const auto& [k, b] : m_sections)
-        for (const IndirectCommand& c : b.commands)
-            cells += c.count / 6;
+        if (!b.cover)
+            for (const IndirectCommand& c : b.commands)
+                cells += c.count / 6;
     return cells;
 }
 
@@ -252,9 +253,12 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
             return p;
         }
         // Of a surface that reaches it, the cells that do: a face at the rectangle's corner
-        // sends the few cells there through every pass, not all of them.
-        const std::vector<std::uint8_t> keep = cellsReaching(
-            g->polygon, camera.viewProjection, camera.viewport, key.reach, key.skirtPush);
+        // sends the few cells there through every pass, not all of them. A cover has no
+        // cells: its few boxes are sent whole, the scissor keeps their pixels in the rectangle.
+        const std::vector<std::uint8_t> keep =
+            g->cover ? std::vector<std::uint8_t>{}
+                     : cellsReaching(g->polygon, camera.viewProjection, camera.viewport, key.reach,
+                                     key.skirtPush);
         if (!keep.empty() && std::int64_t(keep.size()) * 6 == g->triangleIndexCount) {
             std::int64_t cells = 0, skirted = 0; // cells with each bit, in one pass
             for (const std::uint8_t k : keep) {
@@ -297,6 +301,20 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
     const TrimMask* mask = key.has(PlanFlag::Trims) ? maskOf(r) : nullptr;
     // Batch keys: degrees (1..15, 4 bits each), then the variant's flags.
     const int degrees = g->degreeU | g->degreeV << 4;
+    // A closed-form face's cover (docs/RENDERING.md, "Covers of closed-form faces"): its
+    // boxes are no chords of the face, so no pre-pass depth, skirt or fin; drawn once, after
+    // the shading, with the closed form's exact depth as the cells a section plane crosses
+    // are (their pass), each box's inside faces only (culled as face 1: wound counter-
+    // clockwise seen from inside), testing its trims itself.
+    if (g->cover && key.has(PlanFlag::Adaptive) && key.has(PlanFlag::Analytic) && r.surface &&
+        analyticUsable(r.surface->analytic)) {
+        p.cover = true;
+        p.cells = g->coverBoxes;
+        p.face = 1;
+        commands.section = commands.all;
+        p.sectionVariant = degrees | int(mask != nullptr) << 8 | 1 << 10 | 1 << 14 | 1 << 16;
+        return p;
+    }
     p.prepassTrimmed = mask != nullptr;
     // Split by the trims: the pre-pass tests them only on the cells near a curve (a discard
     // costs llvmpipe its early depth test), and no pass draws the cells they remove.
@@ -463,6 +481,20 @@ int ExactPlanner::addCommand(ExactBatch& b, const IndirectCommand& command, cons
 
 void ExactPlanner::addToBatches(const SurfaceRecord& r, ExactPlace& p, const Commands& cs,
                                 const ExactPlanKey& key) {
+    if (p.cover) {
+        ExactBatch& k = m_sections[p.sectionVariant];
+        if (k.commands.empty()) {
+            k.degreeU = r.exact->degreeU;
+            k.degreeV = r.exact->degreeV;
+            k.trimmed = (p.sectionVariant >> 8) & 1;
+            k.analytic = true;
+            k.section = true;
+            k.cover = true;
+            k.face = p.face;
+        }
+        p.sectionIndex = addCommand(k, cs.section, p, cs);
+        return;
+    }
     const IndirectCommand& c = cs.all;
     const bool deferred = key.has(PlanFlag::Deferred);
     if (key.has(PlanFlag::Prepass)) {
@@ -559,16 +591,17 @@ void ExactPlanner::build(const ExactPlanScene& scene, const ExactPlanKey& key,
     m_culled = 0;
     m_trimmedAway = 0;
     m_cellsSent = 0;
-    m_affine = m_analytic = m_deferred = 0;
+    m_affine = m_analytic = m_deferred = m_cover = 0;
     for (const SurfaceRecord* r : *scene.records) {
         Commands cs;
         ExactPlace p = classify(*r, key, camera, cs);
         if (p.drawn && !p.culled) {
             addToBatches(*r, p, cs, key);
             m_cellsSent += p.cells;
-            m_affine += (p.variant >> 12) & 1;
-            m_analytic += (p.variant >> 14) & 1;
-            m_deferred += (p.variant >> 13) & 1 ? 0 : 1;
+            m_affine += p.cover ? 0 : (p.variant >> 12) & 1;
+            m_analytic += p.cover ? 1 : (p.variant >> 14) & 1;
+            m_deferred += p.cover || (p.variant >> 13) & 1 ? 0 : 1;
+            m_cover += p.cover;
         }
         m_culled += p.culled ? 1 : 0;
         m_trimmedAway += p.awayCells;
@@ -603,6 +636,23 @@ bool ExactPlanner::patch(const ExactPlanScene& scene, const ExactPlanKey& key,
             return false;
         if (!now.drawn || now.culled)
             continue;
+        if (now.cover != was.cover)
+            return false;
+        if (now.cover) {
+            if (now.sectionVariant != was.sectionVariant)
+                return false;
+            IndirectCommand& old =
+                m_sections.at(was.sectionVariant).commands[size_t(was.sectionIndex)];
+            if (!(old == cs.section)) {
+                old = cs.section;
+                const std::int64_t at = m_sections.at(was.sectionVariant).first + was.sectionIndex;
+                m_commands[size_t(at)] = cs.section;
+                writes.push_back({at, cs.section});
+            }
+            m_cellsSent += now.cells - was.cells;
+            it->second.cells = now.cells;
+            continue;
+        }
         if (now.variant != was.variant || now.prepassTrimmed != was.prepassTrimmed ||
             now.edgeVariant != was.edgeVariant || now.split != was.split ||
             now.skirtVariant != was.skirtVariant || now.backVariant != was.backVariant ||

@@ -38,6 +38,9 @@ struct ExactBatch {
     /// The section test (ExactFeature::Section, variant bit 15) in a frame with planes: off for
     /// the cells every plane keeps, except those of the closed solids a plane may cap.
     bool section = true;
+    /// Covers of closed-form faces (SurfaceGpu::cover, in sections()): the exact pass's
+    /// program with KW_COVER (the first meeting in the domain, none: discarded).
+    bool cover = false;
     int route = 0; ///< pre-pass batches of the deferred pass: ExactPlace::route
     int face = 0;  ///< the triangles skipped: ExactPlace::face
     std::vector<IndirectCommand> commands;
@@ -96,6 +99,9 @@ struct ExactPlace {
     /// the planes). Its other commands then hold only the cells every plane keeps.
     int sectionVariant = -1;
     int sectionIndex = -1;
+    /// Drawn by its cover (SurfaceGpu::cover): its one command is in sections() (variant bit
+    /// 16 there), drawn with exact depth; no pre-pass, shading, skirt or back-face command.
+    bool cover = false;
     /// With a route: the normalised device rectangle (x0, y0, x1, y1, within -1..1) of its
     /// control bounds, all of the view when they reach behind the eye.
     glm::vec4 window{-1.0f, -1.0f, 1.0f, 1.0f};
@@ -234,8 +240,10 @@ public:
     std::int64_t trimmedAwayCells() const { return m_trimmedAway; }
     /// Surfaces drawn without the Newton step (affine), and those the deferred pass shades.
     int affineSurfaces() const;
-    /// Surfaces shaded from their analytic form (ExactBatch::analytic).
+    /// Surfaces shaded from their analytic form (ExactBatch::analytic), covers included.
     int analyticSurfaces() const;
+    /// Surfaces drawn by their covers (ExactPlace::cover).
+    int coverSurfaces() const { return m_cover; }
     int deferredSurfaces() const;
     /// The cells of the drawn surfaces' polygons the plan sends: in a partial frame those
     /// reaching its rectangle (FrameReport::partialCells), else every drawn surface's.
@@ -316,7 +324,7 @@ private:
     std::int64_t m_cellsSent = 0;   ///< ExactPlace::cells, summed
     int m_culled = 0;
     /// The drawn surfaces that are affine, analytic, and shaded by the deferred pass.
-    int m_affine = 0, m_analytic = 0, m_deferred = 0;
+    int m_affine = 0, m_analytic = 0, m_deferred = 0, m_cover = 0;
 };
 
 // In the namespace, so that argument-dependent lookup finds the operators.

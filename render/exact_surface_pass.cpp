@@ -250,9 +250,10 @@ Status ExactSurfacePass::draw(const GpuScene& scene, bool trims, const FrameCame
     trimmedAwayCells = prepass ? m_plan.trimmedAwayCells() : 0;
     affineSurfaces = m_plan.affineSurfaces();
     analyticSurfaces = m_plan.analyticSurfaces();
+    coverSurfaces = m_plan.coverSurfaces();
     const std::map<int, ExactBatch>& variants = m_plan.variants();
-    if (variants.empty())
-        return ok(); // nothing to draw
+    if (variants.empty() && m_plan.sections().empty())
+        return ok(); // nothing to draw (covers are drawn by the section pass alone)
 
     scene.bindSurfaceData();
     // Each cell's triangles start at the vertex that carries the cell's span (BasePolygon).
@@ -356,10 +357,14 @@ Status ExactSurfacePass::drawBatches(const std::map<int, ExactBatch>& batches, T
                                  b.gather, trimAa, false, b.affine, b.analytic);
         if (!b.section) // cells every plane keeps, no solid to cap (ExactBatch::section)
             v.features.setFlag(ExactFeature::Section, false);
-        if (const Expected<QOpenGLShaderProgram*> built =
-                bindExactProgram(v, b.trimmed, scene, camera, lights, options, range);
-            !built)
+        v.features.setFlag(ExactFeature::Cover,
+                           b.cover && v.features.testFlag(ExactFeature::Analytic));
+        const Expected<QOpenGLShaderProgram*> built =
+            bindExactProgram(v, b.trimmed, scene, camera, lights, options, range);
+        if (!built)
             return built.error();
+        if (v.features.testFlag(ExactFeature::Cover)) // the skirts' overlap past the edges
+            m_gl->glUniform1f(ShaderLibrary::uniforms(*built).skirtReach, kSkirtReachPixels);
         drawBatch(b);
     }
     return ok();

@@ -110,6 +110,8 @@ public:
     int affineSurfaces = 0;
     /// FrameReport::Partitions::analyticSurfaces of the last draw.
     int analyticSurfaces = 0;
+    /// FrameReport::Partitions::coverSurfaces of the last draw.
+    int coverSurfaces = 0;
     /// Surfaces the deferred pass shaded in the last draw (FrameReport::partitions).
     int deferredSurfaces = 0;
     /// FrameReport::Partitions::sectionCrossedCells of the last draw.

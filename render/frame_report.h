@@ -144,6 +144,9 @@ struct FrameReport {
         /// Adaptive exact frames: the surfaces shaded from their analytic form in closed form
         /// (RenderOptions::analyticFaces), not by the Newton step onto their NURBS.
         int analyticSurfaces = 0;
+        /// Adaptive exact frames: of those, the faces drawn by their covers (RenderOptions::
+        /// coverMinCells): boxes bounding the face, shaded with the closed form's exact depth.
+        int coverSurfaces = 0;
         /// Surfaces shaded by the deferred exact pass (RenderOptions::deferredPass) in the
         /// last aliased frame; 0 when every surface was drawn the forward way.
         int deferredSurfaces = 0;

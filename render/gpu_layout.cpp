@@ -82,17 +82,6 @@ std::vector<int> cellSpans(const std::vector<double>& breaks, const std::vector<
     return spans;
 }
 
-// Diagonal of the bounds of the control points acting on span (ku, kv), as kw::surfaceFrame.
-float spanScale(const NurbsSurface& s, int ku, int kv) {
-    glm::dvec3 lo = s.points[size_t(s.index(ku - s.degreeU, kv - s.degreeV))], hi = lo;
-    for (int j = kv - s.degreeV; j <= kv; ++j)
-        for (int i = ku - s.degreeU; i <= ku; ++i) {
-            lo = glm::min(lo, s.points[size_t(s.index(i, j))]);
-            hi = glm::max(hi, s.points[size_t(s.index(i, j))]);
-        }
-    return float(glm::length(hi - lo));
-}
-
 // Vertex (gu, gv): exact point, (u, v), and the span of the cell it is the lower-left corner of.
 void setVertex(BasePolygon& poly, const NurbsSurface& s, int gu, int gv) {
     BaseVertex& vx = poly.vertices[size_t(gv * poly.nodesU() + gu)];
@@ -105,6 +94,16 @@ void setVertex(BasePolygon& poly, const NurbsSurface& s, int gu, int gv) {
 }
 
 } // namespace
+
+float spanScale(const NurbsSurface& s, int ku, int kv) {
+    glm::dvec3 lo = s.points[size_t(s.index(ku - s.degreeU, kv - s.degreeV))], hi = lo;
+    for (int j = kv - s.degreeV; j <= kv; ++j)
+        for (int i = ku - s.degreeU; i <= ku; ++i) {
+            lo = glm::min(lo, s.points[size_t(s.index(i, j))]);
+            hi = glm::max(hi, s.points[size_t(s.index(i, j))]);
+        }
+    return float(glm::length(hi - lo));
+}
 
 BasePolygon buildBasePolygon(const NurbsSurface& s, int nu, int nv) {
     return buildBasePolygon(s, ParameterBox{surfaceDomainU(s), surfaceDomainV(s)}, nu, nv);

@@ -97,6 +97,10 @@ BasePolygon buildBasePolygon(const NurbsSurface& s, const ParameterBox& box, con
 bool updateBasePolygon(BasePolygon& poly, const NurbsSurface& s, int i0, int i1, int j0, int j1,
                        int& first, int& last);
 
+/// The diagonal of the bounds of the control points acting on knot span (ku, kv): the length L
+/// of the degenerate-normal rule of kw::surfaceFrame (BaseVertex::spanScale).
+float spanScale(const NurbsSurface& s, int ku, int kv);
+
 /// Indices of two triangles per cell (GL_TRIANGLES), each starting at the cell's lower-left
 /// corner: draw with glProvokingVertex(GL_FIRST_VERTEX_CONVENTION).
 std::vector<unsigned> basePolygonTriangles(const BasePolygon& poly);

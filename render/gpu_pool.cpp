@@ -192,6 +192,9 @@ void freePolygon(ScenePools& pools, SurfaceGpu& g) {
     g.triangleIndexCount = g.outlineIndexCount = g.skirtIndexCount = 0;
 }
 
+// Every polygon and cover rebuilt gets the next: SurfaceGpu::polygonSerial.
+std::uint64_t g_polygonSerial = 0;
+
 void freeControl(ScenePools& pools, SurfaceGpu& g) {
     pools.control.free(g.controlOffset, std::int64_t(g.countU) * g.countV);
     pools.spans.free(g.spanOffset, g.spanTexelsU + g.spanTexelsV);
@@ -275,6 +278,8 @@ void uploadChangedPoints(ScenePools& pools, SurfaceGpu& g, const Surface& s, Upl
     // surface's points brings it back whole, from the new points. The nodes outside the moved
     // points' support come out as they are on the GPU (the same points, the same sums), so
     // only the support's range is written, as with the copy kept.
+    if (g.cover)
+        return; // a cover is rebuilt from the new bounds (GpuScene::syncSurface)
     if (g.polygon.vertices.empty() && g.vertexCount > 0)
         g.polygon.vertices = buildBasePolygon(s.geometry, g.polygonBox, g.cut).vertices;
     int first = 0, last = -1;
@@ -374,13 +379,14 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     g.outlineOffset = o, g.outlineIndexCount = int(lines);
     g.skirtVertexOffset = sv, g.skirtVertexCount = skirtVertices;
     g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIndices);
-    static std::uint64_t serial = 0;
-    g.polygonSerial = ++serial;
+    g.polygonSerial = ++g_polygonSerial;
     g.insideIndexCount = -1;
     g.edgeIndexCount = 0;
     g.splitPolygon = g.splitClasses = g.splitSections = 0;
     g.keptIndexCount = g.crossedIndexCount = 0;
     std::vector<std::uint8_t>().swap(g.cellBuckets);
+    g.cover = false;
+    g.coverBoxes = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
     pools.triangles.write(t, triangles, u.triangles.data());
     if (withOutlines)
@@ -396,6 +402,42 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     // brings it back then). Not kept: at 30 x 30 it is 30 KB a surface, 300 MB over 10,000.
     if (!withSkirt)
         std::vector<BaseVertex>().swap(g.polygon.vertices); // `= {}` would keep the capacity
+    return true;
+}
+
+bool rebuildCover(ScenePools& pools, SurfaceGpu& g, const CoverMesh& cover, const PolygonCut& cut,
+                  const ParameterBox& box, UploadStats& stats) {
+    freePolygon(pools, g);
+    g.cut = cut;
+    g.polygonBox = box;
+    const std::int64_t vertices = std::int64_t(cover.vertices.size());
+    const std::int64_t triangles = std::int64_t(cover.triangles.size());
+    const std::int64_t v = pools.vertices.allocate(vertices);
+    const std::int64_t t = v < 0 ? -1 : pools.triangles.allocate(triangles);
+    if (t < 0) {
+        if (v >= 0)
+            pools.vertices.free(v, vertices);
+        return false;
+    }
+    g.polygon = BasePolygon{};
+    g.vertexOffset = v, g.vertexCount = vertices;
+    g.triangleOffset = t, g.triangleIndexCount = int(triangles);
+    g.outlineOffset = -1, g.outlineIndexCount = 0;
+    g.skirtVertexOffset = -1, g.skirtVertexCount = 0;
+    g.skirtIndexOffset = -1, g.skirtIndexCount = 0;
+    g.polygonSerial = ++g_polygonSerial;
+    g.insideIndexCount = -1;
+    g.edgeIndexCount = 0;
+    g.splitPolygon = g.splitClasses = g.splitSections = 0;
+    g.keptIndexCount = g.crossedIndexCount = 0;
+    std::vector<std::uint8_t>().swap(g.cellBuckets);
+    g.cover = true;
+    g.coverBoxes = cover.boxes();
+    pools.vertices.write(v, vertices, cover.vertices.data());
+    pools.triangles.write(t, triangles, cover.triangles.data());
+    stats.basePolygonBuilds += 1;
+    stats.bytes += std::int64_t(vertices * std::int64_t(sizeof(BaseVertex)) +
+                                triangles * std::int64_t(sizeof(unsigned)));
     return true;
 }
 
@@ -470,6 +512,115 @@ int cellTrimClass(const TrimMask& m, double u0, double u1, double v0, double v1)
 
 } // namespace
 
+namespace {
+// Calls `f(span, bounds, u0, u1, v0, v1)` once for the face, when any span of `spans` meets
+// `box`: the union of the bounds of the sub-rectangles meeting the box, their (u, v) rectangle
+// cut to the box, and the span holding its middle. One box for the face, not one a span or a
+// sub-rectangle: boxes overlap on screen (near the eye each covers much of the view) and every
+// box's fragment solves the face again (the screw's 64x close-up: 334 ms a frame with a box a
+// sub-rectangle, 171 ms with one a span, against 93 ms for the polygon), while a solve needs no
+// start near the point. The box is larger than the face's boxes together; a pixel inside it
+// but off the face costs one solve and its discard.
+template <class F>
+void forEachCoverSub(const std::vector<SpanBound>& spans, const ParameterBox& box, F f) {
+    SpanBound::Sub all;
+    glm::dvec4 uv(0.0);
+    bool any = false;
+    for (const SpanBound& b : spans) {
+        const double su = (b.u1 - b.u0) / b.grid, sv = (b.v1 - b.v0) / b.grid;
+        for (int j = 0; j < b.grid; ++j)
+            for (int i = 0; i < b.grid; ++i) {
+                // As surfaceSpanBounds cuts them.
+                const double u0 = b.u0 + su * i, u1 = i + 1 == b.grid ? b.u1 : u0 + su;
+                const double v0 = b.v0 + sv * j, v1 = j + 1 == b.grid ? b.v1 : v0 + sv;
+                const double a0 = std::max(u0, box.u.first), a1 = std::min(u1, box.u.last);
+                const double c0 = std::max(v0, box.v.first), c1 = std::min(v1, box.v.last);
+                if (!(a0 <= a1 && c0 <= c1))
+                    continue;
+                const SpanBound::Sub& sub = b.subs[size_t(j * b.grid + i)];
+                all.lo = any ? glm::min(all.lo, sub.lo) : sub.lo;
+                all.hi = any ? glm::max(all.hi, sub.hi) : sub.hi;
+                uv = any ? glm::dvec4(std::min(uv.x, a0), std::max(uv.y, a1), std::min(uv.z, c0),
+                                      std::max(uv.w, c1))
+                         : glm::dvec4(a0, a1, c0, c1);
+                any = true;
+            }
+    }
+    if (!any)
+        return;
+    // The span nearest the middle (holding it, unless the box's spans leave a gap there).
+    const glm::dvec2 mid(0.5 * (uv.x + uv.y), 0.5 * (uv.z + uv.w));
+    const SpanBound* at = nullptr;
+    double best = std::numeric_limits<double>::infinity();
+    for (const SpanBound& b : spans) {
+        const double du = std::max({b.u0 - mid.x, mid.x - b.u1, 0.0});
+        const double dv = std::max({b.v0 - mid.y, mid.y - b.v1, 0.0});
+        if (du + dv < best)
+            best = du + dv, at = &b;
+    }
+    f(*at, all, uv.x, uv.y, uv.z, uv.w);
+}
+} // namespace
+
+int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box) {
+    int n = 0;
+    forEachCoverSub(
+        spans, box,
+        [&](const SpanBound&, const SpanBound::Sub&, double, double, double, double) { ++n; });
+    return n;
+}
+
+CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                     const ParameterBox& box) {
+    // The faces of the unit box, corner k at (k & 1, k >> 1 & 1, k >> 2 & 1), each as a quad
+    // turned so that its normal (by the right-hand rule) points into the box.
+    struct Quad {
+        unsigned c[4];
+    };
+    std::vector<Quad> faces;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+            Quad q{};
+            const int order[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            for (int k = 0; k < 4; ++k)
+                q.c[k] = unsigned(side << axis | order[k][0] << b | order[k][1] << c);
+            const auto at = [](unsigned k) {
+                return glm::dvec3(k & 1, k >> 1 & 1, k >> 2 & 1);
+            };
+            const glm::dvec3 n = glm::cross(at(q.c[1]) - at(q.c[0]), at(q.c[2]) - at(q.c[0]));
+            const glm::dvec3 inward = glm::dvec3(0.5) - at(q.c[0]);
+            if (glm::dot(n, inward) < 0.0)
+                std::swap(q.c[1], q.c[3]);
+            faces.push_back(q);
+        }
+    CoverMesh m;
+    forEachCoverSub(spans, box,
+                    [&](const SpanBound& b, const SpanBound::Sub& sub, double u0, double u1,
+                        double v0, double v1) {
+                        // The corners are floats: grown by their rounding and then some, so the box
+                        // still holds the patch as the GPU sees it.
+                        const double margin = 1e-6 * (glm::length(sub.hi - sub.lo) +
+                                                      glm::length(sub.lo) + glm::length(sub.hi));
+                        const glm::dvec3 lo = sub.lo - margin, hi = sub.hi + margin;
+                        const unsigned first = unsigned(m.vertices.size());
+                        BaseVertex v{};
+                        v.uv = glm::vec2(float(0.5 * (u0 + u1)), float(0.5 * (v0 + v1)));
+                        v.span = glm::ivec2(b.spanU, b.spanV);
+                        v.spanScale = spanScale(s, b.spanU, b.spanV);
+                        for (unsigned k = 0; k < 8; ++k) {
+                            v.position = glm::vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
+                                                   k & 4 ? hi.z : lo.z);
+                            m.vertices.push_back(v);
+                        }
+                        for (const Quad& q : faces)
+                            m.triangles.insert(m.triangles.end(),
+                                               {first + q.c[0], first + q.c[1], first + q.c[2],
+                                                first + q.c[0], first + q.c[2], first + q.c[3]});
+                    });
+    return m;
+}
+
 bool splitByTrims(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask) {
     return splitCells(pools, g, mask, nullptr, 0);
 }
@@ -479,6 +630,8 @@ bool splitCells(ScenePools& pools, SurfaceGpu& g, const TrimMask* mask,
     const bool usable = mask && mask->usable() && !mask->texelClass.empty() && mask->width > 0 &&
                         mask->height > 0 && g.triangleOffset >= 0;
     const std::uint64_t classes = usable ? mask->classSerial : 0;
+    if (g.cover)
+        return false; // one range, drawn with exact depth: nothing to split
     const BasePolygon& poly = g.polygon;
     const bool cut = sections && sectionSerial != 0 && g.triangleOffset >= 0 &&
                      sections->size() == size_t(poly.cellCount());

@@ -8,6 +8,7 @@
 #include "render/frame_report.h"
 #include "render/gpu_layout.h"
 #include "render/render_types.h"
+#include "render/surface_bound.h"
 
 #include <QOpenGLFunctions_4_5_Core>
 #include <QString>
@@ -86,7 +87,10 @@ public:
     /// at maxBytes (then below `need` when it does not fit). No GL: the growth is testable alone.
     static std::int64_t grownCapacity(std::int64_t capacity, std::int64_t need,
                                       std::int64_t elementBytes, std::int64_t maxBytes);
-    static constexpr std::int64_t kMinElements = 1024;
+    /// The least capacity a pool holds: a few dozen cells. A close-up of a few faces (the
+    /// screw's at 64x, drawn by a cover and 9 cells) held 1024 elements in each of four pools,
+    /// 0.08 MiB for 0.002 MiB of data, a quarter of Knotwork's memory for that view.
+    static constexpr std::int64_t kMinElements = 64;
     static constexpr std::int64_t kDoublingBytes = std::int64_t(64) << 20;
 
 private:
@@ -97,6 +101,24 @@ private:
     GLuint m_buffer = 0;
     RangeAllocator m_ranges;
 };
+
+/// A closed-form face's cover (docs/RENDERING.md, "Covers of closed-form faces"): one box, the
+/// bounds of the Bezier control points of the sub-rectangles of `spans` meeting `box` (with
+/// positive weights each patch lies in their convex hull, so in the box) grown by a float
+/// margin. 8 BaseVertex: its corners, each with the (u, v) of the middle of those
+/// sub-rectangles (within `box`), the knot span nearest it and its span scale; 12 triangles,
+/// each face wound counter-clockwise seen from inside, so that with GL_BACK culled a pixel is
+/// drawn once, by the face where its ray leaves the box, whether the eye is outside or inside
+/// it (and the part of the box past the near plane is what rays beyond it cross).
+struct CoverMesh {
+    std::vector<BaseVertex> vertices;
+    std::vector<unsigned> triangles;
+    int boxes() const { return int(vertices.size() / 8); }
+};
+CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
+                     const ParameterBox& box);
+/// The boxes buildCover makes for `spans` over `box` (1, or 0 when no span meets it).
+int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box);
 
 // ---- One surface's ranges in the pools, and its uploads
 
@@ -160,6 +182,12 @@ struct SurfaceGpu {
     /// kw::surfaceIsAffine of the geometry now on the GPU: the base polygon is the surface, so
     /// adaptive frames draw it without the Newton step onto the pixel's ray (ExactSurfacePass).
     bool affine = false;
+    /// The triangle range holds the face's cover (kw::buildCover, rebuildCover), not a base
+    /// polygon: `polygon` is then empty (no cells, no breaks), and the exact planner draws the
+    /// range with the closed form's exact depth only (docs/RENDERING.md, "Covers of
+    /// closed-form faces"). `coverBoxes` counts its boxes.
+    bool cover = false;
+    int coverBoxes = 0;
 };
 
 /// Full upload of a new surface, or after its knots, degrees or counts changed: ranges
@@ -195,6 +223,11 @@ PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& bo
 /// overlay most frames do not draw (addOutlines brings them when one does).
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                     const ParameterBox& box, bool skirt, bool outlines, UploadStats& stats);
+/// Replaces the polygon's ranges with `cover`'s (kw::buildCover): no skirt, no outlines, an
+/// empty `polygon`; `box` and `cut` recorded as rebuildPolygon records them. Returns false (the
+/// ranges freed) when a pool would exceed its limit.
+bool rebuildCover(ScenePools& pools, SurfaceGpu& g, const CoverMesh& cover, const PolygonCut& cut,
+                  const ParameterBox& box, UploadStats& stats);
 /// The outline indices of the polygon on the GPU, when it has none yet (a frame that draws the
 /// wireframe). Returns false when the outline pool would exceed its limit (nothing changed).
 bool addOutlines(ScenePools& pools, SurfaceGpu& g, UploadStats& stats);

@@ -83,6 +83,28 @@ void GpuScene::prepare(const Document& doc) {
     m_changes.updateBounds(doc);
 }
 
+bool coversAllowed(const RenderOptions& options) {
+    // Adaptive exact frames whose faces are drawn from their analytic form, aliased or
+    // accumulated (MSAA frames cover silhouettes and trims by the polygon's samples), without
+    // the wireframe (the polygon's cells) and without section planes (a cover shows its face's
+    // first meeting with the ray, which a plane may cut where a later one is kept).
+    return options.partitioning == RenderOptions::Partitioning::Adaptive &&
+           options.mode == RenderMode::Exact && options.analyticFaces && !options.wireframe &&
+           options.sections.empty() &&
+           !(options.samples > 1 && options.antialiasing == RenderOptions::Antialiasing::Coverage);
+}
+
+bool coverable(const Surface& s) {
+    using Kind = AnalyticForm::Kind;
+    const Kind k = s.analytic.kind;
+    if ((k != Kind::Cylinder && k != Kind::Cone && k != Kind::Sphere) ||
+        !analyticUsable(s.analytic))
+        return false;
+    // The convex hull property holds for positive weights.
+    return std::all_of(s.geometry.weights.begin(), s.geometry.weights.end(),
+                       [](double w) { return w > 0.0; });
+}
+
 void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     const RenderOptions& options = pass.options;
     ++pass.examined;
@@ -135,14 +157,39 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
             m_unmet.insert(index);
     }
     const PolygonCut& cut = *chosenCut;
+    // A closed-form face whose polygon in view would take many cells (a close-up beside it)
+    // gets its cover instead: a box per sub-rectangle, whatever the view (docs/RENDERING.md,
+    // "Covers of closed-form faces").
+    const std::vector<SpanBound>* coverSpans = nullptr;
+    if (pass.adaptive && coversAllowed(options) && coverable(s)) {
+        const auto inView = std::int64_t(std::max<size_t>(cut.breaksU.size(), 2) - 1) *
+                            std::int64_t(std::max<size_t>(cut.breaksV.size(), 2) - 1);
+        if (double(inView) > options.coverMinCells) {
+            const std::vector<SpanBound>& spans = e.adaptive.spans(s, rev);
+            if (coverBoxes(spans, box) < inView) {
+                coverSpans = &spans;
+                r.boundPixels = 0.0; // no chords: no tolerance to meet
+                m_unmet.erase(index);
+            }
+        }
+    }
     if (fresh) {
         if (!g) {
             g = std::make_unique<SurfaceGpu>();
             g->id = s.id;
         }
         fits = uploadSurface(m_pools, *g, s, cut, box, skirt, outlines, up);
+        if (fits && coverSpans)
+            fits = rebuildCover(m_pools, *g, buildCover(geo, *coverSpans, box), cut, box, up);
+    } else if (coverSpans) {
+        if (!g->cover || box != g->polygonBox || g->revisions.points != rev.points) {
+            if (g->revisions.points != rev.points)
+                uploadChangedPoints(m_pools, *g, s, up); // the texels; the cover is rebuilt
+            fits = rebuildCover(m_pools, *g, buildCover(geo, *coverSpans, box), cut, box, up);
+        }
     } else {
-        if (g->cut != cut || box != g->polygonBox || (g->skirtVertexOffset >= 0) != skirt) {
+        if (g->cover || g->cut != cut || box != g->polygonBox ||
+            (g->skirtVertexOffset >= 0) != skirt) {
             // The polygon is rebuilt from the current points; pick up a point change.
             if (g->revisions.points != rev.points)
                 uploadChangedPoints(m_pools, *g, s, up);
@@ -185,7 +232,7 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
                     .arg(geo.countU)
                     .arg(geo.countV);
     }
-    r.cells = g ? std::int64_t(g->triangleIndexCount / 6) : 0;
+    r.cells = !g ? 0 : g->cover ? g->coverBoxes : std::int64_t(g->triangleIndexCount / 6);
     if (options.mode == RenderMode::Tessellated)
         syncMesh(r, rev, sliderU, sliderV, up);
     if (options.controlNet)
@@ -271,7 +318,7 @@ bool GpuScene::needsFullWalk(const Scene& scene, const FrameCamera& camera,
                        options.controlNet,      options.trims,          options.trimMode,
                        options.trimBudgetBytes, options.trimGridCap,    options.splitCellsByTrims,
                        options.edgeSkirts,      options.polygonsInView, options.wireframe,
-                       options.cullOutsideView};
+                       options.cullOutsideView, coversAllowed(options), options.coverMinCells};
     const bool full = m_changes.structureChanged() || !m_haveFrameKey || !(key == m_frameKey);
     m_frameKey = key;
     m_haveFrameKey = true;
@@ -491,8 +538,8 @@ void GpuScene::splitRecords(const std::vector<SurfaceRecord*>& records, bool spl
             continue;
         const auto it = side == ExactPlanner::SectionSide::Crossed ? m_entries.find(r->id)
                                                                    : m_entries.end();
-        if (it == m_entries.end() || !r->surface) {
-            splitCells(m_pools, g, mask, nullptr, 0);
+        if (it == m_entries.end() || !r->surface || g.cover) {
+            splitCells(m_pools, g, mask, nullptr, 0); // a cover has no cells to split
             continue;
         }
         Entry::Sections& cells = it->second.sections;

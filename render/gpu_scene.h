@@ -119,6 +119,13 @@ struct SurfaceRecord {
     bool inOrder = false; ///< in records() (visible) as of the last sync
 };
 
+/// Whether frames drawn with `options` may draw closed-form faces by their covers
+/// (RenderOptions::coverMinCells, SurfaceGpu::cover).
+bool coversAllowed(const RenderOptions& options);
+/// Whether `s` can be drawn by a cover: an unedited cylinder, cone or sphere (its analytic
+/// form usable) with positive weights.
+bool coverable(const Surface& s);
+
 class GpuScene {
 public:
     GpuScene() = default;
@@ -350,6 +357,8 @@ private:
         bool splitCellsByTrims = false, edgeSkirts = false, polygonsInView = false;
         bool wireframe = false; ///< outlines are uploaded once a frame draws them
         bool cullOutsideView = false; ///< exact trim grids are held for what is in view
+        bool covers = false;          ///< kw::coversAllowed: closed-form faces may have covers
+        double coverMinCells = 0.0;   ///< RenderOptions::coverMinCells
         bool operator==(const FrameKey&) const = default;
     };
     FrameKey m_frameKey;

@@ -744,6 +744,7 @@ void Renderer::Impl::resetPassCounters() {
     exact.trimTestedCells = exact.trimmedAwayCells = exact.skirtTriangles = 0;
     exact.affineSurfaces = 0;
     exact.analyticSurfaces = 0;
+    exact.coverSurfaces = 0;
     exact.deferredSurfaces = 0;
     exact.sectionCrossedCells = 0;
     exact.firstDrawCpuMs = tessellated.firstDrawCpuMs = -1.0;
@@ -886,6 +887,7 @@ void Renderer::Impl::reportPassFigures(FrameReport& report) const {
     report.partitions.skirtTriangles = exact.skirtTriangles;
     report.partitions.affineSurfaces = exact.affineSurfaces;
     report.partitions.analyticSurfaces = exact.analyticSurfaces;
+    report.partitions.coverSurfaces = exact.coverSurfaces;
     report.partitions.deferredSurfaces = exact.deferredSurfaces;
     report.partitions.sectionCrossedCells = exact.sectionCrossedCells;
     scene.residentBytes(report.gpuBytes);

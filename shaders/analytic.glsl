@@ -303,6 +303,44 @@ vec3 kwPixelRay() {
     return normalize(dot(rw, d) < 0.0 ? -d : d);
 }
 
+#ifdef KW_COVER
+// A cover's meeting must lie beyond the near plane (the polygon there is clipped; a box is
+// not the face): at `t` along the pixel's ray `w` (world, unit) from the eye, clip z within
+// w (depth 1 at the near plane, reversed).
+bool kwBeyondNear(float t, vec3 w) {
+    vec4 clip = uViewProjection * vec4(uEye + t * w, 1.0);
+    return t > 0.0 && clip.w > 0.0 && clip.z <= clip.w;
+}
+#define KW_ANALYTIC_IN_FRONT(t) kwBeyondNear(t, w)
+// The skirts' overlap past a face's edge, on screen (kw::ExactSurfacePass::kSkirtReachPixels):
+// a polygon's skirt keeps a pixel whose ray meets the face's continuation that close to its
+// edge (B-rep faces meet within the model's tolerance, not exactly), and the cover does too.
+uniform float uSkirtReach;
+#else
+#define KW_ANALYTIC_IN_FRONT(t) ((t) > 0.0)
+#endif
+
+// Whether a meeting `p` (frame coordinates; map parameters `st`, their linear estimate `lin`)
+// counts as in the face's domain: within 1e-6 of it (`margin`), or, for a cover, past its edge
+// by at most uSkirtReach on screen from the edge's point (the clamped one the caller shows).
+bool kwInDomain(AnalyticFrame f, bool swapped, vec3 p, vec2 st, vec2 lin, vec2 margin) {
+    if (all(greaterThanEqual(lin, uDomain.xz - margin)) &&
+        all(lessThanEqual(lin, uDomain.yw + margin)))
+        return true;
+#ifdef KW_COVER
+    vec2 inside = clamp(lin, uDomain.xz, uDomain.yw);
+    vec2 edgeSt = mix(st, vec2(f.mapU.y, f.mapV.y) + vec2(f.mapU.z, f.mapV.z) * inside,
+                      notEqual(inside, lin));
+    vec3 pa, pb;
+    vec3 edge = kwFormPoint(f, swapped ? edgeSt.yx : edgeSt, pa, pb);
+    mat3 frame = mat3(f.x, f.y, f.z);
+    vec4 clip = uViewProjection * vec4(frame * edge + f.o + uOrigin, 1.0);
+    return clip.w > 0.0 && length(kwWindowTangent(clip, frame * (p - edge))) <= uSkirtReach;
+#else
+    return false;
+#endif
+}
+
 // The point under the pixel on the face's analytic form, from the polygon's (u, v) `polyUv` in
 // knot span `span`: the ray's first meeting with the face (in its domain, not trimmed away;
 // where there is none, the meeting nearest the polygon's point, or where the ray misses, near a
@@ -381,12 +419,17 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
     int first = count;
     vec2 turn = period / abs(scale); // a whole turn in (u, v); 0: not an angle
     for (int i = 0; i < count; ++i) {
-        vec2 lin = (kwAnalyticST(f, o + roots[i] * d, polyAb, swapped, period) - offset) / scale;
+        vec2 st = kwAnalyticST(f, o + roots[i] * d, polyAb, swapped, period);
+        vec2 lin = (st - offset) / scale;
         vec2 apart = lin - polyUv; // across a closed face's seam: the short way
         apart = abs(apart - mix(vec2(0.0), turn * round(apart / turn), greaterThan(turn, vec2(0.0))));
-        if (n >= 0 && t0 + roots[i] > 0.0 && all(greaterThanEqual(lin, uDomain.xz - margin)) &&
-            all(lessThanEqual(lin, uDomain.yw + margin)) &&
-            all(lessThanEqual(apart, KW_ANALYTIC_NEAR * (uDomain.yw - uDomain.xz)))) {
+#ifdef KW_COVER
+        // A cover draws the face's first meeting wherever it lies, at its own exact depth.
+        apart = vec2(0.0);
+#endif
+        if (n >= 0 && KW_ANALYTIC_IN_FRONT(t0 + roots[i]) &&
+            all(lessThanEqual(apart, KW_ANALYTIC_NEAR * (uDomain.yw - uDomain.xz))) &&
+            kwInDomain(f, swapped, o + roots[i] * d, st, lin, margin)) {
             first = i;
             break;
         }
@@ -399,14 +442,17 @@ vec2 kwAnalyticPoint(vec2 polyUv, inout ivec2 span, float spanScale, out Surface
     vec2 st, uv;
     away = false;
     for (int i = first; i <= count; ++i) {
+#ifdef KW_COVER
+        if (i == count)
+            discard; // no meeting in the domain (or all trimmed away): the box, not the face
+#endif
         int at = i < count ? i : chosen;
         if (f.kind == KW_FORM_TORUS && n > 0)
             roots[at] = kwTorusPolish(o, d, f.R, f.r, roots[at]);
         st = kwAnalyticST(f, o + roots[at] * d, polyAb, swapped, period);
         vec2 lin = (st - offset) / scale;
-        if (i < count && (n < 0 || !(t0 + roots[at] > 0.0) ||
-                          any(lessThan(lin, uDomain.xz - margin)) ||
-                          any(greaterThan(lin, uDomain.yw + margin))))
+        if (i < count && (n < 0 || !KW_ANALYTIC_IN_FRONT(t0 + roots[at]) ||
+                          !kwInDomain(f, swapped, o + roots[at] * d, st, lin, margin)))
             continue;
         span = ivec2(kwAnalyticSpanU(lin.x, from.x), kwAnalyticSpanV(lin.y, from.y));
         knotsU = spanKnotsU(span);

@@ -17,7 +17,9 @@
 // planes cut the exact point; caps where a closed solid is seen from inside; section.glsl),
 // KW_BACK_FILL (a closed solid's skipped side, drawn last where nothing nearer covered a pixel:
 // kw::ExactSurfacePass::backFacePass), KW_ANALYTIC (with KW_RAY_NEWTON: the point under the
-// pixel from the face's analytic form in closed form, analytic.glsl, instead of the Newton step).
+// pixel from the face's analytic form in closed form, analytic.glsl, instead of the Newton step),
+// KW_COVER (with KW_ANALYTIC and KW_EXACT_DEPTH: a closed-form face's cover, whose boxes are no
+// chords of it: the ray's first meeting with the face, or the fragment is discarded).
 #include "nurbs_surface.glsl"
 #include "phong.glsl"
 #include "trim_sample.glsl"

@@ -135,6 +135,56 @@ private Q_SLOTS:
         QVERIFY(!plan.sections().at(pn->sectionVariant).analytic);
     }
 
+    // A face drawn by its cover (SurfaceGpu::cover) is sent once, to the exact-depth pass of
+    // sections(), its boxes' inside faces only: no pre-pass (its boxes are no chords of it), no
+    // shading, skirt or route; a touched record keeps its place, patched in place.
+    void coversGoToTheExactDepthPass() {
+        Records rs;
+        SurfaceRecord& cylinder = rs.add(2, 1, true);
+        SurfaceRecord& nurbs = rs.add(2, 1, false, glm::vec3(1.0f, 0.0f, 0.0f));
+        cylinder.exact->cover = true;
+        cylinder.exact->coverBoxes = 4;
+        cylinder.exact->skirtIndexOffset = nurbs.exact->skirtIndexOffset = 0;
+        cylinder.exact->skirtIndexCount = nurbs.exact->skirtIndexCount = 12;
+        RenderOptions o;
+        o.partitioning = RenderOptions::Partitioning::Adaptive;
+        const FrameCamera cam = camera();
+        ExactPlanner plan;
+        std::vector<ExactPlanner::CommandWrite> writes;
+        const ExactPlanKey key = ExactPlanner::keyFor(rs.scene(), cam, o, false, false, true);
+        QVERIFY(plan.update(rs.scene(), key, cam, writes));
+        QCOMPARE(plan.coverSurfaces(), 1);
+        QCOMPARE(plan.analyticSurfaces(), 1);
+        QCOMPARE(plan.deferredSurfaces(), 1); // the NURBS face alone
+        const ExactPlace* p = plan.place(&cylinder);
+        QVERIFY(p && p->cover && p->sectionVariant >= 0 && p->skirtVariant < 0 && p->index < 0 &&
+                p->prepassIndex < 0);
+        QCOMPARE(p->cells, std::int64_t(4));
+        QCOMPARE(int(plan.sections().size()), 1);
+        const ExactBatch& b = plan.sections().at(p->sectionVariant);
+        QVERIFY(b.cover && b.analytic && b.face == 1 && b.commands.size() == 1);
+        QCOMPARE(b.commands[0].count, 30u);
+        QCOMPARE(plan.sectionCells(), std::int64_t(0)); // no plane crosses anything
+        QCOMPARE(int(plan.routes().size()), 1);
+        QCOMPARE(int(plan.variants().size()), 1);
+        QCOMPARE(int(plan.skirts().size()), 1);
+        for (const auto& [k, batch] : plan.plain())
+            for (const IndirectCommand& c : batch.commands)
+                QVERIFY(c.baseInstance != std::uint32_t(cylinder.slot));
+        // Touched with its cover re-made elsewhere: patched, one write.
+        cylinder.exact->triangleOffset = 600;
+        rs.touched = {&cylinder};
+        QVERIFY(!plan.update(rs.scene(), key, cam, writes));
+        QCOMPARE(int(writes.size()), 1);
+        QCOMPARE(writes[0].command.firstIndex, 600u);
+        // Back to a polygon: planned again, the NURBS face's way with the closed form.
+        cylinder.exact->cover = false;
+        QVERIFY(plan.update(rs.scene(), key, cam, writes));
+        QCOMPARE(plan.coverSurfaces(), 0);
+        QVERIFY(plan.sections().empty());
+        QCOMPARE(plan.analyticSurfaces(), 1);
+    }
+
     void droppedFormIsPlannedAgain() {
         Records rs;
         SurfaceRecord& cylinder = rs.add(2, 1, true);

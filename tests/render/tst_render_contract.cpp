@@ -166,7 +166,7 @@ private Q_SLOTS:
             all |= f.feature;
             QCOMPARE(featureDefines(f.feature), QStringList{QLatin1String(f.define)});
         }
-        QCOMPARE(int(names.size()), 19);
+        QCOMPARE(int(names.size()), 20);
         const ExactVariant none{2, 3, 1, AnalysisMode::Phong, {}};
         QCOMPARE(none.defines().size(), 5); // degrees, span widths, lights
         ExactVariant v = none;

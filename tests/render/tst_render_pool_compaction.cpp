@@ -50,7 +50,7 @@ private Q_SLOTS:
         // More than twice the packed size is due; a pool just grown by doubling is not.
         QVERIFY(!GpuPool::shouldCompact(0, 0));
         QVERIFY(!GpuPool::shouldCompact(2048, 0));
-        QVERIFY(!GpuPool::shouldCompact(2 * 1024, 1000)); // kMinElements floor: 1024 packed
+        QVERIFY(!GpuPool::shouldCompact(2 * 1024, 1000)); // 1000 pack into 1250
         QVERIFY(GpuPool::shouldCompact(32768, 12360));    // the screw's close-up vertices
         QVERIFY(!GpuPool::shouldCompact(131072, 72588));  // doubled for what it holds
         QCOMPARE(GpuPool::compactedCapacity(12360), std::int64_t(15450));
