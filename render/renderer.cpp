@@ -189,9 +189,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         return bool(done);
     };
     bool backCulledMoved = false;
-    bool ok = unchanged || step(drawRegions(plan, range, sampleTarget, target.framebuffer,
-                                            targets, fc, lights, options, pickPixel, report,
-                                            backCulledMoved));
+    bool ok =
+        unchanged || step(drawRegions(plan, range, sampleTarget, target.framebuffer, targets, fc,
+                                      lights, options, pickPixel, report, backCulledMoved));
     clock.mark(PassTimes::Antialiasing);
     if (backCulledMoved) {
         // A solid's back faces skipped now and drawn in the kept frame, or the reverse: that

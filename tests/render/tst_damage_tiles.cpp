@@ -164,9 +164,8 @@ private Q_SLOTS:
             const std::vector<glm::ivec4> want = mergedByScan(runs, maxRects, mergePixels);
             QCOMPARE(got.size(), want.size());
             for (size_t k = 0; k < got.size(); ++k)
-                QVERIFY2(got[k] == want[k], qPrintable(QStringLiteral("round %1, rectangle %2")
-                                                           .arg(round)
-                                                           .arg(k)));
+                QVERIFY2(got[k] == want[k],
+                         qPrintable(QStringLiteral("round %1, rectangle %2").arg(round).arg(k)));
             merged += int(runs.size() - got.size());
         }
         QVERIFY2(merged > 100, qPrintable(QString::number(merged)));
