@@ -340,6 +340,20 @@ PolygonUpload buildPolygonUpload(const NurbsSurface& geo, const ParameterBox& bo
     return u;
 }
 
+namespace {
+
+/// A new polygon (or cover) in `g`'s ranges: what was derived from the old one goes.
+void newPolygon(SurfaceGpu& g) {
+    g.polygonSerial = ++g_polygonSerial;
+    g.insideIndexCount = -1;
+    g.edgeIndexCount = 0;
+    g.splitPolygon = g.splitClasses = g.splitSections = 0;
+    g.keptIndexCount = g.crossedIndexCount = 0;
+    std::vector<std::uint8_t>().swap(g.cellBuckets);
+}
+
+} // namespace
+
 bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const PolygonCut& cut,
                     const ParameterBox& box, bool withSkirt, bool withOutlines,
                     UploadStats& stats) {
@@ -379,12 +393,7 @@ bool rebuildPolygon(ScenePools& pools, SurfaceGpu& g, const Surface& s, const Po
     g.outlineOffset = o, g.outlineIndexCount = int(lines);
     g.skirtVertexOffset = sv, g.skirtVertexCount = skirtVertices;
     g.skirtIndexOffset = si, g.skirtIndexCount = int(skirtIndices);
-    g.polygonSerial = ++g_polygonSerial;
-    g.insideIndexCount = -1;
-    g.edgeIndexCount = 0;
-    g.splitPolygon = g.splitClasses = g.splitSections = 0;
-    g.keptIndexCount = g.crossedIndexCount = 0;
-    std::vector<std::uint8_t>().swap(g.cellBuckets);
+    newPolygon(g);
     g.cover = false;
     g.coverBoxes = 0;
     pools.vertices.write(v, vertices, g.polygon.vertices.data());
@@ -425,12 +434,7 @@ bool rebuildCover(ScenePools& pools, SurfaceGpu& g, const CoverMesh& cover, cons
     g.outlineOffset = -1, g.outlineIndexCount = 0;
     g.skirtVertexOffset = -1, g.skirtVertexCount = 0;
     g.skirtIndexOffset = -1, g.skirtIndexCount = 0;
-    g.polygonSerial = ++g_polygonSerial;
-    g.insideIndexCount = -1;
-    g.edgeIndexCount = 0;
-    g.splitPolygon = g.splitClasses = g.splitSections = 0;
-    g.keptIndexCount = g.crossedIndexCount = 0;
-    std::vector<std::uint8_t>().swap(g.cellBuckets);
+    newPolygon(g);
     g.cover = true;
     g.coverBoxes = cover.boxes();
     pools.vertices.write(v, vertices, cover.vertices.data());
