@@ -516,19 +516,8 @@ int cellTrimClass(const TrimMask& m, double u0, double u1, double v0, double v1)
 
 } // namespace
 
-namespace {
-// Calls `f(span, bounds, u0, u1, v0, v1)` once for the face, when any span of `spans` meets
-// `box`: the union of the bounds of the sub-rectangles meeting the box, their (u, v) rectangle
-// cut to the box, and the span holding its middle. One box for the face, not one a span or a
-// sub-rectangle: boxes overlap on screen (near the eye each covers much of the view) and every
-// box's fragment solves the face again (the screw's 64x close-up: 334 ms a frame with a box a
-// sub-rectangle, 171 ms with one a span, against 93 ms for the polygon), while a solve needs no
-// start near the point. The box is larger than the face's boxes together; a pixel inside it
-// but off the face costs one solve and its discard.
-template <class F>
-void forEachCoverSub(const std::vector<SpanBound>& spans, const ParameterBox& box, F f) {
-    SpanBound::Sub all;
-    glm::dvec4 uv(0.0);
+std::optional<CoverBox> coverBox(const std::vector<SpanBound>& spans, const ParameterBox& box) {
+    CoverBox c;
     bool any = false;
     for (const SpanBound& b : spans) {
         const double su = (b.u1 - b.u0) / b.grid, sv = (b.v1 - b.v0) / b.grid;
@@ -542,40 +531,30 @@ void forEachCoverSub(const std::vector<SpanBound>& spans, const ParameterBox& bo
                 if (!(a0 <= a1 && c0 <= c1))
                     continue;
                 const SpanBound::Sub& sub = b.subs[size_t(j * b.grid + i)];
-                all.lo = any ? glm::min(all.lo, sub.lo) : sub.lo;
-                all.hi = any ? glm::max(all.hi, sub.hi) : sub.hi;
-                uv = any ? glm::dvec4(std::min(uv.x, a0), std::max(uv.y, a1), std::min(uv.z, c0),
-                                      std::max(uv.w, c1))
-                         : glm::dvec4(a0, a1, c0, c1);
+                c.bounds.lo = any ? glm::min(c.bounds.lo, sub.lo) : sub.lo;
+                c.bounds.hi = any ? glm::max(c.bounds.hi, sub.hi) : sub.hi;
+                c.u0 = any ? std::min(c.u0, a0) : a0;
+                c.u1 = any ? std::max(c.u1, a1) : a1;
+                c.v0 = any ? std::min(c.v0, c0) : c0;
+                c.v1 = any ? std::max(c.v1, c1) : c1;
                 any = true;
             }
     }
     if (!any)
-        return;
+        return std::nullopt;
     // The span nearest the middle (holding it, unless the box's spans leave a gap there).
-    const glm::dvec2 mid(0.5 * (uv.x + uv.y), 0.5 * (uv.z + uv.w));
-    const SpanBound* at = nullptr;
+    const glm::dvec2 mid(0.5 * (c.u0 + c.u1), 0.5 * (c.v0 + c.v1));
     double best = std::numeric_limits<double>::infinity();
     for (const SpanBound& b : spans) {
         const double du = std::max({b.u0 - mid.x, mid.x - b.u1, 0.0});
         const double dv = std::max({b.v0 - mid.y, mid.y - b.v1, 0.0});
         if (du + dv < best)
-            best = du + dv, at = &b;
+            best = du + dv, c.span = &b;
     }
-    f(*at, all, uv.x, uv.y, uv.z, uv.w);
-}
-} // namespace
-
-int coverBoxes(const std::vector<SpanBound>& spans, const ParameterBox& box) {
-    int n = 0;
-    forEachCoverSub(
-        spans, box,
-        [&](const SpanBound&, const SpanBound::Sub&, double, double, double, double) { ++n; });
-    return n;
+    return c;
 }
 
-CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
-                     const ParameterBox& box) {
+CoverMesh buildCover(const NurbsSurface& s, const CoverBox& box) {
     // The faces of the unit box, corner k at (k & 1, k >> 1 & 1, k >> 2 & 1), each as a quad
     // turned so that its normal (by the right-hand rule) points into the box.
     struct Quad {
@@ -599,29 +578,22 @@ CoverMesh buildCover(const NurbsSurface& s, const std::vector<SpanBound>& spans,
             faces.push_back(q);
         }
     CoverMesh m;
-    forEachCoverSub(spans, box,
-                    [&](const SpanBound& b, const SpanBound::Sub& sub, double u0, double u1,
-                        double v0, double v1) {
-                        // The corners are floats: grown by their rounding and then some, so the box
-                        // still holds the patch as the GPU sees it.
-                        const double margin = 1e-6 * (glm::length(sub.hi - sub.lo) +
-                                                      glm::length(sub.lo) + glm::length(sub.hi));
-                        const glm::dvec3 lo = sub.lo - margin, hi = sub.hi + margin;
-                        const unsigned first = unsigned(m.vertices.size());
-                        BaseVertex v{};
-                        v.uv = glm::vec2(float(0.5 * (u0 + u1)), float(0.5 * (v0 + v1)));
-                        v.span = glm::ivec2(b.spanU, b.spanV);
-                        v.spanScale = spanScale(s, b.spanU, b.spanV);
-                        for (unsigned k = 0; k < 8; ++k) {
-                            v.position = glm::vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
-                                                   k & 4 ? hi.z : lo.z);
-                            m.vertices.push_back(v);
-                        }
-                        for (const Quad& q : faces)
-                            m.triangles.insert(m.triangles.end(),
-                                               {first + q.c[0], first + q.c[1], first + q.c[2],
-                                                first + q.c[0], first + q.c[2], first + q.c[3]});
-                    });
+    // The corners are floats: grown by their rounding and then some, so the box still holds
+    // the patch as the GPU sees it.
+    const SpanBound::Sub& sub = box.bounds;
+    const double margin =
+        1e-6 * (glm::length(sub.hi - sub.lo) + glm::length(sub.lo) + glm::length(sub.hi));
+    const glm::dvec3 lo = sub.lo - margin, hi = sub.hi + margin;
+    BaseVertex v{};
+    v.uv = glm::vec2(float(0.5 * (box.u0 + box.u1)), float(0.5 * (box.v0 + box.v1)));
+    v.span = glm::ivec2(box.span->spanU, box.span->spanV);
+    v.spanScale = spanScale(s, box.span->spanU, box.span->spanV);
+    for (unsigned k = 0; k < 8; ++k) {
+        v.position = glm::vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        m.vertices.push_back(v);
+    }
+    for (const Quad& q : faces)
+        m.triangles.insert(m.triangles.end(), {q.c[0], q.c[1], q.c[2], q.c[0], q.c[2], q.c[3]});
     return m;
 }
 

@@ -158,16 +158,15 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
     }
     const PolygonCut& cut = *chosenCut;
     // A closed-form face whose polygon in view would take many cells (a close-up beside it)
-    // gets its cover instead: a box per sub-rectangle, whatever the view (docs/RENDERING.md,
-    // "Covers of closed-form faces").
-    const std::vector<SpanBound>* coverSpans = nullptr;
+    // gets its cover instead: one box, whatever the view (docs/RENDERING.md, "Covers of
+    // closed-form faces").
+    std::optional<CoverBox> cover;
     if (pass.adaptive && coversAllowed(options) && coverable(s)) {
         const auto inView = std::int64_t(std::max<size_t>(cut.breaksU.size(), 2) - 1) *
                             std::int64_t(std::max<size_t>(cut.breaksV.size(), 2) - 1);
-        if (double(inView) > options.coverMinCells) {
-            const std::vector<SpanBound>& spans = e.adaptive.spans(s, rev);
-            if (coverBoxes(spans, box) < inView) {
-                coverSpans = &spans;
+        if (double(inView) > options.coverMinCells && inView > 1) {
+            cover = coverBox(e.adaptive.spans(s, rev), box);
+            if (cover) {
                 r.boundPixels = 0.0; // no chords: no tolerance to meet
                 m_unmet.erase(index);
             }
@@ -179,13 +178,13 @@ void GpuScene::syncSurface(Entry& e, const Surface& s, int index, Pass& pass) {
             g->id = s.id;
         }
         fits = uploadSurface(m_pools, *g, s, cut, box, skirt, outlines, up);
-        if (fits && coverSpans)
-            fits = rebuildCover(m_pools, *g, buildCover(geo, *coverSpans, box), cut, box, up);
-    } else if (coverSpans) {
+        if (fits && cover)
+            fits = rebuildCover(m_pools, *g, buildCover(geo, *cover), cut, box, up);
+    } else if (cover) {
         if (!g->cover || box != g->polygonBox || g->revisions.points != rev.points) {
             if (g->revisions.points != rev.points)
                 uploadChangedPoints(m_pools, *g, s, up); // the texels; the cover is rebuilt
-            fits = rebuildCover(m_pools, *g, buildCover(geo, *coverSpans, box), cut, box, up);
+            fits = rebuildCover(m_pools, *g, buildCover(geo, *cover), cut, box, up);
         }
     } else {
         if (g->cover || g->cut != cut || box != g->polygonBox ||
