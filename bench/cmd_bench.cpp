@@ -286,8 +286,13 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         QStringLiteral("--edit-loop: draw the editor's aliased frames whole after each step, "
                        "not only the rectangle the dragged face covered before and covers now "
                        "(docs/RENDERING.md, \"The partial frame\")."));
-    parser.addOptions({editLoop, peerDeflections, editSteps, editSize, fullFrames, zoomLoop,
-                       zoomLevels, zoomRepeats});
+    const QCommandLineOption editPassTimes(
+        QStringLiteral("pass-times"),
+        QStringLiteral("--edit-loop: profile the editor's aliased frames pass by pass, each pass "
+                       "ended by glFinish (their times then include the waits); medians per pass "
+                       "in the JSON rows' \"partialPasses\"."));
+    parser.addOptions({editLoop, peerDeflections, editSteps, editSize, fullFrames, editPassTimes,
+                       zoomLoop, zoomLevels, zoomRepeats});
     const QCommandLineOption dragStep(
         QStringLiteral("drag-step"),
         QStringLiteral("Instead of Tables 1 and 2 (unless --tables is given): time one "
@@ -480,6 +485,7 @@ int runBench(const QStringList& args, const std::function<bool()>& startGui) {
         editConfig.peerDeflections = std::pair{lin, ang};
     }
     editConfig.fullFrames = parser.isSet(fullFrames);
+    editConfig.passTimes = parser.isSet(editPassTimes);
     editConfig.files = files1;
     editConfig.lights = config.lights;
     editConfig.base = config.base;

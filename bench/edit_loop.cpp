@@ -233,6 +233,7 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     std::vector<double> kwMs, kwCpu, fullMs, fullCpu, stillMs, stillCpu, areas, redrawn, regions,
         reached, cells,
         fullCells;
+    std::vector<std::vector<double>> passWall(PassTimes::kCount), passCpu(PassTimes::kCount);
     // The editor's aliased frames are kept in the renderer's own framebuffer and copied
     // (ViewSurface::drawFrame); a drag step redraws what the dragged face covered then and now.
     using Reuse = RenderOptions::FrameReuse;
@@ -242,8 +243,12 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
         QElapsedTimer wall;
         const double cpu0 = processCpuMs();
         wall.start();
+        const bool profiled = config.passTimes && ms == &kwMs;
+        renderer.renderer().setPassProfiling(profiled);
         moveTo(to);
-        if (Status drawn = renderer.render(doc, camera, frameOptions(samples, reuse)); !drawn)
+        const Status drawn = renderer.render(doc, camera, frameOptions(samples, reuse));
+        renderer.renderer().setPassProfiling(false);
+        if (!drawn)
             return drawn;
         renderer.finish();
         if (ms) {
@@ -260,6 +265,11 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
             reached.push_back(report.partialSurfaces);
             cells.push_back(double(report.partialCells));
         }
+        if (const PassTimes& p = report.passes; profiled && p.measured)
+            for (int pass = 0; pass < PassTimes::kCount; ++pass) {
+                passWall[size_t(pass)].push_back(p.wallMs[pass]);
+                passCpu[size_t(pass)].push_back(p.cpuMs[pass]);
+            }
         if (ms == &fullMs)
             fullCells.push_back(double(report.partitions.cells));
         return ok();
@@ -322,6 +332,11 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
     row.partialSurfaces = reached.empty() ? 0.0 : median(reached);
     row.partialCells = cells.empty() ? 0.0 : median(cells);
     row.fullCells = median(fullCells);
+    if (!passCpu.front().empty())
+        for (int pass = 0; pass < PassTimes::kCount; ++pass) {
+            row.passWallMs.push_back(median(passWall[size_t(pass)]));
+            row.passCpuMs.push_back(median(passCpu[size_t(pass)]));
+        }
     row.knotworkStillMs = median(stillMs);
     row.knotworkStillCpuMs = median(stillCpu);
     row.peerMs = median(peers[0].ms);
@@ -345,6 +360,17 @@ Status ModelLoop::run(const QString& file, EditLoopRow& row) {
                  .arg(row.partialFrames)
                  .arg(config.steps)
                  .arg(row.knotworkFullMs, 0, 'f', 1));
+    if (!row.passCpuMs.empty()) {
+        QStringList passes;
+        for (size_t pass = 0; pass < row.passCpuMs.size(); ++pass)
+            if (row.passWallMs[pass] > 0.0)
+                passes << QStringLiteral("%1 %2 (%3)")
+                              .arg(QLatin1String(PassTimes::name(int(pass))))
+                              .arg(row.passWallMs[pass], 0, 'f', 2)
+                              .arg(row.passCpuMs[pass], 0, 'f', 2);
+        progress(QStringLiteral("%1: the editor's aliased frame by pass, wall (CPU) ms: %2")
+                     .arg(name, passes.join(QStringLiteral(", "))));
+    }
     return ok();
 }
 
@@ -403,6 +429,14 @@ QJsonArray editLoopJson(const EditLoopReport& report) {
                       {QStringLiteral("defaultLinearDeflection"), r.defaultLinear},
                       {QStringLiteral("deflectionsGiven"), r.deflectionsGiven},
                       {QStringLiteral("ratio"), ratioOf(r.knotworkMs, r.peerMs)}};
+        if (!r.passCpuMs.empty()) {
+            QJsonObject passes;
+            for (size_t pass = 0; pass < r.passCpuMs.size(); ++pass)
+                passes.insert(QLatin1String(PassTimes::name(int(pass))),
+                              QJsonObject{{QStringLiteral("wallMs"), r.passWallMs[pass]},
+                                          {QStringLiteral("cpuMs"), r.passCpuMs[pass]}});
+            o.insert(QStringLiteral("partialPasses"), passes);
+        }
         if (!r.deflectionsGiven) {
             o.insert(QStringLiteral("equalQuality"), r.matched);
             o.insert(QStringLiteral("knotworkNormalP99"), r.knotworkNormalP99);

@@ -32,6 +32,9 @@ struct EditLoopConfig {
     /// --full-frames: the editor's aliased frames drawn whole (RenderOptions::FrameReuse::Full)
     /// instead of partial; the whole-frame column is then the same way.
     bool fullFrames = false;
+    /// --pass-times: the editor's aliased frames profiled pass by pass, each pass ended by
+    /// glFinish (Renderer::setPassProfiling): their columns then include the waits.
+    bool passTimes = false;
 };
 
 /// Medians over the steps, milliseconds, wall and process CPU (the peer's CPU includes its
@@ -57,6 +60,9 @@ struct EditLoopRow {
     /// whole frames' (partitions.cells): the partial frame's geometry share.
     double partialCells = 0.0, fullCells = 0.0;
     double knotworkStillMs = 0.0, knotworkStillCpuMs = 0.0;
+    /// --pass-times: the editor's aliased frames' medians per pass (PassTimes), wall and
+    /// process CPU ms; empty without.
+    std::vector<double> passWallMs, passCpuMs;
     double peerMs = 0.0, peerCpuMs = 0.0, peerMeshMs = 0.0;
     double peerDefaultMs = 0.0, peerDefaultCpuMs = 0.0, peerDefaultMeshMs = 0.0;
     long long peerTriangles = 0, peerDefaultTriangles = 0;

@@ -16,6 +16,7 @@ class TestBenchEditLoop : public QObject {
     Q_OBJECT
 private Q_SLOTS:
     void writesTheRows();
+    void reportsPassTimes();
     void refusesBadDeflections();
 };
 
@@ -59,6 +60,43 @@ void TestBenchEditLoop::writesTheRows() {
     const double face = row.value(QStringLiteral("peerFaceTriangles")).toDouble();
     QVERIFY(face > 0.0 && face < tris);
     QVERIFY(row.value(QStringLiteral("peerDefaultTriangles")).toDouble() > 0.0);
+    QVERIFY(!row.contains(QStringLiteral("partialPasses"))); // only with --pass-times
+}
+
+// --pass-times: the editor's aliased frames pass by pass, each pass's time within the frame's.
+void TestBenchEditLoop::reportsPassTimes() {
+    const QString dir = QStringLiteral(KW_TEST_OUTPUT_DIR "/bench_edit_loop_passes");
+    QDir(dir).removeRecursively();
+    QDir().mkpath(dir);
+    const QString json = dir + QStringLiteral("/edit.json");
+    const Run r =
+        knotwork({QStringLiteral("bench"), QStringLiteral(KW_TEST_DATA_DIR "/teapot.igs"),
+                  QStringLiteral("--edit-loop"), QStringLiteral("--edit-steps"),
+                  QStringLiteral("2"), QStringLiteral("--edit-size"), QStringLiteral("64"),
+                  QStringLiteral("--peer-deflections"), QStringLiteral("0.05,10"),
+                  QStringLiteral("--pass-times"), QStringLiteral("--json"), json});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.err.contains(QStringLiteral("teapot.igs: the editor's aliased frame by pass")),
+             qPrintable(r.err));
+    QFile f(json);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject row = QJsonDocument::fromJson(f.readAll())
+                                .object()
+                                .value(QStringLiteral("editLoop"))
+                                .toArray()
+                                .at(0)
+                                .toObject();
+    const QJsonObject passes = row.value(QStringLiteral("partialPasses")).toObject();
+    double sum = 0.0;
+    for (const char* pass : {"sync", "prepass", "exact", "skirts", "present"}) {
+        const QJsonObject p = passes.value(QLatin1String(pass)).toObject();
+        const double wall = p.value(QStringLiteral("wallMs")).toDouble(-1.0);
+        QVERIFY2(wall > 0.0 && p.value(QStringLiteral("cpuMs")).toDouble(-1.0) >= 0.0, pass);
+        sum += wall;
+    }
+    // Medians per pass, each frame's passes within its edit-to-frame time.
+    QVERIFY2(sum <= 2.0 * row.value(QStringLiteral("knotworkMs")).toDouble(),
+             qPrintable(QString::number(sum)));
 }
 
 void TestBenchEditLoop::refusesBadDeflections() {
