@@ -246,7 +246,10 @@ ExactPlace ExactPlanner::classify(const SurfaceRecord& r, const ExactPlanKey& ke
         box.behind = !polygon && !r.bounded;
         if (!polygon && r.bounded)
             box = screenBox(r.boundsLo, r.boundsHi, camera.viewProjection);
-        const glm::ivec4 at = polygon ? r.drawnRect : pixelRect(box, camera.viewport);
+        // The skirts and fins draw up to the skirts' push past the polygon.
+        const glm::ivec4 at =
+            (polygon ? r.drawnRect : pixelRect(box, camera.viewport)) +
+            glm::ivec4(-key.skirtPush, -key.skirtPush, key.skirtPush, key.skirtPush);
         if (!box.behind && (at.z <= key.reach.x || at.x >= key.reach.z || at.w <= key.reach.y ||
                             at.y >= key.reach.w)) {
             p.culled = true;

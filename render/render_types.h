@@ -367,9 +367,10 @@ struct FrameCamera {
     /// pass then leaves out the surfaces whose bounds do not reach that pixel.
     glm::ivec2 pickPixel{-1, -1};
     /// A partial frame's reach (window pixels x0, y0, x1, y1 exclusive, GL rows bottom-up):
-    /// the rectangle it redraws grown by how far a surface may draw past its projected control
-    /// bounds (skirts, fins, overlays). The exact pass leaves out the surfaces whose bounds miss
-    /// it. Empty (x1 <= x0): the whole view.
+    /// the rectangle it redraws, which the scissor keeps. The exact pass leaves out the
+    /// surfaces whose bounds, grown by how far their skirts and fins may draw past them, miss
+    /// it, and of the others the cells whose triangles and skirts miss it. Empty (x1 <= x0):
+    /// the whole view.
     glm::ivec4 reach{0, 0, 0, 0};
     /// Sub-pixel shift of the whole image, in pixels (RenderOptions::Antialiasing::Accumulate's
     /// samples): applied to what the shaders get (drawnViewProjection), not to viewProjection,

@@ -279,8 +279,7 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     plan.unchanged = damage.z <= damage.x; // the kept frame is the image
     if (plan.unchanged)
         return plan;
-    const int pad = PartialFrames::reachPixels(options);
-    fc.reach = damage + glm::ivec4(-pad, -pad, pad, pad);
+    fc.reach = damage;
     partialScissor = QRect(damage.x, damage.y, damage.z - damage.x, damage.w - damage.y);
     // Tiles are taken in the frames after this one for the surfaces it redraws (damageRegions
     // marks them) and no longer for those of an earlier edit: else every face ever dragged
@@ -292,7 +291,8 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
     if (options.wireframe || options.controlNet || options.edgeBands || bandsChanged)
         plan.regions = {damage};
     else
-        plan.regions = damageRegions(changed, fc, pad, options.damageTiles, plan.footprints);
+        plan.regions = damageRegions(changed, fc, PartialFrames::reachPixels(options),
+                                     options.damageTiles, plan.footprints);
     // Both the tiles and the rectangle hold every pixel to redraw: so does what they share
     // (the tiles' edges fall on the grid, past the rectangle's).
     std::vector<glm::ivec4> regions;
@@ -315,7 +315,7 @@ Renderer::Impl::planPartialFrame(const Document& doc, const RenderTarget& target
         QRect(bounds.x, size.height() - bounds.w, bounds.z - bounds.x, bounds.w - bounds.y);
     if (plan.regions.size() == 1) {
         const glm::ivec4& r = plan.regions.front();
-        fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
+        fc.reach = r;
         partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
     }
     for (size_t k = 0; k < plan.footprints.size(); ++k) {
@@ -385,11 +385,10 @@ Status Renderer::Impl::drawRegions(const PartialPlan& plan, const SampleRange& r
     }
     // The changed surfaces' tiles: each rectangle cleared and drawn whole, as the whole
     // frame draws it, with the cells that reach it (they may overlap: drawn twice alike).
-    const int pad = PartialFrames::reachPixels(options);
     Status drawn;
     for (const glm::ivec4& r : plan.regions) {
         partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
-        fc.reach = r + glm::ivec4(-pad, -pad, pad, pad);
+        fc.reach = r;
         drawn = drawSamples(range, sampleTarget, framebuffer, targets, fc, lights, options,
                             report.analysisRange, pickPixel);
         report.partialCells += exact.cellsSent();
