@@ -12,6 +12,21 @@
 #include <QTest>
 #include <cmath>
 
+namespace {
+
+// Two drag steps of teapot.igs at 64 x 64, the peer's deflections given, JSON to `json`.
+Run shortDrag(const QString& json, const QStringList& more = {}) {
+    return knotwork(QStringList{QStringLiteral("bench"),
+                                QStringLiteral(KW_TEST_DATA_DIR "/teapot.igs"),
+                                QStringLiteral("--edit-loop"), QStringLiteral("--edit-steps"),
+                                QStringLiteral("2"), QStringLiteral("--edit-size"),
+                                QStringLiteral("64"), QStringLiteral("--peer-deflections"),
+                                QStringLiteral("0.05,10"), QStringLiteral("--json"), json} +
+                    more);
+}
+
+} // namespace
+
 class TestBenchEditLoop : public QObject {
     Q_OBJECT
 private Q_SLOTS:
@@ -25,11 +40,7 @@ void TestBenchEditLoop::writesTheRows() {
     QDir(dir).removeRecursively();
     QDir().mkpath(dir);
     const QString json = dir + QStringLiteral("/edit.json");
-    const Run r = knotwork({QStringLiteral("bench"), QStringLiteral(KW_TEST_DATA_DIR "/teapot.igs"),
-                            QStringLiteral("--edit-loop"), QStringLiteral("--edit-steps"),
-                            QStringLiteral("2"), QStringLiteral("--edit-size"),
-                            QStringLiteral("64"), QStringLiteral("--peer-deflections"),
-                            QStringLiteral("0.05,10"), QStringLiteral("--json"), json});
+    const Run r = shortDrag(json);
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.out.contains(QStringLiteral("### Edit loop: 2 drag steps at 64 x 64")),
              qPrintable(r.out));
@@ -69,12 +80,7 @@ void TestBenchEditLoop::reportsPassTimes() {
     QDir(dir).removeRecursively();
     QDir().mkpath(dir);
     const QString json = dir + QStringLiteral("/edit.json");
-    const Run r =
-        knotwork({QStringLiteral("bench"), QStringLiteral(KW_TEST_DATA_DIR "/teapot.igs"),
-                  QStringLiteral("--edit-loop"), QStringLiteral("--edit-steps"),
-                  QStringLiteral("2"), QStringLiteral("--edit-size"), QStringLiteral("64"),
-                  QStringLiteral("--peer-deflections"), QStringLiteral("0.05,10"),
-                  QStringLiteral("--pass-times"), QStringLiteral("--json"), json});
+    const Run r = shortDrag(json, {QStringLiteral("--pass-times")});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.err.contains(QStringLiteral("teapot.igs: the editor's aliased frame by pass")),
              qPrintable(r.err));
