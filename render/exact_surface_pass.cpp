@@ -4,12 +4,14 @@
 
 #include "render/depth_convention.h"
 #include "render/exact_contract.h"
+#include "render/partial_cells.h"
 #include "render/partial_frame.h"
 #include "render/shading_uniforms.h"
 #include "render/thread_clock.h"
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 
@@ -712,7 +714,8 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
             if (partial) {
                 if (f.rects.empty() && !f.indices.empty()) {
                     f.rects =
-                        finRects(f.vertices, f.indices, camera.viewProjection, camera.viewport);
+                        finRects(f.vertices, f.indices, camera.viewProjection, camera.viewport,
+                                 int(std::ceil(skirtPushPixels(double(pixels)))));
                     f.bounds = glm::ivec4(0); // empty: meets nothing
                     for (const glm::ivec4& q : f.rects)
                         PartialFrames::unite(f.bounds, q);

@@ -79,7 +79,7 @@ std::vector<std::uint8_t> cellsReaching(const BasePolygon& poly, const glm::mat4
 
 std::vector<glm::ivec4> finRects(const std::vector<SkirtVertex>& vertices,
                                  const std::vector<unsigned>& indices,
-                                 const glm::mat4& viewProjection, glm::ivec2 viewport) {
+                                 const glm::mat4& viewProjection, glm::ivec2 viewport, int push) {
     std::vector<glm::ivec4> out;
     out.reserve(indices.size() / 6);
     const glm::vec2 size(viewport);
@@ -96,7 +96,8 @@ std::vector<glm::ivec4> finRects(const std::vector<SkirtVertex>& vertices,
             lo = glm::min(lo, at);
             hi = glm::max(hi, at);
         }
-        out.push_back(everywhere ? kEverywhere : pixels(lo, hi));
+        out.push_back(everywhere ? kEverywhere
+                                 : pixels(lo, hi) + glm::ivec4(-push, -push, push, push));
     }
     return out;
 }
@@ -114,8 +115,8 @@ std::vector<unsigned> finsMeeting(const std::vector<glm::ivec4>& rects,
 std::vector<unsigned> finsReaching(const std::vector<SkirtVertex>& vertices,
                                    const std::vector<unsigned>& indices,
                                    const glm::mat4& viewProjection, glm::ivec2 viewport,
-                                   const glm::ivec4& reach) {
-    return finsMeeting(finRects(vertices, indices, viewProjection, viewport), indices, reach);
+                                   const glm::ivec4& reach, int push) {
+    return finsMeeting(finRects(vertices, indices, viewProjection, viewport, push), indices, reach);
 }
 
 namespace {

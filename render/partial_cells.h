@@ -78,19 +78,22 @@ std::vector<CellRun> skirtRuns(const SurfaceGpu& g, const std::vector<std::uint8
 constexpr glm::ivec4 kEverywhere{-(1 << 29), -(1 << 29), 1 << 29, 1 << 29};
 
 /// Of silhouette fins (kw::buildFins: two triangles each, 6 indices starting at its first of
-/// 4 vertices), each one's window rectangle under `viewProjection` (taken as cellsReaching takes
-/// a cell's), kEverywhere for one with a vertex behind the eye or not laid out so.
+/// 4 vertices), each one's window rectangle under `viewProjection`: its nodes' (taken as
+/// cellsReaching takes a cell's) grown by `push` pixels, how far surface.vert may push its outer
+/// edge past them (skirtPushPixels); kEverywhere for one with a vertex behind the eye or not
+/// laid out so.
 std::vector<glm::ivec4> finRects(const std::vector<SkirtVertex>& vertices,
                                  const std::vector<unsigned>& indices,
-                                 const glm::mat4& viewProjection, glm::ivec2 viewport);
+                                 const glm::mat4& viewProjection, glm::ivec2 viewport, int push);
 /// The indices of the fins whose rectangle (`rects`, finRects') meets `reach`.
 std::vector<unsigned> finsMeeting(const std::vector<glm::ivec4>& rects,
                                   const std::vector<unsigned>& indices, const glm::ivec4& reach);
-/// finsMeeting of finRects: the indices of the fins whose window rectangle meets `reach`.
+/// finsMeeting of finRects: the indices of the fins whose window rectangle (grown by `push`)
+/// meets `reach`.
 std::vector<unsigned> finsReaching(const std::vector<SkirtVertex>& vertices,
                                    const std::vector<unsigned>& indices,
                                    const glm::mat4& viewProjection, glm::ivec2 viewport,
-                                   const glm::ivec4& reach);
+                                   const glm::ivec4& reach, int push);
 
 /// Runs of cells at most this many cells apart in a triangle range are sent as one: on
 /// llvmpipe each command of a multi-draw is a draw of its own (state, vertex set-up), which

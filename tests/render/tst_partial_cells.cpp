@@ -156,10 +156,18 @@ private Q_SLOTS:
                            {first, first + 1, first + 3, first, first + 3, first + 2});
         }
         // The first lies at pixels (30, 35) - (31, 36), in kReach; the second far from it.
-        QCOMPARE(finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), kReach),
+        QCOMPARE(finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), kReach, 0),
                  (std::vector<unsigned>{0, 1, 3, 0, 3, 2}));
-        QVERIFY(finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), {0, 0, 10, 10})
-                    .empty());
+        QVERIFY(
+            finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), {0, 0, 10, 10}, 0)
+                .empty());
+        // Its outer edge may be pushed past its nodes: 3 px right of a rectangle ending at x = 27
+        // it reaches it with a push of 4 px, not without.
+        const glm::ivec4 left(10, 25, 27, 45);
+        QVERIFY(
+            finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), left, 0).empty());
+        QCOMPARE(finsReaching(vertices, indices, glm::mat4(1.0f), glm::ivec2(kSide), left, 4),
+                 (std::vector<unsigned>{0, 1, 3, 0, 3, 2}));
     }
 
     /// The planner sends exactly the reached cells' runs, in every batch that draws the
