@@ -375,24 +375,23 @@ Status Renderer::Impl::drawRegions(const PartialPlan& plan, const SampleRange& r
                                    const std::vector<Light>& lights, const RenderOptions& options,
                                    const QRect* pickPixel, FrameReport& report,
                                    bool& backCulledMoved) {
-    if (plan.regions.size() <= 1) {
-        const Status drawn = drawSamples(range, sampleTarget, framebuffer, targets, fc, lights,
-                                         options, report.analysisRange, pickPixel);
-        if (report.partial && options.mode == RenderMode::Exact)
-            report.partialCells = exact.cellsSent();
-        backCulledMoved = report.partial && exact.backCulledSolids() != partial.backCulled();
-        return drawn;
-    }
     // The changed surfaces' tiles: each rectangle cleared and drawn whole, as the whole
-    // frame draws it, with the cells that reach it (they may overlap: drawn twice alike).
+    // frame draws it, with the cells that reach it (they may overlap: drawn twice alike). One
+    // rectangle, or none (a whole frame), is drawn as planPartialFrame set it.
+    const bool each = plan.regions.size() > 1;
     Status drawn;
-    for (const glm::ivec4& r : plan.regions) {
-        partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
-        fc.reach = r;
+    for (size_t k = 0; k < std::max<size_t>(plan.regions.size(), 1); ++k) {
+        if (each) {
+            const glm::ivec4& r = plan.regions[k];
+            partialScissor = QRect(r.x, r.y, r.z - r.x, r.w - r.y);
+            fc.reach = r;
+        }
         drawn = drawSamples(range, sampleTarget, framebuffer, targets, fc, lights, options,
                             report.analysisRange, pickPixel);
-        report.partialCells += exact.cellsSent();
-        backCulledMoved = backCulledMoved || exact.backCulledSolids() != partial.backCulled();
+        if (report.partial && options.mode == RenderMode::Exact)
+            report.partialCells += exact.cellsSent();
+        backCulledMoved =
+            backCulledMoved || (report.partial && exact.backCulledSolids() != partial.backCulled());
         if (!drawn)
             break;
     }
