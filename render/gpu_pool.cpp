@@ -519,15 +519,13 @@ int cellTrimClass(const TrimMask& m, double u0, double u1, double v0, double v1)
 std::optional<CoverBox> coverBox(const std::vector<SpanBound>& spans, const ParameterBox& box) {
     CoverBox c;
     bool any = false;
-    for (const SpanBound& b : spans) {
-        const double su = (b.u1 - b.u0) / b.grid, sv = (b.v1 - b.v0) / b.grid;
+    for (const SpanBound& b : spans)
         for (int j = 0; j < b.grid; ++j)
             for (int i = 0; i < b.grid; ++i) {
-                // As surfaceSpanBounds cuts them.
-                const double u0 = b.u0 + su * i, u1 = i + 1 == b.grid ? b.u1 : u0 + su;
-                const double v0 = b.v0 + sv * j, v1 = j + 1 == b.grid ? b.v1 : v0 + sv;
-                const double a0 = std::max(u0, box.u.first), a1 = std::min(u1, box.u.last);
-                const double c0 = std::max(v0, box.v.first), c1 = std::min(v1, box.v.last);
+                const double a0 = std::max(b.sideU(i), box.u.first);
+                const double a1 = std::min(b.sideU(i + 1), box.u.last);
+                const double c0 = std::max(b.sideV(j), box.v.first);
+                const double c1 = std::min(b.sideV(j + 1), box.v.last);
                 if (!(a0 <= a1 && c0 <= c1))
                     continue;
                 const SpanBound::Sub& sub = b.subs[size_t(j * b.grid + i)];
@@ -539,7 +537,6 @@ std::optional<CoverBox> coverBox(const std::vector<SpanBound>& spans, const Para
                 c.v1 = any ? std::max(c.v1, c1) : c1;
                 any = true;
             }
-    }
     if (!any)
         return std::nullopt;
     // The span nearest the middle (holding it, unless the box's spans leave a gap there).

@@ -532,15 +532,11 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
     // 1. Columns (d = 0) and rows (d = 1): the sub-rectangles' sides inside the box, computed
     // as surfaceSpanBounds cuts them, so the spans of one knot interval give the same values.
     std::vector<double> edges[2];
-    const auto subSide = [](double t0, double t1, int g, int i) {
-        return i == g ? t1 : t0 + (t1 - t0) / g * i;
-    };
     for (int d = 0; d < 2; ++d) {
         edges[d] = {box[d].first, box[d].last};
         for (const SpanBound& b : spans)
             for (int i = 0; i <= b.grid; ++i) {
-                const double t =
-                    d == 0 ? subSide(b.u0, b.u1, b.grid, i) : subSide(b.v0, b.v1, b.grid, i);
+                const double t = d == 0 ? b.sideU(i) : b.sideV(i);
                 if (t > box[d].first && t < box[d].last)
                     edges[d].push_back(t);
             }
@@ -581,10 +577,10 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
     for (const SpanBound& b : spans)
         for (int j = 0; j < b.grid; ++j)
             for (int i = 0; i < b.grid; ++i) {
-                const double u0 = std::max(subSide(b.u0, b.u1, b.grid, i), box[0].first);
-                const double u1 = std::min(subSide(b.u0, b.u1, b.grid, i + 1), box[0].last);
-                const double v0 = std::max(subSide(b.v0, b.v1, b.grid, j), box[1].first);
-                const double v1 = std::min(subSide(b.v0, b.v1, b.grid, j + 1), box[1].last);
+                const double u0 = std::max(b.sideU(i), box[0].first);
+                const double u1 = std::min(b.sideU(i + 1), box[0].last);
+                const double v0 = std::max(b.sideV(j), box[1].first);
+                const double v1 = std::min(b.sideV(j + 1), box[1].last);
                 if (!(u0 < u1 && v0 < v1))
                     continue;
                 const SpanBound::Sub& s = b.subs[size_t(j * b.grid + i)];
