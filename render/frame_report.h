@@ -145,7 +145,7 @@ struct FrameReport {
         /// (RenderOptions::analyticFaces), not by the Newton step onto their NURBS.
         int analyticSurfaces = 0;
         /// Adaptive exact frames: of those, the faces drawn by their covers (RenderOptions::
-        /// coverMinCells): boxes bounding the face, shaded with the closed form's exact depth.
+        /// coverMinCells): a box bounding the face, shaded with the closed form's exact depth.
         int coverSurfaces = 0;
         /// Surfaces shaded by the deferred exact pass (RenderOptions::deferredPass) in the
         /// last aliased frame; 0 when every surface was drawn the forward way.

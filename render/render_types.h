@@ -135,12 +135,12 @@ struct RenderOptions {
     /// faces in closed form"). The same surface to float precision; off only to compare.
     bool analyticFaces = true;
     /// Adaptive frames: an unedited cylinder, cone or sphere (Surface::analytic) whose
-    /// polygon in view would take more than this many cells is drawn by a *cover* instead: the
-    /// boxes of its sub-rectangles' Bezier control bounds (convex hull property), shaded with
-    /// the closed form's exact depth, a fragment whose ray misses the face discarded
-    /// (docs/RENDERING.md, "Covers of closed-form faces"). A close-up beside such a face needs
-    /// thousands of cells for the pixel tolerance, and the cover a few dozen boxes. The same
-    /// surface to float precision; 0 covers every such face, 1e30 none (for comparing).
+    /// polygon in view would take more than this many cells is drawn by a *cover* instead: one
+    /// box around the Bezier control bounds of its sub-rectangles (convex hull property),
+    /// shaded with the closed form's exact depth, a fragment whose ray misses the face
+    /// discarded (docs/RENDERING.md, "Covers of closed-form faces"). A close-up beside such a
+    /// face needs thousands of cells for the pixel tolerance, and the cover 12 triangles. The
+    /// same surface to float precision; 0 covers every such face, 1e30 none (for comparing).
     double coverMinCells = 4096.0;
     /// Silhouette fins (kw::buildFins) with the edge skirts; off only to measure what they
     /// cover and cost.

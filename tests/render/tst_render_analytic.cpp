@@ -410,7 +410,7 @@ private Q_SLOTS:
 
     // A close-up beside a cylinder, a cone or a sphere (a trimmed one too) asks the polygon for
     // thousands of cells; the face is drawn by its cover instead (RenderOptions::
-    // coverMinCells): a few dozen boxes, far less memory, and the same pixels as the
+    // coverMinCells): one box, far less memory, and the same pixels as the
     // polygon's frame: the same faces shown, the same points and normals but for float
     // rounding, and the kernel's surface at every pixel.
     void coverDrawsCloseUps_data() {
