@@ -170,6 +170,22 @@ RayFigures rayFigures(const AovBuffer& aov, const glm::dmat4& vp) {
     return r;
 }
 
+/// Of two frames' AOVs of one size: the pixels each shows a surface at, and those whose surface
+/// ids differ.
+struct IdCounts {
+    int a = 0, b = 0, differ = 0;
+};
+IdCounts idCounts(const AovBuffer& a, const AovBuffer& b) {
+    IdCounts n;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            n.a += a.pixel(x, y)[0] >= 0.0f;
+            n.b += b.pixel(x, y)[0] >= 0.0f;
+            n.differ += a.pixel(x, y)[0] != b.pixel(x, y)[0];
+        }
+    return n;
+}
+
 } // namespace
 
 class TestRenderAnalytic : public QObject {
@@ -331,13 +347,7 @@ private Q_SLOTS:
             const AovBuffer a = m_renderer->aov();
             KW_VERIFY_OK(m_renderer->render(doc, cam, off));
             const AovBuffer b = m_renderer->aov();
-            int keptA = 0, keptB = 0, differ = 0;
-            for (int y = 0; y < a.height; ++y)
-                for (int x = 0; x < a.width; ++x) {
-                    keptA += a.pixel(x, y)[0] >= 0.0f;
-                    keptB += b.pixel(x, y)[0] >= 0.0f;
-                    differ += a.pixel(x, y)[0] != b.pixel(x, y)[0];
-                }
+            const auto [keptA, keptB, differ] = idCounts(a, b);
             const kwtest::AovComparison k = kwtest::compareAovWithKernel(doc.scene(), a);
             qInfo("deferred %d: %d px untrimmed, %d kept (Newton path %d), %d differ, kernel "
                   "position %.3g x model, normal %.4f deg",
@@ -552,13 +562,7 @@ private Q_SLOTS:
         KW_VERIFY_OK(m_renderer->render(doc, cam, polygon));
         QCOMPARE(m_renderer->lastReport().partitions.coverSurfaces, 0);
         const AovBuffer b = m_renderer->aov();
-        int coveredA = 0, coveredB = 0, otherId = 0;
-        for (int y = 0; y < a.height; ++y)
-            for (int x = 0; x < a.width; ++x) {
-                coveredA += a.pixel(x, y)[0] >= 0.0f;
-                coveredB += b.pixel(x, y)[0] >= 0.0f;
-                otherId += a.pixel(x, y)[0] != b.pixel(x, y)[0];
-            }
+        const auto [coveredA, coveredB, otherId] = idCounts(a, b);
         qInfo("cover %d px, polygon %d px, %d of another id", coveredA, coveredB, otherId);
         QVERIFY(coveredB > 20000);
         QVERIFY(otherId <= coveredB / 2000);
