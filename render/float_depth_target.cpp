@@ -61,6 +61,23 @@ void FloatDepthTarget::copyColourTo(std::uint32_t framebuffer, QSize to) {
     m_gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
 }
 
+std::int64_t FloatDepthTarget::copyColourRects(std::uint32_t framebuffer,
+                                               const std::vector<glm::ivec4>& rects) {
+    std::int64_t pixels = 0;
+    for (const glm::ivec4& r : rects) {
+        const glm::ivec2 from = glm::max(glm::ivec2(r.x, r.y), glm::ivec2(0));
+        const glm::ivec2 to =
+            glm::min(glm::ivec2(r.z, r.w), glm::ivec2(m_size.width(), m_size.height()));
+        if (to.x <= from.x || to.y <= from.y)
+            continue;
+        m_gl->glBlitNamedFramebuffer(m_fbo, framebuffer, from.x, from.y, to.x, to.y, from.x, from.y,
+                                     to.x, to.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        pixels += std::int64_t(to.x - from.x) * (to.y - from.y);
+    }
+    m_gl->glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    return pixels;
+}
+
 void FloatDepthTarget::release() {
     if (!m_gl)
         return;

@@ -15,6 +15,8 @@
 #include <QSize>
 #include <QString>
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
 
 namespace kw {
 
@@ -37,6 +39,9 @@ public:
     /// is left as it was: nothing is drawn into the host after the frame's overlays); to a
     /// larger `to` (a preview, RenderOptions::previewScale) magnified, bilinear.
     void copyColourTo(std::uint32_t framebuffer, QSize to = QSize());
+    /// Copies the colour of `rects` (x0, y0, x1, y1; GL pixels, clipped to the size) into the
+    /// same pixels of `framebuffer`, of this size. Returns the pixels copied.
+    std::int64_t copyColourRects(std::uint32_t framebuffer, const std::vector<glm::ivec4>& rects);
     void release();
     /// Bytes of the attachments (4 + 8 per pixel: colour, depth and stencil).
     std::int64_t residentBytes() const;

@@ -11,6 +11,7 @@
 #include <QStringList>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 
 namespace kw {
 
@@ -23,6 +24,12 @@ struct RenderTarget {
     QSize size;
     bool aov = false;
     bool curvatureAov = false;
+    /// What the host drew over in this framebuffer since the renderer's last frame into it
+    /// (its overlays; GL pixels, origin bottom left): an empty rectangle when nothing. Unset
+    /// when not known (a new framebuffer, one the platform may discard or others draw on).
+    /// Known, a kept frame (RenderOptions::FrameReuse) copied into a framebuffer that holds
+    /// the last one copies only the rectangles it redrew and this one.
+    std::optional<QRect> drawnOver;
 };
 
 /// Bytes of GPU memory held by the renderer, by kind (buffer and texture storage as requested
@@ -182,6 +189,10 @@ struct FrameReport {
     int partialSurfaces = 0;
     std::int64_t partialSurfaceCells = 0;
     std::int64_t partialCells = 0;
+    /// Pixels of the kept frame copied into the host (RenderOptions::FrameReuse): the whole
+    /// frame, or a partial frame's rectangles and what the host drew over
+    /// (RenderTarget::drawnOver); 0 when the frame went straight to the host.
+    std::int64_t presentedPixels = 0;
     /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
     PassTimes passes;
 };

@@ -28,6 +28,9 @@ struct OffscreenRenderer::Impl {
     bool withAov = false;
     bool withCurvature = false;
     GLuint fbo = 0;
+    /// Only the renderer draws into `fbo`: once it has drawn a frame there, the framebuffer
+    /// holds its last frame (RenderTarget::drawnOver); a new one holds nothing known.
+    bool framed = false;
     GLuint color = 0, depth = 0;
     /// The AOV targets from kAovIdUvDepthOutput on, each at its output's attachment.
     GLuint aov[kCurvatureAovDrawBuffers - kAovIdUvDepthOutput] = {};
@@ -96,6 +99,7 @@ void OffscreenRenderer::Impl::destroyFramebuffer() {
         if (t)
             gl->glDeleteTextures(1, &t), t = 0;
     fbo = 0;
+    framed = false;
 }
 
 Status OffscreenRenderer::setSize(QSize size, bool withAov, bool withCurvature) {
@@ -156,8 +160,10 @@ Status OffscreenRenderer::render(const Document& doc, const Camera& camera,
     if (!d->fbo || !makeCurrent())
         return Error(
             QStringLiteral("OffscreenRenderer::render needs create() and setSize() first"));
-    d->report =
-        d->renderer.render(doc, camera, {d->fbo, d->size, d->withAov, d->withCurvature}, options);
+    const std::optional<QRect> drawnOver = d->framed ? std::optional<QRect>(QRect()) : std::nullopt;
+    d->report = d->renderer.render(
+        doc, camera, {d->fbo, d->size, d->withAov, d->withCurvature, drawnOver}, options);
+    d->framed = true;
     if (!d->report.ok)
         return Error(d->report.error);
     return ok();
@@ -177,8 +183,8 @@ Status OffscreenRenderer::renderMeshes(const Document& doc, const std::vector<in
     if (!d->fbo || !makeCurrent())
         return Error(
             QStringLiteral("OffscreenRenderer::renderMesh needs create() and setSize() first"));
-    d->report = d->renderer.renderMeshes(doc, slots, camera,
-                                         {d->fbo, d->size, d->withAov, d->withCurvature}, options);
+    d->report = d->renderer.renderMeshes(
+        doc, slots, camera, {d->fbo, d->size, d->withAov, d->withCurvature, std::nullopt}, options);
     if (!d->report.ok)
         return Error(d->report.error);
     return ok();

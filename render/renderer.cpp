@@ -218,7 +218,9 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         gl->glDisable(GL_SCISSOR_TEST);
     }
     if (drawn.framebuffer != target.framebuffer)
-        floatDepth.copyColourTo(target.framebuffer, target.size);
+        report.presentedPixels = present(plan, target, preview);
+    else
+        presented.reset(); // drawn over the host, whichever framebuffer it is
     clock.mark(PassTimes::Present);
     clock.stop();
     report.cpuMs.overlays = msSince(phase);
@@ -250,6 +252,27 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
     }
     report.cpuMs.total = msSince(total);
     return report;
+}
+
+std::int64_t Renderer::Impl::present(const PartialPlan& plan, const RenderTarget& target,
+                                     bool preview) {
+    const Presented now{target.framebuffer, target.size, floatDepth.serial()};
+    // A partial frame changed its rectangles of the kept frame alone: where the host still
+    // holds the last frame copied, those and what the host drew over are all that differ.
+    const bool holdsLast =
+        !preview && plan.damage && target.drawnOver && presented && *presented == now;
+    // A preview's magnified copy is not the kept frame's pixels.
+    presented = preview ? std::nullopt : std::optional<Presented>(now);
+    if (!holdsLast) {
+        floatDepth.copyColourTo(target.framebuffer, target.size);
+        return std::int64_t(target.size.width()) * target.size.height();
+    }
+    std::vector<glm::ivec4> rects;
+    if (!plan.unchanged)
+        rects = plan.regions;
+    if (const QRect& over = *target.drawnOver; !over.isEmpty())
+        rects.emplace_back(over.x(), over.y(), over.x() + over.width(), over.y() + over.height());
+    return floatDepth.copyColourRects(target.framebuffer, rects);
 }
 
 Renderer::Impl::PartialPlan
@@ -595,6 +618,7 @@ FrameReport Renderer::renderMesh(const Document& doc, int slot, const Camera& ca
 FrameReport Renderer::renderMeshes(const Document& doc, const std::vector<int>& slots,
                                    const Camera& camera, const RenderTarget& target,
                                    const RenderOptions& options) {
+    d->presented.reset(); // drawn straight into its target
     QElapsedTimer total;
     total.start();
     FrameReport report;
@@ -967,7 +991,7 @@ std::optional<PickHit> Renderer::pick(const Document& doc, const Camera& camera,
     o.analysis = {};
     const int x = int(fx), y = viewport.height() - 1 - int(fy); // GL rows run bottom-up
     const QRect at(x, y, 1, 1);
-    d->renderFrame(doc, camera, {d->pickFbo, viewport, true}, o, &at);
+    d->renderFrame(doc, camera, {d->pickFbo, viewport, true, false, std::nullopt}, o, &at);
     d->gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
     float a[4] = {-1.0f, 0.0f, 0.0f, 0.0f}; // id, u, v, Z
     d->gl->glGetTextureImage(d->pickTextures[kAovIdUvDepthOutput], 0, GL_RGBA, GL_FLOAT, sizeof(a),

@@ -111,6 +111,16 @@ struct Renderer::Impl {
     /// Set while a partial frame is drawn again whole (its plan skipped other solids' back
     /// faces than the kept frame's).
     bool wholeFrameAgain = false;
+    /// The host framebuffer the last frame's kept colour was copied into (it holds that frame
+    /// but for what its host drew over since, RenderTarget::drawnOver); unset after any other
+    /// frame the renderer draws.
+    struct Presented {
+        std::uint32_t framebuffer = 0;
+        QSize size;
+        std::uint64_t serial = 0; ///< floatDepth's
+        bool operator==(const Presented&) const = default;
+    };
+    std::optional<Presented> presented;
     /// The frame's view as partial frames compare it, and its surfaces' footprints.
     PartialFrameView partialView(const Document& doc, const RenderTarget& target, QSize drawnSize,
                                  const FrameCamera& fc, const std::vector<Light>& lights,
@@ -177,6 +187,9 @@ struct Renderer::Impl {
         std::vector<glm::ivec4> regions;
         bool unchanged = false; ///< nothing to redraw: the kept frame is the image
     };
+    /// Copies the kept frame into the host: whole, or where a partial frame redrew and the host
+    /// drew over when the host still holds the last frame copied. Returns the pixels copied.
+    std::int64_t present(const PartialPlan& plan, const RenderTarget& target, bool preview);
     PartialPlan planPartialFrame(const Document& doc, const RenderTarget& target, QSize size,
                                  FrameCamera& fc, const std::vector<Light>& lights,
                                  const RenderOptions& options, const FrameTargets& targets,

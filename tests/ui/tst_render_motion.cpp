@@ -110,7 +110,7 @@ public:
         gl->glDeleteTextures(5, m_tex);
         gl = nullptr;
     }
-    RenderTarget target() const { return {m_fbo, m_size, m_withAov}; }
+    RenderTarget target() const { return {m_fbo, m_size, m_withAov, false, std::nullopt}; }
 
     /// The colour, top row first.
     QImage colour() const {
