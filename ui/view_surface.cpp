@@ -3,6 +3,7 @@
 #include "ui/view_surface.h"
 
 #include "ui/cameracontroller.h"
+#include "ui/overlay_bounds.h"
 
 #include <QCoreApplication>
 #include <QEvent>
@@ -22,6 +23,7 @@
 #include <QWidget>
 #include <QWindow>
 #include <algorithm>
+#include <cmath>
 
 namespace kw {
 
@@ -116,7 +118,7 @@ public:
             m_context->doneCurrent();
     }
 
-    QPaintDevice* paintDevice() override {
+    QPaintDevice* frameDevice() override {
         if (!m_fbo)
             return nullptr;
         if (!m_device)
@@ -131,6 +133,11 @@ public:
             m_fbo->bind();
     }
 
+protected:
+    // The framebuffer object is the view's own: only its frames and overlays draw into it.
+    bool keepsPixels() const override { return true; }
+
+public:
     void exposed() {
         if (m_window->isExposed())
             show(m_paintPending || !m_drawn);
@@ -336,7 +343,7 @@ public:
     QOpenGLContext* context() const override { return m_widget->context(); }
     QSurfaceFormat format() const override { return m_widget->format(); }
     unsigned framebuffer() const override { return m_widget->defaultFramebufferObject(); }
-    QPaintDevice* paintDevice() override { return m_widget; }
+    QPaintDevice* frameDevice() override { return m_widget; }
 
     // ViewWidget's calls.
     void initializeGl() { m_callbacks.initialize(); }
@@ -426,10 +433,12 @@ QImage ViewSurface::grabFramebuffer() {
 void ViewSurface::releaseGl() {
     m_cleanFrame.reset();
     m_cleanFrameValid = false;
+    m_drawnOver.reset();
 }
 
 void ViewSurface::resized(int width, int height) {
     m_cleanFrameValid = false; // the framebuffer is new
+    m_drawnOver.reset();
     m_callbacks.resize(width, height);
 }
 
@@ -450,7 +459,7 @@ void ViewSurface::paint() {
     if (overlaysOnly && m_view.renderer->isInitialized() && restoreCleanFrame(pixels)) {
         // Only what is painted over the frame changed (a probe marker): the last still frame
         // again, its overlays painted anew; no new frame.
-        m_callbacks.paintOverlays();
+        paintOverlays(pixels);
         return;
     }
     drawFrame(pixels);
@@ -469,8 +478,11 @@ void ViewSurface::drawFrame(QSize pixels) {
     paintClock.start();
     const bool moving = m_view.moving();
     const RenderOptions options = frameOptions(moving);
+    const std::optional<QRect> drawnOver = keepsPixels() ? m_drawnOver : std::nullopt;
     m_lastReport = renderer.render(*m_view.document, m_view.camera->camera(),
-                                   {framebuffer(), pixels, false}, options);
+                                   {framebuffer(), pixels, false, false, drawnOver}, options);
+    // The frame alone, until its overlays are painted (a failed one: not known).
+    m_drawnOver = m_lastReport.ok ? std::optional<QRect>(QRect()) : std::nullopt;
     m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
     reportError();
     refine(moving);
@@ -482,7 +494,7 @@ void ViewSurface::drawFrame(QSize pixels) {
         keepCleanFrame(pixels);
     else
         m_cleanFrameValid = false;
-    m_callbacks.paintOverlays();
+    paintOverlays(pixels);
     if (renderer.passProfiling()) {
         // The QPainter overlays' GL work, finished here, as the renderer's passes are.
         makeCurrent();
@@ -528,6 +540,7 @@ RenderOptions ViewSurface::frameOptions(bool moving) {
 }
 
 void ViewSurface::paintUnavailable() {
+    m_drawnOver.reset();
     QPaintDevice* device = paintDevice();
     if (!device)
         return;
@@ -592,6 +605,37 @@ void ViewSurface::drawAgainWhenStill() {
         connect(m_stillTimer, &QTimer::timeout, this, [this] { update(); });
     }
     m_stillTimer->start(ViewState::kStillMs);
+}
+
+QPaintDevice* ViewSurface::paintDevice() {
+    return m_recording ? m_recording : frameDevice();
+}
+
+void ViewSurface::paintOverlays(QSize pixels) {
+    if (keepsPixels() && m_drawnOver) {
+        // Painted once on a device that keeps their bounds: the next partial frame copies its
+        // rectangles and these over them, and the rest of the framebuffer is already that
+        // frame (RenderTarget::drawnOver).
+        if (QPaintDevice* frame = frameDevice()) {
+            OverlayBounds bounds(*frame);
+            m_recording = &bounds;
+            m_callbacks.paintOverlays();
+            m_recording = nullptr;
+            if (const QRect b = bounds.bounds(); !b.isEmpty()) {
+                const qreal dpr = m_host->devicePixelRatioF();
+                const int x0 = int(std::floor(b.left() * dpr)),
+                          x1 = int(std::ceil((b.right() + 1) * dpr));
+                const int y0 = int(std::floor(b.top() * dpr)),
+                          y1 = int(std::ceil((b.bottom() + 1) * dpr));
+                // GL rows run bottom-up.
+                const QRect gl = QRect(x0, pixels.height() - y1, x1 - x0, y1 - y0)
+                                     .intersected(QRect(QPoint(0, 0), pixels));
+                if (!gl.isEmpty())
+                    m_drawnOver = m_drawnOver->isEmpty() ? gl : m_drawnOver->united(gl);
+            }
+        }
+    }
+    m_callbacks.paintOverlays();
 }
 
 void ViewSurface::keepCleanFrame(QSize pixels) {

@@ -21,10 +21,12 @@
 #include <QElapsedTimer>
 #include <QImage>
 #include <QObject>
+#include <QRect>
 #include <QSize>
 #include <QSurfaceFormat>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 class QOpenGLContext;
@@ -151,8 +153,9 @@ public:
     virtual QSurfaceFormat format() const = 0;
     /// The framebuffer the frame is drawn into (valid inside paint).
     virtual unsigned framebuffer() const = 0;
-    /// For QPainter over the frame, inside paint only.
-    virtual QPaintDevice* paintDevice() = 0;
+    /// For QPainter over the frame, inside paint only (while the overlays' bounds are taken, a
+    /// device that keeps them, ui/overlay_bounds.h).
+    QPaintDevice* paintDevice();
 
     /// The frame's own GL objects (the bare frame kept for overlays): whether there are any,
     /// and letting them go with the context current.
@@ -191,6 +194,12 @@ protected:
     virtual void requestFrame() = 0;
     /// Paints a frame now into framebuffer() (with its context current) and reads it back.
     virtual QImage grab() = 0;
+    /// The frame's framebuffer as a QPainter device.
+    virtual QPaintDevice* frameDevice() = 0;
+    /// Whether framebuffer() keeps its pixels from one frame to the next, with nothing but
+    /// this view drawing into it: a partial frame then copies only what changed
+    /// (RenderTarget::drawnOver). Not a QOpenGLWidget's, which Qt may discard.
+    virtual bool keepsPixels() const { return false; }
     /// The kinds' calls: the frame's framebuffer was made at a new size; paint a frame into it
     /// (the frame policy, then the view's overlays); the frame is on screen.
     void resized(int width, int height);
@@ -215,11 +224,18 @@ private:
     /// The frame before its overlays, kept after still frames (updateOverlays): copy, restore.
     void keepCleanFrame(QSize pixels);
     bool restoreCleanFrame(QSize pixels);
+    /// The view's overlays over the frame; where framebuffer() keeps its pixels, their bounds
+    /// (painted first on OverlayBounds) join m_drawnOver.
+    void paintOverlays(QSize pixels);
 
     QWidget* m_host;
     const ViewState& m_view;
     std::unique_ptr<QOpenGLFramebufferObject> m_cleanFrame; ///< the last still frame, bare
     bool m_cleanFrameValid = false;
+    /// What was painted over framebuffer() since the renderer's last frame into it (GL pixels;
+    /// RenderTarget::drawnOver); unset when not known (a new framebuffer, a failed frame).
+    std::optional<QRect> m_drawnOver;
+    QPaintDevice* m_recording = nullptr; ///< the overlays' bounds device while they are taken
     bool m_framePending = false;    ///< update() since the last frame
     bool m_overlaysOnly = false;    ///< updateOverlays() since the last frame
     QTimer* m_stillTimer = nullptr; ///< draws the anti-aliased still frame after moving

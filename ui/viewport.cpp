@@ -181,10 +181,9 @@ void Viewport::setAnalysis(const AnalysisOptions& analysis) {
     update();
 }
 
-void Viewport::drawLegend() {
+void Viewport::drawLegend(QPainter& p) {
     if (m_view.options.edgeBands) {
         // The Edge Continuity overlay's classes, bottom right.
-        QPainter p(m_surface->paintDevice());
         const std::pair<glm::vec4, QString> rows[] = {
             {continuityColor(ContinuityClass::G2), tr("G2")},
             {continuityColor(ContinuityClass::G1), tr("G1")},
@@ -205,14 +204,12 @@ void Viewport::drawLegend() {
     }
     const AnalysisOptions& a = m_view.options.analysis;
     if (m_view.options.mode == RenderMode::Exact && a.mode == AnalysisMode::Draft) {
-        QPainter p(m_surface->paintDevice());
         drawDraftLegend(p, QRect(width() - 190, 16, 170, 100), a.pullDirection,
                         a.draftAngleDegrees);
         return;
     }
     if (m_view.options.mode != RenderMode::Exact || !isColourMap(a.mode))
         return;
-    QPainter p(m_surface->paintDevice());
     const QRect area(width() - 150, 16, 130, std::min(260, height() - 32));
     drawColourLegend(p, area, a.mode, lastFrameReport().analysisRange,
                      a.scale.value_or(defaultScale(a.mode)), !a.range);
@@ -401,17 +398,22 @@ void Viewport::paintEvent(QPaintEvent*) {
 }
 
 void Viewport::paintOverlays() {
-    drawSelection();
-    drawLegend();
     QPaintDevice* device = m_surface->paintDevice();
     if (!device)
         return;
     std::erase_if(m_overlays, [](const auto& overlay) { return overlay.first.isNull(); });
-    if (m_overlays.empty())
-        return;
+    // One painter for them all: the surface may record them first, to learn where they fall
+    // (ViewSurface::paintOverlays). Each starts from the painter's defaults.
     QPainter p(device);
+    const auto paint = [&p](const auto& draw) {
+        p.save();
+        draw();
+        p.restore();
+    };
+    paint([&] { drawSelection(p); });
+    paint([&] { drawLegend(p); });
     for (const auto& overlay : m_overlays)
-        overlay.second(p);
+        paint([&] { overlay.second(p); });
 }
 
 std::optional<PickHit> Viewport::pickSurface(QPointF position) {

@@ -266,8 +266,8 @@ protected:
 private:
     using Gesture = ViewState::Gesture;
     void releaseGl();
-    void drawSelection();
-    void drawLegend();
+    void drawSelection(QPainter& p);
+    void drawLegend(QPainter& p);
     /// QPainter overlays: highlighted selected surfaces, their control nets, grid, axes.
     void drawOverlays(class QPainter& p, const ViewProjection& view);
     /// All the QPainter work over a frame: selection, nets, tools, legend, added overlays.

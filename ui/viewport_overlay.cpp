@@ -117,10 +117,9 @@ bool kept(const glm::dvec3& x, const std::vector<SectionPlane>& planes) {
 
 } // namespace
 
-void Viewport::drawSelection() {
+void Viewport::drawSelection(QPainter& p) {
     const std::vector<ControlPointRef>& refs = m_selection->controlPoints();
     // QPainter after raw GL: it sets up its own state; the renderer resets what it needs.
-    QPainter p(m_surface->paintDevice());
     p.setRenderHint(QPainter::Antialiasing);
     const ViewProjection view = viewProjection();
     drawOverlays(p, view);

@@ -1,9 +1,10 @@
 // The 3D view's frames in a native OpenGL window (ui/view_surface.h) on the unit sphere sample
 // (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads,
 // the probe's panel shows over the window, measurements and the rubber band are painted over
-// the frame, input that reaches the native window itself is the view's (a control-point drag
-// edits the document), and the QOpenGLWidget fallback draws the same pixels; on a context too old
-// for the renderer (tests/ui/view_frames.cmake) the view shows why instead of a frame.
+// the frame, a drag step's partial frame is copied where it changed and the overlays were, input
+// that reaches the native window itself is the view's (a control-point drag edits the document),
+// and the QOpenGLWidget fallback draws the same pixels; on a context too old for the renderer
+// (tests/ui/view_frames.cmake) the view shows why instead of a frame.
 #include "editor_test_util.h"
 #include "render/offscreen_renderer.h"
 #include "ui/controlpointpicker.h"
@@ -191,6 +192,53 @@ private Q_SLOTS:
                  qPrintable(QStringLiteral("%1,%2").arg(moved->x()).arg(moved->y())));
         m_window->undoStack()->undo();
         QCOMPARE(point(ref), p0);
+    }
+
+    void dragStepsCopyWhatChanged() {
+        // A drag step's partial frame is copied into the window's framebuffer where it redrew
+        // and where the overlays were (the selected point's square moves with the drag): the
+        // rest is the last frame's already. What the view holds is still the whole frame.
+        // Aliased full-size frames (a software rasteriser's previews while moving are
+        // magnified into the whole framebuffer).
+        openWindow("bicubic");
+        Viewport* vp = m_window->viewport();
+        QVERIFY(vp->isNativeWindow() && vp->partialFrames());
+        vp->setPreviewScale(1.0);
+        vp->setSamples(1);
+        // The surface and its net small in the view, as one face of a part.
+        Camera camera = vp->cameraController().camera();
+        camera.eye = camera.target + (camera.eye - camera.target) * 3.0;
+        vp->setCamera(camera);
+        waitStill(300);
+        ControlPointPicker picker;
+        picker.update(*m_window->document(), vp->viewProjection());
+        const Surface& s = m_window->document()->scene().surfaces.front();
+        const ControlPointRef ref{s.id, 1, 1};
+        const auto pixel = picker.pixelOf(ref);
+        QVERIFY(pixel && vp->rect().contains(pixel->toPoint()));
+        const QPoint press = pixel->toPoint();
+        QTest::mouseMove(vp, press);
+        QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
+        QVERIFY(vp->isDragging());
+        const std::int64_t whole = std::int64_t(vp->lastFrameReport().drawnSize.width()) *
+                                   vp->lastFrameReport().drawnSize.height();
+        int copiedLess = 0;
+        for (int k = 1; k <= 4; ++k) {
+            const std::int64_t before = vp->framesDrawn();
+            QTest::mouseMove(vp, press + QPoint(9 * k, -6 * k));
+            QVERIFY(QTest::qWaitFor([&] { return vp->framesDrawn() > before; }, 5000));
+            const FrameReport& r = vp->lastFrameReport();
+            copiedLess += r.partial && r.presentedPixels > 0 && r.presentedPixels < whole / 2;
+        }
+        QVERIFY2(copiedLess >= 3, qPrintable(QString::number(copiedLess)));
+        const QImage partial = vp->grabFramebuffer();
+        QVERIFY(vp->lastFrameReport().partial);
+        vp->setPartialFrames(false);
+        const QImage straight = vp->grabFramebuffer();
+        QVERIFY(!vp->lastFrameReport().partial);
+        vp->setPartialFrames(true);
+        QCOMPARE(differingPixels(partial, straight), 0);
+        QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(36, -24));
     }
 
     void widgetFallbackDrawsTheSameFrame() {
