@@ -231,7 +231,12 @@ private Q_SLOTS:
         vp->setTool(&tool);
         const auto [ref, press] = pickablePoint();
         const NurbsSurface before = geometry();
-        QTest::mouseMove(vp, press + QPoint(3, 3));
+        // Sent to the view itself: QTest::mouseMove moves the X cursor, whose motion goes to
+        // whichever window is on top there (another test's, when tests share the display).
+        const QPoint at = press + QPoint(3, 3);
+        QMouseEvent hover(QEvent::MouseMove, at, vp->mapToGlobal(at), Qt::NoButton, Qt::NoButton,
+                          Qt::NoModifier);
+        QCoreApplication::sendEvent(vp, &hover);
         QVERIFY(tool.hovers > 0);
         // A plain press on a control point is the tool's: no drag, no pick.
         QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
