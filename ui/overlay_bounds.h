@@ -1,5 +1,6 @@
 // OverlayBounds: a QPainter device that draws nothing and keeps the device-pixel bounds of
-// what is painted on it, text included (QPicture's bounding rectangle leaves text out).
+// what is painted on it, text included (a QPicture's bounding rectangle missed the axis
+// indicator's labels: painted twice over a kept frame, tst_editor_analysis).
 #pragma once
 
 #include <QPaintDevice>

@@ -76,3 +76,7 @@ kw_add_test(tst_recovery NEEDS gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_recover
 # next start, Fit and markers with hidden surfaces, where new shapes appear.
 kw_add_test(tst_editor_first_minutes NEEDS gui SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_editor_first_minutes.cpp
             ${KW_TEST_SUPPORT_DIR}/editor_test_util.h LIBS knotwork_ui)
+
+# OverlayBounds: the bounds of what QPainter paints, against the pixels it paints on an image.
+kw_add_test(tst_overlay_bounds SOURCES ${CMAKE_CURRENT_LIST_DIR}/tst_overlay_bounds.cpp
+            LIBS knotwork_ui)
