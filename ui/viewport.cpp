@@ -402,8 +402,8 @@ void Viewport::paintOverlays() {
     if (!device)
         return;
     std::erase_if(m_overlays, [](const auto& overlay) { return overlay.first.isNull(); });
-    // One painter for them all: the surface may record them first, to learn where they fall
-    // (ViewSurface::paintOverlays). Each starts from the painter's defaults.
+    // One painter for them all: the surface may paint them first on a device that keeps their
+    // bounds (ViewSurface::paintOverlays). Each starts from the painter's defaults.
     QPainter p(device);
     const auto paint = [&p](const auto& draw) {
         p.save();

@@ -156,7 +156,8 @@ public:
     /// probe marker, a rubber band); a new frame when the last one was drawn while moving.
     void updateOverlays();
     /// Adds a QPainter overlay drawn over every frame after the view's own (the measurements'
-    /// dimensions), until `owner` is destroyed.
+    /// dimensions), until `owner` is destroyed. It draws and does nothing else: it may be
+    /// called twice a frame, once to measure where it falls (ViewSurface::paintOverlays).
     void addOverlay(QObject* owner, std::function<void(QPainter&)> paint);
     /// As QOpenGLWidget's: the view's context current with its frame's framebuffer bound,
     /// the context (null before the first frame), its format, that framebuffer, and a frame

@@ -41,7 +41,8 @@ public:
     virtual bool dragging() const { return false; }
     /// A live edit of the document is running (the renderer holds its colour range).
     virtual bool editing() const { return false; }
-    /// Draws over the view, in widget pixels.
+    /// Draws over the view, in widget pixels: what it draws and nothing else (it may be called
+    /// twice a frame, once on a device that only measures, ViewSurface::paintOverlays).
     virtual void paint(QPainter&) {}
     /// A key this tool wants ahead of the window's shortcuts (the host's ShortcutOverride),
     /// such as Ctrl+C over the view copying the tool's values rather than the selection.
