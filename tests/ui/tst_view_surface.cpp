@@ -163,13 +163,9 @@ private Q_SLOTS:
         QVERIFY(window);
         QCOMPARE(window->geometry().size(), vp->size());
         waitStill(300);
-        ControlPointPicker picker;
-        picker.update(*m_window->document(), vp->viewProjection());
-        const Surface& s = m_window->document()->scene().surfaces.front();
-        const ControlPointRef ref{s.id, 1, 1};
-        const auto pixel = picker.pixelOf(ref);
-        QVERIFY(pixel && vp->rect().contains(pixel->toPoint()));
-        QCOMPARE(picker.nearest(pixel->toPoint()), ref);
+        const ControlPointRef ref = pointRef();
+        const std::optional<QPointF> pixel = pickablePixel(ref);
+        QVERIFY(pixel);
         const QPoint press = pixel->toPoint();
         const glm::dvec3 p0 = point(ref);
 
@@ -210,12 +206,8 @@ private Q_SLOTS:
         camera.eye = camera.target + (camera.eye - camera.target) * 3.0;
         vp->setCamera(camera);
         waitStill(300);
-        ControlPointPicker picker;
-        picker.update(*m_window->document(), vp->viewProjection());
-        const Surface& s = m_window->document()->scene().surfaces.front();
-        const ControlPointRef ref{s.id, 1, 1};
-        const auto pixel = picker.pixelOf(ref);
-        QVERIFY(pixel && vp->rect().contains(pixel->toPoint()));
+        const std::optional<QPointF> pixel = pickablePixel(pointRef());
+        QVERIFY(pixel);
         const QPoint press = pixel->toPoint();
         QTest::mouseMove(vp, press);
         QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, press);
@@ -292,6 +284,21 @@ private:
                     return w;
         }
         return nullptr;
+    }
+    /// The first surface's control point (1, 1).
+    ControlPointRef pointRef() const {
+        return {m_window->document()->scene().surfaces.front().id, 1, 1};
+    }
+    /// Where the view shows `ref`, when inside it and the nearest point there.
+    std::optional<QPointF> pickablePixel(const ControlPointRef& ref) const {
+        Viewport* vp = m_window->viewport();
+        ControlPointPicker picker;
+        picker.update(*m_window->document(), vp->viewProjection());
+        const std::optional<QPointF> pixel = picker.pixelOf(ref);
+        if (!pixel || !vp->rect().contains(pixel->toPoint()) ||
+            !(picker.nearest(pixel->toPoint()) == ref))
+            return std::nullopt;
+        return pixel;
     }
     glm::dvec3 point(const ControlPointRef& ref) const {
         const Surface& s = m_window->document()->scene().surfaces.front();
