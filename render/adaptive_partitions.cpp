@@ -38,10 +38,7 @@ PolygonCut cutInView(const PolygonCut& cut, const std::vector<SpanBound>& spans,
     grow[0][0] = 1.0 / (1.0 + 2.0 * marginPixels / scale.viewportPixels.x);
     grow[1][1] = 1.0 / (1.0 + 2.0 * marginPixels / scale.viewportPixels.y);
     const glm::dmat4 clip = grow * scale.viewProjection;
-    // The (u, v) rectangle of the parts that may show, as surfaceSpanBounds cuts them.
-    const auto side = [](double t0, double t1, int g, int i) {
-        return i == g ? t1 : t0 + (t1 - t0) / g * i;
-    };
+    // The (u, v) rectangle of the parts that may show (SpanBound::sideU / sideV).
     double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
     const auto add = [&](double a0, double a1, double b0, double b1) {
         u0 = std::min(u0, a0), u1 = std::max(u1, a1);
@@ -63,8 +60,7 @@ PolygonCut cutInView(const PolygonCut& cut, const std::vector<SpanBound>& spans,
             for (int i = 0; i < b.grid; ++i) {
                 const SpanBound::Sub& sub = b.subs[size_t(j * b.grid + i)];
                 if (!boxOutsideFrustum(clip, sub.lo, sub.hi))
-                    add(side(b.u0, b.u1, b.grid, i), side(b.u0, b.u1, b.grid, i + 1),
-                        side(b.v0, b.v1, b.grid, j), side(b.v0, b.v1, b.grid, j + 1));
+                    add(b.sideU(i), b.sideU(i + 1), b.sideV(j), b.sideV(j + 1));
             }
     }
     // Cells [first, last) along one direction: those meeting (t0, t1), or the first alone.

@@ -346,13 +346,13 @@ std::vector<SpanBound> surfaceSpanBounds(const NurbsSurface& s, int grid) {
             b.v1 = s.knotsV[size_t(kv + 1)];
             b.grid = grid;
             b.subs.resize(size_t(grid * grid));
-            const double su = (b.u1 - b.u0) / grid, sv = (b.v1 - b.v0) / grid;
             for (int j = 0; j < grid; ++j)
                 for (int i = 0; i < grid; ++i) {
-                    const double u0 = b.u0 + su * i, u1 = i + 1 == grid ? b.u1 : u0 + su;
-                    const double v0 = b.v0 + sv * j, v1 = j + 1 == grid ? b.v1 : v0 + sv;
+                    // The sides chooseBreaks cuts the partition at: a break falls on a bounded
+                    // sub-rectangle's edge to the last bit.
                     SpanBound::Sub& sub = b.subs[size_t(j * grid + i)];
-                    const BezierPatch bz = extractPatch(s, ku, kv, u0, u1, v0, v1, sub.lo, sub.hi);
+                    const BezierPatch bz = extractPatch(s, ku, kv, b.sideU(i), b.sideU(i + 1),
+                                                        b.sideV(j), b.sideV(j + 1), sub.lo, sub.hi);
                     sub.m = patchBound(bz, sub.lo, sub.hi);
                 }
             out.push_back(std::move(b));
@@ -529,8 +529,8 @@ PartitionChoice chooseBreaks(const std::vector<SpanBound>& spans, const Interval
     const Interval box[2] = {boxU, boxV};
     const int minimum[2] = {std::clamp(minU, kMinPartitions, kMaxPartitions),
                             std::clamp(minV, kMinPartitions, kMaxPartitions)};
-    // 1. Columns (d = 0) and rows (d = 1): the sub-rectangles' sides inside the box, computed
-    // as surfaceSpanBounds cuts them, so the spans of one knot interval give the same values.
+    // 1. Columns (d = 0) and rows (d = 1): the sub-rectangles' sides inside the box
+    // (SpanBound::sideU / sideV, as surfaceSpanBounds bounds them).
     std::vector<double> edges[2];
     for (int d = 0; d < 2; ++d) {
         edges[d] = {box[d].first, box[d].last};

@@ -118,8 +118,9 @@ struct SpanBound {
     double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
     int grid = 1;
     std::vector<Sub> subs; ///< grid x grid, sub (a, b) at b * grid + a (u index a)
-    /// Side i (0..grid) of the sub-rectangles along u (v): the values the partition's breaks
-    /// are cut at (chooseBreaks), so that the spans of one knot interval give the same ones.
+    /// Side i (0..grid) of the sub-rectangles along u (v): where surfaceSpanBounds bounds them
+    /// and the partition's breaks are cut (chooseBreaks), so that the spans of one knot
+    /// interval give the same values.
     double sideU(int i) const { return i == grid ? u1 : u0 + (u1 - u0) / grid * i; }
     double sideV(int j) const { return j == grid ? v1 : v0 + (v1 - v0) / grid * j; }
 };
