@@ -187,6 +187,8 @@ public:
     /// (returns true: commands() must be uploaded whole).
     bool update(const ExactPlanScene& scene, const ExactPlanKey& key, const FrameCamera& camera,
                 std::vector<CommandWrite>& writes);
+    /// The key of the plan last updated.
+    const ExactPlanKey& key() const { return m_key; }
     /// Forgets the plan (the next update builds it).
     void clear();
 

@@ -11,7 +11,6 @@
 
 #include <QOpenGLShaderProgram>
 #include <algorithm>
-#include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 
@@ -715,7 +714,7 @@ Status ExactSurfacePass::finPass(const GpuScene& scene, const FrameCamera& camer
                 if (f.rects.empty() && !f.indices.empty()) {
                     f.rects =
                         finRects(f.vertices, f.indices, camera.viewProjection, camera.viewport,
-                                 int(std::ceil(skirtPushPixels(double(pixels)))));
+                                 m_plan.key().skirtPush);
                     f.bounds = glm::ivec4(0); // empty: meets nothing
                     for (const glm::ivec4& q : f.rects)
                         PartialFrames::unite(f.bounds, q);
