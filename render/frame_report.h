@@ -193,6 +193,10 @@ struct FrameReport {
     /// frame, or a partial frame's rectangles and what the host drew over
     /// (RenderTarget::drawnOver); 0 when the frame went straight to the host.
     std::int64_t presentedPixels = 0;
+    /// The host's framebuffer now holds the kept frame (not a magnified preview, not a frame
+    /// drawn straight into it): the next partial frame into it may copy only what changed, so
+    /// a host that draws over it should say where (RenderTarget::drawnOver).
+    bool keptInHost = false;
     /// Per pass, when Renderer::setPassProfiling is on (else measured is false).
     PassTimes passes;
 };

@@ -221,6 +221,7 @@ FrameReport Renderer::Impl::renderFrame(const Document& doc, const Camera& camer
         report.presentedPixels = present(plan, target, preview);
     else
         presented.reset(); // drawn over the host, whichever framebuffer it is
+    report.keptInHost = presented.has_value();
     clock.mark(PassTimes::Present);
     clock.stop();
     report.cpuMs.overlays = msSince(phase);

@@ -478,11 +478,14 @@ void ViewSurface::drawFrame(QSize pixels) {
     paintClock.start();
     const bool moving = m_view.moving();
     const RenderOptions options = frameOptions(moving);
-    const std::optional<QRect> drawnOver = keepsPixels() ? m_drawnOver : std::nullopt;
     m_lastReport = renderer.render(*m_view.document, m_view.camera->camera(),
-                                   {framebuffer(), pixels, false, false, drawnOver}, options);
-    // The frame alone, until its overlays are painted (a failed one: not known).
-    m_drawnOver = m_lastReport.ok ? std::optional<QRect>(QRect()) : std::nullopt;
+                                   {framebuffer(), pixels, false, false, m_drawnOver}, options);
+    // The frame alone, until its overlays are painted. Where the next frame copies whole
+    // anyway (this one went straight into the framebuffer, a preview, a failed frame), nothing
+    // is measured: the overlays are painted once.
+    m_drawnOver = keepsPixels() && m_lastReport.ok && m_lastReport.keptInHost
+                      ? std::optional<QRect>(QRect())
+                      : std::nullopt;
     m_timing.renderMs = double(paintClock.nsecsElapsed()) * 1e-6;
     reportError();
     refine(moving);
@@ -612,7 +615,7 @@ QPaintDevice* ViewSurface::paintDevice() {
 }
 
 void ViewSurface::paintOverlays(QSize pixels) {
-    if (keepsPixels() && m_drawnOver) {
+    if (m_drawnOver) {
         // Painted once on a device that keeps their bounds: the next partial frame copies its
         // rectangles and these over them, and the rest of the framebuffer is already that
         // frame (RenderTarget::drawnOver).

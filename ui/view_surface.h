@@ -224,8 +224,8 @@ private:
     /// The frame before its overlays, kept after still frames (updateOverlays): copy, restore.
     void keepCleanFrame(QSize pixels);
     bool restoreCleanFrame(QSize pixels);
-    /// The view's overlays over the frame; where framebuffer() keeps its pixels, their bounds
-    /// (painted first on OverlayBounds) join m_drawnOver.
+    /// The view's overlays over the frame; while m_drawnOver is kept, their bounds (painted
+    /// first on OverlayBounds) join it.
     void paintOverlays(QSize pixels);
 
     QWidget* m_host;
@@ -233,7 +233,8 @@ private:
     std::unique_ptr<QOpenGLFramebufferObject> m_cleanFrame; ///< the last still frame, bare
     bool m_cleanFrameValid = false;
     /// What was painted over framebuffer() since the renderer's last frame into it (GL pixels;
-    /// RenderTarget::drawnOver); unset when not known (a new framebuffer, a failed frame).
+    /// RenderTarget::drawnOver); unset when not known or not needed (a framebuffer that does
+    /// not keep its pixels or is new, a last frame the next one copies whole anyway).
     std::optional<QRect> m_drawnOver;
     QPaintDevice* m_recording = nullptr; ///< the overlays' bounds device while they are taken
     bool m_framePending = false;    ///< update() since the last frame

@@ -1,10 +1,10 @@
 // The 3D view's frames in a native OpenGL window (ui/view_surface.h) on the unit sphere sample
-// (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads,
-// the probe's panel shows over the window, measurements and the rubber band are painted over
-// the frame, a drag step's partial frame is copied where it changed and the overlays were, input
-// that reaches the native window itself is the view's (a control-point drag edits the document),
-// and the QOpenGLWidget fallback draws the same pixels; on a context too old for the renderer
-// (tests/ui/view_frames.cmake) the view shows why instead of a frame.
+// (label gui, Xvfb): a frame repaints no widget, the screen shows what grabFramebuffer reads, the
+// probe's panel shows over the window, measurements and the rubber band are painted over the frame,
+// a drag step's partial frame is copied where it changed and the overlays were (measured only when
+// so copied), input that reaches the native window itself is the view's (a control-point drag edits
+// the document), and the QOpenGLWidget fallback draws the same pixels; on a context too old for the
+// renderer (tests/ui/view_frames.cmake) the view shows why instead of a frame.
 #include "editor_test_util.h"
 #include "render/offscreen_renderer.h"
 #include "ui/controlpointpicker.h"
@@ -231,6 +231,37 @@ private Q_SLOTS:
         vp->setPartialFrames(true);
         QCOMPARE(differingPixels(partial, straight), 0);
         QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, press + QPoint(36, -24));
+    }
+
+    void overlaysAreMeasuredOnlyForPartialCopies() {
+        // The overlays are painted a second time, on a device that measures them, only where
+        // the next frame may copy what changed alone: a frame drawn straight into the
+        // framebuffer (the software rasteriser's progressive still frames) paints them once.
+        openWindow("sphere");
+        Viewport* vp = m_window->viewport();
+        struct CountingTool : Tool {
+            int paints = 0;
+            bool press(QMouseEvent*) override { return false; }
+            void paint(QPainter&) override { ++paints; }
+        } tool;
+        vp->setTool(&tool);
+        waitStill(300);
+        const auto paintsPerFrame = [&] {
+            tool.paints = 0;
+            const std::int64_t before = vp->framesDrawn();
+            for (int k = 0; k < 3; ++k)
+                if (!nextFrame())
+                    return -1.0;
+            return double(tool.paints) / double(vp->framesDrawn() - before);
+        };
+        QVERIFY(!vp->lastFrameReport().keptInHost);
+        QCOMPARE(paintsPerFrame(), 1.0);
+        // Aliased frames are kept and copied: measured, then painted.
+        vp->setSamples(1);
+        waitStill(300);
+        QVERIFY(vp->lastFrameReport().keptInHost);
+        QCOMPARE(paintsPerFrame(), 2.0);
+        vp->setTool(nullptr);
     }
 
     void widgetFallbackDrawsTheSameFrame() {
