@@ -6,6 +6,7 @@
 #include <QPaintEngine>
 #include <QPainterPath>
 #include <QPixmap>
+#include <QPolygonF>
 #include <QTextItem>
 #include <cmath>
 
@@ -28,14 +29,8 @@ public:
 
     void drawPath(const QPainterPath& path) override { add(path.controlPointRect(), true); }
     void drawPolygon(const QPointF* points, int count, PolygonDrawMode) override {
-        if (count < 1)
-            return;
-        QPointF low = points[0], high = points[0];
-        for (int k = 1; k < count; ++k) {
-            low = QPointF(std::min(low.x(), points[k].x()), std::min(low.y(), points[k].y()));
-            high = QPointF(std::max(high.x(), points[k].x()), std::max(high.y(), points[k].y()));
-        }
-        add(QRectF(low, high), true);
+        if (count > 0)
+            add(QPolygonF(QList<QPointF>(points, points + count)).boundingRect(), true);
     }
     void drawLines(const QLineF* lines, int count) override {
         for (int k = 0; k < count; ++k)
