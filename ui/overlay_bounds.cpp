@@ -98,12 +98,8 @@ QPaintEngine* OverlayBounds::paintEngine() const {
 }
 
 QRect OverlayBounds::bounds() const {
-    const QRectF b = m_engine->bounds;
-    if (b.isNull())
-        return {};
-    // The engine sees device pixels (the painter scales by the pixel ratio): back to logical.
-    const QRectF logical(b.topLeft() / m_dpr, b.bottomRight() / m_dpr);
-    return logical.toAlignedRect();
+    // The engine sees device pixels already (the painter scales by the pixel ratio).
+    return m_engine->bounds.isNull() ? QRect() : m_engine->bounds.toAlignedRect();
 }
 
 int OverlayBounds::metric(PaintDeviceMetric metric) const {

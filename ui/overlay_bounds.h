@@ -19,7 +19,7 @@ public:
     ~OverlayBounds() override;
 
     QPaintEngine* paintEngine() const override;
-    /// What the painters drew, in the device's logical pixels, widened by their pens and by a
+    /// What the painters drew, in the device's pixels (y down), widened by their pens and by a
     /// pixel for antialiased edges; null when nothing.
     QRect bounds() const;
 

@@ -23,7 +23,6 @@
 #include <QWidget>
 #include <QWindow>
 #include <algorithm>
-#include <cmath>
 
 namespace kw {
 
@@ -624,18 +623,13 @@ void ViewSurface::paintOverlays(QSize pixels) {
             m_recording = &bounds;
             m_callbacks.paintOverlays();
             m_recording = nullptr;
-            if (const QRect b = bounds.bounds(); !b.isEmpty()) {
-                const qreal dpr = m_host->devicePixelRatioF();
-                const int x0 = int(std::floor(b.left() * dpr)),
-                          x1 = int(std::ceil((b.right() + 1) * dpr));
-                const int y0 = int(std::floor(b.top() * dpr)),
-                          y1 = int(std::ceil((b.bottom() + 1) * dpr));
-                // GL rows run bottom-up.
-                const QRect gl = QRect(x0, pixels.height() - y1, x1 - x0, y1 - y0)
-                                     .intersected(QRect(QPoint(0, 0), pixels));
-                if (!gl.isEmpty())
-                    m_drawnOver = m_drawnOver->isEmpty() ? gl : m_drawnOver->united(gl);
-            }
+            const QRect b = bounds.bounds();
+            // GL rows run bottom-up.
+            const QRect gl =
+                QRect(b.x(), pixels.height() - b.y() - b.height(), b.width(), b.height())
+                    .intersected(QRect(QPoint(0, 0), pixels));
+            if (!gl.isEmpty())
+                m_drawnOver = m_drawnOver->isEmpty() ? gl : m_drawnOver->united(gl);
         }
     }
     m_callbacks.paintOverlays();

@@ -30,7 +30,7 @@ QRect touched(QSize size, qreal dpr, const std::function<void(QPainter&)>& paint
     return r;
 }
 
-/// OverlayBounds' rectangle in the same device pixels.
+/// OverlayBounds' rectangle (device pixels).
 QRect bounded(QSize size, qreal dpr, const std::function<void(QPainter&)>& paint) {
     QImage like(size * dpr, QImage::Format_ARGB32_Premultiplied);
     like.setDevicePixelRatio(dpr);
@@ -39,12 +39,7 @@ QRect bounded(QSize size, qreal dpr, const std::function<void(QPainter&)>& paint
         QPainter p(&bounds);
         paint(p);
     }
-    const QRect b = bounds.bounds();
-    if (b.isNull())
-        return {};
-    return QRect(QPoint(int(std::floor(b.left() * dpr)), int(std::floor(b.top() * dpr))),
-                 QPoint(int(std::ceil((b.right() + 1) * dpr)) - 1,
-                        int(std::ceil((b.bottom() + 1) * dpr)) - 1));
+    return bounds.bounds();
 }
 
 } // namespace
