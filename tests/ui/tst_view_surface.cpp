@@ -12,6 +12,7 @@
 
 #include <QCursor>
 #include <QFrame>
+#include <QPainter>
 #include <QScreen>
 #include <QSignalSpy>
 #include <QUndoStack>
@@ -192,7 +193,8 @@ private Q_SLOTS:
 
     void dragStepsCopyWhatChanged() {
         // A drag step's partial frame is copied into the window's framebuffer where it redrew
-        // and where the overlays were (the selected point's square moves with the drag): the
+        // and where the overlays were (the selected point's square moves with the drag, and a
+        // mark at the top): the
         // rest is the last frame's already. What the view holds is still the whole frame.
         // Aliased full-size frames (a software rasteriser's previews while moving are
         // magnified into the whole framebuffer).
@@ -205,8 +207,18 @@ private Q_SLOTS:
         Camera camera = vp->cameraController().camera();
         camera.eye = camera.target + (camera.eye - camera.target) * 3.0;
         vp->setCamera(camera);
+        // And a mark at the top edge in the dragged point's column: an overlay off the
+        // rectangles, which only its bounds (the right way up) bring into the copy; no axis
+        // indicator, whose corner would stretch the overlays' rectangle over most of the view.
+        vp->setAxisIndicator(false);
+        const ControlPointRef ref = pointRef();
+        QObject owner;
+        vp->addOverlay(&owner, [this, vp, ref](QPainter& p) {
+            if (const auto at = vp->viewProjection().project(point(ref)))
+                p.fillRect(QRectF(at->x() - 3, 6, 6, 6), Qt::yellow);
+        });
         waitStill(300);
-        const std::optional<QPointF> pixel = pickablePixel(pointRef());
+        const std::optional<QPointF> pixel = pickablePixel(ref);
         QVERIFY(pixel);
         const QPoint press = pixel->toPoint();
         QTest::mouseMove(vp, press);
